@@ -1,0 +1,133 @@
+"""A small live plot panel: a quantity against time, drawn in step with the motion.
+
+The lesson's figures 7 to 9 plot Alfred's position s(t), velocity v(t) and acceleration a(t)
+against time and shade the area under v(t), which is the displacement. :class:`Plot` draws one
+such panel into a pixel rectangle: a frame with ticks, the curve up to "now", a marker on the
+current value and, if asked, the shaded area between the curve and zero.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pygame
+
+from engine.render.draw import GRID, INK, MUTED, Color, _number, _ticks, draw_text
+
+__all__ = ["Plot"]
+
+
+class Plot:
+    """A panel plotting y against t (s) inside the pixel rectangle ``rect`` (left, top, w, h).
+
+    ``t_max`` (s) and ``y_range`` = (y_min, y_max) fix the axes so the panel does not jump as the
+    curve grows; ``t_step`` and ``y_step`` space the numbered ticks; ``title`` is written at the
+    top left (e.g. "v(t)  in/s").
+    """
+
+    def __init__(
+        self,
+        rect: tuple[int, int, int, int] | pygame.Rect,
+        t_max: float,
+        y_range: tuple[float, float],
+        title: str,
+        t_step: float = 1.0,
+        y_step: float = 1.0,
+        color: Color = INK,
+    ) -> None:
+        self.rect = pygame.Rect(rect)
+        if self.rect.width < 40 or self.rect.height < 40:
+            raise ValueError(f"rect must be at least 40x40 px, got {self.rect.size}")
+        if not t_max > 0:
+            raise ValueError(f"t_max must be > 0 s, got {t_max}")
+        if not y_range[1] > y_range[0]:
+            raise ValueError(f"y_range must have y_max > y_min, got {y_range}")
+        self.t_max = float(t_max)
+        self.y_min, self.y_max = float(y_range[0]), float(y_range[1])
+        self.title = title
+        self.t_step = float(t_step)
+        self.y_step = float(y_step)
+        self.color = color
+        # The plotting area: room on the left for y numbers, below for t numbers, above for title.
+        self.area = pygame.Rect(
+            self.rect.left + 26, self.rect.top + 20, self.rect.width - 34, self.rect.height - 38
+        )
+
+    def to_px(self, t: np.ndarray | float, y: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Pixel coordinates of the point (t s, y) inside the panel (y up)."""
+        a = self.area
+        px = a.left + (np.asarray(t, dtype=float) / self.t_max) * (a.width - 1)
+        frac = (np.asarray(y, dtype=float) - self.y_min) / (self.y_max - self.y_min)
+        py = a.bottom - 1 - frac * (a.height - 1)
+        return px, py
+
+    def draw_frame(self, surface: pygame.Surface) -> None:
+        """The panel's background, grid, axes, tick numbers and title."""
+        pygame.draw.rect(surface, (255, 255, 255), self.rect, border_radius=4)
+        pygame.draw.rect(surface, GRID, self.rect, 1, border_radius=4)
+        a = self.area
+        for t in _ticks(0.0, self.t_max, self.t_step):
+            px = round(float(self.to_px(t, 0.0)[0]))
+            pygame.draw.line(surface, GRID, (px, a.top), (px, a.bottom - 1), 1)
+            draw_text(surface, _number(float(t)), (px, a.bottom + 2), 15, MUTED, "midtop")
+        for y in _ticks(self.y_min, self.y_max, self.y_step):
+            py = round(float(self.to_px(0.0, y)[1]))
+            pygame.draw.line(surface, GRID, (a.left, py), (a.right - 1, py), 1)
+            draw_text(surface, _number(float(y)), (a.left - 4, py), 15, MUTED, "midright")
+        # The axes: t along y = 0 (or the bottom if 0 is out of range), y along t = 0.
+        zero = min(max(0.0, self.y_min), self.y_max)
+        py0 = round(float(self.to_px(0.0, zero)[1]))
+        pygame.draw.line(surface, INK, (a.left, py0), (a.right - 1, py0), 1)
+        pygame.draw.line(surface, INK, (a.left, a.top), (a.left, a.bottom - 1), 1)
+        draw_text(surface, self.title, (self.rect.left + 6, self.rect.top + 3), 18, self.color)
+        draw_text(surface, "t (s)", (self.rect.right - 5, self.rect.top + 4), 15, MUTED, "topright")
+
+    def draw_curve(
+        self,
+        surface: pygame.Surface,
+        ts: Sequence[float] | np.ndarray,
+        ys: Sequence[float] | np.ndarray,
+        color: Color | None = None,
+        width: int = 2,
+        shade: bool = False,
+        marker: bool = True,
+    ) -> None:
+        """Draw the samples (ts[i] s, ys[i]) as a line; ``shade`` fills down to y = 0.
+
+        The shaded area is the integral of y over t so far: under v(t) it is the displacement.
+        ``marker`` puts a dot on the last sample, the value "now".
+        """
+        color = self.color if color is None else color
+        t = np.asarray(ts, dtype=float)
+        y = np.clip(np.asarray(ys, dtype=float), self.y_min, self.y_max)
+        if len(t) == 0:
+            return
+        px, py = self.to_px(t, y)
+        points = list(zip(px.tolist(), py.tolist(), strict=True))
+        clip = surface.get_clip()
+        surface.set_clip(self.area.clip(clip) if clip else self.area)
+        try:
+            if shade and len(points) >= 2:
+                zero = float(self.to_px(0.0, min(max(0.0, self.y_min), self.y_max))[1])
+                polygon = [(points[0][0], zero), *points, (points[-1][0], zero)]
+                light = tuple(round(255 - (255 - c) * 0.28) for c in color)
+                pygame.draw.polygon(surface, light, polygon)
+            if len(points) >= 2:
+                pygame.draw.lines(surface, color, False, points, width)
+            if marker:
+                last = (round(points[-1][0]), round(points[-1][1]))
+                pygame.draw.circle(surface, color, last, 4)
+        finally:
+            surface.set_clip(clip)
+
+    def draw(
+        self,
+        surface: pygame.Surface,
+        ts: Sequence[float] | np.ndarray,
+        ys: Sequence[float] | np.ndarray,
+        shade: bool = False,
+    ) -> None:
+        """The frame and one curve in the panel's colour: the usual one-quantity plot."""
+        self.draw_frame(surface)
+        self.draw_curve(surface, ts, ys, shade=shade)

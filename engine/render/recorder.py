@@ -1,0 +1,230 @@
+"""Drive a scene through the fixed-step loop: to numbered PNG frames, to a still, or to a window.
+
+Recording uses a virtual clock, so every frame lasts exactly 1/fps s of simulated time however
+long it takes to draw and save; the physics always steps by the scene's own dt, and each frame
+draws the state blended to the frame's exact time (see :mod:`engine.render.scene`). Recording
+the same scene twice gives byte-identical files.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import pygame
+
+from engine.loop import FixedStep, RealClock, VirtualClock
+from engine.render.frames import FrameWriter, save_png
+from engine.render.headless import init_headless, init_window
+from engine.render.progress import Progress
+from engine.render.scene import Scene
+
+__all__ = ["Recording", "check_size", "frame_count", "frames", "play", "record", "strobe"]
+
+#: The largest canvas accepted, a guard against a typo such as 64000x360.
+MAX_SIDE = 8192
+#: The highest frame rate accepted (frames per second).
+MAX_FPS = 1000
+
+
+@dataclass(frozen=True)
+class Recording:
+    """What :func:`record` wrote: ``count`` frames of ``size`` px at ``fps`` into ``folder``."""
+
+    folder: Path
+    count: int
+    fps: int
+    seconds: float
+    size: tuple[int, int]
+
+    def paths(self) -> list[Path]:
+        """The frame files, in order."""
+        return [self.folder / f"frame_{i:05d}.png" for i in range(self.count)]
+
+
+def check_size(size: tuple[int, int]) -> tuple[int, int]:
+    """``size`` as (width, height) whole pixels, each 1 to 8192; ValueError naming it otherwise."""
+    try:
+        width, height = size
+    except (TypeError, ValueError):
+        raise ValueError(f"size must be (width, height) in pixels, got {size!r}") from None
+    for side in (width, height):
+        if isinstance(side, bool) or not isinstance(side, int) or not 1 <= side <= MAX_SIDE:
+            raise ValueError(
+                f"size must be two whole numbers of pixels from 1 to {MAX_SIDE}, got {size!r}"
+            )
+    return width, height
+
+
+def _check_fps(fps: int) -> int:
+    if isinstance(fps, bool) or not isinstance(fps, int) or not 1 <= fps <= MAX_FPS:
+        raise ValueError(
+            f"fps must be a whole number of frames per second from 1 to {MAX_FPS}, got {fps!r}"
+        )
+    return fps
+
+
+def _check_seconds(seconds: float) -> float:
+    if isinstance(seconds, bool) or not isinstance(seconds, (int, float)):
+        raise TypeError(f"seconds must be a number, got {seconds!r}")
+    if not (math.isfinite(seconds) and seconds > 0):
+        raise ValueError(f"seconds must be a finite number > 0, got {seconds!r}")
+    return float(seconds)
+
+
+def frame_count(seconds: float, fps: int) -> int:
+    """Frames in a recording of ``seconds`` at ``fps``: one at t = 0 and one every 1/fps s after,
+    up to and including ``seconds`` (so the last frame shows the final state).
+
+    >>> frame_count(10.0, 30)
+    301
+    """
+    # The tiny tolerance keeps 0.1 s * 30 fps (2.9999999999999996 in floats) at 3 frames after 0.
+    return math.floor(seconds * fps + 1e-9) + 1
+
+
+def frames(
+    scene: Scene,
+    fps: int = 30,
+    seconds: float | None = None,
+    size: tuple[int, int] = (640, 360),
+) -> Iterator[tuple[int, float, pygame.Surface]]:
+    """Build ``scene`` and yield (index, t, surface) for each frame; the surface is reused.
+
+    Frame ``index`` shows the simulated time ``t = index / fps`` s. The same surface object is
+    drawn on for every frame, so save or copy it before asking for the next one.
+    """
+    fps = _check_fps(fps)
+    seconds = _check_seconds(scene.duration if seconds is None else seconds)
+    size = check_size(size)
+    init_headless()
+    surface = pygame.Surface(size)
+    scene.build(size)
+    loop = FixedStep(scene.dt, max_frame=max(0.25, 2 * scene.dt))
+    clock = VirtualClock(fps)
+    # One step ahead: the blend of the states before and after the world's last step then
+    # covers the frame's time exactly (see engine.render.scene).
+    scene.step(scene.dt)
+    for index in range(frame_count(seconds, fps)):
+        if index > 0:
+            for _ in range(loop.advance(clock.tick())):
+                scene.step(scene.dt)
+        scene.draw(surface, loop.alpha)
+        yield index, index / fps, surface
+
+
+def record(
+    scene: Scene,
+    out_dir: str | os.PathLike[str],
+    fps: int = 30,
+    seconds: float | None = None,
+    size: tuple[int, int] = (640, 360),
+    overwrite: bool = False,
+    progress: Callable[[int, int], None] | bool | None = None,
+) -> Recording:
+    """Record ``scene`` headless as ``out_dir/frame_00000.png`` ... and return what was written.
+
+    ``seconds`` defaults to the scene's duration; ``size`` is (width, height) px. ``progress``:
+    None or True shows a line on stderr for renders over ~2 s when stderr is a terminal, False
+    is silent, a callable is called with (done, total) after each frame. Raises
+    :class:`~engine.render.frames.FramesExistError` if ``out_dir`` holds frames and not
+    ``overwrite``, and :class:`~engine.render.frames.FrameWriteError` if a frame cannot be written.
+    """
+    fps = _check_fps(fps)
+    seconds = _check_seconds(scene.duration if seconds is None else seconds)
+    size = check_size(size)
+    total = frame_count(seconds, fps)
+    bar: Progress | None = None
+    if progress is None or progress is True:
+        bar = Progress(label=scene.name)
+        report: Callable[[int, int], None] | None = bar
+    elif progress is False:
+        report = None
+    else:
+        report = progress
+    with FrameWriter(out_dir, overwrite=overwrite) as writer:
+        try:
+            for index, _t, surface in frames(scene, fps, seconds, size):
+                writer.write(surface)
+                if report is not None:
+                    report(index + 1, total)
+        finally:
+            if bar is not None:
+                bar.done()
+    return Recording(Path(out_dir), writer.count, fps, seconds, size)
+
+
+def strobe(
+    scene: Scene,
+    path: str | os.PathLike[str],
+    size: tuple[int, int] = (640, 360),
+    times: list[float] | None = None,
+    overwrite: bool = False,
+) -> Path:
+    """Save one still motion diagram of ``scene`` (its :meth:`Scene.draw_strobe`) as a PNG file.
+
+    ``times`` (s) defaults to :meth:`Scene.strobe_times`. NotImplementedError if the scene has no
+    strobe picture.
+    """
+    size = check_size(size)
+    if not scene.has_strobe:
+        raise NotImplementedError(f"the scene {scene.name!r} has no strobe picture")
+    init_headless()
+    surface = pygame.Surface(size)
+    scene.build(size)
+    scene.draw_strobe(surface, scene.strobe_times() if times is None else times)
+    return save_png(surface, path, overwrite=overwrite)
+
+
+def play(
+    scene: Scene,
+    fps: int = 60,
+    size: tuple[int, int] = (640, 360),
+    seconds: float | None = None,
+) -> None:
+    """Show ``scene`` in a real-time window until it is closed (Esc or q), using the real clock.
+
+    Space pauses, r restarts. The motion stops at ``seconds`` (default: the scene's duration)
+    and the last frame stays up. Raises
+    :class:`~engine.render.headless.DisplayUnavailableError` where there is no display.
+    """
+    fps = _check_fps(fps)
+    seconds = _check_seconds(scene.duration if seconds is None else seconds)
+    size = check_size(size)
+    init_window()
+    try:
+        screen = pygame.display.set_mode(size)
+        pygame.display.set_caption(f"{scene.name}: {scene.summary}  (space: pause, r: restart)")
+        limiter = pygame.time.Clock()
+        while True:
+            scene.build(size)
+            scene.step(scene.dt)
+            loop = FixedStep(scene.dt, max_frame=max(0.25, 2 * scene.dt))
+            clock = RealClock()
+            clock.tick()
+            paused = restart = False
+            while not restart:
+                for event in pygame.event.get():
+                    if event.type == pygame.QUIT:
+                        return
+                    if event.type == pygame.KEYDOWN:
+                        if event.key in (pygame.K_ESCAPE, pygame.K_q):
+                            return
+                        if event.key == pygame.K_SPACE:
+                            paused = not paused
+                        elif event.key == pygame.K_r:
+                            restart = True
+                elapsed = clock.tick()
+                # Stop the motion at the end of the scene: hold the last state on screen.
+                remaining = seconds - (loop.t + loop.alpha * loop.dt)
+                frame = 0.0 if paused else max(0.0, min(elapsed, remaining))
+                for _ in range(loop.advance(frame)):
+                    scene.step(scene.dt)
+                scene.draw(screen, loop.alpha)
+                pygame.display.flip()
+                limiter.tick(fps)
+    finally:
+        pygame.display.quit()
