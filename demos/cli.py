@@ -1,0 +1,268 @@
+"""The command line: ``python -m demos`` lists the demos, ``python -m demos NAME`` runs one.
+
+Every module ``demos/<name>.py`` that defines a module-level ``DEMO = Demo(...)`` is found
+automatically, so a new demo needs no change here::
+
+    # demos/drop.py
+    from demos.cli import Demo
+    DEMO = Demo(name="drop", summary="A ball falls under gravity", scenes={"drop": DropScene})
+
+A demo made of scenes gets the common options: it is recorded headless to numbered PNG frames
+(``out/<demo>/<scene>/frame_00000.png`` ...), shown in a window (``--window``) or drawn as one
+still motion diagram per scene (``--strobe``). A demo that is not made of scenes (a chart, a
+table) gives a ``run(args)`` hook instead, and can add its own options with
+``add_arguments(parser)``.
+
+Exit codes: 0 done, 1 the run failed (a frame could not be written, the output folder already
+holds frames, no display for ``--window``, the simulation diverged), 2 a usage error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import math
+import pkgutil
+import sys
+import traceback
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, TextIO
+
+__all__ = ["Demo", "discover", "main", "parse_size"]
+
+#: Modules in the demos package that are not demos.
+_NOT_DEMOS = frozenset({"cli"})
+
+
+@dataclass(frozen=True)
+class Demo:
+    """A demo the command line can run.
+
+    ``scenes`` maps a scene name to a factory: any callable with no arguments returning an
+    :class:`engine.render.Scene` (usually the Scene subclass itself). ``add_arguments(parser)``
+    adds the demo's own options; ``configure(scene, args)`` applies them to each scene before it
+    is built. ``run(args)``, if given, replaces recording: it is called with the parsed options
+    and returns an exit code (None means 0), for demos that make a chart rather than frames.
+    """
+
+    name: str
+    summary: str
+    scenes: Mapping[str, Callable[[], Any]] = field(default_factory=dict)
+    add_arguments: Callable[[argparse.ArgumentParser], None] | None = None
+    configure: Callable[[Any, argparse.Namespace], None] | None = None
+    run: Callable[[argparse.Namespace], int | None] | None = None
+
+    def __post_init__(self) -> None:
+        if not self.name or not self.name.replace("_", "").replace("-", "").isalnum():
+            raise ValueError(f"Demo name must be a word such as 'alfred', got {self.name!r}")
+        if not self.scenes and self.run is None:
+            raise ValueError(f"Demo {self.name!r} needs scenes or a run hook")
+
+
+@dataclass(frozen=True)
+class _Broken:
+    """A demo module that failed to import: listed with its error, raised again if run."""
+
+    module: str
+    error: str
+
+
+def discover() -> dict[str, Demo | _Broken]:
+    """Import every module of the demos package and collect their ``DEMO``s by name."""
+    import demos
+
+    found: dict[str, Demo | _Broken] = {}
+    for info in sorted(pkgutil.iter_modules(demos.__path__), key=lambda m: m.name):
+        if info.name.startswith("_") or info.name in _NOT_DEMOS:
+            continue
+        try:
+            module = importlib.import_module(f"demos.{info.name}")
+        except Exception:
+            found[info.name] = _Broken(info.name, traceback.format_exc())
+            continue
+        demo = getattr(module, "DEMO", None)
+        if isinstance(demo, Demo):
+            found[demo.name] = demo
+    return found
+
+
+# --- argument types: each error names what is valid -------------------------------------------
+
+
+def _fps(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 1 <= value <= 1000:
+        raise argparse.ArgumentTypeError(
+            f"must be a whole number of frames per second from 1 to 1000, got {text!r}"
+        )
+    return value
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and 0 < value <= 3600):
+        raise argparse.ArgumentTypeError(
+            f"must be a number of simulated seconds > 0 and at most 3600, got {text!r}"
+        )
+    return value
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """'640x360' -> (640, 360); ArgumentTypeError unless both are whole pixels from 16 to 8192."""
+    parts = text.lower().split("x")
+    try:
+        width, height = (int(p) for p in parts)
+    except ValueError:
+        width = height = 0
+    if not (16 <= width <= 8192 and 16 <= height <= 8192):
+        raise argparse.ArgumentTypeError(
+            f"must be WIDTHxHEIGHT in whole pixels from 16 to 8192, such as 640x360, got {text!r}"
+        )
+    return width, height
+
+
+def _seed(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
+
+
+def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python -m demos",
+        description="Run a demo: headless to PNG frames (default), in a window, or as stills.",
+        epilog="Run without a demo name to list the demos.",
+    )
+    parser.add_argument("demo", nargs="?", choices=sorted(demos), help="the demo to run")
+    # --scene is known in the first pass too, so its value is never taken for the demo's name.
+    parser.add_argument(
+        "--scene",
+        choices=list(demo.scenes) if demo is not None and demo.scenes else None,
+        help="the scene to run (default: every scene in turn)",
+    )
+    parser.add_argument("--fps", type=_fps, help="frames per second (default 30; 60 in a window)")
+    parser.add_argument(
+        "--seconds", type=_seconds, help="simulated seconds to show (default: the scene's own)"
+    )
+    parser.add_argument(
+        "--size", type=parse_size, default=(640, 360), help="WIDTHxHEIGHT in pixels (640x360)"
+    )
+    parser.add_argument("--out", type=Path, help="output folder (default: out/<demo>/<scene>/)")
+    parser.add_argument(
+        "--overwrite", action="store_true", help="replace frames already in the output folder"
+    )
+    mode = parser.add_mutually_exclusive_group()
+    mode.add_argument("--window", action="store_true", help="play in a real-time window")
+    mode.add_argument(
+        "--strobe", action="store_true", help="one still motion diagram per scene (strobe.png)"
+    )
+    parser.add_argument(
+        "--seed", type=_seed, help="random seed, for demos with randomness (default: the scene's)"
+    )
+    if demo is not None and demo.add_arguments is not None:
+        demo.add_arguments(parser)
+    return parser
+
+
+def _list(demos: Mapping[str, Demo | _Broken], out: TextIO) -> None:
+    width = max((len(name) for name in demos), default=0)
+    print("Demos (run one with: python -m demos NAME [--scene S] [--window] [--strobe]):", file=out)
+    for name, demo in demos.items():
+        if isinstance(demo, _Broken):
+            last = demo.error.strip().splitlines()[-1]
+            print(f"  {name:<{width}}  (broken: {last})", file=out)
+            continue
+        scenes = f"  [scenes: {', '.join(demo.scenes)}]" if demo.scenes else ""
+        print(f"  {name:<{width}}  {demo.summary}{scenes}", file=out)
+
+
+def _output_folder(args: argparse.Namespace, demo: Demo, scene_name: str, many: bool) -> Path:
+    # --out names the folder for one scene; with several scenes each gets a subfolder of it.
+    if args.out is None:
+        return Path("out") / demo.name / scene_name
+    return args.out / scene_name if many else args.out
+
+
+def _run_scenes(demo: Demo, args: argparse.Namespace, out: TextIO) -> int:
+    from engine.render import play, record, strobe
+
+    names = [args.scene] if args.scene else list(demo.scenes)
+    many = len(names) > 1
+    for scene_name in names:
+        scene = demo.scenes[scene_name]()
+        if args.seed is not None:
+            scene.seed = args.seed
+        if demo.configure is not None:
+            demo.configure(scene, args)
+        label = f"{demo.name}/{scene_name}"
+        if args.window:
+            play(scene, fps=args.fps or 60, size=args.size, seconds=args.seconds)
+            continue
+        folder = _output_folder(args, demo, scene_name, many)
+        if args.strobe:
+            if not scene.has_strobe:
+                print(f"{label}: no strobe picture for this scene, skipped", file=out)
+                continue
+            path = strobe(scene, folder / "strobe.png", size=args.size, overwrite=args.overwrite)
+            print(f"{label}: wrote the motion diagram {path}", file=out)
+            continue
+        rec = record(
+            scene,
+            folder,
+            fps=args.fps or 30,
+            seconds=args.seconds,
+            size=args.size,
+            overwrite=args.overwrite,
+        )
+        width, height = rec.size
+        print(
+            f"{label}: wrote {rec.count} frames ({width}x{height}, {rec.fps} fps, "
+            f"{rec.seconds:g} s) to {rec.folder}{'/' if not str(rec.folder).endswith('/') else ''}"
+            f"frame_00000.png ...",
+            file=out,
+        )
+    return 0
+
+
+def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
+    """Run the command line with ``argv`` (default: sys.argv[1:]); return the exit code."""
+    out = sys.stdout if out is None else out
+    argv = list(sys.argv[1:] if argv is None else argv)
+    demos = discover()
+    # First pass: which demo? Its scenes and own options shape the full parser.
+    first, _ = _parser(demos, None).parse_known_args(argv)
+    if first.demo is None:
+        if any(arg not in ("-h", "--help") for arg in argv):
+            _parser(demos, None).parse_args(argv)  # report stray options as usage errors
+        _list(demos, out)
+        return 0
+    demo = demos[first.demo]
+    if isinstance(demo, _Broken):
+        print(f"error: the demo {first.demo!r} failed to import:\n{demo.error}", file=sys.stderr)
+        return 1
+    parser = _parser(demos, demo)
+    args = parser.parse_args(argv)
+
+    from engine.render import DisplayUnavailableError, FramesExistError, FrameWriteError
+    from engine.stability import SimulationDiverged
+
+    try:
+        if demo.run is not None:
+            code = demo.run(args)
+            return 0 if code is None else int(code)
+        return _run_scenes(demo, args, out)
+    except (FramesExistError, FrameWriteError, DisplayUnavailableError, SimulationDiverged) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("interrupted: the frames written so far are whole", file=sys.stderr)
+        return 130
