@@ -1,0 +1,37 @@
+"""A headless 2D physics engine for point particles, grown from lesson 1 (particle motion).
+
+>>> from engine import Vector, Body, World
+>>> from engine.forces import Gravity
+>>> world = World()
+>>> ball = world.add(Body(Vector(0, 0), Vector(3, 4), Vector(0, 0), mass=0.5))
+>>> _ = world.add_force(Gravity((0, -9.81)))
+>>> world.step(1 / 60)
+>>> round(world.t, 6)
+0.016667
+
+``import engine`` never imports pygame; drawing lives in ``engine.render``.
+"""
+
+from . import forces, integrators, kinematics, stability
+from .body import Body
+from .loop import FixedStep, RealClock, VirtualClock
+from .stability import SimulationDiverged, StabilityWarning
+from .vector import Vector
+from .world import World
+
+__all__ = [
+    "Vector",
+    "Body",
+    "World",
+    "FixedStep",
+    "VirtualClock",
+    "RealClock",
+    "StabilityWarning",
+    "SimulationDiverged",
+    "forces",
+    "integrators",
+    "kinematics",
+    "stability",
+]
+
+__version__ = "0.1.0"

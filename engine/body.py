@@ -1,0 +1,206 @@
+"""A point particle: the lesson's ``rbpbodies.Body`` with position, velocity and acceleration.
+
+A 1D body (Alfred on his tube) holds three floats; a 2D body (Alfred on his
+sheet of paper) holds three Vectors. A point has no size, so it has no
+rotation either (lesson, section 3.1).
+
+Out of a World a Body just stores what it is given. Once added to a
+:class:`engine.World`, its ``pos`` and ``vel`` read and write the world's live
+state, and ``acc`` reads the total acceleration at this instant: the body's own
+constant acceleration (the ``acceleration`` it was made with, kept as
+``own_acc``) plus the forces' pull divided by the mass.
+
+>>> b = Body(Vector(0, 0), Vector(1, 0), Vector(0, 0))
+>>> print(b)
+Position: X: 0.0 Y: 0.0
+Velocity: X: 1.0 Y: 0.0
+Acceleration: X: 0.0 Y: 0.0
+<BLANKLINE>
+>>> Body(2, 1, 0).pos
+2.0
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+from typing import TYPE_CHECKING, Any
+
+from .vector import Vector, _as_pair
+
+if TYPE_CHECKING:
+    from .world import World
+
+__all__ = ["Body", "State"]
+
+#: A state value: a float for a 1D body, a Vector for a 2D body.
+State = float | Vector
+
+
+def _dim_of(value: Any) -> int | None:
+    """1 for a real number, 2 for a Vector or pair of numbers, None for anything else."""
+    if isinstance(value, Real) and not isinstance(value, bool):
+        return 1
+    if _as_pair(value) is not None:
+        return 2
+    return None
+
+
+def coerce_state(value: Any, dim: int, name: str) -> State:
+    """Return ``value`` as a finite state of dimension ``dim`` (float or Vector), else raise.
+
+    TypeError for the wrong kind (naming ``name`` and what would be valid), ValueError for
+    nan or inf.
+    """
+    got = _dim_of(value)
+    if got != dim:
+        want = "a real number (1D)" if dim == 1 else "a Vector or pair of numbers (2D)"
+        what = {1: "a number (1D)", 2: "a Vector (2D)"}.get(got or 0, type(value).__name__)
+        raise TypeError(f"{name} must be {want}, got {what}: {value!r}")
+    state: State = float(value) if dim == 1 else Vector.coerce(value, name)
+    finite = math.isfinite(state) if isinstance(state, float) else state.is_finite()
+    if not finite:
+        raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
+    return state
+
+
+def coerce_mass(mass: Any) -> float:
+    """Return ``mass`` as a positive finite float (kilograms, or the scene's mass unit)."""
+    if isinstance(mass, bool) or not isinstance(mass, Real):
+        raise TypeError(f"mass must be a positive real number, got {type(mass).__name__} {mass!r}")
+    m = float(mass)
+    if not (math.isfinite(m) and m > 0.0):
+        raise ValueError(f"mass must be positive and finite (e.g. 1.0), got {mass!r}")
+    return m
+
+
+class Body:
+    """A point particle: position (m), velocity (m/s), acceleration (m/s^2) and mass (kg).
+
+    Units are the scene's own: inches and seconds for Alfred, metres and seconds for the car.
+    """
+
+    __slots__ = ("_pos", "_vel", "_acc", "_mass", "_dim", "_world", "_index")
+
+    def __init__(self, position: Any, velocity: Any, acceleration: Any, mass: float = 1.0) -> None:
+        dims = {
+            name: _dim_of(value)
+            for name, value in (
+                ("position", position),
+                ("velocity", velocity),
+                ("acceleration", acceleration),
+            )
+        }
+        for name, d in dims.items():
+            if d is None:
+                value = {"position": position, "velocity": velocity}.get(name, acceleration)
+                raise TypeError(
+                    f"Body {name} must be a real number (1D body) or a Vector / pair of "
+                    f"numbers (2D body), got {type(value).__name__} {value!r}"
+                )
+        if len(set(dims.values())) != 1:
+            kinds = ", ".join(f"{n} is {'1D' if d == 1 else '2D'}" for n, d in dims.items())
+            raise TypeError(
+                f"Body arguments mix dimensions ({kinds}): give three numbers for a 1D body "
+                f"or three Vectors for a 2D body"
+            )
+        dim = dims["position"]
+        assert dim is not None
+        self._dim: int = dim
+        self._pos: State = coerce_state(position, dim, "position")
+        self._vel: State = coerce_state(velocity, dim, "velocity")
+        self._acc: State = coerce_state(acceleration, dim, "acceleration")
+        self._mass: float = coerce_mass(mass)
+        self._world: World | None = None
+        self._index: int = -1
+
+    # -- what the lesson's Body holds ------------------------------------------------------
+    @property
+    def dim(self) -> int:
+        """1 for a body on a line (floats), 2 for a body on a plane (Vectors)."""
+        return self._dim
+
+    @property
+    def world(self) -> World | None:
+        """The World this body is in, or None."""
+        return self._world
+
+    @property
+    def pos(self) -> Any:
+        """Position (length units): a float in 1D, a Vector in 2D."""
+        if self._world is not None:
+            return self._world._read("x", self._index)
+        return self._pos
+
+    @pos.setter
+    def pos(self, value: Any) -> None:
+        state = coerce_state(value, self._dim, "pos")
+        if self._world is not None:
+            self._world._write("x", self._index, state)
+        else:
+            self._pos = state
+
+    @property
+    def vel(self) -> Any:
+        """Velocity (length units per second): a float in 1D, a Vector in 2D."""
+        if self._world is not None:
+            return self._world._read("v", self._index)
+        return self._vel
+
+    @vel.setter
+    def vel(self, value: Any) -> None:
+        state = coerce_state(value, self._dim, "vel")
+        if self._world is not None:
+            self._world._write("v", self._index, state)
+        else:
+            self._vel = state
+
+    @property
+    def acc(self) -> Any:
+        """Acceleration now (length units per s^2): own_acc plus, in a World, forces / mass."""
+        if self._world is not None:
+            return self._world._read("a", self._index)
+        return self._acc
+
+    @acc.setter
+    def acc(self, value: Any) -> None:
+        if self._world is not None:
+            raise AttributeError(
+                "in a World, body.acc is the total acceleration (own_acc + forces / mass) and "
+                "cannot be set; set body.own_acc for the body's own constant acceleration, "
+                "or add a force"
+            )
+        self._acc = coerce_state(value, self._dim, "acc")
+
+    @property
+    def own_acc(self) -> Any:
+        """The body's own constant acceleration (length units per s^2), before any force."""
+        return self._acc
+
+    @own_acc.setter
+    def own_acc(self, value: Any) -> None:
+        self._acc = coerce_state(value, self._dim, "own_acc")
+        if self._world is not None:
+            self._world._changed_structure()
+
+    @property
+    def mass(self) -> float:
+        """Mass (kg, or the scene's mass unit); always positive and finite."""
+        return self._mass
+
+    @mass.setter
+    def mass(self, value: Any) -> None:
+        self._mass = coerce_mass(value)
+        if self._world is not None:
+            self._world._changed_structure()
+
+    # -- text -------------------------------------------------------------------------------
+    def __str__(self) -> str:
+        """The lesson's text: three lines, Position, Velocity and Acceleration."""
+        return f"Position: {self.pos}\nVelocity: {self.vel}\nAcceleration: {self.acc}\n"
+
+    def __repr__(self) -> str:
+        return (
+            f"Body(position={self.pos!r}, velocity={self.vel!r}, "
+            f"acceleration={self.own_acc!r}, mass={self.mass!r})"
+        )

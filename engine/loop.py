@@ -1,0 +1,157 @@
+"""The fixed-timestep game loop: physics in whole steps of dt, drawing in between.
+
+Frames arrive at whatever rate the screen (or the frame writer) allows; the
+physics must always advance by the same dt, or its results would depend on
+the frame rate. So each frame's time is put in an accumulator, as many whole
+steps of dt are taken out as fit, and what is left over, a fraction
+``alpha`` of a step, tells the renderer how far to blend from the previous
+state to the current one:
+
+    accumulator += frame_time
+    steps = floor(accumulator / dt);  accumulator -= steps * dt
+    alpha = accumulator / dt          in [0, 1)
+
+Time is kept exactly, as fractions (a float is an exact binary fraction), so
+a million frames of 1/60 s with dt = 1/120 s make exactly two million steps:
+no drift from adding floats. A frame longer than ``max_frame`` (a stall, a
+breakpoint) is clamped, and the dropped time is reported, so the simulation
+slows down for a moment instead of spiralling into ever more catch-up steps.
+
+>>> loop = FixedStep(dt=0.01)
+>>> loop.advance(0.025), round(loop.alpha, 6)
+(2, 0.5)
+>>> clock = VirtualClock(fps=30)
+>>> sum(loop.advance(clock.tick()) for _ in range(30)), loop.steps
+(100, 102)
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from fractions import Fraction
+from numbers import Real
+from typing import Any, Protocol
+
+__all__ = ["FixedStep", "VirtualClock", "RealClock", "Clock"]
+
+
+def _seconds(value: Any, name: str, *, allow_zero: bool = False) -> Fraction:
+    """``value`` (seconds) as an exact Fraction; TypeError/ValueError naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, (Real, Fraction)):
+        raise TypeError(f"{name} must be a number of seconds, got {type(value).__name__} {value!r}")
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    exact = Fraction(value)
+    if exact < 0 or (exact == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"{name} must be {bound} seconds, got {value!r}")
+    return exact
+
+
+class Clock(Protocol):
+    """Something that answers, each frame, how many seconds passed since the last one."""
+
+    def tick(self) -> float | Fraction: ...
+
+
+class VirtualClock:
+    """A clock for headless runs: every frame lasts exactly 1/fps s, however long drawing takes."""
+
+    def __init__(self, fps: int = 60) -> None:
+        if isinstance(fps, bool) or not isinstance(fps, int):
+            raise TypeError(f"fps must be a whole number of frames per second, got {fps!r}")
+        if fps <= 0:
+            raise ValueError(f"fps must be > 0, got {fps!r}")
+        self.fps = fps
+        self.frames = 0
+        self._frame = Fraction(1, fps)
+
+    def tick(self) -> Fraction:
+        """Start the next frame; returns its length, exactly 1/fps seconds."""
+        self.frames += 1
+        return self._frame
+
+    @property
+    def t(self) -> float:
+        """Seconds of virtual time handed out so far (frames / fps)."""
+        return self.frames / self.fps
+
+
+class RealClock:
+    """A wall clock for windows: each tick returns the seconds since the previous tick."""
+
+    def __init__(self) -> None:
+        self._last: float | None = None
+
+    def tick(self) -> float:
+        """Seconds since the previous tick (0.0 on the first)."""
+        now = time.perf_counter()
+        elapsed = 0.0 if self._last is None else now - self._last
+        self._last = now
+        return elapsed
+
+
+class FixedStep:
+    """Turns frame times into whole physics steps of ``dt`` (s) and a blend fraction ``alpha``.
+
+    ``max_frame`` (s, usually 0.25) is the longest frame that is simulated in full;
+    anything beyond it is dropped and added to ``dropped``.
+    """
+
+    def __init__(self, dt: float, max_frame: float = 0.25) -> None:
+        # A float dt such as 1/120 is not exactly 1/120; read it as the nearest fraction
+        # with a denominator up to 10^6 (what the user meant), so that 120 steps make
+        # exactly one second and a million frames of 1/60 s exactly two million steps.
+        self._dt = _seconds(dt, "dt").limit_denominator(1_000_000)
+        self._max_frame = _seconds(max_frame, "max_frame")
+        if self._max_frame < self._dt:
+            raise ValueError(
+                f"max_frame ({max_frame} s) must be at least one step dt ({dt} s), "
+                f"or no step could ever run"
+            )
+        self.dt = float(dt)
+        self.max_frame = float(max_frame)
+        self._acc = Fraction(0)
+        self._dropped = Fraction(0)
+        self.steps = 0
+        self.frames = 0
+
+    def advance(self, frame_seconds: float | Fraction) -> int:
+        """Add one frame's time (s); return how many whole steps of dt to run now."""
+        frame = _seconds(frame_seconds, "frame_seconds", allow_zero=True)
+        if frame > self._max_frame:
+            self._dropped += frame - self._max_frame
+            frame = self._max_frame
+        self._acc += frame
+        steps = int(self._acc // self._dt)
+        self._acc -= steps * self._dt
+        self.steps += steps
+        self.frames += 1
+        return steps
+
+    def run(self, world: Any, frame_seconds: float | Fraction) -> float:
+        """Advance by one frame and step ``world`` (anything with ``step(dt)``); return alpha."""
+        for _ in range(self.advance(frame_seconds)):
+            world.step(self.dt)
+        return self.alpha
+
+    @property
+    def alpha(self) -> float:
+        """Fraction of a step left in the accumulator, in [0, 1): how far to blend for drawing."""
+        return float(self._acc / self._dt)
+
+    @property
+    def t(self) -> float:
+        """Simulated time (s): the whole steps taken times dt, computed exactly."""
+        return float(self.steps * self._dt)
+
+    @property
+    def dropped(self) -> float:
+        """Seconds of frame time dropped by the clamp so far."""
+        return float(self._dropped)
+
+    @property
+    def accumulated(self) -> float:
+        """Seconds waiting in the accumulator (less than one dt)."""
+        return float(self._acc)

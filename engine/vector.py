@@ -1,0 +1,261 @@
+"""A 2D vector: the lesson's ``rbpmath.Vector``, as an immutable value type.
+
+The lesson builds its Vector from two ideas, scaling and addition (section 3.3):
+
+    a v   = (a v_x, a v_y)
+    v + u = (v_x + u_x, v_y + u_y)
+    |v|   = sqrt(v_x^2 + v_y^2)          (Pythagoras)
+
+Everything here follows from those. Unlike the lesson's reference code, a Vector
+never changes after it is made: ``v += w`` rebinds the name ``v`` to a new
+vector, so a vector that someone else holds (a body's position, say) can never
+change behind their back. Plain 2-tuples are accepted wherever a Vector is.
+
+>>> a = Vector(3, 4)
+>>> a.magnitude()
+5.0
+>>> a + (1, 1)
+Vector(4.0, 5.0)
+>>> 2 * a - a
+Vector(3.0, 4.0)
+>>> print(a)
+X: 3.0 Y: 4.0
+>>> a.dot(Vector(1, 0)), a.cross(Vector(1, 0))
+(3.0, -4.0)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from numbers import Real
+from typing import Any, SupportsFloat, Union
+
+__all__ = ["Vector", "VectorLike"]
+
+VectorLike = Union["Vector", tuple[float, float]]
+
+
+def _component(value: Any, name: str) -> float:
+    """Return ``value`` as a float, or raise TypeError naming the component."""
+    # bool is a subclass of int, but Vector(True, False) is almost surely a mistake.
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(
+            f"Vector component {name} must be a real number (int or float), "
+            f"got {type(value).__name__} {value!r}"
+        )
+    return float(value)
+
+
+def _as_pair(other: Any) -> tuple[float, float] | None:
+    """The (x, y) of a Vector or of a 2-sequence of real numbers, else None."""
+    if isinstance(other, Vector):
+        return other.x, other.y
+    if isinstance(other, (tuple, list)) and len(other) == 2:
+        x, y = other
+        if all(isinstance(c, Real) and not isinstance(c, bool) for c in (x, y)):
+            return float(x), float(y)
+    return None
+
+
+def _is_scalar(value: Any) -> bool:
+    return isinstance(value, Real) and not isinstance(value, bool)
+
+
+class Vector:
+    """An immutable 2D vector of floats, in whatever length unit the scene uses."""
+
+    __slots__ = ("x", "y")
+    x: float
+    y: float
+
+    def __init__(self, x: SupportsFloat = 0.0, y: SupportsFloat = 0.0) -> None:
+        object.__setattr__(self, "x", _component(x, "x"))
+        object.__setattr__(self, "y", _component(y, "y"))
+
+    @classmethod
+    def coerce(cls, value: Any, name: str = "value") -> Vector:
+        """Return ``value`` as a Vector (a Vector or a 2-sequence of numbers), else TypeError."""
+        pair = _as_pair(value)
+        if pair is None:
+            raise TypeError(
+                f"{name} must be a Vector or a pair of real numbers like (1.0, 2.0), "
+                f"got {type(value).__name__} {value!r}"
+            )
+        return cls(*pair)
+
+    # -- immutability -------------------------------------------------------------
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError(
+            f"Vector is immutable: make a new one, e.g. v = Vector(x, y) or v = v + (dx, dy) "
+            f"(tried to set {name!r})"
+        )
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f"Vector is immutable (tried to delete {name!r})")
+
+    def __copy__(self) -> Vector:
+        return self
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> Vector:
+        return self
+
+    def __reduce__(self) -> tuple[type[Vector], tuple[float, float]]:
+        return (Vector, (self.x, self.y))
+
+    # -- text -------------------------------------------------------------------------
+    def __str__(self) -> str:
+        """The lesson's text: ``X: 1.0 Y: 2.0``."""
+        return f"X: {self.x} Y: {self.y}"
+
+    def __repr__(self) -> str:
+        return f"Vector({self.x!r}, {self.y!r})"
+
+    # -- comparison ---------------------------------------------------------------------
+    def __eq__(self, other: object) -> bool:
+        pair = _as_pair(other)
+        if pair is None:
+            return NotImplemented
+        return self.x == pair[0] and self.y == pair[1]
+
+    def __ne__(self, other: object) -> bool:
+        # The lesson's __ne__ returned NotImplemented whenever __eq__ answered, so two
+        # equal vectors compared unequal. Here != is exactly "not ==".
+        eq = self.__eq__(other)
+        return NotImplemented if eq is NotImplemented else not eq
+
+    def __hash__(self) -> int:
+        # Equal to the hash of the tuple it compares equal to, so hash agrees with ==.
+        return hash((self.x, self.y))
+
+    def __bool__(self) -> bool:
+        return self.x != 0.0 or self.y != 0.0
+
+    # -- sequence protocol: x, y = v ----------------------------------------------------------
+    def __iter__(self) -> Iterator[float]:
+        yield self.x
+        yield self.y
+
+    def __len__(self) -> int:
+        return 2
+
+    def __getitem__(self, index: int) -> float:
+        return (self.x, self.y)[index]
+
+    def components(self) -> tuple[float, float]:
+        """The lesson's ``components()``: the tuple (x, y), e.g. for drawing functions."""
+        return (self.x, self.y)
+
+    # -- arithmetic ---------------------------------------------------------------------
+    def __add__(self, other: Any) -> Vector:
+        pair = _as_pair(other)
+        if pair is None:
+            return NotImplemented
+        return Vector(self.x + pair[0], self.y + pair[1])
+
+    __radd__ = __add__
+
+    def __sub__(self, other: Any) -> Vector:
+        # The lesson's __sub__ added the y components; this subtracts both.
+        pair = _as_pair(other)
+        if pair is None:
+            return NotImplemented
+        return Vector(self.x - pair[0], self.y - pair[1])
+
+    def __rsub__(self, other: Any) -> Vector:
+        pair = _as_pair(other)
+        if pair is None:
+            return NotImplemented
+        return Vector(pair[0] - self.x, pair[1] - self.y)
+
+    def __neg__(self) -> Vector:
+        return Vector(-self.x, -self.y)
+
+    def __pos__(self) -> Vector:
+        return self
+
+    def __mul__(self, other: Any) -> Vector:
+        # Scaling only. The lesson's `*` meant the dot product between two vectors,
+        # which hides bugs (a vector times a vector silently becomes a number).
+        if _is_scalar(other):
+            s = float(other)
+            return Vector(self.x * s, self.y * s)
+        if isinstance(other, (Vector, tuple, list)):
+            raise TypeError(
+                "Vector * Vector is ambiguous: use v.dot(w) for the dot product or "
+                "v.cross(w) for the 2D cross product; * scales by a number"
+            )
+        return NotImplemented
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, other: Any) -> Vector:
+        if not _is_scalar(other):
+            return NotImplemented
+        s = float(other)
+        if s == 0.0:
+            raise ZeroDivisionError("cannot divide a Vector by zero")
+        return Vector(self.x / s, self.y / s)
+
+    # += -= *= are deliberately not defined: Python then falls back to + - *,
+    # which rebinds the name to a new Vector and never mutates a shared one.
+
+    def __abs__(self) -> float:
+        return self.magnitude()
+
+    # -- the lesson's magnitude and pygame's familiar names -----------------------------------
+    def magnitude(self) -> float:
+        """Length |v| = sqrt(x^2 + y^2), in the vector's unit."""
+        return math.hypot(self.x, self.y)
+
+    def length_squared(self) -> float:
+        """|v|^2 = x^2 + y^2 (no square root: cheap for comparisons)."""
+        return self.x * self.x + self.y * self.y
+
+    def dot(self, other: VectorLike) -> float:
+        """Dot product v . w = v_x w_x + v_y w_y.
+
+        >>> Vector(1, 2).dot((3, 4))
+        11.0
+        """
+        ox, oy = Vector.coerce(other, "other")
+        return self.x * ox + self.y * oy
+
+    def cross(self, other: VectorLike) -> float:
+        """2D cross product v x w = v_x w_y - v_y w_x (the z part of the 3D cross product).
+
+        >>> Vector(1, 0).cross((0, 1))
+        1.0
+        """
+        ox, oy = Vector.coerce(other, "other")
+        return self.x * oy - self.y * ox
+
+    def normalized(self) -> Vector:
+        """The unit vector in the same direction; ValueError for the zero vector.
+
+        >>> Vector(3, 4).normalized()
+        Vector(0.6, 0.8)
+        """
+        m = self.magnitude()
+        if m == 0.0:
+            raise ValueError("cannot normalize the zero vector: it has no direction")
+        return Vector(self.x / m, self.y / m)
+
+    def distance_to(self, other: VectorLike) -> float:
+        """Distance |v - w| between two points."""
+        ox, oy = Vector.coerce(other, "other")
+        return math.hypot(self.x - ox, self.y - oy)
+
+    def lerp(self, other: VectorLike, t: float) -> Vector:
+        """The point a fraction t of the way from v to w: v + (w - v) t.
+
+        >>> Vector(0, 0).lerp((10, 20), 0.25)
+        Vector(2.5, 5.0)
+        """
+        ox, oy = Vector.coerce(other, "other")
+        t = _component(t, "t")
+        return Vector(self.x + (ox - self.x) * t, self.y + (oy - self.y) * t)
+
+    def is_finite(self) -> bool:
+        """True when both components are finite (neither nan nor inf)."""
+        return math.isfinite(self.x) and math.isfinite(self.y)
