@@ -535,11 +535,15 @@ class Particles:
         mass = self._mass_col[:n]
         forces = self._forces
 
+        inverse_mass = 1.0 / self._mass  # every particle has the same mass: a plain number
+
         def accel(t: float, x: Any, v: Any) -> Any:
-            total = 0.0 * v
-            for f in forces:
+            if not forces:
+                return 0.0 * v
+            total = forces[0](t, x, v, mass)
+            for f in forces[1:]:
                 total = total + f(t, x, v, mass)
-            return total / mass
+            return total * inverse_mass
 
         x, v = self._integrator(self._pos[:, :n].T, self._disp[:, :n].T / dt, accel, self.t, dt)
         self._pos[:, :n] = np.asarray(x).T
