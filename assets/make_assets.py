@@ -1,0 +1,119 @@
+"""Draw the demos' sprites and save them beside this script: ``python assets/make_assets.py``.
+
+- ``ant.png`` (55x35 px): Alfred, the lesson's ant, side view facing right (+x). His body is
+  one flat colour, ``ANT_BODY``, used nowhere else in a frame, so tests can find him by it.
+  His feet touch the bottom edge: draw him with anchor "midbottom" on the tube's top.
+- ``car.png`` (64x32 px): a small side-view car facing right, body colour ``CAR_BODY``,
+  wheels touching the bottom edge (anchor "midbottom" on the road).
+
+Each sprite is drawn with plain shapes at four times its size and scaled down smoothly, so the
+edges are soft while the inside of each part keeps its exact colour. The PNGs are committed so
+the demos run without this script; rerun it after changing a sprite.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+
+import pygame  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+SUPER = 4  # drawn at 4x, then scaled down
+
+ANT_SIZE = (55, 35)
+ANT_UNIT = 1.25  # the ant is laid out on a 44x28 grid, drawn 1.25 times larger
+ANT_BODY = (156, 66, 33)  # Alfred's unique colour: head, thorax and abdomen
+ANT_DARK = (62, 36, 24)  # legs, antennae, waist
+ANT_EYE = (255, 255, 255)
+
+CAR_SIZE = (64, 32)
+CAR_BODY = (196, 42, 54)  # the car's unique colour
+CAR_TRIM = (120, 20, 30)
+CAR_GLASS = (170, 214, 236)
+TYRE = (30, 30, 34)
+HUB = (175, 178, 184)
+
+
+def _canvas(size: tuple[int, int]) -> pygame.Surface:
+    surface = pygame.Surface((size[0] * SUPER, size[1] * SUPER), pygame.SRCALPHA)
+    surface.fill((0, 0, 0, 0))
+    return surface
+
+
+def _finish(big: pygame.Surface, size: tuple[int, int]) -> pygame.Surface:
+    return pygame.transform.smoothscale(big, size)
+
+
+def draw_ant() -> pygame.Surface:
+    """Alfred, side view, facing right, feet on the bottom edge (55x35 px, transparent)."""
+    s = _canvas(ANT_SIZE)
+    u = round(SUPER * ANT_UNIT)  # 5 canvas pixels per grid unit
+    ground = ANT_SIZE[1] * SUPER - 1
+    # Legs first, behind the body: three pairs from the thorax, bent at the knee.
+    for hip_x, knee_dx, foot_dx in ((21, -5, -9), (23, 0, 0), (25, 5, 9)):
+        hip = (hip_x * u, 15 * u)
+        knee = ((hip_x + knee_dx) * u, 19 * u)
+        foot = ((hip_x + foot_dx) * u, ground)
+        pygame.draw.lines(s, ANT_DARK, False, [hip, knee, foot], 2 * u)
+    # Antennae from the head, up and forward.
+    pygame.draw.lines(s, ANT_DARK, False, [(36 * u, 9 * u), (39 * u, 2 * u), (43 * u, 1 * u)], u)
+    pygame.draw.lines(s, ANT_DARK, False, [(35 * u, 9 * u), (36 * u, 2 * u), (39 * u, 0)], u)
+    # Waists, then abdomen (back), thorax (middle), head (front).
+    pygame.draw.line(s, ANT_DARK, (14 * u, 14 * u), (34 * u, 13 * u), 2 * u)
+    pygame.draw.ellipse(s, ANT_BODY, pygame.Rect(1 * u, 7 * u, 17 * u, 13 * u))
+    pygame.draw.ellipse(s, ANT_BODY, pygame.Rect(18 * u, 10 * u, 10 * u, 7 * u))
+    pygame.draw.ellipse(s, ANT_BODY, pygame.Rect(30 * u, 7 * u, 11 * u, 10 * u))
+    # An eye: white with a dark pupil, looking ahead.
+    pygame.draw.circle(s, ANT_EYE, (37 * u, 11 * u), int(2.2 * u))
+    pygame.draw.circle(s, ANT_DARK, (38 * u, 11 * u), u)
+    return _finish(s, ANT_SIZE)
+
+
+def draw_car() -> pygame.Surface:
+    """A small car, side view, facing right, wheels on the bottom edge (64x32 px, transparent)."""
+    s = _canvas(CAR_SIZE)
+    u = SUPER
+    # Body: a long lower box with rounded ends, a cabin on top.
+    pygame.draw.rect(s, CAR_BODY, pygame.Rect(1 * u, 12 * u, 62 * u, 12 * u), border_radius=4 * u)
+    cabin = [(14 * u, 13 * u), (21 * u, 3 * u), (42 * u, 3 * u), (51 * u, 13 * u)]
+    pygame.draw.polygon(s, CAR_BODY, cabin)
+    # Windows: two panes split by a pillar.
+    pygame.draw.polygon(
+        s, CAR_GLASS, [(18 * u, 12 * u), (23 * u, 5 * u), (31 * u, 5 * u), (31 * u, 12 * u)]
+    )
+    pygame.draw.polygon(
+        s, CAR_GLASS, [(34 * u, 12 * u), (34 * u, 5 * u), (41 * u, 5 * u), (47 * u, 12 * u)]
+    )
+    # Trim line, a door seam, a headlight (front, right) and a tail light (back, left).
+    pygame.draw.line(s, CAR_TRIM, (3 * u, 17 * u), (61 * u, 17 * u), u)
+    pygame.draw.line(s, CAR_TRIM, (32 * u, 13 * u), (32 * u, 22 * u), u // 2)
+    pygame.draw.rect(s, (255, 230, 140), pygame.Rect(59 * u, 14 * u, 4 * u, 3 * u), border_radius=u)
+    pygame.draw.rect(s, CAR_TRIM, pygame.Rect(1 * u, 14 * u, 3 * u, 3 * u), border_radius=u)
+    # Wheels: tyres touching the bottom edge, grey hubs.
+    for cx in (15, 49):
+        centre = (cx * u, (CAR_SIZE[1] - 7) * u)
+        pygame.draw.circle(s, TYRE, centre, 7 * u)
+        pygame.draw.circle(s, HUB, centre, 3 * u)
+    return _finish(s, CAR_SIZE)
+
+
+def main(folder: Path = HERE) -> list[Path]:
+    """Draw every sprite and save it as a PNG in ``folder``; return the paths written."""
+    pygame.display.init()
+    written = []
+    for name, draw in (("ant.png", draw_ant), ("car.png", draw_car)):
+        path = folder / name
+        pygame.image.save(draw(), str(path))
+        written.append(path)
+    return written
+
+
+if __name__ == "__main__":
+    for path in main(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE):
+        print(f"wrote {path}")
