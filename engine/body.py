@@ -26,12 +26,14 @@ import math
 from numbers import Real
 from typing import TYPE_CHECKING, Any
 
-from .vector import Vector, _as_pair
+from .vector import Vector, _as_pair, _new
 
 if TYPE_CHECKING:
     from .world import World
 
 __all__ = ["Body", "State"]
+
+_isfinite = math.isfinite
 
 #: A state value: a float for a 1D body, a Vector for a 2D body.
 State = float | Vector
@@ -52,6 +54,11 @@ def coerce_state(value: Any, dim: int, name: str) -> State:
     TypeError for the wrong kind (naming ``name`` and what would be valid), ValueError for
     nan or inf.
     """
+    t = type(value)
+    if (t is Vector and dim == 2 and _isfinite(value[0]) and _isfinite(value[1])) or (
+        t is float and dim == 1 and _isfinite(value)
+    ):
+        return value  # the common case, already exactly right
     got = _dim_of(value)
     if got != dim:
         want = "a real number (1D)" if dim == 1 else "a Vector or pair of numbers (2D)"
@@ -80,7 +87,10 @@ class Body:
     Units are the scene's own: inches and seconds for Alfred, metres and seconds for the car.
     """
 
-    __slots__ = ("_pos", "_vel", "_acc", "_mass", "_dim", "_world", "_index")
+    # Position and velocity are kept as plain floats (y parts unused in 1D): a lone body's
+    # step is then float arithmetic with no Vector made at all, and a Vector is made only
+    # when someone reads pos or vel.
+    __slots__ = ("_px", "_py", "_vx", "_vy", "_acc", "_mass", "_dim", "_world", "_index")
 
     def __init__(self, position: Any, velocity: Any, acceleration: Any, mass: float = 1.0) -> None:
         dims = {
@@ -107,12 +117,24 @@ class Body:
         dim = dims["position"]
         assert dim is not None
         self._dim: int = dim
-        self._pos: State = coerce_state(position, dim, "position")
-        self._vel: State = coerce_state(velocity, dim, "velocity")
+        self._store_pos(coerce_state(position, dim, "position"))
+        self._store_vel(coerce_state(velocity, dim, "velocity"))
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
         self._mass: float = coerce_mass(mass)
         self._world: World | None = None
         self._index: int = -1
+
+    def _store_pos(self, state: State) -> None:
+        if self._dim == 1:
+            self._px, self._py = state, 0.0
+        else:
+            self._px, self._py = state
+
+    def _store_vel(self, state: State) -> None:
+        if self._dim == 1:
+            self._vx, self._vy = state, 0.0
+        else:
+            self._vx, self._vy = state
 
     # -- what the lesson's Body holds ------------------------------------------------------
     @property
@@ -130,7 +152,7 @@ class Body:
         """Position (length units): a float in 1D, a Vector in 2D."""
         if self._world is not None:
             return self._world._read("x", self._index)
-        return self._pos
+        return self._px if self._dim == 1 else _new(Vector, (self._px, self._py))
 
     @pos.setter
     def pos(self, value: Any) -> None:
@@ -138,14 +160,14 @@ class Body:
         if self._world is not None:
             self._world._write("x", self._index, state)
         else:
-            self._pos = state
+            self._store_pos(state)
 
     @property
     def vel(self) -> Any:
         """Velocity (length units per second): a float in 1D, a Vector in 2D."""
         if self._world is not None:
             return self._world._read("v", self._index)
-        return self._vel
+        return self._vx if self._dim == 1 else _new(Vector, (self._vx, self._vy))
 
     @vel.setter
     def vel(self, value: Any) -> None:
@@ -153,7 +175,7 @@ class Body:
         if self._world is not None:
             self._world._write("v", self._index, state)
         else:
-            self._vel = state
+            self._store_vel(state)
 
     @property
     def acc(self) -> Any:
@@ -193,6 +215,50 @@ class Body:
         self._mass = coerce_mass(value)
         if self._world is not None:
             self._world._changed_structure()
+
+    # -- moving a lone body ------------------------------------------------------------------
+    def step(self, dt: float, acceleration: Any = None) -> None:
+        """Move this body on its own by ``dt`` seconds with semi-implicit Euler.
+
+        The lesson's figure 10, for one body: velocity first, then position with the new
+        velocity (v += a dt; x += v dt), where a is ``acceleration`` if given (a prebuilt
+        Vector or float, e.g. gravity) or else the body's own acceleration. Bit for bit
+        what ``integrators.semi_implicit_euler`` does; in a World, use ``world.step``.
+
+        >>> alfred = Body(0.0, 0.0, 1.0)          # from rest at 1 in/s^2
+        >>> for _ in range(4):
+        ...     alfred.step(1.0)
+        >>> alfred.pos                             # 1, 3, 6, 10: the lesson's "4 s"
+        10.0
+        """
+        if self._world is not None:
+            raise RuntimeError("this body is in a World: advance it with world.step(dt)")
+        if type(dt) is not float or not 0.0 < dt < math.inf:
+            if isinstance(dt, bool) or not isinstance(dt, Real):
+                raise TypeError(f"dt must be a number of seconds, got {type(dt).__name__}")
+            if not 0.0 < float(dt) < math.inf:
+                raise ValueError(f"dt must be a finite number of seconds > 0, got {dt!r}")
+            dt = float(dt)
+        a = self._acc if acceleration is None else acceleration
+        if type(a) is not Vector and type(a) is not float:
+            a = coerce_state(a, self._dim, "acceleration")
+        if self._dim == 1:
+            vx = self._vx + a * dt
+            px = self._px + vx * dt
+            vy = py = 0.0
+        else:
+            ax, ay = a
+            vx = self._vx + ax * dt
+            vy = self._vy + ay * dt
+            px = self._px + vx * dt
+            py = self._py + vy * dt
+        # One sum is nan or inf whenever any term is (or when huge terms overflow).
+        if not _isfinite(px + py + vx + vy) and not all(map(_isfinite, (px, py, vx, vy))):
+            raise ValueError(
+                f"the step of dt={dt!r} s would make this body's state non-finite "
+                f"(nan or inf); the state is kept"
+            )
+        self._vx, self._vy, self._px, self._py = vx, vy, px, py
 
     # -- text -------------------------------------------------------------------------------
     def __str__(self) -> str:

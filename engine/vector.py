@@ -29,11 +29,18 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 from numbers import Real
+from operator import itemgetter
 from typing import Any, SupportsFloat, Union
 
 __all__ = ["Vector", "VectorLike"]
 
 VectorLike = Union["Vector", tuple[float, float]]
+
+# Vector is a tuple underneath: immutable for free, made at C speed, compared and hashed
+# like the pair it holds (so Vector(1, 2) == (1.0, 2.0) and their hashes agree), and
+# turned into numpy arrays directly. _new(Vector, (x, y)) skips the checks in __new__
+# and is used where x and y are already floats (the results of float arithmetic).
+_new = tuple.__new__
 
 
 def _component(value: Any, name: str) -> float:
@@ -49,8 +56,8 @@ def _component(value: Any, name: str) -> float:
 
 def _as_pair(other: Any) -> tuple[float, float] | None:
     """The (x, y) of a Vector or of a 2-sequence of real numbers, else None."""
-    if isinstance(other, Vector):
-        return other.x, other.y
+    if type(other) is Vector:
+        return other  # type: ignore[return-value]
     if isinstance(other, (tuple, list)) and len(other) == 2:
         x, y = other
         if all(isinstance(c, Real) and not isinstance(c, bool) for c in (x, y)):
@@ -59,32 +66,40 @@ def _as_pair(other: Any) -> tuple[float, float] | None:
 
 
 def _is_scalar(value: Any) -> bool:
+    t = type(value)
+    if t is float or t is int:
+        return True
     return isinstance(value, Real) and not isinstance(value, bool)
 
 
-class Vector:
+class Vector(tuple):  # type: ignore[type-arg]
     """An immutable 2D vector of floats, in whatever length unit the scene uses."""
 
-    __slots__ = ("x", "y")
-    x: float
-    y: float
+    __slots__ = ()
 
-    def __init__(self, x: SupportsFloat = 0.0, y: SupportsFloat = 0.0) -> None:
-        object.__setattr__(self, "x", _component(x, "x"))
-        object.__setattr__(self, "y", _component(y, "y"))
+    def __new__(cls, x: SupportsFloat = 0.0, y: SupportsFloat = 0.0) -> Vector:
+        tx, ty = type(x), type(y)
+        if (tx is float or tx is int) and (ty is float or ty is int):
+            return _new(cls, (float(x), float(y)))  # type: ignore[arg-type]
+        return _new(cls, (_component(x, "x"), _component(y, "y")))
+
+    x = property(itemgetter(0), doc="The x component (length units).")
+    y = property(itemgetter(1), doc="The y component (length units).")
 
     @classmethod
     def coerce(cls, value: Any, name: str = "value") -> Vector:
         """Return ``value`` as a Vector (a Vector or a 2-sequence of numbers), else TypeError."""
+        if type(value) is Vector:
+            return value
         pair = _as_pair(value)
         if pair is None:
             raise TypeError(
                 f"{name} must be a Vector or a pair of real numbers like (1.0, 2.0), "
                 f"got {type(value).__name__} {value!r}"
             )
-        return cls(*pair)
+        return _new(cls, pair)
 
-    # -- immutability -------------------------------------------------------------
+    # -- immutability, copying, pickling ------------------------------------------------
     def __setattr__(self, name: str, value: Any) -> None:
         raise AttributeError(
             f"Vector is immutable: make a new one, e.g. v = Vector(x, y) or v = v + (dx, dy) "
@@ -94,100 +109,89 @@ class Vector:
     def __delattr__(self, name: str) -> None:
         raise AttributeError(f"Vector is immutable (tried to delete {name!r})")
 
-    def __copy__(self) -> Vector:
-        return self
-
-    def __deepcopy__(self, memo: dict[int, Any]) -> Vector:
-        return self
-
-    def __reduce__(self) -> tuple[type[Vector], tuple[float, float]]:
-        return (Vector, (self.x, self.y))
+    def __getnewargs__(self) -> tuple[float, float]:
+        return (self[0], self[1])
 
     # -- text -------------------------------------------------------------------------
     def __str__(self) -> str:
         """The lesson's text: ``X: 1.0 Y: 2.0``."""
-        return f"X: {self.x} Y: {self.y}"
+        return f"X: {self[0]} Y: {self[1]}"
 
     def __repr__(self) -> str:
-        return f"Vector({self.x!r}, {self.y!r})"
+        return f"Vector({self[0]!r}, {self[1]!r})"
 
     # -- comparison ---------------------------------------------------------------------
+    # == and hash are the tuple's: component by component, equal to the plain pair.
+    # The lesson's __ne__ returned NotImplemented whenever __eq__ answered, so two equal
+    # vectors compared unequal; the tuple's != is exactly "not ==".
     def __eq__(self, other: object) -> bool:
-        pair = _as_pair(other)
-        if pair is None:
-            return NotImplemented
-        return self.x == pair[0] and self.y == pair[1]
+        if isinstance(other, list) and len(other) == 2:
+            return tuple.__eq__(self, tuple(other))
+        return tuple.__eq__(self, other)
 
     def __ne__(self, other: object) -> bool:
-        # The lesson's __ne__ returned NotImplemented whenever __eq__ answered, so two
-        # equal vectors compared unequal. Here != is exactly "not ==".
         eq = self.__eq__(other)
         return NotImplemented if eq is NotImplemented else not eq
 
-    def __hash__(self) -> int:
-        # Equal to the hash of the tuple it compares equal to, so hash agrees with ==.
-        return hash((self.x, self.y))
+    __hash__ = tuple.__hash__
+
+    def _unordered(self, other: object) -> bool:
+        return NotImplemented
+
+    # Vectors have no order; a tuple's would compare x first, which means nothing here.
+    __lt__ = __le__ = __gt__ = __ge__ = _unordered  # type: ignore[assignment]
 
     def __bool__(self) -> bool:
-        return self.x != 0.0 or self.y != 0.0
-
-    # -- sequence protocol: x, y = v ----------------------------------------------------------
-    def __iter__(self) -> Iterator[float]:
-        yield self.x
-        yield self.y
-
-    def __len__(self) -> int:
-        return 2
-
-    def __getitem__(self, index: int) -> float:
-        return (self.x, self.y)[index]
+        return self[0] != 0.0 or self[1] != 0.0
 
     def components(self) -> tuple[float, float]:
         """The lesson's ``components()``: the tuple (x, y), e.g. for drawing functions."""
-        return (self.x, self.y)
+        return (self[0], self[1])
 
     # -- arithmetic ---------------------------------------------------------------------
-    def __add__(self, other: Any) -> Vector:
-        pair = _as_pair(other)
+    def __add__(self, other: Any) -> Vector:  # type: ignore[override]
+        pair = other if type(other) is Vector else _as_pair(other)
         if pair is None:
             return NotImplemented
-        return Vector(self.x + pair[0], self.y + pair[1])
+        return _new(Vector, (self[0] + pair[0], self[1] + pair[1]))
 
     __radd__ = __add__
 
     def __sub__(self, other: Any) -> Vector:
         # The lesson's __sub__ added the y components; this subtracts both.
-        pair = _as_pair(other)
+        pair = other if type(other) is Vector else _as_pair(other)
         if pair is None:
             return NotImplemented
-        return Vector(self.x - pair[0], self.y - pair[1])
+        return _new(Vector, (self[0] - pair[0], self[1] - pair[1]))
 
     def __rsub__(self, other: Any) -> Vector:
         pair = _as_pair(other)
         if pair is None:
             return NotImplemented
-        return Vector(pair[0] - self.x, pair[1] - self.y)
+        return _new(Vector, (pair[0] - self[0], pair[1] - self[1]))
 
     def __neg__(self) -> Vector:
-        return Vector(-self.x, -self.y)
+        return _new(Vector, (-self[0], -self[1]))
 
     def __pos__(self) -> Vector:
         return self
 
-    def __mul__(self, other: Any) -> Vector:
+    def __mul__(self, other: Any) -> Vector:  # type: ignore[override]
         # Scaling only. The lesson's `*` meant the dot product between two vectors,
-        # which hides bugs (a vector times a vector silently becomes a number).
-        if _is_scalar(other):
+        # which hides bugs (a vector times a vector silently becomes a number); and
+        # its `*=` scaled only when the other operand was a vector.
+        t = type(other)
+        if t is float or t is int or _is_scalar(other):
             s = float(other)
-            return Vector(self.x * s, self.y * s)
-        if isinstance(other, (Vector, tuple, list)):
+            return _new(Vector, (self[0] * s, self[1] * s))
+        if isinstance(other, (tuple, list)):
             raise TypeError(
                 "Vector * Vector is ambiguous: use v.dot(w) for the dot product or "
                 "v.cross(w) for the 2D cross product; * scales by a number"
             )
         return NotImplemented
 
-    __rmul__ = __mul__
+    __rmul__ = __mul__  # type: ignore[assignment]
 
     def __truediv__(self, other: Any) -> Vector:
         if not _is_scalar(other):
@@ -195,7 +199,7 @@ class Vector:
         s = float(other)
         if s == 0.0:
             raise ZeroDivisionError("cannot divide a Vector by zero")
-        return Vector(self.x / s, self.y / s)
+        return _new(Vector, (self[0] / s, self[1] / s))
 
     # += -= *= are deliberately not defined: Python then falls back to + - *,
     # which rebinds the name to a new Vector and never mutates a shared one.
@@ -203,14 +207,17 @@ class Vector:
     def __abs__(self) -> float:
         return self.magnitude()
 
+    def __iter__(self) -> Iterator[float]:
+        return tuple.__iter__(self)
+
     # -- the lesson's magnitude and pygame's familiar names -----------------------------------
     def magnitude(self) -> float:
         """Length |v| = sqrt(x^2 + y^2), in the vector's unit."""
-        return math.hypot(self.x, self.y)
+        return math.hypot(self[0], self[1])
 
     def length_squared(self) -> float:
         """|v|^2 = x^2 + y^2 (no square root: cheap for comparisons)."""
-        return self.x * self.x + self.y * self.y
+        return self[0] * self[0] + self[1] * self[1]
 
     def dot(self, other: VectorLike) -> float:
         """Dot product v . w = v_x w_x + v_y w_y.
@@ -219,7 +226,7 @@ class Vector:
         11.0
         """
         ox, oy = Vector.coerce(other, "other")
-        return self.x * ox + self.y * oy
+        return self[0] * ox + self[1] * oy
 
     def cross(self, other: VectorLike) -> float:
         """2D cross product v x w = v_x w_y - v_y w_x (the z part of the 3D cross product).
@@ -228,7 +235,7 @@ class Vector:
         1.0
         """
         ox, oy = Vector.coerce(other, "other")
-        return self.x * oy - self.y * ox
+        return self[0] * oy - self[1] * ox
 
     def normalized(self) -> Vector:
         """The unit vector in the same direction; ValueError for the zero vector.
@@ -239,12 +246,12 @@ class Vector:
         m = self.magnitude()
         if m == 0.0:
             raise ValueError("cannot normalize the zero vector: it has no direction")
-        return Vector(self.x / m, self.y / m)
+        return _new(Vector, (self[0] / m, self[1] / m))
 
     def distance_to(self, other: VectorLike) -> float:
         """Distance |v - w| between two points."""
         ox, oy = Vector.coerce(other, "other")
-        return math.hypot(self.x - ox, self.y - oy)
+        return math.hypot(self[0] - ox, self[1] - oy)
 
     def lerp(self, other: VectorLike, t: float) -> Vector:
         """The point a fraction t of the way from v to w: v + (w - v) t.
@@ -254,8 +261,8 @@ class Vector:
         """
         ox, oy = Vector.coerce(other, "other")
         t = _component(t, "t")
-        return Vector(self.x + (ox - self.x) * t, self.y + (oy - self.y) * t)
+        return _new(Vector, (self[0] + (ox - self[0]) * t, self[1] + (oy - self[1]) * t))
 
     def is_finite(self) -> bool:
         """True when both components are finite (neither nan nor inf)."""
-        return math.isfinite(self.x) and math.isfinite(self.y)
+        return math.isfinite(self[0]) and math.isfinite(self[1])

@@ -253,7 +253,8 @@ class World:
             if attached.bodies is not None and body in attached.bodies:
                 attached.bodies.remove(body)
         body._world, body._index = None, -1
-        body._pos, body._vel = pos, vel
+        body._store_pos(pos)
+        body._store_vel(vel)
         self._changed_structure()
 
     def add_force(
