@@ -1,0 +1,40 @@
+"""``python -m engine.bench [TOPIC ...] [--quick]``: run the benchmarks and print their tables."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from engine.bench import TOPICS
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python -m engine.bench",
+        description="Speed measured side by side in one run, reported as ratios.",
+    )
+    parser.add_argument(
+        "topics",
+        nargs="*",
+        metavar="TOPIC",
+        help=f"which to run (default all): {', '.join(TOPICS)}",
+    )
+    parser.add_argument("--quick", action="store_true", help="fewer, shorter rounds")
+    args = parser.parse_args(argv)
+    unknown = [t for t in args.topics if t not in TOPICS]
+    if unknown:
+        parser.error(f"unknown topic {unknown[0]!r}; valid topics: {', '.join(TOPICS)}")
+    for topic in args.topics or list(TOPICS):
+        try:
+            module = importlib.import_module(TOPICS[topic])
+        except ModuleNotFoundError as error:
+            print(f"{topic}: not available ({error})", file=sys.stderr)
+            continue
+        print(module.report(quick=args.quick), flush=True)
+        print()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
