@@ -3,6 +3,7 @@
 - ``ant.png`` (55x35 px): Alfred, the lesson's ant, side view facing right (+x). His body is
   one flat colour, ``ANT_BODY``, used nowhere else in a frame, so tests can find him by it.
   His feet touch the bottom edge: draw him with anchor "midbottom" on the tube's top.
+- ``ant_small.png`` (33x21 px): the same Alfred, smaller, for his walk on a sheet of paper.
 - ``car.png`` (64x32 px): a small side-view car facing right, body colour ``CAR_BODY``,
   wheels touching the bottom edge (anchor "midbottom" on the road).
 
@@ -27,7 +28,7 @@ HERE = Path(__file__).resolve().parent
 SUPER = 4  # drawn at 4x, then scaled down
 
 ANT_SIZE = (55, 35)
-ANT_UNIT = 1.25  # the ant is laid out on a 44x28 grid, drawn 1.25 times larger
+ANT_SMALL_SIZE = (33, 21)
 ANT_BODY = (156, 66, 33)  # Alfred's unique colour: head, thorax and abdomen
 ANT_DARK = (62, 36, 24)  # legs, antennae, waist
 ANT_EYE = (255, 255, 255)
@@ -50,11 +51,15 @@ def _finish(big: pygame.Surface, size: tuple[int, int]) -> pygame.Surface:
     return pygame.transform.smoothscale(big, size)
 
 
-def draw_ant() -> pygame.Surface:
-    """Alfred, side view, facing right, feet on the bottom edge (55x35 px, transparent)."""
-    s = _canvas(ANT_SIZE)
-    u = round(SUPER * ANT_UNIT)  # 5 canvas pixels per grid unit
-    ground = ANT_SIZE[1] * SUPER - 1
+def draw_ant(size: tuple[int, int] = ANT_SIZE) -> pygame.Surface:
+    """Alfred, side view, facing right, feet on the bottom edge (transparent).
+
+    He is laid out on a 44x28 grid; ``size`` must be a whole multiple of a quarter of it
+    (55x35 px by default, 33x21 px for the small one on the sheet of paper).
+    """
+    s = _canvas(size)
+    u = round(SUPER * size[0] / 44)  # canvas pixels per grid unit
+    ground = size[1] * SUPER - 1
     # Legs first, behind the body: three pairs from the thorax, bent at the knee.
     for hip_x, knee_dx, foot_dx in ((21, -5, -9), (23, 0, 0), (25, 5, 9)):
         hip = (hip_x * u, 15 * u)
@@ -72,7 +77,7 @@ def draw_ant() -> pygame.Surface:
     # An eye: white with a dark pupil, looking ahead.
     pygame.draw.circle(s, ANT_EYE, (37 * u, 11 * u), int(2.2 * u))
     pygame.draw.circle(s, ANT_DARK, (38 * u, 11 * u), u)
-    return _finish(s, ANT_SIZE)
+    return _finish(s, size)
 
 
 def draw_car() -> pygame.Surface:
@@ -107,7 +112,12 @@ def main(folder: Path = HERE) -> list[Path]:
     """Draw every sprite and save it as a PNG in ``folder``; return the paths written."""
     pygame.display.init()
     written = []
-    for name, draw in (("ant.png", draw_ant), ("car.png", draw_car)):
+    sprites = (
+        ("ant.png", draw_ant),
+        ("ant_small.png", lambda: draw_ant(ANT_SMALL_SIZE)),
+        ("car.png", draw_car),
+    )
+    for name, draw in sprites:
         path = folder / name
         pygame.image.save(draw(), str(path))
         written.append(path)

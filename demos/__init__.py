@@ -2,3 +2,8 @@
 
 Each module here that defines ``DEMO = demos.cli.Demo(...)`` is found automatically.
 """
+
+import os
+
+# pygame prints a banner on import unless this is set; a user's own setting wins.
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")

@@ -181,14 +181,25 @@ def draw_vector(
     ``scale`` is world length per unit of the quantity: a velocity (in/s) drawn with scale 1.0 s
     is an arrow as long as the distance covered in one second. ``tail`` and ``vector`` are floats
     (1D, along x) or Vectors / (x, y) pairs. ``label`` is written beside the arrow's middle, above
-    it for ``label_side`` = 1 and below it for -1.
+    it for ``label_side`` = 1 and below it for -1, or past its tip for 0 (before its tail if the
+    tip is too near the surface's edge).
     """
     tx, ty = _as_xy(tail)
     vx, vy = _as_xy(vector)
     start = camera.to_px(tx, ty)
     end = camera.to_px(tx + vx * scale, ty + vy * scale)
     draw_arrow(surface, start, end, color, width)
-    if label:
+    if label and label_side == 0:
+        image = font(18).render(label, True, color)
+        rect = image.get_rect()
+        forward = end[0] >= start[0]
+        rect.midleft = (round(max(end[0], start[0]) + 6), round(end[1]))
+        if not forward or rect.right > surface.get_width():
+            rect.midright = (round(min(end[0], start[0]) - 6), round(end[1]))
+        if forward and rect.left < 0:
+            rect.midleft = (round(end[0] + 6), round(end[1]))
+        surface.blit(image, rect)
+    elif label:
         dx, dy = end[0] - start[0], end[1] - start[1]
         length = math.hypot(dx, dy)
         if length < 1e-9:
