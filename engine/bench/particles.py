@@ -52,7 +52,7 @@ def _sparks(n: int, fast: bool = True) -> Particles:
 
 
 def step_ratio(n: int = SPARKS, rounds: int = 15, calls: int = 50) -> dict[str, float]:
-    """Median seconds per step of the fast and general paths and of the floor, at ``n`` sparks."""
+    """Median seconds per step (fast, general path) and per floor add, and their ratios."""
     x = np.random.default_rng(1).random(4 * n)
     y = np.random.default_rng(2).random(4 * n)
     fast, general = _sparks(n), _sparks(n, fast=False)
@@ -63,10 +63,14 @@ def step_ratio(n: int = SPARKS, rounds: int = 15, calls: int = 50) -> dict[str, 
         fast_t.append(_per_call(fast.step, calls))
         general_t.append(_per_call(general.step, max(1, calls // 5)))
         x[:] = 0.5  # keep the floor's numbers from growing without bound
+    # The ratio is taken round by round (floor and step timed back to back), then the median:
+    # a burst of load from another process spoils one round, not the answer.
     return {
         "floor": statistics.median(floor_t),
         "fast": statistics.median(fast_t),
         "general": statistics.median(general_t),
+        "fast_ratio": statistics.median(f / b for f, b in zip(fast_t, floor_t, strict=True)),
+        "general_ratio": statistics.median(g / b for g, b in zip(general_t, floor_t, strict=True)),
     }
 
 
@@ -123,14 +127,15 @@ def report(quick: bool = False) -> str:
     r = step_ratio(rounds=5 if quick else 15, calls=20 if quick else 50)
     f = frame_budget(frames=8 if quick else 20)
     fast, floor, general = r["fast"], r["floor"], r["general"]
-    verdict = "meets" if fast / floor <= 1.5 else "MISSES"
+    ratio, general_ratio = r["fast_ratio"], r["general_ratio"]
+    verdict = "meets" if ratio <= 1.5 else "MISSES"
     lines = [
         f"particles: step of {SPARKS:,} sparks under gravity and wind (semi-implicit Euler)",
         f"  floor, np.add(x, y, out=x) on 2 x {4 * SPARKS:,} float64: {floor * 1e6:8.1f} us",
         f"  Particles.step, fast path:                    {fast * 1e6:8.1f} us"
-        f"  = {fast / floor:.2f} x floor ({verdict} the 1.5 x target)",
+        f"  = {ratio:.2f} x floor ({verdict} the 1.5 x target)",
         f"  Particles.step, general path (integrator fn): {general * 1e6:8.1f} us"
-        f"  = {general / floor:.2f} x floor",
+        f"  = {general_ratio:.2f} x floor",
         f"  per spark-step: {fast / SPARKS * 1e9:.2f} ns",
         "fireworks frame at 60 fps (2 steps of 1/120 s + numpy drawing at 640x360):",
         f"  {f['n1']:>7,.0f} sparks: {f['t1'] * 1e3:6.2f} ms   {f['n2']:>7,.0f} sparks:"
