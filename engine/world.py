@@ -38,6 +38,8 @@ from typing import Any
 
 import numpy as np
 
+from .accuracy import HORIZON
+from .accuracy import predicted_error as _predicted_error
 from .body import Body, State
 from .forces import Force, as_force
 from .integrators import INTEGRATORS, Integrator, get_integrator
@@ -56,9 +58,31 @@ __all__ = ["World", "WorldSnapshot", "METHODS"]
 #: Every name ``World(integrator=...)`` accepts.
 METHODS: tuple[str, ...] = (*INTEGRATORS, "exact", "auto")
 
-# "auto" tries these in order and takes the first that is stable at the step's dt:
-# semi-implicit Euler costs one force evaluation a step, Verlet two, RK4 four.
+# "auto" tries these in order and takes the first that is stable at the step's dt (and,
+# with a tolerance, predicted to meet it): semi-implicit Euler costs one force evaluation a
+# step, Verlet two, RK4 four. Explicit Euler is never the best: it costs what semi-implicit
+# Euler costs, is as accurate on drag and gravity, and is unstable on every spring.
 _AUTO_ORDER = ("semi_implicit_euler", "velocity_verlet", "rk4")
+
+
+def _check_tolerance(tolerance: Any, requested: str) -> float | None:
+    """``tolerance`` as a positive finite float (m) or None; errors name it and its range."""
+    if tolerance is None:
+        return None
+    if isinstance(tolerance, bool) or not isinstance(tolerance, Real):
+        raise TypeError(
+            f"tolerance must be a length in m (e.g. 1e-3) or None, got "
+            f"{type(tolerance).__name__} {tolerance!r}"
+        )
+    tol = float(tolerance)
+    if not (math.isfinite(tol) and tol > 0.0):
+        raise ValueError(f"tolerance must be a finite length > 0 m (e.g. 1e-3), got {tolerance!r}")
+    if requested != "auto":
+        raise ValueError(
+            f"tolerance={tolerance!r} only applies to integrator='auto' (which picks a method to "
+            f"meet it); integrator={requested!r} was given"
+        )
+    return tol
 
 
 def _array(value: Any) -> Any:
@@ -125,9 +149,18 @@ class World:
     ``"exact"`` (the closed form; all forces must be constant) or ``"auto"`` (the
     closed form when the forces allow it, else the cheapest method that is stable
     at the step's dt). A function with the integrator signature is accepted too.
+
+    ``tolerance`` (m, only with "auto"): the largest position error any body may build up,
+    against the exact solution of the same forces, over ``engine.accuracy.HORIZON`` = 1 s of
+    simulated time from the state at the first step of each new dt. "auto" then takes the
+    cheapest stable method predicted to meet it (``predicted_error``, derived in
+    ``engine.accuracy``), or the most accurate stable one when none does (``method_reason``
+    then says which dt would meet it).
     """
 
-    def __init__(self, integrator: str | Integrator = "semi_implicit_euler") -> None:
+    def __init__(
+        self, integrator: str | Integrator = "semi_implicit_euler", tolerance: float | None = None
+    ) -> None:
         if isinstance(integrator, str):
             if integrator not in METHODS:
                 raise ValueError(
@@ -142,6 +175,7 @@ class World:
                 f"step(x, v, accel, t, dt) -> (x, v), got {type(integrator).__name__}"
             )
         self._requested = integrator if isinstance(integrator, str) else integrator.__name__
+        self._tolerance = _check_tolerance(tolerance, self._requested)
         self._bodies: list[Body] = []
         self._forces: list[_Attached] = []
         self._dim: int | None = None
@@ -390,6 +424,28 @@ class World:
         pairs = self._stability_pairs(comp)
         return min((max_stable_dt(step, w, c) for w, c in pairs), default=math.inf)
 
+    @property
+    def tolerance(self) -> float | None:
+        """The position error (m) "auto" must keep within over 1 s, or None (stability only)."""
+        return self._tolerance
+
+    def predicted_error(self, method: str, dt: float) -> float:
+        """Predicted largest position error (m) of any body over the next 1 s of steps of ``dt``.
+
+        Exact for the forces the World folds or knows the stiffness of (constant forces,
+        gravity, drag, wind, springs of rest length 0); other forces are frozen at their value
+        now. ``math.inf`` when ``method`` blows up within that second. See ``engine.accuracy``.
+        """
+        dt = check_dt(dt)
+        comp = self._ready()
+        if method == "exact":
+            return 0.0 if comp.all_constant else math.inf
+        step = self._integrator_named(method)
+        if not self._bodies:
+            return 0.0
+        acc = self._accel(self.t, self._x, self._v)
+        return _predicted_error(step, self._x, self._v, acc, comp.omega, comp.rate, dt)
+
     def choose_method(self, dt: float) -> tuple[str, str]:
         """(method, one-line reason) that this World uses for a step of ``dt`` seconds."""
         dt = check_dt(dt)
@@ -398,14 +454,40 @@ class World:
             return self._requested, f"integrator={self._requested!r} was asked for"
         if comp.all_constant:
             return "exact", "every force is constant, so the closed form is exact at any dt"
-        for name in _AUTO_ORDER:
-            if self._first_unstable(name, comp, dt) is None:
+        stable = [name for name in _AUTO_ORDER if self._first_unstable(name, comp, dt) is None]
+        if not stable:
+            return "rk4", f"no method is stable at dt={dt:g} s; rk4 has the widest limit"
+        tol = self._tolerance
+        if tol is None:
+            name = stable[0]
+            evals = INTEGRATORS[name].evaluations
+            return name, (
+                f"{name} is the cheapest method ({evals} force evaluation"
+                f"{'s' if evals > 1 else ''} a step) that is stable at dt={dt:g} s"
+            )
+        # _AUTO_ORDER is cheapest first: the first stable method predicted to meet the
+        # tolerance is the cheapest that does.
+        errors: dict[str, float] = {}
+        for name in stable:
+            errors[name] = err = self.predicted_error(name, dt)
+            if err <= tol:
                 evals = INTEGRATORS[name].evaluations
                 return name, (
                     f"{name} is the cheapest method ({evals} force evaluation"
-                    f"{'s' if evals > 1 else ''} a step) that is stable at dt={dt:g} s"
+                    f"{'s' if evals > 1 else ''} a step) stable at dt={dt:g} s and predicted "
+                    f"within tolerance={tol:g} m over {HORIZON:g} s (error {err:.2g} m)"
                 )
-        return "rk4", f"no method is stable at dt={dt:g} s; rk4 has the widest limit"
+        best = min(errors, key=lambda n: errors[n])
+        err = errors[best]
+        # Global error ~ C dt^p (p the order), so dt (tol / err)^(1/p) would about meet it.
+        hint = ""
+        if 0.0 < err < math.inf:
+            need = dt * (tol / err) ** (1.0 / INTEGRATORS[best].order)
+            hint = f"; a dt near {need:.2g} s would meet it"
+        return best, (
+            f"no stable method meets tolerance={tol:g} m at dt={dt:g} s; {best} is the most "
+            f"accurate (predicted error {err:.2g} m over {HORIZON:g} s){hint}"
+        )
 
     @property
     def method(self) -> str:
