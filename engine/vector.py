@@ -77,6 +77,11 @@ class Vector(tuple):  # type: ignore[type-arg]
 
     __slots__ = ()
 
+    # numpy must not treat a Vector as a sequence in arithmetic: without this,
+    # np.float64(2) * Vector(1, 2) (a dt read from an array, say) is array([2., 4.]).
+    # None makes numpy's operators return NotImplemented, so Vector.__rmul__ answers.
+    __array_ufunc__ = None
+
     def __new__(cls, x: SupportsFloat = 0.0, y: SupportsFloat = 0.0) -> Vector:
         tx, ty = type(x), type(y)
         if (tx is float or tx is int) and (ty is float or ty is int):
