@@ -48,7 +48,7 @@ from engine.render.frames import (
 from engine.render.headless import DisplayUnavailableError, init_headless, init_window
 from engine.render.plot import Plot
 from engine.render.progress import Progress
-from engine.render.recorder import Recording, frame_count, frames, play, record, strobe
+from engine.render.recorder import Recording, frame_count, iter_frames, play, record, strobe
 from engine.render.scene import Scene
 
 __all__ = [
@@ -82,7 +82,7 @@ __all__ = [
     "font",
     "frame_count",
     "frame_name",
-    "frames",
+    "iter_frames",
     "init_headless",
     "init_window",
     "play",

@@ -22,7 +22,7 @@ from engine.render.headless import init_headless, init_window
 from engine.render.progress import Progress
 from engine.render.scene import Scene
 
-__all__ = ["Recording", "check_size", "frame_count", "frames", "play", "record", "strobe"]
+__all__ = ["Recording", "check_size", "frame_count", "iter_frames", "play", "record", "strobe"]
 
 #: The largest canvas accepted, a guard against a typo such as 64000x360.
 MAX_SIDE = 8192
@@ -86,7 +86,7 @@ def frame_count(seconds: float, fps: int) -> int:
     return math.floor(seconds * fps + 1e-9) + 1
 
 
-def frames(
+def iter_frames(
     scene: Scene,
     fps: int = 30,
     seconds: float | None = None,
@@ -147,7 +147,7 @@ def record(
         report = progress
     with FrameWriter(out_dir, overwrite=overwrite) as writer:
         try:
-            for index, _t, surface in frames(scene, fps, seconds, size):
+            for index, _t, surface in iter_frames(scene, fps, seconds, size):
                 writer.write(surface)
                 if report is not None:
                     report(index + 1, total)
