@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from numbers import Real
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from .vector import Vector, _as_pair, _new
 
@@ -126,15 +126,15 @@ class Body:
 
     def _store_pos(self, state: State) -> None:
         if self._dim == 1:
-            self._px, self._py = state, 0.0
+            self._px, self._py = cast(float, state), 0.0
         else:
-            self._px, self._py = state
+            self._px, self._py = cast(Vector, state)
 
     def _store_vel(self, state: State) -> None:
         if self._dim == 1:
-            self._vx, self._vy = state, 0.0
+            self._vx, self._vy = cast(float, state), 0.0
         else:
-            self._vx, self._vy = state
+            self._vx, self._vy = cast(Vector, state)
 
     # -- what the lesson's Body holds ------------------------------------------------------
     @property
@@ -243,11 +243,11 @@ class Body:
         if type(a) is not Vector and type(a) is not float:
             a = coerce_state(a, self._dim, "acceleration")
         if self._dim == 1:
-            vx = self._vx + a * dt
+            vx = self._vx + cast(float, a) * dt
             px = self._px + vx * dt
             vy = py = 0.0
         else:
-            ax, ay = a
+            ax, ay = cast(Vector, a)
             vx = self._vx + ax * dt
             vy = self._vy + ay * dt
             px = self._px + vx * dt

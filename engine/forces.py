@@ -70,6 +70,9 @@ class _Param:
     """A constant of a force, a float (1D) or a Vector (2D), kept in every form it is used in."""
 
     __slots__ = ("dim", "value", "array")
+    dim: int
+    value: Any  # float (1D) or Vector (2D)
+    array: Any  # float (1D) or a (2,) numpy array (2D)
 
     def __init__(self, value: Any, name: str) -> None:
         if isinstance(value, Real) and not isinstance(value, bool):

@@ -42,7 +42,7 @@ def _seconds(value: Any, name: str, *, allow_zero: bool = False) -> Fraction:
         raise TypeError(f"{name} must be a number of seconds, got {type(value).__name__} {value!r}")
     if isinstance(value, float) and not math.isfinite(value):
         raise ValueError(f"{name} must be finite, got {value!r}")
-    exact = Fraction(value)
+    exact = Fraction(value)  # type: ignore[call-overload]  # int, float or Fraction
     if exact < 0 or (exact == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be {bound} seconds, got {value!r}")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
+from functools import partial
 
 import numpy as np
 
@@ -91,7 +92,7 @@ def report(quick: bool = False) -> str:
     for n in sizes:
         world = make_world(n)
         name = f"World.step, {n:,} bodies"
-        candidates[name] = ((lambda w=world: w.step(DT)), max(1, budget // n))
+        candidates[name] = (partial(world.step, DT), max(1, budget // n))
         bodies[name] = n
     space = _pymunk_space(1_000)
     if space is not None:
