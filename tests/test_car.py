@@ -7,7 +7,7 @@ import pygame
 import pytest
 
 from demos.car import LIGHTS, MPH, MainStreet, TooFast, plan_trip
-from engine.render import frames, record
+from engine.render import iter_frames, record
 
 LINE = LIGHTS[2]
 
@@ -89,7 +89,7 @@ def test_car_moves_on_screen_as_the_closed_form_says() -> None:
     scene = MainStreet()
     fronts, times = [], []
     # fps >= 4: the recorder's loop clamps a frame to 0.25 s (see the report).
-    for index, t, surface in frames(scene, fps=5, seconds=7.0, size=(640, 360)):
+    for index, t, surface in iter_frames(scene, fps=5, seconds=7.0, size=(640, 360)):
         if index in (15, 35):  # t = 3 s and 7 s
             fronts.append(red_columns(surface).max())
             times.append(t)

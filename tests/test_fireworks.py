@@ -10,15 +10,14 @@ import pytest
 
 from demos.cli import main
 from demos.fireworks import KINDS, ROCKETS, FireworksScene, kind_index
-from engine.render import frames, init_headless
+from engine.render import init_headless, iter_frames
 
 
 def surfaces(seed: int, seconds: float = 2.4, **kw) -> list[bytes]:
     scene = FireworksScene(**kw)
     scene.seed = seed
-    return [
-        pygame.image.tobytes(s, "RGB") for _, _, s in frames(scene, 5, seconds, size=(256, 144))
-    ]
+    shots = iter_frames(scene, 5, seconds, size=(256, 144))
+    return [pygame.image.tobytes(s, "RGB") for _, _, s in shots]
 
 
 def test_same_seed_gives_byte_identical_frames_and_another_seed_does_not() -> None:
