@@ -1,0 +1,106 @@
+"""The small game: its physics against the exact solution, its rules, its pixels, determinism."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pygame
+import pytest
+
+import demos.crumb as crumb
+from demos.alfred import ANT_BODY
+from demos.cli import main
+from engine import Vector
+from engine.render import Camera, init_headless
+
+
+def test_steering_in_a_steady_wind_follows_the_exact_solution(monkeypatch) -> None:
+    # With a constant air velocity w and a push P d, Alfred's velocity obeys
+    # v' = P d - K (v - w), whose solution from v0 is
+    #   v(t) = u + (v0 - u) e^{-K t},  u = w + P d / K  (the terminal velocity).
+    air = Vector(1.5, -0.5)
+    monkeypatch.setattr(crumb, "gust", lambda t: air)
+    game = crumb.CrumbGame(seed=3)
+    game.steer(1.0, 0.0)
+    steps = 240  # 2 s
+    for _ in range(steps):
+        game.world.step(crumb.DT)
+    t = steps * crumb.DT
+    u = air + Vector(crumb.PUSH / crumb.K, 0.0)
+    exact = u + (Vector(0, 0) - u) * math.exp(-crumb.K * t)
+    # Euler on v' = -K (v - u) multiplies v - u by (1 - K dt) a step instead of e^{-K dt};
+    # after n = t / dt steps the error is |u| (e^{-K t} - (1 - K dt)^n)
+    #   ~ |u| (K dt / 2) (K t) e^{-K t}  to leading order. Allow twice that.
+    bound = u.magnitude() * crumb.K * crumb.DT * crumb.K * t * math.exp(-crumb.K * t)
+    assert game.alfred.vel.distance_to(exact) < bound
+    assert game.alfred.vel.distance_to(exact) > 0.0  # a numerical method, not the formula
+
+
+def test_eating_the_crumb_scores_and_places_a_new_one() -> None:
+    game = crumb.CrumbGame(seed=5)
+    game.alfred.pos = game.crumb + (0.1, 0.0)  # within reach
+    old = game.crumb
+    game.update()
+    assert game.score.crumbs == 1
+    assert game.crumb != old
+    x0, y0, x1, y1 = crumb.PAPER
+    assert x0 < game.crumb.x < x1 and y0 < game.crumb.y < y1
+
+
+def test_walking_off_the_paper_is_a_fall_and_a_restart_from_the_middle() -> None:
+    game = crumb.CrumbGame(seed=5)
+    game.alfred.pos, game.alfred.vel = (crumb.PAPER[2] + 0.01, 2.0), (3.0, 0.0)
+    game.update()
+    assert game.score.falls == 1
+    assert game.alfred.pos == game.start and game.alfred.vel == (0.0, 0.0)
+
+
+def test_steering_is_normalised_so_diagonals_are_not_faster() -> None:
+    game = crumb.CrumbGame()
+    game.steer(1.0, 1.0)
+    assert game.alfred.own_acc.magnitude() == pytest.approx(crumb.PUSH, rel=1e-12)
+    game.steer(0.0, 0.0)
+    assert game.alfred.own_acc == (0.0, 0.0)
+
+
+def test_alfred_is_drawn_where_the_camera_puts_him() -> None:
+    init_headless()
+    game = crumb.CrumbGame(seed=2)
+    for _ in range(90):
+        game.steer(*game.autopilot())
+        game.world.step(crumb.DT)
+    size = (320, 180)
+    camera = Camera.fit(crumb.PAPER, (16, 40, size[0] - 32, size[1] - 56))
+    surface = pygame.Surface(size)
+    game.draw(surface, camera, alpha=1.0)
+    pixels = pygame.surfarray.pixels3d(surface)
+    xs, ys = np.nonzero(np.all(pixels == ANT_BODY, axis=2))
+    del pixels
+    assert len(xs) > 0, "Alfred's body colour is nowhere in the frame"
+    px, py = camera.point(game.alfred.pos)
+    # The sprite is centred on his position: his body pixels surround that point.
+    assert abs(xs.mean() - px) < 12 and abs(ys.mean() - py) < 8
+
+
+def test_headless_runs_are_byte_identical_and_eat_crumbs(tmp_path) -> None:
+    runs = []
+    for name in ("a", "b"):
+        out = tmp_path / name
+        score = crumb.play(window=False, seconds=6.0, fps=10, size=(160, 90), seed=4, out=out)
+        runs.append((score, [p.read_bytes() for p in sorted(out.glob("frame_*.png"))]))
+    (score_a, frames_a), (score_b, frames_b) = runs
+    assert len(frames_a) == 60
+    assert frames_a == frames_b and score_a == score_b
+    assert score_a.crumbs >= 1  # the autopilot reaches at least one crumb in 6 s
+
+
+def test_command_line_runs_headless_and_refuses_bad_options(tmp_path, capsys) -> None:
+    out = tmp_path / "game"
+    assert main(["crumb", "--seconds", "1", "--fps", "5", "--out", str(out)]) == 0
+    assert len(list(out.glob("frame_*.png"))) == 5
+    assert "crumbs eaten" in capsys.readouterr().out
+    with pytest.raises(SystemExit) as exit_info:
+        main(["crumb", "--fps", "0"])
+    assert exit_info.value.code == 2
+    assert "--fps" in capsys.readouterr().err
