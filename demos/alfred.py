@@ -66,8 +66,14 @@ TUBE_EDGE = (150, 160, 140)
 
 
 @cache
-def ant_sprite(body: tuple[int, int, int] = ANT_BODY, small: bool = False) -> pygame.Surface:
-    """Alfred's sprite (55x35 px, or 33x21 ``small``, facing +x), body recoloured to ``body``."""
+def ant_sprite(
+    body: tuple[int, int, int] = ANT_BODY, small: bool = False, zoom: int = 1
+) -> pygame.Surface:
+    """Alfred's sprite (55x35 px, or 33x21 ``small``, facing +x), body recoloured to ``body``.
+
+    ``zoom`` enlarges him a whole number of times for big canvases; nearest-neighbour scaling
+    keeps his body colour exact.
+    """
     path = ASSETS / ("ant_small.png" if small else "ant.png")
     if not path.exists():
         raise FileNotFoundError(f"{path} is missing: remake it with `python assets/make_assets.py`")
@@ -78,7 +84,14 @@ def ant_sprite(body: tuple[int, int, int] = ANT_BODY, small: bool = False) -> py
         # Only the exact body colour changes: the soft edges keep the original brown tint.
         pixels.replace((*ANT_BODY, 255), (*body, 255), distance=0)
         del pixels
+    if zoom > 1:
+        image = pygame.transform.scale(image, (image.get_width() * zoom, image.get_height() * zoom))
     return image
+
+
+def _zoom(size: tuple[int, int]) -> int:
+    # Alfred is drawn for 640x360; a canvas twice as big draws him twice as big.
+    return max(1, int(min(size[0] / 640, size[1] / 360) + 0.25))
 
 
 def _font_size(size: tuple[int, int], px: int) -> int:
@@ -156,6 +169,8 @@ class TubeScene(Scene):
             ("v(t)  in/s", self.v_range, VELOCITY),
             ("a(t)  in/s\u00b2", self.a_range, ACCELERATION),
         ]
+        # On a small canvas there is no room for readable plots: leave them out.
+        fits = pw >= 120 and ph >= 80
         self.plots = [
             Plot(
                 (12 + i * (pw + gap), plot_top, pw, ph),
@@ -164,8 +179,10 @@ class TubeScene(Scene):
                 title,
                 y_step=_step(y_range),
                 color=color,
+                text_scale=_font_size(size, 100) / 100,
             )
             for i, (title, y_range, color) in enumerate(panels)
+            if fits
         ]
         self._history: dict[int, list[tuple[float, float, float]]] = {
             id(ant): [(0.0, ant.s0, ant.v0)] for ant in self.ants if ant.stepped
@@ -247,6 +264,7 @@ class TubeScene(Scene):
                     VELOCITY,
                     label=f"v = {_fmt(v, 1)} in/s",
                     label_side=0,
+                    label_size=_font_size(self.size, 18),
                 )
             draw_sprite(surface, ant.sprite, anchor, "midbottom")
         self.draw_plots(surface, t)
@@ -305,6 +323,8 @@ class TubeScene(Scene):
         self, surface: pygame.Surface, t: float, strobe: list[float] | None = None
     ) -> None:
         """s(t), v(t) and a(t) from 0 to t; the area under v(t) shaded (it is the distance)."""
+        if not self.plots:
+            return
         s_plot, v_plot, a_plot = self.plots
         for plot in self.plots:
             plot.draw_frame(surface)
@@ -339,7 +359,8 @@ class TubeScene(Scene):
             )
         area = v_plot.area
         for i, (text, color) in enumerate(lines):
-            draw_text(surface, text, (area.left + 4, area.top + 2 + 15 * i), 15, color)
+            size = v_plot.number_size
+            draw_text(surface, text, (area.left + 4, area.top + 2 + size * i), size, color)
 
     def _stepped_curves(self, ant: Ant, end: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         # s: straight lines between the steps; v: the slope of each line, a staircase.
@@ -435,7 +456,16 @@ class Lazy(TubeScene):
         """One ant at rest at 5 in."""
         world = World(integrator="exact")
         return [
-            _ant_1d(world, 5.0, 0.0, 0.0, row=0.0, color=POSITION, sprite=ant_sprite(), label="")
+            _ant_1d(
+                world,
+                5.0,
+                0.0,
+                0.0,
+                row=0.0,
+                color=POSITION,
+                sprite=ant_sprite(zoom=_zoom(self.size)),
+                label="",
+            )
         ]
 
 
@@ -455,7 +485,16 @@ class Stroll(TubeScene):
         """One ant from 0 at 1 in/s."""
         world = World(integrator="exact")
         return [
-            _ant_1d(world, 0.0, 1.0, 0.0, row=0.0, color=POSITION, sprite=ant_sprite(), label="")
+            _ant_1d(
+                world,
+                0.0,
+                1.0,
+                0.0,
+                row=0.0,
+                color=POSITION,
+                sprite=ant_sprite(zoom=_zoom(self.size)),
+                label="",
+            )
         ]
 
 
@@ -483,7 +522,7 @@ class Sprint(TubeScene):
             1.0,
             row=0.0,
             color=EULER,
-            sprite=ant_sprite(EULER_ANT_BODY),
+            sprite=ant_sprite(EULER_ANT_BODY, zoom=_zoom(self.size)),
             label="semi-implicit\nEuler, dt = 1 s",
             short="Euler",
             stepped=True,
@@ -495,7 +534,7 @@ class Sprint(TubeScene):
             1.0,
             row=-1.0,
             color=EXACT,
-            sprite=ant_sprite(),
+            sprite=ant_sprite(zoom=_zoom(self.size)),
             label="exact\ns = t\u00b2/2",
             short="exact",
         )
@@ -530,6 +569,7 @@ class Paper(Scene):
         # x(t) = t^2/2 and y(t) = 2t - t^2 are s0 + v0 t + a t^2/2 with s0 = 0, v0 = (0, 2),
         # a = (1, -2): constant acceleration, so the closed form moves Alfred exactly.
         self.alfred = self.world.add(Body(self.s0, self.v0, self.a))
+        self.sprite = ant_sprite(small=True, zoom=_zoom(size))
         title_h = _font_size(size, 24) + 14
         paper_w = min(w * 0.6, (h - title_h - 10) * 1.1)
         self.paper_rect = pygame.Rect(10, title_h, round(paper_w), h - title_h - 10)
@@ -577,7 +617,7 @@ class Paper(Scene):
             surface, self.camera, pos, vel, self.arrow_seconds, VELOCITY, label="v", label_side=-1
         )
         anchor = self.camera.to_px(pos.x, pos.y)
-        draw_sprite(surface, ant_sprite(small=True), anchor, "midbottom")
+        draw_sprite(surface, self.sprite, anchor, "midbottom")
         draw_dot(surface, anchor, 3, INK)
         self.draw_numbers(surface, t, pos, vel)
 
@@ -622,7 +662,7 @@ class Paper(Scene):
             age = 1.0 - i / max(1, n - 1)
             anchor = self.camera.to_px(pos.x, pos.y)
             draw_arrow(surface, self.camera.to_px(0.0, 0.0), anchor, _fade(POSITION, age), 2, 8)
-        sprite = ant_sprite(small=True)
+        sprite = self.sprite
         occupied: list[pygame.Rect] = []
         anchors = []
         for i, t in enumerate(times):

@@ -116,15 +116,15 @@ def _seconds(text: str) -> float:
 
 
 def parse_size(text: str) -> tuple[int, int]:
-    """'640x360' -> (640, 360); ArgumentTypeError unless both are whole pixels from 16 to 8192."""
+    """'640x360' -> (640, 360); ArgumentTypeError unless both are whole pixels from 64 to 8192."""
     parts = text.lower().split("x")
     try:
         width, height = (int(p) for p in parts)
     except ValueError:
         width = height = 0
-    if not (16 <= width <= 8192 and 16 <= height <= 8192):
+    if not (64 <= width <= 8192 and 64 <= height <= 8192):
         raise argparse.ArgumentTypeError(
-            f"must be WIDTHxHEIGHT in whole pixels from 16 to 8192, such as 640x360, got {text!r}"
+            f"must be WIDTHxHEIGHT in whole pixels from 64 to 8192, such as 640x360, got {text!r}"
         )
     return width, height
 

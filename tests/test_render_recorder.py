@@ -56,14 +56,15 @@ def test_frame_count_includes_both_ends():
     assert frame_count(1 / 3, 3) == 2
 
 
-def test_each_frame_shows_the_state_at_its_own_time():
+@pytest.mark.parametrize("fps", [2, 25])  # 2 fps: frames longer than the loop's stall clamp
+def test_each_frame_shows_the_state_at_its_own_time(fps):
     scene = Glide()
     seen = []
-    for index, t, surface in iter_frames(scene, fps=25, size=(160, 20)):
-        assert t == index / 25
+    for index, t, surface in iter_frames(scene, fps=fps, size=(160, 20)):
+        assert t == index / fps
         expected = scene.camera.point(1.0 + 2.0 * t)[0]
         seen.append((mark_x(surface), expected))
-    assert len(seen) == 26
+    assert len(seen) == fps + 1
     assert all(abs(got - want) <= 1 for got, want in seen), seen
 
 

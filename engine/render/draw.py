@@ -175,6 +175,7 @@ def draw_vector(
     label: str | None = None,
     width: float = 3,
     label_side: int = 1,
+    label_size: int = 18,
 ) -> None:
     """Draw a vector quantity (velocity, acceleration) as an arrow from the world point ``tail``.
 
@@ -190,7 +191,7 @@ def draw_vector(
     end = camera.to_px(tx + vx * scale, ty + vy * scale)
     draw_arrow(surface, start, end, color, width)
     if label and label_side == 0:
-        image = font(18).render(label, True, color)
+        image = font(label_size).render(label, True, color)
         rect = image.get_rect()
         forward = end[0] >= start[0]
         rect.midleft = (round(max(end[0], start[0]) + 6), round(end[1]))
@@ -211,7 +212,7 @@ def draw_vector(
         nx, ny = nx * label_side, ny * label_side
         mid = (start[0] + dx / 2 + nx * 14, start[1] + dy / 2 + ny * 14)
         anchor = "midbottom" if label_side > 0 else "midtop"
-        draw_text(surface, label, mid, 18, color, anchor=anchor)
+        draw_text(surface, label, mid, label_size, color, anchor=anchor)
 
 
 def draw_trail(

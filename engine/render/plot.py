@@ -23,7 +23,7 @@ class Plot:
 
     ``t_max`` (s) and ``y_range`` = (y_min, y_max) fix the axes so the panel does not jump as the
     curve grows; ``t_step`` and ``y_step`` space the numbered ticks; ``title`` is written at the
-    top left (e.g. "v(t)  in/s").
+    top left (e.g. "v(t)  in/s"); ``text_scale`` enlarges the lettering for big canvases.
     """
 
     def __init__(
@@ -35,6 +35,7 @@ class Plot:
         t_step: float = 1.0,
         y_step: float = 1.0,
         color: Color = INK,
+        text_scale: float = 1.0,
     ) -> None:
         self.rect = pygame.Rect(rect)
         if self.rect.width < 40 or self.rect.height < 40:
@@ -49,9 +50,16 @@ class Plot:
         self.t_step = float(t_step)
         self.y_step = float(y_step)
         self.color = color
+        self.text_scale = float(text_scale)
+        k = self.text_scale
+        self.number_size = round(15 * k)
+        self.title_size = round(18 * k)
         # The plotting area: room on the left for y numbers, below for t numbers, above for title.
         self.area = pygame.Rect(
-            self.rect.left + 26, self.rect.top + 20, self.rect.width - 34, self.rect.height - 38
+            self.rect.left + round(26 * k),
+            self.rect.top + round(20 * k),
+            self.rect.width - round(34 * k),
+            self.rect.height - round(38 * k),
         )
 
     def to_px(self, t: np.ndarray | float, y: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
@@ -70,18 +78,35 @@ class Plot:
         for t in _ticks(0.0, self.t_max, self.t_step):
             px = round(float(self.to_px(t, 0.0)[0]))
             pygame.draw.line(surface, GRID, (px, a.top), (px, a.bottom - 1), 1)
-            draw_text(surface, _number(float(t)), (px, a.bottom + 2), 15, MUTED, "midtop")
+            draw_text(
+                surface, _number(float(t)), (px, a.bottom + 2), self.number_size, MUTED, "midtop"
+            )
         for y in _ticks(self.y_min, self.y_max, self.y_step):
             py = round(float(self.to_px(0.0, y)[1]))
             pygame.draw.line(surface, GRID, (a.left, py), (a.right - 1, py), 1)
-            draw_text(surface, _number(float(y)), (a.left - 4, py), 15, MUTED, "midright")
+            draw_text(
+                surface, _number(float(y)), (a.left - 4, py), self.number_size, MUTED, "midright"
+            )
         # The axes: t along y = 0 (or the bottom if 0 is out of range), y along t = 0.
         zero = min(max(0.0, self.y_min), self.y_max)
         py0 = round(float(self.to_px(0.0, zero)[1]))
         pygame.draw.line(surface, INK, (a.left, py0), (a.right - 1, py0), 1)
         pygame.draw.line(surface, INK, (a.left, a.top), (a.left, a.bottom - 1), 1)
-        draw_text(surface, self.title, (self.rect.left + 6, self.rect.top + 3), 18, self.color)
-        draw_text(surface, "t (s)", (self.rect.right - 5, self.rect.top + 4), 15, MUTED, "topright")
+        draw_text(
+            surface,
+            self.title,
+            (self.rect.left + 6, self.rect.top + 3),
+            self.title_size,
+            self.color,
+        )
+        draw_text(
+            surface,
+            "t (s)",
+            (self.rect.right - 5, self.rect.top + 4),
+            self.number_size,
+            MUTED,
+            "topright",
+        )
 
     def draw_curve(
         self,

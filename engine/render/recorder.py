@@ -103,7 +103,8 @@ def iter_frames(
     init_headless()
     surface = pygame.Surface(size)
     scene.build(size)
-    loop = FixedStep(scene.dt, max_frame=max(0.25, 2 * scene.dt))
+    # The clamp is for stalls of a real clock; every virtual frame must be simulated in full.
+    loop = FixedStep(scene.dt, max_frame=max(0.25, 2 * scene.dt, 2.0 / fps))
     clock = VirtualClock(fps)
     # One step ahead: the blend of the states before and after the world's last step then
     # covers the frame's time exactly (see engine.render.scene).

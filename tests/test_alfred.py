@@ -1,0 +1,182 @@
+"""Alfred's scenes: valid frames, Alfred drawn where the physics puts him, the sprint's lesson."""
+
+import math
+
+import numpy as np
+import pygame
+import pytest
+
+from demos import alfred
+from engine.render import init_headless, record, strobe
+
+SIZE = (640, 360)
+
+
+@pytest.fixture(autouse=True)
+def _pygame():
+    init_headless()
+
+
+def load(path) -> np.ndarray:
+    """A PNG's pixels as an array indexed [x, y, channel]."""
+    return pygame.surfarray.array3d(pygame.image.load(str(path)))
+
+
+def sprite_body_centroid(sprite: pygame.Surface, color) -> np.ndarray:
+    """Centroid (x, y) of the sprite's fully opaque pixels of ``color``, in sprite pixels."""
+    rgb = pygame.surfarray.array3d(sprite)
+    alpha = pygame.surfarray.array_alpha(sprite)
+    xs, ys = np.nonzero((rgb == color).all(axis=-1) & (alpha == 255))
+    assert len(xs) > 20, "the sprite must show its body colour"
+    return np.array([xs.mean(), ys.mean()])
+
+
+def find_anchor(pixels: np.ndarray, sprite: pygame.Surface, color, region=None) -> np.ndarray:
+    """Where the sprite's midbottom anchor is in a frame, found by the colour only it uses."""
+    mask = (pixels == color).all(axis=-1)
+    if region is not None:
+        keep = np.zeros_like(mask)
+        keep[:, region[0] : region[1]] = True
+        mask &= keep
+    xs, ys = np.nonzero(mask)
+    assert len(xs) > 20, f"no sprite of colour {color} in the frame"
+    w, h = sprite.get_size()
+    # pygame's midbottom of a w x h rect at topleft (x, y) is (x + w // 2, y + h).
+    topleft = np.array([xs.mean(), ys.mean()]) - sprite_body_centroid(sprite, color)
+    return topleft + np.array([w // 2, h])
+
+
+@pytest.mark.parametrize("name", list(alfred.DEMO.scenes))
+def test_each_scene_renders_valid_frames_of_the_requested_size(tmp_path, name):
+    scene = alfred.DEMO.scenes[name]()
+    rec = record(scene, tmp_path, fps=2, seconds=1.0, size=(480, 270), progress=False)
+    assert rec.count == 3
+    for path in rec.paths():
+        surface = pygame.image.load(str(path))
+        assert surface.get_size() == (480, 270)
+        colours = np.unique(pygame.surfarray.array3d(surface).reshape(-1, 3), axis=0)
+        assert len(colours) > 50, "a flat frame: the classic headless failure"
+
+
+@pytest.mark.parametrize("name", list(alfred.DEMO.scenes))
+def test_each_scene_draws_a_strobe_still(tmp_path, name):
+    path = strobe(alfred.DEMO.scenes[name](), tmp_path / "strobe.png", size=SIZE)
+    pixels = load(path)
+    assert pixels.shape[:2] == SIZE
+    assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 50
+
+
+def exact_1d(s0, v0, a, t):
+    return s0 + v0 * t + 0.5 * a * t * t
+
+
+@pytest.mark.parametrize(
+    ("name", "s0", "v0", "a"),
+    [("lazy", 5.0, 0.0, 0.0), ("stroll", 0.0, 1.0, 0.0)],
+)
+def test_alfred_is_drawn_where_the_exact_motion_puts_him(tmp_path, name, s0, v0, a):
+    scene = alfred.DEMO.scenes[name]()
+    fps = 3
+    rec = record(scene, tmp_path, fps=fps, size=SIZE, progress=False)
+    (ant,) = scene.ants
+    for k, path in enumerate(rec.paths()):
+        t = k / fps
+        s = min(exact_1d(s0, v0, a, t), alfred.TUBE_LENGTH)
+        expected = np.array(scene.camera.to_px(s, ant.row))
+        found = find_anchor(load(path), ant.sprite, alfred.ANT_BODY)
+        assert np.all(np.abs(found - expected) <= 1.0), (t, found, expected)
+
+
+def euler_positions(a: float, dt: float, steps: int) -> list[float]:
+    """Semi-implicit Euler from rest by hand: v += a dt, then x += v dt."""
+    x, v, out = 0.0, 0.0, [0.0]
+    for _ in range(steps):
+        v += a * dt
+        x += v * dt
+        out.append(x)
+    return out
+
+
+def euler_at(t: float) -> float:
+    # Between steps the ant moves in a straight line from one step's position to the next.
+    xs = euler_positions(1.0, 1.0, 8)
+    n = min(int(t), 7)
+    return xs[n] + (xs[n + 1] - xs[n]) * (t - n)
+
+
+def test_sprint_euler_positions_are_the_lessons():
+    assert euler_positions(1.0, 1.0, 4) == [0.0, 1.0, 3.0, 6.0, 10.0]
+
+
+def test_sprint_draws_both_ants_where_their_methods_put_them(tmp_path):
+    scene = alfred.Sprint()
+    fps = 4
+    rec = record(scene, tmp_path, fps=fps, size=SIZE, progress=False)
+    euler, exact = scene.ants
+    for k, path in enumerate(rec.paths()):
+        t = k / fps
+        pixels = load(path)
+        for ant, color, s in (
+            (euler, alfred.EULER_ANT_BODY, euler_at(t)),
+            (exact, alfred.ANT_BODY, exact_1d(0.0, 0.0, 1.0, t)),
+        ):
+            expected = np.array(scene.camera.to_px(min(s, alfred.TUBE_LENGTH), ant.row))
+            found = find_anchor(pixels, ant.sprite, color)
+            assert np.all(np.abs(found - expected) <= 1.0), (t, ant.short, found, expected)
+
+
+def test_sprint_ants_reach_the_end_at_4_s_and_sqrt_20_s(tmp_path):
+    scene = alfred.Sprint()
+    record(scene, tmp_path / "a", fps=2, size=SIZE, progress=False)
+    euler, exact = scene.ants
+    assert euler.arrival == 4.0
+    assert exact.arrival == pytest.approx(math.sqrt(20.0), abs=1e-12)
+    assert f"{exact.arrival:.2f}" == "4.47"
+    # And in the pictures: the first frame with each ant at the tube's end.
+    fps = 20
+    scene = alfred.Sprint()
+    rec = record(scene, tmp_path / "b", fps=fps, size=SIZE, progress=False)
+    end_px = scene.camera.to_px(alfred.TUBE_LENGTH, 0.0)[0]
+    first_at_end = {}
+    for k, path in enumerate(rec.paths()):
+        pixels = load(path)
+        for ant, color in (
+            (scene.ants[0], alfred.EULER_ANT_BODY),
+            (scene.ants[1], alfred.ANT_BODY),
+        ):
+            x = find_anchor(pixels, ant.sprite, color)[0]
+            if abs(x - end_px) <= 0.5 and ant.short not in first_at_end:
+                first_at_end[ant.short] = k / fps
+    assert first_at_end["Euler"] == 4.0
+    assert first_at_end["exact"] == math.ceil(math.sqrt(20.0) * fps) / fps  # 4.5 s at 20 fps
+
+
+def test_paper_alfred_follows_x_t2_over_2_y_2t_minus_t2(tmp_path):
+    scene = alfred.Paper()
+    fps = 4
+    rec = record(scene, tmp_path, fps=fps, size=SIZE, progress=False)
+    sprite = scene.sprite
+    for k, path in enumerate(rec.paths()):
+        t = k / fps
+        expected = np.array(scene.camera.to_px(t * t / 2, 2 * t - t * t))
+        found = find_anchor(load(path), sprite, alfred.ANT_BODY)
+        assert np.all(np.abs(found - expected) <= 1.0), (t, found, expected)
+
+
+def test_paper_velocity_is_tangent_to_the_path():
+    # v = (t, 2 - 2t) is the derivative of s = (t^2/2, 2t - t^2): the lesson's check at t = 1.
+    scene = alfred.Paper()
+    _, v = scene.exact(1.0)
+    assert (v.x, v.y) == (1.0, 0.0)
+    h = 1e-6
+    for t in (0.3, 1.0, 2.5):
+        (s1, _), (s2, _), (_, v) = scene.exact(t - h), scene.exact(t + h), scene.exact(t)
+        assert ((s2 - s1) / (2 * h) - v).magnitude() < 1e-6
+
+
+def test_the_same_recording_twice_is_byte_identical(tmp_path):
+    first = record(alfred.Sprint(), tmp_path / "1", fps=3, seconds=2.0, size=(320, 180))
+    second = record(alfred.Sprint(), tmp_path / "2", fps=3, seconds=2.0, size=(320, 180))
+    assert first.count == second.count == 7
+    for a, b in zip(first.paths(), second.paths(), strict=True):
+        assert a.read_bytes() == b.read_bytes()
