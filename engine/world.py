@@ -570,7 +570,9 @@ class World:
         state stops being finite.
         """
         fast = self._fast
-        if fast is not None and fast[0] == dt and fast[1] == self._version:
+        # type(dt) is float: True == 1.0 and 1 == 1.0, so without it step(True) after
+        # step(1.0) would skip check_dt and run a step of "True" seconds.
+        if fast is not None and type(dt) is float and fast[0] == dt and fast[1] == self._version:
             # The common case: same dt, nothing changed since the last step.
             _, _, name, step, comp = fast
         else:

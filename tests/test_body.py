@@ -134,7 +134,7 @@ def test_setters_refuse_wrong_kind_and_non_finite_values_and_keep_the_old_one() 
     assert (b.pos, b.vel, b.acc) == (Vector(1, 2), Vector(0, 0), Vector(0, 0))
 
 
-# -- in a World ----------------------------------------------------------------------------------
+# -- in a World --------------------------------------------------------------------------------
 
 
 def test_in_a_world_pos_and_vel_are_live() -> None:

@@ -129,7 +129,7 @@ def test_a_plain_callable_becomes_a_force() -> None:
     assert (known.stiffness, known.damping) == (2.0, 1.0)
 
 
-# -- refusals ---------------------------------------------------------------------------------
+# -- refusals ----------------------------------------------------------------------------------
 
 
 def test_bad_force_parameters_are_refused_with_their_name() -> None:

@@ -39,7 +39,7 @@ def oscillator(t, x, v):  # type: ignore[no-untyped-def]
     return x * -1.0
 
 
-# -- the lesson's numbers ------------------------------------------------------------------
+# -- the lesson's numbers ----------------------------------------------------------------------
 
 
 def test_alfreds_sprint_under_semi_implicit_euler_is_0_1_3_6_10() -> None:
@@ -62,7 +62,7 @@ def test_alfreds_sprint_under_explicit_euler_lags_one_step() -> None:
     assert seen == [0.0, 0.0, 1.0, 3.0, 6.0, 10.0]
 
 
-# -- constant acceleration: the exact error of each method -----------------------------------
+# -- constant acceleration: the exact error of each method -------------------------------------
 
 
 @pytest.mark.parametrize(
@@ -116,7 +116,7 @@ def test_verlet_and_rk4_are_exact_under_constant_acceleration_in_2d() -> None:
         assert (x, v) == (truth_x, truth_v), method.__name__
 
 
-# -- orders of accuracy, measured -----------------------------------------------------------
+# -- orders of accuracy, measured --------------------------------------------------------------
 
 
 @pytest.mark.parametrize(
@@ -145,7 +145,7 @@ def test_order_of_accuracy_on_the_oscillator(name: str, order: int, steps: list[
     assert step.order == order
 
 
-# -- one function, any state --------------------------------------------------------------------
+# -- one function, any state -------------------------------------------------------------------
 
 
 def damped_oscillator(t, x, v):  # type: ignore[no-untyped-def]
@@ -216,7 +216,7 @@ def test_rk4_integrates_a_time_dependent_acceleration_to_fourth_order() -> None:
     assert x == pytest.approx(1 - math.cos(1.0), abs=1e-7)
 
 
-# -- velocity Verlet's energy over a long run ---------------------------------------------------
+# -- velocity Verlet's energy over a long run --------------------------------------------------
 
 
 @pytest.mark.parametrize("y", [0.05, 0.5, 1.5])
@@ -246,7 +246,7 @@ def test_velocity_verlet_energy_error_stays_bounded_over_a_long_run(y: float) ->
     assert worst > 0.2 * bound  # the bound is the size of the error, not a loose ceiling
 
 
-# -- the registry ----------------------------------------------------------------------------
+# -- the registry ------------------------------------------------------------------------------
 
 
 def test_registry_lists_the_four_methods_cheapest_first() -> None:

@@ -98,7 +98,7 @@ def decay_grows(name: str, k: float, steps: int, factor: float) -> Callable[[flo
     return unstable
 
 
-# -- limits found by running the methods -----------------------------------------------------
+# -- limits found by running the methods -------------------------------------------------------
 
 
 @pytest.mark.parametrize(

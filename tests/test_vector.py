@@ -27,7 +27,7 @@ def close(u: Vector, w: Vector, abs_tol: float) -> bool:
     return math.isclose(u.x, w.x, abs_tol=abs_tol) and math.isclose(u.y, w.y, abs_tol=abs_tol)
 
 
-# -- algebra as properties --------------------------------------------------------------------
+# -- algebra as properties ---------------------------------------------------------------------
 
 
 @given(vectors, vectors, vectors)
@@ -102,7 +102,7 @@ def test_a_vector_cannot_be_changed_in_place() -> None:
     assert v == Vector(1, 2)
 
 
-# -- the lesson's four faults, each pinned ----------------------------------------------------
+# -- the lesson's four faults, each pinned -----------------------------------------------------
 
 
 def test_lesson_fault_ne_of_equal_vectors_is_false() -> None:
@@ -142,7 +142,7 @@ def test_lesson_fault_vector_times_vector_is_a_type_error_pointing_to_dot() -> N
     assert Vector(1, 2).dot(Vector(3, 4)) == 11.0
 
 
-# -- text -------------------------------------------------------------------------------------
+# -- text --------------------------------------------------------------------------------------
 
 
 def test_str_is_the_lessons_text() -> None:
@@ -160,7 +160,7 @@ def test_repr_round_trips_through_eval(a: Vector) -> None:
     assert math.copysign(1, back.y) == math.copysign(1, a.y)
 
 
-# -- tuples, unpacking, components --------------------------------------------------------------
+# -- tuples, unpacking, components -------------------------------------------------------------
 
 
 def test_plain_tuples_are_accepted_as_operands() -> None:
@@ -209,7 +209,7 @@ def test_unary_minus_and_division_and_scaling_from_both_sides() -> None:
         Vector(1, 2) / 0
 
 
-# -- the named operations -------------------------------------------------------------------------
+# -- the named operations ----------------------------------------------------------------------
 
 
 def test_dot_cross_length_squared_magnitude() -> None:
@@ -258,7 +258,7 @@ def test_distance_to_and_lerp() -> None:
     assert a.lerp(b, 2) == Vector(20, 40)  # extrapolates
 
 
-# -- refusals --------------------------------------------------------------------------------
+# -- refusals ----------------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize("bad", ["1", None, [1], True, 1j])
