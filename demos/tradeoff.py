@@ -1,0 +1,308 @@
+"""Speed against accuracy: the work-precision chart and the throughput chart.
+
+    python -m demos tradeoff            # out/tradeoff/work_precision.png + .csv, throughput.*
+    python -m demos tradeoff --quick    # a coarser sweep in a few seconds
+
+The work-precision chart answers "which integrator should I use?": for three problems with
+exact answers (a thrown ball, a spring, wind with drag) each method runs for 1 s at steps dt
+halved from dot to dot, and each dot shows the error (largest distance from the exact answer,
+m) against the cost (run time per simulated second). The lowest line at a given cost is the
+best method for that budget. "auto" is the World choosing for itself, given a tolerance.
+
+The throughput chart: cost per body-step against the number of bodies, for the World, the
+particle arrays, the lesson's Body loop, pymunk and pygame's Vector2, measured in one run.
+The measuring lives in ``engine.measure`` and ``engine.bench.throughput``; this module draws.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+import pygame
+
+from demos.cli import Demo
+from engine import measure
+from engine.bench import throughput
+from engine.measure import PROBLEMS, Point
+from engine.render import INK, MUTED, PAPER, Progress, draw_text, init_headless, save_png
+from engine.render.chart import LogLogChart, decade_range, draw_legend
+
+__all__ = [
+    "COLORS",
+    "LABELS",
+    "draw_work_precision",
+    "draw_throughput",
+    "run",
+    "DEMO",
+]
+
+Color = tuple[int, int, int]
+
+#: One colour per method (Okabe-Ito: distinct for colour-blind readers and on a projector).
+COLORS: dict[str, Color] = {
+    "explicit_euler": (213, 94, 0),  # vermillion
+    "semi_implicit_euler": (86, 180, 233),  # sky blue
+    "velocity_verlet": (0, 158, 115),  # bluish green
+    "rk4": (0, 114, 178),  # blue
+    "exact": (204, 121, 167),  # reddish purple
+    "auto": (230, 159, 0),  # orange, drawn as a wide band under the others
+}
+
+#: Names a reader knows.
+LABELS: dict[str, str] = {
+    "explicit_euler": "explicit Euler",
+    "semi_implicit_euler": "semi-implicit Euler",
+    "velocity_verlet": "velocity Verlet",
+    "rk4": "RK4",
+    "exact": "closed form",
+    "auto": "auto (given a tolerance)",
+}
+
+#: Colours of the throughput chart's lines.
+THROUGHPUT_COLORS: dict[str, Color] = {
+    "World": (0, 114, 178),
+    "Particles": (0, 158, 115),
+    "lesson Body": (213, 94, 0),
+    "pymunk": (204, 121, 167),
+    "pygame Vector2": (230, 159, 0),
+}
+
+_FLOOR = 1e-16  # m: errors below this (round-off) are drawn on the bottom line
+_LEVEL = 1e-3  # m: the accuracy each panel's verdict is given for (1 mm)
+
+
+def _verdict(points: Sequence[Point], problem: str) -> str:
+    """One line: the method with the least work to stay within 1 mm, and the runner-up."""
+    best: dict[str, Point] = {}
+    for p in points:
+        if p.problem != problem or p.method == "auto" or p.warned or not p.finite:
+            continue
+        if p.error <= _LEVEL and (p.method not in best or p.work < best[p.method].work):
+            best[p.method] = p
+    if not best:
+        return "No method stays within 1 mm at these steps."
+    ranked = sorted(best.values(), key=lambda p: p.work)
+    first = ranked[0]
+    text = f"For 1 mm: {LABELS[first.method]} at dt = 1/{round(1 / first.dt)} s is cheapest"
+    if len(ranked) > 1:
+        runner = ranked[1]
+        text += f"; {LABELS[runner.method]} {runner.work / first.work:.1f}x the work"
+    return text + "."
+
+
+def draw_work_precision(
+    points: Sequence[Point], size: tuple[int, int] = (1280, 720)
+) -> pygame.Surface:
+    """The work-precision chart: one panel per problem, error (m) against cost (s per s)."""
+    init_headless()
+    width, height = size
+    surface = pygame.Surface(size)
+    surface.fill(PAPER)
+    draw_text(surface, "Speed against accuracy: which integrator should I use?", (20, 10), 32)
+    draw_text(
+        surface,
+        "Each dot: one run of 1 s of simulated time with step dt, halved from dot to dot "
+        "(right = smaller dt). Error: largest distance from the exact answer.",
+        (20, 42),
+        18,
+        MUTED,
+    )
+    costs = [p.cost for p in points if p.cost > 0]
+    x_dec = decade_range(costs)
+    y_dec = (round(math.log10(_FLOOR)), 2)
+    names = [name for name in PROBLEMS if any(p.problem == name for p in points)]
+    margin, gap, top = 16, 12, 66
+    legend_h = 74
+    panel_w = (width - 2 * margin - gap * (len(names) - 1)) // max(1, len(names))
+    panel_h = height - top - legend_h - 60
+    for i, name in enumerate(names):
+        left = margin + i * (panel_w + gap)
+        chart = LogLogChart(
+            (left, top, panel_w, panel_h),
+            x_dec,
+            y_dec,
+            PROBLEMS[name].title,
+            "cost: run time per simulated second (s)",
+            "largest position error (m)",
+            y_label_every=2,
+        )
+        chart.draw_frame(surface)
+        mine = [p for p in points if p.problem == name]
+        for method in sorted(COLORS, key=lambda m: m != "auto"):  # auto first, underneath
+            # Largest dt first: along the line, dt halves from dot to dot.
+            series = sorted((p for p in mine if p.method == method), key=lambda p: -p.dt)
+            if not series:
+                continue
+            auto = method == "auto"
+            chart.draw_series(
+                surface,
+                [p.cost for p in series],
+                [p.error if p.finite else math.inf for p in series],
+                COLORS[method],
+                width=10 if auto else 2,
+                radius=8 if auto else 4,
+                hollow=None if auto else [p.warned for p in series],
+            )
+        if PROBLEMS[name].closed_form:
+            draw_text(
+                surface,
+                "Verlet, RK4, closed form: exact (round-off)",
+                (chart.area.right - 6, float(chart.to_px(1.0, 1e-12)[1])),
+                16,
+                INK,
+                "midright",
+            )
+        cap_y = top + panel_h + 6
+        draw_text(
+            surface,
+            "Lower = more accurate, further left = cheaper: lowest line wins.",
+            (left + 4, cap_y),
+            16,
+            INK,
+        )
+        draw_text(surface, _verdict(points, name), (left + 4, cap_y + 19), 16, INK)
+    items = [(LABELS[m], COLORS[m], 10 if m == "auto" else 2) for m in COLORS]
+    draw_legend(surface, items, (margin, height - legend_h), width - 2 * margin)
+    draw_text(
+        surface,
+        "Hollow dot: dt past the method's stability limit (the engine warns). Cross at a panel's "
+        "top: the run blew up (no finite answer). Slope -p on these axes means order p.",
+        (margin, height - 26),
+        17,
+        MUTED,
+    )
+    return surface
+
+
+def draw_throughput(
+    rows: Sequence[throughput.Row], size: tuple[int, int] = (1280, 720)
+) -> pygame.Surface:
+    """The throughput chart: ns per body-step against the number of bodies, one line each."""
+    init_headless()
+    width, height = size
+    surface = pygame.Surface(size)
+    surface.fill(PAPER)
+    draw_text(surface, "Throughput: how many bodies can one step move?", (20, 10), 32)
+    draw_text(
+        surface,
+        "Semi-implicit Euler under gravity, measured side by side in one run (medians). "
+        "Lower = faster per body.",
+        (20, 42),
+        18,
+        MUTED,
+    )
+    chart = LogLogChart(
+        (16, 66, width - 32, height - 66 - 90),
+        decade_range([r.bodies for r in rows]),
+        decade_range([r.ns for r in rows]),
+        "Cost per body per step",
+        "number of bodies",
+        "time per body-step (ns)",
+    )
+    chart.draw_frame(surface)
+    names = [n for n in throughput.IMPLEMENTATIONS if any(r.implementation == n for r in rows)]
+    for name in names:
+        mine = sorted((r for r in rows if r.implementation == name), key=lambda r: r.bodies)
+        chart.draw_series(
+            surface, [r.bodies for r in mine], [r.ns for r in mine], THROUGHPUT_COLORS[name], 3, 5
+        )
+    items = [(name, THROUGHPUT_COLORS[name], 3) for name in names]
+    draw_legend(surface, items, (16, height - 84), width - 32)
+    draw_text(
+        surface,
+        "Python loops pay per body; arrays pay per step, so their cost per body falls until "
+        "memory bandwidth sets the floor.",
+        (16, height - 30),
+        18,
+        MUTED,
+    )
+    return surface
+
+
+def _write(path: Path, lines: Sequence[str]) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.tmp")
+    tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    tmp.replace(path)
+
+
+def summary(points: Sequence[Point], timed: dict[int, float] | None = None) -> str:
+    """Slopes on the spring and auto against the best method at each tolerance, as text."""
+    lines = ["spring: slope of log error against log dt (asymptotic range; expected 1, 1, 2, 4)"]
+    for method in ("explicit_euler", "semi_implicit_euler", "velocity_verlet", "rk4"):
+        s = measure.slope(points, "spring", method)
+        lines.append(f"  {LABELS[method]:<22} {'-' if s is None else f'{s:.3f}'}")
+    lines.append("auto against the fastest method reaching its tolerance (target <= 1.2x):")
+    for i, r in enumerate(measure.auto_ratios(points)):
+        best = "none" if r.best is None else f"{LABELS[r.best.method]} dt={r.best.dt:g}"
+        t = timed.get(i) if timed else None
+        time_txt = "" if t is None else f", time {t:.2f}x"
+        lines.append(
+            f"  {r.problem:<8} tol {r.tolerance:<7.0e} auto: {LABELS[r.auto.chosen]} "
+            f"dt={r.auto.dt:g} error {r.auto.error:.2g} m{'' if r.met else ' (NOT MET)'}; "
+            f"best: {best}; work {r.work_ratio:.2f}x{time_txt}"
+        )
+    return "\n".join(lines)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Measure, write the charts and CSVs, print the tables; the CLI's hook."""
+    quick = bool(getattr(args, "quick", False))
+    out = Path(args.out) if getattr(args, "out", None) else Path("out") / "tradeoff"
+    size = tuple(args.size) if getattr(args, "size", None) not in (None, (640, 360)) else None
+    size = size or (1280, 720)
+    bar = Progress(label="tradeoff")
+    print(f"tradeoff: measuring {'(quick) ' if quick else ''}the work-precision sweep ...")
+    points = measure.sweep(
+        PROBLEMS.values(),
+        dts=measure.sweep_dts(quick),
+        repeats=3 if quick else 5,
+        tolerances=measure.auto_tolerances(quick),
+        progress=lambda done, total, label: bar(done, total),
+        min_steps=300 if quick else 2000,
+    )
+    bar.done()
+    csv_path = out / "work_precision.csv"
+    _write(csv_path, [measure.csv_header(), *map(measure.csv_row, points)])
+    png_path = save_png(draw_work_precision(points, size), out / "work_precision.png", True)
+    print(f"tradeoff: wrote {png_path} and {csv_path} ({len(points)} points)")
+    # auto against its best rival, timed side by side (interleaved rounds: fair on a busy box).
+    ratios = measure.auto_ratios(points)
+    pairs = [(i, r) for i, r in enumerate(ratios) if r.best is not None]
+    runs = []
+    for _, r in pairs:
+        runs.append((PROBLEMS[r.problem], "auto", r.auto.dt, r.tolerance))
+        runs.append((PROBLEMS[r.problem], r.best.method, r.best.dt, None))  # type: ignore[union-attr]
+    times = measure.side_by_side(runs, rounds=5 if quick else 9, min_steps=300 if quick else 2000)
+    timed = {i: times[2 * k] / times[2 * k + 1] for k, (i, _) in enumerate(pairs)}
+    print(summary(points, timed))
+    print("tradeoff: measuring throughput ...")
+    rows = throughput.measure(quick)
+    _write(
+        out / "throughput.csv",
+        ["implementation,bodies,ns_per_body_step"]
+        + [f"{r.implementation},{r.bodies},{r.ns:.6g}" for r in rows],
+    )
+    tp = save_png(draw_throughput(rows, size), out / "throughput.png", True)
+    print(throughput.table(rows))
+    print(f"tradeoff: wrote {tp} and {out / 'throughput.csv'}")
+    sys.stdout.flush()
+    return 0
+
+
+def _add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--quick", action="store_true", help="a coarser sweep in a few seconds (for CI and tries)"
+    )
+
+
+DEMO = Demo(
+    name="tradeoff",
+    summary="Work-precision chart (error vs cost per integrator) and throughput chart",
+    add_arguments=_add_arguments,
+    run=run,
+)
