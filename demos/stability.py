@@ -88,7 +88,9 @@ class _FourSprings(Scene):
         self.worlds: dict[str, tuple[World, Body]] = {m: _spring_world(m) for m in METHODS}
         self.status: dict[str, str] = dict.fromkeys(METHODS, "stable")  # stable/warned/diverged
         self.messages: dict[str, str] = {}  # method -> the engine's latest warning or error text
-        self.latest: tuple[str, str] | None = None  # (method, text) of the newest message
+        self.latest: tuple[str, str] | None = None  # (method, text) of the message on show
+        self.queue: list[tuple[str, str]] = []  # messages waiting for their turn on screen
+        self.shown_for = 0  # scene steps the message on show has been up
         self.drawn_text: list[str] = []  # every string the last draw() wrote (for tests)
         self.drawn_positions: list[tuple[float, float]] = []  # world points the last draw() used
         self.e0 = 0.5 * OMEGA * OMEGA + 0.5 * OMEGA * OMEGA  # J: kinetic + spring at the start
@@ -115,7 +117,14 @@ class _FourSprings(Scene):
 
     def _message(self, method: str, text: str) -> None:
         self.messages[method] = text
-        self.latest = (method, text)
+        self.queue.append((method, text))
+
+    def _next_message(self, hold: int) -> None:
+        """Put the next queued message on show once the current one was up ``hold`` steps."""
+        self.shown_for += 1
+        if self.queue and (self.latest is None or self.shown_for >= hold):
+            self.latest = self.queue.pop(0)
+            self.shown_for = 0
 
     def _text(
         self,
@@ -269,6 +278,7 @@ class LimitsScene(_FourSprings):
             for _ in range(self.SUBSTEPS):
                 self._step_method(method, h)
         self.scene_steps += 1
+        self._next_message(hold=12)  # each message stays up at least 0.4 s
         self._remember()
 
     def draw(self, surface: pygame.Surface, alpha: float) -> None:

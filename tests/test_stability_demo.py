@@ -1,0 +1,80 @@
+"""The stability lesson's frames: the engine's warning and error text are drawn, each method
+behaves as theory says, and no frame ever holds a non-finite position."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from demos.stability import METHODS, OMEGA, LimitsScene, OrbitsScene, wrap
+from engine.render import iter_frames as frames
+
+
+def _finite_frame(scene: LimitsScene | OrbitsScene) -> None:
+    assert scene.drawn_positions
+    assert np.isfinite(np.asarray(scene.drawn_positions)).all()
+    for world, _ in scene.worlds.values():
+        assert np.isfinite(world.positions()).all() and np.isfinite(world.velocities()).all()
+
+
+def test_limits_scene_shows_the_warning_then_the_error_for_every_method() -> None:
+    scene = LimitsScene()
+    seen: dict[str, set[str]] = {m: set() for m in METHODS}
+    for _, _, surface in frames(scene, fps=10, size=(640, 360)):
+        _finite_frame(scene)
+        if scene.latest is not None:
+            method, message = scene.latest
+            assert message.split(":")[0] in ("StabilityWarning", "SimulationDiverged")
+            # The whole message is on the frame, wrapped: its lines were drawn in order.
+            lines = wrap(message, 15, surface.get_width() - 24)
+            shown = [t for t in scene.drawn_text if t in lines]
+            if shown == lines:
+                seen[method].add(message.split(":")[0])
+    for method in METHODS:
+        assert seen[method] == {"StabilityWarning", "SimulationDiverged"}, (method, seen)
+        assert scene.status[method] == "diverged"
+
+
+def test_limits_scene_warns_only_past_each_limit() -> None:
+    scene = LimitsScene()
+    scene.build((640, 360))
+    while scene.status["rk4"] == "stable":
+        before = scene.omega_dt
+        scene.step(scene.dt)
+        for method in ("semi_implicit_euler", "velocity_verlet"):
+            if scene.status[method] != "stable":
+                assert scene.omega_dt > 2.0
+        if scene.omega_dt < 2.0:
+            assert scene.status["semi_implicit_euler"] == "stable"
+    assert scene.omega_dt > 2 * math.sqrt(2) and before <= scene.omega_dt
+    assert scene.status["explicit_euler"] != "stable"  # no stable dt on a spring at all
+
+
+def test_orbits_energy_follows_theory() -> None:
+    scene = OrbitsScene()
+    for _ in frames(scene, fps=10, size=(640, 360)):
+        _finite_frame(scene)
+    y = OMEGA * scene.dt
+    e = {m: np.array([v for _, v in scene.energy[m]]) for m in METHODS}
+    n = np.arange(len(e["explicit_euler"]))
+    # Explicit Euler: energy multiplied by exactly 1 + (omega dt)^2 each step (DESIGN.md).
+    assert e["explicit_euler"] == pytest.approx((1 + y * y) ** n, rel=1e-9)
+    # Symplectic methods: bounded, within the modified-energy band of width ~omega dt.
+    assert np.all(np.abs(e["semi_implicit_euler"] - 1) < y)
+    assert np.all(np.abs(e["velocity_verlet"] - 1) < y * y / 2)
+    # RK4: loses energy slowly and steadily, by |R(i omega dt)|^2 a step.
+    r2 = (1 - y**2 / 2 + y**4 / 24) ** 2 + (y - y**3 / 6) ** 2
+    assert e["rk4"] == pytest.approx(r2**n, rel=1e-9)
+    assert e["rk4"][-1] < 0.99
+
+
+def test_frames_are_not_flat() -> None:
+    for scene in (OrbitsScene(), LimitsScene()):
+        for index, _, surface in frames(scene, fps=2, seconds=2.0, size=(640, 360)):
+            if index == 2:
+                import pygame
+
+                pixels = pygame.surfarray.array3d(surface).reshape(-1, 3)
+                assert len(np.unique(pixels, axis=0)) > 10

@@ -1,0 +1,147 @@
+"""The work-precision chart: `python -m demos tradeoff --quick` writes a PNG and a CSV whose
+numbers obey the theory (orders 1, 1, 2, 4; the closed form exact; auto as cheap as the best)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from pathlib import Path
+
+import numpy as np
+import pygame
+import pytest
+
+from demos import cli
+from demos.tradeoff import COLORS, draw_work_precision
+from engine.measure import PROBLEMS, Point, measure
+
+ORDERS = {"explicit_euler": 1, "semi_implicit_euler": 1, "velocity_verlet": 2, "rk4": 4}
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[dict[str, str]], str]:
+    out = tmp_path_factory.mktemp("tradeoff")
+    text = io.StringIO()
+    import contextlib
+
+    with contextlib.redirect_stdout(text):
+        code = cli.main(["tradeoff", "--quick", "--out", str(out)], out=text)
+    assert code == 0
+    with open(out / "work_precision.csv", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    return out, rows, text.getvalue()
+
+
+def test_quick_run_writes_png_and_csv(quick_run: tuple[Path, list[dict[str, str]], str]) -> None:
+    out, rows, _ = quick_run
+    for name in ("work_precision.png", "work_precision.csv", "throughput.png", "throughput.csv"):
+        assert (out / name).stat().st_size > 0, name
+    methods = {(r["problem"], r["method"]) for r in rows}
+    for problem in PROBLEMS:
+        for method in ("explicit_euler", "semi_implicit_euler", "velocity_verlet", "rk4", "auto"):
+            assert (problem, method) in methods
+    assert ("gravity", "exact") in methods and ("spring", "exact") not in methods
+
+
+def test_spring_slopes_match_the_orders(quick_run: tuple[Path, list[dict[str, str]], str]) -> None:
+    # Fit log(error) against log(dt) over the asymptotic range: omega dt <= 1/4, above round-off.
+    _, rows, _ = quick_run
+    for method, order in ORDERS.items():
+        pts = [
+            (math.log(float(r["dt_s"])), math.log(float(r["error_m"])))
+            for r in rows
+            if r["problem"] == "spring"
+            and r["method"] == method
+            and 2 * math.pi * float(r["dt_s"]) <= 0.25
+            and 1e-11 < float(r["error_m"]) < math.inf
+        ]
+        assert len(pts) >= 3, method
+        x, y = np.array(pts).T
+        slope = np.polyfit(x, y, 1)[0]
+        assert abs(slope - order) <= 0.15, (method, slope)
+
+
+def test_closed_form_is_exact_on_gravity(quick_run: tuple[Path, list[dict[str, str]], str]) -> None:
+    _, rows, _ = quick_run
+    errors = [
+        float(r["error_m"]) for r in rows if r["problem"] == "gravity" and r["method"] == "exact"
+    ]
+    assert errors and max(errors) < 1e-12
+
+
+def test_explicit_euler_on_gravity_lags_by_a_t_h_over_2(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    # DESIGN: under constant acceleration a, explicit Euler's position error is a T h / 2.
+    _, rows, _ = quick_run
+    for r in rows:
+        if r["problem"] == "gravity" and r["method"] == "explicit_euler":
+            assert float(r["error_m"]) == pytest.approx(9.81 * 1.0 * float(r["dt_s"]) / 2, rel=1e-9)
+
+
+def test_auto_meets_each_tolerance_as_cheaply_as_the_best_point(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    # At each error level (auto's tolerance), the cheapest measured point of any method that
+    # reaches it, by work (steps + evaluations: machine independent), against auto's.
+    _, rows, _ = quick_run
+    autos = [r for r in rows if r["method"] == "auto"]
+    assert len(autos) >= 3 * 6
+    for a in autos:
+        tol = float(a["tolerance_m"])
+        assert float(a["error_m"]) <= tol, a
+        rivals = [
+            int(r["work"])
+            for r in rows
+            if r["problem"] == a["problem"]
+            and r["method"] != "auto"
+            and r["finite"] == "1"
+            and r["warned"] == "0"
+            and float(r["error_m"]) <= tol
+        ]
+        assert rivals
+        assert int(a["work"]) <= 1.2 * min(rivals), a
+
+
+def _load(path: Path) -> np.ndarray:
+    return pygame.surfarray.array3d(pygame.image.load(str(path)))
+
+
+def test_chart_is_not_flat_and_has_one_line_colour_per_method(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    out, _, _ = quick_run
+    pixels = _load(out / "work_precision.png")
+    assert pixels.shape[:2] == (1280, 720)
+    flat = pixels.reshape(-1, 3)
+    assert len(np.unique(flat, axis=0)) > 20
+    colours = list(COLORS.values())
+    assert len(set(colours)) == len(colours)
+    for method, colour in COLORS.items():
+        count = int(np.all(flat == np.array(colour), axis=1).sum())
+        assert count > 300, (method, count)  # a line, not just the legend swatch
+
+
+def _point(method: str, dt: float, error: float, finite: bool = True) -> Point:
+    return Point("spring", method, method, dt, round(1 / dt), error, finite, False, dt, 0.0, 1, 0)
+
+
+def test_a_diverged_point_is_marked_in_the_top_strip() -> None:
+    points = [_point("rk4", 2.0**-k, 10.0**-k) for k in range(2, 8)]
+    points.append(_point("rk4", 0.5, math.inf, finite=False))
+    pixels = pygame.surfarray.array3d(draw_work_precision(points))
+    colour = np.array(COLORS["rk4"])
+    # The plotting area of the one panel starts 30 + 16 px below its top (66): the strip for
+    # non-finite points is the 16 px above it.
+    strip = pixels[:, 66 + 30 : 66 + 30 + 16]
+    assert np.all(strip == colour, axis=2).sum() > 10
+    without = pygame.surfarray.array3d(draw_work_precision(points[:-1]))
+    assert np.all(without[:, 96:112] == colour, axis=2).sum() == 0
+
+
+def test_measure_counts_evaluations_through_the_world() -> None:
+    p = measure(PROBLEMS["spring"], "rk4", 1 / 16, repeats=1, min_steps=16)
+    assert p.evaluations == 16 * 4 and p.work == 16 * 5
+    q = measure(PROBLEMS["gravity"], "exact", 1 / 16, repeats=1, min_steps=16)
+    assert q.evaluations == 0 and q.error < 1e-12
