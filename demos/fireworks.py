@@ -178,8 +178,8 @@ class SparkPainter:
         # One bincount for the three channels: index pixel * 3 + channel, weight colour * light.
         flat = (pixel[:, None] * 3 + self._channel).ravel()
         light = (brightness[inside, None] * self.palette[kinds[inside]]).ravel()
-        fresh = np.bincount(flat, weights=light, minlength=w * h * 3)
-        fresh = fresh.astype(np.float32).reshape(w, h, 3)
+        counts = np.bincount(flat, weights=light, minlength=w * h * 3)
+        fresh = counts.astype(np.float32).reshape(w, h, 3)
         glow, side = self.glow, self._side
         glow *= np.float32(fade)
         glow += fresh
