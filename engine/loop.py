@@ -35,6 +35,9 @@ from typing import Any, Protocol
 
 __all__ = ["FixedStep", "VirtualClock", "RealClock", "Clock"]
 
+_BELOW_ONE = math.nextafter(1.0, 0.0)  # the largest float < 1
+_FLOAT_ROUNDING = Fraction(1, 2**52)  # relative spacing of floats: rounding is below this
+
 
 def _seconds(value: Any, name: str, *, allow_zero: bool = False) -> Fraction:
     """``value`` (seconds) as an exact Fraction; TypeError/ValueError naming ``name``."""
@@ -47,6 +50,19 @@ def _seconds(value: Any, name: str, *, allow_zero: bool = False) -> Fraction:
         bound = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be {bound} seconds, got {value!r}")
     return exact
+
+
+def _as_meant(exact: Fraction) -> Fraction:
+    """The fraction (denominator up to 10^6) whose float ``exact`` is, else ``exact`` itself.
+
+    A float such as 1/120 or 1/60 is not exactly 1/120 or 1/60; read as the fraction the
+    user meant, 120 steps make exactly one second, and frames of float 1/60 s make exactly
+    two steps of 1/120 s. "Whose float" means within float rounding (2^-52 relative); a
+    value with no such fraction that near (2.5e-7, which would round to 0, or a real
+    clock's 0.0167341) keeps its exact binary value.
+    """
+    near = exact.limit_denominator(1_000_000)
+    return near if abs(near - exact) <= exact * _FLOAT_ROUNDING else exact
 
 
 class Clock(Protocol):
@@ -103,7 +119,7 @@ class FixedStep:
         # A float dt such as 1/120 is not exactly 1/120; read it as the nearest fraction
         # with a denominator up to 10^6 (what the user meant), so that 120 steps make
         # exactly one second and a million frames of 1/60 s exactly two million steps.
-        self._dt = _seconds(dt, "dt").limit_denominator(1_000_000)
+        self._dt = _as_meant(_seconds(dt, "dt"))
         self._max_frame = _seconds(max_frame, "max_frame")
         if self._max_frame < self._dt:
             raise ValueError(
@@ -120,6 +136,8 @@ class FixedStep:
     def advance(self, frame_seconds: float | Fraction) -> int:
         """Add one frame's time (s); return how many whole steps of dt to run now."""
         frame = _seconds(frame_seconds, "frame_seconds", allow_zero=True)
+        if type(frame_seconds) is not Fraction:
+            frame = _as_meant(frame)  # read a float frame like dt (see _as_meant)
         if frame > self._max_frame:
             self._dropped += frame - self._max_frame
             frame = self._max_frame
@@ -139,7 +157,8 @@ class FixedStep:
     @property
     def alpha(self) -> float:
         """Fraction of a step left in the accumulator, in [0, 1): how far to blend for drawing."""
-        return float(self._acc / self._dt)
+        # The exact ratio is < 1, but float() may round 1 - 1e-17 up to 1.0.
+        return min(float(self._acc / self._dt), _BELOW_ONE)
 
     @property
     def t(self) -> float:
