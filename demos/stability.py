@@ -96,6 +96,8 @@ class _FourSprings(Scene):
         self.e0 = 0.5 * OMEGA * OMEGA + 0.5 * OMEGA * OMEGA  # J: kinetic + spring at the start
         self.world = self.worlds["rk4"][0]  # the scene's clock for Scene.time()
         self.camera = None
+        self.trail_length = 40
+        self.trails: dict[str, list[tuple[float, float]]] = {m: [] for m in METHODS}
 
     def _step_method(self, method: str, dt: float) -> None:
         """One step of ``method``'s world, turning the engine's warning/error into messages."""
@@ -161,6 +163,7 @@ class _FourSprings(Scene):
             pts = [px(p) for p in trail]
             pygame.draw.lines(surface, COLORS[method], False, pts, 2)
         pos = world.position_of(body, alpha if self.status[method] != "diverged" else 1.0)
+        assert isinstance(pos, Vector)
         p = (float(pos.x), float(pos.y))
         self.drawn_positions.append(p)
         self.drawn_positions.extend(trail)
@@ -181,7 +184,8 @@ class _FourSprings(Scene):
     def _remember(self) -> None:
         for method in METHODS:
             world, body = self.worlds[method]
-            self.trails[method].append((float(body.pos.x), float(body.pos.y)))
+            pos = body.pos
+            self.trails[method].append((float(pos[0]), float(pos[1])))
             del self.trails[method][: -self.trail_length]
 
 
@@ -196,7 +200,6 @@ class OrbitsScene(_FourSprings):
     def build(self, size: tuple[int, int]) -> None:
         super().build(size)
         self.trail_length = 400
-        self.trails: dict[str, list[tuple[float, float]]] = {m: [] for m in METHODS}
         self.energy: dict[str, list[tuple[float, float]]] = {m: [(0.0, 1.0)] for m in METHODS}
         self._remember()
 
@@ -263,8 +266,6 @@ class LimitsScene(_FourSprings):
 
     def build(self, size: tuple[int, int]) -> None:
         super().build(size)
-        self.trail_length = 40
-        self.trails = {m: [] for m in METHODS}
         self.scene_steps = 0
         self.omega_dt = self.STEPS[0]
         self._remember()

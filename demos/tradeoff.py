@@ -273,10 +273,11 @@ def run(args: argparse.Namespace) -> int:
     # auto against its best rival, timed side by side (interleaved rounds: fair on a busy box).
     ratios = measure.auto_ratios(points)
     pairs = [(i, r) for i, r in enumerate(ratios) if r.best is not None]
-    runs = []
+    runs: list[tuple[measure.Problem, str, float, float | None]] = []
     for _, r in pairs:
+        assert r.best is not None
         runs.append((PROBLEMS[r.problem], "auto", r.auto.dt, r.tolerance))
-        runs.append((PROBLEMS[r.problem], r.best.method, r.best.dt, None))  # type: ignore[union-attr]
+        runs.append((PROBLEMS[r.problem], r.best.method, r.best.dt, None))
     times = measure.side_by_side(runs, rounds=5 if quick else 9, min_steps=300 if quick else 2000)
     timed = {i: times[2 * k] / times[2 * k + 1] for k, (i, _) in enumerate(pairs)}
     print(summary(points, timed))

@@ -300,7 +300,8 @@ def _time_run(
     """
     n = round(problem.duration / dt)
     loops = max(1, math.ceil(min_steps / n))
-    costs, firsts = [], []
+    costs: list[float] = []
+    firsts: list[float] = []
     collecting = gc.isenabled()
     gc.disable()
     try:
@@ -436,9 +437,9 @@ def sweep(
             if method == "exact" and not problem.closed_form:
                 continue
             if method == "auto":
-                for tol in tolerances:
-                    dt, _ = plan_auto(problem, tol, dts)
-                    jobs.append((problem, method, dt, tol))
+                for level in tolerances:
+                    dt, _ = plan_auto(problem, level, dts)
+                    jobs.append((problem, method, dt, level))
             else:
                 jobs.extend((problem, method, dt, None) for dt in dts)
     points = []
