@@ -16,6 +16,7 @@ from __future__ import annotations
 import os
 import re
 import struct
+import sys
 import threading
 import zlib
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -76,21 +77,93 @@ def encode_png(rgb: bytes, width: int, height: int, level: int = 2) -> bytes:
         raise ValueError(
             f"rgb must hold {width * height * 3} bytes for {width}x{height}, got {len(rgb)}"
         )
-    rows = np.frombuffer(rgb, dtype=np.uint8).reshape(height, width * 3)
+    return _encode_pixels(np.frombuffer(rgb, dtype=np.uint8).reshape(height, width, 3), level)
+
+
+def _encode_pixels(pixels: np.ndarray, level: int) -> bytes:
+    # pixels: (height, width, 3) uint8 RGB, any strides (e.g. a view into a BGRX surface copy).
+    height, width, _ = pixels.shape
     filtered = np.empty((height, width * 3 + 1), dtype=np.uint8)
     filtered[:, 0] = 2  # the filter-type byte that starts each row
-    filtered[0, 1:] = rows[0]  # the row above the first row counts as zeros
-    np.subtract(rows[1:], rows[:-1], out=filtered[1:, 1:])  # uint8 arithmetic wraps modulo 256
+    rows = filtered[:, 1:].reshape(height, width, 3)  # a view: the pixels after the filter byte
+    rows[0] = pixels[0]  # the row above the first row counts as zeros
+    np.subtract(pixels[1:], pixels[:-1], out=rows[1:])  # uint8 arithmetic wraps modulo 256
+    return _png(filtered, width, height, level)
+
+
+def _png(filtered: np.ndarray, width: int, height: int, level: int) -> bytes:
+    # filtered: each row's filter byte then its filtered RGB bytes.
     # IHDR: width, height, bit depth 8, colour type 2 (RGB), compression 0, filter 0, no interlace.
     header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
     return b"".join(
         (
             _PNG_SIGNATURE,
             _chunk(b"IHDR", header),
-            _chunk(b"IDAT", zlib.compress(filtered, level)),
+            _chunk(b"IDAT", zlib.compress(filtered.data, level)),
             _chunk(b"IEND", b""),
         )
     )
+
+
+class _Grab:
+    """A copy of a surface's pixels, taken fast, turned into (height, width, 3) RGB later."""
+
+    __slots__ = ("data", "width", "height", "pitch", "channels")
+
+    def __init__(self, surface: pygame.Surface) -> None:
+        self.width, self.height = surface.get_size()
+        shifts = surface.get_shifts()[:3]
+        masks = surface.get_masks()[:3]
+        if (
+            surface.get_bytesize() == 4
+            and sys.byteorder == "little"
+            and all(mask == 0xFF << shift for mask, shift in zip(masks, shifts, strict=True))
+            and all(shift % 8 == 0 for shift in shifts)
+        ):
+            # The common 32-bit case: copy the raw buffer (a memcpy, ~0.05 ms at 640x360, where
+            # converting to RGB costs ~0.3 ms) and pick the channels out on a worker thread.
+            self.data = surface.get_buffer().raw
+            self.pitch = surface.get_pitch()
+            self.channels: tuple[int, ...] | None = tuple(shift // 8 for shift in shifts)
+        else:
+            self.data = pygame.image.tobytes(surface, "RGB")
+            self.pitch = self.width * 3
+            self.channels = None
+
+    def rgb(self) -> np.ndarray:
+        """The pixels as a (height, width, 3) RGB uint8 array."""
+        flat = np.frombuffer(self.data, dtype=np.uint8)
+        if self.channels is None:
+            return flat.reshape(self.height, self.width, 3)
+        pixels = self._words(flat).view(np.uint8).reshape(self.height, self.width, 4)
+        return pixels[:, :, list(self.channels)]
+
+    def _words(self, flat: np.ndarray) -> np.ndarray:
+        # One 32-bit word per pixel, (height, width); a view unless rows are padded.
+        rows = flat.reshape(self.height, self.pitch)[:, : self.width * 4]
+        return np.ascontiguousarray(rows).view(np.uint32)
+
+    def encode(self, level: int, scratch: dict[str, np.ndarray]) -> bytes:
+        """This frame as PNG bytes; ``scratch`` keeps the work arrays from frame to frame."""
+        if self.channels is None:
+            return _encode_pixels(self.rgb(), level)
+        h, w = self.height, self.width
+        if scratch.get("diff", np.empty(0)).shape != (h, w * 4):
+            # Reused from frame to frame: fresh ~1 MB arrays would cost page faults each time.
+            scratch["diff"] = np.empty((h, w * 4), dtype=np.uint8)
+            scratch["filtered"] = np.empty((h, w * 3 + 1), dtype=np.uint8)
+        diff, filtered = scratch["diff"], scratch["filtered"]
+        # The "Up" filter works byte by byte, so it can run on the whole 4-byte pixels, in
+        # contiguous memory (fast), before the three colour bytes are picked out of each word.
+        src = self._words(np.frombuffer(self.data, dtype=np.uint8)).view(np.uint8)
+        diff[0] = src[0]
+        np.subtract(src[1:], src[:-1], out=diff[1:])
+        pixels = diff.reshape(h, w, 4)
+        filtered[:, 0] = 2
+        rows = filtered[:, 1:].reshape(h, w, 3)
+        for i, byte in enumerate(self.channels):  # little-endian: byte k is bits 8k..8k+7
+            rows[:, :, i] = pixels[:, :, byte]
+        return _png(filtered, w, h, level)
 
 
 def _write_atomically(path: Path, data: bytes) -> None:
@@ -175,6 +248,7 @@ class FrameWriter:
         self._lock = threading.Lock()
         self._error: FrameWriteError | None = None
         self._pending: set[Future[None]] = set()
+        self._scratch = threading.local()  # each worker's reusable arrays
         self._closed = False
 
     def _prepare(self, overwrite: bool) -> None:
@@ -205,22 +279,22 @@ class FrameWriter:
         if self._closed:
             raise ValueError("write() on a closed FrameWriter")
         self._raise_if_failed()
-        width, height = surface.get_size()
-        pixels = pygame.image.tobytes(surface, "RGB")  # a copy: the caller may draw again now
+        grab = _Grab(surface)  # a copy: the caller may draw on the surface again now
         path = self.folder / frame_name(self.count)
         self.count += 1
         self._slots.acquire()
-        future = self._pool.submit(self._encode_and_write, path, pixels, width, height)
+        future = self._pool.submit(self._encode_and_write, path, grab)
         with self._lock:
             self._pending.add(future)
         future.add_done_callback(self._finished)
         return path
 
-    def _encode_and_write(self, path: Path, pixels: bytes, width: int, height: int) -> None:
+    def _encode_and_write(self, path: Path, grab: _Grab) -> None:
         if self._error is not None:
             return  # the run is already failing: write nothing more
         try:
-            _write_atomically(path, encode_png(pixels, width, height, self.level))
+            scratch = self._scratch.__dict__.setdefault("arrays", {})
+            _write_atomically(path, grab.encode(self.level, scratch))
         except Exception as exc:
             with self._lock:
                 if self._error is None:
