@@ -70,6 +70,8 @@ DECAY_LIMITS: dict[str, float] = {
 # A spectral radius this close to 1 counts as 1: symplectic methods sit exactly on
 # the unit circle below their limit, and round-off must not call that unstable.
 _RADIUS_TOLERANCE = 1e-12
+# Eigenvalues this close to -1 together mark the limit itself (round-off keeps them apart).
+_AT_LIMIT = 1e-7
 
 
 class StabilityWarning(UserWarning):
@@ -116,13 +118,13 @@ def amplification_matrix(
     return ((x1, x2), (v1, v2))
 
 
-def spectral_radius(
+def _eigenvalues(
     integrator: str | Callable[..., Any], omega: float, damping_rate: float, dt: float
-) -> float:
-    """Largest |eigenvalue| of the amplification matrix: > 1 means the method blows up."""
+) -> tuple[complex, complex] | None:
+    """The two eigenvalues of the amplification matrix, or None when it is not finite."""
     (a, b), (c, d) = amplification_matrix(integrator, omega, damping_rate, dt)
     if not all(math.isfinite(e) for e in (a, b, c, d)):
-        return math.inf
+        return None
     # Eigenvalues of a 2x2 matrix: tr/2 +- sqrt(tr^2/4 - det). The discriminant is
     # computed as ((a - d)/2)^2 + b c, which is the same number without the cancellation
     # of tr^2/4 - det when the eigenvalues are nearly equal (RK4 on drag near its limit has
@@ -130,14 +132,34 @@ def spectral_radius(
     half_trace = 0.5 * (a + d)
     half_diff = 0.5 * (a - d)
     root = cmath.sqrt(half_diff * half_diff + b * c)
-    return max(abs(half_trace + root), abs(half_trace - root))
+    return half_trace + root, half_trace - root
+
+
+def spectral_radius(
+    integrator: str | Callable[..., Any], omega: float, damping_rate: float, dt: float
+) -> float:
+    """Largest |eigenvalue| of the amplification matrix: > 1 means the method blows up."""
+    pair = _eigenvalues(integrator, omega, damping_rate, dt)
+    return math.inf if pair is None else max(abs(pair[0]), abs(pair[1]))
 
 
 def is_stable(
     integrator: str | Callable[..., Any], omega: float, damping_rate: float, dt: float
 ) -> bool:
-    """True when stepping x'' = -omega^2 x - c x' with this dt does not grow without bound."""
-    return spectral_radius(integrator, omega, damping_rate, dt) <= 1.0 + _RADIUS_TOLERANCE
+    """True when stepping x'' = -omega^2 x - c x' with this dt does not grow without bound.
+
+    Exactly at an oscillation limit (omega dt = 2 for semi-implicit Euler and Verlet) both
+    eigenvalues meet at -1 in a Jordan block: M^n then grows like n, slowly but without
+    bound, so the limit itself counts as unstable, as "stable for omega dt < 2" says.
+    (A double eigenvalue +1 is different: that is free drift, x growing like v t.)
+    """
+    pair = _eigenvalues(integrator, omega, damping_rate, dt)
+    if pair is None:
+        return False
+    first, second = pair
+    if max(abs(first), abs(second)) > 1.0 + _RADIUS_TOLERANCE:
+        return False
+    return not (abs(first + 1.0) < _AT_LIMIT and abs(second + 1.0) < _AT_LIMIT)
 
 
 def max_stable_dt(
