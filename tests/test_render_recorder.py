@@ -174,3 +174,25 @@ def test_importing_the_renderer_starts_no_display():
     )
     assert result.stdout.split() == ["False", "False", "None"]
     assert "Hello from the pygame community" not in result.stdout
+
+
+def test_play_runs_the_real_time_loop_until_the_window_closes(monkeypatch):
+    # No display here: open the window on the dummy driver and close it with a timed QUIT.
+    from engine.render import init_headless, recorder
+
+    monkeypatch.setattr(recorder, "init_window", init_headless)
+    scene = Glide()
+    drawn = []
+    original = Glide.draw
+
+    def draw(self, surface, alpha):
+        drawn.append(self.time(alpha))
+        original(self, surface, alpha)
+
+    scene.draw = draw.__get__(scene)
+    init_headless()
+    pygame.time.set_timer(pygame.QUIT, 150, loops=1)
+    recorder.play(scene, fps=60, size=(160, 20))
+    assert len(drawn) >= 2
+    assert drawn == sorted(drawn) and all(0.0 <= t <= scene.duration for t in drawn)
+    assert not pygame.display.get_init()  # the window is closed again
