@@ -510,7 +510,7 @@ class Sprint(TubeScene):
     #: The lesson's own time step: one second.
     dt = 1.0
     s_range = (0.0, 10.0)
-    v_range = (0.0, 6.0)  # room above the curves for the area labels
+    v_range = (0.0, 8.0)  # room above the curves for the area labels
     a_range = (0.0, 2.0)
 
     def make_ants(self) -> list[Ant]:
