@@ -1,9 +1,10 @@
 """Drawing helpers that work on any pygame Surface: bodies, arrows, trails, labels, rulers, grids.
 
 Each helper takes the surface to draw on and, where world coordinates are involved, a
-:class:`~engine.render.camera.Camera`; nothing here keeps state between calls except a cache of
-fonts by size. Colours are RGB tuples; the palette below is the Okabe-Ito set, which stays
-distinct for colour-blind readers and on a projector.
+:class:`~engine.render.camera.Camera`. Nothing here keeps state between calls except caches of
+fonts by size and of rendered text (tick numbers repeat every frame). Colours are RGB tuples;
+the palette below is the Okabe-Ito set, which stays distinct for colour-blind readers and on a
+projector.
 """
 
 from __future__ import annotations
@@ -61,6 +62,15 @@ def font(size: int) -> pygame.font.Font:
     return pygame.font.Font(None, size)
 
 
+@functools.lru_cache(maxsize=1024)
+def _rendered(
+    text: str, size: int, color: tuple[int, ...], background: tuple[int, ...] | None
+) -> pygame.Surface:
+    # Tick numbers, titles and units repeat every frame: render each once. The cached images
+    # are only ever blitted, never drawn on.
+    return font(size).render(text, True, color, background)
+
+
 def draw_text(
     surface: pygame.Surface,
     text: str,
@@ -71,7 +81,7 @@ def draw_text(
     background: Color | None = None,
 ) -> pygame.Rect:
     """Draw ``text`` with its ``anchor`` (a Rect attribute such as "midbottom") at pixel ``pos``."""
-    image = font(size).render(text, True, color, background)
+    image = _rendered(text, size, tuple(color), None if background is None else tuple(background))
     rect = image.get_rect()
     if not hasattr(rect, anchor) or anchor in ("size", "width", "height", "w", "h"):
         raise ValueError(f"anchor must be a pygame.Rect position such as 'center', got {anchor!r}")
