@@ -436,7 +436,12 @@ def _step(limits: tuple[float, float]) -> float:
 
 def _ant_1d(world: World, s0: float, v0: float, a: float, **kw: object) -> Ant:
     body = world.add(Body(s0, v0, a))
-    return Ant(body=body, world=world, s0=s0, v0=v0, a=a, **kw)  # type: ignore[arg-type]
+    ant = Ant(body=body, world=world, s0=s0, v0=v0, a=a, **kw)  # type: ignore[arg-type]
+    if not ant.stepped:
+        # The closed form says when he reaches the end (for the sprint: t^2 / 2 = 10 in at
+        # t = sqrt(20) s); a stepped ant's arrival is seen as his world steps.
+        ant.arrival = kinematics.time_to_reach(s0, v0, a, TUBE_LENGTH)
+    return ant
 
 
 class Lazy(TubeScene):
@@ -538,8 +543,6 @@ class Sprint(TubeScene):
             label="exact\ns = t\u00b2/2",
             short="exact",
         )
-        # The closed form says when: t^2 / 2 = 10 in at t = sqrt(20) s.
-        exact.arrival = kinematics.time_to_reach(0.0, 0.0, 1.0, TUBE_LENGTH)
         return [euler, exact]
 
 
