@@ -137,12 +137,19 @@ def _seed(text: str) -> int:
 
 
 def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.ArgumentParser:
+    about = "Run a demo: headless to PNG frames (default), in a window, or as stills."
     parser = argparse.ArgumentParser(
-        prog="python -m demos",
-        description="Run a demo: headless to PNG frames (default), in a window, or as stills.",
+        prog="python -m demos" if demo is None else f"python -m demos {demo.name}",
+        description=about if demo is None else f"{demo.name}: {demo.summary}. {about}",
         epilog="Run without a demo name to list the demos.",
     )
-    parser.add_argument("demo", nargs="?", choices=sorted(demos), help="the demo to run")
+    parser.add_argument(
+        "demo",
+        nargs="?",
+        choices=sorted(demos),
+        # In a demo's own help the program line already names it.
+        help="the demo to run" if demo is None else argparse.SUPPRESS,
+    )
     # --scene is known in the first pass too, so its value is never taken for the demo's name.
     parser.add_argument(
         "--scene",
@@ -238,10 +245,16 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
     out = sys.stdout if out is None else out
     argv = list(sys.argv[1:] if argv is None else argv)
     demos = discover()
-    # First pass: which demo? Its scenes and own options shape the full parser.
-    first, _ = _parser(demos, None).parse_known_args(argv)
+    # First pass: which demo? Its scenes and own options shape the full parser, so a help
+    # request waits for the second pass: `python -m demos tradeoff --help` then lists the
+    # tradeoff demo's own options too.
+    helping = [arg for arg in argv if arg in ("-h", "--help")]
+    first, _ = _parser(demos, None).parse_known_args([a for a in argv if a not in helping])
     if first.demo is None:
-        if any(arg not in ("-h", "--help") for arg in argv):
+        if helping:
+            _parser(demos, None).print_help(out)
+            print(file=out)
+        elif argv:
             _parser(demos, None).parse_args(argv)  # report stray options as usage errors
         _list(demos, out)
         return 0
