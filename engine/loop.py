@@ -112,7 +112,9 @@ class FixedStep:
     """Turns frame times into whole physics steps of ``dt`` (s) and a blend fraction ``alpha``.
 
     ``max_frame`` (s, usually 0.25) is the longest frame that is simulated in full;
-    anything beyond it is dropped and added to ``dropped``.
+    anything beyond it is dropped and added to ``dropped``. With a VirtualClock nothing
+    stalls, so make it at least two frames (``max(0.25, 2 / fps)``) or a slow frame rate
+    (below 4 fps with the default) would lose time on every frame.
     """
 
     def __init__(self, dt: float, max_frame: float = 0.25) -> None:

@@ -673,7 +673,10 @@ class World:
         """Positions of all bodies blended from the previous step: prev + (now - prev) alpha.
 
         ``alpha`` in [0, 1] comes from the fixed-step loop; 1.0 gives the current state.
-        Shape (N,) in 1D, (N, 2) in 2D; a new array.
+        Shape (N,) in 1D, (N, 2) in 2D; a new array. As in every fixed-step loop that
+        interpolates, what is drawn lies between the last two steps, so up to one step
+        behind ``t``: step once ahead before the first frame (as ``engine.render.record``
+        does) to draw each frame exactly at its own time.
         """
         if isinstance(alpha, bool) or not isinstance(alpha, Real) or not 0.0 <= alpha <= 1.0:
             raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")

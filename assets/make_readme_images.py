@@ -1,0 +1,62 @@
+"""The README's stills, made by the project's own commands: ``python assets/make_readme_images.py``.
+
+Each still is one frame of a demo recorded by ``python -m demos ...`` at a small size (the
+README shows them; they are kept small on purpose), copied to ``assets/readme/``. The chart
+is ``python -m demos tradeoff --quick``'s work-precision chart, scaled down.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+
+import pygame  # noqa: E402
+
+from demos.cli import main  # noqa: E402
+
+SIZE = "480x270"
+FPS = 10
+#: (image name, command-line arguments, which frame to keep)
+STILLS = [
+    ("alfred-sprint", ["alfred", "--scene", "sprint"], 44),
+    ("alfred-paper", ["alfred", "--scene", "paper"], 20),
+    ("car-main-street", ["car", "--scene", "main-street"], 120),
+    ("fireworks", ["fireworks", "--scene", "show", "--seed", "7"], 45),
+    ("stability-orbits", ["stability", "--scene", "orbits"], 60),
+    ("crumb", ["crumb", "--seconds", "8"], 55),
+]
+
+
+def main_images(out: Path = HERE / "readme") -> None:
+    """Record each still's demo to a temporary folder and keep its chosen frame."""
+    out.mkdir(exist_ok=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, args, frame in STILLS:
+            folder = Path(tmp) / name
+            code = main([*args, "--size", SIZE, "--fps", str(FPS), "--out", str(folder)])
+            if code != 0:
+                raise SystemExit(f"{' '.join(args)} failed with exit code {code}")
+            frames = sorted(folder.rglob("frame_*.png"))
+            shutil.copyfile(frames[min(frame, len(frames) - 1)], out / f"{name}.png")
+            print(f"wrote {out / name}.png")
+        chart = Path(tmp) / "tradeoff"
+        if main(["tradeoff", "--quick", "--out", str(chart)]) != 0:
+            raise SystemExit("tradeoff --quick failed")
+        image = pygame.image.load(str(chart / "work_precision.png"))
+        small = pygame.transform.smoothscale(image, (800, 450))
+        pygame.image.save(small, str(out / "work-precision.png"))
+        print(f"wrote {out / 'work-precision.png'}")
+
+
+if __name__ == "__main__":
+    main_images()
