@@ -64,7 +64,10 @@ def coerce_state(value: Any, dim: int, name: str) -> State:
         want = "a real number (1D)" if dim == 1 else "a Vector or pair of numbers (2D)"
         what = {1: "a number (1D)", 2: "a Vector (2D)"}.get(got or 0, type(value).__name__)
         raise TypeError(f"{name} must be {want}, got {what}: {value!r}")
-    state: State = float(value) if dim == 1 else Vector.coerce(value, name)
+    try:
+        state: State = float(value) if dim == 1 else Vector.coerce(value, name)
+    except OverflowError:  # an int beyond the float range
+        raise ValueError(f"{name} must be finite (within the float range), got {value!r}") from None
     finite = math.isfinite(state) if isinstance(state, float) else state.is_finite()
     if not finite:
         raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
@@ -75,7 +78,10 @@ def coerce_mass(mass: Any) -> float:
     """Return ``mass`` as a positive finite float (kilograms, or the scene's mass unit)."""
     if isinstance(mass, bool) or not isinstance(mass, Real):
         raise TypeError(f"mass must be a positive real number, got {type(mass).__name__} {mass!r}")
-    m = float(mass)
+    try:
+        m = float(mass)
+    except OverflowError:  # an int beyond the float range
+        m = math.inf
     if not (math.isfinite(m) and m > 0.0):
         raise ValueError(f"mass must be positive and finite (e.g. 1.0), got {mass!r}")
     return m
@@ -236,11 +242,15 @@ class Body:
         if type(dt) is not float or not 0.0 < dt < math.inf:
             if isinstance(dt, bool) or not isinstance(dt, Real):
                 raise TypeError(f"dt must be a number of seconds, got {type(dt).__name__}")
-            if not 0.0 < float(dt) < math.inf:
+            try:
+                seconds = float(dt)
+            except OverflowError:  # an int beyond the float range
+                seconds = math.inf
+            if not 0.0 < seconds < math.inf:
                 raise ValueError(f"dt must be a finite number of seconds > 0, got {dt!r}")
-            dt = float(dt)
+            dt = seconds
         a = self._acc if acceleration is None else acceleration
-        if type(a) is not Vector and type(a) is not float:
+        if type(a) is not (float if self._dim == 1 else Vector):
             a = coerce_state(a, self._dim, "acceleration")
         if self._dim == 1:
             vx = self._vx + cast(float, a) * dt
@@ -256,7 +266,7 @@ class Body:
         if not _isfinite(px + py + vx + vy) and not all(map(_isfinite, (px, py, vx, vy))):
             raise ValueError(
                 f"the step of dt={dt!r} s would make this body's state non-finite "
-                f"(nan or inf); the state is kept"
+                f"(nan or inf); the state is kept: use a smaller dt or acceleration"
             )
         self._vx, self._vy, self._px, self._py = vx, vy, px, py
 

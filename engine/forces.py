@@ -56,7 +56,10 @@ def _real(value: Any, name: str, *, positive: bool = False, nonneg: bool = False
     """``value`` as a finite float, checked; TypeError/ValueError naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, Real):
         raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
-    f = float(value)
+    try:
+        f = float(value)
+    except OverflowError:  # an int beyond the float range
+        f = math.inf
     if not math.isfinite(f):
         raise ValueError(f"{name} must be finite, got {value!r}")
     if positive and f <= 0.0:

@@ -51,7 +51,13 @@ def _component(value: Any, name: str) -> float:
             f"Vector component {name} must be a real number (int or float), "
             f"got {type(value).__name__} {value!r}"
         )
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an int (or Fraction) beyond the float range, ~1.8e308
+        raise ValueError(
+            f"Vector component {name} must be a number within the float range (|x| < 1.8e308), "
+            f"got {value!r}"
+        ) from None
 
 
 def _as_pair(other: Any) -> tuple[float, float] | None:
@@ -61,7 +67,10 @@ def _as_pair(other: Any) -> tuple[float, float] | None:
     if isinstance(other, (tuple, list)) and len(other) == 2:
         x, y = other
         if all(isinstance(c, Real) and not isinstance(c, bool) for c in (x, y)):
-            return float(x), float(y)
+            try:
+                return float(x), float(y)
+            except OverflowError:  # an int beyond the float range is not a usable pair
+                return None
     return None
 
 
@@ -85,7 +94,10 @@ class Vector(tuple):  # type: ignore[type-arg]
     def __new__(cls, x: SupportsFloat = 0.0, y: SupportsFloat = 0.0) -> Vector:
         tx, ty = type(x), type(y)
         if (tx is float or tx is int) and (ty is float or ty is int):
-            return _new(cls, (float(x), float(y)))  # type: ignore[arg-type]
+            try:
+                return _new(cls, (float(x), float(y)))  # type: ignore[arg-type]
+            except OverflowError:
+                pass  # an int beyond the float range: _component names it
         return _new(cls, (_component(x, "x"), _component(y, "y")))
 
     x = property(itemgetter(0), doc="The x component (length units).")
@@ -160,7 +172,18 @@ class Vector(tuple):  # type: ignore[type-arg]
             return NotImplemented
         return _new(Vector, (self[0] + pair[0], self[1] + pair[1]))
 
-    __radd__ = __add__
+    def __radd__(self, other: Any) -> Vector:
+        pair = _as_pair(other)
+        if pair is None:
+            if isinstance(other, tuple):
+                # NotImplemented would let the tuple answer: (1,) + v would concatenate into
+                # the plain tuple (1, x, y).
+                raise TypeError(
+                    f"a Vector adds only to a Vector or a pair of real numbers like (1.0, 2.0), "
+                    f"got {type(other).__name__} {other!r}"
+                )
+            return NotImplemented
+        return _new(Vector, (self[0] + pair[0], self[1] + pair[1]))
 
     def __sub__(self, other: Any) -> Vector:
         # The lesson's __sub__ added the y components; this subtracts both.
@@ -187,7 +210,10 @@ class Vector(tuple):  # type: ignore[type-arg]
         # its `*=` scaled only when the other operand was a vector.
         t = type(other)
         if t is float or t is int or _is_scalar(other):
-            s = float(other)
+            try:
+                s = float(other)
+            except OverflowError:  # an int beyond the float range
+                s = _component(other, "scale")  # raises ValueError naming it
             return _new(Vector, (self[0] * s, self[1] * s))
         if isinstance(other, (tuple, list)):
             raise TypeError(
@@ -201,7 +227,10 @@ class Vector(tuple):  # type: ignore[type-arg]
     def __truediv__(self, other: Any) -> Vector:
         if not _is_scalar(other):
             return NotImplemented
-        s = float(other)
+        try:
+            s = float(other)
+        except OverflowError:  # an int beyond the float range
+            s = _component(other, "divisor")  # raises ValueError naming it
         if s == 0.0:
             raise ZeroDivisionError("cannot divide a Vector by zero")
         return _new(Vector, (self[0] / s, self[1] / s))
@@ -251,6 +280,15 @@ class Vector(tuple):  # type: ignore[type-arg]
         m = self.magnitude()
         if m == 0.0:
             raise ValueError("cannot normalize the zero vector: it has no direction")
+        if not 1e-290 < m < math.inf:
+            if not self.is_finite():
+                raise ValueError(f"cannot normalize {self!r}: it must be finite (no nan or inf)")
+            # Subnormal components have few bits, so |v| rounds so coarsely that v / |v| is not
+            # a unit vector (5e-324 * (1, 1) would give (1, 1)); near the top of the float range
+            # |v| overflows to inf (1e308 * (1, 1) would give (0, 0)). Scaling by a power of two
+            # first is exact and keeps the direction.
+            k = 2.0**600 if m < 1.0 else 2.0**-600
+            return _new(Vector, (self[0] * k, self[1] * k)).normalized()
         return _new(Vector, (self[0] / m, self[1] / m))
 
     def distance_to(self, other: VectorLike) -> float:
