@@ -546,10 +546,21 @@ class World:
         if bad is None or key in self._warned:
             return
         self._warned.add(key)
+        stable = [
+            other
+            for other in INTEGRATORS
+            if other != name and self._first_unstable(other, comp, dt) is None
+        ]
+        hopeless = max_stable_dt(self._integrator_named(name), *bad) == 0.0
+        advice = "a smaller dt will not help" if hopeless else "use a smaller dt"
+        if stable:
+            advice += f", or integrator={stable[0]!r}, which is stable at this dt"
+        else:
+            advice += "; no integrator here is stable at this dt"
         warnings.warn(
             f"{name} is unstable at dt={dt:g} s for the forces in this World "
             f"({self._limit_text(name, bad[0], bad[1], dt)}); the run continues and will "
-            f"blow up: use a smaller dt or integrator='rk4' / 'auto'",
+            f"blow up: {advice}",
             StabilityWarning,
             stacklevel=4,
         )
