@@ -554,7 +554,8 @@ class World:
         hopeless = max_stable_dt(self._integrator_named(name), *bad) == 0.0
         advice = "a smaller dt will not help" if hopeless else "use a smaller dt"
         if stable:
-            advice += f", or integrator={stable[0]!r}, which is stable at this dt"
+            joint = "; use" if hopeless else ", or"
+            advice += f"{joint} integrator={stable[0]!r}, which is stable at this dt"
         else:
             advice += "; no integrator here is stable at this dt"
         warnings.warn(
