@@ -24,7 +24,7 @@ import pygame  # noqa: E402
 
 from demos.cli import main  # noqa: E402
 
-SIZE = "480x270"
+SIZE = "640x360"
 FPS = 10
 #: (image name, command-line arguments, which frame to keep)
 STILLS = [

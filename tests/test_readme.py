@@ -1,0 +1,90 @@
+"""The README's code runs and says what it does: the examples a newcomer copies first."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+from pathlib import Path
+
+import pygame
+import pytest
+
+from engine import Vector
+from engine.integrators import semi_implicit_euler
+
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)
+
+
+def test_the_ten_line_example_moves_the_ball_as_semi_implicit_euler_does(capsys) -> None:
+    scope: dict[str, object] = {}
+    exec(PYTHON_BLOCKS[0], scope)  # noqa: S102 - the README's own example
+    ball = scope["ball"]
+    # The same physics by hand: a = g - (k/m)(v - air), stepped 60 times.
+    g, k, m, air = Vector(0, -9.81), 0.1, 0.5, Vector(2, 0)
+
+    def accel(t: float, x: Vector, v: Vector) -> Vector:
+        return g - (v - air) * (k / m)
+
+    x, v = Vector(0, 0), Vector(3, 4)
+    for n in range(60):
+        x, v = semi_implicit_euler(x, v, accel, n / 60, 1 / 60)
+    assert ball.pos.distance_to(x) < 1e-12  # type: ignore[attr-defined]
+    assert str(ball.pos) in capsys.readouterr().out  # type: ignore[attr-defined]
+
+
+def test_the_game_loop_steers_alfred_with_the_keys(monkeypatch) -> None:
+    block = next(b for b in PYTHON_BLOCKS if "pygame.display.set_mode" in b)
+    frames = {"n": 0}
+
+    def events() -> list[pygame.event.Event]:
+        frames["n"] += 1
+        return [pygame.event.Event(pygame.QUIT)] if frames["n"] > 40 else []
+
+    class RightHeld:
+        def __getitem__(self, key: int) -> bool:
+            return key == pygame.K_RIGHT
+
+    import engine
+    import engine.render
+
+    monkeypatch.setattr(engine.render, "init_window", engine.render.init_headless)
+    # Frames of exactly 1/60 s, as in a headless run: 40 frames are 80 steps of 1/120 s.
+    monkeypatch.setattr(engine, "RealClock", lambda: engine.VirtualClock(60))
+    monkeypatch.setattr(pygame.event, "get", events)
+    monkeypatch.setattr(pygame.key, "get_pressed", RightHeld)
+    scope: dict[str, object] = {}
+    exec(block, scope)  # noqa: S102 - the README's own example
+    alfred, world = scope["alfred"], scope["world"]
+    assert frames["n"] == 41
+    assert alfred.own_acc == (9.0, 0.0)  # type: ignore[attr-defined]
+    assert world.steps == 80  # type: ignore[attr-defined]
+    assert alfred.vel.x > 0 and alfred.pos.x > 5.5  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("marker", ["demo-command", "test-command"])
+def test_ci_finds_each_start_command_right_after_its_marker(marker: str) -> None:
+    # .ci/run reads these lines and runs them: they must be where it looks.
+    after = README.split(f"<!-- {marker} -->\n", 1)[1]
+    fence, command = after.splitlines()[:2]
+    assert fence == "```"
+    assert command.startswith("python3 -m venv .venv && .venv/bin/pip install")
+    script = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    assert f"readme_command {marker}" in script
+
+
+def test_every_image_the_readme_shows_exists() -> None:
+    images = re.findall(r"\]\((assets/[^)]+\.png)\)", README)
+    assert len(images) >= 7
+    missing = [path for path in images if not (ROOT / path).is_file()]
+    assert not missing
+
+
+def test_every_demo_is_in_the_readme() -> None:
+    listing = subprocess.run(
+        ["python", "-m", "demos"], cwd=ROOT, capture_output=True, text=True, check=True
+    ).stdout
+    names = re.findall(r"^  (\w+)\s", listing, flags=re.M)
+    assert names
+    assert [name for name in names if f"`{name}`" not in README] == []
