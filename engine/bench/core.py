@@ -7,6 +7,7 @@ most 0.5x pymunk's ``Space.step``; the lesson-level step at most 3x the Vector2 
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Callable
 from functools import partial
@@ -17,49 +18,73 @@ from engine import Body, Vector, World
 from engine.bench import compare
 from engine.forces import Drag, Gravity
 
-__all__ = ["report", "make_world"]
+__all__ = [
+    "report",
+    "make_world",
+    "start_state",
+    "world_step",
+    "pymunk_step",
+    "vector2_step",
+    "lesson_step",
+]
 
-DT = 1.0 / 60.0
-G = (0.0, -9.81)
+DT = 1.0 / 60.0  # s
+G = (0.0, -9.81)  # m/s^2
+DRAG = 0.1  # N s/m on unit masses: velocity decays at 0.1 per second
+Step = Callable[[], object]
 
 
-def make_world(n: int, *, seed: int = 0) -> World:
-    """A World of ``n`` unit-mass bodies under gravity and drag, stepped by semi-implicit Euler."""
+def start_state(n: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    """Positions (m) and velocities (m/s) of ``n`` bodies, the same for every way of stepping."""
     rng = np.random.default_rng(seed)
-    pos, vel = rng.uniform(-10, 10, (n, 2)), rng.uniform(-5, 5, (n, 2))
+    return rng.uniform(-10, 10, (n, 2)), rng.uniform(-5, 5, (n, 2))
+
+
+def make_world(n: int, *, drag: bool = True) -> World:
+    """A World of ``n`` unit-mass bodies under gravity (and drag), by semi-implicit Euler."""
+    pos, vel = start_state(n)
     world = World(integrator="semi_implicit_euler")
     world.add_all(Body(Vector(*p), Vector(*v), Vector(0, 0)) for p, v in zip(pos, vel, strict=True))
     world.add_force(Gravity(G))
-    world.add_force(Drag(0.1))
+    if drag:
+        world.add_force(Drag(DRAG))
     return world
 
 
-def _pymunk_space(n: int) -> Callable[[], object] | None:
-    """pymunk's Space.step for n free bodies with gravity and damping, if pymunk is installed."""
+def world_step(n: int, drag: bool = True) -> Step:
+    """One World.step of ``n`` bodies."""
+    return partial(make_world(n, drag=drag).step, DT)
+
+
+def pymunk_step(n: int, drag: bool = True) -> Step | None:
+    """pymunk's Space.step for ``n`` free bodies with gravity (and damping), if installed."""
     try:
         import pymunk
     except ImportError:
         return None
+    pos, vel = start_state(n)
     space = pymunk.Space()
     space.gravity = G
-    space.damping = 0.9  # pymunk's damping is the fraction of velocity kept per second
-    for i in range(n):
+    if drag:
+        # pymunk's damping is the fraction of velocity kept after one second: e^{-k/m}.
+        space.damping = math.exp(-DRAG)
+    for p, v in zip(pos.tolist(), vel.tolist(), strict=True):
         body = pymunk.Body(1.0, 1.0)
-        body.position = (float(i), 0.0)
-        body.velocity = (1.0, 2.0)
+        body.position, body.velocity = p, v
         space.add(body)
-    return lambda: space.step(DT)
+    return partial(space.step, DT)
 
 
-def _vector2_loop(n: int) -> Callable[[], object] | None:
-    """The same semi-implicit Euler step on pygame.math.Vector2, in a Python loop."""
+def vector2_step(n: int) -> Step | None:
+    """The semi-implicit Euler step under gravity on pygame.math.Vector2, in a Python loop."""
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
     try:
         from pygame.math import Vector2
     except ImportError:
         return None
-    ps = [Vector2(float(i), 0.0) for i in range(n)]
-    vs = [Vector2(1.0, 2.0) for _ in range(n)]
+    pos, vel = start_state(n)
+    ps = [Vector2(*p) for p in pos.tolist()]
+    vs = [Vector2(*v) for v in vel.tolist()]
     g = Vector2(*G)
 
     def step() -> None:
@@ -70,9 +95,10 @@ def _vector2_loop(n: int) -> Callable[[], object] | None:
     return step
 
 
-def _lesson_loop(n: int) -> Callable[[], object]:
+def lesson_step(n: int) -> Step:
     """The lesson-level step: each Body (holding Vectors) steps itself with a prebuilt gravity."""
-    bodies = [Body(Vector(float(i), 0.0), Vector(1.0, 2.0), Vector(0.0, 0.0)) for i in range(n)]
+    pos, vel = start_state(n)
+    bodies = [Body(Vector(*p), Vector(*v), Vector(0, 0)) for p, v in zip(pos, vel, strict=True)]
     g = Vector(*G)
 
     def step() -> None:
@@ -90,15 +116,14 @@ def report(quick: bool = False) -> str:
     candidates: dict[str, tuple[Callable[[], object], int]] = {}
     bodies: dict[str, int] = {}
     for n in sizes:
-        world = make_world(n)
         name = f"World.step, {n:,} bodies"
-        candidates[name] = (partial(world.step, DT), max(1, budget // n))
+        candidates[name] = (world_step(n), max(1, budget // n))
         bodies[name] = n
-    space = _pymunk_space(1_000)
+    space = pymunk_step(1_000)
     if space is not None:
         candidates["pymunk Space.step, 1,000 bodies"] = (space, budget // 1_000)
         bodies["pymunk Space.step, 1,000 bodies"] = 1_000
-    lesson, vec2 = _lesson_loop(1_000), _vector2_loop(1_000)
+    lesson, vec2 = lesson_step(1_000), vector2_step(1_000)
     candidates["lesson Body.step (Vectors), 1,000"] = (lesson, max(1, budget // 10_000))
     bodies["lesson Body.step (Vectors), 1,000"] = 1_000
     if vec2 is not None:

@@ -17,20 +17,16 @@ takes about a second and tells nothing new, the cost per body being flat by then
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 
-import numpy as np
-
-from engine import Body, Vector, World
 from engine.bench import compare
+from engine.bench.core import DT, G, lesson_step, pymunk_step, start_state, vector2_step, world_step
 from engine.forces import Gravity
 
 __all__ = ["IMPLEMENTATIONS", "Row", "measure", "report", "table"]
 
-DT = 1.0 / 60.0  # s
-G = (0.0, -9.81)  # m/s^2
 
 #: The ways of stepping compared, in the order they are listed.
 IMPLEMENTATIONS: tuple[str, ...] = (
@@ -51,82 +47,23 @@ class Row:
     ns: float  # nanoseconds per body per step (median)
 
 
-def _start(n: int) -> tuple[np.ndarray, np.ndarray]:
-    rng = np.random.default_rng(0)
-    return rng.uniform(-10, 10, (n, 2)), rng.uniform(-5, 5, (n, 2))
-
-
-def _world(n: int) -> Callable[[], object]:
-    pos, vel = _start(n)
-    world = World(integrator="semi_implicit_euler")
-    world.add_all(Body(Vector(*p), Vector(*v), Vector(0, 0)) for p, v in zip(pos, vel, strict=True))
-    world.add_force(Gravity(G))
-    return lambda: world.step(DT)
-
-
 def _particles(n: int) -> Callable[[], object] | None:
     try:
         from engine.particles import Particles
     except ImportError:
         return None
-    pos, vel = _start(n)
+    pos, vel = start_state(n)
     sparks = Particles(n, dt=DT, forces=[Gravity(G)])
     sparks.emit(n, pos, vel)  # lifetime inf: none expire
     return sparks.step
 
 
-def _lesson(n: int) -> Callable[[], object]:
-    pos, vel = _start(n)
-    bodies = [Body(Vector(*p), Vector(*v), Vector(0, 0)) for p, v in zip(pos, vel, strict=True)]
-    g = Vector(*G)
-
-    def step() -> None:
-        for b in bodies:
-            b.step(DT, g)
-
-    return step
-
-
-def _pymunk(n: int) -> Callable[[], object] | None:
-    try:
-        import pymunk
-    except ImportError:
-        return None
-    pos, vel = _start(n)
-    space = pymunk.Space()
-    space.gravity = G
-    for p, v in zip(pos.tolist(), vel.tolist(), strict=True):
-        body = pymunk.Body(1.0, 1.0)
-        body.position, body.velocity = p, v
-        space.add(body)
-    return lambda: space.step(DT)
-
-
-def _vector2(n: int) -> Callable[[], object] | None:
-    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    try:
-        from pygame.math import Vector2
-    except ImportError:
-        return None
-    pos, vel = _start(n)
-    ps = [Vector2(*p) for p in pos.tolist()]
-    vs = [Vector2(*v) for v in vel.tolist()]
-    g = Vector2(*G)
-
-    def step() -> None:
-        for p, v in zip(ps, vs, strict=True):
-            v += g * DT
-            p += v * DT
-
-    return step
-
-
 _MAKERS: dict[str, Callable[[int], Callable[[], object] | None]] = {
-    "World": _world,
+    "World": partial(world_step, drag=False),
     "Particles": _particles,
-    "lesson Body": _lesson,
-    "pymunk": _pymunk,
-    "pygame Vector2": _vector2,
+    "lesson Body": lesson_step,
+    "pymunk": partial(pymunk_step, drag=False),
+    "pygame Vector2": vector2_step,
 }
 _LOOPS = frozenset({"lesson Body", "pymunk", "pygame Vector2"})
 
