@@ -137,9 +137,26 @@ class TubeScene(Scene):
 
     ants: list[Ant]
 
+    #: One ant's start for the default make_ants: position (in), velocity (in/s),
+    #: acceleration (in/s^2). Scenes with more than one ant override make_ants.
+    start: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
     def make_ants(self) -> list[Ant]:
-        """The scene's ants (subclasses)."""
-        raise NotImplementedError
+        """One ant moved by the closed form from ``start`` (scenes with more ants override)."""
+        s0, v0, a = self.start
+        world = World(integrator="exact")
+        return [
+            _ant_1d(
+                world,
+                s0,
+                v0,
+                a,
+                row=0.0,
+                color=POSITION,
+                sprite=ant_sprite(zoom=_zoom(self.size)),
+                label="",
+            )
+        ]
 
     def build(self, size: tuple[int, int]) -> None:
         """Place the tube(s), the ruler and the plots for a canvas of ``size`` px."""
@@ -456,22 +473,7 @@ class Lazy(TubeScene):
     s_range = (0.0, 10.0)
     v_range = (-1.0, 1.0)
     a_range = (-1.0, 1.0)
-
-    def make_ants(self) -> list[Ant]:
-        """One ant at rest at 5 in."""
-        world = World(integrator="exact")
-        return [
-            _ant_1d(
-                world,
-                5.0,
-                0.0,
-                0.0,
-                row=0.0,
-                color=POSITION,
-                sprite=ant_sprite(zoom=_zoom(self.size)),
-                label="",
-            )
-        ]
+    start = (5.0, 0.0, 0.0)  # at rest at 5 in
 
 
 class Stroll(TubeScene):
@@ -485,22 +487,7 @@ class Stroll(TubeScene):
     dt = 1.0 / 120.0
     v_range = (0.0, 2.0)
     a_range = (-1.0, 1.0)
-
-    def make_ants(self) -> list[Ant]:
-        """One ant from 0 at 1 in/s."""
-        world = World(integrator="exact")
-        return [
-            _ant_1d(
-                world,
-                0.0,
-                1.0,
-                0.0,
-                row=0.0,
-                color=POSITION,
-                sprite=ant_sprite(zoom=_zoom(self.size)),
-                label="",
-            )
-        ]
+    start = (0.0, 1.0, 0.0)  # from 0 at 1 in/s
 
 
 class Sprint(TubeScene):

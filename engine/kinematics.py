@@ -25,12 +25,12 @@ from typing import Any
 __all__ = ["position", "velocity", "time_to_reach", "stopping_distance"]
 
 
-def position(s0: Any, v0: Any, a: Any, t: float) -> Any:
+def position(s0: Any, v0: Any, a: Any, t: Any) -> Any:
     """Position s0 + v0 t + a t^2 / 2 (length units) after time t (s)."""
     return s0 + v0 * t + a * (0.5 * t * t)
 
 
-def velocity(v0: Any, a: Any, t: float) -> Any:
+def velocity(v0: Any, a: Any, t: Any) -> Any:
     """Velocity v0 + a t (length units per s) after time t (s)."""
     return v0 + a * t
 
