@@ -28,24 +28,37 @@ slows down for a moment instead of spiralling into ever more catch-up steps.
 from __future__ import annotations
 
 import math
+import sys
 import time
 from fractions import Fraction
-from numbers import Real
+from numbers import Integral, Real
 from typing import Any, Protocol
 
 __all__ = ["FixedStep", "VirtualClock", "RealClock", "Clock"]
 
 _BELOW_ONE = math.nextafter(1.0, 0.0)  # the largest float < 1
 _FLOAT_ROUNDING = Fraction(1, 2**52)  # relative spacing of floats: rounding is below this
+_MAX_SECONDS = Fraction(sys.float_info.max)  # beyond it, dt and t could not be floats
+_MIN_SECONDS = Fraction(5e-324)  # the smallest float above 0: below it a dt would read as 0
 
 
 def _seconds(value: Any, name: str, *, allow_zero: bool = False) -> Fraction:
     """``value`` (seconds) as an exact Fraction; TypeError/ValueError naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, (Real, Fraction)):
         raise TypeError(f"{name} must be a number of seconds, got {type(value).__name__} {value!r}")
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    exact = Fraction(value)  # type: ignore[call-overload]  # int, float or Fraction
+    if isinstance(value, Fraction):
+        exact = value
+    elif isinstance(value, Integral):
+        exact = Fraction(int(value))  # int(): a numpy int would overflow in Fraction arithmetic
+    else:
+        seconds = float(value)  # exact for floats of any width (numpy's float32 too)
+        if not math.isfinite(seconds):
+            raise ValueError(f"{name} must be finite, got {value!r}")
+        exact = Fraction(seconds)
+    if abs(exact) > _MAX_SECONDS or 0 < abs(exact) < _MIN_SECONDS:
+        raise ValueError(
+            f"{name} must be seconds within the float range (5e-324 to 1.8e308), got {value!r}"
+        )
     if exact < 0 or (exact == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be {bound} seconds, got {value!r}")

@@ -40,7 +40,7 @@ import numpy as np
 
 from .accuracy import HORIZON
 from .accuracy import predicted_error as _predicted_error
-from .body import Body, State
+from .body import Body, State, coerce_mass, coerce_state
 from .forces import Force, as_force
 from .integrators import INTEGRATORS, Integrator, get_integrator
 from .stability import (
@@ -74,7 +74,10 @@ def _check_tolerance(tolerance: Any, requested: str) -> float | None:
             f"tolerance must be a length in m (e.g. 1e-3) or None, got "
             f"{type(tolerance).__name__} {tolerance!r}"
         )
-    tol = float(tolerance)
+    try:
+        tol = float(tolerance)
+    except OverflowError:  # an int beyond the float range
+        tol = math.inf
     if not (math.isfinite(tol) and tol > 0.0):
         raise ValueError(f"tolerance must be a finite length > 0 m (e.g. 1e-3), got {tolerance!r}")
     if requested != "auto":
@@ -102,7 +105,10 @@ def check_dt(dt: Any) -> float:
     """``dt`` as a positive finite float (s), else TypeError / ValueError naming it."""
     if isinstance(dt, bool) or not isinstance(dt, Real):
         raise TypeError(f"dt must be a number of seconds, got {type(dt).__name__} {dt!r}")
-    f = float(dt)
+    try:
+        f = float(dt)
+    except OverflowError:  # an int beyond the float range
+        f = math.inf
     if not (math.isfinite(f) and f > 0.0):
         raise ValueError(f"dt must be a finite number of seconds > 0 (e.g. 1/60), got {dt!r}")
     return f
@@ -313,7 +319,13 @@ class World:
             )
         members: list[Body] | None = None
         if bodies is not None:
-            members = list(bodies)
+            try:
+                members = list(bodies)
+            except TypeError:
+                raise TypeError(
+                    f"bodies must be an iterable of bodies in this World, or None for all, "
+                    f"got {type(bodies).__name__} {bodies!r}"
+                ) from None
             for b in members:
                 if not isinstance(b, Body) or b.world is not self:
                     raise ValueError(
@@ -767,20 +779,59 @@ class World:
                 f"the snapshot holds {snapshot.n_bodies} bodies but this World has "
                 f"{len(self._bodies)}: restore into the world (or a copy) it was taken from"
             )
+        masses, own_acc = self._check_snapshot(snapshot)
         self._x, self._v, self._prev_x = (
             _copy(snapshot.x),
             _copy(snapshot.v),
             _copy(snapshot.prev_x),
         )
-        for body, m, a in zip(self._bodies, snapshot.masses, snapshot.own_acc, strict=True):
+        for body, m, a in zip(self._bodies, masses, own_acc, strict=True):
             body._mass, body._acc = m, a
-        self._t_base, self._dt = snapshot.t_base, snapshot.dt
+        self._t_base = float(snapshot.t_base)
+        self._dt = None if snapshot.dt is None else float(snapshot.dt)
         self._n, self._steps = snapshot.n_since_base, snapshot.steps
         self._changed_structure()
         if snapshot.anchor is not None:
             x0, v0, ta = snapshot.anchor
             self._anchor = (x0.copy(), v0.copy(), ta)
         self._warned = set(snapshot.warned)
+
+    def _check_snapshot(self, snap: WorldSnapshot) -> tuple[list[float], list[State]]:
+        """Refuse a snapshot (a plain dataclass, so one can be built or altered by hand) that
+        would put nan, inf, a wrong shape or a negative count into this World; return its
+        masses and own accelerations, checked."""
+        n, dim = len(self._bodies), self._dim or 1
+        shape = (n,) if dim == 1 else (n, 2)
+        for name in ("x", "v", "prev_x"):
+            value = getattr(snap, name)
+            if n == 0 and value is None:
+                continue
+            if not (isinstance(value, np.ndarray) and value.shape == shape):
+                raise ValueError(
+                    f"snapshot.{name} must be an array of shape {shape} from World.snapshot(), "
+                    f"got {value!r}"
+                )
+            if not np.isfinite(value).all():
+                raise ValueError(f"snapshot.{name} must be finite (no nan or inf), got {value!r}")
+        if not (isinstance(snap.masses, tuple) and isinstance(snap.own_acc, tuple)):
+            raise TypeError("snapshot.masses and snapshot.own_acc must be tuples, one per body")
+        if len(snap.masses) != n or len(snap.own_acc) != n:
+            raise ValueError(f"snapshot.masses and snapshot.own_acc must hold {n} values each")
+        try:
+            masses = [coerce_mass(m) for m in snap.masses]
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"snapshot.masses: {exc}") from None
+        own_acc = [coerce_state(a, dim, "snapshot.own_acc") for a in snap.own_acc]
+        if snap.dt is not None:
+            check_dt(snap.dt)
+        t = snap.t_base
+        if isinstance(t, bool) or not isinstance(t, Real) or not 0.0 <= t < 1e300:
+            raise ValueError(f"snapshot.t_base must be a finite time >= 0 s, got {t!r}")
+        for name in ("n_since_base", "steps"):
+            count = getattr(snap, name)
+            if isinstance(count, bool) or not isinstance(count, int) or count < 0:
+                raise ValueError(f"snapshot.{name} must be a whole number >= 0, got {count!r}")
+        return masses, own_acc
 
     def __repr__(self) -> str:
         return (
