@@ -116,7 +116,7 @@ def same_float(a: float, b: float) -> bool:
 
 
 # A message says what would be valid when it uses one of these words.
-_VALID_WORDS = re.compile(r"must|valid|takes|needs|expected|use |give |cannot|only|not in")
+_VALID_WORDS = re.compile(r"must|valid|takes|needs|expected|use |give |cannot|only|not in|holds")
 
 
 def check_message(exc: BaseException, names: tuple[str, ...]) -> None:
