@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
-__all__ = ["Demo", "discover", "main", "parse_size"]
+__all__ = ["Demo", "discover", "main", "number_option", "parse_size"]
 
 #: Modules in the demos package that are not demos.
 _NOT_DEMOS = frozenset({"cli"})
@@ -103,16 +103,30 @@ def _fps(text: str) -> int:
     return value
 
 
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and 0 < value <= 3600):
-        raise argparse.ArgumentTypeError(
-            f"must be a number of simulated seconds > 0 and at most 3600, got {text!r}"
-        )
-    return value
+def number_option(
+    low: float, high: float, meaning: str, *, low_open: bool = False
+) -> Callable[[str], float]:
+    """An argparse ``type``: a finite number from ``low`` to ``high``, else a usage error.
+
+    ``meaning`` completes "must be ..." in the message, e.g. "a wind speed in m/s".
+    ``low_open`` excludes ``low`` itself (for quantities that must be > 0).
+    """
+    bound = f"> {low:g} and at most {high:g}" if low_open else f"from {low:g} to {high:g}"
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        above = value > low if low_open else value >= low
+        if not (math.isfinite(value) and above and value <= high):
+            raise argparse.ArgumentTypeError(f"must be {meaning}, {bound}, got {text!r}")
+        return value
+
+    return parse
+
+
+_seconds = number_option(0, 3600, "a number of simulated seconds", low_open=True)
 
 
 def parse_size(text: str) -> tuple[int, int]:

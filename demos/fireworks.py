@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 import pygame
 
-from demos.cli import Demo
+from demos.cli import Demo, number_option
 from engine.forces import Gravity, Wind
 from engine.particles import Particles
 from engine.render import Camera, Scene, draw_text
@@ -442,16 +442,7 @@ def _kinds_arg(text: str) -> tuple[str, ...]:
     return names
 
 
-def _wind_arg(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and 0.0 <= value <= 30.0):
-        raise argparse.ArgumentTypeError(
-            f"must be a wind speed in m/s from 0 to 30 (it blows to the right), got {text!r}"
-        )
-    return value
+_wind_arg = number_option(0.0, 30.0, "a wind speed in m/s (it blows to the right)")
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
