@@ -67,6 +67,10 @@ from .stability import StabilityWarning, max_stable_dt
 
 __all__ = ["Particles", "Expired"]
 
+#: The most particles one system may hold (~110 bytes each: 1e8 is ~11 GB).
+_MAX_CAPACITY = 10**8
+#: The largest ``kind`` (kinds are stored as int32).
+_KIND_MAX = int(np.iinfo(np.int32).max)
 #: Death step of a particle that never expires (lifetime = inf).
 _NEVER = np.iinfo(np.int64).max
 
@@ -93,7 +97,10 @@ def _positive_arg(value: Any, name: str) -> float:
     """``value`` as a finite float > 0; TypeError/ValueError naming ``name`` otherwise."""
     if isinstance(value, bool) or not isinstance(value, Real):
         raise TypeError(f"{name} must be a number > 0, got {type(value).__name__} {value!r}")
-    f = float(value)
+    try:
+        f = float(value)
+    except OverflowError:  # an int beyond the float range
+        f = math.inf
     if not (math.isfinite(f) and f > 0.0):
         raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
     return f
@@ -112,6 +119,8 @@ def _rows(value: Any, name: str, count: int) -> np.ndarray:
     """A 2-vector or a (count, 2) array of finite numbers, as float rows: shape (2, 1 or count)."""
     try:
         arr = np.asarray(value, dtype=float)
+    except OverflowError:  # an int beyond the float range
+        raise ValueError(f"{name} must be finite numbers, got {value!r}") from None
     except (TypeError, ValueError):
         raise TypeError(
             f"{name} must be a Vector, a pair of numbers or an array of shape ({count}, 2), "
@@ -156,6 +165,10 @@ class Particles:
         self._fast_allowed = bool(fast_path)
 
         c = self._capacity
+        # ~110 bytes a particle are allocated here, once: refuse a capacity no machine holds
+        # with a message, not a MemoryError from deep inside numpy.
+        if c > _MAX_CAPACITY:
+            raise ValueError(f"capacity must be an int from 1 to {_MAX_CAPACITY:,}, got {c:,}")
         self._pos = np.zeros((2, c))  # rows x, y (m)
         self._disp = np.zeros((2, c))  # rows u_x, u_y: velocity * dt (m per step)
         self._life = np.zeros(c)  # lifetime (s)
@@ -179,7 +192,14 @@ class Particles:
         self._dropped = 0
         self._forces: list[Force] = []
         self._fast = False
-        for force in forces:
+        try:
+            given = list(forces)
+        except TypeError:
+            raise TypeError(
+                f"forces must be an iterable of forces (e.g. [Gravity((0, -9.81))]), "
+                f"got {type(forces).__name__} {forces!r}"
+            ) from None
+        for force in given:
             self._forces.append(self._checked(force))
         self._plan()
 
@@ -398,8 +418,8 @@ class Particles:
                 f"kind must be an int >= 0 or an int array of shape ({count},), "
                 f"got {type(kind).__name__} {kind!r}"
             )
-        if (kinds < 0).any():
-            raise ValueError(f"kind must be >= 0, got {kind!r}")
+        if (kinds < 0).any() or (kinds > _KIND_MAX).any():
+            raise ValueError(f"kind must be an int from 0 to {_KIND_MAX}, got {kind!r}")
 
         n = self._n
         k = min(count, self._capacity - n)
