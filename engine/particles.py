@@ -419,7 +419,7 @@ class Particles:
                 f"got {type(kind).__name__} {kind!r}"
             )
         if (kinds < 0).any() or (kinds > _KIND_MAX).any():
-            raise ValueError(f"kind must be an int from 0 to {_KIND_MAX}, got {kind!r}")
+            raise ValueError(f"kind must be >= 0 and at most {_KIND_MAX} (int32), got {kind!r}")
 
         n = self._n
         k = min(count, self._capacity - n)
