@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pygame
@@ -221,6 +222,22 @@ class TubeScene(Scene):
                     ant.arrival = t_prev + (TUBE_LENGTH - s_prev) / (s - s_prev) * (
                         ant.world.t - t_prev
                     )
+
+    def snapshot(self) -> Any:
+        """Every ant's World, plus the histories and arrival times kept beside them."""
+        worlds = {id(ant.world): ant.world for ant in self.ants}
+        states = {key: world.snapshot() for key, world in worlds.items()}
+        history = {key: list(points) for key, points in self._history.items()}
+        return states, history, [ant.arrival for ant in self.ants]
+
+    def restore(self, snapshot: Any) -> None:
+        """Return every ant and his history to the moment of ``snapshot``."""
+        states, history, arrivals = snapshot
+        for ant in self.ants:
+            ant.world.restore(states[id(ant.world)])
+        self._history = {key: list(points) for key, points in history.items()}
+        for ant, arrival in zip(self.ants, arrivals, strict=True):
+            ant.arrival = arrival
 
     # --- where an ant is -------------------------------------------------------------------
 

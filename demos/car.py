@@ -171,6 +171,9 @@ def car_sprite(length_px: int) -> pygame.Surface:
 class MainStreet(Scene):
     """A car pulls away, cruises at 10 mph and stops exactly at the third light, which is red."""
 
+    #: The road, the lights and the v(t) panel need this much room (px).
+    min_size = (160, 168)
+
     name = "main-street"
     summary = "10 mph to the third traffic light, stopping exactly at its line"
     dt = 1.0 / 120.0

@@ -278,6 +278,13 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
         return 1
     parser = _parser(demos, demo)
     args = parser.parse_args(argv)
+    for name in [args.scene] if args.scene else list(demo.scenes):
+        need_w, need_h = getattr(demo.scenes[name], "min_size", (0, 0))
+        if args.size[0] < need_w or args.size[1] < need_h:
+            parser.error(
+                f"argument --size: the scene {name!r} needs at least {need_w}x{need_h} px, "
+                f"got {args.size[0]}x{args.size[1]}"
+            )
 
     from engine.render import DisplayUnavailableError, FramesExistError, FrameWriteError
     from engine.stability import SimulationDiverged

@@ -83,6 +83,9 @@ def _spring_world(method: str) -> tuple[World, Body]:
 class _FourSprings(Scene):
     """Shared parts: four worlds, their panels, messages from the engine, what was drawn."""
 
+    #: Four panels with their energy plots need this much room (px).
+    min_size = (300, 190)
+
     def build(self, size: tuple[int, int]) -> None:
         self.size = size
         self.worlds: dict[str, tuple[World, Body]] = {m: _spring_world(m) for m in METHODS}

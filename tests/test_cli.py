@@ -139,3 +139,24 @@ def test_discovers_a_new_demo_module_without_edits(tmp_path, monkeypatch, capsys
     assert code == 3
     for name in ("demos.hello", "demos.broken"):
         sys.modules.pop(name, None)
+
+
+def test_a_size_too_small_for_the_scene_is_a_usage_error_naming_the_minimum(capsys) -> None:
+    from demos.stability import OrbitsScene
+
+    need_w, need_h = OrbitsScene.min_size
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["stability", "--scene", "orbits", "--size", f"{need_w - 1}x{need_h}"])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert "--size" in err and f"{need_w}x{need_h}" in err
+
+
+def test_the_recorder_refuses_a_canvas_below_the_scenes_minimum(tmp_path) -> None:
+    from demos.car import MainStreet
+    from engine.render import record
+
+    need_w, need_h = MainStreet.min_size
+    with pytest.raises(ValueError, match=f"at least {need_w}x{need_h} px"):
+        record(MainStreet(), tmp_path / "car", size=(need_w, need_h - 1))
+    assert not list(tmp_path.glob("car/frame_*.png"))

@@ -145,3 +145,20 @@ def test_measure_counts_evaluations_through_the_world() -> None:
     assert p.evaluations == 16 * 4 and p.work == 16 * 5
     q = measure(PROBLEMS["gravity"], "exact", 1 / 16, repeats=1, min_steps=16)
     assert q.evaluations == 0 and q.error < 1e-12
+
+
+def test_a_second_run_gives_the_same_errors_and_choices(
+    quick_run: tuple[Path, list[dict[str, str]], str], tmp_path: Path
+) -> None:
+    # Costs are wall-clock times and differ from run to run; everything else is physics and
+    # must come out bit for bit the same.
+    timed = {"cost_s_per_s", "choose_s"}
+    assert cli.main(["tradeoff", "--quick", "--out", str(tmp_path)], out=io.StringIO()) == 0
+    with open(tmp_path / "work_precision.csv", newline="") as handle:
+        again = list(csv.DictReader(handle))
+    first = quick_run[1]
+    assert len(again) == len(first) > 0
+    for a, b in zip(first, again, strict=True):
+        assert {k: v for k, v in a.items() if k not in timed} == {
+            k: v for k, v in b.items() if k not in timed
+        }

@@ -45,6 +45,18 @@ class Recording:
         return [self.folder / f"frame_{i:05d}.png" for i in range(self.count)]
 
 
+def check_scene_size(scene: Scene, size: tuple[int, int]) -> tuple[int, int]:
+    """``size`` checked as by :func:`check_size`, and at least the scene's ``min_size``."""
+    width, height = check_size(size)
+    need_w, need_h = scene.min_size
+    if width < need_w or height < need_h:
+        raise ValueError(
+            f"size {width}x{height} is too small for the scene {scene.name!r}: it needs at "
+            f"least {need_w}x{need_h} px"
+        )
+    return width, height
+
+
 def check_size(size: tuple[int, int]) -> tuple[int, int]:
     """``size`` as (width, height) whole pixels, each 1 to 8192; ValueError naming it otherwise."""
     try:
@@ -99,7 +111,7 @@ def iter_frames(
     """
     fps = _check_fps(fps)
     seconds = _check_seconds(scene.duration if seconds is None else seconds)
-    size = check_size(size)
+    size = check_scene_size(scene, size)
     init_headless()
     surface = pygame.Surface(size)
     scene.build(size)
@@ -136,7 +148,7 @@ def record(
     """
     fps = _check_fps(fps)
     seconds = _check_seconds(scene.duration if seconds is None else seconds)
-    size = check_size(size)
+    size = check_scene_size(scene, size)
     total = frame_count(seconds, fps)
     bar: Progress | None = None
     if progress is None or progress is True:
@@ -170,7 +182,7 @@ def strobe(
     ``times`` (s) defaults to :meth:`Scene.strobe_times`. NotImplementedError if the scene has no
     strobe picture.
     """
-    size = check_size(size)
+    size = check_scene_size(scene, size)
     if not scene.has_strobe:
         raise NotImplementedError(f"the scene {scene.name!r} has no strobe picture")
     init_headless()
@@ -194,7 +206,7 @@ def play(
     """
     fps = _check_fps(fps)
     seconds = _check_seconds(scene.duration if seconds is None else seconds)
-    size = check_size(size)
+    size = check_scene_size(scene, size)
     init_window()
     try:
         screen = pygame.display.set_mode(size)

@@ -56,6 +56,8 @@ class Scene:
     dt: float = 1.0 / 120.0
     #: Seed for scenes with randomness; set it before build() (the CLI sets it from --seed).
     seed: int = 0
+    #: The smallest canvas (width, height) in px the scene can lay itself out on.
+    min_size: tuple[int, int] = (1, 1)
 
     world: Any
     camera: Any
@@ -79,6 +81,20 @@ class Scene:
         ``world.t`` (alpha = 1), so the time shown is ``world.t - (1 - alpha) * dt``; never below 0.
         """
         return max(0.0, self.world.t - (1.0 - alpha) * self.dt)
+
+    # --- saving and resuming ---------------------------------------------------------------
+    def snapshot(self) -> Any:
+        """Everything needed to resume the scene from this moment (default: its World's).
+
+        A scene that keeps state outside ``self.world`` (histories, several worlds, a game's
+        score) extends both this and :meth:`restore`, so that restoring mid-run and drawing on
+        gives the same frames as a run never interrupted.
+        """
+        return self.world.snapshot()
+
+    def restore(self, snapshot: Any) -> None:
+        """Return to the moment ``snapshot()`` was taken."""
+        self.world.restore(snapshot)
 
     # --- motion diagrams ------------------------------------------------------------------
 
