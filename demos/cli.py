@@ -23,6 +23,7 @@ import argparse
 import importlib
 import math
 import pkgutil
+import signal
 import sys
 import traceback
 from collections.abc import Callable, Mapping, Sequence
@@ -286,9 +287,26 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
                 f"got {args.size[0]}x{args.size[1]}"
             )
 
-    from engine.render import DisplayUnavailableError, FramesExistError, FrameWriteError
+    from engine.render import (
+        DisplayUnavailableError,
+        FramesExistError,
+        FrameWriteError,
+        RecordingInterrupted,
+    )
     from engine.stability import SimulationDiverged
 
+    # SIGTERM (a `kill`, a CI timeout) would end the process on the spot, mid-frame and
+    # without a word; while a demo runs it stops it the way Ctrl-C does instead.
+    signals: list[int] = []
+
+    def stop(signum: int, _frame: object) -> None:
+        signals.append(signum)
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, stop)
+    except ValueError:  # not the main thread: leave signals alone
+        previous = None
     try:
         if demo.run is not None:
             code = demo.run(args)
@@ -297,6 +315,14 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
     except (FramesExistError, FrameWriteError, DisplayUnavailableError, SimulationDiverged) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        print("interrupted: the frames written so far are whole", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:
+        how = "terminated (SIGTERM)" if signals else "interrupted"
+        if isinstance(exc, RecordingInterrupted):
+            print(f"{how}: {exc}", file=sys.stderr)
+        else:
+            print(f"{how}: the frames written so far are whole", file=sys.stderr)
+        # The shell's convention: 128 + the signal's number.
+        return 128 + (signals[0] if signals else signal.SIGINT)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)

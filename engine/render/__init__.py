@@ -48,7 +48,15 @@ from engine.render.frames import (
 from engine.render.headless import DisplayUnavailableError, init_headless, init_window
 from engine.render.plot import Plot
 from engine.render.progress import Progress
-from engine.render.recorder import Recording, frame_count, iter_frames, play, record, strobe
+from engine.render.recorder import (
+    Recording,
+    RecordingInterrupted,
+    frame_count,
+    iter_frames,
+    play,
+    record,
+    strobe,
+)
 from engine.render.scene import Scene
 
 __all__ = [
@@ -69,6 +77,7 @@ __all__ = [
     "Plot",
     "Progress",
     "Recording",
+    "RecordingInterrupted",
     "Scene",
     "draw_arrow",
     "draw_dot",

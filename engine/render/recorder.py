@@ -17,12 +17,21 @@ from pathlib import Path
 import pygame
 
 from engine.loop import FixedStep, RealClock, VirtualClock
-from engine.render.frames import FrameWriter, save_png
+from engine.render.frames import FRAME_PATTERN, FrameWriter, save_png
 from engine.render.headless import init_headless, init_window
 from engine.render.progress import Progress
 from engine.render.scene import Scene
 
-__all__ = ["Recording", "check_size", "frame_count", "iter_frames", "play", "record", "strobe"]
+__all__ = [
+    "Recording",
+    "RecordingInterrupted",
+    "check_size",
+    "frame_count",
+    "iter_frames",
+    "play",
+    "record",
+    "strobe",
+]
 
 #: The largest canvas accepted, a guard against a typo such as 64000x360.
 MAX_SIDE = 8192
@@ -129,6 +138,19 @@ def iter_frames(
         yield index, index / fps, surface
 
 
+class RecordingInterrupted(KeyboardInterrupt):
+    """A recording was stopped part-way (Ctrl-C, or SIGTERM under ``python -m demos``).
+
+    ``written`` whole frames are in ``folder``, numbered from frame_00000.png without gaps
+    (frames are encoded in order, and one being encoded when the stop came is finished).
+    """
+
+    def __init__(self, folder: Path, written: int) -> None:
+        super().__init__(f"{written} whole frame(s) written to {folder}")
+        self.folder = folder
+        self.written = written
+
+
 def record(
     scene: Scene,
     out_dir: str | os.PathLike[str],
@@ -158,15 +180,22 @@ def record(
         report = None
     else:
         report = progress
-    with FrameWriter(out_dir, overwrite=overwrite) as writer:
-        try:
-            for index, _t, surface in iter_frames(scene, fps, seconds, size):
-                writer.write(surface)
-                if report is not None:
-                    report(index + 1, total)
-        finally:
-            if bar is not None:
-                bar.done()
+    try:
+        with FrameWriter(out_dir, overwrite=overwrite) as writer:
+            try:
+                for index, _t, surface in iter_frames(scene, fps, seconds, size):
+                    writer.write(surface)
+                    if report is not None:
+                        report(index + 1, total)
+            finally:
+                if bar is not None:
+                    bar.done()
+    except KeyboardInterrupt as stop:
+        # The writer has stopped: frames being encoded were finished, queued ones dropped,
+        # and every file is renamed into place only once whole. Count what is on disk.
+        folder = Path(out_dir)
+        written = sum(1 for name in os.listdir(folder) if FRAME_PATTERN.fullmatch(name))
+        raise RecordingInterrupted(folder, written) from stop
     return Recording(Path(out_dir), writer.count, fps, seconds, size)
 
 
