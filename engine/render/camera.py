@@ -3,11 +3,34 @@
 from __future__ import annotations
 
 import math
+from numbers import Real
 from typing import Any, overload
 
 import numpy as np
 
 __all__ = ["Camera"]
+
+
+def _finite(value: Any, name: str) -> float:
+    """``value`` as a finite float; TypeError / ValueError naming ``name`` otherwise."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, Real):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
+    try:
+        f = float(value)
+    except OverflowError:  # an int beyond the float range
+        f = math.inf
+    if not math.isfinite(f):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    return f
+
+
+def _four(value: Any, name: str) -> tuple[float, float, float, float]:
+    """Four finite floats from ``value``; TypeError / ValueError naming ``name`` otherwise."""
+    try:
+        a, b, c, d = value
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be four numbers, got {value!r}") from None
+    return _finite(a, name), _finite(b, name), _finite(c, name), _finite(d, name)
 
 
 class Camera:
@@ -29,11 +52,15 @@ class Camera:
     __slots__ = ("scale", "origin")
 
     def __init__(self, scale: float, origin: tuple[float, float] = (0.0, 0.0)) -> None:
-        scale = float(scale)
-        if not (scale > 0.0 and np.isfinite(scale)):
+        scale = _finite(scale, "scale")
+        if not scale > 0.0:
             raise ValueError(f"scale must be a positive finite pixels per unit, got {scale}")
         self.scale = scale
-        self.origin = (float(origin[0]), float(origin[1]))
+        try:
+            ox, oy = origin
+        except (TypeError, ValueError):
+            raise TypeError(f"origin must be a pixel pair (x, y), got {origin!r}") from None
+        self.origin = (_finite(ox, "origin x"), _finite(oy, "origin y"))
 
     @classmethod
     def fit(
@@ -46,8 +73,8 @@ class Camera:
         ``rect`` is ``(left, top, width, height)`` in pixels; the world box is centred in it and
         keeps its aspect ratio (one scale for both axes, so circles stay round).
         """
-        x0, y0, x1, y1 = (float(v) for v in world)
-        left, top, width, height = (float(v) for v in rect)
+        x0, y0, x1, y1 = _four(world, "world box (x0, y0, x1, y1)")
+        left, top, width, height = _four(rect, "rect (left, top, width, height)")
         if x1 <= x0 or y1 <= y0:
             raise ValueError(f"world box must have x1 > x0 and y1 > y0, got {world}")
         if width <= 0 or height <= 0:
@@ -69,13 +96,19 @@ class Camera:
 
     def point(self, p: Any) -> tuple[int, int]:
         """Whole pixel nearest to a world point: a float (1D, on y = 0), Vector or (x, y) pair."""
-        if isinstance(p, (int, float, np.floating, np.integer)):
-            x, y = float(p), 0.0
-        else:
-            x, y = float(p[0]), float(p[1])
-        px, py = self.to_px(x, y)
-        # floor(v + 0.5): halves always round the same way (round() goes to even).
-        return math.floor(px + 0.5), math.floor(py + 0.5)
+        try:
+            if isinstance(p, (int, float, np.floating, np.integer)):
+                x, y = float(p), 0.0
+            else:
+                x, y = float(p[0]), float(p[1])
+            px, py = self.to_px(x, y)
+            # floor(v + 0.5): halves always round the same way (round() goes to even).
+            return math.floor(px + 0.5), math.floor(py + 0.5)
+        except (TypeError, ValueError, LookupError, OverflowError):
+            raise ValueError(
+                f"point p must be a finite world point, a number (1D) or an (x, y) pair, "
+                f"landing within the float range in pixels, got {p!r}"
+            ) from None
 
     def points(self, xy: Any) -> np.ndarray:
         """Pixel coordinates, shape (N, 2) floats, of world points given as an (N, 2) array."""

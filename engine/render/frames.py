@@ -182,6 +182,19 @@ def _write_atomically(path: Path, data: bytes) -> None:
         raise
 
 
+def _folder(folder: object) -> Path:
+    """``folder`` as a Path; TypeError / ValueError naming it for what no file system takes."""
+    if not isinstance(folder, (str, os.PathLike)):
+        raise TypeError(
+            f"folder must be a path (str or pathlib.Path), got {type(folder).__name__} {folder!r}"
+        )
+    text = os.fspath(folder)
+    if isinstance(text, bytes) or text == "" or "\x00" in text:
+        # "" would mean the current folder, a surprise place for hundreds of frames.
+        raise ValueError(f"folder must be a non-empty path without NUL characters, got {folder!r}")
+    return Path(text)
+
+
 def _describe(exc: BaseException) -> str:
     if isinstance(exc, OSError) and exc.strerror:
         return exc.strerror
@@ -234,11 +247,13 @@ class FrameWriter:
     ) -> None:
         if workers is None:
             workers = max(1, min(4, os.cpu_count() or 1))
-        if workers < 1:
-            raise ValueError(f"workers must be >= 1, got {workers}")
-        if not 0 <= level <= 9:
-            raise ValueError(f"level must be a zlib level from 0 to 9, got {level}")
-        self.folder = Path(folder)
+        if not isinstance(workers, int) or isinstance(workers, bool) or not 1 <= workers <= 64:
+            raise ValueError(f"workers must be a whole number from 1 to 64, got {workers!r}")
+        if not isinstance(level, int) or isinstance(level, bool) or not 0 <= level <= 9:
+            raise ValueError(
+                f"level must be a zlib level, a whole number from 0 to 9, got {level!r}"
+            )
+        self.folder = _folder(folder)
         self.level = level
         self.count = 0
         self._prepare(overwrite)
