@@ -825,12 +825,25 @@ class World:
         if snap.dt is not None:
             check_dt(snap.dt)
         t = snap.t_base
-        if isinstance(t, bool) or not isinstance(t, Real) or not 0.0 <= t < 1e300:
+        try:
+            t_ok = not isinstance(t, bool) and isinstance(t, Real) and 0.0 <= float(t) < 1e300
+        except OverflowError:  # an int beyond the float range
+            t_ok = False
+        if not t_ok:
             raise ValueError(f"snapshot.t_base must be a finite time >= 0 s, got {t!r}")
         for name in ("n_since_base", "steps"):
             count = getattr(snap, name)
             if isinstance(count, bool) or not isinstance(count, int) or count < 0:
                 raise ValueError(f"snapshot.{name} must be a whole number >= 0, got {count!r}")
+        try:  # the time it stands for, t_base + n_since_base * dt, must be a float too
+            t_now = float(t) + snap.n_since_base * (0.0 if snap.dt is None else float(snap.dt))
+        except OverflowError:
+            t_now = math.inf
+        if not t_now < 1e300:
+            raise ValueError(
+                "snapshot.t_base + snapshot.n_since_base * snapshot.dt must be a finite time, "
+                f"got {snap.t_base!r} + {snap.n_since_base!r} * {snap.dt!r}"
+            )
         return masses, own_acc
 
     def __repr__(self) -> str:
