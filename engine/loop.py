@@ -153,12 +153,19 @@ class FixedStep:
         frame = _seconds(frame_seconds, "frame_seconds", allow_zero=True)
         if type(frame_seconds) is not Fraction:
             frame = _as_meant(frame)  # read a float frame like dt (see _as_meant)
+        dropped = self._dropped
         if frame > self._max_frame:
-            self._dropped += frame - self._max_frame
+            dropped += frame - self._max_frame
             frame = self._max_frame
-        self._acc += frame
-        steps = int(self._acc // self._dt)
-        self._acc -= steps * self._dt
+        acc = self._acc + frame
+        steps = int(acc // self._dt)
+        if (self.steps + steps) * self._dt > _MAX_SECONDS:
+            raise ValueError(
+                f"frame_seconds must keep the time within the float range (1.8e308 s): "
+                f"{frame_seconds!r} would pass it; nothing was advanced"
+            )
+        self._dropped = dropped
+        self._acc = acc - steps * self._dt
         self.steps += steps
         self.frames += 1
         return steps
@@ -182,8 +189,11 @@ class FixedStep:
 
     @property
     def dropped(self) -> float:
-        """Seconds of frame time dropped by the clamp so far."""
-        return float(self._dropped)
+        """Seconds of frame time dropped by the clamp so far (inf past the float range)."""
+        try:
+            return float(self._dropped)
+        except OverflowError:  # frames of 1e308 s, dropped again and again
+            return math.inf
 
     @property
     def accumulated(self) -> float:

@@ -614,6 +614,11 @@ class World:
             self._t_base, self._n, self._dt = self.t, 0, dt
         t0 = self.t
         t1 = self._t_base + (self._n + 1) * dt
+        if t1 == math.inf:
+            raise ValueError(
+                f"dt must keep the time finite: a step of dt={dt!r} s from t={t0!r} s would pass "
+                f"the float range (1.8e308 s)"
+            )
         if self._bodies:
             if name == "exact":
                 if self._anchor is None:
