@@ -146,9 +146,18 @@ def parse_size(text: str) -> tuple[int, int]:
 
 def _seed(text: str) -> int:
     try:
-        return int(text)
+        value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a whole number, got {text!r}") from None
+        value = -1
+    if value < 0:  # numpy's generators take seeds >= 0 only
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 0, got {text!r}")
+    return value
+
+
+def _out(text: str) -> Path:
+    if not text or "\x00" in text:  # "" would be the current folder: a surprise for frames
+        raise argparse.ArgumentTypeError(f"must be a folder path, got {text!r}")
+    return Path(text)
 
 
 def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.ArgumentParser:
@@ -178,7 +187,7 @@ def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.
     parser.add_argument(
         "--size", type=parse_size, default=(640, 360), help="WIDTHxHEIGHT in pixels (640x360)"
     )
-    parser.add_argument("--out", type=Path, help="output folder (default: out/<demo>/<scene>/)")
+    parser.add_argument("--out", type=_out, help="output folder (default: out/<demo>/<scene>/)")
     parser.add_argument(
         "--overwrite", action="store_true", help="replace frames already in the output folder"
     )
@@ -279,6 +288,8 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
         return 1
     parser = _parser(demos, demo)
     args = parser.parse_args(argv)
+    if args.scene is not None and args.scene not in demo.scenes:  # a demo without scenes
+        parser.error(f"argument --scene: the demo {demo.name!r} has no scenes to choose from")
     for name in [args.scene] if args.scene else list(demo.scenes):
         need_w, need_h = getattr(demo.scenes[name], "min_size", (0, 0))
         if args.size[0] < need_w or args.size[1] < need_h:
