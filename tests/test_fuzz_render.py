@@ -154,8 +154,16 @@ def test_frame_writer_writes_whole_frames_or_refuses_with_a_clear_error(
     assert np.array_equal(pygame.surfarray.array3d(image), pygame.surfarray.array3d(surface))
 
 
-def test_the_frame_writer_fuzz_wrote_frames_into_odd_but_valid_folders() -> None:
-    # Runs after the fuzz test above (pytest keeps the file's order): it must not have
-    # refused everything. Unicode names and missing parents are fine places for frames.
+def test_the_frame_writer_fuzz_wrote_frames_and_odd_but_valid_folders_take_frames(
+    tmp_path: Path,
+) -> None:
+    # The fuzz above (run first: pytest keeps the file's order) must not have refused
+    # everything; and unicode names and missing parents are fine places for frames.
     if WRITTEN:
-        assert {"plain", "nested"} <= set(WRITTEN), WRITTEN
+        assert set(WRITTEN) <= {"plain", "nested"}, WRITTEN
+    init_headless()
+    surface = pygame.Surface((4, 3))
+    for folder in (tmp_path / "a" / "b" / "c", tmp_path / "fourmi-🐜-é", tmp_path / " x "):
+        with FrameWriter(folder) as writer:
+            writer.write(surface)
+        assert sorted(p.name for p in folder.iterdir()) == ["frame_00000.png"]
