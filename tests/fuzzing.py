@@ -16,6 +16,7 @@ from fractions import Fraction
 from typing import Any, TypeVar
 
 import numpy as np
+from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
 from engine import Vector
@@ -139,3 +140,12 @@ def attempt(call: Callable[[], T], *names: str) -> tuple[bool, T | None]:
     except (TypeError, ValueError) as exc:
         check_message(exc, names)
         return False, None
+
+
+def fuzz(examples: int) -> settings:
+    """Hypothesis settings for ``examples`` generated calls, no per-example deadline."""
+    return settings(
+        max_examples=examples,
+        deadline=None,
+        suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
+    )

@@ -21,22 +21,13 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from fuzzing import fuzz
+from hypothesis import given
 from hypothesis import strategies as st
 
 import engine.render
 from demos import cli
 from engine.render import Recording
-
-
-def fuzz(examples: int) -> settings:
-    """Hypothesis settings for ``examples`` generated calls, no per-example deadline."""
-    return settings(
-        max_examples=examples,
-        deadline=None,
-        suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
-    )
-
 
 DEMOS = ["alfred", "car", "crumb", "fireworks", "stability", "tradeoff"]
 OPTIONS = ["--scene", "--fps", "--seconds", "--size", "--out", "--seed", "--wind", "--kinds"]

@@ -19,6 +19,7 @@ from fuzzing import (
     anything,
     attempt,
     check_message,
+    fuzz,
     in_float_range,
     is_real,
     junk,
@@ -27,18 +28,11 @@ from fuzzing import (
     pairs,
     same_float,
 )
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from engine import Body, Vector, World
 from engine.forces import CallableForce, ConstantForce, Drag, Gravity, Spring, Wind, as_force
-
-
-def fuzz(examples: int) -> settings:
-    """Hypothesis settings for ``examples`` generated calls, no per-example deadline."""
-    return settings(
-        max_examples=examples, deadline=None, suppress_health_check=[HealthCheck.too_slow]
-    )
 
 
 def _scalar_ok(value: Any) -> bool:

@@ -10,20 +10,12 @@ import warnings
 from typing import Any
 
 import numpy as np
-from fuzzing import anything, attempt, check_message, junk, numbers, pairs
-from hypothesis import HealthCheck, given, settings
+from fuzzing import anything, attempt, check_message, fuzz, junk, numbers, pairs
+from hypothesis import given
 from hypothesis import strategies as st
 
 from engine.forces import Drag, Gravity, Wind
 from engine.particles import Particles
-
-
-def fuzz(examples: int) -> settings:
-    """Hypothesis settings for ``examples`` generated calls, no per-example deadline."""
-    return settings(
-        max_examples=examples, deadline=None, suppress_health_check=[HealthCheck.too_slow]
-    )
-
 
 small_counts = st.one_of(st.integers(-3, 40), numbers, junk)
 

@@ -13,20 +13,11 @@ from typing import Any
 import numpy as np
 import pygame
 import pytest
-from fuzzing import anything, attempt, junk, moderate, numbers, pairs
-from hypothesis import HealthCheck, given, settings
+from fuzzing import anything, attempt, fuzz, junk, moderate, numbers, pairs
+from hypothesis import given
 from hypothesis import strategies as st
 
 from engine.render import Camera, FramesExistError, FrameWriteError, FrameWriter, init_headless
-
-
-def fuzz(examples: int) -> settings:
-    """Hypothesis settings for ``examples`` generated calls, no per-example deadline."""
-    return settings(
-        max_examples=examples,
-        deadline=None,
-        suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
-    )
 
 
 @fuzz(500)

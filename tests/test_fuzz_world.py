@@ -24,6 +24,7 @@ from fuzzing import (
     anything,
     attempt,
     check_message,
+    fuzz,
     in_float_range,
     is_real,
     junk,
@@ -31,19 +32,12 @@ from fuzzing import (
     numbers,
     pairs,
 )
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from engine import Body, FixedStep, SimulationDiverged, Vector, VirtualClock, World
 from engine.forces import CallableForce, ConstantForce, Drag, Gravity, Spring, Wind
 from engine.world import METHODS
-
-
-def fuzz(examples: int) -> settings:
-    """Hypothesis settings for ``examples`` generated calls, no per-example deadline."""
-    return settings(
-        max_examples=examples, deadline=None, suppress_health_check=[HealthCheck.too_slow]
-    )
 
 
 def assert_finite(world: World) -> None:
