@@ -31,13 +31,13 @@ Vector(0.0, -19.62)
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from numbers import Real
 from typing import Any
 
 import numpy as np
 
+from .checks import real
 from .vector import Vector, _as_pair
 
 __all__ = [
@@ -52,23 +52,6 @@ __all__ = [
 ]
 
 
-def _real(value: Any, name: str, *, positive: bool = False, nonneg: bool = False) -> float:
-    """``value`` as a finite float, checked; TypeError/ValueError naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
-    try:
-        f = float(value)
-    except OverflowError:  # an int beyond the float range
-        f = math.inf
-    if not math.isfinite(f):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    if positive and f <= 0.0:
-        raise ValueError(f"{name} must be > 0, got {value!r}")
-    if nonneg and f < 0.0:
-        raise ValueError(f"{name} must be >= 0, got {value!r}")
-    return f
-
-
 class _Param:
     """A constant of a force, a float (1D) or a Vector (2D), kept in every form it is used in."""
 
@@ -79,7 +62,7 @@ class _Param:
 
     def __init__(self, value: Any, name: str) -> None:
         if isinstance(value, Real) and not isinstance(value, bool):
-            f = _real(value, name)
+            f = real(value, name)
             self.dim, self.value, self.array = 1, f, f
             return
         pair = _as_pair(value)
@@ -200,7 +183,7 @@ class Drag(Force):
     """Linear drag F = -k v (``k`` in N s/m): slows a body toward rest at rate k/m."""
 
     def __init__(self, k: float) -> None:
-        self.k = _real(k, "k", nonneg=True)
+        self.k = real(k, "k", nonneg=True)
         self.damping = self.k
 
     def __call__(self, t: float, x: Any, v: Any, mass: Any) -> Any:
@@ -222,7 +205,7 @@ class Wind(Force):
     """
 
     def __init__(self, air_velocity: Any, k: float) -> None:
-        self.k = _real(k, "k", nonneg=True)
+        self.k = real(k, "k", nonneg=True)
         self.damping = self.k
         self._fn: Callable[[float], Any] | None = None
         if callable(air_velocity) and not isinstance(air_velocity, Vector):
@@ -268,9 +251,9 @@ class Spring(Force):
     def __init__(self, anchor: Any, k: float, rest_length: float = 0.0) -> None:
         self._anchor = _Param(anchor, "anchor")
         self.dim = self._anchor.dim
-        self.k = _real(k, "k", nonneg=True)
+        self.k = real(k, "k", nonneg=True)
         self.stiffness = self.k
-        self.rest_length = _real(rest_length, "rest_length", nonneg=True)
+        self.rest_length = real(rest_length, "rest_length", nonneg=True)
 
     @property
     def anchor(self) -> Any:
@@ -334,8 +317,8 @@ class CallableForce(Force):
             )
         self.fn = fn
         self.constant = bool(constant)
-        self.stiffness = _real(stiffness, "stiffness", nonneg=True)
-        self.damping = _real(damping, "damping", nonneg=True)
+        self.stiffness = real(stiffness, "stiffness", nonneg=True)
+        self.damping = real(damping, "damping", nonneg=True)
         self._potential = potential
 
     def __call__(self, t: float, x: Any, v: Any, mass: Any) -> Any:

@@ -3,25 +3,13 @@
 from __future__ import annotations
 
 import math
-from numbers import Real
 from typing import Any, overload
 
 import numpy as np
 
+from engine.checks import real
+
 __all__ = ["Camera"]
-
-
-def _finite(value: Any, name: str) -> float:
-    """``value`` as a finite float; TypeError / ValueError naming ``name`` otherwise."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, Real):
-        raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
-    try:
-        f = float(value)
-    except OverflowError:  # an int beyond the float range
-        f = math.inf
-    if not math.isfinite(f):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
-    return f
 
 
 def _four(value: Any, name: str) -> tuple[float, float, float, float]:
@@ -30,7 +18,7 @@ def _four(value: Any, name: str) -> tuple[float, float, float, float]:
         a, b, c, d = value
     except (TypeError, ValueError):
         raise TypeError(f"{name} must be four numbers, got {value!r}") from None
-    return _finite(a, name), _finite(b, name), _finite(c, name), _finite(d, name)
+    return real(a, name), real(b, name), real(c, name), real(d, name)
 
 
 class Camera:
@@ -52,7 +40,7 @@ class Camera:
     __slots__ = ("scale", "origin")
 
     def __init__(self, scale: float, origin: tuple[float, float] = (0.0, 0.0)) -> None:
-        scale = _finite(scale, "scale")
+        scale = real(scale, "scale")
         if not scale > 0.0:
             raise ValueError(f"scale must be a positive finite pixels per unit, got {scale}")
         self.scale = scale
@@ -60,7 +48,7 @@ class Camera:
             ox, oy = origin
         except (TypeError, ValueError):
             raise TypeError(f"origin must be a pixel pair (x, y), got {origin!r}") from None
-        self.origin = (_finite(ox, "origin x"), _finite(oy, "origin y"))
+        self.origin = (real(ox, "origin x"), real(oy, "origin y"))
 
     @classmethod
     def fit(
