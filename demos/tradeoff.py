@@ -94,22 +94,26 @@ def _verdict(points: Sequence[Point], problem: str) -> str:
     return text + "."
 
 
+def _canvas(size: tuple[int, int], title: str, subtitle: str) -> pygame.Surface:
+    """A blank chart page of ``size`` px with its title and a one-line subtitle."""
+    init_headless()
+    surface = pygame.Surface(size)
+    surface.fill(PAPER)
+    draw_text(surface, title, (20, 10), 32)
+    draw_text(surface, subtitle, (20, 42), 18, MUTED)
+    return surface
+
+
 def draw_work_precision(
     points: Sequence[Point], size: tuple[int, int] = (1280, 720)
 ) -> pygame.Surface:
     """The work-precision chart: one panel per problem, error (m) against cost (s per s)."""
-    init_headless()
     width, height = size
-    surface = pygame.Surface(size)
-    surface.fill(PAPER)
-    draw_text(surface, "Speed against accuracy: which integrator should I use?", (20, 10), 32)
-    draw_text(
-        surface,
+    surface = _canvas(
+        size,
+        "Speed against accuracy: which integrator should I use?",
         "Each dot: one run of 1 s of simulated time with step dt, halved from dot to dot "
         "(right = smaller dt). Error: largest distance from the exact answer.",
-        (20, 42),
-        18,
-        MUTED,
     )
     costs = [p.cost for p in points if p.cost > 0]
     x_dec = decade_range(costs)
@@ -182,18 +186,12 @@ def draw_throughput(
     rows: Sequence[throughput.Row], size: tuple[int, int] = (1280, 720)
 ) -> pygame.Surface:
     """The throughput chart: ns per body-step against the number of bodies, one line each."""
-    init_headless()
     width, height = size
-    surface = pygame.Surface(size)
-    surface.fill(PAPER)
-    draw_text(surface, "Throughput: how many bodies can one step move?", (20, 10), 32)
-    draw_text(
-        surface,
+    surface = _canvas(
+        size,
+        "Throughput: how many bodies can one step move?",
         "Semi-implicit Euler under gravity, measured side by side in one run (medians). "
         "Lower = faster per body.",
-        (20, 42),
-        18,
-        MUTED,
     )
     chart = LogLogChart(
         (16, 66, width - 32, height - 66 - 90),

@@ -99,17 +99,11 @@ class Body:
     __slots__ = ("_px", "_py", "_vx", "_vy", "_acc", "_mass", "_dim", "_world", "_index")
 
     def __init__(self, position: Any, velocity: Any, acceleration: Any, mass: float = 1.0) -> None:
-        dims = {
-            name: _dim_of(value)
-            for name, value in (
-                ("position", position),
-                ("velocity", velocity),
-                ("acceleration", acceleration),
-            )
-        }
+        given = {"position": position, "velocity": velocity, "acceleration": acceleration}
+        dims = {name: _dim_of(value) for name, value in given.items()}
         for name, d in dims.items():
             if d is None:
-                value = {"position": position, "velocity": velocity}.get(name, acceleration)
+                value = given[name]
                 raise TypeError(
                     f"Body {name} must be a real number (1D body) or a Vector / pair of "
                     f"numbers (2D body), got {type(value).__name__} {value!r}"

@@ -27,7 +27,6 @@ X: 3.0 Y: 4.0
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from numbers import Real
 from operator import itemgetter
 from typing import Any, SupportsFloat, Union
@@ -240,9 +239,6 @@ class Vector(tuple):  # type: ignore[type-arg]
 
     def __abs__(self) -> float:
         return self.magnitude()
-
-    def __iter__(self) -> Iterator[float]:
-        return tuple.__iter__(self)
 
     # -- the lesson's magnitude and pygame's familiar names -----------------------------------
     def magnitude(self) -> float:

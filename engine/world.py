@@ -222,52 +222,40 @@ class World:
         """1 (floats), 2 (Vectors), or None while the world has neither bodies nor shaped forces."""
         return self._dim
 
-    def _claim_dim(self, dim: int, what: str) -> None:
-        if self._dim is None:
-            self._dim = dim
-        elif dim != self._dim:
+    def _check_dim(self, dim: int, what: str, world_dim: int | None = None) -> None:
+        """TypeError unless ``what``, of dimension ``dim``, fits this World (or ``world_dim``)."""
+        expected = self._dim if world_dim is None else world_dim
+        if expected is not None and dim != expected:
             raise TypeError(
-                f"{what} is {dim}D but this World is {self._dim}D: a World holds bodies "
+                f"{what} is {dim}D but this World is {expected}D: a World holds bodies "
                 f"of one dimension (1D: floats, 2D: Vectors)"
             )
 
     def add(self, body: Body) -> Body:
         """Add ``body`` and return it; from now on its pos/vel are the world's live state."""
-        if not isinstance(body, Body):
-            raise TypeError(f"World.add takes a Body, got {type(body).__name__} {body!r}")
-        if body.world is not None:
-            which = "this" if body.world is self else "another"
-            raise ValueError(f"that body is already in {which} World; remove it first")
-        self._claim_dim(body.dim, "the body")
-        row = np.array([body.pos], dtype=float)
-        vrow = np.array([body.vel], dtype=float)
-        if self._x is None:
-            self._x, self._v = row, vrow
-        else:
-            self._x = np.concatenate([self._x, row])
-            self._v = np.concatenate([self._v, vrow])
-        self._prev_x = row.copy() if self._prev_x is None else np.concatenate([self._prev_x, row])
-        body._world, body._index = self, len(self._bodies)
-        self._bodies.append(body)
-        self._changed_structure()
-        return body
+        return self.add_all([body])[0]
 
     def add_all(self, bodies: Iterable[Body]) -> list[Body]:
-        """Add many bodies at once (one array copy instead of one per body); return them."""
+        """Add many bodies at once (one array copy instead of one per body); return them.
+
+        All or nothing: a batch with one bad body is refused whole and changes nothing.
+        """
         batch = list(bodies)
         for b in batch:
             if not isinstance(b, Body):
-                raise TypeError(f"World.add_all takes Bodies, got {type(b).__name__} {b!r}")
+                raise TypeError(f"World.add takes a Body, got {type(b).__name__} {b!r}")
             if b.world is not None:
-                raise ValueError(f"a body is already in a World; remove it first: {b!r}")
+                which = "this" if b.world is self else "another"
+                raise ValueError(f"that body is already in {which} World; remove it first")
         if len({id(b) for b in batch}) != len(batch):
             raise ValueError("World.add_all was given the same body twice")
-        for b in batch:
-            self._check_dim_free(b.dim, "a body")
-            if self._dim is None:
-                self._dim = b.dim
         if not batch:
             return batch
+        # An empty World takes the dimension of the first body; every body must share it.
+        dim = self._dim if self._dim is not None else batch[0].dim
+        for b in batch:
+            self._check_dim(b.dim, "the body", dim)
+        self._dim = dim
         rows = np.array([b.pos for b in batch], dtype=float)
         vrows = np.array([b.vel for b in batch], dtype=float)
         if self._x is None:
@@ -310,7 +298,7 @@ class World:
         """
         f = as_force(force)
         if f.dim is not None:
-            self._check_dim_free(f.dim, repr(f))
+            self._check_dim(f.dim, repr(f))
         if self._requested == "exact" and not f.constant:
             raise ValueError(
                 f"integrator 'exact' moves bodies by the closed form, which needs constant "
@@ -332,14 +320,10 @@ class World:
                         f"bodies must be bodies already added to this World, got {b!r}"
                     )
         if f.dim is not None:
-            self._claim_dim(f.dim, repr(f))
+            self._dim = f.dim  # checked above; an empty World takes the force's dimension
         self._forces.append(_Attached(f, members))
         self._changed_structure()
         return f
-
-    def _check_dim_free(self, dim: int, what: str) -> None:
-        if self._dim is not None and dim != self._dim:
-            self._claim_dim(dim, what)  # raises with the explanation
 
     # -- derived state ----------------------------------------------------------------------
     def _changed_structure(self) -> None:
@@ -462,36 +446,42 @@ class World:
         acc = self._accel(self.t, self._x, self._v)
         return _predicted_error(step, self._x, self._v, acc, comp.omega, comp.rate, dt)
 
+    def _fixed_choice(self) -> tuple[str, str] | None:
+        """(method, reason) when the choice does not depend on dt, else None."""
+        if self._requested != "auto":
+            return self._requested, f"integrator={self._requested!r} was asked for"
+        if self._ready().all_constant:
+            return "exact", "every force is constant, so the closed form is exact at any dt"
+        return None
+
     def choose_method(self, dt: float) -> tuple[str, str]:
         """(method, one-line reason) that this World uses for a step of ``dt`` seconds."""
         dt = check_dt(dt)
+        fixed = self._fixed_choice()
+        if fixed is not None:
+            return fixed
         comp = self._ready()
-        if self._requested != "auto":
-            return self._requested, f"integrator={self._requested!r} was asked for"
-        if comp.all_constant:
-            return "exact", "every force is constant, so the closed form is exact at any dt"
+
+        def cheapest(name: str) -> str:
+            evals = INTEGRATORS[name].evaluations
+            plural = "s" if evals > 1 else ""
+            return f"{name} is the cheapest method ({evals} force evaluation{plural} a step)"
+
         stable = [name for name in _AUTO_ORDER if self._first_unstable(name, comp, dt) is None]
         if not stable:
             return "rk4", f"no method is stable at dt={dt:g} s; rk4 has the widest limit"
         tol = self._tolerance
         if tol is None:
-            name = stable[0]
-            evals = INTEGRATORS[name].evaluations
-            return name, (
-                f"{name} is the cheapest method ({evals} force evaluation"
-                f"{'s' if evals > 1 else ''} a step) that is stable at dt={dt:g} s"
-            )
+            return stable[0], f"{cheapest(stable[0])} that is stable at dt={dt:g} s"
         # _AUTO_ORDER is cheapest first: the first stable method predicted to meet the
         # tolerance is the cheapest that does.
         errors: dict[str, float] = {}
         for name in stable:
             errors[name] = err = self.predicted_error(name, dt)
             if err <= tol:
-                evals = INTEGRATORS[name].evaluations
                 return name, (
-                    f"{name} is the cheapest method ({evals} force evaluation"
-                    f"{'s' if evals > 1 else ''} a step) stable at dt={dt:g} s and predicted "
-                    f"within tolerance={tol:g} m over {HORIZON:g} s (error {err:.2g} m)"
+                    f"{cheapest(name)} stable at dt={dt:g} s and predicted within "
+                    f"tolerance={tol:g} m over {HORIZON:g} s (error {err:.2g} m)"
                 )
         best = min(errors, key=lambda n: errors[n])
         err = errors[best]
@@ -508,24 +498,22 @@ class World:
     @property
     def method(self) -> str:
         """The method in use; for "auto", the one chosen at the last step (or "auto" before)."""
-        if self._requested != "auto":
-            return self._requested
         if self._choice is not None:
             return self._choice[1]
-        if self._ready().all_constant:
-            return "exact"
-        return "auto"
+        fixed = self._fixed_choice()
+        return "auto" if fixed is None else fixed[0]
 
     @property
     def method_reason(self) -> str:
         """One line saying why ``method`` is the method in use."""
         if self._choice is not None:
             return self._choice[2]
-        if self._requested != "auto":
-            return f"integrator={self._requested!r} was asked for"
-        if self._ready().all_constant:
-            return "every force is constant, so the closed form is exact at any dt"
-        return "chosen at the first step, from its dt and the forces held"
+        fixed = self._fixed_choice()
+        return (
+            "chosen at the first step, from its dt and the forces held"
+            if fixed is None
+            else (fixed[1])
+        )
 
     def _method_for(self, dt: float, comp: _Compiled) -> str:
         key = (dt, self._version)
