@@ -3,6 +3,7 @@
 import errno
 import io
 import os
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -168,6 +169,44 @@ def test_a_failed_rename_leaves_no_partial_frame(tmp_path, monkeypatch):
             for seed in range(2):
                 writer.write(picture(seed))
     assert sorted(p.name for p in tmp_path.iterdir()) == [frame_name(0)]
+
+
+def test_a_failure_while_later_frames_finish_leaves_no_gap(tmp_path, monkeypatch):
+    # Four workers: frame 3 fails only after frames 4 and 5 are already on disk, the order a
+    # real full disk can produce. A gap would make ffmpeg stop at frame 2 and hide 4 and 5.
+    real_replace = os.replace
+    later_done = threading.Event()
+
+    def replace(src, dst):
+        name = Path(dst).name
+        if name == frame_name(3):
+            assert later_done.wait(timeout=30), "frames 4 and 5 were never written"
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        real_replace(src, dst)
+        if (tmp_path / frame_name(4)).exists() and (tmp_path / frame_name(5)).exists():
+            later_done.set()
+
+    monkeypatch.setattr(frames_module.os, "replace", replace)
+    writer = FrameWriter(tmp_path, workers=4)
+    with pytest.raises(FrameWriteError) as info:
+        with writer:
+            for seed in range(6):
+                writer.write(picture(seed))
+    assert later_done.is_set()  # the out-of-order case really happened
+    assert "frame_00003.png" in str(info.value) and "3 whole frame(s) kept" in str(info.value)
+    assert writer.written == 3
+    assert sorted(p.name for p in tmp_path.iterdir()) == [frame_name(i) for i in range(3)]
+    for i in range(3):
+        np.testing.assert_array_equal(
+            rgb(pygame.image.load(str(tmp_path / frame_name(i)))), rgb(picture(i))
+        )
+
+
+def test_written_counts_the_frames_on_disk(tmp_path):
+    with FrameWriter(tmp_path, workers=3) as writer:
+        for seed in range(7):
+            writer.write(picture(seed))
+    assert writer.written == 7 == len(list(tmp_path.iterdir()))
 
 
 def test_save_png_writes_one_still_and_refuses_to_overwrite(tmp_path):

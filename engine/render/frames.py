@@ -235,7 +235,10 @@ class FrameWriter:
     deleted first so no stale frame survives past the new last one. ``workers`` is the number of
     encoding threads (default: the CPU count, at most 4); ``level`` is zlib's effort (1 to 9).
     A failed write raises :class:`FrameWriteError` from the next :meth:`write` or from
-    :meth:`close`; the frames written before it stay whole.
+    :meth:`close`. The folder then holds whole frames without gaps, frame_00000.png up to the
+    one before the frame that failed (frames other workers finished after it are removed, so
+    a player or ffmpeg, which stop at the first missing number, see every frame kept);
+    :attr:`written` says how many.
     """
 
     def __init__(
@@ -256,12 +259,17 @@ class FrameWriter:
         self.folder = _folder(folder)
         self.level = level
         self.count = 0
+        #: Whole frames on disk, numbered without gaps from frame_00000.png, once the writer
+        #: has stopped (after :meth:`close`, :meth:`abort` or a :class:`FrameWriteError`).
+        self.written = 0
         self._prepare(overwrite)
         self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="frame-writer")
         # At most two frames per worker in flight: ~0.7 MB each at 640x360, so memory stays flat.
         self._slots = threading.BoundedSemaphore(2 * workers)
         self._lock = threading.Lock()
         self._error: FrameWriteError | None = None
+        self._failed_at: int | None = None  # the lowest frame index that could not be written
+        self._done = 0  # frames renamed into place
         self._pending: set[Future[None]] = set()
         self._scratch = threading.local()  # each worker's reusable arrays
         self._closed = False
@@ -295,27 +303,33 @@ class FrameWriter:
             raise ValueError("write() on a closed FrameWriter")
         self._raise_if_failed()
         grab = _Grab(surface)  # a copy: the caller may draw on the surface again now
-        path = self.folder / frame_name(self.count)
+        index = self.count
+        path = self.folder / frame_name(index)
         self.count += 1
         self._slots.acquire()
-        future = self._pool.submit(self._encode_and_write, path, grab)
+        future = self._pool.submit(self._encode_and_write, index, path, grab)
         with self._lock:
             self._pending.add(future)
         future.add_done_callback(self._finished)
         return path
 
-    def _encode_and_write(self, path: Path, grab: _Grab) -> None:
-        if self._error is not None:
-            return  # the run is already failing: write nothing more
+    def _encode_and_write(self, index: int, path: Path, grab: _Grab) -> None:
+        failed_at = self._failed_at
+        if failed_at is not None and index > failed_at:
+            return  # the run is already failing: a frame after the gap would be removed anyway
         try:
             scratch = self._scratch.__dict__.setdefault("arrays", {})
             _write_atomically(path, grab.encode(self.level, scratch))
+            with self._lock:
+                self._done += 1
         except Exception as exc:
             with self._lock:
-                if self._error is None:
+                # Workers finish out of order: the error to report is the first frame's.
+                if self._failed_at is None or index < self._failed_at:
                     error = FrameWriteError(f"could not write frame {path}: {_describe(exc)}")
                     error.__cause__ = exc
                     self._error = error
+                    self._failed_at = index
 
     def _finished(self, future: Future[None]) -> None:
         with self._lock:
@@ -324,20 +338,40 @@ class FrameWriter:
 
     def _raise_if_failed(self) -> None:
         if self._error is not None:
+            self._stop(cancel=True)
             raise self._error
+
+    def _stop(self, cancel: bool) -> None:
+        # Wait for the workers, then leave a gapless run of frames: the pool starts frames in
+        # order, so without a failure the finished ones are already 0..n-1; after one, frames
+        # other workers finished past the failed index are removed.
+        if self._closed:
+            return
+        self._closed = True
+        self._pool.shutdown(wait=True, cancel_futures=cancel)
+        if self._failed_at is None:
+            self.written = self._done
+            return
+        self.written = self._failed_at
+        for index in range(self._failed_at + 1, self.count):
+            try:
+                (self.folder / frame_name(index)).unlink(missing_ok=True)
+            except OSError:
+                pass  # the error already being raised is the one to act on
+        assert self._error is not None
+        self._error.args = (
+            f"{self._error.args[0]}; {self.written} whole frame(s) kept in {self.folder}",
+        )
 
     def close(self) -> int:
         """Wait until every queued frame is on disk; return the number of frames written."""
-        if not self._closed:
-            self._closed = True
-            self._pool.shutdown(wait=True)
+        self._stop(cancel=False)
         self._raise_if_failed()
         return self.count
 
     def abort(self) -> None:
         """Stop: frames being encoded finish whole, frames still queued are dropped."""
-        self._closed = True
-        self._pool.shutdown(wait=True, cancel_futures=True)
+        self._stop(cancel=True)
 
     def __enter__(self) -> FrameWriter:
         return self
