@@ -19,6 +19,7 @@ he knows what lies beyond.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -246,7 +247,9 @@ class TubeScene(Scene):
         if ant.stepped and alpha is not None:
             # A numerical integrator's ant: blended between the states before and after the
             # world's last step, the straight line he walks between steps.
-            s = float(ant.world.position_of(ant.body, alpha))
+            blended = ant.world.position_of(ant.body, alpha)
+            assert not isinstance(blended, Vector)  # the tube is a 1D world
+            s = float(blended)
         elif ant.stepped:
             s = self._stepped_at(ant, t)[0]
         elif alpha is not None:
@@ -417,7 +420,7 @@ class TubeScene(Scene):
 
     # --- the motion diagram -----------------------------------------------------------------
 
-    def draw_strobe(self, surface: pygame.Surface, times: list[float]) -> None:
+    def draw_strobe(self, surface: pygame.Surface, times: Sequence[float]) -> None:
         """Alfred at each of ``times`` along his tube, older images fainter, each labelled t."""
         t_end = max(times)
         # Run the simulation far enough to know where the stepped ants are at every time.
@@ -580,7 +583,8 @@ class Paper(Scene):
         title_h = _font_size(size, 24) + 14
         paper_w = min(w * 0.6, (h - title_h - 10) * 1.1)
         self.paper_rect = pygame.Rect(10, title_h, round(paper_w), h - title_h - 10)
-        self.camera = Camera.fit(self.box, tuple(self.paper_rect.inflate(-16, -16)))
+        inner = self.paper_rect.inflate(-16, -16)
+        self.camera = Camera.fit(self.box, (inner.x, inner.y, inner.w, inner.h))
 
     def exact(self, t: float) -> tuple[Vector, Vector]:
         """Alfred's position (in) and velocity (in/s) at time t by the closed form."""
@@ -660,7 +664,7 @@ class Paper(Scene):
             k * self.strobe_interval for k in range(int(self.duration / self.strobe_interval) + 1)
         ]
 
-    def draw_strobe(self, surface: pygame.Surface, times: list[float]) -> None:
+    def draw_strobe(self, surface: pygame.Surface, times: Sequence[float]) -> None:
         """Alfred at equal time steps along his path, older images fainter, each labelled t."""
         self.draw_paper(surface, max(times))
         n = len(times)

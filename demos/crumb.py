@@ -168,8 +168,8 @@ def play(
                 keys = pygame.key.get_pressed()
                 if keys[pygame.K_ESCAPE]:
                     break
-                right = keys[pygame.K_RIGHT] - keys[pygame.K_LEFT]
-                up = keys[pygame.K_UP] - keys[pygame.K_DOWN]
+                right: float = keys[pygame.K_RIGHT] - keys[pygame.K_LEFT]
+                up: float = keys[pygame.K_UP] - keys[pygame.K_DOWN]
             else:
                 right, up = game.autopilot()
             game.steer(right, up)
