@@ -840,7 +840,9 @@ class World:
         return masses, own_acc
 
     def __repr__(self) -> str:
+        """``World(integrator='auto', tolerance=0.001, bodies=3, forces=2, t=1.5)``."""
+        tolerance = "" if self._tolerance is None else f"tolerance={self._tolerance:g}, "
         return (
-            f"World(integrator={self._requested!r}, bodies={len(self._bodies)}, "
+            f"World(integrator={self._requested!r}, {tolerance}bodies={len(self._bodies)}, "
             f"forces={len(self._forces)}, t={self.t:g})"
         )

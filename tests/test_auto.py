@@ -100,3 +100,9 @@ def test_wind_with_gravity_is_not_closed_form_but_stays_stable() -> None:
     world = _world([Gravity((0.0, -9.81)), Wind((3.0, 0.0), 50.0)], tolerance=1e-3)
     name, _ = world.choose_method(0.05)  # rate * dt = 2.5: only RK4 is stable
     assert name == "rk4"
+
+
+def test_the_repr_shows_the_tolerance_when_there_is_one() -> None:
+    world = _world([Gravity((0.0, -9.81))], tolerance=1e-3)
+    assert repr(world) == "World(integrator='auto', tolerance=0.001, bodies=1, forces=1, t=0)"
+    assert "tolerance" not in repr(_world([Gravity((0.0, -9.81))]))
