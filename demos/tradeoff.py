@@ -94,6 +94,36 @@ def _verdict(points: Sequence[Point], problem: str) -> str:
     return text + "."
 
 
+def _hidden_under(points: Sequence[Point]) -> list[tuple[str, str]]:
+    """Pairs (below, above) of methods whose lines coincide on the chart, the lower one hidden.
+
+    Coinciding means the same steps, errors within 5% and costs within 1.5x at every step:
+    explicit and semi-implicit Euler under constant gravity, whose errors are -+ g dt t / 2.
+    Round-off-level errors (< 1e-12 m) are labelled as exact instead.
+    """
+    order = [m for m in COLORS if m != "auto"]  # the drawing order: later lines cover earlier
+    series = {m: sorted((p for p in points if p.method == m), key=lambda p: p.dt) for m in order}
+    pairs = []
+    for i, below in enumerate(order):
+        for above in order[i + 1 :]:
+            a, b = series[below], series[above]
+            if (
+                a
+                and [p.dt for p in a] == [p.dt for p in b]
+                and all(
+                    p.finite
+                    and q.finite
+                    and min(p.error, q.error) > 1e-12
+                    and math.isclose(p.error, q.error, rel_tol=0.05)
+                    and max(p.cost, q.cost) <= 1.5 * min(p.cost, q.cost)
+                    for p, q in zip(a, b, strict=True)
+                )
+            ):
+                pairs.append((below, above))
+                break
+    return pairs
+
+
 def _canvas(size: tuple[int, int], title: str, subtitle: str) -> pygame.Surface:
     """A blank chart page of ``size`` px with its title and a one-line subtitle."""
     init_headless()
@@ -151,6 +181,13 @@ def draw_work_precision(
                 radius=8 if auto else 4,
                 hollow=None if auto else [p.warned for p in series],
             )
+        for row, (below, above) in enumerate(_hidden_under(mine)):
+            # Two lines that coincide: say so, or the reader looks for a method that is missing.
+            y = chart.area.top + 14 + 38 * row
+            where = (chart.area.right - 6, y)
+            draw_text(surface, f"{LABELS[below]} lies under", where, 16, COLORS[below], "midright")
+            where = (chart.area.right - 6, y + 17)
+            draw_text(surface, f"{LABELS[above]}: same error", where, 16, INK, "midright")
         if PROBLEMS[name].closed_form:
             draw_text(
                 surface,

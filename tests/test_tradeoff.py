@@ -13,7 +13,7 @@ import pygame
 import pytest
 
 from demos import cli
-from demos.tradeoff import COLORS, draw_work_precision
+from demos.tradeoff import COLORS, _hidden_under, draw_work_precision
 from engine.measure import PROBLEMS, Point, measure
 
 ORDERS = {"explicit_euler": 1, "semi_implicit_euler": 1, "velocity_verlet": 2, "rk4": 4}
@@ -138,6 +138,35 @@ def test_a_diverged_point_is_marked_in_the_top_strip() -> None:
     assert np.all(strip == colour, axis=2).sum() > 10
     without = pygame.surfarray.array3d(draw_work_precision(points[:-1]))
     assert np.all(without[:, 96:112] == colour, axis=2).sum() == 0
+
+
+def test_the_euler_lines_coincide_under_gravity_and_the_chart_says_so() -> None:
+    # Under constant g the two Euler methods err by -+ g dt t / 2: the same size, so one line
+    # hides the other. Under a spring they differ, and nothing is said.
+    dts = [2.0**-k for k in range(3, 7)]
+    eulers = ("explicit_euler", "semi_implicit_euler")
+    for name, expected in (("gravity", [eulers]), ("spring", []), ("wind", [])):
+        points = [
+            measure(PROBLEMS[name], m, dt, repeats=1, min_steps=16) for m in eulers for dt in dts
+        ]
+        assert _hidden_under(points) == expected, name
+    nearly = [_point(m, dt, dt * (1.1 if m == eulers[0] else 1.0)) for m in eulers for dt in dts]
+    assert _hidden_under(nearly) == []  # 10% apart: both lines show
+
+
+def test_a_hidden_line_gets_a_note_in_its_colour() -> None:
+    dts = [2.0**-k for k in range(3, 7)]
+    same = [_point(m, dt, dt) for m in ("explicit_euler", "semi_implicit_euler") for dt in dts]
+    apart = [
+        _point(m, dt, dt * (3.0 if m == "explicit_euler" else 1.0))
+        for m, dt in [(p.method, p.dt) for p in same]
+    ]
+    colour = np.array(COLORS["explicit_euler"])
+    for points, noted in ((same, True), (apart, False)):
+        pixels = pygame.surfarray.array3d(draw_work_precision(points))
+        # The note sits in the top 40 px of the plotting area (which starts at y = 96), right.
+        corner = pixels[pixels.shape[0] // 2 :, 96:136]
+        assert (np.all(corner == colour, axis=2).sum() > 20) == noted
 
 
 def test_measure_counts_evaluations_through_the_world() -> None:
