@@ -112,6 +112,15 @@ class Trip:
         p = self.phase_at(t)
         return kinematics.velocity(p.v0, p.a, max(0.0, t - p.t0))
 
+    def time_at(self, s: float) -> float:
+        """The first time (s) the front of the car reaches ``s`` (m); ``math.inf`` if never."""
+        for phase in self.phases:
+            # Within a phase the motion is s0 + v0 t + a t^2 / 2: solved exactly.
+            t = kinematics.time_to_reach(phase.s0, phase.v0, phase.a, s)
+            if t <= phase.duration:
+                return phase.t0 + t
+        return math.inf
+
     def acceleration(self, t: float) -> float:
         """The car's acceleration (m/s^2) at time ``t`` (s)."""
         return self.phase_at(t).a
@@ -290,7 +299,8 @@ class MainStreet(Scene):
             text = f"to the red light: {max(0.0, to_go):6.2f} m"
             colour = INK
         else:
-            text = f"RAN THE RED LIGHT by {-to_go:5.2f} m"
+            crossing = self.trip.velocity(self.trip.time_at(line)) / MPH
+            text = f"RAN THE RED LIGHT at {crossing:4.1f} mph, {-to_go:5.2f} m past it"
             colour = (200, 30, 30)
         draw_text(surface, text, (14 * s, 68 * s), size, colour)
         phase = self.trip.phase_at(t)

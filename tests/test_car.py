@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pygame
 import pytest
@@ -69,6 +71,17 @@ def test_too_fast_runs_the_light_by_the_difference_of_stopping_distances() -> No
     # It crosses the line still moving: v^2 = v0^2 - 2 b d over the d = planned^2/(2b) it had.
     t_cross = next(t for t in np.arange(0, trip.end.t0, 0.001) if trip.position(t) >= LINE)
     assert trip.velocity(t_cross) == pytest.approx((v * v - planned**2) ** 0.5, rel=1e-3)
+    # The exact crossing the screen reports: the same time, to the scan's 1 ms.
+    assert trip.time_at(LINE) == pytest.approx(t_cross, abs=1e-3)
+    assert trip.position(trip.time_at(LINE)) == pytest.approx(LINE, abs=1e-9)
+    assert trip.velocity(trip.time_at(LINE)) == pytest.approx((v * v - planned**2) ** 0.5)
+    assert trip.time_at(trip.end.s0 + 1.0) == math.inf  # it stops before that
+
+
+def test_the_good_driver_reaches_the_line_only_as_it_stops(main_street: MainStreet) -> None:
+    trip = main_street.trip
+    assert trip.time_at(LINE) == pytest.approx(trip.end.t0, abs=1e-6)
+    assert trip.velocity(trip.time_at(LINE)) == pytest.approx(0.0, abs=1e-6)
 
 
 def test_plan_refuses_to_brake_before_cruise_speed() -> None:
