@@ -1,4 +1,4 @@
-"""The demos' sprites (ant.png, ant_small.png, car.png) as package data, found in a wheel too.
+"""The demos' sprites (ant.png, ant_small.png, ant_top.png, car.png): package data, in a wheel too.
 
 ``make_assets.py`` redraws them; ``make_readme_images.py`` makes the README's pictures.
 """

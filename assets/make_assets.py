@@ -3,7 +3,11 @@
 - ``ant.png`` (55x35 px): Alfred, the lesson's ant, side view facing right (+x). His body is
   one flat colour, ``ANT_BODY``, used nowhere else in a frame, so tests can find him by it.
   His feet touch the bottom edge: draw him with anchor "midbottom" on the tube's top.
-- ``ant_small.png`` (33x21 px): the same Alfred, smaller, for his walk on a sheet of paper.
+- ``ant_small.png`` (33x21 px): the same Alfred, smaller.
+- ``ant_top.png`` (39x27 px): Alfred seen from above, head to the right (+x), for his walk on a
+  sheet of paper: the demo rotates him to face his velocity. The middle of his body (the
+  centroid of its ``ANT_BODY`` pixels) is the middle of the image: draw him with anchor
+  "center" on his position.
 - ``car.png`` (64x32 px): a small side-view car facing right, body colour ``CAR_BODY``,
   wheels touching the bottom edge (anchor "midbottom" on the road).
 
@@ -29,6 +33,7 @@ SUPER = 4  # drawn at 4x, then scaled down
 
 ANT_SIZE = (55, 35)
 ANT_SMALL_SIZE = (33, 21)
+ANT_TOP_SIZE = (39, 27)
 ANT_BODY = (156, 66, 33)  # Alfred's unique colour: head, thorax and abdomen
 ANT_DARK = (62, 36, 24)  # legs, antennae, waist
 ANT_EYE = (255, 255, 255)
@@ -80,6 +85,53 @@ def draw_ant(size: tuple[int, int] = ANT_SIZE) -> pygame.Surface:
     return _finish(s, size)
 
 
+def draw_ant_top() -> pygame.Surface:
+    """Alfred seen from above, head to the right (+x), body centred (39x27 px, transparent).
+
+    Drawn like ant_small (0.75 px per grid unit) in grid units around the middle of the image:
+    x forward along his axis, y to one side (he is symmetric, so the sign of y does not matter).
+    """
+    s = _canvas(ANT_TOP_SIZE)
+    u = SUPER * 0.75  # canvas pixels per grid unit
+    cx, cy = ANT_TOP_SIZE[0] * SUPER / 2, ANT_TOP_SIZE[1] * SUPER / 2
+
+    def at(x: float, y: float) -> tuple[int, int]:
+        return round(cx + x * u), round(cy + y * u)
+
+    def oval(x0: float, x1: float, width: float) -> pygame.Rect:
+        # An ellipse on the axis from x0 (back) to x1 (front), ``width`` units across.
+        left, top = at(x0, -width / 2)
+        right, bottom = at(x1, width / 2)
+        return pygame.Rect(left, top, right - left, bottom - top)
+
+    # The parts: abdomen [-15, 0] x 11 units, thorax [1, 12] x 6, head [13, 22] x 8. Their
+    # ellipse areas (pi/4 * length * width) are 165, 66 and 72 times pi/4, centred at x = -7.5,
+    # 6.5 and 17.5, so the whole body's centroid is at
+    # (165 * -7.5 + 66 * 6.5 + 72 * 17.5) / 303 = (-1237.5 + 429 + 1260) / 303 = +1.5 units.
+    # But tests find him by his exact ANT_BODY pixels, and the soft edges and the eyes take a
+    # bigger share of the thin head and thorax than of the abdomen: the exact pixels' centroid
+    # lies about 1.8 units (1.4 px) behind the area's, so this layout puts it in the middle of
+    # the image, 0.2 px off (tests/test_alfred.py checks it to within half a pixel).
+    # Legs first, behind the body: three pairs from the thorax, each bent at the knee; the
+    # front pair reaches forward, the middle pair out to the side, the hind pair backward.
+    legs = (((9, 2), (13, 7), (18, 11)), ((6, 2), (7, 8), (5, 12)), ((3, 2), (-2, 7), (-9, 11)))
+    for side in (-1, 1):
+        for leg in legs:
+            pygame.draw.lines(s, ANT_DARK, False, [at(x, side * y) for x, y in leg], round(1.5 * u))
+        # An antenna from the front of the head: out, then bent forward at the elbow.
+        antenna = [at(20, side * 1.5), at(22, side * 6), at(24.5, side * 7.5)]
+        pygame.draw.lines(s, ANT_DARK, False, antenna, round(u))
+    # The waist and the neck join the parts; then abdomen (back), thorax, head (front).
+    pygame.draw.line(s, ANT_DARK, at(-2, 0), at(15, 0), round(2 * u))
+    pygame.draw.ellipse(s, ANT_BODY, oval(-15, 0, 11))
+    pygame.draw.ellipse(s, ANT_BODY, oval(1, 12, 6))
+    pygame.draw.ellipse(s, ANT_BODY, oval(13, 22, 8))
+    # Two eyes, one each side of the head, looking ahead.
+    for side in (-1, 1):
+        pygame.draw.circle(s, ANT_DARK, at(19, side * 3), round(1.2 * u))
+    return _finish(s, ANT_TOP_SIZE)
+
+
 def draw_car() -> pygame.Surface:
     """A small car, side view, facing right, wheels on the bottom edge (64x32 px, transparent)."""
     s = _canvas(CAR_SIZE)
@@ -115,6 +167,7 @@ def main(folder: Path = HERE) -> list[Path]:
     sprites = (
         ("ant.png", draw_ant),
         ("ant_small.png", lambda: draw_ant(ANT_SMALL_SIZE)),
+        ("ant_top.png", draw_ant_top),
         ("car.png", draw_car),
     )
     for name, draw in sprites:

@@ -69,14 +69,18 @@ TUBE_EDGE = (150, 160, 140)
 
 @cache
 def ant_sprite(
-    body: tuple[int, int, int] = ANT_BODY, small: bool = False, zoom: int = 1
+    body: tuple[int, int, int] = ANT_BODY, small: bool = False, zoom: int = 1, top: bool = False
 ) -> pygame.Surface:
     """Alfred's sprite (55x35 px, or 33x21 ``small``, facing +x), body recoloured to ``body``.
 
-    ``zoom`` enlarges him a whole number of times for big canvases; nearest-neighbour scaling
-    keeps his body colour exact.
+    ``top`` gives him seen from above instead (39x27 px, head to +x, his body's middle in the
+    middle of the image), for a sheet of paper: rotate him to face his velocity. ``zoom``
+    enlarges him a whole number of times for big canvases; nearest-neighbour scaling keeps his
+    body colour exact.
     """
-    path = ASSETS / ("ant_small.png" if small else "ant.png")
+    if small and top:
+        raise ValueError("small is a size of the side view: pass small=False with top=True")
+    path = ASSETS / ("ant_top.png" if top else "ant_small.png" if small else "ant.png")
     if not path.exists():
         raise FileNotFoundError(f"{path} is missing: remake it with `python assets/make_assets.py`")
     image = pygame.image.load(str(path))
@@ -579,7 +583,8 @@ class Paper(Scene):
         # x(t) = t^2/2 and y(t) = 2t - t^2 are s0 + v0 t + a t^2/2 with s0 = 0, v0 = (0, 2),
         # a = (1, -2): constant acceleration, so the closed form moves Alfred exactly.
         self.alfred = self.world.add(Body(self.s0, self.v0, self.a))
-        self.sprite = ant_sprite(small=True, zoom=_zoom(size))
+        # Seen from above, head to +x; facing() turns him to his velocity.
+        self.sprite = ant_sprite(top=True, zoom=_zoom(size))
         title_h = _font_size(size, 24) + 14
         paper_w = min(w * 0.6, (h - title_h - 10) * 1.1)
         self.paper_rect = pygame.Rect(10, title_h, round(paper_w), h - title_h - 10)
@@ -591,6 +596,35 @@ class Paper(Scene):
         return kinematics.position(self.s0, self.v0, self.a, t), kinematics.velocity(
             self.v0, self.a, t
         )
+
+    def heading(self, t: float, vel: Vector) -> float:
+        """The way Alfred faces at time t (s) with velocity vel (in/s): degrees counter-clockwise
+        from the world's +x (y up)."""
+        # At a stop, a velocity stepped back from the world's time is rounding noise (1e-16
+        # in/s), whose atan2 points anywhere: below 1e-9 in/s he counts as stopped.
+        if vel.magnitude() > 1e-9:
+            direction = vel
+        elif t > 0 and self.a.magnitude() > 0:
+            # Stopped for an instant: keep the way he was walking. Just before, with constant a,
+            # v(t - h) = v(t) - a h = -a h, so he was walking along -a.
+            direction = -self.a
+        elif self.a.magnitude() > 0:
+            # Starting from rest: v(h) = a h, the way he is about to walk.
+            direction = self.a
+        else:
+            return 0.0  # he never moves: the sprite's own heading, +x
+        return math.degrees(math.atan2(direction.y, direction.x))
+
+    def facing(self, t: float, vel: Vector) -> pygame.Surface:
+        """Alfred's top-view sprite turned to face his velocity vel (in/s) at time t (s)."""
+        # The sprite's head points along pixel +x. pygame.transform.rotate(image, theta) turns
+        # it theta degrees counter-clockwise as seen on screen; pixel y points down, so the head
+        # then points along the pixel direction (cos theta, -sin theta). The camera maps a world
+        # direction (vx, vy), y up, to the pixel direction (vx, -vy) (times a positive scale).
+        # Equal when (cos theta, sin theta) is along (vx, vy): theta = atan2(vy, vx), the
+        # world angle as it is; the two y flips cancel. rotate samples the nearest pixel, so
+        # his body keeps its exact colour (rotozoom would blend it).
+        return pygame.transform.rotate(self.sprite, self.heading(t, vel))
 
     def draw_paper(self, surface: pygame.Surface, t: float) -> None:
         """The sheet with its grid and axes, and the whole path, faint."""
@@ -627,8 +661,9 @@ class Paper(Scene):
         draw_vector(
             surface, self.camera, pos, vel, self.arrow_seconds, VELOCITY, label="v", label_side=-1
         )
+        # Seen from above, he stands centred on his position.
         anchor = self.camera.to_px(pos.x, pos.y)
-        draw_sprite(surface, self.sprite, anchor, "midbottom")
+        draw_sprite(surface, self.facing(t, vel), anchor, "center")
         draw_dot(surface, anchor, 3, INK)
         self.draw_numbers(surface, t, pos, vel)
 
@@ -673,38 +708,61 @@ class Paper(Scene):
             age = 1.0 - i / max(1, n - 1)
             anchor = self.camera.to_px(pos.x, pos.y)
             draw_arrow(surface, self.camera.to_px(0.0, 0.0), anchor, _fade(POSITION, age), 2, 8)
-        sprite = self.sprite
-        occupied: list[pygame.Rect] = []
-        anchors = []
+        # Each image's anchor, and where its pixels are (a rotated image is mostly empty corners).
+        drawn: list[tuple[tuple[float, float], pygame.Rect, pygame.mask.Mask]] = []
         for i, t in enumerate(times):
-            pos, _ = self.exact(t)
+            pos, vel = self.exact(t)
             age = 1.0 - i / max(1, n - 1)
             anchor = self.camera.to_px(pos.x, pos.y)
-            rect = draw_sprite(surface, sprite, anchor, "midbottom", alpha=round(255 - 175 * age))
+            image = self.facing(t, vel)
+            rect = draw_sprite(surface, image, anchor, "center", alpha=round(255 - 175 * age))
             draw_dot(surface, anchor, 3, INK)
-            occupied.append(rect)
-            anchors.append((anchor, rect))
-        # Each label goes in the first free place around its image: right, left, below, above.
+            drawn.append((anchor, rect, pygame.mask.from_surface(image)))
+        # Each label goes beside its image, across his heading, where it covers no other ant
+        # and no label: first on the outside of the bend (away from a, where the path is not),
+        # then the inside, a little further out at each try; if none is free, the first place
+        # on the paper.
         size = _font_size(self.size, 16)
-        for t, (anchor, rect) in zip(times, anchors, strict=True):
+        reach = self.sprite.get_height() / 2  # his legs' reach either side of his axis (px)
+        ax, ay = self.a.x, -self.a.y  # a as a pixel direction (pixel y points down)
+        labels: list[pygame.Rect] = []
+        for i, (t, (anchor, _, _)) in enumerate(zip(times, drawn, strict=True)):
             text = f"t = {_number(t)} s"
-            box = font(size).render(text, True, INK).get_rect()
-            candidates = [
-                ("midleft", (rect.right + 2, rect.centery)),
-                ("midright", (rect.left - 2, rect.centery)),
-                ("midtop", (anchor[0], anchor[1] + 5)),
-                ("midbottom", (rect.centerx, rect.top - 1)),
-                ("topleft", (anchor[0] + 5, anchor[1] + 3)),
-            ]
-            for where, point in candidates:
-                setattr(box, where, point)
-                if self.paper_rect.contains(box) and box.collidelist(occupied) < 0:
-                    break
+            box = pygame.Rect((0, 0), font(size).size(text))
+            theta = math.radians(self.heading(t, self.exact(t)[1]))
+            # His heading in pixels is (cos theta, -sin theta) (see facing); across it are
+            # (sin theta, cos theta) and its opposite (their dot product with it is 0).
+            across = [(math.sin(theta), math.cos(theta)), (-math.sin(theta), -math.cos(theta))]
+            across.sort(key=lambda d: d[0] * ax + d[1] * ay)  # against a first
+            others = [(rect, mask) for k, (_, rect, mask) in enumerate(drawn) if k != i]
+            places = []
+            for gap in (2, 6, 10, 14):
+                for dx, dy in across:
+                    # A box w x h reaches |dx| w/2 + |dy| h/2 from its centre in the direction
+                    # (dx, dy): centred this far out, all of it lies gap px beyond his legs.
+                    r = reach + abs(dx) * box.w / 2 + abs(dy) * box.h / 2 + gap
+                    places.append((anchor[0] + dx * r, anchor[1] + dy * r))
+            on_paper = []
+            for place in places:
+                box.center = (round(place[0]), round(place[1]))
+                if self.paper_rect.contains(box):
+                    on_paper.append(place)
+                    if box.collidelist(labels) < 0 and not _covers(box, others):
+                        point = place
+                        break
             else:
-                where, point = candidates[0]
-            occupied.append(draw_text(surface, text, point, size, INK, where))
+                point = (on_paper or places)[0]
+            labels.append(draw_text(surface, text, point, size, INK, "center"))
         pos, vel = self.exact(max(times))
         self.draw_numbers(surface, max(times), pos, vel)
+
+
+def _covers(box: pygame.Rect, images: Sequence[tuple[pygame.Rect, pygame.mask.Mask]]) -> bool:
+    """Whether the pixel rectangle ``box`` covers a visible pixel of any of ``images``."""
+    solid = pygame.mask.Mask(box.size, fill=True)
+    return any(
+        mask.overlap(solid, (box.x - rect.x, box.y - rect.y)) is not None for rect, mask in images
+    )
 
 
 def _fade(color: tuple[int, int, int], age: float) -> tuple[int, int, int]:

@@ -7,6 +7,7 @@ import pygame
 import pytest
 
 from demos import alfred
+from engine import Vector
 from engine.render import init_headless, iter_frames, record, strobe
 
 SIZE = (640, 360)
@@ -150,16 +151,106 @@ def test_sprint_ants_reach_the_end_at_4_s_and_sqrt_20_s(tmp_path):
     assert first_at_end["exact"] == math.ceil(math.sqrt(20.0) * fps) / fps  # 4.5 s at 20 fps
 
 
-def test_paper_alfred_follows_x_t2_over_2_y_2t_minus_t2(tmp_path):
+def long_axis(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Centroid (x, y) of a mask's pixels, the unit vector along their long axis pointing to
+    the end that reaches further from the centroid, and how far (px) each end reaches."""
+    xs, ys = np.nonzero(mask)
+    assert len(xs) > 20, "no ant in the picture"
+    points = np.stack([xs, ys], axis=1).astype(float)
+    centroid = points.mean(axis=0)
+    # The principal axis: the eigenvector of the covariance of the coordinates with the larger
+    # eigenvalue (the direction along which the pixels spread most).
+    values, vectors = np.linalg.eigh(np.cov((points - centroid).T))
+    assert values[1] > 4 * values[0], "the pixels are not elongated: no long axis to measure"
+    axis = vectors[:, 1]
+    along = (points - centroid) @ axis
+    if along.max() < -along.min():
+        axis, along = -axis, -along
+    return centroid, axis, float(along.max()), float(-along.min())
+
+
+def angle_between(u: np.ndarray, v: np.ndarray) -> float:
+    """Angle (degrees, 0 to 180) between two pixel directions."""
+    cos = np.dot(u, v) / (np.linalg.norm(u) * np.linalg.norm(v))
+    return math.degrees(math.acos(max(-1.0, min(1.0, float(cos)))))
+
+
+def test_the_top_view_sprite_faces_plus_x_with_his_body_centred():
+    sprite = alfred.ant_sprite(top=True)
+    assert sprite.get_size() == (39, 27)
+    rgb = pygame.surfarray.array3d(sprite)
+    alpha = pygame.surfarray.array_alpha(sprite)
+    body = (rgb == alfred.ANT_BODY).all(axis=-1) & (alpha == 255)
+    centroid, axis, ahead, behind = long_axis(body)
+    # The middle of his body is the middle of the image (pixel indices 0..38 and 0..26).
+    assert np.abs(centroid - np.array([19.0, 13.0])).max() <= 0.5, centroid
+    # Head, thorax and abdomen lie along x, and the head's end reaches further from the middle
+    # than the abdomen's: so in a frame the further end of the long axis is his head.
+    assert angle_between(axis, np.array([1.0, 0.0])) < 2.0, axis
+    assert ahead - behind > 3.0, (ahead, behind)
+
+
+def test_top_view_and_small_are_exclusive():
+    with pytest.raises(ValueError, match="small"):
+        alfred.ant_sprite(small=True, top=True)
+
+
+def paper_checks(pixels: np.ndarray, scene: alfred.Paper, t: float) -> float:
+    """Assert Alfred is centred on his exact position at t and faces his exact velocity;
+    return the direction (degrees, pixel axes) he faces."""
+    pos, vel = scene.exact(t)
+    assert (pos.x, pos.y) == (t * t / 2, 2 * t - t * t)
+    centroid, axis, _, _ = long_axis((pixels == alfred.ANT_BODY).all(axis=-1))
+    expected = np.array(scene.camera.to_px(pos.x, pos.y))
+    # Seen from above he is centred on the point; nearest-neighbour rotation moves which
+    # pixels keep the exact body colour by up to 1.5 px.
+    assert np.abs(centroid - expected).max() <= 2.0, (t, centroid, expected)
+    # His velocity (vx, vy), y up, is the pixel direction (vx, -vy) (pixel y points down).
+    direction = np.array([vel.x, -vel.y])
+    assert angle_between(axis, direction) <= 5.0, (t, axis, direction)
+    return math.degrees(math.atan2(axis[1], axis[0]))
+
+
+@pytest.mark.parametrize(("size", "fps"), [(SIZE, 4), ((1280, 720), 1)])
+def test_paper_alfred_is_centred_on_x_t2_over_2_y_2t_minus_t2_facing_v(tmp_path, size, fps):
     scene = alfred.Paper()
-    fps = 4
-    rec = record(scene, tmp_path, fps=fps, size=SIZE, progress=False)
-    sprite = scene.sprite
-    for k, path in enumerate(rec.paths()):
-        t = k / fps
-        expected = np.array(scene.camera.to_px(t * t / 2, 2 * t - t * t))
-        found = find_anchor(load(path), sprite, alfred.ANT_BODY)
-        assert np.all(np.abs(found - expected) <= 1.0), (t, found, expected)
+    rec = record(scene, tmp_path, fps=fps, size=size, progress=False)
+    assert rec.count == 3 * fps + 1
+    facing = [paper_checks(load(path), scene, k / fps) for k, path in enumerate(rec.paths())]
+    # Up at t = 0 (v = (0, 2)), right at t = 1, down and right at t = 3 (v = (3, -4)): the
+    # checks saw him face clearly different ways, so a sprite that never turns fails them.
+    assert max(facing) - min(facing) > 120.0, facing
+
+
+def test_paper_strobe_shows_the_last_alfred_centred_and_facing_v(tmp_path):
+    # The older images are faded; the newest (t = 3 s) is the only one in the exact colour.
+    scene = alfred.Paper()
+    path = strobe(scene, tmp_path / "strobe.png", size=SIZE)
+    paper_checks(load(path), scene, 3.0)
+
+
+class TurningPaper(alfred.Paper):
+    """v = (t - 1, 2 - 2t) = (t - 1)(1, -2): he walks up-left, stops at t = 1 s, turns back."""
+
+    v0 = Vector(-1.0, 2.0)
+
+
+def test_paper_alfred_keeps_his_heading_when_he_stops():
+    scene = TurningPaper()
+    # At the stop he keeps the way he was walking, -a = (-1, 2), not a direction from 0 / 0.
+    assert scene.heading(1.0, Vector(0.0, 0.0)) == pytest.approx(math.degrees(math.atan2(2, -1)))
+    for k, t, surface in iter_frames(scene, fps=2, seconds=2.0, size=SIZE):
+        _, axis, _, _ = long_axis((pygame.surfarray.array3d(surface) == alfred.ANT_BODY).all(-1))
+        # Up and left (pixels (-1, -2)) until he stops, down and right (1, 2) after.
+        expected = np.array([-1.0, -2.0]) if t <= 1.0 else np.array([1.0, 2.0])
+        assert angle_between(axis, expected) <= 5.0, (k, t, axis)
+    # From rest he faces the way he is about to walk (a); with no motion at all, +x.
+    resting = alfred.Paper()
+    resting.v0 = Vector(0.0, 0.0)
+    assert resting.heading(0.0, Vector(0.0, 0.0)) == pytest.approx(math.degrees(math.atan2(-2, 1)))
+    resting.a = Vector(0.0, 0.0)
+    assert resting.heading(0.0, Vector(0.0, 0.0)) == 0.0
+    assert resting.heading(2.0, Vector(0.0, 0.0)) == 0.0
 
 
 def test_paper_velocity_is_tangent_to_the_path():

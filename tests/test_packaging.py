@@ -25,7 +25,12 @@ def _shipped(path: Path) -> bool:
 
 
 def test_every_sprite_the_demos_load_is_package_data() -> None:
-    sprites = [alfred.ASSETS / "ant.png", alfred.ASSETS / "ant_small.png", car.ASSETS / "car.png"]
+    sprites = [
+        alfred.ASSETS / "ant.png",
+        alfred.ASSETS / "ant_small.png",
+        alfred.ASSETS / "ant_top.png",
+        car.ASSETS / "car.png",
+    ]
     for sprite in sprites:
         assert sprite.is_file(), sprite
         assert _shipped(sprite), f"{sprite} would be missing from an installed wheel"
