@@ -33,7 +33,7 @@ STILLS = [
     ("car-main-street", ["car", "--scene", "main-street"], 120),
     ("fireworks", ["fireworks", "--scene", "show", "--seed", "7"], 45),
     ("stability-orbits", ["stability", "--scene", "orbits"], 60),
-    ("crumb", ["crumb", "--seconds", "8"], 55),
+    ("crumb", ["crumb", "--seconds", "8"], 62),
 ]
 
 

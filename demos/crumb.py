@@ -75,6 +75,9 @@ class CrumbGame:
         self.world.add_force(Wind(air_velocity=gust, k=K))  # Alfred's mass is 1
         self.crumb = self._new_crumb()
         self.score = Score()
+        #: The way Alfred faces (degrees counter-clockwise from +x): his velocity's direction,
+        #: kept while he stands still (a zero velocity has no direction).
+        self.heading = 90.0
 
     @property
     def start(self) -> Vector:
@@ -96,7 +99,10 @@ class CrumbGame:
         self.alfred.own_acc = direction * PUSH
 
     def update(self) -> None:
-        """Apply the rules after the physics steps: eat the crumb, fall off the edge."""
+        """Apply the rules after the physics steps: eat the crumb, fall off the edge, turn."""
+        vel = self.alfred.vel
+        if vel.magnitude() > 1e-6:
+            self.heading = math.degrees(math.atan2(vel.y, vel.x))
         pos = self.alfred.pos
         if pos.distance_to(self.crumb) < REACH:
             self.score.crumbs += 1
@@ -118,11 +124,11 @@ class CrumbGame:
         draw_dot(surface, camera.point(self.crumb), 6, CRUMB_COLOUR, outline=INK)
         here = self.world.position_of(self.alfred, alpha)
         vel = self.alfred.vel
-        sprite = ant_sprite(small=True)
-        if vel.x < 0:  # the sprite faces +x: mirror it when Alfred walks left
-            sprite = pygame.transform.flip(sprite, True, False)
+        # Seen from above, head to +x: rotate turns him counter-clockwise on screen (y down)
+        # while the camera flips y, so the world angle needs no change (see Paper.facing).
+        sprite = pygame.transform.rotate(ant_sprite(top=True), self.heading)
+        draw_vector(surface, camera, here, vel, 0.3, VELOCITY)  # from under him, ahead
         draw_sprite(surface, sprite, camera.point(here))
-        draw_vector(surface, camera, here, vel, 0.3, VELOCITY)
         air = gust(self.world.t)
         draw_text(
             surface,

@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pygame
 import pytest
+from pixels import angle_between, long_axis
 
 from demos import alfred
 from engine import Vector
@@ -149,30 +150,6 @@ def test_sprint_ants_reach_the_end_at_4_s_and_sqrt_20_s(tmp_path):
                 first_at_end[ant.short] = k / fps
     assert first_at_end["Euler"] == 4.0
     assert first_at_end["exact"] == math.ceil(math.sqrt(20.0) * fps) / fps  # 4.5 s at 20 fps
-
-
-def long_axis(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, float, float]:
-    """Centroid (x, y) of a mask's pixels, the unit vector along their long axis pointing to
-    the end that reaches further from the centroid, and how far (px) each end reaches."""
-    xs, ys = np.nonzero(mask)
-    assert len(xs) > 20, "no ant in the picture"
-    points = np.stack([xs, ys], axis=1).astype(float)
-    centroid = points.mean(axis=0)
-    # The principal axis: the eigenvector of the covariance of the coordinates with the larger
-    # eigenvalue (the direction along which the pixels spread most).
-    values, vectors = np.linalg.eigh(np.cov((points - centroid).T))
-    assert values[1] > 4 * values[0], "the pixels are not elongated: no long axis to measure"
-    axis = vectors[:, 1]
-    along = (points - centroid) @ axis
-    if along.max() < -along.min():
-        axis, along = -axis, -along
-    return centroid, axis, float(along.max()), float(-along.min())
-
-
-def angle_between(u: np.ndarray, v: np.ndarray) -> float:
-    """Angle (degrees, 0 to 180) between two pixel directions."""
-    cos = np.dot(u, v) / (np.linalg.norm(u) * np.linalg.norm(v))
-    return math.degrees(math.acos(max(-1.0, min(1.0, float(cos)))))
 
 
 def test_the_top_view_sprite_faces_plus_x_with_his_body_centred():

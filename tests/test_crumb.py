@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pygame
 import pytest
+from pixels import angle_between, long_axis
 
 import demos.crumb as crumb
 from demos.alfred import ANT_BODY
@@ -67,20 +68,38 @@ def test_steering_is_normalised_so_diagonals_are_not_faster() -> None:
 def test_alfred_is_drawn_where_the_camera_puts_him() -> None:
     init_headless()
     game = crumb.CrumbGame(seed=2)
-    for _ in range(90):
-        game.steer(*game.autopilot())
-        game.world.step(crumb.DT)
-    size = (320, 180)
+    size = (640, 360)
     camera = Camera.fit(crumb.PAPER, (16, 40, size[0] - 32, size[1] - 56))
     surface = pygame.Surface(size)
-    game.draw(surface, camera, alpha=1.0)
-    pixels = pygame.surfarray.pixels3d(surface)
-    xs, ys = np.nonzero(np.all(pixels == ANT_BODY, axis=2))
-    del pixels
-    assert len(xs) > 0, "Alfred's body colour is nowhere in the frame"
-    px, py = camera.point(game.alfred.pos)
-    # The sprite is centred on his position: his body pixels surround that point.
-    assert abs(xs.mean() - px) < 12 and abs(ys.mean() - py) < 8
+    directions = []
+    for _ in range(4):
+        for _ in range(45):
+            game.steer(*game.autopilot())
+            game.world.step(crumb.DT)
+            game.update()
+        game.draw(surface, camera, alpha=1.0)
+        pixels = pygame.surfarray.pixels3d(surface)
+        body = np.all(pixels == ANT_BODY, axis=2)
+        del pixels
+        # Seen from above and centred on his position, his head along his velocity: the
+        # camera turns the world's (vx, vy), y up, into the pixel direction (vx, -vy).
+        centroid, axis, _, _ = long_axis(body)
+        assert np.abs(centroid - np.array(camera.point(game.alfred.pos))).max() < 2.0
+        vel = game.alfred.vel
+        assert vel.magnitude() > 1.0  # walking, so he has a direction to face
+        assert angle_between(axis, np.array([vel.x, -vel.y])) < 6.0
+        directions.append(math.degrees(math.atan2(vel.y, vel.x)))
+    assert max(directions) - min(directions) > 30  # he turned, and the sprite turned with him
+
+
+def test_standing_still_he_keeps_facing_the_way_he_walked() -> None:
+    game = crumb.CrumbGame(seed=2)
+    game.alfred.vel = Vector(-3.0, 0.0)
+    game.update()
+    assert game.heading == pytest.approx(180.0)
+    game.alfred.vel = Vector(0.0, 0.0)
+    game.update()
+    assert game.heading == pytest.approx(180.0)
 
 
 def test_headless_runs_are_byte_identical_and_eat_crumbs(tmp_path) -> None:
