@@ -176,8 +176,12 @@ def test_a_failure_while_later_frames_finish_leaves_no_gap(tmp_path, monkeypatch
     # real full disk can produce. A gap would make ffmpeg stop at frame 2 and hide 4 and 5.
     real_replace = os.replace
     later_done = threading.Event()
+    # Every rename waits until all six frames are queued: the pool starts a new thread only when
+    # none is idle, so held workers make it start all four, whatever the machine's timing.
+    all_queued = threading.Event()
 
     def replace(src, dst):
+        assert all_queued.wait(timeout=30), "the frames were never all queued"
         name = Path(dst).name
         if name == frame_name(3):
             assert later_done.wait(timeout=30), "frames 4 and 5 were never written"
@@ -192,6 +196,7 @@ def test_a_failure_while_later_frames_finish_leaves_no_gap(tmp_path, monkeypatch
         with writer:
             for seed in range(6):
                 writer.write(picture(seed))
+            all_queued.set()
     assert later_done.is_set()  # the out-of-order case really happened
     assert "frame_00003.png" in str(info.value) and "3 whole frame(s) kept" in str(info.value)
     assert writer.written == 3
