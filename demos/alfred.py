@@ -703,21 +703,20 @@ class Paper(Scene):
         """Alfred at equal time steps along his path, older images fainter, each labelled t."""
         self.draw_paper(surface, max(times))
         n = len(times)
+        # Each time's age (0 newest, 1 oldest), pixel position and velocity (in/s).
+        states = []
         for i, t in enumerate(times):
             pos, vel = self.exact(t)
-            age = 1.0 - i / max(1, n - 1)
-            anchor = self.camera.to_px(pos.x, pos.y)
+            states.append((1.0 - i / max(1, n - 1), self.camera.to_px(pos.x, pos.y), vel))
+        for age, anchor, _ in states:  # every arrow first, under all the ants
             draw_arrow(surface, self.camera.to_px(0.0, 0.0), anchor, _fade(POSITION, age), 2, 8)
-        # Each image's anchor, and where its pixels are (a rotated image is mostly empty corners).
-        drawn: list[tuple[tuple[float, float], pygame.Rect, pygame.mask.Mask]] = []
-        for i, t in enumerate(times):
-            pos, vel = self.exact(t)
-            age = 1.0 - i / max(1, n - 1)
-            anchor = self.camera.to_px(pos.x, pos.y)
+        # Where each image's pixels are (a rotated image is mostly empty corners).
+        drawn: list[tuple[pygame.Rect, pygame.mask.Mask]] = []
+        for t, (age, anchor, vel) in zip(times, states, strict=True):
             image = self.facing(t, vel)
             rect = draw_sprite(surface, image, anchor, "center", alpha=round(255 - 175 * age))
             draw_dot(surface, anchor, 3, INK)
-            drawn.append((anchor, rect, pygame.mask.from_surface(image)))
+            drawn.append((rect, pygame.mask.from_surface(image)))
         # Each label goes beside its image, across his heading, where it covers no other ant
         # and no label: first on the outside of the bend (away from a, where the path is not),
         # then the inside, a little further out at each try; if none is free, the first place
@@ -726,15 +725,16 @@ class Paper(Scene):
         reach = self.sprite.get_height() / 2  # his legs' reach either side of his axis (px)
         ax, ay = self.a.x, -self.a.y  # a as a pixel direction (pixel y points down)
         labels: list[pygame.Rect] = []
-        for i, (t, (anchor, _, _)) in enumerate(zip(times, drawn, strict=True)):
+        for i, t in enumerate(times):
+            _, anchor, vel = states[i]
             text = f"t = {_number(t)} s"
             box = pygame.Rect((0, 0), font(size).size(text))
-            theta = math.radians(self.heading(t, self.exact(t)[1]))
+            theta = math.radians(self.heading(t, vel))
             # His heading in pixels is (cos theta, -sin theta) (see facing); across it are
             # (sin theta, cos theta) and its opposite (their dot product with it is 0).
             across = [(math.sin(theta), math.cos(theta)), (-math.sin(theta), -math.cos(theta))]
             across.sort(key=lambda d: d[0] * ax + d[1] * ay)  # against a first
-            others = [(rect, mask) for k, (_, rect, mask) in enumerate(drawn) if k != i]
+            others = drawn[:i] + drawn[i + 1 :]
             places = []
             for gap in (2, 6, 10, 14):
                 for dx, dy in across:

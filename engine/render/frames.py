@@ -270,7 +270,6 @@ class FrameWriter:
         self._error: FrameWriteError | None = None
         self._failed_at: int | None = None  # the lowest frame index that could not be written
         self._done = 0  # frames renamed into place
-        self._pending: set[Future[None]] = set()
         self._scratch = threading.local()  # each worker's reusable arrays
         self._closed = False
 
@@ -308,8 +307,6 @@ class FrameWriter:
         self.count += 1
         self._slots.acquire()
         future = self._pool.submit(self._encode_and_write, index, path, grab)
-        with self._lock:
-            self._pending.add(future)
         future.add_done_callback(self._finished)
         return path
 
@@ -332,9 +329,7 @@ class FrameWriter:
                     self._failed_at = index
 
     def _finished(self, future: Future[None]) -> None:
-        with self._lock:
-            self._pending.discard(future)
-        self._slots.release()
+        self._slots.release()  # done or cancelled: its place in flight is free
 
     def _raise_if_failed(self) -> None:
         if self._error is not None:

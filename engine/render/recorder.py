@@ -17,7 +17,7 @@ from pathlib import Path
 import pygame
 
 from engine.loop import FixedStep, RealClock, VirtualClock
-from engine.render.frames import FRAME_PATTERN, FrameWriter, save_png
+from engine.render.frames import FrameWriter, save_png
 from engine.render.headless import init_headless, init_window
 from engine.render.progress import Progress
 from engine.render.scene import Scene
@@ -180,8 +180,9 @@ def record(
         report = None
     else:
         report = progress
+    writer = FrameWriter(out_dir, overwrite=overwrite)
     try:
-        with FrameWriter(out_dir, overwrite=overwrite) as writer:
+        with writer:
             try:
                 for index, _t, surface in iter_frames(scene, fps, seconds, size):
                     writer.write(surface)
@@ -192,10 +193,8 @@ def record(
                     bar.done()
     except KeyboardInterrupt as stop:
         # The writer has stopped: frames being encoded were finished, queued ones dropped,
-        # and every file is renamed into place only once whole. Count what is on disk.
-        folder = Path(out_dir)
-        written = sum(1 for name in os.listdir(folder) if FRAME_PATTERN.fullmatch(name))
-        raise RecordingInterrupted(folder, written) from stop
+        # and every file is renamed into place only once whole, without gaps.
+        raise RecordingInterrupted(writer.folder, writer.written) from stop
     return Recording(Path(out_dir), writer.count, fps, seconds, size)
 
 
