@@ -56,7 +56,7 @@ class ForceModel:
     mass: Any  # per-body mass, shaped like x
     all_constant: bool  # every force is constant: the closed form is exact
     omega: np.ndarray  # per-body sqrt(sum stiffness / m) (rad/s)
-    rate: np.ndarray  # per-body sum damping / m (1/s)
+    rate: np.ndarray  # per-body sum damping / m (1/s), of every force, for the stability limits
     folded: Any  # the part of a0 the forces give (a0 minus the bodies' own accelerations)
     #: How many times ``accel`` has run: the supported way to count force evaluations.
     evaluations: int = 0
@@ -80,9 +80,13 @@ class ForceModel:
         stiffness = np.zeros(n)
         general: list[Attachment] = []
         all_constant = True
+        drag = np.zeros(n)  # the folded drag coefficients (N s/m)
         for force, rows in attached:
             sel = slice(None) if rows is None else rows
+            # Every force says its stiffness and damping for the stability limits, folded
+            # or not (a gusty wind, a user's callable force that declares them).
             stiffness[sel] += force.stiffness
+            damping[sel] += force.damping
             all_constant = all_constant and force.constant
             parts = force.affine()
             if parts is None:
@@ -91,11 +95,12 @@ class ForceModel:
             accel, f0, k = parts
             # m a = m a0 + f0 - k v  =>  a = a0 + f0 / m - (k / m) v
             folded[sel] += _array(accel) + _array(f0) / mass[sel]
-            damping[sel] += k
+            drag[sel] += k
         rate = damping / masses if n else damping
         c = None
-        if np.any(rate):
-            c = rate if len(shape) == 1 else np.repeat(rate[:, None], shape[1], axis=1)
+        if np.any(drag):
+            c_rows = drag / masses
+            c = c_rows if len(shape) == 1 else np.repeat(c_rows[:, None], shape[1], axis=1)
         omega = np.sqrt(stiffness / masses) if n else stiffness
         return cls(own_acc + folded, c, general, mass, all_constant, omega, rate, folded)
 

@@ -32,7 +32,14 @@ from .stability import (
     max_stable_dt,
 )
 
-__all__ = ["MethodPolicy", "METHODS", "AUTO_ORDER", "stability_pairs", "limit_text"]
+__all__ = [
+    "MethodPolicy",
+    "METHODS",
+    "AUTO_ORDER",
+    "stability_pairs",
+    "limit_text",
+    "instability",
+]
 
 #: Every name ``World(integrator=...)`` accepts.
 METHODS: tuple[str, ...] = (*INTEGRATORS, "exact", "auto")
@@ -218,28 +225,43 @@ class MethodPolicy:
 
     def warn_if_unstable(self, name: str, dt: float, version: int, model: ForceModel) -> None:
         """Warn once per (method, dt, version) when ``name`` is unstable at ``dt``."""
-        bad = self.first_unstable(name, model, dt)
         key = (name, dt, version)
-        if bad is None or key in self.warned:
+        if key in self.warned:
             return
-        self.warned.add(key)
-        stable = [
-            other
-            for other in INTEGRATORS
-            if other != name and self.first_unstable(other, model, dt) is None
-        ]
-        step = self.integrator(name)
-        hopeless = max_stable_dt(step, *bad) == 0.0
-        advice = "a smaller dt will not help" if hopeless else "use a smaller dt"
-        if stable:
-            joint = "; use" if hopeless else ", or"
-            advice += f"{joint} integrator={stable[0]!r}, which is stable at this dt"
-        else:
-            advice += "; no integrator here is stable at this dt"
-        warnings.warn(
-            f"{name} is unstable at dt={dt:g} s for the forces in this World "
-            f"({limit_text(step, name, bad[0], bad[1], dt)}); the run continues and will "
-            f"blow up: {advice}",
-            StabilityWarning,
-            stacklevel=4,
-        )
+        message = instability(self.integrator, name, model, dt, "this World")
+        if message is not None:
+            self.warned.add(key)
+            warnings.warn(message, StabilityWarning, stacklevel=4)
+
+
+def instability(
+    integrator: Callable[[str], Integrator], name: str, model: ForceModel, dt: float, where: str
+) -> str | None:
+    """Why ``name`` blows up at ``dt`` (s) on ``model``'s springs and drags, or None if stable.
+
+    The one stability check the World and Particles share: the message names the method, dt,
+    the limit and a method that is stable at this dt, if any. ``integrator(name)`` gives the
+    step function behind a name; ``where`` names what holds the forces.
+    """
+    pairs = stability_pairs(model.omega, model.rate)
+    step = integrator(name)
+    bad = first_unstable(step, pairs, dt)
+    if bad is None:
+        return None
+    stable = [
+        other
+        for other in INTEGRATORS
+        if other != name and first_unstable(integrator(other), pairs, dt) is None
+    ]
+    hopeless = max_stable_dt(step, *bad) == 0.0
+    advice = "a smaller dt will not help" if hopeless else "use a smaller dt"
+    if stable:
+        joint = "; use" if hopeless else ", or"
+        advice += f"{joint} integrator={stable[0]!r}, which is stable at this dt"
+    else:
+        advice += "; no integrator here is stable at this dt"
+    return (
+        f"{name} is unstable at dt={dt:g} s for the forces in {where} "
+        f"({limit_text(step, name, bad[0], bad[1], dt)}); the run continues and will "
+        f"blow up: {advice}"
+    )
