@@ -56,11 +56,29 @@ _mul, _add = np.multiply, np.add
 #: The methods the World steps by its affine kernel when every force is folded.
 _EULERS = ("semi_implicit_euler", "explicit_euler")
 
-#: A state whose entries all stay below this in size cannot overflow in one more step of
-#: the affine kernel (World._step_affine), so that step needs no finiteness check.
+#: Entries below this in size cannot overflow in one more step of the affine kernel.
 _SAFE = 1e300
-#: Relative slack on the kernel's bound, far above the round-off of its few operations.
-_SLACK = 1.0 + 1e-12
+
+
+def _safe_steps(x_max: float, v_max: float, d: float, b: float, dt: float) -> int:
+    """How many affine Euler steps surely keep every entry below 1e300 (0 to 2^20).
+
+    From |x| <= X, |v| <= V and v' = D v + B, x' = x + v dt (v old or new), with d = max |D|
+    and b = max |B|: after m steps |v| <= q (V + m b) with q = max(1, d)^m, and
+    |x| <= X + m dt q (V + m b). The bound doubles m while it stays below 1e300 / 2 (the
+    factor 2 is far above the round-off of 2^20 steps, ~1e-10 relative).
+    """
+    best = 0
+    m = 1
+    while m <= 2**20:
+        q = max(1.0, d) ** m if d <= 1.0 or m * math.log(d) < 690.0 else math.inf
+        v_m = q * (v_max + m * b)
+        x_m = x_max + m * dt * v_m
+        if not 2.0 * (x_m + v_m) < _SAFE:
+            break
+        best = m
+        m *= 2
+    return best
 
 
 def check_dt(dt: Any) -> float:
@@ -96,7 +114,7 @@ class _Attached:
     bodies: list[Body] | None  # None: every body in the world
 
 
-@dataclass
+@dataclass(slots=True)
 class _Kernel:
     """An Euler step for affine forces at one dt, folded: v' = D v + B (World._step_affine)."""
 
@@ -108,7 +126,8 @@ class _Kernel:
     kick: Any  # B = a0 dt, shaped like v
     damp_max: float  # max |D| (1.0 without drag)
     kick_max: float  # max |B|
-    n_limit: int  # steps of this dt past which the time might overflow
+    budget: int = 0  # steps left of those proved not to overflow
+    granted: int = 0  # steps granted in all; granted - budget were taken (one evaluation each)
 
 
 class World:
@@ -148,7 +167,6 @@ class World:
         self._version = 0  # bumped whenever bodies, forces or masses change
         self._fast: tuple[Any, ...] | None = None  # (dt, version, method, step, model, kernel)
         self._kernel: _Kernel | None = None
-        self._bound: tuple[float, float] | None = None  # max |x|, max |v| bounds, or unknown
         self._huge = False  # the state is near overflow: step with numpy's warnings off
 
     # -- bodies and forces ----------------------------------------------------------------
@@ -289,17 +307,29 @@ class World:
         """Bodies, forces or masses changed: rebuild the force model and the choice."""
         if self._model is not None:
             self._evaluations += self._model.evaluations
+        self._drop_kernel()
         self._model = None
         self._anchor = None
         self._policy.choice = None
-        self._kernel = None
-        self._bound = None
         self._version += 1
 
+    def _drop_kernel(self) -> None:
+        k = self._kernel
+        if k is not None:
+            self._evaluations += k.granted - k.budget
+        self._kernel = None
+
     def _state_written(self) -> None:
-        """A position or velocity was set by hand: the closed form and the bound start anew."""
+        """A position or velocity was set by hand: the closed form and the kernel start anew."""
         self._anchor = None
-        self._bound = None
+        self._void_budget()
+
+    def _void_budget(self) -> None:
+        """The kernel's step budget was proved for the state before: take back what is left."""
+        k = self._kernel
+        if k is not None:
+            k.granted -= k.budget
+            k.budget = 0
 
     def _own_acc_written(self, row: int) -> None:
         """One body's own acceleration changed: one entry of a0, no recompiling."""
@@ -307,7 +337,7 @@ class World:
             assert self._store is not None
             self._model.set_own_acc(row, self._store.own[row])
         self._anchor = None
-        self._kernel = None
+        self._drop_kernel()
 
     def _ready(self) -> ForceModel:
         if self._model is None:
@@ -348,7 +378,9 @@ class World:
         RK4, 0 for the closed form); "auto" with a tolerance adds one for each method it
         predicts at a new dt.
         """
-        return self._evaluations + (0 if self._model is None else self._model.evaluations)
+        k = self._kernel
+        kernel = 0 if k is None else k.granted - k.budget
+        return self._evaluations + kernel + (0 if self._model is None else self._model.evaluations)
 
     # -- choosing the method ------------------------------------------------------------------
     def _integrator_named(self, name: str) -> Integrator:
@@ -421,36 +453,33 @@ class World:
         held, and raises SimulationDiverged, keeping the last finite state, if the
         state stops being finite.
         """
-        fast = self._fast
+        k = self._kernel
         # type(dt) is float: True == 1.0 and 1 == 1.0, so without it step(True) after
         # step(1.0) would skip check_dt and run a step of "True" seconds.
+        if k is not None and k.budget > 0 and type(dt) is float and k.dt == dt:
+            # The affine kernel (derived in _prepare_affine), inlined: the fixed cost per step
+            # is what small scenes pay, so this path makes no call it can avoid. A kernel
+            # exists only while nothing has changed since it was made (_changed_structure
+            # drops it), and its budget only while no state was written by hand.
+            k.budget -= 1
+            store = k.store
+            v, x, x_new = store.v, store.x, store.prev_x
+            if k.explicit:
+                _mul(v, dt, x_new)
+                _add(x, x_new, x_new)
+            if k.damp is not None:
+                _mul(v, k.damp, v)
+            _add(v, k.kick, v)
+            if not k.explicit:
+                _mul(v, dt, x_new)
+                _add(x, x_new, x_new)
+            store.prev_x, store.x = x, x_new
+            self._n += 1
+            self._steps += 1
+            return
+        fast = self._fast
         if fast is not None and type(dt) is float and fast[0] == dt and fast[1] == self._version:
-            # The common case: same dt, nothing changed since the last step.
-            k = self._kernel
-            bound = self._bound
-            if k is not None and bound is not None and self._n < k.n_limit:
-                # The affine kernel (derived in _step_affine), inlined: the fixed cost per
-                # step is what small scenes pay, so this path makes no call it can avoid.
-                v_max = (bound[1] * k.damp_max + k.kick_max) * _SLACK
-                x_max = (bound[0] + (v_max if v_max > bound[1] else bound[1]) * dt) * _SLACK
-                if x_max + v_max < _SAFE:
-                    store = k.store
-                    v, x, x_new = store.v, store.x, store.prev_x
-                    if k.explicit:
-                        _mul(v, dt, x_new)
-                        _add(x, x_new, x_new)
-                    if k.damp is not None:
-                        _mul(v, k.damp, v)
-                    _add(v, k.kick, v)
-                    if not k.explicit:
-                        _mul(v, dt, x_new)
-                        _add(x, x_new, x_new)
-                    store.prev_x, store.x = x, x_new
-                    self._bound = (x_max, v_max)
-                    self._n += 1
-                    self._steps += 1
-                    self._evaluations += 1
-                    return
+            # Same dt, nothing changed since the last step.
             _, _, name, step, model, affine = fast
         else:
             dt = check_dt(dt)
@@ -485,21 +514,18 @@ class World:
         integrator functions compute it.) Four in-place array operations, no temporaries; the
         new positions go into the buffer of the old previous positions.
 
-        No finiteness check is needed: if every |x| <= X and |v| <= V now, then after the
-        step |v'| <= max|D| V + max|B| and |x'| <= X + max(V, |v'|) dt. The World carries these
-        bounds from step to step, with a slack far above round-off, and takes this path only
-        while they stay below 1e300, where one step cannot overflow; past that it falls back
-        to the general step, which checks every entry. ``step`` runs the kernel inline.
+        No finiteness check is needed: the kernel gets a budget of steps proved not to
+        overflow (``_safe_steps``), and is rebuilt, or the checked general step taken, when it
+        is spent or anything is written by hand.
         """
         store = self._store
         assert store is not None
         k = self._kernel
         if k is None or k.dt != dt or k.model is not model or k.store is not store:
+            self._drop_kernel()
             damp = None if model.c is None else 1.0 - model.c * dt
             kick = model.a0 * dt
             damp_max = 1.0 if damp is None else float(np.abs(damp).max())
-            # The last n for which t = t_base + (n + 1) dt stays finite, with room to spare.
-            n_limit = int(min((1e308 - self._t_base) / dt, 2.0**62))
             k = self._kernel = _Kernel(
                 dt,
                 model,
@@ -509,21 +535,18 @@ class World:
                 kick,
                 damp_max,
                 float(np.abs(kick).max()),
-                n_limit,
             )
             self._anchor = None
         if store.prev_x is store.x:
             store.prev_x = store.x.copy()
-        bound = self._bound
-        if bound is None:
-            bound = (float(np.abs(store.x).max()), float(np.abs(store.v).max()))
-        v_max = (bound[1] * k.damp_max + k.kick_max) * _SLACK
-        x_max = (bound[0] + max(v_max, bound[1]) * dt) * _SLACK
-        if not (x_max + v_max < _SAFE and self._n < k.n_limit):
-            self._bound = None
-            return False
-        self._bound = bound
-        return True
+        x_max, v_max = float(np.abs(store.x).max()), float(np.abs(store.v).max())
+        budget = _safe_steps(x_max, v_max, k.damp_max, k.kick_max, dt)
+        # ... and the time t_base + (n + 1) dt must stay a finite float too.
+        budget = min(budget, int(min((1e308 - self._t_base) / dt, 2.0**62)) - self._n)
+        budget = max(budget, 0)
+        k.granted += budget - k.budget
+        k.budget = budget
+        return budget > 0
 
     def _step_general(
         self, dt: float, name: str, step: Integrator | None, model: ForceModel
@@ -551,7 +574,7 @@ class World:
             x1, v1 = step(store.x, store.v, model.accel, t0, dt)
         self._huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
         store.prev_x, store.x, store.v = store.x, x1, v1
-        self._bound = None
+        self._void_budget()
 
     def _check_finite(self, x: Any, v: Any, name: str, dt: float, t: float) -> float:
         """Raise SimulationDiverged if x or v has a nan or inf; else return |sum of x and v|."""
