@@ -220,12 +220,16 @@ class MethodPolicy:
             name, reason = self.choose(dt, model, state)
             self.choice = (key, name, reason)
             if name != "exact":
-                self.warn_if_unstable(name, dt, version, model)
+                self.warn_if_unstable(name, dt, model)
         return self.choice[1]
 
-    def warn_if_unstable(self, name: str, dt: float, version: int, model: ForceModel) -> None:
-        """Warn once per (method, dt, version) when ``name`` is unstable at ``dt``."""
-        key = (name, dt, version)
+    def warn_if_unstable(self, name: str, dt: float, model: ForceModel) -> None:
+        """Warn once per (method, dt, springs and drags held) when ``name`` is unstable at dt.
+
+        The key is what the warning is about, not when it was made, so a World restored from
+        a snapshot (which carries the keys) does not say it again.
+        """
+        key = (name, dt, tuple(stability_pairs(model.omega, model.rate)))
         if key in self.warned:
             return
         message = instability(self.integrator, name, model, dt, "this World")
