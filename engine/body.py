@@ -82,18 +82,56 @@ def coerce_mass(mass: Any) -> float:
     return checks.mass(mass)
 
 
+def _material(radius: Any, restitution: Any, friction: Any) -> tuple[float, float, float]:
+    """(radius >= 0, restitution in [0, 1], friction >= 0), checked, each error naming its name."""
+    r = checks.real(radius, "radius", nonneg=True)
+    e = checks.real(restitution, "restitution")
+    if not 0.0 <= e <= 1.0:
+        raise ValueError(
+            f"restitution must be in [0, 1] (0: no bounce, 1: elastic), got {restitution!r}"
+        )
+    return r, e, checks.real(friction, "friction", nonneg=True)
+
+
 class Body:
-    """A point particle: position (m), velocity (m/s), acceleration (m/s^2) and mass (kg).
+    """A particle: position (m), velocity (m/s), acceleration (m/s^2) and mass (kg).
 
     Units are the scene's own: inches and seconds for Alfred, metres and seconds for the car.
+    ``radius`` (length units, 0 for a point) gives it a size for contacts; ``restitution``
+    (0: no bounce, 1: elastic) and ``friction`` (Coulomb's mu, >= 0) are its material, combined
+    with a collider's by product (pymunk's rule). A round particle still has no rotation: its
+    friction slows its sliding, and nothing makes it spin.
     """
 
     # Position and velocity are kept as plain floats (y parts unused in 1D): a lone body's
     # step is then float arithmetic with no Vector made at all, and a Vector is made only
     # when someone reads pos or vel.
-    __slots__ = ("_px", "_py", "_vx", "_vy", "_acc", "_mass", "_dim", "_store", "_slot")
+    __slots__ = (
+        "_px",
+        "_py",
+        "_vx",
+        "_vy",
+        "_acc",
+        "_mass",
+        "_radius",
+        "_e",
+        "_mu",
+        "_dim",
+        "_store",
+        "_slot",
+    )
 
-    def __init__(self, position: Any, velocity: Any, acceleration: Any, mass: float = 1.0) -> None:
+    def __init__(
+        self,
+        position: Any,
+        velocity: Any,
+        acceleration: Any,
+        mass: float = 1.0,
+        *,
+        radius: float = 0.0,
+        restitution: float = 0.5,
+        friction: float = 0.5,
+    ) -> None:
         given = {"position": position, "velocity": velocity, "acceleration": acceleration}
         dims = {name: _dim_of(value) for name, value in given.items()}
         for name, d in dims.items():
@@ -116,6 +154,7 @@ class Body:
         self._store_vel(coerce_state(velocity, dim, "velocity"))
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
         self._mass: float = coerce_mass(mass)
+        self._radius, self._e, self._mu = _material(radius, restitution, friction)
         self._store: BodyStore | None = None  # set by the World that holds this body
         self._slot: int = -1
 
@@ -223,6 +262,21 @@ class Body:
         else:
             self._mass = m
 
+    @property
+    def radius(self) -> float:
+        """Radius (length units) for contacts; 0.0 for a point."""
+        return self._radius
+
+    @property
+    def restitution(self) -> float:
+        """Restitution e in [0, 1]: the fraction of the normal speed kept by a bounce."""
+        return self._e
+
+    @property
+    def friction(self) -> float:
+        """Coulomb friction coefficient mu >= 0."""
+        return self._mu
+
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:
         """Move this body on its own by ``dt`` seconds with semi-implicit Euler.
@@ -277,7 +331,8 @@ class Body:
         return f"Position: {self.pos}\nVelocity: {self.vel}\nAcceleration: {self.acc}\n"
 
     def __repr__(self) -> str:
+        size = "" if self._radius == 0.0 else f", radius={self._radius!r}"
         return (
             f"Body(position={self.pos!r}, velocity={self.vel!r}, "
-            f"acceleration={self.own_acc!r}, mass={self.mass!r})"
+            f"acceleration={self.own_acc!r}, mass={self.mass!r}{size})"
         )

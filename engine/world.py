@@ -126,8 +126,9 @@ class _Kernel:
     kick: Any  # B = a0 dt, shaped like v
     damp_max: float  # max |D| (1.0 without drag)
     kick_max: float  # max |B|
-    budget: int = 0  # steps left of those proved not to overflow
-    granted: int = 0  # steps granted in all; granted - budget were taken (one evaluation each)
+    n_stop: int = 0  # the World's step count (of this dt) up to which no step can overflow
+    n_from: int = 0  # the step count at which that proof was made
+    taken: int = 0  # steps taken under earlier proofs (one force evaluation each)
 
 
 class World:
@@ -160,7 +161,7 @@ class World:
         self._t_base = 0.0
         self._dt: float | None = None
         self._n = 0
-        self._steps = 0
+        self._steps_base = 0  # steps taken before the current run of equal dt
         self._model: ForceModel | None = None
         self._evaluations = 0  # force evaluations of models since replaced, and of the kernel
         self._anchor: tuple[Any, Any, float] | None = None  # (x0, v0, t0) for "exact"
@@ -314,9 +315,10 @@ class World:
         self._version += 1
 
     def _drop_kernel(self) -> None:
+        self._void_budget()
         k = self._kernel
         if k is not None:
-            self._evaluations += k.granted - k.budget
+            self._evaluations += k.taken
         self._kernel = None
 
     def _state_written(self) -> None:
@@ -328,8 +330,8 @@ class World:
         """The kernel's step budget was proved for the state before: take back what is left."""
         k = self._kernel
         if k is not None:
-            k.granted -= k.budget
-            k.budget = 0
+            k.taken += max(0, min(self._n, k.n_stop) - k.n_from)
+            k.n_stop = k.n_from = self._n
 
     def _own_acc_written(self, row: int) -> None:
         """One body's own acceleration changed: one entry of a0, no recompiling."""
@@ -379,7 +381,7 @@ class World:
         predicts at a new dt.
         """
         k = self._kernel
-        kernel = 0 if k is None else k.granted - k.budget
+        kernel = 0 if k is None else k.taken + max(0, min(self._n, k.n_stop) - k.n_from)
         return self._evaluations + kernel + (0 if self._model is None else self._model.evaluations)
 
     # -- choosing the method ------------------------------------------------------------------
@@ -443,7 +445,7 @@ class World:
     @property
     def steps(self) -> int:
         """How many steps have been taken."""
-        return self._steps
+        return self._steps_base + self._n
 
     def step(self, dt: float) -> None:
         """Advance every body by ``dt`` seconds (usually 1/60 or 1/120).
@@ -456,12 +458,11 @@ class World:
         k = self._kernel
         # type(dt) is float: True == 1.0 and 1 == 1.0, so without it step(True) after
         # step(1.0) would skip check_dt and run a step of "True" seconds.
-        if k is not None and k.budget > 0 and type(dt) is float and k.dt == dt:
+        if k is not None and self._n < k.n_stop and type(dt) is float and k.dt == dt:
             # The affine kernel (derived in _prepare_affine), inlined: the fixed cost per step
             # is what small scenes pay, so this path makes no call it can avoid. A kernel
             # exists only while nothing has changed since it was made (_changed_structure
             # drops it), and its budget only while no state was written by hand.
-            k.budget -= 1
             store = k.store
             v, x, x_new = store.v, store.x, store.prev_x
             if k.explicit:
@@ -475,7 +476,6 @@ class World:
                 _add(x, x_new, x_new)
             store.prev_x, store.x = x, x_new
             self._n += 1
-            self._steps += 1
             return
         fast = self._fast
         if fast is not None and type(dt) is float and fast[0] == dt and fast[1] == self._version:
@@ -492,7 +492,9 @@ class World:
             self._fast = (dt, self._version, name, step, model, affine)
         if dt != self._dt:
             # Fold the time so far into the base before counting steps of a new dt.
-            self._t_base, self._n, self._dt = self.t, 0, dt
+            self._void_budget()
+            self._t_base, self._steps_base = self.t, self._steps_base + self._n
+            self._n, self._dt = 0, dt
         if self._t_base + (self._n + 1) * dt == math.inf:
             raise ValueError(
                 f"dt must keep the time finite: a step of dt={dt!r} s from t={self.t!r} s would "
@@ -503,7 +505,6 @@ class World:
         if self._bodies:
             self._step_general(dt, name, step, model)
         self._n += 1
-        self._steps += 1
 
     def _prepare_affine(self, dt: float, model: ForceModel, name: str) -> bool:
         """Ready the affine Euler kernel for ``dt``; False if its next step might overflow.
@@ -543,9 +544,8 @@ class World:
         budget = _safe_steps(x_max, v_max, k.damp_max, k.kick_max, dt)
         # ... and the time t_base + (n + 1) dt must stay a finite float too.
         budget = min(budget, int(min((1e308 - self._t_base) / dt, 2.0**62)) - self._n)
-        budget = max(budget, 0)
-        k.granted += budget - k.budget
-        k.budget = budget
+        self._void_budget()
+        k.n_from, k.n_stop = self._n, self._n + max(budget, 0)
         return budget > 0
 
     def _step_general(
@@ -697,7 +697,7 @@ class World:
             t_base=self._t_base,
             dt=self._dt,
             n_since_base=self._n,
-            steps=self._steps,
+            steps=self.steps,
             anchor=anchor,
             warned=frozenset(self._policy.warned),
         )
@@ -726,7 +726,9 @@ class World:
             store.own = np.array(own_acc, dtype=float).reshape(store.x.shape)
         self._t_base = float(snapshot.t_base)
         self._dt = None if snapshot.dt is None else float(snapshot.dt)
-        self._n, self._steps = snapshot.n_since_base, snapshot.steps
+        self._void_budget()
+        self._n = snapshot.n_since_base
+        self._steps_base = snapshot.steps - snapshot.n_since_base
         self._changed_structure()
         if snapshot.anchor is not None:
             x0, v0, ta = snapshot.anchor
