@@ -1,6 +1,6 @@
 """Recording benchmark: the frame writer against ``pygame.image.save`` for the same frames.
 
-Run with ``python -m engine.bench render``. Both sides drive the same scene through the same
+Run with ``python -m demos.bench render``. Both sides drive the same scene through the same
 fixed-step loop and draw the same picture at 640x360 (a ruler, three plot panels, a moving body
 with its arrows, labels); the baseline saves each frame with ``pygame.image.save``, the recorder
 hands it to :class:`engine.render.FrameWriter` (pixels copied out, PNG encoded on worker
@@ -29,7 +29,7 @@ FPS = 30
 
 
 def _scene_class() -> type:
-    # Imported here: ``import engine.bench.render`` alone must not start pygame.
+    # Imported here: ``import demos.bench.render`` alone must not start pygame.
     from engine.render import (
         ACCELERATION,
         INK,
