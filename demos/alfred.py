@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -127,6 +127,67 @@ class Ant:
     short: str = ""  # a one-word name for the plots
     arrival: float = math.inf  # when he reached the end of the tube (s)
     stepped: bool = False  # a numerical integrator's ant: drawn between its steps as it moves
+    #: A stepped ant's states after each step so far: (t s, position in, velocity in/s).
+    history: list[tuple[float, float, float]] = field(default_factory=list)
+
+
+class Tubes:
+    """What a tube scene steps: every ant's World as one, and what the stepped ants did.
+
+    Speaks :class:`engine.Steppable`. ``step(dt)`` steps each World once (the sprint's two
+    ants live in two Worlds, one per method) and then notes each stepped ant's state and
+    when he reached the end; ``t`` is their common time, the scene's one clock; the snapshot
+    holds every World's with the histories and arrival times beside them.
+    """
+
+    def __init__(self, ants: list[Ant]) -> None:
+        self.ants = ants
+        self.worlds = list({id(ant.world): ant.world for ant in ants}.values())
+        for ant in ants:
+            if ant.stepped:
+                ant.history = [(0.0, ant.s0, ant.v0)]
+
+    @property
+    def t(self) -> float:
+        """The time (s): every World has taken the same steps."""
+        return self.worlds[0].t
+
+    def step(self, dt: float) -> None:
+        """One physics step of every ant's world; note when a stepped ant reaches the end."""
+        for world in self.worlds:
+            world.step(dt)
+        for ant in self.ants:
+            if ant.stepped:
+                t_prev, s_prev, _ = ant.history[-1]
+                s = float(ant.body.pos)
+                ant.history.append((ant.world.t, s, float(ant.body.vel)))
+                if ant.arrival == math.inf and s >= TUBE_LENGTH > s_prev:
+                    # Between steps the ant is drawn moving in a straight line, so he reaches
+                    # the end where that line crosses it.
+                    ant.arrival = t_prev + (TUBE_LENGTH - s_prev) / (s - s_prev) * (
+                        ant.world.t - t_prev
+                    )
+
+    def snapshot(self) -> tuple[list[Any], list[list[Any]], list[float]]:
+        """Every World's snapshot, in order, with each ant's history and arrival time."""
+        return (
+            [world.snapshot() for world in self.worlds],
+            [list(ant.history) for ant in self.ants],
+            [ant.arrival for ant in self.ants],
+        )
+
+    def restore(self, snapshot: tuple[list[Any], list[list[Any]], list[float]]) -> None:
+        """Return every ant and his history to the moment of ``snapshot``."""
+        states, histories, arrivals = snapshot
+        if len(states) != len(self.worlds) or len(arrivals) != len(self.ants):
+            raise ValueError(
+                f"the snapshot holds {len(states)} worlds and {len(arrivals)} ants but these "
+                f"tubes have {len(self.worlds)} and {len(self.ants)}: restore into the same scene"
+            )
+        for world, state in zip(self.worlds, states, strict=True):
+            world.restore(state)
+        for ant, history, arrival in zip(self.ants, histories, arrivals, strict=True):
+            ant.history, ant.arrival = list(history), arrival
 
 
 class TubeScene(Scene):
@@ -169,7 +230,6 @@ class TubeScene(Scene):
         self.size = size
         w, h = size
         self.ants = self.make_ants()
-        self.world = self.ants[0].world
         rows = len(self.ants)
         # With two tubes, a column on the left names them.
         self.label_width = round(0.2 * w) if rows > 1 else 0
@@ -207,42 +267,7 @@ class TubeScene(Scene):
             for i, (title, y_range, color) in enumerate(panels)
             if fits
         ]
-        self._history: dict[int, list[tuple[float, float, float]]] = {
-            id(ant): [(0.0, ant.s0, ant.v0)] for ant in self.ants if ant.stepped
-        }
-
-    def step(self, dt: float) -> None:
-        """One physics step of every ant's world; note when a stepped ant reaches the end."""
-        for world in {id(ant.world): ant.world for ant in self.ants}.values():
-            world.step(dt)
-        for ant in self.ants:
-            if ant.stepped:
-                history = self._history[id(ant)]
-                t_prev, s_prev, _ = history[-1]
-                s = float(ant.body.pos)
-                history.append((ant.world.t, s, float(ant.body.vel)))
-                if ant.arrival == math.inf and s >= TUBE_LENGTH > s_prev:
-                    # Between steps the ant is drawn moving in a straight line, so he reaches
-                    # the end where that line crosses it.
-                    ant.arrival = t_prev + (TUBE_LENGTH - s_prev) / (s - s_prev) * (
-                        ant.world.t - t_prev
-                    )
-
-    def snapshot(self) -> Any:
-        """Every ant's World, plus the histories and arrival times kept beside them."""
-        worlds = {id(ant.world): ant.world for ant in self.ants}
-        states = {key: world.snapshot() for key, world in worlds.items()}
-        history = {key: list(points) for key, points in self._history.items()}
-        return states, history, [ant.arrival for ant in self.ants]
-
-    def restore(self, snapshot: Any) -> None:
-        """Return every ant and his history to the moment of ``snapshot``."""
-        states, history, arrivals = snapshot
-        for ant in self.ants:
-            ant.world.restore(states[id(ant.world)])
-        self._history = {key: list(points) for key, points in history.items()}
-        for ant, arrival in zip(self.ants, arrivals, strict=True):
-            ant.arrival = arrival
+        self.world = Tubes(self.ants)
 
     # --- where an ant is -------------------------------------------------------------------
 
@@ -270,7 +295,7 @@ class TubeScene(Scene):
 
     def _stepped_at(self, ant: Ant, t: float) -> tuple[float, float]:
         # Position on the straight line between the steps around t, and that line's slope.
-        history = self._history[id(ant)]
+        history = ant.history
         for (t0, s0, _), (t1, s1, _) in zip(history, history[1:], strict=False):
             if t0 <= t <= t1:
                 return s0 + (s1 - s0) * (t - t0) / (t1 - t0), (s1 - s0) / (t1 - t0)
@@ -405,7 +430,7 @@ class TubeScene(Scene):
 
     def _stepped_curves(self, ant: Ant, end: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         # s: straight lines between the steps; v: the slope of each line, a staircase.
-        history = [h for h in self._history[id(ant)] if h[0] <= end]
+        history = [h for h in ant.history if h[0] <= end]
         ts = [history[0][0]]
         ss = [history[0][1]]
         vs = [self._stepped_at(ant, 0.0)[1]]
@@ -574,6 +599,7 @@ class Paper(Scene):
     s0 = Vector(0.0, 0.0)
     v0 = Vector(0.0, 2.0)
     a = Vector(1.0, -2.0)
+    world: World
 
     def build(self, size: tuple[int, int]) -> None:
         """The paper on the left, the numbers on the right."""
@@ -645,6 +671,7 @@ class Paper(Scene):
         t = self.time(alpha)
         self.draw_paper(surface, t)
         pos = self.world.position_of(self.alfred, alpha)
+        assert isinstance(pos, Vector)  # the paper is a 2D world
         # The world's velocity is at world.t, a step ahead; a is constant, so step it back.
         vel = kinematics.velocity(self.alfred.vel, self.a, t - self.world.t)
         # The path walked so far.

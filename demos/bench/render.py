@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from engine import Body, World
+from engine import Body, Vector, World
 
 __all__ = ["BenchScene", "report"]
 
@@ -51,6 +51,7 @@ def _scene_class() -> type:
         summary = "a lesson-like frame for timing the frame writer"
         duration = 3.0
         dt = 1.0 / 120.0
+        world: World
 
         def build(self, size: tuple[int, int]) -> None:
             self.world = World(integrator="exact")
@@ -71,7 +72,8 @@ def _scene_class() -> type:
             surface.fill(PAPER)
             draw_text(surface, "Benchmark frame", (12, 8), 24)
             draw_text(surface, f"t = {t:.2f} s", (surface.get_width() - 12, 8), 26, INK, "topright")
-            s = float(self.world.position_of(self.body, alpha))
+            s = self.world.position_of(self.body, alpha)
+            assert not isinstance(s, Vector)  # a 1D world
             draw_ruler(surface, self.camera, 0.0, 10.0, -0.3, unit="in")
             draw_dot(surface, self.camera.to_px(s, 0.1), 9, (156, 66, 33))
             draw_vector(surface, self.camera, (s, 0.8), 0.5 + t, 1.0, VELOCITY, "v")
