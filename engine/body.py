@@ -8,7 +8,8 @@ Out of a World a Body just stores what it is given. Once added to a
 :class:`engine.World`, its ``pos`` and ``vel`` read and write the world's live
 state, and ``acc`` reads the total acceleration at this instant: the body's own
 constant acceleration (the ``acceleration`` it was made with, kept as
-``own_acc``) plus the forces' pull divided by the mass.
+``own_acc``) plus the forces' pull divided by the mass. In a World the Body is a handle: the
+World's arrays hold its state, mass and own acceleration (``engine.store``).
 
 >>> b = Body(Vector(0, 0), Vector(1, 0), Vector(0, 0))
 >>> print(b)
@@ -26,9 +27,11 @@ import math
 from numbers import Real
 from typing import TYPE_CHECKING, Any, cast
 
+from . import checks
 from .vector import Vector, _as_pair, _new
 
 if TYPE_CHECKING:
+    from .store import BodyStore
     from .world import World
 
 __all__ = ["Body", "State"]
@@ -76,15 +79,7 @@ def coerce_state(value: Any, dim: int, name: str) -> State:
 
 def coerce_mass(mass: Any) -> float:
     """Return ``mass`` as a positive finite float (kilograms, or the scene's mass unit)."""
-    if isinstance(mass, bool) or not isinstance(mass, Real):
-        raise TypeError(f"mass must be a positive real number, got {type(mass).__name__} {mass!r}")
-    try:
-        m = float(mass)
-    except OverflowError:  # an int beyond the float range
-        m = math.inf
-    if not (math.isfinite(m) and m > 0.0):
-        raise ValueError(f"mass must be positive and finite (e.g. 1.0), got {mass!r}")
-    return m
+    return checks.mass(mass)
 
 
 class Body:
@@ -96,7 +91,7 @@ class Body:
     # Position and velocity are kept as plain floats (y parts unused in 1D): a lone body's
     # step is then float arithmetic with no Vector made at all, and a Vector is made only
     # when someone reads pos or vel.
-    __slots__ = ("_px", "_py", "_vx", "_vy", "_acc", "_mass", "_dim", "_world", "_index")
+    __slots__ = ("_px", "_py", "_vx", "_vy", "_acc", "_mass", "_dim", "_store", "_slot")
 
     def __init__(self, position: Any, velocity: Any, acceleration: Any, mass: float = 1.0) -> None:
         given = {"position": position, "velocity": velocity, "acceleration": acceleration}
@@ -121,8 +116,8 @@ class Body:
         self._store_vel(coerce_state(velocity, dim, "velocity"))
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
         self._mass: float = coerce_mass(mass)
-        self._world: World | None = None
-        self._index: int = -1
+        self._store: BodyStore | None = None  # set by the World that holds this body
+        self._slot: int = -1
 
     def _store_pos(self, state: State) -> None:
         if self._dim == 1:
@@ -145,48 +140,50 @@ class Body:
     @property
     def world(self) -> World | None:
         """The World this body is in, or None."""
-        return self._world
+        return None if self._store is None else self._store.owner
 
     @property
     def pos(self) -> Any:
         """Position (length units): a float in 1D, a Vector in 2D."""
-        if self._world is not None:
-            return self._world._read("x", self._index)
+        store = self._store
+        if store is not None:
+            return store.value(store.x[store.row(self._slot)])
         return self._px if self._dim == 1 else _new(Vector, (self._px, self._py))
 
     @pos.setter
     def pos(self, value: Any) -> None:
         state = coerce_state(value, self._dim, "pos")
-        if self._world is not None:
-            self._world._write("x", self._index, state)
+        if self._store is not None:
+            self._store.set_position(self._slot, state)
         else:
             self._store_pos(state)
 
     @property
     def vel(self) -> Any:
         """Velocity (length units per second): a float in 1D, a Vector in 2D."""
-        if self._world is not None:
-            return self._world._read("v", self._index)
+        store = self._store
+        if store is not None:
+            return store.value(store.v[store.row(self._slot)])
         return self._vx if self._dim == 1 else _new(Vector, (self._vx, self._vy))
 
     @vel.setter
     def vel(self, value: Any) -> None:
         state = coerce_state(value, self._dim, "vel")
-        if self._world is not None:
-            self._world._write("v", self._index, state)
+        if self._store is not None:
+            self._store.set_velocity(self._slot, state)
         else:
             self._store_vel(state)
 
     @property
     def acc(self) -> Any:
         """Acceleration now (length units per s^2): own_acc plus, in a World, forces / mass."""
-        if self._world is not None:
-            return self._world._read("a", self._index)
+        if self._store is not None:
+            return self._store.acceleration(self._slot)
         return self._acc
 
     @acc.setter
     def acc(self, value: Any) -> None:
-        if self._world is not None:
+        if self._store is not None:
             raise AttributeError(
                 "in a World, body.acc is the total acceleration (own_acc + forces / mass) and "
                 "cannot be set; set body.own_acc for the body's own constant acceleration, "
@@ -197,24 +194,34 @@ class Body:
     @property
     def own_acc(self) -> Any:
         """The body's own constant acceleration (length units per s^2), before any force."""
+        store = self._store
+        if store is not None:
+            return store.value(store.own[store.row(self._slot)])
         return self._acc
 
     @own_acc.setter
     def own_acc(self, value: Any) -> None:
-        self._acc = coerce_state(value, self._dim, "own_acc")
-        if self._world is not None:
-            self._world._changed_structure()
+        state = coerce_state(value, self._dim, "own_acc")
+        if self._store is not None:
+            self._store.set_own_acc(self._slot, state)  # one array entry, nothing recompiled
+        else:
+            self._acc = state
 
     @property
     def mass(self) -> float:
         """Mass (kg, or the scene's mass unit); always positive and finite."""
+        store = self._store
+        if store is not None:
+            return float(store.mass[store.row(self._slot)])
         return self._mass
 
     @mass.setter
     def mass(self, value: Any) -> None:
-        self._mass = coerce_mass(value)
-        if self._world is not None:
-            self._world._changed_structure()
+        m = coerce_mass(value)
+        if self._store is not None:
+            self._store.set_mass(self._slot, m)
+        else:
+            self._mass = m
 
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:
@@ -231,7 +238,7 @@ class Body:
         >>> alfred.pos                             # 1, 3, 6, 10: the lesson's "4 s"
         10.0
         """
-        if self._world is not None:
+        if self._store is not None:
             raise RuntimeError("this body is in a World: advance it with world.step(dt)")
         if type(dt) is not float or not 0.0 < dt < math.inf:
             if isinstance(dt, bool) or not isinstance(dt, Real):

@@ -34,7 +34,6 @@ import time
 import warnings
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -231,21 +230,6 @@ def csv_row(p: Point) -> str:
     return ",".join(values)
 
 
-def _count_evaluations(world: World) -> list[int]:
-    """Count the World's acceleration evaluations from now on: returns the live counter."""
-    # The World hands its bound method ``_accel`` to the integrator at every step; an instance
-    # attribute of the same name shadows it, so every evaluation passes through here.
-    count = [0]
-    inner = world._accel
-
-    def counted(t: float, x: Any, v: Any) -> Any:
-        count[0] += 1
-        return inner(t, x, v)
-
-    world._accel = counted  # type: ignore[method-assign]
-    return count
-
-
 def _error_run(
     problem: Problem, method: str, dt: float, tolerance: float | None
 ) -> tuple[float, bool, bool, int, int, str]:
@@ -255,7 +239,7 @@ def _error_run(
     step are the one-time choice's (auto's prediction reads the acceleration once a method).
     """
     world, body = problem.world(method, tolerance)
-    count = _count_evaluations(world)
+    start = world.evaluations
     n = round(problem.duration / dt)
     xs = np.empty((n, 2))
     done = 0
@@ -269,13 +253,14 @@ def _error_run(
                 xs[k] = tuple(body.pos)
                 done = k + 1
                 if k == 0:
-                    first = count[0]
+                    first = world.evaluations - start
         except SimulationDiverged:
             finite = False
     warned = any(issubclass(w.category, StabilityWarning) for w in caught)
-    per_step = (count[0] - first) // (done - 1) if done > 1 else first
+    total = world.evaluations - start
+    per_step = (total - first) // (done - 1) if done > 1 else first
     choose = max(0, first - per_step)
-    evaluations = count[0] - choose
+    evaluations = total - choose
     if not finite:
         return math.inf, False, warned, evaluations, choose, world.method
     ts = np.arange(1, done + 1) * dt

@@ -62,9 +62,11 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from .forcefield import ForceModel
 from .forces import Force, Wind, as_force
 from .integrators import INTEGRATORS, Integrator, get_integrator, semi_implicit_euler
-from .stability import StabilityWarning, max_stable_dt
+from .policy import instability
+from .stability import StabilityWarning
 
 __all__ = ["Particles", "Expired", "ParticlesSnapshot"]
 
@@ -253,42 +255,35 @@ class Particles:
     def _plan(self) -> None:
         """Choose the fast or the general path for the current forces, and check stability."""
         m = self._mass
-        damping = sum(f.damping for f in self._forces)
-        stiffness = sum(f.stiffness for f in self._forces)
-        # Stability (engine.stability derives the limits): velocities decay at rate d = damping/m
-        # and springs oscillate at omega = sqrt(stiffness/m); past max_stable_dt the
-        # integrator multiplies errors by more than 1 every step.
-        rate, omega = damping / m, math.sqrt(stiffness / m)
-        limit = max_stable_dt(self._integrator, omega=omega, damping_rate=rate)
-        if self._dt > limit:
-            warnings.warn(
-                f"Particles: dt = {self._dt} s is past {self._integrator.__name__}'s stability "
-                f"limit {limit:.4g} s for these forces (drag rate {rate:.4g} 1/s, omega "
-                f"{omega:.4g} rad/s): the particles will blow up; use dt <= {limit:.4g}",
-                StabilityWarning,
-                stacklevel=3,
-            )
+        # The same compiled force model and stability check as the World's: one body row
+        # stands for every particle (they share one mass and every force acts on all).
+        model = ForceModel.compile(
+            np.array([m]), np.zeros((1, 2)), [(self._checked(f), None) for f in self._forces]
+        )
+        name = self._integrator.__name__
+        message = instability(
+            lambda n: self._integrator if n == name else get_integrator(n),
+            name,
+            model,
+            self._dt,
+            "these Particles",
+        )
+        if message is not None:
+            warnings.warn(message, StabilityWarning, stacklevel=3)
 
         self._fast = False
         if not self._fast_allowed or self._integrator is not semi_implicit_euler:
             return
-        cx = cy = 0.0  # constant part of c (m/s^2)
         winds: list[tuple[float, Callable[[float], Any]]] = []  # (k/m, air(t)) of gusty winds
-        for f in self._forces:
-            parts = f.affine()
-            if parts is not None:  # F = m a0 + f0 - k v
-                a0, f0, _ = parts
-                ax, ay = _pair(a0, repr(f))
-                fx, fy = _pair(f0, repr(f))
-                cx += ax + fx / m
-                cy += ay + fy / m
-            elif isinstance(f, Wind):  # F = k air(t) - k v, with air changing in time
-                winds.append((f.k / m, f.air))
-            else:
+        for f, _ in model.general:
+            if not isinstance(f, Wind):
                 return  # a force the fast path does not know: general path
+            winds.append((f.k / m, f.air))  # F = k air(t) - k v, with air changing in time
+        # c = g + F0/m (m/s^2) is the model's folded part; d = (k_drag + k_wind)/m (1/s) is
+        # its damping rate, gusty winds included; their k air(t)/m is added at each step.
         self._fast = True
-        self._alpha = 1.0 - damping / m * self._dt  # the velocity's decay factor per step
-        self._c_const = (cx, cy)
+        self._alpha = 1.0 - float(model.rate[0]) * self._dt  # the velocity's decay per step
+        self._c_const = (float(model.a0[0, 0]), float(model.a0[0, 1]))
         self._winds = winds
 
     # -------------------------------------------------------------- properties

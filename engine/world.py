@@ -1,18 +1,16 @@
 """The World: bodies, the forces on them, and the one place where time advances.
 
-All bodies' state lives in numpy arrays (positions and velocities of shape
-(N,) in a 1D world, (N, 2) in a 2D world) and one integrator call steps them
-all. A Body added to the world becomes a live view into those arrays.
+The World is a thin door onto a few concepts, each in a module of its own:
 
-Constant forces and linear drag are folded, once, into two per-body arrays,
-so that the acceleration of every body is
+* ``engine.store``: every per-body array (positions, velocities, masses, own accelerations),
+  and the Bodies that are live handles into them;
+* ``engine.forcefield``: the forces compiled into per-body arrays, a = a0 - c v + the rest;
+* ``engine.policy``: which method moves the bodies ("auto" and its tolerance) and the
+  stability warnings;
+* ``engine.integrators`` and the closed form: how one step is taken.
 
-    a = a0 - c v  (+ the forces that are neither, evaluated each call)
-
-with a0 = own acceleration + gravity + constant forces / m + k air / m and
-c = (sum of drag coefficients k) / m. DESIGN.md has the measurements that make
-this matter: adding two arrays of the same shape costs a fraction of
-broadcasting a small vector over them every step.
+The World owns time: ``step(dt)`` is the only way it moves, and it keeps the last finite
+state if a step would make any number nan or inf.
 
 >>> from engine import Body, Vector
 >>> from engine.forces import Gravity
@@ -30,7 +28,6 @@ Vector(3.0, -1.0)
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from numbers import Real
@@ -38,80 +35,41 @@ from typing import Any
 
 import numpy as np
 
-from .accuracy import HORIZON
-from .accuracy import predicted_error as _predicted_error
+from . import checks
 from .body import Body, State, coerce_mass, coerce_state
+from .forcefield import ForceModel
 from .forces import Force, as_force
-from .integrators import INTEGRATORS, Integrator, get_integrator
-from .stability import (
-    DECAY_LIMITS,
-    OSCILLATION_LIMITS,
-    SimulationDiverged,
-    StabilityWarning,
-    is_stable,
-    max_stable_dt,
-)
-from .vector import Vector
+from .integrators import Integrator
+from .policy import AUTO_ORDER, METHODS, MethodPolicy
+from .stability import SimulationDiverged
+from .store import BodyStore
 
-__all__ = ["World", "WorldSnapshot", "METHODS"]
+__all__ = ["World", "WorldSnapshot", "METHODS", "check_dt"]
 
-#: Every name ``World(integrator=...)`` accepts.
-METHODS: tuple[str, ...] = (*INTEGRATORS, "exact", "auto")
-
-# "auto" tries these in order and takes the first that is stable at the step's dt (and,
-# with a tolerance, predicted to meet it): semi-implicit Euler costs one force evaluation a
-# step, Verlet two, RK4 four. Explicit Euler is never the best: it costs what semi-implicit
-# Euler costs, is as accurate on drag and gravity, and is unstable on every spring.
-_AUTO_ORDER = ("semi_implicit_euler", "velocity_verlet", "rk4")
-
-
-def _check_tolerance(tolerance: Any, requested: str) -> float | None:
-    """``tolerance`` as a positive finite float (m) or None; errors name it and its range."""
-    if tolerance is None:
-        return None
-    if isinstance(tolerance, bool) or not isinstance(tolerance, Real):
-        raise TypeError(
-            f"tolerance must be a length in m (e.g. 1e-3) or None, got "
-            f"{type(tolerance).__name__} {tolerance!r}"
-        )
-    try:
-        tol = float(tolerance)
-    except OverflowError:  # an int beyond the float range
-        tol = math.inf
-    if not (math.isfinite(tol) and tol > 0.0):
-        raise ValueError(f"tolerance must be a finite length > 0 m (e.g. 1e-3), got {tolerance!r}")
-    if requested != "auto":
-        raise ValueError(
-            f"tolerance={tolerance!r} only applies to integrator='auto' (which picks a method to "
-            f"meet it); integrator={requested!r} was given"
-        )
-    return tol
-
-
-def _array(value: Any) -> Any:
-    """A float stays a float; a Vector becomes a (2,) array."""
-    return np.array(tuple(value), dtype=float) if isinstance(value, Vector) else float(value)
-
+# Kept for code that imported it from here: "auto" tries these, cheapest first.
+_AUTO_ORDER = AUTO_ORDER
 
 # np.add.reduce(a, None) sums every entry without the Python wrapper of ndarray.sum.
 _sum = np.add.reduce
+_mul, _add = np.multiply, np.add
 
+#: The methods the World steps by its affine kernel when every force is folded.
+_EULERS = ("semi_implicit_euler", "explicit_euler")
 
-def _copy(array: Any) -> Any:
-    return None if array is None else array.copy()
+#: A state whose entries all stay below this in size cannot overflow in one more step of
+#: the affine kernel (World._step_affine), so that step needs no finiteness check.
+_SAFE = 1e300
+#: Relative slack on the kernel's bound, far above the round-off of its few operations.
+_SLACK = 1.0 + 1e-12
 
 
 def check_dt(dt: Any) -> float:
     """``dt`` as a positive finite float (s), else TypeError / ValueError naming it."""
-    if isinstance(dt, bool) or not isinstance(dt, Real):
-        raise TypeError(f"dt must be a number of seconds, got {type(dt).__name__} {dt!r}")
-    try:
-        f = float(dt)
-    except OverflowError:  # an int beyond the float range
-        f = math.inf
-    if not (math.isfinite(f) and f > 0.0):
-        raise ValueError(f"dt must be a finite number of seconds > 0 (e.g. 1/60), got {dt!r}")
-    return f
+    return checks.seconds(dt, "dt")
+
+
+def _copy(array: Any) -> Any:
+    return None if array is None else array.copy()
 
 
 @dataclass(frozen=True)
@@ -139,16 +97,18 @@ class _Attached:
 
 
 @dataclass
-class _Compiled:
-    """What the World derives from its bodies and forces, rebuilt when they change."""
+class _Kernel:
+    """An Euler step for affine forces at one dt, folded: v' = D v + B (World._step_affine)."""
 
-    a0: Any  # per-body constant acceleration, shaped like x
-    c: Any  # per-body linear damping rate (1/s), shaped like v, or None
-    general: list[tuple[Force, Any]]  # forces called every evaluation, with index or None
-    mass: Any  # per-body mass, shaped like x
-    all_constant: bool
-    omega: np.ndarray  # per-body sqrt(sum stiffness / m) (rad/s)
-    rate: np.ndarray  # per-body sum damping / m (1/s)
+    dt: float
+    model: ForceModel
+    store: BodyStore
+    explicit: bool  # explicit Euler (x moves with the old v) rather than semi-implicit
+    damp: Any  # D = 1 - c dt, shaped like v, or None without drag
+    kick: Any  # B = a0 dt, shaped like v
+    damp_max: float  # max |D| (1.0 without drag)
+    kick_max: float  # max |B|
+    n_limit: int  # steps of this dt past which the time might overflow
 
 
 class World:
@@ -171,39 +131,24 @@ class World:
     def __init__(
         self, integrator: str | Integrator = "semi_implicit_euler", tolerance: float | None = None
     ) -> None:
-        if isinstance(integrator, str):
-            if integrator not in METHODS:
-                raise ValueError(
-                    f"unknown integrator {integrator!r}; valid names: {', '.join(METHODS)}"
-                )
-            self._custom: Integrator | None = None
-        elif callable(integrator):
-            self._custom = integrator
-        else:
-            raise TypeError(
-                f"integrator must be a name ({', '.join(METHODS)}) or a function "
-                f"step(x, v, accel, t, dt) -> (x, v), got {type(integrator).__name__}"
-            )
-        self._requested = integrator if isinstance(integrator, str) else integrator.__name__
-        self._tolerance = _check_tolerance(tolerance, self._requested)
+        self._policy = MethodPolicy(integrator, tolerance)
+        self._requested = self._policy.requested
+        self._store: BodyStore | None = None  # made when the World's dimension is known
         self._bodies: list[Body] = []
         self._forces: list[_Attached] = []
-        self._dim: int | None = None
-        self._x: Any = None
-        self._v: Any = None
-        self._prev_x: Any = None
         # Time: t = t_base + n_since_base * dt, with n an integer, so a run of equal
         # steps never accumulates the round-off of adding dt again and again.
         self._t_base = 0.0
         self._dt: float | None = None
         self._n = 0
         self._steps = 0
-        self._compiled: _Compiled | None = None
+        self._model: ForceModel | None = None
+        self._evaluations = 0  # force evaluations of models since replaced, and of the kernel
         self._anchor: tuple[Any, Any, float] | None = None  # (x0, v0, t0) for "exact"
-        self._choice: tuple[Any, str, str] | None = None  # (key, method, reason)
-        self._warned: set[Any] = set()
-        self._version = 0  # bumped whenever bodies, forces, masses or own accelerations change
-        self._fast: tuple[Any, ...] | None = None  # (dt, version, method, step, compiled)
+        self._version = 0  # bumped whenever bodies, forces or masses change
+        self._fast: tuple[Any, ...] | None = None  # (dt, version, method, step, model, kernel)
+        self._kernel: _Kernel | None = None
+        self._bound: tuple[float, float] | None = None  # max |x|, max |v| bounds, or unknown
         self._huge = False  # the state is near overflow: step with numpy's warnings off
 
     # -- bodies and forces ----------------------------------------------------------------
@@ -220,16 +165,33 @@ class World:
     @property
     def dim(self) -> int | None:
         """1 (floats), 2 (Vectors), or None while the world has neither bodies nor shaped forces."""
-        return self._dim
+        return None if self._store is None else self._store.dim
+
+    @property
+    def integrator(self) -> str:
+        """The method asked for: a name from METHODS, or the custom function's name."""
+        return self._requested
 
     def _check_dim(self, dim: int, what: str, world_dim: int | None = None) -> None:
         """TypeError unless ``what``, of dimension ``dim``, fits this World (or ``world_dim``)."""
-        expected = self._dim if world_dim is None else world_dim
+        expected = self.dim if world_dim is None else world_dim
         if expected is not None and dim != expected:
             raise TypeError(
                 f"{what} is {dim}D but this World is {expected}D: a World holds bodies "
                 f"of one dimension (1D: floats, 2D: Vectors)"
             )
+
+    def _ensure_store(self, dim: int) -> BodyStore:
+        if self._store is None:
+            self._store = BodyStore(
+                dim,
+                self,
+                on_state=self._state_written,
+                on_own_acc=self._own_acc_written,
+                on_mass=self._changed_structure,
+                acceleration_at=self._acceleration_at,
+            )
+        return self._store
 
     def add(self, body: Body) -> Body:
         """Add ``body`` and return it; from now on its pos/vel are the world's live state."""
@@ -252,41 +214,38 @@ class World:
         if not batch:
             return batch
         # An empty World takes the dimension of the first body; every body must share it.
-        dim = self._dim if self._dim is not None else batch[0].dim
+        dim = self.dim if self.dim is not None else batch[0].dim
         for b in batch:
             self._check_dim(b.dim, "the body", dim)
-        self._dim = dim
-        rows = np.array([b.pos for b in batch], dtype=float)
-        vrows = np.array([b.vel for b in batch], dtype=float)
-        if self._x is None:
-            self._x, self._v, self._prev_x = rows, vrows, rows.copy()
-        else:
-            self._x = np.concatenate([self._x, rows])
-            self._v = np.concatenate([self._v, vrows])
-            self._prev_x = np.concatenate([self._prev_x, rows])
-        for b in batch:
-            b._world, b._index = self, len(self._bodies)
+        store = self._ensure_store(dim)
+        slots = store.append(
+            np.array([b.pos for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+            np.array([b.vel for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+            np.array([b.mass for b in batch], dtype=float),
+            np.array([b.own_acc for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+        )
+        for b, slot in zip(batch, slots, strict=True):
+            b._store, b._slot = store, slot
             self._bodies.append(b)
         self._changed_structure()
         return batch
 
     def remove(self, body: Body) -> None:
-        """Take ``body`` out of the world; it keeps its last position and velocity."""
+        """Take ``body`` out of the world; it keeps its last position, velocity and mass."""
         if not isinstance(body, Body) or body.world is not self:
             raise ValueError(f"that body is not in this World: {body!r}")
-        i = body._index
-        pos, vel = body.pos, body.vel
-        keep = np.arange(len(self._bodies)) != i
-        self._x, self._v, self._prev_x = self._x[keep], self._v[keep], self._prev_x[keep]
-        del self._bodies[i]
-        for j, other in enumerate(self._bodies):
-            other._index = j
+        store = self._store
+        assert store is not None
+        pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
+        del self._bodies[store.row(body._slot)]
+        store.remove(body._slot)
         for attached in self._forces:
             if attached.bodies is not None and body in attached.bodies:
                 attached.bodies.remove(body)
-        body._world, body._index = None, -1
+        body._store, body._slot = None, -1
         body._store_pos(pos)
         body._store_vel(vel)
+        body._mass, body._acc = mass, own
         self._changed_structure()
 
     def add_force(
@@ -320,93 +279,80 @@ class World:
                         f"bodies must be bodies already added to this World, got {b!r}"
                     )
         if f.dim is not None:
-            self._dim = f.dim  # checked above; an empty World takes the force's dimension
+            self._ensure_store(f.dim)  # checked above; an empty World takes the force's dim
         self._forces.append(_Attached(f, members))
         self._changed_structure()
         return f
 
     # -- derived state ----------------------------------------------------------------------
     def _changed_structure(self) -> None:
-        """Bodies, forces, masses or own accelerations changed: rebuild derived state."""
-        self._compiled = None
+        """Bodies, forces or masses changed: rebuild the force model and the choice."""
+        if self._model is not None:
+            self._evaluations += self._model.evaluations
+        self._model = None
         self._anchor = None
-        self._choice = None
+        self._policy.choice = None
+        self._kernel = None
+        self._bound = None
         self._version += 1
 
-    def _compile(self) -> _Compiled:
-        n = len(self._bodies)
-        dim = self._dim or 1
-        shape = (n,) if dim == 1 else (n, 2)
-        masses = np.array([b.mass for b in self._bodies], dtype=float)
-        # Per-body arrays take the full shape of x, (N, 2) in 2D, not (N, 1): numpy
-        # multiplies two arrays of one shape several times faster than it broadcasts.
-        mass = masses if dim == 1 else np.repeat(masses[:, None], 2, axis=1)
-        a0 = np.array([b.own_acc for b in self._bodies], dtype=float).reshape(shape)
-        damping = np.zeros(n)
-        stiffness = np.zeros(n)
-        general: list[tuple[Force, Any]] = []
-        all_constant = True
-        for attached in self._forces:
-            f = attached.force
-            idx: Any = None
-            if attached.bodies is not None:
-                idx = np.array([b._index for b in attached.bodies], dtype=np.intp)
-            sel = slice(None) if idx is None else idx
-            stiffness[sel] += f.stiffness
-            all_constant = all_constant and f.constant
-            parts = f.affine()
-            if parts is None:
-                general.append((f, idx))
-                continue
-            accel, force, k = parts
-            # m a = m a0 + f0 - k v  =>  a = a0 + f0 / m - (k / m) v
-            a0[sel] += _array(accel) + _array(force) / mass[sel]
-            damping[sel] += k
-        rate = damping / masses if n else damping
-        c = None
-        if np.any(rate):
-            c = rate if dim == 1 else np.repeat(rate[:, None], 2, axis=1)
-        omega = np.sqrt(stiffness / masses) if n else stiffness
-        return _Compiled(a0, c, general, mass, all_constant, omega, rate)
+    def _state_written(self) -> None:
+        """A position or velocity was set by hand: the closed form and the bound start anew."""
+        self._anchor = None
+        self._bound = None
 
-    def _ready(self) -> _Compiled:
-        if self._compiled is None:
-            self._compiled = self._compile()
-        return self._compiled
+    def _own_acc_written(self, row: int) -> None:
+        """One body's own acceleration changed: one entry of a0, no recompiling."""
+        if self._model is not None:
+            assert self._store is not None
+            self._model.set_own_acc(row, self._store.own[row])
+        self._anchor = None
+        self._kernel = None
 
-    def _accel(self, t: float, x: Any, v: Any) -> Any:
-        """Acceleration of every body at time t (s) in state (x, v): a0 - c v + general / m."""
-        comp = self._compiled
-        assert comp is not None
-        a = comp.a0 if comp.c is None else comp.a0 - comp.c * v
-        if comp.general:
-            a = a.copy() if comp.c is None else a
-            for force, idx in comp.general:
-                if idx is None:
-                    a += force(t, x, v, comp.mass) / comp.mass
-                elif len(idx):
-                    m = comp.mass[idx]
-                    a[idx] += force(t, x[idx], v[idx], m) / m
-        return a
+    def _ready(self) -> ForceModel:
+        if self._model is None:
+            attached = [
+                (a.force, None if a.bodies is None else self._rows_of(a.bodies))
+                for a in self._forces
+            ]
+            store = self._store
+            if store is None:  # no body and no shaped force yet: nothing to fold
+                self._model = ForceModel.compile(np.zeros(0), np.zeros(0), attached)
+            else:
+                self._model = ForceModel.compile(store.mass, store.own, attached)
+        return self._model
+
+    def _rows_of(self, bodies: list[Body]) -> np.ndarray:
+        if not bodies or self._store is None:
+            return np.zeros(0, dtype=np.intp)
+        return self._store.rows([b._slot for b in bodies])
+
+    def _state_now(self) -> tuple[Any, Any, Any] | None:
+        """(x, v, a) of every body now, for the method policy's predictions; None if empty."""
+        if not self._bodies:
+            return None
+        assert self._store is not None
+        x, v = self._store.x, self._store.v
+        return x, v, self._ready().accel(self.t, x, v)
+
+    def _acceleration_at(self, row: int) -> Any:
+        """The acceleration of the body in ``row`` now (only that body's forces are evaluated)."""
+        assert self._store is not None
+        return self._ready().accel_of(row, self.t, self._store.x, self._store.v)
+
+    @property
+    def evaluations(self) -> int:
+        """How many times the forces on all bodies have been evaluated (a machine-free cost).
+
+        Each step costs the method's evaluations (1 for the Euler methods, 2 for Verlet, 4 for
+        RK4, 0 for the closed form); "auto" with a tolerance adds one for each method it
+        predicts at a new dt.
+        """
+        return self._evaluations + (0 if self._model is None else self._model.evaluations)
 
     # -- choosing the method ------------------------------------------------------------------
-    def _stability_pairs(self, comp: _Compiled) -> list[tuple[float, float]]:
-        """The distinct (omega, damping rate) pairs to check, or an envelope when many."""
-        pairs = {(float(w), float(c)) for w, c in zip(comp.omega, comp.rate, strict=True) if w or c}
-        if len(pairs) > 32:
-            w_max, c_max = float(comp.omega.max()), float(comp.rate.max())
-            pairs = {(w_max, 0.0), (0.0, c_max), (w_max, c_max)}
-        return sorted(pairs)
-
     def _integrator_named(self, name: str) -> Integrator:
-        return self._custom if self._custom is not None else get_integrator(name)
-
-    def _first_unstable(self, name: str, comp: _Compiled, dt: float) -> tuple[float, float] | None:
-        step = self._integrator_named(name)
-        for w, c in self._stability_pairs(comp):
-            if not is_stable(step, w, c, dt):
-                return w, c
-        return None
+        return self._policy.integrator(name)
 
     def max_stable_dt(self, integrator: str | None = None) -> float:
         """The largest stable dt (s) for the springs and drags held, for ``integrator``.
@@ -414,20 +360,12 @@ class World:
         ``integrator`` defaults to the method in use (for "auto": the best available).
         ``math.inf`` when nothing held limits the step; 0.0 when no dt is stable.
         """
-        comp = self._ready()
-        name = integrator or self.method
-        if name == "exact" or (name == "auto" and comp.all_constant):
-            return math.inf
-        if name == "auto":
-            return max(self.max_stable_dt(n) for n in _AUTO_ORDER)
-        step = self._integrator_named(name)
-        pairs = self._stability_pairs(comp)
-        return min((max_stable_dt(step, w, c) for w, c in pairs), default=math.inf)
+        return self._policy.max_stable_dt(integrator or self.method, self._ready())
 
     @property
     def tolerance(self) -> float | None:
         """The position error (m) "auto" must keep within over 1 s, or None (stability only)."""
-        return self._tolerance
+        return self._policy.tolerance
 
     def predicted_error(self, method: str, dt: float) -> float:
         """Predicted largest position error (m) of any body over the next 1 s of steps of ``dt``.
@@ -437,133 +375,31 @@ class World:
         now. ``math.inf`` when ``method`` blows up within that second. See ``engine.accuracy``.
         """
         dt = check_dt(dt)
-        comp = self._ready()
-        if method == "exact":
-            return 0.0 if comp.all_constant else math.inf
-        step = self._integrator_named(method)
-        if not self._bodies:
-            return 0.0
-        acc = self._accel(self.t, self._x, self._v)
-        return _predicted_error(step, self._x, self._v, acc, comp.omega, comp.rate, dt)
-
-    def _fixed_choice(self) -> tuple[str, str] | None:
-        """(method, reason) when the choice does not depend on dt, else None."""
-        if self._requested != "auto":
-            return self._requested, f"integrator={self._requested!r} was asked for"
-        if self._ready().all_constant:
-            return "exact", "every force is constant, so the closed form is exact at any dt"
-        return None
+        return self._policy.predicted_error(method, dt, self._ready(), self._state_now)
 
     def choose_method(self, dt: float) -> tuple[str, str]:
         """(method, one-line reason) that this World uses for a step of ``dt`` seconds."""
         dt = check_dt(dt)
-        fixed = self._fixed_choice()
-        if fixed is not None:
-            return fixed
-        comp = self._ready()
-
-        def cheapest(name: str) -> str:
-            evals = INTEGRATORS[name].evaluations
-            plural = "s" if evals > 1 else ""
-            return f"{name} is the cheapest method ({evals} force evaluation{plural} a step)"
-
-        stable = [name for name in _AUTO_ORDER if self._first_unstable(name, comp, dt) is None]
-        if not stable:
-            return "rk4", f"no method is stable at dt={dt:g} s; rk4 has the widest limit"
-        tol = self._tolerance
-        if tol is None:
-            return stable[0], f"{cheapest(stable[0])} that is stable at dt={dt:g} s"
-        # _AUTO_ORDER is cheapest first: the first stable method predicted to meet the
-        # tolerance is the cheapest that does.
-        errors: dict[str, float] = {}
-        for name in stable:
-            errors[name] = err = self.predicted_error(name, dt)
-            if err <= tol:
-                return name, (
-                    f"{cheapest(name)} stable at dt={dt:g} s and predicted within "
-                    f"tolerance={tol:g} m over {HORIZON:g} s (error {err:.2g} m)"
-                )
-        best = min(errors, key=lambda n: errors[n])
-        err = errors[best]
-        # Global error ~ C dt^p (p the order), so dt (tol / err)^(1/p) would about meet it.
-        hint = ""
-        if 0.0 < err < math.inf:
-            need = dt * (tol / err) ** (1.0 / INTEGRATORS[best].order)
-            hint = f"; a dt near {need:.2g} s would meet it"
-        return best, (
-            f"no stable method meets tolerance={tol:g} m at dt={dt:g} s; {best} is the most "
-            f"accurate (predicted error {err:.2g} m over {HORIZON:g} s){hint}"
-        )
+        return self._policy.choose(dt, self._ready(), self._state_now)
 
     @property
     def method(self) -> str:
         """The method in use; for "auto", the one chosen at the last step (or "auto" before)."""
-        if self._choice is not None:
-            return self._choice[1]
-        fixed = self._fixed_choice()
+        if self._policy.choice is not None:
+            return self._policy.choice[1]
+        fixed = self._policy.fixed_choice(self._ready())
         return "auto" if fixed is None else fixed[0]
 
     @property
     def method_reason(self) -> str:
         """One line saying why ``method`` is the method in use."""
-        if self._choice is not None:
-            return self._choice[2]
-        fixed = self._fixed_choice()
+        if self._policy.choice is not None:
+            return self._policy.choice[2]
+        fixed = self._policy.fixed_choice(self._ready())
         return (
             "chosen at the first step, from its dt and the forces held"
             if fixed is None
             else (fixed[1])
-        )
-
-    def _method_for(self, dt: float, comp: _Compiled) -> str:
-        key = (dt, self._version)
-        if self._choice is None or self._choice[0] != key:
-            name, reason = self.choose_method(dt)
-            self._choice = (key, name, reason)
-            if name != "exact":
-                self._warn_if_unstable(name, dt, comp)
-        return self._choice[1]
-
-    def _limit_text(self, name: str, w: float, c: float, dt: float) -> str:
-        limit = max_stable_dt(self._integrator_named(name), w, c)
-        parts = []
-        if w:
-            osc = OSCILLATION_LIMITS.get(name)
-            parts.append(f"omega={w:.4g} rad/s, omega*dt={w * dt:.4g}")
-            if osc is not None:
-                parts.append("never stable on a spring" if osc == 0 else f"limit {osc:.4g}")
-        if c:
-            dec = DECAY_LIMITS.get(name)
-            parts.append(f"damping rate={c:.4g} 1/s, rate*dt={c * dt:.4g}")
-            if dec is not None:
-                parts.append(f"decay limit {dec:.4g}")
-        stable = "no dt is stable" if limit == 0.0 else f"stable for dt < {limit:.4g} s"
-        return f"{'; '.join(parts)}; {stable}"
-
-    def _warn_if_unstable(self, name: str, dt: float, comp: _Compiled) -> None:
-        bad = self._first_unstable(name, comp, dt)
-        key = (name, dt, self._version)
-        if bad is None or key in self._warned:
-            return
-        self._warned.add(key)
-        stable = [
-            other
-            for other in INTEGRATORS
-            if other != name and self._first_unstable(other, comp, dt) is None
-        ]
-        hopeless = max_stable_dt(self._integrator_named(name), *bad) == 0.0
-        advice = "a smaller dt will not help" if hopeless else "use a smaller dt"
-        if stable:
-            joint = "; use" if hopeless else ", or"
-            advice += f"{joint} integrator={stable[0]!r}, which is stable at this dt"
-        else:
-            advice += "; no integrator here is stable at this dt"
-        warnings.warn(
-            f"{name} is unstable at dt={dt:g} s for the forces in this World "
-            f"({self._limit_text(name, bad[0], bad[1], dt)}); the run continues and will "
-            f"blow up: {advice}",
-            StabilityWarning,
-            stacklevel=4,
         )
 
     # -- time --------------------------------------------------------------------------------
@@ -590,44 +426,132 @@ class World:
         # step(1.0) would skip check_dt and run a step of "True" seconds.
         if fast is not None and type(dt) is float and fast[0] == dt and fast[1] == self._version:
             # The common case: same dt, nothing changed since the last step.
-            _, _, name, step, comp = fast
+            k = self._kernel
+            bound = self._bound
+            if k is not None and bound is not None and self._n < k.n_limit:
+                # The affine kernel (derived in _step_affine), inlined: the fixed cost per
+                # step is what small scenes pay, so this path makes no call it can avoid.
+                v_max = (bound[1] * k.damp_max + k.kick_max) * _SLACK
+                x_max = (bound[0] + (v_max if v_max > bound[1] else bound[1]) * dt) * _SLACK
+                if x_max + v_max < _SAFE:
+                    store = k.store
+                    v, x, x_new = store.v, store.x, store.prev_x
+                    if k.explicit:
+                        _mul(v, dt, x_new)
+                        _add(x, x_new, x_new)
+                    if k.damp is not None:
+                        _mul(v, k.damp, v)
+                    _add(v, k.kick, v)
+                    if not k.explicit:
+                        _mul(v, dt, x_new)
+                        _add(x, x_new, x_new)
+                    store.prev_x, store.x = x, x_new
+                    self._bound = (x_max, v_max)
+                    self._n += 1
+                    self._steps += 1
+                    self._evaluations += 1
+                    return
+            _, _, name, step, model, affine = fast
         else:
             dt = check_dt(dt)
-            comp = self._ready()
-            name = self._method_for(dt, comp)
+            model = self._ready()
+            name = self._policy.method_for(dt, self._version, model, self._state_now)
             step = None if name == "exact" else self._integrator_named(name)
-            self._fast = (dt, self._version, name, step, comp)
+            # Either Euler method on forces that are all folded (a = a0 - c v) is a fixed
+            # affine map of the state: the World takes it in four array operations.
+            affine = name in _EULERS and self._policy.custom is None and model.affine
+            self._fast = (dt, self._version, name, step, model, affine)
         if dt != self._dt:
             # Fold the time so far into the base before counting steps of a new dt.
             self._t_base, self._n, self._dt = self.t, 0, dt
-        t0 = self.t
-        t1 = self._t_base + (self._n + 1) * dt
-        if t1 == math.inf:
+        if self._t_base + (self._n + 1) * dt == math.inf:
             raise ValueError(
-                f"dt must keep the time finite: a step of dt={dt!r} s from t={t0!r} s would pass "
-                f"the float range (1.8e308 s)"
+                f"dt must keep the time finite: a step of dt={dt!r} s from t={self.t!r} s would "
+                f"pass the float range (1.8e308 s)"
             )
+        if self._bodies and affine and self._prepare_affine(dt, model, name):
+            return self.step(dt)  # now the fast path above takes it
         if self._bodies:
-            if name == "exact":
-                if self._anchor is None:
-                    self._anchor = (self._x.copy(), self._v.copy(), t0)
-                x0, v0, ta = self._anchor
-                # Closed form from the anchor: s = s0 + v0 T + a T^2 / 2, v = v0 + a T.
-                elapsed = t1 - ta
-                a = comp.a0
-                x1 = x0 + v0 * elapsed + a * (0.5 * elapsed * elapsed)
-                v1 = v0 + a * elapsed
-            elif self._huge:
-                # Near overflow (a blow-up under way): numpy's own overflow warnings would
-                # only come before our clear SimulationDiverged, so silence them.
-                with np.errstate(over="ignore", invalid="ignore"):
-                    x1, v1 = step(self._x, self._v, self._accel, t0, dt)
-            else:
-                x1, v1 = step(self._x, self._v, self._accel, t0, dt)
-            self._huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
-            self._prev_x, self._x, self._v = self._x, x1, v1
+            self._step_general(dt, name, step, model)
         self._n += 1
         self._steps += 1
+
+    def _prepare_affine(self, dt: float, model: ForceModel, name: str) -> bool:
+        """Ready the affine Euler kernel for ``dt``; False if its next step might overflow.
+
+        Semi-implicit Euler is v' = v + a dt, then x' = x + v' dt; explicit Euler moves x
+        with the old v first. With a = a0 - c v, v' = (1 - c dt) v + a0 dt = D v + B, with D
+        and B computed once per dt. (Without drag, D = 1 and v' = v + a0 dt bit for bit as the
+        integrator functions compute it.) Four in-place array operations, no temporaries; the
+        new positions go into the buffer of the old previous positions.
+
+        No finiteness check is needed: if every |x| <= X and |v| <= V now, then after the
+        step |v'| <= max|D| V + max|B| and |x'| <= X + max(V, |v'|) dt. The World carries these
+        bounds from step to step, with a slack far above round-off, and takes this path only
+        while they stay below 1e300, where one step cannot overflow; past that it falls back
+        to the general step, which checks every entry. ``step`` runs the kernel inline.
+        """
+        store = self._store
+        assert store is not None
+        k = self._kernel
+        if k is None or k.dt != dt or k.model is not model or k.store is not store:
+            damp = None if model.c is None else 1.0 - model.c * dt
+            kick = model.a0 * dt
+            damp_max = 1.0 if damp is None else float(np.abs(damp).max())
+            # The last n for which t = t_base + (n + 1) dt stays finite, with room to spare.
+            n_limit = int(min((1e308 - self._t_base) / dt, 2.0**62))
+            k = self._kernel = _Kernel(
+                dt,
+                model,
+                store,
+                name == "explicit_euler",
+                damp,
+                kick,
+                damp_max,
+                float(np.abs(kick).max()),
+                n_limit,
+            )
+            self._anchor = None
+        if store.prev_x is store.x:
+            store.prev_x = store.x.copy()
+        bound = self._bound
+        if bound is None:
+            bound = (float(np.abs(store.x).max()), float(np.abs(store.v).max()))
+        v_max = (bound[1] * k.damp_max + k.kick_max) * _SLACK
+        x_max = (bound[0] + max(v_max, bound[1]) * dt) * _SLACK
+        if not (x_max + v_max < _SAFE and self._n < k.n_limit):
+            self._bound = None
+            return False
+        self._bound = bound
+        return True
+
+    def _step_general(
+        self, dt: float, name: str, step: Integrator | None, model: ForceModel
+    ) -> None:
+        """One step by the closed form or an integrator function, every entry checked."""
+        store = self._store
+        assert store is not None
+        t0 = self.t
+        t1 = self._t_base + (self._n + 1) * dt
+        if step is None:
+            if self._anchor is None:
+                self._anchor = (store.x.copy(), store.v.copy(), t0)
+            x0, v0, ta = self._anchor
+            # Closed form from the anchor: s = s0 + v0 T + a T^2 / 2, v = v0 + a T.
+            elapsed = t1 - ta
+            a = model.a0
+            x1 = x0 + v0 * elapsed + a * (0.5 * elapsed * elapsed)
+            v1 = v0 + a * elapsed
+        elif self._huge:
+            # Near overflow (a blow-up under way): numpy's own overflow warnings would
+            # only come before our clear SimulationDiverged, so silence them.
+            with np.errstate(over="ignore", invalid="ignore"):
+                x1, v1 = step(store.x, store.v, model.accel, t0, dt)
+        else:
+            x1, v1 = step(store.x, store.v, model.accel, t0, dt)
+        self._huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
+        store.prev_x, store.x, store.v = store.x, x1, v1
+        self._bound = None
 
     def _check_finite(self, x: Any, v: Any, name: str, dt: float, t: float) -> float:
         """Raise SimulationDiverged if x or v has a nan or inf; else return |sum of x and v|."""
@@ -668,23 +592,8 @@ class World:
         )
 
     # -- reading the state ---------------------------------------------------------------------
-    def _state_value(self, row: Any) -> State:
-        return float(row) if self._dim == 1 else Vector(float(row[0]), float(row[1]))
-
-    def _read(self, what: str, index: int) -> State:
-        if what == "x":
-            return self._state_value(self._x[index])
-        if what == "v":
-            return self._state_value(self._v[index])
-        self._ready()
-        return self._state_value(self._accel(self.t, self._x, self._v)[index])
-
-    def _write(self, what: str, index: int, value: State) -> None:
-        target = self._x if what == "x" else self._v
-        target[index] = tuple(value) if isinstance(value, Vector) else value
-        if what == "x":
-            self._prev_x[index] = target[index]  # a teleport is not blended
-        self._anchor = None
+    def _empty(self) -> np.ndarray:
+        return np.zeros((0,) if self.dim != 2 else (0, 2))
 
     def positions(self, alpha: float = 1.0) -> np.ndarray:
         """Positions of all bodies blended from the previous step: prev + (now - prev) alpha.
@@ -697,23 +606,30 @@ class World:
         """
         if isinstance(alpha, bool) or not isinstance(alpha, Real) or not 0.0 <= alpha <= 1.0:
             raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")
-        if self._x is None:
-            return np.zeros((0,) if self._dim != 2 else (0, 2))
+        store = self._store
+        if store is None or not self._bodies:
+            return self._empty()
         if alpha == 1.0:
-            return self._x.copy()
-        return self._prev_x + (self._x - self._prev_x) * float(alpha)
+            return store.x.copy()
+        return store.prev_x + (store.x - store.prev_x) * float(alpha)
 
     def position_of(self, body: Body, alpha: float = 1.0) -> State:
         """One body's position, blended like ``positions(alpha)``: a float or a Vector."""
         if not isinstance(body, Body) or body.world is not self:
             raise ValueError(f"that body is not in this World: {body!r}")
-        return self._state_value(self.positions(alpha)[body._index])
+        if isinstance(alpha, bool) or not isinstance(alpha, Real) or not 0.0 <= alpha <= 1.0:
+            raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")
+        store = self._store
+        assert store is not None
+        row = store.row(body._slot)
+        x, prev = store.x[row], store.prev_x[row]
+        return store.value(x if alpha == 1.0 else prev + (x - prev) * float(alpha))
 
     def velocities(self) -> np.ndarray:
         """Velocities of all bodies now, shape (N,) or (N, 2); a new array."""
-        if self._v is None:
-            return np.zeros((0,) if self._dim != 2 else (0, 2))
-        return self._v.copy()
+        if self._store is None or not self._bodies:
+            return self._empty()
+        return self._store.v.copy()
 
     def energy(self) -> float:
         """Total mechanical energy (J): kinetic plus the potential of the forces that have one.
@@ -722,19 +638,20 @@ class World:
         """
         if not self._bodies:
             return 0.0
-        comp = self._ready()
-        m = comp.mass if self._dim == 1 else comp.mass[:, 0]
-        v2 = self._v * self._v if self._dim == 1 else np.einsum("ij,ij->i", self._v, self._v)
+        model = self._ready()
+        store = self._store
+        assert store is not None
+        x, v, m = store.x, store.v, store.mass
+        v2 = v * v if self.dim == 1 else np.einsum("ij,ij->i", v, v)
         total = 0.5 * float(np.sum(m * v2))
-        own = np.array([b.own_acc for b in self._bodies], dtype=float)
-        dot = own * self._x if self._dim == 1 else np.einsum("ij,ij->i", own, self._x)
+        dot = store.own * x if self.dim == 1 else np.einsum("ij,ij->i", store.own, x)
         total -= float(np.sum(m * dot))
         for attached in self._forces:
             if attached.bodies is None:
-                u = attached.force.potential(self._x, comp.mass)
+                u = attached.force.potential(x, model.mass)
             else:
-                idx = np.array([b._index for b in attached.bodies], dtype=np.intp)
-                u = attached.force.potential(self._x[idx], comp.mass[idx]) if len(idx) else 0.0
+                idx = self._rows_of(attached.bodies)
+                u = attached.force.potential(x[idx], model.mass[idx]) if len(idx) else 0.0
             if u is not None:
                 total += float(np.sum(u))
         return total
@@ -745,11 +662,13 @@ class World:
         anchor = None
         if self._anchor is not None:
             anchor = (self._anchor[0].copy(), self._anchor[1].copy(), self._anchor[2])
+        store = self._store
+        empty = store is None or not self._bodies
         return WorldSnapshot(
             n_bodies=len(self._bodies),
-            x=_copy(self._x),
-            v=_copy(self._v),
-            prev_x=_copy(self._prev_x),
+            x=None if empty else _copy(store.x),  # type: ignore[union-attr]
+            v=None if empty else _copy(store.v),  # type: ignore[union-attr]
+            prev_x=None if empty else _copy(store.prev_x),  # type: ignore[union-attr]
             masses=tuple(b.mass for b in self._bodies),
             own_acc=tuple(b.own_acc for b in self._bodies),
             t_base=self._t_base,
@@ -757,7 +676,7 @@ class World:
             n_since_base=self._n,
             steps=self._steps,
             anchor=anchor,
-            warned=frozenset(self._warned),
+            warned=frozenset(self._policy.warned),
         )
 
     def restore(self, snapshot: WorldSnapshot) -> None:
@@ -773,13 +692,15 @@ class World:
                 f"{len(self._bodies)}: restore into the world (or a copy) it was taken from"
             )
         masses, own_acc = self._check_snapshot(snapshot)
-        self._x, self._v, self._prev_x = (
-            _copy(snapshot.x),
-            _copy(snapshot.v),
-            _copy(snapshot.prev_x),
-        )
-        for body, m, a in zip(self._bodies, masses, own_acc, strict=True):
-            body._mass, body._acc = m, a
+        store = self._store
+        if store is not None and self._bodies:
+            store.x, store.v, store.prev_x = (
+                _copy(snapshot.x),
+                _copy(snapshot.v),
+                _copy(snapshot.prev_x),
+            )
+            store.mass = np.array(masses, dtype=float)
+            store.own = np.array(own_acc, dtype=float).reshape(store.x.shape)
         self._t_base = float(snapshot.t_base)
         self._dt = None if snapshot.dt is None else float(snapshot.dt)
         self._n, self._steps = snapshot.n_since_base, snapshot.steps
@@ -787,13 +708,13 @@ class World:
         if snapshot.anchor is not None:
             x0, v0, ta = snapshot.anchor
             self._anchor = (x0.copy(), v0.copy(), ta)
-        self._warned = set(snapshot.warned)
+        self._policy.warned = set(snapshot.warned)
 
     def _check_snapshot(self, snap: WorldSnapshot) -> tuple[list[float], list[State]]:
         """Refuse a snapshot (a plain dataclass, so one can be built or altered by hand) that
         would put nan, inf, a wrong shape or a negative count into this World; return its
         masses and own accelerations, checked."""
-        n, dim = len(self._bodies), self._dim or 1
+        n, dim = len(self._bodies), self.dim or 1
         shape = (n,) if dim == 1 else (n, 2)
         for name in ("x", "v", "prev_x"):
             value = getattr(snap, name)
@@ -841,7 +762,8 @@ class World:
 
     def __repr__(self) -> str:
         """``World(integrator='auto', tolerance=0.001, bodies=3, forces=2, t=1.5)``."""
-        tolerance = "" if self._tolerance is None else f"tolerance={self._tolerance:g}, "
+        tol = self._policy.tolerance
+        tolerance = "" if tol is None else f"tolerance={tol:g}, "
         return (
             f"World(integrator={self._requested!r}, {tolerance}bodies={len(self._bodies)}, "
             f"forces={len(self._forces)}, t={self.t:g})"

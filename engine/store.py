@@ -1,0 +1,133 @@
+"""The state of a World's bodies: every per-body array, and the handles (Bodies) that view it.
+
+A World keeps its bodies' state as numpy arrays: positions and velocities of shape (N,) in a
+1D world and (N, 2) in a 2D world, the position before the last step (for drawing between
+steps), each body's mass (N,) and own constant acceleration (shaped like x). A
+:class:`engine.Body` added to a World becomes a handle into these arrays: it holds a slot
+number that never changes (pymunk keeps a reference from body to space; Box2D hands out ids),
+and the store maps slots to rows. Removing a body shifts the rows after it with one array
+operation; no other body is touched.
+
+>>> import numpy as np
+>>> store = BodyStore(2)
+>>> store.append(np.array([[0.0, 1.0], [2.0, 3.0]]), np.zeros((2, 2)), np.ones(2),
+...              np.zeros((2, 2)))
+[0, 1]
+>>> store.remove(0)
+>>> store.row(1), store.x.tolist()
+(0, [[2.0, 3.0]])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .vector import Vector
+
+__all__ = ["BodyStore"]
+
+
+class BodyStore:
+    """Per-body arrays of one dimension (1 or 2) and the slot -> row map behind Body handles."""
+
+    def __init__(
+        self,
+        dim: int,
+        owner: Any = None,
+        *,
+        on_state: Callable[[], None] = lambda: None,
+        on_own_acc: Callable[[int], None] = lambda row: None,
+        on_mass: Callable[[], None] = lambda: None,
+        acceleration_at: Callable[[int], Any] | None = None,
+    ) -> None:
+        self.dim = dim
+        #: The World these arrays belong to (what ``Body.world`` answers).
+        self.owner = owner
+        # What the owner must hear of: a position or velocity written by hand (a teleport), one
+        # own acceleration written, a mass written; and how to read one body's acceleration.
+        self._on_state, self._on_own_acc, self._on_mass = on_state, on_own_acc, on_mass
+        self._acceleration_at = acceleration_at
+        shape: tuple[int, ...] = (0,) if dim == 1 else (0, 2)
+        self.x = np.zeros(shape)  # positions (length units)
+        self.v = np.zeros(shape)  # velocities (length units / s)
+        self.prev_x = np.zeros(shape)  # positions before the last step
+        self.mass = np.zeros(0)  # (N,) masses (kg)
+        self.own = np.zeros(shape)  # own constant accelerations (length units / s^2)
+        self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
+
+    def __len__(self) -> int:
+        return len(self.mass)
+
+    def append(self, x: np.ndarray, v: np.ndarray, mass: np.ndarray, own: np.ndarray) -> list[int]:
+        """Add rows for new bodies; return their slots (one array copy for the whole batch)."""
+        n0, k = len(self), len(mass)
+        self.x = np.concatenate([self.x, x])
+        self.v = np.concatenate([self.v, v])
+        self.prev_x = np.concatenate([self.prev_x, x])
+        self.mass = np.concatenate([self.mass, mass])
+        self.own = np.concatenate([self.own, own])
+        first = len(self._row_of)
+        self._row_of = np.concatenate([self._row_of, np.arange(n0, n0 + k, dtype=np.intp)])
+        return list(range(first, first + k))
+
+    def remove(self, slot: int) -> None:
+        """Drop the row of ``slot``; the rows after it move up by one (one array operation)."""
+        i = self.row(slot)
+        keep = np.arange(len(self)) != i
+        self.x, self.v, self.prev_x = self.x[keep], self.v[keep], self.prev_x[keep]
+        self.mass, self.own = self.mass[keep], self.own[keep]
+        rows = self._row_of
+        rows[slot] = -1
+        rows[rows > i] -= 1
+
+    def row(self, slot: int) -> int:
+        """The current row of the body in ``slot``."""
+        return int(self._row_of[slot])
+
+    def rows(self, slots: list[int]) -> np.ndarray:
+        """The current rows of the bodies in ``slots``, as an index array."""
+        return self._row_of[np.asarray(slots, dtype=np.intp)]
+
+    def value(self, row: Any) -> Any:
+        """One row of a state array as a float (1D) or a Vector (2D)."""
+        return float(row) if self.dim == 1 else Vector(float(row[0]), float(row[1]))
+
+    @staticmethod
+    def _entry(value: Any) -> Any:
+        return tuple(value) if isinstance(value, Vector) else value
+
+    def set_position(self, slot: int, value: Any) -> None:
+        """Move one body to ``value`` (a teleport: not blended with where it was)."""
+        row = self.row(slot)
+        self.x[row] = self.prev_x[row] = self._entry(value)
+        self._on_state()
+
+    def set_velocity(self, slot: int, value: Any) -> None:
+        """Set one body's velocity to ``value``."""
+        self.v[self.row(slot)] = self._entry(value)
+        self._on_state()
+
+    def set_own_acc(self, slot: int, value: Any) -> None:
+        """Set one body's own constant acceleration: one array entry, nothing recompiled."""
+        row = self.row(slot)
+        self.own[row] = self._entry(value)
+        self._on_own_acc(row)
+
+    def set_mass(self, slot: int, value: float) -> None:
+        """Set one body's mass (the forces' folded parts depend on it: the owner recompiles)."""
+        self.mass[self.row(slot)] = value
+        self._on_mass()
+
+    def acceleration(self, slot: int) -> Any:
+        """One body's total acceleration now (own + forces / mass): a float or a Vector."""
+        row = self.row(slot)
+        if self._acceleration_at is None:
+            return self.value(self.own[row])
+        return self.value(self._acceleration_at(row))
+
+    def copy_arrays(self) -> tuple[np.ndarray, ...]:
+        """Copies of (x, v, prev_x, mass, own): everything a snapshot of the bodies needs."""
+        return self.x.copy(), self.v.copy(), self.prev_x.copy(), self.mass.copy(), self.own.copy()
