@@ -74,26 +74,49 @@ class Phase:
 class Trip:
     """A 1D trip made of constant-acceleration phases, moved by the closed form.
 
-    It is the car scene's "world": ``step(dt)`` advances the time in whole steps (the only
-    way time moves), and ``position(t)`` / ``velocity(t)`` give the exact state at any time.
+    It is the car scene's "world" and speaks :class:`engine.Steppable`: ``step(dt)`` advances
+    the time in whole steps (the only way time moves), ``t`` is that time, the scene's one
+    clock, and ``snapshot()`` / ``restore()`` save and bring back the clock. The phases are
+    fixed when the trip is planned, so ``position(t)`` / ``velocity(t)`` give the exact state
+    at any time.
     """
 
     def __init__(self, phases: list[Phase]) -> None:
         self.phases = phases
         self.steps = 0
         self.dt = 0.0
+        # The time is t_base + n * dt: n whole steps of the current dt after t_base, so that
+        # it never drifts; a new dt folds the time so far into t_base.
+        self._t_base = 0.0
+        self._n = 0
 
     def step(self, dt: float) -> None:
-        """Advance the time by ``dt`` s (a fixed step: the time is steps * dt)."""
-        if not (dt > 0 and math.isfinite(dt)):
+        """Advance the time by ``dt`` s (a fixed step: the time is counted in whole steps)."""
+        if isinstance(dt, bool) or not (isinstance(dt, (int, float)) and 0 < dt < math.inf):
             raise ValueError(f"dt must be a finite number of seconds > 0, got {dt!r}")
-        self.dt = dt
+        if dt != self.dt:
+            self._t_base, self._n, self.dt = self.t, 0, float(dt)
+        self._n += 1
         self.steps += 1
 
     @property
     def t(self) -> float:
         """The time (s)."""
-        return self.steps * self.dt
+        return self._t_base + self._n * self.dt
+
+    def snapshot(self) -> tuple[float, int, float, int]:
+        """The clock at this moment: (t_base s, steps of dt since it, dt s, steps in all)."""
+        return self._t_base, self._n, self.dt, self.steps
+
+    def restore(self, snapshot: tuple[float, int, float, int]) -> None:
+        """Return the clock to the moment ``snapshot()`` was taken."""
+        try:
+            t_base, n, dt, steps = snapshot
+        except (TypeError, ValueError):
+            raise TypeError(
+                f"restore takes the tuple Trip.snapshot() returns, got {snapshot!r}"
+            ) from None
+        self._t_base, self._n, self.dt, self.steps = float(t_base), int(n), float(dt), int(steps)
 
     def phase_at(self, t: float) -> Phase:
         """The phase the car is in at time ``t`` (s)."""
@@ -225,7 +248,6 @@ class MainStreet(Scene):
             y_step=5.0 if top_mph <= 15 else 10.0,
             color=VELOCITY,
         )
-        self.samples: list[tuple[float, float]] = []
 
     # -- drawing --------------------------------------------------------------------------
 

@@ -2,11 +2,16 @@
 
 Steer Alfred across his sheet of paper to the crumb with the arrow keys while the wind
 gusts. Walk off the edge and he falls (the lesson: "if he moves left or right, he will fall
-off!") and starts again from the middle. The game owns its window, its loop and its Surface;
-from the engine it takes only the public pieces: a World with a Body and a Wind, the
-fixed-step loop with a clock, and the camera and drawing helpers.
+off!") and starts again from the middle. From the engine it takes only the public pieces: a
+World with a Body and a Wind, and the Scene machinery with the camera and drawing helpers.
 
-    python -m demos crumb --window     # play: arrow keys steer, Esc quits
+The game is a Scene like every other demo, so the recorder, ``--window`` and the tests drive
+it the same way. What it steps is :class:`CrumbGame`, which speaks :class:`engine.Steppable`:
+each fixed step of 1/120 s reads the keys (or asks the autopilot), lets the World step, and
+applies the rules (eat the crumb, fall off the edge), so the rules never depend on the frame
+rate, and a game saved mid-run resumes exactly.
+
+    python -m demos crumb --window     # play: arrow keys steer, space pauses, Esc quits
     python -m demos crumb              # headless: an autopilot plays, frames to out/crumb/
 
 Units: inches and seconds, like the lesson's Alfred.
@@ -15,28 +20,33 @@ Units: inches and seconds, like the lesson's Alfred.
 from __future__ import annotations
 
 import argparse
+import copy
 import math
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pygame
 
 from demos.alfred import ant_sprite
 from demos.cli import Demo
-from engine import Body, FixedStep, RealClock, Vector, VirtualClock, World
+from engine import Body, Vector, World
 from engine.forces import Wind
 from engine.render import (
     VELOCITY,
     Camera,
     FrameWriter,
+    Scene,
     draw_dot,
     draw_sprite,
     draw_text,
     draw_vector,
-    init_headless,
-    init_window,
+    iter_frames,
 )
+from engine.render import play as play_window
+from engine.world import WorldSnapshot
 
 #: The sheet of paper (in): x0, y0, x1, y1 of a letter page lying landscape.
 PAPER = (0.0, 0.0, 11.0, 8.5)
@@ -50,6 +60,11 @@ REACH = 0.35
 DT = 1.0 / 120.0
 PAPER_COLOUR, TABLE_COLOUR, CRUMB_COLOUR = (250, 248, 240), (120, 94, 70), (214, 170, 90)
 INK = (40, 40, 40)
+#: How long a game in a window may last (s) when no --seconds is given: until it is closed.
+WINDOW_SECONDS = 24 * 3600.0
+
+#: A player: the keys held now, as (right, up), each in [-1, 1].
+Player = Callable[[], tuple[float, float]]
 
 
 def gust(t: float) -> Vector:
@@ -65,10 +80,26 @@ class Score:
     falls: int = 0
 
 
-class CrumbGame:
-    """The game's state and rules; the physics is an engine World with one Body in it."""
+@dataclass(frozen=True)
+class CrumbSnapshot:
+    """Everything a game needs to resume: see :meth:`CrumbGame.snapshot`."""
 
-    def __init__(self, seed: int = 1) -> None:
+    world: WorldSnapshot
+    rng: Mapping[str, Any]  # the random generator's state, for the next crumb
+    crumb: Vector  # in
+    score: Score
+    heading: float  # degrees
+
+
+class CrumbGame:
+    """The game's state and rules; the physics is an engine World with one Body in it.
+
+    It speaks :class:`engine.Steppable`, so a Scene steps it: ``step(dt)`` is one fixed step
+    of the whole game (steer, physics, rules), ``t`` is the World's time, the game's one
+    clock. ``player`` gives the keys held at each step; by default the autopilot plays.
+    """
+
+    def __init__(self, seed: int = 1, player: Player | None = None) -> None:
         self.rng = np.random.default_rng(seed)
         self.world = World(integrator="semi_implicit_euler")
         self.alfred = self.world.add(Body(self.start, Vector(0, 0), Vector(0, 0)))
@@ -78,6 +109,40 @@ class CrumbGame:
         #: The way Alfred faces (degrees counter-clockwise from +x): his velocity's direction,
         #: kept while he stands still (a zero velocity has no direction).
         self.heading = 90.0
+        self.player: Player = self.autopilot if player is None else player
+
+    @property
+    def t(self) -> float:
+        """The game's time (s): the World's."""
+        return self.world.t
+
+    def step(self, dt: float) -> None:
+        """One fixed step of ``dt`` s: the player steers, the World steps, the rules apply."""
+        self.steer(*self.player())
+        self.world.step(dt)
+        self.update()
+
+    def snapshot(self) -> CrumbSnapshot:
+        """The World, the random generator, the crumb, the score and Alfred's heading."""
+        return CrumbSnapshot(
+            self.world.snapshot(),
+            copy.deepcopy(self.rng.bit_generator.state),
+            self.crumb,
+            replace(self.score),
+            self.heading,
+        )
+
+    def restore(self, snapshot: CrumbSnapshot) -> None:
+        """Return to the moment ``snapshot()`` was taken."""
+        if not isinstance(snapshot, CrumbSnapshot):
+            raise TypeError(
+                f"restore takes a CrumbSnapshot from CrumbGame.snapshot(), got "
+                f"{type(snapshot).__name__}"
+            )
+        self.world.restore(snapshot.world)
+        self.rng.bit_generator.state = copy.deepcopy(snapshot.rng)
+        self.crumb, self.score = snapshot.crumb, replace(snapshot.score)
+        self.heading = snapshot.heading
 
     @property
     def start(self) -> Vector:
@@ -99,7 +164,7 @@ class CrumbGame:
         self.alfred.own_acc = direction * PUSH
 
     def update(self) -> None:
-        """Apply the rules after the physics steps: eat the crumb, fall off the edge, turn."""
+        """Apply the rules after each physics step: eat the crumb, fall off the edge, turn."""
         vel = self.alfred.vel
         if vel.magnitude() > 1e-6:
             self.heading = math.degrees(math.atan2(vel.y, vel.x))
@@ -143,6 +208,39 @@ class CrumbGame:
         )
 
 
+def arrow_keys() -> tuple[float, float]:
+    """The player at the keyboard: (right, up) from the arrow keys held now."""
+    keys = pygame.key.get_pressed()
+    return (
+        float(keys[pygame.K_RIGHT] - keys[pygame.K_LEFT]),
+        float(keys[pygame.K_UP] - keys[pygame.K_DOWN]),
+    )
+
+
+class CrumbScene(Scene):
+    """The game as a scene: steps a :class:`CrumbGame`, draws the paper, the crumb and Alfred."""
+
+    name = "crumb"
+    summary = "steer Alfred to the crumb with the arrow keys, in the wind"
+    duration = 20.0
+    dt = DT
+    seed = 1
+    world: CrumbGame
+
+    def __init__(self, player: Player | None = None) -> None:
+        #: Who steers: None for the autopilot, :func:`arrow_keys` for a person at the keyboard.
+        self.player = player
+
+    def build(self, size: tuple[int, int]) -> None:
+        """A new game on a ``size`` px canvas: the paper fills it below the score line."""
+        self.world = self.game = CrumbGame(self.seed, self.player)
+        self.camera = Camera.fit(PAPER, (16, 40, size[0] - 32, size[1] - 56))
+
+    def draw(self, surface: pygame.Surface, alpha: float) -> None:
+        """The table, the paper, the crumb and Alfred, blended by alpha between steps."""
+        self.game.draw(surface, self.camera, alpha)
+
+
 def play(
     window: bool,
     seconds: float | None = None,
@@ -152,45 +250,22 @@ def play(
     out: Path | None = None,
     overwrite: bool = False,
 ) -> Score:
-    """Run the game: in a window with the keys, or headless with the autopilot to PNG frames."""
+    """Run the game: in a window with the keys, or headless with the autopilot to PNG frames.
+
+    In a window it runs until it is closed (or for ``seconds``). Headless, it records
+    ``seconds`` (default 20) at ``fps`` to ``out`` (default out/crumb): frames at 1/fps s,
+    2/fps s, ... up to ``seconds``, so ``seconds * fps`` frames.
+    """
+    scene = CrumbScene(arrow_keys if window else None)
+    scene.seed = seed
     if window:
-        init_window()
-        surface = pygame.display.set_mode(size)
-        pygame.display.set_caption("Alfred and the crumb: arrow keys steer, Esc quits")
-    else:
-        init_headless()
-        surface = pygame.Surface(size)
-    game = CrumbGame(seed)
-    camera = Camera.fit(PAPER, (16, 40, size[0] - 32, size[1] - 56))
-    loop = FixedStep(dt=DT)
-    clock = RealClock() if window else VirtualClock(fps)
-    frames = None if window else FrameWriter(out or Path("out/crumb"), overwrite=overwrite)
-    limit = math.inf if seconds is None and window else (seconds or 20.0)
-    try:
-        while game.world.t < limit:
-            if window:
-                if any(e.type == pygame.QUIT for e in pygame.event.get()):
-                    break
-                keys = pygame.key.get_pressed()
-                if keys[pygame.K_ESCAPE]:
-                    break
-                right: float = keys[pygame.K_RIGHT] - keys[pygame.K_LEFT]
-                up: float = keys[pygame.K_UP] - keys[pygame.K_DOWN]
-            else:
-                right, up = game.autopilot()
-            game.steer(right, up)
-            alpha = loop.run(game.world, clock.tick())  # whole physics steps of DT
-            game.update()
-            game.draw(surface, camera, alpha)
-            if frames is not None:
+        play_window(scene, fps, size, WINDOW_SECONDS if seconds is None else seconds)
+        return scene.game.score
+    with FrameWriter(out or Path("out/crumb"), overwrite=overwrite) as frames:
+        for index, _t, surface in iter_frames(scene, fps, seconds, size):
+            if index > 0:  # the game's frames start one frame in
                 frames.write(surface)
-            else:
-                pygame.display.flip()
-                pygame.time.wait(1)
-    finally:
-        if frames is not None:
-            frames.close()
-    return game.score
+    return scene.game.score
 
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -19,8 +19,9 @@ numpy operations; the sparks are drawn with numpy into a pixel array (no per-spa
 from __future__ import annotations
 
 import argparse
+import copy
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from numbers import Real
 from typing import Any
@@ -30,13 +31,14 @@ import pygame
 
 from demos.cli import Demo, number_option
 from engine.forces import Gravity, Wind
-from engine.particles import Particles
+from engine.particles import Particles, ParticlesSnapshot
 from engine.render import Camera, Scene, draw_text
 
 __all__ = [
     "KINDS",
     "Kind",
     "FireworksScene",
+    "FireworksSnapshot",
     "Finale",
     "SparkPainter",
     "kind_index",
@@ -228,6 +230,18 @@ def _skyline(camera: Camera, size: tuple[int, int]) -> list[pygame.Rect]:
 # --------------------------------------------------------------------------------- scenes
 
 
+@dataclass(frozen=True)
+class FireworksSnapshot:
+    """Everything a fireworks scene needs to resume: see :meth:`FireworksScene.snapshot`."""
+
+    particles: ParticlesSnapshot
+    rng: Mapping[str, Any]  # the random generator's state
+    next_launch: float  # s
+    launched: int
+    last_drawn: float | None  # s: the time of the last frame drawn, for the afterglow's fade
+    glow: np.ndarray  # (W, H, 3) the afterglow of the frames drawn so far
+
+
 def _positive(value: Any, name: str) -> float:
     if isinstance(value, bool) or not isinstance(value, Real):
         raise TypeError(f"{name} must be a number, got {type(value).__name__} {value!r}")
@@ -356,8 +370,9 @@ class FireworksScene(Scene):
             self.particles.emit(count, position, v, fuse, i)
 
     def step(self, dt: float) -> None:
+        """One step of ``dt`` s (the particles' own step): burst, launch, clear the fallen."""
         p = self.particles
-        if p.step():
+        if p.step(dt):
             gone = p.expired
             for pos, vel, kind in zip(gone.positions, gone.velocities, gone.kinds, strict=True):
                 self.burst(pos, vel, int(kind))
@@ -367,6 +382,37 @@ class FireworksScene(Scene):
             self.next_launch = p.t + float(self.rng.uniform(*self.interval))
         if p.steps % 8 == 0 and len(p):  # sparks that fell behind the roofs are gone
             p.kill(p.positions[:, 1] < -3.0)
+
+    # -- saving and resuming -------------------------------------------------------------
+
+    def snapshot(self) -> FireworksSnapshot:
+        """The particles, the random generator, the launch schedule and the afterglow."""
+        return FireworksSnapshot(
+            particles=self.particles.snapshot(),
+            rng=copy.deepcopy(self.rng.bit_generator.state),
+            next_launch=self.next_launch,
+            launched=self.launched,
+            last_drawn=self._last_drawn,
+            glow=self.painter.glow.copy(),
+        )
+
+    def restore(self, snapshot: FireworksSnapshot) -> None:
+        """Return to the moment ``snapshot()`` was taken: the next frames are the same."""
+        if not isinstance(snapshot, FireworksSnapshot):
+            raise TypeError(
+                f"restore takes a FireworksSnapshot from FireworksScene.snapshot(), got "
+                f"{type(snapshot).__name__}"
+            )
+        if snapshot.glow.shape != self.painter.glow.shape:
+            raise ValueError(
+                f"the snapshot's afterglow is {snapshot.glow.shape[:2]} px but this scene is "
+                f"{self.painter.glow.shape[:2]} px: restore into a scene built at the same size"
+            )
+        self.particles.restore(snapshot.particles)
+        self.rng.bit_generator.state = copy.deepcopy(snapshot.rng)
+        self.next_launch, self.launched = snapshot.next_launch, snapshot.launched
+        self._last_drawn = snapshot.last_drawn
+        self.painter.glow[...] = snapshot.glow
 
     # -- drawing --------------------------------------------------------------------------
 

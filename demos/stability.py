@@ -18,6 +18,7 @@ non-finite number is ever drawn.
 
 from __future__ import annotations
 
+import copy
 import math
 import warnings
 from typing import Any
@@ -101,6 +102,21 @@ class _FourSprings(Scene):
         self.camera = None
         self.trail_length = 40
         self.trails: dict[str, list[tuple[float, float]]] = {m: [] for m in METHODS}
+
+    #: What the scene notes beside its worlds, saved with them by :meth:`snapshot`.
+    saved: tuple[str, ...] = ("status", "messages", "latest", "queue", "shown_for", "trails")
+
+    def snapshot(self) -> dict[str, Any]:
+        """Every method's World, and the notes beside them (``saved``), copied."""
+        notes = {name: copy.deepcopy(getattr(self, name)) for name in self.saved}
+        return {"worlds": {m: world.snapshot() for m, (world, _) in self.worlds.items()}, **notes}
+
+    def restore(self, snapshot: dict[str, Any]) -> None:
+        """Return every World and note to the moment ``snapshot()`` was taken."""
+        for method, (world, _) in self.worlds.items():
+            world.restore(snapshot["worlds"][method])
+        for name in self.saved:
+            setattr(self, name, copy.deepcopy(snapshot[name]))
 
     def _step_method(self, method: str, dt: float) -> None:
         """One step of ``method``'s world, turning the engine's warning/error into messages."""
@@ -199,6 +215,7 @@ class OrbitsScene(_FourSprings):
     summary = "one spring, four integrators at the same dt, energy of each plotted under it"
     duration = 6.0
     dt = 0.1  # s: omega dt = 0.63
+    saved = (*_FourSprings.saved, "energy")
 
     def build(self, size: tuple[int, int]) -> None:
         super().build(size)
@@ -266,6 +283,7 @@ class LimitsScene(_FourSprings):
     SUBSTEPS = 16  # method steps per scene step: the blow-ups need hundreds of steps
     duration = 11.5
     dt = 1.0 / 30.0
+    saved = (*_FourSprings.saved, "scene_steps", "omega_dt")
 
     def build(self, size: tuple[int, int]) -> None:
         super().build(size)

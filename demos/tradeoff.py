@@ -11,7 +11,7 @@ best method for that budget. "auto" is the World choosing for itself, given a to
 
 The throughput chart: cost per body-step against the number of bodies, for the World, the
 particle arrays, the lesson's Body loop, pymunk and pygame's Vector2, measured in one run.
-The measuring lives in ``engine.measure`` and ``engine.bench.throughput``; this module draws.
+The measuring lives in ``engine.measure`` and ``demos.bench.throughput``; this module draws.
 """
 
 from __future__ import annotations
@@ -24,9 +24,9 @@ from pathlib import Path
 
 import pygame
 
+from demos.bench import throughput
 from demos.cli import Demo
 from engine import measure
-from engine.bench import throughput
 from engine.measure import PROBLEMS, Point
 from engine.render import INK, MUTED, PAPER, Progress, draw_text, init_headless, save_png
 from engine.render.chart import LogLogChart, decade_range, draw_legend

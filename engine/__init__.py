@@ -14,7 +14,7 @@
 
 from . import forces, integrators, kinematics, stability
 from .body import Body
-from .loop import FixedStep, RealClock, VirtualClock
+from .loop import FixedStep, RealClock, Steppable, VirtualClock
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
 from .world import World
@@ -26,6 +26,7 @@ __all__ = [
     "FixedStep",
     "VirtualClock",
     "RealClock",
+    "Steppable",
     "StabilityWarning",
     "SimulationDiverged",
     "forces",

@@ -1,6 +1,7 @@
 """Checks of the numbers a user hands in: one place, one wording for each refusal.
 
-Standard library only, so every layer may use it (DESIGN.md's layer table).
+Standard library only, so every layer may use it, down to Vector and Body, which import
+nothing but the standard library.
 
 >>> real(2, "k")
 2.0

@@ -32,9 +32,9 @@ import sys
 import time
 from fractions import Fraction
 from numbers import Integral, Real
-from typing import Any, Protocol
+from typing import Any, Protocol, runtime_checkable
 
-__all__ = ["FixedStep", "VirtualClock", "RealClock", "Clock"]
+__all__ = ["FixedStep", "VirtualClock", "RealClock", "Clock", "Steppable"]
 
 _BELOW_ONE = math.nextafter(1.0, 0.0)  # the largest float < 1
 _FLOAT_ROUNDING = Fraction(1, 2**52)  # relative spacing of floats: rounding is below this
@@ -76,6 +76,36 @@ def _as_meant(exact: Fraction) -> Fraction:
     """
     near = exact.limit_denominator(1_000_000)
     return near if abs(near - exact) <= exact * _FLOAT_ROUNDING else exact
+
+
+@runtime_checkable
+class Steppable(Protocol):
+    """Anything whose time moves in fixed steps: what a scene steps and the loop drives.
+
+    ``step(dt)`` is the only way its time moves (dt in s, usually 1/120 or 1/60); ``t`` is that
+    time (s), counted in whole steps so that it never drifts; ``snapshot()`` returns everything
+    needed to come back to this moment and ``restore(snapshot)`` comes back to it, bit for bit,
+    so that a run paused, saved and resumed gives the states of a run never interrupted.
+    :class:`engine.World` and :class:`engine.particles.Particles` speak it, and so does any
+    object a game steps as a whole (several worlds, a world and the game's rules).
+    """
+
+    @property
+    def t(self) -> float:
+        """The time (s) of the current state."""
+        ...
+
+    def step(self, dt: float) -> object:
+        """Advance by exactly ``dt`` seconds (one fixed step)."""
+        ...
+
+    def snapshot(self) -> Any:
+        """Everything needed to return to this moment."""
+        ...
+
+    def restore(self, snapshot: Any) -> None:
+        """Return to the moment ``snapshot`` was taken."""
+        ...
 
 
 class Clock(Protocol):
@@ -171,7 +201,8 @@ class FixedStep:
         return steps
 
     def run(self, world: Any, frame_seconds: float | Fraction) -> float:
-        """Advance by one frame and step ``world`` (anything with ``step(dt)``); return alpha."""
+        """Advance by one frame and step ``world`` (anything with ``step(dt)``, such as a
+        :class:`Steppable`) the whole steps it holds; return alpha."""
         for _ in range(self.advance(frame_seconds)):
             world.step(self.dt)
         return self.alpha

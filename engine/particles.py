@@ -56,6 +56,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable, Iterable
+from dataclasses import dataclass
 from numbers import Integral, Real
 from typing import Any, NamedTuple
 
@@ -67,7 +68,7 @@ from .integrators import INTEGRATORS, Integrator, get_integrator, semi_implicit_
 from .policy import instability
 from .stability import StabilityWarning
 
-__all__ = ["Particles", "Expired"]
+__all__ = ["Particles", "Expired", "ParticlesSnapshot"]
 
 #: The most particles one system may hold (~110 bytes each: 1e8 is ~11 GB).
 _MAX_CAPACITY = 10**8
@@ -84,6 +85,34 @@ class Expired(NamedTuple):
     velocities: np.ndarray  # (k, 2) m/s
     kinds: np.ndarray  # (k,) int
     ids: np.ndarray  # (k,) int
+
+
+@dataclass(frozen=True)
+class ParticlesSnapshot:
+    """Every bit of a Particles system's state at one moment; hand it to ``Particles.restore``.
+
+    The arrays are copies of the living slots (the first ``count``) and of the particles that
+    expired in the last step (the first ``expired``): no other slot is ever read.
+    """
+
+    dt: float  # s: the step of the system it was taken from
+    count: int
+    expired: int
+    steps: int
+    next_death: int  # the first step at which a living particle expires
+    emitted: int
+    dropped: int
+    pos: np.ndarray  # (2, count) m
+    disp: np.ndarray  # (2, count) m per step: velocity * dt
+    life: np.ndarray  # (count,) s
+    birth: np.ndarray  # (count,) step
+    death: np.ndarray  # (count,) step
+    kind: np.ndarray  # (count,)
+    ids: np.ndarray  # (count,)
+    x_pos: np.ndarray  # (2, expired) m
+    x_disp: np.ndarray  # (2, expired) m per step
+    x_kind: np.ndarray  # (expired,)
+    x_id: np.ndarray  # (expired,)
 
 
 def _int_arg(value: Any, name: str, minimum: int) -> int:
@@ -505,8 +534,17 @@ class Particles:
 
     # ---------------------------------------------------------------- stepping
 
-    def step(self) -> int:
-        """Advance every particle by dt; return how many expired (see ``expired``)."""
+    def step(self, dt: float | None = None) -> int:
+        """Advance every particle by the system's dt (s); return how many expired (see ``expired``).
+
+        ``dt`` may be passed, as a scene's loop does, but must be that fixed step: the arrays
+        hold velocity * dt, so the step is chosen once, when the system is made.
+        """
+        if dt is not None and dt != self._dt:
+            raise ValueError(
+                f"dt must be this system's step, {self._dt!r} s (fixed when it was made), "
+                f"got {dt!r}"
+            )
         n = self._n
         if n:
             if self._fast:
@@ -524,6 +562,83 @@ class Particles:
     def run(self, steps: int) -> int:
         """Take ``steps`` steps; return how many particles expired in all."""
         return sum(self.step() for _ in range(_int_arg(steps, "steps", 0)))
+
+    # ------------------------------------------------------- snapshot, restore
+
+    def snapshot(self) -> ParticlesSnapshot:
+        """Everything needed to bring this system back to this moment, bit for bit."""
+        n, k = self._n, self._n_expired
+        return ParticlesSnapshot(
+            dt=self._dt,
+            count=n,
+            expired=k,
+            steps=self._steps,
+            next_death=self._next_death,
+            emitted=self._emitted,
+            dropped=self._dropped,
+            pos=self._pos[:, :n].copy(),
+            disp=self._disp[:, :n].copy(),
+            life=self._life[:n].copy(),
+            birth=self._birth[:n].copy(),
+            death=self._death[:n].copy(),
+            kind=self._kind[:n].copy(),
+            ids=self._id[:n].copy(),
+            x_pos=self._x_pos[:, :k].copy(),
+            x_disp=self._x_disp[:, :k].copy(),
+            x_kind=self._x_kind[:k].copy(),
+            x_id=self._x_id[:k].copy(),
+        )
+
+    def restore(self, snapshot: ParticlesSnapshot) -> None:
+        """Bring back the state saved by ``snapshot()``, into this system or one made alike.
+
+        TypeError for anything but a ParticlesSnapshot; ValueError if it was taken with another
+        dt or holds more particles than ``capacity``. Nothing changes when it is refused.
+        """
+        if not isinstance(snapshot, ParticlesSnapshot):
+            raise TypeError(
+                f"restore takes a ParticlesSnapshot from Particles.snapshot(), got "
+                f"{type(snapshot).__name__}"
+            )
+        if snapshot.dt != self._dt:
+            raise ValueError(
+                f"snapshot.dt is {snapshot.dt!r} s but this system steps {self._dt!r} s: "
+                f"restore into a system made with the same dt"
+            )
+        n, k = snapshot.count, snapshot.expired
+        if not (0 <= n <= self._capacity and 0 <= k <= self._capacity):
+            raise ValueError(
+                f"the snapshot holds {n} particles ({k} expired) but this system's capacity "
+                f"is {self._capacity}: restore into a system at least as large"
+            )
+        shapes: dict[str, tuple[int, ...]] = {"pos": (2, n), "disp": (2, n), "x_pos": (2, k)}
+        shapes["x_disp"] = (2, k)
+        shapes.update({name: (n,) for name in ("life", "birth", "death", "kind", "ids")})
+        shapes.update({name: (k,) for name in ("x_kind", "x_id")})
+        for name, shape in shapes.items():
+            value = getattr(snapshot, name)
+            if not isinstance(value, np.ndarray) or value.shape != shape:
+                got = value.shape if isinstance(value, np.ndarray) else type(value).__name__
+                raise ValueError(
+                    f"snapshot.{name} must be an array of shape {shape} from "
+                    f"Particles.snapshot(), got {got}"
+                )
+        if not (np.isfinite(snapshot.pos).all() and np.isfinite(snapshot.disp).all()):
+            raise ValueError("snapshot.pos and snapshot.disp must be finite (no nan or inf)")
+        self._pos[:, :n] = snapshot.pos
+        self._disp[:, :n] = snapshot.disp
+        self._life[:n] = snapshot.life
+        self._birth[:n] = snapshot.birth
+        self._death[:n] = snapshot.death
+        self._kind[:n] = snapshot.kind
+        self._id[:n] = snapshot.ids
+        self._x_pos[:, :k] = snapshot.x_pos
+        self._x_disp[:, :k] = snapshot.x_disp
+        self._x_kind[:k] = snapshot.x_kind
+        self._x_id[:k] = snapshot.x_id
+        self._n, self._n_expired = n, k
+        self._steps, self._next_death = snapshot.steps, snapshot.next_death
+        self._emitted, self._dropped = snapshot.emitted, snapshot.dropped
 
     def _step_fast(self, n: int) -> None:
         # u' = alpha u + c(t) dt^2 ;  x' = x + u'   (module docstring derives it)

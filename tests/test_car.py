@@ -122,3 +122,23 @@ def test_car_frames_are_valid_not_flat_and_repeatable(scene_cls: type, tmp_path)
         assert image.get_size() == (320, 180)
         colours = np.unique(pygame.surfarray.array3d(image).reshape(-1, 3), axis=0)
         assert len(colours) > 20
+
+
+def test_the_trip_counts_its_time_in_whole_steps_and_saves_its_clock() -> None:
+    trip = plan_trip(10 * MPH, 1.5, 2.0, brake_at=80.0)
+    for _ in range(120):
+        trip.step(1 / 120)
+    assert trip.t == 1.0 and trip.steps == 120
+    for _ in range(3):
+        trip.step(0.5)  # a new dt: the second already counted is kept
+    assert trip.t == 2.5 and trip.steps == 123
+    saved = trip.snapshot()
+    trip.step(0.5)
+    trip.restore(saved)
+    assert trip.t == 2.5 and trip.steps == 123
+    for bad in (0.0, -1.0, math.inf, math.nan, True):
+        with pytest.raises(ValueError, match="dt must be"):
+            trip.step(bad)  # type: ignore[arg-type]
+    assert trip.t == 2.5
+    with pytest.raises(TypeError, match="Trip.snapshot"):
+        trip.restore(2.5)  # type: ignore[arg-type]

@@ -123,3 +123,34 @@ def test_command_line_runs_headless_and_refuses_bad_options(tmp_path, capsys) ->
         main(["crumb", "--fps", "0"])
     assert exit_info.value.code == 2
     assert "--fps" in capsys.readouterr().err
+
+
+def test_in_a_window_the_keys_steer_inside_each_fixed_step(monkeypatch) -> None:
+    # The window is the Scene machinery's (engine.render.play), run here on the dummy driver
+    # with frames of exactly 1/60 s and the right arrow held, closed after 30 frames.
+    import engine.render.recorder as recorder
+    from engine import VirtualClock
+
+    polls = {"n": 0}
+
+    def events() -> list[pygame.event.Event]:
+        polls["n"] += 1
+        return [pygame.event.Event(pygame.QUIT)] if polls["n"] > 30 else []
+
+    class RightHeld:
+        def __getitem__(self, key: int) -> bool:
+            return key == pygame.K_RIGHT
+
+    monkeypatch.setattr(recorder, "init_window", init_headless)
+    monkeypatch.setattr(recorder, "RealClock", lambda: VirtualClock(60))
+    monkeypatch.setattr(pygame.event, "get", events)
+    monkeypatch.setattr(pygame.key, "get_pressed", RightHeld)
+    scene = crumb.CrumbScene(crumb.arrow_keys)
+    scene.seed = 4
+    steered = []
+    monkeypatch.setattr(crumb.CrumbGame, "steer", lambda g, r, u: steered.append((r, u)))
+    recorder.play(scene, fps=1000, size=(160, 90), seconds=10.0)
+    # One step ahead, then 2 steps in each of the 30 frames of 1/60 s: each step asked the keys.
+    assert scene.world.world.steps == 1 + 2 * 30
+    assert steered == [(1.0, 0.0)] * scene.world.world.steps
+    assert isinstance(crumb.play(window=True, seconds=0.1, size=(160, 90)), crumb.Score)

@@ -25,7 +25,8 @@ MIXES = {
     "wind+gravity": lambda: [Wind((4.0, 0.0), C), Gravity((0.0, -9.81))],
 }
 
-# The textbook limits (DESIGN.md): omega dt on a spring, c dt on a drag.
+# The textbook limits (the README's "Choosing an integrator" table): omega dt on a spring,
+# c dt on a drag.
 THEORY = {
     ("explicit_euler", "spring"): 0.0,
     ("semi_implicit_euler", "spring"): 2.0 / W,

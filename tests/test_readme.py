@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import re
 import subprocess
 from pathlib import Path
@@ -34,13 +35,14 @@ def test_the_ten_line_example_moves_the_ball_as_semi_implicit_euler_does(capsys)
     assert str(ball.pos) in capsys.readouterr().out  # type: ignore[attr-defined]
 
 
-def test_the_game_loop_steers_alfred_with_the_keys(monkeypatch) -> None:
+def run_game_block(monkeypatch, frames: int = 40) -> dict[str, object]:
+    """Run the README's game loop headless for ``frames`` frames of 1/60 s, RIGHT held."""
     block = next(b for b in PYTHON_BLOCKS if "pygame.display.set_mode" in b)
-    frames = {"n": 0}
+    polls = {"n": 0}
 
     def events() -> list[pygame.event.Event]:
-        frames["n"] += 1
-        return [pygame.event.Event(pygame.QUIT)] if frames["n"] > 40 else []
+        polls["n"] += 1
+        return [pygame.event.Event(pygame.QUIT)] if polls["n"] > frames else []
 
     class RightHeld:
         def __getitem__(self, key: int) -> bool:
@@ -56,11 +58,40 @@ def test_the_game_loop_steers_alfred_with_the_keys(monkeypatch) -> None:
     monkeypatch.setattr(pygame.key, "get_pressed", RightHeld)
     scope: dict[str, object] = {}
     exec(block, scope)  # noqa: S102 - the README's own example
+    scope["polls"] = polls["n"]
+    return scope
+
+
+def test_the_game_loop_steers_alfred_with_the_keys(monkeypatch) -> None:
+    scope = run_game_block(monkeypatch)
     alfred, world = scope["alfred"], scope["world"]
-    assert frames["n"] == 41
+    assert scope["polls"] == 41
     assert alfred.own_acc == (9.0, 0.0)  # type: ignore[attr-defined]
     assert world.steps == 80  # type: ignore[attr-defined]
     assert alfred.vel.x > 0 and alfred.pos.x > 5.5  # type: ignore[attr-defined]
+
+
+def test_the_game_loop_is_the_crumb_games_core(monkeypatch) -> None:
+    # The README quotes the crumb game's core: the same start, push, wind coupling, step and
+    # paper on the same canvas. (Its wind is the gust's main term only, to stay short.)
+    import demos.crumb as crumb
+
+    scope = run_game_block(monkeypatch, frames=0)  # set up, then closed before a frame
+    alfred, world, loop, camera = (scope[k] for k in ("alfred", "world", "loop", "camera"))
+    assert alfred.pos == crumb.CrumbGame().start  # type: ignore[attr-defined]
+    pushed = run_game_block(monkeypatch, frames=1)["alfred"]
+    assert pushed.own_acc == (crumb.PUSH, 0.0)  # type: ignore[attr-defined]
+    (wind,) = world.forces  # type: ignore[attr-defined]
+    assert wind.k == crumb.K
+    assert loop.dt == crumb.DT  # type: ignore[attr-defined]
+    scene = crumb.CrumbScene()
+    scene.build((640, 360))
+    for corner in ((0.0, 0.0), (11.0, 8.5)):
+        assert camera.point(corner) == scene.camera.point(corner)  # type: ignore[attr-defined]
+    assert crumb.PAPER == (0.0, 0.0, 11.0, 8.5)
+    for t in (0.0, 1.0, 4.0):
+        assert wind.air(t).x == pytest.approx(2.5 * math.sin(0.45 * t))
+        assert crumb.gust(t).x - 1.0 * math.sin(1.7 * t) == pytest.approx(wind.air(t).x)
 
 
 @pytest.mark.parametrize("marker", ["demo-command", "test-command"])

@@ -59,7 +59,8 @@ def test_orbits_energy_follows_theory() -> None:
     y = OMEGA * scene.dt
     e = {m: np.array([v for _, v in scene.energy[m]]) for m in METHODS}
     n = np.arange(len(e["explicit_euler"]))
-    # Explicit Euler: energy multiplied by exactly 1 + (omega dt)^2 each step (DESIGN.md).
+    # Explicit Euler: energy multiplied by exactly 1 + (omega dt)^2 each step (the README's
+    # "Choosing an integrator" table).
     assert e["explicit_euler"] == pytest.approx((1 + y * y) ** n, rel=1e-9)
     # Symplectic methods: bounded, within the modified-energy band of width ~omega dt.
     assert np.all(np.abs(e["semi_implicit_euler"] - 1) < y)

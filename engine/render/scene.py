@@ -6,7 +6,11 @@ the command line (``python -m demos``) drive any scene the same way:
 
 1. ``scene.build(size)``: make ``self.world``, ``self.camera`` and whatever else the scene needs
    for a canvas of ``size`` = (width, height) pixels. Called before the first frame, and again to
-   restart, so it must reset everything.
+   restart, so it must reset everything. ``self.world`` is whatever the scene steps: anything
+   that speaks :class:`engine.Steppable` (``step(dt)``, ``t``, ``snapshot()``, ``restore()``),
+   such as a :class:`engine.World`, an :class:`engine.particles.Particles` system, or an
+   object of the scene's own that steps several of them and the game's rules together. Its
+   ``t`` is the scene's one clock.
 2. ``scene.step(scene.dt)`` once: the world runs one step ahead of the frame being drawn (see
    below).
 3. Each frame: ``scene.step(scene.dt)`` a whole number of times (as the fixed-step loop says),
@@ -40,6 +44,8 @@ from typing import Any
 
 import pygame
 
+from engine.loop import Steppable
+
 __all__ = ["Scene"]
 
 
@@ -59,7 +65,8 @@ class Scene:
     #: The smallest canvas (width, height) in px the scene can lay itself out on.
     min_size: tuple[int, int] = (1, 1)
 
-    world: Any
+    #: What the scene steps; its ``t`` is the scene's time (s).
+    world: Steppable
     camera: Any
 
     def build(self, size: tuple[int, int]) -> None:
@@ -84,11 +91,13 @@ class Scene:
 
     # --- saving and resuming ---------------------------------------------------------------
     def snapshot(self) -> Any:
-        """Everything needed to resume the scene from this moment (default: its World's).
+        """Everything needed to resume the scene from this moment (default: its world's).
 
-        A scene that keeps state outside ``self.world`` (histories, several worlds, a game's
-        score) extends both this and :meth:`restore`, so that restoring mid-run and drawing on
-        gives the same frames as a run never interrupted.
+        A scene that keeps state outside ``self.world`` that changes what it draws (a random
+        generator, an afterglow) extends both this and :meth:`restore`, so that restoring
+        mid-run and drawing on gives the same frames as a run never interrupted. State that
+        the physics needs (several worlds, a game's rules and score) is better kept in the
+        stepped object itself, which then saves it in its own snapshot.
         """
         return self.world.snapshot()
 

@@ -10,7 +10,7 @@ It also times a whole fireworks frame at 60 fps (two physics steps of 1/120 s an
 drawing of ``demos/fireworks.py`` at 640x360) at two spark counts, fits time = a + b N, and
 reports how many sparks fit in 1/60 s.
 
-    python -c "from engine.bench.particles import report; print(report())"
+    python -c "from demos.bench.particles import report; print(report())"
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``python -m engine.bench [TOPIC ...] [--quick]``: run the benchmarks and print their tables."""
+"""``python -m demos.bench [TOPIC ...] [--quick]``: run the benchmarks and print their tables."""
 
 from __future__ import annotations
 
@@ -6,12 +6,12 @@ import argparse
 import importlib
 import sys
 
-from engine.bench import TOPICS
+from demos.bench import TOPICS
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
-        prog="python -m engine.bench",
+        prog="python -m demos.bench",
         description="Speed measured side by side in one run, reported as ratios.",
     )
     parser.add_argument(

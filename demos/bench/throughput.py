@@ -1,7 +1,7 @@
 """Throughput: cost per body-step against the number of bodies, every way of stepping side by side.
 
 Semi-implicit Euler under gravity, dt = 1/60 s, for 10 to 10^6 bodies, measured in one run
-in interleaved rounds (``engine.bench.compare``), as medians:
+in interleaved rounds (``demos.bench.compare``), as medians:
 
 * ``World``: ``World.step`` on N bodies (numpy arrays, one integrator call);
 * ``Particles``: ``engine.particles.Particles.step`` (in-place structure of arrays);
@@ -12,7 +12,7 @@ in interleaved rounds (``engine.bench.compare``), as medians:
 Python loops and pymunk stop at 10^5 bodies (10^4 with ``quick``): a step of 10^6 of them
 takes about a second and tells nothing new, the cost per body being flat by then.
 
-    python -c "from engine.bench.throughput import report; print(report(quick=True))"
+    python -c "from demos.bench.throughput import report; print(report(quick=True))"
 """
 
 from __future__ import annotations
@@ -21,8 +21,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 
-from engine.bench import compare
-from engine.bench.core import DT, G, lesson_step, pymunk_step, start_state, vector2_step, world_step
+from demos.bench import compare
+from demos.bench.core import DT, G, lesson_step, pymunk_step, start_state, vector2_step, world_step
 from engine.forces import Gravity
 
 __all__ = ["IMPLEMENTATIONS", "Row", "measure", "report", "table"]

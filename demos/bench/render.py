@@ -1,6 +1,6 @@
 """Recording benchmark: the frame writer against ``pygame.image.save`` for the same frames.
 
-Run with ``python -m engine.bench render``. Both sides drive the same scene through the same
+Run with ``python -m demos.bench render``. Both sides drive the same scene through the same
 fixed-step loop and draw the same picture at 640x360 (a ruler, three plot panels, a moving body
 with its arrows, labels); the baseline saves each frame with ``pygame.image.save``, the recorder
 hands it to :class:`engine.render.FrameWriter` (pixels copied out, PNG encoded on worker
@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from engine import Body, World
+from engine import Body, Vector, World
 
 __all__ = ["BenchScene", "report"]
 
@@ -29,7 +29,7 @@ FPS = 30
 
 
 def _scene_class() -> type:
-    # Imported here: ``import engine.bench.render`` alone must not start pygame.
+    # Imported here: ``import demos.bench.render`` alone must not start pygame.
     from engine.render import (
         ACCELERATION,
         INK,
@@ -51,6 +51,7 @@ def _scene_class() -> type:
         summary = "a lesson-like frame for timing the frame writer"
         duration = 3.0
         dt = 1.0 / 120.0
+        world: World
 
         def build(self, size: tuple[int, int]) -> None:
             self.world = World(integrator="exact")
@@ -71,7 +72,8 @@ def _scene_class() -> type:
             surface.fill(PAPER)
             draw_text(surface, "Benchmark frame", (12, 8), 24)
             draw_text(surface, f"t = {t:.2f} s", (surface.get_width() - 12, 8), 26, INK, "topright")
-            s = float(self.world.position_of(self.body, alpha))
+            s = self.world.position_of(self.body, alpha)
+            assert not isinstance(s, Vector)  # a 1D world
             draw_ruler(surface, self.camera, 0.0, 10.0, -0.3, unit="in")
             draw_dot(surface, self.camera.to_px(s, 0.1), 9, (156, 66, 33))
             draw_vector(surface, self.camera, (s, 0.8), 0.5 + t, 1.0, VELOCITY, "v")

@@ -1,9 +1,13 @@
 """Benchmarks: speed measured side by side in one run and reported as ratios.
 
-``python -m engine.bench`` runs every topic; ``python -m engine.bench core --quick``
+``python -m demos.bench`` runs every topic; ``python -m demos.bench core --quick``
 runs one, briefly. Each topic is a module here with ``report(quick) -> str``. No test
 asserts a time: machines are shared and noisy, so the numbers that matter are ratios
 of things measured in the same run, round by round, as medians.
+
+They live under ``demos/``, above both the engine and the demos, because some of them time a
+demo (a fireworks frame): nothing under ``engine/`` imports ``demos/``. The tradeoff demo
+draws the throughput topic's measurements as a chart.
 """
 
 from __future__ import annotations
@@ -14,12 +18,12 @@ from collections.abc import Callable
 
 __all__ = ["TOPICS", "compare"]
 
-#: Topic name -> module under engine.bench, in the order they run.
+#: Topic name -> module under demos.bench, in the order they run.
 TOPICS: dict[str, str] = {
-    "core": "engine.bench.core",
-    "particles": "engine.bench.particles",
-    "render": "engine.bench.render",
-    "throughput": "engine.bench.throughput",
+    "core": "demos.bench.core",
+    "particles": "demos.bench.particles",
+    "render": "demos.bench.render",
+    "throughput": "demos.bench.throughput",
 }
 
 

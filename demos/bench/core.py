@@ -1,7 +1,7 @@
 """Core benchmark: World.step per body-step at 10 to 100,000 bodies, against pymunk, and
 the lesson-level Body/Vector step against the same step with pygame's Vector2.
 
-Run with ``python -m engine.bench core``. Targets (issue 2): World at 1,000 bodies at
+Run with ``python -m demos.bench core``. Targets (issue 2): World at 1,000 bodies at
 most 0.5x pymunk's ``Space.step``; the lesson-level step at most 3x the Vector2 loop.
 """
 
@@ -14,8 +14,8 @@ from functools import partial
 
 import numpy as np
 
+from demos.bench import compare
 from engine import Body, Vector, World
-from engine.bench import compare
 from engine.forces import Drag, Gravity
 
 __all__ = [
