@@ -19,8 +19,8 @@ Each force also says what the World needs to know about it without calling it:
 * ``potential(x, mass)``: its potential energy, or None when it has none;
 * ``affine()``: for forces of the form a_0 + F_0/m - (c/m) v, those three
   parts, so a World can fold them into per-body arrays once instead of
-  calling the force every step (DESIGN.md: broadcasting a small vector every
-  step costs several times more than adding two arrays).
+  calling the force every step (``engine.forcefield``: broadcasting a small
+  vector every step costs several times more than adding two arrays).
 
 >>> g = Gravity((0, -9.81))
 >>> g(0.0, Vector(0, 0), Vector(0, 0), 2.0)

@@ -34,11 +34,6 @@ SCENES: dict[str, Callable[[], Scene]] = {
     **{f"stability/{name}": make for name, make in stability.DEMO.scenes.items()},
 }
 #: Scenes that do not resume yet, and why.
-KNOWN = {
-    "stability": "a World restored from a snapshot warns again about a dt it already warned "
-    "about (World.restore bumps the version its warnings are keyed by), so the scene shows "
-    "the StabilityWarning a second time"
-}
 
 
 def leaves(state: Any) -> list[Any]:
@@ -114,12 +109,7 @@ FRAMES, PAUSE = 45, 20  # 3 s at 15 fps, paused at 1.33 s: rockets climbing, the
 @pytest.mark.parametrize("how", ["rerun", "resume"])
 @pytest.mark.parametrize(
     "name",
-    [
-        pytest.param(name, marks=pytest.mark.xfail(reason=KNOWN[name.split("/")[0]], strict=True))
-        if name.split("/")[0] in KNOWN
-        else name
-        for name in SCENES
-    ],
+    list(SCENES),
 )
 def test_a_scene_saved_mid_run_goes_on_as_if_never_interrupted(
     name: str, how: str, unbroken: dict[str, list[tuple[bytes, list[Any]]]]

@@ -147,10 +147,6 @@ def test_drag_only_system_also_restores() -> None:
     assert _same([_state(p) for _ in range(10) if p.step() >= 0], ahead)
 
 
-@pytest.mark.xfail(
-    reason="World.restore bumps the version its warnings are keyed by, so it warns again",
-    strict=True,
-)
 def test_a_restored_world_does_not_warn_again_about_what_it_warned_about() -> None:
     # Resuming must give the run's own warnings, no more: the stability demo shows each one.
     import warnings
