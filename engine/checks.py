@@ -73,5 +73,5 @@ def mass(value: Any, name: str = "mass") -> float:
     except OverflowError:  # an int beyond the float range
         m = math.inf
     if not (math.isfinite(m) and m > 0.0):
-        raise ValueError(f"{name} must be positive and finite (e.g. 1.0), got {value!r}")
+        raise ValueError(f"{name} must be positive and finite (> 0, e.g. 1.0), got {value!r}")
     return m

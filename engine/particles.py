@@ -62,6 +62,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from . import checks
 from .forcefield import ForceModel
 from .forces import Force, Wind, as_force
 from .integrators import INTEGRATORS, Integrator, get_integrator, semi_implicit_euler
@@ -124,19 +125,6 @@ def _int_arg(value: Any, name: str, minimum: int) -> int:
     return int(value)
 
 
-def _positive_arg(value: Any, name: str) -> float:
-    """``value`` as a finite float > 0; TypeError/ValueError naming ``name`` otherwise."""
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise TypeError(f"{name} must be a number > 0, got {type(value).__name__} {value!r}")
-    try:
-        f = float(value)
-    except OverflowError:  # an int beyond the float range
-        f = math.inf
-    if not (math.isfinite(f) and f > 0.0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return f
-
-
 def _pair(value: Any, name: str) -> tuple[float, float]:
     """A force's constant part (0.0 or a Vector) as (x, y); ValueError for a 1D number."""
     if isinstance(value, Real):
@@ -187,8 +175,8 @@ class Particles:
         fast_path: bool = True,
     ) -> None:
         self._capacity = _int_arg(capacity, "capacity", 1)
-        self._dt = _positive_arg(dt, "dt")
-        self._mass = _positive_arg(mass, "mass")
+        self._dt = checks.seconds(dt, "dt")
+        self._mass = checks.mass(mass, "mass")
         if callable(integrator) and integrator in INTEGRATORS.values():
             self._integrator: Integrator = integrator  # type: ignore[assignment]
         else:
