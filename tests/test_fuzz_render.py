@@ -14,7 +14,7 @@ import numpy as np
 import pygame
 import pytest
 from fuzzing import anything, attempt, fuzz, junk, moderate, numbers, pairs
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 from engine.render import Camera, FramesExistError, FrameWriteError, FrameWriter, init_headless
@@ -26,6 +26,7 @@ from engine.render import Camera, FramesExistError, FrameWriteError, FrameWriter
     origin=st.one_of(st.tuples(moderate, moderate), pairs, junk),
     point=st.one_of(st.tuples(moderate, moderate), moderate, anything),
 )
+@example(scale=0.001, origin=(17179869184.0, 0.0), point=0.15)  # a far origin at a small scale
 def test_camera_round_trips_or_names_scale_or_origin(scale: Any, origin: Any, point: Any) -> None:
     ok, cam = attempt(lambda: Camera(scale, origin), "scale", "origin")
     if not ok:
@@ -41,9 +42,16 @@ def test_camera_round_trips_or_names_scale_or_origin(scale: Any, origin: Any, po
     if (
         max(abs(x), abs(y), *map(abs, cam.origin)) * cam.scale < 1e12
     ):  # whole pixels are exact well within 2^53
-        wx, wy = cam.to_world(*cam.to_px(x, y))
-        assert abs(wx - x) <= 1e-9 * (1 + abs(x)) + 1 / cam.scale * 1e-6
-        assert abs(wy - y) <= 1e-9 * (1 + abs(y)) + 1 / cam.scale * 1e-6
+        px_x, px_y = cam.to_px(x, y)
+        wx, wy = cam.to_world(px_x, px_y)
+        # The pixel coordinate origin + scale x is rounded to a float, an error of up to
+        # eps (|origin| + |pixel|) pixels, which is that over scale in world units: a far
+        # origin at a small scale (origin 1.7e10 px at 0.001 px/m) costs millimetres.
+        ulp = 2.0**-52
+        err_x = 4 * ulp * (abs(cam.origin[0]) + abs(px_x)) / cam.scale
+        err_y = 4 * ulp * (abs(cam.origin[1]) + abs(px_y)) / cam.scale
+        assert abs(wx - x) <= 1e-9 * (1 + abs(x)) + err_x
+        assert abs(wy - y) <= 1e-9 * (1 + abs(y)) + err_y
         assert abs(px[0] - cam.to_px(x, y)[0]) <= 0.5 and abs(px[1] - cam.to_px(x, y)[1]) <= 0.5
 
 
