@@ -12,23 +12,35 @@
 ``import engine`` never imports pygame; drawing lives in ``engine.render``.
 """
 
-from . import forces, integrators, kinematics, stability
+from . import colliders, contacts, forces, integrators, kinematics, stability
 from .body import Body
+from .colliders import Box, Circle, Collider, Plane, Segment
+from .contacts import ContactEvent
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
-from .world import World
+from .world import OverlapWarning, QueryHit, World
 
 __all__ = [
     "Vector",
     "Body",
     "World",
+    "Plane",
+    "Segment",
+    "Circle",
+    "Box",
+    "Collider",
+    "ContactEvent",
+    "QueryHit",
+    "OverlapWarning",
     "FixedStep",
     "VirtualClock",
     "RealClock",
     "Steppable",
     "StabilityWarning",
     "SimulationDiverged",
+    "colliders",
+    "contacts",
     "forces",
     "integrators",
     "kinematics",

@@ -56,14 +56,34 @@ class BodyStore:
         self.prev_x = np.zeros(shape)  # positions before the last step
         self.mass = np.zeros(0)  # (N,) masses (kg)
         self.own = np.zeros(shape)  # own constant accelerations (length units / s^2)
+        # Size and material, for contacts (fixed once a body is made).
+        self.radius = np.zeros(0)  # (N,) radii (length units, 0 for a point)
+        self.restitution = np.zeros(0)  # (N,) e in [0, 1]
+        self.friction = np.zeros(0)  # (N,) Coulomb mu >= 0
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
 
     def __len__(self) -> int:
         return len(self.mass)
 
-    def append(self, x: np.ndarray, v: np.ndarray, mass: np.ndarray, own: np.ndarray) -> list[int]:
-        """Add rows for new bodies; return their slots (one array copy for the whole batch)."""
+    def append(
+        self,
+        x: np.ndarray,
+        v: np.ndarray,
+        mass: np.ndarray,
+        own: np.ndarray,
+        material: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+    ) -> list[int]:
+        """Add rows for new bodies; return their slots (one array copy for the whole batch).
+
+        ``material``: (radius, restitution, friction) arrays; points of restitution 0.5 and
+        friction 0.5 (Body's defaults) when None.
+        """
         n0, k = len(self), len(mass)
+        if material is None:
+            material = (np.zeros(k), np.full(k, 0.5), np.full(k, 0.5))
+        self.radius = np.concatenate([self.radius, material[0]])
+        self.restitution = np.concatenate([self.restitution, material[1]])
+        self.friction = np.concatenate([self.friction, material[2]])
         self.x = np.concatenate([self.x, x])
         self.v = np.concatenate([self.v, v])
         self.prev_x = np.concatenate([self.prev_x, x])
@@ -79,6 +99,8 @@ class BodyStore:
         keep = np.arange(len(self)) != i
         self.x, self.v, self.prev_x = self.x[keep], self.v[keep], self.prev_x[keep]
         self.mass, self.own = self.mass[keep], self.own[keep]
+        self.radius, self.restitution = self.radius[keep], self.restitution[keep]
+        self.friction = self.friction[keep]
         rows = self._row_of
         rows[slot] = -1
         rows[rows > i] -= 1

@@ -37,14 +37,17 @@ import numpy as np
 
 from . import checks
 from .body import Body, State, coerce_mass, coerce_state
+from .colliders import Collider
+from .contacts import ContactEvent, Contacts
 from .forcefield import ForceModel
 from .forces import Force, as_force
 from .integrators import Integrator
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
 from .stability import SimulationDiverged
 from .store import BodyStore
+from .vector import Vector
 
-__all__ = ["World", "WorldSnapshot", "METHODS", "check_dt"]
+__all__ = ["World", "WorldSnapshot", "METHODS", "check_dt", "OverlapWarning", "QueryHit"]
 
 # Kept for code that imported it from here: "auto" tries these, cheapest first.
 _AUTO_ORDER = AUTO_ORDER
@@ -86,6 +89,23 @@ def check_dt(dt: Any) -> float:
     return checks.seconds(dt, "dt")
 
 
+class OverlapWarning(UserWarning):
+    """A body started inside a collider and was pushed out to its surface."""
+
+
+@dataclass(frozen=True)
+class QueryHit:
+    """What a query found: the shape (a Body or a Collider), the point, the normal there,
+    and ``fraction`` (0 to 1 along a segment query) or ``distance`` (a point query, length
+    units from the shape's surface, < 0 inside)."""
+
+    shape: Any
+    point: Vector
+    normal: Vector
+    fraction: float = 0.0
+    distance: float = 0.0
+
+
 def _copy(array: Any) -> Any:
     return None if array is None else array.copy()
 
@@ -106,6 +126,7 @@ class WorldSnapshot:
     steps: int
     anchor: tuple[Any, Any, float] | None
     warned: frozenset[Any] = field(default_factory=frozenset)
+    contacts: tuple[Any, ...] | None = None  # which bodies rest on what, sensors overlapped
 
 
 @dataclass
@@ -169,6 +190,11 @@ class World:
         self._fast: tuple[Any, ...] | None = None  # (dt, version, method, step, model, kernel)
         self._kernel: _Kernel | None = None
         self._huge = False  # the state is near overflow: step with numpy's warnings off
+        self._contacts: Contacts | None = None  # made by the first add_collider
+        self._handlers: list[tuple[Any, Callable[..., Any] | None, Callable[..., Any] | None]] = []
+        #: The contacts that began and ended in the last step (ContactEvent each).
+        self.began: list[ContactEvent] = []
+        self.ended: list[ContactEvent] = []
 
     # -- bodies and forces ----------------------------------------------------------------
     @property
@@ -242,10 +268,18 @@ class World:
             np.array([b.vel for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
             np.array([b.mass for b in batch], dtype=float),
             np.array([b.own_acc for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+            (
+                np.array([b.radius for b in batch], dtype=float),
+                np.array([b.restitution for b in batch], dtype=float),
+                np.array([b.friction for b in batch], dtype=float),
+            ),
         )
         for b, slot in zip(batch, slots, strict=True):
             b._store, b._slot = store, slot
             self._bodies.append(b)
+        if self._contacts is not None:
+            self._contacts.bodies_added(len(batch))
+            self._push_out(range(len(self._bodies) - len(batch), len(self._bodies)))
         self._changed_structure()
         return batch
 
@@ -256,8 +290,11 @@ class World:
         store = self._store
         assert store is not None
         pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
-        del self._bodies[store.row(body._slot)]
+        row = store.row(body._slot)
+        del self._bodies[row]
         store.remove(body._slot)
+        if self._contacts is not None:
+            self._contacts.body_removed(row)
         for attached in self._forces:
             if attached.bodies is not None and body in attached.bodies:
                 attached.bodies.remove(body)
@@ -302,6 +339,227 @@ class World:
         self._forces.append(_Attached(f, members))
         self._changed_structure()
         return f
+
+    # -- colliders and contacts ---------------------------------------------------------------
+    @property
+    def colliders(self) -> tuple[Collider, ...]:
+        """The static colliders, in the order they were added."""
+        return () if self._contacts is None else tuple(self._contacts.colliders)
+
+    def add_collider(self, collider: Collider) -> Collider:
+        """Add a static collider (``engine.colliders``) and return it.
+
+        Bodies already inside it are pushed out to its surface, with an OverlapWarning naming
+        both. Colliders are 2D: a 1D World refuses them.
+        """
+        if not isinstance(collider, Collider):
+            raise TypeError(
+                f"add_collider takes a collider from engine.colliders (Plane, Segment, Circle, "
+                f"Box), got {type(collider).__name__} {collider!r}"
+            )
+        self._check_dim(2, f"the collider {collider!r}")
+        if collider in self.colliders:
+            raise ValueError(f"that collider is already in this World: {collider!r}")
+        store = self._ensure_store(2)
+        if self._contacts is None:
+            self._contacts = Contacts()
+            self._contacts.bodies_added(len(store))
+        self._contacts.add(collider)
+        self._push_out(range(len(self._bodies)))
+        self._changed_structure()
+        return collider
+
+    def remove_collider(self, collider: Collider) -> None:
+        """Take a collider out of the world."""
+        if collider not in self.colliders:
+            raise ValueError(f"that collider is not in this World: {collider!r}")
+        assert self._contacts is not None
+        self._contacts.remove(collider)
+        self._changed_structure()
+
+    def _push_out(self, rows: Iterable[int]) -> None:
+        """Push the bodies in ``rows`` out of any solid collider, warning for each."""
+        import warnings
+
+        contacts, store = self._contacts, self._store
+        assert contacts is not None and store is not None
+        idx = np.fromiter(rows, dtype=np.intp)
+        if not len(idx):
+            return
+        x, v = store.x[idx], store.v[idx]
+        moved = contacts.push_out(x, v, store.radius[idx])
+        if not moved:
+            return
+        store.x[idx], store.v[idx], store.prev_x[idx] = x, v, x
+        self._state_written()
+        for i, k in moved[:10]:
+            body = self._bodies[int(idx[i])]
+            warnings.warn(
+                f"{body!r} started inside {contacts.colliders[k]!r}; it was pushed out to the "
+                f"collider's surface",
+                OverlapWarning,
+                stacklevel=3,
+            )
+
+    def on_contact(
+        self,
+        target: Body | Collider,
+        begin: Callable[[ContactEvent], Any] | None = None,
+        end: Callable[[ContactEvent], Any] | None = None,
+    ) -> None:
+        """Call ``begin(event)`` / ``end(event)`` after each step for the contacts of ``target``.
+
+        ``target`` is a Body in this World or a collider; the calls come after the step, in the
+        order the contacts happened (``World.began`` and ``World.ended`` list them too).
+        """
+        if not isinstance(target, (Body, Collider)):
+            raise TypeError(
+                f"target must be a Body or a collider, got {type(target).__name__} {target!r}"
+            )
+        for name, fn in (("begin", begin), ("end", end)):
+            if fn is not None and not callable(fn):
+                raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
+        self._handlers.append((target, begin, end))
+
+    @property
+    def capped(self) -> int:
+        """How many times a body met more than MAX_IMPACTS impacts in one step (placed on a
+        surface instead)."""
+        return 0 if self._contacts is None else self._contacts.capped
+
+    def resting(self, body: Body) -> Collider | None:
+        """The collider ``body`` rests on (slides or sits on), or None while it is in flight."""
+        if not isinstance(body, Body) or body.world is not self:
+            raise ValueError(f"that body is not in this World: {body!r}")
+        contacts, store = self._contacts, self._store
+        if contacts is None or store is None:
+            return None
+        f = int(contacts.rest[store.row(body._slot)])
+        return None if f < 0 else contacts.colliders[int(contacts.faces.owner[f])]
+
+    def _report(self) -> None:
+        """Turn the contacts' rows into events with Bodies and call the handlers."""
+        contacts = self._contacts
+        assert contacts is not None
+        bodies, colliders = self._bodies, contacts.colliders
+
+        def events(raw: list[Any]) -> list[ContactEvent]:
+            return [
+                ContactEvent(
+                    bodies[i],
+                    colliders[k],
+                    Vector(float(p[0]), float(p[1])),
+                    Vector(float(n[0]), float(n[1])),
+                    Vector(float(j[0]), float(j[1])),
+                    t,
+                )
+                for i, k, p, n, j, t in raw
+            ]
+
+        self.began, self.ended = events(contacts.began), events(contacts.ended)
+        if self._handlers:
+            for event_list, which in ((self.began, 1), (self.ended, 2)):
+                for ev in event_list:
+                    for handler in self._handlers:
+                        fn = handler[which]
+                        if fn is not None and (handler[0] is ev.body or handler[0] is ev.collider):
+                            fn(ev)
+
+    def segment_query_first(self, start: Any, end: Any, radius: float = 0.0) -> QueryHit | None:
+        """The first body or solid collider a segment (a ray from ``start`` to ``end``) meets.
+
+        ``radius`` > 0 sweeps a disc of that radius instead of a point. Returns a QueryHit with
+        ``fraction`` (0 at start, 1 at end), the point where the swept centre first touches,
+        and the normal there; None when nothing is met. Sensors are not hit.
+        """
+        from .colliders import _point
+        from .impact import disc_hits, line_hits
+
+        a = np.array(_point(start, "start"))
+        b = np.array(_point(end, "end"))
+        r = checks.real(radius, "radius", nonneg=True)
+        best: tuple[float, Any, Any] | None = None
+        one = np.ones(1)
+
+        def consider(t: float, shape: Any, normal: Any) -> None:
+            nonlocal best
+            if t <= 1.0 and (best is None or t < best[0]):
+                best = (t, shape, normal)
+
+        if self._contacts is not None:
+            faces = self._contacts.faces
+            cols = self._contacts.colliders
+            X, V, B = a[None, :], (b - a)[None, :], np.zeros((1, 2))
+            for j in range(len(faces.p)):
+                t, n = line_hits(
+                    X, V, B, faces.p[j : j + 1], faces.n[j : j + 1], faces.rho[j : j + 1] + r,
+                    faces.two[j : j + 1], faces.lo[j : j + 1], faces.hi[j : j + 1], 1.0,
+                )
+                consider(float(t[0]), cols[faces.owner[j]], n[0])
+            L = len(faces.p)
+            for j in range(len(faces.c)):
+                t = disc_hits(X, V, B, faces.c[j : j + 1], faces.r[j : j + 1] + r, one)
+                if np.isfinite(t[0]):
+                    x = a + (b - a) * t[0]
+                    d = x - faces.c[j]
+                    consider(float(t[0]), cols[faces.owner[L + j]], d / np.hypot(*d))
+        store = self._store
+        if store is not None and self.dim == 2 and self._bodies:
+            n = len(store)
+            X = np.broadcast_to(a, (n, 2))
+            V = np.broadcast_to(b - a, (n, 2))
+            t = disc_hits(X, V, np.zeros((n, 2)), store.x, store.radius + r, np.ones(n))
+            for i in np.flatnonzero(np.isfinite(t)):
+                x = a + (b - a) * t[i]
+                d = x - store.x[i]
+                length = float(np.hypot(*d))
+                consider(float(t[i]), self._bodies[i], d / length if length else (b - a) * 0)
+        if best is None:
+            return None
+        t, shape, normal = best
+        point = a + (b - a) * t
+        return QueryHit(
+            shape,
+            Vector(float(point[0]), float(point[1])),
+            Vector(float(normal[0]), float(normal[1])),
+            fraction=t,
+        )
+
+    def point_query(self, point: Any, max_distance: float = 0.0) -> list[QueryHit]:
+        """Bodies and colliders whose surface lies within ``max_distance`` of ``point``.
+
+        Nearest first; ``distance`` is from the shape's surface (< 0 inside). A mouse pick is
+        ``world.point_query(mouse, 0.1)``.
+        """
+        from .colliders import _point
+        from .contacts import signed_distance
+
+        p = np.array(_point(point, "point"))
+        reach = checks.real(max_distance, "max_distance", nonneg=True)
+        hits: list[QueryHit] = []
+        store = self._store
+        if store is not None and self.dim == 2 and self._bodies:
+            d = store.x - p
+            dist = np.hypot(d[:, 0], d[:, 1])
+            gap = dist - store.radius
+            for i in np.flatnonzero(gap <= reach):
+                nrm = -d[i] / dist[i] if dist[i] > 0 else np.array([0.0, 1.0])
+                surf = store.x[i] - nrm * store.radius[i]
+                hits.append(
+                    QueryHit(
+                        self._bodies[i],
+                        Vector(float(surf[0]), float(surf[1])),
+                        Vector(float(nrm[0]), float(nrm[1])),
+                        distance=float(gap[i]),
+                    )
+                )
+        for c in self.colliders:
+            d0 = float(signed_distance(c, p[None, :])[0])
+            if d0 <= reach:
+                surf, nrm, _ = c.closest((float(p[0]), float(p[1])))
+                hits.append(QueryHit(c, surf, nrm, distance=d0))
+        hits.sort(key=lambda h: h.distance)
+        return hits
 
     # -- derived state ----------------------------------------------------------------------
     def _changed_structure(self) -> None:
@@ -488,7 +746,12 @@ class World:
             step = None if name == "exact" else self._integrator_named(name)
             # Either Euler method on forces that are all folded (a = a0 - c v) is a fixed
             # affine map of the state: the World takes it in four array operations.
-            affine = name in _EULERS and self._policy.custom is None and model.affine
+            affine = (
+                name in _EULERS
+                and self._policy.custom is None
+                and model.affine
+                and self._contacts is None
+            )
             self._fast = (dt, self._version, name, step, model, affine)
         if dt != self._dt:
             # Fold the time so far into the base before counting steps of a new dt.
@@ -505,6 +768,8 @@ class World:
         if self._bodies:
             self._step_general(dt, name, step, model)
         self._n += 1
+        if self._contacts is not None:
+            self._report()
 
     def _prepare_affine(self, dt: float, model: ForceModel, name: str) -> bool:
         """Ready the affine Euler kernel for ``dt``; False if its next step might overflow.
@@ -573,6 +838,15 @@ class World:
         else:
             x1, v1 = step(store.x, store.v, model.accel, t0, dt)
         self._huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
+        contacts = self._contacts
+        if contacts is not None:
+            # The path of the step is swept for impacts (engine.contacts); under the closed
+            # form it is the exact parabola, so the next step starts its own closed form.
+            x1, v1 = contacts.resolve(
+                store.x, store.v, x1, v1, dt, t0, store.radius, store.restitution,
+                store.friction, store.mass, model.a0 if step is None else None,
+            )
+            self._anchor = None
         store.prev_x, store.x, store.v = store.x, x1, v1
         self._void_budget()
 
@@ -700,6 +974,7 @@ class World:
             steps=self.steps,
             anchor=anchor,
             warned=frozenset(self._policy.warned),
+            contacts=None if self._contacts is None else self._contacts.state(),
         )
 
     def restore(self, snapshot: WorldSnapshot) -> None:
@@ -734,6 +1009,12 @@ class World:
             x0, v0, ta = snapshot.anchor
             self._anchor = (x0.copy(), v0.copy(), ta)
         self._policy.warned = set(snapshot.warned)
+        if self._contacts is not None:
+            if snapshot.contacts is None:
+                self._contacts.rest[:] = -1
+                self._contacts.inside[:] = False
+            else:
+                self._contacts.set_state(snapshot.contacts, len(self._bodies))
 
     def _check_snapshot(self, snap: WorldSnapshot) -> tuple[list[float], list[State]]:
         """Refuse a snapshot (a plain dataclass, so one can be built or altered by hand) that

@@ -1,0 +1,329 @@
+"""Static colliders: the world's walls, floors, pegs and rooms, which bodies with a size meet.
+
+Four shapes, each with a material (``restitution``, ``friction``) and a ``sensor`` flag:
+
+* ``Plane(point, normal)``: an infinite floor or wall; the solid side is behind ``normal``.
+* ``Segment(a, b, radius=0.0)``: a thin wall from a to b, or a capsule when ``radius`` > 0
+  (its ends are round). A body meets it from either side.
+* ``Circle(center, radius)``: a peg or a bumper.
+* ``Box(lower_left, upper_right)``: the walls of a room that holds bodies *inside*: its
+  solid is everything outside the rectangle.
+
+Add one with ``world.add_collider(c)``. A body of radius r touches a collider when its centre
+is at distance r from the collider's surface.
+
+Materials combine by product, as in pymunk: a bounce off a wall uses e = e_body * e_wall and
+mu = mu_body * mu_wall. A collider's defaults (restitution 1.0, friction 1.0) therefore leave
+the body's own material in force.
+
+A sensor is not solid: bodies pass through it, and the World reports when they begin and end
+overlapping it (``World.began`` / ``World.ended``). The crumb in the crumb game is one.
+
+>>> floor = Plane((0, 0), (0, 1))
+>>> floor.distance((3, 2))
+2.0
+>>> Segment((0, 0), (4, 0), radius=0.5).distance((2, 1.5))
+1.0
+>>> Segment((1, 1), (1, 1))
+Traceback (most recent call last):
+ValueError: a and b must differ: a Segment of zero length (1.0, 1.0) to (1.0, 1.0) has no direction; use Circle((1.0, 1.0), radius) for a round peg
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+from typing import Any
+
+from . import checks
+from .vector import Vector, _as_pair
+
+__all__ = ["Collider", "Plane", "Segment", "Circle", "Box"]
+
+
+def _point(value: Any, name: str) -> tuple[float, float]:
+    """A finite 2D point (a Vector or a pair of numbers); TypeError / ValueError naming ``name``."""
+    pair = _as_pair(value)
+    if pair is None and not isinstance(value, (str, bytes)):
+        try:  # any other 2-sequence of real numbers: a numpy row, a pygame Vector2
+            if len(value) == 2 and all(
+                isinstance(c, Real) and not isinstance(c, bool) for c in value
+            ):
+                pair = (float(value[0]), float(value[1]))
+        except TypeError:
+            pair = None
+    if pair is None:
+        raise TypeError(
+            f"{name} must be a 2D point, a Vector or a pair of numbers such as (1.0, 2.0), "
+            f"got {type(value).__name__} {value!r}"
+        )
+    x, y = float(pair[0]), float(pair[1])
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
+    return x, y
+
+
+def _material(restitution: Any, friction: Any, sensor: Any) -> tuple[float, float, bool]:
+    e = checks.real(restitution, "restitution")
+    if not 0.0 <= e <= 1.0:
+        raise ValueError(
+            f"restitution must be in [0, 1] (1.0 leaves the body's own in force), got "
+            f"{restitution!r}"
+        )
+    mu = checks.real(friction, "friction", nonneg=True)
+    if not isinstance(sensor, bool):
+        raise TypeError(f"sensor must be True or False, got {type(sensor).__name__} {sensor!r}")
+    return e, mu, sensor
+
+
+#: A flat face for the contact kernels: (point p, unit normal n, offset rho, two_sided, lo, hi).
+#: The face is the line through p, pushed out along n by rho; a body's centre at distance
+#: ``rho + r`` from the line touches it. ``lo <= u <= hi`` bounds the face along the tangent
+#: (-n_y, n_x), measured from p. A one-sided face's solid lies behind n.
+Line = tuple[tuple[float, float], tuple[float, float], float, bool, float, float]
+#: A round face: (centre, radius).
+Disc = tuple[tuple[float, float], float]
+
+
+class Collider:
+    """A static shape bodies meet; its subclasses are the shapes. Materials as in the module doc."""
+
+    __slots__ = ("restitution", "friction", "sensor")
+
+    def __init__(self, restitution: float, friction: float, sensor: bool) -> None:
+        self.restitution, self.friction, self.sensor = _material(restitution, friction, sensor)
+
+    def distance(self, point: Any) -> float:
+        """Signed distance (length units) from ``point`` to the surface: > 0 in free space."""
+        return self.closest(point)[2]
+
+    def closest(self, point: Any) -> tuple[Vector, Vector, float]:
+        """(the nearest surface point, the unit normal there into free space, the distance)."""
+        raise NotImplementedError
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax) of the solid part (inf for what has no end)."""
+        raise NotImplementedError
+
+    def lines(self) -> list[Line]:
+        """The flat faces, for the contact kernels."""
+        return []
+
+    def discs(self) -> list[Disc]:
+        """The round faces, for the contact kernels."""
+        return []
+
+    def _material_repr(self) -> str:
+        parts = []
+        if self.restitution != 1.0:
+            parts.append(f"restitution={self.restitution!r}")
+        if self.friction != 1.0:
+            parts.append(f"friction={self.friction!r}")
+        if self.sensor:
+            parts.append("sensor=True")
+        return "".join(", " + p for p in parts)
+
+
+class Plane(Collider):
+    """An infinite line through ``point``; free space on the side ``normal`` points to."""
+
+    __slots__ = ("point", "normal")
+
+    def __init__(
+        self,
+        point: Any,
+        normal: Any,
+        *,
+        restitution: float = 1.0,
+        friction: float = 1.0,
+        sensor: bool = False,
+    ) -> None:
+        p = _point(point, "point")
+        nx, ny = _point(normal, "normal")
+        length = math.hypot(nx, ny)
+        if length == 0.0:
+            raise ValueError(
+                f"normal must be a nonzero direction such as (0, 1) (up), got {normal!r}"
+            )
+        super().__init__(restitution, friction, sensor)
+        self.point = Vector(*p)
+        self.normal = Vector(nx / length, ny / length)
+
+    def closest(self, point: Any) -> tuple[Vector, Vector, float]:
+        x, y = _point(point, "point")
+        n, p = self.normal, self.point
+        d = (x - p.x) * n.x + (y - p.y) * n.y
+        return Vector(x - d * n.x, y - d * n.y), n, d
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        n = self.normal
+        inf = math.inf
+        # A horizontal or vertical plane's solid is bounded on one side.
+        if n.x == 0.0:
+            return (-inf, -inf, inf, self.point.y) if n.y > 0 else (-inf, self.point.y, inf, inf)
+        if n.y == 0.0:
+            return (-inf, -inf, self.point.x, inf) if n.x > 0 else (self.point.x, -inf, inf, inf)
+        return (-inf, -inf, inf, inf)
+
+    def lines(self) -> list[Line]:
+        return [(tuple(self.point), tuple(self.normal), 0.0, False, -math.inf, math.inf)]  # type: ignore[list-item]
+
+    def __repr__(self) -> str:
+        return f"Plane({tuple(self.point)!r}, {tuple(self.normal)!r}{self._material_repr()})"
+
+
+class Segment(Collider):
+    """A wall from ``a`` to ``b``, ``radius`` thick on each side with round ends (a capsule)."""
+
+    __slots__ = ("a", "b", "radius")
+
+    def __init__(
+        self,
+        a: Any,
+        b: Any,
+        radius: float = 0.0,
+        *,
+        restitution: float = 1.0,
+        friction: float = 1.0,
+        sensor: bool = False,
+    ) -> None:
+        pa, pb = _point(a, "a"), _point(b, "b")
+        r = checks.real(radius, "radius", nonneg=True)
+        if pa == pb:
+            raise ValueError(
+                f"a and b must differ: a Segment of zero length {pa} to {pb} has no direction; "
+                f"use Circle({pa}, radius) for a round peg"
+            )
+        super().__init__(restitution, friction, sensor)
+        self.a, self.b, self.radius = Vector(*pa), Vector(*pb), r
+
+    def closest(self, point: Any) -> tuple[Vector, Vector, float]:
+        x, y = _point(point, "point")
+        a, b = self.a, self.b
+        dx, dy = b.x - a.x, b.y - a.y
+        u = ((x - a.x) * dx + (y - a.y) * dy) / (dx * dx + dy * dy)
+        u = min(1.0, max(0.0, u))
+        cx, cy = a.x + u * dx, a.y + u * dy
+        ox, oy = x - cx, y - cy
+        d = math.hypot(ox, oy)
+        if d == 0.0:  # on the segment's own line: take its left normal
+            length = math.hypot(dx, dy)
+            nx, ny = -dy / length, dx / length
+        else:
+            nx, ny = ox / d, oy / d
+        r = self.radius
+        return Vector(cx + r * nx, cy + r * ny), Vector(nx, ny), d - r
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        a, b, r = self.a, self.b, self.radius
+        return min(a.x, b.x) - r, min(a.y, b.y) - r, max(a.x, b.x) + r, max(a.y, b.y) + r
+
+    def lines(self) -> list[Line]:
+        a, b = self.a, self.b
+        length = math.hypot(b.x - a.x, b.y - a.y)
+        tx, ty = (b.x - a.x) / length, (b.y - a.y) / length
+        # The normal (ty, -tx) makes the tangent (-n_y, n_x) = (tx, ty): u runs from a to b.
+        return [((a.x, a.y), (ty, -tx), self.radius, True, 0.0, length)]
+
+    def discs(self) -> list[Disc]:
+        return [((self.a.x, self.a.y), self.radius), ((self.b.x, self.b.y), self.radius)]
+
+    def __repr__(self) -> str:
+        size = "" if self.radius == 0.0 else f", radius={self.radius!r}"
+        return f"Segment({tuple(self.a)!r}, {tuple(self.b)!r}{size}{self._material_repr()})"
+
+
+class Circle(Collider):
+    """A round peg or bumper of ``radius`` > 0 around ``center``."""
+
+    __slots__ = ("center", "radius")
+
+    def __init__(
+        self,
+        center: Any,
+        radius: float,
+        *,
+        restitution: float = 1.0,
+        friction: float = 1.0,
+        sensor: bool = False,
+    ) -> None:
+        c = _point(center, "center")
+        r = checks.real(radius, "radius", positive=True)
+        super().__init__(restitution, friction, sensor)
+        self.center, self.radius = Vector(*c), r
+
+    def closest(self, point: Any) -> tuple[Vector, Vector, float]:
+        x, y = _point(point, "point")
+        c, r = self.center, self.radius
+        ox, oy = x - c.x, y - c.y
+        d = math.hypot(ox, oy)
+        nx, ny = (ox / d, oy / d) if d > 0.0 else (0.0, 1.0)
+        return Vector(c.x + r * nx, c.y + r * ny), Vector(nx, ny), d - r
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        c, r = self.center, self.radius
+        return c.x - r, c.y - r, c.x + r, c.y + r
+
+    def discs(self) -> list[Disc]:
+        return [((self.center.x, self.center.y), self.radius)]
+
+    def __repr__(self) -> str:
+        return f"Circle({tuple(self.center)!r}, {self.radius!r}{self._material_repr()})"
+
+
+class Box(Collider):
+    """The four walls of a room from ``lower_left`` to ``upper_right``; bodies stay inside."""
+
+    __slots__ = ("lower_left", "upper_right")
+
+    def __init__(
+        self,
+        lower_left: Any,
+        upper_right: Any,
+        *,
+        restitution: float = 1.0,
+        friction: float = 1.0,
+        sensor: bool = False,
+    ) -> None:
+        x0, y0 = _point(lower_left, "lower_left")
+        x1, y1 = _point(upper_right, "upper_right")
+        if not (x0 < x1 and y0 < y1):
+            raise ValueError(
+                f"upper_right must lie above and right of lower_left (x1 > x0 and y1 > y0), got "
+                f"lower_left={lower_left!r}, upper_right={upper_right!r}"
+            )
+        super().__init__(restitution, friction, sensor)
+        self.lower_left, self.upper_right = Vector(x0, y0), Vector(x1, y1)
+
+    def closest(self, point: Any) -> tuple[Vector, Vector, float]:
+        x, y = _point(point, "point")
+        (x0, y0), (x1, y1) = self.lower_left, self.upper_right
+        # Distance to each wall, positive inside the room; the nearest wall is the contact.
+        walls = (
+            (x - x0, Vector(1.0, 0.0), Vector(x0, y)),
+            (x1 - x, Vector(-1.0, 0.0), Vector(x1, y)),
+            (y - y0, Vector(0.0, 1.0), Vector(x, y0)),
+            (y1 - y, Vector(0.0, -1.0), Vector(x, y1)),
+        )
+        d, n, p = min(walls, key=lambda w: w[0])
+        return p, n, d
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        inf = math.inf
+        return (-inf, -inf, inf, inf)  # the solid is everything outside
+
+    def lines(self) -> list[Line]:
+        (x0, y0), (x1, y1) = self.lower_left, self.upper_right
+        inf = math.inf
+        return [
+            ((x0, y0), (1.0, 0.0), 0.0, False, -inf, inf),
+            ((x1, y0), (-1.0, 0.0), 0.0, False, -inf, inf),
+            ((x0, y0), (0.0, 1.0), 0.0, False, -inf, inf),
+            ((x0, y1), (0.0, -1.0), 0.0, False, -inf, inf),
+        ]
+
+    def __repr__(self) -> str:
+        return (
+            f"Box({tuple(self.lower_left)!r}, {tuple(self.upper_right)!r}"
+            f"{self._material_repr()})"
+        )
