@@ -24,9 +24,9 @@ overlapping it (``World.began`` / ``World.ended``). The crumb in the crumb game 
 2.0
 >>> Segment((0, 0), (4, 0), radius=0.5).distance((2, 1.5))
 1.0
->>> Segment((1, 1), (1, 1))
+>>> Segment((1, 1), (1, 1))  # doctest: +ELLIPSIS
 Traceback (most recent call last):
-ValueError: a and b must differ: a Segment of zero length (1.0, 1.0) to (1.0, 1.0) has no direction; use Circle((1.0, 1.0), radius) for a round peg
+ValueError: a and b must differ: a Segment of zero length ... use Circle((1.0, 1.0), radius) ...
 """
 
 from __future__ import annotations
@@ -324,6 +324,5 @@ class Box(Collider):
 
     def __repr__(self) -> str:
         return (
-            f"Box({tuple(self.lower_left)!r}, {tuple(self.upper_right)!r}"
-            f"{self._material_repr()})"
+            f"Box({tuple(self.lower_left)!r}, {tuple(self.upper_right)!r}{self._material_repr()})"
         )

@@ -138,13 +138,13 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
     two = np.array([ln[3] for ln in lines], bool)
     lo = np.array([ln[4] for ln in lines], float)
     hi = np.array([ln[5] for ln in lines], float)
-    c = np.array([d[0] for d in discs], float).reshape(len(discs), 2)
+    centres = np.array([d[0] for d in discs], float).reshape(len(discs), 2)
     r = np.array([d[1] for d in discs], float)
     owner = np.array(lown + down, dtype=np.intp)
     e = np.array([colliders[k].restitution for k in owner], float)
     mu = np.array([colliders[k].friction for k in owner], float)
     infinite = np.isinf(lo) & np.isinf(hi)
-    return _Faces(p, n, rho, two, lo, hi, c, r, owner, e, mu, infinite, 0.0)
+    return _Faces(p, n, rho, two, lo, hi, centres, r, owner, e, mu, infinite, 0.0)
 
 
 class Contacts:
@@ -157,9 +157,9 @@ class Contacts:
         self.rest = np.zeros(0, dtype=np.intp) - 1  # (N,) face each body rests on, -1 if free
         self.inside = np.zeros((0, 0), dtype=bool)  # (N, sensors) overlapping each sensor
         self.capped = 0  # bodies placed on a surface after MAX_IMPACTS impacts in one step
-        self.began: list[tuple[int, int, Any, Any, Any, float]] = []
-        self.ended: list[tuple[int, int, Any, Any, Any, float]] = []
-        self._grid: Any = None
+        self._began: list[tuple[Any, ...]] = []  # arrays of (rows, colliders, points, ...)
+        self._ended: list[tuple[Any, ...]] = []
+        self._grid: _FaceGrid | None = None
         self._rows = np.zeros(0, dtype=np.intp)  # the rows being solved (local -> World row)
 
     # -- colliders and bodies ---------------------------------------------------------------
@@ -199,9 +199,7 @@ class Contacts:
     def bodies_added(self, k: int) -> None:
         """k bodies were appended to the World: they start free and outside every sensor."""
         self.rest = np.concatenate([self.rest, np.full(k, -1, dtype=np.intp)])
-        self.inside = np.concatenate(
-            [self.inside, np.zeros((k, self.inside.shape[1]), dtype=bool)]
-        )
+        self.inside = np.concatenate([self.inside, np.zeros((k, self.inside.shape[1]), dtype=bool)])
 
     def body_removed(self, row: int) -> None:
         """The body in ``row`` left the World."""
@@ -213,18 +211,33 @@ class Contacts:
         """A copy of the contact state (what a snapshot holds)."""
         return (self.rest.copy(), self.inside.copy(), self.capped)
 
+    def check_state(self, state: Any, n: int) -> None:
+        """ValueError unless ``state`` (from ``state()``) fits ``n`` bodies and these colliders."""
+        ok = isinstance(state, tuple) and len(state) == 3
+        if ok:
+            rest, inside, capped = state
+            ok = (
+                isinstance(rest, np.ndarray)
+                and rest.shape == (n,)
+                and rest.dtype.kind == "i"
+                and isinstance(inside, np.ndarray)
+                and inside.shape == (n, len(self._sensors))
+                and inside.dtype == bool
+                and bool(np.all((rest >= -1) & (rest < len(self.faces.owner))))
+                and isinstance(capped, int)
+                and not isinstance(capped, bool)
+                and capped >= 0
+            )
+        if not ok:
+            raise ValueError(
+                "snapshot.contacts must be the contact state from World.snapshot() of a World "
+                f"with these colliders and {n} bodies"
+            )
+
     def set_state(self, state: tuple[Any, ...], n: int) -> None:
         """Bring back ``state()``; ValueError if it does not fit ``n`` bodies."""
+        self.check_state(state, n)
         rest, inside, capped = state
-        nfaces = len(self.faces.owner)
-        if not (
-            isinstance(rest, np.ndarray)
-            and rest.shape == (n,)
-            and isinstance(inside, np.ndarray)
-            and inside.shape == (n, len(self._sensors))
-            and np.all((rest >= -1) & (rest < nfaces))
-        ):
-            raise ValueError("snapshot.contacts does not fit this World's bodies and colliders")
         self.rest, self.inside, self.capped = rest.copy(), inside.copy(), int(capped)
 
     # -- pushing bodies out -----------------------------------------------------------------
@@ -279,22 +292,44 @@ class Contacts:
         ``acceleration`` (N, 2): the bodies' constant acceleration over the step when it is
         known (the closed form); else the path is taken from the step's own update.
         """
-        self.began, self.ended = [], []
+        self._began, self._ended = [], []
         faces = self.faces
-        x, v = x1.copy(), v1.copy()
+        x, v = x1, v1
         if acceleration is not None:
-            W = B = np.broadcast_to(acceleration, x0.shape)
+            W = B = acceleration
         else:
-            W = (v1 - v0) / dt
+            W = (v1 - v0) * (1.0 / dt)
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         if len(faces.owner):
             rows = self._near(x0, v0, B, dt, radius)
             if len(rows):
                 X, V = self._solve(rows, x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
+                x, v = x1.copy(), v1.copy()
                 x[rows], v[rows] = X, V
         if self._sensors:
-            self._sense(x0, x, dt, t0, radius)
+            self._sense(x, dt, t0, radius)
         return x, v
+
+    @property
+    def began(self) -> list[tuple[int, int, Any, Any, Any, float]]:
+        """Contacts that began in the last step: (row, collider index, point, normal, impulse,
+        time) each, in the order they were found."""
+        return _unpack(self._began)
+
+    @property
+    def ended(self) -> list[tuple[int, int, Any, Any, Any, float]]:
+        """Contacts that ended in the last step, as ``began``."""
+        return _unpack(self._ended)
+
+    @property
+    def counts(self) -> tuple[int, int]:
+        """How many contacts began and ended in the last step."""
+        return sum(len(part[0]) for part in self._began), sum(len(p[0]) for p in self._ended)
+
+    def _grid_of(self) -> _FaceGrid:
+        if self._grid is None:
+            self._grid = _FaceGrid(self.faces)
+        return self._grid
 
     def _near(
         self, x0: np.ndarray, v0: np.ndarray, B: np.ndarray, dt: float, radius: np.ndarray
@@ -302,24 +337,16 @@ class Contacts:
         """Rows whose path this step may come within reach of a solid face, or that rest."""
         faces = self.faces
         # Every point of the path lies within reach = |v0| dt + |B| dt^2 / 2 of x0.
-        reach = (
-            np.sqrt(_dot(v0, v0)) * dt + np.sqrt(_dot(B, B)) * (0.5 * dt * dt) + radius
-        )
-        reach = reach * (1.0 + 1e-9) + TOUCH
+        reach = _reach(v0, B, dt, radius)
         need = self.rest >= 0
-        inf_lines = np.flatnonzero(faces.infinite)
-        if len(inf_lines):
-            d = x0 @ faces.n[inf_lines].T - _dot(faces.p[inf_lines], faces.n[inf_lines])
-            need |= (d - faces.rho[inf_lines] <= reach[:, None]).any(axis=1)
-        if len(faces.owner) > len(inf_lines):
-            need |= self._clearance(x0) <= reach
+        grid = self._grid_of()
+        if grid.n_inf:
+            d = x0 @ grid.inf_n.T - grid.inf_c
+            need |= (d <= reach[:, None]).any(axis=1)
+        if grid.n_finite:
+            need |= grid.clearance(x0) <= reach
+        del faces
         return np.flatnonzero(need)
-
-    def _clearance(self, x0: np.ndarray) -> np.ndarray:
-        """A lower bound on each point's distance to every finite face (a grid of bounds)."""
-        if self._grid is None:
-            self._grid = _ClearanceGrid(self.faces)
-        return self._grid.lookup(x0)
 
     def _solve(
         self,
@@ -336,96 +363,138 @@ class Contacts:
         mass: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Move the bodies in ``rows`` through their step, impact by impact, in time order."""
-        faces = self.faces
         self._rows = rows
-        X, V = x0[rows].copy(), v0[rows].copy()
+        X, V = x0[rows], v0[rows]
         Bb, Wb = Bf[rows], Wf[rows]
         r, eb, mub, m = radius[rows], restitution[rows], friction[rows], mass[rows]
-        rest = self.rest[rows].copy()
+        rest = self.rest[rows]
         left = np.full(len(rows), dt)
+        touched = np.zeros(len(rows), dtype=bool)
         active = np.arange(len(rows))
-        L = len(faces.p)
         for _ in range(MAX_IMPACTS):
-            if not len(active):
-                break
-            Xa, Va = X[active], V[active]
-            ra, ta = rest[active], left[active]
-            Bp, Wp = Bb[active].copy(), Wb[active].copy()
+            Xa, Va, ta = X[active], V[active], left[active]
+            Bp, Wp, ra = Bb[active], Wb[active], rest[active]
             dur = ta.copy()
-            resting = np.flatnonzero(ra >= 0)
             stop = np.zeros(len(active), dtype=bool)
-            if len(resting):
-                out = self._rest_paths(
-                    resting, active, Xa, Va, Bp, Wp, dur, ra, Wb, mub, r, stop, t0 + dt - ta
+            res = np.flatnonzero(ra >= 0)
+            if len(res):
+                lifted = self._rest_paths(
+                    res, active, Xa, Va, Bp, Wp, dur, ra, Wb, mub, r, stop, t0 + dt - ta
                 )
-                for j in out:
-                    rest[active[j]] = -1
-                ra = rest[active]
+                if len(lifted):
+                    rest[active[lifted]] = -1
+                    ra = rest[active]
             t_hit, face, normal = self._first_hits(Xa, Va, Bp, dur, r[active], ra)
             hit = t_hit <= dur
-            tt = np.where(hit, t_hit, dur)[:, None]
-            Xn = Xa + Va * tt + Bp * (0.5 * tt * tt)
-            Vn = Va + Wp * tt
-            # Bodies that slid to a stop this iteration stop exactly.
+            tt = np.where(hit, t_hit, dur)
+            tc = tt[:, None]
+            Xn = Xa + Va * tc + Bp * (0.5 * tc * tc)
+            Vn = Va + Wp * tc
             stopped = stop & ~hit
-            Vn[stopped] = 0.0
-            hi = np.flatnonzero(hit)
-            if len(hi):
-                self._bounce(hi, active, Xn, Vn, face, normal, rest, Wb, r, eb, mub, m, dt,
-                             t0 + dt - ta + t_hit, L)
-            # Resting bodies stay exactly on their surface.
+            if stopped.any():
+                Vn[stopped] = 0.0  # slid to a stop: exactly at rest
+            h = np.flatnonzero(hit)
+            if len(h):
+                self._bounce(
+                    h,
+                    active,
+                    Xn,
+                    Vn,
+                    face,
+                    normal,
+                    rest,
+                    Wb,
+                    r,
+                    eb,
+                    mub,
+                    m,
+                    dt,
+                    t0 + dt - ta + t_hit,
+                )
+                touched[active[h]] = True
             rs = np.flatnonzero(rest[active] >= 0)
             if len(rs):
                 self._project(rs, active, Xn, Vn, rest, r)
             X[active], V[active] = Xn, Vn
-            left[active] = ta - tt[:, 0]
-            left[active[~hit & ~stopped]] = 0.0
-            active = active[left[active] > 0.0]
-        if len(active):
+            more = hit | stopped
+            left[active] = np.where(more, ta - tt, 0.0)
+            active = active[more & (ta - tt > 0.0)]
+            if not len(active):
+                break
+        else:
             # Past the cap: finish the step along the path, then stand on the surface.
             self.capped += len(active)
-            Xa, Va, ta = X[active], V[active], left[active][:, None]
-            X[active] = Xa + Va * ta + Bb[active] * (0.5 * ta * ta)
-            V[active] = Va + Wb[active] * ta
+            Xa, Va, tc = X[active], V[active], left[active][:, None]
+            X[active] = Xa + Va * tc + Bb[active] * (0.5 * tc * tc)
+            V[active] = Va + Wb[active] * tc
+            touched[active] = True
         self.rest[rows] = rest
-        # Whatever rounding left a hair inside a face is put back on it (never inside).
-        moved = self.push_out_rows(X, V, r)
-        del moved
+        t = np.flatnonzero(touched)
+        if len(t):
+            # Rounding may leave a hair of overlap after an impact: put it back on the surface.
+            Xt, Vt = X[t], V[t]
+            self.push_out_rows(Xt, Vt, r[t])
+            X[t], V[t] = Xt, Vt
         return X, V
 
     def push_out_rows(self, X: np.ndarray, V: np.ndarray, r: np.ndarray) -> None:
-        """Push rows of X out of any solid face they overlap (by more than TOUCH)."""
+        """Push rows of X out of any solid face they overlap (by more than TOUCH), in place."""
         faces = self.faces
         L = len(faces.p)
+        for _ in range(3):
+            moved = False
+            if L:
+                d = X @ faces.n.T - _dot(faces.p, faces.n)
+                side = np.where(faces.two[None, :] & (d < 0.0), -1.0, 1.0)
+                gap = side * d - faces.rho[None, :] - r[:, None]
+                tang = np.stack([-faces.n[:, 1], faces.n[:, 0]], axis=1)
+                u = X @ tang.T - _dot(faces.p, tang)
+                inside = (gap < -TOUCH * (1.0 + r[:, None])) & (u >= faces.lo) & (u <= faces.hi)
+                for i, j in zip(*np.nonzero(inside), strict=True):
+                    nrm = side[i, j] * faces.n[j]
+                    X[i] -= gap[i, j] * nrm
+                    vn = V[i] @ nrm
+                    if vn < 0.0:
+                        V[i] -= vn * nrm
+                    moved = True
+            if len(faces.c):
+                D = X[:, None, :] - faces.c[None, :, :]
+                dist = np.sqrt((D * D).sum(axis=2))
+                gap = dist - faces.r[None, :] - r[:, None]
+                for i, j in zip(*np.nonzero(gap < -TOUCH * (1.0 + r[:, None])), strict=True):
+                    nrm = D[i, j] / dist[i, j] if dist[i, j] > 0 else np.array([0.0, 1.0])
+                    X[i] = faces.c[j] + nrm * (faces.r[j] + r[i])
+                    vn = V[i] @ nrm
+                    if vn < 0.0:
+                        V[i] -= vn * nrm
+                    moved = True
+            if not moved:
+                return
+
+    def _normals(self, f: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Unit normals toward X of faces f (one per row), and 1 / radius (0 for flat faces)."""
+        faces = self.faces
+        L = len(faces.p)
+        line = f < L
+        fl = np.where(line, f, 0)
+        fd = np.where(line, 0, f - L)
+        nrm = np.zeros((len(f), 2))
+        curve = np.zeros(len(f))
         if L:
-            d = X @ faces.n.T - _dot(faces.p, faces.n)
-            side = np.where(faces.two[None, :] & (d < 0.0), -1.0, 1.0)
-            gap = side * d - faces.rho[None, :] - r[:, None]
-            u = X @ np.stack([-faces.n[:, 1], faces.n[:, 0]], axis=1).T - (
-                -faces.p[:, 0] * faces.n[:, 1] + faces.p[:, 1] * faces.n[:, 0]
-            )
-            inside = (gap < -TOUCH * (1.0 + r[:, None])) & (u >= faces.lo) & (u <= faces.hi)
-            # A one-sided face (a plane) is also crossed by whatever is deep behind it.
-            for i, j in zip(*np.nonzero(inside), strict=True):
-                nrm = side[i, j] * faces.n[j]
-                X[i] -= gap[i, j] * nrm
-                vn = V[i] @ nrm
-                if vn < 0.0:
-                    V[i] -= vn * nrm
-        if len(faces.c):
-            D = X[:, None, :] - faces.c[None, :, :]
-            dist = np.sqrt((D * D).sum(axis=2))
-            gap = dist - faces.r[None, :] - r[:, None]
-            for i, j in zip(*np.nonzero(gap < -TOUCH * (1.0 + r[:, None])), strict=True):
-                nrm = D[i, j] / dist[i, j] if dist[i, j] > 0 else np.array([0.0, 1.0])
-                X[i] = faces.c[j] + nrm * (faces.r[j] + r[i])
-                vn = V[i] @ nrm
-                if vn < 0.0:
-                    V[i] -= vn * nrm
+            n = faces.n[fl]
+            side = np.where(faces.two[fl] & (_dot(X - faces.p[fl], n) < 0.0), -1.0, 1.0)
+            nrm = n * side[:, None]
+        if len(faces.c) and not line.all():
+            d = X - faces.c[fd]
+            dist = np.sqrt(_dot(d, d))
+            safe = np.where(dist > 0.0, dist, 1.0)
+            nrm = np.where(line[:, None], nrm, d / safe[:, None])
+            curve = np.where(line, 0.0, 1.0 / safe)
+        return nrm, curve
 
     def _rest_paths(
         self,
-        resting: np.ndarray,
+        res: np.ndarray,
         active: np.ndarray,
         Xa: np.ndarray,
         Va: np.ndarray,
@@ -438,56 +507,62 @@ class Contacts:
         r: np.ndarray,
         stop: np.ndarray,
         when: np.ndarray,
-    ) -> list[int]:
-        """Set the sliding path of resting bodies; return those that lift off (local index)."""
+    ) -> np.ndarray:
+        """Set the sliding path of resting bodies (local ``res``); return those that lift off.
+
+        Along the surface the motion is one-dimensional: speed u along the tangent, pull a_t,
+        and friction mu |a_n| against the motion. While sliding, u' = a_t - sign(u) mu |a_n|;
+        the stop comes at t_s = -u / u' (exactly, by the closed form); at rest the body stays
+        while |a_t| <= mu |a_n| and else starts sliding at a_t - sign(a_t) mu |a_n|.
+        """
         faces = self.faces
         L = len(faces.p)
-        lifted: list[int] = []
-        for j in resting:
-            i = active[j]
-            f = int(ra[j])
-            x, vel, w = Xa[j], Va[j], Wb[i]
-            if f < L:
-                nrm = faces.n[f]
-                if faces.two[f] and (x - faces.p[f]) @ nrm < 0.0:
-                    nrm = -nrm
-                tang = np.array([-faces.n[f][1], faces.n[f][0]])
-                u_pos = (x - faces.p[f]) @ tang
-                off_end = not (faces.lo[f] <= u_pos <= faces.hi[f])
-                curve = 0.0
-            else:
-                d = x - faces.c[f - L]
-                dist = math.hypot(d[0], d[1])
-                nrm = d / dist
-                curve = 1.0 / dist
-                off_end = False
-            tang = np.array([-nrm[1], nrm[0]])
-            a_n = float(w @ nrm)
-            v_n = float(vel @ nrm)
-            u = float(vel @ tang)
-            if a_n > 0.0 or v_n > 1e-9 or off_end or u * u * curve + a_n > 0.0:
-                lifted.append(int(j))
-                self._event(self.ended, i, f, x - nrm * r[i], nrm, np.zeros(2), when[j])
-                continue
-            a_t = float(w @ tang)
-            fr = mub[i] * faces.mu[f] * -a_n  # Coulomb: mu times the normal pressure per mass
-            if u > 0.0:
-                a = a_t - fr
-                ts = -u / a if a < 0.0 else math.inf
-            elif u < 0.0:
-                a = a_t + fr
-                ts = -u / a if a > 0.0 else math.inf
-            elif abs(a_t) <= fr * (1.0 + 1e-12):
-                a, ts = 0.0, math.inf  # static friction holds
-            else:
-                a = a_t - math.copysign(fr, a_t)
-                ts = math.inf
-            Va[j] = tang * u
-            Bp[j] = Wp[j] = tang * a
-            if ts < dur[j]:
-                dur[j] = ts
-                stop[j] = True
-        return lifted
+        i = active[res]
+        f = ra[res]
+        x, vel, w = Xa[res], Va[res], Wb[i]
+        nrm, curve = self._normals(f, x)
+        tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
+        a_n = _dot(w, nrm)
+        v_n = _dot(vel, nrm)
+        u = _dot(vel, tang)
+        off_end = np.zeros(len(res), dtype=bool)
+        line = f < L
+        if line.any():
+            fl = np.where(line, f, 0)
+            t0 = np.stack([-faces.n[fl, 1], faces.n[fl, 0]], axis=1)
+            pos = _dot(x - faces.p[fl], t0)
+            off_end = line & ((pos < faces.lo[fl]) | (pos > faces.hi[fl]))
+        lift = (a_n > 0.0) | (v_n > 1e-9) | off_end | (u * u * curve + a_n > 0.0)
+        if lift.any():
+            for k in np.flatnonzero(lift):
+                self._event(
+                    self._ended,
+                    int(i[k]),
+                    int(f[k]),
+                    x[k] - nrm[k] * r[i[k]],
+                    nrm[k],
+                    np.zeros(2),
+                    float(when[res[k]]),
+                )
+        a_t = _dot(w, tang)
+        fr = mub[i] * faces.mu[f] * np.maximum(-a_n, 0.0)  # mu times the pressure per mass
+        static = np.abs(a_t) <= fr * (1.0 + 1e-12)
+        a = np.where(
+            u > 0.0,
+            a_t - fr,
+            np.where(u < 0.0, a_t + fr, np.where(static, 0.0, a_t - np.copysign(fr, a_t))),
+        )
+        slowing = ((u > 0.0) & (a < 0.0)) | ((u < 0.0) & (a > 0.0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ts = np.where(slowing, -u / np.where(a != 0.0, a, 1.0), np.inf)
+        keep = ~lift
+        k = res[keep]
+        Va[k] = tang[keep] * u[keep][:, None]
+        Bp[k] = Wp[k] = tang[keep] * a[keep][:, None]
+        stops = keep & (ts < dur[res])
+        dur[res[stops]] = ts[stops]
+        stop[res[stops]] = True
+        return res[lift]
 
     def _project(
         self,
@@ -501,27 +576,32 @@ class Contacts:
         """Put resting bodies exactly at contact distance; turn velocity along a round face."""
         faces = self.faces
         L = len(faces.p)
-        for j in rs:
-            i = active[j]
-            f = int(rest[i])
-            if f < L:
-                nrm = faces.n[f]
-                d = (Xn[j] - faces.p[f]) @ nrm
-                side = -1.0 if faces.two[f] and d < 0.0 else 1.0
-                gap = side * d - faces.rho[f] - r[i]
-                Xn[j] = Xn[j] - gap * side * nrm
-                vn = Vn[j] @ nrm
-                Vn[j] = Vn[j] - vn * nrm
-            else:
-                c, rho = faces.c[f - L], faces.r[f - L] + r[i]
-                d = Xn[j] - c
-                dist = math.hypot(d[0], d[1])
-                nrm = d / dist
-                speed = math.hypot(Vn[j][0], Vn[j][1])
-                tang = np.array([-nrm[1], nrm[0]])
-                sign = 1.0 if Vn[j] @ tang >= 0.0 else -1.0
-                Xn[j] = c + nrm * rho
-                Vn[j] = tang * (sign * speed)
+        i = active[rs]
+        f = rest[i]
+        x, vel = Xn[rs], Vn[rs]
+        nrm, curve = self._normals(f, x)
+        line = f < L
+        fl = np.where(line, f, 0)
+        fd = np.where(line, 0, f - L)
+        if L:
+            gap = _dot(x - faces.p[fl], nrm) - faces.rho[fl] - r[i]
+            x_line = x - nrm * gap[:, None]
+        else:
+            x_line = x
+        if len(faces.c):
+            x_disc = faces.c[fd] + nrm * (faces.r[fd] + r[i])[:, None]
+            x = np.where(line[:, None], x_line, x_disc)
+        else:
+            x = x_line
+        vn = _dot(vel, nrm)
+        v_flat = vel - nrm * vn[:, None]
+        tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
+        speed = np.sqrt(_dot(vel, vel))
+        sign = np.where(_dot(vel, tang) >= 0.0, 1.0, -1.0)
+        v_round = tang * (sign * speed)[:, None]
+        Xn[rs] = x
+        Vn[rs] = np.where(line[:, None], v_flat, v_round)
+        del curve
 
     def _first_hits(
         self,
@@ -535,40 +615,43 @@ class Contacts:
         """Each body's first impact within its time T: (time or inf, face, normal)."""
         faces = self.faces
         k = len(X)
-        L, D = len(faces.p), len(faces.c)
+        L = len(faces.p)
         best = np.full(k, np.inf)
         face = np.full(k, -1, dtype=np.intp)
         normal = np.zeros((k, 2))
-        if k == 0:
+        bi, fj = self._grid_of().pairs(X, _reach(V, B, T, r))
+        keep = fj != rest[bi]
+        bi, fj = bi[keep], fj[keep]
+        if not len(bi):
             return best, face, normal
-        reach = np.sqrt(_dot(V, V)) * T + np.sqrt(_dot(B, B)) * (0.5 * T * T) + r
-        reach = reach * (1.0 + 1e-9) + TOUCH
-        if L:
-            d = X @ faces.n.T - _dot(faces.p, faces.n)[None, :]
-            dd = np.where(faces.two[None, :], np.abs(d), d)
-            near = dd - faces.rho[None, :] <= reach[:, None]
-            near &= rest[:, None] != np.arange(L)[None, :]
-            bi, fj = np.nonzero(near)
-            if len(bi):
-                t, nrm = line_hits(
-                    X[bi], V[bi], B[bi], faces.p[fj], faces.n[fj], faces.rho[fj] + r[bi],
-                    faces.two[fj], faces.lo[fj], faces.hi[fj], T[bi],
-                )
-                self._keep_first(bi, fj, t, nrm, best, face, normal)
-        if D:
-            Dv = X[:, None, :] - faces.c[None, :, :]
-            dist = np.sqrt((Dv * Dv).sum(axis=2))
-            near = dist - faces.r[None, :] <= reach[:, None]
-            near &= rest[:, None] != (L + np.arange(D))[None, :]
-            bi, fj = np.nonzero(near)
-            if len(bi):
-                t = disc_hits(X[bi], V[bi], B[bi], faces.c[fj], faces.r[fj] + r[bi], T[bi])
-                tt = np.where(np.isfinite(t), t, 0.0)[:, None]
-                xt = X[bi] + V[bi] * tt + B[bi] * (0.5 * tt * tt)
-                nrm = xt - faces.c[fj]
+        line = fj < L
+        lb, lf = bi[line], fj[line]
+        if len(lb):
+            t, nrm = line_hits(
+                X[lb],
+                V[lb],
+                B[lb],
+                faces.p[lf],
+                faces.n[lf],
+                faces.rho[lf] + r[lb],
+                faces.two[lf],
+                faces.lo[lf],
+                faces.hi[lf],
+                T[lb],
+            )
+            self._keep_first(lb, lf, t, nrm, best, face, normal)
+        db, df = bi[~line], fj[~line] - L
+        if len(db):
+            t = disc_hits(X[db], V[db], B[db], faces.c[df], faces.r[df] + r[db], T[db])
+            ok = np.isfinite(t)
+            if ok.any():
+                db, df, t = db[ok], df[ok], t[ok]
+                tc = t[:, None]
+                xt = X[db] + V[db] * tc + B[db] * (0.5 * tc * tc)
+                nrm = xt - faces.c[df]
                 length = np.sqrt(_dot(nrm, nrm))
                 nrm = nrm / np.where(length > 0.0, length, 1.0)[:, None]
-                self._keep_first(bi, fj + L, t, nrm, best, face, normal)
+                self._keep_first(db, df + L, t, nrm, best, face, normal)
         return best, face, normal
 
     @staticmethod
@@ -581,21 +664,22 @@ class Contacts:
         face: np.ndarray,
         normal: np.ndarray,
     ) -> None:
-        ok = np.flatnonzero(np.isfinite(t))
+        ok = np.flatnonzero(t < np.inf)
         if not len(ok):
             return
         bi, fj, t, nrm = bi[ok], fj[ok], t[ok], nrm[ok]
-        order = np.lexsort((fj, t, bi))  # per body, earliest first (ties: lowest face)
-        bi, fj, t, nrm = bi[order], fj[order], t[order], nrm[order]
-        first = np.r_[True, bi[1:] != bi[:-1]]
-        bi, fj, t, nrm = bi[first], fj[first], t[first], nrm[first]
+        if len(bi) > 1:
+            order = np.lexsort((fj, t, bi))  # per body, earliest first (ties: lowest face)
+            bi, fj, t, nrm = bi[order], fj[order], t[order], nrm[order]
+            first = np.r_[True, bi[1:] != bi[:-1]]
+            bi, fj, t, nrm = bi[first], fj[first], t[first], nrm[first]
         better = t < best[bi]
         b = bi[better]
         best[b], face[b], normal[b] = t[better], fj[better], nrm[better]
 
     def _bounce(
         self,
-        hi: np.ndarray,
+        h: np.ndarray,
         active: np.ndarray,
         Xn: np.ndarray,
         Vn: np.ndarray,
@@ -609,14 +693,18 @@ class Contacts:
         m: np.ndarray,
         dt: float,
         when: np.ndarray,
-        L: int,
     ) -> None:
-        """Apply the impacts of the bodies ``active[hi]`` (restitution, friction, rest)."""
+        """Apply the impacts of the bodies ``active[h]``: restitution, friction, rest.
+
+        With the unit normal n: v_n' = -e v_n; the tangential speed loses up to mu (1 + e)
+        |v_n| (the friction impulse is at most mu times the normal one), never reversing.
+        A rebound slower than |a_n| dt / 2 (it would fly for less than one step) settles.
+        """
         faces = self.faces
-        i = active[hi]
-        f = face[hi]
-        n = normal[hi]
-        vel = Vn[hi]
+        i = active[h]
+        f = face[h]
+        n = normal[h]
+        vel = Vn[h]
         vn = _dot(vel, n)
         vt = vel - n * vn[:, None]
         e = eb[i] * faces.e[f]
@@ -625,8 +713,7 @@ class Contacts:
         vn_out = -e * vn_in
         speed_t = np.sqrt(_dot(vt, vt))
         keep = np.maximum(speed_t + mu * (1.0 + e) * vn_in, 0.0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            scale = np.where(speed_t > 0.0, keep / speed_t, 0.0)
+        scale = keep / np.where(speed_t > 0.0, speed_t, 1.0)
         a_n = _dot(Wb[i], n)
         settles = (a_n < 0.0) & (vn_out <= -a_n * (0.5 * dt))
         vn_out = np.where(settles, 0.0, vn_out)
@@ -634,50 +721,46 @@ class Contacts:
         # A body resting on one face that hits another across it (a floor into a wall) stays
         # resting on the first; anything else that bounces is in flight.
         old = rest[i]
-        for k in range(len(hi)):
-            j = hi[k]
-            body = i[k]
-            if settles[k]:
-                rest[body] = f[k]
-            elif old[k] >= 0:
-                keep_rest = abs(float(self._rest_normal(old[k], Xn[j], r[body]) @ n[k])) < 1e-9
-                if not keep_rest:
-                    rest[body] = -1
-            point = Xn[j] - n[k] * r[body]
-            impulse = (new_v[k] - vel[k]) * m[body]
-            self._event(self.began, body, f[k], point, n[k], impulse, when[j])
-            if not settles[k]:
-                self._event(self.ended, body, f[k], point, n[k], impulse, when[j])
-        Vn[hi] = new_v
-
-    def _rest_normal(self, f: int, x: np.ndarray, r: float) -> np.ndarray:
-        faces = self.faces
-        L = len(faces.p)
-        if f < L:
-            nrm = faces.n[f]
-            return -nrm if faces.two[f] and (x - faces.p[f]) @ nrm < 0.0 else nrm
-        d = x - faces.c[f - L]
-        return np.asarray(d / math.hypot(d[0], d[1]))
+        was = old >= 0
+        stays = np.zeros(len(h), dtype=bool)
+        if was.any():
+            on, _ = self._normals(np.where(was, old, 0), Xn[h])
+            stays = was & (np.abs(_dot(on, n)) < 1e-9)
+        rest[i] = np.where(settles, f, np.where(stays, old, -1))
+        point = Xn[h] - n * r[i][:, None]
+        impulse = (new_v - vel) * m[i][:, None]
+        rows = self._rows[i]
+        owner = faces.owner[f]
+        self._began.append((rows, owner, point, n, impulse, when[h]))
+        bounced = ~settles
+        if bounced.any():
+            b = bounced
+            self._ended.append((rows[b], owner[b], point[b], n[b], impulse[b], when[h][b]))
+        Vn[h] = new_v
 
     def _event(
         self,
         where: list[Any],
-        row: int,
+        local: int,
         f: int,
         point: Any,
         normal: Any,
         impulse: Any,
         when: float,
     ) -> None:
-        if len(where) < MAX_EVENTS:
-            body = int(self._rows[row])
-            collider = int(self.faces.owner[f])
-            where.append((body, collider, point, normal, impulse, float(when)))
+        where.append(
+            (
+                self._rows[[local]],
+                self.faces.owner[[f]],
+                np.asarray(point, float)[None, :],
+                np.asarray(normal, float)[None, :],
+                np.asarray(impulse, float)[None, :],
+                np.array([when]),
+            )
+        )
 
     # -- sensors ----------------------------------------------------------------------------
-    def _sense(
-        self, x0: np.ndarray, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray
-    ) -> None:
+    def _sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
         """Report bodies that began or ended overlapping each sensor this step."""
         from .colliders import Box
 
@@ -686,18 +769,43 @@ class Contacts:
             d = signed_distance(c, x1)
             now = d > -radius if isinstance(c, Box) else d < radius
             was = self.inside[:, s]
-            for i in np.flatnonzero(now & ~was):
-                self._sensor_event(self.began, int(i), k, c, x1[i], t0 + dt)
-            for i in np.flatnonzero(was & ~now):
-                self._sensor_event(self.ended, int(i), k, c, x1[i], t0 + dt)
+            for where, rows in (
+                (self._began, np.flatnonzero(now & ~was)),
+                (self._ended, np.flatnonzero(was & ~now)),
+            ):
+                if len(rows):
+                    pts, nrms = [], []
+                    for i in rows:
+                        point, normal, _ = c.closest((float(x1[i, 0]), float(x1[i, 1])))
+                        pts.append(tuple(point))
+                        nrms.append(tuple(normal))
+                    where.append(
+                        (
+                            rows,
+                            np.full(len(rows), k),
+                            np.array(pts, float),
+                            np.array(nrms, float),
+                            np.zeros((len(rows), 2)),
+                            np.full(len(rows), t0 + dt),
+                        )
+                    )
             self.inside[:, s] = now
 
-    def _sensor_event(
-        self, where: list[Any], i: int, k: int, c: Collider, x: np.ndarray, when: float
-    ) -> None:
-        if len(where) < MAX_EVENTS:
-            point, normal, _ = c.closest((float(x[0]), float(x[1])))
-            where.append((i, k, np.array(point), np.array(normal), np.zeros(2), when))
+
+def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any, float]]:
+    out: list[tuple[int, int, Any, Any, Any, float]] = []
+    for rows, owner, point, normal, impulse, when in parts:
+        for j in range(len(rows)):
+            out.append(
+                (int(rows[j]), int(owner[j]), point[j], normal[j], impulse[j], float(when[j]))
+            )
+    return out
+
+
+def _reach(V: np.ndarray, B: np.ndarray, T: Any, r: np.ndarray) -> np.ndarray:
+    """How far from its start a ball's path can reach within T: |V| T + |B| T^2 / 2 + r."""
+    reach = np.sqrt(_dot(V, V)) * T + np.sqrt(_dot(B, B)) * (0.5 * T * T) + r
+    return reach * (1.0 + 1e-9) + TOUCH
 
 
 def _box_type() -> type:
@@ -706,57 +814,132 @@ def _box_type() -> type:
     return Box
 
 
-class _ClearanceGrid:
-    """Lower bounds on the distance from any point of a cell to the nearest finite face.
+class _FaceGrid:
+    """The broadphase for static faces: a uniform grid over the finite faces.
 
-    Each cell of a uniform grid over the finite faces (plus a margin) stores the exact
-    distance from its centre to the nearest face, less half its diagonal: no point of the cell
-    is nearer. Outside the grid every finite face is at least the margin away.
+    Each cell stores a lower bound on the distance from any of its points to the nearest
+    finite face (the exact distance from its centre, less half its diagonal), so a body whose
+    path cannot reach that far is skipped in one comparison, and the list of the faces that
+    lie within ``pad`` of the cell, so a body that can reach one meets only those. Outside the
+    grid every finite face is at least ``margin`` away. Lines without end (a Plane, a Box's
+    walls) are few and are checked against every body directly.
     """
 
     def __init__(self, faces: _Faces) -> None:
-        fin = np.flatnonzero(~faces.infinite)
         L = len(faces.p)
-        pts = []
-        for j in fin:
-            tang = np.array([-faces.n[j][1], faces.n[j][0]])
-            a = faces.p[j] + tang * faces.lo[j]
-            b = faces.p[j] + tang * faces.hi[j]
-            pts += [a, b]
-        for j in range(len(faces.c)):
-            pts += [faces.c[j] - faces.r[j], faces.c[j] + faces.r[j]]
-        P = np.array(pts, float).reshape(-1, 2)
-        lo, hi = P.min(axis=0), P.max(axis=0)
-        size = max(float((hi - lo).max()), 1e-9)
-        self.margin = 0.25 * size + 1.0
+        inf_lines = np.flatnonzero(faces.infinite)
+        self.n_inf = len(inf_lines)
+        self.inf_ids = inf_lines
+        self.inf_n = faces.n[inf_lines]
+        # n.x - (n.p + rho): the distance of x from each endless face.
+        self.inf_c = _dot(faces.p[inf_lines], self.inf_n) + faces.rho[inf_lines]
+        fin_lines = np.flatnonzero(~faces.infinite)
+        self.finite = np.concatenate([fin_lines, L + np.arange(len(faces.c))]).astype(np.intp)
+        self.n_finite = len(self.finite)
+        if not self.n_finite:
+            return
+        # Each finite face as a capsule: segment a-b, radius rad.
+        tang = np.stack([-faces.n[:, 1], faces.n[:, 0]], axis=1)
+        A = np.concatenate(
+            [faces.p[fin_lines] + tang[fin_lines] * faces.lo[fin_lines, None], faces.c]
+        )
+        Bq = np.concatenate(
+            [faces.p[fin_lines] + tang[fin_lines] * faces.hi[fin_lines, None], faces.c]
+        )
+        rad = np.concatenate([faces.rho[fin_lines], faces.r])
+        lo = np.minimum(A, Bq).min(axis=0) - rad.max()
+        hi = np.maximum(A, Bq).max(axis=0) + rad.max()
+        size = max(float((hi - lo).max()), 1e-6)
+        self.margin = max(0.02 * size, 1e-3)
         self.lo = lo - self.margin
-        span = (hi - lo) + 2 * self.margin
-        n_faces = len(fin) + len(faces.c)
-        cells = int(min(256, max(8, math.sqrt(4000.0 * max(n_faces, 1)))))
-        self.h = float(span.max()) / cells
-        nx, ny = (np.ceil(span / self.h).astype(int) + 1).tolist()
+        span = (hi - lo) + 2.0 * self.margin
+        cells = 384
+        self.h = h = float(span.max()) / cells
+        self.pad = 4.0 * h
+        nx, ny = (np.ceil(span / h).astype(int) + 1).tolist()
         self.shape = (nx, ny)
-        gx = self.lo[0] + (np.arange(nx) + 0.5) * self.h
-        gy = self.lo[1] + (np.arange(ny) + 0.5) * self.h
+        gx = self.lo[0] + (np.arange(nx) + 0.5) * h
+        gy = self.lo[1] + (np.arange(ny) + 0.5) * h
+        half_diag = h * math.sqrt(0.5)
+        cell_parts: list[np.ndarray] = []
+        face_parts: list[np.ndarray] = []
+        for k in range(self.n_finite):
+            a, b, rr = A[k], Bq[k], rad[k]
+            # Cells within the face's box grown by pad + the half diagonal could list it.
+            grow = rr + self.pad + h
+            i0 = max(int((min(a[0], b[0]) - grow - self.lo[0]) / h), 0)
+            i1 = min(int((max(a[0], b[0]) + grow - self.lo[0]) / h) + 1, nx)
+            j0 = max(int((min(a[1], b[1]) - grow - self.lo[1]) / h), 0)
+            j1 = min(int((max(a[1], b[1]) + grow - self.lo[1]) / h) + 1, ny)
+            cx, cy = np.meshgrid(gx[i0:i1], gy[j0:j1], indexing="ij")
+            ab = b - a
+            ab2 = float(ab @ ab)
+            u = ((cx - a[0]) * ab[0] + (cy - a[1]) * ab[1]) / ab2 if ab2 > 0 else cx * 0.0
+            u = np.clip(u, 0.0, 1.0)
+            dist = np.hypot(cx - a[0] - u * ab[0], cy - a[1] - u * ab[1]) - rr - half_diag
+            di, dj = np.nonzero(dist <= self.pad)
+            cell_parts.append((i0 + di) * ny + (j0 + dj))
+            face_parts.append(np.full(len(di), self.finite[k], dtype=np.intp))
+        # The clearance bound: distance from each cell centre to the nearest finite face.
         C = np.stack(np.meshgrid(gx, gy, indexing="ij"), axis=-1).reshape(-1, 2)
         best = np.full(len(C), np.inf)
-        for j in fin:
-            tang = np.array([-faces.n[j][1], faces.n[j][0]])
-            a = faces.p[j] + tang * faces.lo[j]
-            length = faces.hi[j] - faces.lo[j]
-            u = np.clip((C - a) @ tang, 0.0, length)
-            q = a + u[:, None] * tang
-            best = np.minimum(best, np.hypot(*(C - q).T) - faces.rho[j])
-        for j in range(len(faces.c)):
-            best = np.minimum(best, np.hypot(*(C - faces.c[j]).T) - faces.r[j])
-        del L
-        self.bound = (best - self.h * math.sqrt(0.5)).reshape(nx, ny)
+        for k in range(self.n_finite):
+            a, b, rr = A[k], Bq[k], rad[k]
+            ab = b - a
+            ab2 = float(ab @ ab)
+            u = np.clip(((C - a) @ ab) / ab2, 0.0, 1.0) if ab2 > 0 else np.zeros(len(C))
+            q = a + u[:, None] * ab
+            np.minimum(best, np.hypot(C[:, 0] - q[:, 0], C[:, 1] - q[:, 1]) - rr, out=best)
+        bound = (best - half_diag).reshape(nx, ny)
+        self.bound = bound
+        cells_all = np.concatenate(cell_parts).astype(np.intp)
+        order = np.argsort(cells_all, kind="stable")
+        self.faces_of = np.concatenate(face_parts)[order]
+        counts = np.bincount(cells_all, minlength=nx * ny).astype(np.intp)
+        self.count = counts
+        self.start = (np.cumsum(counts) - counts).astype(np.intp)
 
-    def lookup(self, x: np.ndarray) -> np.ndarray:
-        ij = np.floor((x - self.lo) / self.h)
-        i, j = ij[:, 0], ij[:, 1]
+    def _cells(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        ij = np.floor((x - self.lo) * (1.0 / self.h))
         nx, ny = self.shape
+        i, j = ij[:, 0], ij[:, 1]
         inside = (i >= 0) & (i < nx) & (j >= 0) & (j < ny)
-        ii = np.where(inside, i, 0).astype(np.intp)
-        jj = np.where(inside, j, 0).astype(np.intp)
-        return np.where(inside, self.bound[ii, jj], self.margin)
+        cell = np.where(inside, i * ny + j, 0).astype(np.intp)
+        return cell, inside
+
+    def clearance(self, x: np.ndarray) -> np.ndarray:
+        """A lower bound (length units) on each point's distance to every finite face."""
+        cell, inside = self._cells(x)
+        return np.where(inside, self.bound.reshape(-1)[cell], self.margin)
+
+    def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(body, face) pairs to test: endless faces always, finite ones the grid lists."""
+        k = len(X)
+        parts_b: list[np.ndarray] = []
+        parts_f: list[np.ndarray] = []
+        if self.n_inf:
+            d = X @ self.inf_n.T - self.inf_c
+            bi, fi = np.nonzero(d <= reach[:, None])
+            parts_b.append(bi)
+            parts_f.append(self.inf_ids[fi])
+        if self.n_finite:
+            cell, inside = self._cells(X)
+            listed = inside & (reach <= self.pad)
+            ids = np.flatnonzero(listed)
+            if len(ids):
+                cnt = self.count[cell[ids]]
+                total = int(cnt.sum())
+                if total:
+                    bi = np.repeat(ids, cnt)
+                    offs = np.cumsum(cnt) - cnt
+                    pos = np.arange(total) - np.repeat(offs - self.start[cell[ids]], cnt)
+                    parts_b.append(bi)
+                    parts_f.append(self.faces_of[pos])
+            rest = np.flatnonzero(~listed & (self.clearance(X) <= reach))
+            if len(rest):
+                parts_b.append(np.repeat(rest, self.n_finite))
+                parts_f.append(np.tile(self.finite, len(rest)))
+        if not parts_b:
+            return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
+        del k
+        return np.concatenate(parts_b), np.concatenate(parts_f)

@@ -143,9 +143,7 @@ def disc_hits(
     scale = np.abs(K).max(axis=1)
     tau = np.full(len(idx), np.inf)
     small = 1e-9 * scale
-    deg = np.where(
-        np.abs(K[:, 4]) > small, 4, np.where(np.abs(K[:, 3]) > small, 3, 2)
-    )
+    deg = np.where(np.abs(K[:, 4]) > small, 4, np.where(np.abs(K[:, 3]) > small, 3, 2))
     for d in (4, 3):
         sel = np.flatnonzero(deg == d)
         if len(sel):

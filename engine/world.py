@@ -192,9 +192,8 @@ class World:
         self._huge = False  # the state is near overflow: step with numpy's warnings off
         self._contacts: Contacts | None = None  # made by the first add_collider
         self._handlers: list[tuple[Any, Callable[..., Any] | None, Callable[..., Any] | None]] = []
-        #: The contacts that began and ended in the last step (ContactEvent each).
-        self.began: list[ContactEvent] = []
-        self.ended: list[ContactEvent] = []
+        self._began: list[ContactEvent] | None = None  # the last step's events, made on demand
+        self._ended: list[ContactEvent] | None = None
 
     # -- bodies and forces ----------------------------------------------------------------
     @property
@@ -437,33 +436,48 @@ class World:
         f = int(contacts.rest[store.row(body._slot)])
         return None if f < 0 else contacts.colliders[int(contacts.faces.owner[f])]
 
+    def _events(self, raw: list[Any]) -> list[ContactEvent]:
+        """The contacts' (row, collider index, ...) tuples as ContactEvents with Bodies."""
+        bodies = self._bodies
+        colliders = self._contacts.colliders if self._contacts is not None else []
+        return [
+            ContactEvent(
+                bodies[i],
+                colliders[k],
+                Vector(float(p[0]), float(p[1])),
+                Vector(float(n[0]), float(n[1])),
+                Vector(float(j[0]), float(j[1])),
+                t,
+            )
+            for i, k, p, n, j, t in raw
+        ]
+
+    @property
+    def began(self) -> list[ContactEvent]:
+        """The contacts that began in the last step (a bounce, a landing, entering a sensor)."""
+        if self._began is None:
+            self._began = [] if self._contacts is None else self._events(self._contacts.began)
+        return self._began
+
+    @property
+    def ended(self) -> list[ContactEvent]:
+        """The contacts that ended in the last step (a bounce ends as it begins; a rest ends
+        when the body lifts off; leaving a sensor)."""
+        if self._ended is None:
+            self._ended = [] if self._contacts is None else self._events(self._contacts.ended)
+        return self._ended
+
     def _report(self) -> None:
-        """Turn the contacts' rows into events with Bodies and call the handlers."""
-        contacts = self._contacts
-        assert contacts is not None
-        bodies, colliders = self._bodies, contacts.colliders
-
-        def events(raw: list[Any]) -> list[ContactEvent]:
-            return [
-                ContactEvent(
-                    bodies[i],
-                    colliders[k],
-                    Vector(float(p[0]), float(p[1])),
-                    Vector(float(n[0]), float(n[1])),
-                    Vector(float(j[0]), float(j[1])),
-                    t,
-                )
-                for i, k, p, n, j, t in raw
-            ]
-
-        self.began, self.ended = events(contacts.began), events(contacts.ended)
-        if self._handlers:
-            for event_list, which in ((self.began, 1), (self.ended, 2)):
-                for ev in event_list:
-                    for handler in self._handlers:
-                        fn = handler[which]
-                        if fn is not None and (handler[0] is ev.body or handler[0] is ev.collider):
-                            fn(ev)
+        """Forget the last step's events (made again on demand) and call the handlers."""
+        self._began = self._ended = None
+        if not self._handlers:
+            return
+        for event_list, which in ((self.began, 1), (self.ended, 2)):
+            for ev in event_list:
+                for handler in self._handlers:
+                    fn = handler[which]
+                    if fn is not None and (handler[0] is ev.body or handler[0] is ev.collider):
+                        fn(ev)
 
     def segment_query_first(self, start: Any, end: Any, radius: float = 0.0) -> QueryHit | None:
         """The first body or solid collider a segment (a ray from ``start`` to ``end``) meets.
@@ -492,8 +506,16 @@ class World:
             X, V, B = a[None, :], (b - a)[None, :], np.zeros((1, 2))
             for j in range(len(faces.p)):
                 t, n = line_hits(
-                    X, V, B, faces.p[j : j + 1], faces.n[j : j + 1], faces.rho[j : j + 1] + r,
-                    faces.two[j : j + 1], faces.lo[j : j + 1], faces.hi[j : j + 1], 1.0,
+                    X,
+                    V,
+                    B,
+                    faces.p[j : j + 1],
+                    faces.n[j : j + 1],
+                    faces.rho[j : j + 1] + r,
+                    faces.two[j : j + 1],
+                    faces.lo[j : j + 1],
+                    faces.hi[j : j + 1],
+                    1.0,
                 )
                 consider(float(t[0]), cols[faces.owner[j]], n[0])
             L = len(faces.p)
@@ -505,24 +527,24 @@ class World:
                     consider(float(t[0]), cols[faces.owner[L + j]], d / np.hypot(*d))
         store = self._store
         if store is not None and self.dim == 2 and self._bodies:
-            n = len(store)
-            X = np.broadcast_to(a, (n, 2))
-            V = np.broadcast_to(b - a, (n, 2))
-            t = disc_hits(X, V, np.zeros((n, 2)), store.x, store.radius + r, np.ones(n))
-            for i in np.flatnonzero(np.isfinite(t)):
-                x = a + (b - a) * t[i]
+            count = len(store)
+            X = np.broadcast_to(a, (count, 2))
+            V = np.broadcast_to(b - a, (count, 2))
+            tb = disc_hits(X, V, np.zeros((count, 2)), store.x, store.radius + r, np.ones(count))
+            for i in np.flatnonzero(np.isfinite(tb)):
+                x = a + (b - a) * tb[i]
                 d = x - store.x[i]
                 length = float(np.hypot(*d))
-                consider(float(t[i]), self._bodies[i], d / length if length else (b - a) * 0)
+                consider(float(tb[i]), self._bodies[i], d / length if length else (b - a) * 0)
         if best is None:
             return None
-        t, shape, normal = best
-        point = a + (b - a) * t
+        frac, shape, normal = best
+        point = a + (b - a) * frac
         return QueryHit(
             shape,
             Vector(float(point[0]), float(point[1])),
             Vector(float(normal[0]), float(normal[1])),
-            fraction=t,
+            fraction=frac,
         )
 
     def point_query(self, point: Any, max_distance: float = 0.0) -> list[QueryHit]:
@@ -843,8 +865,17 @@ class World:
             # The path of the step is swept for impacts (engine.contacts); under the closed
             # form it is the exact parabola, so the next step starts its own closed form.
             x1, v1 = contacts.resolve(
-                store.x, store.v, x1, v1, dt, t0, store.radius, store.restitution,
-                store.friction, store.mass, model.a0 if step is None else None,
+                store.x,
+                store.v,
+                x1,
+                v1,
+                dt,
+                t0,
+                store.radius,
+                store.restitution,
+                store.friction,
+                store.mass,
+                model.a0 if step is None else None,
             )
             self._anchor = None
         store.prev_x, store.x, store.v = store.x, x1, v1
@@ -990,6 +1021,8 @@ class World:
                 f"{len(self._bodies)}: restore into the world (or a copy) it was taken from"
             )
         masses, own_acc = self._check_snapshot(snapshot)
+        if self._contacts is not None and snapshot.contacts is not None:
+            self._contacts.check_state(snapshot.contacts, len(self._bodies))
         store = self._store
         if store is not None and self._bodies:
             store.x, store.v, store.prev_x = (
