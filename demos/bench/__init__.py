@@ -24,6 +24,7 @@ TOPICS: dict[str, str] = {
     "particles": "demos.bench.particles",
     "render": "demos.bench.render",
     "throughput": "demos.bench.throughput",
+    "contacts": "demos.bench.contacts",
 }
 
 

@@ -1,0 +1,131 @@
+"""Contacts benchmark: balls bouncing in a walled box with slanted segments, against pymunk.
+
+Run with ``python -m demos.bench contacts``. The scene of issue "Contacts I": N balls of
+radius 0.1 m (not colliding with each other) in a 40 x 30 m box with 50 slanted 2 m segments
+inside, gravity 9.81 m/s^2, dt = 1/120 s. Targets: at most 1.0x pymunk's ``Space.step`` at
+1,000 balls and 0.25x at 10,000, with no ball lost. Besides the time, the table counts the
+balls outside the box after the timed steps (pymunk's discrete check lets fast balls
+through its walls; this engine's swept contacts do not) and the World with no colliders
+against the same World before contacts (target: within 5%).
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+
+import numpy as np
+
+from demos.bench import compare
+from engine import Body, Box, Segment, Vector, World
+from engine.forces import Gravity
+
+__all__ = ["report", "make_world", "make_space", "scene"]
+
+DT = 1.0 / 120.0  # s
+SIZE = (40.0, 30.0)  # m
+RADIUS = 0.1  # m
+SEGMENTS = 50
+
+
+def scene(n: int, seed: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(segments (50, 2, 2), positions (n, 2), velocities (n, 2)): one scene for both engines."""
+    rng = np.random.default_rng(seed)
+    a = rng.uniform((2.0, 2.0), (SIZE[0] - 2.0, SIZE[1] - 2.0), (SEGMENTS, 2))
+    angle = rng.uniform(0.0, np.pi, SEGMENTS)
+    b = a + 2.0 * np.stack([np.cos(angle), np.sin(angle)], axis=1)
+    pos = rng.uniform((1.0, 1.0), (SIZE[0] - 1.0, SIZE[1] - 1.0), (n, 2))
+    vel = rng.uniform(-10.0, 10.0, (n, 2))
+    return np.stack([a, b], axis=1), pos, vel
+
+
+def make_world(n: int, *, colliders: bool = True) -> World:
+    """The scene as a World ("auto": the closed form under gravity)."""
+    segs, pos, vel = scene(n)
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -9.81)))
+    if colliders:
+        world.add_collider(Box((0.0, 0.0), SIZE))
+        for a, b in segs:
+            world.add_collider(Segment(tuple(a), tuple(b)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a ball dropped onto a segment is pushed off it
+        world.add_all(
+            Body(Vector(*p), Vector(*v), Vector(0, 0), radius=RADIUS, restitution=0.9)
+            for p, v in zip(pos.tolist(), vel.tolist(), strict=True)
+        )
+    return world
+
+
+def make_space(n: int) -> object | None:
+    """The scene in pymunk (None without pymunk): the same walls, segments and balls."""
+    try:
+        import pymunk
+    except ImportError:
+        return None
+    segs, pos, vel = scene(n)
+    space = pymunk.Space()
+    space.gravity = (0.0, -9.81)
+    w, h = SIZE
+    walls = [((0, 0), (w, 0)), ((w, 0), (w, h)), ((w, h), (0, h)), ((0, h), (0, 0))]
+    for a, b in walls + [(tuple(a), tuple(b)) for a, b in segs.tolist()]:
+        shape = pymunk.Segment(space.static_body, a, b, 0.0)
+        shape.elasticity = shape.friction = 1.0
+        space.add(shape)
+    no_pairs = pymunk.ShapeFilter(group=1)  # the balls do not collide with each other
+    for p, v in zip(pos.tolist(), vel.tolist(), strict=True):
+        body = pymunk.Body(1.0, pymunk.moment_for_circle(1.0, 0.0, RADIUS))
+        body.position, body.velocity = p, v
+        ball = pymunk.Circle(body, RADIUS)
+        ball.elasticity, ball.friction, ball.filter = 0.9, 0.5, no_pairs
+        space.add(body, ball)
+    return space
+
+
+def _outside(xy: np.ndarray) -> int:
+    w, h = SIZE
+    out = (xy[:, 0] < 0) | (xy[:, 0] > w) | (xy[:, 1] < 0) | (xy[:, 1] > h)
+    return int(out.sum())
+
+
+def report(quick: bool = False) -> str:
+    """Run the contacts benchmark and return its table as text."""
+    rounds = 5 if quick else 11
+    sizes = [(1_000, 1.0)] if quick else [(1_000, 1.0), (10_000, 0.25)]
+    lines = [f"contacts: balls in a box with {SEGMENTS} segments, dt = 1/120 s"]
+    lines.append(f"  (medians of {rounds} interleaved rounds, after 1 s of settling)")
+    for n, target in sizes:
+        world = make_world(n)
+        space = make_space(n)
+        for _ in range(120):
+            world.step(DT)
+            if space is not None:
+                space.step(DT)  # type: ignore[attr-defined]
+        calls = max(1, 20_000 // n)
+        candidates: dict[str, tuple[Callable[[], object], int]] = {
+            "World": (lambda w=world: w.step(DT), calls)
+        }
+        if space is not None:
+            candidates["pymunk"] = (lambda s=space: s.step(DT), calls)  # type: ignore[attr-defined]
+        times = compare(candidates, rounds=rounds)
+        lost = _outside(world.positions())
+        line = f"  {n:>6,} balls: World {times['World'] * 1e6:8.0f} us a step, {lost} outside"
+        if space is not None:
+            out = _outside(np.array([b.position for b in space.bodies]))  # type: ignore[attr-defined]
+            ratio = times["World"] / times["pymunk"]
+            line += (
+                f"; pymunk {times['pymunk'] * 1e6:8.0f} us, {out} outside;"
+                f" World / pymunk {ratio:.2f}x (target <= {target:g}x)"
+            )
+        lines.append(line)
+        lines.append(f"          capped impacts so far: {world.capped}")
+    # No colliders: the same World without contacts costs what it did before contacts.
+    bare = make_world(1_000, colliders=False)
+    times = compare({"no colliders": (lambda: bare.step(DT), 20)}, rounds=rounds)
+    lines.append(
+        f"  1,000 balls, no colliders: {times['no colliders'] * 1e6:.0f} us a step "
+        "(no contact work is done: the World takes its path without contacts)"
+    )
+    if make_space(1) is None:
+        lines.append("  pymunk is not installed (pip install -e '.[bench]'): no comparison")
+    return "\n".join(lines)
