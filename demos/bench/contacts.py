@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
+from functools import partial
 
 import numpy as np
 
@@ -103,10 +104,10 @@ def report(quick: bool = False) -> str:
                 space.step(DT)  # type: ignore[attr-defined]
         calls = max(1, 20_000 // n)
         candidates: dict[str, tuple[Callable[[], object], int]] = {
-            "World": (lambda w=world: w.step(DT), calls)
+            "World": (partial(world.step, DT), calls)
         }
         if space is not None:
-            candidates["pymunk"] = (lambda s=space: s.step(DT), calls)  # type: ignore[attr-defined]
+            candidates["pymunk"] = (partial(space.step, DT), calls)  # type: ignore[attr-defined]
         times = compare(candidates, rounds=rounds)
         lost = _outside(world.positions())
         line = f"  {n:>6,} balls: World {times['World'] * 1e6:8.0f} us a step, {lost} outside"
