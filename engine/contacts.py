@@ -394,8 +394,9 @@ class Contacts:
             if stopped.any():
                 Vn[stopped] = 0.0  # slid to a stop: exactly at rest
             h = np.flatnonzero(hit)
+            done = np.zeros(len(active), dtype=bool)
             if len(h):
-                self._bounce(
+                done[h] = self._bounce(
                     h,
                     active,
                     Xn,
@@ -416,7 +417,7 @@ class Contacts:
             if len(rs):
                 self._project(rs, active, Xn, Vn, rest, r)
             X[active], V[active] = Xn, Vn
-            more = hit | stopped
+            more = (hit | stopped) & ~done
             left[active] = np.where(more, ta - tt, 0.0)
             active = active[more & (ta - tt > 0.0)]
             if not len(active):
@@ -693,8 +694,10 @@ class Contacts:
         m: np.ndarray,
         dt: float,
         when: np.ndarray,
-    ) -> None:
+    ) -> np.ndarray:
         """Apply the impacts of the bodies ``active[h]``: restitution, friction, rest.
+
+        Returns which of them are wedged between two faces (at rest for the rest of the step).
 
         With the unit normal n: v_n' = -e v_n; the tangential speed loses up to mu (1 + e)
         |v_n| (the friction impulse is at most mu times the normal one), never reversing.
@@ -723,20 +726,40 @@ class Contacts:
         old = rest[i]
         was = old >= 0
         stays = np.zeros(len(h), dtype=bool)
+        wedged = np.zeros(len(h), dtype=bool)
         if was.any():
             on, _ = self._normals(np.where(was, old, 0), Xn[h])
             stays = was & (np.abs(_dot(on, n)) < 1e-9)
-        rest[i] = np.where(settles, f, np.where(stays, old, -1))
+            # Wedged: resting on face 1, settling on face 2, and the acceleration presses into
+            # both: W = l1 n1 + l2 n2 with l1, l2 <= 0. The two faces then carry it all and
+            # the body stays put for the rest of the step (the forces are constant within it).
+            det = on[:, 0] * n[:, 1] - on[:, 1] * n[:, 0]
+            w = Wb[i]
+            safe = np.where(np.abs(det) > 1e-12, det, 1.0)
+            l1 = (w[:, 0] * n[:, 1] - w[:, 1] * n[:, 0]) / safe
+            l2 = (on[:, 0] * w[:, 1] - on[:, 1] * w[:, 0]) / safe
+            # It settles there when the rebound is too slow to fly one step against the load
+            # -l2 that face 2 would carry (as for one face, with l2 in place of a_n).
+            slow = vn_out <= -l2 * (0.5 * dt)
+            wedged = was & ~stays & slow & (np.abs(det) > 1e-12) & (l1 <= 0.0) & (l2 <= 0.0)
+            if wedged.any():
+                new_v[wedged] = 0.0
+        rest[i] = np.where(wedged | stays, old, np.where(settles, f, -1))
         point = Xn[h] - n * r[i][:, None]
         impulse = (new_v - vel) * m[i][:, None]
+        # A touch with no speed into the face (a body sliding into a wedge it sits in) is
+        # not reported: nothing struck.
+        struck = vn_in < 0.0
         rows = self._rows[i]
         owner = faces.owner[f]
-        self._began.append((rows, owner, point, n, impulse, when[h]))
-        bounced = ~settles
-        if bounced.any():
-            b = bounced
-            self._ended.append((rows[b], owner[b], point[b], n[b], impulse[b], when[h][b]))
+        if struck.any():
+            b = struck
+            self._began.append((rows[b], owner[b], point[b], n[b], impulse[b], when[h][b]))
+            b = struck & ~settles
+            if b.any():
+                self._ended.append((rows[b], owner[b], point[b], n[b], impulse[b], when[h][b]))
         Vn[h] = new_v
+        return wedged
 
     def _event(
         self,
