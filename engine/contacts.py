@@ -301,7 +301,7 @@ class Contacts:
             W = (v1 - v0) * (1.0 / dt)
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         if len(faces.owner):
-            rows = self._near(x0, v0, B, dt, radius)
+            rows = self._near(x0, v0, B, W, dt, radius)
             if len(rows):
                 X, V = self._solve(rows, x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
                 x, v = x1.copy(), v1.copy()
@@ -332,12 +332,18 @@ class Contacts:
         return self._grid
 
     def _near(
-        self, x0: np.ndarray, v0: np.ndarray, B: np.ndarray, dt: float, radius: np.ndarray
+        self,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        B: np.ndarray,
+        W: np.ndarray,
+        dt: float,
+        radius: np.ndarray,
     ) -> np.ndarray:
         """Rows whose path this step may come within reach of a solid face, or that rest."""
         faces = self.faces
         # Every point of the path lies within reach = |v0| dt + |B| dt^2 / 2 of x0.
-        reach = _reach(v0, B, dt, radius)
+        reach = _reach(v0, B, W, dt, radius)
         need = self.rest >= 0
         grid = self._grid_of()
         if grid.n_inf:
@@ -370,10 +376,18 @@ class Contacts:
         rest = self.rest[rows]
         left = np.full(len(rows), dt)
         touched = np.zeros(len(rows), dtype=bool)
+        capped: np.ndarray | None = None
         active = np.arange(len(rows))
+        # The faces each body could meet this step, found once: whatever it bounces off, its
+        # path stays within _reach of where it started.
+        pb, pf = self._grid_of().pairs(X, _reach(V, Bb, Wb, dt, r))
+        slot = np.full(len(rows), -1, dtype=np.intp)  # row -> index among the active
         for _ in range(MAX_IMPACTS):
             Xa, Va, ta = X[active], V[active], left[active]
             Bp, Wp, ra = Bb[active], Wb[active], rest[active]
+            slot[active] = np.arange(len(active))
+            live = np.flatnonzero((slot[pb] >= 0) & (pf != rest[pb]))
+            bi, fj = slot[pb[live]], pf[live]
             dur = ta.copy()
             stop = np.zeros(len(active), dtype=bool)
             res = np.flatnonzero(ra >= 0)
@@ -384,7 +398,10 @@ class Contacts:
                 if len(lifted):
                     rest[active[lifted]] = -1
                     ra = rest[active]
-            t_hit, face, normal = self._first_hits(Xa, Va, Bp, dur, r[active], ra)
+            if len(res) and len(lifted):
+                live = np.flatnonzero((slot[pb] >= 0) & (pf != rest[pb]))
+                bi, fj = slot[pb[live]], pf[live]
+            t_hit, face, normal = self._first_hits(Xa, Va, Bp, dur, r[active], bi, fj)
             hit = t_hit <= dur
             tt = np.where(hit, t_hit, dur)
             tc = tt[:, None]
@@ -419,6 +436,7 @@ class Contacts:
             X[active], V[active] = Xn, Vn
             more = (hit | stopped) & ~done
             left[active] = np.where(more, ta - tt, 0.0)
+            slot[active] = -1
             active = active[more & (ta - tt > 0.0)]
             if not len(active):
                 break
@@ -429,13 +447,12 @@ class Contacts:
             X[active] = Xa + Va * tc + Bb[active] * (0.5 * tc * tc)
             V[active] = Va + Wb[active] * tc
             touched[active] = True
+            capped = active
         self.rest[rows] = rest
-        t = np.flatnonzero(touched)
-        if len(t):
-            # Rounding may leave a hair of overlap after an impact: put it back on the surface.
-            Xt, Vt = X[t], V[t]
-            self.push_out_rows(Xt, Vt, r[t])
-            X[t], V[t] = Xt, Vt
+        if capped is not None:
+            Xt, Vt = X[capped], V[capped]
+            self.push_out_rows(Xt, Vt, r[capped])
+            X[capped], V[capped] = Xt, Vt
         return X, V
 
     def push_out_rows(self, X: np.ndarray, V: np.ndarray, r: np.ndarray) -> None:
@@ -611,24 +628,26 @@ class Contacts:
         B: np.ndarray,
         T: np.ndarray,
         r: np.ndarray,
-        rest: np.ndarray,
+        bi: np.ndarray,
+        fj: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Each body's first impact within its time T: (time or inf, face, normal)."""
+        """Each body's first impact within its time T among the (body, face) pairs given:
+        (time or inf, face, normal)."""
         faces = self.faces
         k = len(X)
         L = len(faces.p)
         best = np.full(k, np.inf)
         face = np.full(k, -1, dtype=np.intp)
         normal = np.zeros((k, 2))
-        bi, fj = self._grid_of().pairs(X, _reach(V, B, T, r))
-        keep = fj != rest[bi]
-        bi, fj = bi[keep], fj[keep]
         if not len(bi):
             return best, face, normal
-        line = fj < L
-        lb, lf = bi[line], fj[line]
-        if len(lb):
-            t, nrm = line_hits(
+        t = np.empty(len(bi))
+        line = np.flatnonzero(fj < L)
+        disc = np.flatnonzero(fj >= L)
+        nrm_line = None
+        if len(line):
+            lb, lf = bi[line], fj[line]
+            t[line], nrm_line = line_hits(
                 X[lb],
                 V[lb],
                 B[lb],
@@ -640,43 +659,33 @@ class Contacts:
                 faces.hi[lf],
                 T[lb],
             )
-            self._keep_first(lb, lf, t, nrm, best, face, normal)
-        db, df = bi[~line], fj[~line] - L
-        if len(db):
-            t = disc_hits(X[db], V[db], B[db], faces.c[df], faces.r[df] + r[db], T[db])
-            ok = np.isfinite(t)
-            if ok.any():
-                db, df, t = db[ok], df[ok], t[ok]
-                tc = t[:, None]
-                xt = X[db] + V[db] * tc + B[db] * (0.5 * tc * tc)
-                nrm = xt - faces.c[df]
-                length = np.sqrt(_dot(nrm, nrm))
-                nrm = nrm / np.where(length > 0.0, length, 1.0)[:, None]
-                self._keep_first(db, df + L, t, nrm, best, face, normal)
+        if len(disc):
+            db, df = bi[disc], fj[disc] - L
+            t[disc] = disc_hits(X[db], V[db], B[db], faces.c[df], faces.r[df] + r[db], T[db])
+        # The earliest impact of each body (ties: the last pair listed, deterministically).
+        np.minimum.at(best, bi, t)
+        win = np.flatnonzero((t == best[bi]) & (t < np.inf))
+        if not len(win):
+            return best, face, normal
+        wb, wf = bi[win], fj[win]
+        face[wb] = wf
+        # Normals of the winners: a flat face's from its kernel, a round face's from where the
+        # ball's centre is at the impact.
+        tw = t[win][:, None]
+        xt = X[wb] + V[wb] * tw + B[wb] * (0.5 * tw * tw)
+        is_disc = wf >= L
+        c = faces.c[np.where(is_disc, wf - L, 0)] if len(faces.c) else xt
+        d = xt - c
+        length = np.sqrt(_dot(d, d))
+        nd = d / np.where(length > 0.0, length, 1.0)[:, None]
+        if nrm_line is not None:
+            pos = np.full(len(bi), -1, dtype=np.intp)
+            pos[line] = np.arange(len(line))
+            nl = nrm_line[np.maximum(pos[win], 0)]
+            normal[wb] = np.where(is_disc[:, None], nd, nl)
+        else:
+            normal[wb] = nd
         return best, face, normal
-
-    @staticmethod
-    def _keep_first(
-        bi: np.ndarray,
-        fj: np.ndarray,
-        t: np.ndarray,
-        nrm: np.ndarray,
-        best: np.ndarray,
-        face: np.ndarray,
-        normal: np.ndarray,
-    ) -> None:
-        ok = np.flatnonzero(t < np.inf)
-        if not len(ok):
-            return
-        bi, fj, t, nrm = bi[ok], fj[ok], t[ok], nrm[ok]
-        if len(bi) > 1:
-            order = np.lexsort((fj, t, bi))  # per body, earliest first (ties: lowest face)
-            bi, fj, t, nrm = bi[order], fj[order], t[order], nrm[order]
-            first = np.r_[True, bi[1:] != bi[:-1]]
-            bi, fj, t, nrm = bi[first], fj[first], t[first], nrm[first]
-        better = t < best[bi]
-        b = bi[better]
-        best[b], face[b], normal[b] = t[better], fj[better], nrm[better]
 
     def _bounce(
         self,
@@ -825,9 +834,15 @@ def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any,
     return out
 
 
-def _reach(V: np.ndarray, B: np.ndarray, T: Any, r: np.ndarray) -> np.ndarray:
-    """How far from its start a ball's path can reach within T: |V| T + |B| T^2 / 2 + r."""
-    reach = np.sqrt(_dot(V, V)) * T + np.sqrt(_dot(B, B)) * (0.5 * T * T) + r
+def _reach(V: np.ndarray, B: np.ndarray, W: np.ndarray, T: Any, r: np.ndarray) -> np.ndarray:
+    """How far from its start a ball can reach within T, bounces and all (length units).
+
+    On each piece of its path x = x_k + V_k t + B t^2 / 2, and a bounce never raises the speed
+    (e <= 1), so |V_k| <= |V| + |W| t: the distance covered is at most
+    |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre.
+    """
+    vv, bb, ww = _dot(V, V), _dot(B, B), _dot(W, W)
+    reach = np.sqrt(vv) * T + (0.5 * np.sqrt(ww) + np.sqrt(bb)) * (T * T) + r
     return reach * (1.0 + 1e-9) + TOUCH
 
 
@@ -878,18 +893,21 @@ class _FaceGrid:
         span = (hi - lo) + 2.0 * self.margin
         cells = 384
         self.h = h = float(span.max()) / cells
-        self.pad = 4.0 * h
+        self.pad = 4.0 * h  # a body reaching at most this far meets only its cell's list
+        #: Bounds are kept up to this distance; farther cells hold this (still a lower bound).
+        self.far = 16.0 * h
         nx, ny = (np.ceil(span / h).astype(int) + 1).tolist()
         self.shape = (nx, ny)
         gx = self.lo[0] + (np.arange(nx) + 0.5) * h
         gy = self.lo[1] + (np.arange(ny) + 0.5) * h
         half_diag = h * math.sqrt(0.5)
+        bound = np.full((nx, ny), self.far)
         cell_parts: list[np.ndarray] = []
         face_parts: list[np.ndarray] = []
         for k in range(self.n_finite):
             a, b, rr = A[k], Bq[k], rad[k]
-            # Cells within the face's box grown by pad + the half diagonal could list it.
-            grow = rr + self.pad + h
+            # Only cells within `far` of the face (its box, grown) can hold a nearer bound.
+            grow = rr + self.far + h
             i0 = max(int((min(a[0], b[0]) - grow - self.lo[0]) / h), 0)
             i1 = min(int((max(a[0], b[0]) + grow - self.lo[0]) / h) + 1, nx)
             j0 = max(int((min(a[1], b[1]) - grow - self.lo[1]) / h), 0)
@@ -899,21 +917,12 @@ class _FaceGrid:
             ab2 = float(ab @ ab)
             u = ((cx - a[0]) * ab[0] + (cy - a[1]) * ab[1]) / ab2 if ab2 > 0 else cx * 0.0
             u = np.clip(u, 0.0, 1.0)
+            # No point of a cell is nearer the face than its centre less half its diagonal.
             dist = np.hypot(cx - a[0] - u * ab[0], cy - a[1] - u * ab[1]) - rr - half_diag
+            np.minimum(bound[i0:i1, j0:j1], dist, out=bound[i0:i1, j0:j1])
             di, dj = np.nonzero(dist <= self.pad)
             cell_parts.append((i0 + di) * ny + (j0 + dj))
             face_parts.append(np.full(len(di), self.finite[k], dtype=np.intp))
-        # The clearance bound: distance from each cell centre to the nearest finite face.
-        C = np.stack(np.meshgrid(gx, gy, indexing="ij"), axis=-1).reshape(-1, 2)
-        best = np.full(len(C), np.inf)
-        for k in range(self.n_finite):
-            a, b, rr = A[k], Bq[k], rad[k]
-            ab = b - a
-            ab2 = float(ab @ ab)
-            u = np.clip(((C - a) @ ab) / ab2, 0.0, 1.0) if ab2 > 0 else np.zeros(len(C))
-            q = a + u[:, None] * ab
-            np.minimum(best, np.hypot(C[:, 0] - q[:, 0], C[:, 1] - q[:, 1]) - rr, out=best)
-        bound = (best - half_diag).reshape(nx, ny)
         self.bound = bound
         cells_all = np.concatenate(cell_parts).astype(np.intp)
         order = np.argsort(cells_all, kind="stable")
