@@ -750,7 +750,7 @@ class Contacts:
             # It settles there when the rebound is too slow to fly one step against the load
             # -l2 that face 2 would carry (as for one face, with l2 in place of a_n).
             slow = vn_out <= -l2 * (0.5 * dt)
-            wedged = was & ~stays & slow & (np.abs(det) > 1e-12) & (l1 <= 0.0) & (l2 <= 0.0)
+            wedged = was & slow & (np.abs(det) > 1e-12) & (l1 <= 0.0) & (l2 <= 0.0)
             if wedged.any():
                 new_v[wedged] = 0.0
         rest[i] = np.where(wedged | stays, old, np.where(settles, f, -1))
