@@ -483,7 +483,8 @@ class DropScene(Scene):
         draw_text(surface, "e = 0.8, dt = 1/60 s", (8 * s, 24 * s), round(15 * s), MUTED)
         self._column(surface)
         pos = drop.world.position_of(drop.ball, alpha)
-        draw_ball(surface, self.camera, (pos[0], pos[1]), drop.radius, BALL)
+        assert isinstance(pos, Vector)  # a 2D World
+        draw_ball(surface, self.camera, (pos.x, pos.y), drop.radius, BALL)
         samples = _blend(drop.samples, t)
         self.y_plot.draw_frame(surface)
         self._formula_lines(surface, self.y_plot, H0, 1, 4)
@@ -732,7 +733,8 @@ class DriftScene(Scene):
         # The discrete ball on the left, the engine's on the right (blended like the plots).
         draw_ball(surface, cam, (-1.0, last[1] + d.radius), d.radius, NAIVE)
         pos = d.world.position_of(d.ball, alpha)
-        draw_ball(surface, cam, (pos[0], pos[1]), d.radius, ENGINE)
+        assert isinstance(pos, Vector)  # a 2D World
+        draw_ball(surface, cam, (pos.x, pos.y), d.radius, ENGINE)
         for x, name, colour, label in (
             (-1.0, "naive", NAIVE, "discrete"),
             (1.0, "engine", ENGINE, "engine"),
