@@ -1,4 +1,4 @@
-"""The bounce demo: it runs, the physics it shows is the closed form's, and it draws the ball there."""
+"""The bounce demo: it runs, the physics it shows is the closed form's, the ball is drawn there."""
 
 from __future__ import annotations
 
