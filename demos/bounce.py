@@ -553,7 +553,7 @@ class DropScene(Scene):
         self.build(surface.get_size())
         shown = [t for t in times if t <= 4.0]
         surface.fill(PAPER)
-        draw_text(surface, "every 0.25 s", (8 * self.s, 6 * self.s), round(20 * self.s))
+        draw_text(surface, "every 0.25 s, to 4 s", (8 * self.s, 6 * self.s), round(18 * self.s))
         self._column(surface)
         for k, t in enumerate(shown):
             while self.drop.t < t - 1e-9:
@@ -565,7 +565,9 @@ class DropScene(Scene):
                 round(255 - (255 - BALL[2]) * fade),
             )
             b = self.drop.ball
-            draw_ball(surface, self.camera, (b.pos.x, b.pos.y), self.drop.radius, colour)
+            # Spread left to right with time, as a motion diagram along t.
+            x = -1.4 + 2.8 * k / max(1, len(shown) - 1)
+            draw_ball(surface, self.camera, (x, b.pos.y), self.drop.radius, colour)
         samples = self.drop.samples
         self.y_plot.draw_frame(surface)
         self.y_plot.draw_curve(surface, [p[0] for p in samples], [p[1] for p in samples])
