@@ -34,6 +34,7 @@ STILLS = [
     ("fireworks", ["fireworks", "--scene", "show", "--seed", "7"], 45),
     ("stability-orbits", ["stability", "--scene", "orbits"], 60),
     ("crumb", ["crumb", "--seconds", "8"], 62),
+    ("bounce", ["bounce", "--scene", "drop"], 90),
 ]
 
 

@@ -1,14 +1,18 @@
 """Alfred and the crumb: a small game that uses the engine the way your own game would.
 
 Steer Alfred across his sheet of paper to the crumb with the arrow keys while the wind
-gusts. Walk off the edge and he falls (the lesson: "if he moves left or right, he will fall
-off!") and starts again from the middle. From the engine it takes only the public pieces: a
-World with a Body and a Wind, and the Scene machinery with the camera and drawing helpers.
+gusts. The paper's edges are the World's walls (a ``Box`` collider): Alfred bumps off them
+and can never leave the paper. The crumb is a sensor (a ``Circle`` with ``sensor=True``):
+bodies pass through it, and the World reports when Alfred begins to overlap it, which is
+when he eats it. From the engine it takes only the public pieces: a World with a Body, a
+Wind and two colliders, its contact events, and the Scene machinery with the camera and
+drawing helpers. The game writes no distance or edge check of its own.
 
 The game is a Scene like every other demo, so the recorder, ``--window`` and the tests drive
 it the same way. What it steps is :class:`CrumbGame`, which speaks :class:`engine.Steppable`:
 each fixed step of 1/120 s reads the keys (or asks the autopilot), lets the World step, and
-applies the rules (eat the crumb, fall off the edge), so the rules never depend on the frame
+applies the rules (eat the crumb when the sensor says so, count the bumps against the edge),
+so the rules never depend on the frame
 rate, and a game saved mid-run resumes exactly.
 
     python -m demos crumb --window     # play: arrow keys steer, space pauses, Esc quits
@@ -32,7 +36,7 @@ import pygame
 
 from demos.alfred import ant_sprite
 from demos.cli import Demo
-from engine import Body, Vector, World
+from engine import Body, Box, Circle, Vector, World
 from engine.forces import Wind
 from engine.render import (
     VELOCITY,
@@ -55,8 +59,16 @@ PUSH = 9.0
 #: Wind coupling k / m (1/s): the air drags Alfred toward its own velocity at this rate, so
 #: with a key held his top speed relative to the air is PUSH / K = 7.5 in/s.
 K = 1.2
-#: Alfred eats the crumb when he is this close (in).
+#: Alfred eats the crumb when his centre is this close to it (in).
 REACH = 0.35
+#: Alfred's size (in): the walls keep his centre this far inside the paper's edge.
+RADIUS = 0.2
+#: The paper's edge as a wall: how much of his speed into it he keeps (times his own 0.8),
+#: and its friction (times his own 0.5).
+EDGE_RESTITUTION, EDGE_FRICTION = 0.5, 0.2
+#: A contact with the edge counts as a bump when it changes his velocity by this much (in/s):
+#: pressed into a corner, the engine reports many contacts of no impulse every step.
+BUMP = 0.5
 DT = 1.0 / 120.0
 PAPER_COLOUR, TABLE_COLOUR, CRUMB_COLOUR = (250, 248, 240), (120, 94, 70), (214, 170, 90)
 INK = (40, 40, 40)
@@ -77,7 +89,7 @@ class Score:
     """What the player has done so far."""
 
     crumbs: int = 0
-    falls: int = 0
+    bumps: int = 0  # times he ran into the paper's edge
 
 
 @dataclass(frozen=True)
@@ -102,9 +114,15 @@ class CrumbGame:
     def __init__(self, seed: int = 1, player: Player | None = None) -> None:
         self.rng = np.random.default_rng(seed)
         self.world = World(integrator="semi_implicit_euler")
-        self.alfred = self.world.add(Body(self.start, Vector(0, 0), Vector(0, 0)))
+        self.alfred = self.world.add(Body(self.start, Vector(0, 0), Vector(0, 0), radius=RADIUS))
         self.world.add_force(Wind(air_velocity=gust, k=K))  # Alfred's mass is 1
+        #: The paper's edges: a room he stays inside.
+        self.edge = self.world.add_collider(
+            Box(PAPER[:2], PAPER[2:], restitution=EDGE_RESTITUTION, friction=EDGE_FRICTION)
+        )
+        self.sensor: Circle | None = None
         self.crumb = self._new_crumb()
+        self._place_crumb(self.crumb)
         self.score = Score()
         #: The way Alfred faces (degrees counter-clockwise from +x): his velocity's direction,
         #: kept while he stands still (a zero velocity has no direction).
@@ -139,6 +157,7 @@ class CrumbGame:
                 f"restore takes a CrumbSnapshot from CrumbGame.snapshot(), got "
                 f"{type(snapshot).__name__}"
             )
+        self._place_crumb(snapshot.crumb)  # first: the World's contact state fits its sensor
         self.world.restore(snapshot.world)
         self.rng.bit_generator.state = copy.deepcopy(snapshot.rng)
         self.crumb, self.score = snapshot.crumb, replace(snapshot.score)
@@ -146,7 +165,7 @@ class CrumbGame:
 
     @property
     def start(self) -> Vector:
-        """The middle of the paper (in), where Alfred starts and restarts."""
+        """The middle of the paper (in), where Alfred starts."""
         return Vector((PAPER[0] + PAPER[2]) / 2, (PAPER[1] + PAPER[3]) / 2)
 
     def _new_crumb(self) -> Vector:
@@ -154,6 +173,14 @@ class CrumbGame:
         x = self.rng.uniform(PAPER[0] + margin, PAPER[2] - margin)
         y = self.rng.uniform(PAPER[1] + margin, PAPER[3] - margin)
         return Vector(float(x), float(y))
+
+    def _place_crumb(self, where: Vector) -> None:
+        """Put the crumb's sensor at ``where``: Alfred eats it when his edge meets it."""
+        if self.sensor is not None:
+            self.world.remove_collider(self.sensor)
+        # The sensor reports when his centre comes within his radius of its rim: REACH.
+        self.sensor = Circle(where, REACH - RADIUS, sensor=True)
+        self.world.add_collider(self.sensor)
 
     def steer(self, right: float, up: float) -> None:
         """Point Alfred's legs: right and up each in [-1, 1] (the arrow keys held)."""
@@ -164,17 +191,20 @@ class CrumbGame:
         self.alfred.own_acc = direction * PUSH
 
     def update(self) -> None:
-        """Apply the rules after each physics step: eat the crumb, fall off the edge, turn."""
+        """Apply the rules after each physics step, from the World's contact events: eat the
+        crumb when its sensor reports Alfred, count his bumps against the edge, turn him."""
         vel = self.alfred.vel
         if vel.magnitude() > 1e-6:
             self.heading = math.degrees(math.atan2(vel.y, vel.x))
-        pos = self.alfred.pos
-        if pos.distance_to(self.crumb) < REACH:
-            self.score.crumbs += 1
-            self.crumb = self._new_crumb()
-        if not (PAPER[0] <= pos.x <= PAPER[2] and PAPER[1] <= pos.y <= PAPER[3]):
-            self.score.falls += 1
-            self.alfred.pos, self.alfred.vel = self.start, Vector(0, 0)
+        bumped = False
+        for event in self.world.began:
+            if event.collider is self.edge:
+                bumped = bumped or event.impulse.magnitude() / self.alfred.mass >= BUMP
+            elif event.collider is self.sensor:
+                self.score.crumbs += 1
+                self.crumb = self._new_crumb()
+                self._place_crumb(self.crumb)
+        self.score.bumps += bumped  # at most one a step
 
     def autopilot(self) -> tuple[float, float]:
         """Keys a simple player would press: toward the crumb, minus some of the velocity."""
@@ -197,7 +227,7 @@ class CrumbGame:
         air = gust(self.world.t)
         draw_text(
             surface,
-            f"crumbs {self.score.crumbs}    falls {self.score.falls}    t = {self.world.t:4.1f} s",
+            f"crumbs {self.score.crumbs}    bumps {self.score.bumps}    t = {self.world.t:4.1f} s",
             (16, 10),
             size=26,
             color=PAPER_COLOUR,
@@ -284,7 +314,7 @@ def _run(args: argparse.Namespace) -> int:
         overwrite=args.overwrite,
     )
     where = "" if args.window else f"; frames in {out}/frame_00000.png ..."
-    print(f"crumb: {score.crumbs} crumbs eaten, {score.falls} falls{where}")
+    print(f"crumb: {score.crumbs} crumbs eaten, {score.bumps} bumps against the edge{where}")
     return 0
 
 

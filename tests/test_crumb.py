@@ -24,7 +24,7 @@ def test_steering_in_a_steady_wind_follows_the_exact_solution(monkeypatch) -> No
     monkeypatch.setattr(crumb, "gust", lambda t: air)
     game = crumb.CrumbGame(seed=3)
     game.steer(1.0, 0.0)
-    steps = 240  # 2 s
+    steps = 120  # 1 s: about 3.8 in to the right of the middle, well short of the edge
     for _ in range(steps):
         game.world.step(crumb.DT)
     t = steps * crumb.DT
@@ -38,23 +38,60 @@ def test_steering_in_a_steady_wind_follows_the_exact_solution(monkeypatch) -> No
     assert game.alfred.vel.distance_to(exact) > 0.0  # a numerical method, not the formula
 
 
-def test_eating_the_crumb_scores_and_places_a_new_one() -> None:
-    game = crumb.CrumbGame(seed=5)
-    game.alfred.pos = game.crumb + (0.1, 0.0)  # within reach
-    old = game.crumb
-    game.update()
+def test_eating_the_crumb_is_the_sensors_event_and_places_a_new_one() -> None:
+    game = crumb.CrumbGame(seed=5, player=lambda: (0.0, 0.0))
+    old, sensor = game.crumb, game.sensor
+    assert sensor is not None and sensor.sensor and sensor.center == old
+    game.alfred.pos, game.alfred.vel = old + (crumb.REACH + 0.05, 0.0), Vector(0, 0)
+    game.step(crumb.DT)
+    assert game.score.crumbs == 0  # just out of reach: no event, no crumb
+    game.alfred.pos = old + (crumb.REACH - 0.05, 0.0)  # within reach
+    game.step(crumb.DT)
+    (event,) = game.world.began
+    assert event.collider is sensor and event.body is game.alfred
     assert game.score.crumbs == 1
-    assert game.crumb != old
+    assert game.crumb != old and game.sensor is not sensor and game.sensor.center == game.crumb
+    assert sensor not in game.world.colliders and game.sensor in game.world.colliders
     x0, y0, x1, y1 = crumb.PAPER
     assert x0 < game.crumb.x < x1 and y0 < game.crumb.y < y1
+    game.step(crumb.DT)  # still where the old crumb was: nothing more to eat
+    assert game.score.crumbs == 1
 
 
-def test_walking_off_the_paper_is_a_fall_and_a_restart_from_the_middle() -> None:
-    game = crumb.CrumbGame(seed=5)
-    game.alfred.pos, game.alfred.vel = (crumb.PAPER[2] + 0.01, 2.0), (3.0, 0.0)
-    game.update()
-    assert game.score.falls == 1
-    assert game.alfred.pos == game.start and game.alfred.vel == (0.0, 0.0)
+def test_the_paper_edge_is_a_wall_he_bumps_off() -> None:
+    game = crumb.CrumbGame(seed=5, player=lambda: (0.0, 0.0))
+    x1 = crumb.PAPER[2]
+    game.alfred.pos, game.alfred.vel = Vector(x1 - 0.25, 2.0), Vector(12.0, 0.0)
+    game.step(crumb.DT)
+    (event,) = game.world.began
+    assert event.collider is game.edge and event.normal == (-1.0, 0.0)
+    assert game.score.bumps == 1
+    assert game.alfred.pos.x <= x1 - crumb.RADIUS and game.alfred.vel.x < 0.0
+
+
+def test_the_ant_never_leaves_the_paper_and_every_crumb_is_a_sensor_event() -> None:
+    # Random keys held for random spells, in the gusting wind, for 20 s of game time.
+    rng = np.random.default_rng(11)
+    keys = {"held": (0.0, 0.0), "left": 0}
+
+    def restless() -> tuple[float, float]:
+        if keys["left"] == 0:
+            keys["held"] = (float(rng.integers(-1, 2)), float(rng.integers(-1, 2)))
+            keys["left"] = int(rng.integers(20, 400))
+        keys["left"] -= 1
+        return keys["held"]
+
+    game = crumb.CrumbGame(seed=7, player=restless)
+    eaten = []
+    for _ in range(20 * 120):
+        sensor = game.sensor
+        game.step(crumb.DT)
+        eaten += [ev for ev in game.world.began if ev.collider is sensor]
+        x, y = game.alfred.pos
+        r = crumb.RADIUS
+        assert r <= x <= crumb.PAPER[2] - r and r <= y <= crumb.PAPER[3] - r, game.t
+    assert game.score.bumps > 0  # he did run into the edge
+    assert len(eaten) == game.score.crumbs and all(ev.body is game.alfred for ev in eaten)
 
 
 def test_steering_is_normalised_so_diagonals_are_not_faster() -> None:

@@ -89,6 +89,12 @@ def test_the_game_loop_is_the_crumb_games_core(monkeypatch) -> None:
     for corner in ((0.0, 0.0), (11.0, 8.5)):
         assert camera.point(corner) == scene.camera.point(corner)  # type: ignore[attr-defined]
     assert crumb.PAPER == (0.0, 0.0, 11.0, 8.5)
+    # The same walls and the same reach: the edge Box and the crumb's sensor.
+    game = crumb.CrumbGame()
+    edge, sensor = world.colliders  # type: ignore[attr-defined]
+    assert repr(edge) == repr(game.edge)
+    assert sensor.sensor and sensor.radius == pytest.approx(game.sensor.radius)  # type: ignore[union-attr]
+    assert alfred.radius == crumb.RADIUS  # type: ignore[attr-defined]
     for t in (0.0, 1.0, 4.0):
         assert wind.air(t).x == pytest.approx(2.5 * math.sin(0.45 * t))
         assert crumb.gust(t).x - 1.0 * math.sin(1.7 * t) == pytest.approx(wind.air(t).x)

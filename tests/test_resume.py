@@ -19,7 +19,7 @@ import numpy as np
 import pygame
 import pytest
 
-from demos import alfred, car, crumb, fireworks, stability
+from demos import alfred, bounce, car, crumb, fireworks, stability
 from engine import FixedStep, Vector, VirtualClock
 from engine.render import Scene, init_headless
 
@@ -32,6 +32,7 @@ SCENES: dict[str, Callable[[], Scene]] = {
     **{f"car/{name}": make for name, make in car.DEMO.scenes.items()},
     "crumb": crumb.CrumbScene,
     **{f"stability/{name}": make for name, make in stability.DEMO.scenes.items()},
+    **{f"bounce/{name}": make for name, make in bounce.DEMO.scenes.items()},
 }
 #: Scenes that do not resume yet, and why.
 
