@@ -9,7 +9,7 @@ Each frame's pixels are copied out of the surface (``pygame.image.tobytes``, ~0.
 writer thread pipes them into ffmpeg's stdin while the next frame is drawn; ffmpeg encodes in
 its own process. No PNG is made on the way.
 
-- MP4: H.264 (libx264, preset ``veryfast``, CRF 20), yuv420p, BT.709, ``+faststart`` (the index
+- MP4: H.264 (libx264, preset ``superfast``, CRF 20), yuv420p, BT.709, ``+faststart`` (the index
   at the front, so a browser starts playing before the whole file has arrived), at the
   recording's fps. yuv420p needs even sides: an odd width or height loses its last column or
   row (the right or bottom edge), so nothing is stretched and no border colour is invented.
@@ -59,7 +59,7 @@ INSTALL_HINT = (
 )
 
 #: x264's speed against size trade-off and its quality (lower CRF: better and larger).
-X264_PRESET = "veryfast"
+X264_PRESET = "superfast"
 X264_CRF = 20
 
 #: Frames waiting for the writer thread, at most (~0.7 MB each at 640x360).
