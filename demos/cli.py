@@ -367,15 +367,24 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
         parser.error(f"argument --scene: the demo {demo.name!r} has no scenes to choose from")
     clip_option = "--video" if args.video is not None else "--gif" if args.gif is not None else None
     if clip_option is not None:
+        from engine.render.clips import (
+            GIF_MAX_FPS,
+            ClipWriteError,
+            EncoderUnavailableError,
+            ffmpeg_exe,
+        )
+
         if not demo.scenes:
             parser.error(f"argument {clip_option}: the demo {demo.name!r} has no scenes to record")
         if args.window or args.strobe:
             other = "--window" if args.window else "--strobe"
             parser.error(f"argument {clip_option}: not allowed with argument {other}")
-        if args.video is not None and args.gif is not None and args.video == args.gif:
-            parser.error("argument --gif: must be another file than --video's")
-        from engine.render.clips import ClipWriteError, EncoderUnavailableError, ffmpeg_exe
-
+        if args.gif is not None and (args.fps or 30) > GIF_MAX_FPS:
+            parser.error(
+                f"argument --gif: a GIF plays at most {GIF_MAX_FPS} fps in browsers (its frame "
+                f"times are whole hundredths of a second), got --fps {args.fps}; use --fps "
+                f"{GIF_MAX_FPS} or less"
+            )
         try:
             ffmpeg_exe()
         except EncoderUnavailableError as exc:

@@ -258,6 +258,7 @@ def test_the_cli_writes_frames_beside_the_clip_with_out(ffmpeg, tmp_path, capsys
         (["--video", ".mp4"], "argument --video"),
         (["--gif", "c.gif", "--window"], "argument --gif: not allowed with argument --window"),
         (["--video", "c.mp4", "--strobe"], "argument --video: not allowed with argument --strobe"),
+        (["--gif", "c.gif", "--fps", "60"], "argument --gif: a GIF plays at most 50 fps"),
     ],
 )
 def test_bad_clip_options_are_usage_errors_naming_the_option(extra, named, capsys, tmp_path):

@@ -39,12 +39,14 @@ import pygame
 
 __all__ = [
     "CLIP_SUFFIXES",
+    "GIF_MAX_FPS",
     "ClipExistsError",
     "ClipWriteError",
     "ClipWriter",
     "EncoderUnavailableError",
     "INSTALL_HINT",
     "check_clip_path",
+    "check_gif_fps",
     "even_size",
     "ffmpeg_exe",
 ]
@@ -62,8 +64,13 @@ INSTALL_HINT = (
 X264_PRESET = "superfast"
 X264_CRF = 20
 
-#: Frames waiting for the writer thread, at most (~0.7 MB each at 640x360).
+#: Frames waiting for the writer thread, at most (~0.7 MB each at 640x360), and the bytes
+#: they may take together, so that a huge canvas keeps memory flat too.
 _QUEUE_FRAMES = 8
+_QUEUE_BYTES = 64 * 1024 * 1024
+#: The highest frame rate a GIF plays at: its frame times are whole hundredths of a second,
+#: and browsers slow frames shorter than 2/100 s down to 1/10 s.
+GIF_MAX_FPS = 50
 #: Lines of ffmpeg's own messages quoted in an error.
 _STDERR_LINES = 8
 
@@ -130,6 +137,16 @@ def check_clip_path(path: object, kind: str, overwrite: bool = False) -> Path:
             "or choose another name"
         )
     return target
+
+
+def check_gif_fps(fps: int) -> int:
+    """``fps`` if a GIF can play at it (at most 50 frames per second); ValueError otherwise."""
+    if fps > GIF_MAX_FPS:
+        raise ValueError(
+            f"a GIF plays at most {GIF_MAX_FPS} fps in browsers (its frame times are whole "
+            f"hundredths of a second), got fps={fps}; record it at {GIF_MAX_FPS} fps or less"
+        )
+    return fps
 
 
 def even_size(size: tuple[int, int]) -> tuple[int, int]:
@@ -234,6 +251,8 @@ class ClipWriter:
         width, height = size
         if kind == "mp4" and (width < 2 or height < 2):
             raise ValueError(f"an MP4 needs a size of at least 2x2 px, got {width}x{height}")
+        if kind == "gif":
+            check_gif_fps(fps)
         self.size = (width, height)
         #: The size of the clip itself (px): even sides for an MP4, as drawn for a GIF.
         self.clip_size = even_size(self.size) if kind == "mp4" else self.size
@@ -274,7 +293,8 @@ class ClipWriter:
                 f"could not start the encoder {exe!r} for {self.path}: {_describe(exc)}; "
                 f"reinstall it: {INSTALL_HINT}"
             ) from exc
-        self._queue: queue.Queue[bytes | None] = queue.Queue(maxsize=_QUEUE_FRAMES)
+        frames = max(1, min(_QUEUE_FRAMES, _QUEUE_BYTES // (3 * width * height)))
+        self._queue: queue.Queue[bytes | None] = queue.Queue(maxsize=frames)
         self._thread = threading.Thread(target=self._pipe, name="clip-writer", daemon=True)
         self._thread.start()
 

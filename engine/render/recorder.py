@@ -18,7 +18,13 @@ from pathlib import Path
 import pygame
 
 from engine.loop import FixedStep, RealClock, VirtualClock
-from engine.render.clips import ClipWriter, check_clip_path, even_size, ffmpeg_exe
+from engine.render.clips import (
+    ClipWriter,
+    check_clip_path,
+    check_gif_fps,
+    even_size,
+    ffmpeg_exe,
+)
 from engine.render.frames import FrameWriter, save_png
 from engine.render.headless import init_headless, init_window
 from engine.render.progress import Progress
@@ -206,8 +212,8 @@ def record(
         raise ValueError("record() needs somewhere to write: out_dir, video or gif")
     targets = [(kind, path) for kind, path in (("mp4", video), ("gif", gif)) if path is not None]
     clip_paths = [check_clip_path(path, kind, overwrite) for kind, path in targets]
-    if len(set(clip_paths)) < len(clip_paths):
-        raise ValueError(f"video and gif must be two different files, got {clip_paths[0]}")
+    if gif is not None:
+        check_gif_fps(fps)
     if clip_paths:
         ffmpeg_exe()  # EncoderUnavailableError now, before any frame folder is touched
     total = frame_count(seconds, fps)
