@@ -248,7 +248,13 @@ class ClipWriter:
         kind = "gif" if named and Path(os.fspath(path)).suffix.lower() == ".gif" else "mp4"
         self.path = check_clip_path(path, kind, overwrite)
         self.kind = kind
-        width, height = size
+        try:
+            width, height = size
+        except (TypeError, ValueError):
+            raise ValueError(f"size must be (width, height) in pixels, got {size!r}") from None
+        for value, what in ((width, "width"), (height, "height"), (fps, "fps")):
+            if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 8192:
+                raise ValueError(f"{what} must be a whole number from 1 to 8192, got {value!r}")
         if kind == "mp4" and (width < 2 or height < 2):
             raise ValueError(f"an MP4 needs a size of at least 2x2 px, got {width}x{height}")
         if kind == "gif":
@@ -288,6 +294,7 @@ class ClipWriter:
                 start_new_session=sys.platform != "win32",
             )
         except OSError as exc:
+            self._stderr.close()
             self._discard()
             raise ClipWriteError(
                 f"could not start the encoder {exe!r} for {self.path}: {_describe(exc)}; "
