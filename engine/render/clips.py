@@ -4,7 +4,7 @@ The encoder is the ffmpeg binary that the optional ``imageio-ffmpeg`` wheel ship
 extra: ``pip install -e ".[video]"``), so nothing is installed by hand. It is looked up only when
 a clip is asked for: ``import engine.render`` never imports ``imageio_ffmpeg``.
 
-Each frame's pixels are copied out of the surface (``pygame.image.tobytes``, ~0.4 ms at
+Each frame's pixels are copied out of the surface (``pygame.image.tobytes``, under 1 ms at
 640x360) in the caller's thread, so the surface is free to be drawn on again at once, and a
 writer thread pipes them into ffmpeg's stdin while the next frame is drawn; ffmpeg encodes in
 its own process. No PNG is made on the way.
