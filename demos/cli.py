@@ -8,13 +8,15 @@ automatically, so a new demo needs no change here::
     DEMO = Demo(name="drop", summary="A ball falls under gravity", scenes={"drop": DropScene})
 
 A demo made of scenes gets the common options: it is recorded headless to numbered PNG frames
-(``out/<demo>/<scene>/frame_00000.png`` ...), shown in a window (``--window``) or drawn as one
-still motion diagram per scene (``--strobe``). A demo that is not made of scenes (a chart, a
-table) gives a ``run(args)`` hook instead, and can add its own options with
-``add_arguments(parser)``.
+(``out/<demo>/<scene>/frame_00000.png`` ...) and/or to an MP4 or GIF clip (``--video``,
+``--gif``; with them, frames are written too only if ``--out`` is given), shown in a window
+(``--window``) or drawn as one still motion diagram per scene (``--strobe``). A demo that is
+not made of scenes (a chart, a table) gives a ``run(args)`` hook instead, and can add its own
+options with ``add_arguments(parser)``.
 
-Exit codes: 0 done, 1 the run failed (a frame could not be written, the output folder already
-holds frames, no display for ``--window``, the simulation diverged), 2 a usage error.
+Exit codes: 0 done, 1 the run failed (a frame or clip could not be written, the output folder
+already holds frames or the clip's file exists, no display for ``--window``, the simulation
+diverged), 2 a usage error (including ``--video`` or ``--gif`` without the ``video`` extra).
 """
 
 from __future__ import annotations
@@ -160,6 +162,26 @@ def _out(text: str) -> Path:
     return Path(text)
 
 
+def _clip(kind: str) -> Callable[[str], Path]:
+    # An argparse type for --video / --gif: a file name with the clip's suffix. Its folder is
+    # created if missing, as --out's is.
+    suffix = f".{kind}"
+
+    def parse(text: str) -> Path:
+        path = Path(text) if text and "\x00" not in text else None
+        if path is None or path.suffix.lower() != suffix or path.name.lower() == suffix:
+            raise argparse.ArgumentTypeError(
+                f"must be a file name ending in {suffix}, such as out/sprint{suffix}, got {text!r}"
+            )
+        if path.is_dir():
+            raise argparse.ArgumentTypeError(
+                f"must be a file name ending in {suffix}, got the folder {text!r}"
+            )
+        return path
+
+    return parse
+
+
 def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.ArgumentParser:
     about = "Run a demo: headless to PNG frames (default), in a window, or as stills."
     parser = argparse.ArgumentParser(
@@ -187,9 +209,30 @@ def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.
     parser.add_argument(
         "--size", type=parse_size, default=(640, 360), help="WIDTHxHEIGHT in pixels (640x360)"
     )
-    parser.add_argument("--out", type=_out, help="output folder (default: out/<demo>/<scene>/)")
     parser.add_argument(
-        "--overwrite", action="store_true", help="replace frames already in the output folder"
+        "--out",
+        type=_out,
+        help="output folder for the PNG frames (default: out/<demo>/<scene>/; with --video or "
+        "--gif, frames are written only if --out is given)",
+    )
+    parser.add_argument(
+        "--video",
+        type=_clip("mp4"),
+        metavar="PATH.mp4",
+        help="also write an H.264 MP4 clip, streamed as the frames are drawn (several scenes: "
+        'PATH-<scene>.mp4); needs pip install -e ".[video]"',
+    )
+    parser.add_argument(
+        "--gif",
+        type=_clip("gif"),
+        metavar="PATH.gif",
+        help="also write a looping GIF with its own palette (several scenes: PATH-<scene>.gif); "
+        'needs pip install -e ".[video]"',
+    )
+    parser.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="replace frames already in the output folder and clips already at --video/--gif",
     )
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--window", action="store_true", help="play in a real-time window")
@@ -223,11 +266,26 @@ def _output_folder(args: argparse.Namespace, demo: Demo, scene_name: str, many: 
     return args.out / scene_name if many else args.out
 
 
+def _clip_path(path: Path | None, scene_name: str, many: bool) -> Path | None:
+    # --video / --gif name the clip of one scene; with several, each scene's name is added.
+    if path is None or not many:
+        return path
+    return path.with_name(f"{path.stem}-{scene_name}{path.suffix}")
+
+
 def _run_scenes(demo: Demo, args: argparse.Namespace, out: TextIO) -> int:
     from engine.render import play, record, strobe
+    from engine.render.clips import check_clip_path
 
     names = [args.scene] if args.scene else list(demo.scenes)
     many = len(names) > 1
+    clips = args.video is not None or args.gif is not None
+    if clips:
+        # Every clip is checked before the first scene starts: no half-done batch.
+        for scene_name in names:
+            for kind, path in (("mp4", args.video), ("gif", args.gif)):
+                if path is not None:
+                    check_clip_path(_clip_path(path, scene_name, many), kind, args.overwrite)
     for scene_name in names:
         scene = demo.scenes[scene_name]()
         if args.seed is not None:
@@ -248,19 +306,36 @@ def _run_scenes(demo: Demo, args: argparse.Namespace, out: TextIO) -> int:
             continue
         rec = record(
             scene,
-            folder,
+            folder if not clips or args.out is not None else None,
             fps=args.fps or 30,
             seconds=args.seconds,
             size=args.size,
             overwrite=args.overwrite,
+            video=_clip_path(args.video, scene_name, many),
+            gif=_clip_path(args.gif, scene_name, many),
         )
         width, height = rec.size
-        print(
-            f"{label}: wrote {rec.count} frames ({width}x{height}, {rec.fps} fps, "
-            f"{rec.seconds:g} s) to {rec.folder}{'/' if not str(rec.folder).endswith('/') else ''}"
-            f"frame_00000.png ...",
-            file=out,
-        )
+        timing = f"{rec.fps} fps, {rec.seconds:g} s"
+        if rec.folder is not None:
+            print(
+                f"{label}: wrote {rec.count} frames ({width}x{height}, {timing}) to {rec.folder}"
+                f"{'/' if not str(rec.folder).endswith('/') else ''}frame_00000.png ...",
+                file=out,
+            )
+        if rec.video is not None:
+            video_w, video_h = rec.video_size
+            cut = "" if rec.video_size == rec.size else f", cut from {width}x{height} to even sides"
+            print(
+                f"{label}: wrote the video {rec.video} (H.264 MP4, {video_w}x{video_h}{cut}, "
+                f"{rec.count} frames, {timing}, {rec.video.stat().st_size:,} bytes)",
+                file=out,
+            )
+        if rec.gif is not None:
+            print(
+                f"{label}: wrote the GIF {rec.gif} ({width}x{height}, {rec.count} frames, "
+                f"{timing}, {rec.gif.stat().st_size:,} bytes)",
+                file=out,
+            )
     return 0
 
 
@@ -290,6 +365,33 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
     args = parser.parse_args(argv)
     if args.scene is not None and args.scene not in demo.scenes:  # a demo without scenes
         parser.error(f"argument --scene: the demo {demo.name!r} has no scenes to choose from")
+    clip_option = "--video" if args.video is not None else "--gif" if args.gif is not None else None
+    if clip_option is not None:
+        from engine.render.clips import (
+            GIF_MAX_FPS,
+            ClipWriteError,
+            EncoderUnavailableError,
+            ffmpeg_exe,
+        )
+
+        if not demo.scenes:
+            parser.error(f"argument {clip_option}: the demo {demo.name!r} has no scenes to record")
+        if args.window or args.strobe:
+            other = "--window" if args.window else "--strobe"
+            parser.error(f"argument {clip_option}: not allowed with argument {other}")
+        if args.gif is not None and (args.fps or 30) > GIF_MAX_FPS:
+            parser.error(
+                f"argument --gif: a GIF plays at most {GIF_MAX_FPS} fps in browsers (its frame "
+                f"times are whole hundredths of a second), got --fps {args.fps}; use --fps "
+                f"{GIF_MAX_FPS} or less"
+            )
+        try:
+            ffmpeg_exe()
+        except EncoderUnavailableError as exc:
+            parser.error(f"argument {clip_option}: {exc}")
+        except ClipWriteError as exc:  # installed, but its binary is gone
+            print(f"error: {exc}", file=sys.stderr)
+            return 1
     for name in [args.scene] if args.scene else list(demo.scenes):
         need_w, need_h = getattr(demo.scenes[name], "min_size", (0, 0))
         if args.size[0] < need_w or args.size[1] < need_h:
@@ -299,7 +401,10 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
             )
 
     from engine.render import (
+        ClipExistsError,
+        ClipWriteError,
         DisplayUnavailableError,
+        EncoderUnavailableError,
         FramesExistError,
         FrameWriteError,
         RecordingInterrupted,
@@ -323,7 +428,15 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
             code = demo.run(args)
             return 0 if code is None else int(code)
         return _run_scenes(demo, args, out)
-    except (FramesExistError, FrameWriteError, DisplayUnavailableError, SimulationDiverged) as exc:
+    except (
+        FramesExistError,
+        FrameWriteError,
+        ClipExistsError,
+        ClipWriteError,
+        EncoderUnavailableError,
+        DisplayUnavailableError,
+        SimulationDiverged,
+    ) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:

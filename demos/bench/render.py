@@ -6,6 +6,10 @@ with its arrows, labels); the baseline saves each frame with ``pygame.image.save
 hands it to :class:`engine.render.FrameWriter` (pixels copied out, PNG encoded on worker
 threads). Target (issue 3): recording at least 3x the baseline's frames per second, with the
 same pixels in the files, which the report checks frame by frame.
+
+With the ``video`` extra installed, the same frames are also streamed to an MP4 and to a GIF
+(:class:`engine.render.ClipWriter`, ffmpeg in its own process). Target (issue 12): writing
+the MP4 costs at most what writing the PNG frames costs, i.e. at least their frames per second.
 """
 
 from __future__ import annotations
@@ -111,6 +115,19 @@ def _recorder(folder: Path, seconds: float) -> int:
     return record(BenchScene(), folder, FPS, seconds, SIZE, overwrite=True, progress=False).count
 
 
+def _clip(path: Path, seconds: float, kind: str) -> int:
+    from engine.render import record
+
+    clip = {"video" if kind == "mp4" else "gif": path}
+    return record(BenchScene(), None, FPS, seconds, SIZE, True, False, **clip).count
+
+
+def _clips_available() -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec("imageio_ffmpeg") is not None
+
+
 def _same_pixels(a: Path, b: Path, count: int) -> bool:
     import pygame
 
@@ -128,11 +145,23 @@ def _folder_bytes(folder: Path) -> int:
     return sum(p.stat().st_size for p in folder.iterdir())
 
 
+def _cpu() -> float:
+    # CPU seconds of this process (all threads) and of its finished child processes, so the
+    # clips' column includes ffmpeg, which encodes in a process of its own.
+    try:
+        import resource
+    except ImportError:  # Windows: this process only
+        return time.process_time()
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return time.process_time() + children.ru_utime + children.ru_stime
+
+
 def _timed(fn: Callable[[], int]) -> tuple[float, float, int]:
-    # Wall-clock and CPU seconds (all threads of this process) of one call, and its frames.
-    wall, cpu = time.perf_counter(), time.process_time()
+    # Wall-clock and CPU seconds (all threads of this process and its encoders) of one call,
+    # and its frames.
+    wall, cpu = time.perf_counter(), _cpu()
     count = fn()
-    return time.perf_counter() - wall, time.process_time() - cpu, count
+    return time.perf_counter() - wall, _cpu() - cpu, count
 
 
 def report(quick: bool = False) -> str:
@@ -156,6 +185,11 @@ def report(quick: bool = False) -> str:
             "save": lambda: _baseline(base_dir, seconds),
             "writer": lambda: _recorder(ours_dir, seconds),
         }
+        clips = _clips_available()
+        if clips:
+            mp4, gif = Path(tmp) / "clip.mp4", Path(tmp) / "clip.gif"
+            ways["mp4"] = lambda: _clip(mp4, seconds, "mp4")
+            ways["gif"] = lambda: _clip(gif, seconds, "gif")
         for fn in ways.values():
             fn()  # warm up: fonts, imports, thread pool start-up are not the steady state
         walls: dict[str, list[float]] = {name: [] for name in ways}
@@ -167,6 +201,8 @@ def report(quick: bool = False) -> str:
                 cpus[name].append(cpu_s / count)
         same = _same_pixels(base_dir, ours_dir, frames)
         size_base, size_ours = _folder_bytes(base_dir), _folder_bytes(ours_dir)
+        if clips:
+            size_mp4, size_gif = mp4.stat().st_size, gif.stat().st_size
     wall = {name: statistics.median(v) for name, v in walls.items()}
     cpu = {name: statistics.median(v) for name, v in cpus.items()}
     ratio = wall["save"] / wall["writer"]
@@ -179,6 +215,11 @@ def report(quick: bool = False) -> str:
         f"(median of {rounds} rounds, {os.cpu_count()} CPUs, load {_load()})",
         f"  {'method':<32}{'frames/s':>9}{'ms/frame':>10}{'CPU ms/frame':>14}{'KB/frame':>10}",
     ]
+    if clips:
+        rows += [
+            ("draw + ClipWriter MP4 (H.264)", "mp4", size_mp4),
+            ("draw + ClipWriter GIF", "gif", size_gif),
+        ]
     for label, name, size in rows:
         lines.append(
             f"  {label:<32}{1 / wall[name]:>9.0f}{1e3 * wall[name]:>10.2f}"
@@ -189,6 +230,18 @@ def report(quick: bool = False) -> str:
         f", {cpu['save'] / cpu['writer']:.1f}x less CPU per frame; "
         f"same pixels in every frame: {'yes' if same else 'NO'}"
     )
+    if clips:
+        mp4_ratio = wall["writer"] / wall["mp4"]
+        lines.append(
+            f"  MP4 against PNG frames: {mp4_ratio:.2f}x the frames/s (target >= 1x: "
+            f"{'met' if mp4_ratio >= 1 else 'NOT met'}); GIF {wall['writer'] / wall['gif']:.2f}x; "
+            "CPU ms/frame includes ffmpeg's own process"
+        )
+    else:
+        lines.append(
+            "  MP4 and GIF: not measured, the video extra is not installed "
+            '(pip install -e ".[video]")'
+        )
     return "\n".join(lines)
 
 

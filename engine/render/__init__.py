@@ -1,14 +1,17 @@
 """The renderer: the only package of the engine that imports pygame.
 
 It draws a World through a :class:`Camera` onto any pygame Surface, writes numbered PNG frames
-without a screen, and drives :class:`Scene` objects through the fixed-step loop to frames
-(:func:`record`), to one still motion diagram (:func:`strobe`) or to a window (:func:`play`).
+without a screen, and drives :class:`Scene` objects through the fixed-step loop to frames and
+MP4 or GIF clips (:func:`record`), to one still motion diagram (:func:`strobe`) or to a window
+(:func:`play`). Clips need the optional ``video`` extra (imageio-ffmpeg), imported only when a
+clip is written.
 
 Headless use (no screen, no sound card)::
 
     from engine.render import init_headless, record
     init_headless()                      # SDL dummy drivers, display + font modules only
     record(MyScene(), "out/my_scene")    # out/my_scene/frame_00000.png, ...
+    record(MyScene(), video="out/my_scene.mp4", gif="out/my_scene.gif")  # clips only
 """
 
 import os
@@ -17,6 +20,12 @@ import os
 os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
 
 from engine.render.camera import Camera
+from engine.render.clips import (
+    ClipExistsError,
+    ClipWriteError,
+    ClipWriter,
+    EncoderUnavailableError,
+)
 from engine.render.draw import (
     ACCELERATION,
     EULER,
@@ -70,7 +79,11 @@ __all__ = [
     "POSITION",
     "VELOCITY",
     "Camera",
+    "ClipExistsError",
+    "ClipWriteError",
+    "ClipWriter",
     "DisplayUnavailableError",
+    "EncoderUnavailableError",
     "FrameWriteError",
     "FrameWriter",
     "FramesExistError",

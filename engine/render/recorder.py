@@ -1,4 +1,5 @@
-"""Drive a scene through the fixed-step loop: to numbered PNG frames, to a still, or to a window.
+"""Drive a scene through the fixed-step loop: to numbered PNG frames and/or an MP4 or GIF clip,
+to a still, or to a window.
 
 Recording uses a virtual clock, so every frame lasts exactly 1/fps s of simulated time however
 long it takes to draw and save; the physics always steps by the scene's own dt, and each frame
@@ -17,6 +18,13 @@ from pathlib import Path
 import pygame
 
 from engine.loop import FixedStep, RealClock, VirtualClock
+from engine.render.clips import (
+    ClipWriter,
+    check_clip_path,
+    check_gif_fps,
+    even_size,
+    ffmpeg_exe,
+)
 from engine.render.frames import FrameWriter, save_png
 from engine.render.headless import init_headless, init_window
 from engine.render.progress import Progress
@@ -41,17 +49,30 @@ MAX_FPS = 1000
 
 @dataclass(frozen=True)
 class Recording:
-    """What :func:`record` wrote: ``count`` frames of ``size`` px at ``fps`` into ``folder``."""
+    """What :func:`record` wrote: ``count`` frames of ``size`` px at ``fps`` into ``folder``.
 
-    folder: Path
+    ``folder`` is None when only a clip was asked for; ``video`` and ``gif`` are the clips
+    written (None if not asked for). The MP4's own size is :attr:`video_size`.
+    """
+
+    folder: Path | None
     count: int
     fps: int
     seconds: float
     size: tuple[int, int]
+    video: Path | None = None
+    gif: Path | None = None
 
     def paths(self) -> list[Path]:
-        """The frame files, in order."""
+        """The frame files, in order (none if no frames were written)."""
+        if self.folder is None:
+            return []
         return [self.folder / f"frame_{i:05d}.png" for i in range(self.count)]
+
+    @property
+    def video_size(self) -> tuple[int, int]:
+        """The MP4's (width, height) in px: ``size`` with an odd side cut to even."""
+        return even_size(self.size)
 
 
 def check_scene_size(scene: Scene, size: tuple[int, int]) -> tuple[int, int]:
@@ -143,34 +164,58 @@ class RecordingInterrupted(KeyboardInterrupt):
 
     ``written`` whole frames are in ``folder``, numbered from frame_00000.png without gaps
     (frames are encoded in order, and one being encoded when the stop came is finished).
+    A clip being written is never left: ``clips`` names those not written.
     """
 
-    def __init__(self, folder: Path, written: int) -> None:
-        super().__init__(f"{written} whole frame(s) written to {folder}")
+    def __init__(self, folder: Path | None, written: int, clips: tuple[Path, ...] = ()) -> None:
+        parts = [] if folder is None else [f"{written} whole frame(s) written to {folder}"]
+        if clips:
+            parts.append(f"no clip written ({', '.join(str(c) for c in clips)} left as before)")
+        super().__init__("; ".join(parts))
         self.folder = folder
         self.written = written
+        self.clips = clips
 
 
 def record(
     scene: Scene,
-    out_dir: str | os.PathLike[str],
+    out_dir: str | os.PathLike[str] | None = None,
     fps: int = 30,
     seconds: float | None = None,
     size: tuple[int, int] = (640, 360),
     overwrite: bool = False,
     progress: Callable[[int, int], None] | bool | None = None,
+    video: str | os.PathLike[str] | None = None,
+    gif: str | os.PathLike[str] | None = None,
 ) -> Recording:
-    """Record ``scene`` headless as ``out_dir/frame_00000.png`` ... and return what was written.
+    """Record ``scene`` headless to PNG frames in ``out_dir`` and/or clips; say what was written.
 
-    ``seconds`` defaults to the scene's duration; ``size`` is (width, height) px. ``progress``:
+    ``seconds`` defaults to the scene's duration; ``size`` is (width, height) px. ``video`` (a
+    path ending in .mp4) and ``gif`` (ending in .gif) also stream the frames, as they are drawn,
+    into an H.264 MP4 and a looping GIF at ``fps`` (they need the ``video`` extra, see
+    :mod:`engine.render.clips`); ``out_dir`` may then be None for the clips alone. ``progress``:
     None or True shows a line on stderr for renders over ~2 s when stderr is a terminal, False
-    is silent, a callable is called with (done, total) after each frame. Raises
-    :class:`~engine.render.frames.FramesExistError` if ``out_dir`` holds frames and not
-    ``overwrite``, and :class:`~engine.render.frames.FrameWriteError` if a frame cannot be written.
+    is silent, a callable is called with (done, total) after each frame.
+
+    Every target is checked before any work starts: raises
+    :class:`~engine.render.frames.FramesExistError` if ``out_dir`` holds frames and
+    :class:`~engine.render.clips.ClipExistsError` if a clip exists, unless ``overwrite``;
+    :class:`~engine.render.clips.EncoderUnavailableError` for a clip without the extra;
+    :class:`~engine.render.frames.FrameWriteError` /
+    :class:`~engine.render.clips.ClipWriteError` if a frame or clip cannot be written (no
+    partial clip is left under its name).
     """
     fps = _check_fps(fps)
     seconds = _check_seconds(scene.duration if seconds is None else seconds)
     size = check_scene_size(scene, size)
+    if out_dir is None and video is None and gif is None:
+        raise ValueError("record() needs somewhere to write: out_dir, video or gif")
+    targets = [(kind, path) for kind, path in (("mp4", video), ("gif", gif)) if path is not None]
+    clip_paths = [check_clip_path(path, kind, overwrite) for kind, path in targets]
+    if gif is not None:
+        check_gif_fps(fps)
+    if clip_paths:
+        ffmpeg_exe()  # EncoderUnavailableError now, before any frame folder is touched
     total = frame_count(seconds, fps)
     bar: Progress | None = None
     if progress is None or progress is True:
@@ -180,22 +225,51 @@ def record(
         report = None
     else:
         report = progress
-    writer = FrameWriter(out_dir, overwrite=overwrite)
+    writer = FrameWriter(out_dir, overwrite=overwrite) if out_dir is not None else None
+    clips: list[ClipWriter] = []
     try:
-        with writer:
+        try:
+            for path in clip_paths:
+                clips.append(ClipWriter(path, size, fps, overwrite=overwrite))
             try:
                 for index, _t, surface in iter_frames(scene, fps, seconds, size):
-                    writer.write(surface)
+                    if writer is not None:
+                        writer.write(surface)
+                    for clip in clips:
+                        clip.write(surface)
                     if report is not None:
                         report(index + 1, total)
             finally:
                 if bar is not None:
                     bar.done()
+            if writer is not None:
+                writer.close()
+            for clip in clips:
+                clip.close()
+        except BaseException:
+            # The frame writer finishes the frames being encoded and drops queued ones; every
+            # clip not yet renamed into place is stopped and its temporary file removed.
+            if writer is not None:
+                writer.abort()
+            for clip in clips:
+                clip.abort()
+            raise
     except KeyboardInterrupt as stop:
-        # The writer has stopped: frames being encoded were finished, queued ones dropped,
-        # and every file is renamed into place only once whole, without gaps.
-        raise RecordingInterrupted(writer.folder, writer.written) from stop
-    return Recording(Path(out_dir), writer.count, fps, seconds, size)
+        # Every frame file is renamed into place only once whole, without gaps.
+        folder = writer.folder if writer is not None else None
+        written = writer.written if writer is not None else 0
+        done = {clip.path for clip in clips if clip.done}
+        unwritten = tuple(path for path in clip_paths if path not in done)
+        raise RecordingInterrupted(folder, written, unwritten) from stop
+    return Recording(
+        None if out_dir is None else Path(out_dir),
+        total if writer is None else writer.count,
+        fps,
+        seconds,
+        size,
+        video=clip_paths[0] if video is not None else None,
+        gif=clip_paths[-1] if gif is not None else None,
+    )
 
 
 def strobe(
