@@ -26,7 +26,7 @@ overlapping it (``World.began`` / ``World.ended``). The crumb in the crumb game 
 1.0
 >>> Segment((1, 1), (1, 1))  # doctest: +ELLIPSIS
 Traceback (most recent call last):
-ValueError: a and b must differ: a Segment of zero length ... use Circle((1.0, 1.0), radius) ...
+ValueError: a and b must differ ... use Circle((1.0, 1.0), radius) for a round peg
 """
 
 from __future__ import annotations
@@ -52,15 +52,30 @@ def _point(value: Any, name: str) -> tuple[float, float]:
                 pair = (float(value[0]), float(value[1]))
         except TypeError:
             pair = None
+        except OverflowError:  # an int or a Fraction beyond the float range
+            pair = (math.inf, math.inf)
     if pair is None:
         raise TypeError(
             f"{name} must be a 2D point, a Vector or a pair of numbers such as (1.0, 2.0), "
             f"got {type(value).__name__} {value!r}"
         )
-    x, y = float(pair[0]), float(pair[1])
+    try:
+        x, y = float(pair[0]), float(pair[1])
+    except OverflowError:  # an int or a Fraction beyond the float range
+        x = y = math.inf
     if not (math.isfinite(x) and math.isfinite(y)):
         raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
     return x, y
+
+
+def _unit(x: float, y: float) -> tuple[float, float] | None:
+    """(x, y) scaled to length 1 (None for (0, 0)); scaled first, so tiny and huge work too."""
+    m = max(abs(x), abs(y))
+    if m == 0.0:
+        return None
+    x, y = x / m, y / m  # now the larger is 1: hypot neither underflows nor overflows
+    length = math.hypot(x, y)
+    return x / length, y / length
 
 
 def _material(restitution: Any, friction: Any, sensor: Any) -> tuple[float, float, bool]:
@@ -139,15 +154,14 @@ class Plane(Collider):
         sensor: bool = False,
     ) -> None:
         p = _point(point, "point")
-        nx, ny = _point(normal, "normal")
-        length = math.hypot(nx, ny)
-        if length == 0.0:
+        unit = _unit(*_point(normal, "normal"))
+        if unit is None:
             raise ValueError(
                 f"normal must be a nonzero direction such as (0, 1) (up), got {normal!r}"
             )
         super().__init__(restitution, friction, sensor)
         self.point = Vector(*p)
-        self.normal = Vector(nx / length, ny / length)
+        self.normal = Vector(*unit)
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
         x, y = _point(point, "point")
@@ -189,9 +203,15 @@ class Segment(Collider):
     ) -> None:
         pa, pb = _point(a, "a"), _point(b, "b")
         r = checks.real(radius, "radius", nonneg=True)
-        if pa == pb:
+        dx, dy = pb[0] - pa[0], pb[1] - pa[1]
+        if pa != pb and not (math.isfinite(dx) and math.isfinite(dy)):
             raise ValueError(
-                f"a and b must differ: a Segment of zero length {pa} to {pb} has no direction; "
+                f"a and b must lie within the float range of each other, got {a!r} and {b!r}"
+            )
+        if dx * dx + dy * dy < 1e-300:  # zero, or a length whose square underflows
+            raise ValueError(
+                f"a and b must differ (by more than 1e-150): a Segment from {pa} to {pb} has no "
+                f"length to give it a direction; "
                 f"use Circle({pa}, radius) for a round peg"
             )
         super().__init__(restitution, friction, sensor)
@@ -206,11 +226,8 @@ class Segment(Collider):
         cx, cy = a.x + u * dx, a.y + u * dy
         ox, oy = x - cx, y - cy
         d = math.hypot(ox, oy)
-        if d == 0.0:  # on the segment's own line: take its left normal
-            length = math.hypot(dx, dy)
-            nx, ny = -dy / length, dx / length
-        else:
-            nx, ny = ox / d, oy / d
+        # On the segment itself: take its left normal.
+        nx, ny = _unit(ox, oy) or _unit(-dy, dx) or (0.0, 1.0)
         r = self.radius
         return Vector(cx + r * nx, cy + r * ny), Vector(nx, ny), d - r
 
@@ -257,7 +274,7 @@ class Circle(Collider):
         c, r = self.center, self.radius
         ox, oy = x - c.x, y - c.y
         d = math.hypot(ox, oy)
-        nx, ny = (ox / d, oy / d) if d > 0.0 else (0.0, 1.0)
+        nx, ny = _unit(ox, oy) or (0.0, 1.0)  # at the centre itself: up
         return Vector(c.x + r * nx, c.y + r * ny), Vector(nx, ny), d - r
 
     def bounds(self) -> tuple[float, float, float, float]:

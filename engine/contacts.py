@@ -16,8 +16,10 @@ moved there and bounces: with the unit normal n, the normal velocity v_n becomes
 Coulomb friction takes up to mu (1 + e) |v_n| off the tangential velocity (never reversing
 it), e and mu being the products of the body's and the collider's materials. It then goes on
 along the same kind of path for the rest of the step, meeting whatever comes next, in time
-order, up to ``MAX_IMPACTS`` impacts; past that it is placed on the surface and the count is
-kept in ``capped``.
+order, up to ``MAX_IMPACTS`` impacts; past that it stops where the last impact put it, on
+the surface, for the rest of the step, and the count is kept in ``capped``. A body resting on
+one face and settling against a second that together carry its load (a ball in a corner or a
+V) is wedged: it stays put while the load presses into both.
 
 Rest: a rebound too slow to fly for one step (normal speed below |a_n| dt / 2, where a_n is
 the acceleration pressing the body onto the surface) ends in rest: the body's centre is put at
@@ -45,7 +47,8 @@ from .vector import Vector
 
 __all__ = ["Contacts", "ContactEvent", "MAX_IMPACTS", "signed_distance"]
 
-#: Impacts one body may meet in one step before it is placed on the surface (``capped``).
+#: Impacts one body may meet in one step; past them it stops where the last one put it,
+#: on a surface, for the rest of the step (counted in ``capped``).
 MAX_IMPACTS = 32
 
 #: Events kept per step (the counts are exact; the lists stop growing past this).
@@ -161,6 +164,7 @@ class Contacts:
         self._ended: list[tuple[Any, ...]] = []
         self._grid: _FaceGrid | None = None
         self._rows = np.zeros(0, dtype=np.intp)  # the rows being solved (local -> World row)
+        self.moved = False  # whether the last step's contacts changed any body's state
 
     # -- colliders and bodies ---------------------------------------------------------------
     def add(self, collider: Collider) -> None:
@@ -257,9 +261,8 @@ class Contacts:
                 d = signed_distance(c, x) - radius
                 bad = np.flatnonzero(d < -1e-9 * (1.0 + radius))
                 for i in bad:
-                    point, normal, dist = c.closest(x[i])
-                    if dist < 0.0 and not isinstance(c, _box_type()):
-                        normal = -normal  # the centre is inside the solid: out the near way
+                    # closest() gives the normal toward free space even from inside.
+                    point, normal, _ = c.closest(x[i])
                     nx, ny = normal
                     target = point + normal * float(radius[i])
                     x[i] = (target.x, target.y)
@@ -300,12 +303,19 @@ class Contacts:
         else:
             W = (v1 - v0) * (1.0 / dt)
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
+        self.moved = False
         if len(faces.owner):
             rows = self._near(x0, v0, B, W, dt, radius)
             if len(rows):
-                X, V = self._solve(rows, x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
-                x, v = x1.copy(), v1.copy()
-                x[rows], v[rows] = X, V
+                X, V, touched = self._solve(
+                    rows, x0, v0, B, W, dt, t0, radius, restitution, friction, mass
+                )
+                # Only bodies that met something change: the rest keep (x1, v1) bit for bit.
+                t = np.flatnonzero(touched)
+                if len(t):
+                    x, v = x1.copy(), v1.copy()
+                    x[rows[t]], v[rows[t]] = X[t], V[t]
+                    self.moved = True
         if self._sensors:
             self._sense(x, dt, t0, radius)
         return x, v
@@ -367,8 +377,12 @@ class Contacts:
         restitution: np.ndarray,
         friction: np.ndarray,
         mass: np.ndarray,
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Move the bodies in ``rows`` through their step, impact by impact, in time order."""
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Move the bodies in ``rows`` through their step, impact by impact, in time order.
+
+        Returns their new positions and velocities and which of them met anything (struck,
+        rested, slid or lifted off).
+        """
         self._rows = rows
         X, V = x0[rows], v0[rows]
         Bb, Wb = Bf[rows], Wf[rows]
@@ -376,7 +390,6 @@ class Contacts:
         rest = self.rest[rows]
         left = np.full(len(rows), dt)
         touched = np.zeros(len(rows), dtype=bool)
-        capped: np.ndarray | None = None
         active = np.arange(len(rows))
         # The faces each body could meet this step, found once: whatever it bounces off, its
         # path stays within _reach of where it started.
@@ -441,19 +454,18 @@ class Contacts:
             if not len(active):
                 break
         else:
-            # Past the cap: finish the step along the path, then stand on the surface.
+            # Past the cap: the body stays where its last impact put it, on a surface, and
+            # stops there for the rest of the step (it would only strike again and again).
             self.capped += len(active)
-            Xa, Va, tc = X[active], V[active], left[active][:, None]
-            X[active] = Xa + Va * tc + Bb[active] * (0.5 * tc * tc)
-            V[active] = Va + Wb[active] * tc
+            V[active] = 0.0
             touched[active] = True
-            capped = active
+            Xt, Vt = X[active], V[active]
+            self.push_out_rows(Xt, Vt, r[active])
+            X[active], V[active] = Xt, Vt
+        touched |= rest >= 0
+        touched |= self.rest[rows] >= 0  # lifted off this step
         self.rest[rows] = rest
-        if capped is not None:
-            Xt, Vt = X[capped], V[capped]
-            self.push_out_rows(Xt, Vt, r[capped])
-            X[capped], V[capped] = Xt, Vt
-        return X, V
+        return X, V, touched
 
     def push_out_rows(self, X: np.ndarray, V: np.ndarray, r: np.ndarray) -> None:
         """Push rows of X out of any solid face they overlap (by more than TOUCH), in place."""
@@ -844,12 +856,6 @@ def _reach(V: np.ndarray, B: np.ndarray, W: np.ndarray, T: Any, r: np.ndarray) -
     vv, bb, ww = _dot(V, V), _dot(B, B), _dot(W, W)
     reach = np.sqrt(vv) * T + (0.5 * np.sqrt(ww) + np.sqrt(bb)) * (T * T) + r
     return reach * (1.0 + 1e-9) + TOUCH
-
-
-def _box_type() -> type:
-    from .colliders import Box
-
-    return Box
 
 
 class _FaceGrid:

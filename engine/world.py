@@ -863,7 +863,7 @@ class World:
         contacts = self._contacts
         if contacts is not None:
             # The path of the step is swept for impacts (engine.contacts); under the closed
-            # form it is the exact parabola, so the next step starts its own closed form.
+            # form it is the exact parabola.
             x1, v1 = contacts.resolve(
                 store.x,
                 store.v,
@@ -877,7 +877,8 @@ class World:
                 store.mass,
                 model.a0 if step is None else None,
             )
-            self._anchor = None
+            if contacts.moved:
+                self._anchor = None  # the closed form starts anew from the changed state
         store.prev_x, store.x, store.v = store.x, x1, v1
         self._void_budget()
 
