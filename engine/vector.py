@@ -132,6 +132,18 @@ def _not_a_pair(value: Any, name: str) -> str:
     )
 
 
+def _round_half_away(y: float) -> float:
+    """C's round(y): the nearest integer, halves away from zero, keeping the sign of zero."""
+    if not math.isfinite(y):
+        return y
+    t = math.copysign(float(math.trunc(y)), y)
+    # y - trunc(y) is exact (both have the same sign and exponent or t is 0), so the
+    # comparison with 0.5 decides the half cases exactly.
+    if abs(y - t) >= 0.5:
+        t += math.copysign(1.0, y)
+    return t
+
+
 def _is_scalar(value: Any) -> bool:
     t = type(value)
     if t is float or t is int:
@@ -442,18 +454,27 @@ class Vector(tuple):  # type: ignore[type-arg]
         return _new(type(self), (self[0] // s, self[1] // s))
 
     def __round__(self, ndigits: int | None = None) -> Vector:
-        """Each component rounded as Python's round(x, ndigits), kept as floats (pygame's round).
+        """Each component rounded to ``ndigits`` decimals, halves away from zero (pygame's round).
 
-        >>> round(Vector(1.26, -5.5), 1), round(Vector(5.5, 6.5))
-        (Vector(1.3, -5.5), Vector(6.0, 6.0))
+        pygame rounds x * 10^n to the nearest integer, halves away from zero (C's round), then
+        divides by 10^n; Python's round(x, n) would send halves to even (round(2.5) is 2).
+
+        >>> round(Vector(1.26, -5.5), 1), round(Vector(2.5, 6.5))
+        (Vector(1.3, -5.5), Vector(3.0, 7.0))
         """
-        if ndigits is not None and not isinstance(ndigits, int):
+        if ndigits is None:
+            n = 0
+        elif isinstance(ndigits, int) and not isinstance(ndigits, bool):
+            n = ndigits
+        else:
             raise TypeError(
                 f"round(vector, ndigits): ndigits must be an int, "
                 f"got {type(ndigits).__name__} {ndigits!r}"
             )
-        n = 0 if ndigits is None else ndigits
-        return _new(type(self), (float(round(self[0], n)), float(round(self[1], n))))
+        m = 10.0**n
+        return _new(
+            type(self), (_round_half_away(self[0] * m) / m, _round_half_away(self[1] * m) / m)
+        )
 
     # += -= *= are deliberately not defined: Python then falls back to + - *,
     # which rebinds the name to a new Vector and never mutates a shared one.
@@ -697,8 +718,8 @@ class Vector(tuple):  # type: ignore[type-arg]
 
         Reaching the target returns the target; a negative distance moves away from it.
 
-        >>> Vector(0, 0).move_towards((3, 4), 2)
-        Vector(1.2, 1.6)
+        >>> Vector(0, 0).move_towards((6, 8), 5)
+        Vector(3.0, 4.0)
         >>> Vector(0, 0).move_towards((3, 4), 10)
         Vector(3.0, 4.0)
         """
@@ -712,7 +733,8 @@ class Vector(tuple):  # type: ignore[type-arg]
         dist = math.sqrt(dx * dx + dy * dy)
         if dist <= d or dist == 0.0:  # there already (dist == 0: no direction to move in)
             return _new(cls, (tx, ty))
-        return _new(cls, (self[0] + dx / dist * d, self[1] + dy / dist * d))
+        f = d / dist  # the fraction of the way there, as pygame 2.6 computes it
+        return _new(cls, (self[0] + dx * f, self[1] + dy * f))
 
     def is_finite(self) -> bool:
         """True when both components are finite (neither nan nor inf)."""
@@ -818,8 +840,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         n2 = nx * nx + ny * ny
         if n2 < _EPSILON:
             raise ValueError(
-                f"Normal must not be of length zero: |normal|^2 = {n2!r} < 1e-6, "
-                f"got {normal!r}"
+                f"Normal must not be of length zero: |normal|^2 = {n2!r} < 1e-6, got {normal!r}"
             )
         # With the unit normal n/|n|: v' = v - 2 (v . n/|n|) n/|n| = v - n (2 (v . n) / (n . n)).
         # The right-hand form needs no square root, so it is exact wherever the products are:

@@ -30,7 +30,6 @@ from fuzzing import (
 )
 from hypothesis import given
 from hypothesis import strategies as st
-
 from pygame.math import Vector2
 
 from engine import Body, Vector, World

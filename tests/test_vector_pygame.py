@@ -145,11 +145,7 @@ MODULE = _load()
 PYGAME: dict[str, type[unittest.TestCase]] = (
     {} if MODULE is None else {"Vector2TypeTest": MODULE.Vector2TypeTest}
 )
-NAMES = [
-    name
-    for case in PYGAME.values()
-    for name in unittest.TestLoader().getTestCaseNames(case)
-]
+NAMES = [name for case in PYGAME.values() for name in unittest.TestLoader().getTestCaseNames(case)]
 
 needs_pygame_tests = pytest.mark.skipif(
     not PYGAME,
@@ -196,4 +192,3 @@ def test_pygame_vector2_test_on_engine_vector(name: str) -> None:
 def test_every_listed_exception_is_a_test_pygame_has() -> None:
     # A name that pygame renamed or dropped would otherwise stay in the list for nothing.
     assert set(DELIBERATE) <= set(NAMES), sorted(set(DELIBERATE) - set(NAMES))
-
