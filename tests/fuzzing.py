@@ -18,6 +18,7 @@ from typing import Any, TypeVar
 import numpy as np
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
+from pygame.math import Vector2
 
 from engine import Vector
 
@@ -81,6 +82,7 @@ pairs: st.SearchStrategy[Any] = st.one_of(
     st.tuples(numbers, numbers),
     st.lists(numbers, min_size=2, max_size=2),
     st.builds(Vector, moderate, moderate),
+    st.builds(Vector2, moderate, moderate),  # pygame's, which the Vector takes as a pair
     st.tuples(numbers),
     st.tuples(numbers, numbers, numbers),
     st.tuples(junk, numbers),

@@ -30,6 +30,7 @@ from fuzzing import (
 )
 from hypothesis import given
 from hypothesis import strategies as st
+from pygame.math import Vector2
 
 from engine import Body, Vector, World
 from engine.forces import CallableForce, ConstantForce, Drag, Gravity, Spring, Wind, as_force
@@ -40,8 +41,11 @@ def _scalar_ok(value: Any) -> bool:
 
 
 def _pair_ok(value: Any) -> bool:
-    if isinstance(value, Vector):
+    """A Vector, or a 2-sequence (tuple, list, 1D numpy array, pygame Vector2) of real numbers."""
+    if isinstance(value, (Vector, Vector2)):
         return True
+    if isinstance(value, np.ndarray):
+        return value.shape == (2,) and all(_scalar_ok(c) for c in value)
     return (
         isinstance(value, (tuple, list)) and len(value) == 2 and all(_scalar_ok(c) for c in value)
     )
@@ -73,6 +77,10 @@ def test_vector_operators_give_the_componentwise_answer_or_a_clear_type_error(
     fn = OPS[op]
     if op == "/" and left:
         left = False  # number / Vector is not defined; Vector / number is
+    if left and isinstance(other, Vector2):
+        # pygame's operator answers first there (the README's "Mixing with pygame"): its result
+        # is pygame's, a Vector2 for + and -, the dot product for *.
+        return
     try:
         result = fn(other, v) if left else fn(v, other)
     except ZeroDivisionError as exc:
@@ -118,8 +126,10 @@ def test_vector_methods_refuse_bad_arguments_by_name(x: Any, y: Any, other: Any,
         ("distance_to", lambda: v.distance_to(other)),
         ("lerp", lambda: v.lerp(other, t)),
     ):
-        ok, result = attempt(call, "other", "component t")
-        assert ok == (_pair_ok(other) and (name != "lerp" or _scalar_ok(t))), (name, other, t)
+        ok, result = attempt(call, "other", "component t", "t must")
+        # pygame's lerp takes 0 <= t <= 1 (a ValueError naming t outside it)
+        t_ok = _scalar_ok(t) and 0.0 <= float(t) <= 1.0
+        assert ok == (_pair_ok(other) and (name != "lerp" or t_ok)), (name, other, t)
         if ok:
             assert isinstance(result, Vector if name == "lerp" else float)
     ok, unit = attempt(v.normalized, "zero vector", "finite")

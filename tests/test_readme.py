@@ -125,3 +125,36 @@ def test_every_demo_is_in_the_readme() -> None:
     names = re.findall(r"^  (\w+)\s", listing, flags=re.M)
     assert names
     assert [name for name in names if f"`{name}`" not in README] == []
+
+
+def test_the_vector_names_table_says_where_each_name_comes_from() -> None:
+    from pygame.math import Vector2
+    from test_vector_pygame import DELIBERATE, NAMES
+
+    pymunk = pytest.importorskip("pymunk")  # the bench extra
+    Vec2d = pymunk.Vec2d
+
+    section = README.split("### Vector names", 1)[1].split("\n## ", 1)[0]
+    rows = [r for r in section.splitlines() if r.startswith("| `")]
+    assert len(rows) > 25
+    origins = {"pygame": Vector2, "pymunk": Vec2d}
+    for row in rows:
+        names_cell, origin = row.split(" | ")[:2]
+        origin = origin.strip()
+        for name in re.findall(r"`([^`]+)`", names_cell):
+            word = re.match(r"(?:Vector\.)?([a-z_]+)", name)
+            if word is None:  # an operator or a constructor call, e.g. `v // s`, `Vector(x)`
+                continue
+            attr = word.group(1)
+            if attr in ("v", "s", "round", "x", "y"):
+                continue
+            assert hasattr(Vector, attr), f"the README lists {name}, which Vector lacks"
+            for source, cls in origins.items():
+                if source in origin:
+                    assert hasattr(cls, attr), f"the README says {name} is {source}'s"
+    # pygame's own test class: the counts the README gives.
+    if NAMES:
+        assert f"{len(NAMES) - len(DELIBERATE)} of its {len(NAMES)} tests pass" in " ".join(
+            section.split()
+        )
+        assert f"the other {len(DELIBERATE)} are" in " ".join(section.split())

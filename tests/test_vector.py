@@ -255,7 +255,12 @@ def test_distance_to_and_lerp() -> None:
     assert a.lerp(b, 0) == a
     assert a.lerp(b, 1) == b
     assert a.lerp(b, 0.25) == Vector(2.5, 5)
-    assert a.lerp(b, 2) == Vector(20, 40)  # extrapolates
+    # pygame's lerp: t outside [0, 1] is a ValueError (no extrapolation), and the ends are exact.
+    with pytest.raises(ValueError, match=r"\[0, 1\]"):
+        a.lerp(b, 2)
+    with pytest.raises(ValueError, match=r"\[0, 1\]"):
+        a.lerp(b, -0.5)
+    assert Vector(0.1, 0.7).lerp((0.3, 0.9), 1) == Vector(0.3, 0.9)
 
 
 # -- refusals ----------------------------------------------------------------------------------
