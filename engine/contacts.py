@@ -305,7 +305,12 @@ class Contacts:
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         self.moved = False
         if len(faces.owner):
-            rows = self._near(x0, v0, B, W, dt, radius)
+            rows, asleep = self._near(x0, v0, B, W, dt, radius, friction)
+            if len(asleep):
+                # Resting and held by friction: they stay put, whatever the method computed.
+                x, v = x1.copy(), v1.copy()
+                x[asleep], v[asleep] = x0[asleep], 0.0
+                self.moved = True
             if len(rows):
                 X, V, touched = self._solve(
                     rows, x0, v0, B, W, dt, t0, radius, restitution, friction, mass
@@ -313,7 +318,8 @@ class Contacts:
                 # Only bodies that met something change: the rest keep (x1, v1) bit for bit.
                 t = np.flatnonzero(touched)
                 if len(t):
-                    x, v = x1.copy(), v1.copy()
+                    if not self.moved:
+                        x, v = x1.copy(), v1.copy()
                     x[rows[t]], v[rows[t]] = X[t], V[t]
                     self.moved = True
         if self._sensors:
@@ -349,20 +355,48 @@ class Contacts:
         W: np.ndarray,
         dt: float,
         radius: np.ndarray,
-    ) -> np.ndarray:
-        """Rows whose path this step may come within reach of a solid face, or that rest."""
+        friction: np.ndarray,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(rows whose path this step may come within reach of a solid face or that move on
+        one, rows that rest and stay put)."""
         faces = self.faces
         # Every point of the path lies within reach = |v0| dt + |B| dt^2 / 2 of x0.
         reach = _reach(v0, B, W, dt, radius)
         need = self.rest >= 0
+        asleep = np.zeros(0, dtype=np.intp)
+        if need.any():
+            asleep = self._asleep(np.flatnonzero(need), x0, v0, W, friction)
+            need[asleep] = False
         grid = self._grid_of()
         if grid.n_inf:
             d = x0 @ grid.inf_n.T - grid.inf_c
             need |= (d <= reach[:, None]).any(axis=1)
         if grid.n_finite:
             need |= grid.clearance(x0) <= reach
+        need[asleep] = False
         del faces
-        return np.flatnonzero(need)
+        return np.flatnonzero(need), asleep
+
+    def _asleep(
+        self,
+        res: np.ndarray,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        W: np.ndarray,
+        friction: np.ndarray,
+    ) -> np.ndarray:
+        """Resting rows that stay exactly where they are this step: still (v = 0), pressed
+        onto their face (a_n <= 0) and held by static friction (|a_t| <= mu |a_n|)."""
+        still = res[(v0[res, 0] == 0.0) & (v0[res, 1] == 0.0)]
+        if not len(still):
+            return still
+        f = self.rest[still]
+        nrm, _ = self._normals(f, x0[still])
+        w = W[still]
+        a_n = _dot(w, nrm)
+        a_t = w[:, 1] * nrm[:, 0] - w[:, 0] * nrm[:, 1]  # along the tangent (-n_y, n_x)
+        held = np.abs(a_t) <= friction[still] * self.faces.mu[f] * -a_n * (1.0 + 1e-12)
+        return still[(a_n <= 0.0) & held]
 
     def _solve(
         self,
