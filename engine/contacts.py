@@ -118,7 +118,6 @@ class _Faces:
     e: np.ndarray  # (L + D,) the owner's restitution
     mu: np.ndarray  # (L + D,) the owner's friction
     infinite: np.ndarray  # (L,) bool: a line with no end (a Plane or a Box wall)
-    bound: float  # every finite face lies within this of the origin... see _Faces.reach
 
 
 def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
@@ -147,7 +146,7 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
     e = np.array([colliders[k].restitution for k in owner], float)
     mu = np.array([colliders[k].friction for k in owner], float)
     infinite = np.isinf(lo) & np.isinf(hi)
-    return _Faces(p, n, rho, two, lo, hi, centres, r, owner, e, mu, infinite, 0.0)
+    return _Faces(p, n, rho, two, lo, hi, centres, r, owner, e, mu, infinite)
 
 
 class Contacts:
@@ -359,9 +358,7 @@ class Contacts:
     ) -> tuple[np.ndarray, np.ndarray]:
         """(rows whose path this step may come within reach of a solid face or that move on
         one, rows that rest and stay put)."""
-        faces = self.faces
-        # Every point of the path lies within reach = |v0| dt + |B| dt^2 / 2 of x0.
-        reach = _reach(v0, B, W, dt, radius)
+        reach = _reach(v0, B, W, dt, radius)  # how far each ball can get, bounces and all
         need = self.rest >= 0
         asleep = np.zeros(0, dtype=np.intp)
         if need.any():
@@ -374,7 +371,6 @@ class Contacts:
         if grid.n_finite:
             need |= grid.clearance(x0) <= reach
         need[asleep] = False
-        del faces
         return np.flatnonzero(need), asleep
 
     def _asleep(
@@ -643,7 +639,7 @@ class Contacts:
         i = active[rs]
         f = rest[i]
         x, vel = Xn[rs], Vn[rs]
-        nrm, curve = self._normals(f, x)
+        nrm, _ = self._normals(f, x)
         line = f < L
         fl = np.where(line, f, 0)
         fd = np.where(line, 0, f - L)
@@ -665,7 +661,6 @@ class Contacts:
         v_round = tang * (sign * speed)[:, None]
         Xn[rs] = x
         Vn[rs] = np.where(line[:, None], v_flat, v_round)
-        del curve
 
     def _first_hits(
         self,
@@ -986,7 +981,6 @@ class _FaceGrid:
 
     def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, face) pairs to test: endless faces always, finite ones the grid lists."""
-        k = len(X)
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
         if self.n_inf:
@@ -1013,5 +1007,4 @@ class _FaceGrid:
                 parts_f.append(np.tile(self.finite, len(rest)))
         if not parts_b:
             return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
-        del k
         return np.concatenate(parts_b), np.concatenate(parts_f)
