@@ -168,17 +168,47 @@ class Contacts:
     # -- colliders and bodies ---------------------------------------------------------------
     def add(self, collider: Collider) -> None:
         """Add a collider (the World checks its type and pushes bodies out of it)."""
+        keys = self._face_keys()
         self.colliders.append(collider)
         self._rebuild()
+        self._renumber(keys, removed=None)
 
     def remove(self, collider: Collider) -> None:
-        """Take a collider out; every resting body is in flight again (and settles anew)."""
+        """Take a collider out; bodies resting on it are in flight again."""
         k = self.colliders.index(collider)
         if collider.sensor:
             self.inside = np.delete(self.inside, self._sensors.index(k), axis=1)
+        keys = self._face_keys()
         del self.colliders[k]
-        self.rest[:] = -1  # face numbers change; a body still on a surface settles at once
         self._rebuild()
+        self._renumber(keys, removed=k)
+
+    def _face_keys(self) -> list[tuple[int, bool, int]]:
+        """Each face's (collider, round?, rank among that collider's faces of its kind)."""
+        faces = self.faces
+        L = len(faces.p)
+        seen: dict[tuple[int, bool], int] = {}
+        keys = []
+        for j, owner in enumerate(faces.owner.tolist()):
+            kind = (owner, j >= L)
+            seen[kind] = seen.get(kind, -1) + 1
+            keys.append((owner, j >= L, seen[kind]))
+        return keys
+
+    def _renumber(self, old_keys: list[tuple[int, bool, int]], removed: int | None) -> None:
+        """Faces were renumbered (a collider added or removed): follow the resting bodies."""
+        resting = np.flatnonzero(self.rest >= 0)
+        if not len(resting):
+            return
+        new_index = {key: j for j, key in enumerate(self._face_keys())}
+        for i in resting:
+            owner, kind, rank = old_keys[int(self.rest[i])]
+            if owner == removed:
+                self.rest[i] = -1  # its face is gone: it falls
+                continue
+            if removed is not None and owner > removed:
+                owner -= 1
+            self.rest[i] = new_index[(owner, kind, rank)]
 
     def _rebuild(self) -> None:
         solid = [k for k, c in enumerate(self.colliders) if not c.sensor]
