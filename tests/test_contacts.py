@@ -92,6 +92,7 @@ def test_apexes_are_h0_e_to_the_2n(method: str, dt: float) -> None:
         if 1 <= bounces <= 10 and bounces not in apex:
             y, vy = b.pos.y, b.vel.y
             apex[bounces] = y - r + vy * vy / (2 * G)
+    assert w.method == "exact"
     assert sorted(apex) == list(range(1, 11)), "a step held two bounces: no apex seen"
     for n in range(1, 11):
         assert rel_err(apex[n], h0 * e ** (2 * n)) < REL, (n, apex[n], h0 * e ** (2 * n))
@@ -99,7 +100,7 @@ def test_apexes_are_h0_e_to_the_2n(method: str, dt: float) -> None:
 
 
 def test_elastic_energy_kept_over_1000_bounces() -> None:
-    h0, r, dt = 0.05, 0.125, 1 / 60
+    h0, r, dt = 0.2, 0.125, 1 / 7
     w, _ = floor_world("auto")
     b = ball(w, (0.0, h0 + r), radius=r, restitution=1.0)
     e0 = w.energy()
@@ -108,7 +109,7 @@ def test_elastic_energy_kept_over_1000_bounces() -> None:
     while bounces < 1000:
         w.step(dt)
         bounces += len(w.began)
-        assert w.t < 1000 * 0.21, "too few bounces: the ball came to rest or stuck"
+        assert w.t < 1000 * 0.41, "too few bounces: the ball came to rest or stuck"
     assert rel_err(w.energy(), e0) < REL, (w.energy(), e0)
     assert w.resting(b) is None
     assert w.capped == 0
@@ -281,6 +282,48 @@ def test_point_ball_into_a_wedge_apex_stays_outside() -> None:
         assert all(c.distance(b.pos) >= -1e-9 for c in walls), (b.pos, w.capped)
 
 
+@pytest.mark.parametrize(
+    ("shape", "rho"),
+    [
+        (Circle((0.0, 0.0), 1.0), 1.0),  # a peg
+        (Segment((-3.0, 0.0), (0.0, 0.0), radius=1.0), 1.0),  # a capsule's round end
+        (Segment((0.0, 0.0), (0.0, -5.0)), 0.0),  # a thin wall's end, met from above
+    ],
+)
+@pytest.mark.parametrize("f", [0.3, 0.9])
+def test_bounce_off_a_round_face_is_a_mirror_in_the_normal(
+    shape: Any, rho: float, f: float
+) -> None:
+    """A ball falling straight down at horizontal offset d = f R onto a round face of radius rho
+    at the origin (e = 1, mu = 0). It touches when its centre is at R = rho + r from the
+    origin: y_hit = sqrt(R^2 - d^2), t_hit = sqrt(2 (h - y_hit) / g), normal n = (d, y_hit) /
+    R, and v_after = v - 2 (v.n) n."""
+    r, h, dt = 0.25, 3.0, 1 / 60
+    R = rho + r
+    d = f * R
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(shape)
+    b = ball(w, (d, h), radius=r, restitution=1.0, friction=0.0)
+    while not w.began:
+        w.step(dt)
+        assert w.t < 2.0
+    (ev,) = w.began
+    y_hit = math.sqrt(R * R - d * d)
+    t_hit = math.sqrt(2 * (h - y_hit) / G)
+    n = Vector(d / R, y_hit / R)
+    v = Vector(0.0, -G * t_hit)
+    v_after = v - n * (2 * (v.x * n.x + v.y * n.y))
+    assert ev.collider is shape
+    assert rel_err(ev.time, t_hit) < REL
+    assert abs(ev.normal - n) < 1e-9
+    assert abs(ev.point - n * rho) < 1e-9
+    assert abs(ev.impulse - (v_after - v)) < 1e-9 * abs(v)
+    back = b.vel - Vector(0.0, -G) * (w.t - ev.time)
+    assert abs(back - v_after) < 1e-9 * abs(v)
+    assert shape.distance(b.pos) >= r - 1e-9
+
+
 # -- 4. rest and Zeno ------------------------------------------------------------------------
 
 
@@ -410,7 +453,7 @@ def test_balls_never_leave_the_box_nor_enter_a_collider() -> None:
     walls.append(w.add_collider(Circle((20.0, 15.0), 1.5)))
     r = 0.1
     bodies = []
-    while len(bodies) < 100:
+    while len(bodies) < 80:
         p = (rng.uniform(0.5, 39.5), rng.uniform(0.5, 29.5))
         if min(c.distance(p) for c in walls) < 2 * r:
             continue
@@ -419,7 +462,7 @@ def test_balls_never_leave_the_box_nor_enter_a_collider() -> None:
             ball(w, p, (float(v[0]), float(v[1])), radius=r, restitution=rng.uniform(0.5, 1.0))
         )
     dt = 1 / 120
-    for k in range(3000):
+    for k in range(2400):
         w.step(dt)
         if k % 100 == 99 or k < 50:
             X = w.positions()
@@ -650,6 +693,35 @@ def test_tiny_segment_has_a_distance(tiny: float) -> None:
     w.add_collider(seg)
     ball(w, (1.0, 0.0), (-60.0, 0.0), radius=0.5)
     w.step(1 / 60)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="engine bug: Plane divides the normal by its hypot, which for a subnormal "
+    "direction (5e-324, 5e-324) rounds to 5e-324: the normal becomes (1, 1), not unit, and "
+    "every distance to the plane is scaled by sqrt(2)",
+)
+def test_plane_normal_of_subnormal_length_is_unit() -> None:
+    try:
+        plane = Plane((0.0, 0.0), (5e-324, 5e-324))
+    except ValueError as exc:
+        assert "normal" in str(exc)
+        return
+    assert abs(abs(plane.normal) - 1.0) < 1e-12
+    assert plane.distance((1.0, 1.0)) == pytest.approx(math.sqrt(2.0))
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="engine bug: Circle.closest (and Segment.closest) divide the offset by its hypot; "
+    "for a point a subnormal distance from the centre, (5e-324, 5e-324) off, the 'unit' "
+    "normal is (1, 1) and the surface point lies off the circle",
+)
+def test_closest_normal_is_unit_near_the_centre() -> None:
+    peg = Circle((5e-324, 5e-324), 1.0)
+    point, normal, d = peg.closest((0.0, 0.0))
+    assert abs(abs(normal) - 1.0) < 1e-12
+    assert abs(abs(point) - 1.0) < 1e-12
 
 
 def test_a_collider_in_a_1d_world_is_refused() -> None:
