@@ -115,6 +115,45 @@ def test_elastic_energy_kept_over_1000_bounces() -> None:
     assert w.capped == 0
 
 
+def test_materials_multiply() -> None:
+    """e = e_body * e_wall and mu = mu_body * mu_wall: a 0.8 ball on a 0.5 floor bounces to
+    h0 (0.4)^2; a ball of friction 0.3 sliding on a floor of friction 0.5 stops after
+    v0^2 / (2 (0.15) g)."""
+    h0, r = 2.0, 0.5
+    w = World(integrator="exact")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), restitution=0.5, friction=0.5))
+    b = ball(w, (0.0, h0 + r), radius=r, restitution=0.8)
+    while not w.began:
+        w.step(1 / 60)
+    assert rel_err(b.pos.y - r + b.vel.y**2 / (2 * G), h0 * 0.4**2) < REL
+    v0 = 5.0
+    w = World(integrator="exact")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=0.5))
+    b = ball(w, (0.0, r), (v0, 0.0), radius=r, friction=0.3)
+    while w.t < v0 / (0.15 * G) + 0.1:
+        w.step(1 / 60)
+    assert rel_err(b.pos.x, v0 * v0 / (2 * 0.15 * G)) < REL and b.vel.x == 0.0
+
+
+def test_removing_the_floor_lets_a_resting_ball_fall_freely() -> None:
+    r, dt = 0.5, 1 / 60
+    w, floor = floor_world("exact")
+    b = ball(w, (1.0, r), radius=r)
+    for _ in range(30):
+        w.step(dt)
+    assert w.resting(b) is floor and b.pos.y == r
+    w.remove_collider(floor)
+    assert w.colliders == () and w.resting(b) is None
+    t0 = w.t
+    for _ in range(60):
+        w.step(dt)
+    t = w.t - t0
+    assert abs(b.pos.y - (r - G * t * t / 2)) < 1e-9 and b.pos.x == 1.0
+    assert rel_err(b.vel.y, -G * t) < REL
+
+
 # -- 2. integrators: the floor adds no error of its own ----------------------------------------
 
 
@@ -205,7 +244,7 @@ def test_no_tunnelling_at_an_angle(speed: float) -> None:
     assert rel_err(abs(b.vel), speed) < REL
 
 
-@pytest.mark.parametrize("start", [(1.0, 1.0), (1.0, 1.2)])
+@pytest.mark.parametrize("start", [(1.0, 1.0), (1.0, 1.2), (1.2, 1.0)])
 def test_corner_resolves_both_impacts_in_one_step(start: tuple[float, float]) -> None:
     """Into a Box corner at (-120, -120) m/s: both walls within the step; the end state is
     the mirror image of the free path (x -> 2(x0 + r) - x per wall)."""
@@ -603,6 +642,10 @@ def test_segment_query_first_analytic() -> None:
     assert hit is not None and hit.shape is b
     assert hit.fraction == pytest.approx(2.5 / 20, rel=1e-12)
     assert abs(hit.normal - Vector(-1.0, 0.0)) < 1e-12
+    # a sensor on the way is not hit
+    w.add_collider(Circle((1.0, 0.0), 0.5, sensor=True))
+    hit = w.segment_query_first(a, z)
+    assert hit is not None and hit.shape is b
     # nothing on the way, or the ray stops short
     assert w.segment_query_first((0.0, 5.0), (20.0, 5.0)) is None
     assert w.segment_query_first((0.0, 0.0), (2.0, 0.0)) is None
@@ -652,6 +695,13 @@ def test_point_query_sorted_within_max_distance() -> None:
         (lambda: Body(Vector(0, 0), Vector(0, 0), Vector(0, 0), friction=-0.1), "friction"),
         (lambda: World().add_collider("floor"), "collider"),  # type: ignore[arg-type]
         (lambda: World().add_collider(None), "collider"),  # type: ignore[arg-type]
+        (lambda: World().on_contact("floor"), "target"),  # type: ignore[arg-type]
+        (lambda: World().on_contact(Plane((0, 0), (0, 1)), begin=3), "begin"),
+        (lambda: World().on_contact(Plane((0, 0), (0, 1)), end="x"), "end"),
+        (lambda: World().segment_query_first((0, 0), (1, 0), radius=-1.0), "radius"),
+        (lambda: World().segment_query_first((0, math.nan), (1, 0)), "start"),
+        (lambda: World().point_query((0, 0), -1.0), "max_distance"),
+        (lambda: World().point_query("here", 1.0), "point"),
     ],
 )
 def test_bad_arguments_name_the_argument(make: Any, name: str) -> None:
