@@ -256,8 +256,14 @@ def build(spec: dict[str, Any]) -> tuple[World, list[Any], list[Body]]:
     for c in cols:
         w.add_collider(c)
     solid = [c for c in cols if not c.sensor]
+    # A point ball meeting the end of a zero-thickness segment touches it at distance 0, where
+    # the engine's normal is 0 / 0 today (the strict xfail test_point_ball_on_a_thin_tip in
+    # test_contacts.py): such scenes keep only balls with a size.
+    thin = any(isinstance(c, Segment) and c.radius == 0.0 for c in solid)
     bodies = []
     for x, y, vx, vy, r, e, mu, m in spec["balls"]:
+        if thin and r == 0.0:
+            continue
         if all(c.distance((x, y)) > r + 1e-6 for c in solid):
             bodies.append(
                 w.add(
