@@ -378,6 +378,7 @@ def test_bounce_off_a_round_face_is_a_mirror_in_the_normal(
     "Contacts._rest_paths raises ZeroDivisionError (dist = 0) at t = 0.45 s; with e = 0.5 the "
     "normal comes out (0, -1), then (0, 0), and the ball ends up below the segment",
 )
+@pytest.mark.filterwarnings("ignore:invalid value:RuntimeWarning")
 @pytest.mark.parametrize("e", [0.0, 0.5])
 def test_point_ball_on_a_thin_tip(e: float) -> None:
     """A point ball dropped onto the upper end of a thin vertical segment bounces straight up
@@ -745,7 +746,7 @@ def test_bad_arguments_name_the_argument(make: Any, name: str) -> None:
     "catching OverflowError, so an int or Fraction beyond the float range (10**400) escapes "
     "as OverflowError instead of a ValueError naming the argument",
 )
-@pytest.mark.parametrize("huge", [10**400, Fraction(10**400)])
+@pytest.mark.parametrize("huge", [10**400, Fraction(10**400)], ids=["int", "Fraction"])
 def test_huge_coordinate_is_a_value_error(huge: Any) -> None:
     with pytest.raises(ValueError, match="point"):
         Plane((0, huge), (0, 1))
