@@ -1,0 +1,315 @@
+"""Fuzzing the colliders and small scenes with contacts (issue 9, Reliability).
+
+* Collider constructors take anything: each call either builds a collider whose geometry and
+  material are finite and in range, or raises a TypeError / ValueError naming the argument.
+  Valid arguments always build.
+* Small scenes (random planes, segments, capsules, pegs, sensors and a room; balls placed
+  clear of them; random dt, method, gravity and materials): no nan ever enters the state, no
+  body ends a step inside a solid collider (beyond 1e-9), and a rerun is bit-identical.
+
+Examples: constructors 400 + valid constructors 100 + bodies 200 + scenes 80 (each run twice).
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+from fuzzing import anything, attempt, fuzz, numbers, pairs
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from engine import Body, Box, Circle, Plane, Segment, Vector, World
+from engine.forces import Gravity
+
+#: What each constructor's error may name (a message naming "a" must say "a must" or
+#: "a and b", so that the one-letter name is not found inside other words).
+NAMES = {
+    "Plane": ("point", "normal", "restitution", "friction", "sensor"),
+    "Segment": ("a must", "b must", "a and b", "radius", "restitution", "friction", "sensor"),
+    "Circle": ("center", "radius", "restitution", "friction", "sensor"),
+    "Box": ("lower_left", "upper_right", "restitution", "friction", "sensor"),
+}
+
+#: Below this length (m) a direction is subnormal-scaled; see the strict xfails.
+TINY = 1e-290
+
+materials = st.fixed_dictionaries(
+    {},
+    optional={
+        "restitution": st.one_of(numbers, st.floats(0, 1)),
+        "friction": st.one_of(numbers, st.floats(0, 10)),
+        "sensor": st.one_of(st.booleans(), anything),
+    },
+)
+
+
+def check_collider(c: Any) -> None:
+    """A built collider: finite geometry, material in range, finite distances."""
+    assert 0.0 <= c.restitution <= 1.0
+    assert 0.0 <= c.friction < math.inf
+    assert isinstance(c.sensor, bool)
+    for p in ((0.0, 0.0), (1.5, -2.0), (1e3, 1e3)):
+        point, normal, d = c.closest(p)
+        assert math.isfinite(point.x) and math.isfinite(point.y)
+        assert not math.isnan(d) and d == c.distance(p)
+        axis = d + getattr(c, "radius", 0.0)  # distance to a Circle's centre, a Segment's axis
+        if isinstance(c, Plane) or axis > TINY:
+            # (within a subnormal distance of a centre or axis the normal is not unit today:
+            # the strict xfail test_closest_normal_is_unit_near_the_centre)
+            assert abs(math.hypot(normal.x, normal.y) - 1.0) < 1e-12, (c, p, normal)
+    if isinstance(c, Segment):
+        assert c.a != c.b and c.radius >= 0.0
+    if isinstance(c, Circle):
+        assert c.radius > 0.0
+    if isinstance(c, Box):
+        assert c.lower_left.x < c.upper_right.x and c.lower_left.y < c.upper_right.y
+    if isinstance(c, Plane):
+        assert abs(math.hypot(c.normal.x, c.normal.y) - 1.0) < 1e-12
+
+
+@fuzz(400)
+@given(
+    kind=st.sampled_from(sorted(NAMES)),
+    p=st.one_of(pairs, anything),
+    q=st.one_of(pairs, anything),
+    size=st.one_of(numbers, st.floats(0, 10)),
+    mat=materials,
+)
+def test_collider_arguments_are_checked(
+    kind: str, p: Any, q: Any, size: Any, mat: dict[str, Any]
+) -> None:
+    def make() -> Any:
+        if kind == "Plane":
+            return Plane(p, q, **mat)
+        if kind == "Segment":
+            return Segment(p, q, size, **mat)
+        if kind == "Circle":
+            return Circle(p, size, **mat)
+        return Box(p, q, **mat)
+
+    # Coordinates beyond the float range raise OverflowError today (the strict xfail
+    # test_huge_coordinate_is_a_value_error in test_contacts.py); the rest is fuzzed here.
+    assume(not any(_overflows(v) for v in (p, q, size, *mat.values())))
+    ok, c = attempt(make, *NAMES[kind])
+    if ok and kind == "Plane":
+        # A normal of subnormal length is not normalised to unit length today (the strict
+        # xfail test_plane_normal_of_subnormal_length_is_unit in test_contacts.py).
+        assume(math.hypot(float(q[0]), float(q[1])) > TINY)
+    if ok:
+        # A Segment so short that its squared length underflows to 0 divides by zero in
+        # distance() today (the strict xfail test_tiny_segment_has_a_distance).
+        assume(not (isinstance(c, Segment) and _underflows(c)))
+        check_collider(c)
+        w = World()
+        assert w.add_collider(c) is c and w.colliders == (c,)
+
+
+def _underflows(c: Segment) -> bool:
+    dx, dy = c.b.x - c.a.x, c.b.y - c.a.y
+    return dx * dx + dy * dy == 0.0
+
+
+def _overflows(value: Any) -> bool:
+    """A number, or a pair holding one, that float() cannot convert (OverflowError)."""
+    parts = value if isinstance(value, (tuple, list)) else (value,)
+    for v in parts:
+        if isinstance(v, (int, Fraction)) and not isinstance(v, bool):
+            try:
+                float(v)
+            except OverflowError:
+                return True
+    return False
+
+
+finite = st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False)
+point = st.tuples(finite, finite)
+
+
+@fuzz(100)
+@given(
+    kind=st.sampled_from(sorted(NAMES)),
+    p=point,
+    q=point,
+    size=st.floats(1e-6, 1e3),
+    e=st.floats(0, 1),
+    mu=st.floats(0, 1e3),
+    sensor=st.booleans(),
+)
+def test_valid_collider_arguments_build(
+    kind: str,
+    p: tuple[float, float],
+    q: tuple[float, float],
+    size: float,
+    e: float,
+    mu: float,
+    sensor: bool,
+) -> None:
+    mat = {"restitution": e, "friction": mu, "sensor": sensor}
+    if kind == "Segment":
+        assume((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 > 0.0)  # see _underflows
+    if kind == "Plane":
+        assume(math.hypot(*p) > TINY)  # see test_collider_arguments_are_checked
+        c: Any = Plane(q, p, **mat)
+    elif kind == "Segment":
+        if p == q:
+            q = (p[0] + 1.0, p[1])
+        c = Segment(p, q, size, **mat)
+    elif kind == "Circle":
+        c = Circle(p, size, **mat)
+    else:
+        lo = (min(p[0], q[0]), min(p[1], q[1]))
+        hi = (max(p[0], q[0]) + size, max(p[1], q[1]) + size)
+        c = Box(lo, hi, **mat)
+    check_collider(c)
+    assert (c.restitution, c.friction, c.sensor) == (e, mu, sensor)
+
+
+@fuzz(200)
+@given(radius=st.one_of(numbers, anything), e=numbers, mu=numbers)
+def test_body_material_arguments_are_checked(radius: Any, e: Any, mu: Any) -> None:
+    def make() -> Body:
+        return Body(
+            Vector(0, 0), Vector(0, 0), Vector(0, 0), radius=radius, restitution=e, friction=mu
+        )
+
+    ok, b = attempt(make, "radius", "restitution", "friction")
+    if ok:
+        assert b is not None
+        assert 0.0 <= b.radius < math.inf
+
+
+# -- scenes -------------------------------------------------------------------------------------
+
+coord = st.floats(-10, 10, allow_nan=False)
+unit = st.floats(0, 1)
+
+plane = st.builds(
+    lambda x, y, a, e, mu: Plane((x, y), (math.cos(a), math.sin(a)), restitution=e, friction=mu),
+    coord,
+    coord,
+    st.floats(0, 2 * math.pi),
+    unit,
+    unit,
+)
+segment = st.builds(
+    lambda x, y, a, length, r, e, mu: Segment(
+        (x, y), (x + length * math.cos(a), y + length * math.sin(a)), r, restitution=e, friction=mu
+    ),
+    coord,
+    coord,
+    st.floats(0, 2 * math.pi),
+    st.floats(0.01, 10),
+    st.sampled_from([0.0, 0.05, 0.5]),
+    unit,
+    unit,
+)
+circle = st.builds(
+    lambda x, y, r, e, mu, sensor: Circle((x, y), r, restitution=e, friction=mu, sensor=sensor),
+    coord,
+    coord,
+    st.floats(0.01, 3),
+    unit,
+    unit,
+    st.booleans(),
+)
+room = st.builds(
+    lambda x, y, w, h, e, mu: Box((x, y), (x + w, y + h), restitution=e, friction=mu),
+    st.floats(-12, -8),
+    st.floats(-12, -8),
+    st.floats(16, 24),
+    st.floats(16, 24),
+    unit,
+    unit,
+)
+ball_spec = st.tuples(
+    coord,
+    coord,  # position
+    st.floats(-50, 50),
+    st.floats(-50, 50),  # velocity
+    st.sampled_from([0.0, 0.01, 0.1, 0.25, 1.0]),  # radius
+    unit,
+    st.floats(0, 2),  # restitution, friction
+    st.floats(0.1, 10),  # mass
+)
+METHODS = ["auto", "exact", "semi_implicit_euler", "velocity_verlet", "rk4", "explicit_euler"]
+
+scene = st.fixed_dictionaries(
+    {
+        "colliders": st.lists(st.one_of(plane, segment, circle), max_size=5),
+        "room": st.one_of(st.none(), room),
+        "balls": st.lists(ball_spec, min_size=1, max_size=6),
+        "dt": st.sampled_from([1 / 240, 1 / 60, 1 / 7, 0.5]) | st.floats(1e-4, 0.5),
+        "method": st.sampled_from(METHODS),
+        "gravity": st.tuples(st.floats(-20, 20), st.floats(-20, 20)),
+    }
+)
+
+
+def build(spec: dict[str, Any]) -> tuple[World, list[Any], list[Body]]:
+    """The scene, with only the balls placed clear of every solid collider."""
+    w = World(integrator=spec["method"])
+    w.add_force(Gravity(spec["gravity"]))
+    cols = list(spec["colliders"]) + ([spec["room"]] if spec["room"] is not None else [])
+    for c in cols:
+        w.add_collider(c)
+    solid = [c for c in cols if not c.sensor]
+    # A point ball meeting the end of a zero-thickness segment touches it at distance 0, where
+    # the engine's normal is 0 / 0 today (the strict xfail test_point_ball_on_a_thin_tip in
+    # test_contacts.py): such scenes keep only balls with a size.
+    thin = any(isinstance(c, Segment) and c.radius == 0.0 for c in solid)
+    bodies = []
+    for x, y, vx, vy, r, e, mu, m in spec["balls"]:
+        if thin and r == 0.0:
+            continue
+        if all(c.distance((x, y)) > r + 1e-6 for c in solid):
+            bodies.append(
+                w.add(
+                    Body(
+                        Vector(x, y),
+                        Vector(vx, vy),
+                        Vector(0, 0),
+                        mass=m,
+                        radius=r,
+                        restitution=e,
+                        friction=mu,
+                    )
+                )
+            )
+    return w, solid, bodies
+
+
+def run(spec: dict[str, Any], steps: int = 25) -> list[bytes]:
+    w, solid, bodies = build(spec)
+    trace = []
+    for _ in range(steps):
+        w.step(spec["dt"])
+        X, V = w.positions(), w.velocities()
+        assert np.isfinite(X).all() and np.isfinite(V).all(), (X, V)
+        if w.capped:
+            # Past MAX_IMPACTS the engine leaves a body where its free path took it, inside a
+            # collider, and it stays there (the strict xfails
+            # test_impact_cap_keeps_the_ball_between_the_walls and
+            # test_point_ball_into_a_wedge_apex_stays_outside in test_contacts.py): once the
+            # cap is hit the inside check stops, so the fuzz keeps looking for other faults.
+            trace.append(X.tobytes() + V.tobytes())
+            continue
+        for b, p in zip(bodies, X, strict=True):
+            scale = 1e-9 * (1.0 + float(np.abs(p).max()))
+            for c in solid:
+                d = c.distance(p)
+                assert d >= b.radius - scale, (c, b, d - b.radius, w.t)
+        for ev in w.began + w.ended:
+            assert all(map(math.isfinite, (*ev.point, *ev.normal, *ev.impulse, ev.time)))
+        trace.append(X.tobytes() + V.tobytes())
+    return trace
+
+
+@fuzz(80)
+@given(spec=scene)
+def test_scenes_stay_finite_outside_colliders_and_rerun_identically(spec: dict[str, Any]) -> None:
+    first, again = run(spec), run(spec)
+    differ = [k for k, (x, y) in enumerate(zip(first, again, strict=True)) if x != y]
+    assert not differ, f"the rerun differs from step {differ[0]}"
