@@ -506,6 +506,15 @@ class Contacts:
             rs = np.flatnonzero(rest[active] >= 0)
             if len(rs):
                 self._project(rs, active, Xn, Vn, rest, r)
+                # A body rolling over a round edge onto a flat side it now overlaps has left
+                # the edge: it stands on the side and is in flight again (it settles there).
+                L = len(self.faces.p)
+                rolled = rs[rest[active[rs]] >= L]
+                if len(rolled):
+                    Xr, Vr = Xn[rolled], Vn[rolled]
+                    moved = self.push_out_rows(Xr, Vr, r[active[rolled]])
+                    Xn[rolled], Vn[rolled] = Xr, Vr
+                    rest[active[rolled[moved]]] = -1
             X[active], V[active] = Xn, Vn
             more = (hit | stopped) & ~done
             left[active] = np.where(more, ta - tt, 0.0)
@@ -527,10 +536,12 @@ class Contacts:
         self.rest[rows] = rest
         return X, V, touched
 
-    def push_out_rows(self, X: np.ndarray, V: np.ndarray, r: np.ndarray) -> None:
-        """Push rows of X out of any solid face they overlap (by more than TOUCH), in place."""
+    def push_out_rows(self, X: np.ndarray, V: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """Push rows of X out of any solid face they overlap (by more than TOUCH), in place;
+        return which rows moved."""
         faces = self.faces
         L = len(faces.p)
+        pushed = np.zeros(len(X), dtype=bool)
         for _ in range(3):
             moved = False
             if L:
@@ -547,6 +558,7 @@ class Contacts:
                     if vn < 0.0:
                         V[i] -= vn * nrm
                     moved = True
+                    pushed[i] = True
             if len(faces.c):
                 D = X[:, None, :] - faces.c[None, :, :]
                 dist = np.sqrt((D * D).sum(axis=2))
@@ -558,8 +570,10 @@ class Contacts:
                     if vn < 0.0:
                         V[i] -= vn * nrm
                     moved = True
+                    pushed[i] = True
             if not moved:
-                return
+                break
+        return pushed
 
     def _normals(self, f: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Unit normals toward X of faces f (one per row), and 1 / radius (0 for flat faces)."""

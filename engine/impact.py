@@ -69,9 +69,12 @@ def quadratic_first_root(g0: Any, g1: Any, g2: Any, T: Any, slack: Any = 0.0) ->
         # Linear case (g2 = 0): t = -g0 / g1 when heading down.
         lin = np.where(g1 < 0.0, -g0 / g1, inf)
         t = np.where(g2 == 0.0, lin, t)
+        # Touching and leaving, but curving back (g2 < 0): g = g1 t + g2 t^2 (g0 = 0) is zero
+        # again at t = -g1 / g2, where the ball comes back down onto the face.
+        back = np.where((g2 < 0.0) & (g1 > 0.0), -g1 / g2, inf)
     touching = g0 <= 0.0
     heading_in = (g1 < -slack) | ((g1 <= slack) & (g2 < 0.0))
-    t = np.where(touching, np.where(heading_in, 0.0, inf), t)
+    t = np.where(touching, np.where(heading_in, 0.0, back), t)
     return np.where(t <= T, t, inf)
 
 
@@ -140,6 +143,11 @@ def disc_hits(
         k2 = vv + _dot(D, B)
         heading_in = (k1 < -slack) | ((k1 <= slack) & (k2 < 0.0))
         t[touching & heading_in] = 0.0
+        # Touching and leaving: the path may curve back onto the disc later in the step.
+        leaving = touching & ~heading_in & (reach > 0.0)
+        todo |= leaving
+    else:
+        leaving = touching
     if not todo.any():
         return t
     idx = np.flatnonzero(todo)
@@ -154,17 +162,26 @@ def disc_hits(
         ],
         axis=1,
     )
+    # For those leaving, f = tau (k1 + k2 tau + k3 tau^2 + k4 tau^3): its next root is the
+    # first root of the cubic in the brackets.
+    lv = leaving[idx]
+    if lv.any():
+        K[lv] = np.concatenate([K[lv, 1:], np.zeros((int(lv.sum()), 1))], axis=1)
     scale = np.abs(K).max(axis=1)
     tau = np.full(len(idx), np.inf)
     small = 1e-9 * scale
     deg = np.where(np.abs(K[:, 4]) > small, 4, np.where(np.abs(K[:, 3]) > small, 3, 2))
+    # A ball leaving the disc comes back only after a real flight: its root of the deflated
+    # cubic must lie clear of 0 (a root within rounding of 0 is the departure itself).
+    lower = np.where(lv, 1e-9, -1e-9) if lv.any() else np.full(len(idx), -1e-9)
     for d in (4, 3):
         sel = np.flatnonzero(deg == d)
         if len(sel):
-            tau[sel] = _first_root_eig(K[sel, : d + 1])
+            tau[sel] = _first_root_eig(K[sel, : d + 1], lower[sel])
     sel = np.flatnonzero(deg == 2)
     if len(sel):
         tau[sel] = quadratic_first_root(K[sel, 0], K[sel, 1], K[sel, 2], 1.0)
+        tau[sel] = np.where(tau[sel] > lower[sel], tau[sel], np.inf)
     ok = np.isfinite(tau)
     if ok.any():
         tau[ok] = _polish(K[ok], tau[ok])
@@ -172,8 +189,9 @@ def disc_hits(
     return t
 
 
-def _first_root_eig(K: np.ndarray) -> np.ndarray:
-    """Smallest real root in [0, 1] of each row's polynomial k0 + k1 x + ... (degree 3 or 4)."""
+def _first_root_eig(K: np.ndarray, lower: np.ndarray) -> np.ndarray:
+    """Smallest real root in (lower, 1] of each row's polynomial k0 + k1 x + ... (degree 3
+    or 4)."""
     n, d = K.shape[0], K.shape[1] - 1
     lead = K[:, d]
     comp = np.zeros((n, d, d))
@@ -184,7 +202,7 @@ def _first_root_eig(K: np.ndarray) -> np.ndarray:
     roots = np.linalg.eigvals(comp)
     real = np.abs(roots.imag) <= 1e-6 * (1.0 + np.abs(roots.real))
     r = np.where(real, roots.real, np.inf)
-    r = np.where((r >= -1e-9) & (r <= 1.0 + 1e-9), r, np.inf)
+    r = np.where((r > lower[:, None]) & (r <= 1.0 + 1e-9), r, np.inf)
     return r.min(axis=1)
 
 

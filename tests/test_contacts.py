@@ -296,13 +296,6 @@ def test_impact_cap_is_counted_and_the_ball_ends_outside_both_walls() -> None:
     assert high.distance(b.pos) >= 0.1 - 1e-9
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: past MAX_IMPACTS, Contacts._solve finishes the step along the free "
-    "path, ignoring every collider, and push_out_rows only fixes overlaps: the ball passes "
-    "through the wall (ends at y = 1666.8, beyond the upper segment at y = 0.2001) instead of "
-    "being placed on the surface as the contacts docstring says",
-)
 def test_impact_cap_keeps_the_ball_between_the_walls() -> None:
     w, b, _, _, top = _narrow_gap()
     w.step(1 / 60)
@@ -310,13 +303,6 @@ def test_impact_cap_keeps_the_ball_between_the_walls() -> None:
     assert 0.1 - 1e-9 <= b.pos.y <= top - 0.1 + 1e-9, b.pos
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: a point ball (radius 0, e = 0, mu = 0) sliding into the apex of a wedge "
-    "of two Planes meets an endless run of zero-time impacts; past MAX_IMPACTS its free path "
-    "takes it behind one plane, and Contacts.push_out_rows (one pass) pushes it out of one "
-    "plane into the other: it ends the step 2.2e-3 inside Plane((0, 0), (cos 1, sin 1))",
-)
 def test_point_ball_into_a_wedge_apex_stays_outside() -> None:
     w = World(integrator="auto")
     walls = [
@@ -371,13 +357,6 @@ def test_bounce_off_a_round_face_is_a_mirror_in_the_normal(
     assert shape.distance(b.pos) >= r - 1e-9
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: a point ball (radius 0) meets the end of a zero-thickness Segment at "
-    "distance 0 from the end's disc (rho = 0 + 0), so the contact normal is 0 / 0: with e = 0 "
-    "Contacts._rest_paths raises ZeroDivisionError (dist = 0) at t = 0.45 s; with e = 0.5 the "
-    "normal comes out (0, -1), then (0, 0), and the ball ends up below the segment",
-)
 @pytest.mark.filterwarnings("ignore:invalid value:RuntimeWarning")
 @pytest.mark.parametrize("e", [0.0, 0.5])
 def test_point_ball_on_a_thin_tip(e: float) -> None:
@@ -740,12 +719,6 @@ def test_bad_arguments_name_the_argument(make: Any, name: str) -> None:
     assert name in str(info.value), str(info.value)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: engine.colliders._point calls float() on each coordinate without "
-    "catching OverflowError, so an int or Fraction beyond the float range (10**400) escapes "
-    "as OverflowError instead of a ValueError naming the argument",
-)
 @pytest.mark.parametrize("huge", [10**400, Fraction(10**400)], ids=["int", "Fraction"])
 def test_huge_coordinate_is_a_value_error(huge: Any) -> None:
     with pytest.raises(ValueError, match="point"):
@@ -754,13 +727,6 @@ def test_huge_coordinate_is_a_value_error(huge: Any) -> None:
         Box((0, 0), (1, huge))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: Segment accepts a != b whose squared length underflows to 0 (a = (0, "
-    "0), b = (0, 1e-170)), then Segment.closest / distance divide by dx^2 + dy^2 = 0: "
-    "ZeroDivisionError; it should refuse such a segment (ValueError naming a and b) or "
-    "measure with a scaled formula",
-)
 @pytest.mark.parametrize("tiny", [1e-170, 5e-324])
 def test_tiny_segment_has_a_distance(tiny: float) -> None:
     try:
@@ -775,12 +741,6 @@ def test_tiny_segment_has_a_distance(tiny: float) -> None:
     w.step(1 / 60)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: Plane divides the normal by its hypot, which for a subnormal "
-    "direction (5e-324, 5e-324) rounds to 5e-324: the normal becomes (1, 1), not unit, and "
-    "every distance to the plane is scaled by sqrt(2)",
-)
 def test_plane_normal_of_subnormal_length_is_unit() -> None:
     try:
         plane = Plane((0.0, 0.0), (5e-324, 5e-324))
@@ -791,12 +751,6 @@ def test_plane_normal_of_subnormal_length_is_unit() -> None:
     assert plane.distance((1.0, 1.0)) == pytest.approx(math.sqrt(2.0))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: Circle.closest (and Segment.closest) divide the offset by its hypot; "
-    "for a point a subnormal distance from the centre, (5e-324, 5e-324) off, the 'unit' "
-    "normal is (1, 1) and the surface point lies off the circle",
-)
 def test_closest_normal_is_unit_near_the_centre() -> None:
     peg = Circle((5e-324, 5e-324), 1.0)
     point, normal, d = peg.closest((0.0, 0.0))
@@ -812,15 +766,6 @@ def test_a_collider_in_a_1d_world_is_refused() -> None:
     assert w.colliders == ()
 
 
-PUSH_BUG = pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: Contacts.push_out flips the normal when the centre is inside the "
-    "solid (dist < 0), but Circle/Segment.closest already give the outward normal and a "
-    "Plane's normal is the free side: the body is put at depth r inside (e.g. Circle((0, 0), "
-    "1) and a ball of radius 0.25 at (0, 0.5) ends at (0, 0.75), distance -0.25)",
-)
-
-
 @pytest.mark.parametrize(
     ("collider", "start"),
     [
@@ -831,9 +776,9 @@ PUSH_BUG = pytest.mark.xfail(
         (Segment((0.0, 0.0), (4.0, 0.0), radius=0.5), (-0.5, 0.3)),
         (Box((0.0, 0.0), (10.0, 10.0)), (9.9, 5.0)),
         # the centre inside the solid
-        pytest.param(Plane((0.0, 0.0), (0.0, 1.0)), (2.0, -0.3), marks=PUSH_BUG),
-        pytest.param(Circle((0.0, 0.0), 1.0), (0.0, 0.5), marks=PUSH_BUG),
-        pytest.param(Segment((0.0, 0.0), (4.0, 0.0), radius=0.5), (2.0, 0.2), marks=PUSH_BUG),
+        pytest.param(Plane((0.0, 0.0), (0.0, 1.0)), (2.0, -0.3)),
+        pytest.param(Circle((0.0, 0.0), 1.0), (0.0, 0.5)),
+        pytest.param(Segment((0.0, 0.0), (4.0, 0.0), radius=0.5), (2.0, 0.2)),
         (Box((0.0, 0.0), (10.0, 10.0)), (-0.3, 5.0)),
     ],
 )
@@ -904,20 +849,11 @@ def test_reruns_are_bit_identical() -> None:
 # -- 11. colliders far away change nothing ---------------------------------------------------
 
 
-FAR_BUG = pytest.mark.xfail(
-    strict=True,
-    reason="engine bug: with any collider the World drops its closed-form anchor every step "
-    "(World._step_general sets _anchor = None after contacts.resolve), so 'exact' chains "
-    "step-by-step closed forms and drifts from the anchored solution by rounding (3.2e-12 m "
-    "in y after 600 steps of a ball thrown at (1, 2) m/s) even when no body is near a collider",
-)
-
-
 @pytest.mark.parametrize(
     "method",
     [
-        pytest.param("auto", marks=FAR_BUG),
-        pytest.param("exact", marks=FAR_BUG),
+        pytest.param("auto"),
+        pytest.param("exact"),
         "semi_implicit_euler",
         "velocity_verlet",
         "rk4",
