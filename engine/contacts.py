@@ -395,9 +395,8 @@ class Contacts:
             asleep = self._asleep(np.flatnonzero(need), x0, v0, W, friction)
             need[asleep] = False
         grid = self._grid_of()
-        if grid.n_inf:
-            d = x0 @ grid.inf_n.T - grid.inf_c
-            need |= (d <= reach[:, None]).any(axis=1)
+        for k in range(grid.n_inf):
+            need |= grid.plane_distance(x0, k) <= reach
         if grid.n_finite:
             need |= grid.clearance(x0) <= reach
         need[asleep] = False
@@ -926,8 +925,9 @@ def _reach(V: np.ndarray, B: np.ndarray, W: np.ndarray, T: Any, r: np.ndarray) -
     (e <= 1), so |V_k| <= |V| + |W| t: the distance covered is at most
     |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre.
     """
-    vv, bb, ww = _dot(V, V), _dot(B, B), _dot(W, W)
-    reach = np.sqrt(vv) * T + (0.5 * np.sqrt(ww) + np.sqrt(bb)) * (T * T) + r
+    b = np.sqrt(_dot(B, B))
+    w = b if W is B else np.sqrt(_dot(W, W))
+    reach = np.sqrt(_dot(V, V)) * T + (0.5 * w + b) * (T * T) + r
     return reach * (1.0 + 1e-9) + TOUCH
 
 
@@ -1003,6 +1003,13 @@ class _FaceGrid:
             cell_parts.append((i0 + di) * ny + (j0 + dj))
             face_parts.append(np.full(len(di), self.finite[k], dtype=np.intp))
         self.bound = bound
+        # The bounds with a ring of cells around them holding the margin: any point outside
+        # the grid is looked up in the ring (clipped), so clearance needs no inside test.
+        ring = np.full((nx + 2, ny + 2), self.margin)
+        ring[1:-1, 1:-1] = bound
+        self._ring = ring.reshape(-1)
+        self._ring_hi = np.array([nx + 1, ny + 1], dtype=float)
+        self._ring_lo = self.lo - h  # the ring's lower-left corner
         cells_all = np.concatenate(cell_parts).astype(np.intp)
         order = np.argsort(cells_all, kind="stable")
         self.faces_of = np.concatenate(face_parts)[order]
@@ -1020,8 +1027,19 @@ class _FaceGrid:
 
     def clearance(self, x: np.ndarray) -> np.ndarray:
         """A lower bound (length units) on each point's distance to every finite face."""
-        cell, inside = self._cells(x)
-        return np.where(inside, self.bound.reshape(-1)[cell], self.margin)
+        # Clipped to the ring first, so truncation toward zero is the floor.
+        ij = np.clip((x - self._ring_lo) * (1.0 / self.h), 0.0, self._ring_hi).astype(np.intp)
+        return self._ring[ij[:, 0] * (self.shape[1] + 2) + ij[:, 1]]
+
+    def plane_distance(self, x: np.ndarray, k: int) -> np.ndarray:
+        """Distance of each point from the k-th endless face (a wall of a Box is one column)."""
+        nx, ny = self.inf_n[k]
+        c = self.inf_c[k]
+        if ny == 0.0:
+            return x[:, 0] * nx - c
+        if nx == 0.0:
+            return x[:, 1] * ny - c
+        return x[:, 0] * nx + x[:, 1] * ny - c
 
     def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, face) pairs to test: endless faces always, finite ones the grid lists."""

@@ -151,6 +151,18 @@ def disc_hits(
     if not todo.any():
         return t
     idx = np.flatnonzero(todo)
+    # Tighter: the path strays at most |B| T^2 / 2 from the chord X + V t; a chord that passes
+    # the disc farther than that cannot bring the ball onto it (the ones leaving stay in).
+    Di, Vi, Ti = D[idx], V[idx], T[idx]
+    vvi = vv[idx]
+    s = np.clip(-_dot(Di, Vi) / np.where(vvi > 0.0, vvi, 1.0), 0.0, Ti)
+    C = Di + Vi * s[:, None]
+    stray = 0.5 * np.sqrt(_dot(B[idx], B[idx])) * Ti * Ti
+    keep = (np.sqrt(_dot(C, C)) - stray <= rho[idx] * (1.0 + 1e-9) + TOUCH) | leaving[idx]
+    if not keep.all():
+        idx = idx[keep]
+        if not len(idx):
+            return t
     Di, Vi, Bi, Ti = D[idx], V[idx], B[idx], T[idx]
     K = np.stack(
         [
