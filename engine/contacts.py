@@ -656,7 +656,7 @@ class Contacts:
             np.where(u < 0.0, a_t + fr, np.where(static, 0.0, a_t - np.copysign(fr, a_t))),
         )
         slowing = ((u > 0.0) & (a < 0.0)) | ((u < 0.0) & (a > 0.0))
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a subnormal a: inf
             ts = np.where(slowing, -u / np.where(a != 0.0, a, 1.0), np.inf)
         keep = ~lift
         k = res[keep]
