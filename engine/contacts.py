@@ -41,7 +41,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .colliders import Collider
+from .colliders import Box, Circle, Collider, Plane, Segment
 from .impact import TOUCH, disc_hits, line_hits
 from .vector import Vector
 
@@ -50,9 +50,6 @@ __all__ = ["Contacts", "ContactEvent", "MAX_IMPACTS", "signed_distance"]
 #: Impacts one body may meet in one step; past them it stops where the last one put it,
 #: on a surface, for the rest of the step (counted in ``capped``).
 MAX_IMPACTS = 32
-
-#: Events kept per step (the counts are exact; the lists stop growing past this).
-MAX_EVENTS = 4096
 
 
 class ContactEvent(NamedTuple):
@@ -80,8 +77,6 @@ def signed_distance(collider: Collider, X: np.ndarray) -> np.ndarray:
 
     Positive in free space (inside a Box, outside everything else).
     """
-    from .colliders import Box, Circle, Plane, Segment
-
     if isinstance(collider, Plane):
         return (X[:, 0] - collider.point.x) * collider.normal.x + (
             X[:, 1] - collider.point.y
@@ -365,11 +360,6 @@ class Contacts:
     def ended(self) -> list[tuple[int, int, Any, Any, Any, float]]:
         """Contacts that ended in the last step, as ``began``."""
         return _unpack(self._ended)
-
-    @property
-    def counts(self) -> tuple[int, int]:
-        """How many contacts began and ended in the last step."""
-        return sum(len(part[0]) for part in self._began), sum(len(p[0]) for p in self._ended)
 
     def _grid_of(self) -> _FaceGrid:
         if self._grid is None:
@@ -878,8 +868,6 @@ class Contacts:
     # -- sensors ----------------------------------------------------------------------------
     def _sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
         """Report bodies that began or ended overlapping each sensor this step."""
-        from .colliders import Box
-
         for s, k in enumerate(self._sensors):
             c = self.colliders[k]
             d = signed_distance(c, x1)

@@ -28,6 +28,7 @@ Vector(3.0, -1.0)
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from numbers import Real
@@ -37,10 +38,11 @@ import numpy as np
 
 from . import checks
 from .body import Body, State, coerce_mass, coerce_state
-from .colliders import Collider
-from .contacts import ContactEvent, Contacts
+from .colliders import Collider, _point
+from .contacts import ContactEvent, Contacts, signed_distance
 from .forcefield import ForceModel
 from .forces import Force, as_force
+from .impact import disc_hits, line_hits
 from .integrators import Integrator
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
 from .stability import SimulationDiverged
@@ -378,8 +380,6 @@ class World:
 
     def _push_out(self, rows: Iterable[int]) -> None:
         """Push the bodies in ``rows`` out of any solid collider, warning for each."""
-        import warnings
-
         contacts, store = self._contacts, self._store
         assert contacts is not None and store is not None
         idx = np.fromiter(rows, dtype=np.intp)
@@ -486,9 +486,6 @@ class World:
         ``fraction`` (0 at start, 1 at end), the point where the swept centre first touches,
         and the normal there; None when nothing is met. Sensors are not hit.
         """
-        from .colliders import _point
-        from .impact import disc_hits, line_hits
-
         a = np.array(_point(start, "start"))
         b = np.array(_point(end, "end"))
         r = checks.real(radius, "radius", nonneg=True)
@@ -553,9 +550,6 @@ class World:
         Nearest first; ``distance`` is from the shape's surface (< 0 inside). A mouse pick is
         ``world.point_query(mouse, 0.1)``.
         """
-        from .colliders import _point
-        from .contacts import signed_distance
-
         p = np.array(_point(point, "point"))
         reach = checks.real(max_distance, "max_distance", nonneg=True)
         hits: list[QueryHit] = []
