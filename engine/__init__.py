@@ -12,10 +12,11 @@
 ``import engine`` never imports pygame; drawing lives in ``engine.render``.
 """
 
-from . import colliders, contacts, forces, integrators, kinematics, stability
+from . import colliders, contacts, filters, forces, integrators, kinematics, stability
 from .body import Body
 from .colliders import Box, Circle, Collider, Plane, Segment
 from .contacts import ContactEvent
+from .filters import Filter
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
@@ -31,6 +32,7 @@ __all__ = [
     "Box",
     "Collider",
     "ContactEvent",
+    "Filter",
     "QueryHit",
     "OverlapWarning",
     "FixedStep",
@@ -41,6 +43,7 @@ __all__ = [
     "SimulationDiverged",
     "colliders",
     "contacts",
+    "filters",
     "forces",
     "integrators",
     "kinematics",

@@ -28,6 +28,8 @@ from numbers import Real
 from typing import TYPE_CHECKING, Any, cast
 
 from . import checks
+from .filters import DEFAULT as DEFAULT_FILTER
+from .filters import Filter
 from .vector import Vector, _as_pair, _new
 
 if TYPE_CHECKING:
@@ -100,7 +102,8 @@ class Body:
     ``radius`` (length units, 0 for a point) gives it a size for contacts; ``restitution``
     (0: no bounce, 1: elastic) and ``friction`` (Coulomb's mu, >= 0) are its material, combined
     with a collider's by product (pymunk's rule). A round particle still has no rotation: its
-    friction slows its sliding, and nothing makes it spin.
+    friction slows its sliding, and nothing makes it spin. Bodies with a radius collide with
+    each other unless their ``filter`` (engine.Filter: a group, category bits) says not.
     """
 
     # Position and velocity are kept as plain floats (y parts unused in 1D): a lone body's
@@ -116,6 +119,7 @@ class Body:
         "_radius",
         "_e",
         "_mu",
+        "_filter",
         "_dim",
         "_store",
         "_slot",
@@ -131,6 +135,7 @@ class Body:
         radius: float = 0.0,
         restitution: float = 0.5,
         friction: float = 0.5,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
     ) -> None:
         given = {"position": position, "velocity": velocity, "acceleration": acceleration}
         dims = {name: _dim_of(value) for name, value in given.items()}
@@ -155,6 +160,12 @@ class Body:
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
         self._mass: float = coerce_mass(mass)
         self._radius, self._e, self._mu = _material(radius, restitution, friction)
+        if not isinstance(filter, Filter):
+            raise TypeError(
+                f"filter must be an engine.Filter (group, categories, mask), got "
+                f"{type(filter).__name__} {filter!r}"
+            )
+        self._filter = filter
         self._store: BodyStore | None = None  # set by the World that holds this body
         self._slot: int = -1
 
@@ -276,6 +287,11 @@ class Body:
     def friction(self) -> float:
         """Coulomb friction coefficient mu >= 0."""
         return self._mu
+
+    @property
+    def filter(self) -> Filter:
+        """Which other bodies this one collides with (engine.Filter; bodies of radius 0 never)."""
+        return self._filter
 
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:

@@ -55,13 +55,14 @@ MAX_IMPACTS = 32
 class ContactEvent(NamedTuple):
     """A contact that began or ended: which body and collider, where, and how hard.
 
-    ``point`` is on the collider's surface, ``normal`` the unit normal there toward the
+    ``collider`` is the other Body for a contact between two bodies. ``point`` is on the
+    collider's (or other body's) surface, ``normal`` the unit normal there toward the
     body, ``impulse`` (N s, a Vector) the change of the body's momentum, ``time`` (s) the
     World time of the contact within the step.
     """
 
     body: Any
-    collider: Collider
+    collider: Any  # a Collider, or the other Body
     point: Vector
     normal: Vector
     impulse: Vector

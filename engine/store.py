@@ -60,6 +60,10 @@ class BodyStore:
         self.radius = np.zeros(0)  # (N,) radii (length units, 0 for a point)
         self.restitution = np.zeros(0)  # (N,) e in [0, 1]
         self.friction = np.zeros(0)  # (N,) Coulomb mu >= 0
+        # Collision filters (engine.filters): group (0: none), category and mask bits.
+        self.group = np.zeros(0, dtype=np.int64)
+        self.categories = np.zeros(0, dtype=np.int64)
+        self.mask = np.zeros(0, dtype=np.int64)
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
 
     def __len__(self) -> int:
@@ -72,11 +76,13 @@ class BodyStore:
         mass: np.ndarray,
         own: np.ndarray,
         material: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+        filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
     ) -> list[int]:
         """Add rows for new bodies; return their slots (one array copy for the whole batch).
 
         ``material``: (radius, restitution, friction) arrays; points of restitution 0.5 and
-        friction 0.5 (Body's defaults) when None.
+        friction 0.5 (Body's defaults) when None. ``filters``: (group, categories, mask)
+        integer arrays; engine.filters' default (no group, every bit) when None.
         """
         n0, k = len(self), len(mass)
         if material is None:
@@ -84,6 +90,12 @@ class BodyStore:
         self.radius = np.concatenate([self.radius, material[0]])
         self.restitution = np.concatenate([self.restitution, material[1]])
         self.friction = np.concatenate([self.friction, material[2]])
+        if filters is None:
+            every = np.full(k, 0xFFFFFFFF, dtype=np.int64)
+            filters = (np.zeros(k, dtype=np.int64), every, every)
+        self.group = np.concatenate([self.group, filters[0]])
+        self.categories = np.concatenate([self.categories, filters[1]])
+        self.mask = np.concatenate([self.mask, filters[2]])
         self.x = np.concatenate([self.x, x])
         self.v = np.concatenate([self.v, v])
         self.prev_x = np.concatenate([self.prev_x, x])
@@ -101,6 +113,8 @@ class BodyStore:
         self.mass, self.own = self.mass[keep], self.own[keep]
         self.radius, self.restitution = self.radius[keep], self.restitution[keep]
         self.friction = self.friction[keep]
+        self.group, self.categories = self.group[keep], self.categories[keep]
+        self.mask = self.mask[keep]
         rows = self._row_of
         rows[slot] = -1
         rows[rows > i] -= 1

@@ -39,6 +39,7 @@ import numpy as np
 from . import checks
 from .body import Body, State, coerce_mass, coerce_state
 from .colliders import Collider, _point
+from .collisions import Collisions
 from .contacts import ContactEvent, Contacts, signed_distance
 from .forcefield import ForceModel
 from .forces import Force, as_force
@@ -60,6 +61,13 @@ _mul, _add = np.multiply, np.add
 
 #: The methods the World steps by its affine kernel when every force is folded.
 _EULERS = ("semi_implicit_euler", "explicit_euler")
+
+#: How far a resting contact's velocity change dv moves a body within the step, as a
+#: fraction of dv dt: a constant force moves a body by a dt^2 / 2 under the closed form,
+#: velocity Verlet and RK4, by a dt^2 under semi-implicit Euler (x moves with the new v) and
+#: not at all under explicit Euler (x moves with the old v). A method given as a function
+#: takes 1/2.
+_SHARE = {"exact": 0.5, "semi_implicit_euler": 1.0, "explicit_euler": 0.0}
 
 #: Entries below this in size cannot overflow in one more step of the affine kernel.
 _SAFE = 1e300
@@ -129,6 +137,7 @@ class WorldSnapshot:
     anchor: tuple[Any, Any, float] | None
     warned: frozenset[Any] = field(default_factory=frozenset)
     contacts: tuple[Any, ...] | None = None  # which bodies rest on what, sensors overlapped
+    pairs: tuple[Any, ...] | None = None  # contacts between bodies: warm start, sleep
 
 
 @dataclass
@@ -193,6 +202,8 @@ class World:
         self._kernel: _Kernel | None = None
         self._huge = False  # the state is near overflow: step with numpy's warnings off
         self._contacts: Contacts | None = None  # made by the first add_collider
+        self._collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
+        self._pairs_on = False  # whether any two bodies may collide
         self._handlers: list[tuple[Any, Callable[..., Any] | None, Callable[..., Any] | None]] = []
         self._began: list[ContactEvent] | None = None  # the last step's events, made on demand
         self._ended: list[ContactEvent] | None = None
@@ -273,6 +284,11 @@ class World:
                 np.array([b.radius for b in batch], dtype=float),
                 np.array([b.restitution for b in batch], dtype=float),
                 np.array([b.friction for b in batch], dtype=float),
+            ),
+            (
+                np.array([b.filter.group for b in batch], dtype=np.int64),
+                np.array([b.filter.categories for b in batch], dtype=np.int64),
+                np.array([b.filter.mask for b in batch], dtype=np.int64),
             ),
         )
         for b, slot in zip(batch, slots, strict=True):
@@ -452,11 +468,38 @@ class World:
             for i, k, p, n, j, t in raw
         ]
 
+    def _pair_events(self, raw: list[Any]) -> list[ContactEvent]:
+        """Contacts between bodies as ContactEvents: ``collider`` is the other Body; a contact
+        that began or ended at rest takes its point and normal from the state now."""
+        store = self._store
+        if not raw or store is None:
+            return []
+        bodies = self._bodies
+        out = []
+        for i, j, p, n, J, t in raw:
+            if p is None:
+                d = store.x[i] - store.x[j]
+                dist = float(np.hypot(d[0], d[1]))
+                n = d / dist if dist > 0.0 else np.array([0.0, 1.0])
+                p = store.x[j] + n * store.radius[j]
+            out.append(
+                ContactEvent(
+                    bodies[i],
+                    bodies[j],
+                    Vector(float(p[0]), float(p[1])),
+                    Vector(float(n[0]), float(n[1])),
+                    Vector(float(J[0]), float(J[1])),
+                    t,
+                )
+            )
+        return out
+
     @property
     def began(self) -> list[ContactEvent]:
         """The contacts that began in the last step (a bounce, a landing, entering a sensor)."""
         if self._began is None:
-            self._began = [] if self._contacts is None else self._events(self._contacts.began)
+            static = [] if self._contacts is None else self._events(self._contacts.began)
+            self._began = static + self._pair_events(self._collisions.began)
         return self._began
 
     @property
@@ -464,7 +507,8 @@ class World:
         """The contacts that ended in the last step (a bounce ends as it begins; a rest ends
         when the body lifts off; leaving a sensor)."""
         if self._ended is None:
-            self._ended = [] if self._contacts is None else self._events(self._contacts.ended)
+            static = [] if self._contacts is None else self._events(self._contacts.ended)
+            self._ended = static + self._pair_events(self._collisions.ended)
         return self._ended
 
     def _report(self) -> None:
@@ -587,6 +631,7 @@ class World:
         self._anchor = None
         self._policy.choice = None
         self._version += 1
+        self._collisions.changed(len(self._bodies))
 
     def _drop_kernel(self) -> None:
         self._void_budget()
@@ -596,9 +641,11 @@ class World:
         self._kernel = None
 
     def _state_written(self) -> None:
-        """A position or velocity was set by hand: the closed form and the kernel start anew."""
+        """A position or velocity was set by hand: the closed form and the kernel start anew,
+        and every sleeping body wakes."""
         self._anchor = None
         self._void_budget()
+        self._collisions.wake(len(self._bodies))
 
     def _void_budget(self) -> None:
         """The kernel's step budget was proved for the state before: take back what is left."""
@@ -614,6 +661,7 @@ class World:
             self._model.set_own_acc(row, self._store.own[row])
         self._anchor = None
         self._drop_kernel()
+        self._collisions.wake(len(self._bodies))
 
     def _ready(self) -> ForceModel:
         if self._model is None:
@@ -762,11 +810,18 @@ class World:
             step = None if name == "exact" else self._integrator_named(name)
             # Either Euler method on forces that are all folded (a = a0 - c v) is a fixed
             # affine map of the state: the World takes it in four array operations.
+            st = self._store
+            self._pairs_on = (
+                st is not None
+                and st.dim == 2
+                and self._collisions.active(st.radius, st.group, st.categories, st.mask)
+            )
             affine = (
                 name in _EULERS
                 and self._policy.custom is None
                 and model.affine
                 and self._contacts is None
+                and not self._pairs_on
             )
             self._fast = (dt, self._version, name, step, model, affine)
         if dt != self._dt:
@@ -784,7 +839,7 @@ class World:
         if self._bodies:
             self._step_general(dt, name, step, model)
         self._n += 1
-        if self._contacts is not None:
+        if self._contacts is not None or self._pairs_on:
             self._report()
 
     def _prepare_affine(self, dt: float, model: ForceModel, name: str) -> bool:
@@ -854,6 +909,7 @@ class World:
         else:
             x1, v1 = step(store.x, store.v, model.accel, t0, dt)
         self._huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
+        v_method = v1
         contacts = self._contacts
         if contacts is not None:
             # The path of the step is swept for impacts (engine.contacts); under the closed
@@ -873,6 +929,22 @@ class World:
             )
             if contacts.moved:
                 self._anchor = None  # the closed form starts anew from the changed state
+        pairs = self._collisions
+        if pairs is not None and self._pairs_on:
+            # Bodies meet one another (engine.collisions) on the paths that end where the
+            # method and the static contacts left them.
+            A = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
+            if contacts is not None and contacts.moved:
+                # A body resting on a collider is carried by it: its acceleration along the
+                # path is the step's mean one.
+                on = contacts.rest >= 0
+                if on.any():
+                    A = A.copy()
+                    A[on] = (v1[on] - store.v[on]) * (1.0 / dt)
+            share = _SHARE.get(name, 0.5)
+            x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, share, store, contacts)
+            if pairs.moved:
+                self._anchor = None
         store.prev_x, store.x, store.v = store.x, x1, v1
         self._void_budget()
 
@@ -1001,6 +1073,7 @@ class World:
             anchor=anchor,
             warned=frozenset(self._policy.warned),
             contacts=None if self._contacts is None else self._contacts.state(),
+            pairs=self._collisions.state(),
         )
 
     def restore(self, snapshot: WorldSnapshot) -> None:
@@ -1043,6 +1116,8 @@ class World:
                 self._contacts.inside[:] = False
             else:
                 self._contacts.set_state(snapshot.contacts, len(self._bodies))
+        if snapshot.pairs is not None:
+            self._collisions.set_state(snapshot.pairs)
 
     def _check_snapshot(self, snap: WorldSnapshot) -> tuple[list[float], list[State]]:
         """Refuse a snapshot (a plain dataclass, so one can be built or altered by hand) that

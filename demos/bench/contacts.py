@@ -18,7 +18,7 @@ from functools import partial
 import numpy as np
 
 from demos.bench import compare
-from engine import Body, Box, Segment, Vector, World
+from engine import Body, Box, Filter, Segment, Vector, World
 from engine.forces import Gravity
 
 __all__ = ["report", "make_world", "make_space", "scene"]
@@ -27,6 +27,7 @@ DT = 1.0 / 120.0  # s
 SIZE = (40.0, 30.0)  # m
 RADIUS = 0.1  # m
 SEGMENTS = 50
+ONE = Filter(group=1)
 
 
 def scene(n: int, seed: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -52,7 +53,8 @@ def make_world(n: int, *, colliders: bool = True) -> World:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a ball dropped onto a segment is pushed off it
         world.add_all(
-            Body(Vector(*p), Vector(*v), Vector(0, 0), radius=RADIUS, restitution=0.9)
+            # One group: the balls do not collide with each other (as in the scene).
+            Body(Vector(*p), Vector(*v), Vector(0, 0), radius=RADIUS, restitution=0.9, filter=ONE)
             for p, v in zip(pos.tolist(), vel.tolist(), strict=True)
         )
     return world

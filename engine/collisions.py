@@ -1,0 +1,792 @@
+"""Contacts between bodies: impacts in the order physics gives them, piles that rest, sleep.
+
+Bodies with a radius > 0 collide with each other (unless a :class:`engine.Filter` turns the
+pair off; points never collide). The World hands this module each step's start state
+(x0, v0), the state after its method and the static contacts (x1, v1), and each body's
+acceleration A over the step (the constant one under the closed form; the step's own for an
+integrator; zero for a body that rested on a collider). Within the step a body's centre is
+taken on the path that ends at (x1, v1),
+
+    x(t) = x1 - v1 s + A s^2 / 2,    v(t) = v1 - A s,    s = dt - t,
+
+the exact parabola under the closed form. A step has two phases.
+
+**Impacts**, solved at their exact moment and in time order. Two balls touch when the
+distance of their centres is R = r_a + r_b; along the paths, the difference
+d(t) = x_a(t) - x_b(t) is itself a parabola, so the moment of impact is the first root of
+|d(t)|^2 = R^2 (``engine.impact.disc_hits``, a quadratic when both share one acceleration, as
+under gravity). At that moment, with the unit normal n = d / R toward a and the closing speed
+u = -(v_a - v_b).n > 0, the impulse along n is
+
+    J = (1 + e) u / (1/m_a + 1/m_b),        e = e_a e_b (pymunk's product rule),
+
+which conserves momentum exactly and, with e = 1, energy: it is the closed-form 2D collision
+of two discs. Coulomb friction (mu = mu_a mu_b) takes up to mu J of the tangential relative
+momentum, never reversing it. Each velocity changes by dv = J n / m, and the position at the
+end of the step by dv (dt - t): the rest of the step is flown on the new path. Impacts are
+taken in rounds: in each, every pair that is the earliest impact of both its bodies is
+resolved (they share no body, so they are independent), then the paths of the bodies that
+changed are searched again. Newton's cradle is the test: the first ball stops, the second
+takes its speed at the same instant and meets the third, and so on down the row; a solver
+that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
+``MAX_ROUNDS``; the count of steps that reached it is kept in ``capped``.
+
+**Resting contacts.** A closing speed below ``rest_speed`` (2 |A| dt: what the acceleration
+adds in two steps) is not a bounce but a contact at rest, the one a pile is made of. Those
+pairs, and the bodies' contacts with static faces, are solved together as constraints: the
+normal impulse lam >= 0 makes the normal velocity >= 0, friction keeps |lam_t| <= mu lam
+(Jacobi iterations over all contacts at once, each body's mass split between its contacts so
+that the sum converges, Tonge et al. 2012), started from the last step's impulses (warm
+starting: a settled pile is already solved). A resting contact acts as a force through the
+step, so its velocity change dv moves the body by dv dt / 2 under the closed form and
+velocity Verlet (dv dt under semi-implicit Euler, nothing under explicit Euler: each
+method's own rule for a constant force). Overlap left by the iterations is removed by moving
+positions (not velocities, so no energy is added) by ``BAUMGARTE`` of the overlap past
+``SLOP`` each step.
+
+**Sleep.** A group of bodies touching one another that has been still (every speed below
+``sleep_speed``) for ``sleep_time`` seconds falls asleep: its bodies stay exactly where they
+are, velocity 0, and cost nothing, until an awake body meets one of them (the whole group
+wakes) or the World is changed by hand.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .impact import TOUCH, disc_hits
+
+if TYPE_CHECKING:
+    from .contacts import Contacts
+
+__all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "BAUMGARTE"]
+
+#: Impact rounds in one step (each resolves every pair that comes first for both bodies).
+MAX_ROUNDS = 64
+#: Overlap (fraction of the smaller radius) left alone: contacts touch, they do not chatter.
+SLOP = 0.002
+#: Fraction of the overlap past SLOP removed per step by moving positions.
+BAUMGARTE = 0.4
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
+
+
+def _norm(a: np.ndarray) -> np.ndarray:
+    return np.sqrt(a[:, 0] * a[:, 0] + a[:, 1] * a[:, 1])
+
+
+def _grid_pairs(P: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs (a < b) of points in the same or neighbouring cells of a grid of side h.
+
+    Cells are keyed by one integer, the points sorted by key; each point looks up its own
+    cell and four of its eight neighbours (the other four look it up), each a range of the
+    sorted keys found by binary search. No Python loop over points.
+    """
+    n = len(P)
+    c = np.floor(P * (1.0 / h))
+    c -= c.min(axis=0)
+    c = c.astype(np.int64)
+    ny = int(c[:, 1].max()) + 3
+    key = (c[:, 0] + 1) * ny + (c[:, 1] + 1)
+    order = np.argsort(key, kind="stable")
+    sk = key[order]
+    offsets = np.array([0, 1, ny - 1, ny, ny + 1], dtype=np.int64)
+    q = (key[:, None] + offsets[None, :]).ravel()
+    lo = np.searchsorted(sk, q, "left")
+    cnt = np.searchsorted(sk, q, "right") - lo
+    total = int(cnt.sum())
+    if not total:
+        return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
+    a = np.repeat(np.arange(n * 5) // 5, cnt)
+    first = np.cumsum(cnt) - cnt
+    b = order[np.arange(total) - np.repeat(first - lo, cnt)]
+    same = np.repeat(np.arange(n * 5) % 5 == 0, cnt)
+    keep = np.where(same, a < b, True)
+    return a[keep], b[keep]
+
+
+class Collisions:
+    """The contacts of a World's bodies with one another (see the module's docstring)."""
+
+    def __init__(self) -> None:
+        #: Jacobi iterations of the resting-contact solver per step.
+        self.iterations = 16
+        #: Spectral radius assumed for Chebyshev's acceleration (0: plain Jacobi).
+        self.rho = 0.97
+        #: Position iterations removing overlap per step.
+        self.position_iterations = 2
+        #: Seconds a touching group must stay still before it sleeps (inf: never).
+        self.sleep_time = 0.5
+        #: Speed (length units / s) under which a body counts as still.
+        self.sleep_speed = 0.01
+        self.capped = 0  # steps whose impacts reached MAX_ROUNDS
+        self.moved = False  # whether the last step changed any body's state
+        self.last_rounds = 0  # impact rounds in the last step
+        self.last_overlap = 0.0  # deepest overlap left after the last step (length units)
+        self._live: np.ndarray | None = None  # rows with radius > 0
+        self._plain = True  # every live body has the default filter
+        self._one_group = False  # every live body shares one nonzero group: no pair collides
+        # Warm start: the last step's resting contacts, keyed a * N + b, and their impulses.
+        self._keys = np.zeros(0, dtype=np.int64)
+        self._lam = np.zeros((0, 2))
+        # Pairs touching after the last step (for began / ended), keyed as above.
+        self._touching = np.zeros(0, dtype=np.int64)
+        self._began: list[tuple[Any, ...]] = []
+        self._ended: list[tuple[Any, ...]] = []
+        self.still = np.zeros(0)  # (N,) seconds each body has been still
+        self.asleep = np.zeros(0, dtype=bool)  # (N,)
+        self._group = np.zeros(0, dtype=np.intp)  # (N,) the sleeping group of each sleeper
+        self._lam_dt = 1.0
+        self._base = 0
+        self.rest_speed = 0.0
+
+    # -- bodies --------------------------------------------------------------------------------
+    def changed(self, n: int) -> None:
+        """Bodies were added or removed (now n): drop what was keyed by row, wake everyone."""
+        self._live = None
+        self._keys = np.zeros(0, dtype=np.int64)
+        self._lam = np.zeros((0, 2))
+        self._touching = np.zeros(0, dtype=np.int64)
+        self.wake(n)
+
+    def wake(self, n: int) -> None:
+        """Wake every body (the World was changed by hand)."""
+        self.still = np.zeros(n)
+        self.asleep = np.zeros(n, dtype=bool)
+        self._group = np.zeros(n, dtype=np.intp)
+
+    def _prepare(
+        self, radius: np.ndarray, group: np.ndarray, cat: np.ndarray, mask: np.ndarray
+    ) -> np.ndarray:
+        live = self._live
+        if live is None:
+            live = self._live = np.flatnonzero(radius > 0.0)
+            g, c, m = group[live], cat[live], mask[live]
+            every = 0xFFFFFFFF
+            self._plain = bool(np.all(g == 0) & np.all(c == every) & np.all(m == every))
+            self._one_group = bool(len(g) and g[0] != 0 and np.all(g == g[0]))
+        return live
+
+    def state(self) -> tuple[Any, ...]:
+        """A copy of everything the next step depends on (what a snapshot holds)."""
+        return (
+            self._keys.copy(),
+            self._lam.copy(),
+            self._lam_dt,
+            self._base,
+            self._touching.copy(),
+            self.still.copy(),
+            self.asleep.copy(),
+            self._group.copy(),
+            self.capped,
+        )
+
+    def set_state(self, state: tuple[Any, ...]) -> None:
+        """Bring back a state from ``state()``."""
+        keys, lam, lam_dt, base, touching, still, asleep, group, capped = state
+        self._keys, self._lam, self._lam_dt, self._base = keys.copy(), lam.copy(), lam_dt, base
+        self._touching = touching.copy()
+        self.still, self.asleep, self._group = still.copy(), asleep.copy(), group.copy()
+        self.capped = capped
+
+    def active(
+        self, radius: np.ndarray, group: np.ndarray, cat: np.ndarray, mask: np.ndarray
+    ) -> bool:
+        """Whether any pair of bodies may collide at all (else a step costs nothing here)."""
+        live = self._prepare(radius, group, cat, mask)
+        return len(live) >= 2 and not self._one_group
+
+    # -- the step ------------------------------------------------------------------------------
+    def resolve(
+        self,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        x1: np.ndarray,
+        v1: np.ndarray,
+        A: np.ndarray,
+        dt: float,
+        t0: float,
+        share: float,
+        store: Any,
+        contacts: Contacts | None,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The state after dt with every contact between bodies applied: new (x, v) arrays.
+
+        ``A`` (N, 2): each body's acceleration along its path this step. ``share``: the
+        fraction of dv dt by which a resting contact's velocity change dv moves the body
+        (1/2 for the closed form, velocity Verlet and RK4, 1 for semi-implicit Euler, 0 for
+        explicit Euler). ``store``: the World's BodyStore (radius, material, filters, mass).
+        Bodies that meet no other keep (x1, v1) bit for bit.
+        """
+        self.moved = False
+        self._began, self._ended = [], []
+        self.last_rounds = 0
+        n = len(x1)
+        if len(self.still) != n:
+            self.wake(n)
+        live = self._prepare(store.radius, store.group, store.categories, store.mask)
+        if len(live) < 2 or self._one_group:
+            return x1, v1
+        asleep = self.asleep
+        if asleep.any():
+            # Sleeping bodies stay exactly where they were, whatever the method computed.
+            x1, v1 = x1.copy(), v1.copy()
+            x1[asleep], v1[asleep] = x0[asleep], 0.0
+            self.moved = True
+        a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
+        if len(a) and self.moved:
+            a, b = self._wake_met(a, b, x1, v1, store.radius)
+        if not len(a):
+            self._events_of(np.zeros(0, dtype=np.int64), [], n, t0, dt, live)
+            self._sleep_still(v1, dt, live, np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
+            return x1, v1
+        # Solve on the bodies in pairs only, in local arrays (U: local -> World row).
+        U, inv = np.unique(np.concatenate([a, b]), return_inverse=True)
+        la, lb = inv[: len(a)], inv[len(a) :]
+        X, V, AU = x1[U], v1[U], A[U]
+        self._U = U
+        w = 1.0 / store.mass[U]
+        r = store.radius[U]
+        impacts = self._impacts(la, lb, X, V, AU, w, r, store.restitution[U], store.friction[U], dt)
+        rest_a, rest_b = self._resting(
+            la, lb, X, V, AU, w, r, store.friction[U], dt, share, U, n, contacts
+        )
+        if contacts is not None and len(contacts.faces.owner):
+            # Nothing the pairs pushed is left inside a wall (with its speed into it taken).
+            contacts.push_out_rows(X, V, r)
+        x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
+        x[U], v[U] = X, V
+        self.moved = True
+        # Which pairs touch now, at rest: events, and the groups that may sleep.
+        D = X[rest_a] - X[rest_b]
+        touch = _norm(D) <= (r[rest_a] + r[rest_b]) * (1.0 + 1e-9) + TOUCH
+        keys = U[rest_a[touch]].astype(np.int64) * n + U[rest_b[touch]]
+        self._events_of(keys, impacts, n, t0, dt, U)
+        self._sleep_still(v, dt, live, U[rest_a], U[rest_b])
+        return x, v
+
+    # -- finding pairs ---------------------------------------------------------------------------
+    def _pairs(
+        self,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        x1: np.ndarray,
+        v1: np.ndarray,
+        A: np.ndarray,
+        dt: float,
+        live: np.ndarray,
+        store: Any,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """World rows (a < b) of the pairs that may touch within the step or are near enough
+        to rest on each other: a grid for the many, every body for the fast few."""
+        P = x1[live]
+        r = store.radius[live]
+        # How far a centre can be from its end position during the step: its speed on a
+        # parabola peaks at an end, and a bounce off a wall never speeds it up.
+        speed = np.maximum(_norm(v0[live]), _norm(v1[live])) + _norm(A[live]) * dt
+        reach = speed * dt + 0.05 * r  # plus a margin for resting contacts about to close
+        rmax = float(r.max())
+        fast = reach > rmax
+        slow_reach = float(reach[~fast].max()) if (~fast).any() else 0.0
+        h = 2.0 * (rmax + slow_reach)
+        span = float((P.max(axis=0) - P.min(axis=0)).max())
+        h = max(h, span / 2.0**30)  # keeps cell keys within int64
+        ia, ib = _grid_pairs(P, h)
+        F = np.flatnonzero(fast)
+        if len(F):
+            # Fast bodies against every body (few of them; a grid of their size would make
+            # every cell hold everyone).
+            fa, fb = [], []
+            for k in F.tolist():
+                near = _norm(P - P[k]) <= r + r[k] + reach + reach[k]
+                near[k] = False
+                j = np.flatnonzero(near)
+                fa.append(np.minimum(j, k))
+                fb.append(np.maximum(j, k))
+            ia = np.concatenate([ia, *fa])
+            ib = np.concatenate([ib, *fb])
+            key = np.unique(ia.astype(np.int64) * len(P) + ib)
+            ia, ib = key // len(P), key % len(P)
+        if len(ia):
+            D = P[ia] - P[ib]
+            far = r[ia] + r[ib] + reach[ia] + reach[ib]
+            keep = _dot(D, D) <= far * far
+            ia, ib = ia[keep], ib[keep]
+        a, b = live[ia], live[ib]
+        if not self._plain and len(a):
+            g, c, m = store.group, store.categories, store.mask
+            ok = ~((g[a] == g[b]) & (g[a] != 0))
+            ok &= ((c[a] & m[b]) != 0) & ((c[b] & m[a]) != 0)
+            a, b = a[ok], b[ok]
+        return a, b
+
+    # -- impacts ---------------------------------------------------------------------------------
+    def _impacts(
+        self,
+        la: np.ndarray,
+        lb: np.ndarray,
+        X: np.ndarray,
+        V: np.ndarray,
+        A: np.ndarray,
+        w: np.ndarray,
+        r: np.ndarray,
+        e: np.ndarray,
+        mu: np.ndarray,
+        dt: float,
+    ) -> list[tuple[np.ndarray, ...]]:
+        """Resolve the step's impacts in time order, in place on the end state (X, V)."""
+        nU = len(X)
+        R = r[la] + r[lb]
+        # A closing speed below this is a contact at rest, not a bounce.
+        amax = float(_norm(A).max()) if len(A) else 0.0
+        self.rest_speed = rest = 2.0 * amax * dt
+        # Only pairs that can close faster than that can have an impact.
+        Vr = V[la] - V[lb]
+        Ar = A[la] - A[lb]
+        can = _norm(Vr) + _norm(Ar) * dt > rest
+        if len(self._keys) and len(la):
+            # A pair that carried load at rest in the last step rests on: its contact is
+            # solved with the pile's (a pile does not bounce inside).
+            keys = self._U[la].astype(np.int64) * self._base + self._U[lb]
+            pos = np.clip(np.searchsorted(self._keys, keys), 0, len(self._keys) - 1)
+            loaded = (self._keys[pos] == keys) & (self._lam[pos, 0] > 0.0)
+            can &= ~loaded
+        if not can.any():
+            return []
+        pa, pb, pR = la, lb, R
+        ts = np.zeros(nU)  # when each body's current path starts
+        toi = np.full(len(pa), np.inf)
+        todo = can  # the others are searched once a body of theirs changes path
+        found: list[tuple[np.ndarray, ...]] = []
+        pid = np.arange(len(pa))
+        for k in range(MAX_ROUNDS):
+            idx = np.flatnonzero(todo)
+            if len(idx):
+                toi[idx] = self._toi(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, rest)
+                todo[idx] = False
+            hit = np.isfinite(toi)
+            if not hit.any():
+                break
+            self.last_rounds = k + 1
+            # The pairs that come first for both their bodies (ties: the lower pair index).
+            h = np.flatnonzero(hit)
+            best = np.full(nU, np.inf)
+            np.minimum.at(best, pa[h], toi[h])
+            np.minimum.at(best, pb[h], toi[h])
+            first = np.full(nU, len(pa))
+            ca = h[toi[h] == best[pa[h]]]
+            cb = h[toi[h] == best[pb[h]]]
+            np.minimum.at(first, pa[ca], pid[ca])
+            np.minimum.at(first, pb[cb], pid[cb])
+            s = h[(first[pa[h]] == pid[h]) & (first[pb[h]] == pid[h])]
+            found.append(self._bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt))
+            ts[pa[s]] = toi[s]
+            ts[pb[s]] = toi[s]
+            # Every pair of a body whose path changed is searched again.
+            changed = np.zeros(nU, dtype=bool)
+            changed[pa[s]] = changed[pb[s]] = True
+            again = changed[pa] | changed[pb]
+            toi[again] = np.inf
+            todo |= again
+        else:
+            self.capped += 1
+        return found
+
+    @staticmethod
+    def _state_at(
+        i: np.ndarray, t: np.ndarray, X: np.ndarray, V: np.ndarray, A: np.ndarray, dt: float
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Position and velocity of local bodies i at times t, on the paths ending at (X, V)."""
+        s = (dt - t)[:, None]
+        Ai = A[i]
+        return X[i] - V[i] * s + Ai * (0.5 * s * s), V[i] - Ai * s
+
+    def _toi(
+        self,
+        pa: np.ndarray,
+        pb: np.ndarray,
+        R: np.ndarray,
+        X: np.ndarray,
+        V: np.ndarray,
+        A: np.ndarray,
+        ts: np.ndarray,
+        dt: float,
+        rest: float,
+    ) -> np.ndarray:
+        """Time of the first impact (closing faster than ``rest``) of each pair, or inf."""
+        start = np.maximum(ts[pa], ts[pb])
+        xa, va = self._state_at(pa, start, X, V, A, dt)
+        xb, vb = self._state_at(pb, start, X, V, A, dt)
+        D, Vr, Ar = xa - xb, va - vb, A[pa] - A[pb]
+        tau = disc_hits(D, Vr, Ar, np.zeros_like(D), R, dt - start)
+        t = start + tau
+        ok = np.flatnonzero(np.isfinite(tau))
+        if len(ok):
+            # Closing speed at the moment of contact: a slow one is a contact at rest.
+            T = tau[ok, None]
+            d = D[ok] + Vr[ok] * T + Ar[ok] * (0.5 * T * T)
+            u = -_dot(Vr[ok] + Ar[ok] * T, d) / np.maximum(_norm(d), 1e-300)
+            t[ok[u <= rest]] = np.inf
+        return t
+
+    def _bounce(
+        self,
+        pa: np.ndarray,
+        pb: np.ndarray,
+        t: np.ndarray,
+        X: np.ndarray,
+        V: np.ndarray,
+        A: np.ndarray,
+        w: np.ndarray,
+        r: np.ndarray,
+        e: np.ndarray,
+        mu: np.ndarray,
+        dt: float,
+    ) -> tuple[np.ndarray, ...]:
+        """Apply the impulses of impacts (pa, pb) at times t; return them for the events."""
+        xa, va = self._state_at(pa, t, X, V, A, dt)
+        xb, vb = self._state_at(pb, t, X, V, A, dt)
+        d = xa - xb
+        nrm = d / _norm(d)[:, None]
+        vr = va - vb
+        vn = _dot(vr, nrm)  # < 0: closing
+        wsum = w[pa] + w[pb]
+        J = -(1.0 + e[pa] * e[pb]) * vn / wsum
+        # Friction: up to mu J against the tangential relative velocity, never reversing it.
+        tang = vr - nrm * vn[:, None]
+        vt = _norm(tang)
+        Jt = np.minimum(mu[pa] * mu[pb] * J, vt / wsum)
+        tdir = tang / np.where(vt > 0.0, vt, 1.0)[:, None]
+        P = nrm * J[:, None] - tdir * Jt[:, None]  # impulse on a; -P on b
+        dva, dvb = P * w[pa, None], -P * w[pb, None]
+        rem = (dt - t)[:, None]
+        V[pa] += dva
+        V[pb] += dvb
+        X[pa] += dva * rem
+        X[pb] += dvb * rem
+        return pa, pb, xb + nrm * r[pb, None], nrm, P, t
+
+    # -- resting contacts ------------------------------------------------------------------------
+    def _resting(
+        self,
+        la: np.ndarray,
+        lb: np.ndarray,
+        X: np.ndarray,
+        V: np.ndarray,
+        A: np.ndarray,
+        w: np.ndarray,
+        r: np.ndarray,
+        mu: np.ndarray,
+        dt: float,
+        share: float,
+        U: np.ndarray,
+        n: int,
+        contacts: Contacts | None,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Solve the contacts at rest (pairs and the static faces their bodies touch) in place
+        on (X, V); return the local pairs that rest on each other."""
+        nU = len(X)
+        R = r[la] + r[lb]
+        D = X[la] - X[lb]
+        dist = _norm(D)
+        margin = 0.05 * np.minimum(r[la], r[lb])
+        # Resting: near and closing no faster than rest_speed (a faster pair just touching at
+        # the end of the step is an impact early in the next one).
+        closing = -_dot(V[la] - V[lb], D) / np.where(dist > 0.0, dist, 1.0)
+        near = (dist - R <= margin) & ((closing <= self.rest_speed) | (dist < R))
+        ra, rb = la[near], lb[near]
+        nrm = D[near] / np.where(dist[near] > 0.0, dist[near], 1.0)[:, None]
+        gap = dist[near] - R[near]
+        fric = mu[ra] * mu[rb]
+        # Keys of the contacts, for warm starting: a * base + b for a pair, a * base + n + f
+        # for body a on face f.
+        n_faces = 0 if contacts is None else len(contacts.faces.owner)
+        base = n + n_faces
+        if base != self._base:
+            self._keys, self._base = np.zeros(0, dtype=np.int64), base
+        keys = U[ra].astype(np.int64) * base + U[rb]
+        if n_faces and contacts is not None:
+            fa, fn, fg, fmu, fk = _face_rows(contacts, X, r, 0.05 * r)
+            if len(fa):
+                ra = np.concatenate([ra, fa])
+                rb = np.concatenate([rb, np.full(len(fa), nU)])  # nU: the static world
+                nrm = np.concatenate([nrm, fn])
+                gap = np.concatenate([gap, fg])
+                fric = np.concatenate([fric, mu[fa] * fmu])
+                keys = np.concatenate([keys, U[fa].astype(np.int64) * base + n + fk])
+        if not len(ra):
+            return ra[:0], rb[:0]
+        wx = np.append(w, 0.0)
+        # Each body's mass is split between its contacts (so Jacobi converges).
+        count = np.bincount(ra, minlength=nU + 1) + np.bincount(rb, minlength=nU + 1)
+        count[nU] = 0
+        eff = 1.0 / (wx[ra] * count[ra] + wx[rb] * count[rb])
+        tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
+        # A contact not yet closed may close by its gap this step, no more.
+        target = np.where(gap > 0.0, -gap / dt, 0.0)
+        # Warm start from the last step's impulses of the same contacts.
+        lam = np.zeros((len(ra), 2))
+        if len(self._keys):
+            pos = np.clip(np.searchsorted(self._keys, keys), 0, len(self._keys) - 1)
+            same = self._keys[pos] == keys
+            lam[same] = self._lam[pos[same]] * (dt / self._lam_dt)
+            lam[:, 0] = np.maximum(lam[:, 0], 0.0)
+            cap = fric * lam[:, 0]
+            lam[:, 1] = np.clip(lam[:, 1], -cap, cap)
+        Vx = np.vstack([V, np.zeros((1, 2))])
+        V_before = Vx.copy()
+        X_ref = X.copy()  # where the gaps were measured
+        idx = np.concatenate([ra, rb])
+        if lam.any():
+            self._apply(Vx, idx, lam, nrm, tang, wx, ra, rb, nU)
+        # Chebyshev's semi-iteration (Wang 2015) speeds Jacobi up: each iterate is pushed
+        # on from the one two before by omega, which grows from 1 toward its limit for the
+        # spectral radius rho of the plain iteration.
+        rho2 = self.rho * self.rho
+        omega = 1.0
+        lam_old = lam.copy()
+        for k in range(self.iterations):
+            dv = Vx[ra] - Vx[rb]
+            vn = _dot(dv, nrm)
+            vt = _dot(dv, tang)
+            new_n = lam[:, 0] - eff * (vn - target)
+            new_t = lam[:, 1] - eff * vt
+            if k >= 1:
+                omega = 2.0 / (2.0 - rho2) if k == 1 else 4.0 / (4.0 - rho2 * omega)
+                new_n = omega * (new_n - lam_old[:, 0]) + lam_old[:, 0]
+                new_t = omega * (new_t - lam_old[:, 1]) + lam_old[:, 1]
+            new_n = np.maximum(new_n, 0.0)
+            cap = fric * new_n
+            new_t = np.clip(new_t, -cap, cap)
+            d_lam = np.stack([new_n - lam[:, 0], new_t - lam[:, 1]], axis=1)
+            lam_old = lam.copy()
+            lam[:, 0], lam[:, 1] = new_n, new_t
+            self._apply(Vx, idx, d_lam, nrm, tang, wx, ra, rb, nU)
+        V[:] = Vx[:nU]
+        # The contact forces acted through the step: they move the bodies by the method's
+        # share of dv dt.
+        if share:
+            X += (Vx[:nU] - V_before[:nU]) * (share * dt)
+        order = np.argsort(keys)
+        self._keys, self._lam, self._lam_dt = keys[order], lam[order], dt
+        self._project(ra, rb, nU, X, X_ref, nrm, gap, wx, r, eff)
+        sel = rb < nU
+        return ra[sel], rb[sel]
+
+    @staticmethod
+    def _apply(
+        Vx: np.ndarray,
+        idx: np.ndarray,
+        d_lam: np.ndarray,
+        nrm: np.ndarray,
+        tang: np.ndarray,
+        wx: np.ndarray,
+        ra: np.ndarray,
+        rb: np.ndarray,
+        nU: int,
+    ) -> None:
+        """Add the impulses d_lam (normal, tangential) of each contact to both its bodies."""
+        P = nrm * d_lam[:, :1] + tang * d_lam[:, 1:]
+        Pa, Pb = P * wx[ra, None], P * -wx[rb, None]
+        both = np.concatenate([Pa, Pb])
+        Vx[:, 0] += np.bincount(idx, both[:, 0], minlength=nU + 1)
+        Vx[:, 1] += np.bincount(idx, both[:, 1], minlength=nU + 1)
+        Vx[nU] = 0.0
+
+    def _project(
+        self,
+        ra: np.ndarray,
+        rb: np.ndarray,
+        nU: int,
+        X: np.ndarray,
+        X_ref: np.ndarray,
+        nrm: np.ndarray,
+        gap: np.ndarray,
+        wx: np.ndarray,
+        r: np.ndarray,
+        eff: np.ndarray,
+    ) -> None:
+        """Move positions (never velocities) to remove BAUMGARTE of each overlap past SLOP.
+
+        A pair's overlap is measured anew each iteration; a face's is its gap when measured
+        plus how far the body has moved along the face's normal since (a face does not move).
+        """
+        pair = rb < nU
+        face = ~pair
+        rmin = np.where(pair, np.minimum(r[ra], r[np.minimum(rb, nU - 1)]), r[ra])
+        slop = SLOP * rmin
+        R = r[ra] + np.where(pair, r[np.minimum(rb, nU - 1)], 0.0)
+        idx = np.concatenate([ra, rb])
+        deepest = 0.0
+        Xx = np.vstack([X, np.zeros((1, 2))])
+        Xr = np.vstack([X_ref, np.zeros((1, 2))])
+        n_now = nrm.copy()
+        for _ in range(self.position_iterations + 1):
+            D = Xx[ra] - Xx[rb]
+            dist = _norm(D)
+            over = np.where(pair, R - dist, -gap - _dot(Xx[ra] - Xr[ra], nrm))
+            deepest = float(over[pair].max()) if pair.any() else 0.0
+            push = np.maximum(over - slop, 0.0) * (BAUMGARTE * eff)
+            if _ == self.position_iterations or not push.any():
+                break
+            n_now[pair] = D[pair] / np.where(dist[pair] > 0.0, dist[pair], 1.0)[:, None]
+            n_now[face] = nrm[face]
+            P = n_now * push[:, None]
+            both = np.concatenate([P * wx[ra, None], P * -wx[rb, None]])
+            Xx[:, 0] += np.bincount(idx, both[:, 0], minlength=nU + 1)
+            Xx[:, 1] += np.bincount(idx, both[:, 1], minlength=nU + 1)
+            Xx[nU] = 0.0
+        X[:] = Xx[:nU]
+        self.last_overlap = max(deepest, 0.0)
+
+    # -- events ----------------------------------------------------------------------------------
+    def _events_of(
+        self,
+        keys: np.ndarray,
+        impacts: list[tuple[np.ndarray, ...]],
+        n: int,
+        t0: float,
+        dt: float,
+        U: np.ndarray,
+    ) -> None:
+        """Began: each impact, and each pair at rest touching now that did not before; ended:
+        each impact whose pair no longer touches, and each pair that touched and no longer
+        does. Held as (rows, other rows, points, normals, impulses, times) arrays."""
+        keys = np.unique(keys)
+        before = self._touching
+        self._touching = keys
+        struck = np.zeros(0, dtype=np.int64)
+        if impacts:
+            for pa, pb, point, nrm, P, tau in impacts:
+                t = t0 + tau
+                ga, gb = U[pa], U[pb]
+                self._began.append((ga, gb, point, nrm, P, t))
+                k = ga.astype(np.int64) * n + gb
+                struck = np.concatenate([struck, k])
+                apart = ~np.isin(k, keys)
+                if apart.any():
+                    self._ended.append(
+                        (ga[apart], gb[apart], point[apart], nrm[apart], P[apart], t[apart])
+                    )
+        new = keys[~np.isin(keys, before) & ~np.isin(keys, struck)]
+        gone = before[~np.isin(before, keys) & ~np.isin(before, struck)]
+        for which, sel in ((self._began, new), (self._ended, gone)):
+            if len(sel):
+                zero = np.zeros((len(sel), 2))
+                which.append((sel // n, sel % n, None, zero, zero, np.full(len(sel), t0 + dt)))
+
+    @property
+    def began(self) -> list[tuple[int, int, Any, Any, Any, float]]:
+        """Contacts between bodies that began in the last step: (row, other row, point, normal
+        toward row, impulse on row, time) each; point None where it is taken from the state."""
+        return _unpack(self._began)
+
+    @property
+    def ended(self) -> list[tuple[int, int, Any, Any, Any, float]]:
+        """Contacts between bodies that ended in the last step, as ``began``."""
+        return _unpack(self._ended)
+
+    # -- sleep -----------------------------------------------------------------------------------
+    def _wake_met(
+        self, a: np.ndarray, b: np.ndarray, x: np.ndarray, v: np.ndarray, radius: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Drop pairs of two sleepers; wake the group of a sleeper an awake body meets."""
+        asleep = self.asleep
+        sa, sb = asleep[a], asleep[b]
+        keep = ~(sa & sb)
+        a, b, sa, sb = a[keep], b[keep], sa[keep], sb[keep]
+        mixed = np.flatnonzero(sa != sb)
+        if len(mixed):
+            awake = np.where(sa[mixed], b[mixed], a[mixed])
+            moving = _norm(v[awake]) > self.sleep_speed
+            if moving.any():
+                sleeper = np.where(sa[mixed], a[mixed], b[mixed])[moving]
+                groups = np.unique(self._group[sleeper])
+                woken = asleep & np.isin(self._group, groups)
+                asleep[woken] = False
+                self.still[woken] = 0.0
+        return a, b
+
+    def _sleep_still(
+        self, v: np.ndarray, dt: float, live: np.ndarray, pa: np.ndarray, pb: np.ndarray
+    ) -> None:
+        """Count how long each body has been still; put to sleep each touching group that has
+        been still for sleep_time."""
+        if not math.isfinite(self.sleep_time):
+            return
+        still = self.still
+        slow = _norm(v[live]) <= self.sleep_speed
+        still[live] = np.where(slow, still[live] + dt, 0.0)
+        asleep = self.asleep
+        ready = (still >= self.sleep_time) & ~asleep
+        if not len(pa) or not ready[pa].any():
+            return
+        # Groups: connected pieces of the graph of resting pairs among awake bodies (each
+        # body takes the smallest label of its neighbours, then labels follow labels).
+        keep = ~asleep[pa] & ~asleep[pb]
+        pa, pb = pa[keep], pb[keep]
+        label = np.arange(len(v))
+        while True:
+            low = np.minimum(label[pa], label[pb])
+            new = label.copy()
+            np.minimum.at(new, pa, low)
+            np.minimum.at(new, pb, low)
+            new = new[new]
+            if np.array_equal(new, label):
+                break
+            label = new
+        # A group sleeps when every body in it is ready (a lone body never: it touches none).
+        in_pair = np.zeros(len(v), dtype=bool)
+        in_pair[pa] = in_pair[pb] = True
+        not_ready = np.unique(label[in_pair & ~ready])
+        sleepers = in_pair & ready & ~np.isin(label, not_ready)
+        if sleepers.any():
+            asleep[sleepers] = True
+            self._group = np.where(sleepers, label, self._group)
+            v[sleepers] = 0.0
+
+
+def _face_rows(
+    contacts: Contacts, X: np.ndarray, r: np.ndarray, margin: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """(body, unit normal toward it, gap, friction, face) of each solid face within ``margin``
+    of a ball (X, r)."""
+    grid = contacts._grid_of()
+    faces = contacts.faces
+    bi, f = grid.pairs(X, r + margin)
+    if not len(bi):
+        z = np.zeros(0, dtype=np.intp)
+        return z, np.zeros((0, 2)), np.zeros(0), np.zeros(0), z
+    L = len(faces.p)
+    x = X[bi]
+    nrm, _ = contacts._normals(f, x)
+    line = f < L
+    gap = np.empty(len(f))
+    inside = np.ones(len(f), dtype=bool)
+    if L:
+        fl = np.where(line, f, 0)
+        gap_l = _dot(x - faces.p[fl], nrm) - faces.rho[fl] - r[bi]
+        t_dir = np.stack([-faces.n[fl, 1], faces.n[fl, 0]], axis=1)
+        u = _dot(x - faces.p[fl], t_dir)
+        inside = ~line | ((u >= faces.lo[fl]) & (u <= faces.hi[fl]))
+        gap = gap_l
+    if len(faces.c):
+        fd = np.where(line, 0, f - L)
+        d = x - faces.c[fd]
+        gap = np.where(line, gap, _norm(d) - faces.r[fd] - r[bi])
+    keep = inside & (gap <= margin[bi])
+    return bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep]
+
+
+def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any, float]]:
+    out: list[tuple[int, int, Any, Any, Any, float]] = []
+    for rows, others, points, normals, impulses, times in parts:
+        for k in range(len(rows)):
+            p = None if points is None else points[k]
+            out.append((int(rows[k]), int(others[k]), p, normals[k], impulses[k], float(times[k])))
+    return out

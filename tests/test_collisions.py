@@ -1,0 +1,211 @@
+"""Contacts between bodies (engine.collisions), checked against the closed-form collision.
+
+Two discs that meet with unit normal n (from b to a) and closing speed u = -(v_a - v_b).n
+leave with v_a' = v_a + J n / m_a and v_b' = v_b - J n / m_b, J = (1 + e) u / (1/m_a + 1/m_b):
+momentum is conserved exactly, and with e = 1 kinetic energy too. Newton's cradle is the test
+of order; a stack on a floor the test of rest; filters and points the test of who collides.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from engine import Body, ContactEvent, Filter, Plane, Vector, World
+from engine.forces import Gravity
+
+G = 9.81
+
+
+def disc(world: World, pos: tuple[float, float], vel: tuple[float, float], **kw: object) -> Body:
+    return world.add(Body(Vector(*pos), Vector(*vel), Vector(0.0, 0.0), **kw))  # type: ignore[arg-type]
+
+
+def expected(
+    xa: np.ndarray,
+    va: np.ndarray,
+    ma: float,
+    xb: np.ndarray,
+    vb: np.ndarray,
+    mb: float,
+    R: float,
+    e: float,
+) -> tuple[float, np.ndarray, np.ndarray]:
+    """(time of impact, v_a', v_b') of two discs on straight paths, in closed form."""
+    d, w = xa - xb, va - vb
+    # |d + w t| = R: the smaller root of |w|^2 t^2 + 2 d.w t + |d|^2 - R^2 = 0.
+    A, B, C = w @ w, 2 * d @ w, d @ d - R * R
+    t = (-B - math.sqrt(B * B - 4 * A * C)) / (2 * A)
+    n = (d + w * t) / R
+    u = -(w @ n)
+    J = (1 + e) * u / (1 / ma + 1 / mb)
+    return t, va + J * n / ma, vb - J * n / mb
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    angle=st.floats(-1.2, 1.2),
+    ratio=st.floats(-3.0, 3.0),
+    e=st.sampled_from([1.0, 0.8, 0.5, 0.0]),
+    speed=st.floats(0.5, 50.0),
+)
+def test_two_discs_leave_as_the_closed_form_says(
+    angle: float, ratio: float, e: float, speed: float
+) -> None:
+    w = World(integrator="auto")
+    ma, mb = 1.0, 10.0**ratio
+    ra, rb = 0.5, 0.3
+    xa, va = np.array([0.0, 0.0]), np.array([speed, 0.0])
+    # b sits ahead, offset sideways so the blow is oblique (|offset| < ra + rb).
+    xb = np.array([3.0, (ra + rb) * math.sin(angle)])
+    vb = np.array([-0.3 * speed, 0.0])
+    a = disc(w, tuple(xa), tuple(va), mass=ma, radius=ra, restitution=e, friction=0.0)
+    b = disc(w, tuple(xb), tuple(vb), mass=mb, radius=rb, restitution=1.0, friction=0.0)
+    t_hit, va_want, vb_want = expected(xa, va, ma, xb, vb, mb, ra + rb, e)
+    p0 = ma * va + mb * vb
+    dt = 1 / 60
+    for _ in range(int(t_hit / dt) + 3):
+        w.step(dt)
+    va1, vb1 = np.array(a.vel), np.array(b.vel)
+    scale = speed * (ma + mb)
+    assert np.abs(ma * va1 + mb * vb1 - p0).max() <= 1e-12 * scale
+    assert np.abs(va1 - va_want).max() <= 1e-9 * speed * (1 + mb / ma)
+    assert np.abs(vb1 - vb_want).max() <= 1e-9 * speed * (1 + ma / mb)
+    if e == 1.0:
+        E0 = 0.5 * (ma * va @ va + mb * vb @ vb)
+        E1 = 0.5 * (ma * va1 @ va1 + mb * vb1 @ vb1)
+        assert abs(E1 - E0) <= 1e-9 * E0
+    # And each is where its new straight path from the moment of impact puts it.
+    t_end = w.t
+    xa_want = xa + va * t_hit + va_want * (t_end - t_hit)
+    assert np.abs(np.array(a.pos) - xa_want).max() <= 1e-9 * (1 + speed * t_end)
+
+
+@pytest.mark.parametrize("floor", [False, True])
+def test_newtons_cradle_passes_the_speed_down_the_row(floor: bool) -> None:
+    w = World(integrator="auto")
+    if floor:
+        # Lying on a frictionless line under gravity.
+        w.add_force(Gravity((0.0, -G)))
+        w.add_collider(Plane((0.0, -0.5), (0.0, 1.0), friction=0.0))
+    balls = [
+        disc(w, (float(k), 0.0), (0.0, 0.0), radius=0.5, restitution=1.0, friction=0.0)
+        for k in range(5)
+    ]
+    balls[0].pos = Vector(-0.7, 0.0)
+    balls[0].vel = Vector(2.0, 0.0)
+    for _ in range(60):
+        w.step(1 / 60)
+    v = [b.vel for b in balls]
+    assert abs(v[4].x - 2.0) <= 1e-6
+    for b in v[:4]:
+        assert abs(b.x) <= 1e-6 and abs(b.y) <= 1e-6
+    assert abs(v[4].y) <= 1e-6
+
+
+def test_points_never_collide_and_a_filter_turns_pairs_off() -> None:
+    w = World()
+    p = disc(w, (0.0, 0.0), (1.0, 0.0))  # radius 0: a point
+    q = disc(w, (0.5, 0.0), (-1.0, 0.0))
+    g1 = disc(w, (0.0, 5.0), (1.0, 0.0), radius=0.5, filter=Filter(group=3))
+    g2 = disc(w, (1.5, 5.0), (-1.0, 0.0), radius=0.5, filter=Filter(group=3))
+    m1 = disc(w, (0.0, 10.0), (1.0, 0.0), radius=0.5, filter=Filter(categories=1, mask=1))
+    m2 = disc(w, (1.5, 10.0), (-1.0, 0.0), radius=0.5, filter=Filter(categories=2, mask=2))
+    c1 = disc(w, (0.0, 15.0), (1.0, 0.0), radius=0.5, filter=Filter(categories=1, mask=2))
+    c2 = disc(w, (1.5, 15.0), (-1.0, 0.0), radius=0.5, filter=Filter(categories=2, mask=1))
+    for _ in range(90):
+        w.step(1 / 60)
+    for body, vx in ((p, 1.0), (q, -1.0), (g1, 1.0), (g2, -1.0), (m1, 1.0), (m2, -1.0)):
+        assert body.vel.x == vx  # untouched, bit for bit
+    assert c1.vel.x < 0.0 < c2.vel.x  # categories that meet each other's masks collide
+
+
+def test_filter_errors_name_the_argument() -> None:
+    with pytest.raises(ValueError, match="group"):
+        Filter(group=-1)
+    with pytest.raises(TypeError, match="mask"):
+        Filter(mask=1.5)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="categories"):
+        Filter(categories=1 << 40)
+    with pytest.raises(TypeError, match="filter"):
+        Body(Vector(0, 0), Vector(0, 0), Vector(0, 0), filter=3)  # type: ignore[arg-type]
+
+
+def test_an_impact_is_an_event_of_both_bodies() -> None:
+    w = World()
+    a = disc(w, (0.0, 0.0), (4.0, 0.0), radius=0.5, restitution=1.0, friction=0.0)
+    b = disc(w, (3.0, 0.0), (0.0, 0.0), radius=0.5, restitution=1.0, friction=0.0)
+    seen: list[ContactEvent] = []
+    w.on_contact(b, begin=seen.append)
+    hits: list[ContactEvent] = []
+    for _ in range(60):
+        w.step(1 / 60)
+        hits += w.began
+    assert len(hits) == 1 and seen == hits
+    ev = hits[0]
+    assert {ev.body, ev.collider} == {a, b}
+    assert abs(ev.time - 0.5) <= 1e-12  # 2 m of gap at 4 m/s
+    # The impulse on ev.body is its change of momentum: 4 kg m/s along the line.
+    assert abs(abs(ev.impulse.x) - 4.0) <= 1e-12 and ev.impulse.y == 0.0
+    assert abs(ev.point.x - 2.5) <= 1e-12  # where they touch: a at x = 2, b at x = 3
+
+
+@pytest.mark.parametrize("height", [2, 5, 10])
+def test_a_stack_on_a_floor_comes_to_rest_and_sleeps(height: int) -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    r = 0.5
+    stack = [disc(w, (0.0, r + 1.05 * k), (0.0, 0.0), radius=r) for k in range(height)]
+    for _ in range(600):
+        w.step(1 / 60)
+    y = np.array([b.pos.y for b in stack])
+    gaps = np.diff(y) - 2 * r
+    assert gaps.min() >= -0.01 * r  # overlap at most 1% of the radius
+    assert gaps.max() <= 1e-9  # and touching: nobody floats
+    assert all(b.vel.x == 0.0 and b.vel.y == 0.0 for b in stack)  # asleep: exactly still
+    before = [b.pos for b in stack]
+    for _ in range(600):
+        w.step(1 / 60)
+    assert [b.pos for b in stack] == before  # no creep, no jitter
+
+
+def test_a_sleeping_stack_wakes_when_struck() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    stack = [disc(w, (0.0, 0.5 + 1.0 * k), (0.0, 0.0), radius=0.5) for k in range(3)]
+    for _ in range(300):
+        w.step(1 / 60)
+    assert w._collisions.asleep.sum() == 3
+    disc(w, (-5.0, 2.5), (10.0, 0.0), radius=0.5, restitution=1.0)
+    for _ in range(60):
+        w.step(1 / 60)
+    assert stack[2].pos.x > 0.1  # the top ball was knocked off
+
+
+def test_snapshot_restore_replays_collisions_bit_for_bit() -> None:
+    def build() -> World:
+        w = World(integrator="auto")
+        w.add_force(Gravity((0.0, -G)))
+        w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+        rng = np.random.default_rng(3)
+        for k in range(30):
+            disc(w, (float(k % 6), 0.5 + 1.1 * (k // 6)), tuple(rng.uniform(-1, 1, 2)), radius=0.5)
+        return w
+
+    w = build()
+    for _ in range(50):
+        w.step(1 / 60)
+    snap = w.snapshot()
+    for _ in range(50):
+        w.step(1 / 60)
+    want = w.positions().copy()
+    w.restore(snap)
+    for _ in range(50):
+        w.step(1 / 60)
+    assert np.array_equal(w.positions(), want)
