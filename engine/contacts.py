@@ -42,7 +42,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .colliders import Box, Circle, Collider, Plane, Segment
-from .impact import TOUCH, disc_hits, line_hits
+from .impact import TOUCH, Pair, disc_hit_one, disc_hits, line_hit_one, line_hits
 from .vector import Vector
 
 __all__ = ["Contacts", "ContactEvent", "MAX_IMPACTS", "signed_distance"]
@@ -114,6 +114,12 @@ class _Faces:
     e: np.ndarray  # (L + D,) the owner's restitution
     mu: np.ndarray  # (L + D,) the owner's friction
     infinite: np.ndarray  # (L,) bool: a line with no end (a Plane or a Box wall)
+    # The same numbers as Python floats, for the one-body-at-a-time path:
+    line_list: list[tuple[Pair, Pair, float, bool, float, float]]  # (p, n, rho, two, lo, hi)
+    disc_list: list[tuple[Pair, float]]  # (c, r)
+    e_list: list[float]
+    mu_list: list[float]
+    owner_list: list[int]
 
 
 def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
@@ -142,7 +148,38 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
     e = np.array([colliders[k].restitution for k in owner], float)
     mu = np.array([colliders[k].friction for k in owner], float)
     infinite = np.isinf(lo) & np.isinf(hi)
-    return _Faces(p, n, rho, two, lo, hi, centres, r, owner, e, mu, infinite)
+    line_list = [
+        ((px, py), (nx, ny), rh, tw, a, b)
+        for (px, py), (nx, ny), rh, tw, a, b in zip(
+            p.tolist(),
+            n.tolist(),
+            rho.tolist(),
+            two.tolist(),
+            lo.tolist(),
+            hi.tolist(),
+            strict=True,
+        )
+    ]
+    disc_list = [((cx, cy), rd) for (cx, cy), rd in zip(centres.tolist(), r.tolist(), strict=True)]
+    return _Faces(
+        p,
+        n,
+        rho,
+        two,
+        lo,
+        hi,
+        centres,
+        r,
+        owner,
+        e,
+        mu,
+        infinite,
+        line_list,
+        disc_list,
+        e.tolist(),
+        mu.tolist(),
+        owner.tolist(),
+    )
 
 
 class Contacts:
@@ -159,6 +196,9 @@ class Contacts:
         self._ended: list[tuple[Any, ...]] = []
         self._grid: _FaceGrid | None = None
         self._rows = np.zeros(0, dtype=np.intp)  # the rows being solved (local -> World row)
+        #: Fewer rows than this to solve in a step are solved one body at a time in Python
+        #: floats (``_solve_few``), more in numpy arrays (``_solve``): the same results.
+        self.few = 16
         self.moved = False  # whether the last step's contacts changed any body's state
 
     # -- colliders and bodies ---------------------------------------------------------------
@@ -337,15 +377,19 @@ class Contacts:
                 x[asleep], v[asleep] = x0[asleep], 0.0
                 self.moved = True
             if len(rows):
-                X, V, touched = self._solve(
-                    rows, x0, v0, B, W, dt, t0, radius, restitution, friction, mass
+                rows, pb, pf = self._narrow(rows, x0, v0, B, W, dt, radius)
+            if len(rows):
+                # A few bodies are solved one at a time in Python floats, many in arrays:
+                # the same arithmetic, so the same result either way.
+                solve = self._solve_few if len(rows) < self.few else self._solve
+                changed, X, V = solve(
+                    rows, pb, pf, x0, v0, B, W, dt, t0, radius, restitution, friction, mass
                 )
                 # Only bodies that met something change: the rest keep (x1, v1) bit for bit.
-                t = np.flatnonzero(touched)
-                if len(t):
+                if len(changed):
                     if not self.moved:
                         x, v = x1.copy(), v1.copy()
-                    x[rows[t]], v[rows[t]] = X[t], V[t]
+                    x[changed], v[changed] = X, V
                     self.moved = True
         if self._sensors:
             self._sense(x, dt, t0, radius)
@@ -378,20 +422,93 @@ class Contacts:
         friction: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray]:
         """(rows whose path this step may come within reach of a solid face or that move on
-        one, rows that rest and stay put)."""
-        reach = _reach(v0, B, W, dt, radius)  # how far each ball can get, bounces and all
-        need = self.rest >= 0
+        one, rows that rest and stay put).
+
+        This pass goes over every body, so it is kept to a few array operations: the reach
+        (``_reach``) takes the largest acceleration of all bodies, |B| <= sqrt(2) max |B_x|,
+        |B_y|, in place of each body's own (a larger reach only lets more bodies through to
+        the exact tests), and one lower bound on the distance to every face (``_FaceGrid.gap``)
+        is compared with it.
+        """
+        T = dt
+        a_max = float(np.abs(B).max()) if W is B else float(max(np.abs(B).max(), np.abs(W).max()))
+        grow = 1.0 + 2e-9
+        reach = np.sqrt(v0[:, 0] * v0[:, 0] + v0[:, 1] * v0[:, 1])
+        reach *= T * grow
+        reach += radius * grow
+        reach += 1.5 * 1.4142136 * a_max * (T * T) * grow + TOUCH
+        need = self._grid_of().gap(x0) <= reach
         asleep = np.zeros(0, dtype=np.intp)
-        if need.any():
-            asleep = self._asleep(np.flatnonzero(need), x0, v0, W, friction)
+        resting = np.flatnonzero(self.rest >= 0)
+        if len(resting):
+            asleep = self._asleep(resting, x0, v0, W, friction)
+            need[resting] = True
             need[asleep] = False
-        grid = self._grid_of()
-        for k in range(grid.n_inf):
-            need |= grid.plane_distance(x0, k) <= reach
-        if grid.n_finite:
-            need |= grid.clearance(x0) <= reach
-        need[asleep] = False
         return np.flatnonzero(need), asleep
+
+    def _narrow(
+        self,
+        rows: np.ndarray,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        B: np.ndarray,
+        W: np.ndarray,
+        dt: float,
+        radius: np.ndarray,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Of the rows near a face, those that may meet one this step or rest on one, with the
+        (body, face) pairs each is to test: (rows, pair bodies as places in rows, pair faces).
+
+        The pairs are every face a body can reach this step, bounces and all (``_reach``);
+        the solver needs them all, since a bounce turns the path. But a body meets nothing at
+        all unless its first path, unturned, meets a face, so the bodies whose first paths
+        surely meet nothing are dropped, by tests that err only toward keeping:
+
+        * a flat face: with s the side the ball starts on, the gap g(t) = s n.(x(t) - p) - rho
+          is g0 + g1 t + g2 t^2 (``engine.impact``), and on [0, T] it is at least
+          g0 + min(g1, 0) T - |g2| T^2, with |g2| <= |B| / 2. A ball heading away from the face
+          (g1 >= 0) is dropped unless it is already within about |B| T^2 / 2 of it.
+        * a round face: the ball stays within |V| T + |B| T^2 / 2 of where it starts.
+
+        Each test is widened by 1e-8 of the lengths in it, far more than the rounding of the
+        root finders, so a pair the exact kernels would find a hit in is never dropped.
+        """
+        faces = self.faces
+        L = len(faces.p)
+        T = dt
+        X, V, Bb = x0.take(rows, axis=0), v0.take(rows, axis=0), B.take(rows, axis=0)
+        Wb = Bb if W is B else W.take(rows, axis=0)
+        r = radius.take(rows)
+        pb, pf = self._grid_of().pairs(X, _reach(V, Bb, Wb, T, r))
+        busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay: always solved
+        speed = np.sqrt(_dot(V, V))
+        acc = np.sqrt(_dot(Bb, Bb))
+        grow = 1.0 + 1e-8
+        line = pf < L
+        lb, lf = pb[line], pf[line]
+        if len(lb):
+            n = faces.n.take(lf, axis=0)
+            d0 = _dot(X.take(lb, axis=0) - faces.p.take(lf, axis=0), n)
+            s = np.where(faces.two[lf] & (d0 < 0.0), -1.0, 1.0)
+            toward = np.minimum(s * _dot(V.take(lb, axis=0), n), 0.0)  # min(g1, 0)
+            # g0 + min(g1, 0) T - |B| T^2 / 2 <= 0, widened: s d0 - rho_face - r on the left.
+            slack = (r + 0.5 * acc * (T * T)) * grow + 1e-8 * (1.0 + speed * T + acc * (T * T))
+            near = s * d0 * (1.0 - 1e-8) + toward * T <= faces.rho[lf] * grow + slack[lb]
+            busy[lb[near]] = True
+        db, df = pb[~line], pf[~line] - L
+        if len(db):
+            D = X.take(db, axis=0) - faces.c.take(df, axis=0)
+            # |D| - rho <= |V| T + |B| T^2 / 2 (or touching), widened.
+            reach = (r + speed * T + 0.5 * acc * (T * T)) * grow + 1e-8
+            near = np.sqrt(_dot(D, D)) <= faces.r[df] * grow + reach[db]
+            busy[db[near]] = True
+        kept = np.flatnonzero(busy)
+        if len(kept) < len(rows):
+            place = np.cumsum(busy) - 1  # a kept body's place among the kept
+            mine = busy[pb]
+            pb, pf = place[pb[mine]], pf[mine]
+            rows = rows[kept]
+        return rows, pb, pf
 
     def _asleep(
         self,
@@ -417,6 +534,8 @@ class Contacts:
     def _solve(
         self,
         rows: np.ndarray,
+        pb: np.ndarray,
+        pf: np.ndarray,
         x0: np.ndarray,
         v0: np.ndarray,
         Bf: np.ndarray,
@@ -430,20 +549,19 @@ class Contacts:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Move the bodies in ``rows`` through their step, impact by impact, in time order.
 
-        Returns their new positions and velocities and which of them met anything (struck,
-        rested, slid or lifted off).
+        (pb, pf) are the (body, face) pairs to test, the body by its place in ``rows``: every
+        face it could meet this step (whatever it bounces off, its path stays within _reach
+        of where it started). Returns the rows that met anything (struck, rested, slid or
+        lifted off) and their new positions and velocities.
         """
         self._rows = rows
-        X, V = x0[rows], v0[rows]
-        Bb, Wb = Bf[rows], Wf[rows]
+        X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
+        Bb, Wb = Bf.take(rows, axis=0), Wf.take(rows, axis=0)
         r, eb, mub, m = radius[rows], restitution[rows], friction[rows], mass[rows]
         rest = self.rest[rows]
         left = np.full(len(rows), dt)
         touched = np.zeros(len(rows), dtype=bool)
         active = np.arange(len(rows))
-        # The faces each body could meet this step, found once: whatever it bounces off, its
-        # path stays within _reach of where it started.
-        pb, pf = self._grid_of().pairs(X, _reach(V, Bb, Wb, dt, r))
         slot = np.full(len(rows), -1, dtype=np.intp)  # row -> index among the active
         for _ in range(MAX_IMPACTS):
             Xa, Va, ta = X[active], V[active], left[active]
@@ -524,7 +642,8 @@ class Contacts:
         touched |= rest >= 0
         touched |= self.rest[rows] >= 0  # lifted off this step
         self.rest[rows] = rest
-        return X, V, touched
+        t = np.flatnonzero(touched)
+        return rows[t], X[t], V[t]
 
     def push_out_rows(self, X: np.ndarray, V: np.ndarray, r: np.ndarray) -> np.ndarray:
         """Push rows of X out of any solid face they overlap (by more than TOUCH), in place;
@@ -535,11 +654,13 @@ class Contacts:
         for _ in range(3):
             moved = False
             if L:
-                d = X @ faces.n.T - _dot(faces.p, faces.n)
+                # n.x by columns, not X @ n.T: a matrix product may round a row differently
+                # with other rows beside it, and one row pushed alone must move as in a crowd.
+                d = X[:, :1] * faces.n[:, 0] + X[:, 1:] * faces.n[:, 1] - _dot(faces.p, faces.n)
                 side = np.where(faces.two[None, :] & (d < 0.0), -1.0, 1.0)
                 gap = side * d - faces.rho[None, :] - r[:, None]
                 tang = np.stack([-faces.n[:, 1], faces.n[:, 0]], axis=1)
-                u = X @ tang.T - _dot(faces.p, tang)
+                u = X[:, :1] * tang[:, 0] + X[:, 1:] * tang[:, 1] - _dot(faces.p, tang)
                 inside = (gap < -TOUCH * (1.0 + r[:, None])) & (u >= faces.lo) & (u <= faces.hi)
                 for i, j in zip(*np.nonzero(inside), strict=True):
                     nrm = side[i, j] * faces.n[j]
@@ -866,6 +987,299 @@ class Contacts:
             )
         )
 
+    # -- a few bodies, one at a time ---------------------------------------------------------
+    # The same steps as _solve and its helpers, for one body in Python floats: each function
+    # below is its array twin line for line (same operations in the same order, so the same
+    # bits), with an `if` where the array version computes both branches and picks with
+    # np.where. On a handful of bodies numpy's fixed cost per call (about a microsecond, a
+    # few hundred calls per round of impacts) is most of the time; floats have none.
+    def _solve_few(
+        self,
+        rows: np.ndarray,
+        pb: np.ndarray,
+        pf: np.ndarray,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        Bf: np.ndarray,
+        Wf: np.ndarray,
+        dt: float,
+        t0: float,
+        radius: np.ndarray,
+        restitution: np.ndarray,
+        friction: np.ndarray,
+        mass: np.ndarray,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``_solve``, one body after another in Python floats (for a few rows)."""
+        faces_of: list[list[int]] = [[] for _ in rows]
+        for b, f in zip(pb.tolist(), pf.tolist(), strict=True):
+            faces_of[b].append(f)
+        X = x0.take(rows, axis=0).tolist()
+        V = v0.take(rows, axis=0).tolist()
+        Bl = Bf.take(rows, axis=0).tolist()
+        Wl = Bl if Wf is Bf else Wf.take(rows, axis=0).tolist()
+        r, e = radius.take(rows).tolist(), restitution.take(rows).tolist()
+        mu, m = friction.take(rows).tolist(), mass.take(rows).tolist()
+        rest = self.rest.take(rows).tolist()
+        row_list = rows.tolist()
+        # Events with a key (round, phase, place) that puts them in _solve's order: round by
+        # round, lift-offs before impacts, bodies in row order.
+        began: list[tuple[tuple[int, int, int], tuple[Any, ...]]] = []
+        ended: list[tuple[tuple[int, int, int], tuple[Any, ...]]] = []
+        changed, Xc, Vc = [], [], []
+        for k, row in enumerate(row_list):
+            x, v, touched, rest_k = self._path_one(
+                k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
+                faces_of[k], dt, t0, began, ended,
+            )  # fmt: skip
+            if touched:
+                changed.append(row)
+                Xc.append(x)
+                Vc.append(v)
+                self.rest[row] = rest_k
+        for where, events in ((self._began, began), (self._ended, ended)):
+            if events:
+                events.sort(key=lambda ev: ev[0])
+                where.append(tuple(zip(*(ev for _, ev in events), strict=True)))
+        shape = (len(changed), 2)
+        return (
+            np.array(changed, dtype=np.intp),
+            np.array(Xc, dtype=float).reshape(shape),
+            np.array(Vc, dtype=float).reshape(shape),
+        )
+
+    def _path_one(
+        self,
+        k: int,
+        row: int,
+        x: Pair,
+        v: Pair,
+        b: Pair,
+        w: Pair,
+        r: float,
+        e: float,
+        mu: float,
+        m: float,
+        rest: int,
+        faces_of: list[int],
+        dt: float,
+        t0: float,
+        began: list[Any],
+        ended: list[Any],
+    ) -> tuple[Pair, Pair, bool, int]:
+        """One body through its step, impact by impact (_solve's loop for one row ``row``,
+        ``k`` its place among the rows solved): (x, v, whether it met anything, its rest)."""
+        L = len(self.faces.line_list)
+        rest_before = rest
+        touched = False
+        left = dt
+        for round_ in range(MAX_IMPACTS):
+            ta = left
+            vp, bp, wp = v, b, w  # this round's path (a resting body slides along its face)
+            dur = ta
+            stop = False
+            if rest >= 0:
+                slide = self._rest_path_one(rest, x, v, w, mu)
+                if slide is None:  # lifts off
+                    nx, ny, _ = self._normal_one(rest, x)
+                    point = (x[0] - nx * r, x[1] - ny * r)
+                    event = (row, self.faces.owner_list[rest], point, (nx, ny), (0.0, 0.0))
+                    ended.append(((round_, 0, k), (*event, t0 + dt - ta)))
+                    rest = -1
+                else:
+                    vp, bp, ts = slide
+                    wp = bp
+                    if ts < dur:
+                        dur, stop = ts, True
+            t_hit, face, normal = self._first_hit_one(x, vp, bp, dur, r, faces_of, rest)
+            hit = t_hit <= dur
+            tt = t_hit if hit else dur
+            xn = (
+                x[0] + vp[0] * tt + bp[0] * (0.5 * tt * tt),
+                x[1] + vp[1] * tt + bp[1] * (0.5 * tt * tt),
+            )
+            vn = (vp[0] + wp[0] * tt, vp[1] + wp[1] * tt)
+            stopped = stop and not hit
+            if stopped:
+                vn = (0.0, 0.0)  # slid to a stop: exactly at rest
+            done = False
+            if hit:
+                when = t0 + dt - ta + t_hit
+                vn, rest, done = self._bounce_one(
+                    k, row, round_, xn, vn, face, normal, rest, w, r, e, mu, m, dt, when,
+                    began, ended,
+                )  # fmt: skip
+                touched = True
+            if rest >= 0:
+                xn, vn = self._project_one(rest, xn, vn, r)
+                if rest >= L:  # rolled over a round edge onto a flat side it overlaps?
+                    Xr, Vr = np.array([xn]), np.array([vn])
+                    if self.push_out_rows(Xr, Vr, np.array([r]))[0]:
+                        rest = -1
+                    xn, vn = (float(Xr[0, 0]), float(Xr[0, 1])), (float(Vr[0, 0]), float(Vr[0, 1]))
+            x, v = xn, vn
+            more = (hit or stopped) and not done
+            left = ta - tt if more else 0.0
+            if not (more and ta - tt > 0.0):
+                break
+        else:
+            # Past the cap: it stops where its last impact put it, on a surface (as _solve).
+            self.capped += 1
+            touched = True
+            Xt, Vt = np.array([x]), np.zeros((1, 2))
+            self.push_out_rows(Xt, Vt, np.array([r]))
+            x, v = (float(Xt[0, 0]), float(Xt[0, 1])), (float(Vt[0, 0]), float(Vt[0, 1]))
+        return x, v, touched or rest >= 0 or rest_before >= 0, rest
+
+    def _normal_one(self, f: int, x: Pair) -> tuple[float, float, float]:
+        """``_normals`` for one face and point: (n_x, n_y, 1 / radius or 0 if flat)."""
+        faces = self.faces
+        L = len(faces.line_list)
+        if f < L:
+            p, (nx, ny), _, two, _, _ = faces.line_list[f]
+            side = -1.0 if two and (x[0] - p[0]) * nx + (x[1] - p[1]) * ny < 0.0 else 1.0
+            return nx * side, ny * side, 0.0
+        (cx, cy), _ = faces.disc_list[f - L]
+        dx, dy = x[0] - cx, x[1] - cy
+        dist = math.sqrt(dx * dx + dy * dy)
+        safe = dist if dist > 0.0 else 1.0
+        return dx / safe, dy / safe, 1.0 / safe
+
+    def _rest_path_one(
+        self, f: int, x: Pair, v: Pair, w: Pair, mub: float
+    ) -> tuple[Pair, Pair, float] | None:
+        """``_rest_paths`` for one body resting on face f: None if it lifts off, else its
+        sliding path (velocity, acceleration along the face, time it stops or inf)."""
+        faces = self.faces
+        nx, ny, curve = self._normal_one(f, x)
+        tx, ty = -ny, nx
+        a_n = w[0] * nx + w[1] * ny
+        v_n = v[0] * nx + v[1] * ny
+        u = v[0] * tx + v[1] * ty
+        off_end = False
+        if f < len(faces.line_list):
+            p, n, _, _, lo, hi = faces.line_list[f]
+            pos = (x[0] - p[0]) * -n[1] + (x[1] - p[1]) * n[0]
+            off_end = pos < lo or pos > hi
+        if a_n > 0.0 or v_n > 1e-9 or off_end or u * u * curve + a_n > 0.0:
+            return None
+        a_t = w[0] * tx + w[1] * ty
+        fr = mub * faces.mu_list[f] * max(-a_n, 0.0)
+        if u > 0.0:
+            a = a_t - fr
+        elif u < 0.0:
+            a = a_t + fr
+        elif abs(a_t) <= fr * (1.0 + 1e-12):  # held by static friction
+            a = 0.0
+        else:
+            a = a_t - math.copysign(fr, a_t)
+        slowing = (u > 0.0 and a < 0.0) or (u < 0.0 and a > 0.0)
+        ts = -u / a if slowing else math.inf
+        return (tx * u, ty * u), (tx * a, ty * a), ts
+
+    def _first_hit_one(
+        self, x: Pair, v: Pair, b: Pair, T: float, r: float, faces_of: list[int], rest: int
+    ) -> tuple[float, int, Pair]:
+        """``_first_hits`` for one body: (time or inf, face or -1, normal)."""
+        faces = self.faces
+        L = len(faces.line_list)
+        best, face, normal = math.inf, -1, (0.0, 0.0)
+        for f in faces_of:
+            if f == rest:
+                continue
+            if f < L:
+                p, n, rho, two, lo, hi = faces.line_list[f]
+                t, nrm = line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, T)
+            else:
+                c, rho = faces.disc_list[f - L]
+                t, nrm = disc_hit_one(x, v, b, c, rho + r, T), (0.0, 0.0)
+            if t <= best and t < math.inf:  # ties: the last listed, as _first_hits
+                best, face, normal = t, f, nrm
+        if face >= L:
+            # A round face's normal from where the ball's centre is at the impact.
+            c = faces.disc_list[face - L][0]
+            dx = x[0] + v[0] * best + b[0] * (0.5 * best * best) - c[0]
+            dy = x[1] + v[1] * best + b[1] * (0.5 * best * best) - c[1]
+            length = math.sqrt(dx * dx + dy * dy)
+            safe = length if length > 0.0 else 1.0
+            normal = (dx / safe, dy / safe)
+        return best, face, normal
+
+    def _bounce_one(
+        self,
+        k: int,
+        row: int,
+        round_: int,
+        x: Pair,
+        vel: Pair,
+        f: int,
+        n: Pair,
+        old: int,
+        w: Pair,
+        r: float,
+        eb: float,
+        mub: float,
+        m: float,
+        dt: float,
+        when: float,
+        began: list[Any],
+        ended: list[Any],
+    ) -> tuple[Pair, int, bool]:
+        """``_bounce`` for one body: (new velocity, face it rests on or -1, wedged)."""
+        faces = self.faces
+        nx, ny = n
+        vn = vel[0] * nx + vel[1] * ny
+        vtx, vty = vel[0] - nx * vn, vel[1] - ny * vn
+        e = eb * faces.e_list[f]
+        mu = mub * faces.mu_list[f]
+        vn_in = min(vn, 0.0)
+        vn_out = -e * vn_in
+        speed_t = math.sqrt(vtx * vtx + vty * vty)
+        keep = max(speed_t + mu * (1.0 + e) * vn_in, 0.0)
+        scale = keep / (speed_t if speed_t > 0.0 else 1.0)
+        a_n = w[0] * nx + w[1] * ny
+        settles = a_n < 0.0 and vn_out <= -a_n * (0.5 * dt)
+        if settles:
+            vn_out = 0.0
+        new_v = (vtx * scale + nx * vn_out, vty * scale + ny * vn_out)
+        stays = wedged = False
+        if old >= 0:
+            onx, ony, _ = self._normal_one(old, x)
+            stays = abs(onx * nx + ony * ny) < 1e-9
+            det = onx * ny - ony * nx
+            safe = det if abs(det) > 1e-12 else 1.0
+            l1 = (w[0] * ny - w[1] * nx) / safe
+            l2 = (onx * w[1] - ony * w[0]) / safe
+            slow = vn_out <= -l2 * (0.5 * dt)
+            wedged = slow and abs(det) > 1e-12 and l1 <= 0.0 and l2 <= 0.0
+            if wedged:
+                new_v = (0.0, 0.0)
+        rest = old if wedged or stays else (f if settles else -1)
+        if vn_in < 0.0:  # struck (a touch with no speed into the face is not reported)
+            point = (x[0] - nx * r, x[1] - ny * r)
+            impulse = ((new_v[0] - vel[0]) * m, (new_v[1] - vel[1]) * m)
+            event = (row, faces.owner_list[f], point, n, impulse, when)
+            began.append(((round_, 1, k), event))
+            if not settles:
+                ended.append(((round_, 1, k), event))
+        return new_v, rest, wedged
+
+    def _project_one(self, f: int, x: Pair, vel: Pair, r: float) -> tuple[Pair, Pair]:
+        """``_project`` for one body resting on face f: (position, velocity)."""
+        faces = self.faces
+        L = len(faces.line_list)
+        nx, ny, _ = self._normal_one(f, x)
+        vn = vel[0] * nx + vel[1] * ny
+        if f < L:
+            p, _, rho, _, _, _ = faces.line_list[f]
+            gap = (x[0] - p[0]) * nx + (x[1] - p[1]) * ny - rho - r
+            return (x[0] - nx * gap, x[1] - ny * gap), (vel[0] - nx * vn, vel[1] - ny * vn)
+        c, rho = faces.disc_list[f - L]
+        x = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
+        tx, ty = -ny, nx
+        speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1])
+        sign = 1.0 if vel[0] * tx + vel[1] * ty >= 0.0 else -1.0
+        return x, (tx * (sign * speed), ty * (sign * speed))
+
     # -- sensors ----------------------------------------------------------------------------
     def _sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
         """Report bodies that began or ended overlapping each sensor this step."""
@@ -1024,11 +1438,20 @@ class _FaceGrid:
         """Distance of each point from the k-th endless face (a wall of a Box is one column)."""
         nx, ny = self.inf_n[k]
         c = self.inf_c[k]
-        if ny == 0.0:
-            return x[:, 0] * nx - c
-        if nx == 0.0:
-            return x[:, 1] * ny - c
+        for col, n_col, other in ((0, nx, ny), (1, ny, nx)):
+            if other == 0.0 and n_col == 1.0:
+                return x[:, col] - c
+            if other == 0.0 and n_col == -1.0:
+                return -c - x[:, col]  # -x - c, exactly
         return x[:, 0] * nx + x[:, 1] * ny - c
+
+    def gap(self, x: np.ndarray) -> np.ndarray:
+        """A lower bound (length units) on each point's distance to every face: the clearance
+        from the finite ones and the distance from each endless one."""
+        d = self.clearance(x) if self.n_finite else np.full(len(x), np.inf)
+        for k in range(self.n_inf):
+            np.minimum(d, self.plane_distance(x, k), out=d)
+        return d
 
     def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, face) pairs to test: endless faces always, finite ones the grid lists."""

@@ -16,9 +16,13 @@ where the ball ended up: a fast ball cannot jump over a thin wall.
 * A round face (centre C): f(t) = |x(t) - C|^2 - rho^2 is the quartic, with D = X - C,
   f(t) = |B|^2 / 4 t^4 + V.B t^3 + (|V|^2 + D.B) t^2 + 2 D.V t + |D|^2 - rho^2.
 
-The first root in [0, T] is the impact (starting outside, the first crossing is inward). Every
-function here works on numpy arrays of pairs (one row per ball-face pair) and returns the
-time (``inf`` where there is no impact within T).
+The first root in [0, T] is the impact (starting outside, the first crossing is inward). The
+functions ending in ``s`` work on numpy arrays of pairs (one row per ball-face pair) and return
+the times (``inf`` where there is no impact within T). Each has a twin ending in ``_one`` for a
+single pair in Python floats, for when the pairs are few: numpy's fixed cost per call (about a
+microsecond) then outweighs the arithmetic. A twin does the same operations in the same order
+(numpy and Python floats round each +, -, *, / and sqrt alike), with an ``if`` where the array
+version computes both branches and picks with ``np.where``, so the two give the same bits.
 
 >>> import numpy as np
 >>> z = np.zeros((1, 2))
@@ -31,11 +35,22 @@ True
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
 
-__all__ = ["quadratic_first_root", "line_hits", "disc_hits", "TOUCH"]
+__all__ = [
+    "quadratic_first_root",
+    "quadratic_first_root_one",
+    "line_hits",
+    "line_hit_one",
+    "disc_hits",
+    "disc_hit_one",
+    "TOUCH",
+]
+
+Pair = tuple[float, float]
 
 #: Distances (length units) within this of a face count as touching it, not as a gap.
 TOUCH = 1e-12
@@ -78,6 +93,33 @@ def quadratic_first_root(g0: Any, g1: Any, g2: Any, T: Any, slack: Any = 0.0) ->
     return np.where(t <= T, t, inf)
 
 
+def quadratic_first_root_one(
+    g0: float, g1: float, g2: float, T: float, slack: float = 0.0
+) -> float:
+    """``quadratic_first_root`` for one quadratic, in Python floats (the same bits)."""
+    inf = math.inf
+    # max() keeps a nan first argument, as np.maximum does; every division is guarded by the
+    # test np.where makes, so none divides by zero.
+    disc = g1 * g1 - 4.0 * g2 * g0
+    sq = math.sqrt(max(disc, 0.0))
+    q = -0.5 * (g1 + math.copysign(sq, g1))
+    r1 = q / g2 if g2 != 0.0 else inf
+    r2 = g0 / q if q != 0.0 else inf
+    r1 = r1 if r1 >= 0.0 else inf
+    r2 = r2 if r2 >= 0.0 else inf
+    t = r1 if r1 < r2 else r2
+    if disc < 0.0:
+        t = inf
+    if g2 == 0.0:
+        t = -g0 / g1 if g1 < 0.0 else inf
+    if g0 <= 0.0:  # touching: now if heading in, else where it curves back (if it does)
+        if g1 < -slack or (g1 <= slack and g2 < 0.0):
+            t = 0.0
+        else:
+            t = -g1 / g2 if g2 < 0.0 and g1 > 0.0 else inf
+    return t if t <= T else inf
+
+
 def line_hits(
     X: np.ndarray,
     V: np.ndarray,
@@ -111,6 +153,43 @@ def line_hits(
         u = (xt[:, 0] - p[:, 0]) * -n[:, 1] + (xt[:, 1] - p[:, 1]) * n[:, 0]
         t = np.where(hit & (u >= lo) & (u <= hi), t, np.inf)
     return t, n * side[:, None]
+
+
+def line_hit_one(
+    X: Pair,
+    V: Pair,
+    B: Pair,
+    p: Pair,
+    n: Pair,
+    rho: float,
+    two_sided: bool,
+    lo: float,
+    hi: float,
+    T: float,
+) -> tuple[float, Pair]:
+    """``line_hits`` for one pair, in Python floats (the same bits): (time or inf, normal)."""
+    x, y = X
+    vx, vy = V
+    bx, by = B
+    px, py = p
+    nx, ny = n
+    d0 = (x - px) * nx + (y - py) * ny
+    vn = vx * nx + vy * ny
+    side = -1.0 if two_sided and d0 < 0.0 else 1.0
+    if two_sided and d0 == 0.0 and vn > 0.0:
+        side = -1.0
+    g0 = side * d0 - rho
+    if abs(g0) <= TOUCH * (1.0 + rho):
+        g0 = 0.0
+    speed = math.sqrt(vx * vx + vy * vy)
+    t = quadratic_first_root_one(g0, side * vn, 0.5 * side * (bx * nx + by * ny), T, 1e-12 * speed)
+    if t != math.inf:
+        xt = x + vx * t + bx * (0.5 * t * t)
+        yt = y + vy * t + by * (0.5 * t * t)
+        u = (xt - px) * -ny + (yt - py) * nx
+        if not lo <= u <= hi:
+            t = math.inf
+    return t, (nx * side, ny * side)
 
 
 def disc_hits(
@@ -164,13 +243,16 @@ def disc_hits(
         if not len(idx):
             return t
     Di, Vi, Bi, Ti = D[idx], V[idx], B[idx], T[idx]
+    # The powers of T by products, not **: numpy's power may use a vectorized pow whose last
+    # bit differs from the C library's (and from machine to machine).
+    T2 = Ti * Ti
     K = np.stack(
         [
             dd[idx] - rho[idx] * rho[idx],
             2.0 * _dot(Di, Vi) * Ti,
-            (vv[idx] + _dot(Di, Bi)) * Ti**2,
-            _dot(Vi, Bi) * Ti**3,
-            0.25 * _dot(Bi, Bi) * Ti**4,
+            (vv[idx] + _dot(Di, Bi)) * T2,
+            _dot(Vi, Bi) * (T2 * Ti),
+            0.25 * _dot(Bi, Bi) * (T2 * T2),
         ],
         axis=1,
     )
@@ -201,6 +283,63 @@ def disc_hits(
     return t
 
 
+def disc_hit_one(X: Pair, V: Pair, B: Pair, c: Pair, rho: float, T: float) -> float:
+    """``disc_hits`` for one pair, in Python floats (the same bits; the cubic and quartic go
+    to the same eigenvalue solver, one row)."""
+    inf = math.inf
+    x, y = X
+    vx, vy = V
+    bx, by = B
+    Dx, Dy = x - c[0], y - c[1]
+    dd, vv = Dx * Dx + Dy * Dy, vx * vx + vy * vy
+    dv, db, bb = Dx * vx + Dy * vy, Dx * bx + Dy * by, bx * bx + by * by
+    dist0 = math.sqrt(dd) - rho
+    reach = math.sqrt(vv) * T + math.sqrt(bb) * (0.5 * T * T)
+    leaving = False
+    if dist0 <= TOUCH * (1.0 + rho):  # touching
+        k1 = 2.0 * dv
+        slack = 1e-12 * math.sqrt(dd * vv)
+        if k1 < -slack or (k1 <= slack and vv + db < 0.0):
+            return 0.0
+        if not reach > 0.0:
+            return inf
+        leaving = True
+    elif not dist0 <= reach * (1.0 + 1e-9):
+        return inf
+    # The chord test: the path strays at most |B| T^2 / 2 from the chord X + V t.
+    s = -dv / (vv if vv > 0.0 else 1.0)
+    s = min(max(s, 0.0), T)
+    Cx, Cy = Dx + vx * s, Dy + vy * s
+    stray = 0.5 * math.sqrt(bb) * T * T
+    if not (math.sqrt(Cx * Cx + Cy * Cy) - stray <= rho * (1.0 + 1e-9) + TOUCH or leaving):
+        return inf
+    T2 = T * T
+    K = [
+        dd - rho * rho,
+        2.0 * dv * T,
+        (vv + db) * T2,
+        (vx * bx + vy * by) * (T2 * T),
+        0.25 * bb * (T2 * T2),
+    ]
+    if leaving:
+        K = K[1:] + [0.0]
+    scale = max(abs(k) for k in K)
+    if any(k != k for k in K):
+        scale = math.nan  # as np.max does: a nan coefficient leaves the quadratic
+    small = 1e-9 * scale
+    deg = 4 if abs(K[4]) > small else 3 if abs(K[3]) > small else 2
+    lower = 1e-9 if leaving else -1e-9
+    if deg > 2:
+        tau = float(_first_root_eig(np.array([K[: deg + 1]]), np.array([lower]))[0])
+    else:
+        tau = quadratic_first_root_one(K[0], K[1], K[2], 1.0)
+        tau = tau if tau > lower else inf
+    if tau == inf:
+        return inf
+    tau = _polish_one(K, tau)
+    return max(tau, 0.0) * T if tau <= 1.0 else inf
+
+
 def _first_root_eig(K: np.ndarray, lower: np.ndarray) -> np.ndarray:
     """Smallest real root in (lower, 1] of each row's polynomial k0 + k1 x + ... (degree 3
     or 4)."""
@@ -229,3 +368,14 @@ def _polish(K: np.ndarray, x: np.ndarray) -> np.ndarray:
         x = x - step
     # Newton can run off at a double root (a graze): keep the eigenvalue's root there.
     return np.where(np.abs(x - x0) <= 1e-6, x, x0)
+
+
+def _polish_one(K: list[float], x: float) -> float:
+    """``_polish`` for one polynomial, in Python floats (the same bits)."""
+    k0, k1, k2, k3, k4 = K
+    x0 = x
+    for _ in range(3):
+        f = k0 + x * (k1 + x * (k2 + x * (k3 + x * k4)))
+        df = k1 + x * (2.0 * k2 + x * (3.0 * k3 + x * 4.0 * k4))
+        x = x - (f / df if df != 0.0 else 0.0)
+    return x if abs(x - x0) <= 1e-6 else x0

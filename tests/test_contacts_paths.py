@@ -1,0 +1,242 @@
+"""The contacts' two paths give the same steps.
+
+A few bodies are solved one at a time in Python floats (``Contacts._solve_few``, and the
+``*_one`` kernels of ``engine.impact``), many in numpy arrays (``Contacts._solve``, the ``*s``
+kernels): the same operations in the same order, so the same results. Here both run on the
+same random pairs and scenes and are compared, the scenes step by step with every state and
+event (the paths are chosen with ``Contacts.few``: 0 always takes the arrays, a huge number
+always the floats).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+import pytest
+
+from engine import Body, Box, Circle, Plane, Segment, Vector, World
+from engine.forces import Gravity
+from engine.impact import (
+    disc_hit_one,
+    disc_hits,
+    line_hit_one,
+    line_hits,
+    quadratic_first_root,
+    quadratic_first_root_one,
+)
+
+REL = 1e-12
+
+
+def pairs_of(rng: np.random.Generator, m: int) -> dict[str, np.ndarray]:
+    """Random ball paths, a third of them starting exactly on their face (touching)."""
+    X = rng.normal(0.0, 1.0, (m, 2))
+    V = rng.normal(0.0, 5.0, (m, 2)) * rng.integers(0, 2, (m, 1))  # some at rest
+    B = rng.normal(0.0, 10.0, (m, 2)) * rng.integers(0, 2, (m, 1))  # some straight
+    angle = rng.uniform(0.0, 2.0 * np.pi, m)
+    return {
+        "X": X,
+        "V": V,
+        "B": B,
+        "p": rng.normal(0.0, 1.0, (m, 2)),
+        "n": np.stack([np.cos(angle), np.sin(angle)], axis=1),
+        "rho": rng.choice([0.0, 0.1, 0.5], m),
+        "T": rng.uniform(0.0, 0.5, m),
+        "touch": rng.random(m) < 0.3,
+    }
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_line_hit_one_is_line_hits(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    m = 400
+    d = pairs_of(rng, m)
+    X, p, n, rho = d["X"], d["p"], d["n"], d["rho"]
+    X[d["touch"]] = (p + n * rho[:, None])[d["touch"]]
+    two = rng.random(m) < 0.5
+    lo = np.where(rng.random(m) < 0.5, -np.inf, -rng.uniform(0.0, 2.0, m))
+    hi = np.where(np.isinf(lo), np.inf, rng.uniform(0.0, 2.0, m))
+    t, normal = line_hits(X, d["V"], d["B"], p, n, rho, two, lo, hi, d["T"])
+    assert np.isfinite(t).sum() > m // 10  # hits enough to mean something
+    for i in range(m):
+        t1, n1 = line_hit_one(
+            tuple(X[i]), tuple(d["V"][i]), tuple(d["B"][i]), tuple(p[i]), tuple(n[i]),
+            float(rho[i]), bool(two[i]), float(lo[i]), float(hi[i]), float(d["T"][i]),
+        )  # fmt: skip
+        assert t1 == t[i] and n1 == tuple(normal[i]), i
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_disc_hit_one_is_disc_hits(seed: int) -> None:
+    rng = np.random.default_rng(100 + seed)
+    m = 400
+    d = pairs_of(rng, m)
+    X, c, rho = d["X"], d["p"], d["rho"] + 0.2
+    u = rng.normal(0.0, 1.0, (m, 2))
+    u /= np.hypot(u[:, 0], u[:, 1])[:, None]
+    X[d["touch"]] = (c + u * rho[:, None])[d["touch"]]
+    t = disc_hits(X, d["V"], d["B"], c, rho, d["T"])
+    assert np.isfinite(t).sum() > m // 10
+    for i in range(m):
+        t1 = disc_hit_one(
+            tuple(X[i]), tuple(d["V"][i]), tuple(d["B"][i]), tuple(c[i]), float(rho[i]),
+            float(d["T"][i]),
+        )  # fmt: skip
+        assert t1 == t[i], i
+
+
+def test_quadratic_first_root_one_is_quadratic_first_root() -> None:
+    rng = np.random.default_rng(7)
+    m = 2000
+    # Zeros, ties and signs chosen often: each branch of the array version is taken.
+    g = rng.choice([-1.0, 0.0, 1e-300, 1.0, 3.0], (m, 3)) * rng.uniform(0.5, 2.0, (m, 3))
+    T = rng.uniform(0.0, 3.0, m)
+    t = quadratic_first_root(g[:, 0], g[:, 1], g[:, 2], T, 1e-12)
+    for i in range(m):
+        assert quadratic_first_root_one(*g[i].tolist(), float(T[i]), 1e-12) == t[i], g[i]
+
+
+# -- scenes ----------------------------------------------------------------------------------
+
+
+def scene(seed: int, method: str) -> tuple[World, list[Body]]:
+    """A room with a V, a shelf, pegs, capsules, thin walls and a slanted floor; 40 balls of
+    every size and material, thrown at up to 20 m/s: they bounce, settle, wedge in the V, slide
+    and stop on slopes, roll over round edges and off the ends of walls."""
+    rng = np.random.default_rng(seed)
+    w = World(integrator=method)
+    w.add_force(Gravity((float(rng.uniform(-2.0, 2.0)), -9.81)))
+    w.add_collider(Box((-10.0, -10.0), (10.0, 10.0), restitution=0.8, friction=0.7))
+    w.add_collider(Plane((0.0, -8.0), (0.2, 1.0), restitution=0.5))
+    w.add_collider(Segment((-8.0, -2.0), (-5.0, -5.0), friction=0.3))  # the V
+    w.add_collider(Segment((-5.0, -5.0), (-2.0, -2.0), friction=0.3))
+    w.add_collider(Segment((2.0, 0.0), (7.0, 0.5), 0.05))  # a shelf with round ends
+    for _ in range(6):
+        a = rng.uniform(-8.0, 8.0, 2)
+        angle = rng.uniform(0.0, np.pi)
+        b = a + rng.uniform(0.5, 3.0) * np.array([np.cos(angle), np.sin(angle)])
+        radius = float(rng.choice([0.0, 0.05, 0.5]))
+        w.add_collider(
+            Segment(tuple(a), tuple(b), radius, restitution=float(rng.uniform(0.2, 1.0)))
+        )
+    for _ in range(4):
+        w.add_collider(Circle(tuple(rng.uniform(-8.0, 8.0, 2)), float(rng.uniform(0.1, 1.0))))
+    bodies = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a ball dropped onto a collider is pushed off it
+        for _ in range(40):
+            bodies.append(
+                w.add(
+                    Body(
+                        Vector(*rng.uniform(-9.0, 9.0, 2)),
+                        Vector(*(rng.uniform(-20.0, 20.0, 2) * rng.integers(0, 2))),
+                        Vector(0.0, 0.0),
+                        radius=float(rng.choice([0.0, 0.05, 0.2, 0.5])),
+                        restitution=float(rng.choice([0.0, 0.3, 0.9, 1.0])),
+                        friction=float(rng.choice([0.0, 0.2, 0.6, 1.5])),
+                        mass=float(rng.uniform(0.5, 2.0)),
+                    )
+                )
+            )
+    return w, bodies
+
+
+def events(world: World, evs: list[Any]) -> list[tuple[Any, ...]]:
+    """Each event as (body's place, collider's place, point, normal, impulse, time)."""
+    return [
+        (
+            world.bodies.index(e.body),
+            world.colliders.index(e.collider),
+            *e.point,
+            *e.normal,
+            *e.impulse,
+            e.time,
+        )
+        for e in evs
+    ]
+
+
+def close(a: Any, b: Any) -> bool:
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return a.shape == b.shape and bool(
+        np.all(np.abs(a - b) <= REL * np.maximum(np.maximum(np.abs(a), np.abs(b)), 1.0))
+    )
+
+
+@pytest.mark.parametrize("method", ["auto", "semi_implicit_euler", "velocity_verlet"])
+@pytest.mark.parametrize("seed", range(3))
+def test_one_at_a_time_and_arrays_give_the_same_steps(seed: int, method: str) -> None:
+    arrays, bodies_a = scene(seed, method)
+    floats, bodies_f = scene(seed, method)
+    assert arrays._contacts is not None and floats._contacts is not None
+    arrays._contacts.few = 0
+    floats._contacts.few = 10**9
+    dt = 1.0 / 60.0
+    struck = rested = 0
+    for step in range(240):
+        arrays.step(dt)
+        floats.step(dt)
+        assert close(arrays.positions(), floats.positions()), step
+        assert close(arrays.velocities(), floats.velocities()), step
+        ea, ef = events(arrays, arrays.began), events(floats, floats.began)
+        assert len(ea) == len(ef) and all(
+            x[:2] == y[:2] and close(x[2:], y[2:]) for x, y in zip(ea, ef, strict=True)
+        ), step
+        ea, ef = events(arrays, arrays.ended), events(floats, floats.ended)
+        assert len(ea) == len(ef) and all(
+            x[:2] == y[:2] and close(x[2:], y[2:]) for x, y in zip(ea, ef, strict=True)
+        ), step
+        resting = [arrays.resting(b) for b in bodies_a]
+        assert [floats.resting(b) is not None for b in bodies_f] == [
+            r is not None for r in resting
+        ], step
+        struck += len(ea)
+        rested += sum(r is not None for r in resting)
+    assert arrays.capped == floats.capped
+    # The scenes exercise what they are meant to: many impacts, and bodies at rest.
+    assert struck > 100 and rested > 100, (struck, rested)
+    assert math.isfinite(float(arrays.positions().sum()))
+
+
+def rare_cases(method: str) -> World:
+    """What the random scenes seldom meet: a ball between two walls 1e-4 apart at 1e5 m/s
+    (more than MAX_IMPACTS impacts in a step: capped), and balls rolling over a capsule's round
+    end onto its flat side."""
+    w = World(integrator=method)
+    w.add_force(Gravity((0.0, -9.81)))
+    r = 0.1
+    w.add_collider(Segment((-100.0, 0.0), (100.0, 0.0)))
+    w.add_collider(Segment((-100.0, 2 * r + 1e-4), (100.0, 2 * r + 1e-4)))
+    w.add(
+        Body(
+            Vector(0.0, r + 5e-5),
+            Vector(0.0, 1e5),
+            Vector(0, 0),
+            radius=r,
+            restitution=1.0,
+            friction=0.0,
+        )
+    )
+    w.add_collider(Segment((0.0, 10.0), (3.0, 10.0), 0.5, friction=0.0))
+    for vx, x0 in ((1.0, -0.15), (2.0, -0.3), (3.0, -0.05)):
+        w.add(Body(Vector(x0, 10.75), Vector(vx, 0.0), Vector(0, 0), radius=0.2, restitution=0.0))
+    return w
+
+
+@pytest.mark.parametrize("method", ["auto", "semi_implicit_euler"])
+def test_rare_cases_give_the_same_steps(method: str) -> None:
+    arrays, floats = rare_cases(method), rare_cases(method)
+    assert arrays._contacts is not None and floats._contacts is not None
+    arrays._contacts.few = 0
+    floats._contacts.few = 10**9
+    for step in range(120):
+        arrays.step(1.0 / 60.0)
+        floats.step(1.0 / 60.0)
+        assert close(arrays.positions(), floats.positions()), step
+        assert close(arrays.velocities(), floats.velocities()), step
+        assert len(arrays.began) == len(floats.began), step
+        assert len(arrays.ended) == len(floats.ended), step
+    assert arrays.capped == floats.capped > 0
