@@ -144,6 +144,7 @@ class Collisions:
         self._lam_dt = 1.0
         self._base = 0
         self.rest_speed = 0.0
+        self.rmin = 0.0  # the smallest radius of a body that collides
 
     # -- bodies --------------------------------------------------------------------------------
     def changed(self, n: int) -> None:
@@ -166,6 +167,7 @@ class Collisions:
         live = self._live
         if live is None:
             live = self._live = np.flatnonzero(radius > 0.0)
+            self.rmin = float(radius[live].min()) if len(live) else 0.0
             g, c, m = group[live], cat[live], mask[live]
             every = 0xFFFFFFFF
             self._plain = bool(np.all(g == 0) & np.all(c == every) & np.all(m == every))

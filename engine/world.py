@@ -46,7 +46,7 @@ from .forces import Force, as_force
 from .impact import disc_hits, line_hits
 from .integrators import Integrator
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
-from .stability import SimulationDiverged
+from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
 from .vector import Vector
 
@@ -204,6 +204,7 @@ class World:
         self._contacts: Contacts | None = None  # made by the first add_collider
         self._collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
         self._pairs_on = False  # whether any two bodies may collide
+        self._pile_warned = False  # the contact solver's limit was reported
         self._handlers: list[tuple[Any, Callable[..., Any] | None, Callable[..., Any] | None]] = []
         self._began: list[ContactEvent] | None = None  # the last step's events, made on demand
         self._ended: list[ContactEvent] | None = None
@@ -435,6 +436,18 @@ class World:
             if fn is not None and not callable(fn):
                 raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
         self._handlers.append((target, begin, end))
+
+    @property
+    def contact_iterations(self) -> int:
+        """Iterations a step of the solver for bodies resting on one another (default 16):
+        more hold deeper piles with less overlap, at a cost per iteration."""
+        return self._collisions.iterations
+
+    @contact_iterations.setter
+    def contact_iterations(self, value: int) -> None:
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise ValueError(f"contact_iterations must be an int >= 1, got {value!r}")
+        self._collisions.iterations = value
 
     @property
     def capped(self) -> int:
@@ -945,6 +958,18 @@ class World:
             x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, share, store, contacts)
             if pairs.moved:
                 self._anchor = None
+            if pairs.last_overlap > 0.05 * pairs.rmin and not self._pile_warned:
+                # The resting solver's limit: a pile too deep for its iterations sinks into
+                # itself (README: "Limits of the contact solver").
+                self._pile_warned = True
+                warnings.warn(
+                    f"bodies overlap by {pairs.last_overlap:.3g} length units "
+                    f"({100 * pairs.last_overlap / pairs.rmin:.0f}% of the smallest radius): "
+                    f"this pile is past what {pairs.iterations} contact iterations a step can "
+                    f"hold; raise world.contact_iterations or take a smaller dt",
+                    StabilityWarning,
+                    stacklevel=3,
+                )
         store.prev_x, store.x, store.v = store.x, x1, v1
         self._void_budget()
 

@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 
 from engine import Body, ContactEvent, Filter, Plane, Vector, World
 from engine.forces import Gravity
+from engine.stability import StabilityWarning
 
 G = 9.81
 
@@ -209,3 +210,18 @@ def test_snapshot_restore_replays_collisions_bit_for_bit() -> None:
     for _ in range(50):
         w.step(1 / 60)
     assert np.array_equal(w.positions(), want)
+
+
+def test_a_pile_past_the_solver_is_warned_about() -> None:
+    # A column of 40 heavy-on-light balls with 1 iteration a step sinks into itself.
+    w = World(integrator="auto")
+    w.contact_iterations = 1
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    for k in range(40):
+        disc(w, (0.0, 0.5 + 1.0 * k), (0.0, 0.0), radius=0.5, mass=10.0 ** (k % 3))
+    with pytest.warns(StabilityWarning, match="contact_iterations"):
+        for _ in range(300):
+            w.step(1 / 60)
+    with pytest.raises(ValueError, match="contact_iterations"):
+        w.contact_iterations = 0
