@@ -68,8 +68,10 @@ __all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "BAUMGARTE"]
 MAX_ROUNDS = 64
 #: Overlap (fraction of the smaller radius) left alone: contacts touch, they do not chatter.
 SLOP = 0.002
+#: A body sleeps only while it overlaps others by at most this fraction of its radius.
+SLEEP_OVERLAP = 0.01
 #: Fraction of the overlap past SLOP removed per step by moving positions.
-BAUMGARTE = 0.4
+BAUMGARTE = 1.0
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -123,7 +125,7 @@ class Collisions:
         #: Seconds a touching group must stay still before it sleeps (inf: never).
         self.sleep_time = 0.5
         #: Speed (length units / s) under which a body counts as still.
-        self.sleep_speed = 0.01
+        self.sleep_speed = 0.05
         self.capped = 0  # steps whose impacts reached MAX_ROUNDS
         self.moved = False  # whether the last step changed any body's state
         self.last_rounds = 0  # impact rounds in the last step
@@ -145,6 +147,7 @@ class Collisions:
         self._base = 0
         self.rest_speed = 0.0
         self.rmin = 0.0  # the smallest radius of a body that collides
+        self._overlap = np.zeros(0)  # (N,) each body's deepest overlap / its radius
 
     # -- bodies --------------------------------------------------------------------------------
     def changed(self, n: int) -> None:
@@ -154,6 +157,11 @@ class Collisions:
         self._lam = np.zeros((0, 2))
         self._touching = np.zeros(0, dtype=np.int64)
         self.wake(n)
+
+    @property
+    def any_asleep(self) -> bool:
+        """Whether any body sleeps."""
+        return bool(self.asleep.any())
 
     def wake(self, n: int) -> None:
         """Wake every body (the World was changed by hand)."""
@@ -228,6 +236,7 @@ class Collisions:
         self.moved = False
         self._began, self._ended = [], []
         self.last_rounds = 0
+        self._overlap = np.zeros(0)
         n = len(x1)
         if len(self.still) != n:
             self.wake(n)
@@ -240,6 +249,8 @@ class Collisions:
             x1, v1 = x1.copy(), v1.copy()
             x1[asleep], v1[asleep] = x0[asleep], 0.0
             self.moved = True
+            if asleep[live].all():
+                return x1, v1  # nothing touches or parts: no events either
         a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
         if len(a) and self.moved:
             a, b = self._wake_met(a, b, x1, v1, store.radius)
@@ -256,7 +267,7 @@ class Collisions:
         r = store.radius[U]
         impacts = self._impacts(la, lb, X, V, AU, w, r, store.restitution[U], store.friction[U], dt)
         rest_a, rest_b = self._resting(
-            la, lb, X, V, AU, w, r, store.friction[U], dt, share, U, n, contacts
+            la, lb, X, x0[U], V, AU, w, r, store.friction[U], dt, share, U, n, contacts
         )
         if contacts is not None and len(contacts.faces.owner):
             # Nothing the pairs pushed is left inside a wall (with its speed into it taken).
@@ -479,6 +490,7 @@ class Collisions:
         la: np.ndarray,
         lb: np.ndarray,
         X: np.ndarray,
+        X0: np.ndarray,
         V: np.ndarray,
         A: np.ndarray,
         w: np.ndarray,
@@ -569,16 +581,153 @@ class Collisions:
             lam_old = lam.copy()
             lam[:, 0], lam[:, 1] = new_n, new_t
             self._apply(Vx, idx, d_lam, nrm, tang, wx, ra, rb, nU)
+        bands = self._bands(ra, rb, nU, X, A, r)
+        if bands is not None:
+            self._shock_velocity(bands, Vx, nrm, target, fric, lam[:, 0] * wx[ra], nU)
         V[:] = Vx[:nU]
-        # The contact forces acted through the step: they move the bodies by the method's
-        # share of dv dt.
+        # The contact forces acted through the step on a body whose contacts were closed as
+        # it began: they move it by the method's share of dv dt. A body that was still
+        # closing a gap met its contact only late in the step: it keeps its end position
+        # (the position passes below take back any overlap), else it would hover.
         if share:
-            X += (Vx[:nU] - V_before[:nU]) * (share * dt)
+            d0 = X0[ra] - np.vstack([X0, X0[:1]])[rb]
+            gap0 = np.where(
+                rb < nU, _norm(d0) - r[ra] - np.append(r, 0.0)[rb], gap + _dot(X0[ra] - X[ra], nrm)
+            )
+            late = (gap0 > SLOP * r[ra]) & (lam[:, 0] > 0.0)  # pushing, and open at the start
+            open_ = np.zeros(nU + 1, dtype=bool)
+            open_[ra[late]] = True
+            open_[rb[late]] = True
+            moving = (Vx[:nU] - V_before[:nU]) * (share * dt)
+            moving[open_[:nU]] = 0.0
+            X += moving
         order = np.argsort(keys)
         self._keys, self._lam, self._lam_dt = keys[order], lam[order], dt
         self._project(ra, rb, nU, X, X_ref, nrm, gap, wx, r, eff)
+        if bands is not None:
+            self._shock_position(bands, X, X_ref, nrm, gap, r, nU)
         sel = rb < nU
-        return ra[sel], rb[sel]
+        pa, pb = ra[sel], rb[sel]
+        # The overlap each body is left with: a group sleeps only once it is small.
+        over = r[pa] + r[pb] - _norm(X[pa] - X[pb])
+        deepest = np.zeros(nU)
+        np.maximum.at(deepest, pa, over)
+        np.maximum.at(deepest, pb, over)
+        self._overlap = np.zeros(n)
+        self._overlap[U] = deepest / r
+        self.last_overlap = float(over.max()) if len(over) else 0.0
+        return pa, pb
+
+    # -- shock propagation: piles, from the ground up -------------------------------------------
+    @staticmethod
+    def _bands(
+        ra: np.ndarray, rb: np.ndarray, nU: int, X: np.ndarray, A: np.ndarray, r: np.ndarray
+    ) -> tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray] | None:
+        """The contacts of a pile in layers from the ground up: (groups of row indices, upper
+        body, lower body, sign of the normal toward the upper body) per row; None without a
+        pull (no "up").
+
+        Jacobi passes information one contact per iteration, so a pile many layers deep cannot
+        be held by a few iterations. Shock propagation (Guendelman, Bridson and Fedkiw 2003)
+        ends the solve with one pass from the bottom up: bodies are sorted into bands of height
+        (one smallest radius thick, up being against the mean acceleration), and each band's
+        contacts with the bands below, already final, are made to hold with the lower body
+        taken as immovable. Contacts within one band (side by side) are left to the iterations.
+        """
+        g = A.sum(axis=0)
+        size = math.hypot(float(g[0]), float(g[1]))
+        if not size > 0.0 or not len(ra):
+            return None
+        up = -g / size
+        h = X @ up
+        band = np.floor((h - h.min()) / float(r.min())).astype(np.int64)
+        bandx = np.append(band, -1)  # the static world lies below everything
+        hx = np.append(h, -np.inf)
+        a_up = hx[ra] > hx[rb]
+        upper = np.where(a_up, ra, rb)
+        lower = np.where(a_up, rb, ra)
+        sign = np.where(a_up, 1.0, -1.0)
+        rows = np.flatnonzero(bandx[lower] < bandx[upper])
+        if not len(rows):
+            return None
+        rows = rows[np.argsort(bandx[upper[rows]], kind="stable")]
+        cut = np.flatnonzero(np.diff(bandx[upper[rows]])) + 1
+        return np.split(rows, cut), upper, lower, sign
+
+    @staticmethod
+    def _shock_velocity(
+        bands: tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray],
+        Vx: np.ndarray,
+        nrm: np.ndarray,
+        target: np.ndarray,
+        fric: np.ndarray,
+        pressed: np.ndarray,
+        nU: int,
+    ) -> None:
+        """From the ground up: no body left closing on a body below it (faster than its gap
+        allows in one step), nor sliding on it past what friction allows.
+
+        ``pressed``: the velocity each contact's normal impulse gave its body in the
+        iterations; friction may take up to mu times that, plus mu times this pass's own
+        normal change, off the sliding.
+        """
+        groups, upper, lower, sign = bands
+        for g in groups:
+            u, lo = upper[g], lower[g]
+            n = nrm[g] * sign[g, None]
+            t = np.stack([-n[:, 1], n[:, 0]], axis=1)
+            least, mu = target[g], fric[g]
+            share = 1.0 / np.bincount(u, minlength=nU + 1)[u]
+            budget = mu * pressed[g]
+            for _ in range(3):
+                d = Vx[u] - Vx[lo]
+                vn = d[:, 0] * n[:, 0] + d[:, 1] * n[:, 1]
+                vt = d[:, 0] * t[:, 0] + d[:, 1] * t[:, 1]
+                push = np.maximum(least - vn, 0.0) * share
+                budget = budget + mu * push
+                slide = np.clip(vt * share, -budget, budget)
+                budget = budget - np.abs(slide)
+                if not (push.any() or slide.any()):
+                    break
+                dv = n * push[:, None] - t * slide[:, None]
+                Vx[:, 0] += np.bincount(u, dv[:, 0], minlength=nU + 1)
+                Vx[:, 1] += np.bincount(u, dv[:, 1], minlength=nU + 1)
+        Vx[nU] = 0.0
+
+    @staticmethod
+    def _shock_position(
+        bands: tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray],
+        X: np.ndarray,
+        X_ref: np.ndarray,
+        nrm: np.ndarray,
+        gap: np.ndarray,
+        r: np.ndarray,
+        nU: int,
+    ) -> None:
+        """From the ground up: each body moved out of the bodies below it (past SLOP)."""
+        groups, upper, lower, sign = bands
+        Xx = np.vstack([X, np.zeros((1, 2))])
+        rx = np.append(r, 0.0)
+        for g in groups:
+            u, lo = upper[g], lower[g]
+            n0 = nrm[g] * sign[g, None]
+            face = lo == nU
+            R = rx[u] + rx[lo]
+            slop = SLOP * np.where(face, rx[u], np.minimum(rx[u], rx[lo]))
+            share = 1.0 / np.bincount(u, minlength=nU + 1)[u]
+            for _ in range(3):
+                d = Xx[u] - Xx[lo]
+                dist = _norm(d)
+                n = np.where(face[:, None], n0, d / np.where(dist > 0.0, dist, 1.0)[:, None])
+                moved = Xx[u] - np.vstack([X_ref, np.zeros((1, 2))])[u]
+                over = np.where(face, -gap[g] - _dot(moved, n0), R - dist)
+                push = np.maximum(over - slop, 0.0) * share
+                if not push.any():
+                    break
+                Xx[:, 0] += np.bincount(u, push * n[:, 0], minlength=nU + 1)
+                Xx[:, 1] += np.bincount(u, push * n[:, 1], minlength=nU + 1)
+                Xx[nU] = 0.0
+        X[:] = Xx[:nU]
 
     @staticmethod
     def _apply(
@@ -726,6 +875,9 @@ class Collisions:
         still[live] = np.where(slow, still[live] + dt, 0.0)
         asleep = self.asleep
         ready = (still >= self.sleep_time) & ~asleep
+        if len(self._overlap) == len(ready):
+            # ... and overlapping by at most SLEEP_OVERLAP of its radius.
+            ready &= self._overlap <= SLEEP_OVERLAP
         if not len(pa) or not ready[pa].any():
             return
         # Groups: connected pieces of the graph of resting pairs among awake bodies (each

@@ -354,11 +354,13 @@ class Contacts:
         friction: np.ndarray,
         mass: np.ndarray,
         acceleration: np.ndarray | None = None,
+        frozen: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The state after dt with every contact on the way applied: new (x, v) arrays.
 
         ``acceleration`` (N, 2): the bodies' constant acceleration over the step when it is
         known (the closed form); else the path is taken from the step's own update.
+        ``frozen`` (N,) bool: bodies asleep in a pile (engine.collisions), left alone here.
         """
         self._began, self._ended = [], []
         faces = self.faces
@@ -371,6 +373,8 @@ class Contacts:
         self.moved = False
         if len(faces.owner):
             rows, asleep = self._near(x0, v0, B, W, dt, radius, friction)
+            if frozen is not None:
+                rows = rows[~frozen[rows]]
             if len(asleep):
                 # Resting and held by friction: they stay put, whatever the method computed.
                 x, v = x1.copy(), v1.copy()

@@ -939,6 +939,7 @@ class World:
                 store.friction,
                 store.mass,
                 model.a0 if step is None else None,
+                self._collisions.asleep if self._pairs_on and self._collisions.any_asleep else None,
             )
             if contacts.moved:
                 self._anchor = None  # the closed form starts anew from the changed state
