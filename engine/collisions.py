@@ -68,8 +68,10 @@ __all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "BAUMGARTE"]
 MAX_ROUNDS = 64
 #: Overlap (fraction of the smaller radius) left alone: contacts touch, they do not chatter.
 SLOP = 0.002
+#: Iterations of each band's contacts in the shock passes (a body rests on two or three).
+SHOCK_ITERATIONS = 3
 #: A body sleeps only while it overlaps others by at most this fraction of its radius.
-SLEEP_OVERLAP = 0.01
+SLEEP_OVERLAP = 0.0075
 #: Fraction of the overlap past SLOP removed per step by moving positions.
 BAUMGARTE = 1.0
 
@@ -124,8 +126,9 @@ class Collisions:
         self.position_iterations = 2
         #: Seconds a touching group must stay still before it sleeps (inf: never).
         self.sleep_time = 0.5
-        #: Speed (length units / s) under which a body counts as still.
-        self.sleep_speed = 0.05
+        #: Speed (length units / s) under which a body counts as still; None: |a| dt, the
+        #: speed the largest acceleration adds in one step (Chipmunk's idle speed).
+        self.sleep_speed: float | None = None
         self.capped = 0  # steps whose impacts reached MAX_ROUNDS
         self.moved = False  # whether the last step changed any body's state
         self.last_rounds = 0  # impact rounds in the last step
@@ -148,6 +151,7 @@ class Collisions:
         self.rest_speed = 0.0
         self.rmin = 0.0  # the smallest radius of a body that collides
         self._overlap = np.zeros(0)  # (N,) each body's deepest overlap / its radius
+        self._still_speed = 0.0
 
     # -- bodies --------------------------------------------------------------------------------
     def changed(self, n: int) -> None:
@@ -251,6 +255,11 @@ class Collisions:
             self.moved = True
             if asleep[live].all():
                 return x1, v1  # nothing touches or parts: no events either
+        if self.sleep_speed is None:
+            a_max = float(np.abs(A[live]).max()) if len(live) else 0.0
+            self._still_speed = a_max * dt
+        else:
+            self._still_speed = self.sleep_speed
         a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
         if len(a) and self.moved:
             a, b = self._wake_met(a, b, x1, v1, store.radius)
@@ -272,6 +281,14 @@ class Collisions:
         if contacts is not None and len(contacts.faces.owner):
             # Nothing the pairs pushed is left inside a wall (with its speed into it taken).
             contacts.push_out_rows(X, V, r)
+        # The overlap each body is left with: a group sleeps only once it is small.
+        over = r[rest_a] + r[rest_b] - _norm(X[rest_a] - X[rest_b])
+        deepest = np.zeros(len(U))
+        np.maximum.at(deepest, rest_a, over)
+        np.maximum.at(deepest, rest_b, over)
+        self._overlap = np.zeros(n)
+        self._overlap[U] = deepest / r
+        self.last_overlap = float(over.max()) if len(over) else 0.0
         x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
         x[U], v[U] = X, V
         self.moved = True
@@ -607,16 +624,7 @@ class Collisions:
         if bands is not None:
             self._shock_position(bands, X, X_ref, nrm, gap, r, nU)
         sel = rb < nU
-        pa, pb = ra[sel], rb[sel]
-        # The overlap each body is left with: a group sleeps only once it is small.
-        over = r[pa] + r[pb] - _norm(X[pa] - X[pb])
-        deepest = np.zeros(nU)
-        np.maximum.at(deepest, pa, over)
-        np.maximum.at(deepest, pb, over)
-        self._overlap = np.zeros(n)
-        self._overlap[U] = deepest / r
-        self.last_overlap = float(over.max()) if len(over) else 0.0
-        return pa, pb
+        return ra[sel], rb[sel]
 
     # -- shock propagation: piles, from the ground up -------------------------------------------
     @staticmethod
@@ -679,7 +687,7 @@ class Collisions:
             least, mu = target[g], fric[g]
             share = 1.0 / np.bincount(u, minlength=nU + 1)[u]
             budget = mu * pressed[g]
-            for _ in range(3):
+            for _ in range(SHOCK_ITERATIONS):
                 d = Vx[u] - Vx[lo]
                 vn = d[:, 0] * n[:, 0] + d[:, 1] * n[:, 1]
                 vt = d[:, 0] * t[:, 0] + d[:, 1] * t[:, 1]
@@ -715,7 +723,7 @@ class Collisions:
             R = rx[u] + rx[lo]
             slop = SLOP * np.where(face, rx[u], np.minimum(rx[u], rx[lo]))
             share = 1.0 / np.bincount(u, minlength=nU + 1)[u]
-            for _ in range(3):
+            for _ in range(SHOCK_ITERATIONS):
                 d = Xx[u] - Xx[lo]
                 dist = _norm(d)
                 n = np.where(face[:, None], n0, d / np.where(dist > 0.0, dist, 1.0)[:, None])
@@ -854,7 +862,7 @@ class Collisions:
         mixed = np.flatnonzero(sa != sb)
         if len(mixed):
             awake = np.where(sa[mixed], b[mixed], a[mixed])
-            moving = _norm(v[awake]) > self.sleep_speed
+            moving = _norm(v[awake]) > self._still_speed
             if moving.any():
                 sleeper = np.where(sa[mixed], a[mixed], b[mixed])[moving]
                 groups = np.unique(self._group[sleeper])
@@ -871,7 +879,7 @@ class Collisions:
         if not math.isfinite(self.sleep_time):
             return
         still = self.still
-        slow = _norm(v[live]) <= self.sleep_speed
+        slow = _norm(v[live]) <= self._still_speed
         still[live] = np.where(slow, still[live] + dt, 0.0)
         asleep = self.asleep
         ready = (still >= self.sleep_time) & ~asleep
