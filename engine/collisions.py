@@ -70,6 +70,9 @@ MAX_ROUNDS = 64
 SLOP = 0.002
 #: Iterations of each band's contacts in the shock passes (a body rests on two or three).
 SHOCK_ITERATIONS = 3
+#: Thickness of the shock passes' bands of height, in smallest radii: contacts steeper than
+#: asin(BAND / 2) (44 degrees; a pile's are 60) always join two bands.
+BAND = 1.4
 #: A body sleeps only while it overlaps others by at most this fraction of its radius.
 SLEEP_OVERLAP = 0.0075
 #: Fraction of the overlap past SLOP removed per step by moving positions.
@@ -119,7 +122,7 @@ class Collisions:
 
     def __init__(self) -> None:
         #: Jacobi iterations of the resting-contact solver per step.
-        self.iterations = 16
+        self.iterations = 8
         #: Spectral radius assumed for Chebyshev's acceleration (0: plain Jacobi).
         self.rho = 0.97
         #: Position iterations removing overlap per step.
@@ -600,7 +603,7 @@ class Collisions:
             self._apply(Vx, idx, d_lam, nrm, tang, wx, ra, rb, nU)
         bands = self._bands(ra, rb, nU, X, A, r)
         if bands is not None:
-            self._shock_velocity(bands, Vx, nrm, target, fric, lam[:, 0] * wx[ra], nU)
+            self._shock_velocity(bands, Vx, nrm, target, fric, lam[:, 0], wx)
         V[:] = Vx[:nU]
         # The contact forces acted through the step on a body whose contacts were closed as
         # it began: they move it by the method's share of dv dt. A body that was still
@@ -630,17 +633,18 @@ class Collisions:
     @staticmethod
     def _bands(
         ra: np.ndarray, rb: np.ndarray, nU: int, X: np.ndarray, A: np.ndarray, r: np.ndarray
-    ) -> tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray] | None:
-        """The contacts of a pile in layers from the ground up: (groups of row indices, upper
-        body, lower body, sign of the normal toward the upper body) per row; None without a
-        pull (no "up").
+    ) -> list[tuple[np.ndarray, ...]] | None:
+        """The contacts of a pile in layers from the ground up; None without a pull (no "up").
 
         Jacobi passes information one contact per iteration, so a pile many layers deep cannot
         be held by a few iterations. Shock propagation (Guendelman, Bridson and Fedkiw 2003)
         ends the solve with one pass from the bottom up: bodies are sorted into bands of height
-        (one smallest radius thick, up being against the mean acceleration), and each band's
+        (up being against the mean acceleration, BAND smallest radii thick), and each band's
         contacts with the bands below, already final, are made to hold with the lower body
         taken as immovable. Contacts within one band (side by side) are left to the iterations.
+
+        Each band: (rows, its upper bodies without repeats, each row's index into them, lower
+        body, sign of the normal toward the upper body).
         """
         g = A.sum(axis=0)
         size = math.hypot(float(g[0]), float(g[1]))
@@ -648,63 +652,67 @@ class Collisions:
             return None
         up = -g / size
         h = X @ up
-        band = np.floor((h - h.min()) / float(r.min())).astype(np.int64)
+        band = np.floor((h - h.min()) / (BAND * float(r.min()))).astype(np.int64)
         bandx = np.append(band, -1)  # the static world lies below everything
         hx = np.append(h, -np.inf)
         a_up = hx[ra] > hx[rb]
         upper = np.where(a_up, ra, rb)
-        lower = np.where(a_up, rb, ra)
-        sign = np.where(a_up, 1.0, -1.0)
-        rows = np.flatnonzero(bandx[lower] < bandx[upper])
+        rows = np.flatnonzero(bandx[np.where(a_up, rb, ra)] < bandx[upper])
         if not len(rows):
             return None
         rows = rows[np.argsort(bandx[upper[rows]], kind="stable")]
         cut = np.flatnonzero(np.diff(bandx[upper[rows]])) + 1
-        return np.split(rows, cut), upper, lower, sign
+        out = []
+        for g_rows in np.split(rows, cut):
+            u = upper[g_rows]
+            uu, inv = np.unique(u, return_inverse=True)
+            up_a = a_up[g_rows]
+            lo = np.where(up_a, rb[g_rows], ra[g_rows])
+            out.append((g_rows, uu, inv, lo, np.where(up_a, 1.0, -1.0)))
+        return out
 
     @staticmethod
     def _shock_velocity(
-        bands: tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray],
+        bands: list[tuple[np.ndarray, ...]],
         Vx: np.ndarray,
         nrm: np.ndarray,
         target: np.ndarray,
         fric: np.ndarray,
-        pressed: np.ndarray,
-        nU: int,
+        lam_n: np.ndarray,
+        wx: np.ndarray,
     ) -> None:
         """From the ground up: no body left closing on a body below it (faster than its gap
         allows in one step), nor sliding on it past what friction allows.
 
-        ``pressed``: the velocity each contact's normal impulse gave its body in the
-        iterations; friction may take up to mu times that, plus mu times this pass's own
-        normal change, off the sliding.
+        ``lam_n``: each contact's normal impulse from the iterations (``wx``: inverse masses);
+        friction may take up to mu times that, plus mu times this pass's own
+        normal change, off the sliding. Each body's rows share the change (1 / their count).
         """
-        groups, upper, lower, sign = bands
-        for g in groups:
-            u, lo = upper[g], lower[g]
-            n = nrm[g] * sign[g, None]
-            t = np.stack([-n[:, 1], n[:, 0]], axis=1)
+        for g, uu, inv, lo, sign in bands:
+            n = nrm[g] * sign[:, None]
+            nx, ny = n[:, 0], n[:, 1]
             least, mu = target[g], fric[g]
-            share = 1.0 / np.bincount(u, minlength=nU + 1)[u]
-            budget = mu * pressed[g]
+            k = len(uu)
+            share = 1.0 / np.bincount(inv, minlength=k)[inv]
+            budget = mu * lam_n[g] * wx[uu][inv]  # the speed the impulse gave the upper body
+            Vu = Vx[uu]
+            Vl = Vx[lo]  # final already: lower bands came first
             for _ in range(SHOCK_ITERATIONS):
-                d = Vx[u] - Vx[lo]
-                vn = d[:, 0] * n[:, 0] + d[:, 1] * n[:, 1]
-                vt = d[:, 0] * t[:, 0] + d[:, 1] * t[:, 1]
+                d = Vu[inv] - Vl
+                vn = d[:, 0] * nx + d[:, 1] * ny
+                vt = d[:, 1] * nx - d[:, 0] * ny  # along the tangent (-n_y, n_x)
                 push = np.maximum(least - vn, 0.0) * share
                 budget = budget + mu * push
                 slide = np.clip(vt * share, -budget, budget)
                 budget = budget - np.abs(slide)
-                if not (push.any() or slide.any()):
-                    break
-                dv = n * push[:, None] - t * slide[:, None]
-                Vx[:, 0] += np.bincount(u, dv[:, 0], minlength=nU + 1)
-                Vx[:, 1] += np.bincount(u, dv[:, 1], minlength=nU + 1)
-        Vx[nU] = 0.0
+                # dv = n push - t slide, with t = (-n_y, n_x)
+                Vu[:, 0] += np.bincount(inv, nx * push + ny * slide, minlength=k)
+                Vu[:, 1] += np.bincount(inv, ny * push - nx * slide, minlength=k)
+            Vx[uu] = Vu
 
     @staticmethod
     def _shock_position(
-        bands: tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray],
+        bands: list[tuple[np.ndarray, ...]],
         X: np.ndarray,
         X_ref: np.ndarray,
         nrm: np.ndarray,
@@ -713,28 +721,31 @@ class Collisions:
         nU: int,
     ) -> None:
         """From the ground up: each body moved out of the bodies below it (past SLOP)."""
-        groups, upper, lower, sign = bands
         Xx = np.vstack([X, np.zeros((1, 2))])
         rx = np.append(r, 0.0)
-        for g in groups:
-            u, lo = upper[g], lower[g]
-            n0 = nrm[g] * sign[g, None]
+        for g, uu, inv, lo, sign in bands:
+            n0 = nrm[g] * sign[:, None]
             face = lo == nU
-            R = rx[u] + rx[lo]
-            slop = SLOP * np.where(face, rx[u], np.minimum(rx[u], rx[lo]))
-            share = 1.0 / np.bincount(u, minlength=nU + 1)[u]
+            ru = r[uu][inv]
+            R = ru + rx[lo]
+            slop = SLOP * np.where(face, ru, np.minimum(ru, rx[lo]))
+            # A face's gap now: as measured, plus how far the body has moved along its normal.
+            base = -gap[g] + _dot(X_ref[uu][inv], n0)
+            k = len(uu)
+            share = 1.0 / np.bincount(inv, minlength=k)[inv]
+            Xu = Xx[uu]
+            Xl = Xx[lo]
             for _ in range(SHOCK_ITERATIONS):
-                d = Xx[u] - Xx[lo]
+                d = Xu[inv] - Xl
                 dist = _norm(d)
                 n = np.where(face[:, None], n0, d / np.where(dist > 0.0, dist, 1.0)[:, None])
-                moved = Xx[u] - np.vstack([X_ref, np.zeros((1, 2))])[u]
-                over = np.where(face, -gap[g] - _dot(moved, n0), R - dist)
+                over = np.where(face, base - _dot(Xu[inv], n0), R - dist)
                 push = np.maximum(over - slop, 0.0) * share
                 if not push.any():
                     break
-                Xx[:, 0] += np.bincount(u, push * n[:, 0], minlength=nU + 1)
-                Xx[:, 1] += np.bincount(u, push * n[:, 1], minlength=nU + 1)
-                Xx[nU] = 0.0
+                Xu[:, 0] += np.bincount(inv, push * n[:, 0], minlength=k)
+                Xu[:, 1] += np.bincount(inv, push * n[:, 1], minlength=k)
+            Xx[uu] = Xu
         X[:] = Xx[:nU]
 
     @staticmethod

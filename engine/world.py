@@ -439,7 +439,7 @@ class World:
 
     @property
     def contact_iterations(self) -> int:
-        """Iterations a step of the solver for bodies resting on one another (default 16):
+        """Iterations a step of the solver for bodies resting on one another (default 8):
         more hold deeper piles with less overlap, at a cost per iteration."""
         return self._collisions.iterations
 
