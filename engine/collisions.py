@@ -662,7 +662,7 @@ class Collisions:
             return None
         rows = rows[np.argsort(bandx[upper[rows]], kind="stable")]
         cut = np.flatnonzero(np.diff(bandx[upper[rows]])) + 1
-        out = []
+        out: list[tuple[np.ndarray, ...]] = []
         for g_rows in np.split(rows, cut):
             u = upper[g_rows]
             uu, inv = np.unique(u, return_inverse=True)
