@@ -62,7 +62,7 @@ from .impact import TOUCH, disc_hits
 if TYPE_CHECKING:
     from .contacts import Contacts
 
-__all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "BAUMGARTE"]
+__all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "BAUMGARTE", "deepest_overlap"]
 
 #: Impact rounds in one step (each resolves every pair that comes first for both bodies).
 MAX_ROUNDS = 64
@@ -115,6 +115,33 @@ def _grid_pairs(P: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
     same = np.repeat(np.arange(n * 5) % 5 == 0, cnt)
     keep = np.where(same, a < b, True)
     return a[keep], b[keep]
+
+
+def deepest_overlap(
+    x: np.ndarray,
+    radius: np.ndarray,
+    filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+) -> float:
+    """The deepest overlap (length units, 0 if none) of discs at positions x (N, 2) with radii
+    ``radius`` (N,): max of r_a + r_b - |x_a - x_b| over every pair (that ``filters``, arrays of
+    group, categories and mask, lets collide), found through a grid.
+
+    >>> deepest_overlap(np.array([[0.0, 0.0], [0.9, 0.0], [5.0, 0.0]]), np.full(3, 0.5))
+    0.09999999999999998
+    """
+    x = np.asarray(x, dtype=float).reshape(-1, 2)
+    radius = np.broadcast_to(np.asarray(radius, dtype=float), (len(x),))
+    if len(x) < 2:
+        return 0.0
+    a, b = _grid_pairs(x, 2.0 * float(radius.max()) + 1e-300)
+    if filters is not None and len(a):
+        g, c, m = filters
+        ok = ~((g[a] == g[b]) & (g[a] != 0)) & ((c[a] & m[b]) != 0) & ((c[b] & m[a]) != 0)
+        a, b = a[ok], b[ok]
+    if not len(a):
+        return 0.0
+    over = radius[a] + radius[b] - _norm(x[a] - x[b])
+    return max(float(over.max()), 0.0)
 
 
 class Collisions:

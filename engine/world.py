@@ -39,7 +39,7 @@ import numpy as np
 from . import checks
 from .body import Body, State, coerce_mass, coerce_state
 from .colliders import Collider, _point
-from .collisions import Collisions
+from .collisions import Collisions, deepest_overlap
 from .contacts import ContactEvent, Contacts, signed_distance
 from .forcefield import ForceModel
 from .forces import Force, as_force
@@ -436,6 +436,31 @@ class World:
             if fn is not None and not callable(fn):
                 raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
         self._handlers.append((target, begin, end))
+
+    @property
+    def sleeping(self) -> int:
+        """How many bodies sleep (a still pile: they cost nothing until something meets them)."""
+        return int(self._collisions.asleep.sum())
+
+    def is_sleeping(self, body: Body) -> bool:
+        """Whether ``body`` sleeps (it stays exactly put until an awake body meets its group)."""
+        if not isinstance(body, Body) or body.world is not self:
+            raise ValueError(f"that body is not in this World: {body!r}")
+        asleep = self._collisions.asleep
+        assert self._store is not None
+        row = self._store.row(body._slot)
+        return bool(row < len(asleep) and asleep[row])
+
+    def overlap(self) -> float:
+        """The deepest overlap (length units) between two bodies that collide, now."""
+        store = self._store
+        if store is None or store.dim != 2 or not self._bodies:
+            return 0.0
+        live = self._collisions._prepare(store.radius, store.group, store.categories, store.mask)
+        if len(live) < 2 or self._collisions._one_group:
+            return 0.0
+        filters = (store.group[live], store.categories[live], store.mask[live])
+        return deepest_overlap(store.x[live], store.radius[live], filters)
 
     @property
     def contact_iterations(self) -> int:

@@ -25,6 +25,7 @@ TOPICS: dict[str, str] = {
     "render": "demos.bench.render",
     "throughput": "demos.bench.throughput",
     "contacts": "demos.bench.contacts",
+    "pit": "demos.bench.pit",
 }
 
 
