@@ -197,6 +197,16 @@ class Collisions:
         """Whether any body sleeps."""
         return bool(self.asleep.any())
 
+    def all_asleep(self, n: int) -> bool:
+        """Whether all n bodies sleep (then a step moves nothing)."""
+        asleep = self.asleep
+        return len(asleep) == n and n > 0 and bool(asleep.all())
+
+    def quiet(self) -> None:
+        """A step passed with everyone asleep: no contact began or ended."""
+        self._began, self._ended = [], []
+        self.moved = False
+
     def wake(self, n: int) -> None:
         """Wake every body (the World was changed by hand)."""
         self.still = np.zeros(n)
@@ -295,7 +305,8 @@ class Collisions:
             a, b = self._wake_met(a, b, x1, v1, store.radius)
         if not len(a):
             self._events_of(np.zeros(0, dtype=np.int64), [], n, t0, dt, live)
-            self._sleep_still(v1, dt, live, np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
+            none = np.zeros(0, dtype=np.intp)
+            self._sleep_still(v1, dt, live, none, none, contacts)
             return x1, v1
         # Solve on the bodies in pairs only, in local arrays (U: local -> World row).
         U, inv = np.unique(np.concatenate([a, b]), return_inverse=True)
@@ -327,7 +338,7 @@ class Collisions:
         touch = _norm(D) <= (r[rest_a] + r[rest_b]) * (1.0 + 1e-9) + TOUCH
         keys = U[rest_a[touch]].astype(np.int64) * n + U[rest_b[touch]]
         self._events_of(keys, impacts, n, t0, dt, U)
-        self._sleep_still(v, dt, live, U[rest_a], U[rest_b])
+        self._sleep_still(v, dt, live, U[rest_a], U[rest_b], contacts)
         return x, v
 
     # -- finding pairs ---------------------------------------------------------------------------
@@ -608,26 +619,39 @@ class Collisions:
         # Chebyshev's semi-iteration (Wang 2015) speeds Jacobi up: each iterate is pushed
         # on from the one two before by omega, which grows from 1 toward its limit for the
         # spectral radius rho of the plain iteration.
+        #
+        # The iterations work in complex numbers, a vector (x, y) being x + iy: with the
+        # normal n, the relative velocity d gives d conj(n) = (d.n) + i (d.t), t = i n the
+        # tangent, both parts in one product; an impulse (p_n, p_t) is n (p_n + i p_t).
+        nc = nrm[:, 0] + 1j * nrm[:, 1]
+        ncc = np.conj(nc)
+        Vc = Vx[:, 0] + 1j * Vx[:, 1]
+        w2 = np.concatenate([wx[ra], -wx[rb]])
+        lam_n, lam_t = lam[:, 0].copy(), lam[:, 1].copy()
+        old_n, old_t = lam_n, lam_t
         rho2 = self.rho * self.rho
         omega = 1.0
-        lam_old = lam.copy()
+        size = nU + 1
         for k in range(self.iterations):
-            dv = Vx[ra] - Vx[rb]
-            vn = _dot(dv, nrm)
-            vt = _dot(dv, tang)
-            new_n = lam[:, 0] - eff * (vn - target)
-            new_t = lam[:, 1] - eff * vt
+            z = (Vc[ra] - Vc[rb]) * ncc
+            new_n = lam_n - eff * (z.real - target)
+            new_t = lam_t - eff * z.imag
             if k >= 1:
                 omega = 2.0 / (2.0 - rho2) if k == 1 else 4.0 / (4.0 - rho2 * omega)
-                new_n = omega * (new_n - lam_old[:, 0]) + lam_old[:, 0]
-                new_t = omega * (new_t - lam_old[:, 1]) + lam_old[:, 1]
-            new_n = np.maximum(new_n, 0.0)
+                new_n = omega * (new_n - old_n) + old_n
+                new_t = omega * (new_t - old_t) + old_t
+            np.maximum(new_n, 0.0, out=new_n)
             cap = fric * new_n
-            new_t = np.clip(new_t, -cap, cap)
-            d_lam = np.stack([new_n - lam[:, 0], new_t - lam[:, 1]], axis=1)
-            lam_old = lam.copy()
-            lam[:, 0], lam[:, 1] = new_n, new_t
-            self._apply(Vx, idx, d_lam, nrm, tang, wx, ra, rb, nU)
+            np.clip(new_t, -cap, cap, out=new_t)
+            P = nc * ((new_n - lam_n) + 1j * (new_t - lam_t))
+            old_n, old_t, lam_n, lam_t = lam_n, lam_t, new_n, new_t
+            P2 = np.concatenate([P, P]) * w2
+            Vc += np.bincount(idx, P2.real, minlength=size) + 1j * np.bincount(
+                idx, P2.imag, minlength=size
+            )
+            Vc[nU] = 0.0
+        lam = np.stack([lam_n, lam_t], axis=1)
+        Vx = np.stack([Vc.real, Vc.imag], axis=1)
         bands = self._bands(ra, rb, nU, X, A, r)
         if bands is not None:
             self._shock_velocity(bands, Vx, nrm, target, fric, lam[:, 0], wx)
@@ -732,6 +756,8 @@ class Collisions:
                 budget = budget + mu * push
                 slide = np.clip(vt * share, -budget, budget)
                 budget = budget - np.abs(slide)
+                if not (push.any() or slide.any()):
+                    break
                 # dv = n push - t slide, with t = (-n_y, n_x)
                 Vu[:, 0] += np.bincount(inv, nx * push + ny * slide, minlength=k)
                 Vu[:, 1] += np.bincount(inv, ny * push - nx * slide, minlength=k)
@@ -910,10 +936,16 @@ class Collisions:
         return a, b
 
     def _sleep_still(
-        self, v: np.ndarray, dt: float, live: np.ndarray, pa: np.ndarray, pb: np.ndarray
+        self,
+        v: np.ndarray,
+        dt: float,
+        live: np.ndarray,
+        pa: np.ndarray,
+        pb: np.ndarray,
+        contacts: Contacts | None,
     ) -> None:
-        """Count how long each body has been still; put to sleep each touching group that has
-        been still for sleep_time."""
+        """Count how long each body has been still; put to sleep each group (bodies resting
+        on one another, or one resting on a collider) that has been still for sleep_time."""
         if not math.isfinite(self.sleep_time):
             return
         still = self.still
@@ -924,14 +956,25 @@ class Collisions:
         if len(self._overlap) == len(ready):
             # ... and overlapping by at most SLEEP_OVERLAP of its radius.
             ready &= self._overlap <= SLEEP_OVERLAP
-        if not len(pa) or not ready[pa].any():
+        # Who may sleep: a body in a resting pair, or one resting on a collider; a body in
+        # flight never does, however slow.
+        member = np.zeros(len(v), dtype=bool)
+        member[pa] = member[pb] = True
+        if contacts is not None and len(contacts.rest) == len(v):
+            # Held still on a collider by friction (exactly still: a slow frictionless puck
+            # glides on).
+            on = np.zeros(len(v), dtype=bool)
+            on[live] = (contacts.rest[live] >= 0) & (v[live, 0] == 0.0) & (v[live, 1] == 0.0)
+            member |= on
+        member &= ~asleep
+        if not (member & ready).any():
             return
         # Groups: connected pieces of the graph of resting pairs among awake bodies (each
         # body takes the smallest label of its neighbours, then labels follow labels).
         keep = ~asleep[pa] & ~asleep[pb]
         pa, pb = pa[keep], pb[keep]
         label = np.arange(len(v))
-        while True:
+        while len(pa):
             low = np.minimum(label[pa], label[pb])
             new = label.copy()
             np.minimum.at(new, pa, low)
@@ -940,11 +983,9 @@ class Collisions:
             if np.array_equal(new, label):
                 break
             label = new
-        # A group sleeps when every body in it is ready (a lone body never: it touches none).
-        in_pair = np.zeros(len(v), dtype=bool)
-        in_pair[pa] = in_pair[pb] = True
-        not_ready = np.unique(label[in_pair & ~ready])
-        sleepers = in_pair & ready & ~np.isin(label, not_ready)
+        # A group sleeps when every body in it is ready.
+        not_ready = np.unique(label[member & ~ready])
+        sleepers = member & ready & ~np.isin(label, not_ready)
         if sleepers.any():
             asleep[sleepers] = True
             self._group = np.where(sleepers, label, self._group)

@@ -399,6 +399,11 @@ class Contacts:
             self._sense(x, dt, t0, radius)
         return x, v
 
+    def quiet(self) -> None:
+        """A step passed in which no body moved (all asleep): no events."""
+        self._began, self._ended = [], []
+        self.moved = False
+
     @property
     def began(self) -> list[tuple[int, int, Any, Any, Any, float]]:
         """Contacts that began in the last step: (row, collider index, point, normal, impulse,

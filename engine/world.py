@@ -383,6 +383,7 @@ class World:
             self._contacts = Contacts()
             self._contacts.bodies_added(len(store))
         self._contacts.add(collider)
+        self._collisions.wake(len(self._bodies))
         self._push_out(range(len(self._bodies)))
         self._changed_structure()
         return collider
@@ -393,6 +394,7 @@ class World:
             raise ValueError(f"that collider is not in this World: {collider!r}")
         assert self._contacts is not None
         self._contacts.remove(collider)
+        self._collisions.wake(len(self._bodies))
         self._changed_structure()
 
     def _push_out(self, rows: Iterable[int]) -> None:
@@ -928,6 +930,13 @@ class World:
         """One step by the closed form or an integrator function, every entry checked."""
         store = self._store
         assert store is not None
+        if self._pairs_on and self._collisions.all_asleep(len(store)):
+            # Every body sleeps: nothing moves until something wakes them.
+            store.prev_x = store.x
+            self._collisions.quiet()
+            if self._contacts is not None:
+                self._contacts.quiet()
+            return
         t0 = self.t
         t1 = self._t_base + (self._n + 1) * dt
         if step is None:

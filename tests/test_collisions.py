@@ -9,6 +9,7 @@ of order; a stack on a floor the test of rest; filters and points the test of wh
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -228,3 +229,57 @@ def test_a_pile_past_the_solver_is_warned_about() -> None:
             w.step(1 / 60)
     with pytest.raises(ValueError, match="contact_iterations"):
         w.contact_iterations = 0
+
+
+def test_a_pyramid_stands_for_ten_thousand_steps() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    r, rows = 0.5, 6
+    balls = []
+    for row in range(rows):  # 6, 5, ..., 1 balls, each resting in the pocket of two below
+        for k in range(rows - row):
+            x = (k + 0.5 * row) * 2 * r
+            y = r + row * 2 * r * math.sqrt(3) / 2
+            balls.append(disc(w, (x, y), (0.0, 0.0), radius=r, friction=0.5))
+    start = np.array([b.pos for b in balls])
+    for _ in range(10_000):
+        w.step(1 / 60)
+    end = np.array([b.pos for b in balls])
+    assert np.abs(end - start).max() <= 0.01 * r  # standing, not sagging or sliding apart
+    assert w.overlap() <= 0.01 * r
+    assert w.sleeping == len(balls)
+
+
+def test_a_ball_held_on_a_floor_sleeps_and_a_frictionless_glide_does_not() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=1.0))
+    held = disc(w, (0.0, 0.5), (0.0, 0.0), radius=0.5, friction=0.5)
+    puck = disc(w, (5.0, 0.5), (0.05, 0.0), radius=0.5, friction=0.0)
+    other = disc(w, (50.0, 0.5), (0.0, 0.0), radius=0.5)  # two bodies that may collide
+    for _ in range(120):
+        w.step(1 / 60)
+    assert w.is_sleeping(held) and w.is_sleeping(other)
+    assert not w.is_sleeping(puck)
+    assert abs(puck.vel.x - 0.05) <= 1e-12  # gliding on at its speed
+
+
+def test_no_ball_leaves_a_pit_in_a_hundred_thousand_steps() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Box((0.0, 0.0), (12.0, 1000.0)))
+    for k in range(300):
+        x = 1.0 + (k % 10) + 0.5 * ((k // 10) % 2)
+        disc(w, (x, 1.0 + 1.1 * (k // 10)), (0.0, 0.0), radius=0.5, restitution=0.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", StabilityWarning)
+        for _ in range(100_000):
+            w.step(1 / 60)
+    x = w.positions()
+    assert (x[:, 0] >= 0.5 - 1e-9).all() and (x[:, 0] <= 11.5 + 1e-9).all()
+    assert (x[:, 1] >= 0.5 - 1e-9).all()
+    assert w.overlap() <= 0.01 * 0.5
+    assert w.sleeping == 300
+    v = w.velocities()
+    assert float((v * v).sum()) == 0.0  # asleep: no jitter, no creep
