@@ -309,8 +309,11 @@ class Collisions:
             self._sleep_still(v1, dt, live, none, none, contacts)
             return x1, v1
         # Solve on the bodies in pairs only, in local arrays (U: local -> World row).
-        U, inv = np.unique(np.concatenate([a, b]), return_inverse=True)
-        la, lb = inv[: len(a)], inv[len(a) :]
+        present = np.zeros(n, dtype=bool)
+        present[a] = present[b] = True
+        U = np.flatnonzero(present)
+        local = np.cumsum(present) - 1  # World row -> local index, for the rows in U
+        la, lb = local[a], local[b]
         X, V, AU = x1[U], v1[U], A[U]
         self._U = U
         w = 1.0 / store.mass[U]
@@ -654,7 +657,8 @@ class Collisions:
         Vx = np.stack([Vc.real, Vc.imag], axis=1)
         bands = self._bands(ra, rb, nU, X, A, r)
         if bands is not None:
-            self._shock_velocity(bands, Vx, nrm, target, fric, lam[:, 0], wx)
+            tol = 1e-6 * self.rest_speed + 1e-300
+            self._shock_velocity(bands, Vx, nrm, target, fric, lam[:, 0], wx, tol)
         V[:] = Vx[:nU]
         # The contact forces acted through the step on a body whose contacts were closed as
         # it began: they move it by the method's share of dv dt. A body that was still
@@ -714,12 +718,26 @@ class Collisions:
         rows = rows[np.argsort(bandx[upper[rows]], kind="stable")]
         cut = np.flatnonzero(np.diff(bandx[upper[rows]])) + 1
         out: list[tuple[np.ndarray, ...]] = []
-        for g_rows in np.split(rows, cut):
-            u = upper[g_rows]
-            uu, inv = np.unique(u, return_inverse=True)
-            up_a = a_up[g_rows]
-            lo = np.where(up_a, rb[g_rows], ra[g_rows])
-            out.append((g_rows, uu, inv, lo, np.where(up_a, 1.0, -1.0)))
+        bounds = np.concatenate([[0], cut, [len(rows)]])
+        up_rows = upper[rows]
+        lo_rows = np.where(a_up[rows], rb[rows], ra[rows])
+        sign_rows = np.where(a_up[rows], 1.0, -1.0)
+        # Each band's upper bodies without repeats, for all bands at once: keys (band, body)
+        # sorted, so a band's bodies are one run of them.
+        key = bandx[up_rows] * (nU + 1) + up_rows
+        ukey, inv_all = np.unique(key, return_inverse=True)
+        first = np.searchsorted(ukey, bandx[up_rows[bounds[:-1]]] * (nU + 1))
+        last = np.append(first[1:], len(ukey))
+        for i in range(len(bounds) - 1):
+            a0, a1 = bounds[i], bounds[i + 1]
+            uu = ukey[first[i] : last[i]] % (nU + 1)
+            span = np.array([a0, a1])
+            out.append(
+                (rows[a0:a1], uu, inv_all[a0:a1] - first[i], lo_rows[a0:a1], sign_rows[a0:a1], span)
+            )
+        # The same rows in one array each (band after band), for the checks made at once.
+        flat = (rows, up_rows, lo_rows, sign_rows)
+        out.append(flat)
         return out
 
     @staticmethod
@@ -731,6 +749,7 @@ class Collisions:
         fric: np.ndarray,
         lam_n: np.ndarray,
         wx: np.ndarray,
+        tol: float,
     ) -> None:
         """From the ground up: no body left closing on a body below it (faster than its gap
         allows in one step), nor sliding on it past what friction allows.
@@ -739,7 +758,19 @@ class Collisions:
         friction may take up to mu times that, plus mu times this pass's own
         normal change, off the sliding. Each body's rows share the change (1 / their count).
         """
-        for g, uu, inv, lo, sign in bands:
+        # Which rows need a change before any is made: most of a settled pile needs none,
+        # and a band is skipped unless one of its rows does or a body below it has moved.
+        rows, up_all, lo_all, sign_all = bands[-1]
+        d = Vx[up_all] - Vx[lo_all]
+        n_all = nrm[rows] * sign_all[:, None]
+        vn = d[:, 0] * n_all[:, 0] + d[:, 1] * n_all[:, 1]
+        vt = d[:, 1] * n_all[:, 0] - d[:, 0] * n_all[:, 1]
+        # (A change below a millionth of the speed gravity adds in a step is not worth a pass.)
+        need = (target[rows] - vn > tol) | (np.abs(vt) > tol)
+        moved = np.zeros(len(Vx), dtype=bool)
+        for g, uu, inv, lo, sign, span in bands[:-1]:
+            if not need[span[0] : span[1]].any() and not moved[lo].any():
+                continue
             n = nrm[g] * sign[:, None]
             nx, ny = n[:, 0], n[:, 1]
             least, mu = target[g], fric[g]
@@ -761,6 +792,7 @@ class Collisions:
                 # dv = n push - t slide, with t = (-n_y, n_x)
                 Vu[:, 0] += np.bincount(inv, nx * push + ny * slide, minlength=k)
                 Vu[:, 1] += np.bincount(inv, ny * push - nx * slide, minlength=k)
+                moved[uu] = True
             Vx[uu] = Vu
 
     @staticmethod
@@ -776,7 +808,20 @@ class Collisions:
         """From the ground up: each body moved out of the bodies below it (past SLOP)."""
         Xx = np.vstack([X, np.zeros((1, 2))])
         rx = np.append(r, 0.0)
-        for g, uu, inv, lo, sign in bands:
+        # Which rows overlap past SLOP before any is moved (a band is skipped unless one of its
+        # rows does or a body below it has moved).
+        rows, up_all, lo_all, sign_all = bands[-1]
+        face_all = lo_all == nU
+        n_all = nrm[rows] * sign_all[:, None]
+        d = Xx[up_all] - Xx[lo_all]
+        over_pair = r[up_all] + rx[lo_all] - _norm(d)
+        over_face = -gap[rows] - _dot(X[up_all] - X_ref[up_all], n_all)
+        over = np.where(face_all, over_face, over_pair)
+        need = over > SLOP * np.where(face_all, r[up_all], np.minimum(r[up_all], rx[lo_all]))
+        moved = np.zeros(nU + 1, dtype=bool)
+        for g, uu, inv, lo, sign, span in bands[:-1]:
+            if not need[span[0] : span[1]].any() and not moved[lo].any():
+                continue
             n0 = nrm[g] * sign[:, None]
             face = lo == nU
             ru = r[uu][inv]
@@ -798,6 +843,7 @@ class Collisions:
                     break
                 Xu[:, 0] += np.bincount(inv, push * n[:, 0], minlength=k)
                 Xu[:, 1] += np.bincount(inv, push * n[:, 1], minlength=k)
+                moved[uu] = True
             Xx[uu] = Xu
         X[:] = Xx[:nU]
 
