@@ -32,22 +32,39 @@ that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
 ``MAX_ROUNDS``; the count of steps that reached it is kept in ``capped``.
 
 **Resting contacts.** A closing speed below ``rest_speed`` (2 |A| dt: what the acceleration
-adds in two steps) is not a bounce but a contact at rest, the one a pile is made of. Those
-pairs, and the bodies' contacts with static faces, are solved together as constraints: the
-normal impulse lam >= 0 makes the normal velocity >= 0, friction keeps |lam_t| <= mu lam
-(Jacobi iterations over all contacts at once, each body's mass split between its contacts so
-that the sum converges, Tonge et al. 2012), started from the last step's impulses (warm
-starting: a settled pile is already solved). A resting contact acts as a force through the
-step, so its velocity change dv moves the body by dv dt / 2 under the closed form and
-velocity Verlet (dv dt under semi-implicit Euler, nothing under explicit Euler: each
-method's own rule for a constant force). Overlap left by the iterations is removed by moving
-positions (not velocities, so no energy is added) by ``BAUMGARTE`` of the overlap past
-``SLOP`` each step.
+adds in two steps), or a pair that carried load in the last step, is not a bounce but a
+contact at rest, the one a pile is made of (a pile does not bounce inside). Those pairs, and
+the bodies' contacts with static faces, are solved together as constraints, in four passes:
 
-**Sleep.** A group of bodies touching one another that has been still (every speed below
-``sleep_speed``) for ``sleep_time`` seconds falls asleep: its bodies stay exactly where they
-are, velocity 0, and cost nothing, until an awake body meets one of them (the whole group
-wakes) or the World is changed by hand.
+1. *Velocities, all at once.* The normal impulse lam >= 0 makes the normal velocity >= 0 (or
+   lets a gap close in one step, no faster), friction keeps |lam_t| <= mu lam. Jacobi
+   iterations over all contacts at once (``iterations``, each body's mass split between its
+   contacts so that the sum converges, Tonge et al. 2012; sped up by Chebyshev's
+   semi-iteration, Wang 2015), started from the last step's impulses (warm starting: a
+   settled pile is already solved).
+2. *Velocities, from the ground up.* Jacobi passes information one contact per iteration,
+   so a pile many layers deep is not held by a few iterations. Shock propagation
+   (Guendelman, Bridson and Fedkiw 2003) ends the solve with one pass from the bottom up:
+   bodies are sorted into bands of height (up being against the mean acceleration), and
+   each band's contacts with the bands below, already final, are made to hold (no closing,
+   no sliding past friction) with the lower body taken as immovable. Contacts within one
+   band (side by side) are left to the iterations.
+3. A resting contact acts as a force through the step, so its velocity change dv moves the
+   body by the method's share of dv dt (1/2 under the closed form, velocity Verlet and RK4,
+   1 under semi-implicit Euler, 0 under explicit Euler: each method's own rule for a
+   constant force), but only for a body whose loaded contacts were closed as the step
+   began: one still closing a gap met its contact late in the step and keeps its end
+   position (else it would hover at its start).
+4. *Positions.* Overlap past ``SLOP`` of a radius is removed by moving positions, never
+   velocities, so no energy is added: Jacobi iterations, then the same pass from the
+   ground up.
+
+**Sleep.** A group of bodies resting on one another (or one body held still on a collider)
+that has been still for ``sleep_time`` seconds (every speed below |A| dt, the speed the
+acceleration adds in one step: Chipmunk's idle speed), and overlaps by at most
+``SLEEP_OVERLAP`` of a radius, falls asleep: its bodies stay exactly where they are,
+velocity 0, and cost nothing, until an awake body meets one of them (the whole group wakes)
+or the World is changed by hand. A body in flight never sleeps, however slow.
 """
 
 from __future__ import annotations
