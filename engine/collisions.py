@@ -92,6 +92,8 @@ SHOCK_ITERATIONS = 3
 BAND = 1.4
 #: A body sleeps only while it overlaps others by at most this fraction of its radius.
 SLEEP_OVERLAP = 0.0075
+#: Most position iterations a step takes while overlaps are past twice SLOP.
+MAX_POSITION_ITERATIONS = 8
 #: Fraction of the overlap past SLOP removed per step by moving positions.
 BAUMGARTE = 1.0
 
@@ -672,10 +674,10 @@ class Collisions:
             Vc[nU] = 0.0
         lam = np.stack([lam_n, lam_t], axis=1)
         Vx = np.stack([Vc.real, Vc.imag], axis=1)
-        bands = self._bands(ra, rb, nU, X, A, r)
+        bands = _Bands.of(ra, rb, nU, X, A, r)
         if bands is not None:
             tol = 1e-6 * self.rest_speed + 1e-300
-            self._shock_velocity(bands, Vx, nrm, target, fric, lam[:, 0], wx, tol)
+            bands.velocity(Vx, nrm, target, fric, lam[:, 0], wx, tol)
         V[:] = Vx[:nU]
         # The contact forces acted through the step on a body whose contacts were closed as
         # it began: they move it by the method's share of dv dt. A body that was still
@@ -697,172 +699,9 @@ class Collisions:
         self._keys, self._lam, self._lam_dt = keys[order], lam[order], dt
         self._project(ra, rb, nU, X, X_ref, nrm, gap, wx, r, eff)
         if bands is not None:
-            self._shock_position(bands, X, X_ref, nrm, gap, r, nU)
+            bands.position(X, X_ref, nrm, gap, r)
         sel = rb < nU
         return ra[sel], rb[sel]
-
-    # -- shock propagation: piles, from the ground up -------------------------------------------
-    @staticmethod
-    def _bands(
-        ra: np.ndarray, rb: np.ndarray, nU: int, X: np.ndarray, A: np.ndarray, r: np.ndarray
-    ) -> list[tuple[np.ndarray, ...]] | None:
-        """The contacts of a pile in layers from the ground up; None without a pull (no "up").
-
-        Jacobi passes information one contact per iteration, so a pile many layers deep cannot
-        be held by a few iterations. Shock propagation (Guendelman, Bridson and Fedkiw 2003)
-        ends the solve with one pass from the bottom up: bodies are sorted into bands of height
-        (up being against the mean acceleration, BAND smallest radii thick), and each band's
-        contacts with the bands below, already final, are made to hold with the lower body
-        taken as immovable. Contacts within one band (side by side) are left to the iterations.
-
-        Each band: (rows, its upper bodies without repeats, each row's index into them, lower
-        body, sign of the normal toward the upper body).
-        """
-        g = A.sum(axis=0)
-        size = math.hypot(float(g[0]), float(g[1]))
-        if not size > 0.0 or not len(ra):
-            return None
-        up = -g / size
-        h = X @ up
-        band = np.floor((h - h.min()) / (BAND * float(r.min()))).astype(np.int64)
-        bandx = np.append(band, -1)  # the static world lies below everything
-        hx = np.append(h, -np.inf)
-        a_up = hx[ra] > hx[rb]
-        upper = np.where(a_up, ra, rb)
-        rows = np.flatnonzero(bandx[np.where(a_up, rb, ra)] < bandx[upper])
-        if not len(rows):
-            return None
-        rows = rows[np.argsort(bandx[upper[rows]], kind="stable")]
-        cut = np.flatnonzero(np.diff(bandx[upper[rows]])) + 1
-        out: list[tuple[np.ndarray, ...]] = []
-        bounds = np.concatenate([[0], cut, [len(rows)]])
-        up_rows = upper[rows]
-        lo_rows = np.where(a_up[rows], rb[rows], ra[rows])
-        sign_rows = np.where(a_up[rows], 1.0, -1.0)
-        # Each band's upper bodies without repeats, for all bands at once: keys (band, body)
-        # sorted, so a band's bodies are one run of them.
-        key = bandx[up_rows] * (nU + 1) + up_rows
-        ukey, inv_all = np.unique(key, return_inverse=True)
-        first = np.searchsorted(ukey, bandx[up_rows[bounds[:-1]]] * (nU + 1))
-        last = np.append(first[1:], len(ukey))
-        for i in range(len(bounds) - 1):
-            a0, a1 = bounds[i], bounds[i + 1]
-            uu = ukey[first[i] : last[i]] % (nU + 1)
-            span = np.array([a0, a1])
-            out.append(
-                (rows[a0:a1], uu, inv_all[a0:a1] - first[i], lo_rows[a0:a1], sign_rows[a0:a1], span)
-            )
-        # The same rows in one array each (band after band), for the checks made at once.
-        flat = (rows, up_rows, lo_rows, sign_rows)
-        out.append(flat)
-        return out
-
-    @staticmethod
-    def _shock_velocity(
-        bands: list[tuple[np.ndarray, ...]],
-        Vx: np.ndarray,
-        nrm: np.ndarray,
-        target: np.ndarray,
-        fric: np.ndarray,
-        lam_n: np.ndarray,
-        wx: np.ndarray,
-        tol: float,
-    ) -> None:
-        """From the ground up: no body left closing on a body below it (faster than its gap
-        allows in one step), nor sliding on it past what friction allows.
-
-        ``lam_n``: each contact's normal impulse from the iterations (``wx``: inverse masses);
-        friction may take up to mu times that, plus mu times this pass's own
-        normal change, off the sliding. Each body's rows share the change (1 / their count).
-        """
-        # Which rows need a change before any is made: most of a settled pile needs none,
-        # and a band is skipped unless one of its rows does or a body below it has moved.
-        rows, up_all, lo_all, sign_all = bands[-1]
-        d = Vx[up_all] - Vx[lo_all]
-        n_all = nrm[rows] * sign_all[:, None]
-        vn = d[:, 0] * n_all[:, 0] + d[:, 1] * n_all[:, 1]
-        vt = d[:, 1] * n_all[:, 0] - d[:, 0] * n_all[:, 1]
-        # (A change below a millionth of the speed gravity adds in a step is not worth a pass.)
-        need = (target[rows] - vn > tol) | (np.abs(vt) > tol)
-        moved = np.zeros(len(Vx), dtype=bool)
-        for g, uu, inv, lo, sign, span in bands[:-1]:
-            if not need[span[0] : span[1]].any() and not moved[lo].any():
-                continue
-            n = nrm[g] * sign[:, None]
-            nx, ny = n[:, 0], n[:, 1]
-            least, mu = target[g], fric[g]
-            k = len(uu)
-            share = 1.0 / np.bincount(inv, minlength=k)[inv]
-            budget = mu * lam_n[g] * wx[uu][inv]  # the speed the impulse gave the upper body
-            Vu = Vx[uu]
-            Vl = Vx[lo]  # final already: lower bands came first
-            for _ in range(SHOCK_ITERATIONS):
-                d = Vu[inv] - Vl
-                vn = d[:, 0] * nx + d[:, 1] * ny
-                vt = d[:, 1] * nx - d[:, 0] * ny  # along the tangent (-n_y, n_x)
-                push = np.maximum(least - vn, 0.0) * share
-                budget = budget + mu * push
-                slide = np.clip(vt * share, -budget, budget)
-                budget = budget - np.abs(slide)
-                if not (push.any() or slide.any()):
-                    break
-                # dv = n push - t slide, with t = (-n_y, n_x)
-                Vu[:, 0] += np.bincount(inv, nx * push + ny * slide, minlength=k)
-                Vu[:, 1] += np.bincount(inv, ny * push - nx * slide, minlength=k)
-                moved[uu] = True
-            Vx[uu] = Vu
-
-    @staticmethod
-    def _shock_position(
-        bands: list[tuple[np.ndarray, ...]],
-        X: np.ndarray,
-        X_ref: np.ndarray,
-        nrm: np.ndarray,
-        gap: np.ndarray,
-        r: np.ndarray,
-        nU: int,
-    ) -> None:
-        """From the ground up: each body moved out of the bodies below it (past SLOP)."""
-        Xx = np.vstack([X, np.zeros((1, 2))])
-        rx = np.append(r, 0.0)
-        # Which rows overlap past SLOP before any is moved (a band is skipped unless one of its
-        # rows does or a body below it has moved).
-        rows, up_all, lo_all, sign_all = bands[-1]
-        face_all = lo_all == nU
-        n_all = nrm[rows] * sign_all[:, None]
-        d = Xx[up_all] - Xx[lo_all]
-        over_pair = r[up_all] + rx[lo_all] - _norm(d)
-        over_face = -gap[rows] - _dot(X[up_all] - X_ref[up_all], n_all)
-        over = np.where(face_all, over_face, over_pair)
-        need = over > SLOP * np.where(face_all, r[up_all], np.minimum(r[up_all], rx[lo_all]))
-        moved = np.zeros(nU + 1, dtype=bool)
-        for g, uu, inv, lo, sign, span in bands[:-1]:
-            if not need[span[0] : span[1]].any() and not moved[lo].any():
-                continue
-            n0 = nrm[g] * sign[:, None]
-            face = lo == nU
-            ru = r[uu][inv]
-            R = ru + rx[lo]
-            slop = SLOP * np.where(face, ru, np.minimum(ru, rx[lo]))
-            # A face's gap now: as measured, plus how far the body has moved along its normal.
-            base = -gap[g] + _dot(X_ref[uu][inv], n0)
-            k = len(uu)
-            share = 1.0 / np.bincount(inv, minlength=k)[inv]
-            Xu = Xx[uu]
-            Xl = Xx[lo]
-            for _ in range(SHOCK_ITERATIONS):
-                d = Xu[inv] - Xl
-                dist = _norm(d)
-                n = np.where(face[:, None], n0, d / np.where(dist > 0.0, dist, 1.0)[:, None])
-                over = np.where(face, base - _dot(Xu[inv], n0), R - dist)
-                push = np.maximum(over - slop, 0.0) * share
-                if not push.any():
-                    break
-                Xu[:, 0] += np.bincount(inv, push * n[:, 0], minlength=k)
-                Xu[:, 1] += np.bincount(inv, push * n[:, 1], minlength=k)
-                moved[uu] = True
-            Xx[uu] = Xu
-        X[:] = Xx[:nU]
 
     @staticmethod
     def _apply(
@@ -912,13 +751,17 @@ class Collisions:
         Xx = np.vstack([X, np.zeros((1, 2))])
         Xr = np.vstack([X_ref, np.zeros((1, 2))])
         n_now = nrm.copy()
-        for _ in range(self.position_iterations + 1):
+        # At least position_iterations; more, up to MAX_POSITION_ITERATIONS, while some
+        # overlap is past twice SLOP (a pile settling: cheap once it has).
+        for k in range(MAX_POSITION_ITERATIONS + 1):
             D = Xx[ra] - Xx[rb]
             dist = _norm(D)
             over = np.where(pair, R - dist, -gap - _dot(Xx[ra] - Xr[ra], nrm))
             deepest = float(over[pair].max()) if pair.any() else 0.0
             push = np.maximum(over - slop, 0.0) * (BAUMGARTE * eff)
-            if _ == self.position_iterations or not push.any():
+            if k == MAX_POSITION_ITERATIONS or not push.any():
+                break
+            if k >= self.position_iterations and not (over > 2.0 * slop).any():
                 break
             n_now[pair] = D[pair] / np.where(dist[pair] > 0.0, dist[pair], 1.0)[:, None]
             n_now[face] = nrm[face]
@@ -1053,6 +896,177 @@ class Collisions:
             asleep[sleepers] = True
             self._group = np.where(sleepers, label, self._group)
             v[sleepers] = 0.0
+
+
+class _Bands:
+    """The contacts of a pile in layers from the ground up, for shock propagation.
+
+    Jacobi passes information one contact per iteration, so a pile many layers deep cannot
+    be held by a few iterations. Shock propagation (Guendelman, Bridson and Fedkiw 2003) ends
+    the solve with one pass from the bottom up: bodies are sorted into bands of height (up
+    being against the mean acceleration, BAND smallest radii thick), and each band's contacts
+    with the bands below, already final, are made to hold with the lower body taken as
+    immovable. Contacts within one band (side by side) are left to the iterations.
+
+    Rows are kept band after band in flat arrays, so a band is a slice (no copy); within a
+    band each upper body's rows share its change (1 / their count: mass splitting again).
+    """
+
+    def __init__(
+        self,
+        rows: np.ndarray,
+        upper: np.ndarray,
+        lower: np.ndarray,
+        sign: np.ndarray,
+        bounds: np.ndarray,
+        bodies: list[tuple[np.ndarray, np.ndarray]],
+        share: np.ndarray,
+        nU: int,
+    ) -> None:
+        self.rows, self.upper, self.lower, self.sign = rows, upper, lower, sign
+        self.bounds, self.bodies, self.share, self.nU = bounds, bodies, share, nU
+
+    @classmethod
+    def of(
+        cls, ra: np.ndarray, rb: np.ndarray, nU: int, X: np.ndarray, A: np.ndarray, r: np.ndarray
+    ) -> _Bands | None:
+        """The bands of contacts (ra, rb) (rb == nU: a static face); None without "up"."""
+        g = A.sum(axis=0)
+        size = math.hypot(float(g[0]), float(g[1]))
+        if not size > 0.0 or not len(ra):
+            return None
+        up = -g / size
+        h = X @ up
+        band = np.floor((h - h.min()) / (BAND * float(r.min()))).astype(np.int64)
+        bandx = np.append(band, -1)  # the static world lies below everything
+        hx = np.append(h, -np.inf)
+        a_up = hx[ra] > hx[rb]
+        upper = np.where(a_up, ra, rb)
+        rows = np.flatnonzero(bandx[np.where(a_up, rb, ra)] < bandx[upper])
+        if not len(rows):
+            return None
+        rows = rows[np.argsort(bandx[upper[rows]], kind="stable")]
+        cut = np.flatnonzero(np.diff(bandx[upper[rows]])) + 1
+        bounds = np.concatenate([[0], cut, [len(rows)]])
+        up_rows = upper[rows]
+        lo_rows = np.where(a_up[rows], rb[rows], ra[rows])
+        # Each band's upper bodies without repeats, for all bands at once: keys (band, body)
+        # sorted, so a band's bodies are one run of them.
+        key = bandx[up_rows] * (nU + 1) + up_rows
+        ukey, inv_all = np.unique(key, return_inverse=True)
+        share = 1.0 / np.bincount(inv_all)[inv_all]
+        first = np.searchsorted(ukey, bandx[up_rows[bounds[:-1]]] * (nU + 1))
+        last = np.append(first[1:], len(ukey))
+        bodies = [
+            (ukey[first[i] : last[i]] % (nU + 1), inv_all[bounds[i] : bounds[i + 1]] - first[i])
+            for i in range(len(bounds) - 1)
+        ]
+        sign = np.where(a_up[rows], 1.0, -1.0)
+        return cls(rows, up_rows, lo_rows, sign, bounds, bodies, share, nU)
+
+    def velocity(
+        self,
+        Vx: np.ndarray,
+        nrm: np.ndarray,
+        target: np.ndarray,
+        fric: np.ndarray,
+        lam_n: np.ndarray,
+        wx: np.ndarray,
+        tol: float,
+    ) -> None:
+        """From the ground up: no body left closing on a body below it (faster than its gap
+        allows in one step), nor sliding on it past what friction allows.
+
+        Friction may take up to mu times the speed the iterations' normal impulse ``lam_n``
+        gave the upper body, plus mu times this pass's own normal change, off the sliding.
+        A band is skipped unless one of its rows needs a change above ``tol`` or a body
+        below it has moved in this pass.
+        """
+        rows, up, lo = self.rows, self.upper, self.lower
+        n = nrm[rows] * self.sign[:, None]
+        nx, ny = n[:, 0].copy(), n[:, 1].copy()
+        least, mu, share = target[rows], fric[rows], self.share
+        budget0 = mu * lam_n[rows] * wx[up]
+        d = Vx[up] - Vx[lo]
+        vn = d[:, 0] * nx + d[:, 1] * ny
+        vt = d[:, 1] * nx - d[:, 0] * ny  # along the tangent (-n_y, n_x)
+        need = (least - vn > tol) | (np.abs(vt) > tol)
+        moved = np.zeros(len(Vx), dtype=bool)
+        b = self.bounds
+        for i, (uu, inv) in enumerate(self.bodies):
+            a0, a1 = b[i], b[i + 1]
+            low = lo[a0:a1]
+            if not need[a0:a1].any() and not moved[low].any():
+                continue
+            bx, by, bl, bm, bs = nx[a0:a1], ny[a0:a1], least[a0:a1], mu[a0:a1], share[a0:a1]
+            budget = budget0[a0:a1]
+            k = len(uu)
+            Vu = Vx[uu]
+            Vl = Vx[low]  # final already: lower bands came first
+            for _ in range(SHOCK_ITERATIONS):
+                d = Vu[inv] - Vl
+                push = np.maximum(bl - (d[:, 0] * bx + d[:, 1] * by), 0.0) * bs
+                budget = budget + bm * push
+                slide = np.clip((d[:, 1] * bx - d[:, 0] * by) * bs, -budget, budget)
+                budget = budget - np.abs(slide)
+                if not (push.any() or slide.any()):
+                    break
+                # dv = n push - t slide, with t = (-n_y, n_x)
+                Vu[:, 0] += np.bincount(inv, bx * push + by * slide, minlength=k)
+                Vu[:, 1] += np.bincount(inv, by * push - bx * slide, minlength=k)
+                moved[uu] = True
+            Vx[uu] = Vu
+
+    def position(
+        self, X: np.ndarray, X_ref: np.ndarray, nrm: np.ndarray, gap: np.ndarray, r: np.ndarray
+    ) -> None:
+        """From the ground up: each body moved out of the bodies below it (past SLOP)."""
+        nU = self.nU
+        rows, up, lo = self.rows, self.upper, self.lower
+        Xx = np.vstack([X, np.zeros((1, 2))])
+        rx = np.append(r, 0.0)
+        face = lo == nU
+        n0 = nrm[rows] * self.sign[:, None]
+        ru = r[up]
+        R = ru + rx[lo]
+        slop = SLOP * np.where(face, ru, np.minimum(ru, rx[lo]))
+        # A face's overlap now: -gap as measured, less how far the body has moved along the
+        # face's normal since (base - X.n).
+        base = -gap[rows] + _dot(X_ref[up], n0)
+        d = Xx[up] - Xx[lo]
+        over = np.where(face, base - _dot(Xx[up], n0), R - _norm(d))
+        need = over > slop
+        moved = np.zeros(nU + 1, dtype=bool)
+        b, share = self.bounds, self.share
+        for i, (uu, inv) in enumerate(self.bodies):
+            a0, a1 = b[i], b[i + 1]
+            low = lo[a0:a1]
+            if not need[a0:a1].any() and not moved[low].any():
+                continue
+            bf, bn, bR, bslop, bbase, bs = (
+                face[a0:a1],
+                n0[a0:a1],
+                R[a0:a1],
+                slop[a0:a1],
+                base[a0:a1],
+                share[a0:a1],
+            )
+            k = len(uu)
+            Xu = Xx[uu]
+            Xl = Xx[low]
+            for _ in range(SHOCK_ITERATIONS):
+                d = Xu[inv] - Xl
+                dist = _norm(d)
+                n = np.where(bf[:, None], bn, d / np.where(dist > 0.0, dist, 1.0)[:, None])
+                over_b = np.where(bf, bbase - _dot(Xu[inv], bn), bR - dist)
+                push = np.maximum(over_b - bslop, 0.0) * bs
+                if not push.any():
+                    break
+                Xu[:, 0] += np.bincount(inv, push * n[:, 0], minlength=k)
+                Xu[:, 1] += np.bincount(inv, push * n[:, 1], minlength=k)
+                moved[uu] = True
+            Xx[uu] = Xu
+        X[:] = Xx[:nU]
 
 
 def _face_rows(
