@@ -197,7 +197,7 @@ class Contacts:
         self._rows = np.zeros(0, dtype=np.intp)  # the rows being solved (local -> World row)
         #: Fewer rows than this to solve in a step are solved one body at a time in Python
         #: floats (``_solve_few``), more in numpy arrays (``_solve``): the same results.
-        self.few = 16
+        self.few = 64
         self.moved = False  # whether the last step's contacts changed any body's state
 
     # -- colliders and bodies ---------------------------------------------------------------
@@ -369,14 +369,14 @@ class Contacts:
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         self.moved = False
         if len(faces.owner):
-            rows, asleep = self._near(x0, v0, B, W, dt, radius, friction)
+            rows, asleep, cell = self._near(x0, v0, B, W, dt, radius, friction)
             if len(asleep):
                 # Resting and held by friction: they stay put, whatever the method computed.
                 x, v = x1.copy(), v1.copy()
                 x[asleep], v[asleep] = x0[asleep], 0.0
                 self.moved = True
             if len(rows):
-                rows, pb, pf = self._narrow(rows, x0, v0, B, W, dt, radius)
+                rows, pb, pf = self._narrow(rows, cell, x0, v0, B, W, dt, radius)
             if len(rows):
                 # A few bodies are solved one at a time in Python floats, many in arrays:
                 # the same arithmetic, so the same result either way.
@@ -419,9 +419,9 @@ class Contacts:
         dt: float,
         radius: np.ndarray,
         friction: np.ndarray,
-    ) -> tuple[np.ndarray, np.ndarray]:
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         """(rows whose path this step may come within reach of a solid face or that move on
-        one, rows that rest and stay put).
+        one, rows that rest and stay put, the first rows' grid cells or None).
 
         This pass goes over every body, so it is kept to a few array operations: the reach
         (``_reach``) takes the largest acceleration of all bodies, |B| <= sqrt(2) max |B_x|,
@@ -436,18 +436,22 @@ class Contacts:
         reach *= T * grow
         reach += radius * grow
         reach += 1.5 * 1.4142136 * a_max * (T * T) * grow + TOUCH
-        need = self._grid_of().gap(x0) <= reach
+        grid = self._grid_of()
+        cell = grid.cells(x0) if grid.n_finite else None
+        need = grid.gap(x0, cell) <= reach
         asleep = np.zeros(0, dtype=np.intp)
         resting = np.flatnonzero(self.rest >= 0)
         if len(resting):
             asleep = self._asleep(resting, x0, v0, W, friction)
             need[resting] = True
             need[asleep] = False
-        return np.flatnonzero(need), asleep
+        rows = np.flatnonzero(need)
+        return rows, asleep, None if cell is None else cell.take(rows)
 
     def _narrow(
         self,
         rows: np.ndarray,
+        cell: np.ndarray | None,
         x0: np.ndarray,
         v0: np.ndarray,
         B: np.ndarray,
@@ -472,36 +476,67 @@ class Contacts:
         Each test is widened by 1e-8 of the lengths in it, far more than the rounding of the
         root finders, so a pair the exact kernels would find a hit in is never dropped.
         """
-        faces = self.faces
+        faces, grid = self.faces, self._grid_of()
         L = len(faces.p)
         T = dt
         X, V, Bb = x0.take(rows, axis=0), v0.take(rows, axis=0), B.take(rows, axis=0)
-        Wb = Bb if W is B else W.take(rows, axis=0)
         r = radius.take(rows)
-        pb, pf = self._grid_of().pairs(X, _reach(V, Bb, Wb, T, r))
-        busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay: always solved
         speed = np.sqrt(_dot(V, V))
         acc = np.sqrt(_dot(Bb, Bb))
+        if W is B:
+            acc_w = acc
+        else:
+            Wb = W.take(rows, axis=0)
+            acc_w = np.sqrt(_dot(Wb, Wb))
+        reach = _reach(speed, acc, acc_w, T, r)
+        busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay: always solved
         grow = 1.0 + 1e-8
-        line = pf < L
-        lb, lf = pb[line], pf[line]
-        if len(lb):
-            n = faces.n.take(lf, axis=0)
-            d0 = _dot(X.take(lb, axis=0) - faces.p.take(lf, axis=0), n)
-            s = np.where(faces.two[lf] & (d0 < 0.0), -1.0, 1.0)
-            toward = np.minimum(s * _dot(V.take(lb, axis=0), n), 0.0)  # min(g1, 0)
-            # g0 + min(g1, 0) T - |B| T^2 / 2 <= 0, widened: s d0 - rho_face - r on the left.
-            slack = (r + 0.5 * acc * (T * T)) * grow + 1e-8 * (1.0 + speed * T + acc * (T * T))
-            near = s * d0 * (1.0 - 1e-8) + toward * T <= faces.rho[lf] * grow + slack[lb]
-            busy[lb[near]] = True
-        db, df = pb[~line], pf[~line] - L
-        if len(db):
-            D = X.take(db, axis=0) - faces.c.take(df, axis=0)
-            # |D| - rho <= |V| T + |B| T^2 / 2 (or touching), widened.
-            reach = (r + speed * T + 0.5 * acc * (T * T)) * grow + 1e-8
-            near = np.sqrt(_dot(D, D)) <= faces.r[df] * grow + reach[db]
-            busy[db[near]] = True
+        # The flat faces' test, right side: rho_face * grow + slack.
+        slack = (r + 0.5 * acc * (T * T)) * grow + 1e-8 * (1.0 + speed * T + acc * (T * T))
+        parts_b: list[np.ndarray] = []
+        parts_f: list[np.ndarray] = []
+        if grid.n_inf:
+            # Endless faces (one-sided: s = 1), all rows against all of them at once.
+            n, p = grid.inf_n, grid.inf_p
+            d0 = (X[:, :1] - p[:, 0]) * n[:, 0] + (X[:, 1:] - p[:, 1]) * n[:, 1]
+            toward = np.minimum(V[:, :1] * n[:, 0] + V[:, 1:] * n[:, 1], 0.0)
+            near = d0 * (1.0 - 1e-8) + toward * T <= grid.inf_rho * grow + slack[:, None]
+            busy |= near.any(axis=1)
+            bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
+            parts_b.append(bi)
+            parts_f.append(grid.inf_ids[fi])
+        if cell is not None:
+            # The finite faces the grid lists; of them only those within reach are kept (the
+            # distance from a face's line, or its centre, is at most that from the face).
+            fb, ff = grid.pairs(reach, cell)
+            line = ff < L
+            lb, lf = fb[line], ff[line]
+            if len(lb):
+                n = faces.n.take(lf, axis=0)
+                d0 = _dot(X.take(lb, axis=0) - faces.p.take(lf, axis=0), n)
+                s = np.where(faces.two[lf] & (d0 < 0.0), -1.0, 1.0)
+                toward = np.minimum(s * _dot(V.take(lb, axis=0), n), 0.0)  # min(g1, 0)
+                # g0 + min(g1, 0) T - |B| T^2 / 2 <= 0, widened (g0 = s d0 - rho_face - r).
+                near = s * d0 * (1.0 - 1e-8) + toward * T <= faces.rho[lf] * grow + slack[lb]
+                busy[lb[near]] = True
+                within = np.abs(d0) - faces.rho[lf] <= reach[lb]
+                parts_b.append(lb[within])
+                parts_f.append(lf[within])
+            db, df = fb[~line], ff[~line]
+            if len(db):
+                D = X.take(db, axis=0) - faces.c.take(df - L, axis=0)
+                # |D| - rho <= |V| T + |B| T^2 / 2 (or touching), widened.
+                far = (r + speed * T + 0.5 * acc * (T * T)) * grow + 1e-8
+                gap = np.sqrt(_dot(D, D)) - faces.r[df - L]
+                busy[db[gap <= far[db]]] = True
+                within = gap <= reach[db]
+                parts_b.append(db[within])
+                parts_f.append(df[within])
         kept = np.flatnonzero(busy)
+        if not len(kept):
+            return kept, kept, kept
+        pb = np.concatenate(parts_b) if len(parts_b) > 1 else parts_b[0]
+        pf = np.concatenate(parts_f) if len(parts_f) > 1 else parts_f[0]
         if len(kept) < len(rows):
             place = np.cumsum(busy) - 1  # a kept body's place among the kept
             mine = busy[pb]
@@ -1320,16 +1355,15 @@ def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any,
     return out
 
 
-def _reach(V: np.ndarray, B: np.ndarray, W: np.ndarray, T: Any, r: np.ndarray) -> np.ndarray:
-    """How far from its start a ball can reach within T, bounces and all (length units).
+def _reach(speed: np.ndarray, b: np.ndarray, w: np.ndarray, T: Any, r: np.ndarray) -> np.ndarray:
+    """How far from its start a ball can reach within T, bounces and all (length units), from
+    its speed |V| and the sizes of its path's B and W.
 
     On each piece of its path x = x_k + V_k t + B t^2 / 2, and a bounce never raises the speed
     (e <= 1), so |V_k| <= |V| + |W| t: the distance covered is at most
     |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre.
     """
-    b = np.sqrt(_dot(B, B))
-    w = b if W is B else np.sqrt(_dot(W, W))
-    reach = np.sqrt(_dot(V, V)) * T + (0.5 * w + b) * (T * T) + r
+    reach = speed * T + (0.5 * w + b) * (T * T) + r
     return reach * (1.0 + 1e-9) + TOUCH
 
 
@@ -1350,8 +1384,10 @@ class _FaceGrid:
         self.n_inf = len(inf_lines)
         self.inf_ids = inf_lines
         self.inf_n = faces.n[inf_lines]
+        self.inf_p = faces.p[inf_lines]
+        self.inf_rho = faces.rho[inf_lines]
         # n.x - (n.p + rho): the distance of x from each endless face.
-        self.inf_c = _dot(faces.p[inf_lines], self.inf_n) + faces.rho[inf_lines]
+        self.inf_c = _dot(self.inf_p, self.inf_n) + self.inf_rho
         fin_lines = np.flatnonzero(~faces.infinite)
         self.finite = np.concatenate([fin_lines, L + np.arange(len(faces.c))]).astype(np.intp)
         self.n_finite = len(self.finite)
@@ -1412,26 +1448,36 @@ class _FaceGrid:
         self._ring = ring.reshape(-1)
         self._ring_hi = np.array([nx + 1, ny + 1], dtype=float)
         self._ring_lo = self.lo - h  # the ring's lower-left corner
-        cells_all = np.concatenate(cell_parts).astype(np.intp)
+        # The lists are kept by ring cell too; the ring's are empty. A body out in the ring
+        # that reaches at most pad meets nothing finite: pad (4 h, at most 0.0108 of the
+        # faces' extent plus margins) is less than the margin (0.02 of it, or 1e-3).
+        ii, jj = np.divmod(np.concatenate(cell_parts).astype(np.intp), ny)
+        cells_all = (ii + 1) * (ny + 2) + (jj + 1)
         order = np.argsort(cells_all, kind="stable")
         self.faces_of = np.concatenate(face_parts)[order]
-        counts = np.bincount(cells_all, minlength=nx * ny).astype(np.intp)
+        counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2)).astype(np.intp)
         self.count = counts
         self.start = (np.cumsum(counts) - counts).astype(np.intp)
 
-    def _cells(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        ij = np.floor((x - self.lo) * (1.0 / self.h))
+    def cells(self, x: np.ndarray) -> np.ndarray:
+        """Each point's cell (with the ring; a point outside the grid takes the ring cell
+        nearest it): an index into the bounds (``clearance``) and the lists (``pairs``)."""
         nx, ny = self.shape
-        i, j = ij[:, 0], ij[:, 1]
-        inside = (i >= 0) & (i < nx) & (j >= 0) & (j < ny)
-        cell = np.where(inside, i * ny + j, 0).astype(np.intp)
-        return cell, inside
+        # Column by column: an (N, 2) array with a (2,) one costs ~3x more than two columns.
+        # Clipped to the ring first, so truncation toward zero is the floor.
+        scale = 1.0 / self.h
+        i = (x[:, 0] - self._ring_lo[0]) * scale
+        j = (x[:, 1] - self._ring_lo[1]) * scale
+        np.minimum(np.maximum(i, 0.0, out=i), nx + 1, out=i)
+        np.minimum(np.maximum(j, 0.0, out=j), ny + 1, out=j)
+        cell = i.astype(np.intp)
+        cell *= ny + 2
+        cell += j.astype(np.intp)
+        return cell
 
     def clearance(self, x: np.ndarray) -> np.ndarray:
         """A lower bound (length units) on each point's distance to every finite face."""
-        # Clipped to the ring first, so truncation toward zero is the floor.
-        ij = np.clip((x - self._ring_lo) * (1.0 / self.h), 0.0, self._ring_hi).astype(np.intp)
-        return self._ring[ij[:, 0] * (self.shape[1] + 2) + ij[:, 1]]
+        return self._ring[self.cells(x)]
 
     def plane_distance(self, x: np.ndarray, k: int) -> np.ndarray:
         """Distance of each point from the k-th endless face (a wall of a Box is one column)."""
@@ -1444,40 +1490,36 @@ class _FaceGrid:
                 return -c - x[:, col]  # -x - c, exactly
         return x[:, 0] * nx + x[:, 1] * ny - c
 
-    def gap(self, x: np.ndarray) -> np.ndarray:
+    def gap(self, x: np.ndarray, cell: np.ndarray | None) -> np.ndarray:
         """A lower bound (length units) on each point's distance to every face: the clearance
-        from the finite ones and the distance from each endless one."""
-        d = self.clearance(x) if self.n_finite else np.full(len(x), np.inf)
+        of its cell from the finite ones and its distance from each endless one."""
+        d = self._ring[cell] if cell is not None else np.full(len(x), np.inf)
         for k in range(self.n_inf):
             np.minimum(d, self.plane_distance(x, k), out=d)
         return d
 
-    def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(body, face) pairs to test: endless faces always, finite ones the grid lists."""
+    def pairs(self, reach: np.ndarray, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(body, finite face) pairs to test: the faces the body's cell lists, or all of them
+        for a body reaching farther than pad (if it can reach one at all). ``cell``: the
+        bodies' cells (``cells``)."""
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
-        if self.n_inf:
-            d = X @ self.inf_n.T - self.inf_c
-            bi, fi = np.nonzero(d <= reach[:, None])
-            parts_b.append(bi)
-            parts_f.append(self.inf_ids[fi])
-        if self.n_finite:
-            cell, inside = self._cells(X)
-            listed = inside & (reach <= self.pad)
-            ids = np.flatnonzero(listed)
-            if len(ids):
-                cnt = self.count[cell[ids]]
-                total = int(cnt.sum())
-                if total:
-                    bi = np.repeat(ids, cnt)
-                    offs = np.cumsum(cnt) - cnt
-                    pos = np.arange(total) - np.repeat(offs - self.start[cell[ids]], cnt)
-                    parts_b.append(bi)
-                    parts_f.append(self.faces_of[pos])
-            rest = np.flatnonzero(~listed & (self.clearance(X) <= reach))
-            if len(rest):
-                parts_b.append(np.repeat(rest, self.n_finite))
-                parts_f.append(np.tile(self.finite, len(rest)))
+        listed = reach <= self.pad
+        cnt = np.where(listed, self.count[cell], 0)
+        total = int(cnt.sum())
+        if total:
+            # Body b's k-th pair is the k-th face of its cell's list:
+            # faces_of[start[cell_b] + k], with k = (pair index) - (b's first pair index).
+            first = np.cumsum(cnt) - cnt
+            parts_b.append(np.repeat(np.arange(len(reach)), cnt))
+            shift = np.repeat(self.start[cell] - first, cnt)
+            parts_f.append(self.faces_of[np.arange(total) + shift])
+        far = np.flatnonzero(~listed & (self._ring[cell] <= reach))
+        if len(far):
+            parts_b.append(np.repeat(far, self.n_finite))
+            parts_f.append(np.tile(self.finite, len(far)))
         if not parts_b:
             return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
+        if len(parts_b) == 1:
+            return parts_b[0], parts_f[0]
         return np.concatenate(parts_b), np.concatenate(parts_f)
