@@ -196,8 +196,10 @@ class Contacts:
         self._grid: _FaceGrid | None = None
         self._rows = np.zeros(0, dtype=np.intp)  # the rows being solved (local -> World row)
         #: Fewer rows than this to solve in a step are solved one body at a time in Python
-        #: floats (``_solve_few``), more in numpy arrays (``_solve``): the same results.
-        self.few = 64
+        #: floats (``_solve_few``), more in numpy arrays (``_solve``): the same results. The
+        #: arrays cost a few hundred numpy calls a round whatever their size, the floats about
+        #: 12 us a body: measured, the arrays win from about 100 rows (a 2-core machine).
+        self.few = 100
         self.moved = False  # whether the last step's contacts changed any body's state
 
     # -- colliders and bodies ---------------------------------------------------------------
@@ -369,14 +371,14 @@ class Contacts:
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         self.moved = False
         if len(faces.owner):
-            rows, asleep, cell = self._near(x0, v0, B, W, dt, radius, friction)
+            rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
             if len(asleep):
                 # Resting and held by friction: they stay put, whatever the method computed.
                 x, v = x1.copy(), v1.copy()
                 x[asleep], v[asleep] = x0[asleep], 0.0
                 self.moved = True
             if len(rows):
-                rows, pb, pf = self._narrow(rows, cell, x0, v0, B, W, dt, radius)
+                rows, pb, pf = self._narrow(rows, cell, reach, a_bound, x0, v0, dt, radius)
             if len(rows):
                 # A few bodies are solved one at a time in Python floats, many in arrays:
                 # the same arithmetic, so the same result either way.
@@ -419,9 +421,10 @@ class Contacts:
         dt: float,
         radius: np.ndarray,
         friction: np.ndarray,
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray, float]:
         """(rows whose path this step may come within reach of a solid face or that move on
-        one, rows that rest and stay put, the first rows' grid cells or None).
+        one, rows that rest and stay put, the first rows' grid cells or None, their reach,
+        a bound on every body's |B| and |W|).
 
         This pass goes over every body, so it is kept to a few array operations: the reach
         (``_reach``) takes the largest acceleration of all bodies, |B| <= sqrt(2) max |B_x|,
@@ -429,13 +432,9 @@ class Contacts:
         the exact tests), and one lower bound on the distance to every face (``_FaceGrid.gap``)
         is compared with it.
         """
-        T = dt
         a_max = float(np.abs(B).max()) if W is B else float(max(np.abs(B).max(), np.abs(W).max()))
-        grow = 1.0 + 2e-9
-        reach = np.sqrt(v0[:, 0] * v0[:, 0] + v0[:, 1] * v0[:, 1])
-        reach *= T * grow
-        reach += radius * grow
-        reach += 1.5 * 1.4142136 * a_max * (T * T) * grow + TOUCH
+        a_bound = 1.4142136 * a_max
+        reach = _reach(np.sqrt(v0[:, 0] * v0[:, 0] + v0[:, 1] * v0[:, 1]), a_bound, dt, radius)
         grid = self._grid_of()
         cell = grid.cells(x0) if grid.n_finite else None
         need = grid.gap(x0, cell) <= reach
@@ -446,16 +445,17 @@ class Contacts:
             need[resting] = True
             need[asleep] = False
         rows = np.flatnonzero(need)
-        return rows, asleep, None if cell is None else cell.take(rows)
+        cell_rows = None if cell is None else cell.take(rows)
+        return rows, asleep, cell_rows, reach.take(rows), a_bound
 
     def _narrow(
         self,
         rows: np.ndarray,
         cell: np.ndarray | None,
+        reach: np.ndarray,
+        a_bound: float,
         x0: np.ndarray,
         v0: np.ndarray,
-        B: np.ndarray,
-        W: np.ndarray,
         dt: float,
         radius: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -465,73 +465,60 @@ class Contacts:
         The pairs are every face a body can reach this step, bounces and all (``_reach``);
         the solver needs them all, since a bounce turns the path. But a body meets nothing at
         all unless its first path, unturned, meets a face, so the bodies whose first paths
-        surely meet nothing are dropped, by tests that err only toward keeping:
+        surely meet nothing are dropped, by a test that errs only toward keeping them. With
+        d(x) the distance of x from a face (less its radius rho), a ball of radius r meets it
+        when d(x(t)) <= r. For a convex face, d is convex, so it lies above its tangent:
 
-        * a flat face: with s the side the ball starts on, the gap g(t) = s n.(x(t) - p) - rho
-          is g0 + g1 t + g2 t^2 (``engine.impact``), and on [0, T] it is at least
-          g0 + min(g1, 0) T - |g2| T^2, with |g2| <= |B| / 2. A ball heading away from the face
-          (g1 >= 0) is dropped unless it is already within about |B| T^2 / 2 of it.
-        * a round face: the ball stays within |V| T + |B| T^2 / 2 of where it starts.
+            d(x(t)) >= d(x0) + u.(x(t) - x0) = d(x0) + u.V t + u.B t^2 / 2,
 
-        Each test is widened by 1e-8 of the lengths in it, far more than the rounding of the
-        root finders, so a pair the exact kernels would find a hit in is never dropped.
+        u being the unit vector from the face's nearest point to x0 (its normal s n for an
+        endless line on side s). On [0, T] that is at least d(x0) + min(u.V, 0) T - |B| T^2 / 2,
+        so a body whose bound stays above r on every face it can reach is dropped. The test is
+        widened by 1e-8 of the lengths in it, far more than the root finders' rounding, so no
+        pair the exact kernels would find a hit in is lost. The faces are an endless line
+        (convex: a half-plane) or a capsule, the points within rho of a segment a-b: a flat
+        face is the middle of its segment's capsule, a round face one with a = b.
         """
-        faces, grid = self.faces, self._grid_of()
-        L = len(faces.p)
+        grid = self._grid_of()
         T = dt
-        X, V, Bb = x0.take(rows, axis=0), v0.take(rows, axis=0), B.take(rows, axis=0)
-        r = radius.take(rows)
-        speed = np.sqrt(_dot(V, V))
-        acc = np.sqrt(_dot(Bb, Bb))
-        if W is B:
-            acc_w = acc
-        else:
-            Wb = W.take(rows, axis=0)
-            acc_w = np.sqrt(_dot(Wb, Wb))
-        reach = _reach(speed, acc, acc_w, T, r)
+        X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
         busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay: always solved
         grow = 1.0 + 1e-8
-        # The flat faces' test, right side: rho_face * grow + slack.
-        slack = (r + 0.5 * acc * (T * T)) * grow + 1e-8 * (1.0 + speed * T + acc * (T * T))
+        # The right side of the test, r + |B| T^2 / 2, widened (reach > |V| T + |B| T^2).
+        slack = radius.take(rows) * grow
+        slack += 0.5 * a_bound * (T * T) * grow + 1e-8
+        slack += 1e-8 * reach
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
         if grid.n_inf:
-            # Endless faces (one-sided: s = 1), all rows against all of them at once.
+            # Endless faces (one-sided, s = 1: u = n), all rows against all of them at once;
+            # d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
             n, p = grid.inf_n, grid.inf_p
             d0 = (X[:, :1] - p[:, 0]) * n[:, 0] + (X[:, 1:] - p[:, 1]) * n[:, 1]
             toward = np.minimum(V[:, :1] * n[:, 0] + V[:, 1:] * n[:, 1], 0.0)
-            near = d0 * (1.0 - 1e-8) + toward * T <= grid.inf_rho * grow + slack[:, None]
+            near = d0 * (1.0 - 1e-8) + toward * T <= grid.inf_rho_up + slack[:, None]
             busy |= near.any(axis=1)
             bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
             parts_b.append(bi)
             parts_f.append(grid.inf_ids[fi])
         if cell is not None:
-            # The finite faces the grid lists; of them only those within reach are kept (the
-            # distance from a face's line, or its centre, is at most that from the face).
+            # The finite faces the grid lists, each a capsule: the points within rad of its
+            # segment a-b (a flat face is the middle of one, a round face one with a = b).
             fb, ff = grid.pairs(reach, cell)
-            line = ff < L
-            lb, lf = fb[line], ff[line]
-            if len(lb):
-                n = faces.n.take(lf, axis=0)
-                d0 = _dot(X.take(lb, axis=0) - faces.p.take(lf, axis=0), n)
-                s = np.where(faces.two[lf] & (d0 < 0.0), -1.0, 1.0)
-                toward = np.minimum(s * _dot(V.take(lb, axis=0), n), 0.0)  # min(g1, 0)
-                # g0 + min(g1, 0) T - |B| T^2 / 2 <= 0, widened (g0 = s d0 - rho_face - r).
-                near = s * d0 * (1.0 - 1e-8) + toward * T <= faces.rho[lf] * grow + slack[lb]
-                busy[lb[near]] = True
-                within = np.abs(d0) - faces.rho[lf] <= reach[lb]
-                parts_b.append(lb[within])
-                parts_f.append(lf[within])
-            db, df = fb[~line], ff[~line]
-            if len(db):
-                D = X.take(db, axis=0) - faces.c.take(df - L, axis=0)
-                # |D| - rho <= |V| T + |B| T^2 / 2 (or touching), widened.
-                far = (r + speed * T + 0.5 * acc * (T * T)) * grow + 1e-8
-                gap = np.sqrt(_dot(D, D)) - faces.r[df - L]
-                busy[db[gap <= far[db]]] = True
-                within = gap <= reach[db]
-                parts_b.append(db[within])
-                parts_f.append(df[within])
+            Xf, ab = X.take(fb, axis=0), grid.cap_ab.take(ff, axis=0)
+            D = Xf - grid.cap_a.take(ff, axis=0)
+            along = _dot(D, ab) * grid.cap_inv[ff]  # the nearest point: a + along (b - a)
+            np.minimum(np.maximum(along, 0.0, out=along), 1.0, out=along)
+            C = D - ab * along[:, None]  # from the nearest point of the segment to the ball
+            dist = np.sqrt(_dot(C, C))
+            gap = dist - grid.cap_rad[ff]
+            # u = C / |C|; the test is multiplied by |C|, so it needs no division.
+            toward = np.minimum(_dot(C, V.take(fb, axis=0)), 0.0)
+            near = gap * dist * (1.0 - 1e-8) + toward * T <= slack[fb] * dist
+            busy[fb[near]] = True
+            within = gap <= reach[fb]
+            parts_b.append(fb[within])
+            parts_f.append(ff[within])
         kept = np.flatnonzero(busy)
         if not len(kept):
             return kept, kept, kept
@@ -1044,6 +1031,7 @@ class Contacts:
         mass: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``_solve``, one body after another in Python floats (for a few rows)."""
+        faces = self.faces
         faces_of: list[list[int]] = [[] for _ in rows]
         for b, f in zip(pb.tolist(), pf.tolist(), strict=True):
             faces_of[b].append(f)
@@ -1062,7 +1050,7 @@ class Contacts:
         changed, Xc, Vc = [], [], []
         for k, row in enumerate(row_list):
             x, v, touched, rest_k = self._path_one(
-                k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
+                faces, k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
                 faces_of[k], dt, t0, began, ended,
             )  # fmt: skip
             if touched:
@@ -1083,6 +1071,7 @@ class Contacts:
 
     def _path_one(
         self,
+        faces: _Faces,
         k: int,
         row: int,
         x: Pair,
@@ -1102,7 +1091,7 @@ class Contacts:
     ) -> tuple[Pair, Pair, bool, int]:
         """One body through its step, impact by impact (_solve's loop for one row ``row``,
         ``k`` its place among the rows solved): (x, v, whether it met anything, its rest)."""
-        L = len(self.faces.line_list)
+        L = len(faces.line_list)
         rest_before = rest
         touched = False
         left = dt
@@ -1112,11 +1101,11 @@ class Contacts:
             dur = ta
             stop = False
             if rest >= 0:
-                slide = self._rest_path_one(rest, x, v, w, mu)
+                slide = _rest_path_one(faces, rest, x, v, w, mu)
                 if slide is None:  # lifts off
-                    nx, ny, _ = self._normal_one(rest, x)
+                    nx, ny, _ = _normal_one(faces, rest, x)
                     point = (x[0] - nx * r, x[1] - ny * r)
-                    event = (row, self.faces.owner_list[rest], point, (nx, ny), (0.0, 0.0))
+                    event = (row, faces.owner_list[rest], point, (nx, ny), (0.0, 0.0))
                     ended.append(((round_, 0, k), (*event, t0 + dt - ta)))
                     rest = -1
                 else:
@@ -1124,7 +1113,7 @@ class Contacts:
                     wp = bp
                     if ts < dur:
                         dur, stop = ts, True
-            t_hit, face, normal = self._first_hit_one(x, vp, bp, dur, r, faces_of, rest)
+            t_hit, face, normal = _first_hit_one(faces, x, vp, bp, dur, r, faces_of, rest)
             hit = t_hit <= dur
             tt = t_hit if hit else dur
             xn = (
@@ -1138,13 +1127,13 @@ class Contacts:
             done = False
             if hit:
                 when = t0 + dt - ta + t_hit
-                vn, rest, done = self._bounce_one(
-                    k, row, round_, xn, vn, face, normal, rest, w, r, e, mu, m, dt, when,
+                vn, rest, done = _bounce_one(
+                    faces, k, row, round_, xn, vn, face, normal, rest, w, r, e, mu, m, dt, when,
                     began, ended,
                 )  # fmt: skip
                 touched = True
             if rest >= 0:
-                xn, vn = self._project_one(rest, xn, vn, r)
+                xn, vn = _project_one(faces, rest, xn, vn, r)
                 if rest >= L:  # rolled over a round edge onto a flat side it overlaps?
                     Xr, Vr = np.array([xn]), np.array([vn])
                     if self.push_out_rows(Xr, Vr, np.array([r]))[0]:
@@ -1163,156 +1152,6 @@ class Contacts:
             self.push_out_rows(Xt, Vt, np.array([r]))
             x, v = (float(Xt[0, 0]), float(Xt[0, 1])), (float(Vt[0, 0]), float(Vt[0, 1]))
         return x, v, touched or rest >= 0 or rest_before >= 0, rest
-
-    def _normal_one(self, f: int, x: Pair) -> tuple[float, float, float]:
-        """``_normals`` for one face and point: (n_x, n_y, 1 / radius or 0 if flat)."""
-        faces = self.faces
-        L = len(faces.line_list)
-        if f < L:
-            p, (nx, ny), _, two, _, _ = faces.line_list[f]
-            side = -1.0 if two and (x[0] - p[0]) * nx + (x[1] - p[1]) * ny < 0.0 else 1.0
-            return nx * side, ny * side, 0.0
-        (cx, cy), _ = faces.disc_list[f - L]
-        dx, dy = x[0] - cx, x[1] - cy
-        dist = math.sqrt(dx * dx + dy * dy)
-        safe = dist if dist > 0.0 else 1.0
-        return dx / safe, dy / safe, 1.0 / safe
-
-    def _rest_path_one(
-        self, f: int, x: Pair, v: Pair, w: Pair, mub: float
-    ) -> tuple[Pair, Pair, float] | None:
-        """``_rest_paths`` for one body resting on face f: None if it lifts off, else its
-        sliding path (velocity, acceleration along the face, time it stops or inf)."""
-        faces = self.faces
-        nx, ny, curve = self._normal_one(f, x)
-        tx, ty = -ny, nx
-        a_n = w[0] * nx + w[1] * ny
-        v_n = v[0] * nx + v[1] * ny
-        u = v[0] * tx + v[1] * ty
-        off_end = False
-        if f < len(faces.line_list):
-            p, n, _, _, lo, hi = faces.line_list[f]
-            pos = (x[0] - p[0]) * -n[1] + (x[1] - p[1]) * n[0]
-            off_end = pos < lo or pos > hi
-        if a_n > 0.0 or v_n > 1e-9 or off_end or u * u * curve + a_n > 0.0:
-            return None
-        a_t = w[0] * tx + w[1] * ty
-        fr = mub * faces.mu_list[f] * max(-a_n, 0.0)
-        if u > 0.0:
-            a = a_t - fr
-        elif u < 0.0:
-            a = a_t + fr
-        elif abs(a_t) <= fr * (1.0 + 1e-12):  # held by static friction
-            a = 0.0
-        else:
-            a = a_t - math.copysign(fr, a_t)
-        slowing = (u > 0.0 and a < 0.0) or (u < 0.0 and a > 0.0)
-        ts = -u / a if slowing else math.inf
-        return (tx * u, ty * u), (tx * a, ty * a), ts
-
-    def _first_hit_one(
-        self, x: Pair, v: Pair, b: Pair, T: float, r: float, faces_of: list[int], rest: int
-    ) -> tuple[float, int, Pair]:
-        """``_first_hits`` for one body: (time or inf, face or -1, normal)."""
-        faces = self.faces
-        L = len(faces.line_list)
-        best, face, normal = math.inf, -1, (0.0, 0.0)
-        for f in faces_of:
-            if f == rest:
-                continue
-            if f < L:
-                p, n, rho, two, lo, hi = faces.line_list[f]
-                t, nrm = line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, T)
-            else:
-                c, rho = faces.disc_list[f - L]
-                t, nrm = disc_hit_one(x, v, b, c, rho + r, T), (0.0, 0.0)
-            if t <= best and t < math.inf:  # ties: the last listed, as _first_hits
-                best, face, normal = t, f, nrm
-        if face >= L:
-            # A round face's normal from where the ball's centre is at the impact.
-            c = faces.disc_list[face - L][0]
-            dx = x[0] + v[0] * best + b[0] * (0.5 * best * best) - c[0]
-            dy = x[1] + v[1] * best + b[1] * (0.5 * best * best) - c[1]
-            length = math.sqrt(dx * dx + dy * dy)
-            safe = length if length > 0.0 else 1.0
-            normal = (dx / safe, dy / safe)
-        return best, face, normal
-
-    def _bounce_one(
-        self,
-        k: int,
-        row: int,
-        round_: int,
-        x: Pair,
-        vel: Pair,
-        f: int,
-        n: Pair,
-        old: int,
-        w: Pair,
-        r: float,
-        eb: float,
-        mub: float,
-        m: float,
-        dt: float,
-        when: float,
-        began: list[Any],
-        ended: list[Any],
-    ) -> tuple[Pair, int, bool]:
-        """``_bounce`` for one body: (new velocity, face it rests on or -1, wedged)."""
-        faces = self.faces
-        nx, ny = n
-        vn = vel[0] * nx + vel[1] * ny
-        vtx, vty = vel[0] - nx * vn, vel[1] - ny * vn
-        e = eb * faces.e_list[f]
-        mu = mub * faces.mu_list[f]
-        vn_in = min(vn, 0.0)
-        vn_out = -e * vn_in
-        speed_t = math.sqrt(vtx * vtx + vty * vty)
-        keep = max(speed_t + mu * (1.0 + e) * vn_in, 0.0)
-        scale = keep / (speed_t if speed_t > 0.0 else 1.0)
-        a_n = w[0] * nx + w[1] * ny
-        settles = a_n < 0.0 and vn_out <= -a_n * (0.5 * dt)
-        if settles:
-            vn_out = 0.0
-        new_v = (vtx * scale + nx * vn_out, vty * scale + ny * vn_out)
-        stays = wedged = False
-        if old >= 0:
-            onx, ony, _ = self._normal_one(old, x)
-            stays = abs(onx * nx + ony * ny) < 1e-9
-            det = onx * ny - ony * nx
-            safe = det if abs(det) > 1e-12 else 1.0
-            l1 = (w[0] * ny - w[1] * nx) / safe
-            l2 = (onx * w[1] - ony * w[0]) / safe
-            slow = vn_out <= -l2 * (0.5 * dt)
-            wedged = slow and abs(det) > 1e-12 and l1 <= 0.0 and l2 <= 0.0
-            if wedged:
-                new_v = (0.0, 0.0)
-        rest = old if wedged or stays else (f if settles else -1)
-        if vn_in < 0.0:  # struck (a touch with no speed into the face is not reported)
-            point = (x[0] - nx * r, x[1] - ny * r)
-            impulse = ((new_v[0] - vel[0]) * m, (new_v[1] - vel[1]) * m)
-            event = (row, faces.owner_list[f], point, n, impulse, when)
-            began.append(((round_, 1, k), event))
-            if not settles:
-                ended.append(((round_, 1, k), event))
-        return new_v, rest, wedged
-
-    def _project_one(self, f: int, x: Pair, vel: Pair, r: float) -> tuple[Pair, Pair]:
-        """``_project`` for one body resting on face f: (position, velocity)."""
-        faces = self.faces
-        L = len(faces.line_list)
-        nx, ny, _ = self._normal_one(f, x)
-        vn = vel[0] * nx + vel[1] * ny
-        if f < L:
-            p, _, rho, _, _, _ = faces.line_list[f]
-            gap = (x[0] - p[0]) * nx + (x[1] - p[1]) * ny - rho - r
-            return (x[0] - nx * gap, x[1] - ny * gap), (vel[0] - nx * vn, vel[1] - ny * vn)
-        c, rho = faces.disc_list[f - L]
-        x = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
-        tx, ty = -ny, nx
-        speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1])
-        sign = 1.0 if vel[0] * tx + vel[1] * ty >= 0.0 else -1.0
-        return x, (tx * (sign * speed), ty * (sign * speed))
 
     # -- sensors ----------------------------------------------------------------------------
     def _sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
@@ -1345,6 +1184,159 @@ class Contacts:
             self.inside[:, s] = now
 
 
+# -- one body at a time: the twins of Contacts._solve's helpers ------------------------------
+
+
+def _normal_one(faces: _Faces, f: int, x: Pair) -> tuple[float, float, float]:
+    """``Contacts._normals`` for one face and point: (n_x, n_y, 1 / radius or 0 if flat)."""
+    L = len(faces.line_list)
+    if f < L:
+        p, (nx, ny), _, two, _, _ = faces.line_list[f]
+        side = -1.0 if two and (x[0] - p[0]) * nx + (x[1] - p[1]) * ny < 0.0 else 1.0
+        return nx * side, ny * side, 0.0
+    (cx, cy), _ = faces.disc_list[f - L]
+    dx, dy = x[0] - cx, x[1] - cy
+    dist = math.sqrt(dx * dx + dy * dy)
+    safe = dist if dist > 0.0 else 1.0
+    return dx / safe, dy / safe, 1.0 / safe
+
+
+def _rest_path_one(
+    faces: _Faces, f: int, x: Pair, v: Pair, w: Pair, mub: float
+) -> tuple[Pair, Pair, float] | None:
+    """``Contacts._rest_paths`` for one body resting on face f: None if it lifts off, else
+    its sliding path (velocity, acceleration along the face, time it stops or inf)."""
+    nx, ny, curve = _normal_one(faces, f, x)
+    tx, ty = -ny, nx
+    a_n = w[0] * nx + w[1] * ny
+    v_n = v[0] * nx + v[1] * ny
+    u = v[0] * tx + v[1] * ty
+    off_end = False
+    if f < len(faces.line_list):
+        p, n, _, _, lo, hi = faces.line_list[f]
+        pos = (x[0] - p[0]) * -n[1] + (x[1] - p[1]) * n[0]
+        off_end = pos < lo or pos > hi
+    if a_n > 0.0 or v_n > 1e-9 or off_end or u * u * curve + a_n > 0.0:
+        return None
+    a_t = w[0] * tx + w[1] * ty
+    fr = mub * faces.mu_list[f] * max(-a_n, 0.0)
+    if u > 0.0:
+        a = a_t - fr
+    elif u < 0.0:
+        a = a_t + fr
+    elif abs(a_t) <= fr * (1.0 + 1e-12):  # held by static friction
+        a = 0.0
+    else:
+        a = a_t - math.copysign(fr, a_t)
+    slowing = (u > 0.0 and a < 0.0) or (u < 0.0 and a > 0.0)
+    ts = -u / a if slowing else math.inf
+    return (tx * u, ty * u), (tx * a, ty * a), ts
+
+
+def _first_hit_one(
+    faces: _Faces, x: Pair, v: Pair, b: Pair, T: float, r: float, faces_of: list[int], rest: int
+) -> tuple[float, int, Pair]:
+    """``Contacts._first_hits`` for one body: (time or inf, face or -1, normal)."""
+    L = len(faces.line_list)
+    best, face, normal = math.inf, -1, (0.0, 0.0)
+    for f in faces_of:
+        if f == rest:
+            continue
+        if f < L:
+            p, n, rho, two, lo, hi = faces.line_list[f]
+            t, nrm = line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, T)
+        else:
+            c, rho = faces.disc_list[f - L]
+            t, nrm = disc_hit_one(x, v, b, c, rho + r, T), (0.0, 0.0)
+        if t <= best and t < math.inf:  # ties: the last listed, as _first_hits
+            best, face, normal = t, f, nrm
+    if face >= L:
+        # A round face's normal from where the ball's centre is at the impact.
+        c = faces.disc_list[face - L][0]
+        dx = x[0] + v[0] * best + b[0] * (0.5 * best * best) - c[0]
+        dy = x[1] + v[1] * best + b[1] * (0.5 * best * best) - c[1]
+        length = math.sqrt(dx * dx + dy * dy)
+        safe = length if length > 0.0 else 1.0
+        normal = (dx / safe, dy / safe)
+    return best, face, normal
+
+
+def _bounce_one(
+    faces: _Faces,
+    k: int,
+    row: int,
+    round_: int,
+    x: Pair,
+    vel: Pair,
+    f: int,
+    n: Pair,
+    old: int,
+    w: Pair,
+    r: float,
+    eb: float,
+    mub: float,
+    m: float,
+    dt: float,
+    when: float,
+    began: list[Any],
+    ended: list[Any],
+) -> tuple[Pair, int, bool]:
+    """``Contacts._bounce`` for one body: (new velocity, face it rests on or -1, wedged)."""
+    nx, ny = n
+    vn = vel[0] * nx + vel[1] * ny
+    vtx, vty = vel[0] - nx * vn, vel[1] - ny * vn
+    e = eb * faces.e_list[f]
+    mu = mub * faces.mu_list[f]
+    vn_in = min(vn, 0.0)
+    vn_out = -e * vn_in
+    speed_t = math.sqrt(vtx * vtx + vty * vty)
+    keep = max(speed_t + mu * (1.0 + e) * vn_in, 0.0)
+    scale = keep / (speed_t if speed_t > 0.0 else 1.0)
+    a_n = w[0] * nx + w[1] * ny
+    settles = a_n < 0.0 and vn_out <= -a_n * (0.5 * dt)
+    if settles:
+        vn_out = 0.0
+    new_v = (vtx * scale + nx * vn_out, vty * scale + ny * vn_out)
+    stays = wedged = False
+    if old >= 0:
+        onx, ony, _ = _normal_one(faces, old, x)
+        stays = abs(onx * nx + ony * ny) < 1e-9
+        det = onx * ny - ony * nx
+        safe = det if abs(det) > 1e-12 else 1.0
+        l1 = (w[0] * ny - w[1] * nx) / safe
+        l2 = (onx * w[1] - ony * w[0]) / safe
+        slow = vn_out <= -l2 * (0.5 * dt)
+        wedged = slow and abs(det) > 1e-12 and l1 <= 0.0 and l2 <= 0.0
+        if wedged:
+            new_v = (0.0, 0.0)
+    rest = old if wedged or stays else (f if settles else -1)
+    if vn_in < 0.0:  # struck (a touch with no speed into the face is not reported)
+        point = (x[0] - nx * r, x[1] - ny * r)
+        impulse = ((new_v[0] - vel[0]) * m, (new_v[1] - vel[1]) * m)
+        event = (row, faces.owner_list[f], point, n, impulse, when)
+        began.append(((round_, 1, k), event))
+        if not settles:
+            ended.append(((round_, 1, k), event))
+    return new_v, rest, wedged
+
+
+def _project_one(faces: _Faces, f: int, x: Pair, vel: Pair, r: float) -> tuple[Pair, Pair]:
+    """``Contacts._project`` for one body resting on face f: (position, velocity)."""
+    L = len(faces.line_list)
+    nx, ny, _ = _normal_one(faces, f, x)
+    vn = vel[0] * nx + vel[1] * ny
+    if f < L:
+        p, _, rho, _, _, _ = faces.line_list[f]
+        gap = (x[0] - p[0]) * nx + (x[1] - p[1]) * ny - rho - r
+        return (x[0] - nx * gap, x[1] - ny * gap), (vel[0] - nx * vn, vel[1] - ny * vn)
+    c, rho = faces.disc_list[f - L]
+    x = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
+    tx, ty = -ny, nx
+    speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1])
+    sign = 1.0 if vel[0] * tx + vel[1] * ty >= 0.0 else -1.0
+    return x, (tx * (sign * speed), ty * (sign * speed))
+
+
 def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any, float]]:
     out: list[tuple[int, int, Any, Any, Any, float]] = []
     for rows, owner, point, normal, impulse, when in parts:
@@ -1355,16 +1347,22 @@ def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any,
     return out
 
 
-def _reach(speed: np.ndarray, b: np.ndarray, w: np.ndarray, T: Any, r: np.ndarray) -> np.ndarray:
+def _reach(speed: np.ndarray, a: float, T: float, r: np.ndarray) -> np.ndarray:
     """How far from its start a ball can reach within T, bounces and all (length units), from
-    its speed |V| and the sizes of its path's B and W.
+    its speed |V| (the array, turned into the answer in place) and a bound a on the sizes of
+    its path's B and W.
 
     On each piece of its path x = x_k + V_k t + B t^2 / 2, and a bounce never raises the speed
     (e <= 1), so |V_k| <= |V| + |W| t: the distance covered is at most
-    |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre.
+    |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre. (Sliding on a
+    face, friction only slows it: its speed along the face is at most |V| + |W| t too.)
     """
-    reach = speed * T + (0.5 * w + b) * (T * T) + r
-    return reach * (1.0 + 1e-9) + TOUCH
+    grow = 1.0 + 1e-9
+    reach = speed
+    reach *= T * grow
+    reach += r * grow
+    reach += 1.5 * a * (T * T) * grow + TOUCH
+    return reach
 
 
 class _FaceGrid:
@@ -1386,6 +1384,7 @@ class _FaceGrid:
         self.inf_n = faces.n[inf_lines]
         self.inf_p = faces.p[inf_lines]
         self.inf_rho = faces.rho[inf_lines]
+        self.inf_rho_up = self.inf_rho * (1.0 + 1e-8)
         # n.x - (n.p + rho): the distance of x from each endless face.
         self.inf_c = _dot(self.inf_p, self.inf_n) + self.inf_rho
         fin_lines = np.flatnonzero(~faces.infinite)
@@ -1402,6 +1401,20 @@ class _FaceGrid:
             [faces.p[fin_lines] + tang[fin_lines] * faces.hi[fin_lines, None], faces.c]
         )
         rad = np.concatenate([faces.rho[fin_lines], faces.r])
+        # The capsules by face index (an endless face's is nan: it passes no test), for the
+        # tests of Contacts._narrow: a, b - a, 1 / |b - a|^2 (0 for a point), and rad grown
+        # by 1e-8 and by more than the rounding of distances along a long face.
+        F = L + len(faces.c)
+        self.cap_a = np.full((F, 2), np.nan)
+        self.cap_ab = np.full((F, 2), np.nan)
+        self.cap_inv = np.full(F, np.nan)
+        self.cap_rad = np.full(F, np.nan)
+        seg = Bq - A
+        seg2 = _dot(seg, seg)
+        self.cap_a[self.finite] = A
+        self.cap_ab[self.finite] = seg
+        self.cap_inv[self.finite] = np.where(seg2 > 0.0, 1.0 / np.where(seg2 > 0.0, seg2, 1.0), 0.0)
+        self.cap_rad[self.finite] = rad * (1.0 + 1e-8) + 1e-10 * (1.0 + np.sqrt(seg2))
         lo = np.minimum(A, Bq).min(axis=0) - rad.max()
         hi = np.maximum(A, Bq).max(axis=0) + rad.max()
         size = max(float((hi - lo).max()), 1e-6)
