@@ -335,12 +335,12 @@ def disc_hit_one(X: Pair, V: Pair, B: Pair, c: Pair, rho: float, T: float) -> fl
     ]
     if leaving:
         K = K[1:] + [0.0]
-    scale = max(abs(k) for k in K)
-    if any(k != k for k in K):
-        scale = math.nan  # as np.max does: a nan coefficient leaves the quadratic
-    small = 1e-9 * scale
-    deg = 4 if abs(K[4]) > small else 3 if abs(K[3]) > small else 2
     k0, k1, k2, k3, k4 = K
+    scale = max(abs(k0), abs(k1), abs(k2), abs(k3), abs(k4))
+    if math.isnan(k0 + k1 + k2 + k3 + k4):
+        scale = math.nan  # as np.max: a nan (or inf - inf) leaves only the quadratic
+    small = 1e-9 * scale
+    deg = 4 if abs(k4) > small else 3 if abs(k3) > small else 2
     if k0 + min(k1, 0.0) + min(k2, 0.0) + min(k3, 0.0) + min(k4, 0.0) > 1e-6 * scale:
         return inf  # clear of zero on [0, 1]: no root
     lower = 1e-9 if leaving else -1e-9
