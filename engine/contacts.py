@@ -31,6 +31,18 @@ pulled away from the surface, when its velocity is set to leave it, or when it g
 round edge faster than the edge can turn it (v^2 / rho > |a_n|).
 
 A sensor does not push: the contacts report when a body begins and ends overlapping it.
+
+How a step is solved, cheapest test first (in a typical scene few bodies meet anything):
+
+1. ``_near``, over every body in a few array passes: a lower bound on its distance to every
+   face (the grid's clearance, the endless lines' distances) against how far it can reach.
+2. ``_narrow``, over those near a face: the faces each can reach, and whether its path, not
+   yet turned by any bounce, can meet one at all (a tangent-line bound; see there). Bodies
+   that cannot, and do not rest on a face, keep (x1, v1).
+3. The rest are solved impact by impact: a few one body at a time in Python floats
+   (``_solve_few``), many at once in numpy arrays (``_solve``). Both do the same arithmetic in
+   the same order and give the same bits; only their cost differs (numpy's fixed cost per
+   call is about a microsecond, which a handful of bodies never pays back).
 """
 
 from __future__ import annotations
@@ -197,8 +209,10 @@ class Contacts:
         self._grid: _FaceGrid | None = None
         self._rows = np.zeros(0, dtype=np.intp)  # the rows being solved (local -> World row)
         #: Fewer rows than this to solve in a step are solved one body at a time in Python
-        #: floats (``_solve_few``), more in numpy arrays (``_solve``): the same results.
-        self.few = 16
+        #: floats (``_solve_few``), more in numpy arrays (``_solve``): the same results. The
+        #: arrays cost a few hundred numpy calls a round whatever their size, the floats about
+        #: 12 us a body: measured, the arrays win from about 100 rows (a 2-core machine).
+        self.few = 100
         self.moved = False  # whether the last step's contacts changed any body's state
 
     # -- colliders and bodies ---------------------------------------------------------------
@@ -372,16 +386,18 @@ class Contacts:
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         self.moved = False
         if len(faces.owner):
-            rows, asleep = self._near(x0, v0, B, W, dt, radius, friction)
-            if frozen is not None:
-                rows = rows[~frozen[rows]]
+            rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
+            if frozen is not None and frozen[rows].any():
+                awake = ~frozen[rows]
+                rows, reach = rows[awake], reach[awake]
+                cell = None if cell is None else cell[awake]
             if len(asleep):
                 # Resting and held by friction: they stay put, whatever the method computed.
                 x, v = x1.copy(), v1.copy()
                 x[asleep], v[asleep] = x0[asleep], 0.0
                 self.moved = True
             if len(rows):
-                rows, pb, pf = self._narrow(rows, x0, v0, B, W, dt, radius)
+                rows, pb, pf = self._narrow(rows, cell, reach, a_bound, x0, v0, dt, radius)
             if len(rows):
                 # A few bodies are solved one at a time in Python floats, many in arrays:
                 # the same arithmetic, so the same result either way.
@@ -429,9 +445,10 @@ class Contacts:
         dt: float,
         radius: np.ndarray,
         friction: np.ndarray,
-    ) -> tuple[np.ndarray, np.ndarray]:
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray, float]:
         """(rows whose path this step may come within reach of a solid face or that move on
-        one, rows that rest and stay put).
+        one, rows that rest and stay put, the first rows' grid cells or None, their reach,
+        a bound on every body's |B| and |W|).
 
         This pass goes over every body, so it is kept to a few array operations: the reach
         (``_reach``) takes the largest acceleration of all bodies, |B| <= sqrt(2) max |B_x|,
@@ -439,29 +456,30 @@ class Contacts:
         the exact tests), and one lower bound on the distance to every face (``_FaceGrid.gap``)
         is compared with it.
         """
-        T = dt
         a_max = float(np.abs(B).max()) if W is B else float(max(np.abs(B).max(), np.abs(W).max()))
-        grow = 1.0 + 2e-9
-        reach = np.sqrt(v0[:, 0] * v0[:, 0] + v0[:, 1] * v0[:, 1])
-        reach *= T * grow
-        reach += radius * grow
-        reach += 1.5 * 1.4142136 * a_max * (T * T) * grow + TOUCH
-        need = self._grid_of().gap(x0) <= reach
+        a_bound = 1.4142136 * a_max
+        reach = _reach(np.sqrt(v0[:, 0] * v0[:, 0] + v0[:, 1] * v0[:, 1]), a_bound, dt, radius)
+        grid = self._grid_of()
+        cell = grid.cells(x0) if grid.n_finite else None
+        need = grid.gap(x0, cell) <= reach
         asleep = np.zeros(0, dtype=np.intp)
         resting = np.flatnonzero(self.rest >= 0)
         if len(resting):
             asleep = self._asleep(resting, x0, v0, W, friction)
             need[resting] = True
             need[asleep] = False
-        return np.flatnonzero(need), asleep
+        rows = np.flatnonzero(need)
+        cell_rows = None if cell is None else cell.take(rows)
+        return rows, asleep, cell_rows, reach.take(rows), a_bound
 
     def _narrow(
         self,
         rows: np.ndarray,
+        cell: np.ndarray | None,
+        reach: np.ndarray,
+        a_bound: float,
         x0: np.ndarray,
         v0: np.ndarray,
-        B: np.ndarray,
-        W: np.ndarray,
         dt: float,
         radius: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -471,47 +489,65 @@ class Contacts:
         The pairs are every face a body can reach this step, bounces and all (``_reach``);
         the solver needs them all, since a bounce turns the path. But a body meets nothing at
         all unless its first path, unturned, meets a face, so the bodies whose first paths
-        surely meet nothing are dropped, by tests that err only toward keeping:
+        surely meet nothing are dropped, by a test that errs only toward keeping them. With
+        d(x) the distance of x from a face (less its radius rho), a ball of radius r meets it
+        when d(x(t)) <= r. For a convex face, d is convex, so it lies above its tangent:
 
-        * a flat face: with s the side the ball starts on, the gap g(t) = s n.(x(t) - p) - rho
-          is g0 + g1 t + g2 t^2 (``engine.impact``), and on [0, T] it is at least
-          g0 + min(g1, 0) T - |g2| T^2, with |g2| <= |B| / 2. A ball heading away from the face
-          (g1 >= 0) is dropped unless it is already within about |B| T^2 / 2 of it.
-        * a round face: the ball stays within |V| T + |B| T^2 / 2 of where it starts.
+            d(x(t)) >= d(x0) + u.(x(t) - x0) = d(x0) + u.V t + u.B t^2 / 2,
 
-        Each test is widened by 1e-8 of the lengths in it, far more than the rounding of the
-        root finders, so a pair the exact kernels would find a hit in is never dropped.
+        u being the unit vector from the face's nearest point to x0 (its normal s n for an
+        endless line on side s). On [0, T] that is at least d(x0) + min(u.V, 0) T - |B| T^2 / 2,
+        so a body whose bound stays above r on every face it can reach is dropped. The test is
+        widened by 1e-8 of the lengths in it, far more than the root finders' rounding, so no
+        pair the exact kernels would find a hit in is lost. The faces are an endless line
+        (convex: a half-plane) or a capsule, the points within rho of a segment a-b: a flat
+        face is the middle of its segment's capsule, a round face one with a = b.
         """
-        faces = self.faces
-        L = len(faces.p)
+        grid = self._grid_of()
         T = dt
-        X, V, Bb = x0.take(rows, axis=0), v0.take(rows, axis=0), B.take(rows, axis=0)
-        Wb = Bb if W is B else W.take(rows, axis=0)
-        r = radius.take(rows)
-        pb, pf = self._grid_of().pairs(X, _reach(V, Bb, Wb, T, r))
+        X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
         busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay: always solved
-        speed = np.sqrt(_dot(V, V))
-        acc = np.sqrt(_dot(Bb, Bb))
         grow = 1.0 + 1e-8
-        line = pf < L
-        lb, lf = pb[line], pf[line]
-        if len(lb):
-            n = faces.n.take(lf, axis=0)
-            d0 = _dot(X.take(lb, axis=0) - faces.p.take(lf, axis=0), n)
-            s = np.where(faces.two[lf] & (d0 < 0.0), -1.0, 1.0)
-            toward = np.minimum(s * _dot(V.take(lb, axis=0), n), 0.0)  # min(g1, 0)
-            # g0 + min(g1, 0) T - |B| T^2 / 2 <= 0, widened: s d0 - rho_face - r on the left.
-            slack = (r + 0.5 * acc * (T * T)) * grow + 1e-8 * (1.0 + speed * T + acc * (T * T))
-            near = s * d0 * (1.0 - 1e-8) + toward * T <= faces.rho[lf] * grow + slack[lb]
-            busy[lb[near]] = True
-        db, df = pb[~line], pf[~line] - L
-        if len(db):
-            D = X.take(db, axis=0) - faces.c.take(df, axis=0)
-            # |D| - rho <= |V| T + |B| T^2 / 2 (or touching), widened.
-            reach = (r + speed * T + 0.5 * acc * (T * T)) * grow + 1e-8
-            near = np.sqrt(_dot(D, D)) <= faces.r[df] * grow + reach[db]
-            busy[db[near]] = True
+        # The right side of the test, r + |B| T^2 / 2, widened (reach > |V| T + |B| T^2).
+        slack = radius.take(rows) * grow
+        slack += 0.5 * a_bound * (T * T) * grow + 1e-8
+        slack += 1e-8 * reach
+        parts_b: list[np.ndarray] = []
+        parts_f: list[np.ndarray] = []
+        if grid.n_inf:
+            # Endless faces (one-sided, s = 1: u = n), all rows against all of them at once;
+            # d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
+            n, p = grid.inf_n, grid.inf_p
+            d0 = (X[:, :1] - p[:, 0]) * n[:, 0] + (X[:, 1:] - p[:, 1]) * n[:, 1]
+            toward = np.minimum(V[:, :1] * n[:, 0] + V[:, 1:] * n[:, 1], 0.0)
+            near = d0 * (1.0 - 1e-8) + toward * T <= grid.inf_rho_up + slack[:, None]
+            busy |= near.any(axis=1)
+            bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
+            parts_b.append(bi)
+            parts_f.append(grid.inf_ids[fi])
+        if cell is not None:
+            # The finite faces the grid lists, each a capsule: the points within rad of its
+            # segment a-b (a flat face is the middle of one, a round face one with a = b).
+            fb, ff = grid.pairs(reach, cell)
+            Xf, ab = X.take(fb, axis=0), grid.cap_ab.take(ff, axis=0)
+            D = Xf - grid.cap_a.take(ff, axis=0)
+            along = _dot(D, ab) * grid.cap_inv[ff]  # the nearest point: a + along (b - a)
+            np.minimum(np.maximum(along, 0.0, out=along), 1.0, out=along)
+            C = D - ab * along[:, None]  # from the nearest point of the segment to the ball
+            dist = np.sqrt(_dot(C, C))
+            gap = dist - grid.cap_rad[ff]
+            # u = C / |C|; the test is multiplied by |C|, so it needs no division.
+            toward = np.minimum(_dot(C, V.take(fb, axis=0)), 0.0)
+            near = gap * dist * (1.0 - 1e-8) + toward * T <= slack[fb] * dist
+            busy[fb[near]] = True
+            within = gap <= reach[fb]
+            parts_b.append(fb[within])
+            parts_f.append(ff[within])
         kept = np.flatnonzero(busy)
+        if not len(kept):
+            return kept, kept, kept
+        pb = np.concatenate(parts_b) if len(parts_b) > 1 else parts_b[0]
+        pf = np.concatenate(parts_f) if len(parts_f) > 1 else parts_f[0]
         if len(kept) < len(rows):
             place = np.cumsum(busy) - 1  # a kept body's place among the kept
             mine = busy[pb]
@@ -1019,6 +1055,7 @@ class Contacts:
         mass: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``_solve``, one body after another in Python floats (for a few rows)."""
+        faces = self.faces
         faces_of: list[list[int]] = [[] for _ in rows]
         for b, f in zip(pb.tolist(), pf.tolist(), strict=True):
             faces_of[b].append(f)
@@ -1037,7 +1074,7 @@ class Contacts:
         changed, Xc, Vc = [], [], []
         for k, row in enumerate(row_list):
             x, v, touched, rest_k = self._path_one(
-                k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
+                faces, k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
                 faces_of[k], dt, t0, began, ended,
             )  # fmt: skip
             if touched:
@@ -1058,6 +1095,7 @@ class Contacts:
 
     def _path_one(
         self,
+        faces: _Faces,
         k: int,
         row: int,
         x: Pair,
@@ -1077,7 +1115,7 @@ class Contacts:
     ) -> tuple[Pair, Pair, bool, int]:
         """One body through its step, impact by impact (_solve's loop for one row ``row``,
         ``k`` its place among the rows solved): (x, v, whether it met anything, its rest)."""
-        L = len(self.faces.line_list)
+        L = len(faces.line_list)
         rest_before = rest
         touched = False
         left = dt
@@ -1087,11 +1125,11 @@ class Contacts:
             dur = ta
             stop = False
             if rest >= 0:
-                slide = self._rest_path_one(rest, x, v, w, mu)
+                slide = _rest_path_one(faces, rest, x, v, w, mu)
                 if slide is None:  # lifts off
-                    nx, ny, _ = self._normal_one(rest, x)
+                    nx, ny, _ = _normal_one(faces, rest, x)
                     point = (x[0] - nx * r, x[1] - ny * r)
-                    event = (row, self.faces.owner_list[rest], point, (nx, ny), (0.0, 0.0))
+                    event = (row, faces.owner_list[rest], point, (nx, ny), (0.0, 0.0))
                     ended.append(((round_, 0, k), (*event, t0 + dt - ta)))
                     rest = -1
                 else:
@@ -1099,13 +1137,11 @@ class Contacts:
                     wp = bp
                     if ts < dur:
                         dur, stop = ts, True
-            t_hit, face, normal = self._first_hit_one(x, vp, bp, dur, r, faces_of, rest)
+            t_hit, face, normal = _first_hit_one(faces, x, vp, bp, dur, r, faces_of, rest)
             hit = t_hit <= dur
             tt = t_hit if hit else dur
-            xn = (
-                x[0] + vp[0] * tt + bp[0] * (0.5 * tt * tt),
-                x[1] + vp[1] * tt + bp[1] * (0.5 * tt * tt),
-            )
+            half_tt2 = 0.5 * tt * tt
+            xn = (x[0] + vp[0] * tt + bp[0] * half_tt2, x[1] + vp[1] * tt + bp[1] * half_tt2)
             vn = (vp[0] + wp[0] * tt, vp[1] + wp[1] * tt)
             stopped = stop and not hit
             if stopped:
@@ -1113,13 +1149,13 @@ class Contacts:
             done = False
             if hit:
                 when = t0 + dt - ta + t_hit
-                vn, rest, done = self._bounce_one(
-                    k, row, round_, xn, vn, face, normal, rest, w, r, e, mu, m, dt, when,
+                vn, rest, done = _bounce_one(
+                    faces, k, row, round_, xn, vn, face, normal, rest, w, r, e, mu, m, dt, when,
                     began, ended,
                 )  # fmt: skip
                 touched = True
             if rest >= 0:
-                xn, vn = self._project_one(rest, xn, vn, r)
+                xn, vn = _project_one(faces, rest, xn, vn, r)
                 if rest >= L:  # rolled over a round edge onto a flat side it overlaps?
                     Xr, Vr = np.array([xn]), np.array([vn])
                     if self.push_out_rows(Xr, Vr, np.array([r]))[0]:
@@ -1138,156 +1174,6 @@ class Contacts:
             self.push_out_rows(Xt, Vt, np.array([r]))
             x, v = (float(Xt[0, 0]), float(Xt[0, 1])), (float(Vt[0, 0]), float(Vt[0, 1]))
         return x, v, touched or rest >= 0 or rest_before >= 0, rest
-
-    def _normal_one(self, f: int, x: Pair) -> tuple[float, float, float]:
-        """``_normals`` for one face and point: (n_x, n_y, 1 / radius or 0 if flat)."""
-        faces = self.faces
-        L = len(faces.line_list)
-        if f < L:
-            p, (nx, ny), _, two, _, _ = faces.line_list[f]
-            side = -1.0 if two and (x[0] - p[0]) * nx + (x[1] - p[1]) * ny < 0.0 else 1.0
-            return nx * side, ny * side, 0.0
-        (cx, cy), _ = faces.disc_list[f - L]
-        dx, dy = x[0] - cx, x[1] - cy
-        dist = math.sqrt(dx * dx + dy * dy)
-        safe = dist if dist > 0.0 else 1.0
-        return dx / safe, dy / safe, 1.0 / safe
-
-    def _rest_path_one(
-        self, f: int, x: Pair, v: Pair, w: Pair, mub: float
-    ) -> tuple[Pair, Pair, float] | None:
-        """``_rest_paths`` for one body resting on face f: None if it lifts off, else its
-        sliding path (velocity, acceleration along the face, time it stops or inf)."""
-        faces = self.faces
-        nx, ny, curve = self._normal_one(f, x)
-        tx, ty = -ny, nx
-        a_n = w[0] * nx + w[1] * ny
-        v_n = v[0] * nx + v[1] * ny
-        u = v[0] * tx + v[1] * ty
-        off_end = False
-        if f < len(faces.line_list):
-            p, n, _, _, lo, hi = faces.line_list[f]
-            pos = (x[0] - p[0]) * -n[1] + (x[1] - p[1]) * n[0]
-            off_end = pos < lo or pos > hi
-        if a_n > 0.0 or v_n > 1e-9 or off_end or u * u * curve + a_n > 0.0:
-            return None
-        a_t = w[0] * tx + w[1] * ty
-        fr = mub * faces.mu_list[f] * max(-a_n, 0.0)
-        if u > 0.0:
-            a = a_t - fr
-        elif u < 0.0:
-            a = a_t + fr
-        elif abs(a_t) <= fr * (1.0 + 1e-12):  # held by static friction
-            a = 0.0
-        else:
-            a = a_t - math.copysign(fr, a_t)
-        slowing = (u > 0.0 and a < 0.0) or (u < 0.0 and a > 0.0)
-        ts = -u / a if slowing else math.inf
-        return (tx * u, ty * u), (tx * a, ty * a), ts
-
-    def _first_hit_one(
-        self, x: Pair, v: Pair, b: Pair, T: float, r: float, faces_of: list[int], rest: int
-    ) -> tuple[float, int, Pair]:
-        """``_first_hits`` for one body: (time or inf, face or -1, normal)."""
-        faces = self.faces
-        L = len(faces.line_list)
-        best, face, normal = math.inf, -1, (0.0, 0.0)
-        for f in faces_of:
-            if f == rest:
-                continue
-            if f < L:
-                p, n, rho, two, lo, hi = faces.line_list[f]
-                t, nrm = line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, T)
-            else:
-                c, rho = faces.disc_list[f - L]
-                t, nrm = disc_hit_one(x, v, b, c, rho + r, T), (0.0, 0.0)
-            if t <= best and t < math.inf:  # ties: the last listed, as _first_hits
-                best, face, normal = t, f, nrm
-        if face >= L:
-            # A round face's normal from where the ball's centre is at the impact.
-            c = faces.disc_list[face - L][0]
-            dx = x[0] + v[0] * best + b[0] * (0.5 * best * best) - c[0]
-            dy = x[1] + v[1] * best + b[1] * (0.5 * best * best) - c[1]
-            length = math.sqrt(dx * dx + dy * dy)
-            safe = length if length > 0.0 else 1.0
-            normal = (dx / safe, dy / safe)
-        return best, face, normal
-
-    def _bounce_one(
-        self,
-        k: int,
-        row: int,
-        round_: int,
-        x: Pair,
-        vel: Pair,
-        f: int,
-        n: Pair,
-        old: int,
-        w: Pair,
-        r: float,
-        eb: float,
-        mub: float,
-        m: float,
-        dt: float,
-        when: float,
-        began: list[Any],
-        ended: list[Any],
-    ) -> tuple[Pair, int, bool]:
-        """``_bounce`` for one body: (new velocity, face it rests on or -1, wedged)."""
-        faces = self.faces
-        nx, ny = n
-        vn = vel[0] * nx + vel[1] * ny
-        vtx, vty = vel[0] - nx * vn, vel[1] - ny * vn
-        e = eb * faces.e_list[f]
-        mu = mub * faces.mu_list[f]
-        vn_in = min(vn, 0.0)
-        vn_out = -e * vn_in
-        speed_t = math.sqrt(vtx * vtx + vty * vty)
-        keep = max(speed_t + mu * (1.0 + e) * vn_in, 0.0)
-        scale = keep / (speed_t if speed_t > 0.0 else 1.0)
-        a_n = w[0] * nx + w[1] * ny
-        settles = a_n < 0.0 and vn_out <= -a_n * (0.5 * dt)
-        if settles:
-            vn_out = 0.0
-        new_v = (vtx * scale + nx * vn_out, vty * scale + ny * vn_out)
-        stays = wedged = False
-        if old >= 0:
-            onx, ony, _ = self._normal_one(old, x)
-            stays = abs(onx * nx + ony * ny) < 1e-9
-            det = onx * ny - ony * nx
-            safe = det if abs(det) > 1e-12 else 1.0
-            l1 = (w[0] * ny - w[1] * nx) / safe
-            l2 = (onx * w[1] - ony * w[0]) / safe
-            slow = vn_out <= -l2 * (0.5 * dt)
-            wedged = slow and abs(det) > 1e-12 and l1 <= 0.0 and l2 <= 0.0
-            if wedged:
-                new_v = (0.0, 0.0)
-        rest = old if wedged or stays else (f if settles else -1)
-        if vn_in < 0.0:  # struck (a touch with no speed into the face is not reported)
-            point = (x[0] - nx * r, x[1] - ny * r)
-            impulse = ((new_v[0] - vel[0]) * m, (new_v[1] - vel[1]) * m)
-            event = (row, faces.owner_list[f], point, n, impulse, when)
-            began.append(((round_, 1, k), event))
-            if not settles:
-                ended.append(((round_, 1, k), event))
-        return new_v, rest, wedged
-
-    def _project_one(self, f: int, x: Pair, vel: Pair, r: float) -> tuple[Pair, Pair]:
-        """``_project`` for one body resting on face f: (position, velocity)."""
-        faces = self.faces
-        L = len(faces.line_list)
-        nx, ny, _ = self._normal_one(f, x)
-        vn = vel[0] * nx + vel[1] * ny
-        if f < L:
-            p, _, rho, _, _, _ = faces.line_list[f]
-            gap = (x[0] - p[0]) * nx + (x[1] - p[1]) * ny - rho - r
-            return (x[0] - nx * gap, x[1] - ny * gap), (vel[0] - nx * vn, vel[1] - ny * vn)
-        c, rho = faces.disc_list[f - L]
-        x = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
-        tx, ty = -ny, nx
-        speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1])
-        sign = 1.0 if vel[0] * tx + vel[1] * ty >= 0.0 else -1.0
-        return x, (tx * (sign * speed), ty * (sign * speed))
 
     # -- sensors ----------------------------------------------------------------------------
     def _sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
@@ -1320,6 +1206,161 @@ class Contacts:
             self.inside[:, s] = now
 
 
+# -- one body at a time: the twins of Contacts._solve's helpers ------------------------------
+
+
+def _normal_one(faces: _Faces, f: int, x: Pair) -> tuple[float, float, float]:
+    """``Contacts._normals`` for one face and point: (n_x, n_y, 1 / radius or 0 if flat)."""
+    L = len(faces.line_list)
+    if f < L:
+        p, (nx, ny), _, two, _, _ = faces.line_list[f]
+        side = -1.0 if two and (x[0] - p[0]) * nx + (x[1] - p[1]) * ny < 0.0 else 1.0
+        return nx * side, ny * side, 0.0
+    (cx, cy), _ = faces.disc_list[f - L]
+    dx, dy = x[0] - cx, x[1] - cy
+    dist = math.sqrt(dx * dx + dy * dy)
+    safe = dist if dist > 0.0 else 1.0
+    return dx / safe, dy / safe, 1.0 / safe
+
+
+def _rest_path_one(
+    faces: _Faces, f: int, x: Pair, v: Pair, w: Pair, mub: float
+) -> tuple[Pair, Pair, float] | None:
+    """``Contacts._rest_paths`` for one body resting on face f: None if it lifts off, else
+    its sliding path (velocity, acceleration along the face, time it stops or inf)."""
+    nx, ny, curve = _normal_one(faces, f, x)
+    tx, ty = -ny, nx
+    a_n = w[0] * nx + w[1] * ny
+    v_n = v[0] * nx + v[1] * ny
+    u = v[0] * tx + v[1] * ty
+    off_end = False
+    if f < len(faces.line_list):
+        p, n, _, _, lo, hi = faces.line_list[f]
+        pos = (x[0] - p[0]) * -n[1] + (x[1] - p[1]) * n[0]
+        off_end = pos < lo or pos > hi
+    if a_n > 0.0 or v_n > 1e-9 or off_end or u * u * curve + a_n > 0.0:
+        return None
+    a_t = w[0] * tx + w[1] * ty
+    fr = mub * faces.mu_list[f] * max(-a_n, 0.0)
+    if u > 0.0:
+        a = a_t - fr
+    elif u < 0.0:
+        a = a_t + fr
+    elif abs(a_t) <= fr * (1.0 + 1e-12):  # held by static friction
+        a = 0.0
+    else:
+        a = a_t - math.copysign(fr, a_t)
+    slowing = (u > 0.0 and a < 0.0) or (u < 0.0 and a > 0.0)
+    ts = -u / a if slowing else math.inf
+    return (tx * u, ty * u), (tx * a, ty * a), ts
+
+
+def _first_hit_one(
+    faces: _Faces, x: Pair, v: Pair, b: Pair, T: float, r: float, faces_of: list[int], rest: int
+) -> tuple[float, int, Pair]:
+    """``Contacts._first_hits`` for one body: (time or inf, face or -1, normal)."""
+    L = len(faces.line_list)
+    best, face, normal = math.inf, -1, (0.0, 0.0)
+    for f in faces_of:
+        if f == rest:
+            continue
+        if f < L:
+            p, n, rho, two, lo, hi = faces.line_list[f]
+            t, nrm = line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, T)
+        else:
+            c, rho = faces.disc_list[f - L]
+            t, nrm = disc_hit_one(x, v, b, c, rho + r, T), (0.0, 0.0)
+        if t <= best and t < math.inf:  # ties: the last listed, as _first_hits
+            best, face, normal = t, f, nrm
+    if face >= L:
+        # A round face's normal from where the ball's centre is at the impact.
+        c = faces.disc_list[face - L][0]
+        dx = x[0] + v[0] * best + b[0] * (0.5 * best * best) - c[0]
+        dy = x[1] + v[1] * best + b[1] * (0.5 * best * best) - c[1]
+        length = math.sqrt(dx * dx + dy * dy)
+        safe = length if length > 0.0 else 1.0
+        normal = (dx / safe, dy / safe)
+    return best, face, normal
+
+
+def _bounce_one(
+    faces: _Faces,
+    k: int,
+    row: int,
+    round_: int,
+    x: Pair,
+    vel: Pair,
+    f: int,
+    n: Pair,
+    old: int,
+    w: Pair,
+    r: float,
+    eb: float,
+    mub: float,
+    m: float,
+    dt: float,
+    when: float,
+    began: list[Any],
+    ended: list[Any],
+) -> tuple[Pair, int, bool]:
+    """``Contacts._bounce`` for one body: (new velocity, face it rests on or -1, wedged)."""
+    nx, ny = n
+    vx, vy = vel
+    wx, wy = w
+    vn = vx * nx + vy * ny
+    vtx, vty = vx - nx * vn, vy - ny * vn
+    e = eb * faces.e_list[f]
+    mu = mub * faces.mu_list[f]
+    vn_in = min(vn, 0.0)
+    vn_out = -e * vn_in
+    speed_t = math.sqrt(vtx * vtx + vty * vty)
+    keep = max(speed_t + mu * (1.0 + e) * vn_in, 0.0)
+    scale = keep / (speed_t if speed_t > 0.0 else 1.0)
+    a_n = wx * nx + wy * ny
+    settles = a_n < 0.0 and vn_out <= -a_n * (0.5 * dt)
+    if settles:
+        vn_out = 0.0
+    new_v = (vtx * scale + nx * vn_out, vty * scale + ny * vn_out)
+    stays = wedged = False
+    if old >= 0:
+        onx, ony, _ = _normal_one(faces, old, x)
+        stays = abs(onx * nx + ony * ny) < 1e-9
+        det = onx * ny - ony * nx
+        safe = det if abs(det) > 1e-12 else 1.0
+        l1 = (wx * ny - wy * nx) / safe
+        l2 = (onx * wy - ony * wx) / safe
+        slow = vn_out <= -l2 * (0.5 * dt)
+        wedged = slow and abs(det) > 1e-12 and l1 <= 0.0 and l2 <= 0.0
+        if wedged:
+            new_v = (0.0, 0.0)
+    rest = old if wedged or stays else (f if settles else -1)
+    if vn_in < 0.0:  # struck (a touch with no speed into the face is not reported)
+        point = (x[0] - nx * r, x[1] - ny * r)
+        impulse = ((new_v[0] - vx) * m, (new_v[1] - vy) * m)
+        event = (row, faces.owner_list[f], point, n, impulse, when)
+        began.append(((round_, 1, k), event))
+        if not settles:
+            ended.append(((round_, 1, k), event))
+    return new_v, rest, wedged
+
+
+def _project_one(faces: _Faces, f: int, x: Pair, vel: Pair, r: float) -> tuple[Pair, Pair]:
+    """``Contacts._project`` for one body resting on face f: (position, velocity)."""
+    L = len(faces.line_list)
+    nx, ny, _ = _normal_one(faces, f, x)
+    vn = vel[0] * nx + vel[1] * ny
+    if f < L:
+        p, _, rho, _, _, _ = faces.line_list[f]
+        gap = (x[0] - p[0]) * nx + (x[1] - p[1]) * ny - rho - r
+        return (x[0] - nx * gap, x[1] - ny * gap), (vel[0] - nx * vn, vel[1] - ny * vn)
+    c, rho = faces.disc_list[f - L]
+    x = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
+    tx, ty = -ny, nx
+    speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1])
+    sign = 1.0 if vel[0] * tx + vel[1] * ty >= 0.0 else -1.0
+    return x, (tx * (sign * speed), ty * (sign * speed))
+
+
 def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any, float]]:
     out: list[tuple[int, int, Any, Any, Any, float]] = []
     for rows, owner, point, normal, impulse, when in parts:
@@ -1330,17 +1371,22 @@ def _unpack(parts: list[tuple[Any, ...]]) -> list[tuple[int, int, Any, Any, Any,
     return out
 
 
-def _reach(V: np.ndarray, B: np.ndarray, W: np.ndarray, T: Any, r: np.ndarray) -> np.ndarray:
-    """How far from its start a ball can reach within T, bounces and all (length units).
+def _reach(speed: np.ndarray, a: float, T: float, r: np.ndarray) -> np.ndarray:
+    """How far from its start a ball can reach within T, bounces and all (length units), from
+    its speed |V| (the array, turned into the answer in place) and a bound a on the sizes of
+    its path's B and W.
 
     On each piece of its path x = x_k + V_k t + B t^2 / 2, and a bounce never raises the speed
     (e <= 1), so |V_k| <= |V| + |W| t: the distance covered is at most
-    |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre.
+    |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre. (Sliding on a
+    face, friction only slows it: its speed along the face is at most |V| + |W| t too.)
     """
-    b = np.sqrt(_dot(B, B))
-    w = b if W is B else np.sqrt(_dot(W, W))
-    reach = np.sqrt(_dot(V, V)) * T + (0.5 * w + b) * (T * T) + r
-    return reach * (1.0 + 1e-9) + TOUCH
+    grow = 1.0 + 1e-9
+    reach = speed
+    reach *= T * grow
+    reach += r * grow
+    reach += 1.5 * a * (T * T) * grow + TOUCH
+    return reach
 
 
 class _FaceGrid:
@@ -1360,8 +1406,11 @@ class _FaceGrid:
         self.n_inf = len(inf_lines)
         self.inf_ids = inf_lines
         self.inf_n = faces.n[inf_lines]
+        self.inf_p = faces.p[inf_lines]
+        self.inf_rho = faces.rho[inf_lines]
+        self.inf_rho_up = self.inf_rho * (1.0 + 1e-8)
         # n.x - (n.p + rho): the distance of x from each endless face.
-        self.inf_c = _dot(faces.p[inf_lines], self.inf_n) + faces.rho[inf_lines]
+        self.inf_c = _dot(self.inf_p, self.inf_n) + self.inf_rho
         fin_lines = np.flatnonzero(~faces.infinite)
         self.finite = np.concatenate([fin_lines, L + np.arange(len(faces.c))]).astype(np.intp)
         self.n_finite = len(self.finite)
@@ -1376,6 +1425,20 @@ class _FaceGrid:
             [faces.p[fin_lines] + tang[fin_lines] * faces.hi[fin_lines, None], faces.c]
         )
         rad = np.concatenate([faces.rho[fin_lines], faces.r])
+        # The capsules by face index (an endless face's is nan: it passes no test), for the
+        # tests of Contacts._narrow: a, b - a, 1 / |b - a|^2 (0 for a point), and rad grown
+        # by 1e-8 and by more than the rounding of distances along a long face.
+        F = L + len(faces.c)
+        self.cap_a = np.full((F, 2), np.nan)
+        self.cap_ab = np.full((F, 2), np.nan)
+        self.cap_inv = np.full(F, np.nan)
+        self.cap_rad = np.full(F, np.nan)
+        seg = Bq - A
+        seg2 = _dot(seg, seg)
+        self.cap_a[self.finite] = A
+        self.cap_ab[self.finite] = seg
+        self.cap_inv[self.finite] = np.where(seg2 > 0.0, 1.0 / np.where(seg2 > 0.0, seg2, 1.0), 0.0)
+        self.cap_rad[self.finite] = rad * (1.0 + 1e-8) + 1e-10 * (1.0 + np.sqrt(seg2))
         lo = np.minimum(A, Bq).min(axis=0) - rad.max()
         hi = np.maximum(A, Bq).max(axis=0) + rad.max()
         size = max(float((hi - lo).max()), 1e-6)
@@ -1422,26 +1485,36 @@ class _FaceGrid:
         self._ring = ring.reshape(-1)
         self._ring_hi = np.array([nx + 1, ny + 1], dtype=float)
         self._ring_lo = self.lo - h  # the ring's lower-left corner
-        cells_all = np.concatenate(cell_parts).astype(np.intp)
+        # The lists are kept by ring cell too; the ring's are empty. A body out in the ring
+        # that reaches at most pad meets nothing finite: pad (4 h, at most 0.0108 of the
+        # faces' extent plus margins) is less than the margin (0.02 of it, or 1e-3).
+        ii, jj = np.divmod(np.concatenate(cell_parts).astype(np.intp), ny)
+        cells_all = (ii + 1) * (ny + 2) + (jj + 1)
         order = np.argsort(cells_all, kind="stable")
         self.faces_of = np.concatenate(face_parts)[order]
-        counts = np.bincount(cells_all, minlength=nx * ny).astype(np.intp)
+        counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2)).astype(np.intp)
         self.count = counts
         self.start = (np.cumsum(counts) - counts).astype(np.intp)
 
-    def _cells(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        ij = np.floor((x - self.lo) * (1.0 / self.h))
+    def cells(self, x: np.ndarray) -> np.ndarray:
+        """Each point's cell (with the ring; a point outside the grid takes the ring cell
+        nearest it): an index into the bounds (``clearance``) and the lists (``pairs``)."""
         nx, ny = self.shape
-        i, j = ij[:, 0], ij[:, 1]
-        inside = (i >= 0) & (i < nx) & (j >= 0) & (j < ny)
-        cell = np.where(inside, i * ny + j, 0).astype(np.intp)
-        return cell, inside
+        # Column by column: an (N, 2) array with a (2,) one costs ~3x more than two columns.
+        # Clipped to the ring first, so truncation toward zero is the floor.
+        scale = 1.0 / self.h
+        i = (x[:, 0] - self._ring_lo[0]) * scale
+        j = (x[:, 1] - self._ring_lo[1]) * scale
+        np.minimum(np.maximum(i, 0.0, out=i), nx + 1, out=i)
+        np.minimum(np.maximum(j, 0.0, out=j), ny + 1, out=j)
+        cell = i.astype(np.intp)
+        cell *= ny + 2
+        cell += j.astype(np.intp)
+        return cell
 
     def clearance(self, x: np.ndarray) -> np.ndarray:
         """A lower bound (length units) on each point's distance to every finite face."""
-        # Clipped to the ring first, so truncation toward zero is the floor.
-        ij = np.clip((x - self._ring_lo) * (1.0 / self.h), 0.0, self._ring_hi).astype(np.intp)
-        return self._ring[ij[:, 0] * (self.shape[1] + 2) + ij[:, 1]]
+        return self._ring[self.cells(x)]
 
     def plane_distance(self, x: np.ndarray, k: int) -> np.ndarray:
         """Distance of each point from the k-th endless face (a wall of a Box is one column)."""
@@ -1454,40 +1527,36 @@ class _FaceGrid:
                 return -c - x[:, col]  # -x - c, exactly
         return x[:, 0] * nx + x[:, 1] * ny - c
 
-    def gap(self, x: np.ndarray) -> np.ndarray:
+    def gap(self, x: np.ndarray, cell: np.ndarray | None) -> np.ndarray:
         """A lower bound (length units) on each point's distance to every face: the clearance
-        from the finite ones and the distance from each endless one."""
-        d = self.clearance(x) if self.n_finite else np.full(len(x), np.inf)
+        of its cell from the finite ones and its distance from each endless one."""
+        d = self._ring[cell] if cell is not None else np.full(len(x), np.inf)
         for k in range(self.n_inf):
             np.minimum(d, self.plane_distance(x, k), out=d)
         return d
 
-    def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(body, face) pairs to test: endless faces always, finite ones the grid lists."""
+    def pairs(self, reach: np.ndarray, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(body, finite face) pairs to test: the faces the body's cell lists, or all of them
+        for a body reaching farther than pad (if it can reach one at all). ``cell``: the
+        bodies' cells (``cells``)."""
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
-        if self.n_inf:
-            d = X @ self.inf_n.T - self.inf_c
-            bi, fi = np.nonzero(d <= reach[:, None])
-            parts_b.append(bi)
-            parts_f.append(self.inf_ids[fi])
-        if self.n_finite:
-            cell, inside = self._cells(X)
-            listed = inside & (reach <= self.pad)
-            ids = np.flatnonzero(listed)
-            if len(ids):
-                cnt = self.count[cell[ids]]
-                total = int(cnt.sum())
-                if total:
-                    bi = np.repeat(ids, cnt)
-                    offs = np.cumsum(cnt) - cnt
-                    pos = np.arange(total) - np.repeat(offs - self.start[cell[ids]], cnt)
-                    parts_b.append(bi)
-                    parts_f.append(self.faces_of[pos])
-            rest = np.flatnonzero(~listed & (self.clearance(X) <= reach))
-            if len(rest):
-                parts_b.append(np.repeat(rest, self.n_finite))
-                parts_f.append(np.tile(self.finite, len(rest)))
+        listed = reach <= self.pad
+        cnt = np.where(listed, self.count[cell], 0)
+        total = int(cnt.sum())
+        if total:
+            # Body b's k-th pair is the k-th face of its cell's list:
+            # faces_of[start[cell_b] + k], with k = (pair index) - (b's first pair index).
+            first = np.cumsum(cnt) - cnt
+            parts_b.append(np.repeat(np.arange(len(reach)), cnt))
+            shift = np.repeat(self.start[cell] - first, cnt)
+            parts_f.append(self.faces_of[np.arange(total) + shift])
+        far = np.flatnonzero(~listed & (self._ring[cell] <= reach))
+        if len(far):
+            parts_b.append(np.repeat(far, self.n_finite))
+            parts_f.append(np.tile(self.finite, len(far)))
         if not parts_b:
             return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
+        if len(parts_b) == 1:
+            return parts_b[0], parts_f[0]
         return np.concatenate(parts_b), np.concatenate(parts_f)

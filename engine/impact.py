@@ -96,27 +96,32 @@ def quadratic_first_root(g0: Any, g1: Any, g2: Any, T: Any, slack: Any = 0.0) ->
 def quadratic_first_root_one(
     g0: float, g1: float, g2: float, T: float, slack: float = 0.0
 ) -> float:
-    """``quadratic_first_root`` for one quadratic, in Python floats (the same bits)."""
+    """``quadratic_first_root`` for one quadratic, in Python floats (the same bits).
+
+    The array version computes every case and picks the one that applies, in the order
+    touching, linear, no real root, roots; here only that one is computed.
+    """
     inf = math.inf
-    # max() keeps a nan first argument, as np.maximum does; every division is guarded by the
-    # test np.where makes, so none divides by zero.
-    disc = g1 * g1 - 4.0 * g2 * g0
-    sq = math.sqrt(max(disc, 0.0))
-    q = -0.5 * (g1 + math.copysign(sq, g1))
-    r1 = q / g2 if g2 != 0.0 else inf
-    r2 = g0 / q if q != 0.0 else inf
-    r1 = r1 if r1 >= 0.0 else inf
-    r2 = r2 if r2 >= 0.0 else inf
-    t = r1 if r1 < r2 else r2
-    if disc < 0.0:
-        t = inf
-    if g2 == 0.0:
-        t = -g0 / g1 if g1 < 0.0 else inf
     if g0 <= 0.0:  # touching: now if heading in, else where it curves back (if it does)
         if g1 < -slack or (g1 <= slack and g2 < 0.0):
             t = 0.0
         else:
             t = -g1 / g2 if g2 < 0.0 and g1 > 0.0 else inf
+    elif g2 == 0.0:  # linear: t = -g0 / g1 when heading down
+        t = -g0 / g1 if g1 < 0.0 else inf
+    else:
+        # max() keeps a nan first argument, as np.maximum does; each division is guarded by
+        # the test np.where makes.
+        disc = g1 * g1 - 4.0 * g2 * g0
+        if disc < 0.0:
+            return inf
+        sq = math.sqrt(max(disc, 0.0))
+        q = -0.5 * (g1 + math.copysign(sq, g1))
+        r1 = q / g2
+        r2 = g0 / q if q != 0.0 else inf
+        r1 = r1 if r1 >= 0.0 else inf
+        r2 = r2 if r2 >= 0.0 else inf
+        t = r1 if r1 < r2 else r2
     return t if t <= T else inf
 
 
@@ -265,6 +270,13 @@ def disc_hits(
     tau = np.full(len(idx), np.inf)
     small = 1e-9 * scale
     deg = np.where(np.abs(K[:, 4]) > small, 4, np.where(np.abs(K[:, 3]) > small, 3, 2))
+    # No root at all: on [0, 1], where tau^i <= 1, the polynomial is at least k0 plus its
+    # negative coefficients. When that is above zero by 1e-6 of the largest coefficient, far
+    # beyond what rounding can move a root by (a near-real complex root of a curve so clear of
+    # zero needs it within ~1e-11), the eigenvalues are not computed (degree 0: none sought).
+    neg = np.minimum(K, 0.0)
+    clear = K[:, 0] + neg[:, 1] + neg[:, 2] + neg[:, 3] + neg[:, 4] > 1e-6 * scale
+    deg = np.where(clear, 0, deg)
     # A ball leaving the disc comes back only after a real flight: its root of the deflated
     # cubic must lie clear of 0 (a root within rounding of 0 is the departure itself).
     lower = np.where(lv, 1e-9, -1e-9) if lv.any() else np.full(len(idx), -1e-9)
@@ -323,14 +335,17 @@ def disc_hit_one(X: Pair, V: Pair, B: Pair, c: Pair, rho: float, T: float) -> fl
     ]
     if leaving:
         K = K[1:] + [0.0]
-    scale = max(abs(k) for k in K)
-    if any(k != k for k in K):
-        scale = math.nan  # as np.max does: a nan coefficient leaves the quadratic
+    k0, k1, k2, k3, k4 = K
+    scale = max(abs(k0), abs(k1), abs(k2), abs(k3), abs(k4))
+    if math.isnan(k0 + k1 + k2 + k3 + k4):
+        scale = math.nan  # as np.max: a nan (or inf - inf) leaves only the quadratic
     small = 1e-9 * scale
-    deg = 4 if abs(K[4]) > small else 3 if abs(K[3]) > small else 2
+    deg = 4 if abs(k4) > small else 3 if abs(k3) > small else 2
+    if k0 + min(k1, 0.0) + min(k2, 0.0) + min(k3, 0.0) + min(k4, 0.0) > 1e-6 * scale:
+        return inf  # clear of zero on [0, 1]: no root
     lower = 1e-9 if leaving else -1e-9
     if deg > 2:
-        tau = float(_first_root_eig(np.array([K[: deg + 1]]), np.array([lower]))[0])
+        tau = _first_root_eig_one(K[: deg + 1], lower)
     else:
         tau = quadratic_first_root_one(K[0], K[1], K[2], 1.0)
         tau = tau if tau > lower else inf
@@ -355,6 +370,23 @@ def _first_root_eig(K: np.ndarray, lower: np.ndarray) -> np.ndarray:
     r = np.where(real, roots.real, np.inf)
     r = np.where((r > lower[:, None]) & (r <= 1.0 + 1e-9), r, np.inf)
     return r.min(axis=1)
+
+
+def _first_root_eig_one(K: list[float], lower: float) -> float:
+    """``_first_root_eig`` for one polynomial: the same companion matrix, solved by the same
+    LAPACK routine (numpy calls it matrix by matrix, so one alone gives the same roots)."""
+    d = len(K) - 1
+    lead = K[d]
+    comp = [[0.0] * d for _ in range(d)]
+    comp[0] = [-K[d - 1 - j] / lead for j in range(d)]
+    for i in range(1, d):
+        comp[i][i - 1] = 1.0
+    roots = np.linalg.eigvals(np.array(comp))
+    best = math.inf
+    for re, im in zip(roots.real.tolist(), roots.imag.tolist(), strict=True):
+        if abs(im) <= 1e-6 * (1.0 + abs(re)) and lower < re <= 1.0 + 1e-9 and re < best:
+            best = re
+    return best
 
 
 def _polish(K: np.ndarray, x: np.ndarray) -> np.ndarray:
