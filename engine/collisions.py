@@ -742,34 +742,46 @@ class Collisions:
         plus how far the body has moved along the face's normal since (a face does not move).
         """
         pair = rb < nU
-        face = ~pair
         rmin = np.where(pair, np.minimum(r[ra], r[np.minimum(rb, nU - 1)]), r[ra])
         slop = SLOP * rmin
         R = r[ra] + np.where(pair, r[np.minimum(rb, nU - 1)], 0.0)
-        idx = np.concatenate([ra, rb])
-        deepest = 0.0
         Xx = np.vstack([X, np.zeros((1, 2))])
         Xr = np.vstack([X_ref, np.zeros((1, 2))])
-        n_now = nrm.copy()
-        # At least position_iterations; more, up to MAX_POSITION_ITERATIONS, while some
-        # overlap is past twice SLOP (a pile settling: cheap once it has).
+        push_eff = BAUMGARTE * eff
+        deepest_rest = 0.0  # the deepest overlap among rows left out of later iterations
+        # At least position_iterations over every row; then, up to MAX_POSITION_ITERATIONS,
+        # more over the rows near an overlap past twice SLOP (a pile settling, or a ball just
+        # landed on it: the work goes where the overlap is).
         for k in range(MAX_POSITION_ITERATIONS + 1):
             D = Xx[ra] - Xx[rb]
             dist = _norm(D)
             over = np.where(pair, R - dist, -gap - _dot(Xx[ra] - Xr[ra], nrm))
-            deepest = float(over[pair].max()) if pair.any() else 0.0
-            push = np.maximum(over - slop, 0.0) * (BAUMGARTE * eff)
+            push = np.maximum(over - slop, 0.0) * push_eff
             if k == MAX_POSITION_ITERATIONS or not push.any():
                 break
-            if k >= self.position_iterations and not (over > 2.0 * slop).any():
-                break
-            n_now[pair] = D[pair] / np.where(dist[pair] > 0.0, dist[pair], 1.0)[:, None]
-            n_now[face] = nrm[face]
-            P = n_now * push[:, None]
+            if k >= self.position_iterations:
+                deep = over > 2.0 * slop
+                if not deep.any():
+                    break
+                if k == self.position_iterations:
+                    hot = np.zeros(nU + 1, dtype=bool)
+                    hot[ra[deep]] = hot[rb[deep]] = True
+                    hot[nU] = False
+                    keep = hot[ra] | hot[rb]
+                    if not keep.all():
+                        left = over[~keep & pair]
+                        deepest_rest = float(left.max()) if len(left) else 0.0
+                        ra, rb, pair, R, slop = ra[keep], rb[keep], pair[keep], R[keep], slop[keep]
+                        gap, nrm, push_eff = gap[keep], nrm[keep], push_eff[keep]
+                        D, dist, push = D[keep], dist[keep], push[keep]
+            n = np.where(pair[:, None], D / np.where(dist > 0.0, dist, 1.0)[:, None], nrm)
+            P = n * push[:, None]
+            idx = np.concatenate([ra, rb])
             both = np.concatenate([P * wx[ra, None], P * -wx[rb, None]])
             Xx[:, 0] += np.bincount(idx, both[:, 0], minlength=nU + 1)
             Xx[:, 1] += np.bincount(idx, both[:, 1], minlength=nU + 1)
             Xx[nU] = 0.0
+        deepest = max(float(over[pair].max()) if pair.any() else 0.0, deepest_rest)
         X[:] = Xx[:nU]
         self.last_overlap = max(deepest, 0.0)
 
