@@ -1021,11 +1021,12 @@ class Contacts:
         )
 
     # -- a few bodies, one at a time ---------------------------------------------------------
-    # The same steps as _solve and its helpers, for one body in Python floats: each function
-    # below is its array twin line for line (same operations in the same order, so the same
-    # bits), with an `if` where the array version computes both branches and picks with
-    # np.where. On a handful of bodies numpy's fixed cost per call (about a microsecond, a
-    # few hundred calls per round of impacts) is most of the time; floats have none.
+    # The same steps as _solve and its helpers, for one body in Python floats: _path_one is
+    # _solve's loop, and each function ending in _one (after this class) is its array twin
+    # line for line (same operations in the same order, so the same bits), with an `if` where
+    # the array version computes both branches and picks with np.where. On a handful of
+    # bodies numpy's fixed cost per call (about a microsecond, a few hundred calls per round
+    # of impacts) is most of the time; floats have none.
     def _solve_few(
         self,
         rows: np.ndarray,
@@ -1467,11 +1468,10 @@ class _FaceGrid:
             face_parts.append(np.full(len(di), self.finite[k], dtype=np.intp))
         self.bound = bound
         # The bounds with a ring of cells around them holding the margin: any point outside
-        # the grid is looked up in the ring (clipped), so clearance needs no inside test.
+        # the grid is looked up in the ring (clipped), so a lookup needs no inside test.
         ring = np.full((nx + 2, ny + 2), self.margin)
         ring[1:-1, 1:-1] = bound
         self._ring = ring.reshape(-1)
-        self._ring_hi = np.array([nx + 1, ny + 1], dtype=float)
         self._ring_lo = self.lo - h  # the ring's lower-left corner
         # The lists are kept by ring cell too; the ring's are empty. A body out in the ring
         # that reaches at most pad meets nothing finite: pad (4 h, at most 0.0108 of the
@@ -1486,7 +1486,7 @@ class _FaceGrid:
 
     def cells(self, x: np.ndarray) -> np.ndarray:
         """Each point's cell (with the ring; a point outside the grid takes the ring cell
-        nearest it): an index into the bounds (``clearance``) and the lists (``pairs``)."""
+        nearest it): an index into the bounds (``gap``) and the lists (``pairs``)."""
         nx, ny = self.shape
         # Column by column: an (N, 2) array with a (2,) one costs ~3x more than two columns.
         # Clipped to the ring first, so truncation toward zero is the floor.
@@ -1499,10 +1499,6 @@ class _FaceGrid:
         cell *= ny + 2
         cell += j.astype(np.intp)
         return cell
-
-    def clearance(self, x: np.ndarray) -> np.ndarray:
-        """A lower bound (length units) on each point's distance to every finite face."""
-        return self._ring[self.cells(x)]
 
     def plane_distance(self, x: np.ndarray, k: int) -> np.ndarray:
         """Distance of each point from the k-th endless face (a wall of a Box is one column)."""
