@@ -516,7 +516,7 @@ class Contacts:
         if cell is not None:
             # The finite faces the grid lists, each a capsule: the points within rad of its
             # segment a-b (a flat face is the middle of one, a round face one with a = b).
-            fb, ff = grid.pairs(reach, cell)
+            fb, ff = grid.listed(reach, cell)
             Xf, ab = X.take(fb, axis=0), grid.cap_ab.take(ff, axis=0)
             D = Xf - grid.cap_a.take(ff, axis=0)
             along = _dot(D, ab) * grid.cap_inv[ff]  # the nearest point: a + along (b - a)
@@ -1486,7 +1486,7 @@ class _FaceGrid:
 
     def cells(self, x: np.ndarray) -> np.ndarray:
         """Each point's cell (with the ring; a point outside the grid takes the ring cell
-        nearest it): an index into the bounds (``gap``) and the lists (``pairs``)."""
+        nearest it): an index into the bounds (``gap``) and the lists (``listed``)."""
         nx, ny = self.shape
         # Column by column: an (N, 2) array with a (2,) one costs ~3x more than two columns.
         # Clipped to the ring first, so truncation toward zero is the floor.
@@ -1519,7 +1519,25 @@ class _FaceGrid:
             np.minimum(d, self.plane_distance(x, k), out=d)
         return d
 
-    def pairs(self, reach: np.ndarray, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(body, face) pairs to test: the endless faces within reach, and the finite ones
+        ``listed`` for each body."""
+        parts_b: list[np.ndarray] = []
+        parts_f: list[np.ndarray] = []
+        if self.n_inf:
+            d = X @ self.inf_n.T - self.inf_c
+            bi, fi = np.nonzero(d <= reach[:, None])
+            parts_b.append(bi)
+            parts_f.append(self.inf_ids[fi])
+        if self.n_finite:
+            fb, ff = self.listed(reach, self.cells(X))
+            parts_b.append(fb)
+            parts_f.append(ff)
+        if not parts_b:
+            return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
+        return np.concatenate(parts_b), np.concatenate(parts_f)
+
+    def listed(self, reach: np.ndarray, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, finite face) pairs to test: the faces the body's cell lists, or all of them
         for a body reaching farther than pad (if it can reach one at all). ``cell``: the
         bodies' cells (``cells``)."""

@@ -240,3 +240,37 @@ def test_rare_cases_give_the_same_steps(method: str) -> None:
         assert len(arrays.began) == len(floats.began), step
         assert len(arrays.ended) == len(floats.ended), step
     assert arrays.capped == floats.capped > 0
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_grid_lists_every_face_within_reach(seed: int) -> None:
+    """The broadphase (also used by engine.collisions): every face a ball can reach is among
+    its pairs, both as the solver lists them and as ``_FaceGrid.pairs`` does."""
+    rng = np.random.default_rng(seed)
+    world, _ = scene(seed, "auto")
+    contacts = world._contacts
+    assert contacts is not None
+    faces, grid = contacts.faces, contacts._grid_of()
+    X = rng.uniform(-12.0, 12.0, (400, 2))
+    reach = rng.choice([0.01, 0.1, 0.5, 3.0], 400)
+    L = len(faces.p)
+    listed = set(zip(*(a.tolist() for a in grid.pairs(X, reach)), strict=True))
+    cell = grid.cells(X)
+    fb, ff = grid.listed(reach, cell)
+    listed_finite = set(zip(fb.tolist(), ff.tolist(), strict=True))
+    for b in range(len(X)):
+        for f in range(L + len(faces.c)):
+            if f < L:
+                d = X[b] - faces.p[f]
+                along = d @ np.array([-faces.n[f, 1], faces.n[f, 0]])
+                across = d @ faces.n[f]
+                if not faces.two[f]:
+                    gap = across - faces.rho[f]  # endless and one-sided
+                else:
+                    off = max(faces.lo[f] - along, along - faces.hi[f], 0.0)
+                    gap = math.hypot(across, off) - faces.rho[f]
+            else:
+                gap = float(np.hypot(*(X[b] - faces.c[f - L]))) - faces.r[f - L]
+            if gap <= reach[b]:
+                assert (b, f) in listed, (b, f, gap, reach[b])
+                assert (f < L and faces.infinite[f]) or (b, f) in listed_finite, (b, f)
