@@ -145,18 +145,22 @@ def scene(seed: int, method: str) -> tuple[World, list[Body]]:
 
 
 def events(world: World, evs: list[Any]) -> list[tuple[Any, ...]]:
-    """Each event as (body's place, collider's place, point, normal, impulse, time)."""
-    return [
-        (
-            world.bodies.index(e.body),
-            world.colliders.index(e.collider),
-            *e.point,
-            *e.normal,
-            *e.impulse,
-            e.time,
+    """Each event as (body's place, what it met and its place, point, normal, impulse, time);
+    what it met is a collider, or another body where bodies collide."""
+    bodies, colliders = world.bodies, world.colliders
+
+    def place(things: tuple[Any, ...], thing: Any) -> int:
+        return next(k for k, t in enumerate(things) if t is thing)
+
+    out = []
+    for e in evs:
+        met = (
+            ("body", place(bodies, e.collider))
+            if any(b is e.collider for b in bodies)
+            else ("collider", place(colliders, e.collider))
         )
-        for e in evs
-    ]
+        out.append((place(bodies, e.body), met, *e.point, *e.normal, *e.impulse, e.time))
+    return out
 
 
 def close(a: Any, b: Any) -> bool:
