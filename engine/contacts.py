@@ -528,7 +528,7 @@ class Contacts:
         if cell is not None:
             # The finite faces the grid lists, each a capsule: the points within rad of its
             # segment a-b (a flat face is the middle of one, a round face one with a = b).
-            fb, ff = grid.pairs(reach, cell)
+            fb, ff = grid.listed(reach, cell)
             Xf, ab = X.take(fb, axis=0), grid.cap_ab.take(ff, axis=0)
             D = Xf - grid.cap_a.take(ff, axis=0)
             along = _dot(D, ab) * grid.cap_inv[ff]  # the nearest point: a + along (b - a)
@@ -1033,11 +1033,12 @@ class Contacts:
         )
 
     # -- a few bodies, one at a time ---------------------------------------------------------
-    # The same steps as _solve and its helpers, for one body in Python floats: each function
-    # below is its array twin line for line (same operations in the same order, so the same
-    # bits), with an `if` where the array version computes both branches and picks with
-    # np.where. On a handful of bodies numpy's fixed cost per call (about a microsecond, a
-    # few hundred calls per round of impacts) is most of the time; floats have none.
+    # The same steps as _solve and its helpers, for one body in Python floats: _path_one is
+    # _solve's loop, and each function ending in _one (after this class) is its array twin
+    # line for line (same operations in the same order, so the same bits), with an `if` where
+    # the array version computes both branches and picks with np.where. On a handful of
+    # bodies numpy's fixed cost per call (about a microsecond, a few hundred calls per round
+    # of impacts) is most of the time; floats have none.
     def _solve_few(
         self,
         rows: np.ndarray,
@@ -1479,11 +1480,10 @@ class _FaceGrid:
             face_parts.append(np.full(len(di), self.finite[k], dtype=np.intp))
         self.bound = bound
         # The bounds with a ring of cells around them holding the margin: any point outside
-        # the grid is looked up in the ring (clipped), so clearance needs no inside test.
+        # the grid is looked up in the ring (clipped), so a lookup needs no inside test.
         ring = np.full((nx + 2, ny + 2), self.margin)
         ring[1:-1, 1:-1] = bound
         self._ring = ring.reshape(-1)
-        self._ring_hi = np.array([nx + 1, ny + 1], dtype=float)
         self._ring_lo = self.lo - h  # the ring's lower-left corner
         # The lists are kept by ring cell too; the ring's are empty. A body out in the ring
         # that reaches at most pad meets nothing finite: pad (4 h, at most 0.0108 of the
@@ -1498,7 +1498,7 @@ class _FaceGrid:
 
     def cells(self, x: np.ndarray) -> np.ndarray:
         """Each point's cell (with the ring; a point outside the grid takes the ring cell
-        nearest it): an index into the bounds (``clearance``) and the lists (``pairs``)."""
+        nearest it): an index into the bounds (``gap``) and the lists (``listed``)."""
         nx, ny = self.shape
         # Column by column: an (N, 2) array with a (2,) one costs ~3x more than two columns.
         # Clipped to the ring first, so truncation toward zero is the floor.
@@ -1511,10 +1511,6 @@ class _FaceGrid:
         cell *= ny + 2
         cell += j.astype(np.intp)
         return cell
-
-    def clearance(self, x: np.ndarray) -> np.ndarray:
-        """A lower bound (length units) on each point's distance to every finite face."""
-        return self._ring[self.cells(x)]
 
     def plane_distance(self, x: np.ndarray, k: int) -> np.ndarray:
         """Distance of each point from the k-th endless face (a wall of a Box is one column)."""
@@ -1535,7 +1531,25 @@ class _FaceGrid:
             np.minimum(d, self.plane_distance(x, k), out=d)
         return d
 
-    def pairs(self, reach: np.ndarray, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def pairs(self, X: np.ndarray, reach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(body, face) pairs to test: the endless faces within reach, and the finite ones
+        ``listed`` for each body."""
+        parts_b: list[np.ndarray] = []
+        parts_f: list[np.ndarray] = []
+        if self.n_inf:
+            d = X @ self.inf_n.T - self.inf_c
+            bi, fi = np.nonzero(d <= reach[:, None])
+            parts_b.append(bi)
+            parts_f.append(self.inf_ids[fi])
+        if self.n_finite:
+            fb, ff = self.listed(reach, self.cells(X))
+            parts_b.append(fb)
+            parts_f.append(ff)
+        if not parts_b:
+            return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
+        return np.concatenate(parts_b), np.concatenate(parts_f)
+
+    def listed(self, reach: np.ndarray, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, finite face) pairs to test: the faces the body's cell lists, or all of them
         for a body reaching farther than pad (if it can reach one at all). ``cell``: the
         bodies' cells (``cells``)."""

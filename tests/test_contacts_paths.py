@@ -148,18 +148,22 @@ def scene(seed: int, method: str) -> tuple[World, list[Body]]:
 
 
 def events(world: World, evs: list[Any]) -> list[tuple[Any, ...]]:
-    """Each event as (body's place, collider's place, point, normal, impulse, time)."""
-    return [
-        (
-            world.bodies.index(e.body),
-            world.colliders.index(e.collider),
-            *e.point,
-            *e.normal,
-            *e.impulse,
-            e.time,
+    """Each event as (body's place, what it met and its place, point, normal, impulse, time);
+    what it met is a collider, or another body where bodies collide."""
+    bodies, colliders = world.bodies, world.colliders
+
+    def place(things: tuple[Any, ...], thing: Any) -> int:
+        return next(k for k, t in enumerate(things) if t is thing)
+
+    out = []
+    for e in evs:
+        met = (
+            ("body", place(bodies, e.collider))
+            if any(b is e.collider for b in bodies)
+            else ("collider", place(colliders, e.collider))
         )
-        for e in evs
-    ]
+        out.append((place(bodies, e.body), met, *e.point, *e.normal, *e.impulse, e.time))
+    return out
 
 
 def close(a: Any, b: Any) -> bool:
@@ -169,6 +173,9 @@ def close(a: Any, b: Any) -> bool:
     )
 
 
+# Where balls also collide with each other, a crowded spot may warn that a pile overlaps:
+# both worlds alike, and beside the point here.
+@pytest.mark.filterwarnings("ignore::engine.StabilityWarning")
 @pytest.mark.parametrize("method", ["auto", "semi_implicit_euler", "velocity_verlet"])
 @pytest.mark.parametrize("seed", range(3))
 def test_one_at_a_time_and_arrays_give_the_same_steps(seed: int, method: str) -> None:
@@ -243,3 +250,37 @@ def test_rare_cases_give_the_same_steps(method: str) -> None:
         assert len(arrays.began) == len(floats.began), step
         assert len(arrays.ended) == len(floats.ended), step
     assert arrays.capped == floats.capped > 0
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_grid_lists_every_face_within_reach(seed: int) -> None:
+    """The broadphase (also used by engine.collisions): every face a ball can reach is among
+    its pairs, both as the solver lists them and as ``_FaceGrid.pairs`` does."""
+    rng = np.random.default_rng(seed)
+    world, _ = scene(seed, "auto")
+    contacts = world._contacts
+    assert contacts is not None
+    faces, grid = contacts.faces, contacts._grid_of()
+    X = rng.uniform(-12.0, 12.0, (400, 2))
+    reach = rng.choice([0.01, 0.1, 0.5, 3.0], 400)
+    L = len(faces.p)
+    listed = set(zip(*(a.tolist() for a in grid.pairs(X, reach)), strict=True))
+    cell = grid.cells(X)
+    fb, ff = grid.listed(reach, cell)
+    listed_finite = set(zip(fb.tolist(), ff.tolist(), strict=True))
+    for b in range(len(X)):
+        for f in range(L + len(faces.c)):
+            if f < L:
+                d = X[b] - faces.p[f]
+                along = d @ np.array([-faces.n[f, 1], faces.n[f, 0]])
+                across = d @ faces.n[f]
+                if not faces.two[f]:
+                    gap = across - faces.rho[f]  # endless and one-sided
+                else:
+                    off = max(faces.lo[f] - along, along - faces.hi[f], 0.0)
+                    gap = math.hypot(across, off) - faces.rho[f]
+            else:
+                gap = float(np.hypot(*(X[b] - faces.c[f - L]))) - faces.r[f - L]
+            if gap <= reach[b]:
+                assert (b, f) in listed, (b, f, gap, reach[b])
+                assert (f < L and faces.infinite[f]) or (b, f) in listed_finite, (b, f)
