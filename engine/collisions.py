@@ -1092,19 +1092,7 @@ def _face_rows(
     of a ball (X, r)."""
     grid = contacts._grid_of()
     faces = contacts.faces
-    reach = r + margin
-    parts_b: list[np.ndarray] = []
-    parts_f: list[np.ndarray] = []
-    for k in range(grid.n_inf):  # endless faces (planes, a Box's walls): each against all
-        near = np.flatnonzero(grid.plane_distance(X, k) <= reach)
-        parts_b.append(near)
-        parts_f.append(np.full(len(near), grid.inf_ids[k], dtype=np.intp))
-    if grid.n_finite:  # the rest: the faces each body's grid cell lists
-        fb, ff = grid.pairs(reach, grid.cells(X))
-        parts_b.append(fb)
-        parts_f.append(ff)
-    bi = np.concatenate(parts_b) if parts_b else np.zeros(0, dtype=np.intp)
-    f = np.concatenate(parts_f) if parts_f else np.zeros(0, dtype=np.intp)
+    bi, f = grid.pairs(X, r + margin)  # endless faces within reach, and the listed ones
     if not len(bi):
         z = np.zeros(0, dtype=np.intp)
         return z, np.zeros((0, 2)), np.zeros(0), np.zeros(0), z
