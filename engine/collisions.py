@@ -387,8 +387,15 @@ class Collisions:
         # The grid's cells hold a body's reach: up to a radius, or to what all but the
         # fastest 2% reach (a falling crowd), at most four radii. Faster bodies, few, are
         # tested against everyone.
-        cap = min(max(rmax, float(np.quantile(reach, 0.98))), 4.0 * rmax)
-        fast = reach > cap
+        fast = reach > rmax
+        if fast.any():
+            cap = min(
+                float(
+                    np.partition(reach, int(0.98 * (len(reach) - 1)))[int(0.98 * (len(reach) - 1))]
+                ),
+                4.0 * rmax,
+            )
+            fast = reach > max(rmax, cap)
         slow_reach = float(reach[~fast].max()) if (~fast).any() else 0.0
         h = 2.0 * (rmax + slow_reach)
         span = float((P.max(axis=0) - P.min(axis=0)).max())
@@ -658,6 +665,8 @@ class Collisions:
         rho2 = self.rho * self.rho
         omega = 1.0
         size = nU + 1
+        w_max = float(wx.max())
+        tol_v = 1e-6 * self.rest_speed + 1e-300
         for k in range(self.iterations):
             z = (Vc[ra] - Vc[rb]) * ncc
             new_n = lam_n - eff * (z.real - target)
@@ -669,7 +678,11 @@ class Collisions:
             np.maximum(new_n, 0.0, out=new_n)
             cap = fric * new_n
             np.clip(new_t, -cap, cap, out=new_t)
-            P = nc * ((new_n - lam_n) + 1j * (new_t - lam_t))
+            d_n, d_t = new_n - lam_n, new_t - lam_t
+            # Converged (no impulse would change any speed by a millionth of rest_speed): stop.
+            if float(np.abs(d_n).max() + np.abs(d_t).max()) * w_max <= tol_v:
+                break
+            P = nc * (d_n + 1j * d_t)
             old_n, old_t, lam_n, lam_t = lam_n, lam_t, new_n, new_t
             P2 = np.concatenate([P, P]) * w2
             Vc += np.bincount(idx, P2.real, minlength=size) + 1j * np.bincount(
@@ -805,6 +818,8 @@ class Collisions:
         keys = np.unique(keys)
         before = self._touching
         self._touching = keys
+        if not impacts and np.array_equal(keys, before):
+            return  # the same pairs touch as before: nothing began or ended
         struck = np.zeros(0, dtype=np.int64)
         if impacts:
             for pa, pb, point, nrm, P, tau in impacts:
