@@ -1,6 +1,7 @@
-"""Speed against accuracy: the work-precision chart and the throughput chart.
+"""Speed against accuracy: the work-precision chart, the throughput chart, the contacts chart.
 
-    python -m demos tradeoff            # out/tradeoff/work_precision.png + .csv, throughput.*
+    python -m demos tradeoff            # out/tradeoff/work_precision.png + .csv, throughput.*,
+                                        # contacts.*
     python -m demos tradeoff --quick    # a coarser sweep in a few seconds
 
 The work-precision chart answers "which integrator should I use?": for three problems with
@@ -11,7 +12,14 @@ best method for that budget. "auto" is the World choosing for itself, given a to
 
 The throughput chart: cost per body-step against the number of bodies, for the World, the
 particle arrays, the lesson's Body loop, pymunk and pygame's Vector2, measured in one run.
-The measuring lives in ``engine.measure`` and ``demos.bench.throughput``; this module draws.
+
+The contacts chart answers "how many contact iterations do I need?": for a ball pit (the
+deepest overlap left at rest, and the motion left) and Newton's cradle (the speeds after the
+impacts), the error against the cost of an awake step, for this engine at several
+``World.contact_iterations`` and for pymunk at several ``Space.iterations``.
+
+The measuring lives in ``engine.measure``, ``demos.bench.throughput`` and
+``demos.bench.solver``; this module draws.
 """
 
 from __future__ import annotations
@@ -20,15 +28,17 @@ import argparse
 import math
 import sys
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 import pygame
 
-from demos.bench import throughput
+from demos.bench import solver, throughput
 from demos.cli import Demo
 from engine import measure
 from engine.measure import PROBLEMS, Point
-from engine.render import INK, MUTED, PAPER, Progress, draw_text, init_headless, save_png
+from engine.render import INK, MUTED, PAPER, Progress, draw_text, font, init_headless, save_png
 from engine.render.chart import LogLogChart, decade_range, draw_legend
 
 __all__ = [
@@ -36,6 +46,9 @@ __all__ = [
     "LABELS",
     "draw_work_precision",
     "draw_throughput",
+    "draw_contacts",
+    "SOLVER_COLORS",
+    "SOLVER_LABELS",
     "run",
     "DEMO",
 ]
@@ -70,6 +83,23 @@ THROUGHPUT_COLORS: dict[str, Color] = {
     "pymunk": (204, 121, 167),
     "pygame Vector2": (230, 159, 0),
 }
+
+#: Colours of the contacts chart's solvers (Okabe-Ito, as above).
+SOLVER_COLORS: dict[str, Color] = {
+    "World": (0, 114, 178),  # blue: this engine
+    "pymunk": (204, 121, 167),  # reddish purple, as on the throughput chart
+    "pymunk 1 mm": (213, 94, 0),  # vermillion
+}
+
+#: The contacts chart's legend.
+SOLVER_LABELS: dict[str, str] = {
+    "World": "this engine (World.contact_iterations)",
+    "pymunk": "pymunk (Space.iterations), collision_slop 0.1 m: its default",
+    "pymunk 1 mm": "pymunk, collision_slop 1 mm: the overlap this engine leaves alone",
+}
+
+#: Short names for the contacts chart's captions.
+_SHORT = {"World": "this engine", "pymunk": "pymunk", "pymunk 1 mm": "pymunk 1 mm"}
 
 _FLOOR = 1e-16  # m: errors below this (round-off) are drawn on the bottom line
 _LEVEL = 1e-3  # m: the accuracy each panel's verdict is given for (1 mm)
@@ -260,6 +290,249 @@ def draw_throughput(
     return surface
 
 
+@dataclass(frozen=True)
+class _Panel:
+    """One panel of the contacts chart: which scene and measure, its axis and its notes."""
+
+    scene: str
+    measure: str  # a Row attribute: "error" or "energy"
+    title: str
+    y_label: str
+    zero: str  # what a value of 0 (drawn on the bottom line) means
+    floor: int | None = None  # the bottom decade, if fixed
+    level: float | None = None  # a target drawn as a dashed line, with its label
+    level_label: str = ""
+
+
+_CONTACT_PANELS = (
+    _Panel(
+        "pit",
+        "error",
+        f"Ball pit: overlap at rest ({solver.PIT_BALLS} balls)",
+        f"deepest overlap after {solver.PIT_SETTLE:g} s / radius",
+        "",
+        level=0.01,
+        level_label="1% of r",
+    ),
+    _Panel(
+        "pit",
+        "energy",
+        "Ball pit: is it still?",
+        f"kinetic / potential energy after {solver.PIT_SETTLE:g} s",
+        "bottom line: 0, asleep",
+    ),
+    _Panel(
+        "cradle",
+        "error",
+        "Newton's cradle (5 balls, e = 1)",
+        "speed error / v0, largest after the impacts",
+        "bottom line: 0, exact",
+        floor=-16,
+    ),
+)
+
+
+def _clusters(
+    marks: list[tuple[float, float, int]], near: float
+) -> list[list[tuple[float, float, int]]]:
+    """Group dots (px, py, iterations) that lie within ``near`` px of one another (chained)."""
+    groups: list[list[tuple[float, float, int]]] = []
+    for mark in sorted(marks, key=lambda m: m[2]):
+        for group in groups:
+            if any(abs(mark[0] - g[0]) < near and abs(mark[1] - g[1]) < near for g in group):
+                group.append(mark)
+                break
+        else:
+            groups.append([mark])
+    return groups
+
+
+def _counts(group: list[tuple[float, float, int]], measured: Sequence[int]) -> str:
+    """The label of a group of dots: "8", "1, 2", "1, 5, 10" or, when the group holds every
+    count measured from its first to its last (``measured``), "1\u201316"."""
+    ks = sorted(k for _, _, k in group)
+    if len(ks) >= 3 and [k for k in measured if ks[0] <= k <= ks[-1]] == ks:
+        return f"{ks[0]}\u2013{ks[-1]}"
+    return ", ".join(map(str, ks))
+
+
+def _label_dots(
+    surface: pygame.Surface,
+    area: pygame.Rect,
+    series: list[tuple[Color, list[tuple[float, float, int]]]],
+    taken: list[pygame.Rect],
+) -> None:
+    """Write each dot's iteration count beside it, in its colour, where no other label, dot or
+    rectangle of ``taken`` is: right, left, above, below or a corner; dots a few px apart share
+    one label."""
+    size = 16
+    taken = taken + [
+        pygame.Rect(round(x) - 5, round(y) - 5, 10, 10) for _, ms in series for x, y, _ in ms
+    ]
+    spots = (
+        ("midleft", 8, 0),
+        ("midright", -8, 0),
+        ("midbottom", 0, -7),
+        ("midtop", 0, 7),
+        ("bottomleft", 5, -5),
+        ("topleft", 5, 5),
+        ("bottomright", -5, -5),
+        ("topright", -5, 5),
+        ("midleft", 22, 0),
+        ("midright", -22, 0),
+        ("midbottom", 0, -20),
+        ("midtop", 0, 20),
+        ("bottomleft", 5, -18),
+        ("bottomright", -5, -18),
+    )
+    bounds = area.inflate(8, 8)  # a dot on an edge may have its label just over the frame
+    for color, marks in series:
+        measured = sorted(k for _, _, k in marks)
+        for group in _clusters(marks, 11.0):
+            text = _counts(group, measured)
+            x = sum(m[0] for m in group) / len(group)
+            y = sum(m[1] for m in group) / len(group)
+            image = font(size).render(text, True, color)
+            choice = None
+            for anchor, dx, dy in spots:
+                rect = image.get_rect(**{anchor: (round(x + dx), round(y + dy))})
+                rect = rect.inflate(2, 0)
+                if bounds.contains(rect) and rect.collidelist(taken) < 0:
+                    choice = rect
+                    break
+            if choice is None:
+                choice = image.get_rect(midleft=(round(x + 8), round(y))).inflate(2, 0)
+            taken.append(choice)
+            pygame.draw.rect(surface, (255, 255, 255), choice)
+            surface.blit(image, image.get_rect(center=choice.center))
+
+
+def _fewest(rows: Sequence[solver.Row], panel: _Panel, level: float) -> dict[str, solver.Row]:
+    """Per solver, its setting with the fewest iterations whose measure is within ``level``
+    (by iterations, not by the timed cost, so that timer noise cannot change the answer)."""
+    best: dict[str, solver.Row] = {}
+    for r in rows:
+        if r.scene != panel.scene or not getattr(r, panel.measure) <= level:
+            continue
+        if r.solver not in best or r.iterations < best[r.solver].iterations:
+            best[r.solver] = r
+    return best
+
+
+def _ms(seconds: float) -> str:
+    """A step's cost for a caption: "35 ms", "0.55 ms", "9 us"."""
+    if seconds >= 1e-3:
+        return f"{seconds * 1e3:.2g} ms" if seconds < 0.01 else f"{seconds * 1e3:.0f} ms"
+    return f"{seconds * 1e3:.2g} ms" if seconds >= 1e-4 else f"{seconds * 1e6:.2g} us"
+
+
+def _contacts_caption(rows: Sequence[solver.Row], panel: _Panel) -> list[str]:
+    """Two lines under a panel: the fewest iterations that reach its target, per solver."""
+    solvers = [s for s in solver.SOLVERS if any(r.solver == s for r in rows)]
+    if panel.scene == "cradle":
+        level, head = 1e-6, "Fewest iterations within 1e-6: "
+    elif panel.measure == "error":
+        level, head = 0.01, "Fewest iterations within 1% of r: "
+    else:
+        level, head = 1e-6, "Fewest iterations for KE < 1e-6 PE: "
+    best = _fewest(rows, panel, level)
+    parts = [
+        f"{_SHORT[s]} {best[s].iterations} ({_ms(best[s].cost)})"
+        if s in best
+        else f"{_SHORT[s]} none"
+        for s in solvers
+    ]
+    if len(parts) == 1:
+        return [head + parts[0] + "."]
+    return [head + parts[0] + ",", ", ".join(parts[1:]) + "."]
+
+
+def draw_contacts(
+    rows: Sequence[solver.Row], size: tuple[int, int] = (1280, 720)
+) -> pygame.Surface:
+    """The contacts chart: error against the cost of an awake step, per solver setting."""
+    width, height = size
+    surface = _canvas(
+        size,
+        "Contacts: how many solver iterations should I use?",
+        "Each dot: one iteration count (the number beside it), its error against the cost of "
+        "a step, all measured side by side in one run. dt = 1/60 s.",
+    )
+    margin, gap, top = 16, 12, 66
+    legend_h = 100
+    panels = [p for p in _CONTACT_PANELS if any(r.scene == p.scene for r in rows)]
+    panel_w = (width - 2 * margin - gap * (len(panels) - 1)) // max(1, len(panels))
+    panel_h = height - top - legend_h - 62
+    solvers = [s for s in solver.SOLVERS if any(r.solver == s for r in rows)]
+    for i, panel in enumerate(panels):
+        left = margin + i * (panel_w + gap)
+        mine = [r for r in rows if r.scene == panel.scene]
+        values = [getattr(r, panel.measure) for r in mine]
+        x_dec = decade_range([r.cost for r in mine])
+        lo, hi = decade_range([v for v in values if v > 0] + ([panel.level] if panel.level else []))
+        lo = panel.floor if panel.floor is not None else lo - (1 if 0.0 in values else 0)
+        span = hi - lo
+        chart = LogLogChart(
+            (left, top, panel_w, panel_h),
+            x_dec,
+            (lo, hi),
+            panel.title,
+            "cost: seconds per awake step",
+            panel.y_label,
+            y_label_every=2 if span > 8 else 1,
+        )
+        chart.draw_frame(surface)
+        a = chart.area
+        if panel.level is not None:
+            py = round(float(chart.to_px(1.0, panel.level)[1]))
+            for x in range(a.left + 2, a.right - 2, 12):
+                pygame.draw.line(surface, MUTED, (x, py), (min(x + 6, a.right - 2), py), 1)
+            draw_text(surface, panel.level_label, (a.right - 6, py - 2), 16, MUTED, "bottomright")
+        taken: list[pygame.Rect] = []
+        if panel.zero and 0.0 in values:
+            where = (a.left + 6, a.bottom - 4)
+            taken.append(draw_text(surface, panel.zero, where, 16, INK, "bottomleft"))
+        labelled: list[tuple[Color, list[tuple[float, float, int]]]] = []
+        for name in solvers:
+            series = sorted((r for r in mine if r.solver == name), key=lambda r: r.iterations)
+            if not series:
+                continue
+            xs = [r.cost for r in series]
+            ys = [getattr(r, panel.measure) for r in series]
+            chart.draw_series(surface, xs, ys, SOLVER_COLORS[name], width=2, radius=5)
+            floor = 10.0**lo
+            dot_x, dot_y = chart.to_px(np.array(xs), np.maximum(np.array(ys), floor))
+            dot_y = np.clip(dot_y, a.top, a.bottom - 1)
+            marks = [
+                (float(x), float(y), r.iterations)
+                for x, y, r in zip(dot_x, dot_y, series, strict=True)
+            ]
+            labelled.append((SOLVER_COLORS[name], marks))
+        _label_dots(surface, a, labelled, taken)
+        cap_y = top + panel_h + 6
+        for row, line in enumerate(_contacts_caption(rows, panel)):
+            draw_text(surface, line, (left + 4, cap_y + 19 * row), 16, INK)
+    items = [(SOLVER_LABELS[s], SOLVER_COLORS[s], 2) for s in solvers]
+    draw_legend(surface, items, (margin, height - legend_h), width - 2 * margin)
+    draw_text(
+        surface,
+        "Lower = more accurate, further left = cheaper. Cost: CPU time of an awake step (this "
+        "engine puts a still pile to sleep, and its steps then cost almost nothing), the mean",
+        (margin, height - 46),
+        17,
+        MUTED,
+    )
+    draw_text(
+        surface,
+        f"over the pit's first {solver.PIT_WINDOW:g} s (the balls fall and pile up) and the "
+        f"cradle's {solver.CRADLE_TIME:g} s, each step's time the median of several runs.",
+        (margin, height - 26),
+        17,
+        MUTED,
+    )
+    return surface
+
+
 def _write(path: Path, lines: Sequence[str]) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.tmp")
@@ -328,6 +601,14 @@ def run(args: argparse.Namespace) -> int:
     tp = save_png(draw_throughput(rows, size), out / "throughput.png", True)
     print(throughput.table(rows))
     print(f"tradeoff: wrote {tp} and {out / 'throughput.csv'}")
+    print("tradeoff: measuring contacts (solver iterations, this engine and pymunk) ...")
+    bar = Progress(label="contacts")
+    contact_rows = solver.measure(quick, progress=bar)
+    bar.done()
+    _write(out / "contacts.csv", [solver.csv_header(), *map(solver.csv_row, contact_rows)])
+    cp = save_png(draw_contacts(contact_rows, size), out / "contacts.png", True)
+    print(solver.table(contact_rows))
+    print(f"tradeoff: wrote {cp} and {out / 'contacts.csv'}")
     sys.stdout.flush()
     return 0
 

@@ -13,7 +13,9 @@ import pygame
 import pytest
 
 from demos import cli
-from demos.tradeoff import COLORS, _hidden_under, draw_work_precision
+from demos.bench import solver
+from demos.tradeoff import COLORS, SOLVER_COLORS, _hidden_under, draw_contacts, draw_work_precision
+from engine import World
 from engine.measure import PROBLEMS, Point, measure
 
 ORDERS = {"explicit_euler": 1, "semi_implicit_euler": 1, "velocity_verlet": 2, "rk4": 4}
@@ -192,3 +194,137 @@ def test_a_second_run_gives_the_same_errors_and_choices(
         assert {k: v for k, v in a.items() if k not in timed} == {
             k: v for k, v in b.items() if k not in timed
         }
+    # The contacts chart's errors too (both engines are deterministic).
+    contacts, contacts_again = _contact_rows(quick_run[0]), _contact_rows(tmp_path)
+    assert contacts.keys() == contacts_again.keys()
+    for key, row in contacts.items():
+        del row["cost_s_per_step"], contacts_again[key]["cost_s_per_step"]
+        assert row == contacts_again[key], key
+
+
+# -- the contacts chart: solver iterations against cost, this engine and pymunk ----------------
+
+try:
+    import pymunk  # noqa: F401
+
+    HAS_PYMUNK = True
+except ImportError:  # pragma: no cover - the bench extra is not installed
+    HAS_PYMUNK = False
+
+
+def _contact_rows(out: Path) -> dict[tuple[str, str, int], dict[str, str]]:
+    with open(out / "contacts.csv", newline="") as handle:
+        return {(r["scene"], r["solver"], int(r["iterations"])): r for r in csv.DictReader(handle)}
+
+
+def test_quick_run_writes_the_contacts_chart_with_both_engines(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    out, _, text = quick_run
+    assert (out / "contacts.png").stat().st_size > 0
+    rows = _contact_rows(out)
+    default = World().contact_iterations
+    for scene in solver.SCENES:
+        for count in solver.QUICK_ITERATIONS["World"]:
+            assert (scene, "World", count) in rows
+        for name in ("pymunk", "pymunk 1 mm"):
+            found = [k for k in rows if k[:2] == (scene, name)]
+            assert len(found) == (len(solver.QUICK_ITERATIONS[name]) if HAS_PYMUNK else 0)
+    assert ("pit", "World", default) in rows
+    assert "Newton's cradle" in text and "Ball pit" in text  # the table is printed too
+    for row in rows.values():
+        # Every setting is timed over its whole window, awake: the pit's first 2 s, the
+        # cradle's 1 s (a sleeping World's steps would not count).
+        cost, steps = float(row["cost_s_per_step"]), int(row["timed_steps"])
+        assert 0.0 < cost < 1.0 and math.isfinite(cost), row
+        assert steps == (120 if row["scene"] == "pit" else 60), row
+
+
+def test_this_engines_cradle_is_exact_and_its_pit_within_1_percent_at_the_default(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    rows = _contact_rows(quick_run[0])
+    default = World().contact_iterations
+    cradle = rows[("cradle", "World", default)]
+    assert float(cradle["error"]) < 1e-6  # the last ball leaves at v0, the others stand
+    assert float(cradle["energy"]) < 1e-6  # elastic: kinetic energy comes through
+    pit = rows[("pit", "World", default)]
+    assert 1e-4 < float(pit["error"]) <= 0.01  # balls at rest touch, by at most 1% of r
+    assert int(pit["asleep"]) == solver.PIT_BALLS and float(pit["energy"]) == 0.0
+
+
+def test_one_iteration_leaves_the_pit_deeper_and_moving(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    # The measures tell settings apart: one iteration a step cannot bring 20 rows of balls to
+    # rest within 4 s (they still creep, overlapping more), the default can.
+    rows = _contact_rows(quick_run[0])
+    one, default = rows[("pit", "World", 1)], rows[("pit", "World", World().contact_iterations)]
+    assert float(one["error"]) > float(default["error"])
+    assert float(one["energy"]) > 1e-7 and int(one["asleep"]) == 0
+
+
+@pytest.mark.skipif(not HAS_PYMUNK, reason="pymunk (the bench extra) is absent")
+def test_pymunks_rows_show_its_slop_and_its_one_iteration_cradle(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    rows = _contact_rows(quick_run[0])
+    # Its default collision_slop, 0.1 m, leaves overlaps of up to 20% of these radii alone.
+    assert 0.1 < float(rows[("pit", "pymunk", 10)]["error"]) < 0.3
+    # With a 1 mm slop its 10 iterations hold the pile tighter.
+    assert float(rows[("pit", "pymunk 1 mm", 10)]["error"]) < 0.1
+    # One iteration on the cradle: the speed goes wrong and energy appears from nowhere.
+    assert float(rows[("cradle", "pymunk", 1)]["error"]) > 0.1
+    assert float(rows[("cradle", "pymunk", 1)]["energy"]) > 0.1
+
+
+def test_the_cradle_error_counts_every_wrong_speed() -> None:
+    assert solver.cradle_error(np.array([[0.0, 0.0], [0.0, 0.0], [2.0, 0.0]])) == 0.0
+    # A solver that spreads the blow over the row (plain Jacobi): momentum right, speeds wrong.
+    spread = np.array([[0.4, 0.0], [0.8, 0.0], [0.8, 0.0]])
+    assert solver.cradle_error(spread) == pytest.approx(1.2)
+    hop = np.array([[0.0, 0.1], [0.0, 0.0], [2.0, 0.0]])  # a ball hopping on the floor
+    assert solver.cradle_error(hop) == pytest.approx(0.05)
+
+
+def test_contacts_chart_is_not_flat_and_draws_each_solver(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    pixels = _load(quick_run[0] / "contacts.png")
+    assert pixels.shape[:2] == (1280, 720)
+    flat = pixels.reshape(-1, 3)
+    assert len(np.unique(flat, axis=0)) > 20
+    for name, colour in SOLVER_COLORS.items():
+        count = int(np.all(flat == np.array(colour), axis=1).sum())
+        if name == "World" or HAS_PYMUNK:
+            assert count > 300, (name, count)  # lines and dots in three panels, not a swatch
+        else:  # pragma: no cover - the bench extra is not installed
+            assert count == 0, name
+
+
+def _row(scene: str, name: str, k: int, error: float, cost: float) -> solver.Row:
+    return solver.Row(scene, name, k, error, 0.0, cost, False, 0, 60)
+
+
+def test_contacts_chart_labels_each_dot_with_its_iterations() -> None:
+    # The same dots numbered 1, 2, 3 and then 10, 20, 30: only the labels beside them (and the
+    # captions under the panels) differ; without pymunk's rows none of its colours appear.
+    def chart(counts: tuple[int, ...]) -> np.ndarray:
+        rows = [
+            _row(s, "World", k, 10.0 ** -(i + 1), 1e-4 * 4**i)
+            for s in solver.SCENES
+            for i, k in enumerate(counts)
+        ]
+        pixels = pygame.surfarray.array3d(draw_contacts(rows))
+        for name in ("pymunk", "pymunk 1 mm"):
+            assert not np.all(pixels == np.array(SOLVER_COLORS[name]), axis=2).any()
+        return pixels
+
+    ones, tens = chart((1, 2, 3)), chart((10, 20, 30))
+    differ = np.any(ones != tens, axis=2)
+    assert not differ[:, :66].any()  # the titles do not change
+    inside = differ[:, 66:558]  # the panels (the captions below them name counts too)
+    assert inside.sum() > 3 * 3 * 20  # three panels, three labels, some pixels each
+    # In the series' colour: the changed pixels are blue, drawn on white.
+    changed = tens[:, 66:558][inside].astype(float)
+    assert changed[:, 2].mean() > changed[:, 0].mean() + 40

@@ -7,7 +7,7 @@ of things measured in the same run, round by round, as medians.
 
 They live under ``demos/``, above both the engine and the demos, because some of them time a
 demo (a fireworks frame): nothing under ``engine/`` imports ``demos/``. The tradeoff demo
-draws the throughput topic's measurements as a chart.
+draws the throughput and solver topics' measurements as charts.
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ TOPICS: dict[str, str] = {
     "throughput": "demos.bench.throughput",
     "contacts": "demos.bench.contacts",
     "pit": "demos.bench.pit",
+    "solver": "demos.bench.solver",
 }
 
 

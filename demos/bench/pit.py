@@ -34,11 +34,12 @@ SETTLE = 5.0  # s
 E, MU = 0.5, 0.5
 
 
-def scene(n: int, seed: int = 1) -> np.ndarray:
-    """Start positions (n, 2): a grid 38 balls wide, every other row shifted by half a ball,
-    with a little seeded jitter so that the columns do not stand by symmetry."""
+def scene(n: int, seed: int = 1, *, width: float = WIDTH) -> np.ndarray:
+    """Start positions (n, 2): a grid ``width`` - 2 balls wide (38 in the 40 m box), every
+    other row shifted by half a ball, with a little seeded jitter so that the columns do not
+    stand by symmetry."""
     rng = np.random.default_rng(seed)
-    cols = int(WIDTH) - 2
+    cols = int(width) - 2
     k = np.arange(n)
     row = k // cols
     x = 1.0 + (k % cols) + 0.5 * (row % 2) + rng.uniform(-0.01, 0.01, n)
@@ -46,22 +47,27 @@ def scene(n: int, seed: int = 1) -> np.ndarray:
     return np.stack([x, y], axis=1)
 
 
-def make_world(n: int, iterations: int | None = None) -> World:
-    """The pit as a World ("auto": the closed form under gravity)."""
+def make_world(n: int, iterations: int | None = None, *, width: float = WIDTH) -> World:
+    """The pit as a World ("auto": the closed form under gravity), ``width`` m wide."""
     world = World(integrator="auto")
     if iterations is not None:
         world.contact_iterations = iterations
     world.add_force(Gravity((0.0, -G)))
-    world.add_collider(Box((0.0, 0.0), (WIDTH, 1e4)))  # walls and a floor; the top far away
+    world.add_collider(Box((0.0, 0.0), (width, 1e4)))  # walls and a floor; the top far away
     world.add_all(
         Body(Vector(*p), Vector(0, 0), Vector(0, 0), radius=RADIUS, restitution=E, friction=MU)
-        for p in scene(n).tolist()
+        for p in scene(n, width=width).tolist()
     )
     return world
 
 
-def make_space(n: int, iterations: int = 10) -> object | None:
-    """The pit in pymunk (None without pymunk): the same box, balls and materials."""
+def make_space(
+    n: int, iterations: int = 10, *, width: float = WIDTH, slop: float | None = None
+) -> object | None:
+    """The pit in pymunk (None without pymunk): the same box, balls and materials.
+
+    ``slop``: pymunk's ``collision_slop`` (m), the overlap it leaves alone; None keeps its
+    default, 0.1 (20% of the radius here)."""
     try:
         import pymunk
     except ImportError:
@@ -69,11 +75,13 @@ def make_space(n: int, iterations: int = 10) -> object | None:
     space = pymunk.Space()
     space.gravity = (0.0, -G)
     space.iterations = iterations
-    for a, b in (((0, 0), (WIDTH, 0)), ((0, 0), (0, 1e4)), ((WIDTH, 0), (WIDTH, 1e4))):
+    if slop is not None:
+        space.collision_slop = slop
+    for a, b in (((0, 0), (width, 0)), ((0, 0), (0, 1e4)), ((width, 0), (width, 1e4))):
         wall = pymunk.Segment(space.static_body, a, b, 0.0)
         wall.elasticity = wall.friction = 1.0
         space.add(wall)
-    for p in scene(n).tolist():
+    for p in scene(n, width=width).tolist():
         body = pymunk.Body(1.0, pymunk.moment_for_circle(1.0, 0.0, RADIUS))
         body.position = p
         ball = pymunk.Circle(body, RADIUS)
@@ -82,10 +90,10 @@ def make_space(n: int, iterations: int = 10) -> object | None:
     return space
 
 
-def measures(x: np.ndarray, v: np.ndarray) -> tuple[float, int, float]:
+def measures(x: np.ndarray, v: np.ndarray, width: float = WIDTH) -> tuple[float, int, float]:
     """(deepest overlap / radius, balls outside the box, kinetic / potential energy)."""
     over = deepest_overlap(x, np.full(len(x), RADIUS)) / RADIUS
-    out = int(((x[:, 0] < 0) | (x[:, 0] > WIDTH) | (x[:, 1] < 0)).sum())
+    out = int(((x[:, 0] < 0) | (x[:, 0] > width) | (x[:, 1] < 0)).sum())
     kinetic = 0.5 * float((v * v).sum())
     potential = G * float((x[:, 1] - RADIUS).sum())
     return over, out, kinetic / potential if potential > 0 else 0.0
