@@ -74,7 +74,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .impact import TOUCH, disc_hits
+from .impact import TOUCH, disc_hits, line_hits
 
 if TYPE_CHECKING:
     from .contacts import Contacts
@@ -334,10 +334,12 @@ class Collisions:
         local = np.cumsum(present) - 1  # World row -> local index, for the rows in U
         la, lb = local[a], local[b]
         X, V, AU = x1[U], v1[U], A[U]
-        self._U = U
+        self._U, self._t0 = U, t0
         w = 1.0 / store.mass[U]
         r = store.radius[U]
-        impacts = self._impacts(la, lb, X, V, AU, w, r, store.restitution[U], store.friction[U], dt)
+        impacts = self._impacts(
+            la, lb, X, V, AU, w, r, store.restitution[U], store.friction[U], dt, contacts, U
+        )
         rest_a, rest_b = self._resting(
             la, lb, X, x0[U], V, AU, w, r, store.friction[U], dt, share, U, n, contacts
         )
@@ -442,6 +444,8 @@ class Collisions:
         e: np.ndarray,
         mu: np.ndarray,
         dt: float,
+        contacts: Contacts | None = None,
+        U: np.ndarray | None = None,
     ) -> list[tuple[np.ndarray, ...]]:
         """Resolve the step's impacts in time order, in place on the end state (X, V)."""
         nU = len(X)
@@ -468,18 +472,32 @@ class Collisions:
         todo = can  # the others are searched once a body of theirs changes path
         found: list[tuple[np.ndarray, ...]] = []
         pid = np.arange(len(pa))
+        # A body sent off by an impact may meet a wall on its new path within the step: those
+        # impacts (face_t: when, face_f: which face) take their place in the time order too.
+        walls = contacts is not None and len(contacts.faces.owner) > 0
+        face_t = np.full(nU, np.inf)
+        face_f = np.zeros(nU, dtype=np.intp)
+        face_n = np.zeros((nU, 2))
+        changed = np.zeros(nU, dtype=bool)
         for k in range(MAX_ROUNDS):
             idx = np.flatnonzero(todo)
             if len(idx):
                 toi[idx] = self._toi(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, rest)
                 todo[idx] = False
+            if walls and changed.any():
+                assert contacts is not None
+                moved = np.flatnonzero(changed)
+                face_t[moved], face_f[moved], face_n[moved] = _wall_hits(
+                    contacts, moved, X, V, A, r, ts, dt, rest
+                )
             hit = np.isfinite(toi)
-            if not hit.any():
+            if not hit.any() and not np.isfinite(face_t).any():
                 break
             self.last_rounds = k + 1
-            # The pairs that come first for both their bodies (ties: the lower pair index).
+            # The pairs that come first for both their bodies (ties: the lower pair index),
+            # and before either body meets a wall.
             h = np.flatnonzero(hit)
-            best = np.full(nU, np.inf)
+            best = face_t.copy()
             np.minimum.at(best, pa[h], toi[h])
             np.minimum.at(best, pb[h], toi[h])
             first = np.full(nU, len(pa))
@@ -488,12 +506,36 @@ class Collisions:
             np.minimum.at(first, pa[ca], pid[ca])
             np.minimum.at(first, pb[cb], pid[cb])
             s = h[(first[pa[h]] == pid[h]) & (first[pb[h]] == pid[h])]
-            found.append(self._bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt))
-            ts[pa[s]] = toi[s]
-            ts[pb[s]] = toi[s]
-            # Every pair of a body whose path changed is searched again.
+            s = s[(toi[s] < face_t[pa[s]]) & (toi[s] < face_t[pb[s]])]
+            # A body whose wall comes before any pair of its own.
+            wall = np.flatnonzero(np.isfinite(face_t) & (face_t <= best))
             changed = np.zeros(nU, dtype=bool)
-            changed[pa[s]] = changed[pb[s]] = True
+            if len(s):
+                found.append(self._bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt))
+                ts[pa[s]] = toi[s]
+                ts[pb[s]] = toi[s]
+                changed[pa[s]] = changed[pb[s]] = True
+            if len(wall):
+                assert contacts is not None
+                self._wall_bounce(
+                    contacts,
+                    wall,
+                    face_t[wall],
+                    face_f[wall],
+                    face_n[wall],
+                    X,
+                    V,
+                    A,
+                    w,
+                    r,
+                    e,
+                    mu,
+                    dt,
+                )
+                ts[wall] = face_t[wall]
+                changed[wall] = True
+            # Every pair of a body whose path changed is searched again, and its walls.
+            face_t[changed] = np.inf
             again = changed[pa] | changed[pb]
             toi[again] = np.inf
             todo |= again
@@ -575,6 +617,40 @@ class Collisions:
         X[pb] += dvb * rem
         return pa, pb, xb + nrm * r[pb, None], nrm, P, t
 
+    def _wall_bounce(
+        self,
+        contacts: Contacts,
+        i: np.ndarray,
+        t: np.ndarray,
+        f: np.ndarray,
+        nrm: np.ndarray,
+        X: np.ndarray,
+        V: np.ndarray,
+        A: np.ndarray,
+        w: np.ndarray,
+        r: np.ndarray,
+        e: np.ndarray,
+        mu: np.ndarray,
+        dt: float,
+    ) -> None:
+        """Bounce local bodies i off faces f at times t, as the static contacts do: the normal
+        speed v_n becomes -e v_n and friction takes up to mu (1 + e) |v_n| off the tangential
+        speed, never reversing it (e, mu: the body's times the face's)."""
+        faces = contacts.faces
+        x, v = self._state_at(i, t, X, V, A, dt)
+        vn = np.minimum(_dot(v, nrm), 0.0)
+        ee, mm = e[i] * faces.e[f], mu[i] * faces.mu[f]
+        tang = v - nrm * _dot(v, nrm)[:, None]
+        speed_t = _norm(tang)
+        keep = np.maximum(speed_t + mm * (1.0 + ee) * vn, 0.0)
+        scale = keep / np.where(speed_t > 0.0, speed_t, 1.0)
+        v_new = tang * scale[:, None] - nrm * (ee * vn)[:, None]
+        dv = v_new - v
+        V[i] += dv
+        X[i] += dv * (dt - t)[:, None]
+        U = self._U
+        contacts.record(U[i], faces.owner[f], x - nrm * r[i, None], nrm, dv, self._t0 + t)
+
     # -- resting contacts ------------------------------------------------------------------------
     def _resting(
         self,
@@ -617,6 +693,10 @@ class Collisions:
         keys = U[ra].astype(np.int64) * base + U[rb]
         if n_faces and contacts is not None:
             fa, fn, fg, fmu, fk = _face_rows(contacts, X, r, 0.05 * r)
+            # As for pairs: a body closing on a wall faster than rest_speed, not yet in it,
+            # meets it early in the next step (the static contacts bounce it exactly).
+            slow = (-_dot(V[fa], fn) <= self.rest_speed) | (fg < 0.0)
+            fa, fn, fg, fmu, fk = fa[slow], fn[slow], fg[slow], fmu[slow], fk[slow]
             if len(fa):
                 ra = np.concatenate([ra, fa])
                 rb = np.concatenate([rb, np.full(len(fa), nU)])  # nU: the static world
@@ -1098,6 +1178,78 @@ class _Bands:
                 moved[uu] = True
             Xx[uu] = Xu
         X[:] = Xx[:nU]
+
+
+def _wall_hits(
+    contacts: Contacts,
+    i: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    r: np.ndarray,
+    ts: np.ndarray,
+    dt: float,
+    rest: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(time, face, unit normal toward the body) of the first wall each local body i meets
+    on its path from ts to the end of the step closing faster than ``rest``; time inf where
+    none (``engine.impact`` solves for the times)."""
+    faces = contacts.faces
+    L = len(faces.p)
+    m = len(i)
+    t_out = np.full(m, np.inf)
+    f_out = np.zeros(m, dtype=np.intp)
+    n_out = np.zeros((m, 2))
+    T = dt - ts[i]
+    s = T[:, None]
+    Ai = A[i]
+    x = X[i] - V[i] * s + Ai * (0.5 * s * s)  # the state at ts, on the path ending at (X, V)
+    v = V[i] - Ai * s
+    reach = r[i] + _norm(v) * T + _norm(Ai) * (0.5 * T * T) + TOUCH
+    bi, f = contacts._grid_of().pairs(x, reach)
+    if not len(bi):
+        return t_out, f_out, n_out
+    t = np.full(len(bi), np.inf)
+    n = np.zeros((len(bi), 2))
+    line = f < L
+    if line.any():
+        k, fl = np.flatnonzero(line), f[line]
+        b = bi[k]
+        t[k], n[k] = line_hits(
+            x[b],
+            v[b],
+            Ai[b],
+            faces.p[fl],
+            faces.n[fl],
+            faces.rho[fl] + r[i][b],
+            faces.two[fl],
+            faces.lo[fl],
+            faces.hi[fl],
+            T[b],
+        )
+    if (~line).any():
+        k, fd = np.flatnonzero(~line), f[~line] - L
+        b = bi[k]
+        t[k] = disc_hits(x[b], v[b], Ai[b], faces.c[fd], faces.r[fd] + r[i][b], T[b])
+        ok = np.isfinite(t[k])
+        tt = np.where(ok, t[k], 0.0)[:, None]
+        d = x[b] + v[b] * tt + Ai[b] * (0.5 * tt * tt) - faces.c[fd]
+        n[k] = d / np.maximum(_norm(d), 1e-300)[:, None]
+    # Only an impact closing faster than rest counts (a ball rolling along a floor meets it
+    # at every moment).
+    ok = np.flatnonzero(np.isfinite(t))
+    if len(ok):
+        tt = t[ok, None]
+        vt = v[bi[ok]] + Ai[bi[ok]] * tt
+        slow = -_dot(vt, n[ok]) <= rest
+        t[ok[slow]] = np.inf
+    order = np.lexsort((t, bi))  # by body, earliest first
+    bi, t, f, n = bi[order], t[order], f[order], n[order]
+    first = np.ones(len(bi), dtype=bool)
+    first[1:] = bi[1:] != bi[:-1]
+    b = bi[first]
+    t_out[b], f_out[b], n_out[b] = t[first], f[first], n[first]
+    return ts[i] + t_out, f_out, n_out
 
 
 def _face_rows(

@@ -415,6 +415,22 @@ class Contacts:
             self._sense(x, dt, t0, radius)
         return x, v
 
+    def record(
+        self,
+        rows: np.ndarray,
+        colliders: np.ndarray,
+        points: np.ndarray,
+        normals: np.ndarray,
+        impulses: np.ndarray,
+        times: np.ndarray,
+    ) -> None:
+        """Report bounces found elsewhere (engine.collisions: a body sent into a wall by
+        another): each begins and ends in the step, as a bounce here does. ``impulses``: the
+        bodies' changes of velocity, made changes of momentum here by their masses."""
+        if len(rows):
+            self._began.append((rows, colliders, points, normals, impulses, times))
+            self._ended.append((rows, colliders, points, normals, impulses, times))
+
     def quiet(self) -> None:
         """A step passed in which no body moved (all asleep): no events."""
         self._began, self._ended = [], []

@@ -283,3 +283,36 @@ def test_no_ball_leaves_a_pit_in_a_hundred_thousand_steps() -> None:
     assert w.sleeping == 300
     v = w.velocities()
     assert float((v * v).sum()) == 0.0  # asleep: no jitter, no creep
+
+
+@pytest.mark.parametrize("gap", [0.0, 0.01, 0.05, 0.5])
+def test_a_ball_struck_into_a_wall_bounces_back_at_once(gap: float) -> None:
+    # e = 1, no friction: b is sent into the wall, bounces, and hands its speed back to a.
+    w = World(integrator="auto")
+    w.add_collider(Plane((0.5 + gap, 0.0), (-1.0, 0.0)))
+    b = disc(w, (0.0, 0.0), (0.0, 0.0), radius=0.5, restitution=1.0, friction=0.0)
+    a = disc(w, (-1.5, 0.0), (2.0, 0.0), radius=0.5, restitution=1.0, friction=0.0)
+    for _ in range(90):
+        w.step(1 / 60)
+    assert abs(a.vel.x + 2.0) <= 1e-9 and abs(b.vel.x) <= 1e-9
+
+
+@pytest.mark.parametrize("speed", [2.0, 5.0, 20.0])
+def test_a_ball_dropped_on_a_resting_ball_keeps_the_energy(speed: float) -> None:
+    # e = 1 everywhere: the lower ball is struck into the floor and bounces within the step.
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    lo = disc(w, (0.0, 0.5), (0.0, 0.0), radius=0.5, restitution=1.0, friction=0.0)
+    hi = disc(w, (0.0, 1.6), (0.0, -speed), radius=0.5, restitution=1.0, friction=0.0)
+
+    def energy() -> float:
+        return sum(0.5 * b.vel.dot(b.vel) + G * b.pos.y for b in (lo, hi))
+
+    e0 = energy()
+    hits: list[ContactEvent] = []
+    for _ in range(20):
+        w.step(1 / 60)
+        hits += w.began
+    assert abs(energy() - e0) <= 1e-9 * e0
+    assert any(isinstance(ev.collider, Plane) and ev.body is lo for ev in hits)
