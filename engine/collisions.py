@@ -179,6 +179,7 @@ class Collisions:
         #: speed the largest acceleration adds in one step (Chipmunk's idle speed).
         self.sleep_speed: float | None = None
         self.capped = 0  # steps whose impacts reached MAX_ROUNDS
+        self.warned = False  # the World has warned that a pile is past the solver
         self.moved = False  # whether the last step changed any body's state
         self.last_rounds = 0  # impact rounds in the last step
         self.last_overlap = 0.0  # deepest overlap left after the last step (length units)
@@ -257,15 +258,16 @@ class Collisions:
             self.asleep.copy(),
             self._group.copy(),
             self.capped,
+            self.warned,
         )
 
     def set_state(self, state: tuple[Any, ...]) -> None:
         """Bring back a state from ``state()``."""
-        keys, lam, lam_dt, base, touching, still, asleep, group, capped = state
+        keys, lam, lam_dt, base, touching, still, asleep, group, capped, warned = state
         self._keys, self._lam, self._lam_dt, self._base = keys.copy(), lam.copy(), lam_dt, base
         self._touching = touching.copy()
         self.still, self.asleep, self._group = still.copy(), asleep.copy(), group.copy()
-        self.capped = capped
+        self.capped, self.warned = capped, warned
 
     def active(
         self, radius: np.ndarray, group: np.ndarray, cat: np.ndarray, mask: np.ndarray

@@ -204,7 +204,6 @@ class World:
         self._contacts: Contacts | None = None  # made by the first add_collider
         self._collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
         self._pairs_on = False  # whether any two bodies may collide
-        self._pile_warned = False  # the contact solver's limit was reported
         self._handlers: list[tuple[Any, Callable[..., Any] | None, Callable[..., Any] | None]] = []
         self._began: list[ContactEvent] | None = None  # the last step's events, made on demand
         self._ended: list[ContactEvent] | None = None
@@ -993,10 +992,10 @@ class World:
             x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, share, store, contacts)
             if pairs.moved:
                 self._anchor = None
-            if pairs.last_overlap > 0.05 * pairs.rmin and not self._pile_warned:
+            if pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned:
                 # The resting solver's limit: a pile too deep for its iterations sinks into
                 # itself (README: "Limits of the contact solver").
-                self._pile_warned = True
+                pairs.warned = True
                 warnings.warn(
                     f"bodies overlap by {pairs.last_overlap:.3g} length units "
                     f"({100 * pairs.last_overlap / pairs.rmin:.0f}% of the smallest radius): "
