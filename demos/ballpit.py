@@ -206,17 +206,19 @@ def readout(world: World) -> Readout:
 class Pit:
     """The pit's physics and its history: a Steppable (``step(dt)``, ``t``, snapshots).
 
-    ``history`` holds a :class:`Readout` after every step (and one at the start); ``warning``
-    the first StabilityWarning the World gave, as (time s, message). ``step_ms`` holds the
-    measured duration of the last steps (ms): it differs from run to run, so it is not part of
-    a snapshot, and the frames do not show it.
+    ``history`` holds a :class:`Readout` after every step (and one at the start). ``step_ms``
+    holds the measured duration of the last steps (ms): it differs from run to run, so it is
+    not part of a snapshot, and the frames do not show it.
     """
 
     def __init__(self, balls: int = BALLS) -> None:
         self.world, self.balls = pit_world(balls)
         self.history: list[Readout] = [readout(self.world)]
-        self.warning: tuple[float, str] | None = None
         self.step_ms: deque[float] = deque(maxlen=30)
+        # The World gives its StabilityWarning once in its life, and a restore does not undo
+        # that: the first one seen is kept across restores, so a rerun from a snapshot taken
+        # before it still shows it at its moment (a fresh World warns again by itself).
+        self._warned: tuple[float, str] | None = None
 
     @property
     def t(self) -> float:
@@ -227,6 +229,12 @@ class Pit:
         """The read-outs after the last step."""
         return self.history[-1]
 
+    @property
+    def warning(self) -> tuple[float, str] | None:
+        """The World's StabilityWarning, (time s, message), once the pit's time has reached it."""
+        warned = self._warned
+        return warned if warned is not None and warned[0] <= self.world.t else None
+
     def step(self, dt: float) -> None:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", StabilityWarning)
@@ -234,19 +242,19 @@ class Pit:
             self.world.step(dt)
             self.step_ms.append(1000.0 * (time.perf_counter() - start))
         for w in caught:
-            if issubclass(w.category, StabilityWarning) and self.warning is None:
-                self.warning = (self.world.t, str(w.message))
-            elif not issubclass(w.category, StabilityWarning):
+            if not issubclass(w.category, StabilityWarning):
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+            elif self._warned is None or self.world.t < self._warned[0]:
+                self._warned = (self.world.t, str(w.message))
         self.history.append(readout(self.world))
 
     def snapshot(self) -> tuple[Any, ...]:
-        return self.world.snapshot(), tuple(self.history), self.warning
+        return self.world.snapshot(), tuple(self.history)
 
     def restore(self, snapshot: tuple[Any, ...]) -> None:
-        world, history, warning = snapshot
+        world, history = snapshot
         self.world.restore(world)
-        self.history, self.warning = list(history), warning
+        self.history = list(history)
 
 
 # -- drawing --------------------------------------------------------------------------------

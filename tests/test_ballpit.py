@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import io
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -163,3 +164,33 @@ def test_the_strobe_shows_the_pit_at_a_few_moments(tmp_path: Path) -> None:
     image = pygame.surfarray.array3d(pygame.image.load(str(tmp_path / "strobe.png")))
     assert np.all(image == ballpit.AWAKE, axis=2).sum() > 200  # the first panels
     assert np.all(image == ballpit.ASLEEP, axis=2).sum() > 200  # the last: asleep
+
+
+def test_the_worlds_one_warning_shows_at_its_moment_in_a_rerun_from_a_snapshot(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The World warns once in its life (a restore does not undo that), as a stand-in does here
+    # at its fifth step: the pit shows the warning from then on, in a rerun too.
+    pit = ballpit.Pit(40)
+    step, told = pit.world.step, []
+
+    def once(dt: float) -> None:
+        step(dt)
+        if pit.world.steps == 5 and not told:
+            told.append(True)
+            warnings.warn("past the solver", ballpit.StabilityWarning, stacklevel=2)
+
+    monkeypatch.setattr(pit.world, "step", once)
+    snap = pit.snapshot()
+    seen = []
+    for _ in range(8):
+        pit.step(ballpit.DT)
+        seen.append(pit.warning)
+    assert seen[:4] == [None] * 4 and seen[4] == (5 * ballpit.DT, "past the solver")
+    pit.restore(snap)
+    assert pit.warning is None
+    again = []
+    for _ in range(8):
+        pit.step(ballpit.DT)
+        again.append(pit.warning)
+    assert again == seen and len(told) == 1
