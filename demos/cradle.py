@@ -35,7 +35,7 @@ import pygame
 from demos.cli import Demo
 from engine import Body, Plane, Vector, World
 from engine.forces import Gravity
-from engine.render import GRID, INK, MUTED, PAPER, Camera, Scene, draw_text
+from engine.render import GRID, INK, MUTED, PAPER, Camera, Scene, draw_text, draw_vector
 
 __all__ = [
     "BALLS",
@@ -171,6 +171,12 @@ def _faded(colour: Color, amount: float) -> Color:
     )
 
 
+def _darker(colour: Color) -> Color:
+    """``colour`` darkened, for the arrows: never one of the balls' own colours."""
+    r, g, b = colour
+    return (round(r * 0.7), round(g * 0.7), round(b * 0.7))
+
+
 class CradleScene(Scene):
     """The row on its floor, each ball's velocity as a bar, and the total momentum and energy."""
 
@@ -217,11 +223,16 @@ class CradleScene(Scene):
         surface.fill(PAPER)
         self._title(surface, t)
         self._floor(surface)
+        sample = self._shown(t)
         for k, ball in enumerate(self.cradle.balls):
             pos = self.cradle.world.position_of(ball, alpha)
             assert isinstance(pos, Vector)  # a 2D World
             self._ball(surface, k, (pos.x, pos.y), COLOURS[k], label=True)
-        sample = self._shown(t)
+            v = sample.velocities[k]
+            if abs(v) > 1e-3:  # its velocity above it: an arrow as long as 0.4 s of travel
+                tail = (pos.x, pos.y + 1.6 * RADIUS)
+                dark = _darker(COLOURS[k])
+                draw_vector(surface, self.camera, tail, (v, 0.0), 0.4, dark, width=3 * self.s)
         self._bars(surface, sample.velocities)
         self._readouts(surface, sample)
 
@@ -275,13 +286,13 @@ class CradleScene(Scene):
         if label:
             draw_text(surface, str(k + 1), centre, round(18 * s), (255, 255, 255), "center")
             if heavy:
-                draw_text(
+                draw_text(  # under the floor, below the ball
                     surface,
                     f"{self.first_mass:g} kg",
-                    (centre[0], centre[1] - r - 2 * s),
+                    (centre[0], centre[1] + r + 10 * s),
                     round(15 * s),
                     INK,
-                    "midbottom",
+                    "midtop",
                 )
 
     def _bars(self, surface: pygame.Surface, velocities: Sequence[float]) -> None:
