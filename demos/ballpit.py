@@ -17,7 +17,7 @@ On screen: the pit, awake balls in one colour and sleeping ones in another; besi
 count, how many sleep, the deepest overlap of two balls (or a ball and a wall) as a
 percentage of the radius, now and the worst so far, and the kinetic and potential energy,
 with their history, and the World's StabilityWarning once it comes. The overlap is measured
-here from the positions, pair by pair (:func:`deepest_overlap`), not taken from the solver.
+from the positions, pair by pair (``World.overlap``), and against the walls.
 The step time is measured, so it differs from run to run: it is shown only in ``--window``;
 the frames show only what the physics decides, so two runs write the same bytes.
 
@@ -26,9 +26,7 @@ lands), the pile settles into a crystal of balls six to a neighbour with a few s
 kinetic energy goes to zero (restitution 0.5 and friction take it), and the whole pile falls
 asleep at once: a touching group sleeps only when every ball in it is still.
 
-The number asleep and the colours come from the World's collision state
-(``world._collisions.asleep``): the World has no public read-out of sleep yet
-(see :func:`asleep_mask`).
+The number asleep and the colours are the World's ``sleeping`` and ``is_sleeping(body)``.
 """
 
 from __future__ import annotations
@@ -61,6 +59,7 @@ __all__ = [
     "Readout",
     "asleep_mask",
     "deepest_overlap",
+    "wall_overlap",
     "drop_grid",
     "pit_world",
     "readout",
@@ -136,44 +135,31 @@ def pit_world(balls: int = BALLS) -> tuple[World, list[Body]]:
 
 
 def asleep_mask(world: World) -> np.ndarray:
-    """Which bodies sleep, a (N,) bool array in the World's order.
+    """Which bodies sleep, a (N,) bool array in the World's order (``World.is_sleeping``).
 
-    Read from the World's collision state, ``world._collisions.asleep``: the World has no
-    public read-out of sleep yet. (A sleeping body's velocity is exactly zero, but so is that
-    of a ball resting alone on the floor, so the velocities cannot tell.)
+    (A sleeping body's velocity is exactly zero, but so is that of a ball held still on the
+    floor by friction, so the velocities alone cannot tell.)
     """
-    mask = np.asarray(world._collisions.asleep, dtype=bool)
-    n = len(world.bodies)
-    return mask if len(mask) == n else np.zeros(n, dtype=bool)
+    return np.fromiter((world.is_sleeping(b) for b in world.bodies), dtype=bool)
 
 
-def deepest_overlap(positions: np.ndarray, radius: float = RADIUS, width: float = WIDTH) -> float:
-    """The deepest overlap (m) of two balls, or of a ball and the box's walls or floor.
-
-    Two balls of radius r overlap by 2 r - |x_a - x_b| when that is positive. The pairs are
-    found by sorting the centres along x: a ball is compared with the 1st, 2nd, ... next ball
-    in that order while any such pair is closer than 2 r in x.
-    """
-    P = np.asarray(positions, dtype=float)
+def wall_overlap(positions: np.ndarray, radius: float = RADIUS, width: float = WIDTH) -> float:
+    """The deepest overlap (m, 0 if none) of a ball into the box's walls or floor."""
+    P = np.asarray(positions, dtype=float).reshape(-1, 2)
     if not len(P):
         return 0.0
-    walls = max(
+    return max(
+        0.0,
         float((radius - P[:, 0]).max()),
         float((P[:, 0] - (width - radius)).max()),
         float((radius - P[:, 1]).max()),
     )
-    deepest = max(0.0, walls)
-    Q = P[np.argsort(P[:, 0], kind="stable")]
-    reach = 2.0 * radius
-    for k in range(1, len(Q)):
-        dx = Q[k:, 0] - Q[:-k, 0]
-        near = dx < reach
-        if not near.any():
-            break
-        d = Q[k:][near] - Q[:-k][near]
-        dist = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
-        deepest = max(deepest, float((reach - dist).max()))
-    return deepest
+
+
+def deepest_overlap(world: World) -> float:
+    """The deepest overlap (m) now of two balls (``World.overlap``: every pair, measured from
+    the positions) or of a ball and the box's walls or floor."""
+    return max(world.overlap(), wall_overlap(world.positions()))
 
 
 class Readout(NamedTuple):
@@ -196,8 +182,8 @@ def readout(world: World) -> Readout:
     return Readout(
         world.t,
         len(x),
-        int(asleep_mask(world).sum()),
-        deepest_overlap(x) / RADIUS,
+        world.sleeping,
+        deepest_overlap(world) / RADIUS,
         kinetic,
         potential,
     )

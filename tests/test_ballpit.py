@@ -25,6 +25,14 @@ BALLS = 400
 R = ballpit.RADIUS
 
 
+def brute_force_overlap(x: np.ndarray) -> float:
+    """The deepest overlap (m) of two balls, or of a ball and the box, pair by pair."""
+    d = np.linalg.norm(x[:, None] - x[None], axis=-1)
+    np.fill_diagonal(d, np.inf)
+    walls = max((R - x[:, 0]).max(), (x[:, 0] - (ballpit.WIDTH - R)).max(), (R - x[:, 1]).max())
+    return max(0.0, float((2 * R - d).max()), float(walls))
+
+
 def settled(balls: int = BALLS, seconds: float = 3.0) -> ballpit.Pit:
     pit = ballpit.Pit(balls)
     while pit.t < seconds - 1e-9:
@@ -36,7 +44,7 @@ def test_the_drop_grid_starts_every_ball_apart_and_inside_the_box() -> None:
     for balls in (1, 37, BALLS, ballpit.BALLS):
         x = ballpit.drop_grid(balls)
         assert x.shape == (balls, 2)
-        assert ballpit.deepest_overlap(x) == 0.0
+        assert brute_force_overlap(x) == 0.0
         assert (x[:, 0] >= R).all() and (x[:, 0] <= ballpit.WIDTH - R).all()
         assert (x[:, 1] >= R).all() and (x[:, 1] <= ballpit.box_height(balls) - R).all()
     # Every other row shifted by half the space between balls... so a row nests in the gaps.
@@ -47,17 +55,21 @@ def test_the_drop_grid_starts_every_ball_apart_and_inside_the_box() -> None:
     assert {(b.radius, b.restitution, b.friction) for b in bodies} == {(R, 0.5, 0.5)}
 
 
-def test_deepest_overlap_is_the_brute_force_answer() -> None:
+def test_the_overlap_read_out_is_the_brute_force_answer() -> None:
     rng = np.random.default_rng(5)
     for _ in range(20):
         P = np.column_stack([rng.uniform(0.4, 8.0, 60), rng.uniform(0.45, 6.0, 60)])
-        d = np.linalg.norm(P[:, None] - P[None], axis=-1)
-        np.fill_diagonal(d, np.inf)
-        walls = max((R - P[:, 0]).max(), (P[:, 0] - (ballpit.WIDTH - R)).max(), (R - P[:, 1]).max())
-        want = max(0.0, float((2 * R - d).max()), float(walls))
-        assert ballpit.deepest_overlap(P) == pytest.approx(want, abs=1e-12)
-    assert ballpit.deepest_overlap(np.array([[1.0, 1.0], [1.99, 1.0]])) == pytest.approx(0.01)
-    assert ballpit.deepest_overlap(np.zeros((0, 2))) == 0.0
+        walls = max(0.0, (R - P[:, 0]).max(), (P[:, 0] - (ballpit.WIDTH - R)).max())
+        walls = max(walls, (R - P[:, 1]).max())
+        assert ballpit.wall_overlap(P) == pytest.approx(walls, abs=1e-12)
+    assert ballpit.wall_overlap(np.zeros((0, 2))) == 0.0
+    # In a pit that is landing, the read-out is the deepest of every pair and every wall.
+    pit = ballpit.Pit(BALLS)
+    for _ in range(40):
+        pit.step(ballpit.DT)
+    x = pit.world.positions()
+    assert brute_force_overlap(x) > 0.001 * R
+    assert pit.now.overlap * R == pytest.approx(brute_force_overlap(x), rel=1e-9)
 
 
 def test_the_pit_settles_inside_the_box_overlapping_at_most_1_percent_and_sleeps() -> None:
@@ -67,7 +79,7 @@ def test_the_pit_settles_inside_the_box_overlapping_at_most_1_percent_and_sleeps
     assert (x[:, 1] >= R - 1e-9).all() and (x[:, 1] <= ballpit.box_height(BALLS)).all()
     now = pit.now
     assert now.overlap <= 0.01
-    assert ballpit.deepest_overlap(x) <= 0.01 * R
+    assert brute_force_overlap(x) <= 0.01 * R
     assert now.asleep == BALLS and (v == 0.0).all() and now.kinetic == 0.0
     # Piled up: about 39 balls a row, rows 2 r sin(60 deg) apart, so about 11 rows deep.
     assert x[:, 1].max() < R + 12 * 2 * R * np.sin(np.pi / 3)
