@@ -1,5 +1,7 @@
 """The README's stills, made by the project's own commands: ``python assets/make_readme_images.py``.
 
+``python assets/make_readme_images.py ballpit cradle`` makes only the stills named.
+
 Each still is one frame of a demo recorded by ``python -m demos ...`` at a small size (the
 README shows them; they are kept small on purpose), copied to ``assets/readme/``. The chart
 is ``python -m demos tradeoff --quick``'s work-precision chart, scaled down.
@@ -35,14 +37,23 @@ STILLS = [
     ("stability-orbits", ["stability", "--scene", "orbits"], 60),
     ("crumb", ["crumb", "--seconds", "8"], 62),
     ("bounce", ["bounce", "--scene", "drop"], 90),
+    ("ballpit", ["ballpit"], 50),
+    ("cradle", ["cradle", "--scene", "heavy"], 20),
 ]
 
 
-def main_images(out: Path = HERE / "readme") -> None:
-    """Record each still's demo to a temporary folder and keep its chosen frame."""
+def main_images(out: Path = HERE / "readme", only: list[str] | None = None) -> None:
+    """Record each still's demo to a temporary folder and keep its chosen frame (``only``:
+    just the stills of those names, and no chart unless "work-precision" is among them)."""
+    known = [name for name, _, _ in STILLS] + ["work-precision"]
+    unknown = sorted(set(only or ()) - set(known))
+    if unknown:
+        raise SystemExit(f"no still named {', '.join(unknown)}; the stills: {', '.join(known)}")
     out.mkdir(exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         for name, args, frame in STILLS:
+            if only and name not in only:
+                continue
             folder = Path(tmp) / name
             code = main([*args, "--size", SIZE, "--fps", str(FPS), "--out", str(folder)])
             if code != 0:
@@ -50,6 +61,8 @@ def main_images(out: Path = HERE / "readme") -> None:
             frames = sorted(folder.rglob("frame_*.png"))
             shutil.copyfile(frames[min(frame, len(frames) - 1)], out / f"{name}.png")
             print(f"wrote {out / name}.png")
+        if only and "work-precision" not in only:
+            return
         chart = Path(tmp) / "tradeoff"
         if main(["tradeoff", "--quick", "--out", str(chart)]) != 0:
             raise SystemExit("tradeoff --quick failed")
@@ -60,4 +73,4 @@ def main_images(out: Path = HERE / "readme") -> None:
 
 
 if __name__ == "__main__":
-    main_images()
+    main_images(only=sys.argv[1:])

@@ -19,12 +19,20 @@ import numpy as np
 import pygame
 import pytest
 
-from demos import alfred, bounce, car, crumb, fireworks, stability
+from demos import alfred, ballpit, bounce, car, cradle, crumb, fireworks, stability
 from engine import FixedStep, Vector, VirtualClock
 from engine.render import Scene, init_headless
 
 SIZE = (320, 180)  # the car needs 160x168 px at least
 FPS = 15
+
+
+def small_ballpit() -> Scene:
+    """The ball pit with 150 balls: it lands, settles and sleeps within the 3 s recorded."""
+    scene = ballpit.PitScene()
+    scene.balls = 150
+    return scene
+
 
 SCENES: dict[str, Callable[[], Scene]] = {
     **{f"alfred/{name}": make for name, make in alfred.DEMO.scenes.items()},
@@ -33,6 +41,8 @@ SCENES: dict[str, Callable[[], Scene]] = {
     "crumb": crumb.CrumbScene,
     **{f"stability/{name}": make for name, make in stability.DEMO.scenes.items()},
     **{f"bounce/{name}": make for name, make in bounce.DEMO.scenes.items()},
+    **{f"cradle/{name}": make for name, make in cradle.DEMO.scenes.items()},
+    "ballpit": small_ballpit,
 }
 #: Scenes that do not resume yet, and why.
 
