@@ -106,6 +106,16 @@ def _norm(a: np.ndarray) -> np.ndarray:
     return np.sqrt(a[:, 0] * a[:, 0] + a[:, 1] * a[:, 1])
 
 
+def _unit(d: np.ndarray, dist: np.ndarray) -> np.ndarray:
+    """d / dist row by row; where two centres coincide (dist 0), straight up (0, 1), so that
+    bodies placed on top of one another are still pushed apart."""
+    out = d / np.where(dist > 0.0, dist, 1.0)[:, None]
+    same = dist == 0.0
+    if same.any():
+        out[same] = (0.0, 1.0)
+    return out
+
+
 def _grid_pairs(P: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
     """Index pairs (a < b) of points in the same or neighbouring cells of a grid of side h.
 
@@ -683,7 +693,7 @@ class Collisions:
         closing = -_dot(V[la] - V[lb], D) / np.where(dist > 0.0, dist, 1.0)
         near = (dist - R <= margin) & ((closing <= self.rest_speed) | (dist < R))
         ra, rb = la[near], lb[near]
-        nrm = D[near] / np.where(dist[near] > 0.0, dist[near], 1.0)[:, None]
+        nrm = _unit(D[near], dist[near])
         gap = dist[near] - R[near]
         fric = mu[ra] * mu[rb]
         # Keys of the contacts, for warm starting: a * base + b for a pair, a * base + n + f
@@ -873,7 +883,7 @@ class Collisions:
                         ra, rb, pair, R, slop = ra[keep], rb[keep], pair[keep], R[keep], slop[keep]
                         gap, nrm, push_eff = gap[keep], nrm[keep], push_eff[keep]
                         D, dist, push = D[keep], dist[keep], push[keep]
-            n = np.where(pair[:, None], D / np.where(dist > 0.0, dist, 1.0)[:, None], nrm)
+            n = np.where(pair[:, None], _unit(D, dist), nrm)
             P = n * push[:, None]
             idx = np.concatenate([ra, rb])
             both = np.concatenate([P * wx[ra, None], P * -wx[rb, None]])
@@ -1170,7 +1180,7 @@ class _Bands:
             for _ in range(SHOCK_ITERATIONS):
                 d = Xu[inv] - Xl
                 dist = _norm(d)
-                n = np.where(bf[:, None], bn, d / np.where(dist > 0.0, dist, 1.0)[:, None])
+                n = np.where(bf[:, None], bn, _unit(d, dist))
                 over_b = np.where(bf, bbase - _dot(Xu[inv], bn), bR - dist)
                 push = np.maximum(over_b - bslop, 0.0) * bs
                 if not push.any():

@@ -316,3 +316,17 @@ def test_a_ball_dropped_on_a_resting_ball_keeps_the_energy(speed: float) -> None
         hits += w.began
     assert abs(energy() - e0) <= 1e-9 * e0
     assert any(isinstance(ev.collider, Plane) and ev.body is lo for ev in hits)
+
+
+def test_bodies_placed_on_one_another_are_pushed_apart() -> None:
+    w = World()
+    a = disc(w, (1.0, 2.0), (0.0, 0.0), radius=0.5)
+    b = disc(w, (1.0, 2.0), (0.0, 0.0), radius=0.5)  # the very same place
+    c = disc(w, (1.3, 2.0), (0.0, 0.0), radius=0.5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", StabilityWarning)
+        for _ in range(60):
+            w.step(1 / 60)
+    assert w.overlap() <= 2 * SLOP * 0.5
+    momentum = a.vel + b.vel + c.vel
+    assert abs(momentum.x) <= 1e-12 and abs(momentum.y) <= 1e-12  # only positions were moved
