@@ -19,7 +19,7 @@ import numpy as np
 import pygame
 import pytest
 
-from demos import alfred, ballpit, bounce, car, cradle, crumb, fireworks, stability
+from demos import alfred, ballpit, bounce, car, cradle, crumb, fireworks, galton, stability
 from engine import FixedStep, Vector, VirtualClock
 from engine.render import Scene, init_headless
 
@@ -43,6 +43,7 @@ SCENES: dict[str, Callable[[], Scene]] = {
     **{f"bounce/{name}": make for name, make in bounce.DEMO.scenes.items()},
     **{f"cradle/{name}": make for name, make in cradle.DEMO.scenes.items()},
     "ballpit": small_ballpit,
+    **{f"galton/{name}": make for name, make in galton.DEMO.scenes.items()},
 }
 #: Scenes that do not resume yet, and why.
 

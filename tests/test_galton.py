@@ -1,0 +1,196 @@
+"""The Galton board: a thousand poured balls fit B(12, 1/2) by a chi-square test that can fail,
+the frames show the pegs and the histogram, and reruns are bit for bit the same."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pygame
+import pytest
+
+import demos.galton as galton
+from demos.cli import main
+from engine import Body, Circle, Segment, Vector, World
+from engine.forces import Gravity
+from engine.render import iter_frames
+
+ROWS = galton.BOARD.rows
+PMF = galton.binomial_pmf(ROWS)
+ALPHA = 0.001  # rare enough not to be flaky, and the test below shows it is not toothless
+#: Upper 0.1% points of the chi-square distribution, from a printed table (NIST/SEMATECH
+#: e-Handbook, 1.3.6.7.4), to check the closed form against.
+TABLE = {1: 10.828, 2: 13.816, 3: 16.266, 5: 20.515, 8: 26.124, 9: 27.877, 10: 29.588, 12: 32.909}
+
+
+@pytest.fixture(scope="module")
+def poured() -> tuple[galton.Galton, float]:
+    """The demo's pour, seed and board, 1,000 balls: ten copies of the board side by side in
+    one World, each taking every tenth ball at the demo's interval (about 3,100 steps); and
+    how long it took (s)."""
+    start = time.perf_counter()
+    board = galton.Galton(galton.BOARD, galton.SEED, count=1000, lanes=10)
+    board.run()
+    return board, time.perf_counter() - start
+
+
+def test_a_thousand_poured_balls_fit_the_binomial_distribution(poured) -> None:
+    board, seconds = poured
+    counts = board.counts
+    assert counts.sum() == 1000 and board.lost == 0 and not board.balls
+    stat, df = galton.chi_square(counts, PMF)
+    critical = galton.chi_square_critical(df, ALPHA)
+    print(
+        f"\n1,000 balls in {seconds:.1f} s: counts {counts.tolist()}, "
+        f"X^2 = {stat:.2f} on {df} df (critical {critical:.2f} at {ALPHA}), "
+        f"p = {galton.chi_square_sf(stat, df):.3f}"
+    )
+    assert df == 8  # bins 0-2 and 10-12 pooled: each group expects at least 5 balls
+    assert stat < critical, (stat, df, counts.tolist())
+    # What the fit means, in the two numbers a skewed or skipping board would get wrong.
+    k = np.arange(ROWS + 1)
+    mean = float((counts * k).sum() / 1000)
+    variance = float((counts * (k - mean) ** 2).sum() / 1000)
+    assert abs(mean - ROWS / 2) < 0.2 and abs(variance / (ROWS / 4) - 1.0) < 0.2
+
+
+def test_the_chi_square_test_rejects_a_distribution_that_is_not_binomial() -> None:
+    # The same 1,000 balls spread evenly over the bins: rejected by a mile.
+    uniform = np.full(ROWS + 1, 1000 / (ROWS + 1))
+    stat, df = galton.chi_square(uniform, PMF)
+    assert stat > 10 * galton.chi_square_critical(df, ALPHA)
+    # Closer calls are caught too: a board whose balls lean right (p = 0.55 a peg), and one
+    # whose balls skip pegs (the binomial's variance, 3, grown by half: a normal of variance
+    # 4.5 about the middle, cut into the bins).
+    lean = 1000 * np.array([math.comb(ROWS, k) * 0.55**k * 0.45 ** (ROWS - k) for k in range(13)])
+    edges = np.arange(ROWS + 2) - 0.5
+    cdf = [0.5 * (1 + math.erf((x - ROWS / 2) / math.sqrt(2 * 4.5))) for x in edges]
+    skip = 1000 * np.diff(cdf) / (cdf[-1] - cdf[0])
+    for wrong in (lean, skip):
+        stat, df = galton.chi_square(np.round(wrong), PMF)
+        assert stat > galton.chi_square_critical(df, ALPHA), wrong
+    # And counts exactly as expected are not rejected at all.
+    stat, _ = galton.chi_square(1000 * PMF, PMF)
+    assert stat == pytest.approx(0.0, abs=1e-9)
+
+
+def test_the_critical_values_are_the_tables() -> None:
+    for df, value in TABLE.items():
+        assert galton.chi_square_critical(df, ALPHA) == pytest.approx(value, abs=1e-3)
+        assert galton.chi_square_sf(value, df) == pytest.approx(ALPHA, rel=1e-3)
+    # At 5%, the values every statistics course prints.
+    assert galton.chi_square_critical(1, 0.05) == pytest.approx(3.841, abs=1e-3)
+    assert galton.chi_square_critical(10, 0.05) == pytest.approx(18.307, abs=1e-3)
+    assert galton.chi_square_sf(0.0, 4) == 1.0
+    with pytest.raises(ValueError, match="df"):
+        galton.chi_square_sf(1.0, 0)
+
+
+def test_bins_expecting_fewer_than_five_balls_are_pooled_with_their_neighbours() -> None:
+    observed, expected = galton.pool(np.round(1000 * PMF), 1000 * PMF)
+    assert expected.min() >= 5.0 and expected.sum() == pytest.approx(1000.0)
+    assert len(expected) == 9  # 0-2 (0.2 + 2.9 + 16.1) and 10-12 pooled
+    assert expected[0] == pytest.approx(1000 * PMF[:3].sum())
+    assert observed.sum() == np.round(1000 * PMF).sum()
+
+
+def test_the_pour_is_seeded_and_a_longer_pour_begins_with_a_shorter_one() -> None:
+    board = galton.BOARD
+    x, e = board.pour(galton.SEED, 50)
+    x_long, e_long = board.pour(galton.SEED, 1000)
+    assert np.array_equal(x, x_long[:50]) and np.array_equal(e, e_long[:50])
+    assert np.abs(x_long).max() <= board.jitter
+    assert board.restitution[0] <= e_long.min() and e_long.max() <= board.restitution[1]
+    assert not np.array_equal(x, board.pour(galton.SEED + 1, 50)[0])
+
+
+def test_no_ball_stays_along_the_side_walls() -> None:
+    # A wall standing off the guard pegs would make a pocket above each one, where a ball
+    # pressed between the wall and the peg's outer shoulder stays wedged for ever. Through
+    # the guards' centres there is none: a ball let go just inside the left wall, between
+    # any two rows, reaches the bins. (One ball a World, so that balls never meet.)
+    board = galton.BOARD
+    d, h = board.spacing, board.row_height
+    inward = Vector(h, -d / 2).normalize()  # the left wall's normal, into the board
+    for j in range(board.rows - 1):
+        world = World(integrator="auto")
+        world.add_force(Gravity((0.0, -galton.G)))
+        for x, y in board.pegs():
+            world.add_collider(Circle((x, y), board.peg_radius))
+        for a, b in board.walls():
+            world.add_collider(Segment(a, b))
+        y = -(j + 0.5) * h  # halfway between two guards, just off the wall
+        start = Vector(board.side_x(y), y) + inward * (board.ball_radius + 0.02)
+        ball = world.add(
+            Body(
+                start,
+                Vector(0, 0),
+                Vector(0, 0),
+                radius=board.ball_radius,
+                restitution=board.restitution[0],
+                friction=board.friction,
+            )
+        )
+        for _ in range(round(3.0 / galton.DT)):
+            world.step(galton.DT)
+        assert ball.pos.y < board.count_y, (j, ball.pos)
+
+
+def test_the_demo_runs_headless_and_draws_its_strobe(tmp_path, capsys) -> None:
+    out = tmp_path / "galton"
+    args = ["galton", "--fps", "5", "--seconds", "2", "--size", "480x270", "--out", str(out)]
+    assert main(args) == 0
+    frames = sorted(out.glob("frame_*.png"))
+    assert len(frames) == 11  # t = 0, 0.2, ..., 2 s
+    assert pygame.image.load(str(frames[-1])).get_size() == (480, 270)
+    assert "galton/board: wrote 11 frames" in capsys.readouterr().out
+    assert main(["galton", "--strobe", "--out", str(out), "--overwrite"]) == 0
+    strobe = pygame.image.load(str(out / "strobe.png"))
+    pixels = pygame.surfarray.array3d(strobe)
+    for colour in galton.PATHS:  # each of the first three balls' paths is drawn
+        assert np.all(pixels == colour, axis=2).any()
+
+
+def test_a_frame_shows_the_pegs_the_balls_and_the_histogram() -> None:
+    size = (640, 360)
+    scene = galton.GaltonScene()
+    *_, (_, t, surface) = iter_frames(scene, 1, 14.0, size)  # the last frame
+    pixels = pygame.surfarray.array3d(surface)  # [x, y, rgb]
+    assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 8  # not one flat colour
+
+    def found(colour, region=np.s_[:, :]) -> int:
+        return int(np.all(pixels[region] == colour, axis=-1).sum())
+
+    # Every peg of the triangle is drawn where the camera puts it (the guards' centres lie
+    # under the side walls' lines).
+    board, cam = scene.board, scene.camera
+    for (x, y), guard in zip(board.pegs(), board.guards(), strict=True):
+        if not guard:
+            assert tuple(pixels[cam.point((x, y))]) == galton.PEG, (x, y)
+    assert found(galton.BALL) > 0  # balls on their way down
+    # Under the board, one bar a bin, as tall as its count, with B(12, 1/2) drawn over them.
+    counts = scene.counts_at(t)
+    assert counts.sum() >= 20
+    r = scene.hist
+    width = r.width / (ROWS + 1)
+    per_ball = r.height / scene.histogram_top(counts)
+    for k, c in enumerate(counts):
+        # A column near the bar's left edge: the binomial's dots are at its middle, and its
+        # line crosses the column at one place, 2 px thick.
+        x = math.ceil(r.left + k * width) + 2
+        bar = np.flatnonzero(np.all(pixels[x, r.top : r.bottom] == galton.BAR, axis=-1))
+        height = round(c * per_ball)
+        assert height - 4 <= len(bar) <= height, (k, c)
+        if len(bar):
+            assert r.top + bar.min() >= r.bottom - height and r.top + bar.max() == r.bottom - 1
+    assert found(galton.EXPECTED, np.s_[r.left : r.right, r.top : r.bottom]) > 50
+
+
+def test_reruns_are_bit_for_bit_the_same() -> None:
+    def run() -> list[bytes]:
+        shots = iter_frames(galton.GaltonScene(), 5, 6.0, (480, 270))
+        return [pygame.image.tobytes(surface, "RGB") for _, _, surface in shots]
+
+    a, b = run(), run()
+    assert a == b and len(set(a)) > 20  # the same pixels, and the balls moved
