@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 
 import numpy as np
 import pygame
@@ -12,13 +13,13 @@ import pytest
 
 import demos.galton as galton
 from demos.cli import main
-from engine import Body, Circle, Segment, Vector, World
+from engine import Body, Circle, Segment, StabilityWarning, Vector, World
 from engine.forces import Gravity
 from engine.render import iter_frames
 
 ROWS = galton.BOARD.rows
 PMF = galton.binomial_pmf(ROWS)
-ALPHA = 0.001  # rare enough not to be flaky, and the test below shows it is not toothless
+ALPHA = galton.ALPHA  # 0.001: rarely wrong by chance, and shown below able to fail
 #: Upper 0.1% points of the chi-square distribution, from a printed table (NIST/SEMATECH
 #: e-Handbook, 1.3.6.7.4), to check the closed form against.
 TABLE = {1: 10.828, 2: 13.816, 3: 16.266, 5: 20.515, 8: 26.124, 9: 27.877, 10: 29.588, 12: 32.909}
@@ -31,7 +32,12 @@ def poured() -> tuple[galton.Galton, float]:
     how long it took (s)."""
     start = time.perf_counter()
     board = galton.Galton(galton.BOARD, galton.SEED, count=1000, lanes=10)
-    board.run()
+    with warnings.catch_warnings():
+        # The few balls that meet on a peg (two stacked on one) overlap by up to ~15% of a
+        # radius, past the 5% at which the World warns about piles, whatever its
+        # contact_iterations: the engine's limit, not the board's; the counts are checked.
+        warnings.filterwarnings("ignore", "bodies overlap", StabilityWarning)
+        board.run()
     return board, time.perf_counter() - start
 
 
