@@ -39,6 +39,7 @@ STILLS = [
     ("bounce", ["bounce", "--scene", "drop"], 90),
     ("ballpit", ["ballpit"], 50),
     ("cradle", ["cradle", "--scene", "heavy"], 20),
+    ("galton", ["galton", "--seconds", "300"], 3000),
 ]
 
 
