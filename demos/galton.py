@@ -1,4 +1,4 @@
-"""A Galton board: balls poured through a triangle of pegs pile up as the binomial distribution.
+"""A Galton board: balls poured through a triangle of pegs land in bins as B(12, 1/2) says.
 
     python -m demos galton                    # frames: out/galton/board/
     python -m demos galton --window
@@ -32,8 +32,8 @@ What makes the choice at each peg close to a fair, independent coin (see ``Board
   (with one value for all, 0.67 gives a variance of the bins 26% too small and 0.73 one 31%
   too large, 1,000 balls each); a spread of values averages those resonances out.
 * The step. The engine brings a rebound slower than |a_n| dt / 2 to rest on the peg, so dt
-  is part of the model: at ``DT`` = 1/60 s the bins' variance is within a few per cent of the
-  binomial's, at 1/120 s the same board gives 23% more.
+  is part of the model: at ``DT`` = 1/60 s the bins' variance came out 0.94 to 1.11 times the
+  binomial's in the runs of 1,000 balls measured (seeds, lanes), at 1/120 s 1.23 times.
 * Guard pegs and walls. The outer pegs of each row have a guard peg beside them, half in the
   side wall, where the next peg of an endless lattice would be, so a ball at the edge of the
   triangle chooses as freely as one in the middle, and no pocket between a wall and a peg
@@ -42,7 +42,7 @@ What makes the choice at each peg close to a fair, independent coin (see ``Board
 A ball is counted in its bin the moment its centre crosses a line under the last row of pegs,
 between the dividers, where nothing can change its bin any more; it is taken out of the World
 when it lands on the bins' floor. So the counts do not depend on what happens in the bins
-(balls piling up, or, once balls collide with each other, knocking each other about there).
+(balls landing on one another there).
 The pour is sparse enough (one ball every 0.5 s, each taking about 2 s to cross the board)
 that balls seldom meet on the pegs: of the first 300, 22 touch another one above the counting
 line. Two balls that meet on a peg can sink into each other by 5 to 15% of a radius, and the
@@ -130,7 +130,7 @@ class Board:
     jitter: float = 0.3
     #: How deep the bins are under the dividers' tops.
     bin_depth: float = 3.0
-    #: How long the funnel's sides are, up from the neck.
+    #: How high the funnel stands above its neck.
     funnel: float = 2.5
 
     # -- geometry ----------------------------------------------------------------------------
