@@ -795,7 +795,7 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
         type=number_option(0.05, 10.0, "seconds between two balls"),
         default=POUR_INTERVAL,
         help=f"seconds between two balls let go from the funnel (default {POUR_INTERVAL:g}; "
-        "below about 0.4 s balls start to meet on the pegs)",
+        "the shorter, the more often balls meet on the pegs)",
     )
 
 
