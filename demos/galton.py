@@ -44,7 +44,7 @@ between the dividers, where nothing can change its bin any more; it is taken out
 when it lands on the bins' floor. So the counts do not depend on what happens in the bins
 (balls landing on one another there).
 The pour is sparse enough (one ball every 0.5 s, each taking about 2 s to cross the board)
-that balls seldom meet on the pegs: of the first 300, 22 touch another one above the counting
+that balls seldom meet on the pegs: of the first 300, 20 touch another one above the counting
 line. Two balls that meet on a peg can sink into each other by 5 to 15% of a radius, and the
 World then warns once (a ``StabilityWarning`` about piles); it changes no count.
 """
