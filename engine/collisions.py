@@ -415,6 +415,9 @@ class Collisions:
         span = float((P.max(axis=0) - P.min(axis=0)).max())
         h = max(h, span / 2.0**30)  # keeps cell keys within int64
         ia, ib = _grid_pairs(P, h)
+        # Each pair as (lower row, higher row): one key per pair, step after step (the warm
+        # start and the events find it by that key), and no pair listed twice below.
+        ia, ib = np.minimum(ia, ib), np.maximum(ia, ib)
         F = np.flatnonzero(fast)
         if len(F):
             # Fast bodies against every body (few of them; a grid of their size would make
@@ -783,7 +786,7 @@ class Collisions:
             Vc[nU] = 0.0
         lam = np.stack([lam_n, lam_t], axis=1)
         Vx = np.stack([Vc.real, Vc.imag], axis=1)
-        bands = _Bands.of(ra, rb, nU, X, A, r)
+        bands = _Bands.of(ra, rb, nU, X, A, self.rmin)
         if bands is not None:
             tol = 1e-6 * self.rest_speed + 1e-300
             bands.velocity(Vx, nrm, target, fric, lam[:, 0], wx, tol)
@@ -1051,7 +1054,13 @@ class _Bands:
 
     @classmethod
     def of(
-        cls, ra: np.ndarray, rb: np.ndarray, nU: int, X: np.ndarray, A: np.ndarray, r: np.ndarray
+        cls,
+        ra: np.ndarray,
+        rb: np.ndarray,
+        nU: int,
+        X: np.ndarray,
+        A: np.ndarray,
+        rmin: float,
     ) -> _Bands | None:
         """The bands of contacts (ra, rb) (rb == nU: a static face); None without "up"."""
         g = A.sum(axis=0)
@@ -1060,7 +1069,9 @@ class _Bands:
             return None
         up = -g / size
         h = X @ up
-        band = np.floor((h - h.min()) / (BAND * float(r.min()))).astype(np.int64)
+        # Bands from a fixed origin, in the World's smallest radius (not those of the bodies
+        # paired now): a pile's bands do not depend on bodies it never touches.
+        band = np.floor(h / (BAND * rmin)).astype(np.int64)
         bandx = np.append(band, -1)  # the static world lies below everything
         hx = np.append(h, -np.inf)
         a_up = hx[ra] > hx[rb]
