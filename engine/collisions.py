@@ -1098,6 +1098,24 @@ class _Bands:
         sign = np.where(a_up[rows], 1.0, -1.0)
         return cls(rows, up_rows, lo_rows, sign, bounds, bodies, share, nU)
 
+    def _supported(self) -> list[np.ndarray | None]:
+        """Per band, which of its rows rest on something held (a face, or a body that rests on
+        one, band below band) as 1.0, the others 0.0; None for a band with none. The passes
+        act on those only, so that bodies falling freely together are left alone (taking a
+        lower one as immovable would take momentum out of them)."""
+        held = np.zeros(self.nU + 1, dtype=bool)
+        held[self.nU] = True  # the static world
+        out: list[np.ndarray | None] = []
+        lo = self.lower
+        for i, (uu, inv) in enumerate(self.bodies):
+            sup = held[lo[self.bounds[i] : self.bounds[i + 1]]]
+            if sup.any():
+                held[uu[np.bincount(inv, sup, minlength=len(uu)) > 0]] = True
+                out.append(sup.astype(float))
+            else:
+                out.append(None)
+        return out
+
     def velocity(
         self,
         Vx: np.ndarray,
@@ -1127,12 +1145,15 @@ class _Bands:
         need = (least - vn > tol) | (np.abs(vt) > tol)
         moved = np.zeros(len(Vx), dtype=bool)
         b = self.bounds
+        supported = self._supported()
         for i, (uu, inv) in enumerate(self.bodies):
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
-            if not need[a0:a1].any() and not moved[low].any():
+            sup = supported[i]
+            if sup is None or (not need[a0:a1].any() and not moved[low].any()):
                 continue
             bx, by, bl, bm, bs = nx[a0:a1], ny[a0:a1], least[a0:a1], mu[a0:a1], share[a0:a1]
+            bs = bs * sup  # a contact on a body that rests on nothing is left to the iterations
             budget = budget0[a0:a1]
             k = len(uu)
             Vu = Vx[uu]
@@ -1172,10 +1193,12 @@ class _Bands:
         need = over > slop
         moved = np.zeros(nU + 1, dtype=bool)
         b, share = self.bounds, self.share
+        supported = self._supported()
         for i, (uu, inv) in enumerate(self.bodies):
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
-            if not need[a0:a1].any() and not moved[low].any():
+            sup = supported[i]
+            if sup is None or (not need[a0:a1].any() and not moved[low].any()):
                 continue
             bf, bn, bR, bslop, bbase, bs = (
                 face[a0:a1],
@@ -1185,6 +1208,7 @@ class _Bands:
                 base[a0:a1],
                 share[a0:a1],
             )
+            bs = bs * sup
             k = len(uu)
             Xu = Xx[uu]
             Xl = Xx[low]
