@@ -208,7 +208,8 @@ class Collisions:
         self._group = np.zeros(0, dtype=np.intp)  # (N,) the sleeping group of each sleeper
         self._lam_dt = 1.0
         self._base = 0
-        self.rest_speed = 0.0
+        self.rest_speed = 0.0  # 2 dt times the largest pull in the last step
+        self._P = np.zeros((0, 2))
         self.rmin = 0.0  # the smallest radius of a body that collides
         self._overlap = np.zeros(0)  # (N,) each body's deepest overlap / its radius
         self._still_speed = 0.0
@@ -299,6 +300,7 @@ class Collisions:
         share: float,
         store: Any,
         contacts: Contacts | None,
+        A_force: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The state after dt with every contact between bodies applied: new (x, v) arrays.
 
@@ -347,6 +349,10 @@ class Collisions:
         la, lb = local[a], local[b]
         X, V, AU = x1[U], v1[U], A[U]
         self._U, self._t0 = U, t0
+        # Each body's pull (its forces' acceleration; not a wall's push) sets the rest speeds.
+        self._P = (A if A_force is None else A_force)[U]
+        self.rest_speed = 2.0 * dt * float(_norm(self._P).max())
+        self._dt = dt
         w = 1.0 / store.mass[U]
         r = store.radius[U]
         impacts = self._impacts(
@@ -465,10 +471,13 @@ class Collisions:
         """Resolve the step's impacts in time order, in place on the end state (X, V)."""
         nU = len(X)
         R = r[la] + r[lb]
-        # A closing speed below this is a contact at rest, not a bounce.
-        amax = float(_norm(A).max()) if len(A) else 0.0
-        self.rest_speed = rest = 2.0 * amax * dt
-        # Only pairs that can close faster than that can have an impact.
+        # A closing speed below rest, 2 |a_n| dt for the larger pull a_n of the pair's bodies
+        # along the normal, is a contact at rest, not a bounce (in a pile, below 2 g dt along a
+        # contact; two balls lying on a floor meet sideways, where gravity adds nothing, so
+        # every meeting of theirs is an impact). Only pairs that can close faster than that
+        # (bounded here by the pulls' sizes) can have an impact.
+        P = self._P
+        rest = 2.0 * dt * np.maximum(_norm(P[la]), _norm(P[lb]))
         Vr = V[la] - V[lb]
         Ar = A[la] - A[lb]
         can = _norm(Vr) + _norm(Ar) * dt > rest
@@ -497,13 +506,13 @@ class Collisions:
         for k in range(MAX_ROUNDS):
             idx = np.flatnonzero(todo)
             if len(idx):
-                toi[idx] = self._toi(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, rest)
+                toi[idx] = self._toi(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
                 todo[idx] = False
             if walls and changed.any():
                 assert contacts is not None
                 moved = np.flatnonzero(changed)
                 face_t[moved], face_f[moved], face_n[moved] = _wall_hits(
-                    contacts, moved, X, V, A, r, ts, dt, rest
+                    contacts, moved, X, V, A, r, ts, dt, self._P[moved]
                 )
             hit = np.isfinite(toi)
             if not hit.any() and not np.isfinite(face_t).any():
@@ -577,9 +586,8 @@ class Collisions:
         A: np.ndarray,
         ts: np.ndarray,
         dt: float,
-        rest: float,
     ) -> np.ndarray:
-        """Time of the first impact (closing faster than ``rest``) of each pair, or inf."""
+        """Time of the first impact (closing faster than its rest speed) of each pair, or inf."""
         start = np.maximum(ts[pa], ts[pb])
         xa, va = self._state_at(pa, start, X, V, A, dt)
         xb, vb = self._state_at(pb, start, X, V, A, dt)
@@ -591,7 +599,11 @@ class Collisions:
             # Closing speed at the moment of contact: a slow one is a contact at rest.
             T = tau[ok, None]
             d = D[ok] + Vr[ok] * T + Ar[ok] * (0.5 * T * T)
-            u = -_dot(Vr[ok] + Ar[ok] * T, d) / np.maximum(_norm(d), 1e-300)
+            dn = np.maximum(_norm(d), 1e-300)
+            u = -_dot(Vr[ok] + Ar[ok] * T, d) / dn
+            P = self._P
+            pulls = np.maximum(np.abs(_dot(P[pa[ok]], d)), np.abs(_dot(P[pb[ok]], d)))
+            rest = 2.0 * dt * pulls / dn
             t[ok[u <= rest]] = np.inf
         return t
 
@@ -694,7 +706,10 @@ class Collisions:
         # Resting: near and closing no faster than rest_speed (a faster pair just touching at
         # the end of the step is an impact early in the next one).
         closing = -_dot(V[la] - V[lb], D) / np.where(dist > 0.0, dist, 1.0)
-        near = (dist - R <= margin) & ((closing <= self.rest_speed) | (dist < R))
+        P = self._P
+        pulls = np.maximum(np.abs(_dot(P[la], D)), np.abs(_dot(P[lb], D)))
+        rest = 2.0 * dt * pulls / np.where(dist > 0.0, dist, 1.0)
+        near = (dist - R <= margin) & ((closing <= rest) | (dist < R))
         ra, rb = la[near], lb[near]
         nrm = _unit(D[near], dist[near])
         gap = dist[near] - R[near]
@@ -710,7 +725,7 @@ class Collisions:
             fa, fn, fg, fmu, fk = _face_rows(contacts, X, r, 0.05 * r)
             # As for pairs: a body closing on a wall faster than rest_speed, not yet in it,
             # meets it early in the next step (the static contacts bounce it exactly).
-            slow = (-_dot(V[fa], fn) <= self.rest_speed) | (fg < 0.0)
+            slow = (-_dot(V[fa], fn) <= 2.0 * dt * np.abs(_dot(P[fa], fn))) | (fg < 0.0)
             fa, fn, fg, fmu, fk = fa[slow], fn[slow], fg[slow], fmu[slow], fk[slow]
             if len(fa):
                 ra = np.concatenate([ra, fa])
@@ -958,9 +973,14 @@ class Collisions:
         mixed = np.flatnonzero(sa != sb)
         if len(mixed):
             awake = np.where(sa[mixed], b[mixed], a[mixed])
-            moving = _norm(v[awake]) > self._still_speed
+            sleeper = np.where(sa[mixed], a[mixed], b[mixed])
+            # An awake body that moves near a sleeper, or touches it at any speed, wakes its
+            # group (a sleeper pushed while asleep would be put back every step).
+            ra, rs = radius[awake], radius[sleeper]
+            touching = _norm(x[awake] - x[sleeper]) <= ra + rs + 0.05 * np.minimum(ra, rs)
+            moving = (_norm(v[awake]) > self._still_speed) | touching
             if moving.any():
-                sleeper = np.where(sa[mixed], a[mixed], b[mixed])[moving]
+                sleeper = sleeper[moving]
                 groups = np.unique(self._group[sleeper])
                 woken = asleep & np.isin(self._group, groups)
                 asleep[woken] = False
@@ -1236,11 +1256,12 @@ def _wall_hits(
     r: np.ndarray,
     ts: np.ndarray,
     dt: float,
-    rest: float,
+    pull: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(time, face, unit normal toward the body) of the first wall each local body i meets
-    on its path from ts to the end of the step closing faster than ``rest``; time inf where
-    none (``engine.impact`` solves for the times)."""
+    on its path from ts to the end of the step closing faster than its rest speed (2 dt times
+    its ``pull`` along the normal); time inf where none (``engine.impact`` solves for the
+    times)."""
     faces = contacts.faces
     L = len(faces.p)
     m = len(i)
@@ -1288,7 +1309,7 @@ def _wall_hits(
     if len(ok):
         tt = t[ok, None]
         vt = v[bi[ok]] + Ai[bi[ok]] * tt
-        slow = -_dot(vt, n[ok]) <= rest
+        slow = -_dot(vt, n[ok]) <= 2.0 * dt * np.abs(_dot(pull[bi[ok]], n[ok]))
         t[ok[slow]] = np.inf
     order = np.lexsort((t, bi))  # by body, earliest first
     bi, t, f, n = bi[order], t[order], f[order], n[order]

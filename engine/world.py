@@ -980,7 +980,7 @@ class World:
         if pairs is not None and self._pairs_on:
             # Bodies meet one another (engine.collisions) on the paths that end where the
             # method and the static contacts left them.
-            A = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
+            A = pull = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
             if contacts is not None and contacts.moved:
                 # A body resting on a collider is carried by it: its acceleration along the
                 # path is the step's mean one.
@@ -989,7 +989,9 @@ class World:
                     A = A.copy()
                     A[on] = (v1[on] - store.v[on]) * (1.0 / dt)
             share = _SHARE.get(name, 0.5)
-            x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, share, store, contacts)
+            x1, v1 = pairs.resolve(
+                store.x, store.v, x1, v1, A, dt, t0, share, store, contacts, pull
+            )
             if pairs.moved:
                 self._anchor = None
             if pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned:
