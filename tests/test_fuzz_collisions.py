@@ -336,26 +336,6 @@ BUG_WEDGE = xfail(
     "its radius inside the wall: the pair solver's push-out (three rounds of lines, then "
     "circles) does not converge between two faces"
 )
-BUG_COUPLING = xfail(
-    "bodies that never meet change each other's motion. (1) The shock pass sorts contacts "
-    "into bands of height measured from the lowest body, in units of the smallest radius, of "
-    "all the World's pairs: a pile's result depends on bodies it never touches (1.6e-3 m "
-    "apart after 1 s). (2) The resting threshold 2|A|dt is the largest over all paired "
-    "bodies, and a body sliding into a wall has the wall's impulse in its A: one wall hit "
-    "turns an elastic collision elsewhere into a perfectly inelastic one. (3) The pair search "
-    "can list a pair twice, as (a, b) from the grid and (b, a) from the fast-body path, and "
-    "solve it as two contacts; whether it does depends on the grid, so on every body: a ghost "
-    "that meets nothing moves the others by 1e-6 m"
-)
-BUG_FREE_FALL = xfail(
-    "the shock pass takes the lower body of a contact as immovable, also in free fall: two "
-    "touching balls falling freely (gravity the only force) lose 27% of their relative "
-    "momentum off the pair's total"
-)
-BUG_CREEP = xfail(
-    "a sleeping body moves: an awake ball at rest against a sleeper pushes it, step after "
-    "step, into its sleeping neighbour (its overlap grows from 0.35% to 1.1% of a radius)"
-)
 
 #: No gravity, restitution 0, a room: the heavy ball comes back out of the floor.
 SQUEEZED_ON_A_WALL: Scene = {
@@ -549,7 +529,6 @@ def test_without_external_forces_momentum_is_conserved(scene: Scene) -> None:
             assert drift <= 1e-12 * scale, (k, drift / scale)
 
 
-@BUG_FREE_FALL
 @fuzz(40)
 @given(scene=scenes(gravity=True, colliders=False))
 @example(scene=FALLING_PAIR)
@@ -655,7 +634,6 @@ def test_piles_fall_asleep_overlapping_under_one_percent(scene: Scene) -> None:
             was = now
 
 
-@BUG_CREEP
 @fuzz(25)
 @given(scene=piles)
 @example(scene=CREEPING)
@@ -729,7 +707,6 @@ def check_as_if_alone(scene: Scene) -> None:
             assert dX <= tol and dV <= tol, (k, dX, dV)
 
 
-@BUG_COUPLING
 @fuzz(40)
 @given(scene=scenes(filters=(4, 5, 5, 6, 7, 7, 8)))
 @example(scene=BANDS_SHARED)
