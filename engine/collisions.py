@@ -371,7 +371,9 @@ class Collisions:
         np.maximum.at(deepest, rest_b, over)
         self._overlap = np.zeros(n)
         self._overlap[U] = deepest / r
-        self.last_overlap = float(over.max()) if len(over) else 0.0
+        # The deepest overlap of any pair (what the World warns about), resting or not.
+        every = r[la] + r[lb] - _norm(X[la] - X[lb])
+        self.last_overlap = max(float(every.max()), 0.0) if len(every) else 0.0
         x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
         x[U], v[U] = X, V
         self.moved = True

@@ -323,14 +323,6 @@ BUG_PASS_THROUGH = xfail(
     "which without gravity, where the resting threshold 2|A|dt is 0, never ends) the "
     "remaining impacts are dropped"
 )
-BUG_SILENT = xfail(
-    "overlaps that impacts leave are not warned about (the StabilityWarning measures resting "
-    "contacts only). (1) A ball dropped onto an equal one lying on the floor (restitution 1) "
-    "stops dead 8% of a radius inside it (36% for a 10 times heavier ball): the lower ball, "
-    "struck into the floor, does not bounce off it within the step; the push-out takes its "
-    "speed into the floor and moves it back up into the upper ball. (2) After steps that "
-    "reach MAX_ROUNDS, a ball squeezed between heavy ones is left 9 to 19% inside one"
-)
 BUG_WEDGE = xfail(
     "a ball pressed by a heavy one into the gap between a peg and a wall ends steps 0.5% of "
     "its radius inside the wall: the pair solver's push-out (three rounds of lines, then "
@@ -595,7 +587,6 @@ def test_balls_on_a_line_never_pass_through_each_other(scene: Scene) -> None:
             assert (gap >= -0.01 * np.minimum(r[1:], r[:-1])).all(), (k, gap)
 
 
-@BUG_SILENT
 @fuzz(40)
 @given(scene=scenes())
 @example(scene=DROPPED_ON_A_BALL)
