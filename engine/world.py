@@ -464,6 +464,24 @@ class World:
         return deepest_overlap(store.x[live], store.radius[live], filters)
 
     @property
+    def sleep_time(self) -> float:
+        """Seconds a group of resting bodies must stay still before it sleeps (default 0.5;
+        math.inf: never, every body stays awake)."""
+        return self._collisions.sleep_time
+
+    @sleep_time.setter
+    def sleep_time(self, value: float) -> None:
+        if isinstance(value, bool) or not isinstance(value, Real) or not float(value) >= 0.0:
+            raise ValueError(
+                f"sleep_time must be a number of seconds >= 0 (math.inf: never sleep), "
+                f"got {value!r}"
+            )
+        t = float(value)
+        self._collisions.sleep_time = t
+        if t == math.inf:
+            self._collisions.wake(len(self._bodies))
+
+    @property
     def contact_iterations(self) -> int:
         """Iterations a step of the solver for bodies resting on one another (default 8):
         more hold deeper piles with less overlap, at a cost per iteration."""

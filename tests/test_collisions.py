@@ -330,3 +330,21 @@ def test_bodies_placed_on_one_another_are_pushed_apart() -> None:
     assert w.overlap() <= 2 * SLOP * 0.5
     momentum = a.vel + b.vel + c.vel
     assert abs(momentum.x) <= 1e-12 and abs(momentum.y) <= 1e-12  # only positions were moved
+
+
+def test_sleep_can_be_turned_off() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    stack = [disc(w, (0.0, 0.5 + 1.0 * k), (0.0, 0.0), radius=0.5) for k in range(3)]
+    for _ in range(120):
+        w.step(1 / 60)
+    assert w.sleeping == 3
+    w.sleep_time = math.inf  # everyone wakes, and no one sleeps again
+    for _ in range(120):
+        w.step(1 / 60)
+    assert w.sleeping == 0 and w.overlap() <= 0.01 * 0.5
+    assert all(abs(b.vel.y) <= 1e-6 for b in stack)  # awake, and still at rest
+    for bad in (-1.0, float("nan"), "1"):
+        with pytest.raises(ValueError, match="sleep_time"):
+            w.sleep_time = bad  # type: ignore[assignment]
