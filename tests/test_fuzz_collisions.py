@@ -11,12 +11,15 @@ Every step of every test checks that no nan or inf enters the state.
 What holds, with the tolerances kept (each measured over 300 to 2,000 scenes):
 
 * momentum, without gravity or colliders: to 1e-12 of sum |m v| (measured <= 1.2e-15),
-  mass ratios up to 1e6 included;
+  mass ratios up to 1e6 included; under gravity alone, it changes by M g t to 1e-12;
 * kinetic energy, without gravity, in MODERATE scenes (masses within a decade, restitution
   >= 0.8, at most 3 sizes a second; in a room or not): never grows (1e-12 of the first, for
   rounding; measured 0);
+* an overlap past 5% of the smallest radius is warned about (a StabilityWarning) by the
+  next step;
 * a pile falls asleep overlapping at most 1% of the smaller radius of any pair (measured
-  <= 0.35%; the engine's SLOP is 0.2%, and a body sleeps only within 0.75% of its radius);
+  <= 0.35%; the engine's SLOP is 0.2%, and a body sleeps only within 0.75% of its radius),
+  and a sleeping body stays exactly where it is, at rest;
 * in a Box room without pegs, no body ends a step inside a wall (past 1e-9 (1 + |x|));
 * without gravity or colliders, two worlds filtered apart never exchange momentum (each
   keeps its own to 1e-12), and a ghost that meets nothing keeps its velocity bit for bit;
@@ -28,9 +31,10 @@ reason and keeps the scenes that show it as @examples (hypothesis runs the @exam
 and stops at the first failure, so such a test costs one scene; once the bug is fixed, the
 strict marker fails the test, and removing the marker lets the whole fuzz run again).
 In violent scenes there is no overlap tolerance to state: balls pass through each other.
+Scenes of bugs fixed since stay as @examples of their tests, against a regression.
 
-Examples: 120 + 100 + 40 + 80 + 80 + 45 = 465 generated scenes in the six tests that pass;
-about 30 s on a 2-core machine (55 s while it is busy).
+Examples: 120 + 40 + 100 + 40 + 40 + 25 + 80 + 80 + 45 = 570 generated scenes in the nine
+tests that pass; about 40 s on a 2-core machine.
 """
 
 from __future__ import annotations
@@ -324,9 +328,18 @@ BUG_PASS_THROUGH = xfail(
     "remaining impacts are dropped"
 )
 BUG_WEDGE = xfail(
-    "a ball pressed by a heavy one into the gap between a peg and a wall ends steps 0.5% of "
+    "a ball pressed by a heavy one into the gap between a peg and a wall ends steps 0.4% of "
     "its radius inside the wall: the pair solver's push-out (three rounds of lines, then "
     "circles) does not converge between two faces"
+)
+BUG_UNSEEN = xfail(
+    "bodies that never meet still change each other's motion, through the pair search: what "
+    "it lists depends on every body in the World (its grid, its cut of the fastest bodies), "
+    "and when a squeeze reaches MAX_ROUNDS impact rounds, which impacts are left undone "
+    "depends on that list. No gravity, a floor: a light ball squeezed against it by two "
+    "others moves 1.8 cm differently (0.5 m after 1 s) with a ball of another world, which "
+    "meets only the floor, in the World (about 1% of the fuzz's scenes with colliders; every "
+    "pair listed, or no cap on the rounds, and it moves the same)"
 )
 
 #: No gravity, restitution 0, a room: the heavy ball comes back out of the floor.
@@ -457,6 +470,44 @@ GHOST_IN_THE_GRID: Scene = {
     "method": "auto",
     "steps": 60,
 }
+#: Found by this file, no gravity, no colliders: a 1 g ball between two 100 kg ones (5, 6);
+#: ball 3 (8) meets none of them, yet with it in the World they moved 0.6 m differently
+#: (fixed on main at a42bf9a; kept against a regression).
+UNSEEN_NEIGHBOUR: Scene = {
+    "balls": [
+        (0.0, 2.0, 0.0, -9.26, 1.1, 0.001, 1.0, 2.0, 5),
+        (3.0, 1.82, -3.17, 6.67, 1.0, 100.0, 0.0, 2.0, 6),
+        (0.0, -3.0, 0.0, 11.0, 1.0, 100.0, 0.0, 0.16, 6),
+        (-1.0, -6.0, 1.0, 11.0, 1.4, 0.01, 0.0, 1.0, 8),
+    ],
+    "colliders": [],
+    "gravity": False,
+    "method": "semi_implicit_euler",
+    "steps": 60,
+}
+#: Found by this file on main de83988, no gravity, a floor: balls 0, 2, 3 (5, 6) squeeze the
+#: light ball 3 against the floor (64 impact rounds in step 44); ball 1 (7) meets only the
+#: floor, and with it there they move 1.8 cm differently.
+UNSEEN_ON_THE_FLOOR: Scene = {
+    "balls": [
+        (-0.0, 2.3, -1.0, -10.0, 0.4, 0.5754399373371569, 0.0, 2.0, 5),
+        (0.0, 0.0, -0.0, -6.0, 1.2, 10.0, 0.0, 2.0, 7),
+        (1.4, -1.7027098781335037e-07, -5.0, -1.0, 0.2, 1.0, 1.0, 1.0, 6),
+        (-2.6, -0.0, 1.0, -6.0, 1.1, 0.01, 0.0, 1.0, 5),
+    ],
+    "colliders": [
+        # A floor tilted by 2.6e-228 rad: a Plane that is not exactly level (as drawn).
+        Plane(
+            (0.0, -4.554083577501669),
+            (2.6375001988529346e-228, 1.0),
+            restitution=0.5335919472368472,
+            friction=3.347271120057148e-261,
+        )
+    ],
+    "gravity": False,
+    "method": "semi_implicit_euler",
+    "steps": 60,
+}
 #: Two touching balls in free fall, the upper one closing at 0.2 m/s.
 FALLING_PAIR: Scene = {
     "balls": [
@@ -469,7 +520,7 @@ FALLING_PAIR: Scene = {
     "steps": 10,
 }
 #: A pile in a room (found by this file): from step 88, the awake ball 6, at rest against
-#: the sleeping ball 0, pushes it into the sleeping ball 4.
+#: the sleeping ball 0, pushed it into the sleeping ball 4 (fixed on main at 988aca7).
 CREEPING: Scene = {
     "balls": [
         (-0.25596229761600453, -0.025, 0.678, 0.0, 0.2, 316.22776601683796, 0.6, 0.21, 0),
@@ -503,6 +554,23 @@ CREEPING: Scene = {
     "steps": 240,
 }
 
+#: Found by this file: on the floor of a room, the light ball 2 slid at 0.09 m/s into ball 3,
+#: asleep, which moved while asleep in step 183 (ball 0 is a ghost; fixed at 988aca7).
+CREEPING_SLOWLY: Scene = {
+    "balls": [
+        (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
+        (0.456, 0.228, -0.095, 0.0, 0.2, 1.0, 0.0, 0.0, 0),
+        (-0.456, 0.0, 0.38, 0.0, 0.2, 0.01, 1.0, 0.375, 0),
+        (-0.912, 0.0, 0.76, 0.0, 0.2, 1.0, 1.0, 1.0, 0),
+    ],
+    "colliders": [
+        Box((-1.4456, -1.4456), (1.4456, 1.4456), restitution=0.0, friction=0.0),
+        Plane((0.0, -1.112), (0.0, 1.0), restitution=0.0),
+    ],
+    "gravity": True,
+    "method": "semi_implicit_euler",
+    "steps": 240,
+}
 
 # -- 1. momentum ------------------------------------------------------------------------------
 
@@ -628,6 +696,7 @@ def test_piles_fall_asleep_overlapping_under_one_percent(scene: Scene) -> None:
 @fuzz(25)
 @given(scene=piles)
 @example(scene=CREEPING)
+@example(scene=CREEPING_SLOWLY)
 def test_sleeping_bodies_stay_exactly_put(scene: Scene) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -698,11 +767,14 @@ def check_as_if_alone(scene: Scene) -> None:
             assert dX <= tol and dV <= tol, (k, dX, dV)
 
 
+@BUG_UNSEEN
 @fuzz(40)
 @given(scene=scenes(filters=(4, 5, 5, 6, 7, 7, 8)))
 @example(scene=BANDS_SHARED)
 @example(scene=WALL_HIT_ELSEWHERE)
 @example(scene=GHOST_IN_THE_GRID)
+@example(scene=UNSEEN_NEIGHBOUR)
+@example(scene=UNSEEN_ON_THE_FLOOR)
 def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
     check_as_if_alone(scene)
 
