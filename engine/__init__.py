@@ -12,11 +12,12 @@
 ``import engine`` never imports pygame; drawing lives in ``engine.render``.
 """
 
-from . import colliders, contacts, filters, forces, integrators, kinematics, stability
+from . import colliders, contacts, filters, forces, integrators, kinematics, links, stability
 from .body import Body
 from .colliders import Box, Circle, Collider, Plane, Segment
 from .contacts import ContactEvent
 from .filters import Filter
+from .links import Cable, Link, Pin, Rod
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
@@ -33,6 +34,10 @@ __all__ = [
     "Collider",
     "ContactEvent",
     "Filter",
+    "Rod",
+    "Cable",
+    "Pin",
+    "Link",
     "QueryHit",
     "OverlapWarning",
     "FixedStep",
@@ -47,6 +52,7 @@ __all__ = [
     "forces",
     "integrators",
     "kinematics",
+    "links",
     "stability",
 ]
 

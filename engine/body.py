@@ -104,6 +104,7 @@ class Body:
     with a collider's by product (pymunk's rule). A round particle still has no rotation: its
     friction slows its sliding, and nothing makes it spin. Bodies with a radius collide with
     each other unless their ``filter`` (engine.Filter: a group, category bits) says not.
+    A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``).
     """
 
     # Position and velocity are kept as plain floats (y parts unused in 1D): a lone body's
@@ -120,6 +121,7 @@ class Body:
         "_e",
         "_mu",
         "_filter",
+        "_kinematic",
         "_dim",
         "_store",
         "_slot",
@@ -136,6 +138,7 @@ class Body:
         restitution: float = 0.5,
         friction: float = 0.5,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+        kinematic: bool = False,
     ) -> None:
         given = {"position": position, "velocity": velocity, "acceleration": acceleration}
         dims = {name: _dim_of(value) for name, value in given.items()}
@@ -166,6 +169,12 @@ class Body:
                 f"{type(filter).__name__} {filter!r}"
             )
         self._filter = filter
+        if not isinstance(kinematic, bool):
+            raise TypeError(
+                f"kinematic must be True (moved by the game) or False, got "
+                f"{type(kinematic).__name__} {kinematic!r}"
+            )
+        self._kinematic = kinematic
         self._store: BodyStore | None = None  # set by the World that holds this body
         self._slot: int = -1
 
@@ -293,6 +302,13 @@ class Body:
         """Which other bodies this one collides with (engine.Filter; bodies of radius 0 never)."""
         return self._filter
 
+    @property
+    def kinematic(self) -> bool:
+        """True for a body the game moves (a paddle, a platform): no force acts on it, and
+        contacts take its mass as infinite. In a World, writing its ``vel`` sets how it moves;
+        writing its ``pos`` moves it there over the next step, at the velocity that takes."""
+        return self._kinematic
+
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:
         """Move this body on its own by ``dt`` seconds with semi-implicit Euler.
@@ -348,7 +364,8 @@ class Body:
 
     def __repr__(self) -> str:
         size = "" if self._radius == 0.0 else f", radius={self._radius!r}"
+        kin = ", kinematic=True" if self._kinematic else ""
         return (
             f"Body(position={self.pos!r}, velocity={self.vel!r}, "
-            f"acceleration={self.own_acc!r}, mass={self.mass!r}{size})"
+            f"acceleration={self.own_acc!r}, mass={self.mass!r}{size}{kin})"
         )

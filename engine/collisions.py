@@ -196,6 +196,9 @@ class Collisions:
         self._live: np.ndarray | None = None  # rows with radius > 0
         self._plain = True  # every live body has the default filter
         self._one_group = False  # every live body shares one nonzero group: no pair collides
+        self._has_kin = False  # some body is kinematic (infinite mass here)
+        self._kinU: np.ndarray | None = None  # which of the step's paired bodies are kinematic
+        self._kin = np.zeros(0, dtype=bool)  # the World's kinematic bodies, by row
         # Warm start: the last step's resting contacts, keyed a * N + b, and their impulses.
         self._keys = np.zeros(0, dtype=np.int64)
         self._lam = np.zeros((0, 2))
@@ -333,6 +336,8 @@ class Collisions:
             self._still_speed = a_max * dt
         else:
             self._still_speed = self.sleep_speed
+        self._has_kin = bool(store.kinematic.any())
+        self._kin = store.kinematic
         a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
         if len(a) and self.moved:
             a, b = self._wake_met(a, b, x1, v1, store.radius)
@@ -354,6 +359,10 @@ class Collisions:
         self.rest_speed = 2.0 * dt * float(_norm(self._P).max())
         self._dt = dt
         w = 1.0 / store.mass[U]
+        # A kinematic body (moved by the game) has infinite mass here: no impulse moves it.
+        self._kinU = store.kinematic[U] if self._has_kin else None
+        if self._kinU is not None:
+            w[self._kinU] = 0.0
         r = store.radius[U]
         impacts = self._impacts(
             la, lb, X, V, AU, w, r, store.restitution[U], store.friction[U], dt, contacts, U
@@ -447,6 +456,11 @@ class Collisions:
             keep = _dot(D, D) <= far * far
             ia, ib = ia[keep], ib[keep]
         a, b = live[ia], live[ib]
+        if self._has_kin and len(a):
+            # Two bodies the game moves pass through each other (as in pymunk).
+            kin = store.kinematic
+            ok = ~(kin[a] & kin[b])
+            a, b = a[ok], b[ok]
         if not self._plain and len(a):
             g, c, m = store.group, store.categories, store.mask
             ok = ~((g[a] == g[b]) & (g[a] != 0))
@@ -728,6 +742,8 @@ class Collisions:
             # As for pairs: a body closing on a wall faster than rest_speed, not yet in it,
             # meets it early in the next step (the static contacts bounce it exactly).
             slow = (-_dot(V[fa], fn) <= 2.0 * dt * np.abs(_dot(P[fa], fn))) | (fg < 0.0)
+            if self._kinU is not None:
+                slow &= ~self._kinU[fa]  # walls do not hold what the game moves
             fa, fn, fg, fmu, fk = fa[slow], fn[slow], fg[slow], fmu[slow], fk[slow]
             if len(fa):
                 ra = np.concatenate([ra, fa])
@@ -803,7 +819,7 @@ class Collisions:
             Vc[nU] = 0.0
         lam = np.stack([lam_n, lam_t], axis=1)
         Vx = np.stack([Vc.real, Vc.imag], axis=1)
-        bands = _Bands.of(ra, rb, nU, X, A, self.rmin)
+        bands = _Bands.of(ra, rb, nU, X, A, self.rmin, self._kinU)
         if bands is not None:
             tol = 1e-6 * self.rest_speed + 1e-300
             bands.velocity(Vx, nrm, target, fric, lam[:, 0], wx, tol)
@@ -1007,6 +1023,9 @@ class Collisions:
         still[live] = np.where(slow, still[live] + dt, 0.0)
         asleep = self.asleep
         ready = (still >= self.sleep_time) & ~asleep
+        if self._has_kin:
+            # A body the game moves never sleeps, nor does a group it touches.
+            ready &= ~self._kin
         if len(self._overlap) == len(ready):
             # ... and overlapping by at most SLEEP_OVERLAP of its radius.
             ready &= self._overlap <= SLEEP_OVERLAP
@@ -1073,6 +1092,7 @@ class _Bands:
     ) -> None:
         self.rows, self.upper, self.lower, self.sign = rows, upper, lower, sign
         self.bounds, self.bodies, self.share, self.nU = bounds, bodies, share, nU
+        self.fixed: np.ndarray | None = None  # kinematic bodies: held, as the static world
 
     @classmethod
     def of(
@@ -1083,8 +1103,11 @@ class _Bands:
         X: np.ndarray,
         A: np.ndarray,
         rmin: float,
+        fixed: np.ndarray | None = None,
     ) -> _Bands | None:
-        """The bands of contacts (ra, rb) (rb == nU: a static face); None without "up"."""
+        """The bands of contacts (ra, rb) (rb == nU: a static face); None without "up".
+        ``fixed`` (nU,) bool: kinematic bodies, which lie below everything, as the static
+        world does (they hold what rests on them and are never moved)."""
         g = A.sum(axis=0)
         size = math.hypot(float(g[0]), float(g[1]))
         if not size > 0.0 or not len(ra):
@@ -1096,6 +1119,8 @@ class _Bands:
         band = np.floor(h / (BAND * rmin)).astype(np.int64)
         bandx = np.append(band, -1)  # the static world lies below everything
         hx = np.append(h, -np.inf)
+        if fixed is not None:
+            bandx[:nU][fixed], hx[:nU][fixed] = -1, -np.inf
         a_up = hx[ra] > hx[rb]
         upper = np.where(a_up, ra, rb)
         rows = np.flatnonzero(bandx[np.where(a_up, rb, ra)] < bandx[upper])
@@ -1118,7 +1143,9 @@ class _Bands:
             for i in range(len(bounds) - 1)
         ]
         sign = np.where(a_up[rows], 1.0, -1.0)
-        return cls(rows, up_rows, lo_rows, sign, bounds, bodies, share, nU)
+        bands = cls(rows, up_rows, lo_rows, sign, bounds, bodies, share, nU)
+        bands.fixed = fixed
+        return bands
 
     def _supported(self) -> list[np.ndarray | None]:
         """Per band, which of its rows rest on something held (a face, or a body that rests on
@@ -1127,6 +1154,8 @@ class _Bands:
         lower one as immovable would take momentum out of them)."""
         held = np.zeros(self.nU + 1, dtype=bool)
         held[self.nU] = True  # the static world
+        if self.fixed is not None:
+            held[: self.nU][self.fixed] = True
         out: list[np.ndarray | None] = []
         lo = self.lower
         for i, (uu, inv) in enumerate(self.bodies):

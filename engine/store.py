@@ -41,6 +41,7 @@ class BodyStore:
         on_state: Callable[[], None] = lambda: None,
         on_own_acc: Callable[[int], None] = lambda row: None,
         on_mass: Callable[[], None] = lambda: None,
+        on_kinematic: Callable[[int, Any], None] | None = None,
         acceleration_at: Callable[[int], Any] | None = None,
     ) -> None:
         self.dim = dim
@@ -49,6 +50,9 @@ class BodyStore:
         # What the owner must hear of: a position or velocity written by hand (a teleport), one
         # own acceleration written, a mass written; and how to read one body's acceleration.
         self._on_state, self._on_own_acc, self._on_mass = on_state, on_own_acc, on_mass
+        # A kinematic body's move (row, target position or None for a velocity written): the
+        # owner takes it without waking the World's sleepers (those it touches wake).
+        self._on_kinematic = on_kinematic
         self._acceleration_at = acceleration_at
         shape: tuple[int, ...] = (0,) if dim == 1 else (0, 2)
         self.x = np.zeros(shape)  # positions (length units)
@@ -64,6 +68,8 @@ class BodyStore:
         self.group = np.zeros(0, dtype=np.int64)
         self.categories = np.zeros(0, dtype=np.int64)
         self.mask = np.zeros(0, dtype=np.int64)
+        # Kinematic bodies (moved by the game: no force acts on them, infinite mass in contacts).
+        self.kinematic = np.zeros(0, dtype=bool)
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
 
     def __len__(self) -> int:
@@ -77,12 +83,14 @@ class BodyStore:
         own: np.ndarray,
         material: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
         filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+        kinematic: np.ndarray | None = None,
     ) -> list[int]:
         """Add rows for new bodies; return their slots (one array copy for the whole batch).
 
         ``material``: (radius, restitution, friction) arrays; points of restitution 0.5 and
         friction 0.5 (Body's defaults) when None. ``filters``: (group, categories, mask)
         integer arrays; engine.filters' default (no group, every bit) when None.
+        ``kinematic``: (k,) bools, all False when None.
         """
         n0, k = len(self), len(mass)
         if material is None:
@@ -96,6 +104,8 @@ class BodyStore:
         self.group = np.concatenate([self.group, filters[0]])
         self.categories = np.concatenate([self.categories, filters[1]])
         self.mask = np.concatenate([self.mask, filters[2]])
+        kin = np.zeros(k, dtype=bool) if kinematic is None else kinematic
+        self.kinematic = np.concatenate([self.kinematic, kin])
         self.x = np.concatenate([self.x, x])
         self.v = np.concatenate([self.v, v])
         self.prev_x = np.concatenate([self.prev_x, x])
@@ -114,7 +124,7 @@ class BodyStore:
         self.radius, self.restitution = self.radius[keep], self.restitution[keep]
         self.friction = self.friction[keep]
         self.group, self.categories = self.group[keep], self.categories[keep]
-        self.mask = self.mask[keep]
+        self.mask, self.kinematic = self.mask[keep], self.kinematic[keep]
         rows = self._row_of
         rows[slot] = -1
         rows[rows > i] -= 1
@@ -136,15 +146,23 @@ class BodyStore:
         return tuple(value) if isinstance(value, Vector) else value
 
     def set_position(self, slot: int, value: Any) -> None:
-        """Move one body to ``value`` (a teleport: not blended with where it was)."""
+        """Move one body to ``value`` (a teleport: not blended with where it was); a
+        kinematic body in a World moves there over the next step instead."""
         row = self.row(slot)
+        if self._on_kinematic is not None and self.kinematic[row]:
+            self._on_kinematic(row, self._entry(value))
+            return
         self.x[row] = self.prev_x[row] = self._entry(value)
         self._on_state()
 
     def set_velocity(self, slot: int, value: Any) -> None:
         """Set one body's velocity to ``value``."""
-        self.v[self.row(slot)] = self._entry(value)
-        self._on_state()
+        row = self.row(slot)
+        self.v[row] = self._entry(value)
+        if self._on_kinematic is not None and self.kinematic[row]:
+            self._on_kinematic(row, None)
+        else:
+            self._on_state()
 
     def set_own_acc(self, slot: int, value: Any) -> None:
         """Set one body's own constant acceleration: one array entry, nothing recompiled."""

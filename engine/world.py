@@ -45,6 +45,7 @@ from .forcefield import ForceModel
 from .forces import Force, as_force
 from .impact import disc_hits, line_hits
 from .integrators import Integrator
+from .links import Link, LinkSolver, Pin
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
 from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
@@ -138,6 +139,7 @@ class WorldSnapshot:
     warned: frozenset[Any] = field(default_factory=frozenset)
     contacts: tuple[Any, ...] | None = None  # which bodies rest on what, sensors overlapped
     pairs: tuple[Any, ...] | None = None  # contacts between bodies: warm start, sleep
+    links: tuple[Any, ...] = ()  # the links in force, and whether each has warned
 
 
 @dataclass
@@ -207,6 +209,10 @@ class World:
         self._handlers: list[tuple[Any, Callable[..., Any] | None, Callable[..., Any] | None]] = []
         self._began: list[ContactEvent] | None = None  # the last step's events, made on demand
         self._ended: list[ContactEvent] | None = None
+        # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
+        self._targets: dict[Body, Any] = {}
+        self._links: list[Link] = []  # rods, cables and pins (engine.links)
+        self._link_solver: LinkSolver | None = None  # the links as arrays; made when needed
 
     # -- bodies and forces ----------------------------------------------------------------
     @property
@@ -246,6 +252,7 @@ class World:
                 on_state=self._state_written,
                 on_own_acc=self._own_acc_written,
                 on_mass=self._changed_structure,
+                on_kinematic=self._kinematic_moved,
                 acceleration_at=self._acceleration_at,
             )
         return self._store
@@ -290,6 +297,7 @@ class World:
                 np.array([b.filter.categories for b in batch], dtype=np.int64),
                 np.array([b.filter.mask for b in batch], dtype=np.int64),
             ),
+            np.array([b.kinematic for b in batch], dtype=bool),
         )
         for b, slot in zip(batch, slots, strict=True):
             b._store, b._slot = store, slot
@@ -309,7 +317,12 @@ class World:
         pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
         row = store.row(body._slot)
         del self._bodies[row]
+        self._targets.pop(body, None)
         store.remove(body._slot)
+        if any(body in k.bodies for k in self._links):
+            # Its links go with it.
+            self._links = [k for k in self._links if body not in k.bodies]
+            self._links_changed()
         if self._contacts is not None:
             self._contacts.body_removed(row)
         for attached in self._forces:
@@ -356,6 +369,90 @@ class World:
         self._forces.append(_Attached(f, members))
         self._changed_structure()
         return f
+
+    # -- links ------------------------------------------------------------------------------
+    @property
+    def links(self) -> tuple[Link, ...]:
+        """The links (rods, cables, pins), in the order they were added."""
+        return tuple(self._links)
+
+    def add_link(self, link: Link) -> Link:
+        """Add a link (``engine.links``: Rod, Cable, Pin) between bodies of this World, or a
+        body and a fixed point, and return it. A pinned body is moved to its pin at once."""
+        if not isinstance(link, Link):
+            raise TypeError(
+                f"add_link takes a link from engine.links (Rod, Cable, Pin), got "
+                f"{type(link).__name__} {link!r}"
+            )
+        if any(k is link for k in self._links):
+            raise ValueError(f"that link is already in this World: {link!r}")
+        for b in link.bodies:
+            if b.world is not self:
+                raise ValueError(
+                    f"the link's bodies must be in this World first (world.add(body)): {b!r}"
+                )
+        if isinstance(link, Pin):
+            if any(isinstance(k, Pin) and k.body is link.body for k in self._links):
+                raise ValueError(f"that body is pinned already: {link.body!r}")
+            if link.body.kinematic:
+                raise ValueError(
+                    f"a kinematic body is moved by the game and cannot be pinned: {link.body!r}"
+                )
+        self._links.append(link)
+        self._links_changed()
+        if isinstance(link, Pin):
+            store = self._store
+            assert store is not None
+            row = store.row(link.body._slot)
+            store.x[row] = store.prev_x[row] = tuple(link.point)
+            store.v[row] = 0.0
+            self._state_written()
+        return link
+
+    def remove_link(self, link: Link) -> None:
+        """Take a link out of the world (a pinned body is free again)."""
+        if not any(k is link for k in self._links):
+            raise ValueError(f"that link is not in this World: {link!r}")
+        self._links = [k for k in self._links if k is not link]
+        self._links_changed()
+
+    def _links_changed(self) -> None:
+        """The set of links changed: pinned bodies are held as kinematic ones are."""
+        store = self._store
+        if store is not None:
+            store.kinematic = np.array([b.kinematic for b in self._bodies], dtype=bool)
+            for k in self._links:
+                if isinstance(k, Pin):
+                    store.kinematic[store.row(k.body._slot)] = True
+        self._changed_structure()
+
+    def _solve_links(
+        self,
+        store: BodyStore,
+        x1: np.ndarray,
+        v1: np.ndarray,
+        dt: float,
+        kinked: np.ndarray | None = None,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Correct the step's end state for the links (engine.links), warning once per link
+        stretched past what a step can hold."""
+        solver = self._link_solver
+        if solver is None:
+            solver = self._link_solver = LinkSolver(self._links, lambda b: store.row(b._slot))
+        w = np.where(store.kinematic, 0.0, 1.0 / store.mass)
+        x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
+        if solver.moved:
+            self._anchor = None
+        for link in solver.stretched:
+            if not link.warned:
+                link.warned = True
+                warnings.warn(
+                    f"{link!r} was stretched past what one step of dt={dt:g} s can pull back "
+                    f"along it: it was put back to its length directly; take a smaller dt",
+                    StabilityWarning,
+                    stacklevel=4,
+                )
+        return x1, v1
 
     # -- colliders and contacts ---------------------------------------------------------------
     @property
@@ -689,6 +786,7 @@ class World:
         self._policy.choice = None
         self._version += 1
         self._collisions.changed(len(self._bodies))
+        self._link_solver = None
 
     def _drop_kernel(self) -> None:
         self._void_budget()
@@ -696,6 +794,27 @@ class World:
         if k is not None:
             self._evaluations += k.taken
         self._kernel = None
+
+    def _kinematic_moved(self, row: int, target: Any) -> None:
+        """The game moved a kinematic body: to ``target`` over the next step, or (None) by
+        writing its velocity. Nothing sleeping wakes unless the body touches it."""
+        body = self._bodies[row]
+        if target is None:
+            self._targets.pop(body, None)
+        else:
+            self._targets[body] = target
+        self._anchor = None
+        self._drop_kernel()
+
+    def _apply_targets(self, dt: float) -> None:
+        """Each kinematic body with a target takes the velocity that reaches it in ``dt``."""
+        store = self._store
+        assert store is not None
+        for body, target in self._targets.items():
+            row = store.row(body._slot)
+            store.v[row] = (np.asarray(target, dtype=float) - store.x[row]) * (1.0 / dt)
+        self._targets.clear()
+        self._anchor = None
 
     def _state_written(self) -> None:
         """A position or velocity was set by hand: the closed form and the kernel start anew,
@@ -730,6 +849,13 @@ class World:
             if store is None:  # no body and no shaped force yet: nothing to fold
                 self._model = ForceModel.compile(np.zeros(0), np.zeros(0), attached)
             else:
+                kin = store.kinematic
+                if kin.any():
+                    # No force acts on a body the game moves.
+                    free = np.flatnonzero(~kin)
+                    attached = [
+                        (f, free if rows is None else rows[~kin[rows]]) for f, rows in attached
+                    ]
                 self._model = ForceModel.compile(store.mass, store.own, attached)
         return self._model
 
@@ -879,6 +1005,7 @@ class World:
                 and model.affine
                 and self._contacts is None
                 and not self._pairs_on
+                and not self._links
             )
             self._fast = (dt, self._version, name, step, model, affine)
         if dt != self._dt:
@@ -891,6 +1018,8 @@ class World:
                 f"dt must keep the time finite: a step of dt={dt!r} s from t={self.t!r} s would "
                 f"pass the float range (1.8e308 s)"
             )
+        if self._targets:
+            self._apply_targets(dt)
         if self._bodies and affine and self._prepare_affine(dt, model, name):
             return self.step(dt)  # now the fast path above takes it
         if self._bodies:
@@ -974,6 +1103,7 @@ class World:
             x1, v1 = step(store.x, store.v, model.accel, t0, dt)
         self._huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
         v_method = v1
+        v_free = v1
         contacts = self._contacts
         if contacts is not None:
             # The path of the step is swept for impacts (engine.contacts); under the closed
@@ -990,7 +1120,7 @@ class World:
                 store.friction,
                 store.mass,
                 model.a0 if step is None else None,
-                self._collisions.asleep if self._pairs_on and self._collisions.any_asleep else None,
+                self._frozen(store),
             )
             if contacts.moved:
                 self._anchor = None  # the closed form starts anew from the changed state
@@ -1024,8 +1154,21 @@ class World:
                     StabilityWarning,
                     stacklevel=3,
                 )
+        if self._links:
+            kinked = None
+            if v1 is not v_free:
+                kinked = (v1 != v_free).any(axis=1)
+            x1, v1 = self._solve_links(store, x1, v1, dt, kinked)
         store.prev_x, store.x, store.v = store.x, x1, v1
         self._void_budget()
+
+    def _frozen(self, store: BodyStore) -> np.ndarray | None:
+        """Bodies the static contacts leave alone: asleep, or moved by the game."""
+        frozen = self._collisions.asleep if self._pairs_on and self._collisions.any_asleep else None
+        kin = store.kinematic
+        if kin.any():
+            frozen = kin if frozen is None else frozen | kin
+        return frozen
 
     def _check_finite(self, x: Any, v: Any, name: str, dt: float, t: float) -> float:
         """Raise SimulationDiverged if x or v has a nan or inf; else return |sum of x and v|."""
@@ -1153,6 +1296,7 @@ class World:
             warned=frozenset(self._policy.warned),
             contacts=None if self._contacts is None else self._contacts.state(),
             pairs=self._collisions.state(),
+            links=tuple((k, k.warned) for k in self._links),
         )
 
     def restore(self, snapshot: WorldSnapshot) -> None:
@@ -1168,6 +1312,7 @@ class World:
                 f"{len(self._bodies)}: restore into the world (or a copy) it was taken from"
             )
         masses, own_acc = self._check_snapshot(snapshot)
+        links = self._check_links(snapshot.links)
         if self._contacts is not None and snapshot.contacts is not None:
             self._contacts.check_state(snapshot.contacts, len(self._bodies))
         store = self._store
@@ -1184,6 +1329,11 @@ class World:
         self._void_budget()
         self._n = snapshot.n_since_base
         self._steps_base = snapshot.steps - snapshot.n_since_base
+        if links != [(k, k.warned) for k in self._links]:
+            self._links = [k for k, _ in links]
+            self._links_changed()
+        for k, warned in links:
+            k.warned = warned
         self._changed_structure()
         if snapshot.anchor is not None:
             x0, v0, ta = snapshot.anchor
@@ -1197,6 +1347,26 @@ class World:
                 self._contacts.set_state(snapshot.contacts, len(self._bodies))
         if snapshot.pairs is not None:
             self._collisions.set_state(snapshot.pairs)
+
+    def _check_links(self, links: Any) -> list[tuple[Link, bool]]:
+        """The snapshot's links, checked: each a Link whose bodies are in this World."""
+        if not isinstance(links, tuple):
+            raise TypeError("snapshot.links must be a tuple of (link, warned) from World.snapshot")
+        out = []
+        for item in links:
+            if not (
+                isinstance(item, tuple)
+                and len(item) == 2
+                and isinstance(item[0], Link)
+                and isinstance(item[1], bool)
+            ):
+                raise TypeError(f"snapshot.links holds (link, warned) pairs, got {item!r}")
+            if any(b.world is not self for b in item[0].bodies):
+                raise ValueError(
+                    f"snapshot.links joins a body that is not in this World: {item[0]!r}"
+                )
+            out.append((item[0], item[1]))
+        return out
 
     def _check_snapshot(self, snap: WorldSnapshot) -> tuple[list[float], list[State]]:
         """Refuse a snapshot (a plain dataclass, so one can be built or altered by hand) that

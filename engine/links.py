@@ -1,0 +1,429 @@
+"""Links between bodies: rods that hold a distance, cables that hold at most a length, pins.
+
+Cyclone's particle engine completes its mass-aggregate physics with links; these are they,
+for the World's 2D bodies. A link joins a body to another body or to a fixed point:
+
+- ``Rod(body, other, length=None)``: the distance stays ``length`` (None: the distance when
+  the rod is made). A pendulum, a chain, the rods of a Newton's cradle.
+- ``Cable(body, other, length, restitution=0.0)``: the distance stays at most ``length``;
+  slack, the cable does nothing; snapping taut, it takes the ends' parting speed and gives
+  back ``restitution`` of it as they bounce together.
+- ``Pin(body, point)``: the body stays at ``point``: no force moves it, and contacts and
+  other links take it as immovable (an anchor for a chain).
+
+How they are solved (``LinkSolver``). The step moves every body as if unlinked (the method's
+own update, then the contacts); the links then correct it, as RATTLE does (Andersen 1983) for
+velocity Verlet:
+
+1. Positions. Each link k pulls its ends along its direction at the start of the step, r_k:
+   body i moves by w_i lam_k r_k and the other end by -w_j lam_k r_k (w = 1/m, 0 for what the
+   game moves or a pin holds). The multipliers lam solve c_k(lam) = |d_k|^2 - L_k^2 = 0 for
+   every link at once (d_k the link's vector from its other end to its body, after the
+   moves), by Newton's method: its Jacobian is dc_k/dlam_l = 2 S_kl (d_k . r_l), with
+   S = B W B^T from the links' incidence B (+1 at the body, -1 at the other end). One link
+   needs three or four iterations to reach round-off; the links of a chain are solved
+   together, not one after another, so a chain's error does not creep from link to link.
+2. Velocities. A correction dx made in the step is an impulse that acted through it: the
+   velocity gains dx / dt (RATTLE's first half-kick; for the closed form under constant
+   forces this is exactly RATTLE). Then each link's ends are given the speed along it that
+   the link allows (0 for a rod; for a cable the bounce of its snap) by one linear solve
+   S_kl (n_k . n_l) mu = target - u.
+
+A cable is a link only while it pulls: its multipliers must pull (lam <= 0, mu <= 0), and a
+cable that would push is left out and the rest solved again. A step that moves an end
+farther than Newton's method can bring back along r_k (a body flung past what the step can
+hold) is finished by projecting along the current direction instead, and warned about with a
+StabilityWarning, once per link: take a smaller dt.
+
+The error after a step: every rod's length, and every taut cable's, equals its length to
+``TOLERANCE`` (1e-12 of it; the issue asks 1e-9) unless the warning was given.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from . import checks
+from .vector import Vector
+
+if TYPE_CHECKING:
+    from .body import Body
+
+__all__ = ["Link", "Rod", "Cable", "Pin", "LinkSolver", "TOLERANCE"]
+
+#: A link's length error after the solve, relative to its length.
+TOLERANCE = 1e-12
+#: Newton iterations before a step counts as past what the solver can hold.
+MAX_ITERATIONS = 25
+
+
+def _point(value: Any, name: str) -> Vector:
+    """A finite 2D point, or a TypeError / ValueError naming ``name``."""
+    try:
+        p = Vector.coerce(value, name)
+    except TypeError:
+        raise TypeError(
+            f"{name} must be a Body or a point (a Vector or pair of numbers), got "
+            f"{type(value).__name__} {value!r}"
+        ) from None
+    if not p.is_finite():
+        raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
+    return p
+
+
+def _body(value: Any, name: str) -> Body:
+    from .body import Body
+
+    if not isinstance(value, Body):
+        raise TypeError(f"{name} must be a Body, got {type(value).__name__} {value!r}")
+    if value.dim != 2:
+        raise TypeError(f"{name} must be a 2D body (links join bodies on a plane), got a 1D body")
+    return value
+
+
+class Link:
+    """A link from ``body`` to ``other`` (a Body, or a fixed point): see the module's text."""
+
+    __slots__ = ("_body", "_other", "_point", "_length", "_e", "impulse", "warned")
+
+    #: Whether the link holds the distance both ways (a rod) or only at most (a cable).
+    rigid = True
+
+    def __init__(self, body: Any, other: Any, length: Any, restitution: float = 0.0) -> None:
+        from .body import Body
+
+        self._body = _body(body, "body")
+        if isinstance(other, Body):
+            if other is body:
+                raise ValueError(
+                    "other must be another Body or a fixed point, got the body itself: a body "
+                    "linked to itself holds nothing"
+                )
+            self._other: Body | None = _body(other, "other")
+            self._point: Vector | None = None
+        else:
+            self._other, self._point = None, _point(other, "other")
+        if length is None:
+            length = (self._body.pos - self._end()).length()
+            if not length > 0.0:
+                raise ValueError(
+                    "the link's ends are at one point, so length=None gives 0: move them "
+                    "apart or give a length > 0 (a Pin holds a body at a point)"
+                )
+        self._length = checks.real(length, "length", positive=True)
+        e = checks.real(restitution, "restitution")
+        if not 0.0 <= e <= 1.0:
+            raise ValueError(
+                f"restitution must be in [0, 1] (0: the cable stops the ends, 1: they bounce "
+                f"back at their speed), got {restitution!r}"
+            )
+        self._e = e
+        #: The impulse (N s) the link gave in the last step, along it: > 0 pulls the ends
+        #: together (a rod's tension), < 0 pushes them apart (a rod in compression).
+        self.impulse = 0.0
+        #: Whether the World has warned that this link was stretched past what a step holds.
+        self.warned = False
+
+    def _end(self) -> Vector:
+        return self._other.pos if self._other is not None else self._point  # type: ignore[return-value]
+
+    @property
+    def body(self) -> Body:
+        """The linked body."""
+        return self._body
+
+    @property
+    def other(self) -> Body | Vector:
+        """The other end: a Body, or a fixed point (length units)."""
+        return self._other if self._other is not None else self._point  # type: ignore[return-value]
+
+    @property
+    def length(self) -> float:
+        """The distance the link holds (length units)."""
+        return self._length
+
+    @property
+    def restitution(self) -> float:
+        """For a cable: the fraction of the parting speed kept when it snaps taut."""
+        return self._e
+
+    @property
+    def bodies(self) -> tuple[Body, ...]:
+        """The bodies the link joins (one for a link to a fixed point)."""
+        return (self._body,) if self._other is None else (self._body, self._other)
+
+    def tension(self, dt: float) -> float:
+        """The mean force (N) along the link over the last step of ``dt`` s; > 0 pulls."""
+        return self.impulse / checks.seconds(dt)
+
+    def __repr__(self) -> str:
+        other = "a point" if self._other is None else "a body"
+        return f"{type(self).__name__}(length={self._length!r}, to {other})"
+
+
+class Rod(Link):
+    """A rod: the distance from ``body`` to ``other`` (a Body or a point) stays ``length``
+    (length units; None: the distance when the rod is made)."""
+
+    __slots__ = ()
+
+    def __init__(self, body: Any, other: Any, length: float | None = None) -> None:
+        super().__init__(body, other, length)
+
+
+class Cable(Link):
+    """A cable: the distance stays at most ``length`` (length units); snapping taut, the ends
+    part with ``restitution`` of the speed they met it with (0: they stop)."""
+
+    __slots__ = ()
+    rigid = False
+
+    def __init__(self, body: Any, other: Any, length: float, restitution: float = 0.0) -> None:
+        if length is None:
+            raise TypeError("length must be a real number for a Cable (its longest reach)")
+        super().__init__(body, other, length, restitution)
+
+
+class Pin(Link):
+    """A pin: ``body`` stays at ``point`` (length units); contacts and links take it as fixed."""
+
+    __slots__ = ()
+
+    def __init__(self, body: Any, point: Any) -> None:
+        self._body = _body(body, "body")
+        from .body import Body
+
+        if isinstance(point, Body):
+            raise TypeError(
+                "point must be a fixed point (a Vector or pair of numbers); to hold two bodies "
+                "at a distance use a Rod"
+            )
+        self._other, self._point = None, _point(point, "point")
+        self._length, self._e = 0.0, 0.0
+        self.impulse, self.warned = 0.0, False
+
+    @property
+    def point(self) -> Vector:
+        """Where the body is held (length units)."""
+        assert self._point is not None
+        return self._point
+
+    def __repr__(self) -> str:
+        return f"Pin(at {self._point!r})"
+
+
+class LinkSolver:
+    """The World's links as arrays, and the correction of a step for them (module text)."""
+
+    def __init__(self, links: list[Link], row_of: Any) -> None:
+        rods = [k for k in links if not isinstance(k, Pin)]
+        self.links = rods
+        self.pins = [k for k in links if isinstance(k, Pin)]
+        self.pin_rows = np.array([row_of(p.body) for p in self.pins], dtype=np.intp)
+        self.pin_points = np.array([tuple(p.point) for p in self.pins], dtype=float).reshape(-1, 2)
+        self.i = np.array([row_of(k.body) for k in rods], dtype=np.intp)
+        self.j = np.array(
+            [-1 if k._other is None else row_of(k._other) for k in rods], dtype=np.intp
+        )
+        self.p = np.array(
+            [(0.0, 0.0) if k._point is None else tuple(k._point) for k in rods], dtype=float
+        ).reshape(-1, 2)
+        self.L = np.array([k.length for k in rods], dtype=float)
+        self.rigid = np.array([k.rigid for k in rods], dtype=bool)
+        self.e = np.array([k.restitution for k in rods], dtype=float)
+        self.moved = False
+        self.stretched: list[Link] = []  # links past what the last step could hold
+
+    def _ends(self, X: np.ndarray) -> np.ndarray:
+        """Each link's vector from its other end to its body."""
+        j = self.j
+        other = np.where((j >= 0)[:, None], X[np.maximum(j, 0)], self.p)
+        return X[self.i] - other
+
+    def _spread(self, n: int, w: np.ndarray, f: np.ndarray, sel: np.ndarray) -> np.ndarray:
+        """Each body's change (n, 2) from per-link vectors ``f`` (w applied) of links ``sel``."""
+        out = np.zeros((n, 2))
+        i, j = self.i[sel], self.j[sel]
+        np.add.at(out, i, w[i, None] * f)
+        has = j >= 0
+        np.add.at(out, j[has], -w[j[has], None] * f[has])
+        return out
+
+    def _coupling(self, w: np.ndarray, sel: np.ndarray) -> np.ndarray:
+        """S = B W B^T over the links ``sel``: how link l's multiplier moves link k's ends."""
+        i, j = self.i[sel], self.j[sel]
+        wj = np.where(j >= 0, w[np.maximum(j, 0)], 0.0)
+        same = lambda a, b: (a[:, None] == b[None, :]) & (a[:, None] >= 0)  # noqa: E731
+        S = (
+            same(i, i) * w[i][:, None]
+            - same(i, j) * w[i][:, None]
+            - same(j, i) * wj[:, None]
+            + same(j, j) * wj[:, None]
+        )
+        return S
+
+    def resolve(
+        self,
+        x0: np.ndarray,
+        x1: np.ndarray,
+        v0: np.ndarray,
+        v1: np.ndarray,
+        w: np.ndarray,
+        dt: float,
+        kinked: np.ndarray | None = None,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The step's end state (x1, v1) corrected for the links; ``w`` (N,): 1/m, 0 for
+        bodies nothing moves (kinematic, pinned); ``kinked`` (N,) bool: bodies whose
+        velocity a contact changed in the step."""
+        self.moved = False
+        self.stretched = []
+        x, v = x1, v1
+        if len(self.pin_rows):
+            x, v = x.copy(), v.copy()
+            x[self.pin_rows] = self.pin_points
+            v[self.pin_rows] = 0.0
+            self.moved = True
+        K = len(self.L)
+        if not K:
+            return x, v
+        for link in self.links:
+            link.impulse = 0.0
+        n = len(x)
+        L = self.L
+        d_start = self._ends(x0)
+        d_end = self._ends(x)
+        # The direction each link pulls along: where it pointed as the step began (RATTLE),
+        # or, for a link whose end was struck in the step (its path has a kink: the pull
+        # before the blow is not the pull after it), where it points at the end.
+        use_end = np.einsum("ij,ij->i", d_start, d_start) == 0.0
+        if kinked is not None:
+            use_end |= kinked[self.i] | ((self.j >= 0) & kinked[np.maximum(self.j, 0)])
+        r = np.where(use_end[:, None], d_end, d_start)
+        wi = w[self.i]
+        wj = np.where(self.j >= 0, w[np.maximum(self.j, 0)], 0.0)
+        movable = (wi + wj) > 0.0
+        # A cable acts only when the step would leave it longer than its length.
+        len_end = np.sqrt(np.einsum("ij,ij->i", d_end, d_end))
+        active = movable & (self.rigid | (len_end > L))
+        if not active.any():
+            return x, v
+        if not self.moved:
+            x, v = x.copy(), v.copy()
+        lam = np.zeros(K)
+        for _ in range(K + 1):  # each pass drops at least one pushing cable, or ends
+            sel = np.flatnonzero(active)
+            lam_sel, ok = self._positions(x, r, w, sel, n)
+            pushing = ~self.rigid[sel] & (lam_sel > 0.0)
+            if not pushing.any() or not ok:
+                break
+            active[sel[pushing]] = False
+            if not active.any():
+                return x, v
+        sel = np.flatnonzero(active)
+        lam[sel] = lam_sel
+        dx = self._spread(n, w, lam_sel[:, None] * r[sel], sel)
+        if not ok:
+            dx = self._project(x, w, sel, n)
+        x += dx
+        v += dx * (1.0 / dt)
+        self.moved = True
+        # Velocities: along each active link, the speed the link allows.
+        d = self._ends(x)[sel]
+        length = np.sqrt(np.einsum("ij,ij->i", d, d))
+        nrm = d / np.where(length > 0.0, length, 1.0)[:, None]
+        rel_before = self._rel(v1, nrm, sel)
+        target = np.zeros(len(sel))
+        cable = ~self.rigid[sel]
+        if cable.any():
+            # A cable slack as the step began snaps taut in it: the ends part at -e u.
+            slack0 = np.sqrt(np.einsum("ij,ij->i", d_start[sel], d_start[sel])) < L[sel] * (
+                1.0 - 1e-9
+            )
+            snap = cable & slack0
+            target[snap] = -self.e[sel][snap] * np.maximum(rel_before[snap], 0.0)
+        keep = np.ones(len(sel), dtype=bool)
+        mu = np.zeros(len(sel))
+        for _ in range(len(sel) + 1):
+            s = np.flatnonzero(keep)
+            u = self._rel(v, nrm[s], sel[s])
+            A = self._coupling(w, sel[s]) * (nrm[s] @ nrm[s].T)
+            mu_s = _solve(A, target[s] - u)
+            pushing = cable[s] & (mu_s > 0.0) & (u <= target[s])
+            if not pushing.any():
+                break
+            keep[s[pushing]] = False
+            if not keep.any():
+                mu_s, s = np.zeros(0), s[:0]
+                break
+        mu[s] = mu_s
+        v += self._spread(n, w, mu[:, None] * nrm, sel)
+        # Each link's impulse along it, > 0 pulling: the position part acted as lam r / dt.
+        along = -(lam[sel] * np.einsum("ij,ij->i", r[sel], nrm) / dt + mu)
+        for k, p in zip(sel.tolist(), along.tolist(), strict=True):
+            self.links[k].impulse = p
+        return x, v
+
+    def _rel(self, v: np.ndarray, nrm: np.ndarray, sel: np.ndarray) -> np.ndarray:
+        """Each link's parting speed along ``nrm`` (> 0: the ends move apart)."""
+        j = self.j[sel]
+        vo = np.where((j >= 0)[:, None], v[np.maximum(j, 0)], 0.0)
+        return np.einsum("ij,ij->i", v[self.i[sel]] - vo, nrm)
+
+    def _positions(
+        self, x: np.ndarray, r: np.ndarray, w: np.ndarray, sel: np.ndarray, n: int
+    ) -> tuple[np.ndarray, bool]:
+        """Newton's method for the multipliers of links ``sel``; (lam, converged)."""
+        rs, L = r[sel], self.L[sel]
+        S = self._coupling(w, sel)
+        lam = np.zeros(len(sel))
+        for _ in range(MAX_ITERATIONS):
+            X = x + self._spread(n, w, lam[:, None] * rs, sel)
+            d = self._ends(X)[sel]
+            c = np.einsum("ij,ij->i", d, d) - L * L
+            if float(np.abs(c / (L * L)).max()) <= 2.0 * TOLERANCE:
+                return lam, True
+            J = 2.0 * S * (d @ rs.T)
+            step = _solve(J, -c)
+            if not np.isfinite(step).all():
+                break
+            lam = lam + step
+        return lam, False
+
+    def _project(self, x: np.ndarray, w: np.ndarray, sel: np.ndarray, n: int) -> np.ndarray:
+        """The fallback: links one after another, each end moved along the link's current
+        direction to its length (Gauss-Seidel; always possible), until they hold."""
+        X = x.copy()
+        i, j, L = self.i[sel], self.j[sel], self.L[sel]
+        for k in sel.tolist():
+            self.stretched.append(self.links[k])
+        for _ in range(200):
+            worst = 0.0
+            for a, b, length, p in zip(
+                i.tolist(), j.tolist(), L.tolist(), self.p[sel], strict=True
+            ):
+                end = X[b] if b >= 0 else p
+                d = X[a] - end
+                dist = math.hypot(float(d[0]), float(d[1]))
+                wa, wb = w[a], (w[b] if b >= 0 else 0.0)
+                if dist == 0.0 or wa + wb == 0.0:
+                    continue
+                err = dist - length
+                worst = max(worst, abs(err) / length)
+                corr = d * (err / (dist * (wa + wb)))
+                X[a] -= wa * corr
+                if b >= 0:
+                    X[b] += wb * corr
+            if worst <= TOLERANCE:
+                break
+        return X - x
+
+
+def _solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """A x = b; least squares where A is singular (links that repeat one another)."""
+    try:
+        return np.linalg.solve(A, b)
+    except np.linalg.LinAlgError:
+        return np.linalg.lstsq(A, b, rcond=None)[0]
