@@ -306,7 +306,9 @@ class Body:
     def kinematic(self) -> bool:
         """True for a body the game moves (a paddle, a platform): no force acts on it, and
         contacts take its mass as infinite. In a World, writing its ``vel`` sets how it moves;
-        writing its ``pos`` moves it there over the next step, at the velocity that takes."""
+        writing its ``pos`` moves it there over the next step, at the velocity that takes
+        (what the contacts in that step see), after which its ``vel`` is again the one last
+        written (zero by default): a paddle the game places each frame stops when it does."""
         return self._kinematic
 
     # -- moving a lone body ------------------------------------------------------------------

@@ -806,15 +806,19 @@ class World:
         self._anchor = None
         self._drop_kernel()
 
-    def _apply_targets(self, dt: float) -> None:
-        """Each kinematic body with a target takes the velocity that reaches it in ``dt``."""
+    def _apply_targets(self, dt: float) -> dict[Body, np.ndarray]:
+        """Each kinematic body with a target takes the velocity that reaches it in ``dt``;
+        return the velocities they had, to be given back after the step."""
         store = self._store
         assert store is not None
+        before = {}
         for body, target in self._targets.items():
             row = store.row(body._slot)
+            before[body] = store.v[row].copy()
             store.v[row] = (np.asarray(target, dtype=float) - store.x[row]) * (1.0 / dt)
         self._targets.clear()
         self._anchor = None
+        return before
 
     def _state_written(self) -> None:
         """A position or velocity was set by hand: the closed form and the kernel start anew,
@@ -1018,13 +1022,18 @@ class World:
                 f"dt must keep the time finite: a step of dt={dt!r} s from t={self.t!r} s would "
                 f"pass the float range (1.8e308 s)"
             )
-        if self._targets:
-            self._apply_targets(dt)
-        if self._bodies and affine and self._prepare_affine(dt, model, name):
+        after = self._apply_targets(dt) if self._targets else None
+        if self._bodies and affine and after is None and self._prepare_affine(dt, model, name):
             return self.step(dt)  # now the fast path above takes it
         if self._bodies:
             self._step_general(dt, name, step, model)
         self._n += 1
+        if after is not None:
+            # A kinematic body moved by pos stops there: its velocity is what it was before.
+            store = self._store
+            assert store is not None
+            for body, v in after.items():
+                store.v[store.row(body._slot)] = v
         if self._contacts is not None or self._pairs_on:
             self._report()
 

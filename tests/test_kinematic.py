@@ -1,0 +1,123 @@
+"""Kinematic bodies (``Body(kinematic=True)``): moved by the game, immovable to everything else.
+
+No force acts on one; contacts take its mass as infinite, so a ball it strikes leaves as from
+a moving wall (v' = V + e (V - v) along the normal), and a ball resting on it rides it by
+friction. Static colliders and other kinematic bodies do not stop it.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import pytest
+
+from engine import Body, Box, Vector, World
+from engine.forces import Gravity
+
+DT = 1.0 / 120.0
+
+
+def disc(x: float, y: float, vx: float = 0.0, vy: float = 0.0, **kw: object) -> Body:
+    return Body(Vector(x, y), Vector(vx, vy), Vector(0, 0), **kw)  # type: ignore[arg-type]
+
+
+def test_no_force_acts_on_a_kinematic_body() -> None:
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -9.81)))
+    paddle = world.add(disc(0.0, 0.0, 2.0, 0.0, radius=0.5, kinematic=True))
+    stone = world.add(disc(5.0, 5.0, radius=0.5))
+    for _ in range(120):
+        world.step(DT)
+    assert paddle.pos == Vector(2.0, 0.0) and paddle.vel == Vector(2.0, 0.0)
+    assert stone.pos.y == pytest.approx(5.0 - 0.5 * 9.81, rel=1e-12)  # the rest still fall
+
+
+def test_writing_pos_moves_it_there_over_the_next_step() -> None:
+    world = World()
+    paddle = world.add(disc(0.0, 0.0, radius=0.5, kinematic=True))
+    paddle.pos = Vector(0.3, -0.1)
+    assert paddle.pos == Vector(0.0, 0.0)  # not a teleport: it gets there by moving
+    world.step(DT)
+    assert paddle.pos.x == pytest.approx(0.3, rel=1e-15)
+    assert paddle.pos.y == pytest.approx(-0.1, rel=1e-15)
+    # ... and stops there: its velocity is the one last written (none).
+    assert paddle.vel == Vector(0.0, 0.0)
+    world.step(DT)
+    assert paddle.pos.x == pytest.approx(0.3, rel=1e-15)
+    # Moved by pos, it strikes what is in its way at the speed of the move.
+    ball = world.add(disc(1.3 + 0.3, 0.0, radius=0.5, restitution=1.0))
+    paddle.vel = Vector(1.0, 0.0)
+    paddle.pos = Vector(0.6, 0.0)  # 0.3 m in one step: 36 m/s, through the ball's edge
+    world.step(DT)
+    assert paddle.vel == Vector(1.0, 0.0)
+    assert ball.vel.x == pytest.approx(0.3 / DT * (1.0 + 0.5 * 1.0), rel=1e-9)  # V + e (V - 0)
+
+
+@pytest.mark.parametrize("e_ball", [1.0, 0.5, 0.0])
+def test_a_moving_kinematic_body_strikes_a_ball_as_a_moving_wall(e_ball: float) -> None:
+    world = World(integrator="auto")
+    pusher = world.add(disc(0.0, 0.0, 3.0, 0.0, radius=0.5, kinematic=True, restitution=1.0))
+    target = world.add(disc(2.0, 0.0, -1.0, 0.0, radius=0.5, restitution=e_ball, mass=50.0))
+    for _ in range(60):
+        world.step(DT)
+    # v' = V + e (V - v) with V = 3, v = -1: the ball's mass does not matter.
+    assert target.vel.x == pytest.approx(3.0 + e_ball * 4.0, rel=1e-9)
+    assert pusher.vel == Vector(3.0, 0.0)
+    assert (target.pos - pusher.pos).length() >= 1.0 - 1e-9
+
+
+def test_a_ball_on_a_moving_platform_rides_it() -> None:
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -9.81)))
+    platform = world.add(disc(0.0, 0.0, radius=5.0, kinematic=True, friction=1.0))
+    rider = world.add(disc(0.0, 5.5, radius=0.5, friction=1.0, restitution=0.0))
+    for _ in range(60):
+        world.step(DT)
+    assert rider.pos.y == pytest.approx(5.5, abs=0.01 * 0.5)
+    platform.vel = Vector(1.0, 0.0)
+    for _ in range(240):
+        world.step(DT)
+    assert rider.vel.x == pytest.approx(1.0, rel=1e-6)
+    assert rider.pos.x - platform.pos.x == pytest.approx(0.0, abs=0.05)
+    assert rider.pos.y == pytest.approx(5.5, abs=0.01 * 0.5)
+
+
+def test_walls_and_other_kinematic_bodies_do_not_stop_it() -> None:
+    world = World()
+    world.add_collider(Box((-1.0, -1.0), (1.0, 1.0)))
+    a = world.add(disc(0.0, 0.0, 5.0, 0.0, radius=0.2, kinematic=True))
+    b = world.add(disc(0.5, 0.0, -5.0, 0.0, radius=0.2, kinematic=True))
+    for _ in range(120):
+        world.step(DT)
+    assert a.pos.x == pytest.approx(5.0, rel=1e-12)
+    assert b.pos.x == pytest.approx(-4.5, rel=1e-12)
+
+
+def test_moving_a_kinematic_body_does_not_wake_a_pile_it_does_not_touch() -> None:
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Box((0.0, 0.0), (10.0, 10.0)))
+    pile = world.add_all(disc(1.0 + k, 0.5, radius=0.5, restitution=0.0) for k in range(3))
+    paddle = world.add(disc(8.0, 5.0, radius=0.5, kinematic=True))
+    for _ in range(240):
+        world.step(DT)
+    assert all(world.is_sleeping(b) for b in pile)
+    for k in range(60):
+        paddle.vel = Vector(0.0, 0.1 if k % 2 else -0.1)
+        world.step(DT)
+    assert all(world.is_sleeping(b) for b in pile)
+    assert not world.is_sleeping(paddle)
+    # ... and it wakes what it runs into.
+    paddle.pos = Vector(2.0, 1.52)
+    for _ in range(2):
+        world.step(DT)
+    assert not all(world.is_sleeping(b) for b in pile)
+
+
+def test_kinematic_must_be_a_bool_and_shows_in_repr() -> None:
+    with pytest.raises(TypeError, match="kinematic must be True"):
+        disc(0.0, 0.0, kinematic=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert "kinematic=True" in repr(disc(0.0, 0.0, kinematic=True))
+        assert "kinematic" not in repr(disc(0.0, 0.0))
