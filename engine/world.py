@@ -1030,10 +1030,10 @@ class World:
         self._n += 1
         if after is not None:
             # A kinematic body moved by pos stops there: its velocity is what it was before.
-            store = self._store
-            assert store is not None
+            held = self._store
+            assert held is not None
             for body, v in after.items():
-                store.v[store.row(body._slot)] = v
+                held.v[held.row(body._slot)] = v
         if self._contacts is not None or self._pairs_on:
             self._report()
 
