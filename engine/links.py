@@ -313,15 +313,31 @@ class LinkSolver:
         if not self.moved:
             x, v = x.copy(), v.copy()
         lam = np.zeros(K)
-        for _ in range(K + 1):  # each pass drops at least one pushing cable, or ends
+        # The active set: a pass drops the cables that would push, or takes in the slack
+        # ones the others' pull has stretched (a chain of cables tightening end to end).
+        for _ in range(2 * K + 2):
             sel = np.flatnonzero(active)
             lam_sel, ok = self._positions(x, r, w, sel, n)
-            pushing = ~self.rigid[sel] & (lam_sel > 0.0)
-            if not pushing.any() or not ok:
+            if not ok:
                 break
-            active[sel[pushing]] = False
-            if not active.any():
-                return x, v
+            pushing = ~self.rigid[sel] & (lam_sel > 0.0)
+            if pushing.any():
+                active[sel[pushing]] = False
+                if not active.any():
+                    return x, v
+                continue
+            d = self._ends(x + self._spread(n, w, lam_sel[:, None] * r[sel], sel))
+            stretched = (
+                ~active & movable & (np.einsum("ij,ij->i", d, d) > (L * (1.0 + TOLERANCE)) ** 2)
+            )
+            if not stretched.any():
+                break
+            active |= stretched
+            # One whose ends met at the step's start and end pulls along where they are now.
+            none = stretched & (np.einsum("ij,ij->i", r, r) == 0.0)
+            r[none] = d[none]
+        else:  # the set kept changing: solve the last one as it stands
+            lam_sel, ok = self._positions(x, r, w, np.flatnonzero(active), n)
         sel = np.flatnonzero(active)
         lam[sel] = lam_sel
         dx = self._spread(n, w, lam_sel[:, None] * r[sel], sel)

@@ -385,7 +385,9 @@ class World:
                 f"{type(link).__name__} {link!r}"
             )
         if any(k is link for k in self._links):
-            raise ValueError(f"that link is already in this World: {link!r}")
+            raise ValueError(
+                f"that link is already in this World (a link is added only once): {link!r}"
+            )
         for b in link.bodies:
             if b.world is not self:
                 raise ValueError(
@@ -393,7 +395,10 @@ class World:
                 )
         if isinstance(link, Pin):
             if any(isinstance(k, Pin) and k.body is link.body for k in self._links):
-                raise ValueError(f"that body is pinned already: {link.body!r}")
+                raise ValueError(
+                    f"that body is pinned already: a body takes only one Pin (remove_link the "
+                    f"old one first): {link.body!r}"
+                )
             if link.body.kinematic:
                 raise ValueError(
                     f"a kinematic body is moved by the game and cannot be pinned: {link.body!r}"
@@ -812,10 +817,23 @@ class World:
         store = self._store
         assert store is not None
         before = {}
+        moves = {}
         for body, target in self._targets.items():
             row = store.row(body._slot)
+            with np.errstate(over="ignore", invalid="ignore"):
+                v = (np.asarray(target, dtype=float) - store.x[row]) * (1.0 / dt)
+            if not np.isfinite(v).all():
+                del self._targets[body]
+                raise ValueError(
+                    f"pos={target!r} of a kinematic body is too far to reach in one step of "
+                    f"dt={dt!r} s (the speed passes the float range): the move was dropped; "
+                    f"give a nearer position"
+                )
+            moves[row] = v
+        for body in self._targets:
+            row = store.row(body._slot)
             before[body] = store.v[row].copy()
-            store.v[row] = (np.asarray(target, dtype=float) - store.x[row]) * (1.0 / dt)
+            store.v[row] = moves[row]
         self._targets.clear()
         self._anchor = None
         return before
