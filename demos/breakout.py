@@ -197,7 +197,7 @@ class BreakoutGame:
                 del self.bricks[event.collider]
                 self.score.bricks += 1
                 self.score.points += POINTS
-            elif event.collider is self.paddle:
+            elif self.paddle in (event.body, event.collider):  # a pair: either order
                 paddled = True
             elif event.collider is self.drain and self.serve_at is None:
                 self.score.lives -= 1
@@ -309,12 +309,13 @@ def crossing(game: BreakoutGame) -> float | None:
 
 #: The autopilot starts for the ball's crossing only once the ball is below this line (m):
 #: like a person, it can be too late for a ball that comes down far from it.
-REACT = BRICK_BOTTOM - 1.0
+REACT = BRICK_BOTTOM + ROWS * ROW_PITCH / 2
 
 
 def autopilot(game: BreakoutGame) -> float:
     """Where a good player would put the paddle: under the ball's crossing, a little to one
-    side, so that the ball leaves toward the lowest bricks standing (the round top aims it)."""
+    side, so that the ball leaves toward the nearest of the lowest bricks standing (the
+    paddle's round top aims it)."""
     ball = game.ball.pos
     where = crossing(game)
     if game.serve_at is not None:
@@ -328,7 +329,8 @@ def autopilot(game: BreakoutGame) -> float:
     # bisector of the way in reversed and the way out: n ~ out - in.
     lowest = min(game.bricks.values())
     xs = [(b.a.x + b.b.x) / 2 for b, row in game.bricks.items() if row == lowest]
-    goal = Vector(float(np.mean(xs)), BRICK_BOTTOM + lowest * ROW_PITCH)
+    nearest = min(xs, key=lambda x: abs(x - where))
+    goal = Vector(nearest, BRICK_BOTTOM + lowest * ROW_PITCH)
     out = goal - Vector(where, PADDLE_Y + PADDLE_RADIUS)
     normal = out.normalize() - game.ball.vel.normalize()
     # Keep the contact on the paddle's top, within 35 degrees of its crown.
