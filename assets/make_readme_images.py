@@ -36,6 +36,7 @@ STILLS = [
     ("fireworks", ["fireworks", "--scene", "show", "--seed", "7"], 45),
     ("stability-orbits", ["stability", "--scene", "orbits"], 60),
     ("crumb", ["crumb", "--seconds", "8"], 62),
+    ("breakout", ["breakout", "--seconds", "16"], 150),
     ("bounce", ["bounce", "--scene", "drop"], 90),
     ("ballpit", ["ballpit"], 50),
     ("cradle", ["cradle", "--scene", "heavy"], 20),

@@ -158,3 +158,37 @@ def test_the_vector_names_table_says_where_each_name_comes_from() -> None:
             section.split()
         )
         assert f"the other {len(DELIBERATE)} are" in " ".join(section.split())
+
+
+def test_the_breakout_core_is_the_breakout_games_and_scores_by_its_events() -> None:
+    # The README quotes the breakout game's core: the same walls, drain, bricks, ball and
+    # paddle as demos/breakout.py; run as it stands, it scores 10 a brick removed.
+    import demos.breakout as bo
+    from engine import Body, Segment
+
+    block = next(b for b in PYTHON_BLOCKS if "kinematic=True" in b)
+    scope: dict[str, object] = {}
+    exec(block, scope)  # noqa: S102 - the README's own example
+    world, bricks = scope["world"], scope["bricks"]
+    assert isinstance(bricks, list)
+    game = bo.BreakoutGame()
+
+    def shape(c: Segment) -> tuple[float, ...]:
+        return tuple(round(v, 9) for v in (*c.a, *c.b, c.radius, c.sensor))
+
+    colliders = world.colliders  # type: ignore[attr-defined]
+    assert [shape(c) for c in colliders[:4]] == [shape(c) for c in (*game.walls, game.drain)]
+    standing = {shape(c) for c in game.bricks}
+    assert len(standing) == bo.ROWS * bo.COLUMNS
+    assert list(colliders[4:]) == bricks and {shape(c) for c in bricks} <= standing
+    for name, theirs in (("ball", game.ball), ("paddle", game.paddle)):
+        mine = scope[name]
+        assert isinstance(mine, Body)
+        assert (mine.radius, mine.restitution, mine.friction, mine.kinematic) == (
+            theirs.radius,
+            theirs.restitution,
+            theirs.friction,
+            theirs.kinematic,
+        )
+    assert scope["paddle"].pos.y == bo.PADDLE_Y  # type: ignore[attr-defined]
+    assert scope["score"] == 10 * (len(standing) - len(bricks)) > 0
