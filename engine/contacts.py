@@ -67,7 +67,9 @@ MAX_IMPACTS = 32
 class ContactEvent(NamedTuple):
     """A contact that began or ended: which body and collider, where, and how hard.
 
-    ``collider`` is the other Body for a contact between two bodies. ``point`` is on the
+    ``collider`` is the other Body for a contact between two bodies (which of the two is
+    ``body`` in ``World.began`` is not fixed; a handler from ``World.on_contact`` on a Body
+    always gets that Body as ``body``). ``point`` is on the
     collider's (or other body's) surface, ``normal`` the unit normal there toward the
     body, ``impulse`` (N s, a Vector) the change of the body's momentum, ``time`` (s) the
     World time of the contact within the step.
@@ -79,6 +81,13 @@ class ContactEvent(NamedTuple):
     normal: Vector
     impulse: Vector
     time: float
+
+    def flipped(self) -> ContactEvent:
+        """The same contact between two bodies seen from the other one: ``body`` and
+        ``collider`` swapped, the normal and the impulse reversed (Newton's third law)."""
+        return ContactEvent(
+            self.collider, self.body, self.point, -self.normal, -self.impulse, self.time
+        )
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:

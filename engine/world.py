@@ -32,7 +32,7 @@ import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from numbers import Real
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -117,6 +117,11 @@ class QueryHit:
     distance: float = 0.0
 
 
+#: What add_collider and add_link hand back: the very object given, with its own type.
+ColliderT = TypeVar("ColliderT", bound=Collider)
+LinkT = TypeVar("LinkT", bound=Link)
+
+
 def _copy(array: Any) -> Any:
     return None if array is None else array.copy()
 
@@ -140,6 +145,7 @@ class WorldSnapshot:
     contacts: tuple[Any, ...] | None = None  # which bodies rest on what, sensors overlapped
     pairs: tuple[Any, ...] | None = None  # contacts between bodies: warm start, sleep
     links: tuple[Any, ...] = ()  # the links in force, and whether each has warned
+    moves: tuple[Any, ...] = ()  # (row, target): kinematic bodies' pos written, not yet reached
 
 
 @dataclass
@@ -316,6 +322,7 @@ class World:
         assert store is not None
         pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
         row = store.row(body._slot)
+        _ = self.began, self.ended  # the last step's events, named before the rows shift
         del self._bodies[row]
         self._targets.pop(body, None)
         store.remove(body._slot)
@@ -376,7 +383,7 @@ class World:
         """The links (rods, cables, pins), in the order they were added."""
         return tuple(self._links)
 
-    def add_link(self, link: Link) -> Link:
+    def add_link(self, link: LinkT) -> LinkT:
         """Add a link (``engine.links``: Rod, Cable, Pin) between bodies of this World, or a
         body and a fixed point, and return it. A pinned body is moved to its pin at once."""
         if not isinstance(link, Link):
@@ -465,7 +472,7 @@ class World:
         """The static colliders, in the order they were added."""
         return () if self._contacts is None else tuple(self._contacts.colliders)
 
-    def add_collider(self, collider: Collider) -> Collider:
+    def add_collider(self, collider: ColliderT) -> ColliderT:
         """Add a static collider (``engine.colliders``) and return it.
 
         Bodies already inside it are pushed out to its surface, with an OverlapWarning naming
@@ -494,6 +501,9 @@ class World:
         if collider not in self.colliders:
             raise ValueError(f"that collider is not in this World: {collider!r}")
         assert self._contacts is not None
+        # The last step's events name colliders by their place: name them now, before the
+        # places after this one shift.
+        _ = self.began, self.ended
         self._contacts.remove(collider)
         self._collisions.wake(len(self._bodies))
         self._changed_structure()
@@ -525,11 +535,13 @@ class World:
         target: Body | Collider,
         begin: Callable[[ContactEvent], Any] | None = None,
         end: Callable[[ContactEvent], Any] | None = None,
-    ) -> None:
+    ) -> Callable[[], None]:
         """Call ``begin(event)`` / ``end(event)`` after each step for the contacts of ``target``.
 
         ``target`` is a Body in this World or a collider; the calls come after the step, in the
-        order the contacts happened (``World.began`` and ``World.ended`` list them too).
+        order the contacts happened (``World.began`` and ``World.ended`` list them too). For a
+        Body, ``event.body`` is that Body (the other is ``event.collider``). Returns a
+        function that takes the handler off again.
         """
         if not isinstance(target, (Body, Collider)):
             raise TypeError(
@@ -538,7 +550,14 @@ class World:
         for name, fn in (("begin", begin), ("end", end)):
             if fn is not None and not callable(fn):
                 raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
-        self._handlers.append((target, begin, end))
+        entry = (target, begin, end)
+        self._handlers.append(entry)
+
+        def remove() -> None:
+            """Take this handler off (again: nothing happens)."""
+            self._handlers = [h for h in self._handlers if h is not entry]
+
+        return remove
 
     @property
     def sleeping(self) -> int:
@@ -679,8 +698,12 @@ class World:
             for ev in event_list:
                 for handler in self._handlers:
                     fn = handler[which]
-                    if fn is not None and (handler[0] is ev.body or handler[0] is ev.collider):
+                    if fn is None:
+                        continue
+                    if handler[0] is ev.body:
                         fn(ev)
+                    elif handler[0] is ev.collider:
+                        fn(ev.flipped() if isinstance(ev.collider, Body) else ev)
 
     def segment_query_first(self, start: Any, end: Any, radius: float = 0.0) -> QueryHit | None:
         """The first body or solid collider a segment (a ray from ``start`` to ``end``) meets.
@@ -1324,6 +1347,10 @@ class World:
             contacts=None if self._contacts is None else self._contacts.state(),
             pairs=self._collisions.state(),
             links=tuple((k, k.warned) for k in self._links),
+            moves=tuple(
+                (self._bodies.index(b), tuple(float(c) for c in target))
+                for b, target in self._targets.items()
+            ),
         )
 
     def restore(self, snapshot: WorldSnapshot) -> None:
@@ -1340,6 +1367,7 @@ class World:
             )
         masses, own_acc = self._check_snapshot(snapshot)
         links = self._check_links(snapshot.links)
+        moves = self._check_moves(snapshot.moves)
         if self._contacts is not None and snapshot.contacts is not None:
             self._contacts.check_state(snapshot.contacts, len(self._bodies))
         store = self._store
@@ -1361,6 +1389,7 @@ class World:
             self._links_changed()
         for k, warned in links:
             k.warned = warned
+        self._targets = {self._bodies[row]: target for row, target in moves}
         self._changed_structure()
         if snapshot.anchor is not None:
             x0, v0, ta = snapshot.anchor
@@ -1374,6 +1403,30 @@ class World:
                 self._contacts.set_state(snapshot.contacts, len(self._bodies))
         if snapshot.pairs is not None:
             self._collisions.set_state(snapshot.pairs)
+
+    def _check_moves(self, moves: Any) -> list[tuple[int, tuple[float, float]]]:
+        """The snapshot's pending kinematic moves, checked: (row of a kinematic body, a
+        finite point)."""
+        if not isinstance(moves, tuple):
+            raise TypeError("snapshot.moves must be a tuple of (row, point) from World.snapshot")
+        out = []
+        for item in moves:
+            ok = isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], int)
+            ok = ok and 0 <= item[0] < len(self._bodies) and self._bodies[item[0]].kinematic
+            if ok:
+                try:
+                    point = Vector.coerce(item[1], "snapshot.moves")
+                except (TypeError, ValueError):
+                    ok = False
+                else:
+                    ok = point.is_finite()
+            if not ok:
+                raise ValueError(
+                    f"snapshot.moves holds (row of a kinematic body, finite point) pairs, got "
+                    f"{item!r}"
+                )
+            out.append((item[0], (float(point[0]), float(point[1]))))
+        return out
 
     def _check_links(self, links: Any) -> list[tuple[Link, bool]]:
         """The snapshot's links, checked: each a Link whose bodies are in this World."""

@@ -883,3 +883,20 @@ def test_far_colliders_change_nothing(method: str) -> None:
         return trace
 
     assert first_difference(run(True), run(False)) is None
+
+
+def test_the_last_steps_events_keep_their_colliders_after_one_is_removed() -> None:
+    # A bounce begins and ends in its step; reading began, removing the collider it names,
+    # then reading ended must still name that collider (events name colliders by place).
+    world = World()
+    first = world.add_collider(Segment((1.0, -1.0), (1.0, 1.0)))
+    last = world.add_collider(Segment((-5.0, -1.0), (-5.0, 1.0)))
+    ball = world.add(Body(Vector(0, 0), Vector(3, 0), Vector(0, 0), radius=0.1, restitution=1.0))
+    for _ in range(120):
+        world.step(1 / 120)
+        if world.began:
+            break
+    assert [e.collider for e in world.began] == [first]
+    world.remove_collider(first)
+    assert [e.collider for e in world.ended] == [first]
+    assert world.colliders == (last,) and ball.vel.x < 0.0

@@ -121,3 +121,37 @@ def test_kinematic_must_be_a_bool_and_shows_in_repr() -> None:
         warnings.simplefilter("error")
         assert "kinematic=True" in repr(disc(0.0, 0.0, kinematic=True))
         assert "kinematic" not in repr(disc(0.0, 0.0))
+
+
+def test_a_snapshot_keeps_a_move_written_but_not_yet_taken() -> None:
+    world = World()
+    paddle = world.add(disc(0.0, 0.0, radius=0.5, kinematic=True))
+    paddle.pos = Vector(1.0, 0.0)
+    snap = world.snapshot()
+    world.step(DT)
+    assert paddle.pos == Vector(1.0, 0.0)
+    world.restore(snap)
+    assert paddle.pos == Vector(0.0, 0.0)
+    world.step(DT)
+    assert paddle.pos == Vector(1.0, 0.0)  # the move came back with the snapshot
+
+
+def test_contact_handlers_see_their_own_body_first_and_can_be_taken_off() -> None:
+    world = World()
+    a = world.add(disc(0.0, 0.0, 1.0, 0.0, radius=0.5, restitution=1.0))
+    b = world.add(disc(2.0, 0.0, radius=0.5, restitution=1.0))
+    seen: list[tuple[Body, Body, float]] = []
+    world.on_contact(a, begin=lambda ev: seen.append((ev.body, ev.collider, ev.normal.x)))
+    stop = world.on_contact(b, begin=lambda ev: seen.append((ev.body, ev.collider, ev.normal.x)))
+    for _ in range(180):
+        world.step(DT)
+    # One blow, seen by each from its own side: the normal points toward the handler's body.
+    assert seen == [(a, b, -1.0), (b, a, 1.0)] or seen == [(b, a, 1.0), (a, b, -1.0)]
+    stop()
+    stop()  # twice is harmless
+    seen.clear()
+    b.vel = Vector(-2.0, 0.0)
+    a.vel = Vector(0.0, 0.0)
+    for _ in range(180):
+        world.step(DT)
+    assert [s[0] for s in seen] == [a]
