@@ -439,7 +439,7 @@ def _run(args: argparse.Namespace) -> int:
     where = "" if args.window else f"; frames in {out}/frame_00000.png ..."
     print(
         f"breakout: {score.points} points, {score.bricks} of {ROWS * COLUMNS} bricks, "
-        f"{score.lives} lives left{where}"
+        f"{score.lives} {'life' if score.lives == 1 else 'lives'} left{where}"
     )
     return 0
 
