@@ -1381,6 +1381,8 @@ class World:
         """Total mechanical energy (J): kinetic plus the potential of the forces that have one.
 
         A body's own constant acceleration a counts like gravity, with potential -m a . x.
+        Kinematic and pinned bodies are left out: the game (or the pin) moves them, and no
+        force acts on them.
         """
         if not self._bodies:
             return 0.0
@@ -1388,15 +1390,22 @@ class World:
         store = self._store
         assert store is not None
         x, v, m = store.x, store.v, store.mass
+        held = store.kinematic
+        if held.any():
+            m = np.where(held, 0.0, m)
         v2 = v * v if self.dim == 1 else np.einsum("ij,ij->i", v, v)
         total = 0.5 * float(np.sum(m * v2))
         dot = store.own * x if self.dim == 1 else np.einsum("ij,ij->i", store.own, x)
         total -= float(np.sum(m * dot))
         for attached in self._forces:
             if attached.bodies is None:
-                u = attached.force.potential(x, model.mass)
+                idx = np.flatnonzero(~held) if held.any() else None
             else:
                 idx = self._rows_of(attached.bodies)
+                idx = idx[~held[idx]]
+            if idx is None:
+                u = attached.force.potential(x, model.mass)
+            else:
                 u = attached.force.potential(x[idx], model.mass[idx]) if len(idx) else 0.0
             if u is not None:
                 total += float(np.sum(u))

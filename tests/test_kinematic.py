@@ -155,3 +155,16 @@ def test_contact_handlers_see_their_own_body_first_and_can_be_taken_off() -> Non
     for _ in range(180):
         world.step(DT)
     assert [s[0] for s in seen] == [a]
+
+
+def test_the_worlds_energy_leaves_out_what_the_game_moves() -> None:
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -9.81)))
+    stone = world.add(disc(0.0, 10.0, mass=2.0))
+    lift = world.add(disc(5.0, 0.0, 0.0, 3.0, mass=100.0, kinematic=True))
+    e0 = world.energy()
+    assert e0 == pytest.approx(2.0 * 9.81 * 10.0, rel=1e-15)
+    for _ in range(60):
+        world.step(DT)
+    assert lift.pos.y > 1.0  # it rose, and its energy is not the World's
+    assert world.energy() == pytest.approx(e0, rel=1e-12)
