@@ -95,6 +95,7 @@ def test_the_demos_scenes_are_those_worlds() -> None:
         "five": cradle.FiveScene,
         "two": cradle.TwoScene,
         "heavy": cradle.HeavyScene,
+        "hung": cradle.HungScene,
     }
     with pytest.raises(ValueError, match="sent"):
         cradle.cradle_world(5)
@@ -145,7 +146,7 @@ def _frames(folder: Path, *args: str) -> list[bytes]:
 
 def test_two_runs_write_identical_frames(tmp_path: Path) -> None:
     first, second = _frames(tmp_path / "a"), _frames(tmp_path / "b")
-    assert len(first) == 3 * 21  # three scenes, 2 s at 10 fps with both ends
+    assert len(first) == 4 * 21  # four scenes, 2 s at 10 fps with both ends
     digest = [hashlib.sha256(b).hexdigest() for b in first]
     assert digest == [hashlib.sha256(b).hexdigest() for b in second]
     assert len(set(digest)) > 40  # the balls move: identical stills would prove little
