@@ -30,14 +30,15 @@ KE = sum of m v^2 / 2, so both read-outs stay at their first values to rounding.
   leaves again: three blows in the 4 s, back and forth.
 
 The hung cradle steps at dt = 1/240 s: the World takes a step in which a linked ball is
-struck again in 16 parts (README: "Links"), so the blow passes down the row to about 4e-7
-of the speed. Its read-outs differ from the floor's. The bars and the momentum are
-horizontal: p = sum of m v_x is not kept, since the rods pull sideways as the balls swing
-(it swings between +2.29 and -2.29 kg m/s; each blow passes it on whole). What is kept is
-the energy E = KE + PE, with PE = sum of m g h from the balls' lowest places: the rods do no
-work, and the World's closed form with the rods is RATTLE, so E is kept up to RATTLE's
-bounded error (under 7e-5 J of 2.63 J through the swing, vanishing at the turning points)
-and the blows' own error, which costs about 1e-6 J a blow (measured over 60 s).
+struck again in 16 parts (README: "Links"), so the blow passes down the row to 2e-7 of the
+speed here (measured; 4e-7 on the README's 1 m rods). Its read-outs differ from the floor's.
+The bars and the momentum are horizontal: p = sum of m v_x is not kept, since the rods pull
+sideways as the balls swing (it runs between +2.29 and -2.29 kg m/s, and each blow passes it
+from one end ball to the other). What is kept is the energy E = KE + PE, with PE = sum of
+m g h from the balls' lowest places: the rods do no work, and the World's closed form with
+the rods is RATTLE, so E is kept up to RATTLE's bounded error (under 7e-5 J of 2.63 J
+through the swing, vanishing at the turning points) and the blows' own error, which costs
+about 1e-6 J a blow (measured over 60 s).
 """
 
 from __future__ import annotations
@@ -90,7 +91,7 @@ SPEED = 2.0
 HEAVY = 3.0
 #: The hung cradle: its rods' length (m), how far the first ball is pulled back (degrees), and
 #: its step (s). A step in which a linked ball is struck is taken again in 16 parts by the
-#: World, so at 1/240 s the blow passes down the row to about 4e-7 (README: "Links").
+#: World, so at 1/240 s the blow passes down the row to 2e-7 of the speed (README: "Links").
 LENGTH = 2.0
 ANGLE = 30.0
 HUNG_DT = 1.0 / 240.0
