@@ -115,7 +115,8 @@ def pendulum_world(method: str, theta0: float = THETA0) -> tuple[World, Body, Ro
             mass=1.0,
         )
     )
-    rod = world.add_link(Rod(bob, (0.0, 0.0)))
+    rod = Rod(bob, (0.0, 0.0))
+    world.add_link(rod)
     return world, bob, rod
 
 
