@@ -41,6 +41,7 @@ STILLS = [
     ("ballpit", ["ballpit"], 50),
     ("cradle", ["cradle", "--scene", "heavy"], 20),
     ("galton", ["galton", "--seconds", "300"], 3000),
+    ("pendulum", ["pendulum", "--scene", "double", "--seconds", "17"], 170),
 ]
 
 

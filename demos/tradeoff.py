@@ -9,6 +9,10 @@ exact answers (a thrown ball, a spring, wind with drag) each method runs for 1 s
 halved from dot to dot, and each dot shows the error (largest distance from the exact answer,
 m) against the cost (run time per simulated second). The lowest line at a given cost is the
 best method for that budget. "auto" is the World choosing for itself, given a tolerance.
+A fourth panel holds a pendulum on a rod (``demos.bench.pendulum``): each method's largest
+energy error over 100 periods (``--quick``: 4) at dt = 1/30 to 1/240 s against its CPU time
+per simulated second (its cost per step, which is the same for every method there, times the
+steps a second); the rows go to ``out/tradeoff/pendulum.csv``.
 
 The throughput chart: cost per body-step against the number of bodies, for the World, the
 particle arrays, the lesson's Body loop, pymunk and pygame's Vector2, measured in one run.
@@ -34,7 +38,7 @@ from pathlib import Path
 import numpy as np
 import pygame
 
-from demos.bench import solver, throughput
+from demos.bench import pendulum, solver, throughput
 from demos.cli import Demo
 from engine import measure
 from engine.measure import PROBLEMS, Point
@@ -166,10 +170,82 @@ def _canvas(size: tuple[int, int], title: str, subtitle: str) -> pygame.Surface:
     return surface
 
 
+def _wrap(text: str, width: int, size: int = 16) -> list[str]:
+    """``text`` split at spaces into lines no wider than ``width`` px at ``size`` px."""
+    lines: list[str] = []
+    for word in text.split():
+        if lines and font(size).size(f"{lines[-1]} {word}")[0] <= width:
+            lines[-1] = f"{lines[-1]} {word}"
+        else:
+            lines.append(word)
+    return lines
+
+
+#: The pendulum panel's methods, drawn widest first so that lines lying on one another show
+#: as nested bands: (method as measured, colour key, line width, dot radius).
+_PENDULUM_STYLE = (
+    ("semi_implicit_euler", "semi_implicit_euler", 2, 4),
+    ("velocity_verlet", "velocity_verlet", 12, 8),
+    ("rk4", "rk4", 7, 6),
+    ("auto", "exact", 2, 4),
+)
+
+
+def _pendulum_captions(rows: Sequence[pendulum.Row]) -> list[str]:
+    """The pendulum panel's captions: what is measured, and the errors at the smallest dt."""
+    dt = min(r.dt for r in rows)
+    at = {r.method: r for r in rows if r.dt == dt}
+    periods = rows[0].steps * rows[0].dt / pendulum.period(pendulum.THETA0)
+    text = [
+        f"Energy: largest |E - E0| / (m g L) over {periods:.0f} periods from 90\u00b0, "
+        "dt = 1/30 s and halved.",
+    ]
+    if {"velocity_verlet", "rk4", "auto", "semi_implicit_euler"} <= at.keys():
+        same = at["auto"].energy
+        text.append(
+            f"At dt = 1/{round(1 / dt)} s: Verlet, RK4, closed form (auto) {same:.1e}, "
+            f"one line; semi-implicit Euler {at['semi_implicit_euler'].energy:.1e}."
+        )
+    return text
+
+
+def _pendulum_panel(
+    surface: pygame.Surface, rows: Sequence[pendulum.Row], rect: tuple[int, int, int, int]
+) -> None:
+    """Energy error against CPU time per simulated second, one line per method."""
+    costs = [r.cost / r.dt for r in rows]
+    chart = LogLogChart(
+        rect,
+        decade_range(costs),
+        decade_range([r.energy for r in rows]),
+        "Pendulum on a rod (links)",
+        "cost: CPU time per simulated second (s)",
+        "largest energy error / (m g L)",
+    )
+    chart.draw_frame(surface)
+    for method, colour, width, radius in _PENDULUM_STYLE:
+        series = sorted((r for r in rows if r.method == method), key=lambda r: -r.dt)
+        if series:
+            chart.draw_series(
+                surface,
+                [r.cost / r.dt for r in series],
+                [r.energy for r in series],
+                COLORS[colour],
+                width=width,
+                radius=radius,
+            )
+    a = chart.area
+    for row, line in enumerate(("Verlet, RK4 and closed form", "lie on one line: nested")):
+        draw_text(surface, line, (a.right - 6, a.top + 4 + 17 * row), 16, INK, "topright")
+
+
 def draw_work_precision(
-    points: Sequence[Point], size: tuple[int, int] = (1280, 720)
+    points: Sequence[Point],
+    size: tuple[int, int] = (1280, 720),
+    pendulum_rows: Sequence[pendulum.Row] = (),
 ) -> pygame.Surface:
-    """The work-precision chart: one panel per problem, error (m) against cost (s per s)."""
+    """The work-precision chart: one panel per problem, error (m) against cost (s per s), and
+    with ``pendulum_rows`` a last panel: the pendulum's energy error against its cost."""
     width, height = size
     surface = _canvas(
         size,
@@ -183,8 +259,17 @@ def draw_work_precision(
     names = [name for name in PROBLEMS if any(p.problem == name for p in points)]
     margin, gap, top = 16, 12, 66
     legend_h = 74
-    panel_w = (width - 2 * margin - gap * (len(names) - 1)) // max(1, len(names))
-    panel_h = height - top - legend_h - 60
+    panels = len(names) + (1 if pendulum_rows else 0)
+    panel_w = (width - 2 * margin - gap * (panels - 1)) // max(1, panels)
+    # The captions under each panel, wrapped to its width; the panels leave room for the most.
+    head = "Lower = more accurate, further left = cheaper: lowest line wins."
+    captions = [_wrap(head, panel_w - 8) + _wrap(_verdict(points, n), panel_w - 8) for n in names]
+    if pendulum_rows:
+        captions.append(
+            [x for c in _pendulum_captions(pendulum_rows) for x in _wrap(c, panel_w - 8)]
+        )
+    lines = max([2, *map(len, captions)])
+    panel_h = height - top - legend_h - 22 - 19 * lines
     for i, name in enumerate(names):
         left = margin + i * (panel_w + gap)
         chart = LogLogChart(
@@ -221,23 +306,19 @@ def draw_work_precision(
             where = (chart.area.right - 6, y + 17)
             draw_text(surface, f"{LABELS[above]}: same error", where, 16, INK, "midright")
         if PROBLEMS[name].closed_form:
-            draw_text(
-                surface,
-                "Verlet, RK4, closed form: exact (round-off)",
-                (chart.area.right - 6, float(chart.to_px(1.0, 1e-12)[1])),
-                16,
-                INK,
-                "midright",
-            )
+            note = "Verlet, RK4, closed form: exact (round-off)"
+            exact_y = float(chart.to_px(1.0, 1e-12)[1])
+            for row, line in enumerate(_wrap(note, chart.area.width - 12)):
+                at = (float(chart.area.right - 6), exact_y + 17 * row)
+                draw_text(surface, line, at, 16, INK, "midright")
         cap_y = top + panel_h + 6
-        draw_text(
-            surface,
-            "Lower = more accurate, further left = cheaper: lowest line wins.",
-            (left + 4, cap_y),
-            16,
-            INK,
-        )
-        draw_text(surface, _verdict(points, name), (left + 4, cap_y + 19), 16, INK)
+        for row, line in enumerate(captions[i]):
+            draw_text(surface, line, (left + 4, cap_y + 19 * row), 16, INK)
+    if pendulum_rows:
+        left = margin + len(names) * (panel_w + gap)
+        _pendulum_panel(surface, pendulum_rows, (left, top, panel_w, panel_h))
+        for row, line in enumerate(captions[-1]):
+            draw_text(surface, line, (left + 4, top + panel_h + 6 + 19 * row), 16, INK)
     items = [(LABELS[m], COLORS[m], 10 if m == "auto" else 2) for m in COLORS]
     draw_legend(surface, items, (margin, height - legend_h), width - 2 * margin)
     draw_text(
@@ -576,10 +657,19 @@ def run(args: argparse.Namespace) -> int:
         min_steps=300 if quick else 2000,
     )
     bar.done()
+    print("tradeoff: measuring the pendulum on a rod (energy over many periods) ...")
+    bar = Progress(label="pendulum")
+    swing = pendulum.measure(quick, progress=bar)
+    bar.done()
+    print(pendulum.table(swing))
+    _write(out / "pendulum.csv", [pendulum.csv_header(), *map(pendulum.csv_row, swing)])
     csv_path = out / "work_precision.csv"
     _write(csv_path, [measure.csv_header(), *map(measure.csv_row, points)])
-    png_path = save_png(draw_work_precision(points, size), out / "work_precision.png", True)
-    print(f"tradeoff: wrote {png_path} and {csv_path} ({len(points)} points)")
+    chart = draw_work_precision(points, size, swing)
+    png_path = save_png(chart, out / "work_precision.png", True)
+    print(
+        f"tradeoff: wrote {png_path}, {csv_path} and {out / 'pendulum.csv'} ({len(points)} points)"
+    )
     # auto against its best rival, timed side by side (interleaved rounds: fair on a busy box).
     ratios = measure.auto_ratios(points)
     pairs = [(i, r) for i, r in enumerate(ratios) if r.best is not None]

@@ -13,7 +13,7 @@ import pygame
 import pytest
 
 from demos import cli
-from demos.bench import solver
+from demos.bench import pendulum, solver
 from demos.tradeoff import COLORS, SOLVER_COLORS, _hidden_under, draw_contacts, draw_work_precision
 from engine import World
 from engine.measure import PROBLEMS, Point, measure
@@ -37,7 +37,13 @@ def quick_run(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, list[dict
 
 def test_quick_run_writes_png_and_csv(quick_run: tuple[Path, list[dict[str, str]], str]) -> None:
     out, rows, _ = quick_run
-    for name in ("work_precision.png", "work_precision.csv", "throughput.png", "throughput.csv"):
+    for name in (
+        "work_precision.png",
+        "work_precision.csv",
+        "pendulum.csv",
+        "throughput.png",
+        "throughput.csv",
+    ):
         assert (out / name).stat().st_size > 0, name
     methods = {(r["problem"], r["method"]) for r in rows}
     for problem in PROBLEMS:
@@ -194,6 +200,12 @@ def test_a_second_run_gives_the_same_errors_and_choices(
         assert {k: v for k, v in a.items() if k not in timed} == {
             k: v for k, v in b.items() if k not in timed
         }
+    # The pendulum panel's errors too.
+    swing, swing_again = _pendulum_rows(quick_run[0]), _pendulum_rows(tmp_path)
+    assert swing.keys() == swing_again.keys()
+    for key, row in swing.items():
+        del row["cost_s_per_step"], swing_again[key]["cost_s_per_step"]
+        assert row == swing_again[key], key
     # The contacts chart's errors too (both engines are deterministic).
     contacts, contacts_again = _contact_rows(quick_run[0]), _contact_rows(tmp_path)
     assert contacts.keys() == contacts_again.keys()
@@ -328,3 +340,80 @@ def test_contacts_chart_labels_each_dot_with_its_iterations() -> None:
     # In the series' colour: the changed pixels are blue, drawn on white.
     changed = tens[:, 66:558][inside].astype(float)
     assert changed[:, 2].mean() > changed[:, 0].mean() + 40
+
+
+# -- the pendulum panel: energy over many periods against cost, per method --------------------
+
+
+def _pendulum_rows(out: Path) -> dict[tuple[str, float], dict[str, str]]:
+    with open(out / "pendulum.csv", newline="") as handle:
+        return {(r["method"], float(r["dt_s"])): r for r in csv.DictReader(handle)}
+
+
+def test_quick_run_writes_the_pendulum_rows_for_every_method_and_dt(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    rows = _pendulum_rows(quick_run[0])
+    assert set(rows) == {(m, dt) for m in pendulum.METHODS for dt in pendulum.QUICK_DTS}
+    span = pendulum.QUICK_PERIODS * pendulum.period(pendulum.THETA0)
+    for (method, dt), row in rows.items():
+        assert row["chosen"] == ("exact" if method == "auto" else method)  # gravity and rods
+        assert int(row["steps"]) == math.ceil(span / dt)
+        cost = float(row["cost_s_per_step"])
+        assert 0.0 < cost < 0.1 and math.isfinite(cost), row
+    assert "Pendulum on a rod" in quick_run[2]  # the table is printed too
+
+
+def test_the_pendulums_energy_errors_follow_the_methods_orders(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    rows = _pendulum_rows(quick_run[0])
+    coarse, fine = pendulum.QUICK_DTS
+    assert fine == coarse / 2
+
+    def energy(method: str, dt: float) -> float:
+        return float(rows[(method, dt)]["energy_error"])
+
+    for dt in (coarse, fine):
+        # Under constant gravity the free step of Verlet and RK4 is exact (a quadratic in t),
+        # as the closed form's is: the three runs are the same, and so are their errors.
+        same = energy("auto", dt)
+        assert energy("velocity_verlet", dt) == pytest.approx(same, rel=1e-6)
+        assert energy("rk4", dt) == pytest.approx(same, rel=1e-6)
+        # Semi-implicit Euler's free step is first order: far worse at the same step.
+        assert energy("semi_implicit_euler", dt) > 5 * same
+    # Halving dt: RATTLE's error falls fourfold (order 2), semi-implicit Euler's twofold.
+    assert 3.0 < energy("auto", coarse) / energy("auto", fine) < 5.0
+    ratio = energy("semi_implicit_euler", coarse) / energy("semi_implicit_euler", fine)
+    assert 1.6 < ratio < 2.5
+    # Bounded: within 1% of m g L at dt = 1/60 s (no blow-up, no drift over the run).
+    assert energy("auto", fine) < 0.01
+
+
+def test_the_chart_has_a_pendulum_panel_in_each_methods_colour(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    pixels = _load(quick_run[0] / "work_precision.png")
+    # The fourth panel: the right quarter, above the legend.
+    panel = pixels[3 * 1280 // 4 + 10 :, 66:600].reshape(-1, 3)
+    for key in ("semi_implicit_euler", "velocity_verlet", "rk4", "exact"):
+        count = int(np.all(panel == np.array(COLORS[key]), axis=1).sum())
+        assert count > 40, (key, count)  # its line or band, not only a dot
+    # Without pendulum rows the chart keeps three panels: nothing drawn in the right quarter's
+    # plotting area then but the third panel's edge.
+    points = [_point("rk4", 2.0**-k, 10.0**-k) for k in range(2, 8)]
+    three = pygame.surfarray.array3d(draw_work_precision(points))
+    four = pygame.surfarray.array3d(draw_work_precision(points, pendulum_rows=_fake_rows()))
+    assert np.any(three != four)
+    right = four[1000:1260, 120:500].reshape(-1, 3)
+    assert int(np.all(right == np.array(COLORS["exact"]), axis=1).sum()) > 40
+
+
+def _fake_rows() -> list[pendulum.Row]:
+    return [
+        pendulum.Row(
+            m, "exact" if m == "auto" else m, dt, dt * dt * (10 if m[0] == "s" else 1), 3e-4, 100
+        )
+        for m in pendulum.METHODS
+        for dt in (1 / 30, 1 / 60, 1 / 120)
+    ]

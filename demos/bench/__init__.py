@@ -27,6 +27,7 @@ TOPICS: dict[str, str] = {
     "contacts": "demos.bench.contacts",
     "pit": "demos.bench.pit",
     "solver": "demos.bench.solver",
+    "pendulum": "demos.bench.pendulum",
 }
 
 
