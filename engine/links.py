@@ -245,12 +245,14 @@ class LinkSolver:
 
     def _spread(self, n: int, w: np.ndarray, f: np.ndarray, sel: np.ndarray) -> np.ndarray:
         """Each body's change (n, 2) from per-link vectors ``f`` (w applied) of links ``sel``."""
-        out = np.zeros((n, 2))
         i, j = self.i[sel], self.j[sel]
-        np.add.at(out, i, w[i, None] * f)
         has = j >= 0
-        np.add.at(out, j[has], -w[j[has], None] * f[has])
-        return out
+        rows = np.concatenate([i, j[has]])
+        f = np.concatenate([w[i, None] * f, -w[j[has], None] * f[has]])
+        return np.stack(
+            [np.bincount(rows, f[:, 0], minlength=n), np.bincount(rows, f[:, 1], minlength=n)],
+            axis=1,
+        )
 
     def _coupling(self, w: np.ndarray, sel: np.ndarray) -> np.ndarray:
         """S = B W B^T over the links ``sel``: how link l's multiplier moves link k's ends."""
@@ -291,6 +293,12 @@ class LinkSolver:
             return x, v
         for link in self.links:
             link.impulse = 0.0
+        if K == 1:
+            # One link (a pendulum, a lamp on a cable): the same arithmetic in floats.
+            if not self.moved:
+                x, v = x.copy(), v.copy()
+            self._resolve_one(x0, x, v1, v, w, dt, kinked)
+            return x, v
         n = len(x)
         L = self.L
         d_start = self._ends(x0)
@@ -381,6 +389,101 @@ class LinkSolver:
         for k, p in zip(sel.tolist(), along.tolist(), strict=True):
             self.links[k].impulse = p
         return x, v
+
+    def _resolve_one(
+        self,
+        x0: np.ndarray,
+        x: np.ndarray,
+        v1: np.ndarray,
+        v: np.ndarray,
+        w: np.ndarray,
+        dt: float,
+        kinked: np.ndarray | None,
+    ) -> None:
+        """``resolve`` for a World with one link, in place on (x, v), in Python floats.
+
+        With one link Newton's equation is a quadratic: |d + s lam r|^2 = L^2 with s = w_i +
+        w_j, so a lam^2 + b lam + c = 0 with a = s^2 |r|^2, b = 2 s (d . r), c = |d|^2 - L^2;
+        the root nearer 0 is the smaller correction (taken in the stable form q = -(b +
+        sign(b) sqrt(b^2 - 4ac)) / 2, roots q / a and c / q). The speed along the link then
+        needs mu = (target - u) / s.
+        """
+        link = self.links[0]
+        i, j = int(self.i[0]), int(self.j[0])
+        L, rigid = float(self.L[0]), bool(self.rigid[0])
+        wi = float(w[i])
+        wj = float(w[j]) if j >= 0 else 0.0
+        s = wi + wj
+        if s == 0.0:
+            return
+        px, py = (float(x[j, 0]), float(x[j, 1])) if j >= 0 else (self.p[0, 0], self.p[0, 1])
+        dx, dy = float(x[i, 0]) - px, float(x[i, 1]) - py
+        length2 = dx * dx + dy * dy
+        if not rigid and length2 <= L * L:
+            return  # a slack cable
+        if j >= 0:
+            sx, sy = float(x0[i, 0] - x0[j, 0]), float(x0[i, 1] - x0[j, 1])
+        else:
+            sx, sy = float(x0[i, 0]) - px, float(x0[i, 1]) - py
+        struck = kinked is not None and (bool(kinked[i]) or (j >= 0 and bool(kinked[j])))
+        rx, ry = (dx, dy) if struck or sx * sx + sy * sy == 0.0 else (sx, sy)
+        a = s * s * (rx * rx + ry * ry)
+        b = 2.0 * s * (dx * rx + dy * ry)
+        c = length2 - L * L
+        disc = b * b - 4.0 * a * c
+        lam: float | None = None
+        if a > 0.0 and disc >= 0.0:
+            q = -0.5 * (b + math.copysign(math.sqrt(disc), b))
+            roots = [q / a] + ([c / q] if q != 0.0 else [])
+            lam = min(roots, key=abs)
+        if lam is None:
+            # Past what a step can pull back along r: put the end on the circle along the
+            # link as it points now (module text), and say so.
+            self.stretched.append(link)
+            dist = math.sqrt(length2)
+            if dist == 0.0:
+                return
+            lam = (L - dist) / (s * dist)
+            rx, ry = dx, dy
+        elif not rigid and lam > 0.0:
+            return  # the cable would push
+        self.moved = True
+        cx, cy = lam * rx, lam * ry
+        x[i, 0] += wi * cx
+        x[i, 1] += wi * cy
+        v[i, 0] += wi * cx / dt
+        v[i, 1] += wi * cy / dt
+        if j >= 0:
+            x[j, 0] -= wj * cx
+            x[j, 1] -= wj * cy
+            v[j, 0] -= wj * cx / dt
+            v[j, 1] -= wj * cy / dt
+            px, py = float(x[j, 0]), float(x[j, 1])
+        dx, dy = float(x[i, 0]) - px, float(x[i, 1]) - py
+        dist = math.hypot(dx, dy)
+        nx, ny = (dx / dist, dy / dist) if dist > 0.0 else (0.0, 0.0)
+
+        def parting(vel: np.ndarray) -> float:
+            ux, uy = float(vel[i, 0]), float(vel[i, 1])
+            if j >= 0:
+                ux, uy = ux - float(vel[j, 0]), uy - float(vel[j, 1])
+            return ux * nx + uy * ny
+
+        target = 0.0
+        if not rigid:
+            sl = math.sqrt(sx * sx + sy * sy)
+            if sl < L * (1.0 - 1e-9):  # slack as the step began: it snaps taut in it
+                target = -float(self.e[0]) * max(parting(v1), 0.0)
+        u = parting(v)
+        mu = (target - u) / s
+        if not rigid and mu > 0.0 and u <= target:
+            mu = 0.0  # the ends already close: a cable does not push them
+        v[i, 0] += wi * mu * nx
+        v[i, 1] += wi * mu * ny
+        if j >= 0:
+            v[j, 0] -= wj * mu * nx
+            v[j, 1] -= wj * mu * ny
+        link.impulse = -(lam * (rx * nx + ry * ny) / dt + mu)
 
     def _rel(self, v: np.ndarray, nrm: np.ndarray, sel: np.ndarray) -> np.ndarray:
         """Each link's parting speed along ``nrm`` (> 0: the ends move apart)."""
