@@ -42,11 +42,11 @@ from typing import Any, NamedTuple
 import pygame
 
 from demos.bench.pendulum import period
+from demos.bounce import dashed, draw_text  # the legible text and dashes of the bounce lesson
 from demos.cli import Demo
 from engine import Body, Pin, Rod, Vector, World
 from engine.forces import Gravity
 from engine.render import GRID, INK, MUTED, PAPER, Camera, Plot, Scene
-from engine.render import draw_text as _draw_text
 
 __all__ = [
     "G",
@@ -94,40 +94,6 @@ KINETIC, POTENTIAL, TOTAL = (230, 159, 0), (86, 180, 233), (150, 60, 40)
 TENSION = (204, 121, 167)
 
 Color = tuple[int, int, int]
-
-
-def draw_text(
-    surface: pygame.Surface,
-    text: str,
-    pos: tuple[float, float],
-    size: int,
-    color: Color = INK,
-    anchor: str = "topleft",
-) -> pygame.Rect:
-    """The renderer's draw_text with the size kept legible (at least 12 px)."""
-    return _draw_text(surface, text, pos, max(12, size), color, anchor)
-
-
-def dashed(
-    surface: pygame.Surface,
-    color: Color,
-    start: tuple[float, float],
-    end: tuple[float, float],
-    dash: int = 5,
-) -> None:
-    """A dashed straight line from pixel ``start`` to pixel ``end``."""
-    (x0, y0), (x1, y1) = start, end
-    length = math.hypot(x1 - x0, y1 - y0)
-    if length < 1:
-        return
-    for k in range(0, int(length // dash) + 1, 2):
-        a, b = k * dash / length, min(1.0, (k + 1) * dash / length)
-        pygame.draw.line(
-            surface,
-            color,
-            (x0 + a * (x1 - x0), y0 + a * (y1 - y0)),
-            (x0 + b * (x1 - x0), y0 + b * (y1 - y0)),
-        )
 
 
 def angle_of(pos: Vector, pivot: Vector) -> float:
@@ -497,7 +463,7 @@ class SingleScene(PendulumScene):
         k = 1
         while k * self.exact <= self.duration:
             px = float(plot.to_px(k * self.exact, 0.0)[0])
-            dashed(surface, INK, (px, a.top), (px, a.bottom - 1))
+            dashed(surface, INK, (px, a.top), (px, a.bottom - 1), dash=5)
             draw_text(
                 surface, f"{k}T", (px + 3 * s, a.bottom - 1), round(13 * s), INK, "bottomleft"
             )
