@@ -517,6 +517,7 @@ class World:
         contacts, store = self._contacts, self._store
         assert contacts is not None and store is not None
         idx = np.fromiter(rows, dtype=np.intp)
+        idx = idx[~store.kinematic[idx]]  # walls do not hold what the game moves
         if not len(idx):
             return
         x, v = store.x[idx], store.v[idx]

@@ -168,3 +168,12 @@ def test_the_worlds_energy_leaves_out_what_the_game_moves() -> None:
         world.step(DT)
     assert lift.pos.y > 1.0  # it rose, and its energy is not the World's
     assert world.energy() == pytest.approx(e0, rel=1e-12)
+
+
+def test_a_kinematic_body_may_start_inside_a_wall() -> None:
+    world = World()
+    world.add_collider(Box((0.0, 0.0), (4.0, 4.0)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no OverlapWarning: it is not pushed out
+        gate = world.add(disc(0.0, 2.0, radius=0.5, kinematic=True))
+    assert gate.pos == Vector(0.0, 2.0)
