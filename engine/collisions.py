@@ -372,7 +372,10 @@ class Collisions:
         )
         if contacts is not None and len(contacts.faces.owner):
             # Nothing the pairs pushed is left inside a wall (with its speed into it taken).
-            contacts.push_out_rows(X, V, r)
+            # (A kinematic body is no wall's business: its radius is taken as -inf there.)
+            contacts.push_out_rows(
+                X, V, r if self._kinU is None else np.where(self._kinU, -np.inf, r)
+            )
         # The overlap each body is left with: a group sleeps only once it is small.
         over = r[rest_a] + r[rest_b] - _norm(X[rest_a] - X[rest_b])
         deepest = np.zeros(len(U))

@@ -167,6 +167,7 @@ def test_the_worlds_energy_leaves_out_what_the_game_moves() -> None:
     for _ in range(60):
         world.step(DT)
     assert lift.pos.y > 1.0  # it rose, and its energy is not the World's
+    assert stone.pos.y < 10.0 - 4.0  # the stone fell, trading height for speed
     assert world.energy() == pytest.approx(e0, rel=1e-12)
 
 
@@ -177,3 +178,16 @@ def test_a_kinematic_body_may_start_inside_a_wall() -> None:
         warnings.simplefilter("error")  # no OverlapWarning: it is not pushed out
         gate = world.add(disc(0.0, 2.0, radius=0.5, kinematic=True))
     assert gate.pos == Vector(0.0, 2.0)
+
+
+def test_a_kinematic_body_pushing_a_ball_along_a_wall_stays_on_its_path() -> None:
+    world = World()
+    world.add_collider(Box((0.0, 0.0), (10.0, 10.0)))
+    # The gate moves along the floor, half sunk into it, and sweeps a ball ahead of it.
+    gate = world.add(disc(1.0, 0.2, 2.0, 0.0, radius=0.5, kinematic=True))
+    ball = world.add(disc(2.0, 0.5, radius=0.5, restitution=0.0, friction=0.0))
+    for _ in range(120):
+        world.step(DT)
+        assert gate.pos.y == 0.2  # never pushed out of the floor
+    assert gate.pos.x == pytest.approx(3.0, rel=1e-12)
+    assert ball.pos.x > gate.pos.x  # ahead of it, pushed along
