@@ -45,7 +45,7 @@ from .forcefield import ForceModel
 from .forces import Force, as_force
 from .impact import disc_hits, line_hits
 from .integrators import Integrator
-from .links import Link, LinkSolver, Pin
+from .links import Cable, Link, LinkSolver, Pin, Rod
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
 from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
@@ -147,7 +147,7 @@ class WorldSnapshot:
     warned: frozenset[Any] = field(default_factory=frozenset)
     contacts: tuple[Any, ...] | None = None  # which bodies rest on what, sensors overlapped
     pairs: tuple[Any, ...] | None = None  # contacts between bodies: warm start, sleep
-    links: tuple[Any, ...] = ()  # the links in force, and whether each has warned
+    links: tuple[Any, ...] = ()  # each link in force: (what it joins, warned, last impulse)
     moves: tuple[Any, ...] = ()  # (row, target): kinematic bodies' pos written, not yet reached
 
 
@@ -221,6 +221,7 @@ class World:
         # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
         self._targets: dict[Body, Any] = {}
         self._links: list[Link] = []  # rods, cables and pins (engine.links)
+        self._retired: list[Link] = []  # links taken out (a snapshot may bring one back)
         self._link_solver: LinkSolver | None = None  # the links as arrays; made when needed
         self._substeps = False  # taking a step again in parts (_step_general)
 
@@ -430,6 +431,7 @@ class World:
         if not any(k is link for k in self._links):
             raise ValueError(f"that link is not in this World: {link!r}")
         self._links = [k for k in self._links if k is not link]
+        self._retired.append(link)
         self._links_changed()
 
     def _links_changed(self) -> None:
@@ -1435,7 +1437,7 @@ class World:
             warned=frozenset(self._policy.warned),
             contacts=None if self._contacts is None else self._contacts.state(),
             pairs=self._collisions.state(),
-            links=tuple((k, k.warned) for k in self._links),
+            links=tuple((self._describe(k), k.warned, k.impulse) for k in self._links),
             moves=tuple(
                 (self._bodies.index(b), tuple(float(c) for c in target))
                 for b, target in self._targets.items()
@@ -1473,11 +1475,12 @@ class World:
         self._void_budget()
         self._n = snapshot.n_since_base
         self._steps_base = snapshot.steps - snapshot.n_since_base
-        if links != [(k, k.warned) for k in self._links]:
-            self._links = [k for k, _ in links]
+        chosen = self._links_of([d for d, _, _ in links])
+        if [id(k) for k in chosen] != [id(k) for k in self._links]:
+            self._links = chosen
             self._links_changed()
-        for k, warned in links:
-            k.warned = warned
+        for k, (_, warned, impulse) in zip(chosen, links, strict=True):
+            k.warned, k.impulse = warned, impulse
         self._targets = {self._bodies[row]: target for row, target in moves}
         self._changed_structure()
         if snapshot.anchor is not None:
@@ -1517,24 +1520,74 @@ class World:
             out.append((item[0], (float(point[0]), float(point[1]))))
         return out
 
-    def _check_links(self, links: Any) -> list[tuple[Link, bool]]:
-        """The snapshot's links, checked: each a Link whose bodies are in this World."""
+    def _describe(self, link: Link) -> tuple[Any, ...]:
+        """What a link joins, in plain numbers: (kind, body row, other row or -1, fixed point
+        or None, length, restitution). A snapshot holds this, not the link, so that it can
+        be restored into a World built afresh (its own bodies and links)."""
+        store = self._store
+        assert store is not None
+        other = link.other
+        return (
+            type(link).__name__,
+            store.row(link.body._slot),
+            store.row(other._slot) if isinstance(other, Body) else -1,
+            None if isinstance(other, Body) else (float(other[0]), float(other[1])),
+            link.length,
+            link.restitution,
+        )
+
+    def _links_of(self, descriptions: list[tuple[Any, ...]]) -> list[Link]:
+        """Links matching ``descriptions``: this World's own where one matches (in force now,
+        or taken out since), else new ones."""
+        known = self._links + [k for k in self._retired if all(b.world is self for b in k.bodies)]
+        mine = [(self._describe(k), k) for k in known]
+        out: list[Link] = []
+        for d in descriptions:
+            match = next((k for dk, k in mine if dk == d and all(k is not o for o in out)), None)
+            if match is None:
+                kind, row, other_row, point, length, e = d
+                body = self._bodies[row]
+                other: Any = self._bodies[other_row] if other_row >= 0 else point
+                if kind == "Pin":
+                    match = Pin(body, point)
+                elif kind == "Cable":
+                    match = Cable(body, other, length, e)
+                else:
+                    match = Rod(body, other, length)
+            out.append(match)
+        return out
+
+    def _check_links(self, links: Any) -> list[tuple[tuple[Any, ...], bool, float]]:
+        """The snapshot's links, checked: ((kind, row, other row, point, length, e), warned,
+        impulse) each, joining bodies of this World."""
         if not isinstance(links, tuple):
-            raise TypeError("snapshot.links must be a tuple of (link, warned) from World.snapshot")
+            raise TypeError("snapshot.links must be a tuple from World.snapshot")
+        n = len(self._bodies)
         out = []
         for item in links:
-            if not (
-                isinstance(item, tuple)
-                and len(item) == 2
-                and isinstance(item[0], Link)
-                and isinstance(item[1], bool)
-            ):
-                raise TypeError(f"snapshot.links holds (link, warned) pairs, got {item!r}")
-            if any(b.world is not self for b in item[0].bodies):
+            ok = isinstance(item, tuple) and len(item) == 3 and isinstance(item[0], tuple)
+            ok = ok and len(item[0]) == 6 and isinstance(item[1], bool)
+            ok = ok and isinstance(item[2], float) and math.isfinite(item[2])
+            if ok:
+                kind, row, other_row, point, length, e = item[0]
+                ok = kind in ("Rod", "Cable", "Pin") and type(row) is int and 0 <= row < n
+                ok = ok and type(other_row) is int and -1 <= other_row < n and other_row != row
+                ok = ok and (other_row >= 0) == (point is None)
+                if ok and point is not None:
+                    ok = (
+                        isinstance(point, tuple)
+                        and len(point) == 2
+                        and all(isinstance(c, float) and math.isfinite(c) for c in point)
+                    )
+                ok = ok and isinstance(length, float) and math.isfinite(length) and length >= 0.0
+                ok = ok and isinstance(e, float) and 0.0 <= e <= 1.0
+                ok = ok and (length > 0.0) == (kind != "Pin")
+            if not ok:
                 raise ValueError(
-                    f"snapshot.links joins a body that is not in this World: {item[0]!r}"
+                    f"snapshot.links holds ((kind, row, other row, point, length, restitution), "
+                    f"warned, impulse) for links between this World's bodies, got {item!r}"
                 )
-            out.append((item[0], item[1]))
+            out.append((item[0], item[1], item[2]))
         return out
 
     def _check_snapshot(self, snap: WorldSnapshot) -> tuple[list[float], list[State]]:

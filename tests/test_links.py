@@ -331,3 +331,32 @@ def test_a_cradle_hung_on_rods_passes_the_blow_down_the_row() -> None:
     coarse = abs(hung_cradle(1.0 / 60.0)[1] - 1.0)
     fine = abs(hung_cradle(1.0 / 240.0)[1] - 1.0)
     assert 8.0 <= coarse / fine <= 32.0
+
+
+def test_a_snapshot_restores_into_a_world_built_afresh_and_brings_back_a_removed_link() -> None:
+    def build() -> tuple[World, Rod]:
+        world = gravity_world()
+        a, b = world.add_all([ball(1, 0), ball(2, 0)])
+        rod = world.add_link(Rod(a, (0.0, 0.0)))
+        world.add_link(Cable(b, a, 1.5, restitution=0.5))
+        return world, rod
+
+    first, rod = build()
+    for _ in range(30):
+        first.step(DT)
+    snap = first.snapshot()
+    for _ in range(30):
+        first.step(DT)
+    ahead = first.positions().copy(), rod.impulse
+    # A fresh World with the same bodies and links takes the snapshot: its own links stay.
+    second, rod2 = build()
+    second.restore(snap)
+    assert second.links[0] is rod2
+    assert rod2.impulse == pytest.approx(snap.links[0][2], rel=0.0)
+    for _ in range(30):
+        second.step(DT)
+    assert np.array_equal(second.positions(), ahead[0]) and rod2.impulse == ahead[1]
+    # In the first World a link taken out comes back as the same object.
+    first.remove_link(rod)
+    first.restore(snap)
+    assert first.links[0] is rod
