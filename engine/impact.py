@@ -39,6 +39,12 @@ import math
 from typing import Any
 
 import numpy as np
+from numpy.linalg import _umath_linalg
+
+# The LAPACK eigenvalue routine np.linalg.eigvals calls, without its checks (about 10 us a
+# call: most of a lone quartic's cost). _eigvals_one checks what they would and otherwise
+# falls back to np.linalg.eigvals, so the answers and errors are the same.
+_LAPACK_EIGVALS = getattr(_umath_linalg, "eigvals", None)
 
 __all__ = [
     "quadratic_first_root",
@@ -381,12 +387,26 @@ def _first_root_eig_one(K: list[float], lower: float) -> float:
     comp[0] = [-K[d - 1 - j] / lead for j in range(d)]
     for i in range(1, d):
         comp[i][i - 1] = 1.0
-    roots = np.linalg.eigvals(np.array(comp))
+    roots = _eigvals_one(comp)
     best = math.inf
     for re, im in zip(roots.real.tolist(), roots.imag.tolist(), strict=True):
         if abs(im) <= 1e-6 * (1.0 + abs(re)) and lower < re <= 1.0 + 1e-9 and re < best:
             best = re
     return best
+
+
+def _eigvals_one(comp: list[list[float]]) -> np.ndarray:
+    """``np.linalg.eigvals`` of one small real matrix (a list of rows), the same bits: the
+    same LAPACK routine, called directly when the matrix is finite (np.linalg.eigvals checks
+    that first) and kept only when every eigenvalue came out finite (LAPACK did not fail);
+    anything else goes to np.linalg.eigvals itself, for its answer or its error."""
+    a = np.array(comp)
+    if _LAPACK_EIGVALS is not None and math.isfinite(sum(map(sum, comp))):
+        with np.errstate(all="ignore"):
+            w = _LAPACK_EIGVALS(a, signature="d->D")
+        if math.isfinite(float(np.abs(w).sum())):
+            return w
+    return np.linalg.eigvals(a)
 
 
 def _polish(K: np.ndarray, x: np.ndarray) -> np.ndarray:
