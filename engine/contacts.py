@@ -1082,7 +1082,7 @@ class Contacts:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``_solve``, one body after another in Python floats (for a few rows)."""
         faces = self.faces
-        faces_of: list[list[int]] = [[] for _ in rows]
+        faces_of: list[list[int]] = [[] for _ in range(len(rows))]
         for b, f in zip(pb.tolist(), pf.tolist(), strict=True):
             faces_of[b].append(f)
         X = x0.take(rows, axis=0).tolist()
@@ -1097,7 +1097,9 @@ class Contacts:
         # round, lift-offs before impacts, bodies in row order.
         began: list[tuple[tuple[int, int, int], tuple[Any, ...]]] = []
         ended: list[tuple[tuple[int, int, int], tuple[Any, ...]]] = []
-        changed, Xc, Vc = [], [], []
+        changed: list[int] = []
+        Xc: list[float] = []
+        Vc: list[float] = []
         for k, row in enumerate(row_list):
             x, v, touched, rest_k = self._path_one(
                 faces, k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
@@ -1105,8 +1107,8 @@ class Contacts:
             )  # fmt: skip
             if touched:
                 changed.append(row)
-                Xc.append(x)
-                Vc.append(v)
+                Xc += x  # flat: one np.array of floats is cheaper than one of pairs
+                Vc += v
                 self.rest[row] = rest_k
         for where, events in ((self._began, began), (self._ended, ended)):
             if events:
