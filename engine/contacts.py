@@ -135,6 +135,7 @@ class _Faces:
     e: np.ndarray  # (L + D,) the owner's restitution
     mu: np.ndarray  # (L + D,) the owner's friction
     infinite: np.ndarray  # (L,) bool: a line with no end (a Plane or a Box wall)
+    boxed: bool  # every line with no end is a Box's wall (none is a Plane's)
     # The same numbers as Python floats, for the one-body-at-a-time path:
     line_list: list[tuple[Pair, Pair, float, bool, float, float]]  # (p, n, rho, two, lo, hi)
     disc_list: list[tuple[Pair, float]]  # (c, r)
@@ -169,6 +170,7 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
     e = np.array([colliders[k].restitution for k in owner], float)
     mu = np.array([colliders[k].friction for k in owner], float)
     infinite = np.isinf(lo) & np.isinf(hi)
+    boxed = all(isinstance(colliders[k], Box) for k in owner[: len(lo)][infinite].tolist())
     line_list = [
         ((px, py), (nx, ny), rh, tw, a, b)
         for (px, py), (nx, ny), rh, tw, a, b in zip(
@@ -195,6 +197,7 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
         e,
         mu,
         infinite,
+        boxed,
         line_list,
         disc_list,
         e.tolist(),
@@ -483,13 +486,16 @@ class Contacts:
         """
         a_max = float(np.abs(B).max()) if W is B else float(max(np.abs(B).max(), np.abs(W).max()))
         a_bound = 1.4142136 * a_max
-        reach = _reach(np.sqrt(v0[:, 0] * v0[:, 0] + v0[:, 1] * v0[:, 1]), a_bound, dt, radius)
+        vv = v0 * v0
+        speed = vv[:, 0] + vv[:, 1]
+        reach = _reach(np.sqrt(speed, out=speed), a_bound, dt, radius)
         grid = self._grid_of()
         cell = grid.cells(x0) if grid.n_finite else None
         need = grid.gap(x0, cell) <= reach
         asleep = np.zeros(0, dtype=np.intp)
-        resting = np.flatnonzero(self.rest >= 0)
-        if len(resting):
+        resting = asleep
+        if len(self.rest) and self.rest.max() >= 0:
+            resting = np.flatnonzero(self.rest >= 0)
             asleep = self._asleep(resting, x0, v0, W, friction)
             need[resting] = True
             need[asleep] = False
@@ -542,11 +548,19 @@ class Contacts:
         if grid.n_inf:
             # Endless faces (one-sided, s = 1: u = n), all rows against all of them at once;
             # d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
-            n, p = grid.inf_n, grid.inf_p
-            d0 = (X[:, :1] - p[:, 0]) * n[:, 0] + (X[:, 1:] - p[:, 1]) * n[:, 1]
-            toward = np.minimum(V[:, :1] * n[:, 0] + V[:, 1:] * n[:, 1], 0.0)
-            near = d0 * (1.0 - 1e-8) + toward * T <= grid.inf_rho_up + slack[:, None]
-            busy |= near.any(axis=1)
+            px, py, nx, ny = grid.inf_cols
+            d0 = X[:, :1] - px
+            d0 *= nx
+            dy = X[:, 1:] - py
+            dy *= ny
+            d0 += dy
+            toward = V[:, :1] * nx
+            toward += V[:, 1:] * ny
+            np.minimum(toward, 0.0, out=toward)
+            toward *= T
+            near = d0 * (1.0 - 1e-8)
+            near += toward
+            busy |= (near <= grid.inf_rho_up + slack[:, None]).any(axis=1)
             bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
             parts_b.append(bi)
             parts_f.append(grid.inf_ids[fi])
@@ -1425,7 +1439,9 @@ class _FaceGrid:
     path cannot reach that far is skipped in one comparison, and the list of the faces that
     lie within ``pad`` of the cell, so a body that can reach one meets only those. Outside the
     grid every finite face is at least ``margin`` away. Lines without end (a Plane, a Box's
-    walls) are few and are checked against every body directly.
+    walls) are few: the grid covers a Box's corners too, its cells' bounds for the first look
+    (``gap``) count them as well, and the narrow pass checks them against each body near
+    one directly.
     """
 
     def __init__(self, faces: _Faces) -> None:
@@ -1437,6 +1453,8 @@ class _FaceGrid:
         self.inf_p = faces.p[inf_lines]
         self.inf_rho = faces.rho[inf_lines]
         self.inf_rho_up = self.inf_rho * (1.0 + 1e-8)
+        # The columns p_x, p_y, n_x, n_y, each a row to broadcast against a column of bodies.
+        self.inf_cols = tuple(np.ascontiguousarray(a) for a in (*self.inf_p.T, *self.inf_n.T))
         # n.x - (n.p + rho): the distance of x from each endless face.
         self.inf_c = _dot(self.inf_p, self.inf_n) + self.inf_rho
         fin_lines = np.flatnonzero(~faces.infinite)
@@ -1469,6 +1487,14 @@ class _FaceGrid:
         self.cap_rad[self.finite] = rad * (1.0 + 1e-8) + 1e-10 * (1.0 + np.sqrt(seg2))
         lo = np.minimum(A, Bq).min(axis=0) - rad.max()
         hi = np.maximum(A, Bq).max(axis=0) + rad.max()
+        if self.n_inf:
+            # The grid also covers the endless faces' points (a Box's corners) when that does
+            # not coarsen it much, so a body in the box is looked up inside it, where the
+            # endless faces are in the bounds (below); outside, ``gap`` measures them.
+            lo2 = np.minimum(lo, self.inf_p.min(axis=0))
+            hi2 = np.maximum(hi, self.inf_p.max(axis=0))
+            if faces.boxed or float((hi2 - lo2).max()) <= 4.0 * float((hi - lo).max()):
+                lo, hi = lo2, hi2
         size = max(float((hi - lo).max()), 1e-6)
         self.margin = max(0.02 * size, 1e-3)
         self.lo = lo - self.margin
@@ -1511,7 +1537,31 @@ class _FaceGrid:
         ring = np.full((nx + 2, ny + 2), self.margin)
         ring[1:-1, 1:-1] = bound
         self._ring = ring.reshape(-1)
+        # ``gap``'s bounds: the same with the endless faces in them, so inside the grid a
+        # lookup is the whole lower bound. The signed distance from a face, n.x - c, changes
+        # by at most |x - x'| between two points, so over a cell it is at least its value at
+        # the centre less half the diagonal (less 1e-9 h more, far beyond the rounding of
+        # these few operations: the reach compared with it is widened by 1e-9 of itself and
+        # TOUCH). In the ring (outside the grid) an endless face may be anywhere near: there
+        # ``gap`` adds the distances from them (``_outside`` marks those cells), or when they
+        # are all a Box's walls, whose corners the grid covers, the ring holds -inf: a body
+        # outside the grid is outside the box, in the wall, and is always looked at.
+        self._gap_ring = self._ring
+        self._boxed = faces.boxed
+        if self.n_inf:
+            both = bound.copy()
+            cx, cy = np.meshgrid(gx, gy, indexing="ij")
+            for k in range(self.n_inf):
+                (pnx, pny), c = self.inf_n[k], self.inf_c[k]
+                np.minimum(both, cx * pnx + cy * pny - c - (half_diag + 1e-9 * h), out=both)
+            ring = np.full((nx + 2, ny + 2), -np.inf if faces.boxed else self.margin)
+            ring[1:-1, 1:-1] = both
+            self._gap_ring = ring.reshape(-1)
+            outside = np.ones((nx + 2, ny + 2), dtype=bool)
+            outside[1:-1, 1:-1] = False
+            self._outside = outside.reshape(-1)
         self._ring_lo = self.lo - h  # the ring's lower-left corner
+        self._tiles = (np.zeros(0), np.zeros(0))  # for ``cells``, grown as needed
         # The lists are kept by ring cell too; the ring's are empty. A body out in the ring
         # that reaches at most pad meets nothing finite: pad (4 h, at most 0.0108 of the
         # faces' extent plus margins) is less than the margin (0.02 of it, or 1e-3).
@@ -1527,16 +1577,21 @@ class _FaceGrid:
         """Each point's cell (with the ring; a point outside the grid takes the ring cell
         nearest it): an index into the bounds (``gap``) and the lists (``listed``)."""
         nx, ny = self.shape
-        # Column by column: an (N, 2) array with a (2,) one costs ~3x more than two columns.
-        # Clipped to the ring first, so truncation toward zero is the floor.
-        scale = 1.0 / self.h
-        i = (x[:, 0] - self._ring_lo[0]) * scale
-        j = (x[:, 1] - self._ring_lo[1]) * scale
-        np.minimum(np.maximum(i, 0.0, out=i), nx + 1, out=i)
-        np.minimum(np.maximum(j, 0.0, out=j), ny + 1, out=j)
-        cell = i.astype(np.intp)
-        cell *= ny + 2
-        cell += j.astype(np.intp)
+        # The (N, 2) points as one flat array against the corner and the top repeated
+        # (x, y, x, y, ...): an (N, 2) array with a (2,) one costs ~3x more than two columns,
+        # and two columns twice the calls. Clipped to the ring first, so truncation toward
+        # zero is the floor. The same operations on each coordinate as column by column.
+        m = 2 * len(x)
+        if len(self._tiles[0]) < m:
+            k = max(len(x), len(self._tiles[0]))  # points: at least twice the last
+            self._tiles = (np.tile(self._ring_lo, k), np.tile([nx + 1.0, ny + 1.0], k))
+        ij = x.reshape(-1) - self._tiles[0][:m]
+        ij *= 1.0 / self.h
+        np.maximum(ij, 0.0, out=ij)
+        np.minimum(ij, self._tiles[1][:m], out=ij)
+        k_ij = ij.astype(np.intp)
+        cell = k_ij[0::2] * (ny + 2)
+        cell += k_ij[1::2]
         return cell
 
     def plane_distance(self, x: np.ndarray, k: int) -> np.ndarray:
@@ -1551,9 +1606,20 @@ class _FaceGrid:
         return x[:, 0] * nx + x[:, 1] * ny - c
 
     def gap(self, x: np.ndarray, cell: np.ndarray | None) -> np.ndarray:
-        """A lower bound (length units) on each point's distance to every face: the clearance
-        of its cell from the finite ones and its distance from each endless one."""
-        d = self._ring[cell] if cell is not None else np.full(len(x), np.inf)
+        """A lower bound (length units) on each point's distance to every face: its cell's
+        bound, which holds the endless faces too, or outside the grid the ring's clearance
+        from the finite faces and its distance from each endless one."""
+        if cell is not None:
+            d = self._gap_ring[cell]  # inside the grid, the endless faces are in its bounds
+            if self.n_inf and not self._boxed:
+                out = self._outside[cell]
+                if out.any():
+                    far = np.flatnonzero(out)
+                    xf = x.take(far, axis=0)
+                    for k in range(self.n_inf):
+                        d[far] = np.minimum(d[far], self.plane_distance(xf, k))
+            return d
+        d = np.full(len(x), np.inf)
         for k in range(self.n_inf):
             np.minimum(d, self.plane_distance(x, k), out=d)
         return d
@@ -1583,17 +1649,23 @@ class _FaceGrid:
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
         listed = reach <= self.pad
-        cnt = np.where(listed, self.count[cell], 0)
+        every = bool(listed.all())  # the usual case: no body reaches past its cell's list
+        cnt = self.count.take(cell) if every else np.where(listed, self.count[cell], 0)
         total = int(cnt.sum())
         if total:
             # Body b's k-th pair is the k-th face of its cell's list:
             # faces_of[start[cell_b] + k], with k = (pair index) - (b's first pair index).
-            first = np.cumsum(cnt) - cnt
+            first = np.cumsum(cnt)
+            first -= cnt
             parts_b.append(np.repeat(np.arange(len(reach)), cnt))
-            shift = np.repeat(self.start[cell] - first, cnt)
-            parts_f.append(self.faces_of[np.arange(total) + shift])
-        far = np.flatnonzero(~listed & (self._ring[cell] <= reach))
-        if len(far):
+            shift = self.start.take(cell)
+            shift -= first
+            shift = np.repeat(shift, cnt)
+            shift += np.arange(total)
+            parts_f.append(self.faces_of.take(shift))
+        if not every:
+            far = np.flatnonzero(~listed & (self._ring[cell] <= reach))
+        if not every and len(far):
             parts_b.append(np.repeat(far, self.n_finite))
             parts_f.append(np.tile(self.finite, len(far)))
         if not parts_b:
