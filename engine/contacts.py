@@ -545,7 +545,16 @@ class Contacts:
         slack += 1e-8 * reach
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
-        if grid.n_inf:
+        # The quick way (``_FaceGrid._fast_lists``): every body in a cell wholly on the free
+        # side of every endless face and reaching at most pad, so its cell's list holds every
+        # face it can reach, the endless ones as capsules, all tested alike below.
+        quick = (
+            cell is not None
+            and grid.table is not None
+            and float(reach.max()) <= grid.pad
+            and bool(grid.safe.take(cell).all())
+        )
+        if grid.n_inf and not quick:
             # Endless faces (one-sided, s = 1: u = n), all rows against all of them at once;
             # d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
             px, py, nx, ny = grid.inf_cols
@@ -567,7 +576,10 @@ class Contacts:
         if cell is not None:
             # The finite faces the grid lists, each a capsule: the points within rad of its
             # segment a-b (a flat face is the middle of one, a round face one with a = b).
-            fb, ff = grid.listed(reach, cell)
+            if quick:
+                fb, ff = grid.listed_fast(cell)
+            else:
+                fb, ff = grid.listed(reach, cell)
             Xf, ab = X.take(fb, axis=0), grid.cap_ab.take(ff, axis=0)
             D = Xf - grid.cap_a.take(ff, axis=0)
             along = _dot(D, ab) * grid.cap_inv[ff]  # the nearest point: a + along (b - a)
@@ -1501,6 +1513,18 @@ class _FaceGrid:
         span = (hi - lo) + 2.0 * self.margin
         cells = 384
         self.h = h = float(span.max()) / cells
+        if self.n_inf:
+            # A floor's (or a left wall's) line just below a cell's lower edge (by 1e-6 h):
+            # a body resting on it is then in a cell wholly above it (``_fast_lists``).
+            lo_grid = self.lo.copy()
+            for axis in (0, 1):
+                for k in range(self.n_inf):
+                    if self.inf_n[k, axis] == 1.0 and self.inf_n[k, 1 - axis] == 0.0:
+                        edge = float(self.inf_p[k, axis]) + 1e-6 * h
+                        lo_grid[axis] = edge - math.ceil((edge - self.lo[axis]) / h) * h
+                        break
+            span += self.lo - lo_grid  # less than h more: the extra cell below covers it
+            self.lo = lo_grid
         self.pad = 4.0 * h  # a body reaching at most this far meets only its cell's list
         #: Bounds are kept up to this distance; farther cells hold this (still a lower bound).
         self.far = 16.0 * h
@@ -1572,6 +1596,98 @@ class _FaceGrid:
         counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2)).astype(np.intp)
         self.count = counts
         self.start = (np.cumsum(counts) - counts).astype(np.intp)
+        self._fast_lists(faces, A, Bq, rad, cell_parts, face_parts, gx, gy, half_diag)
+
+    def _fast_lists(
+        self,
+        faces: _Faces,
+        A: np.ndarray,
+        Bq: np.ndarray,
+        rad: np.ndarray,
+        cell_parts: list[np.ndarray],
+        face_parts: list[np.ndarray],
+        gx: np.ndarray,
+        gy: np.ndarray,
+        half_diag: float,
+    ) -> None:
+        """The lists for ``Contacts._narrow``'s quick way, ``table``: each cell's faces with
+        the endless ones among them, as rows of a table (-1 past the end).
+
+        An endless face is a half-plane: on its free side, n.(x - p) >= 0, the distance from
+        it is the distance from its line, which over the grid is the distance from the
+        line's piece between the projections of the grid's corners (the projection of a
+        point of the grid lies between those of the corners), grown by h at each end: a
+        capsule, listed and tested as the finite faces are. ``safe`` marks the cells wholly
+        on the free side of every endless line (every corner beyond it, with a margin for
+        rounding); the ring's are not safe, since the lists
+        hold nothing there. A body in a safe cell that reaches at most pad finds in its
+        cell's list every face it can reach, endless or not (a face within pad of the body is
+        within pad plus half the diagonal of the cell's centre, what the lists hold). The
+        endless faces come first in each list, in their order, then the finite ones: each
+        body's faces in the order the other way gives them (endless, then listed).
+        """
+        nx, ny = self.shape
+        h, pad = self.h, self.pad
+        safe = np.ones((nx + 2, ny + 2), dtype=bool)
+        wall_cells: list[np.ndarray] = []
+        wall_faces: list[np.ndarray] = []
+        if self.n_inf:
+            safe[:] = False
+            inner = np.ones((nx, ny), dtype=bool)
+            cx, cy = np.meshgrid(gx, gy, indexing="ij")
+            top = self.lo + np.array([nx, ny], dtype=float) * h
+            corners = np.array(
+                [[self.lo[0], self.lo[1]], [top[0], self.lo[1]], [self.lo[0], top[1]], top]
+            )
+            # A point is found in a cell (``cells``) up to the rounding of its coordinates
+            # less the grid's corner, a few ulps of the largest: the cells clear the lines
+            # by 1e-9 h and 1e-14 of that more.
+            slack = 1e-9 * h + 1e-14 * (1.0 + float(np.abs(corners).max()))
+            for k in range(self.n_inf):
+                p, n, rr = self.inf_p[k], self.inf_n[k], float(self.inf_rho[k])
+                t = np.array([-n[1], n[0]])
+                along = (corners - p) @ t
+                a = p + t * (float(along.min()) - h)
+                seg = t * (float(along.max()) - float(along.min()) + 2.0 * h)
+                seg2 = float(seg @ seg)
+                fid = int(self.inf_ids[k])
+                self.cap_a[fid] = a
+                self.cap_ab[fid] = seg
+                self.cap_inv[fid] = 1.0 / seg2
+                self.cap_rad[fid] = rr * (1.0 + 1e-8) + 1e-10 * (1.0 + math.sqrt(seg2))
+                u = np.clip(((cx - a[0]) * seg[0] + (cy - a[1]) * seg[1]) / seg2, 0.0, 1.0)
+                dist = np.hypot(cx - a[0] - u * seg[0], cy - a[1] - u * seg[1]) - rr - half_diag
+                di, dj = np.nonzero(dist <= pad)
+                wall_cells.append(di * ny + dj)
+                wall_faces.append(np.full(len(di), fid, dtype=np.intp))
+                # n.(x - p) is linear: over the cell, least at a corner, by (|n_x| + |n_y|) h / 2
+                # below the centre's value.
+                side = (cx - p[0]) * n[0] + (cy - p[1]) * n[1]
+                inner &= side - (0.5 * h * (abs(n[0]) + abs(n[1])) + slack) >= 0.0
+            safe[1:-1, 1:-1] = inner
+        self.safe = safe.reshape(-1)
+        ii, jj = np.divmod(np.concatenate(wall_cells + cell_parts).astype(np.intp), ny)
+        cells_all = (ii + 1) * (ny + 2) + (jj + 1)
+        order = np.argsort(cells_all, kind="stable")
+        faces_sorted = np.concatenate(wall_faces + face_parts)[order]
+        cells_sorted = cells_all[order]
+        counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2))
+        width = max(int(counts.max()), 1)
+        self.table: np.ndarray | None = None
+        if len(counts) * width <= 4_000_000:  # else (faces crowded in a cell) the other way
+            start = np.cumsum(counts) - counts
+            table = np.full((len(counts), width), -1, dtype=np.int32)
+            table[cells_sorted, np.arange(len(order)) - start[cells_sorted]] = faces_sorted
+            self.table = table
+
+    def listed_fast(self, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(body, face) pairs from ``table`` for bodies in safe cells reaching at most pad:
+        each body's listed faces, bodies in order, each body's faces in list order."""
+        assert self.table is not None
+        rows = self.table.take(cell, axis=0)
+        has = rows >= 0
+        fb, _ = np.nonzero(has)
+        return fb, rows[has].astype(np.intp)
 
     def cells(self, x: np.ndarray) -> np.ndarray:
         """Each point's cell (with the ring; a point outside the grid takes the ring cell
