@@ -536,7 +536,6 @@ class Contacts:
         """
         grid = self._grid_of()
         T = dt
-        X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
         busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay: always solved
         grow = 1.0 + 1e-8
         # The right side of the test, r + |B| T^2 / 2, widened (reach > |V| T + |B| T^2).
@@ -554,41 +553,56 @@ class Contacts:
             and float(reach.max()) <= grid.pad
             and bool(grid.safe.take(cell).all())
         )
-        if grid.n_inf and not quick:
-            # Endless faces (one-sided, s = 1: u = n), all rows against all of them at once;
-            # d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
-            px, py, nx, ny = grid.inf_cols
-            d0 = X[:, :1] - px
-            d0 *= nx
-            dy = X[:, 1:] - py
-            dy *= ny
-            d0 += dy
-            toward = V[:, :1] * nx
-            toward += V[:, 1:] * ny
-            np.minimum(toward, 0.0, out=toward)
-            toward *= T
-            near = d0 * (1.0 - 1e-8)
-            near += toward
-            busy |= (near <= grid.inf_rho_up + slack[:, None]).any(axis=1)
-            bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
-            parts_b.append(bi)
-            parts_f.append(grid.inf_ids[fi])
-        if cell is not None:
-            # The finite faces the grid lists, each a capsule: the points within rad of its
-            # segment a-b (a flat face is the middle of one, a round face one with a = b).
-            if quick:
-                fb, ff = grid.listed_fast(cell)
-            else:
+        if quick:
+            assert cell is not None
+            fb, ff = grid.listed_fast(cell)
+            at = rows.take(fb)
+            Xf, Vf = x0.take(at, axis=0), v0.take(at, axis=0)
+        else:
+            X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
+            if grid.n_inf:
+                # Endless faces (one-sided, s = 1: u = n), all rows against all of them at
+                # once; d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
+                px, py, nx, ny = grid.inf_cols
+                d0 = X[:, :1] - px
+                d0 *= nx
+                dy = X[:, 1:] - py
+                dy *= ny
+                d0 += dy
+                toward = V[:, :1] * nx
+                toward += V[:, 1:] * ny
+                np.minimum(toward, 0.0, out=toward)
+                toward *= T
+                near = d0 * (1.0 - 1e-8)
+                near += toward
+                busy |= (near <= grid.inf_rho_up + slack[:, None]).any(axis=1)
+                bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
+                parts_b.append(bi)
+                parts_f.append(grid.inf_ids[fi])
+            if cell is not None:
                 fb, ff = grid.listed(reach, cell)
-            Xf, ab = X.take(fb, axis=0), grid.cap_ab.take(ff, axis=0)
-            D = Xf - grid.cap_a.take(ff, axis=0)
-            along = _dot(D, ab) * grid.cap_inv[ff]  # the nearest point: a + along (b - a)
+                Xf, Vf = X.take(fb, axis=0), V.take(fb, axis=0)
+        if cell is not None:
+            # The faces the grid lists, each a capsule: the points within rad of its segment
+            # a-b (a flat face is the middle of one, a round face one with a = b). Their
+            # numbers in one table: a, b - a, 1 / |b - a|^2, rad. (Each dot product as one
+            # product and one sum of its columns: the same operations as column by column.)
+            cap = grid.cap.take(ff, axis=0)
+            ab = cap[:, 2:4]
+            D = Xf - cap[:, :2]
+            P = D * ab
+            along = P[:, 0] + P[:, 1]
+            along *= cap[:, 4]  # the nearest point: a + along (b - a)
             np.minimum(np.maximum(along, 0.0, out=along), 1.0, out=along)
             C = D - ab * along[:, None]  # from the nearest point of the segment to the ball
-            dist = np.sqrt(_dot(C, C))
-            gap = dist - grid.cap_rad[ff]
+            P = C * C
+            dist = P[:, 0] + P[:, 1]
+            np.sqrt(dist, out=dist)
+            gap = dist - cap[:, 5]
             # u = C / |C|; the test is multiplied by |C|, so it needs no division.
-            toward = np.minimum(_dot(C, V.take(fb, axis=0)), 0.0)
+            P = C * Vf
+            toward = P[:, 0] + P[:, 1]
+            np.minimum(toward, 0.0, out=toward)
             near = gap * dist * (1.0 - 1e-8) + toward * T <= slack[fb] * dist
             busy[fb[near]] = True
             within = gap <= reach[fb]
@@ -600,10 +614,9 @@ class Contacts:
         pb = np.concatenate(parts_b) if len(parts_b) > 1 else parts_b[0]
         pf = np.concatenate(parts_f) if len(parts_f) > 1 else parts_f[0]
         if len(kept) < len(rows):
-            place = np.cumsum(busy) - 1  # a kept body's place among the kept
             mine = busy[pb]
-            pb, pf = place[pb[mine]], pf[mine]
-            rows = rows[kept]
+            pb, pf = np.searchsorted(kept, pb[mine]), pf[mine]  # its place among the kept
+            rows = rows.take(kept)
         return rows, pb, pf
 
     def _asleep(
@@ -1679,6 +1692,8 @@ class _FaceGrid:
             table = np.full((len(counts), width), -1, dtype=np.int32)
             table[cells_sorted, np.arange(len(order)) - start[cells_sorted]] = faces_sorted
             self.table = table
+        # Each face's capsule numbers in one table (a row per face) for Contacts._narrow.
+        self.cap = np.column_stack([self.cap_a, self.cap_ab, self.cap_inv, self.cap_rad])
 
     def listed_fast(self, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, face) pairs from ``table`` for bodies in safe cells reaching at most pad:

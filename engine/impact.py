@@ -192,8 +192,32 @@ def line_hit_one(
     g0 = side * d0 - rho
     if abs(g0) <= TOUCH * (1.0 + rho):
         g0 = 0.0
-    speed = math.sqrt(vx * vx + vy * vy)
-    t = quadratic_first_root_one(g0, side * vn, 0.5 * side * (bx * nx + by * ny), T, 1e-12 * speed)
+    g1 = side * vn
+    g2 = 0.5 * side * (bx * nx + by * ny)
+    # quadratic_first_root_one(g0, g1, g2, T, 1e-12 |V|), inlined (the same operations; the
+    # speed only where it is used): this is the innermost test of a step.
+    inf = math.inf
+    if g0 <= 0.0:
+        slack = 1e-12 * math.sqrt(vx * vx + vy * vy)
+        if g1 < -slack or (g1 <= slack and g2 < 0.0):
+            t = 0.0
+        else:
+            t = -g1 / g2 if g2 < 0.0 and g1 > 0.0 else inf
+    elif g2 == 0.0:
+        t = -g0 / g1 if g1 < 0.0 else inf
+    else:
+        disc = g1 * g1 - 4.0 * g2 * g0
+        if disc < 0.0:
+            return inf, (nx * side, ny * side)
+        sq = math.sqrt(max(disc, 0.0))
+        q = -0.5 * (g1 + math.copysign(sq, g1))
+        r1 = q / g2
+        r2 = g0 / q if q != 0.0 else inf
+        r1 = r1 if r1 >= 0.0 else inf
+        r2 = r2 if r2 >= 0.0 else inf
+        t = r1 if r1 < r2 else r2
+    if not t <= T:
+        t = inf
     if t != math.inf:
         xt = x + vx * t + bx * (0.5 * t * t)
         yt = y + vy * t + by * (0.5 * t * t)
