@@ -1151,8 +1151,8 @@ class Contacts:
                 self.rest[row] = rest_k
         for where, events in ((self._began, began), (self._ended, ended)):
             if events:
-                events.sort(key=lambda ev: ev[0])
-                where.append(tuple(zip(*(ev for _, ev in events), strict=True)))
+                events.sort()  # by key: each (round, phase, place) holds one event
+                where.append(tuple(zip(*[ev for _, ev in events], strict=True)))
         shape = (len(changed), 2)
         return (
             np.array(changed, dtype=np.intp),
@@ -1182,7 +1182,8 @@ class Contacts:
     ) -> tuple[Pair, Pair, bool, int]:
         """One body through its step, impact by impact (_solve's loop for one row ``row``,
         ``k`` its place among the rows solved): (x, v, whether it met anything, its rest)."""
-        L = len(faces.line_list)
+        line_list, disc_list = faces.line_list, faces.disc_list
+        L = len(line_list)
         rest_before = rest
         touched = False
         left = dt
@@ -1204,7 +1205,22 @@ class Contacts:
                     wp = bp
                     if ts < dur:
                         dur, stop = ts, True
-            t_hit, face, normal = _first_hit_one(faces, x, vp, bp, dur, r, faces_of, rest)
+            # Contacts._first_hits for this body (inlined: the innermost loop of a step): the
+            # earliest impact among its faces (ties: the last listed), and its normal.
+            t_hit, face, normal = math.inf, -1, (0.0, 0.0)
+            for f in faces_of:
+                if f == rest:
+                    continue
+                if f < L:
+                    p, n, rho, two, lo, hi = line_list[f]
+                    t, nrm = line_hit_one(x, vp, bp, p, n, rho + r, two, lo, hi, dur)
+                else:
+                    c, rho = disc_list[f - L]
+                    t, nrm = disc_hit_one(x, vp, bp, c, rho + r, dur), (0.0, 0.0)
+                if t <= t_hit and t < math.inf:
+                    t_hit, face, normal = t, f, nrm
+            if face >= L:
+                normal = _disc_normal_one(disc_list[face - L][0], x, vp, bp, t_hit)
             hit = t_hit <= dur
             tt = t_hit if hit else dur
             half_tt2 = 0.5 * tt * tt
@@ -1322,32 +1338,14 @@ def _rest_path_one(
     return (tx * u, ty * u), (tx * a, ty * a), ts
 
 
-def _first_hit_one(
-    faces: _Faces, x: Pair, v: Pair, b: Pair, T: float, r: float, faces_of: list[int], rest: int
-) -> tuple[float, int, Pair]:
-    """``Contacts._first_hits`` for one body: (time or inf, face or -1, normal)."""
-    L = len(faces.line_list)
-    best, face, normal = math.inf, -1, (0.0, 0.0)
-    for f in faces_of:
-        if f == rest:
-            continue
-        if f < L:
-            p, n, rho, two, lo, hi = faces.line_list[f]
-            t, nrm = line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, T)
-        else:
-            c, rho = faces.disc_list[f - L]
-            t, nrm = disc_hit_one(x, v, b, c, rho + r, T), (0.0, 0.0)
-        if t <= best and t < math.inf:  # ties: the last listed, as _first_hits
-            best, face, normal = t, f, nrm
-    if face >= L:
-        # A round face's normal from where the ball's centre is at the impact.
-        c = faces.disc_list[face - L][0]
-        dx = x[0] + v[0] * best + b[0] * (0.5 * best * best) - c[0]
-        dy = x[1] + v[1] * best + b[1] * (0.5 * best * best) - c[1]
-        length = math.sqrt(dx * dx + dy * dy)
-        safe = length if length > 0.0 else 1.0
-        normal = (dx / safe, dy / safe)
-    return best, face, normal
+def _disc_normal_one(c: Pair, x: Pair, v: Pair, b: Pair, t: float) -> Pair:
+    """The normal of a round face (centre c) at an impact at time t: from the centre to where
+    the ball's centre is then (``Contacts._first_hits``'s, for one body)."""
+    dx = x[0] + v[0] * t + b[0] * (0.5 * t * t) - c[0]
+    dy = x[1] + v[1] * t + b[1] * (0.5 * t * t) - c[1]
+    length = math.sqrt(dx * dx + dy * dy)
+    safe = length if length > 0.0 else 1.0
+    return (dx / safe, dy / safe)
 
 
 def _bounce_one(
