@@ -1597,10 +1597,12 @@ class _FaceGrid:
         self._boxed = faces.boxed
         if self.n_inf:
             both = bound.copy()
-            cx, cy = np.meshgrid(gx, gy, indexing="ij")
             for k in range(self.n_inf):
                 (pnx, pny), c = self.inf_n[k], self.inf_c[k]
-                np.minimum(both, cx * pnx + cy * pny - c - (half_diag + 1e-9 * h), out=both)
+                at = np.add.outer(gx * pnx, gy * pny)  # cx n_x + cy n_y, cell by cell
+                at -= c
+                at -= half_diag + 1e-9 * h
+                np.minimum(both, at, out=both)
             ring = np.full((nx + 2, ny + 2), -np.inf if faces.boxed else self.margin)
             ring[1:-1, 1:-1] = both
             self._gap_ring = ring.reshape(-1)
@@ -1657,7 +1659,6 @@ class _FaceGrid:
         if self.n_inf:
             safe[:] = False
             inner = np.ones((nx, ny), dtype=bool)
-            cx, cy = np.meshgrid(gx, gy, indexing="ij")
             top = self.lo + np.array([nx, ny], dtype=float) * h
             corners = np.array(
                 [[self.lo[0], self.lo[1]], [top[0], self.lo[1]], [self.lo[0], top[1]], top]
@@ -1678,29 +1679,33 @@ class _FaceGrid:
                 self.cap_ab[fid] = seg
                 self.cap_inv[fid] = 1.0 / seg2
                 self.cap_rad[fid] = rr * (1.0 + 1e-8) + 1e-10 * (1.0 + math.sqrt(seg2))
-                u = np.clip(((cx - a[0]) * seg[0] + (cy - a[1]) * seg[1]) / seg2, 0.0, 1.0)
-                dist = np.hypot(cx - a[0] - u * seg[0], cy - a[1] - u * seg[1]) - rr - half_diag
-                di, dj = np.nonzero(dist <= pad)
+                # n.(x - p) at each cell's centre; every centre projects onto the capsule's
+                # segment, so its distance from the capsule is |n.(x - p)| - rr.
+                side = np.add.outer((gx - p[0]) * n[0], (gy - p[1]) * n[1])
+                di, dj = np.nonzero(np.abs(side) - (rr + half_diag) <= pad)
                 wall_cells.append(di * ny + dj)
                 wall_faces.append(np.full(len(di), fid, dtype=np.intp))
                 # n.(x - p) is linear: over the cell, least at a corner, by (|n_x| + |n_y|) h / 2
                 # below the centre's value.
-                side = (cx - p[0]) * n[0] + (cy - p[1]) * n[1]
                 inner &= side - (0.5 * h * (abs(n[0]) + abs(n[1])) + slack) >= 0.0
             safe[1:-1, 1:-1] = inner
         self.safe = safe.reshape(-1)
-        ii, jj = np.divmod(np.concatenate(wall_cells + cell_parts).astype(np.intp), ny)
-        cells_all = (ii + 1) * (ny + 2) + (jj + 1)
-        order = np.argsort(cells_all, kind="stable")
-        faces_sorted = np.concatenate(wall_faces + face_parts)[order]
-        cells_sorted = cells_all[order]
-        counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2))
+        if wall_cells:
+            ii, jj = np.divmod(np.concatenate(wall_cells + cell_parts).astype(np.intp), ny)
+            cells_all = (ii + 1) * (ny + 2) + (jj + 1)
+            order = np.argsort(cells_all, kind="stable")
+            faces_sorted = np.concatenate(wall_faces + face_parts)[order]
+            cells_sorted = cells_all[order]
+            counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2))
+        else:  # no endless faces: the lists are the finite ones, already sorted
+            faces_sorted, counts = self.faces_of, self.count
+            cells_sorted = np.repeat(np.arange(len(counts)), counts)
         width = max(int(counts.max()), 1)
         self.table: np.ndarray | None = None
         if len(counts) * width <= 4_000_000:  # else (faces crowded in a cell) the other way
             start = np.cumsum(counts) - counts
             table = np.full((len(counts), width), -1, dtype=np.int32)
-            table[cells_sorted, np.arange(len(order)) - start[cells_sorted]] = faces_sorted
+            table[cells_sorted, np.arange(len(cells_sorted)) - start[cells_sorted]] = faces_sorted
             self.table = table
         # Each face's capsule numbers in one table (a row per face) for Contacts._narrow.
         self.cap = np.column_stack([self.cap_a, self.cap_ab, self.cap_inv, self.cap_rad])
