@@ -1522,14 +1522,17 @@ class _FaceGrid:
         self.cap_rad[self.finite] = rad * (1.0 + 1e-8) + 1e-10 * (1.0 + np.sqrt(seg2))
         lo = np.minimum(A, Bq).min(axis=0) - rad.max()
         hi = np.maximum(A, Bq).max(axis=0) + rad.max()
+        covers = False  # whether the grid covers every endless face's point
         if self.n_inf:
             # The grid also covers the endless faces' points (a Box's corners) when that does
-            # not coarsen it much, so a body in the box is looked up inside it, where the
-            # endless faces are in the bounds (below); outside, ``gap`` measures them.
+            # not coarsen it much (a box at most 4 times the finite faces' extent), so a body
+            # in the box is looked up inside it, where the endless faces are in the bounds
+            # (below); outside, ``gap`` measures them.
             lo2 = np.minimum(lo, self.inf_p.min(axis=0))
             hi2 = np.maximum(hi, self.inf_p.max(axis=0))
-            if faces.boxed or float((hi2 - lo2).max()) <= 4.0 * float((hi - lo).max()):
+            if float((hi2 - lo2).max()) <= 4.0 * float((hi - lo).max()):
                 lo, hi = lo2, hi2
+                covers = True
         size = max(float((hi - lo).max()), 1e-6)
         self.margin = max(0.02 * size, 1e-3)
         self.lo = lo - self.margin
@@ -1591,10 +1594,10 @@ class _FaceGrid:
         # these few operations: the reach compared with it is widened by 1e-9 of itself and
         # TOUCH). In the ring (outside the grid) an endless face may be anywhere near: there
         # ``gap`` adds the distances from them (``_outside`` marks those cells), or when they
-        # are all a Box's walls, whose corners the grid covers, the ring holds -inf: a body
+        # are all a Box's walls and the grid covers its corners, the ring holds -inf: a body
         # outside the grid is outside the box, in the wall, and is always looked at.
         self._gap_ring = self._ring
-        self._boxed = faces.boxed
+        self._boxed = faces.boxed and covers
         if self.n_inf:
             both = bound.copy()
             for k in range(self.n_inf):
@@ -1603,7 +1606,7 @@ class _FaceGrid:
                 at -= c
                 at -= half_diag + 1e-9 * h
                 np.minimum(both, at, out=both)
-            ring = np.full((nx + 2, ny + 2), -np.inf if faces.boxed else self.margin)
+            ring = np.full((nx + 2, ny + 2), -np.inf if self._boxed else self.margin)
             ring[1:-1, 1:-1] = both
             self._gap_ring = ring.reshape(-1)
             outside = np.ones((nx + 2, ny + 2), dtype=bool)

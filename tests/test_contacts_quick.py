@@ -206,3 +206,48 @@ def test_a_velocity_set_by_hand_is_caught_the_next_step() -> None:
     ball.vel = Vector(100.0, 0.0)
     world.step(1.0 / 120.0)
     assert ball.vel.x < 0.0 and ball.pos.x <= 40.0 - 0.1 + 1e-9
+
+
+def test_a_box_much_larger_than_its_segments() -> None:
+    """The grid covers only the segments then (not the box's corners): bodies outside it are
+    measured against the walls directly, and both ways still step alike."""
+
+    def world() -> World:
+        rng = np.random.default_rng(3)
+        w = World(integrator="auto")
+        w.add_force(Gravity((0.0, -9.81)))
+        w.add_collider(Box((0.0, 0.0), (200.0, 150.0)))
+        for _ in range(10):
+            a = rng.uniform(5.0, 25.0, 2)
+            w.add_collider(Segment(tuple(a), tuple(a + rng.uniform(-2.0, 2.0, 2))))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            w.add_all(
+                Body(
+                    Vector(*p), Vector(*v), Vector(0, 0), radius=0.2, restitution=0.8, filter=APART
+                )
+                for p, v in zip(
+                    np.concatenate(
+                        [rng.uniform(1, 29, (40, 2)), rng.uniform(1, 149, (40, 2))]
+                    ).tolist(),
+                    rng.uniform(-20.0, 20.0, (80, 2)).tolist(),
+                    strict=True,
+                )
+            )
+        return w
+
+    quick, other = world(), world()
+    assert quick._contacts is not None and other._contacts is not None
+    grid = quick._contacts._grid_of()
+    assert not grid._boxed  # the box is far larger than the segments: not covered
+    X = np.random.default_rng(4).uniform(-5.0, 205.0, (3000, 2))
+    bound = grid.gap(X, grid.cells(X))
+    truth = true_gaps(quick, X).min(axis=1)
+    assert np.all(bound <= truth + 1e-13 * (1.0 + np.abs(X).max(axis=1)))
+    other._contacts._grid_of().table = None
+    for step in range(240):
+        quick.step(1.0 / 120.0)
+        other.step(1.0 / 120.0)
+        assert np.array_equal(quick.positions(), other.positions()), step
+        assert np.array_equal(quick.velocities(), other.velocities()), step
+    assert np.all((quick.positions() > 0.0) & (quick.positions() < [200.0, 150.0]))
