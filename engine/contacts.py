@@ -34,15 +34,26 @@ A sensor does not push: the contacts report when a body begins and ends overlapp
 
 How a step is solved, cheapest test first (in a typical scene few bodies meet anything):
 
-1. ``_near``, over every body in a few array passes: a lower bound on its distance to every
-   face (the grid's clearance, the endless lines' distances) against how far it can reach.
+1. ``_near``, over every body in about twenty array operations: a lower bound on its distance
+   to every face (one look-up in the grid, whose cells' bounds hold the endless lines too)
+   against how far it can reach.
 2. ``_narrow``, over those near a face: the faces each can reach, and whether its path, not
    yet turned by any bounce, can meet one at all (a tangent-line bound; see there). Bodies
-   that cannot, and do not rest on a face, keep (x1, v1).
+   that cannot, and do not rest on a face, keep (x1, v1). Usually every body it looks at is
+   in a cell clear of the endless lines' backs, and then each body's faces, endless or not,
+   come from one row of a table and are tested alike (``_FaceGrid._fast_lists``).
 3. The rest are solved impact by impact: a few one body at a time in Python floats
    (``_solve_few``), many at once in numpy arrays (``_solve``). Both do the same arithmetic in
    the same order and give the same bits; only their cost differs (numpy's fixed cost per
    call is about a microsecond, which a handful of bodies never pays back).
+
+At a thousand bodies the cost is the count of array operations, each a microsecond or two
+whatever its length, and the Python of the few impacts, not the arithmetic per body. A
+clearance budget carried from step to step (a body's distance to the faces when last
+looked at, less how far it has moved since) was measured and does not pay here: in the
+benchmark's box balls move 0.1 to 0.2 m a step and the nearest face is a metre or two away,
+so 110 to 140 of 1,000 need a fresh bound every step even with exact distances, and an
+operation on 140 rows costs nearly what one on 1,000 does.
 """
 
 from __future__ import annotations
@@ -135,6 +146,7 @@ class _Faces:
     e: np.ndarray  # (L + D,) the owner's restitution
     mu: np.ndarray  # (L + D,) the owner's friction
     infinite: np.ndarray  # (L,) bool: a line with no end (a Plane or a Box wall)
+    boxed: bool  # every line with no end is a Box's wall (none is a Plane's)
     # The same numbers as Python floats, for the one-body-at-a-time path:
     line_list: list[tuple[Pair, Pair, float, bool, float, float]]  # (p, n, rho, two, lo, hi)
     disc_list: list[tuple[Pair, float]]  # (c, r)
@@ -169,6 +181,7 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
     e = np.array([colliders[k].restitution for k in owner], float)
     mu = np.array([colliders[k].friction for k in owner], float)
     infinite = np.isinf(lo) & np.isinf(hi)
+    boxed = all(isinstance(colliders[k], Box) for k in owner[: len(lo)][infinite].tolist())
     line_list = [
         ((px, py), (nx, ny), rh, tw, a, b)
         for (px, py), (nx, ny), rh, tw, a, b in zip(
@@ -195,6 +208,7 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
         e,
         mu,
         infinite,
+        boxed,
         line_list,
         disc_list,
         e.tolist(),
@@ -483,13 +497,16 @@ class Contacts:
         """
         a_max = float(np.abs(B).max()) if W is B else float(max(np.abs(B).max(), np.abs(W).max()))
         a_bound = 1.4142136 * a_max
-        reach = _reach(np.sqrt(v0[:, 0] * v0[:, 0] + v0[:, 1] * v0[:, 1]), a_bound, dt, radius)
+        vv = v0 * v0
+        speed = vv[:, 0] + vv[:, 1]
+        reach = _reach(np.sqrt(speed, out=speed), a_bound, dt, radius)
         grid = self._grid_of()
         cell = grid.cells(x0) if grid.n_finite else None
         need = grid.gap(x0, cell) <= reach
         asleep = np.zeros(0, dtype=np.intp)
-        resting = np.flatnonzero(self.rest >= 0)
-        if len(resting):
+        resting = asleep
+        if len(self.rest) and self.rest.max() >= 0:
+            resting = np.flatnonzero(self.rest >= 0)
             asleep = self._asleep(resting, x0, v0, W, friction)
             need[resting] = True
             need[asleep] = False
@@ -530,7 +547,6 @@ class Contacts:
         """
         grid = self._grid_of()
         T = dt
-        X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
         busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay: always solved
         grow = 1.0 + 1e-8
         # The right side of the test, r + |B| T^2 / 2, widened (reach > |V| T + |B| T^2).
@@ -539,30 +555,65 @@ class Contacts:
         slack += 1e-8 * reach
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
-        if grid.n_inf:
-            # Endless faces (one-sided, s = 1: u = n), all rows against all of them at once;
-            # d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
-            n, p = grid.inf_n, grid.inf_p
-            d0 = (X[:, :1] - p[:, 0]) * n[:, 0] + (X[:, 1:] - p[:, 1]) * n[:, 1]
-            toward = np.minimum(V[:, :1] * n[:, 0] + V[:, 1:] * n[:, 1], 0.0)
-            near = d0 * (1.0 - 1e-8) + toward * T <= grid.inf_rho_up + slack[:, None]
-            busy |= near.any(axis=1)
-            bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
-            parts_b.append(bi)
-            parts_f.append(grid.inf_ids[fi])
+        # The quick way (``_FaceGrid._fast_lists``): every body in a cell wholly on the free
+        # side of every endless face and reaching at most pad, so its cell's list holds every
+        # face it can reach, the endless ones as capsules, all tested alike below.
+        quick = (
+            cell is not None
+            and grid.table is not None
+            and float(reach.max()) <= grid.pad
+            and bool(grid.safe.take(cell).all())
+        )
+        if quick:
+            assert cell is not None
+            fb, ff = grid.listed_fast(cell)
+            at = rows.take(fb)
+            Xf, Vf = x0.take(at, axis=0), v0.take(at, axis=0)
+        else:
+            X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
+            if grid.n_inf:
+                # Endless faces (one-sided, s = 1: u = n), all rows against all of them at
+                # once; d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
+                px, py, nx, ny = grid.inf_cols
+                d0 = X[:, :1] - px
+                d0 *= nx
+                dy = X[:, 1:] - py
+                dy *= ny
+                d0 += dy
+                toward = V[:, :1] * nx
+                toward += V[:, 1:] * ny
+                np.minimum(toward, 0.0, out=toward)
+                toward *= T
+                near = d0 * (1.0 - 1e-8)
+                near += toward
+                busy |= (near <= grid.inf_rho_up + slack[:, None]).any(axis=1)
+                bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
+                parts_b.append(bi)
+                parts_f.append(grid.inf_ids[fi])
+            if cell is not None:
+                fb, ff = grid.listed(reach, cell)
+                Xf, Vf = X.take(fb, axis=0), V.take(fb, axis=0)
         if cell is not None:
-            # The finite faces the grid lists, each a capsule: the points within rad of its
-            # segment a-b (a flat face is the middle of one, a round face one with a = b).
-            fb, ff = grid.listed(reach, cell)
-            Xf, ab = X.take(fb, axis=0), grid.cap_ab.take(ff, axis=0)
-            D = Xf - grid.cap_a.take(ff, axis=0)
-            along = _dot(D, ab) * grid.cap_inv[ff]  # the nearest point: a + along (b - a)
+            # The faces the grid lists, each a capsule: the points within rad of its segment
+            # a-b (a flat face is the middle of one, a round face one with a = b). Their
+            # numbers in one table: a, b - a, 1 / |b - a|^2, rad. (Each dot product as one
+            # product and one sum of its columns: the same operations as column by column.)
+            cap = grid.cap.take(ff, axis=0)
+            ab = cap[:, 2:4]
+            D = Xf - cap[:, :2]
+            P = D * ab
+            along = P[:, 0] + P[:, 1]
+            along *= cap[:, 4]  # the nearest point: a + along (b - a)
             np.minimum(np.maximum(along, 0.0, out=along), 1.0, out=along)
             C = D - ab * along[:, None]  # from the nearest point of the segment to the ball
-            dist = np.sqrt(_dot(C, C))
-            gap = dist - grid.cap_rad[ff]
+            P = C * C
+            dist = P[:, 0] + P[:, 1]
+            np.sqrt(dist, out=dist)
+            gap = dist - cap[:, 5]
             # u = C / |C|; the test is multiplied by |C|, so it needs no division.
-            toward = np.minimum(_dot(C, V.take(fb, axis=0)), 0.0)
+            P = C * Vf
+            toward = P[:, 0] + P[:, 1]
+            np.minimum(toward, 0.0, out=toward)
             near = gap * dist * (1.0 - 1e-8) + toward * T <= slack[fb] * dist
             busy[fb[near]] = True
             within = gap <= reach[fb]
@@ -574,10 +625,9 @@ class Contacts:
         pb = np.concatenate(parts_b) if len(parts_b) > 1 else parts_b[0]
         pf = np.concatenate(parts_f) if len(parts_f) > 1 else parts_f[0]
         if len(kept) < len(rows):
-            place = np.cumsum(busy) - 1  # a kept body's place among the kept
             mine = busy[pb]
-            pb, pf = place[pb[mine]], pf[mine]
-            rows = rows[kept]
+            pb, pf = np.searchsorted(kept, pb[mine]), pf[mine]  # its place among the kept
+            rows = rows.take(kept)
         return rows, pb, pf
 
     def _asleep(
@@ -1059,9 +1109,10 @@ class Contacts:
 
     # -- a few bodies, one at a time ---------------------------------------------------------
     # The same steps as _solve and its helpers, for one body in Python floats: _path_one is
-    # _solve's loop, and each function ending in _one (after this class) is its array twin
-    # line for line (same operations in the same order, so the same bits), with an `if` where
-    # the array version computes both branches and picks with np.where. On a handful of
+    # _solve's loop (with _first_hits' loop inline), and each function ending in _one (after
+    # this class) is its array twin line for line (same operations in the same order, so the
+    # same bits), with an `if` where the array version computes both branches and picks with
+    # np.where. On a handful of
     # bodies numpy's fixed cost per call (about a microsecond, a few hundred calls per round
     # of impacts) is most of the time; floats have none.
     def _solve_few(
@@ -1082,7 +1133,7 @@ class Contacts:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``_solve``, one body after another in Python floats (for a few rows)."""
         faces = self.faces
-        faces_of: list[list[int]] = [[] for _ in rows]
+        faces_of: list[list[int]] = [[] for _ in range(len(rows))]
         for b, f in zip(pb.tolist(), pf.tolist(), strict=True):
             faces_of[b].append(f)
         X = x0.take(rows, axis=0).tolist()
@@ -1097,7 +1148,9 @@ class Contacts:
         # round, lift-offs before impacts, bodies in row order.
         began: list[tuple[tuple[int, int, int], tuple[Any, ...]]] = []
         ended: list[tuple[tuple[int, int, int], tuple[Any, ...]]] = []
-        changed, Xc, Vc = [], [], []
+        changed: list[int] = []
+        Xc: list[float] = []
+        Vc: list[float] = []
         for k, row in enumerate(row_list):
             x, v, touched, rest_k = self._path_one(
                 faces, k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
@@ -1105,13 +1158,13 @@ class Contacts:
             )  # fmt: skip
             if touched:
                 changed.append(row)
-                Xc.append(x)
-                Vc.append(v)
+                Xc += x  # flat: one np.array of floats is cheaper than one of pairs
+                Vc += v
                 self.rest[row] = rest_k
         for where, events in ((self._began, began), (self._ended, ended)):
             if events:
-                events.sort(key=lambda ev: ev[0])
-                where.append(tuple(zip(*(ev for _, ev in events), strict=True)))
+                events.sort()  # by key: each (round, phase, place) holds one event
+                where.append(tuple(zip(*[ev for _, ev in events], strict=True)))
         shape = (len(changed), 2)
         return (
             np.array(changed, dtype=np.intp),
@@ -1141,7 +1194,8 @@ class Contacts:
     ) -> tuple[Pair, Pair, bool, int]:
         """One body through its step, impact by impact (_solve's loop for one row ``row``,
         ``k`` its place among the rows solved): (x, v, whether it met anything, its rest)."""
-        L = len(faces.line_list)
+        line_list, disc_list = faces.line_list, faces.disc_list
+        L = len(line_list)
         rest_before = rest
         touched = False
         left = dt
@@ -1163,7 +1217,22 @@ class Contacts:
                     wp = bp
                     if ts < dur:
                         dur, stop = ts, True
-            t_hit, face, normal = _first_hit_one(faces, x, vp, bp, dur, r, faces_of, rest)
+            # Contacts._first_hits for this body (inlined: the innermost loop of a step): the
+            # earliest impact among its faces (ties: the last listed), and its normal.
+            t_hit, face, normal = math.inf, -1, (0.0, 0.0)
+            for f in faces_of:
+                if f == rest:
+                    continue
+                if f < L:
+                    p, n, rho, two, lo, hi = line_list[f]
+                    t, nrm = line_hit_one(x, vp, bp, p, n, rho + r, two, lo, hi, dur)
+                else:
+                    c, rho = disc_list[f - L]
+                    t, nrm = disc_hit_one(x, vp, bp, c, rho + r, dur), (0.0, 0.0)
+                if t <= t_hit and t < math.inf:
+                    t_hit, face, normal = t, f, nrm
+            if face >= L:
+                normal = _disc_normal_one(disc_list[face - L][0], x, vp, bp, t_hit)
             hit = t_hit <= dur
             tt = t_hit if hit else dur
             half_tt2 = 0.5 * tt * tt
@@ -1281,32 +1350,14 @@ def _rest_path_one(
     return (tx * u, ty * u), (tx * a, ty * a), ts
 
 
-def _first_hit_one(
-    faces: _Faces, x: Pair, v: Pair, b: Pair, T: float, r: float, faces_of: list[int], rest: int
-) -> tuple[float, int, Pair]:
-    """``Contacts._first_hits`` for one body: (time or inf, face or -1, normal)."""
-    L = len(faces.line_list)
-    best, face, normal = math.inf, -1, (0.0, 0.0)
-    for f in faces_of:
-        if f == rest:
-            continue
-        if f < L:
-            p, n, rho, two, lo, hi = faces.line_list[f]
-            t, nrm = line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, T)
-        else:
-            c, rho = faces.disc_list[f - L]
-            t, nrm = disc_hit_one(x, v, b, c, rho + r, T), (0.0, 0.0)
-        if t <= best and t < math.inf:  # ties: the last listed, as _first_hits
-            best, face, normal = t, f, nrm
-    if face >= L:
-        # A round face's normal from where the ball's centre is at the impact.
-        c = faces.disc_list[face - L][0]
-        dx = x[0] + v[0] * best + b[0] * (0.5 * best * best) - c[0]
-        dy = x[1] + v[1] * best + b[1] * (0.5 * best * best) - c[1]
-        length = math.sqrt(dx * dx + dy * dy)
-        safe = length if length > 0.0 else 1.0
-        normal = (dx / safe, dy / safe)
-    return best, face, normal
+def _disc_normal_one(c: Pair, x: Pair, v: Pair, b: Pair, t: float) -> Pair:
+    """The normal of a round face (centre c) at an impact at time t: from the centre to where
+    the ball's centre is then (``Contacts._first_hits``'s, for one body)."""
+    dx = x[0] + v[0] * t + b[0] * (0.5 * t * t) - c[0]
+    dy = x[1] + v[1] * t + b[1] * (0.5 * t * t) - c[1]
+    length = math.sqrt(dx * dx + dy * dy)
+    safe = length if length > 0.0 else 1.0
+    return (dx / safe, dy / safe)
 
 
 def _bounce_one(
@@ -1423,7 +1474,9 @@ class _FaceGrid:
     path cannot reach that far is skipped in one comparison, and the list of the faces that
     lie within ``pad`` of the cell, so a body that can reach one meets only those. Outside the
     grid every finite face is at least ``margin`` away. Lines without end (a Plane, a Box's
-    walls) are few and are checked against every body directly.
+    walls) are few: the grid covers a Box's corners too, its cells' bounds for the first look
+    (``gap``) count them as well, and the narrow pass checks them against each body near
+    one directly.
     """
 
     def __init__(self, faces: _Faces) -> None:
@@ -1435,6 +1488,8 @@ class _FaceGrid:
         self.inf_p = faces.p[inf_lines]
         self.inf_rho = faces.rho[inf_lines]
         self.inf_rho_up = self.inf_rho * (1.0 + 1e-8)
+        # The columns p_x, p_y, n_x, n_y, each a row to broadcast against a column of bodies.
+        self.inf_cols = tuple(np.ascontiguousarray(a) for a in (*self.inf_p.T, *self.inf_n.T))
         # n.x - (n.p + rho): the distance of x from each endless face.
         self.inf_c = _dot(self.inf_p, self.inf_n) + self.inf_rho
         fin_lines = np.flatnonzero(~faces.infinite)
@@ -1467,12 +1522,35 @@ class _FaceGrid:
         self.cap_rad[self.finite] = rad * (1.0 + 1e-8) + 1e-10 * (1.0 + np.sqrt(seg2))
         lo = np.minimum(A, Bq).min(axis=0) - rad.max()
         hi = np.maximum(A, Bq).max(axis=0) + rad.max()
+        covers = False  # whether the grid covers every endless face's point
+        if self.n_inf:
+            # The grid also covers the endless faces' points (a Box's corners) when that does
+            # not coarsen it much (a box at most 4 times the finite faces' extent), so a body
+            # in the box is looked up inside it, where the endless faces are in the bounds
+            # (below); outside, ``gap`` measures them.
+            lo2 = np.minimum(lo, self.inf_p.min(axis=0))
+            hi2 = np.maximum(hi, self.inf_p.max(axis=0))
+            if float((hi2 - lo2).max()) <= 4.0 * float((hi - lo).max()):
+                lo, hi = lo2, hi2
+                covers = True
         size = max(float((hi - lo).max()), 1e-6)
         self.margin = max(0.02 * size, 1e-3)
         self.lo = lo - self.margin
         span = (hi - lo) + 2.0 * self.margin
         cells = 384
         self.h = h = float(span.max()) / cells
+        if self.n_inf:
+            # A floor's (or a left wall's) line just below a cell's lower edge (by 1e-6 h):
+            # a body resting on it is then in a cell wholly above it (``_fast_lists``).
+            lo_grid = self.lo.copy()
+            for axis in (0, 1):
+                for k in range(self.n_inf):
+                    if self.inf_n[k, axis] == 1.0 and self.inf_n[k, 1 - axis] == 0.0:
+                        edge = float(self.inf_p[k, axis]) + 1e-6 * h
+                        lo_grid[axis] = edge - math.ceil((edge - self.lo[axis]) / h) * h
+                        break
+            span += self.lo - lo_grid  # less than h more: the extra cell below covers it
+            self.lo = lo_grid
         self.pad = 4.0 * h  # a body reaching at most this far meets only its cell's list
         #: Bounds are kept up to this distance; farther cells hold this (still a lower bound).
         self.far = 16.0 * h
@@ -1509,7 +1587,33 @@ class _FaceGrid:
         ring = np.full((nx + 2, ny + 2), self.margin)
         ring[1:-1, 1:-1] = bound
         self._ring = ring.reshape(-1)
+        # ``gap``'s bounds: the same with the endless faces in them, so inside the grid a
+        # lookup is the whole lower bound. The signed distance from a face, n.x - c, changes
+        # by at most |x - x'| between two points, so over a cell it is at least its value at
+        # the centre less half the diagonal (less 1e-9 h more, far beyond the rounding of
+        # these few operations: the reach compared with it is widened by 1e-9 of itself and
+        # TOUCH). In the ring (outside the grid) an endless face may be anywhere near: there
+        # ``gap`` adds the distances from them (``_outside`` marks those cells), or when they
+        # are all a Box's walls and the grid covers its corners, the ring holds -inf: a body
+        # outside the grid is outside the box, in the wall, and is always looked at.
+        self._gap_ring = self._ring
+        self._boxed = faces.boxed and covers
+        if self.n_inf:
+            both = bound.copy()
+            for k in range(self.n_inf):
+                (pnx, pny), c = self.inf_n[k], self.inf_c[k]
+                at = np.add.outer(gx * pnx, gy * pny)  # cx n_x + cy n_y, cell by cell
+                at -= c
+                at -= half_diag + 1e-9 * h
+                np.minimum(both, at, out=both)
+            ring = np.full((nx + 2, ny + 2), -np.inf if self._boxed else self.margin)
+            ring[1:-1, 1:-1] = both
+            self._gap_ring = ring.reshape(-1)
+            outside = np.ones((nx + 2, ny + 2), dtype=bool)
+            outside[1:-1, 1:-1] = False
+            self._outside = outside.reshape(-1)
         self._ring_lo = self.lo - h  # the ring's lower-left corner
+        self._tiles = (np.zeros(0), np.zeros(0))  # for ``cells``, grown as needed
         # The lists are kept by ring cell too; the ring's are empty. A body out in the ring
         # that reaches at most pad meets nothing finite: pad (4 h, at most 0.0108 of the
         # faces' extent plus margins) is less than the margin (0.02 of it, or 1e-3).
@@ -1520,21 +1624,123 @@ class _FaceGrid:
         counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2)).astype(np.intp)
         self.count = counts
         self.start = (np.cumsum(counts) - counts).astype(np.intp)
+        self._fast_lists(faces, A, Bq, rad, cell_parts, face_parts, gx, gy, half_diag)
+
+    def _fast_lists(
+        self,
+        faces: _Faces,
+        A: np.ndarray,
+        Bq: np.ndarray,
+        rad: np.ndarray,
+        cell_parts: list[np.ndarray],
+        face_parts: list[np.ndarray],
+        gx: np.ndarray,
+        gy: np.ndarray,
+        half_diag: float,
+    ) -> None:
+        """The lists for ``Contacts._narrow``'s quick way, ``table``: each cell's faces with
+        the endless ones among them, as rows of a table (-1 past the end).
+
+        An endless face is a half-plane: on its free side, n.(x - p) >= 0, the distance from
+        it is the distance from its line, which over the grid is the distance from the
+        line's piece between the projections of the grid's corners (the projection of a
+        point of the grid lies between those of the corners), grown by h at each end: a
+        capsule, listed and tested as the finite faces are. ``safe`` marks the cells wholly
+        on the free side of every endless line (every corner beyond it, with a margin for
+        rounding); the ring's are not safe, since the lists
+        hold nothing there. A body in a safe cell that reaches at most pad finds in its
+        cell's list every face it can reach, endless or not (a face within pad of the body is
+        within pad plus half the diagonal of the cell's centre, what the lists hold). The
+        endless faces come first in each list, in their order, then the finite ones: each
+        body's faces in the order the other way gives them (endless, then listed).
+        """
+        nx, ny = self.shape
+        h, pad = self.h, self.pad
+        safe = np.ones((nx + 2, ny + 2), dtype=bool)
+        wall_cells: list[np.ndarray] = []
+        wall_faces: list[np.ndarray] = []
+        if self.n_inf:
+            safe[:] = False
+            inner = np.ones((nx, ny), dtype=bool)
+            top = self.lo + np.array([nx, ny], dtype=float) * h
+            corners = np.array(
+                [[self.lo[0], self.lo[1]], [top[0], self.lo[1]], [self.lo[0], top[1]], top]
+            )
+            # A point is found in a cell (``cells``) up to the rounding of its coordinates
+            # less the grid's corner, a few ulps of the largest: the cells clear the lines
+            # by 1e-9 h and 1e-14 of that more.
+            slack = 1e-9 * h + 1e-14 * (1.0 + float(np.abs(corners).max()))
+            for k in range(self.n_inf):
+                p, n, rr = self.inf_p[k], self.inf_n[k], float(self.inf_rho[k])
+                t = np.array([-n[1], n[0]])
+                along = (corners - p) @ t
+                a = p + t * (float(along.min()) - h)
+                seg = t * (float(along.max()) - float(along.min()) + 2.0 * h)
+                seg2 = float(seg @ seg)
+                fid = int(self.inf_ids[k])
+                self.cap_a[fid] = a
+                self.cap_ab[fid] = seg
+                self.cap_inv[fid] = 1.0 / seg2
+                self.cap_rad[fid] = rr * (1.0 + 1e-8) + 1e-10 * (1.0 + math.sqrt(seg2))
+                # n.(x - p) at each cell's centre; every centre projects onto the capsule's
+                # segment, so its distance from the capsule is |n.(x - p)| - rr.
+                side = np.add.outer((gx - p[0]) * n[0], (gy - p[1]) * n[1])
+                di, dj = np.nonzero(np.abs(side) - (rr + half_diag) <= pad)
+                wall_cells.append(di * ny + dj)
+                wall_faces.append(np.full(len(di), fid, dtype=np.intp))
+                # n.(x - p) is linear: over the cell, least at a corner, by (|n_x| + |n_y|) h / 2
+                # below the centre's value.
+                inner &= side - (0.5 * h * (abs(n[0]) + abs(n[1])) + slack) >= 0.0
+            safe[1:-1, 1:-1] = inner
+        self.safe = safe.reshape(-1)
+        if wall_cells:
+            ii, jj = np.divmod(np.concatenate(wall_cells + cell_parts).astype(np.intp), ny)
+            cells_all = (ii + 1) * (ny + 2) + (jj + 1)
+            order = np.argsort(cells_all, kind="stable")
+            faces_sorted = np.concatenate(wall_faces + face_parts)[order]
+            cells_sorted = cells_all[order]
+            counts = np.bincount(cells_all, minlength=(nx + 2) * (ny + 2))
+        else:  # no endless faces: the lists are the finite ones, already sorted
+            faces_sorted, counts = self.faces_of, self.count
+            cells_sorted = np.repeat(np.arange(len(counts)), counts)
+        width = max(int(counts.max()), 1)
+        self.table: np.ndarray | None = None
+        if len(counts) * width <= 4_000_000:  # else (faces crowded in a cell) the other way
+            start = np.cumsum(counts) - counts
+            table = np.full((len(counts), width), -1, dtype=np.int32)
+            table[cells_sorted, np.arange(len(cells_sorted)) - start[cells_sorted]] = faces_sorted
+            self.table = table
+        # Each face's capsule numbers in one table (a row per face) for Contacts._narrow.
+        self.cap = np.column_stack([self.cap_a, self.cap_ab, self.cap_inv, self.cap_rad])
+
+    def listed_fast(self, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(body, face) pairs from ``table`` for bodies in safe cells reaching at most pad:
+        each body's listed faces, bodies in order, each body's faces in list order."""
+        assert self.table is not None
+        rows = self.table.take(cell, axis=0)
+        has = rows >= 0
+        fb, _ = np.nonzero(has)
+        return fb, rows[has].astype(np.intp)
 
     def cells(self, x: np.ndarray) -> np.ndarray:
         """Each point's cell (with the ring; a point outside the grid takes the ring cell
         nearest it): an index into the bounds (``gap``) and the lists (``listed``)."""
         nx, ny = self.shape
-        # Column by column: an (N, 2) array with a (2,) one costs ~3x more than two columns.
-        # Clipped to the ring first, so truncation toward zero is the floor.
-        scale = 1.0 / self.h
-        i = (x[:, 0] - self._ring_lo[0]) * scale
-        j = (x[:, 1] - self._ring_lo[1]) * scale
-        np.minimum(np.maximum(i, 0.0, out=i), nx + 1, out=i)
-        np.minimum(np.maximum(j, 0.0, out=j), ny + 1, out=j)
-        cell = i.astype(np.intp)
-        cell *= ny + 2
-        cell += j.astype(np.intp)
+        # The (N, 2) points as one flat array against the corner and the top repeated
+        # (x, y, x, y, ...): an (N, 2) array with a (2,) one costs ~3x more than two columns,
+        # and two columns twice the calls. Clipped to the ring first, so truncation toward
+        # zero is the floor. The same operations on each coordinate as column by column.
+        m = 2 * len(x)
+        if len(self._tiles[0]) < m:
+            k = max(len(x), len(self._tiles[0]))  # points: at least twice the last
+            self._tiles = (np.tile(self._ring_lo, k), np.tile([nx + 1.0, ny + 1.0], k))
+        ij = x.reshape(-1) - self._tiles[0][:m]
+        ij *= 1.0 / self.h
+        np.maximum(ij, 0.0, out=ij)
+        np.minimum(ij, self._tiles[1][:m], out=ij)
+        k_ij = ij.astype(np.intp)
+        cell = k_ij[0::2] * (ny + 2)
+        cell += k_ij[1::2]
         return cell
 
     def plane_distance(self, x: np.ndarray, k: int) -> np.ndarray:
@@ -1549,9 +1755,20 @@ class _FaceGrid:
         return x[:, 0] * nx + x[:, 1] * ny - c
 
     def gap(self, x: np.ndarray, cell: np.ndarray | None) -> np.ndarray:
-        """A lower bound (length units) on each point's distance to every face: the clearance
-        of its cell from the finite ones and its distance from each endless one."""
-        d = self._ring[cell] if cell is not None else np.full(len(x), np.inf)
+        """A lower bound (length units) on each point's distance to every face: its cell's
+        bound, which holds the endless faces too, or outside the grid the ring's clearance
+        from the finite faces and its distance from each endless one."""
+        if cell is not None:
+            d = self._gap_ring[cell]  # inside the grid, the endless faces are in its bounds
+            if self.n_inf and not self._boxed:
+                out = self._outside[cell]
+                if out.any():
+                    far = np.flatnonzero(out)
+                    xf = x.take(far, axis=0)
+                    for k in range(self.n_inf):
+                        d[far] = np.minimum(d[far], self.plane_distance(xf, k))
+            return d
+        d = np.full(len(x), np.inf)
         for k in range(self.n_inf):
             np.minimum(d, self.plane_distance(x, k), out=d)
         return d
@@ -1581,17 +1798,23 @@ class _FaceGrid:
         parts_b: list[np.ndarray] = []
         parts_f: list[np.ndarray] = []
         listed = reach <= self.pad
-        cnt = np.where(listed, self.count[cell], 0)
+        every = bool(listed.all())  # the usual case: no body reaches past its cell's list
+        cnt = self.count.take(cell) if every else np.where(listed, self.count[cell], 0)
         total = int(cnt.sum())
         if total:
             # Body b's k-th pair is the k-th face of its cell's list:
             # faces_of[start[cell_b] + k], with k = (pair index) - (b's first pair index).
-            first = np.cumsum(cnt) - cnt
+            first = np.cumsum(cnt)
+            first -= cnt
             parts_b.append(np.repeat(np.arange(len(reach)), cnt))
-            shift = np.repeat(self.start[cell] - first, cnt)
-            parts_f.append(self.faces_of[np.arange(total) + shift])
-        far = np.flatnonzero(~listed & (self._ring[cell] <= reach))
-        if len(far):
+            shift = self.start.take(cell)
+            shift -= first
+            shift = np.repeat(shift, cnt)
+            shift += np.arange(total)
+            parts_f.append(self.faces_of.take(shift))
+        if not every:
+            far = np.flatnonzero(~listed & (self._ring[cell] <= reach))
+        if not every and len(far):
             parts_b.append(np.repeat(far, self.n_finite))
             parts_f.append(np.tile(self.finite, len(far)))
         if not parts_b:

@@ -39,6 +39,12 @@ import math
 from typing import Any
 
 import numpy as np
+from numpy.linalg import _umath_linalg
+
+# The LAPACK eigenvalue routine np.linalg.eigvals calls, without its checks (about 10 us a
+# call: most of a lone quartic's cost). _eigvals_one checks what they would and otherwise
+# falls back to np.linalg.eigvals, so the answers and errors are the same.
+_LAPACK_EIGVALS = getattr(_umath_linalg, "eigvals", None)
 
 __all__ = [
     "quadratic_first_root",
@@ -186,8 +192,32 @@ def line_hit_one(
     g0 = side * d0 - rho
     if abs(g0) <= TOUCH * (1.0 + rho):
         g0 = 0.0
-    speed = math.sqrt(vx * vx + vy * vy)
-    t = quadratic_first_root_one(g0, side * vn, 0.5 * side * (bx * nx + by * ny), T, 1e-12 * speed)
+    g1 = side * vn
+    g2 = 0.5 * side * (bx * nx + by * ny)
+    # quadratic_first_root_one(g0, g1, g2, T, 1e-12 |V|), inlined (the same operations; the
+    # speed only where it is used): this is the innermost test of a step.
+    inf = math.inf
+    if g0 <= 0.0:
+        slack = 1e-12 * math.sqrt(vx * vx + vy * vy)
+        if g1 < -slack or (g1 <= slack and g2 < 0.0):
+            t = 0.0
+        else:
+            t = -g1 / g2 if g2 < 0.0 and g1 > 0.0 else inf
+    elif g2 == 0.0:
+        t = -g0 / g1 if g1 < 0.0 else inf
+    else:
+        disc = g1 * g1 - 4.0 * g2 * g0
+        if disc < 0.0:
+            return inf, (nx * side, ny * side)
+        sq = math.sqrt(max(disc, 0.0))
+        q = -0.5 * (g1 + math.copysign(sq, g1))
+        r1 = q / g2
+        r2 = g0 / q if q != 0.0 else inf
+        r1 = r1 if r1 >= 0.0 else inf
+        r2 = r2 if r2 >= 0.0 else inf
+        t = r1 if r1 < r2 else r2
+    if not t <= T:
+        t = inf
     if t != math.inf:
         xt = x + vx * t + bx * (0.5 * t * t)
         yt = y + vy * t + by * (0.5 * t * t)
@@ -381,12 +411,26 @@ def _first_root_eig_one(K: list[float], lower: float) -> float:
     comp[0] = [-K[d - 1 - j] / lead for j in range(d)]
     for i in range(1, d):
         comp[i][i - 1] = 1.0
-    roots = np.linalg.eigvals(np.array(comp))
+    roots = _eigvals_one(comp)
     best = math.inf
     for re, im in zip(roots.real.tolist(), roots.imag.tolist(), strict=True):
         if abs(im) <= 1e-6 * (1.0 + abs(re)) and lower < re <= 1.0 + 1e-9 and re < best:
             best = re
     return best
+
+
+def _eigvals_one(comp: list[list[float]]) -> np.ndarray:
+    """``np.linalg.eigvals`` of one small real matrix (a list of rows), the same bits: the
+    same LAPACK routine, called directly when the matrix is finite (np.linalg.eigvals checks
+    that first) and kept only when every eigenvalue came out finite (LAPACK did not fail);
+    anything else goes to np.linalg.eigvals itself, for its answer or its error."""
+    a = np.array(comp)
+    if _LAPACK_EIGVALS is not None and math.isfinite(sum(map(sum, comp))):
+        with np.errstate(all="ignore"):
+            w = _LAPACK_EIGVALS(a, signature="d->D")
+        if math.isfinite(float(np.abs(w).sum())):
+            return w
+    return np.linalg.eigvals(a)
 
 
 def _polish(K: np.ndarray, x: np.ndarray) -> np.ndarray:
