@@ -58,6 +58,8 @@ __all__ = ["Link", "Rod", "Cable", "Pin", "LinkSolver", "TOLERANCE"]
 TOLERANCE = 1e-12
 #: Newton iterations before a step counts as past what the solver can hold.
 MAX_ITERATIONS = 25
+#: Up to this many links that share no body are solved one by one in Python floats.
+APART = 16
 
 
 def _point(value: Any, name: str) -> Vector:
@@ -236,6 +238,9 @@ class LinkSolver:
         self.e = np.array([k.restitution for k in rods], dtype=float)
         self.moved = False
         self.stretched: list[Link] = []  # links past what the last step could hold
+        # A few links that share no body are solved one by one in floats (_resolve_one).
+        ends = np.concatenate([self.i, self.j[self.j >= 0]])
+        self.apart = len(rods) <= APART and len(np.unique(ends)) == len(ends)
 
     def _ends(self, X: np.ndarray) -> np.ndarray:
         """Each link's vector from its other end to its body."""
@@ -293,11 +298,13 @@ class LinkSolver:
             return x, v
         for link in self.links:
             link.impulse = 0.0
-        if K == 1:
-            # One link (a pendulum, a lamp on a cable): the same arithmetic in floats.
+        if self.apart:
+            # Links that share no body (a pendulum, a lamp on a cable, the rods of a cradle):
+            # each link's equation alone, in floats.
             if not self.moved:
                 x, v = x.copy(), v.copy()
-            self._resolve_one(x0, x, v1, v, w, dt, kinked)
+            for k in range(K):
+                self._resolve_one(k, x0, x, v1, v, w, dt, kinked)
             return x, v
         n = len(x)
         L = self.L
@@ -392,6 +399,7 @@ class LinkSolver:
 
     def _resolve_one(
         self,
+        k: int,
         x0: np.ndarray,
         x: np.ndarray,
         v1: np.ndarray,
@@ -400,7 +408,8 @@ class LinkSolver:
         dt: float,
         kinked: np.ndarray | None,
     ) -> None:
-        """``resolve`` for a World with one link, in place on (x, v), in Python floats.
+        """``resolve`` for link k alone, in place on (x, v), in Python floats (a World whose
+        links share no body: each is then a problem of its own).
 
         With one link Newton's equation is a quadratic: |d + s lam r|^2 = L^2 with s = w_i +
         w_j, so a lam^2 + b lam + c = 0 with a = s^2 |r|^2, b = 2 s (d . r), c = |d|^2 - L^2;
@@ -408,15 +417,15 @@ class LinkSolver:
         sign(b) sqrt(b^2 - 4ac)) / 2, roots q / a and c / q). The speed along the link then
         needs mu = (target - u) / s.
         """
-        link = self.links[0]
-        i, j = int(self.i[0]), int(self.j[0])
-        L, rigid = float(self.L[0]), bool(self.rigid[0])
+        link = self.links[k]
+        i, j = int(self.i[k]), int(self.j[k])
+        L, rigid = float(self.L[k]), bool(self.rigid[k])
         wi = float(w[i])
         wj = float(w[j]) if j >= 0 else 0.0
         s = wi + wj
         if s == 0.0:
             return
-        px, py = (float(x[j, 0]), float(x[j, 1])) if j >= 0 else (self.p[0, 0], self.p[0, 1])
+        px, py = (float(x[j, 0]), float(x[j, 1])) if j >= 0 else (self.p[k, 0], self.p[k, 1])
         dx, dy = float(x[i, 0]) - px, float(x[i, 1]) - py
         length2 = dx * dx + dy * dy
         if not rigid and length2 <= L * L:
@@ -473,7 +482,7 @@ class LinkSolver:
         if not rigid:
             sl = math.sqrt(sx * sx + sy * sy)
             if sl < L * (1.0 - 1e-9):  # slack as the step began: it snaps taut in it
-                target = -float(self.e[0]) * max(parting(v1), 0.0)
+                target = -float(self.e[k]) * max(parting(v1), 0.0)
         u = parting(v)
         mu = (target - u) / s
         if not rigid and mu > 0.0 and u <= target:
