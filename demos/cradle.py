@@ -58,6 +58,7 @@ __all__ = [
     "ANGLE",
     "BALLS",
     "COLOURS",
+    "faded",
     "DT",
     "G",
     "HEAVY",
@@ -252,7 +253,7 @@ class HungCradle(Cradle):
 # -- drawing --------------------------------------------------------------------------------
 
 
-def _faded(colour: Color, amount: float) -> Color:
+def faded(colour: Color, amount: float) -> Color:
     """``colour`` mixed toward white: amount 1 is the colour, 0 white."""
     r, g, b = colour
     return (
@@ -384,17 +385,17 @@ class CradleScene(Scene):
                     "midtop",
                 )
 
-    def _bars(self, surface: pygame.Surface, velocities: Sequence[float]) -> None:
-        """Each ball's velocity along the row as a bar, with its value, on one scale."""
+    def _bar_box(self, surface: pygame.Surface, title: str) -> tuple[float, pygame.Rect]:
+        """The velocity bars' white box with its title; (scale s, the box)."""
         s, box = self.s, self.bars
         pygame.draw.rect(surface, (255, 255, 255), box, border_radius=4)
         pygame.draw.rect(surface, GRID, box, 1, border_radius=4)
-        draw_text(
-            surface,
-            "velocity of each ball  m/s",
-            (box.left + 6 * s, box.top + 4 * s),
-            round(16 * s),
-        )
+        draw_text(surface, title, (box.left + 6 * s, box.top + 4 * s), round(16 * s))
+        return s, box
+
+    def _bars(self, surface: pygame.Surface, velocities: Sequence[float]) -> None:
+        """Each ball's velocity along the row as a bar, with its value, on one scale."""
+        s, box = self._bar_box(surface, "velocity of each ball  m/s")
         bottom, scale = self.bar_zero, self.bar_scale
         left = box.left + round(30 * s)
         # Grid lines every 0.5 m/s, numbered every 1 m/s.
@@ -595,15 +596,7 @@ class HungScene(CradleScene):
 
     def _bars(self, surface: pygame.Surface, velocities: Sequence[float]) -> None:
         """Each ball's horizontal velocity as a bar up (to the right) or down (to the left)."""
-        s, box = self.s, self.bars
-        pygame.draw.rect(surface, (255, 255, 255), box, border_radius=4)
-        pygame.draw.rect(surface, GRID, box, 1, border_radius=4)
-        draw_text(
-            surface,
-            "horizontal velocity of each ball  m/s",
-            (box.left + 6 * s, box.top + 4 * s),
-            round(16 * s),
-        )
+        s, box = self._bar_box(surface, "horizontal velocity of each ball  m/s")
         zero, scale = self.bar_zero, self.bar_scale
         left, right = box.left + round(30 * s), box.right - round(8 * s)
         top = int(self.v_top)

@@ -44,6 +44,7 @@ import pygame
 from demos.bench.pendulum import period
 from demos.bounce import dashed, draw_text  # the legible text and dashes of the bounce lesson
 from demos.cli import Demo
+from demos.cradle import faded  # colours mixed toward white, as the cradle's strobe fades
 from engine import Body, Pin, Rod, Vector, World
 from engine.forces import Gravity
 from engine.render import GRID, INK, MUTED, PAPER, Camera, Plot, Scene
@@ -332,16 +333,6 @@ class Chain:
 # -- drawing --------------------------------------------------------------------------------
 
 
-def _faded(colour: Color, amount: float) -> Color:
-    """``colour`` mixed toward white: amount 1 is the colour, 0 white."""
-    r, g, b = colour
-    return (
-        round(255 - (255 - r) * amount),
-        round(255 - (255 - g) * amount),
-        round(255 - (255 - b) * amount),
-    )
-
-
 class PendulumScene(Scene):
     """What the three scenes share: the layout (the motion left, plots right) and the title."""
 
@@ -531,10 +522,10 @@ class SingleScene(PendulumScene):
             p = self.single.bob.pos
             fade = 0.25 + 0.75 * (k + 1) / len(shown)
             pygame.draw.line(
-                surface, _faded(ROD, fade * 0.5), self.camera.point((0.0, 0.0)),
+                surface, faded(ROD, fade * 0.5), self.camera.point((0.0, 0.0)),
                 self.camera.point((p.x, p.y)), 1,
             )  # fmt: skip
-            self.bob(surface, (p.x, p.y), _faded(BOB, fade), 0.05)
+            self.bob(surface, (p.x, p.y), faded(BOB, fade), 0.05)
 
 
 class DoubleScene(PendulumScene):
@@ -579,7 +570,7 @@ class DoubleScene(PendulumScene):
             points = path[max(0, shown - trail) : shown]
             if len(points) >= 2:
                 pygame.draw.lines(
-                    surface, _faded(colour, 0.35), False, [self.camera.point(p) for p in points], 2
+                    surface, faded(colour, 0.35), False, [self.camera.point(p) for p in points], 2
                 )
         for copy, colour in ((d.a, COPY_A), (d.b, COPY_B)):
             p1 = copy.world.position_of(copy.bobs[0], alpha)
@@ -643,7 +634,7 @@ class DoubleScene(PendulumScene):
                 p = copy.bobs[1].pos
                 pygame.draw.circle(
                     surface,
-                    _faded(colour, fade),
+                    faded(colour, fade),
                     self.camera.point((p.x, p.y)),
                     max(2, round(2 * s)),
                 )
@@ -749,9 +740,9 @@ class ChainScene(PendulumScene):
             fade = 0.2 + 0.8 * (k + 1) / len(shown)
             points = [(0.0, 0.0)] + [(b.pos.x, b.pos.y) for b in c.bobs]
             pixels = [self.camera.point(p) for p in points]
-            pygame.draw.lines(surface, _faded(ROD, fade * 0.6), False, pixels, 1)
+            pygame.draw.lines(surface, faded(ROD, fade * 0.6), False, pixels, 1)
             for p in pixels[1:]:
-                pygame.draw.circle(surface, _faded(CHAIN, fade), p, max(3, round(3 * s)))
+                pygame.draw.circle(surface, faded(CHAIN, fade), p, max(3, round(3 * s)))
 
 
 DEMO = Demo(

@@ -68,7 +68,8 @@ class BodyStore:
         self.group = np.zeros(0, dtype=np.int64)
         self.categories = np.zeros(0, dtype=np.int64)
         self.mask = np.zeros(0, dtype=np.int64)
-        # Kinematic bodies (moved by the game: no force acts on them, infinite mass in contacts).
+        # Bodies held by the game or a pin (Body.kinematic, engine.links.Pin): no force acts
+        # on them, and contacts and links take their mass as infinite.
         self.kinematic = np.zeros(0, dtype=bool)
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
 
