@@ -354,9 +354,10 @@ class LinkSolver:
         else:  # the set kept changing: solve the last one as it stands
             lam_sel, ok = self._positions(x, r, w, np.flatnonzero(active), n)
         sel = np.flatnonzero(active)
-        lam[sel] = lam_sel
-        dx = self._spread(n, w, lam_sel[:, None] * r[sel], sel)
-        if not ok:
+        if ok:
+            lam[sel] = lam_sel
+            dx = self._spread(n, w, lam_sel[:, None] * r[sel], sel)
+        else:  # Newton's multipliers are no use: the fallback's move is not along r
             dx = self._project(x, w, sel, n)
         x += dx
         v += dx * (1.0 / dt)
