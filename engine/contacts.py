@@ -236,6 +236,9 @@ class Contacts:
         #: arrays cost a few hundred numpy calls a round whatever their size, the floats about
         #: 12 us a body: measured, the arrays win from about 100 rows (a 2-core machine).
         self.few = 100
+        #: Fewer resting bodies than this are checked for staying put (``_asleep``) in Python
+        #: floats: a dozen array calls (~30 us) cost more than a few rows' arithmetic.
+        self.few_resting = 8
         self.moved = False  # whether the last step's contacts changed any body's state
 
     # -- colliders and bodies ---------------------------------------------------------------
@@ -640,6 +643,8 @@ class Contacts:
     ) -> np.ndarray:
         """Resting rows that stay exactly where they are this step: still (v = 0), pressed
         onto their face (a_n <= 0) and held by static friction (|a_t| <= mu |a_n|)."""
+        if len(res) < self.few_resting:
+            return self._asleep_few(res, x0, v0, W, friction)
         still = res[(v0[res, 0] == 0.0) & (v0[res, 1] == 0.0)]
         if not len(still):
             return still
@@ -650,6 +655,36 @@ class Contacts:
         a_t = w[:, 1] * nrm[:, 0] - w[:, 0] * nrm[:, 1]  # along the tangent (-n_y, n_x)
         held = np.abs(a_t) <= friction[still] * self.faces.mu[f] * -a_n * (1.0 + 1e-12)
         return still[(a_n <= 0.0) & held]
+
+    def _asleep_few(
+        self,
+        res: np.ndarray,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        W: np.ndarray,
+        friction: np.ndarray,
+    ) -> np.ndarray:
+        """``_asleep`` for a few rows, in Python floats (the same operations, so the same
+        answer): a dozen array calls cost more than these few rows' arithmetic."""
+        faces = self.faces
+        rows = res.tolist()
+        V = v0.take(res, axis=0).tolist()
+        X = x0.take(res, axis=0).tolist()
+        Wl = W.take(res, axis=0).tolist()
+        mub = friction.take(res).tolist()
+        f_of = self.rest.take(res).tolist()
+        out = []
+        for i, row in enumerate(rows):
+            if V[i][0] != 0.0 or V[i][1] != 0.0:
+                continue
+            f = f_of[i]
+            nx, ny, _ = _normal_one(faces, f, (X[i][0], X[i][1]))
+            wx, wy = Wl[i]
+            a_n = wx * nx + wy * ny
+            a_t = wy * nx - wx * ny  # along the tangent (-n_y, n_x)
+            if a_n <= 0.0 and abs(a_t) <= mub[i] * faces.mu_list[f] * -a_n * (1.0 + 1e-12):
+                out.append(row)
+        return np.array(out, dtype=np.intp)
 
     def _solve(
         self,

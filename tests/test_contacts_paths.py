@@ -4,8 +4,8 @@ A few bodies are solved one at a time in Python floats (``Contacts._solve_few``,
 ``*_one`` kernels of ``engine.impact``), many in numpy arrays (``Contacts._solve``, the ``*s``
 kernels): the same operations in the same order, so the same results. Here both run on the
 same random pairs and scenes and are compared, the scenes step by step with every state and
-event (the paths are chosen with ``Contacts.few``: 0 always takes the arrays, a huge number
-always the floats).
+event (the paths are chosen with ``Contacts.few`` and ``Contacts.few_resting``: 0 always
+takes the arrays, a huge number always the floats).
 """
 
 from __future__ import annotations
@@ -182,8 +182,8 @@ def test_one_at_a_time_and_arrays_give_the_same_steps(seed: int, method: str) ->
     arrays, bodies_a = scene(seed, method)
     floats, bodies_f = scene(seed, method)
     assert arrays._contacts is not None and floats._contacts is not None
-    arrays._contacts.few = 0
-    floats._contacts.few = 10**9
+    arrays._contacts.few = arrays._contacts.few_resting = 0
+    floats._contacts.few = floats._contacts.few_resting = 10**9
     dt = 1.0 / 60.0
     struck = rested = 0
     for step in range(240):
@@ -240,8 +240,8 @@ def rare_cases(method: str) -> World:
 def test_rare_cases_give_the_same_steps(method: str) -> None:
     arrays, floats = rare_cases(method), rare_cases(method)
     assert arrays._contacts is not None and floats._contacts is not None
-    arrays._contacts.few = 0
-    floats._contacts.few = 10**9
+    arrays._contacts.few = arrays._contacts.few_resting = 0
+    floats._contacts.few = floats._contacts.few_resting = 10**9
     for step in range(120):
         arrays.step(1.0 / 60.0)
         floats.step(1.0 / 60.0)
