@@ -116,6 +116,24 @@ def _unit(d: np.ndarray, dist: np.ndarray) -> np.ndarray:
     return out
 
 
+def _sorted_unique(a: np.ndarray) -> np.ndarray:
+    """``np.unique(a)`` for integers: sorted, without repeats (a sort and a mask; numpy 2's
+    np.unique hashes first, several times slower on the ~10^4 keys of a pile)."""
+    s = np.sort(a)
+    if len(s) > 1:
+        s = s[np.concatenate(([True], s[1:] != s[:-1]))]
+    return s
+
+
+def _isin_sorted(a: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """``np.isin(a, s)`` for ``s`` sorted without repeats: one binary search per element."""
+    if not len(s):
+        return np.zeros(len(a), dtype=bool)
+    pos = np.searchsorted(s, a)
+    pos[pos == len(s)] = 0
+    return s[pos] == a
+
+
 def _grid_pairs(P: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
     """Index pairs (a < b) of points in the same or neighbouring cells of a grid of side h.
 
@@ -451,7 +469,7 @@ class Collisions:
                 fb.append(np.maximum(j, k))
             ia = np.concatenate([ia, *fa])
             ib = np.concatenate([ib, *fb])
-            key = np.unique(ia.astype(np.int64) * len(P) + ib)
+            key = _sorted_unique(ia.astype(np.int64) * len(P) + ib)
             ia, ib = key // len(P), key % len(P)
         if len(ia):
             D = P[ia] - P[ib]
@@ -946,7 +964,7 @@ class Collisions:
         """Began: each impact, and each pair at rest touching now that did not before; ended:
         each impact whose pair no longer touches, and each pair that touched and no longer
         does. Held as (rows, other rows, points, normals, impulses, times) arrays."""
-        keys = np.unique(keys)
+        keys = _sorted_unique(keys)
         before = self._touching
         self._touching = keys
         if not impacts and np.array_equal(keys, before):
@@ -959,13 +977,14 @@ class Collisions:
                 self._began.append((ga, gb, point, nrm, P, t))
                 k = ga.astype(np.int64) * n + gb
                 struck = np.concatenate([struck, k])
-                apart = ~np.isin(k, keys)
+                apart = ~_isin_sorted(k, keys)
                 if apart.any():
                     self._ended.append(
                         (ga[apart], gb[apart], point[apart], nrm[apart], P[apart], t[apart])
                     )
-        new = keys[~np.isin(keys, before) & ~np.isin(keys, struck)]
-        gone = before[~np.isin(before, keys) & ~np.isin(before, struck)]
+        struck = _sorted_unique(struck)
+        new = keys[~_isin_sorted(keys, before) & ~_isin_sorted(keys, struck)]
+        gone = before[~_isin_sorted(before, keys) & ~_isin_sorted(before, struck)]
         for which, sel in ((self._began, new), (self._ended, gone)):
             if len(sel):
                 zero = np.zeros((len(sel), 2))
@@ -1002,8 +1021,8 @@ class Collisions:
             moving = (_norm(v[awake]) > self._still_speed) | touching
             if moving.any():
                 sleeper = sleeper[moving]
-                groups = np.unique(self._group[sleeper])
-                woken = asleep & np.isin(self._group, groups)
+                groups = _sorted_unique(self._group[sleeper])
+                woken = asleep & _isin_sorted(self._group, groups)
                 asleep[woken] = False
                 self.still[woken] = 0.0
         return a, b
@@ -1060,8 +1079,8 @@ class Collisions:
                 break
             label = new
         # A group sleeps when every body in it is ready.
-        not_ready = np.unique(label[member & ~ready])
-        sleepers = member & ready & ~np.isin(label, not_ready)
+        not_ready = _sorted_unique(label[member & ~ready])
+        sleepers = member & ready & ~_isin_sorted(label, not_ready)
         if sleepers.any():
             asleep[sleepers] = True
             self._group = np.where(sleepers, label, self._group)
@@ -1078,8 +1097,13 @@ class _Bands:
     with the bands below, already final, are made to hold with the lower body taken as
     immovable. Contacts within one band (side by side) are left to the iterations.
 
-    Rows are kept band after band in flat arrays, so a band is a slice (no copy); within a
-    band each upper body's rows share its change (1 / their count: mass splitting again).
+    The passes are a Python loop over the bands (each band waits for the ones below), so
+    each band's work is kept to a few array calls on short slices. Rows are kept sorted by
+    (band, upper body) in flat arrays: a band is a slice (no copy), and within it each upper
+    body's rows are a run, so one ``np.add.reduceat`` sums their pushes on it, each row's
+    scaled by 1 / the run's length (mass splitting again). Vectors are complex numbers
+    (x + iy), as in the iterations: with the unit normal n, d conj(n) is (d.n) + i (d.t) for
+    the tangent t = i n, and the impulse (p_n, p_t) is n (p_n + i p_t).
     """
 
     def __init__(
@@ -1089,13 +1113,31 @@ class _Bands:
         lower: np.ndarray,
         sign: np.ndarray,
         bounds: np.ndarray,
-        bodies: list[tuple[np.ndarray, np.ndarray]],
-        share: np.ndarray,
         nU: int,
+        fixed: np.ndarray | None,
     ) -> None:
         self.rows, self.upper, self.lower, self.sign = rows, upper, lower, sign
-        self.bounds, self.bodies, self.share, self.nU = bounds, bodies, share, nU
-        self.fixed: np.ndarray | None = None  # kinematic bodies: held, as the static world
+        self.bounds, self.nU = bounds, nU
+        # Runs of one upper body: where each starts (flat), its body, and which run each row
+        # is in, counted from its band's first run; each band's first run.
+        new = np.ones(len(rows), dtype=bool)
+        new[1:] = upper[1:] != upper[:-1]
+        new[bounds[1:-1]] = True  # a band starts a run, even on the same body
+        starts = np.flatnonzero(new)
+        run = np.cumsum(new) - 1
+        self.run_bounds = run[bounds[:-1]]
+        self.run_bounds = np.append(self.run_bounds, len(starts))
+        self.run_body = upper[starts]
+        band_of_run = np.repeat(np.arange(len(bounds) - 1), np.diff(self.run_bounds))
+        self.local_starts = starts - bounds[:-1][band_of_run]
+        self.local_run = (
+            run - self.run_bounds[:-1][np.repeat(np.arange(len(bounds) - 1), np.diff(bounds))]
+        )
+        lengths = np.diff(np.append(starts, len(rows)))
+        self.share = 1.0 / lengths[run]
+        self.face = lower == nU
+        self.band_has_face = np.logical_or.reduceat(self.face, bounds[:-1])
+        self.supported = self._supported(fixed)
 
     @classmethod
     def of(
@@ -1129,46 +1171,38 @@ class _Bands:
         rows = np.flatnonzero(bandx[np.where(a_up, rb, ra)] < bandx[upper])
         if not len(rows):
             return None
-        rows = rows[np.argsort(bandx[upper[rows]], kind="stable")]
-        cut = np.flatnonzero(np.diff(bandx[upper[rows]])) + 1
+        # Sorted by (band, upper body): bands are slices, a body's rows in a band are a run.
+        key = bandx[upper[rows]] * (nU + 1) + upper[rows]
+        order = np.argsort(key, kind="stable")
+        rows, key = rows[order], key[order]
+        band_of = key // (nU + 1)
+        cut = np.flatnonzero(band_of[1:] != band_of[:-1]) + 1
         bounds = np.concatenate([[0], cut, [len(rows)]])
         up_rows = upper[rows]
         lo_rows = np.where(a_up[rows], rb[rows], ra[rows])
-        # Each band's upper bodies without repeats, for all bands at once: keys (band, body)
-        # sorted, so a band's bodies are one run of them.
-        key = bandx[up_rows] * (nU + 1) + up_rows
-        ukey, inv_all = np.unique(key, return_inverse=True)
-        share = 1.0 / np.bincount(inv_all)[inv_all]
-        first = np.searchsorted(ukey, bandx[up_rows[bounds[:-1]]] * (nU + 1))
-        last = np.append(first[1:], len(ukey))
-        bodies = [
-            (ukey[first[i] : last[i]] % (nU + 1), inv_all[bounds[i] : bounds[i + 1]] - first[i])
-            for i in range(len(bounds) - 1)
-        ]
         sign = np.where(a_up[rows], 1.0, -1.0)
-        bands = cls(rows, up_rows, lo_rows, sign, bounds, bodies, share, nU)
-        bands.fixed = fixed
-        return bands
+        return cls(rows, up_rows, lo_rows, sign, bounds, nU, fixed)
 
-    def _supported(self) -> list[np.ndarray | None]:
-        """Per band, which of its rows rest on something held (a face, or a body that rests on
-        one, band below band) as 1.0, the others 0.0; None for a band with none. The passes
-        act on those only, so that bodies falling freely together are left alone (taking a
-        lower one as immovable would take momentum out of them)."""
+    def _supported(self, fixed: np.ndarray | None) -> np.ndarray:
+        """Per row, 1.0 if it rests on something held (a face, or a body that rests on one,
+        band below band), else 0.0. The passes act on those rows only, so that bodies falling
+        freely together are left alone (taking a lower one as immovable would take momentum
+        out of them)."""
         held = np.zeros(self.nU + 1, dtype=bool)
         held[self.nU] = True  # the static world
-        if self.fixed is not None:
-            held[: self.nU][self.fixed] = True
-        out: list[np.ndarray | None] = []
-        lo = self.lower
-        for i, (uu, inv) in enumerate(self.bodies):
-            sup = held[lo[self.bounds[i] : self.bounds[i + 1]]]
-            if sup.any():
-                held[uu[np.bincount(inv, sup, minlength=len(uu)) > 0]] = True
-                out.append(sup.astype(float))
-            else:
-                out.append(None)
-        return out
+        if fixed is not None:
+            held[: self.nU][fixed] = True
+        sup = np.zeros(len(self.rows), dtype=bool)
+        lo, b, rb = self.lower, self.bounds, self.run_bounds
+        for i in range(len(b) - 1):
+            a0, a1 = b[i], b[i + 1]
+            s = held[lo[a0:a1]]
+            if s.any():
+                sup[a0:a1] = s
+                runs = np.logical_or.reduceat(s, self.local_starts[rb[i] : rb[i + 1]])
+                held[self.run_body[rb[i] : rb[i + 1]][runs]] = True
+        self.band_supported = np.logical_or.reduceat(sup, b[:-1])
+        return sup.astype(float)
 
     def velocity(
         self,
@@ -1190,95 +1224,114 @@ class _Bands:
         """
         rows, up, lo = self.rows, self.upper, self.lower
         n = nrm[rows] * self.sign[:, None]
-        nx, ny = n[:, 0].copy(), n[:, 1].copy()
-        least, mu, share = target[rows], fric[rows], self.share
-        budget0 = mu * lam_n[rows] * wx[up]
-        d = Vx[up] - Vx[lo]
-        vn = d[:, 0] * nx + d[:, 1] * ny
-        vt = d[:, 1] * nx - d[:, 0] * ny  # along the tangent (-n_y, n_x)
-        need = (least - vn > tol) | (np.abs(vt) > tol)
-        moved = np.zeros(len(Vx), dtype=bool)
-        b = self.bounds
-        supported = self._supported()
-        for i, (uu, inv) in enumerate(self.bodies):
+        nc = n[:, 0] + 1j * n[:, 1]
+        ncc = np.conj(nc)
+        least, mu = target[rows], fric[rows]
+        scale = self.share * self.supported  # a row on nothing held is left to the iterations
+        budget = mu * lam_n[rows] * wx[up]
+        Vc = Vx[:, 0] + 1j * Vx[:, 1]
+        z = (Vc[up] - Vc[lo]) * ncc
+        need = np.logical_or.reduceat(
+            (least - z.real > tol) | (np.abs(z.imag) > tol), self.bounds[:-1]
+        )
+        need &= self.band_supported
+        moved = np.zeros(len(Vc), dtype=bool)
+        b, rb = self.bounds, self.run_bounds
+        local_run, local_starts, run_body = self.local_run, self.local_starts, self.run_body
+        for i in np.flatnonzero(self.band_supported).tolist():
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
-            sup = supported[i]
-            if sup is None or (not need[a0:a1].any() and not moved[low].any()):
+            if not need[i] and not moved[low].any():
                 continue
-            bx, by, bl, bm, bs = nx[a0:a1], ny[a0:a1], least[a0:a1], mu[a0:a1], share[a0:a1]
-            bs = bs * sup  # a contact on a body that rests on nothing is left to the iterations
-            budget = budget0[a0:a1]
-            k = len(uu)
-            Vu = Vx[uu]
-            Vl = Vx[low]  # final already: lower bands came first
+            r0, r1 = rb[i], rb[i + 1]
+            uu, inv, starts = run_body[r0:r1], local_run[a0:a1], local_starts[r0:r1]
+            bc, bcc, bl, bm, bs = nc[a0:a1], ncc[a0:a1], least[a0:a1], mu[a0:a1], scale[a0:a1]
+            bud = budget[a0:a1]
+            Vu = Vc[uu]
+            Vl = Vc[low]  # final already: lower bands came first
+            changed = False
             for _ in range(SHOCK_ITERATIONS):
-                d = Vu[inv] - Vl
-                push = np.maximum(bl - (d[:, 0] * bx + d[:, 1] * by), 0.0) * bs
-                budget = budget + bm * push
-                slide = np.clip((d[:, 1] * bx - d[:, 0] * by) * bs, -budget, budget)
-                budget = budget - np.abs(slide)
+                z = (Vu[inv] - Vl) * bcc
+                push = bl - z.real
+                np.maximum(push, 0.0, out=push)
+                push *= bs
+                bud += bm * push
+                slide = z.imag * bs
+                np.minimum(np.maximum(slide, -bud, out=slide), bud, out=slide)
+                bud -= np.abs(slide)
                 if not (push.any() or slide.any()):
                     break
-                # dv = n push - t slide, with t = (-n_y, n_x)
-                Vu[:, 0] += np.bincount(inv, bx * push + by * slide, minlength=k)
-                Vu[:, 1] += np.bincount(inv, by * push - bx * slide, minlength=k)
+                Vu += np.add.reduceat(bc * (push - 1j * slide), starts)
+                changed = True
+            if changed:
+                Vc[uu] = Vu
                 moved[uu] = True
-            Vx[uu] = Vu
+        Vx[:, 0], Vx[:, 1] = Vc.real, Vc.imag
 
     def position(
         self, X: np.ndarray, X_ref: np.ndarray, nrm: np.ndarray, gap: np.ndarray, r: np.ndarray
     ) -> None:
         """From the ground up: each body moved out of the bodies below it (past SLOP)."""
         nU = self.nU
-        rows, up, lo = self.rows, self.upper, self.lower
-        Xx = np.vstack([X, np.zeros((1, 2))])
+        rows, up, lo, face = self.rows, self.upper, self.lower, self.face
+        Xc = np.zeros(nU + 1, dtype=complex)
+        Xc[:nU] = X[:, 0] + 1j * X[:, 1]
         rx = np.append(r, 0.0)
-        face = lo == nU
         n0 = nrm[rows] * self.sign[:, None]
+        nc = n0[:, 0] + 1j * n0[:, 1]
+        ncc = np.conj(nc)
         ru = r[up]
         R = ru + rx[lo]
         slop = SLOP * np.where(face, ru, np.minimum(ru, rx[lo]))
         # A face's overlap now: -gap as measured, less how far the body has moved along the
-        # face's normal since (base - X.n).
+        # face's normal since (base - X.n). (The static world's X is 0: d = X for a face.)
         base = -gap[rows] + _dot(X_ref[up], n0)
-        d = Xx[up] - Xx[lo]
-        over = np.where(face, base - _dot(Xx[up], n0), R - _norm(d))
-        need = over > slop
+        d = Xc[up] - Xc[lo]
+        over = np.where(face, base - (d * ncc).real, R - np.abs(d))
+        need = np.logical_or.reduceat(over > slop, self.bounds[:-1]) & self.band_supported
+        scale = self.share * self.supported
         moved = np.zeros(nU + 1, dtype=bool)
-        b, share = self.bounds, self.share
-        supported = self._supported()
-        for i, (uu, inv) in enumerate(self.bodies):
+        b, rb = self.bounds, self.run_bounds
+        local_run, local_starts, run_body = self.local_run, self.local_starts, self.run_body
+        has_face = self.band_has_face
+        for i in np.flatnonzero(self.band_supported).tolist():
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
-            sup = supported[i]
-            if sup is None or (not need[a0:a1].any() and not moved[low].any()):
+            if not need[i] and not moved[low].any():
                 continue
-            bf, bn, bR, bslop, bbase, bs = (
-                face[a0:a1],
-                n0[a0:a1],
-                R[a0:a1],
-                slop[a0:a1],
-                base[a0:a1],
-                share[a0:a1],
-            )
-            bs = bs * sup
-            k = len(uu)
-            Xu = Xx[uu]
-            Xl = Xx[low]
+            r0, r1 = rb[i], rb[i + 1]
+            uu, inv, starts = run_body[r0:r1], local_run[a0:a1], local_starts[r0:r1]
+            bR, bslop, bs = R[a0:a1], slop[a0:a1], scale[a0:a1]
+            faces = bool(has_face[i])
+            if faces:
+                bf, bc, bcc, bbase = face[a0:a1], nc[a0:a1], ncc[a0:a1], base[a0:a1]
+            Xu = Xc[uu]
+            Xl = Xc[low]
+            changed = False
             for _ in range(SHOCK_ITERATIONS):
                 d = Xu[inv] - Xl
-                dist = _norm(d)
-                n = np.where(bf[:, None], bn, _unit(d, dist))
-                over_b = np.where(bf, bbase - _dot(Xu[inv], bn), bR - dist)
-                push = np.maximum(over_b - bslop, 0.0) * bs
+                dist = np.abs(d)
+                push = bR - dist
+                if faces:
+                    np.copyto(push, bbase - (d * bcc).real, where=bf)
+                push -= bslop
+                np.maximum(push, 0.0, out=push)
+                push *= bs
                 if not push.any():
                     break
-                Xu[:, 0] += np.bincount(inv, push * n[:, 0], minlength=k)
-                Xu[:, 1] += np.bincount(inv, push * n[:, 1], minlength=k)
+                # Along the line of centres (straight up where two centres coincide), or the
+                # face's normal.
+                unit = d / np.where(dist > 0.0, dist, 1.0)
+                if not dist.all():
+                    unit[dist == 0.0] = 1j
+                if faces:
+                    np.copyto(unit, bc, where=bf)
+                Xu += np.add.reduceat(push * unit, starts)
+                changed = True
+            if changed:
+                Xc[uu] = Xu
                 moved[uu] = True
-            Xx[uu] = Xu
-        X[:] = Xx[:nU]
+        X[:, 0], X[:, 1] = Xc[:nU].real, Xc[:nU].imag
 
 
 def _wall_hits(
