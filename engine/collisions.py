@@ -768,7 +768,8 @@ class Collisions:
             fa, fn, fg, fmu, fk = fa[slow], fn[slow], fg[slow], fmu[slow], fk[slow]
             if len(fa):
                 ra = np.concatenate([ra, fa])
-                rb = np.concatenate([rb, np.full(len(fa), nU)])  # nU: the static world
+                # nU: the static world. Pairs first, then faces: _project splits them so.
+                rb = np.concatenate([rb, np.full(len(fa), nU)])
                 nrm = np.concatenate([nrm, fn])
                 gap = np.concatenate([gap, fg])
                 fric = np.concatenate([fric, mu[fa] * fmu])
@@ -906,49 +907,68 @@ class Collisions:
 
         A pair's overlap is measured anew each iteration; a face's is its gap when measured
         plus how far the body has moved along the face's normal since (a face does not move).
+        The rows are the pairs, then the faces (rb == nU), as ``_resting`` lists them; each
+        part is worked on alone, in complex numbers (x + iy), as the iterations are.
         """
-        pair = rb < nU
-        rmin = np.where(pair, np.minimum(r[ra], r[np.minimum(rb, nU - 1)]), r[ra])
-        slop = SLOP * rmin
-        R = r[ra] + np.where(pair, r[np.minimum(rb, nU - 1)], 0.0)
-        Xx = np.vstack([X, np.zeros((1, 2))])
-        Xr = np.vstack([X_ref, np.zeros((1, 2))])
-        push_eff = BAUMGARTE * eff
-        deepest_rest = 0.0  # the deepest overlap among rows left out of later iterations
+        m = int(np.count_nonzero(rb < nU))
+        pa, pb, fa = ra[:m], rb[:m], ra[m:]
+        Xc = X[:, 0] + 1j * X[:, 1]
+        # Pairs: overlap R - |x_a - x_b|, pushed apart along the line of centres.
+        R = r[pa] + r[pb]
+        slop_p = SLOP * np.minimum(r[pa], r[pb])
+        k = BAUMGARTE * eff[:m]
+        ka, kb = k * wx[pa], k * -wx[pb]
+        # Faces: overlap base - x.n, with base = -gap + x_ref.n; pushed out along n.
+        nf = nrm[m:, 0] + 1j * nrm[m:, 1]
+        nfc = np.conj(nf)
+        base = -gap[m:] + _dot(X_ref[fa], nrm[m:])
+        slop_f = SLOP * r[fa]
+        kf = BAUMGARTE * eff[m:] * wx[fa]
+        deepest_rest = 0.0  # the deepest overlap among pairs left out of later iterations
         # At least position_iterations over every row; then, up to MAX_POSITION_ITERATIONS,
         # more over the rows near an overlap past twice SLOP (a pile settling, or a ball just
         # landed on it: the work goes where the overlap is).
-        for k in range(MAX_POSITION_ITERATIONS + 1):
-            D = Xx[ra] - Xx[rb]
-            dist = _norm(D)
-            over = np.where(pair, R - dist, -gap - _dot(Xx[ra] - Xr[ra], nrm))
-            push = np.maximum(over - slop, 0.0) * push_eff
-            if k == MAX_POSITION_ITERATIONS or not push.any():
+        for it in range(MAX_POSITION_ITERATIONS + 1):
+            D = Xc[pa] - Xc[pb]
+            dist = np.abs(D)
+            over_p = R - dist
+            over_f = base - (Xc[fa] * nfc).real
+            push_p = np.maximum(over_p - slop_p, 0.0)
+            push_f = np.maximum(over_f - slop_f, 0.0)
+            if it == MAX_POSITION_ITERATIONS or not (push_p.any() or push_f.any()):
                 break
-            if k >= self.position_iterations:
-                deep = over > 2.0 * slop
-                if not deep.any():
+            if it >= self.position_iterations:
+                deep_p, deep_f = over_p > 2.0 * slop_p, over_f > 2.0 * slop_f
+                if not (deep_p.any() or deep_f.any()):
                     break
-                if k == self.position_iterations:
-                    hot = np.zeros(nU + 1, dtype=bool)
-                    hot[ra[deep]] = hot[rb[deep]] = True
-                    hot[nU] = False
-                    keep = hot[ra] | hot[rb]
-                    if not keep.all():
-                        left = over[~keep & pair]
-                        deepest_rest = float(left.max()) if len(left) else 0.0
-                        ra, rb, pair, R, slop = ra[keep], rb[keep], pair[keep], R[keep], slop[keep]
-                        gap, nrm, push_eff = gap[keep], nrm[keep], push_eff[keep]
-                        D, dist, push = D[keep], dist[keep], push[keep]
-            n = np.where(pair[:, None], _unit(D, dist), nrm)
-            P = n * push[:, None]
-            idx = np.concatenate([ra, rb])
-            both = np.concatenate([P * wx[ra, None], P * -wx[rb, None]])
-            Xx[:, 0] += np.bincount(idx, both[:, 0], minlength=nU + 1)
-            Xx[:, 1] += np.bincount(idx, both[:, 1], minlength=nU + 1)
-            Xx[nU] = 0.0
-        deepest = max(float(over[pair].max()) if pair.any() else 0.0, deepest_rest)
-        X[:] = Xx[:nU]
+                if it == self.position_iterations:
+                    hot = np.zeros(nU, dtype=bool)
+                    hot[pa[deep_p]] = hot[pb[deep_p]] = hot[fa[deep_f]] = True
+                    keep_p, keep_f = hot[pa] | hot[pb], hot[fa]
+                    if not keep_p.all():
+                        left = over_p[~keep_p]
+                        deepest_rest = float(left.max())
+                        pa, pb, R, slop_p, ka, kb = (
+                            pa[keep_p], pb[keep_p], R[keep_p], slop_p[keep_p], ka[keep_p],
+                            kb[keep_p],
+                        )  # fmt: skip
+                        D, dist, push_p = D[keep_p], dist[keep_p], push_p[keep_p]
+                    if not keep_f.all():
+                        fa, nf, nfc, base = fa[keep_f], nf[keep_f], nfc[keep_f], base[keep_f]
+                        slop_f, kf, push_f = slop_f[keep_f], kf[keep_f], push_f[keep_f]
+            # Straight up where two centres coincide, so that they are still pushed apart.
+            unit = D / np.where(dist > 0.0, dist, 1.0)
+            if not dist.all():
+                unit[dist == 0.0] = 1j
+            Pp = unit * push_p
+            Pf = nf * push_f
+            idx = np.concatenate([pa, pb, fa])
+            P = np.concatenate([Pp * ka, Pp * kb, Pf * kf])
+            Xc += np.bincount(idx, P.real, minlength=nU) + 1j * np.bincount(
+                idx, P.imag, minlength=nU
+            )
+        deepest = max(float(over_p.max()) if len(over_p) else 0.0, deepest_rest)
+        X[:, 0], X[:, 1] = Xc.real, Xc.imag
         self.last_overlap = max(deepest, 0.0)
 
     # -- events ----------------------------------------------------------------------------------
