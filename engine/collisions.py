@@ -1118,7 +1118,8 @@ class _Bands:
     immovable. Contacts within one band (side by side) are left to the iterations.
 
     The passes are a Python loop over the bands (each band waits for the ones below), so
-    each band's work is kept to a few array calls on short slices. Rows are kept sorted by
+    each band's work is kept to a few array calls on short slices (``np.count_nonzero``, not
+    ``.any()``, whose Python wrapper costs 2 us a call). Rows are kept sorted by
     (band, upper body) in flat arrays: a band is a slice (no copy), and within it each upper
     body's rows are a run, so one ``np.add.reduceat`` sums their pushes on it, each row's
     scaled by 1 / the run's length (mass splitting again). Vectors are complex numbers
@@ -1217,7 +1218,7 @@ class _Bands:
         for i in range(len(b) - 1):
             a0, a1 = b[i], b[i + 1]
             s = held[lo[a0:a1]]
-            if s.any():
+            if np.count_nonzero(s):
                 sup[a0:a1] = s
                 runs = np.logical_or.reduceat(s, self.local_starts[rb[i] : rb[i + 1]])
                 held[self.run_body[rb[i] : rb[i + 1]][runs]] = True
@@ -1261,7 +1262,7 @@ class _Bands:
         for i in np.flatnonzero(self.band_supported).tolist():
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
-            if not need[i] and not moved[low].any():
+            if not need[i] and not np.count_nonzero(moved[low]):
                 continue
             r0, r1 = rb[i], rb[i + 1]
             uu, inv, starts = run_body[r0:r1], local_run[a0:a1], local_starts[r0:r1]
@@ -1279,7 +1280,7 @@ class _Bands:
                 slide = z.imag * bs
                 np.minimum(np.maximum(slide, -bud, out=slide), bud, out=slide)
                 bud -= np.abs(slide)
-                if not (push.any() or slide.any()):
+                if not (np.count_nonzero(push) or np.count_nonzero(slide)):
                     break
                 Vu += np.add.reduceat(bc * (push - 1j * slide), starts)
                 changed = True
@@ -1317,7 +1318,7 @@ class _Bands:
         for i in np.flatnonzero(self.band_supported).tolist():
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
-            if not need[i] and not moved[low].any():
+            if not need[i] and not np.count_nonzero(moved[low]):
                 continue
             r0, r1 = rb[i], rb[i + 1]
             uu, inv, starts = run_body[r0:r1], local_run[a0:a1], local_starts[r0:r1]
@@ -1337,12 +1338,12 @@ class _Bands:
                 push -= bslop
                 np.maximum(push, 0.0, out=push)
                 push *= bs
-                if not push.any():
+                if not np.count_nonzero(push):
                     break
                 # Along the line of centres (straight up where two centres coincide), or the
                 # face's normal.
                 unit = d / np.where(dist > 0.0, dist, 1.0)
-                if not dist.all():
+                if np.count_nonzero(dist) < len(dist):
                     unit[dist == 0.0] = 1j
                 if faces:
                     np.copyto(unit, bc, where=bf)
