@@ -100,6 +100,15 @@ MAX_POSITION_ITERATIONS = 8
 BAUMGARTE = 1.0
 
 
+def _clip_two_calls(x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    return np.minimum(np.maximum(x, lo), hi)
+
+
+# np.clip's ufunc, called directly: the np.clip wrapper costs 3 us a call, and the pile
+# passes call it thousands of times a step (numpy 2; else two calls, the same numbers).
+_clip = getattr(getattr(getattr(np, "_core", None), "umath", None), "clip", _clip_two_calls)
+
+
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
 
@@ -1145,10 +1154,9 @@ class _Bands:
         sign: np.ndarray,
         bounds: np.ndarray,
         nU: int,
-        fixed: np.ndarray | None,
     ) -> None:
-        # Given sorted by (band, upper body): runs of one upper body, each body's rows in
-        # a band being one run (a band starts a run, even on the same body).
+        # Sorted by (band, upper body): runs of one upper body, each body's rows in a band
+        # being one run (a band starts a run, even on the same body).
         nb = len(bounds) - 1
         new = np.ones(len(rows), dtype=bool)
         new[1:] = upper[1:] != upper[:-1]
@@ -1169,16 +1177,15 @@ class _Bands:
         # Each row's body among its band's: the index into that band's bodies.
         self.local_run = run - run_bounds[:-1][band_of_row]
         # Slot slices: cut where the slot changes within a band, and at every band.
-        cut = np.ones(len(rows), dtype=bool)
-        cut[1:] = slot[1:] != slot[:-1]
-        cut[bounds[:-1]] = True
-        seg = np.append(np.flatnonzero(cut), len(rows))
+        cut_at = np.ones(len(rows), dtype=bool)
+        cut_at[1:] = slot[1:] != slot[:-1]
+        cut_at[bounds[:-1]] = True
+        seg = np.append(np.flatnonzero(cut_at), len(rows))
         first = np.searchsorted(seg, bounds).tolist()
         seg_list = seg.tolist()
         self.slots = [seg_list[first[i] : first[i + 1] + 1] for i in range(nb)]
         self.face = lower == nU
-        self.band_has_face = np.logical_or.reduceat(self.face, bounds[:-1])
-        self.supported = self._supported(fixed)
+        self.band_has_face = np.logical_or.reduceat(self.face, bounds[:-1]).tolist()
 
     @classmethod
     def of(
@@ -1222,27 +1229,29 @@ class _Bands:
         up_rows = upper[rows]
         lo_rows = np.where(a_up[rows], rb[rows], ra[rows])
         sign = np.where(a_up[rows], 1.0, -1.0)
-        return cls(rows, up_rows, lo_rows, sign, bounds, nU, fixed)
-
-    def _supported(self, fixed: np.ndarray | None) -> np.ndarray:
-        """Per row, 1.0 if it rests on something held (a face, or a body that rests on one,
-        band below band), else 0.0. The passes act on those rows only, so that bodies falling
-        freely together are left alone (taking a lower one as immovable would take momentum
-        out of them)."""
-        held = np.zeros(self.nU + 1, dtype=bool)
-        held[self.nU] = True  # the static world
+        # Only the rows that rest on something held (a face, a kinematic body, or a body
+        # that rests on one, band below band) are worked on: bodies falling freely together
+        # are left alone (taking a lower one as immovable would take momentum out of them),
+        # and their contacts to the iterations.
+        held = np.zeros(nU + 1, dtype=bool)
+        held[nU] = True  # the static world
         if fixed is not None:
-            held[: self.nU][fixed] = True
-        sup = np.zeros(len(self.rows), dtype=bool)
-        lo, up, b = self.lower, self.upper, self.bounds
-        for i in range(len(b) - 1):
-            a0, a1 = b[i], b[i + 1]
-            s = held[lo[a0:a1]]
+            held[:nU][fixed] = True
+        sup = np.zeros(len(rows), dtype=bool)
+        for i in range(len(bounds) - 1):
+            a0, a1 = bounds[i], bounds[i + 1]
+            s = held[lo_rows[a0:a1]]
             if np.count_nonzero(s):
                 sup[a0:a1] = s
-                held[up[a0:a1][s]] = True
-        self.band_supported = np.logical_or.reduceat(sup, b[:-1])
-        return sup.astype(float)
+                held[up_rows[a0:a1][s]] = True
+        if not np.count_nonzero(sup):
+            return None
+        if not sup.all():
+            band_of_row = np.repeat(np.arange(len(bounds) - 1), np.diff(bounds))[sup]
+            rows, up_rows, lo_rows, sign = rows[sup], up_rows[sup], lo_rows[sup], sign[sup]
+            cut = np.flatnonzero(band_of_row[1:] != band_of_row[:-1]) + 1
+            bounds = np.concatenate([[0], cut, [len(rows)]])
+        return cls(rows, up_rows, lo_rows, sign, bounds, nU)
 
     def velocity(
         self,
@@ -1266,17 +1275,17 @@ class _Bands:
         n = nrm[rows] * self.sign[:, None]
         nc = n[:, 0] + 1j * n[:, 1]
         ncc = np.conj(nc)
-        least, mu, sup = target[rows], fric[rows], self.supported
+        inc = 1j * nc  # the tangent
+        least, mu = target[rows], fric[rows]
         budget = mu * lam_n[rows] * wx[up]
         Vc = Vx[:, 0] + 1j * Vx[:, 1]
         z = (Vc[up] - Vc[lo]) * ncc
         need = np.logical_or.reduceat(
             (least - z.real > tol) | (np.abs(z.imag) > tol), self.bounds[:-1]
-        )
-        need &= self.band_supported
+        ).tolist()
         moved = np.zeros(len(Vc), dtype=bool)
         b, rb, local_run, run_body = self.bounds, self.run_bounds, self.local_run, self.run_body
-        for i in np.flatnonzero(self.band_supported).tolist():
+        for i, segs in enumerate(self.slots):
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
             if not need[i] and not np.count_nonzero(moved[low]):
@@ -1284,23 +1293,22 @@ class _Bands:
             uu = run_body[rb[i] : rb[i + 1]]
             Vu = Vc[uu]
             Vl = Vc[low]  # final already: lower bands came first
-            segs = self.slots[i]
             changed = False
             for _ in range(SHOCK_ITERATIONS):
                 acted = False
                 for s0, s1 in zip(segs[:-1], segs[1:], strict=True):
                     inv = local_run[s0:s1]  # each body once in a slot
-                    z = (Vu[inv] - Vl[s0 - a0 : s1 - a0]) * ncc[s0:s1]
+                    vi = Vu[inv]
+                    z = (vi - Vl[s0 - a0 : s1 - a0]) * ncc[s0:s1]
                     push = least[s0:s1] - z.real
                     np.maximum(push, 0.0, out=push)
-                    push *= sup[s0:s1]  # a row on nothing held is left to the iterations
                     bud = budget[s0:s1]
                     bud += mu[s0:s1] * push
-                    slide = z.imag * sup[s0:s1]
-                    np.minimum(np.maximum(slide, -bud, out=slide), bud, out=slide)
+                    slide = _clip(z.imag, -bud, bud)
                     bud -= np.abs(slide)
                     if np.count_nonzero(push) or np.count_nonzero(slide):
-                        Vu[inv] += nc[s0:s1] * (push - 1j * slide)
+                        # dv = n push - t slide
+                        Vu[inv] = vi + (nc[s0:s1] * push - inc[s0:s1] * slide)
                         acted = True
                 if not acted:
                     break
@@ -1323,42 +1331,39 @@ class _Bands:
         nc = n0[:, 0] + 1j * n0[:, 1]
         ncc = np.conj(nc)
         ru = r[up]
-        R = ru + rx[lo]
-        slop = SLOP * np.where(face, ru, np.minimum(ru, rx[lo]))
-        # A face's overlap now: -gap as measured, less how far the body has moved along the
-        # face's normal since (base - X.n). (The static world's X is 0: d = X for a face.)
-        base = -gap[rows] + _dot(X_ref[up], n0)
+        # The overlap past SLOP that a push removes: R - |d| - slop for a pair, and for a
+        # face -gap as measured less how far the body has moved along the face's normal
+        # since (base - X.n), less slop. (The static world's X is 0: d = X for a face.)
+        R_slop = ru + rx[lo] - SLOP * np.where(face, ru, np.minimum(ru, rx[lo]))
+        base_slop = -gap[rows] + _dot(X_ref[up], n0) - SLOP * ru
         d = Xc[up] - Xc[lo]
-        over = np.where(face, base - (d * ncc).real, R - np.abs(d))
-        need = np.logical_or.reduceat(over > slop, self.bounds[:-1]) & self.band_supported
-        sup = self.supported
+        over = np.where(face, base_slop - (d * ncc).real, R_slop - np.abs(d))
+        need = np.logical_or.reduceat(over > 0.0, self.bounds[:-1]).tolist()
         moved = np.zeros(nU + 1, dtype=bool)
         b, rb, local_run, run_body = self.bounds, self.run_bounds, self.local_run, self.run_body
         has_face = self.band_has_face
-        for i in np.flatnonzero(self.band_supported).tolist():
+        for i, segs in enumerate(self.slots):
             a0, a1 = b[i], b[i + 1]
             low = lo[a0:a1]
             if not need[i] and not np.count_nonzero(moved[low]):
                 continue
             uu = run_body[rb[i] : rb[i + 1]]
-            faces = bool(has_face[i])
+            faces = has_face[i]
             Xu = Xc[uu]
             Xl = Xc[low]
-            segs = self.slots[i]
             changed = False
             for _ in range(SHOCK_ITERATIONS):
                 acted = False
                 for s0, s1 in zip(segs[:-1], segs[1:], strict=True):
                     inv = local_run[s0:s1]  # each body once in a slot
-                    d = Xu[inv] - Xl[s0 - a0 : s1 - a0]
+                    xi = Xu[inv]
+                    d = xi - Xl[s0 - a0 : s1 - a0]
                     dist = np.abs(d)
-                    push = R[s0:s1] - dist
+                    push = R_slop[s0:s1] - dist
                     if faces:
                         bf = face[s0:s1]
-                        np.copyto(push, base[s0:s1] - (d * ncc[s0:s1]).real, where=bf)
-                    push -= slop[s0:s1]
+                        np.copyto(push, base_slop[s0:s1] - (d * ncc[s0:s1]).real, where=bf)
                     np.maximum(push, 0.0, out=push)
-                    push *= sup[s0:s1]
                     if not np.count_nonzero(push):
                         continue
                     # Along the line of centres (straight up where two centres coincide), or
@@ -1368,7 +1373,7 @@ class _Bands:
                         unit[dist == 0.0] = 1j
                     if faces:
                         np.copyto(unit, nc[s0:s1], where=bf)
-                    Xu[inv] += push * unit
+                    Xu[inv] = xi + push * unit
                     acted = True
                 if not acted:
                     break
