@@ -109,6 +109,35 @@ def _clip_two_calls(x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray
 _clip = getattr(getattr(getattr(np, "_core", None), "umath", None), "clip", _clip_two_calls)
 
 
+def _dissipative(
+    V: np.ndarray, V0: np.ndarray, w: np.ndarray, lam: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The resting contacts' velocities V (from V0) and impulses lam, scaled back if they
+    gained kinetic energy.
+
+    The exact solution of the resting contacts (no closing faster than a gap allows: a
+    convex set of velocities that holds 0) is a projection of V0 in the mass metric, which
+    never lengthens it, and Coulomb friction only dissipates, so it never adds kinetic energy
+    (when no body the game moves is among them). The iterations stop short of it, and the
+    impulses they start from, the last step's, can push contacts that already part: a
+    heavy ball that has just stopped on a light one against a wall is sent back (kinetic
+    energy x36 in 4 steps). Then the change dV = V - V0 is scaled by the s in [0, 1] that
+    leaves the least energy, KE(s) = KE0 + s B + s^2 C with B = sum m V0.dV and
+    C = sum m |dV|^2 / 2: s = -B / (2 C), or 0 if B >= 0. Momentum is kept, impulses between
+    bodies being equal and opposite at any s.
+    """
+    m = np.where(w > 0.0, 1.0 / np.where(w > 0.0, w, 1.0), 0.0)
+    dV = V - V0
+    B = float((m * (V0[:, 0] * dV[:, 0] + V0[:, 1] * dV[:, 1])).sum())
+    C = 0.5 * float((m * (dV[:, 0] * dV[:, 0] + dV[:, 1] * dV[:, 1])).sum())
+    # KE(1) - KE0 = B + C: past rounding of KE0 itself, the iterations added energy.
+    KE0 = 0.5 * float((m * (V0[:, 0] * V0[:, 0] + V0[:, 1] * V0[:, 1])).sum())
+    if not B + C > 1e-12 * KE0 + 1e-300:
+        return V, lam
+    s = min(max(-B / (2.0 * C), 0.0), 1.0)
+    return V0 + s * dV, lam * s
+
+
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
 
@@ -852,6 +881,8 @@ class Collisions:
             Vc[nU] = 0.0
         lam = np.stack([lam_n, lam_t], axis=1)
         Vx = np.stack([Vc.real, Vc.imag], axis=1)
+        if self._kinU is None or not self._kinU.any():
+            Vx, lam = _dissipative(Vx, V_before, wx, lam)
         bands = _Bands.of(ra, rb, nU, X, A, self.rmin, self._kinU)
         if bands is not None:
             tol = 1e-6 * self.rest_speed + 1e-300
