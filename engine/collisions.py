@@ -41,7 +41,9 @@ the bodies' contacts with static faces, are solved together as constraints, in f
    iterations over all contacts at once (``iterations``, each body's mass split between its
    contacts so that the sum converges, Tonge et al. 2012; sped up by Chebyshev's
    semi-iteration, Wang 2015), started from the last step's impulses (warm starting: a
-   settled pile is already solved).
+   settled pile is already solved). The exact solution never adds kinetic energy; if the
+   iterations stop short with more than they began with, their change is scaled back
+   (``_dissipative``).
 2. *Velocities, from the ground up.* Jacobi passes information one contact per iteration,
    so a pile many layers deep is not held by a few iterations. Shock propagation
    (Guendelman, Bridson and Fedkiw 2003) ends the solve with one pass from the bottom up:
