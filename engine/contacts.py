@@ -839,7 +839,67 @@ class Contacts:
                     pushed[i] = True
             if not moved:
                 break
+        else:
+            # Three rounds did not settle it: a body pressed into the corner of two faces
+            # (between a peg and a wall, pushed out of each in turn) is put at the corner.
+            for i in np.flatnonzero(pushed).tolist():
+                self._out_of_corner(X, V, i, float(r[i]))
         return pushed
+
+    def _face_gaps(self, x: np.ndarray, r: float) -> tuple[np.ndarray, np.ndarray]:
+        """Every solid face's gap (length units, < 0 inside) to a ball of radius r at x, and
+        its unit normal toward x; a flat face beyond its ends has gap inf."""
+        faces = self.faces
+        L = len(faces.p)
+        gaps = np.full(L + len(faces.c), np.inf)
+        nrm = np.zeros((L + len(faces.c), 2))
+        if L:
+            d = (x[0] - faces.p[:, 0]) * faces.n[:, 0] + (x[1] - faces.p[:, 1]) * faces.n[:, 1]
+            side = np.where(faces.two & (d < 0.0), -1.0, 1.0)
+            u = (x[0] - faces.p[:, 0]) * -faces.n[:, 1] + (x[1] - faces.p[:, 1]) * faces.n[:, 0]
+            within = (u >= faces.lo) & (u <= faces.hi)
+            gaps[:L] = np.where(within, side * d - faces.rho - r, np.inf)
+            nrm[:L] = faces.n * side[:, None]
+        if len(faces.c):
+            D = x - faces.c
+            dist = np.sqrt(D[:, 0] * D[:, 0] + D[:, 1] * D[:, 1])
+            gaps[L:] = dist - faces.r - r
+            safe = np.where(dist > 0.0, dist, 1.0)
+            nrm[L:] = np.where((dist > 0.0)[:, None], D / safe[:, None], (0.0, 1.0))
+        return gaps, nrm
+
+    def _out_of_corner(self, X: np.ndarray, V: np.ndarray, i: int, r: float) -> None:
+        """Put row i, still inside some face after push_out_rows' rounds, at the nearest point
+        outside every face: its projection out of one face, or a corner where the surfaces
+        of two meet (offset by r: two lines meet in a point; a line and a circle, or two
+        circles, in up to two). Its speed into the faces it then touches is taken."""
+        faces = self.faces
+        L = len(faces.p)
+        x = X[i].astype(float)
+        slack = TOUCH * (1.0 + r)
+        gaps, nrm = self._face_gaps(x, r)
+        if not (gaps < -slack).any():
+            return
+        # The faces that bound the corner: those it overlaps or nearly touches.
+        near = np.flatnonzero(gaps < 0.5 * r + slack).tolist()
+        cands = [x - gaps[j] * nrm[j] for j in near if gaps[j] < 0.0]
+        for k, a in enumerate(near):
+            for b in near[k + 1 :]:
+                cands += _corners(faces, L, a, b, x, nrm, r)
+        best, best_d = None, math.inf
+        for c in cands:
+            g, _ = self._face_gaps(c, r)
+            dist = float(np.hypot(*(c - x)))
+            if (g >= -slack * 4.0).all() and dist < best_d:
+                best, best_d = c, dist
+        if best is None:
+            return  # no corner of two faces frees it (three at once): left to the next step
+        X[i] = best
+        g, n_at = self._face_gaps(best, r)
+        for j in np.flatnonzero(g <= slack * 4.0).tolist():
+            vn = float(V[i] @ n_at[j])
+            if vn < 0.0:
+                V[i] -= vn * n_at[j]
 
     def _normals(self, f: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Unit normals toward X of faces f (one per row), and 1 / radius (0 for flat faces)."""
@@ -1334,6 +1394,53 @@ class Contacts:
                         )
                     )
             self.inside[:, s] = now
+
+
+def _corners(
+    faces: _Faces, L: int, a: int, b: int, x: np.ndarray, nrm: np.ndarray, r: float
+) -> list[np.ndarray]:
+    """Where the surfaces of faces a and b, offset by r toward x, meet: points (2,)."""
+
+    def line(j: int) -> tuple[np.ndarray, float]:  # points p with n.p = c
+        n = nrm[j]
+        return n, float(n @ faces.p[j]) + float(faces.rho[j]) + r
+
+    def circle(j: int) -> tuple[np.ndarray, float]:
+        return faces.c[j - L], float(faces.r[j - L]) + r
+
+    out: list[np.ndarray] = []
+    if a < L and b < L:
+        (n1, c1), (n2, c2) = line(a), line(b)
+        det = n1[0] * n2[1] - n1[1] * n2[0]
+        if abs(det) > 1e-12:
+            out.append(np.array([(c1 * n2[1] - c2 * n1[1]) / det, (n1[0] * c2 - n2[0] * c1) / det]))
+        return out
+    if a >= L and b >= L:
+        (p1, R1), (p2, R2) = circle(a), circle(b)
+        d = p2 - p1
+        dd = float(d @ d)
+        if dd == 0.0:
+            return out
+        # Along d from p1: s = (dd + R1^2 - R2^2) / (2 dd); off it by h, h^2 = R1^2 - s^2 dd.
+        s = (dd + R1 * R1 - R2 * R2) / (2.0 * dd)
+        h2 = R1 * R1 - s * s * dd
+        if h2 < 0.0:
+            return out
+        h = math.sqrt(h2 / dd)
+        base = p1 + s * d
+        perp = np.array([-d[1], d[0]])
+        return [base + h * perp, base - h * perp]
+    j_line, j_circ = (a, b) if a < L else (b, a)
+    (n, c), (p, R) = line(j_line), circle(j_circ)
+    # The line n.q = c meets |q - p| = R where q = p + (c - n.p) n + t t_dir, t^2 = R^2 - h^2.
+    h = c - float(n @ p)
+    t2 = R * R - h * h
+    if t2 < 0.0:
+        return out
+    t = math.sqrt(t2)
+    foot = p + h * n
+    t_dir = np.array([-n[1], n[0]])
+    return [foot + t * t_dir, foot - t * t_dir]
 
 
 # -- one body at a time: the twins of Contacts._solve's helpers ------------------------------
