@@ -29,7 +29,14 @@ resolved (they share no body, so they are independent), then the paths of the bo
 changed are searched again. Newton's cradle is the test: the first ball stops, the second
 takes its speed at the same instant and meets the third, and so on down the row; a solver
 that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
-``MAX_ROUNDS``; the count of steps that reached it is kept in ``capped``.
+``MAX_ROUNDS`` (a light ball squeezed between heavy ones bounces about pi sqrt(M/m) times);
+then each body with an impact still to come stops where its path is at the earliest one left
+(its velocity the step's end one, so momentum changes by the forces' impulse alone) and goes
+on from there next step: bodies never fly through each other for want of rounds, at the cost
+of the rest of that step's motion for those bodies. The count of steps
+that reached the cap is kept in ``capped``. The pairs searched are those a body's speed can
+bring together within the step, and those of a body an impact may send off faster (a light
+ball struck by a heavy one: ``_struck_pairs``).
 
 **Resting contacts.** A closing speed below ``rest_speed`` (2 |A| dt: what the acceleration
 adds in two steps), or a pair that carried load in the last step, is not a bounce but a
@@ -518,6 +525,9 @@ class Collisions:
             far = r[ia] + r[ib] + reach[ia] + reach[ib]
             keep = _dot(D, D) <= far * far
             ia, ib = ia[keep], ib[keep]
+            ia, ib = self._struck_pairs(
+                ia, ib, P, r, v0[live], v1[live], A[live], reach, dt, live, store
+            )
         a, b = live[ia], live[ib]
         if self._has_kin and len(a):
             # Two bodies the game moves pass through each other (as in pymunk).
@@ -530,6 +540,64 @@ class Collisions:
             ok &= ((c[a] & m[b]) != 0) & ((c[b] & m[a]) != 0)
             a, b = a[ok], b[ok]
         return a, b
+
+    def _struck_pairs(
+        self,
+        ia: np.ndarray,
+        ib: np.ndarray,
+        P: np.ndarray,
+        r: np.ndarray,
+        v0: np.ndarray,
+        v1: np.ndarray,
+        A: np.ndarray,
+        reach: np.ndarray,
+        dt: float,
+        live: np.ndarray,
+        store: Any,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The pairs (ia, ib) (places in live) with those of bodies an impact may send farther
+        than their own speed reaches: a light ball struck by a fast one flies off at up to
+        (1 + e) times their closing speed, and must meet the balls beyond it, not pass them.
+
+        An impact changes a body's velocity by at most (1 + e) w_a / (w_a + w_b) times the
+        pair's closing speed (w = 1 / m; a kinematic body, w = 0, gains nothing), and that
+        is at most their relative speed over the step, |v_a - v_b| at its start or end plus
+        |A_a - A_b| dt, plus what impacts gave either. A body whose gain over the step passes
+        the margin its reach already has (5% of its radius) is searched again against every
+        body with the larger reach, and so on down a chain of such impacts (three links). A
+        crowd falling together, or a pile, has small relative speeds and gains nothing here.
+        """
+        w = 1.0 / store.mass[live]
+        if self._has_kin:
+            w[store.kinematic[live]] = 0.0
+        e = store.restitution[live]
+        got = np.zeros(len(P))  # what impacts may add to each body's speed
+        done = np.zeros(len(P), dtype=bool)
+        for _ in range(3):
+            rel = np.maximum(_norm(v0[ia] - v0[ib]), _norm(v1[ia] - v1[ib]))
+            rel += _norm(A[ia] - A[ib]) * dt + got[ia] + got[ib]
+            tot = w[ia] + w[ib]
+            close = (1.0 + e[ia] * e[ib]) * rel / np.where(tot > 0.0, tot, 1.0)
+            gain = np.zeros(len(P))
+            np.maximum.at(gain, ia, close * w[ia])
+            np.maximum.at(gain, ib, close * w[ib])
+            grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done)
+            if not len(grown):
+                break
+            done[grown] = True
+            got[grown] = gain[grown]
+            reach = reach.copy()
+            reach[grown] += gain[grown] * dt
+            fa, fb = [ia], [ib]
+            for k in grown.tolist():
+                near = _norm(P - P[k]) <= r + r[k] + reach + reach[k]
+                near[k] = False
+                j = np.flatnonzero(near)
+                fa.append(np.minimum(j, k))
+                fb.append(np.maximum(j, k))
+            key = _sorted_unique(np.concatenate(fa).astype(np.int64) * len(P) + np.concatenate(fb))
+            ia, ib = key // len(P), key % len(P)
+        return ia, ib
 
     # -- impacts ---------------------------------------------------------------------------------
     def _impacts(
@@ -643,7 +711,24 @@ class Collisions:
             toi[again] = np.inf
             todo |= again
         else:
+            # Impacts are left: rather than let the bodies fly through each other on their
+            # paths, each body with an impact still to come stops at the earliest one left,
+            # where its path is then (no overlap yet), and goes on from there next step. Only
+            # those bodies lose the rest of this step's motion; their velocities keep what
+            # the forces gave them over the whole step, so momentum changes by exactly the
+            # forces' impulse, as in every other step.
             self.capped += 1
+            idx = np.flatnonzero(todo)
+            if len(idx):
+                toi[idx] = self._toi(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+            hit = np.isfinite(toi)
+            left = np.zeros(nU, dtype=bool)
+            left[pa[hit]] = left[pb[hit]] = True
+            left |= np.isfinite(face_t)
+            t_first = min(float(toi[hit].min()) if hit.any() else math.inf, float(face_t.min()))
+            i = np.flatnonzero(left)
+            if len(i) and math.isfinite(t_first):
+                X[i] = self._state_at(i, np.full(len(i), t_first), X, V, A, dt)[0]
         return found
 
     @staticmethod

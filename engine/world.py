@@ -623,9 +623,12 @@ class World:
 
     @property
     def capped(self) -> int:
-        """How many times a body met more than MAX_IMPACTS impacts in one step (placed on a
-        surface instead)."""
-        return 0 if self._contacts is None else self._contacts.capped
+        """How many times impacts passed their cap in one step: a body that met more than
+        MAX_IMPACTS impacts with colliders (placed on a surface instead), or a step whose
+        impacts between bodies passed MAX_ROUNDS rounds (the bodies with impacts left
+        stopped at the first of them, to go on next step)."""
+        static = 0 if self._contacts is None else self._contacts.capped
+        return static + self._collisions.capped
 
     def resting(self, body: Body) -> Collider | None:
         """The collider ``body`` rests on (slides or sits on), or None while it is in flight."""

@@ -316,21 +316,21 @@ def xfail(reason: str) -> pytest.MarkDecorator:
 # -- the engine bugs the @examples below reproduce --------------------------------------------
 
 BUG_PASS_THROUGH = xfail(
-    "balls pass through each other. (1) The pair search reaches as far as each body's speed "
-    "before the step's impacts: a light ball struck by a fast one meets a third ball it was "
-    "not paired with, and flies through it. (2) Past MAX_ROUNDS impact rounds in a step (a "
-    "light ball squeezed between heavy ones: ~pi sqrt(M/m) impacts; or an inelastic collapse, "
-    "which without gravity, where the resting threshold 2|A|dt is 0, never ends) the "
-    "remaining impacts are dropped"
+    "balls overlap deeply in an inelastic collapse without gravity: four balls in a row, "
+    "restitution 0, masses 100, 0.1, 1 and 100, the first in at 1 m/s, overlap by up to half "
+    "a radius (the impacts reach MAX_ROUNDS in a step, and the resting solver, Jacobi with "
+    "the mass split, does not hold a mass ratio of 1,000). Struck and squeezed balls no "
+    "longer pass through (test_struck_and_squeezed_balls_never_pass_through)"
 )
+
 BUG_UNSEEN = xfail(
-    "bodies that never meet still change each other's motion, through the pair search: what "
-    "it lists depends on every body in the World (its grid, its cut of the fastest bodies), "
-    "and when a squeeze reaches MAX_ROUNDS impact rounds, which impacts are left undone "
-    "depends on that list. No gravity, a floor: a light ball squeezed against it by two "
-    "others moves 1.8 cm differently (0.5 m after 1 s) with a ball of another world, which "
-    "meets only the floor, in the World (about 1% of the fuzz's scenes with colliders; every "
-    "pair listed, or no cap on the rounds, and it moves the same)"
+    "bodies that never meet still change each other's motion. Under gravity, in a room "
+    "with a floor and a ledge, balls of one world falling past a stack of another's move "
+    "7e-6 m (2e-3 m/s) differently by step 43 with the other world in the World "
+    "(UNSEEN_UNDER_GRAVITY, found by the fuzz once squeezes past MAX_ROUNDS stopped leaving "
+    "impacts undone, which fixed the @examples before it). Not yet pinned down: with the "
+    "energy guard's World-wide scale and the iterations' World-wide stopping test both "
+    "switched off, it still moves differently"
 )
 
 #: No gravity, restitution 0, a room: the heavy ball comes back out of the floor.
@@ -499,6 +499,28 @@ UNSEEN_ON_THE_FLOOR: Scene = {
     "method": "semi_implicit_euler",
     "steps": 60,
 }
+#: Gravity, a room with a floor and a ledge: balls of world 5 fall past a stack of world 4's.
+UNSEEN_UNDER_GRAVITY: Scene = {
+    "balls": [
+        (0.0, 1.04, 0.0, -1.04, 0.2, 1.0, 0.0, 0.0, 4),
+        (0.0, 1.456, 0.0, -1.04, 0.2, 1.0, 0.0, 0.0, 4),
+        (0.0, 1.872, 0.52, -1.04, 0.2, 1.0, 0.0, 0.0, 5),
+        (0.78, 1.04, -0.26, -1.04, 0.2, 1.0, 0.0, 1.0, 5),
+        (0.0, 0.26, 0.52, -0.26, 0.2, 1.0, 0.0, 1.0, 5),
+        (0.416, 0.208, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
+        (0.832, 0.416, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
+        (1.248, 0.624, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
+        (1.664, 0.832, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 7),
+    ],
+    "colliders": [
+        Box((-2.6936, -2.6936), (2.6936, 2.6936), restitution=0.0, friction=0.0),
+        Plane((0.0, -2.072), (0.0, 1.0), restitution=0.0, friction=0.0),
+        Segment((-2.072, 0.0), (1.036, 0.0), restitution=0.0),
+    ],
+    "gravity": True,
+    "method": "auto",
+    "steps": 60,
+}
 #: Two touching balls in free fall, the upper one closing at 0.2 m/s.
 FALLING_PAIR: Scene = {
     "balls": [
@@ -645,6 +667,34 @@ def test_balls_on_a_line_never_pass_through_each_other(scene: Scene) -> None:
             assert (gap >= -0.01 * np.minimum(r[1:], r[:-1])).all(), (k, gap)
 
 
+@pytest.mark.parametrize("name", ["STRUCK_THROUGH", "SQUEEZED", "COLLAPSE"])
+def test_struck_and_squeezed_balls_never_pass_through(name: str) -> None:
+    """A light ball struck toward a ball its own speed did not reach, and one squeezed
+    between heavy ones past MAX_ROUNDS impacts in a step, and an inelastic collapse: in order
+    on the line, overlapping by at most 1% of a radius, momentum kept to 1e-12."""
+    scene = {"STRUCK_THROUGH": STRUCK_THROUGH, "SQUEEZED": SQUEEZED, "COLLAPSE": COLLAPSE}[name]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        w, bodies = build(scene)
+        r = np.array([b.radius for b in bodies])
+        m = np.array([b.mass for b in bodies])
+        p0 = (m[:, None] * w.velocities()).sum(axis=0)
+        scale = float((m * np.hypot(*w.velocities().T)).sum())
+        for k in range(scene["steps"]):
+            step(w)
+            gap = np.diff(w.positions()[:, 0]) - r[1:] - r[:-1]
+            assert (gap >= -0.01 * np.minimum(r[1:], r[:-1])).all(), (k, gap)
+            p = (m[:, None] * w.velocities()).sum(axis=0)
+            assert float(np.abs(p - p0).max()) <= 1e-12 * scale, k
+        # Newton's cradle through a light ball: the struck heavy ball stops, the far one
+        # leaves with its speed; squeezed, the heavy ones turn back.
+        v = w.velocities()[:, 0]
+        if name == "STRUCK_THROUGH":
+            assert abs(v[0] + 30.0) < 0.1 and abs(v[2]) < 0.1, v
+        if name == "SQUEEZED":
+            assert v[0] < -9.9 and v[2] > 9.9, v
+
+
 @fuzz(40)
 @given(scene=scenes())
 @example(scene=DROPPED_ON_A_BALL)
@@ -759,6 +809,7 @@ def check_as_if_alone(scene: Scene) -> None:
 @BUG_UNSEEN
 @fuzz(40)
 @given(scene=scenes(filters=(4, 5, 5, 6, 7, 7, 8)))
+@example(scene=UNSEEN_UNDER_GRAVITY)
 @example(scene=BANDS_SHARED)
 @example(scene=WALL_HIT_ELSEWHERE)
 @example(scene=GHOST_IN_THE_GRID)
