@@ -74,7 +74,8 @@ that has been still for ``sleep_time`` seconds (every speed below |A| dt, the sp
 acceleration adds in one step: Chipmunk's idle speed), and overlaps by at most
 ``SLEEP_OVERLAP`` of a radius, falls asleep: its bodies stay exactly where they are,
 velocity 0, and cost nothing, until an awake body meets one of them (the whole group wakes)
-or the World is changed by hand. A body in flight never sleeps, however slow.
+or the World is changed by hand (adding bodies wakes nobody: a new body wakes the group it
+touches, as any awake body does). A body in flight never sleeps, however slow.
 """
 
 from __future__ import annotations
@@ -292,6 +293,32 @@ class Collisions:
         self._lam = np.zeros((0, 2))
         self._touching = np.zeros(0, dtype=np.int64)
         self.wake(n)
+
+    def grew(self, n: int) -> None:
+        """Bodies were added at the end (now n): the rows before them keep their sleep and
+        the last step's impulses (warm start), the new ones start awake. A new body that
+        touches a sleeper wakes its group as any awake body does."""
+        old = len(self.still)
+        extra = n - old
+        if old == 0 or extra <= 0:
+            self.changed(n)
+            return
+        self._live = None  # the new rows may have a radius; the old ones keep their places
+        # Keys are a * base + b with b < old for a pair and b = old + f for face f (base: the
+        # bodies and faces then); rows keep their numbers, so only the faces' b moves. The
+        # mapping keeps their order, so the keys stay sorted.
+        if len(self._keys) and self._base > old:
+            a, b = np.divmod(self._keys, self._base)
+            b[b >= old] += extra
+            self._base += extra
+            self._keys = a * self._base + b
+        else:
+            self._keys, self._lam = np.zeros(0, dtype=np.int64), np.zeros((0, 2))
+        a, b = np.divmod(self._touching, old)  # a * n + b for the pairs touching
+        self._touching = a * n + b
+        self.still = np.concatenate([self.still, np.zeros(extra)])
+        self.asleep = np.concatenate([self.asleep, np.zeros(extra, dtype=bool)])
+        self._group = np.concatenate([self._group, np.zeros(extra, dtype=np.intp)])
 
     @property
     def any_asleep(self) -> bool:

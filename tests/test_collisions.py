@@ -350,3 +350,42 @@ def test_sleep_can_be_turned_off() -> None:
     for bad in (-1.0, float("nan"), "1"):
         with pytest.raises(ValueError, match="sleep_time"):
             w.sleep_time = bad  # type: ignore[assignment]
+
+
+def test_adding_a_body_leaves_the_others_as_they_were() -> None:
+    """A ball added far from a pile (a game spawning one) changes nothing for the pile: a
+    settling pile keeps the contact impulses it carries from step to step, so it moves as
+    in a World without the new ball (to rounding), and a sleeping one stays asleep, bit for
+    bit where it was. (Every add used to wake the World and drop those impulses.)"""
+
+    def pyramid() -> tuple[World, list[Body]]:
+        w = World(integrator="auto")
+        w.add_force(Gravity((0.0, -G)))
+        w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+        r, rows = 0.5, 5
+        balls = [
+            disc(w, ((k + 0.5 * row) * 2 * r, r + row * r * math.sqrt(3)), (0.0, 0.0), radius=r)
+            for row in range(rows)
+            for k in range(rows - row)
+        ]
+        return w, balls
+
+    spawned, balls = pyramid()
+    alone, twins = pyramid()
+    for _ in range(20):  # settling: awake, its impulses carried from step to step
+        spawned.step(1 / 60)
+        alone.step(1 / 60)
+    assert spawned.sleeping == 0
+    disc(spawned, (40.0, 3.0), (0.0, 0.0), radius=0.5)  # falls onto the floor, far away
+    for _ in range(200):
+        spawned.step(1 / 60)
+        alone.step(1 / 60)
+        x = np.array([b.pos for b in balls])
+        assert np.abs(x - np.array([b.pos for b in twins])).max() <= 1e-12
+    assert spawned.sleeping == len(balls) + 1  # the pyramid and the new ball on the floor
+    still = np.array([b.pos for b in balls])
+    disc(spawned, (-40.0, 3.0), (0.0, 0.0), radius=0.5)
+    for _ in range(60):
+        spawned.step(1 / 60)
+        assert all(spawned.is_sleeping(b) for b in balls)
+    assert np.array_equal(np.array([b.pos for b in balls]), still)
