@@ -166,6 +166,21 @@ def _unit(d: np.ndarray, dist: np.ndarray) -> np.ndarray:
     return out
 
 
+def _pairs_of(
+    bodies: np.ndarray, P: np.ndarray, r: np.ndarray, reach: np.ndarray
+) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Each of ``bodies`` (a few) against every body it can reach this step: pairs (lower
+    index, higher index) as one array per body, from the positions P, radii r and reaches."""
+    fa, fb = [], []
+    for k in bodies.tolist():
+        near = _norm(P - P[k]) <= r + r[k] + reach + reach[k]
+        near[k] = False
+        j = np.flatnonzero(near)
+        fa.append(np.minimum(j, k))
+        fb.append(np.maximum(j, k))
+    return fa, fb
+
+
 def _sorted_unique(a: np.ndarray) -> np.ndarray:
     """``np.unique(a)`` for integers: sorted, without repeats (a sort and a mask; numpy 2's
     np.unique hashes first, several times slower on the ~10^4 keys of a pile)."""
@@ -536,13 +551,7 @@ class Collisions:
         if len(F):
             # Fast bodies against every body (few of them; a grid of their size would make
             # every cell hold everyone).
-            fa, fb = [], []
-            for k in F.tolist():
-                near = _norm(P - P[k]) <= r + r[k] + reach + reach[k]
-                near[k] = False
-                j = np.flatnonzero(near)
-                fa.append(np.minimum(j, k))
-                fb.append(np.maximum(j, k))
+            fa, fb = _pairs_of(F, P, r, reach)
             ia = np.concatenate([ia, *fa])
             ib = np.concatenate([ib, *fb])
             key = _sorted_unique(ia.astype(np.int64) * len(P) + ib)
@@ -615,14 +624,10 @@ class Collisions:
             got[grown] = gain[grown]
             reach = reach.copy()
             reach[grown] += gain[grown] * dt
-            fa, fb = [ia], [ib]
-            for k in grown.tolist():
-                near = _norm(P - P[k]) <= r + r[k] + reach + reach[k]
-                near[k] = False
-                j = np.flatnonzero(near)
-                fa.append(np.minimum(j, k))
-                fb.append(np.maximum(j, k))
-            key = _sorted_unique(np.concatenate(fa).astype(np.int64) * len(P) + np.concatenate(fb))
+            fa, fb = _pairs_of(grown, P, r, reach)
+            key = _sorted_unique(
+                np.concatenate([ia, *fa]).astype(np.int64) * len(P) + np.concatenate([ib, *fb])
+            )
             ia, ib = key // len(P), key % len(P)
         return ia, ib
 
