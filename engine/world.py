@@ -316,7 +316,7 @@ class World:
         if self._contacts is not None:
             self._contacts.bodies_added(len(batch))
             self._push_out(range(len(self._bodies) - len(batch), len(self._bodies)))
-        self._changed_structure(added=len(batch))
+        self._changed_structure(appended=True)
         return batch
 
     def remove(self, body: Body) -> None:
@@ -814,10 +814,10 @@ class World:
         return hits
 
     # -- derived state ----------------------------------------------------------------------
-    def _changed_structure(self, added: int = 0) -> None:
+    def _changed_structure(self, appended: bool = False) -> None:
         """Bodies, forces or masses changed: rebuild the force model and the choice.
-        ``added``: only that many bodies were added, at the end (the others keep their sleep
-        and their contacts' warm start: a game spawning a ball does not wake a pile)."""
+        ``appended``: only bodies were added, at the end (the others keep their sleep and
+        their contacts' warm start: a game spawning a ball does not wake a pile)."""
         if self._model is not None:
             self._evaluations += self._model.evaluations
         self._drop_kernel()
@@ -825,7 +825,7 @@ class World:
         self._anchor = None
         self._policy.choice = None
         self._version += 1
-        if added:
+        if appended:
             self._collisions.grew(len(self._bodies))
         else:
             self._collisions.changed(len(self._bodies))
