@@ -12,10 +12,20 @@
 ``import engine`` never imports pygame; drawing lives in ``engine.render``.
 """
 
-from . import colliders, contacts, filters, forces, integrators, kinematics, links, stability
+from . import (
+    colliders,
+    contacts,
+    events,
+    filters,
+    forces,
+    integrators,
+    kinematics,
+    links,
+    stability,
+)
 from .body import Body
 from .colliders import Box, Circle, Collider, Plane, Segment
-from .contacts import ContactEvent
+from .events import ContactEvent
 from .filters import Filter
 from .links import Cable, Link, Pin, Rod
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
@@ -48,6 +58,7 @@ __all__ = [
     "SimulationDiverged",
     "colliders",
     "contacts",
+    "events",
     "filters",
     "forces",
     "integrators",

@@ -36,12 +36,14 @@ from numbers import Real
 from typing import Any
 
 from . import checks
+from .filters import DEFAULT as DEFAULT_FILTER
+from .filters import Filter
 from .vector import Vector, _as_pair
 
-__all__ = ["Collider", "Plane", "Segment", "Circle", "Box"]
+__all__ = ["Collider", "Plane", "Segment", "Circle", "Box", "point_of"]
 
 
-def _point(value: Any, name: str) -> tuple[float, float]:
+def point_of(value: Any, name: str) -> tuple[float, float]:
     """A finite 2D point (a Vector or a pair of numbers); TypeError / ValueError naming ``name``."""
     pair = _as_pair(value)
     if pair is None and not isinstance(value, (str, bytes)):
@@ -78,6 +80,15 @@ def _unit(x: float, y: float) -> tuple[float, float] | None:
     return x / length, y / length
 
 
+def _filter(value: Any) -> Filter:
+    if not isinstance(value, Filter):
+        raise TypeError(
+            f"filter must be an engine.Filter (group, categories, mask), got "
+            f"{type(value).__name__} {value!r}"
+        )
+    return value
+
+
 def _material(restitution: Any, friction: Any, sensor: Any) -> tuple[float, float, bool]:
     e = checks.real(restitution, "restitution")
     if not 0.0 <= e <= 1.0:
@@ -103,10 +114,19 @@ Disc = tuple[tuple[float, float], float]
 class Collider:
     """A static shape bodies meet; its subclasses are the shapes. Materials as in the module doc."""
 
-    __slots__ = ("restitution", "friction", "sensor")
+    __slots__ = ("restitution", "friction", "sensor", "filter")
 
-    def __init__(self, restitution: float, friction: float, sensor: bool) -> None:
+    def __init__(
+        self,
+        restitution: float,
+        friction: float,
+        sensor: bool,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002
+    ) -> None:
         self.restitution, self.friction, self.sensor = _material(restitution, friction, sensor)
+        #: Which bodies meet it (engine.Filter, as a body's): a body whose filter and this one
+        #: do not collide passes through it, is not sensed by it, and queries filter it alike.
+        self.filter = _filter(filter)
 
     def distance(self, point: Any) -> float:
         """Signed distance (length units) from ``point`` to the surface: > 0 in free space."""
@@ -136,6 +156,8 @@ class Collider:
             parts.append(f"friction={self.friction!r}")
         if self.sensor:
             parts.append("sensor=True")
+        if self.filter != DEFAULT_FILTER:
+            parts.append(f"filter={self.filter!r}")
         return "".join(", " + p for p in parts)
 
 
@@ -152,19 +174,20 @@ class Plane(Collider):
         restitution: float = 1.0,
         friction: float = 1.0,
         sensor: bool = False,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
     ) -> None:
-        p = _point(point, "point")
-        unit = _unit(*_point(normal, "normal"))
+        p = point_of(point, "point")
+        unit = _unit(*point_of(normal, "normal"))
         if unit is None:
             raise ValueError(
                 f"normal must be a nonzero direction such as (0, 1) (up), got {normal!r}"
             )
-        super().__init__(restitution, friction, sensor)
+        super().__init__(restitution, friction, sensor, filter)
         self.point = Vector(*p)
         self.normal = Vector(*unit)
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
-        x, y = _point(point, "point")
+        x, y = point_of(point, "point")
         n, p = self.normal, self.point
         d = (x - p.x) * n.x + (y - p.y) * n.y
         return Vector(x - d * n.x, y - d * n.y), n, d
@@ -200,8 +223,9 @@ class Segment(Collider):
         restitution: float = 1.0,
         friction: float = 1.0,
         sensor: bool = False,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
     ) -> None:
-        pa, pb = _point(a, "a"), _point(b, "b")
+        pa, pb = point_of(a, "a"), point_of(b, "b")
         r = checks.real(radius, "radius", nonneg=True)
         dx, dy = pb[0] - pa[0], pb[1] - pa[1]
         if pa != pb and not (math.isfinite(dx) and math.isfinite(dy)):
@@ -214,11 +238,11 @@ class Segment(Collider):
                 f"length to give it a direction; "
                 f"use Circle({pa}, radius) for a round peg"
             )
-        super().__init__(restitution, friction, sensor)
+        super().__init__(restitution, friction, sensor, filter)
         self.a, self.b, self.radius = Vector(*pa), Vector(*pb), r
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
-        x, y = _point(point, "point")
+        x, y = point_of(point, "point")
         a, b = self.a, self.b
         dx, dy = b.x - a.x, b.y - a.y
         u = ((x - a.x) * dx + (y - a.y) * dy) / (dx * dx + dy * dy)
@@ -263,14 +287,15 @@ class Circle(Collider):
         restitution: float = 1.0,
         friction: float = 1.0,
         sensor: bool = False,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
     ) -> None:
-        c = _point(center, "center")
+        c = point_of(center, "center")
         r = checks.real(radius, "radius", positive=True)
-        super().__init__(restitution, friction, sensor)
+        super().__init__(restitution, friction, sensor, filter)
         self.center, self.radius = Vector(*c), r
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
-        x, y = _point(point, "point")
+        x, y = point_of(point, "point")
         c, r = self.center, self.radius
         ox, oy = x - c.x, y - c.y
         d = math.hypot(ox, oy)
@@ -301,19 +326,20 @@ class Box(Collider):
         restitution: float = 1.0,
         friction: float = 1.0,
         sensor: bool = False,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
     ) -> None:
-        x0, y0 = _point(lower_left, "lower_left")
-        x1, y1 = _point(upper_right, "upper_right")
+        x0, y0 = point_of(lower_left, "lower_left")
+        x1, y1 = point_of(upper_right, "upper_right")
         if not (x0 < x1 and y0 < y1):
             raise ValueError(
                 f"upper_right must lie above and right of lower_left (x1 > x0 and y1 > y0), got "
                 f"lower_left={lower_left!r}, upper_right={upper_right!r}"
             )
-        super().__init__(restitution, friction, sensor)
+        super().__init__(restitution, friction, sensor, filter)
         self.lower_left, self.upper_right = Vector(x0, y0), Vector(x1, y1)
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
-        x, y = _point(point, "point")
+        x, y = point_of(point, "point")
         (x0, y0), (x1, y1) = self.lower_left, self.upper_right
         # Distance to each wall, positive inside the room; the nearest wall is the contact.
         walls = (

@@ -483,7 +483,7 @@ class Collisions:
             # Nothing the pairs pushed is left inside a wall (with its speed into it taken).
             # (A kinematic body is no wall's business: its radius is taken as -inf there.)
             contacts.push_out_rows(
-                X, V, r if self._kinU is None else np.where(self._kinU, -np.inf, r)
+                X, V, r if self._kinU is None else np.where(self._kinU, -np.inf, r), U
             )
         # The overlap each body is left with: a group sleeps only once it is small.
         over = r[rest_a] + r[rest_b] - _norm(X[rest_a] - X[rest_b])
@@ -691,7 +691,7 @@ class Collisions:
                 assert contacts is not None
                 moved = np.flatnonzero(changed)
                 face_t[moved], face_f[moved], face_n[moved] = _wall_hits(
-                    contacts, moved, X, V, A, r, ts, dt, self._P[moved]
+                    contacts, moved, X, V, A, r, ts, dt, self._P[moved], U
                 )
             hit = np.isfinite(toi)
             if not hit.any() and not np.isfinite(face_t).any():
@@ -821,7 +821,9 @@ class Collisions:
         xa, va = self._state_at(pa, t, X, V, A, dt)
         xb, vb = self._state_at(pb, t, X, V, A, dt)
         d = xa - xb
-        nrm = d / _norm(d)[:, None]
+        # hypot, not sqrt(d.d): centres 1e-200 apart would square to 0; coincident ones
+        # part straight up (_unit).
+        nrm = _unit(d, np.hypot(d[:, 0], d[:, 1]))
         vr = va - vb
         vn = _dot(vr, nrm)  # < 0: closing
         wsum = w[pa] + w[pb]
@@ -919,6 +921,9 @@ class Collisions:
         keys = U[ra].astype(np.int64) * base + U[rb]
         if n_faces and contacts is not None:
             fa, fn, fg, fmu, fk = _face_rows(contacts, X, r, 0.05 * r)
+            if contacts.faces.filters is not None:
+                ok = contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
+                fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
             # As for pairs: a body closing on a wall faster than rest_speed, not yet in it,
             # meets it early in the next step (the static contacts bounce it exactly).
             slow = (-_dot(V[fa], fn) <= 2.0 * dt * np.abs(_dot(P[fa], fn))) | (fg < 0.0)
@@ -1118,9 +1123,11 @@ class Collisions:
                         fa, nf, nfc, base = fa[keep_f], nf[keep_f], nfc[keep_f], base[keep_f]
                         slop_f, kf, push_f = slop_f[keep_f], kf[keep_f], push_f[keep_f]
             # Straight up where two centres coincide, so that they are still pushed apart.
-            unit = D / np.where(dist > 0.0, dist, 1.0)
-            if not dist.all():
-                unit[dist == 0.0] = 1j
+            # (Subnormal distances count as coinciding: complex division by them overflows.)
+            apart = dist > 1e-290
+            unit = D / np.where(apart, dist, 1.0)
+            if not apart.all():
+                unit[~apart] = 1j
             Pp = unit * push_p
             Pf = nf * push_f
             idx = np.concatenate([pa, pb, fa])
@@ -1544,6 +1551,7 @@ def _wall_hits(
     ts: np.ndarray,
     dt: float,
     pull: np.ndarray,
+    U: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(time, face, unit normal toward the body) of the first wall each local body i meets
     on its path from ts to the end of the step closing faster than its rest speed (2 dt times
@@ -1562,6 +1570,9 @@ def _wall_hits(
     v = V[i] - Ai * s
     reach = r[i] + _norm(v) * T + _norm(Ai) * (0.5 * T * T) + TOUCH
     bi, f = contacts._grid_of().pairs(x, reach)
+    if len(bi) and U is not None and contacts.faces.filters is not None:
+        ok = contacts.allowed(U[i[bi]], f)  # faces a body's filter does not meet
+        bi, f = bi[ok], f[ok]
     if not len(bi):
         return t_out, f_out, n_out
     t = np.full(len(bi), np.inf)

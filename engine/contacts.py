@@ -60,45 +60,20 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from .colliders import Box, Circle, Collider, Plane, Segment
+from .events import ContactEvent
+from .filters import DEFAULT as DEFAULT_FILTER
 from .impact import TOUCH, Pair, disc_hit_one, disc_hits, line_hit_one, line_hits
-from .vector import Vector
 
 __all__ = ["Contacts", "ContactEvent", "MAX_IMPACTS", "signed_distance"]
 
 #: Impacts one body may meet in one step; past them it stops where the last one put it,
 #: on a surface, for the rest of the step (counted in ``capped``).
 MAX_IMPACTS = 32
-
-
-class ContactEvent(NamedTuple):
-    """A contact that began or ended: which body and collider, where, and how hard.
-
-    ``collider`` is the other Body for a contact between two bodies (which of the two is
-    ``body`` in ``World.began`` is not fixed; a handler from ``World.on_contact`` on a Body
-    always gets that Body as ``body``). ``point`` is on the
-    collider's (or other body's) surface, ``normal`` the unit normal there toward the
-    body, ``impulse`` (N s, a Vector) the change of the body's momentum, ``time`` (s) the
-    World time of the contact within the step.
-    """
-
-    body: Any
-    collider: Any  # a Collider, or the other Body
-    point: Vector
-    normal: Vector
-    impulse: Vector
-    time: float
-
-    def flipped(self) -> ContactEvent:
-        """The same contact between two bodies seen from the other one: ``body`` and
-        ``collider`` swapped, the normal and the impulse reversed (Newton's third law)."""
-        return ContactEvent(
-            self.collider, self.body, self.point, -self.normal, -self.impulse, self.time
-        )
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -153,6 +128,9 @@ class _Faces:
     e_list: list[float]
     mu_list: list[float]
     owner_list: list[int]
+    # The owners' filters (engine.Filter: group, categories, mask), by face; None when every
+    # collider has the default filter (then every body meets every face).
+    filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
@@ -195,6 +173,14 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
         )
     ]
     disc_list = [((cx, cy), rd) for (cx, cy), rd in zip(centres.tolist(), r.tolist(), strict=True)]
+    filters = None
+    if any(colliders[k].filter != DEFAULT_FILTER for k in indices):
+        fs = [colliders[k].filter for k in owner.tolist()]
+        filters = (
+            np.array([f.group for f in fs], dtype=np.int64),
+            np.array([f.categories for f in fs], dtype=np.int64),
+            np.array([f.mask for f in fs], dtype=np.int64),
+        )
     return _Faces(
         p,
         n,
@@ -214,6 +200,7 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
         e.tolist(),
         mu.tolist(),
         owner.tolist(),
+        filters,
     )
 
 
@@ -240,6 +227,9 @@ class Contacts:
         #: floats: a dozen array calls (~30 us) cost more than a few rows' arithmetic.
         self.few_resting = 8
         self.moved = False  # whether the last step's contacts changed any body's state
+        #: The World's bodies' filters (group, categories, mask arrays by row), for colliders
+        #: with filters of their own (``allowed``); set by the World.
+        self.body_filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     # -- colliders and bodies ---------------------------------------------------------------
     def add(self, collider: Collider) -> None:
@@ -349,35 +339,56 @@ class Contacts:
         rest, inside, capped = state
         self.rest, self.inside, self.capped = rest.copy(), inside.copy(), int(capped)
 
-    # -- pushing bodies out -----------------------------------------------------------------
-    def push_out(self, x: np.ndarray, v: np.ndarray, radius: np.ndarray) -> list[tuple[int, int]]:
-        """Move bodies that overlap a solid collider onto its surface; return (row, collider).
+    def allowed(self, rows: np.ndarray, faces: np.ndarray) -> np.ndarray:
+        """Whether each body (World row) meets each face (pairs of equal length): their
+        filters collide (engine.filters), as for two bodies. All True without filters."""
+        ff, bf = self.faces.filters, self.body_filters
+        if ff is None or bf is None:
+            return np.ones(len(rows), dtype=bool)
+        g, c, m = bf[0][rows], bf[1][rows], bf[2][rows]
+        fg, fc, fm = ff[0][faces], ff[1][faces], ff[2][faces]
+        ok = ((c & fm) != 0) & ((fc & m) != 0)
+        return ok & ~((g == fg) & (g != 0))
 
-        The velocity's part into the surface is removed.
+    def _allowed_faces(self, row: int) -> np.ndarray | None:
+        """Which faces the body in World row ``row`` meets, or None for all."""
+        if self.faces.filters is None or self.body_filters is None or row < 0:
+            return None
+        f = np.arange(len(self.faces.owner))
+        return self.allowed(np.full(len(f), row, dtype=np.intp), f)
+
+    # -- pushing bodies out -----------------------------------------------------------------
+    def push_out(
+        self, x: np.ndarray, v: np.ndarray, radius: np.ndarray, rows: np.ndarray
+    ) -> list[tuple[int, int]]:
+        """Move bodies (World ``rows``) that overlap a solid collider they meet to the nearest
+        place outside every one (``push_out_rows``), in place; return (place in x, a
+        collider it overlapped) for each.
+
+        The velocity's part into the surfaces it then touches is removed.
         """
-        moved: list[tuple[int, int]] = []
-        if len(x) == 0:
-            return moved
-        for _ in range(4):  # a body in a corner may be pushed by one wall into another
-            changed = False
-            for k, c in enumerate(self.colliders):
-                if c.sensor:
-                    continue
+        if len(x) == 0 or not len(self.faces.owner):
+            return []
+        overlapped = []
+        bf = self.body_filters
+        for k, c in enumerate(self.colliders):
+            if not c.sensor:
                 d = signed_distance(c, x) - radius
-                bad = np.flatnonzero(d < -1e-9 * (1.0 + radius))
-                for i in bad:
-                    # closest() gives the normal toward free space even from inside.
-                    point, normal, _ = c.closest(x[i])
-                    nx, ny = normal
-                    target = point + normal * float(radius[i])
-                    x[i] = (target.x, target.y)
-                    vn = v[i, 0] * nx + v[i, 1] * ny
-                    if vn < 0.0:
-                        v[i] = (v[i, 0] - vn * nx, v[i, 1] - vn * ny)
-                    moved.append((int(i), k))
-                    changed = True
-            if not changed:
-                break
+                bad = d < -1e-9 * (1.0 + radius)
+                if c.filter != DEFAULT_FILTER and bf is not None and bad.any():
+                    f = c.filter
+                    g, cat, m = bf[0][rows], bf[1][rows], bf[2][rows]
+                    bad &= ((cat & f.mask) != 0) & ((f.categories & m) != 0)
+                    bad &= ~((g == f.group) & (g != 0))
+                overlapped.append((k, bad))
+        if not any(bad.any() for _, bad in overlapped):
+            return []
+        pushed = self.push_out_rows(x, v, radius, rows)
+        moved = []
+        for i in np.flatnonzero(pushed).tolist():
+            first = next((k for k, bad in overlapped if bad[i]), None)
+            if first is not None:
+                moved.append((i, first))
         return moved
 
     # -- the step ---------------------------------------------------------------------------
@@ -627,6 +638,10 @@ class Contacts:
             return kept, kept, kept
         pb = np.concatenate(parts_b) if len(parts_b) > 1 else parts_b[0]
         pf = np.concatenate(parts_f) if len(parts_f) > 1 else parts_f[0]
+        if self.faces.filters is not None:
+            # Faces of colliders whose filters a body's does not meet are not there for it.
+            ok = self.allowed(rows[pb], pf)
+            pb, pf = pb[ok], pf[ok]
         if len(kept) < len(rows):
             mine = busy[pb]
             pb, pf = np.searchsorted(kept, pb[mine]), pf[mine]  # its place among the kept
@@ -775,7 +790,7 @@ class Contacts:
                 rolled = rs[rest[active[rs]] >= L]
                 if len(rolled):
                     Xr, Vr = Xn[rolled], Vn[rolled]
-                    moved = self.push_out_rows(Xr, Vr, r[active[rolled]])
+                    moved = self.push_out_rows(Xr, Vr, r[active[rolled]], rows[active[rolled]])
                     Xn[rolled], Vn[rolled] = Xr, Vr
                     rest[active[rolled[moved]]] = -1
             X[active], V[active] = Xn, Vn
@@ -792,7 +807,7 @@ class Contacts:
             V[active] = 0.0
             touched[active] = True
             Xt, Vt = X[active], V[active]
-            self.push_out_rows(Xt, Vt, r[active])
+            self.push_out_rows(Xt, Vt, r[active], rows[active])
             X[active], V[active] = Xt, Vt
         touched |= rest >= 0
         touched |= self.rest[rows] >= 0  # lifted off this step
@@ -800,12 +815,20 @@ class Contacts:
         t = np.flatnonzero(touched)
         return rows[t], X[t], V[t]
 
-    def push_out_rows(self, X: np.ndarray, V: np.ndarray, r: np.ndarray) -> np.ndarray:
+    def push_out_rows(
+        self, X: np.ndarray, V: np.ndarray, r: np.ndarray, rows: np.ndarray | None = None
+    ) -> np.ndarray:
         """Push rows of X out of any solid face they overlap (by more than TOUCH), in place;
-        return which rows moved."""
+        return which rows moved. ``rows``: the World rows of X's rows, whose filters say
+        which faces they meet (needed only when a collider has a filter)."""
         faces = self.faces
         L = len(faces.p)
         pushed = np.zeros(len(X), dtype=bool)
+        meets = None
+        if faces.filters is not None and self.body_filters is not None and rows is not None:
+            n_f = len(faces.owner)
+            meets = self.allowed(np.repeat(rows, n_f), np.tile(np.arange(n_f), len(rows)))
+            meets = meets.reshape(len(rows), n_f)
         for _ in range(3):
             moved = False
             if L:
@@ -817,6 +840,8 @@ class Contacts:
                 tang = np.stack([-faces.n[:, 1], faces.n[:, 0]], axis=1)
                 u = X[:, :1] * tang[:, 0] + X[:, 1:] * tang[:, 1] - _dot(faces.p, tang)
                 inside = (gap < -TOUCH * (1.0 + r[:, None])) & (u >= faces.lo) & (u <= faces.hi)
+                if meets is not None:
+                    inside &= meets[:, :L]
                 for i, j in zip(*np.nonzero(inside), strict=True):
                     nrm = side[i, j] * faces.n[j]
                     X[i] -= gap[i, j] * nrm
@@ -829,7 +854,10 @@ class Contacts:
                 D = X[:, None, :] - faces.c[None, :, :]
                 dist = np.sqrt((D * D).sum(axis=2))
                 gap = dist - faces.r[None, :] - r[:, None]
-                for i, j in zip(*np.nonzero(gap < -TOUCH * (1.0 + r[:, None])), strict=True):
+                inside = gap < -TOUCH * (1.0 + r[:, None])
+                if meets is not None:
+                    inside &= meets[:, L:]
+                for i, j in zip(*np.nonzero(inside), strict=True):
                     nrm = D[i, j] / dist[i, j] if dist[i, j] > 0 else np.array([0.0, 1.0])
                     X[i] = faces.c[j] + nrm * (faces.r[j] + r[i])
                     vn = V[i] @ nrm
@@ -843,12 +871,21 @@ class Contacts:
             # Three rounds did not settle it: a body pressed into the corner of two faces
             # (between a peg and a wall, pushed out of each in turn) is put at the corner.
             for i in np.flatnonzero(pushed).tolist():
-                self._out_of_corner(X, V, i, float(r[i]))
+                self._out_of_corner(X, V, i, float(r[i]), None if meets is None else meets[i])
         return pushed
 
-    def _face_gaps(self, x: np.ndarray, r: float) -> tuple[np.ndarray, np.ndarray]:
+    def _face_gaps(
+        self, x: np.ndarray, r: float, meets: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Every solid face's gap (length units, < 0 inside) to a ball of radius r at x, and
-        its unit normal toward x; a flat face beyond its ends has gap inf."""
+        its unit normal toward x; a flat face beyond its ends, or one the ball does not meet
+        (``meets`` False), has gap inf."""
+        gaps, nrm = self._all_face_gaps(x, r)
+        if meets is not None:
+            gaps[~meets] = np.inf
+        return gaps, nrm
+
+    def _all_face_gaps(self, x: np.ndarray, r: float) -> tuple[np.ndarray, np.ndarray]:
         faces = self.faces
         L = len(faces.p)
         gaps = np.full(L + len(faces.c), np.inf)
@@ -868,7 +905,9 @@ class Contacts:
             nrm[L:] = np.where((dist > 0.0)[:, None], D / safe[:, None], (0.0, 1.0))
         return gaps, nrm
 
-    def _out_of_corner(self, X: np.ndarray, V: np.ndarray, i: int, r: float) -> None:
+    def _out_of_corner(
+        self, X: np.ndarray, V: np.ndarray, i: int, r: float, meets: np.ndarray | None = None
+    ) -> None:
         """Put row i, still inside some face after push_out_rows' rounds, at the nearest point
         outside every face: its projection out of one face, or a corner where the surfaces
         of two meet (offset by r: two lines meet in a point; a line and a circle, or two
@@ -877,7 +916,7 @@ class Contacts:
         L = len(faces.p)
         x = X[i].astype(float)
         slack = TOUCH * (1.0 + r)
-        gaps, nrm = self._face_gaps(x, r)
+        gaps, nrm = self._face_gaps(x, r, meets)
         if not (gaps < -slack).any():
             return
         # The faces that bound the corner: those it overlaps or nearly touches.
@@ -888,14 +927,14 @@ class Contacts:
                 cands += _corners(faces, L, a, b, x, nrm, r)
         best, best_d = None, math.inf
         for c in cands:
-            g, _ = self._face_gaps(c, r)
+            g, _ = self._face_gaps(c, r, meets)
             dist = float(np.hypot(*(c - x)))
             if (g >= -slack * 4.0).all() and dist < best_d:
                 best, best_d = c, dist
         if best is None:
             return  # no corner of two faces frees it (three at once): left to the next step
         X[i] = best
-        g, n_at = self._face_gaps(best, r)
+        g, n_at = self._face_gaps(best, r, meets)
         for j in np.flatnonzero(g <= slack * 4.0).tolist():
             vn = float(V[i] @ n_at[j])
             if vn < 0.0:
@@ -1348,7 +1387,7 @@ class Contacts:
                 xn, vn = _project_one(faces, rest, xn, vn, r)
                 if rest >= L:  # rolled over a round edge onto a flat side it overlaps?
                     Xr, Vr = np.array([xn]), np.array([vn])
-                    if self.push_out_rows(Xr, Vr, np.array([r]))[0]:
+                    if self.push_out_rows(Xr, Vr, np.array([r]), np.array([row]))[0]:
                         rest = -1
                     xn, vn = (float(Xr[0, 0]), float(Xr[0, 1])), (float(Vr[0, 0]), float(Vr[0, 1]))
             x, v = xn, vn
@@ -1361,7 +1400,7 @@ class Contacts:
             self.capped += 1
             touched = True
             Xt, Vt = np.array([x]), np.zeros((1, 2))
-            self.push_out_rows(Xt, Vt, np.array([r]))
+            self.push_out_rows(Xt, Vt, np.array([r]), np.array([row]))
             x, v = (float(Xt[0, 0]), float(Xt[0, 1])), (float(Vt[0, 0]), float(Vt[0, 1]))
         return x, v, touched or rest >= 0 or rest_before >= 0, rest
 
@@ -1372,6 +1411,11 @@ class Contacts:
             c = self.colliders[k]
             d = signed_distance(c, x1)
             now = d > -radius if isinstance(c, Box) else d < radius
+            bf = self.body_filters
+            if c.filter != DEFAULT_FILTER and bf is not None:
+                f = c.filter  # a sensor senses only the bodies its filter meets
+                now &= ((bf[1] & f.mask) != 0) & ((f.categories & bf[2]) != 0)
+                now &= ~((bf[0] == f.group) & (bf[0] != 0))
             was = self.inside[:, s]
             for where, rows in (
                 (self._began, np.flatnonzero(now & ~was)),

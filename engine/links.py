@@ -15,8 +15,10 @@ How they are solved (``LinkSolver``). The step moves every body as if unlinked (
 own update, then the contacts); the links then correct it, as RATTLE does (Andersen 1983) for
 velocity Verlet:
 
-1. Positions. Each link k pulls its ends along its direction at the start of the step, r_k:
-   body i moves by w_i lam_k r_k and the other end by -w_j lam_k r_k (w = 1/m, 0 for what the
+1. Positions. Each link k pulls its ends along its direction at the start of the step, r_k
+   (at the end of it, for a link whose end was struck in the step or passed its other end:
+   its start direction then says nothing of the pull): body i moves by w_i lam_k r_k and
+   the other end by -w_j lam_k r_k (w = 1/m, 0 for what the
    game moves or a pin holds). The multipliers lam solve c_k(lam) = |d_k|^2 - L_k^2 = 0 for
    every link at once (d_k the link's vector from its other end to its body, after the
    moves), by Newton's method: its Jacobian is dc_k/dlam_l = 2 S_kl (d_k . r_l), with
@@ -29,8 +31,10 @@ velocity Verlet:
    the link allows (0 for a rod; for a cable the bounce of its snap) by one linear solve
    S_kl (n_k . n_l) mu = target - u.
 
-A cable is a link only while it pulls: its multipliers must pull (lam <= 0, mu <= 0), and a
-cable that would push is left out and the rest solved again. A step that moves an end
+A cable is a link only while it pulls: its correction must bring its ends together (lam r
+toward the other end: lam <= 0 while r still points along the link, lam >= 0 where the end
+passed its anchor within the step and r points back), and mu <= 0; a cable that would push
+is left out and the rest solved again. A step that moves an end
 farther than Newton's method can bring back along r_k (a body flung past what the step can
 hold) is finished by projecting along the current direction instead, and warned about with a
 StabilityWarning, once per link: take a smaller dt.
@@ -314,6 +318,10 @@ class LinkSolver:
         # or, for a link whose end was struck in the step (its path has a kink: the pull
         # before the blow is not the pull after it), where it points at the end.
         use_end = np.einsum("ij,ij->i", d_start, d_start) == 0.0
+        # ... and for a link whose ends passed each other within the step (a cable's end
+        # flung past its anchor): its start direction points back, and the correction
+        # along it would find the far root, the end sent back through the anchor.
+        use_end |= np.einsum("ij,ij->i", d_start, d_end) < 0.0
         if kinked is not None:
             use_end |= kinked[self.i] | ((self.j >= 0) & kinked[np.maximum(self.j, 0)])
         r = np.where(use_end[:, None], d_end, d_start)
@@ -335,7 +343,12 @@ class LinkSolver:
             lam_sel, ok = self._positions(x, r, w, sel, n)
             if not ok:
                 break
-            pushing = ~self.rigid[sel] & (lam_sel > 0.0)
+            # A cable pushes when its correction moves its end away from the other: lam r
+            # along the link as it is once corrected (where an end passed its anchor within
+            # the step, r points back, and a pull is lam > 0).
+            d_fix = self._ends(x + self._spread(n, w, lam_sel[:, None] * r[sel], sel))[sel]
+            along = np.einsum("ij,ij->i", r[sel], d_fix)
+            pushing = ~self.rigid[sel] & (lam_sel * along > 0.0)
             if pushing.any():
                 active[sel[pushing]] = False
                 if not active.any():
@@ -348,17 +361,28 @@ class LinkSolver:
             if not stretched.any():
                 break
             active |= stretched
-            # One whose ends met at the step's start and end pulls along where they are now.
+            # One whose ends met at the step's start and end pulls along where they are now,
+            # as does one whose ends the others' pull has sent past each other.
             none = stretched & (np.einsum("ij,ij->i", r, r) == 0.0)
+            none |= stretched & (np.einsum("ij,ij->i", r, d) < 0.0)
             r[none] = d[none]
-        else:  # the set kept changing: solve the last one as it stands
-            lam_sel, ok = self._positions(x, r, w, np.flatnonzero(active), n)
+        else:
+            # The set kept changing (ends flung past each other: Newton's roots for the pull
+            # along r and for a push trade places): the projection along the links as they
+            # point now settles it, with the warning of a step past what it can hold.
+            ok = False
         sel = np.flatnonzero(active)
         if ok:
             lam[sel] = lam_sel
             dx = self._spread(n, w, lam_sel[:, None] * r[sel], sel)
-        else:  # Newton's multipliers are no use: the fallback's move is not along r
+        else:
+            # Newton's multipliers are no use: the fallback's move is not along r. It takes
+            # every link that can move (a cable only while it would be too long).
+            sel = np.flatnonzero(movable)
             dx = self._project(x, w, sel, n)
+            d = self._ends(x + dx)
+            taut = self.rigid | (np.einsum("ij,ij->i", d, d) >= (L * (1.0 - 1e-9)) ** 2)
+            sel = np.flatnonzero(movable & taut)
         x += dx
         v += dx * (1.0 / dt)
         self.moved = True
@@ -436,7 +460,10 @@ class LinkSolver:
         else:
             sx, sy = float(x0[i, 0]) - px, float(x0[i, 1]) - py
         struck = kinked is not None and (bool(kinked[i]) or (j >= 0 and bool(kinked[j])))
-        rx, ry = (dx, dy) if struck or sx * sx + sy * sy == 0.0 else (sx, sy)
+        # Along the start direction (RATTLE), unless an end was struck in the step, or the
+        # ends passed each other in it (then the start direction points back).
+        crossed = sx * dx + sy * dy < 0.0
+        rx, ry = (dx, dy) if struck or crossed or sx * sx + sy * sy == 0.0 else (sx, sy)
         a = s * s * (rx * rx + ry * ry)
         b = 2.0 * s * (dx * rx + dy * ry)
         c = length2 - L * L
@@ -455,8 +482,11 @@ class LinkSolver:
                 return
             lam = (L - dist) / (s * dist)
             rx, ry = dx, dy
-        elif not rigid and lam > 0.0:
-            return  # the cable would push
+        elif not rigid and lam * (rx * dx + ry * dy) > 0.0:
+            # The cable would push: it moves the end away from the other one (along r when r
+            # and d agree; across the anchor, where the end passed it within the step and r
+            # points back, a pull moves it along r).
+            return
         self.moved = True
         cx, cy = lam * rx, lam * ry
         x[i, 0] += wi * cx
@@ -523,22 +553,27 @@ class LinkSolver:
 
     def _project(self, x: np.ndarray, w: np.ndarray, sel: np.ndarray, n: int) -> np.ndarray:
         """The fallback: links one after another, each end moved along the link's current
-        direction to its length (Gauss-Seidel; always possible), until they hold."""
+        direction to its length (Gauss-Seidel; always possible; a cable only while it is
+        too long), until they hold."""
         X = x.copy()
         i, j, L = self.i[sel], self.j[sel], self.L[sel]
-        for k in sel.tolist():
-            self.stretched.append(self.links[k])
+        rigid = self.rigid[sel]
+        d0 = self._ends(x)[sel]
+        too_long = (np.hypot(d0[:, 0], d0[:, 1]) > L).tolist()
+        for k, long_ in zip(sel.tolist(), too_long, strict=True):
+            if long_ or self.rigid[k]:
+                self.stretched.append(self.links[k])
         for _ in range(200):
             worst = 0.0
-            for a, b, length, p in zip(
-                i.tolist(), j.tolist(), L.tolist(), self.p[sel], strict=True
+            for a, b, length, p, rod in zip(
+                i.tolist(), j.tolist(), L.tolist(), self.p[sel], rigid.tolist(), strict=True
             ):
                 end = X[b] if b >= 0 else p
                 d = X[a] - end
                 dist = math.hypot(float(d[0]), float(d[1]))
                 wa, wb = w[a], (w[b] if b >= 0 else 0.0)
-                if dist == 0.0 or wa + wb == 0.0:
-                    continue
+                if dist == 0.0 or wa + wb == 0.0 or (not rod and dist <= length):
+                    continue  # (a slack cable pulls nothing)
                 err = dist - length
                 worst = max(worst, abs(err) / length)
                 corr = d * (err / (dist * (wa + wb)))

@@ -38,7 +38,7 @@ class BodyStore:
         dim: int,
         owner: Any = None,
         *,
-        on_state: Callable[[], None] = lambda: None,
+        on_state: Callable[[int, bool], None] = lambda row, moved: None,
         on_own_acc: Callable[[int], None] = lambda row: None,
         on_mass: Callable[[], None] = lambda: None,
         on_kinematic: Callable[[int, Any], None] | None = None,
@@ -130,6 +130,15 @@ class BodyStore:
         rows[slot] = -1
         rows[rows > i] -= 1
 
+    @property
+    def row_of(self) -> np.ndarray:
+        """Each slot's row (-1 once removed), an index array."""
+        return self._row_of
+
+    def slots(self) -> np.ndarray:
+        """Each row's slot (rows keep the order of their slots), an index array."""
+        return np.flatnonzero(self._row_of >= 0)
+
     def row(self, slot: int) -> int:
         """The current row of the body in ``slot``."""
         return int(self._row_of[slot])
@@ -154,7 +163,7 @@ class BodyStore:
             self._on_kinematic(row, self._entry(value))
             return
         self.x[row] = self.prev_x[row] = self._entry(value)
-        self._on_state()
+        self._on_state(row, True)
 
     def set_velocity(self, slot: int, value: Any) -> None:
         """Set one body's velocity to ``value``."""
@@ -163,7 +172,7 @@ class BodyStore:
         if self._on_kinematic is not None and self.kinematic[row]:
             self._on_kinematic(row, None)
         else:
-            self._on_state()
+            self._on_state(row, False)
 
     def set_own_acc(self, slot: int, value: Any) -> None:
         """Set one body's own constant acceleration: one array entry, nothing recompiled."""

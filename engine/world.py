@@ -36,17 +36,28 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from . import checks
+from . import checks, queries
 from .body import Body, State, coerce_mass, coerce_state
-from .colliders import Collider, _point
+from .colliders import Collider
 from .collisions import Collisions, deepest_overlap
-from .contacts import ContactEvent, Contacts, signed_distance
+from .contacts import Contacts, signed_distance
+from .events import (
+    ContactEvent,
+    WorldEvents,
+    collider_keys,
+    other_of,
+    pair_keys,
+    raw_specs,
+    slack_for,
+    slot_of,
+)
+from .filters import Filter
 from .forcefield import ForceModel
 from .forces import Force, as_force
-from .impact import disc_hits, line_hits
 from .integrators import Integrator
 from .links import Cable, Link, LinkSolver, Pin, Rod
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
+from .queries import QueryHit
 from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
 from .vector import Vector
@@ -102,19 +113,6 @@ def check_dt(dt: Any) -> float:
 
 class OverlapWarning(UserWarning):
     """A body started inside a collider and was pushed out to its surface."""
-
-
-@dataclass(frozen=True)
-class QueryHit:
-    """What a query found: the shape (a Body or a Collider), the point, the normal there,
-    and ``fraction`` (0 to 1 along a segment query) or ``distance`` (a point query, length
-    units from the shape's surface, < 0 inside)."""
-
-    shape: Any
-    point: Vector
-    normal: Vector
-    fraction: float = 0.0
-    distance: float = 0.0
 
 
 #: How many parts a step is taken again in when a linked body is struck in it.
@@ -174,6 +172,40 @@ class _Kernel:
     taken: int = 0  # steps taken under earlier proofs (one force evaluation each)
 
 
+class _EventView:
+    """What the events (engine.events) read of a World: bodies by slot, where they are now,
+    and the impulses its open contacts carried over the last step."""
+
+    def __init__(self, world: World) -> None:
+        self._world = world
+
+    @property
+    def t(self) -> float:
+        return self._world.t
+
+    def _row(self, slot: int) -> int:
+        store = self._world._store
+        assert store is not None
+        return store.row(slot)
+
+    def body(self, slot: int) -> Body:
+        return self._world._bodies[self._row(slot)]
+
+    def position(self, slot: int) -> tuple[float, float]:
+        store = self._world._store
+        assert store is not None
+        x = store.x[store.row(slot)]
+        return float(x[0]), float(x[1])
+
+    def radius(self, slot: int) -> float:
+        store = self._world._store
+        assert store is not None
+        return float(store.radius[store.row(slot)])
+
+    def impulses(self, keys: np.ndarray) -> dict[int, tuple[float, float]]:
+        return self._world._impulses(keys)
+
+
 class World:
     """Point bodies, the forces on them, and ``step(dt)``: the only way time moves.
 
@@ -215,9 +247,11 @@ class World:
         self._contacts: Contacts | None = None  # made by the first add_collider
         self._collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
         self._pairs_on = False  # whether any two bodies may collide
-        self._handlers: list[tuple[Any, Callable[..., Any] | None, Callable[..., Any] | None]] = []
-        self._began: list[ContactEvent] | None = None  # the last step's events, made on demand
-        self._ended: list[ContactEvent] | None = None
+        # on_contact handlers: (target, begin, end, post_solve).
+        self._handlers: list[tuple[Any, Any, Any, Any]] = []
+        self._events = WorldEvents()  # the contacts kept open, and each step's events
+        self._events._view = _EventView(self)
+        self._contact_dv: np.ndarray | None = None  # velocity change by the static contacts
         # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
         self._targets: dict[Body, Any] = {}
         self._links: list[Link] = []  # rods, cables and pins (engine.links)
@@ -327,7 +361,9 @@ class World:
         assert store is not None
         pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
         row = store.row(body._slot)
-        _ = self.began, self.ended  # the last step's events, named before the rows shift
+        # The last step's events are named now, before the rows shift, and the body's open
+        # contacts end (reported with the next step).
+        self._events.body_removed(body._slot, self.t)
         del self._bodies[row]
         self._targets.pop(body, None)
         store.remove(body._slot)
@@ -496,7 +532,9 @@ class World:
         if self._contacts is None:
             self._contacts = Contacts()
             self._contacts.bodies_added(len(store))
+        self._events.settle_reading()
         self._contacts.add(collider)
+        self._events.collider_added(collider)
         self._collisions.wake(len(self._bodies))
         self._push_out(range(len(self._bodies)))
         self._changed_structure()
@@ -507,15 +545,17 @@ class World:
         if collider not in self.colliders:
             raise ValueError(f"that collider is not in this World: {collider!r}")
         assert self._contacts is not None
-        # The last step's events name colliders by their place: name them now, before the
-        # places after this one shift.
-        _ = self.began, self.ended
+        # The last step's events are named now, and the collider's open contacts end
+        # (reported with the next step).
+        self._events.collider_removed(collider, self.t)
         self._contacts.remove(collider)
         self._collisions.wake(len(self._bodies))
         self._changed_structure()
 
-    def _push_out(self, rows: Iterable[int]) -> None:
-        """Push the bodies in ``rows`` out of any solid collider, warning for each."""
+    def _push_out(self, rows: Iterable[int], how: str = "started", stacklevel: int = 3) -> None:
+        """Push the bodies in ``rows`` out of every solid collider, to the nearest place
+        outside all of them, warning for each (``how`` it got inside: "started", "was put").
+        A body pushed out rests on nothing until it lands again."""
         contacts, store = self._contacts, self._store
         assert contacts is not None and store is not None
         idx = np.fromiter(rows, dtype=np.intp)
@@ -523,18 +563,20 @@ class World:
         if not len(idx):
             return
         x, v = store.x[idx], store.v[idx]
-        moved = contacts.push_out(x, v, store.radius[idx])
+        contacts.body_filters = (store.group, store.categories, store.mask)
+        moved = contacts.push_out(x, v, store.radius[idx], idx)
         if not moved:
             return
         store.x[idx], store.v[idx], store.prev_x[idx] = x, v, x
+        contacts.rest[idx[[i for i, _ in moved]]] = -1
         self._state_written()
         for i, k in moved[:10]:
             body = self._bodies[int(idx[i])]
             warnings.warn(
-                f"{body!r} started inside {contacts.colliders[k]!r}; it was pushed out to the "
-                f"collider's surface",
+                f"{body!r} {how} inside {contacts.colliders[k]!r}; it was pushed out to the "
+                f"nearest place outside every solid collider",
                 OverlapWarning,
-                stacklevel=3,
+                stacklevel=stacklevel,
             )
 
     def on_contact(
@@ -542,22 +584,26 @@ class World:
         target: Body | Collider,
         begin: Callable[[ContactEvent], Any] | None = None,
         end: Callable[[ContactEvent], Any] | None = None,
+        post_solve: Callable[[ContactEvent], Any] | None = None,
     ) -> Callable[[], None]:
-        """Call ``begin(event)`` / ``end(event)`` after each step for the contacts of ``target``.
+        """Call ``begin(event)`` / ``end(event)`` after each step for the contacts of ``target``
+        that began or ended in it, and ``post_solve(event)`` for each of its contacts that is
+        open after the step (pymunk's name: ``event.impulse`` is what the contact carried over
+        the step; a 2 kg ball resting on a floor under g gets 2 g dt).
 
         ``target`` is a Body in this World or a collider; the calls come after the step, in the
-        order the contacts happened (``World.began`` and ``World.ended`` list them too). For a
-        Body, ``event.body`` is that Body (the other is ``event.collider``). Returns a
-        function that takes the handler off again.
+        order the contacts happened (``World.began``, ``World.ended`` and ``World.touching``
+        list them too). For a Body, ``event.body`` is that Body (the other is
+        ``event.collider``). Returns a function that takes the handler off again.
         """
         if not isinstance(target, (Body, Collider)):
             raise TypeError(
                 f"target must be a Body or a collider, got {type(target).__name__} {target!r}"
             )
-        for name, fn in (("begin", begin), ("end", end)):
+        for name, fn in (("begin", begin), ("end", end), ("post_solve", post_solve)):
             if fn is not None and not callable(fn):
                 raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
-        entry = (target, begin, end)
+        entry = (target, begin, end, post_solve)
         self._handlers.append(entry)
 
         def remove() -> None:
@@ -640,71 +686,156 @@ class World:
         f = int(contacts.rest[store.row(body._slot)])
         return None if f < 0 else contacts.colliders[int(contacts.faces.owner[f])]
 
-    def _events(self, raw: list[Any]) -> list[ContactEvent]:
-        """The contacts' (row, collider index, ...) tuples as ContactEvents with Bodies."""
-        bodies = self._bodies
-        colliders = self._contacts.colliders if self._contacts is not None else []
-        return [
-            ContactEvent(
-                bodies[i],
-                colliders[k],
-                Vector(float(p[0]), float(p[1])),
-                Vector(float(n[0]), float(n[1])),
-                Vector(float(j[0]), float(j[1])),
-                t,
-            )
-            for i, k, p, n, j, t in raw
-        ]
-
-    def _pair_events(self, raw: list[Any]) -> list[ContactEvent]:
-        """Contacts between bodies as ContactEvents: ``collider`` is the other Body; a contact
-        that began or ended at rest takes its point and normal from the state now."""
-        store = self._store
-        if not raw or store is None:
-            return []
-        bodies = self._bodies
-        out = []
-        for i, j, p, n, J, t in raw:
-            if p is None:
-                d = store.x[i] - store.x[j]
-                dist = float(np.hypot(d[0], d[1]))
-                n = d / dist if dist > 0.0 else np.array([0.0, 1.0])
-                p = store.x[j] + n * store.radius[j]
-            out.append(
-                ContactEvent(
-                    bodies[i],
-                    bodies[j],
-                    Vector(float(p[0]), float(p[1])),
-                    Vector(float(n[0]), float(n[1])),
-                    Vector(float(J[0]), float(J[1])),
-                    t,
-                )
-            )
-        return out
-
     @property
     def began(self) -> list[ContactEvent]:
-        """The contacts that began in the last step (a bounce, a landing, entering a sensor)."""
-        if self._began is None:
-            static = [] if self._contacts is None else self._events(self._contacts.began)
-            self._began = static + self._pair_events(self._collisions.began)
-        return self._began
+        """The contacts that began in the last step (a bounce, a landing, entering a sensor),
+        in time order; each contact begins once and ends once (``engine.events``)."""
+        return self._events.began
 
     @property
     def ended(self) -> list[ContactEvent]:
         """The contacts that ended in the last step (a bounce ends as it begins; a rest ends
-        when the body lifts off; leaving a sensor)."""
-        if self._ended is None:
-            static = [] if self._contacts is None else self._events(self._contacts.ended)
-            self._ended = static + self._pair_events(self._collisions.ended)
-        return self._ended
+        when the body lifts off; leaving a sensor; a body or collider taken out since the
+        step before, with ``removal`` True), in time order."""
+        return self._events.ended
+
+    @property
+    def touching(self) -> list[ContactEvent]:
+        """Every contact open after the last step, with the impulse (N s) it carried over the
+        step (pymunk's arbiters and their ``total_impulse``)."""
+        return self._events.touching
+
+    def _settle_events(self, t_end: float) -> None:
+        """Make the last step's events from what the solvers reported (engine.events)."""
+        store, contacts = self._store, self._contacts
+        events = self._events
+        events.forget()
+        if store is None or store.dim != 2:
+            events.ledger.quiet()
+            return
+        slots = store.slots()
+        raw = []
+        resting = sensing = np.zeros(0, dtype=np.int64)
+        if contacts is not None:
+            serials = np.array(
+                [events.serial(c) for c in contacts.colliders], dtype=np.int64
+            ).reshape(-1)
+            raw += raw_specs(contacts._began, True, slots, serials)
+            raw += raw_specs(contacts._ended, False, slots, serials)
+            on = np.flatnonzero(contacts.rest >= 0)
+            if len(on):
+                owner = contacts.faces.owner[contacts.rest[on]]
+                resting = collider_keys(slots[on], serials[owner])
+            if contacts.inside.size:
+                rows, s = np.nonzero(contacts.inside)
+                sensors = np.array(contacts._sensors, dtype=np.intp)
+                sensing = collider_keys(slots[rows], serials[sensors[s]])
+        if self._pairs_on:
+            pairs = self._collisions
+            raw += raw_specs(pairs._began, True, slots, None)
+            raw += raw_specs(pairs._ended, False, slots, None)
+            touching = pairs._touching
+            if len(touching):
+                n = len(slots)
+                resting = np.concatenate(
+                    [resting, pair_keys(slots[touching // n], slots[touching % n])]
+                )
+        events.ledger.settle(t_end, raw, resting, sensing, self._gaps)
+
+    def _gaps(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Each contact key's gap now (length units, < 0 overlapping) and the slack a contact
+        at rest keeps (engine.events.CONTACT_SLACK of the smaller radius)."""
+        store = self._store
+        assert store is not None
+        row_of = store.row_of
+        a = row_of[slot_of(keys)]
+        is_c, other = other_of(keys)
+        gap = np.full(len(keys), np.inf)
+        r = store.radius[a].copy()
+        pair = np.flatnonzero(~is_c)
+        if len(pair):
+            b = row_of[other[pair]]
+            d = store.x[a[pair]] - store.x[b]
+            gap[pair] = np.hypot(d[:, 0], d[:, 1]) - r[pair] - store.radius[b]
+            r[pair] = np.minimum(r[pair], store.radius[b])
+        for serial in np.unique(other[is_c]).tolist():
+            sel = np.flatnonzero(is_c & (other == serial))
+            collider = self._events._collider.get(serial)
+            if collider is not None:
+                gap[sel] = signed_distance(collider, store.x[a[sel]]) - r[sel]
+        return gap, slack_for(r)
+
+    def _impulses(self, keys: np.ndarray) -> dict[int, tuple[float, float]]:
+        """The impulse (N s, on the key's body) each open contact carried over the last step:
+        a body at rest on a collider, the change of momentum the static contacts gave it
+        (m (v - v_free)); a pile's contacts (with bodies, and with the faces its bodies touch),
+        the resting solver's impulses (engine.collisions)."""
+        store, contacts = self._store, self._contacts
+        out: dict[int, tuple[float, float]] = {}
+        if store is None or not len(keys):
+            return out
+        row_of = store.row_of
+        a = row_of[slot_of(keys)]
+        is_c, other = other_of(keys)
+        serials = None
+        if contacts is not None:
+            serials = np.array([self._events.serial(c) for c in contacts.colliders], np.int64)
+            dv = self._contact_dv
+            if dv is not None and len(dv) == len(store):
+                for k, row, c, o in zip(
+                    keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
+                ):
+                    f = int(contacts.rest[row])
+                    if c and f >= 0 and serials[contacts.faces.owner[f]] == o:
+                        j = dv[row] * store.mass[row]
+                        out[k] = (float(j[0]), float(j[1]))
+        pairs = self._collisions
+        if self._pairs_on and len(pairs._keys):
+            n = len(store)
+            base = pairs._base
+            lam_keys, lam = pairs._keys, pairs._lam
+            n_faces = base - n
+            for k, row, c, o in zip(
+                keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
+            ):
+                if c:
+                    if contacts is None or serials is None or n_faces <= 0:
+                        continue
+                    # The pile's rows for the faces of this collider that touch this body.
+                    faces = np.flatnonzero(serials[contacts.faces.owner] == o)
+                    wanted = row * base + n + faces
+                else:
+                    b = int(row_of[o])
+                    wanted = np.array([min(row, b) * base + max(row, b)], dtype=np.int64)
+                pos = np.minimum(np.searchsorted(lam_keys, wanted), len(lam_keys) - 1)
+                hit = lam_keys[pos] == wanted
+                if not hit.any():
+                    continue
+                total = np.zeros(2)
+                for f_or_b, p in zip(wanted[hit].tolist(), pos[hit].tolist(), strict=True):
+                    # The solver's normal points toward the key's body (a face's, or from the
+                    # other body, whose row is the higher); its tangent is (-n_y, n_x).
+                    if c:
+                        assert contacts is not None
+                        f = f_or_b - row * base - n
+                        nrm = contacts._normals(np.array([f]), store.x[[row]])[0][0]
+                    else:
+                        d = store.x[row] - store.x[int(row_of[o])]
+                        nrm = d / max(float(np.hypot(d[0], d[1])), 1e-300)
+                    tang = np.array([-nrm[1], nrm[0]])
+                    total += nrm * lam[p, 0] + tang * lam[p, 1]
+                prev = out.get(k, (0.0, 0.0))
+                out[k] = (prev[0] + float(total[0]), prev[1] + float(total[1]))
+        return out
 
     def _report(self) -> None:
-        """Forget the last step's events (made again on demand) and call the handlers."""
-        self._began = self._ended = None
+        """Call the on_contact handlers with the last step's events."""
         if not self._handlers:
             return
-        for event_list, which in ((self.began, 1), (self.ended, 2)):
+        for which in (1, 2, 3):
+            if not any(h[which] is not None for h in self._handlers):
+                continue
+            event_list = self.began if which == 1 else self.ended if which == 2 else self.touching
             for ev in event_list:
                 for handler in self._handlers:
                     fn = handler[which]
@@ -715,103 +846,64 @@ class World:
                     elif handler[0] is ev.collider:
                         fn(ev.flipped() if isinstance(ev.collider, Body) else ev)
 
-    def segment_query_first(self, start: Any, end: Any, radius: float = 0.0) -> QueryHit | None:
-        """The first body or solid collider a segment (a ray from ``start`` to ``end``) meets.
+    # -- queries (engine.queries) ---------------------------------------------------------
+    def segment_query(
+        self,
+        start: Any,
+        end: Any,
+        radius: float = 0.0,
+        filter: Filter | None = None,  # noqa: A002
+    ) -> list[QueryHit]:
+        """Every body and collider (sensors too) a segment from ``start`` to ``end`` meets, in
+        the order met: a QueryHit each with ``fraction`` (0 at start, 1 at end), the point
+        where the swept centre first touches and the normal there. ``radius`` > 0 sweeps a
+        disc; ``filter`` (an engine.Filter) sees only the shapes it collides with."""
+        return queries.segment_query(self, start, end, radius, filter)
 
-        ``radius`` > 0 sweeps a disc of that radius instead of a point. Returns a QueryHit with
-        ``fraction`` (0 at start, 1 at end), the point where the swept centre first touches,
-        and the normal there; None when nothing is met. Sensors are not hit.
-        """
-        a = np.array(_point(start, "start"))
-        b = np.array(_point(end, "end"))
-        r = checks.real(radius, "radius", nonneg=True)
-        best: tuple[float, Any, Any] | None = None
-        one = np.ones(1)
+    def segment_query_first(
+        self,
+        start: Any,
+        end: Any,
+        radius: float = 0.0,
+        filter: Filter | None = None,  # noqa: A002
+    ) -> QueryHit | None:
+        """The first body or collider (sensors too; a filter can leave them out) a segment
+        from ``start`` to ``end`` meets, as ``segment_query``; None when nothing is met."""
+        hits = queries.segment_query(self, start, end, radius, filter)
+        return hits[0] if hits else None
 
-        def consider(t: float, shape: Any, normal: Any) -> None:
-            nonlocal best
-            if t <= 1.0 and (best is None or t < best[0]):
-                best = (t, shape, normal)
-
-        if self._contacts is not None:
-            faces = self._contacts.faces
-            cols = self._contacts.colliders
-            X, V, B = a[None, :], (b - a)[None, :], np.zeros((1, 2))
-            for j in range(len(faces.p)):
-                t, n = line_hits(
-                    X,
-                    V,
-                    B,
-                    faces.p[j : j + 1],
-                    faces.n[j : j + 1],
-                    faces.rho[j : j + 1] + r,
-                    faces.two[j : j + 1],
-                    faces.lo[j : j + 1],
-                    faces.hi[j : j + 1],
-                    1.0,
-                )
-                consider(float(t[0]), cols[faces.owner[j]], n[0])
-            L = len(faces.p)
-            for j in range(len(faces.c)):
-                t = disc_hits(X, V, B, faces.c[j : j + 1], faces.r[j : j + 1] + r, one)
-                if np.isfinite(t[0]):
-                    x = a + (b - a) * t[0]
-                    d = x - faces.c[j]
-                    consider(float(t[0]), cols[faces.owner[L + j]], d / np.hypot(*d))
-        store = self._store
-        if store is not None and self.dim == 2 and self._bodies:
-            count = len(store)
-            X = np.broadcast_to(a, (count, 2))
-            V = np.broadcast_to(b - a, (count, 2))
-            tb = disc_hits(X, V, np.zeros((count, 2)), store.x, store.radius + r, np.ones(count))
-            for i in np.flatnonzero(np.isfinite(tb)):
-                x = a + (b - a) * tb[i]
-                d = x - store.x[i]
-                length = float(np.hypot(*d))
-                consider(float(tb[i]), self._bodies[i], d / length if length else (b - a) * 0)
-        if best is None:
-            return None
-        frac, shape, normal = best
-        point = a + (b - a) * frac
-        return QueryHit(
-            shape,
-            Vector(float(point[0]), float(point[1])),
-            Vector(float(normal[0]), float(normal[1])),
-            fraction=frac,
-        )
-
-    def point_query(self, point: Any, max_distance: float = 0.0) -> list[QueryHit]:
+    def point_query(
+        self,
+        point: Any,
+        max_distance: float = 0.0,
+        filter: Filter | None = None,  # noqa: A002
+    ) -> list[QueryHit]:
         """Bodies and colliders whose surface lies within ``max_distance`` of ``point``.
 
-        Nearest first; ``distance`` is from the shape's surface (< 0 inside). A mouse pick is
-        ``world.point_query(mouse, 0.1)``.
+        Nearest first; ``distance`` is from the shape's surface (< 0 inside), ``point`` the
+        nearest point of that surface. A mouse pick is ``world.point_query(mouse, 0.1)``.
         """
-        p = np.array(_point(point, "point"))
-        reach = checks.real(max_distance, "max_distance", nonneg=True)
-        hits: list[QueryHit] = []
-        store = self._store
-        if store is not None and self.dim == 2 and self._bodies:
-            d = store.x - p
-            dist = np.hypot(d[:, 0], d[:, 1])
-            gap = dist - store.radius
-            for i in np.flatnonzero(gap <= reach):
-                nrm = -d[i] / dist[i] if dist[i] > 0 else np.array([0.0, 1.0])
-                surf = store.x[i] - nrm * store.radius[i]
-                hits.append(
-                    QueryHit(
-                        self._bodies[i],
-                        Vector(float(surf[0]), float(surf[1])),
-                        Vector(float(nrm[0]), float(nrm[1])),
-                        distance=float(gap[i]),
-                    )
-                )
-        for c in self.colliders:
-            d0 = float(signed_distance(c, p[None, :])[0])
-            if d0 <= reach:
-                surf, nrm, _ = c.closest((float(p[0]), float(p[1])))
-                hits.append(QueryHit(c, surf, nrm, distance=d0))
-        hits.sort(key=lambda h: h.distance)
-        return hits
+        return queries.point_query(self, point, max_distance, filter)
+
+    def point_query_nearest(
+        self,
+        point: Any,
+        max_distance: float = 0.0,
+        filter: Filter | None = None,  # noqa: A002
+    ) -> QueryHit | None:
+        """The nearest shape within ``max_distance`` of ``point`` (``point_query``'s first),
+        or None."""
+        hits = queries.point_query(self, point, max_distance, filter)
+        return hits[0] if hits else None
+
+    def bb_query(self, bb: Any, filter: Filter | None = None) -> list[Any]:  # noqa: A002
+        """The bodies and colliders that overlap the box ``bb`` = (left, bottom, right, top)."""
+        return queries.bb_query(self, bb, filter)
+
+    def shape_query(self, shape: Any, filter: Filter | None = None) -> list[QueryHit]:  # noqa: A002
+        """The bodies and colliders a ``Circle`` or ``Segment`` (placed where asked, not
+        added) overlaps, deepest first; ``distance`` < 0 is the depth of each overlap."""
+        return queries.shape_query(self, shape, filter)
 
     # -- derived state ----------------------------------------------------------------------
     def _changed_structure(self, appended: bool = False) -> None:
@@ -876,12 +968,16 @@ class World:
         self._anchor = None
         return before
 
-    def _state_written(self) -> None:
+    def _state_written(self, row: int | None = None, moved: bool = False) -> None:
         """A position or velocity was set by hand: the closed form and the kernel start anew,
-        and every sleeping body wakes."""
+        and every sleeping body wakes. A body moved by hand (``row``, ``moved``) is no longer
+        at rest where it was, and is pushed out of any solid collider it was put into."""
         self._anchor = None
         self._void_budget()
         self._collisions.wake(len(self._bodies))
+        if moved and row is not None and self._contacts is not None:
+            self._contacts.rest[row] = -1
+            self._push_out([row], "was put", stacklevel=5)
 
     def _void_budget(self) -> None:
         """The kernel's step budget was proved for the state before: take back what is left."""
@@ -1066,6 +1162,7 @@ class World:
                 and self._contacts is None
                 and not self._pairs_on
                 and not self._links
+                and not self._events.busy
             )
             self._fast = (dt, self._version, name, step, model, affine)
         if dt != self._dt:
@@ -1083,6 +1180,8 @@ class World:
             return self.step(dt)  # now the fast path above takes it
         if self._bodies:
             self._step_general(dt, name, step, model)
+        else:
+            self._quiet()  # nothing moved: no solver reports anything
         self._n += 1
         if after is not None:
             # A kinematic body moved by pos stops there: its velocity is what it was before.
@@ -1090,8 +1189,15 @@ class World:
             assert held is not None
             for body, v in after.items():
                 held.v[held.row(body._slot)] = v
-        if self._contacts is not None or self._pairs_on:
+        if self._contacts is not None or self._pairs_on or self._events.busy:
+            self._settle_events(self.t)
             self._report()
+
+    def _quiet(self) -> None:
+        """A step in which no body moved: the solvers report nothing."""
+        if self._contacts is not None:
+            self._contacts.quiet()
+        self._collisions.quiet()
 
     def _prepare_affine(self, dt: float, model: ForceModel, name: str) -> bool:
         """Ready the affine Euler kernel for ``dt``; False if its next step might overflow.
@@ -1198,11 +1304,14 @@ class World:
         linked[solver.i] = True
         linked[solver.j[solver.j >= 0]] = True
         for rows, others, *_ in self._collisions._began:
-            if linked[rows].any() or linked[others].any():
+            if linked[np.asarray(rows, dtype=np.intp)].any():
+                return True
+            if linked[np.asarray(others, dtype=np.intp)].any():
                 return True
         if self._contacts is not None:
+            # (The few-bodies path lists its rows as a tuple, the arrays' as an array.)
             for rows, *_ in self._contacts._began:
-                if linked[rows].any():
+                if linked[np.asarray(rows, dtype=np.intp)].any():
                     return True
         return False
 
@@ -1248,6 +1357,7 @@ class World:
         if contacts is not None:
             # The path of the step is swept for impacts (engine.contacts); under the closed
             # form it is the exact parabola.
+            contacts.body_filters = (store.group, store.categories, store.mask)
             x1, v1 = contacts.resolve(
                 store.x,
                 store.v,
@@ -1264,6 +1374,8 @@ class World:
             )
             if contacts.moved:
                 self._anchor = None  # the closed form starts anew from the changed state
+            # What the static contacts did to each velocity (a resting contact's impulse).
+            self._contact_dv = v1 - v_free if contacts.moved else None
         pairs = self._collisions
         if pairs is not None and self._pairs_on:
             # Bodies meet one another (engine.collisions) on the paths that end where the

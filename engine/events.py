@@ -1,0 +1,402 @@
+"""Contact events: the contacts kept open from step to step, and what began and ended.
+
+The solvers report what they met in a step: impacts (a bounce begins and, unless the body
+comes to rest, ends at its exact moment), contacts that came to rest, lift-offs, sensors
+entered and left. Taken raw, those reports do not balance: a ball placed on a floor comes
+to rest without an impact, so nothing began, yet it ends when thrown; a ball resting on
+another rebounds by a hair each step and would begin and end again and again. This module
+keeps the contacts that are open between steps (Box2D's contact store, pymunk's arbiters)
+and makes the events from them, so that:
+
+* every contact begins once and ends once, in that order: a ``began`` for a key that is
+  open already is dropped, as is an ``ended`` for one that is not; a contact the solvers
+  hold at rest but that nothing reported is opened (a ball placed on a floor); one that is
+  open but no longer touches is closed (a ball teleported away);
+* a contact at rest does not chatter: once open, it stays open while the two stay within
+  ``CONTACT_SLACK`` of the smaller radius of touching (Box2D keeps a contact while the
+  shapes are within a small speculative distance; pymunk keeps an arbiter for three steps),
+  and an impact on an open contact is part of it;
+* the events of a step come in time order (the exact moments of the impacts; the end of
+  the step for what is found only then), ``World.began`` and ``World.ended`` list them;
+* a contact of a body or collider taken out of the World ends (``removal`` is True), and
+  is reported with the next step's events.
+
+Contacts are keyed by the two things in touch: the body's slot (which never changes while
+it is in the World) and the other body's slot, or a collider's serial number, in one int64:
+``slot << 32 | other`` with ``other = slot_b`` (the higher slot of two bodies: the body
+added first is always ``event.body``) or ``COLLIDER | serial``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .impact import TOUCH
+from .vector import Vector
+
+__all__ = ["ContactEvent", "ContactLedger", "CONTACT_SLACK", "COLLIDER"]
+
+#: A contact at rest stays open while the gap is at most this fraction of the smaller radius
+#: (2%: a pile's rebounds are far smaller; a bounce leaves it within a step or two).
+CONTACT_SLACK = 0.02
+
+#: The bit of a key's low word that marks a collider's serial (else another body's slot).
+COLLIDER = 1 << 31
+
+_LOW = (1 << 32) - 1
+
+
+class ContactEvent(NamedTuple):
+    """A contact that began, ended or continues: which body and what it touches, where, how
+    hard.
+
+    ``body`` is a Body; ``collider`` is a collider, or the other Body for a contact between
+    two bodies (then ``body`` is the one added to the World first, in ``World.began`` and
+    ``World.ended``; a handler from ``World.on_contact`` on a Body always gets that Body as
+    ``body``). ``point`` is on the collider's (or the other body's) surface, ``normal`` the
+    unit normal there toward ``body``, ``impulse`` (N s, a Vector) the change of ``body``'s
+    momentum through this contact (an impact's at its moment; over the last step for a
+    contact that continues; zero where a contact begins or ends without one), ``time`` (s)
+    the World time of the event. ``removal`` is True for the end of a contact whose body or
+    collider was taken out of the World (pymunk's ``is_removal``).
+    """
+
+    body: Any
+    collider: Any  # a Collider, or the other Body
+    point: Vector
+    normal: Vector
+    impulse: Vector
+    time: float
+    removal: bool = False
+
+    def flipped(self) -> ContactEvent:
+        """The same contact between two bodies seen from the other one: ``body`` and
+        ``collider`` swapped, the normal and the impulse reversed (Newton's third law)."""
+        return ContactEvent(
+            self.collider,
+            self.body,
+            self.point,
+            -self.normal,
+            -self.impulse,
+            self.time,
+            self.removal,
+        )
+
+
+#: One event before it is made a ContactEvent: (time, key, began?, payload), the payload
+#: (point, normal, impulse) as pairs of floats from the solver, or None to be measured from
+#: the state.
+Spec = tuple[float, int, bool, Any]
+
+
+def pair_keys(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Keys of contacts between the bodies in slots a and b (either order)."""
+    lo, hi = np.minimum(a, b).astype(np.int64), np.maximum(a, b).astype(np.int64)
+    return (lo << 32) | hi
+
+
+def collider_keys(slots: np.ndarray, serials: np.ndarray) -> np.ndarray:
+    """Keys of contacts between the bodies in ``slots`` and the colliders ``serials``."""
+    return (np.asarray(slots, dtype=np.int64) << 32) | (
+        np.asarray(serials, dtype=np.int64) | COLLIDER
+    )
+
+
+def _isin(a: np.ndarray, sorted_b: np.ndarray) -> np.ndarray:
+    """Which entries of a are in the sorted array b."""
+    if not len(sorted_b) or not len(a):
+        return np.zeros(len(a), dtype=bool)
+    pos = np.minimum(np.searchsorted(sorted_b, a), len(sorted_b) - 1)
+    return sorted_b[pos] == a
+
+
+class ContactLedger:
+    """The contacts open after the last step, and the events that opened and closed them.
+
+    ``settle`` takes a step's raw reports and what the solvers hold at rest now; the World
+    hands it ``gaps``, a function from keys to their gaps now and the slack each may keep.
+    """
+
+    def __init__(self) -> None:
+        self.keys = np.zeros(0, dtype=np.int64)  # the open contacts, sorted
+        self.exact = np.zeros(0, dtype=np.int64)  # of them, sensors': open exactly while inside
+        self.began: list[Spec] = []  # the last step's, in time order
+        self.ended: list[Spec] = []
+        self.pending: list[ContactEvent] = []  # ends by removal, for the next step's report
+        self.removed: list[ContactEvent] = []  # those reported with the last step
+
+    def state(self) -> tuple[np.ndarray, np.ndarray]:
+        """A copy of the open contacts (what a snapshot holds)."""
+        return self.keys.copy(), self.exact.copy()
+
+    def set_state(self, state: Any) -> None:
+        """Bring back ``state()``; ValueError if it is not one."""
+        ok = isinstance(state, tuple) and len(state) == 2
+        ok = ok and all(isinstance(a, np.ndarray) and a.dtype == np.int64 for a in state)
+        if not ok:
+            raise ValueError("snapshot.events must be the open contacts from World.snapshot()")
+        self.keys, self.exact = state[0].copy(), state[1].copy()
+        self.began, self.ended, self.pending, self.removed = [], [], [], []
+
+    def quiet(self) -> None:
+        """A step passed in which nothing moved: the pending ends are reported, nothing else."""
+        self.removed, self.pending = self.pending, []
+        self.began, self.ended = [], []
+
+    def settle(
+        self,
+        t_end: float,
+        raw: list[Spec],
+        resting: np.ndarray,
+        sensing: np.ndarray,
+        gaps: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    ) -> None:
+        """Make the step's events and the open contacts after it.
+
+        ``raw``: the solvers' reports (time, key, began?, payload). ``resting``: the keys of
+        the contacts the solvers hold at rest now (a body on a face, a pair in a pile);
+        ``sensing``: the keys of bodies inside sensors now. ``gaps(keys)`` gives each key's
+        gap (length units, < 0 overlapping) and the slack it may keep and stay open.
+        """
+        self.removed, self.pending = self.pending, []
+        self.began, self.ended = [], []
+        prev = self.keys
+        if not raw and not len(resting) and not len(sensing) and not len(prev):
+            return
+        resting = np.unique(resting)
+        sensing = np.unique(sensing)
+        exact = np.union1d(self.exact, sensing)
+        state: dict[int, bool] = {}
+        if raw:
+            # Time order (stable: a bounce begins, then ends), within the step (a time the
+            # solver summed as t0 + dt may pass the World's t by an ulp).
+            raw = [s if s[0] <= t_end else (t_end, *s[1:]) for s in raw]
+            raw.sort(key=lambda s: s[0])
+            # An end of an open contact at rest that still touches is dropped: the contact
+            # goes on (a rebound of a hair in a pile).
+            ends = np.array([s[1] for s in raw if not s[2]], dtype=np.int64)
+            ends = np.unique(ends[_isin(ends, prev) & ~_isin(ends, exact)])
+            still: set[int] = set()
+            if len(ends):
+                gap, slack = gaps(ends)
+                still = set(ends[gap <= slack].tolist())
+            began, ended = self.began, self.ended
+            known = set(prev.tolist()) if len(prev) < 64 else None
+            for spec in raw:
+                k = spec[1]
+                s = state.get(k)
+                if s is None:
+                    s = (k in known) if known is not None else bool(_isin(np.array([k]), prev)[0])
+                if spec[2]:
+                    if not s:
+                        state[k] = True
+                        began.append(spec)
+                elif s and k not in still:
+                    state[k] = False
+                    ended.append(spec)
+        touched = np.array(list(state), dtype=np.int64)
+        cand = np.unique(np.concatenate([prev, touched, resting, sensing]))
+        after = _isin(cand, prev)
+        if state:
+            where = np.searchsorted(cand, touched)
+            after[where] = np.array(list(state.values()), dtype=bool)
+        is_exact = _isin(cand, exact)
+        final = _isin(cand, resting) | _isin(cand, sensing)
+        need = after & ~final & ~is_exact
+        if need.any():
+            gap, slack = gaps(cand[need])
+            final[np.flatnonzero(need)[gap <= slack]] = True
+        for k in cand[final & ~after].tolist():
+            self.began.append((t_end, k, True, None))
+        for k in cand[after & ~final].tolist():
+            self.ended.append((t_end, k, False, None))
+        self.keys = cand[final]
+        self.exact = self.keys[_isin(self.keys, sensing)]
+
+    def drop(self, involved: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+        """Close the open contacts for which ``involved(keys)`` is True (a body or collider
+        taken out); return their keys (the caller makes their ends)."""
+        gone = involved(self.keys)
+        out = self.keys[gone]
+        self.keys = self.keys[~gone]
+        self.exact = self.exact[~_isin(self.exact, out)]
+        return out
+
+
+def slot_of(keys: np.ndarray) -> np.ndarray:
+    """The body slot of each key (the first body of a pair)."""
+    return keys >> 32
+
+
+def other_of(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(whether the other is a collider, its serial or the other body's slot) of each key."""
+    low = keys & _LOW
+    return (low & COLLIDER) != 0, low & (COLLIDER - 1)
+
+
+def slack_for(radius: np.ndarray) -> np.ndarray:
+    """The gap (length units) a contact at rest may open and stay open, for the smaller
+    radius of its two bodies (the body's radius against a collider)."""
+    return CONTACT_SLACK * radius + TOUCH * (1.0 + radius)
+
+
+class WorldEvents:
+    """A World's contact events: its ledger, the names of its colliders, and the events of
+    the last step made on demand (``World.began``, ``World.ended``, ``World.touching``)."""
+
+    def __init__(self) -> None:
+        self.ledger = ContactLedger()
+        self._serial: dict[int, int] = {}  # id(collider) -> serial
+        self._collider: dict[int, Any] = {}  # serial -> collider
+        self._next = 0
+        self._began: list[ContactEvent] | None = None
+        self._ended: list[ContactEvent] | None = None
+        self._touching: list[ContactEvent] | None = None
+        self._view: Any = None  # how to read the World now (set by the World)
+
+    @property
+    def busy(self) -> bool:
+        """Whether any contact is open or any end is waiting to be reported."""
+        return bool(len(self.ledger.keys) or self.ledger.pending)
+
+    # -- names -------------------------------------------------------------------------------
+    def collider_added(self, collider: Any) -> None:
+        """Give a new collider its serial number (kept while it is in the World)."""
+        self._serial[id(collider)] = self._next
+        self._collider[self._next] = collider
+        self._next += 1
+
+    def serial(self, collider: Any) -> int:
+        """The serial number of a collider in the World."""
+        return self._serial[id(collider)]
+
+    def collider_removed(self, collider: Any, t: float) -> None:
+        """A collider leaves: its open contacts end (reported with the next step)."""
+        self.settle_reading()
+        serial = self._serial.pop(id(collider))
+
+        def involved(keys: np.ndarray) -> np.ndarray:
+            is_c, other = other_of(keys)
+            return is_c & (other == serial)
+
+        self._removal_ends(self.ledger.drop(involved), t)
+        del self._collider[serial]
+
+    def body_removed(self, slot: int, t: float) -> None:
+        """A body leaves (still readable at its row): its open contacts end."""
+        self.settle_reading()
+
+        def involved(keys: np.ndarray) -> np.ndarray:
+            is_c, other = other_of(keys)
+            return (slot_of(keys) == slot) | (~is_c & (other == slot))
+
+        self._removal_ends(self.ledger.drop(involved), t)
+
+    def _removal_ends(self, keys: np.ndarray, t: float) -> None:
+        for k in keys.tolist():
+            ev = self._event((t, k, False, None))
+            self.ledger.pending.append(ev._replace(impulse=Vector(0.0, 0.0), removal=True))
+
+    # -- the step ----------------------------------------------------------------------------
+    def settle_reading(self) -> None:
+        """Make the last step's events now (before the rows or colliders they name change)."""
+        _ = self.began, self.ended, self.touching
+
+    def forget(self) -> None:
+        """The last step's events are made again on demand."""
+        self._began = self._ended = self._touching = None
+
+    def _event(self, spec: Spec) -> ContactEvent:
+        """The ContactEvent of one spec, read from the World now where it has no payload."""
+        view = self._view
+        t, key, _, payload = spec
+        slot = key >> 32
+        low = key & _LOW
+        body = view.body(slot)
+        if low & COLLIDER:
+            other = self._collider[low & (COLLIDER - 1)]
+            if payload is None:
+                point, normal, _ = other.closest(view.position(slot))
+                return ContactEvent(body, other, point, normal, Vector(0.0, 0.0), t)
+        else:
+            other = view.body(low)
+            if payload is None:
+                xa, xb = view.position(slot), view.position(low)
+                d = Vector(xa[0] - xb[0], xa[1] - xb[1])
+                dist = d.length()
+                normal = d * (1.0 / dist) if dist > 0.0 else Vector(0.0, 1.0)
+                point = Vector(*xb) + normal * view.radius(low)
+                return ContactEvent(body, other, point, normal, Vector(0.0, 0.0), t)
+        p, n, j = payload
+        return ContactEvent(
+            body,
+            other,
+            Vector(float(p[0]), float(p[1])),
+            Vector(float(n[0]), float(n[1])),
+            Vector(float(j[0]), float(j[1])),
+            t,
+        )
+
+    @property
+    def began(self) -> list[ContactEvent]:
+        """The contacts that began in the last step, in time order."""
+        if self._began is None:
+            self._began = [self._event(s) for s in self.ledger.began]
+        return self._began
+
+    @property
+    def ended(self) -> list[ContactEvent]:
+        """The contacts that ended in the last step (first those of things taken out since
+        the step before), in time order."""
+        if self._ended is None:
+            self._ended = self.ledger.removed + [self._event(s) for s in self.ledger.ended]
+        return self._ended
+
+    @property
+    def touching(self) -> list[ContactEvent]:
+        """Every contact open after the last step, with the impulse it carried over it."""
+        if self._touching is None:
+            view = self._view
+            impulses = view.impulses(self.ledger.keys) if view is not None else {}
+            out = []
+            for k in self.ledger.keys.tolist():
+                ev = self._event((view.t, k, True, None))
+                j = impulses.get(k)
+                out.append(ev if j is None else ev._replace(impulse=Vector(*j)))
+            self._touching = out
+        return self._touching
+
+
+def raw_specs(
+    parts: list[tuple[Any, ...]], began: bool, slots: np.ndarray, serials: np.ndarray | None
+) -> list[Spec]:
+    """A solver's reports as specs: ``parts`` of (rows, others, points, normals, impulses,
+    times) arrays, ``others`` being colliders' places among the World's colliders (turned to
+    their ``serials``) or, with ``serials`` None, other bodies' rows (then the normal points
+    toward the first body, and points None are measured from the state when read)."""
+    out: list[Spec] = []
+    for rows, others, points, normals, impulses, times in parts:
+        a = slots[np.asarray(rows, dtype=np.intp)]
+        if serials is None:
+            b = slots[np.asarray(others, dtype=np.intp)]
+            keys = pair_keys(a, b)
+            flip = a > b  # the normal and impulse are on the first body's side
+        else:
+            keys = collider_keys(a, serials[np.asarray(others, dtype=np.intp)])
+            flip = np.zeros(len(a), dtype=bool)
+        pts = None if points is None else np.asarray(points, dtype=float).tolist()
+        nrm = np.asarray(normals, dtype=float).tolist()
+        imp = np.asarray(impulses, dtype=float).tolist()
+        for k, (key, t) in enumerate(zip(keys.tolist(), np.asarray(times).tolist(), strict=True)):
+            if pts is None:
+                payload = None
+            elif flip[k]:
+                n, j = nrm[k], imp[k]
+                payload = (pts[k], (-n[0], -n[1]), (-j[0], -j[1]))
+            else:
+                payload = (pts[k], nrm[k], imp[k])
+            out.append((float(t), key, began, payload))
+    return out

@@ -1,0 +1,232 @@
+"""Contact events as a game needs them: one begin and one end for each contact, in time order,
+no chatter at rest, ends for what is taken out, and the impulse of a contact that continues
+(engine.events)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from engine import Body, Box, Circle, ContactEvent, Plane, Segment, Vector, World
+from engine.forces import Gravity
+
+G = 9.81
+
+
+def ball(world: World, x: float, y: float, vx: float = 0.0, vy: float = 0.0, **kw) -> Body:
+    kw.setdefault("radius", 0.5)
+    return world.add(Body(Vector(x, y), Vector(vx, vy), Vector(0, 0), **kw))
+
+
+def tally(world: World, target) -> tuple[list[ContactEvent], list[ContactEvent]]:
+    began: list[ContactEvent] = []
+    ended: list[ContactEvent] = []
+    world.on_contact(target, begin=began.append, end=ended.append)
+    return began, ended
+
+
+def test_removing_the_last_body_after_a_bounce_then_stepping_reports_nothing() -> None:
+    # pymunk's test suite found it: the empty World rebuilt the last step's raw events.
+    w = World()
+    wall = w.add_collider(Segment((2, -5), (2, 5)))
+    b = ball(w, 0, 0, 10, 0, radius=1)
+    seen: list[ContactEvent] = []
+    w.on_contact(wall, begin=seen.append)
+    w.step(0.1)
+    assert len(seen) == 1 and seen[0].body is b
+    w.remove(b)
+    w.step(0.1)
+    w.step(0.1)
+    assert len(seen) == 1 and w.began == []
+
+
+def test_events_of_a_step_come_in_time_order() -> None:
+    # The later body in the list strikes first: its event comes first.
+    w = World()
+    wall = w.add_collider(Segment((1, -5), (1, 5)))
+    slow = ball(w, 0.5, 0, 4.0, 0, radius=0.1, restitution=1.0)
+    fast = ball(w, 0.0, 1, 10.0, 0, radius=0.1, restitution=1.0)
+    times: list[float] = []
+    w.on_contact(wall, begin=lambda e: times.append(e.time))
+    w.step(0.1)
+    assert [e.body for e in w.began] == [fast, slow]
+    assert times == sorted(times) and abs(times[0] - 0.09) < 1e-12 and abs(times[1] - 0.1) < 1e-12
+
+
+@pytest.mark.parametrize("integrator", ["semi_implicit_euler", "auto"])
+def test_a_ball_placed_on_a_floor_begins_once_and_ends_once_when_thrown(integrator: str) -> None:
+    w = World(integrator=integrator)
+    w.add_force(Gravity((0, -G)))
+    floor = w.add_collider(Plane((0, 0), (0, 1)))
+    b = ball(w, 0, 0.5)
+    began, ended = tally(w, b)
+    for _ in range(10):
+        w.step(1 / 60)
+    assert [e.collider for e in began] == [floor] and ended == []
+    b.vel = Vector(0, 5)
+    for _ in range(10):
+        w.step(1 / 60)
+    assert len(began) == 1 and [e.collider for e in ended] == [floor]
+    assert ended[0].time > began[0].time
+
+
+@pytest.mark.parametrize("integrator", ["semi_implicit_euler", "auto"])
+def test_a_resting_stack_does_not_chatter(integrator: str) -> None:
+    # Two balls stacked on a floor: one begin for each of the two contacts, no end, while the
+    # pile settles and sleeps (pymunk: 1 begin, 0 ends for each arbiter).
+    w = World(integrator=integrator)
+    w.add_force(Gravity((0, -G)))
+    floor = w.add_collider(Plane((0, 0), (0, 1)))
+    low = ball(w, 0, 0.5)
+    high = ball(w, 0, 1.5)
+    began, ended = [], []
+    for _ in range(120):
+        w.step(1 / 60)
+        began += w.began
+        ended += w.ended
+    assert ended == []
+    assert sorted((id(e.body), id(e.collider)) for e in began) == sorted(
+        [(id(low), id(floor)), (id(low), id(high))]
+    )
+    assert w.sleeping == 2
+    # The body added first is the event's body, for a contact between two bodies.
+    assert [e.body for e in began if e.collider is high] == [low]
+
+
+def test_an_inelastic_hit_while_gravity_pulls_the_ball_off_the_wall_balances() -> None:
+    w = World()
+    w.add_force(Gravity((0, -G)))
+    wall = w.add_collider(Segment((1, -5), (1, 5)))
+    b = ball(w, 0, 0, 3, 0, radius=0.2, restitution=0.0)
+    began, ended = tally(w, b)
+    for _ in range(120):
+        w.step(1 / 60)
+    assert [e.collider for e in began] == [wall] and [e.collider for e in ended] == [wall]
+
+
+def test_removing_a_resting_body_ends_its_contacts_with_the_next_step() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0, -G)))
+    floor = w.add_collider(Plane((0, 0), (0, 1)))
+    b = ball(w, 0, 0.5)
+    other = ball(w, 5, 0.5)
+    began, ended = tally(w, floor)
+    for _ in range(5):
+        w.step(1 / 60)
+    assert {e.body for e in began} == {b, other} and ended == []
+    t_removed = w.t
+    w.remove(b)
+    w.step(1 / 60)
+    assert [(e.body, e.removal) for e in ended] == [(b, True)]
+    assert ended[0].time == t_removed
+    assert [(e.body, e.removal) for e in w.ended] == [(b, True)]
+    w.step(1 / 60)
+    assert w.ended == [] and len(ended) == 1
+
+
+def test_removing_a_collider_ends_the_contacts_on_it() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0, -G)))
+    ledge = w.add_collider(Segment((-2, 0), (2, 0)))
+    w.add_collider(Plane((0, -10), (0, 1)))
+    b = ball(w, 0, 0.5, restitution=0.0)
+    began, ended = tally(w, b)
+    for _ in range(5):
+        w.step(1 / 60)
+    assert [e.collider for e in began] == [ledge]
+    w.remove_collider(ledge)
+    w.step(1 / 60)
+    assert [(e.collider, e.removal) for e in ended] == [(ledge, True)]
+    for _ in range(200):
+        w.step(1 / 60)
+    assert len(ended) == 1 and len(began) == 2  # then it lands on the floor below
+
+
+def test_a_teleport_away_from_a_resting_place_ends_the_contact() -> None:
+    w = World(integrator="auto")
+    w.add_force(Gravity((0, -G)))
+    floor = w.add_collider(Plane((0, 0), (0, 1)))
+    b = ball(w, 0, 0.5)
+    began, ended = tally(w, b)
+    for _ in range(5):
+        w.step(1 / 60)
+    b.pos = Vector(0, 50)
+    assert w.resting(b) is None  # the rest went with the teleport
+    w.step(1 / 60)
+    assert [e.collider for e in ended] == [floor]
+    assert b.pos.y < 50 and b.vel.y < 0  # falling, not hovering
+
+
+def test_a_sensor_reports_a_body_taken_out_while_inside() -> None:
+    w = World()
+    cup = w.add_collider(Circle((0, 0), 2.0, sensor=True))
+    b = ball(w, 0, 0)
+    began, ended = tally(w, cup)
+    w.step(1 / 60)
+    assert [e.body for e in began] == [b]
+    w.remove(b)
+    w.step(1 / 60)
+    assert [(e.body, e.removal) for e in ended] == [(b, True)]
+
+
+def test_post_solve_gives_a_resting_ball_its_weight_times_dt() -> None:
+    # pymunk's post_solve: the impulse a continuing contact carried over the step.
+    dt, m = 1 / 60, 2.0
+    w = World(integrator="auto")
+    w.add_force(Gravity((0, -G)))
+    floor = w.add_collider(Plane((0, 0), (0, 1)))
+    b = ball(w, 0, 0.5, mass=m)
+    seen: list[ContactEvent] = []
+    w.on_contact(b, post_solve=seen.append)
+    for _ in range(5):
+        w.step(dt)
+    assert len(seen) >= 4
+    last = seen[-1]
+    assert last.collider is floor and last.body is b
+    assert abs(last.impulse.y - m * G * dt) <= 1e-12 and abs(last.impulse.x) <= 1e-15
+    assert [e.collider for e in w.touching] == [floor]
+
+
+def test_post_solve_in_a_stack_carries_the_weight_above() -> None:
+    dt = 1 / 60
+    w = World(integrator="auto")
+    w.add_force(Gravity((0, -G)))
+    w.add_collider(Plane((0, 0), (0, 1)))
+    low = ball(w, 0, 0.5, mass=1.0)
+    high = ball(w, 0, 1.5, mass=3.0)
+    w.sleep_time = math.inf
+    for _ in range(120):
+        w.step(dt)
+    pair = [e for e in w.touching if e.collider is high]
+    assert len(pair) == 1 and pair[0].body is low
+    # The pair pushes low down by high's weight: the impulse on low is -3 g dt.
+    assert abs(pair[0].impulse.y + 3.0 * G * dt) <= 1e-4 * 3.0 * G * dt
+
+
+def test_each_contact_begins_before_it_ends_in_a_busy_room() -> None:
+    # Forty balls in a room with a peg and a ledge, under gravity: per contact the events
+    # alternate begin, end, begin ... and never two of one kind in a row.
+    w = World()
+    w.add_force(Gravity((0, -G)))
+    w.add_collider(Box((-5, 0), (5, 10), restitution=0.5))
+    w.add_collider(Circle((0, 3), 0.7))
+    w.add_collider(Segment((-4, 5), (-1, 4)))
+    for k in range(40):
+        ball(w, -4 + (k % 8), 5.5 + 0.8 * (k // 8), (k % 3) - 1.0, 0.0, radius=0.3, restitution=0.6)
+    state: dict[tuple[int, int], bool] = {}
+    for _ in range(400):
+        w.step(1 / 60)
+        merged = [(e.time, 0, e) for e in w.began] + [(e.time, 1, e) for e in w.ended]
+        assert [e.time for e in w.began] == sorted(e.time for e in w.began)
+        assert [e.time for e in w.ended] == sorted(e.time for e in w.ended)
+        for _, kind, e in sorted(merged, key=lambda m: (m[0], m[1])):
+            key = (id(e.body), id(e.collider))
+            if kind == 0:
+                assert not state.get(key, False), f"begun twice: {e}"
+                state[key] = True
+            else:
+                assert state.get(key, False), f"ended before it began: {e}"
+                state[key] = False
+    open_now = {k for k, v in state.items() if v}
+    assert open_now == {(id(e.body), id(e.collider)) for e in w.touching}
