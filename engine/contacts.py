@@ -743,12 +743,19 @@ class Contacts:
             stop = np.zeros(len(active), dtype=bool)
             res = np.flatnonzero(ra >= 0)
             if len(res):
-                lifted = self._rest_paths(
+                lifted, edge = self._rest_paths(
                     res, active, Xa, Va, Bp, Wp, dur, ra, Wb, mub, r, stop, t0 + dt - ta
                 )
                 if len(lifted):
                     rest[active[lifted]] = -1
                     ra = rest[active]
+                if len(edge):
+                    # Gone over a round edge: the rest of its step is flown on the mean
+                    # acceleration W, the path that leaves the edge (the method's own path
+                    # B, 2 a for semi-implicit Euler, curves back into it: the ball would
+                    # land again at once, and again, up to the cap).
+                    Bp[edge] = Wp[edge]
+                    Bb[active[edge]] = Wb[active[edge]]
             if len(res) and len(lifted):
                 live = np.flatnonzero((slot[pb] >= 0) & (pf != rest[pb]))
                 bi, fj = slot[pb[live]], pf[live]
@@ -783,7 +790,7 @@ class Contacts:
                 touched[active[h]] = True
             rs = np.flatnonzero(rest[active] >= 0)
             if len(rs):
-                self._project(rs, active, Xn, Vn, rest, r)
+                self._project(rs, active, Xn, Vn, rest, r, Wb)
                 # A body rolling over a round edge onto a flat side it now overlaps has left
                 # the edge: it stands on the side and is in flight again (it settles there).
                 L = len(self.faces.p)
@@ -976,8 +983,9 @@ class Contacts:
         r: np.ndarray,
         stop: np.ndarray,
         when: np.ndarray,
-    ) -> np.ndarray:
-        """Set the sliding path of resting bodies (local ``res``); return those that lift off.
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Set the sliding path of resting bodies (local ``res``); return those that lift off,
+        and those of them that went over a round edge faster than it can turn them.
 
         Along the surface the motion is one-dimensional: speed u along the tangent, pull a_t,
         and friction mu |a_n| against the motion. While sliding, u' = a_t - sign(u) mu |a_n|;
@@ -1001,7 +1009,9 @@ class Contacts:
             t0 = np.stack([-faces.n[fl, 1], faces.n[fl, 0]], axis=1)
             pos = _dot(x - faces.p[fl], t0)
             off_end = line & ((pos < faces.lo[fl]) | (pos > faces.hi[fl]))
-        lift = (a_n > 0.0) | (v_n > 1e-9) | off_end | (u * u * curve + a_n > 0.0)
+        over = u * u * curve + a_n > 0.0  # faster than the edge can turn it
+        lift = (a_n > 0.0) | (v_n > 1e-9) | off_end | over
+        edge = lift & over & ~((a_n > 0.0) | (v_n > 1e-9) | off_end)
         if lift.any():
             for k in np.flatnonzero(lift):
                 self._event(
@@ -1031,7 +1041,7 @@ class Contacts:
         stops = keep & (ts < dur[res])
         dur[res[stops]] = ts[stops]
         stop[res[stops]] = True
-        return res[lift]
+        return res[lift], res[edge]
 
     def _project(
         self,
@@ -1041,8 +1051,15 @@ class Contacts:
         Vn: np.ndarray,
         rest: np.ndarray,
         r: np.ndarray,
+        Wb: np.ndarray,
     ) -> None:
-        """Put resting bodies exactly at contact distance; turn velocity along a round face."""
+        """Put resting bodies exactly at contact distance; turn velocity along a round face.
+
+        On a round face the round's path ran along the tangent (``_rest_paths``) and is put
+        back on the arc here, at the same speed plus the pull's work over that move: with
+        the pull W constant, |v|^2 gains 2 W.dx (the surface's push does no work), so a ball
+        going over a peg keeps the energy it has on the arc, and leaves the peg where the
+        closed form says, within a step."""
         faces = self.faces
         L = len(faces.p)
         i = active[rs]
@@ -1057,15 +1074,17 @@ class Contacts:
             x_line = x - nrm * gap[:, None]
         else:
             x_line = x
+        gain: Any = 0.0
         if len(faces.c):
             x_disc = faces.c[fd] + nrm * (faces.r[fd] + r[i])[:, None]
+            gain = 2.0 * _dot(Wb[i], x_disc - x)
             x = np.where(line[:, None], x_line, x_disc)
         else:
             x = x_line
         vn = _dot(vel, nrm)
         v_flat = vel - nrm * vn[:, None]
         tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
-        speed = np.sqrt(_dot(vel, vel))
+        speed = np.sqrt(np.maximum(_dot(vel, vel) + gain, 0.0))
         sign = np.where(_dot(vel, tang) >= 0.0, 1.0, -1.0)
         v_round = tang * (sign * speed)[:, None]
         Xn[rs] = x
@@ -1340,13 +1359,16 @@ class Contacts:
             stop = False
             if rest >= 0:
                 slide = _rest_path_one(faces, rest, x, v, w, mu)
-                if slide is None:  # lifts off
+                if slide is False:  # over a round edge: flown on W (as in _solve)
+                    b = bp = w
+                if slide is None or slide is False:  # lifts off
                     nx, ny, _ = _normal_one(faces, rest, x)
                     point = (x[0] - nx * r, x[1] - ny * r)
                     event = (row, faces.owner_list[rest], point, (nx, ny), (0.0, 0.0))
                     ended.append(((round_, 0, k), (*event, t0 + dt - ta)))
                     rest = -1
                 else:
+                    assert not isinstance(slide, bool)
                     vp, bp, ts = slide
                     wp = bp
                     if ts < dur:
@@ -1384,7 +1406,7 @@ class Contacts:
                 )  # fmt: skip
                 touched = True
             if rest >= 0:
-                xn, vn = _project_one(faces, rest, xn, vn, r)
+                xn, vn = _project_one(faces, rest, xn, vn, r, w)
                 if rest >= L:  # rolled over a round edge onto a flat side it overlaps?
                     Xr, Vr = np.array([xn]), np.array([vn])
                     if self.push_out_rows(Xr, Vr, np.array([r]), np.array([row]))[0]:
@@ -1506,9 +1528,10 @@ def _normal_one(faces: _Faces, f: int, x: Pair) -> tuple[float, float, float]:
 
 def _rest_path_one(
     faces: _Faces, f: int, x: Pair, v: Pair, w: Pair, mub: float
-) -> tuple[Pair, Pair, float] | None:
-    """``Contacts._rest_paths`` for one body resting on face f: None if it lifts off, else
-    its sliding path (velocity, acceleration along the face, time it stops or inf)."""
+) -> tuple[Pair, Pair, float] | bool | None:
+    """``Contacts._rest_paths`` for one body resting on face f: None if it lifts off (False
+    if over a round edge faster than it can turn it), else its sliding path (velocity,
+    acceleration along the face, time it stops or inf)."""
     nx, ny, curve = _normal_one(faces, f, x)
     tx, ty = -ny, nx
     a_n = w[0] * nx + w[1] * ny
@@ -1519,8 +1542,10 @@ def _rest_path_one(
         p, n, _, _, lo, hi = faces.line_list[f]
         pos = (x[0] - p[0]) * -n[1] + (x[1] - p[1]) * n[0]
         off_end = pos < lo or pos > hi
-    if a_n > 0.0 or v_n > 1e-9 or off_end or u * u * curve + a_n > 0.0:
+    if a_n > 0.0 or v_n > 1e-9 or off_end:
         return None
+    if u * u * curve + a_n > 0.0:
+        return False
     a_t = w[0] * tx + w[1] * ty
     fr = mub * faces.mu_list[f] * max(-a_n, 0.0)
     if u > 0.0:
@@ -1607,7 +1632,7 @@ def _bounce_one(
     return new_v, rest, wedged
 
 
-def _project_one(faces: _Faces, f: int, x: Pair, vel: Pair, r: float) -> tuple[Pair, Pair]:
+def _project_one(faces: _Faces, f: int, x: Pair, vel: Pair, r: float, w: Pair) -> tuple[Pair, Pair]:
     """``Contacts._project`` for one body resting on face f: (position, velocity)."""
     L = len(faces.line_list)
     nx, ny, _ = _normal_one(faces, f, x)
@@ -1617,9 +1642,12 @@ def _project_one(faces: _Faces, f: int, x: Pair, vel: Pair, r: float) -> tuple[P
         gap = (x[0] - p[0]) * nx + (x[1] - p[1]) * ny - rho - r
         return (x[0] - nx * gap, x[1] - ny * gap), (vel[0] - nx * vn, vel[1] - ny * vn)
     c, rho = faces.disc_list[f - L]
-    x = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
+    x_on = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
     tx, ty = -ny, nx
-    speed = math.sqrt(vel[0] * vel[0] + vel[1] * vel[1])
+    # The pull's work from the tangent to the arc (_project): |v|^2 gains 2 W.dx.
+    gain = 2.0 * (w[0] * (x_on[0] - x[0]) + w[1] * (x_on[1] - x[1]))
+    x = x_on
+    speed = math.sqrt(max(vel[0] * vel[0] + vel[1] * vel[1] + gain, 0.0))
     sign = 1.0 if vel[0] * tx + vel[1] * ty >= 0.0 else -1.0
     return x, (tx * (sign * speed), ty * (sign * speed))
 

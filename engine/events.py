@@ -127,19 +127,24 @@ class ContactLedger:
         self.ended: list[Spec] = []
         self.pending: list[ContactEvent] = []  # ends by removal, for the next step's report
         self.removed: list[ContactEvent] = []  # those reported with the last step
+        # Ends the solvers reported for contacts still within their slack: if the contact
+        # then parts with nothing else in between, this end, with its moment, is the one.
+        self.held: dict[int, Spec] = {}
 
-    def state(self) -> tuple[np.ndarray, np.ndarray]:
-        """A copy of the open contacts (what a snapshot holds)."""
-        return self.keys.copy(), self.exact.copy()
+    def state(self) -> tuple[Any, ...]:
+        """A copy of the open contacts and the ends held for them (what a snapshot holds)."""
+        return self.keys.copy(), self.exact.copy(), tuple(self.held.items())
 
     def set_state(self, state: Any) -> None:
         """Bring back ``state()``; ValueError if it is not one."""
-        ok = isinstance(state, tuple) and len(state) == 2
-        ok = ok and all(isinstance(a, np.ndarray) and a.dtype == np.int64 for a in state)
+        ok = isinstance(state, tuple) and len(state) == 3
+        ok = ok and all(isinstance(a, np.ndarray) and a.dtype == np.int64 for a in state[:2])
+        ok = ok and isinstance(state[2], tuple)
         if not ok:
             raise ValueError("snapshot.events must be the open contacts from World.snapshot()")
         self.keys, self.exact = state[0].copy(), state[1].copy()
         self.began, self.ended, self.pending, self.removed = [], [], [], []
+        self.held = dict(state[2])
 
     def quiet(self) -> None:
         """A step passed in which nothing moved: the pending ends are reported, nothing else."""
@@ -185,18 +190,22 @@ class ContactLedger:
                 still = set(ends[gap <= slack].tolist())
             began, ended = self.began, self.ended
             known = set(prev.tolist()) if len(prev) < 64 else None
+            held = self.held
             for spec in raw:
                 k = spec[1]
                 s = state.get(k)
                 if s is None:
                     s = (k in known) if known is not None else bool(_isin(np.array([k]), prev)[0])
                 if spec[2]:
+                    held.pop(k, None)  # it touched again: an end held for it is void
                     if not s:
                         state[k] = True
                         began.append(spec)
                 elif s and k not in still:
                     state[k] = False
                     ended.append(spec)
+                elif s:
+                    held[k] = spec  # still within the slack: held, in case it parts
         touched = np.array(list(state), dtype=np.int64)
         cand = np.unique(np.concatenate([prev, touched, resting, sensing]))
         after = _isin(cand, prev)
@@ -211,10 +220,19 @@ class ContactLedger:
             final[np.flatnonzero(need)[gap <= slack]] = True
         for k in cand[final & ~after].tolist():
             self.began.append((t_end, k, True, None))
+        held = self.held
         for k in cand[after & ~final].tolist():
-            self.ended.append((t_end, k, False, None))
+            # Parted past the slack: the end the solver reported as it lifted off, if any.
+            self.ended.append(held.pop(k) if k in held else (t_end, k, False, None))
+        self.ended.sort(key=lambda s: s[0])
         self.keys = cand[final]
         self.exact = self.keys[_isin(self.keys, sensing)]
+        if held:
+            # Held ends are void for contacts the solvers hold at rest again, or gone.
+            keys = np.array(list(held), dtype=np.int64)
+            void = _isin(keys, resting) | ~_isin(keys, self.keys)
+            for k in keys[void].tolist():
+                del held[k]
 
     def drop(self, involved: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
         """Close the open contacts for which ``involved(keys)`` is True (a body or collider
@@ -249,7 +267,7 @@ class WorldEvents:
 
     def __init__(self) -> None:
         self.ledger = ContactLedger()
-        self._serial: dict[int, int] = {}  # id(collider) -> serial
+        self._serial: dict[Any, int] = {}  # collider (by identity) -> serial
         self._collider: dict[int, Any] = {}  # serial -> collider
         self._next = 0
         self._began: list[ContactEvent] | None = None
@@ -265,18 +283,18 @@ class WorldEvents:
     # -- names -------------------------------------------------------------------------------
     def collider_added(self, collider: Any) -> None:
         """Give a new collider its serial number (kept while it is in the World)."""
-        self._serial[id(collider)] = self._next
+        self._serial[collider] = self._next
         self._collider[self._next] = collider
         self._next += 1
 
     def serial(self, collider: Any) -> int:
         """The serial number of a collider in the World."""
-        return self._serial[id(collider)]
+        return self._serial[collider]
 
     def collider_removed(self, collider: Any, t: float) -> None:
         """A collider leaves: its open contacts end (reported with the next step)."""
         self.settle_reading()
-        serial = self._serial.pop(id(collider))
+        serial = self._serial.pop(collider)
 
         def involved(keys: np.ndarray) -> np.ndarray:
             is_c, other = other_of(keys)
@@ -400,3 +418,33 @@ def raw_specs(
                 payload = (pts[k], nrm[k], imp[k])
             out.append((float(t), key, began, payload))
     return out
+
+
+def plain_keys(keys: np.ndarray, row_of: np.ndarray, index_of: dict[int, int]) -> np.ndarray:
+    """Keys as (row, other) pairs (N, 2): the body's row and the other body's row, or
+    -1 - the collider's place among the World's colliders, so that a snapshot fits a World
+    built afresh (other slots and serials, the same bodies and colliders in order)."""
+    is_c, other = other_of(keys)
+    a = row_of[slot_of(keys)]
+    b = np.where(is_c, -1, 0)
+    if len(keys):
+        b = np.array(
+            [
+                -1 - index_of[o] if c else int(row_of[o])
+                for c, o in zip(is_c.tolist(), other.tolist(), strict=True)
+            ],
+            dtype=np.int64,
+        )
+    return np.stack([a.astype(np.int64), b.astype(np.int64)], axis=1).reshape(-1, 2)
+
+
+def keys_of(plain: np.ndarray, slots: np.ndarray, serials: np.ndarray) -> np.ndarray:
+    """``plain_keys`` back to keys, with this World's slots (by row) and serials (by place)."""
+    a, b = plain[:, 0], plain[:, 1]
+    coll = b < 0
+    keys = np.empty(len(plain), dtype=np.int64)
+    if coll.any():
+        keys[coll] = collider_keys(slots[a[coll]], serials[-1 - b[coll]])
+    if (~coll).any():
+        keys[~coll] = pair_keys(slots[a[~coll]], slots[b[~coll]])
+    return keys

@@ -22,10 +22,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["Filter", "ALL_CATEGORIES"]
+__all__ = ["Filter", "ALL_CATEGORIES", "ALL_MASKS"]
 
 #: Every category bit (pymunk's ``ShapeFilter.ALL_CATEGORIES()``, 32 bits).
 ALL_CATEGORIES = 0xFFFFFFFF
+#: A mask that meets every category (pymunk's ``ShapeFilter.ALL_MASKS()``).
+ALL_MASKS = ALL_CATEGORIES
 
 
 def _bits(value: Any, name: str) -> int:

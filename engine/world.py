@@ -45,8 +45,10 @@ from .events import (
     ContactEvent,
     WorldEvents,
     collider_keys,
+    keys_of,
     other_of,
     pair_keys,
+    plain_keys,
     raw_specs,
     slack_for,
     slot_of,
@@ -147,6 +149,7 @@ class WorldSnapshot:
     pairs: tuple[Any, ...] | None = None  # contacts between bodies: warm start, sleep
     links: tuple[Any, ...] = ()  # each link in force: (what it joins, warned, last impulse)
     moves: tuple[Any, ...] = ()  # (row, target): kinematic bodies' pos written, not yet reached
+    events: tuple[Any, ...] | None = None  # the contacts open (engine.events), by row and place
 
 
 @dataclass
@@ -1104,6 +1107,12 @@ class World:
         return self._t_base + self._n * self._dt if self._dt is not None else self._t_base
 
     @property
+    def dt(self) -> float | None:
+        """The length (s) of the last step, or None before the first (pymunk's
+        ``current_time_step``)."""
+        return self._dt
+
+    @property
     def steps(self) -> int:
         """How many steps have been taken."""
         return self._steps_base + self._n
@@ -1557,6 +1566,7 @@ class World:
             warned=frozenset(self._policy.warned),
             contacts=None if self._contacts is None else self._contacts.state(),
             pairs=self._collisions.state(),
+            events=self._events_state(),
             links=tuple((self._describe(k), k.warned, k.impulse) for k in self._links),
             moves=tuple(
                 (self._bodies.index(b), tuple(float(c) for c in target))
@@ -1615,6 +1625,62 @@ class World:
                 self._contacts.set_state(snapshot.contacts, len(self._bodies))
         if snapshot.pairs is not None:
             self._collisions.set_state(snapshot.pairs)
+        self._set_events_state(snapshot.events)
+
+    def _events_state(self) -> tuple[Any, ...] | None:
+        """The open contacts and their held ends, by body row and collider place."""
+        store = self._store
+        if store is None or store.dim != 2:
+            return None
+        index_of = {self._events.serial(c): k for k, c in enumerate(self.colliders)}
+        keys, exact, held = self._events.ledger.state()
+        row_of = store.row_of
+
+        def plain(k: np.ndarray) -> np.ndarray:
+            return plain_keys(k, row_of, index_of)
+
+        held_plain = tuple(
+            (tuple(plain(np.array([k], dtype=np.int64))[0].tolist()), spec[0], spec[3])
+            for k, spec in held
+        )
+        return plain(keys), plain(exact), held_plain
+
+    def _set_events_state(self, state: Any) -> None:
+        """Bring back ``_events_state()`` (None: no contact open)."""
+        store = self._store
+        ledger = self._events.ledger
+        if state is None or store is None:
+            ledger.set_state((np.zeros(0, np.int64), np.zeros(0, np.int64), ()))
+            return
+        n, m = len(store), len(self.colliders)
+        ok = isinstance(state, tuple) and len(state) == 3
+        if ok:
+            arrays = [a for a in state[:2] if isinstance(a, np.ndarray)]
+            ok = len(arrays) == 2 and all(a.ndim == 2 and a.shape[1:] == (2,) for a in arrays)
+            ok = ok and all(
+                ((a[:, 0] >= 0) & (a[:, 0] < n) & (a[:, 1] >= -m) & (a[:, 1] < n)).all()
+                for a in arrays
+            )
+        if not ok:
+            raise ValueError(
+                "snapshot.events must be the open contacts from World.snapshot() of a World "
+                "with these bodies and colliders"
+            )
+        slots = store.slots()
+        serials = np.array([self._events.serial(c) for c in self.colliders], np.int64)
+        serials = serials.reshape(-1)
+        held = []
+        for (a, b), t, payload in state[2]:
+            (k,) = keys_of(np.array([[a, b]], dtype=np.int64), slots, serials).tolist()
+            held.append((k, (t, k, False, payload)))
+        ledger.set_state(
+            (
+                np.sort(keys_of(state[0], slots, serials)),
+                np.sort(keys_of(state[1], slots, serials)),
+                tuple(held),
+            )
+        )
+        self._events.forget()
 
     def _check_moves(self, moves: Any) -> list[tuple[int, tuple[float, float]]]:
         """The snapshot's pending kinematic moves, checked: (row of a kinematic body, a

@@ -67,6 +67,7 @@ from engine.render.recorder import (
     strobe,
 )
 from engine.render.scene import Scene
+from engine.render.world_view import draw_world
 
 __all__ = [
     "ACCELERATION",
@@ -100,6 +101,7 @@ __all__ = [
     "draw_text",
     "draw_trail",
     "draw_vector",
+    "draw_world",
     "encode_png",
     "font",
     "frame_count",
