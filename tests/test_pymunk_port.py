@@ -836,7 +836,8 @@ MISSING: dict[str, str] = {
     "its normal is checked by test_arbiter_contact_normal_of_testContactPointSet",
     "test_arbiter.testTotalKE": "no kinetic energy lost per contact; World.energy() gives the "
     "whole",
-    "test_arbiter.testProcessCollision": "no pre_solve (as test_space.testCollisionHandlerPreSolve)",
+    "test_arbiter.testProcessCollision": "no pre_solve (as "
+    "test_space.testCollisionHandlerPreSolve)",
 }
 
 
