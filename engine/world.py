@@ -481,6 +481,8 @@ class World:
             for k in self._links:
                 if isinstance(k, Pin):
                     store.kinematic[store.row(k.body._slot)] = True
+        # A body no longer held goes nowhere it was sent while held.
+        self._targets = {b: p for b, p in self._targets.items() if b.kinematic}
         self._changed_structure()
 
     def _solve_links(
@@ -939,6 +941,12 @@ class World:
         body = self._bodies[row]
         if target is None:
             self._targets.pop(body, None)
+        elif not body.kinematic:
+            pin = next(k for k in self._links if isinstance(k, Pin) and k.body is body)
+            raise ValueError(
+                f"pos: that body is pinned at {tuple(pin.point)} and stays there; take the pin "
+                f"out (world.remove_link) or add a Pin where it should be: {body!r}"
+            )
         else:
             self._targets[body] = target
         self._anchor = None
@@ -1312,7 +1320,7 @@ class World:
         linked = np.zeros(len(self._bodies), dtype=bool)
         linked[solver.i] = True
         linked[solver.j[solver.j >= 0]] = True
-        for rows, others, *_ in self._collisions._began:
+        for rows, others, *_ in self._collisions._began if self._pairs_on else []:
             if linked[np.asarray(rows, dtype=np.intp)].any():
                 return True
             if linked[np.asarray(others, dtype=np.intp)].any():
@@ -1386,6 +1394,8 @@ class World:
             # What the static contacts did to each velocity (a resting contact's impulse).
             self._contact_dv = v1 - v_free if contacts.moved else None
         pairs = self._collisions
+        if not self._pairs_on:
+            pairs.quiet()  # no pair solved: none of its reports is this step's
         if pairs is not None and self._pairs_on:
             # Bodies meet one another (engine.collisions) on the paths that end where the
             # method and the static contacts left them.
@@ -1643,7 +1653,8 @@ class World:
             (tuple(plain(np.array([k], dtype=np.int64))[0].tolist()), spec[0], spec[3])
             for k, spec in held
         )
-        return plain(keys), plain(exact), held_plain
+        # The ends of things taken out, waiting for the next step's report, as they are.
+        return plain(keys), plain(exact), held_plain, tuple(self._events.ledger.pending)
 
     def _set_events_state(self, state: Any) -> None:
         """Bring back ``_events_state()`` (None: no contact open)."""
@@ -1653,7 +1664,8 @@ class World:
             ledger.set_state((np.zeros(0, np.int64), np.zeros(0, np.int64), ()))
             return
         n, m = len(store), len(self.colliders)
-        ok = isinstance(state, tuple) and len(state) == 3
+        ok = isinstance(state, tuple) and len(state) == 4
+        ok = ok and all(isinstance(e, ContactEvent) for e in state[3])
         if ok:
             arrays = [a for a in state[:2] if isinstance(a, np.ndarray)]
             ok = len(arrays) == 2 and all(a.ndim == 2 and a.shape[1:] == (2,) for a in arrays)
@@ -1680,6 +1692,7 @@ class World:
                 tuple(held),
             )
         )
+        ledger.pending = list(state[3])
         self._events.forget()
 
     def _check_moves(self, moves: Any) -> list[tuple[int, tuple[float, float]]]:
@@ -1691,6 +1704,7 @@ class World:
         for item in moves:
             ok = isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], int)
             ok = ok and 0 <= item[0] < len(self._bodies) and self._bodies[item[0]].kinematic
+            # (Only a body kinematic by itself has moves: a pinned one refuses them.)
             if ok:
                 try:
                     point = Vector.coerce(item[1], "snapshot.moves")

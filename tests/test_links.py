@@ -396,3 +396,15 @@ def test_a_chain_of_cables_flung_past_its_anchor_is_caught_at_its_length() -> No
         assert (b.pos - a.pos).magnitude() <= 1.0 + 1e-9
         assert a.pos.y > 0.0 and b.pos.y > a.pos.y  # caught above, in order
         w.step(1 / 60)
+
+
+def test_writing_pos_of_a_pinned_body_is_refused_and_a_freed_one_goes_nowhere_it_was_sent() -> None:
+    w = World()
+    b = w.add(Body(Vector(0.0, 2.0), Vector(0.0, 0.0), Vector(0.0, 0.0), radius=0.05))
+    pin = w.add_link(Pin(b, b.pos))
+    with pytest.raises(ValueError, match="pinned"):
+        b.pos = Vector(1.0, -4.0)
+    assert b.pos == Vector(0.0, 2.0)
+    w.remove_link(pin)
+    w.step(1 / 240)
+    assert b.pos == Vector(0.0, 2.0) and b.vel == Vector(0.0, 0.0)  # free, unmoved
