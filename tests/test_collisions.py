@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine import Body, Box, ContactEvent, Filter, Plane, Vector, World
+from engine import Body, Box, ContactEvent, Filter, Plane, Rod, Vector, World
 from engine.collisions import SLOP
 from engine.forces import Gravity
 from engine.stability import StabilityWarning
@@ -389,3 +389,33 @@ def test_adding_a_body_leaves_the_others_as_they_were() -> None:
         spawned.step(1 / 60)
         assert all(spawned.is_sleeping(b) for b in balls)
     assert np.array_equal(np.array([b.pos for b in balls]), still)
+
+
+@pytest.mark.parametrize("apart", [(1e-200, 0.0), (0.0, 1e-200), (1e-170, 1e-170), (1e-310, 0.0)])
+@pytest.mark.parametrize("va", [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0)])
+def test_discs_whose_centres_nearly_coincide_part_without_nan(apart, va) -> None:
+    # The normal d / |d| of centres 1e-200 apart divided by a norm that squared to 0.
+    w = World()
+    w.add_collider(Plane((0.0, -0.5), (0.0, 1.0)))
+    a = disc(w, (0.0, 0.0), va, radius=0.5)
+    b = disc(w, apart, (1.0, 0.0), radius=0.5)
+    for _ in range(5):
+        w.step(1 / 60)
+    state = np.concatenate([w.positions(), w.velocities()])
+    assert np.isfinite(state).all()
+    assert (a.pos - b.pos).magnitude() > 0.99  # parted, from 1e-200 to nearly touching
+
+
+def test_two_bodies_landing_on_a_wall_in_one_step_beside_a_link() -> None:
+    # With a link in the World, contacts that began in the same step on the few-bodies path
+    # (rows held as a tuple) raised "too many indices for array".
+    w = World()
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    a = disc(w, (0.0, 0.6), (0.0, -3.0), radius=0.5, restitution=0.0)
+    b = disc(w, (3.0, 0.6), (0.0, -3.0), radius=0.5, restitution=0.0)
+    c = disc(w, (6.0, 5.0), (0.0, 0.0), radius=0.5)
+    w.add_link(Rod(c, (6.0, 7.0)))
+    for _ in range(10):
+        w.step(1 / 60)
+    assert a.pos.y == pytest.approx(0.5) and b.pos.y == pytest.approx(0.5)
