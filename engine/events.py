@@ -153,6 +153,7 @@ class ContactLedger:
 
     def settle(
         self,
+        t0: float,
         t_end: float,
         raw: list[Spec],
         resting: np.ndarray,
@@ -161,12 +162,16 @@ class ContactLedger:
     ) -> None:
         """Make the step's events and the open contacts after it.
 
-        ``raw``: the solvers' reports (time, key, began?, payload). ``resting``: the keys of
+        ``t0`` and ``t_end``: the step's start and end (s); ``raw``: the solvers' reports
+        (time, key, began?, payload), their times kept within the step. ``resting``: the keys of
         the contacts the solvers hold at rest now (a body on a face, a pair in a pile);
         ``sensing``: the keys of bodies inside sensors now. ``gaps(keys)`` gives each key's
         gap (length units, < 0 overlapping) and the slack it may keep and stay open.
         """
-        self.removed, self.pending = self.pending, []
+        # The ends of things taken out since the step before happened before this step
+        # (a time summed another way may pass its start by an ulp).
+        self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
+        self.pending = []
         self.began, self.ended = [], []
         prev = self.keys
         if not raw and not len(resting) and not len(sensing) and not len(prev):
@@ -178,7 +183,7 @@ class ContactLedger:
         if raw:
             # Time order (stable: a bounce begins, then ends), within the step (a time the
             # solver summed as t0 + dt may pass the World's t by an ulp).
-            raw = [s if s[0] <= t_end else (t_end, *s[1:]) for s in raw]
+            raw = [s if t0 <= s[0] <= t_end else (min(max(s[0], t0), t_end), *s[1:]) for s in raw]
             raw.sort(key=lambda s: s[0])
             # An end of an open contact at rest that still touches is dropped: the contact
             # goes on (a rebound of a hair in a pile).

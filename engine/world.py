@@ -472,6 +472,10 @@ class World:
         self._links = [k for k in self._links if k is not link]
         self._retired.append(link)
         self._links_changed()
+        if isinstance(link, Pin) and self._contacts is not None and not link.body.kinematic:
+            # Free again, in a collider added while it was held: pushed out, as a teleport is.
+            assert self._store is not None
+            self._push_out([self._store.row(link.body._slot)], "was freed", stacklevel=3)
 
     def _links_changed(self) -> None:
         """The set of links changed: pinned bodies are held as kinematic ones are."""
@@ -710,7 +714,7 @@ class World:
         step (pymunk's arbiters and their ``total_impulse``)."""
         return self._events.touching
 
-    def _settle_events(self, t_end: float) -> None:
+    def _settle_events(self, t0: float, t_end: float) -> None:
         """Make the last step's events from what the solvers reported (engine.events)."""
         store, contacts = self._store, self._contacts
         events = self._events
@@ -745,7 +749,7 @@ class World:
                 resting = np.concatenate(
                     [resting, pair_keys(slots[touching // n], slots[touching % n])]
                 )
-        events.ledger.settle(t_end, raw, resting, sensing, self._gaps)
+        events.ledger.settle(t0, t_end, raw, resting, sensing, self._gaps)
 
     def _gaps(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each contact key's gap now (length units, < 0 overlapping) and the slack a contact
@@ -1207,7 +1211,9 @@ class World:
             for body, v in after.items():
                 held.v[held.row(body._slot)] = v
         if self._contacts is not None or self._pairs_on or self._events.busy:
-            self._settle_events(self.t)
+            # The step ran from t0 = t_base + (n - 1) dt (the time it started at, summed the
+            # same way) to t.
+            self._settle_events(self._t_base + (self._n - 1) * dt, self.t)
             self._report()
 
     def _quiet(self) -> None:

@@ -5,10 +5,11 @@ no chatter at rest, ends for what is taken out, and the impulse of a contact tha
 from __future__ import annotations
 
 import math
+import warnings
 
 import pytest
 
-from engine import Body, Box, Circle, ContactEvent, Plane, Segment, Vector, World
+from engine import Body, Box, Circle, ContactEvent, OverlapWarning, Plane, Segment, Vector, World
 from engine.forces import Gravity
 
 G = 9.81
@@ -230,3 +231,27 @@ def test_each_contact_begins_before_it_ends_in_a_busy_room() -> None:
                 state[key] = False
     open_now = {k for k, v in state.items() if v}
     assert open_now == {(id(e.body), id(e.collider)) for e in w.touching}
+
+
+def test_ends_of_things_taken_out_come_first_when_the_next_step_has_another_dt() -> None:
+    # Found by the stateful fuzz: a room added over two balls pushes them into each other; a
+    # handler takes one out as their contact begins, at t = 1/240. The next step, of 1/60,
+    # starts there (its time summed another way): the removal's end comes first, at that
+    # moment, and each list is in time order.
+    w = World()
+    w.add_force(Gravity((0, -G)))
+    a = ball(w, 6.53, 2.066, -2.18, 2.56, radius=0.5)
+    b = ball(w, 7.80, 2.456, 2.05, 1.02, radius=0.2)
+    w.on_contact(b, begin=lambda e: w.remove(e.collider) if e.collider is a else None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OverlapWarning)
+        w.add_collider(Box((-7, -12), (7, 12)))
+    w.step(1 / 240)
+    assert a.world is None
+    t_removed = w.t
+    b.vel = Vector(1, 0)  # off the wall it rests against: that contact ends at once
+    w.step(1 / 60)
+    for events in (w.began, w.ended):
+        assert [e.time for e in events] == sorted(e.time for e in events)
+    assert w.ended[0].removal and w.ended[0].time == t_removed
+    assert all(e.time >= t_removed for e in w.began)

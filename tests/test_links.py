@@ -13,7 +13,7 @@ import warnings
 import numpy as np
 import pytest
 
-from engine import Body, Cable, Pin, Rod, StabilityWarning, Vector, World
+from engine import Body, Box, Cable, OverlapWarning, Pin, Rod, StabilityWarning, Vector, World
 from engine.forces import Gravity
 
 G = 9.81
@@ -408,3 +408,16 @@ def test_writing_pos_of_a_pinned_body_is_refused_and_a_freed_one_goes_nowhere_it
     w.remove_link(pin)
     w.step(1 / 240)
     assert b.pos == Vector(0.0, 2.0) and b.vel == Vector(0.0, 0.0)  # free, unmoved
+
+
+def test_a_body_freed_from_its_pin_inside_a_collider_is_pushed_out() -> None:
+    # A room was added around a pinned body, its wall through it (a pinned body is held, not
+    # pushed); taking the pin out frees it there: it is pushed out, as a teleport is.
+    w = World()
+    b = w.add(Body(Vector(6.8, 2.0), Vector(0.0, 0.0), Vector(0.0, 0.0), radius=0.5))
+    pin = w.add_link(Pin(b, b.pos))
+    w.add_collider(Box((-7.0, -12.0), (7.0, 12.0)))
+    assert b.pos == Vector(6.8, 2.0)
+    with pytest.warns(OverlapWarning, match="was freed"):
+        w.remove_link(pin)
+    assert b.pos.x == pytest.approx(6.5) and w.colliders[0].distance(b.pos) >= 0.5 - 1e-12
