@@ -372,10 +372,13 @@ class WorldEvents:
 
     @property
     def ended(self) -> list[ContactEvent]:
-        """The contacts that ended in the last step (first those of things taken out since
+        """The contacts that ended in the last step (with those of things taken out since
         the step before), in time order."""
         if self._ended is None:
-            self._ended = self.ledger.removed + [self._event(s) for s in self.ledger.ended]
+            made = self.ledger.removed + [self._event(s) for s in self.ledger.ended]
+            # In time order, the removals' first where times tie (an end held within its
+            # slack and reported once it parted keeps the moment it lifted off).
+            self._ended = sorted(made, key=lambda e: e.time)
         return self._ended
 
     @property

@@ -370,12 +370,14 @@ class World:
         del self._bodies[row]
         self._targets.pop(body, None)
         store.remove(body._slot)
-        if any(body in k.bodies for k in self._links):
+        gone = [k for k in self._links if body in k.bodies]
+        if gone:
             # Its links go with it.
             self._links = [k for k in self._links if body not in k.bodies]
             self._links_changed()
         if self._contacts is not None:
             self._contacts.body_removed(row)
+            self._freed([b for k in gone for b in k.bodies if b is not body])
         for attached in self._forces:
             if attached.bodies is not None and body in attached.bodies:
                 attached.bodies.remove(body)
@@ -472,10 +474,23 @@ class World:
         self._links = [k for k in self._links if k is not link]
         self._retired.append(link)
         self._links_changed()
-        if isinstance(link, Pin) and self._contacts is not None and not link.body.kinematic:
-            # Free again, in a collider added while it was held: pushed out, as a teleport is.
-            assert self._store is not None
-            self._push_out([self._store.row(link.body._slot)], "was freed", stacklevel=3)
+        self._freed(list(link.bodies))
+
+    def _freed(self, bodies: list[Body]) -> None:
+        """Bodies whose links were taken out: one no longer linked to anything that a link
+        held inside a collider (links act after the contacts; a pin holds a body where a
+        collider is added) is pushed out, as a teleport is."""
+        store = self._store
+        if self._contacts is None or store is None:
+            return
+        linked = {id(b) for k in self._links for b in k.bodies}
+        rows = [
+            store.row(b._slot)
+            for b in bodies
+            if b.world is self and not b.kinematic and id(b) not in linked
+        ]
+        if rows:
+            self._push_out(rows, "was freed", stacklevel=4)
 
     def _links_changed(self) -> None:
         """The set of links changed: pinned bodies are held as kinematic ones are."""

@@ -421,3 +421,17 @@ def test_a_body_freed_from_its_pin_inside_a_collider_is_pushed_out() -> None:
     with pytest.warns(OverlapWarning, match="was freed"):
         w.remove_link(pin)
     assert b.pos.x == pytest.approx(6.5) and w.colliders[0].distance(b.pos) >= 0.5 - 1e-12
+
+
+def test_a_body_its_rod_held_in_a_wall_is_pushed_out_when_the_rod_goes_with_its_partner() -> None:
+    w = World()
+    a = w.add(Body(Vector(7.5, 0.0), Vector(0.0, 0.0), Vector(0.0, 0.0), radius=0.2))
+    b = w.add(Body(Vector(5.5, 0.0), Vector(0.0, 0.0), Vector(0.0, 0.0), radius=0.2))
+    w.add_link(Rod(a, b))
+    with pytest.warns(OverlapWarning):
+        w.add_collider(Box((-8.0, -8.0), (7.0, 8.0)))
+    w.step(1 / 240)  # the rod, acting after the contacts, holds a 2 m from b: in the wall
+    assert w.colliders[0].distance(a.pos) < 0.2
+    with pytest.warns(OverlapWarning, match="was freed"):
+        w.remove(b)
+    assert w.colliders[0].distance(a.pos) >= 0.2 - 1e-12
