@@ -246,6 +246,8 @@ class ContactLedger:
         out = self.keys[gone]
         self.keys = self.keys[~gone]
         self.exact = self.exact[~_isin(self.exact, out)]
+        for k in out.tolist():
+            self.held.pop(k, None)
         return out
 
 
