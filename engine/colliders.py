@@ -19,6 +19,12 @@ the body's own material in force.
 A sensor is not solid: bodies pass through it, and the World reports when they begin and end
 overlapping it (``World.began`` / ``World.ended``). The crumb in the crumb game is one.
 
+A collider is fixed once made: the World builds its contact tables from it, so writing
+``peg.center = ...`` (or any of its attributes) raises an AttributeError that says what to do
+instead: take it out and add a new one (``world.remove_collider(peg)``,
+``world.add_collider(Circle(...))``), or, for an obstacle that moves every frame, use a
+kinematic body (``Body(..., radius=r, kinematic=True)``, moved by writing its ``pos``).
+
 >>> floor = Plane((0, 0), (0, 1))
 >>> floor.distance((3, 2))
 2.0
@@ -68,6 +74,31 @@ def _point(value: Any, name: str) -> tuple[float, float]:
     return x, y
 
 
+def _fixed(collider: Collider, name: str) -> str:
+    """Why ``collider.name`` cannot change, and what to do instead."""
+    kind = type(collider).__name__
+    what = (
+        "material"
+        if name in ("restitution", "friction", "sensor")
+        else "geometry"
+        if name in collider.__slots__
+        else None
+    )
+    if what is None:
+        return f"a {kind} has no attribute {name!r} to set"
+    moving = (
+        "; for an obstacle that moves, use a kinematic body, Body(position, radius=r, "
+        "kinematic=True), and write its pos each frame"
+        if what == "geometry"
+        else ""
+    )
+    return (
+        f"a {kind}'s {name} cannot change once it is made (the World built its contacts from "
+        f"its {what}): take it out and add a new one, world.remove_collider(old) then "
+        f"world.add_collider({kind}(..., {name}=...)){moving}"
+    )
+
+
 def _unit(x: float, y: float) -> tuple[float, float] | None:
     """(x, y) scaled to length 1 (None for (0, 0)); scaled first, so tiny and huge work too."""
     m = max(abs(x), abs(y))
@@ -107,6 +138,16 @@ class Collider:
 
     def __init__(self, restitution: float, friction: float, sensor: bool) -> None:
         self.restitution, self.friction, self.sensor = _material(restitution, friction, sensor)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        # Each attribute is set once, when the collider is made; after that it is refused
+        # (the World built its contact tables from it, so a change would be ignored).
+        if hasattr(self, name):
+            raise AttributeError(_fixed(self, name))
+        object.__setattr__(self, name, value)
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(_fixed(self, name))
 
     def distance(self, point: Any) -> float:
         """Signed distance (length units) from ``point`` to the surface: > 0 in free space."""
