@@ -47,7 +47,7 @@ from demos.cli import Demo
 from demos.cradle import faded  # colours mixed toward white, as the cradle's strobe fades
 from engine import Body, Pin, Rod, Vector, World
 from engine.forces import Gravity
-from engine.render import GRID, INK, MUTED, PAPER, Camera, Plot, Scene
+from engine.render import GRID, INK, MUTED, PAPER, Camera, Plot, Scene, marks
 
 __all__ = [
     "G",
@@ -429,8 +429,10 @@ class SingleScene(PendulumScene):
         self.theta_plot = self.plot(
             0, (-160.0, 220.0), "\u03b8(t)  degrees", t_step=2.0, y_step=60.0, color=BOB
         )
+        # Room above KE's peaks (m g L (1 - cos 120 deg) = 14.7 J) for the total's read-out,
+        # and under PE's troughs (-m g L = -9.8 J) for the names of the curves.
         self.energy_plot = self.plot(
-            1, (-12.0, 18.0), "energy  J", t_step=2.0, y_step=6.0, color=TOTAL
+            1, (-15.0, 24.0), "energy  J", t_step=2.0, y_step=6.0, color=TOTAL
         )
 
     def draw(self, surface: pygame.Surface, alpha: float) -> None:
@@ -450,17 +452,7 @@ class SingleScene(PendulumScene):
         plot = self.theta_plot
         plot.draw_frame(surface)
         a = plot.area
-        # The exact period: a dashed line at every whole period, where theta is back at theta0.
-        k = 1
-        while k * self.exact <= self.duration:
-            px = float(plot.to_px(k * self.exact, 0.0)[0])
-            dashed(surface, INK, (px, a.top), (px, a.bottom - 1), dash=5)
-            draw_text(
-                surface, f"{k}T", (px + 3 * s, a.bottom - 1), round(13 * s), INK, "bottomleft"
-            )
-            k += 1
-        plot.draw_curve(surface, ts, [p.theta for p in samples])
-        draw_text(
+        caption = draw_text(
             surface,
             f"dashed: T = 4 sqrt(L/g) K(sin(\u03b80/2)) = {self.exact:.4f} s  "
             f"(small-angle: {2 * math.pi * math.sqrt(LENGTH / G):.3f} s)",
@@ -468,6 +460,19 @@ class SingleScene(PendulumScene):
             round(13 * s),
             INK,
         )
+        # The exact period: a dashed line at every whole period, where theta is back at theta0,
+        # from under the caption down.
+        k = 1
+        while k * self.exact <= self.duration:
+            px = float(plot.to_px(k * self.exact, 0.0)[0])
+            top = caption.bottom + 2
+            dashed(surface, INK, (px, top), (px, a.bottom - 1), dash=5)
+            marks.note(surface, "marker", pygame.Rect(round(px), top, 1, a.bottom - top))
+            draw_text(
+                surface, f"{k}T", (px + 3 * s, a.bottom - 1), round(13 * s), INK, "bottomleft"
+            )
+            k += 1
+        plot.draw_curve(surface, ts, [p.theta for p in samples])
         plot = self.energy_plot
         plot.draw_frame(surface)
         for values, colour in (
