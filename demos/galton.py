@@ -49,9 +49,10 @@ line. Two balls that meet, squeezed between pegs, can sink into each other, deep
 contact solver keeps a pile (its limits are in the README): in the default run (seed 1, 60 s)
 the deepest is 42% of a radius, at 56.9 s (``tests/test_galton.py`` checks it), and in the
 same 60 s for seeds 2 to 8 it was 0 to 16% (measured on 2026-11-25; ``python -m demos galton
---seed N`` shows it on the frame once past 5%). The World says so once, with a ``StabilityWarning``; the frame shows it and
-the deepest overlap so far (``Galton.deepest``) instead of a line on stderr. It changes no
-count: the balls part again and each still lands in one bin.
+--seed N`` shows it on the frame once past 5%). The World says so once, with a
+``StabilityWarning``; the frame shows it and the deepest overlap so far (``Galton.deepest``)
+instead of a line on stderr. It changes no count: the balls part again and each still lands
+in one bin.
 """
 
 from __future__ import annotations

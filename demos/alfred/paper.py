@@ -85,6 +85,7 @@ class Paper(Scene):
         x0, _, _, y1 = type(self).box
         xs, ys = [p.x for p in points] + [x0], [p.y for p in points] + [y1]
         reach = round(math.hypot(*self.sprite.get_size()) / 2) + 4
+        reach = min(reach, min(inner.w, inner.h) // 4)  # a tiny canvas keeps some paper
         fit = inner.inflate(-2 * reach, -2 * reach)
         self.camera = Camera.fit((min(xs), min(ys), max(xs), max(ys)), (fit.x, fit.y, fit.w, fit.h))
         left, top = self.camera.to_world(inner.left, inner.top)
