@@ -45,6 +45,7 @@ from demos.bench.pendulum import period
 from demos.bounce import dashed, draw_text  # the legible text and dashes of the bounce lesson
 from demos.cli import Demo
 from demos.cradle import faded  # colours mixed toward white, as the cradle's strobe fades
+from demos.stability import fitting
 from engine import Body, Pin, Rod, Vector, World
 from engine.forces import Gravity
 from engine.render import GRID, INK, MUTED, PAPER, Camera, Plot, Scene, marks
@@ -368,9 +369,14 @@ class PendulumScene(Scene):
             **kw,
         )
 
+    #: Shorter titles, for a narrow left column (the first that fits is shown).
+    short_titles: tuple[str, ...] = ()
+
     def header(self, surface: pygame.Surface, t: float, line: str) -> None:
         s, m = self.s, self.margin
-        draw_text(surface, self.title, (m, 4 * s), round(18 * s))
+        size = max(12, round(18 * s))
+        title = fitting([self.title, *self.short_titles], size, self.plot_left - m - 4 * s)
+        draw_text(surface, title, (m, 4 * s), round(18 * s))
         draw_text(surface, f"t = {t:5.2f} s   {line}", (m, 25 * s), round(14 * s), MUTED)
 
     def pivot(self, surface: pygame.Surface, at: tuple[float, float] = (0.0, 0.0)) -> None:
@@ -417,6 +423,7 @@ class SingleScene(PendulumScene):
 
     name = "single"
     title = "A pendulum on a rod: L = 1 m, let go at 120\u00b0"
+    short_titles = ("Pendulum: L = 1 m, from 120\u00b0",)
     summary = "one bob let go at 120 deg: theta(t) against the exact period, energy kept"
     duration = 10.0
     strobe_interval = 0.1
@@ -452,10 +459,17 @@ class SingleScene(PendulumScene):
         plot = self.theta_plot
         plot.draw_frame(surface)
         a = plot.area
+        small_angle = 2 * math.pi * math.sqrt(LENGTH / G)
+        captions = [
+            f"dashed: T = 4 sqrt(L/g) K(sin(\u03b80/2)) = {self.exact:.4f} s  "
+            f"(small-angle: {small_angle:.3f} s)",
+            f"dashed: T = {self.exact:.4f} s exactly  (small-angle: {small_angle:.3f} s)",
+            f"dashed: T = {self.exact:.4f} s",
+        ]
+        size = max(12, round(13 * s))  # (bounce's draw_text keeps text at least 12 px)
         caption = draw_text(
             surface,
-            f"dashed: T = 4 sqrt(L/g) K(sin(\u03b80/2)) = {self.exact:.4f} s  "
-            f"(small-angle: {2 * math.pi * math.sqrt(LENGTH / G):.3f} s)",
+            fitting(captions, size, a.width - 8 * s),
             (a.left + 3 * s, a.top + 2 * s),
             round(13 * s),
             INK,
@@ -538,6 +552,7 @@ class DoubleScene(PendulumScene):
 
     name = "double"
     title = "Double pendulum: two copies 1e-9 rad apart"
+    short_titles = ("Two double pendulums 1e-9 apart", "Two double pendulums")
     summary = "chaos: two double pendulums 1e-9 rad apart, the difference growing on a log plot"
     duration = 20.0
     strobe_interval = 0.05
@@ -650,6 +665,7 @@ class ChainScene(PendulumScene):
 
     name = "chain"
     title = "A chain of six bobs on 0.3 m rods"
+    short_titles = ("A chain of six bobs",)
     summary = "six bobs on rods from a pinned body, let go level: the whip, the lengths held"
     duration = 6.0
     strobe_interval = 0.1

@@ -21,6 +21,7 @@ from __future__ import annotations
 import copy
 import math
 import warnings
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -33,7 +34,7 @@ from engine.integrators import INTEGRATORS
 from engine.render import GRID, INK, MUTED, PAPER, Plot, Scene, draw_text, font, marks
 from engine.stability import OSCILLATION_LIMITS
 
-__all__ = ["OrbitsScene", "LimitsScene", "wrap", "DEMO"]
+__all__ = ["OrbitsScene", "LimitsScene", "wrap", "fitting", "DEMO"]
 
 Color = tuple[int, int, int]
 
@@ -71,6 +72,12 @@ def wrap(text: str, size: int, width: int) -> list[str]:
     if line:
         lines.append(line)
     return lines
+
+
+def fitting(options: Sequence[str], size: int, width: float) -> str:
+    """The first of ``options`` (longest first) that fits ``width`` px at ``size``, or the last."""
+    f = font(size)
+    return next((text for text in options if f.size(text)[0] <= width), options[-1])
 
 
 def _spring_world(method: str) -> tuple[World, Body]:
@@ -206,9 +213,10 @@ class _FourSprings(Scene):
         marks.note(surface, "marker", pygame.Rect(round(q[0]) - 7, round(q[1]) - 7, 15, 15))
         if abs(p[0]) > VIEW or abs(p[1]) > VIEW:
             r = math.hypot(*p)
+            options = [f"off the panel: |x| = {r:.2g} m", f"off: |x| = {r:.2g} m", f"{r:.2g} m"]
             self._text(
                 surface,
-                f"off the panel: |x| = {r:.2g} m",
+                fitting(options, 14, rect.width - 6),
                 (rect.centerx, rect.bottom - 4),
                 14,
                 ERROR,
@@ -263,15 +271,15 @@ class OrbitsScene(_FourSprings):
         surface.fill(PAPER)
         t, ahead = self.shown(alpha)
         step_t = self.world.t - self.dt if ahead else self.world.t
-        self._text(
-            surface,
+        clock = f"t = {t:.2f} s: step {round(step_t / self.dt)}"
+        room = w - 16 - 12 - font(20).size(clock)[0]
+        titles = [
             f"One spring, four integrators, the same dt = {self.dt:g} s "
             f"(omega dt = {OMEGA * self.dt:.2f})",
-            (8, 4),
-            20,
-            INK,
-        )
-        clock = f"t = {t:.2f} s: step {round(step_t / self.dt)}"
+            f"Four integrators, dt = {self.dt:g} s (omega dt = {OMEGA * self.dt:.2f})",
+            f"dt = {self.dt:g} s",
+        ]
+        self._text(surface, fitting(titles, 20, room), (8, 4), 20, INK)
         self._text(surface, clock, (w - 8, 4), 20, INK, "topright")
         col = w // 4
         orbit_h = int(h * 0.50)
@@ -348,12 +356,12 @@ class LimitsScene(_FourSprings):
             rect = pygame.Rect(left, 44, col - 8, orbit_h)
             self._orbit_panel(surface, rect, method, 1.0)
             state = self.status[method]
-            text, color = {
-                "stable": ("stable", (0, 130, 60)),
-                "warned": ("WARNING: past its limit", WARN),
-                "diverged": ("DIVERGED: stopped", ERROR),
+            texts, color = {
+                "stable": (["stable"], (0, 130, 60)),
+                "warned": (["WARNING: past its limit", "WARNING"], WARN),
+                "diverged": (["DIVERGED: stopped", "DIVERGED"], ERROR),
             }[state]
-            self._text(surface, text, (left + 6, 46), 15, color)
+            self._text(surface, fitting(texts, 15, rect.width - 10), (left + 6, 46), 15, color)
         self._ruler(surface, pygame.Rect(16, 44 + orbit_h + 4, w - 32, ruler_h))
         top = h - strip
         pygame.draw.rect(surface, (255, 255, 255), (4, top, w - 8, strip - 4), border_radius=4)

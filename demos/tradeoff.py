@@ -757,5 +757,5 @@ DEMO = Demo(
     run=run,
     takes=frozenset({"--size", "--out", "--overwrite"}),
     size=(1280, 720),
-    min_size=(960, 540),
+    min_size=(1280, 720),  # its smallest: each panel then holds its words
 )

@@ -331,7 +331,7 @@ def test_the_sprints_euler_ant_says_which_moments_speed_he_walks_at():
     said = {}
     for _, t, surface in iter_frames(scene, fps=2, seconds=4.0, size=SIZE):
         said[t] = [m.text for m in marks.marks(surface)]
-    assert "v = 1.0 in/s, his speed at t = 1 s" in said[0.0]
+    assert "v(1 s) = 1.0 in/s" in said[0.0]
     assert "v = 0 in/s" in said[0.0]  # the exact ant, at rest, says so
-    assert "v = 2.0 in/s, his speed at t = 2 s" in said[1.5]
-    assert "v = 4.0 in/s, his speed at t = 4 s" in said[3.5]
+    assert "v(2 s) = 2.0 in/s" in said[1.5]
+    assert "v(4 s) = 4.0 in/s" in said[3.5]

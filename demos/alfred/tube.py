@@ -175,6 +175,13 @@ class TubeScene(Scene):
         # Pixel rows of the tube tops: below the title, with room above each tube for Alfred
         # (35 px) and his velocity arrow; the ruler under the last tube; plots below that.
         first = (0.33 if rows == 1 else 0.31) * h
+        # Room above the first tube, under the two lines of title, for Alfred and the label
+        # of his velocity arrow, whatever the canvas.
+        big, small = font_size(size, 24), font_size(size, 17)
+        under_title = 10 + big + font(small).get_linesize()
+        label = font(font_size(size, 18)).get_height()
+        sprite_h = ant_sprite(zoom=sprite_zoom(size)).get_height()
+        first = max(first, under_title + label + 9 + sprite_h)
         row_px = [first + 0.215 * h * i for i in range(rows)]
         self.camera = Camera(scale, (20 + self.label_width + 0.7 * scale, row_px[0]))
         for ant, px in zip(self.ants, row_px, strict=True):
@@ -190,7 +197,7 @@ class TubeScene(Scene):
             ("a(t)  in/s\u00b2", self.a_range, ACCELERATION),
         ]
         # On a small canvas there is no room for readable plots: leave them out.
-        fits = pw >= 120 and ph >= 80
+        fits = pw >= 120 and ph >= 70
         self.plots = [
             Plot(
                 (12 + i * (pw + gap), plot_top, pw, ph),
@@ -312,7 +319,7 @@ class TubeScene(Scene):
             (b[0] for a, b in zip(history, history[1:], strict=False) if a[0] <= t <= b[0]),
             ant.world.t,
         )
-        return f"v = {fmt(v, 1)} in/s, his speed at t = {number(t1)} s"
+        return f"v({number(t1)} s) = {fmt(v, 1)} in/s"
 
     def draw_background(self, surface: pygame.Surface, t: float, clock: str = "") -> None:
         """Paper, title, the time (or ``clock``), the tubes with their names and the ruler."""

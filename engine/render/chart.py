@@ -108,6 +108,7 @@ class LogLogChart:
     def draw_frame(self, surface: pygame.Surface) -> None:
         """Background, a grid line at every power of ten, numbered decades, labels and title."""
         with marks.panel(self.rect):
+            marks.note(surface, "panel", self.rect)
             self._draw_frame(surface)
 
     def _draw_frame(self, surface: pygame.Surface) -> None:
@@ -124,7 +125,9 @@ class LogLogChart:
             py = round(float(self.to_px(1.0, 10.0**k)[1]))
             pygame.draw.line(surface, GRID, (a.left, py), (a.right - 1, py), 1)
             if (k - y0) % self.y_label_every == 0:
-                draw_power_of_ten(surface, k, (a.left - 4, py), 16, MUTED, "midright")
+                # The lowest sits above its line, clear of the x axis's first number.
+                anchor = "bottomright" if k == y0 else "midright"
+                draw_power_of_ten(surface, k, (a.left - 4, py + (k == y0)), 16, MUTED, anchor)
         pygame.draw.rect(surface, INK, a, 1)
         draw_text(surface, self.title, (self.rect.left + 8, self.rect.top + 6), 22, INK)
         draw_text(surface, self.x_label, (a.centerx, a.bottom + 22), 16, INK, "midtop")

@@ -32,8 +32,9 @@ KEEP = 4096
 
 @dataclass(frozen=True)
 class Mark:
-    """One thing drawn: its ``kind`` ("text", "arrowhead" or "marker"), pixel ``rect``, the
-    ``text`` of a label ("" otherwise) and the ``panel`` it was drawn in (None: the frame)."""
+    """One thing drawn: its ``kind`` ("text", "arrowhead", "marker" or "panel": a plot's or a
+    chart's box), pixel ``rect``, the ``text`` of a label ("" otherwise) and the ``panel`` it
+    was drawn in (None: the frame)."""
 
     kind: str
     rect: pygame.Rect
@@ -102,7 +103,8 @@ def problems(
 ) -> list[str]:
     """What is wrong with a frame's marks, in words (empty when nothing is).
 
-    A label that overlaps another label or a marker, or is drawn over an arrowhead; a label or
+    A label that overlaps another label or a marker, or is drawn over an arrowhead, or lies on
+    (or under) a panel it is not part of; a label or
     an arrowhead that is not wholly inside the frame, or inside its panel, :data:`MARGIN` px
     from the edge. (An arrow drawn over a label, as a moving arrow crosses an axis's numbers,
     is motion, not layout: allowed.) Labels whose text contains one of ``overlap_ok`` may
@@ -112,15 +114,25 @@ def problems(
     frame = surface.get_rect().inflate(-2 * MARGIN, -2 * MARGIN)
     out: list[str] = []
     for m in found:
-        if m.kind == "marker":
+        if m.kind in ("marker", "panel"):
             continue
         if not frame.contains(m.rect):
             out.append(f"{m} leaves the frame {tuple(surface.get_rect())}")
         elif m.panel is not None and not m.panel.inflate(-2, -2).contains(m.rect):
             out.append(f"{m} leaves its panel {tuple(m.panel)}")
+    panels = [(j, m.rect) for j, m in enumerate(found) if m.kind == "panel"]
     for i, a in enumerate(found):
         if a.kind != "text" or any(word in a.text for word in overlap_ok):
             continue
+        for j, box in panels:
+            # Words drawn on a panel after it, wholly inside it, are its own (a plot's notes);
+            # words under a panel (drawn before it), or across its edge, are not.
+            if a.panel == box or not a.rect.colliderect(box):
+                continue
+            if j > i:
+                out.append(f"{a} is covered by the panel {tuple(box)} drawn after it")
+            elif not box.inflate(-2, -2).contains(a.rect):
+                out.append(f"{a} crosses the edge of the panel {tuple(box)}")
         for j, b in enumerate(found):
             if j == i or not a.rect.colliderect(b.rect):
                 continue

@@ -13,6 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 import pygame
 
+from engine.render import marks
 from engine.render.draw import GRID, INK, MUTED, Color, _number, _ticks, draw_text, font, ink
 from engine.render.marks import panel
 
@@ -61,11 +62,15 @@ class Plot:
         size = self.number_size
         widest = max((font(size).size(t)[0] - ink(t, size).left for t in numbers), default=0)
         left = max(round(26 * k), widest + 4 + 3)
+        # The top y number, centred on the top grid line, stays a pixel under the title.
+        top_number = _number(float(self._y_ticks()[-1])) if len(self._y_ticks()) else "0"
+        half = font(size).size(top_number)[1] // 2 - ink(top_number, size).top
+        top = max(round(20 * k), 3 + ink(title, self.title_size).bottom + 1 + half)
         self.area = pygame.Rect(
             self.rect.left + left,
-            self.rect.top + round(20 * k),
+            self.rect.top + top,
             self.rect.width - left - round(8 * k),
-            self.rect.height - round(38 * k),
+            self.rect.height - top - round(18 * k),
         )
 
     def _y_ticks(self) -> np.ndarray:
@@ -82,6 +87,7 @@ class Plot:
     def draw_frame(self, surface: pygame.Surface) -> None:
         """The panel's background, grid, axes, tick numbers and title."""
         with panel(self.rect):
+            marks.note(surface, "panel", self.rect)
             self._draw_frame(surface)
 
     def _draw_frame(self, surface: pygame.Surface) -> None:
