@@ -29,11 +29,13 @@ What makes the choice at each peg close to a fair, independent coin (see ``Board
   static friction would hold one near a peg's top for ever).
 * Balls differ a little, as real ones do. Each ball's restitution is drawn (seeded) from 0.6
   to 0.75. How much a ball's choices depend on each other varies sharply with restitution
-  (with one value for all, 0.67 gives a variance of the bins 26% too small and 0.73 one 31%
-  too large, 1,000 balls each); a spread of values averages those resonances out.
+  (with one value for all, 0.67 gives a variance of the bins 24% too small and 0.73 one 36%
+  too large, 1,000 balls each, measured on 2026-11-25); a spread of values averages those
+  resonances out.
 * The step. The engine brings a rebound slower than |a_n| dt / 2 to rest on the peg, so dt
   is part of the model: at ``DT`` = 1/60 s the bins' variance came out 0.94 to 1.11 times the
-  binomial's in the runs of 1,000 balls measured (seeds, lanes), at 1/120 s 1.23 times.
+  binomial's in the runs of 1,000 balls measured (seeds, lanes), at 1/120 s 1.21 times (the
+  test's pour, measured on 2026-11-25).
 * Guard pegs and walls. The outer pegs of each row have a guard peg beside them, half in the
   side wall, where the next peg of an endless lattice would be, so a ball at the edge of the
   triangle chooses as freely as one in the middle, and no pocket between a wall and a peg

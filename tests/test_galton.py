@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pygame
@@ -60,6 +61,14 @@ def test_a_thousand_poured_balls_fit_the_binomial_distribution(poured) -> None:
     mean = float((counts * k).sum() / 1000)
     variance = float((counts * (k - mean) ** 2).sum() / 1000)
     assert abs(mean - ROWS / 2) < 0.2 and abs(variance / (ROWS / 4) - 1.0) < 0.2
+    # The README reports this run: its numbers are these.
+    readme = " ".join((Path(__file__).parent.parent / "README.md").read_text().split())
+    p = galton.chi_square_sf(stat, df)
+    said = (
+        f"X^2 = {stat:.2f} on {df} degrees of freedom (critical value {critical:.2f}, "
+        f"p = {p:.2f}), mean {mean:.2f}, variance {variance:.2f}"
+    )
+    assert said in readme, said
 
 
 def test_the_chi_square_test_rejects_a_distribution_that_is_not_binomial() -> None:
