@@ -679,10 +679,12 @@ def run(args: argparse.Namespace) -> int:
             out / there[0],
         )
     takes = TAKES[quick]
-    print(
-        f"tradeoff: four measurements, {takes} in all on a 2-core machine "
-        f"({'the full sweep: without --quick' if quick else '--quick: a coarser sweep in seconds'})"
+    other = (
+        f"--quick; the full sweep takes {TAKES[False]}"
+        if quick
+        else f"--quick: a coarser sweep in {TAKES[True]}"
     )
+    print(f"tradeoff: four measurements, {takes} in all on a 2-core machine ({other})")
 
     def bar_for(step: int, what: str) -> Progress:
         return Progress(label=f"tradeoff {step}/4 ({takes} in all): {what}", unit="runs")
