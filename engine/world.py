@@ -1024,12 +1024,13 @@ class World:
     @property
     def t(self) -> float:
         """Simulated time (s) since the world began."""
-        return self._t_base + self._n * self._dt if self._dt is not None else self._t_base
+        n = self._count.n
+        return self._t_base + n * self._dt if self._dt is not None else self._t_base
 
     @property
     def steps(self) -> int:
         """How many steps have been taken."""
-        return self._steps_base + self._n
+        return self._steps_base + self._count.n
 
     def step(self, dt: float) -> None:
         """Advance every body by ``dt`` seconds (usually 1/60 or 1/120).
@@ -1093,7 +1094,7 @@ class World:
             self._void_budget()
             self._t_base, self._steps_base = self.t, self._steps_base + self._n
             self._n, self._dt = 0, dt
-        if self._t_base + (self._n + 1) * dt == math.inf:
+        if self._t_base + (count.n + 1) * dt == math.inf:
             raise ValueError(
                 f"dt must keep the time finite: a step of dt={dt!r} s from t={self.t!r} s would "
                 f"pass the float range (1.8e308 s)"
@@ -1169,7 +1170,7 @@ class World:
         store = self._store
         assert store is not None
         t0 = self.t
-        t1 = self._t_base + (self._n + 1) * dt
+        t1 = self._t_base + (self._count.n + 1) * dt
         contacts = self._contacts
         if not self._links or self._substeps or (contacts is None and not self._pairs_on):
             self._step_once(dt, name, step, model, t0, t1)
