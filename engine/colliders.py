@@ -140,13 +140,17 @@ class Collider:
         self.restitution, self.friction, self.sensor = _material(restitution, friction, sensor)
 
     def __setattr__(self, name: str, value: Any) -> None:
-        # Each attribute is set once, when the collider is made; after that it is refused
-        # (the World built its contact tables from it, so a change would be ignored).
-        if hasattr(self, name):
+        # Each public attribute is set once, when the collider is made; after that it is
+        # refused (the World built its contact tables from it, so a change would be ignored).
+        # Private ones (a leading _) are the engine's own business.
+        if name[0] != "_" and hasattr(self, name):
             raise AttributeError(_fixed(self, name))
         object.__setattr__(self, name, value)
 
     def __delattr__(self, name: str) -> None:
+        if name[0] == "_":
+            object.__delattr__(self, name)
+            return
         raise AttributeError(_fixed(self, name))
 
     def distance(self, point: Any) -> float:
