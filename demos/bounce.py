@@ -37,7 +37,19 @@ import pygame
 from demos.cli import Demo
 from engine import Body, Plane, Segment, Vector, World
 from engine.forces import Gravity
-from engine.render import EULER, EXACT, GRID, INK, MUTED, PAPER, POSITION, Camera, Plot, Scene
+from engine.render import (
+    EULER,
+    EXACT,
+    GRID,
+    INK,
+    MUTED,
+    PAPER,
+    POSITION,
+    Camera,
+    Plot,
+    Scene,
+    marks,
+)
 from engine.render import draw_text as _draw_text
 
 __all__ = [
@@ -549,12 +561,52 @@ class DropScene(Scene):
             draw_text(surface, f"worst: {worst:.0e} relative", (x, y), size, POSITION)
 
     def draw_strobe(self, surface: pygame.Surface, times: Sequence[float]) -> None:
-        """The ball at each of ``times`` (up to the first two bounces), faded with age."""
+        """The ball at each of ``times`` up to 4 s (the first two bounces), placed left to right
+        by its time and labelled with it: a motion diagram along t, older images fainter, over
+        the heights h0 e^(2n) it reaches, named in a column of their own on the left."""
         self.build(surface.get_size())
-        shown = [t for t in times if t <= 4.0]
+        shown = [t for t in times if t <= 4.0 + 1e-9]
+        w, h = surface.get_size()
+        s = self.s
         surface.fill(PAPER)
-        draw_text(surface, "every 0.25 s, to 4 s", (8 * self.s, 6 * self.s), round(18 * self.s))
-        self._column(surface)
+        step = shown[1] - shown[0] if len(shown) > 1 else 0.0
+        draw_text(
+            surface,
+            f"The ball every {step:g} s to {shown[-1]:g} s, placed left to right by its time",
+            (8 * s, 6 * s),
+            round(18 * s),
+        )
+        draw_text(
+            surface,
+            "dashed: the heights h0 e^(2n) of the apexes, measured to the ball's bottom",
+            (8 * s, 25 * s),
+            round(13 * s),
+            MUTED,
+        )
+        # Heights: the floor to 12.2 m (room above the first ball for its time); times: from
+        # the names' column to the right edge, a ball's width kept clear at each end.
+        names_w, label = round(88 * s), round(12 * s)
+        top, bottom = 36 * s, h - 20 * s  # pixel rows of 12.2 m and of -0.6 m
+        scale = (bottom - top) / 12.8
+        cam = Camera(scale, (0.0, top + 12.2 * scale))  # y only: x goes by time below
+        r = max(4, round(cam.length(Drop.radius)))
+        x0, x1 = names_w + r + 2, w - round(8 * s) - r
+
+        def at(t: float, y: float) -> tuple[int, int]:
+            span = (shown[-1] - shown[0]) or 1.0
+            return round(x0 + (x1 - x0) * (t - shown[0]) / span), round(cam.to_px(0.0, y)[1])
+
+        floor_y = at(0.0, 0.0)[1]
+        pygame.draw.line(surface, INK, (names_w, floor_y), (w - round(8 * s), floor_y), 2)
+        for x in range(names_w, w - round(8 * s), 8):
+            pygame.draw.line(surface, MUTED, (x + 6, floor_y + 1), (x, floor_y + 7))
+        e2 = Drop.restitution**2
+        for n in range(4):
+            level = H0 * e2**n
+            y = at(0.0, level)[1]
+            dashed(surface, GRID if n else MUTED, (names_w, y), (w - round(8 * s), y))
+            name = "h0 = 10 m" if n == 0 else f"n={n}: {level:.2f} m"
+            draw_text(surface, name, (names_w - 4 * s, y), round(13 * s), MUTED, "midright")
         for k, t in enumerate(shown):
             while self.drop.t < t - 1e-9:
                 self.drop.step(self.dt)
@@ -564,15 +616,11 @@ class DropScene(Scene):
                 round(255 - (255 - BALL[1]) * fade),
                 round(255 - (255 - BALL[2]) * fade),
             )
-            b = self.drop.ball
-            # Spread left to right with time, as a motion diagram along t.
-            x = -1.4 + 2.8 * k / max(1, len(shown) - 1)
-            draw_ball(surface, self.camera, (x, b.pos.y), self.drop.radius, colour)
-        samples = self.drop.samples
-        self.y_plot.draw_frame(surface)
-        self.y_plot.draw_curve(surface, [p[0] for p in samples], [p[1] for p in samples])
-        self.e_plot.draw_frame(surface)
-        self.e_plot.draw_curve(surface, [p[0] for p in samples], [p[2] for p in samples])
+            cx, cy = at(t, self.drop.ball.pos.y)
+            pygame.draw.circle(surface, colour, (cx, cy), r)
+            marks.note(surface, "marker", pygame.Rect(cx - r, cy - r, 2 * r + 1, 2 * r + 1))
+            draw_text(surface, f"{t:g}", (cx, cy - r - 1), label, INK, "midbottom")
+        draw_text(surface, "t (s)", (w - 8 * s, floor_y + 3 * s), round(13 * s), MUTED, "topright")
 
 
 class TunnelScene(Scene):
@@ -689,14 +737,22 @@ class DriftScene(Scene):
     min_size = (480, 270)
     strobe_interval = 0.5
     world: Drift
+    #: The most apexes the table above the balls lists.
+    APEX_ROWS = 6
 
     def build(self, size: tuple[int, int]) -> None:
         self.world = self.drift = Drift()
         w, h = size
         s = self.s = h / 360
         self.size = size
-        col = round(w * 0.34)
-        self.camera = Camera.fit((-2.2, -0.6, 2.2, 12.0), (0, 90 * s, col, h - 96 * s))
+        col = self.column = round(w * 0.34)
+        # Above the balls, a table of every apex so far, numbered (as many rows as the
+        # scene's apexes, up to APEX_ROWS; past that, the latest).
+        period = 2.0 * math.sqrt(2.0 * H0 / G)
+        self.apex_rows = max(1, min(self.APEX_ROWS, int(self.duration / period)))
+        self.table_top = 42 * s
+        top = self.table_top + (self.apex_rows + 0.5) * 14 * s
+        self.camera = Camera.fit((-2.2, -0.6, 2.2, 12.0), (0, top, col, h - top - 6 * s))
         plot_left = col + round(6 * s)
         plot_w = w - plot_left - round(4 * s)
         half = (h - round(8 * s)) // 2
@@ -737,22 +793,24 @@ class DriftScene(Scene):
         pos = d.world.position_of(d.ball, alpha)
         assert isinstance(pos, Vector)  # a 2D World
         draw_ball(surface, cam, (pos.x, pos.y), d.radius, ENGINE)
+        # Every apex so far, numbered: the discrete check's climb against the engine's 10 m.
+        tops = {name: [h for ta, h in d.apexes[name] if ta <= t] for name in d.apexes}
+        count = max(len(v) for v in tops.values())
+        first = max(0, count - self.apex_rows)
+        col = self.column
+        draw_text(surface, "apex", (col * 0.12, 26 * s), round(15 * s), INK, "midtop")
+        for k in range(first, count):
+            y = self.table_top + (k - first) * 14 * s
+            draw_text(surface, f"{k + 1}", (col * 0.12, y), round(14 * s), INK, "midtop")
         for x, name, colour, label in (
-            (-1.0, "naive", NAIVE, "discrete"),
-            (1.0, "engine", ENGINE, "engine"),
+            (0.45, "naive", NAIVE, "discrete"),
+            (0.8, "engine", ENGINE, "engine"),
         ):
-            px = cam.point((x, 0.0))
-            draw_text(surface, label, (px[0], 26 * s), round(15 * s), colour, "midtop")
-            tops = [h for ta, h in d.apexes[name] if ta <= t]
-            for k, h in enumerate(tops[-3:]):
-                draw_text(
-                    surface,
-                    f"{h:.3f}",
-                    (px[0], 42 * s + k * 14 * s),
-                    round(14 * s),
-                    colour,
-                    "midtop",
-                )
+            draw_text(surface, label, (col * x, 26 * s), round(15 * s), colour, "midtop")
+            for k in range(first, min(count, len(tops[name]))):
+                y = self.table_top + (k - first) * 14 * s
+                text = f"{tops[name][k]:.3f} m"
+                draw_text(surface, text, (col * x, y), round(14 * s), colour, "midtop")
         ts = [p[0] for p in samples]
         self.y_plot.draw_frame(surface)
         _, py = self.y_plot.to_px(0.0, H0)

@@ -449,4 +449,6 @@ DEMO = Demo(
     summary="A small game: knock out the bricks with the arrow keys or the mouse",
     add_arguments=_add_arguments,
     run=_run,
+    # A game, not scenes: no --scene, no motion diagram, no clip (yet).
+    takes=frozenset({"--fps", "--seconds", "--size", "--out", "--overwrite", "--window", "--seed"}),
 )

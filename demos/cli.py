@@ -14,6 +14,12 @@ A demo made of scenes gets the common options: it is recorded headless to number
 not made of scenes (a chart, a table) gives a ``run(args)`` hook instead, and can add its own
 options with ``add_arguments(parser)``.
 
+Every demo is given the same shared options (``SHARED``); one it cannot honour is refused,
+the same way for every demo: a usage error naming the option and saying why (exit 2). A demo
+with a ``run`` hook says which it honours (``Demo.takes``); a demo made of scenes honours them
+all, except ``--strobe`` for a scene with no motion diagram, and the options that mean nothing
+beside another (``--out`` in a window, ``--fps`` for a still).
+
 Exit codes: 0 done, 1 the run failed (a frame or clip could not be written, the output folder
 already holds frames or the clip's file exists, no display for ``--window``, the simulation
 diverged), 2 a usage error (including ``--video`` or ``--gif`` without the ``video`` extra).
@@ -33,10 +39,25 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
-__all__ = ["Demo", "discover", "main", "number_option", "parse_size"]
+__all__ = ["SHARED", "Demo", "discover", "main", "number_option", "parse_size"]
 
 #: Modules in the demos package that are not demos.
 _NOT_DEMOS = frozenset({"cli"})
+
+#: The options every demo's command line has (its own come after them).
+SHARED = (
+    "--scene",
+    "--fps",
+    "--seconds",
+    "--size",
+    "--out",
+    "--video",
+    "--gif",
+    "--overwrite",
+    "--window",
+    "--strobe",
+    "--seed",
+)
 
 
 @dataclass(frozen=True)
@@ -48,6 +69,9 @@ class Demo:
     adds the demo's own options; ``configure(scene, args)`` applies them to each scene before it
     is built. ``run(args)``, if given, replaces recording: it is called with the parsed options
     and returns an exit code (None means 0), for demos that make a chart rather than frames.
+    ``takes``: the shared options (``SHARED``) a ``run`` hook honours; any other is refused
+    before it runs (a demo of scenes honours them all). ``size``: the canvas (px) when
+    ``--size`` is not given; ``min_size`` the smallest ``--size`` a run hook can draw on.
     """
 
     name: str
@@ -56,12 +80,21 @@ class Demo:
     add_arguments: Callable[[argparse.ArgumentParser], None] | None = None
     configure: Callable[[Any, argparse.Namespace], None] | None = None
     run: Callable[[argparse.Namespace], int | None] | None = None
+    takes: frozenset[str] = frozenset(SHARED)
+    size: tuple[int, int] = (640, 360)
+    min_size: tuple[int, int] = (64, 64)
 
     def __post_init__(self) -> None:
         if not self.name or not self.name.replace("_", "").replace("-", "").isalnum():
             raise ValueError(f"Demo name must be a word such as 'alfred', got {self.name!r}")
         if not self.scenes and self.run is None:
             raise ValueError(f"Demo {self.name!r} needs scenes or a run hook")
+        unknown = set(self.takes) - set(SHARED)
+        if unknown:
+            raise ValueError(
+                f"Demo {self.name!r} takes must name shared options ({', '.join(SHARED)}), "
+                f"got {sorted(unknown)}"
+            )
 
 
 @dataclass(frozen=True)
@@ -182,7 +215,15 @@ def _clip(kind: str) -> Callable[[str], Path]:
     return parse
 
 
-def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.ArgumentParser:
+def _parser(
+    demos: Mapping[str, Demo | _Broken], demo: Demo | None, typed: bool = True
+) -> argparse.ArgumentParser:
+    """The parser for ``demo`` (None: the top level). ``typed=False`` leaves every value a
+    string: the first pass, which only finds the demo, then checks no value."""
+
+    def kind(convert: Callable[[str], Any]) -> Callable[[str], Any]:
+        return convert if typed else str
+
     about = "Run a demo: headless to PNG frames (default), in a window, or as stills."
     parser = argparse.ArgumentParser(
         prog="python -m demos" if demo is None else f"python -m demos {demo.name}",
@@ -202,29 +243,34 @@ def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.
         choices=list(demo.scenes) if demo is not None and demo.scenes else None,
         help="the scene to run (default: every scene in turn)",
     )
-    parser.add_argument("--fps", type=_fps, help="frames per second (default 30; 60 in a window)")
     parser.add_argument(
-        "--seconds", type=_seconds, help="simulated seconds to show (default: the scene's own)"
+        "--fps", type=kind(_fps), help="frames per second (default 30; 60 in a window)"
     )
     parser.add_argument(
-        "--size", type=parse_size, default=(640, 360), help="WIDTHxHEIGHT in pixels (640x360)"
+        "--seconds",
+        type=kind(_seconds),
+        help="simulated seconds to show (default: the scene's own)",
+    )
+    size = demo.size if demo is not None else (640, 360)
+    parser.add_argument(
+        "--size", type=kind(parse_size), help=f"WIDTHxHEIGHT in pixels ({size[0]}x{size[1]})"
     )
     parser.add_argument(
         "--out",
-        type=_out,
+        type=kind(_out),
         help="output folder for the PNG frames (default: out/<demo>/<scene>/; with --video or "
         "--gif, frames are written only if --out is given)",
     )
     parser.add_argument(
         "--video",
-        type=_clip("mp4"),
+        type=kind(_clip("mp4")),
         metavar="PATH.mp4",
         help="also write an H.264 MP4 clip, streamed as the frames are drawn (several scenes: "
         'PATH-<scene>.mp4); needs pip install -e ".[video]"',
     )
     parser.add_argument(
         "--gif",
-        type=_clip("gif"),
+        type=kind(_clip("gif")),
         metavar="PATH.gif",
         help="also write a looping GIF with its own palette (several scenes: PATH-<scene>.gif); "
         'needs pip install -e ".[video]"',
@@ -240,7 +286,9 @@ def _parser(demos: Mapping[str, Demo | _Broken], demo: Demo | None) -> argparse.
         "--strobe", action="store_true", help="one still motion diagram per scene (strobe.png)"
     )
     parser.add_argument(
-        "--seed", type=_seed, help="random seed, for demos with randomness (default: the scene's)"
+        "--seed",
+        type=kind(_seed),
+        help="random seed, for demos with randomness (default: the scene's)",
     )
     if demo is not None and demo.add_arguments is not None:
         demo.add_arguments(parser)
@@ -273,6 +321,11 @@ def _clip_path(path: Path | None, scene_name: str, many: bool) -> Path | None:
     return path.with_name(f"{path.stem}-{scene_name}{path.suffix}")
 
 
+def _frames(count: int) -> str:
+    """'1 frame', '2 frames'."""
+    return f"{count} frame" if count == 1 else f"{count} frames"
+
+
 def _run_scenes(demo: Demo, args: argparse.Namespace, out: TextIO) -> int:
     from engine.render import play, record, strobe
     from engine.render.clips import check_clip_path
@@ -299,7 +352,7 @@ def _run_scenes(demo: Demo, args: argparse.Namespace, out: TextIO) -> int:
         folder = _output_folder(args, demo, scene_name, many)
         if args.strobe:
             if not scene.has_strobe:
-                print(f"{label}: no strobe picture for this scene, skipped", file=out)
+                print(f"{label}: no motion diagram for this scene, skipped", file=out)
                 continue
             path = strobe(scene, folder / "strobe.png", size=args.size, overwrite=args.overwrite)
             print(f"{label}: wrote the motion diagram {path}", file=out)
@@ -318,7 +371,7 @@ def _run_scenes(demo: Demo, args: argparse.Namespace, out: TextIO) -> int:
         timing = f"{rec.fps} fps, {rec.seconds:g} s"
         if rec.folder is not None:
             print(
-                f"{label}: wrote {rec.count} frames ({width}x{height}, {timing}) to {rec.folder}"
+                f"{label}: wrote {_frames(rec.count)} ({width}x{height}, {timing}) to {rec.folder}"
                 f"{'/' if not str(rec.folder).endswith('/') else ''}frame_00000.png ...",
                 file=out,
             )
@@ -327,16 +380,86 @@ def _run_scenes(demo: Demo, args: argparse.Namespace, out: TextIO) -> int:
             cut = "" if rec.video_size == rec.size else f", cut from {width}x{height} to even sides"
             print(
                 f"{label}: wrote the video {rec.video} (H.264 MP4, {video_w}x{video_h}{cut}, "
-                f"{rec.count} frames, {timing}, {rec.video.stat().st_size:,} bytes)",
+                f"{_frames(rec.count)}, {timing}, {rec.video.stat().st_size:,} bytes)",
                 file=out,
             )
         if rec.gif is not None:
             print(
-                f"{label}: wrote the GIF {rec.gif} ({width}x{height}, {rec.count} frames, "
+                f"{label}: wrote the GIF {rec.gif} ({width}x{height}, {_frames(rec.count)}, "
                 f"{timing}, {rec.gif.stat().st_size:,} bytes)",
                 file=out,
             )
     return 0
+
+
+def _exists(exc: FileExistsError) -> str:
+    """What is in the way, and the option that would replace it (not the Python argument)."""
+    path = getattr(exc, "path", None)
+    count = getattr(exc, "count", None)
+    if path is None:
+        return str(exc)
+    if count is not None:
+        return (
+            f"{path} already holds {count} frame(s); add --overwrite to replace them, or "
+            f"choose another folder with --out"
+        )
+    return f"{path} already exists; add --overwrite to replace it, or choose another name"
+
+
+def _given(args: argparse.Namespace, option: str) -> bool:
+    """Whether the shared ``option`` (such as "--fps") was given on the command line."""
+    value = getattr(args, option[2:])
+    return value is not None and value is not False
+
+
+def _refuse_what_cannot_be_honoured(
+    parser: argparse.ArgumentParser, demo: Demo, args: argparse.Namespace
+) -> None:
+    """A usage error (exit 2) for a shared option ``demo`` cannot honour, saying why."""
+    given = [option for option in SHARED if _given(args, option)]
+    for option in given:
+        if option not in demo.takes:
+            takes = ", ".join(o for o in SHARED if o in demo.takes) or "none of them"
+            why = {
+                "--scene": "it has no scenes to choose from",
+                "--strobe": "it has no motion diagram",
+                "--video": "it has no scenes to record",
+                "--gif": "it has no scenes to record",
+            }.get(option, "it does not use it")
+            parser.error(
+                f"argument {option}: the demo {demo.name!r} cannot honour it ({why}); of the "
+                f"shared options it takes {takes}"
+            )
+    pairs = [
+        ("--out", "--window", "a window writes nothing"),
+        ("--overwrite", "--window", "a window writes nothing"),
+        ("--video", "--window", "a clip is recorded headless"),
+        ("--gif", "--window", "a clip is recorded headless"),
+        ("--video", "--strobe", "a motion diagram is one still picture"),
+        ("--gif", "--strobe", "a motion diagram is one still picture"),
+        ("--fps", "--strobe", "a motion diagram is one still picture"),
+        ("--seconds", "--strobe", "a motion diagram shows the scene's own times"),
+    ]
+    for option, mode, why in pairs:
+        if option in given and mode in given:
+            parser.error(f"argument {option}: not allowed with argument {mode} ({why})")
+    if args.strobe and demo.scenes:
+        # Among several scenes, those without one are skipped (and say so); none at all, or
+        # the one scene asked for without one, is refused.
+        names = [args.scene] if args.scene else list(demo.scenes)
+        with_one = [n for n in demo.scenes if _has_strobe(demo.scenes[n])]
+        if not any(n in with_one for n in names):
+            which = f"the scene {args.scene!r}" if args.scene else f"the demo {demo.name!r}"
+            others = f" (scenes with one: {', '.join(with_one)})" if with_one else ""
+            parser.error(f"argument --strobe: {which} has no motion diagram{others}")
+
+
+def _has_strobe(factory: Callable[[], Any]) -> bool:
+    """Whether the scene a factory makes draws a motion diagram (without building it)."""
+    from engine.render import Scene
+
+    kind = factory if isinstance(factory, type) else type(factory())
+    return issubclass(kind, Scene) and kind.draw_strobe is not Scene.draw_strobe
 
 
 def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
@@ -348,7 +471,9 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
     # request waits for the second pass: `python -m demos tradeoff --help` then lists the
     # tradeoff demo's own options too.
     helping = [arg for arg in argv if arg in ("-h", "--help")]
-    first, _ = _parser(demos, None).parse_known_args([a for a in argv if a not in helping])
+    first, _ = _parser(demos, None, typed=False).parse_known_args(
+        [a for a in argv if a not in helping]
+    )
     if first.demo is None:
         if helping:
             _parser(demos, None).print_help(out)
@@ -363,8 +488,9 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
         return 1
     parser = _parser(demos, demo)
     args = parser.parse_args(argv)
-    if args.scene is not None and args.scene not in demo.scenes:  # a demo without scenes
-        parser.error(f"argument --scene: the demo {demo.name!r} has no scenes to choose from")
+    _refuse_what_cannot_be_honoured(parser, demo, args)
+    given_size = args.size is not None
+    args.size = args.size or demo.size
     clip_option = "--video" if args.video is not None else "--gif" if args.gif is not None else None
     if clip_option is not None:
         from engine.render.clips import (
@@ -374,11 +500,6 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
             ffmpeg_exe,
         )
 
-        if not demo.scenes:
-            parser.error(f"argument {clip_option}: the demo {demo.name!r} has no scenes to record")
-        if args.window or args.strobe:
-            other = "--window" if args.window else "--strobe"
-            parser.error(f"argument {clip_option}: not allowed with argument {other}")
         if args.gif is not None and (args.fps or 30) > GIF_MAX_FPS:
             parser.error(
                 f"argument --gif: a GIF plays at most {GIF_MAX_FPS} fps in browsers (its frame "
@@ -399,6 +520,12 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
                 f"argument --size: the scene {name!r} needs at least {need_w}x{need_h} px, "
                 f"got {args.size[0]}x{args.size[1]}"
             )
+    need_w, need_h = demo.min_size
+    if given_size and (args.size[0] < need_w or args.size[1] < need_h):
+        parser.error(
+            f"argument --size: the demo {demo.name!r} needs at least {need_w}x{need_h} px, "
+            f"got {args.size[0]}x{args.size[1]}"
+        )
 
     from engine.render import (
         ClipExistsError,
@@ -428,10 +555,11 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
             code = demo.run(args)
             return 0 if code is None else int(code)
         return _run_scenes(demo, args, out)
+    except (FramesExistError, ClipExistsError) as exc:
+        print(f"error: {_exists(exc)}", file=sys.stderr)
+        return 1
     except (
-        FramesExistError,
         FrameWriteError,
-        ClipExistsError,
         ClipWriteError,
         EncoderUnavailableError,
         DisplayUnavailableError,

@@ -111,6 +111,8 @@ ROD = (104, 98, 90)
 MOMENTUM, ENERGY = (40, 90, 160), (150, 60, 40)
 #: The floor as shown (m), left to right.
 VIEW = (-2.0, 14.0)
+#: A velocity arrow is as long as this many seconds of travel.
+ARROW_SECONDS = 0.4
 
 Color = tuple[int, int, int]
 
@@ -294,8 +296,15 @@ class CradleScene(Scene):
         s = self.s = h / 360
         self.size = size
         m = self.margin = round(10 * s)
-        # The floor and balls across the whole width under two lines of title.
-        self.camera = Camera.fit((VIEW[0], -0.25, VIEW[1], 1.45), (m, 50 * s, w - 2 * m, 90 * s))
+        # The floor and balls across the whole width under two lines of title: wide enough
+        # for the furthest ball and the tip of its velocity arrow by the scene's end.
+        self.view = (VIEW[0], max(VIEW[1], self.reach()))
+        box = (self.view[0], -0.25, self.view[1], 1.45)
+        self.camera = Camera.fit(box, (m, 50 * s, w - 2 * m, 90 * s))
+        if self.view[1] > VIEW[1]:  # and the arrowhead's 11 px past the tip, and 3 px more
+            self.view = (self.view[0], self.view[1] + 14 / self.camera.scale)
+            box = (self.view[0], -0.25, self.view[1], 1.45)
+            self.camera = Camera.fit(box, (m, 50 * s, w - 2 * m, 90 * s))
         # The bars bottom left, the read-outs bottom right.
         self.bars = pygame.Rect(m, round(158 * s), round(w * 0.46), h - round(158 * s) - m)
         left = self.bars.right + round(14 * s)
@@ -303,6 +312,18 @@ class CradleScene(Scene):
         #: The bars' zero line (px) and scale (px per m/s).
         self.bar_zero = self.bars.bottom - round(22 * s)
         self.bar_scale = (self.bar_zero - self.bars.top - round(40 * s)) / self.v_top
+
+    def reach(self) -> float:
+        """The furthest right (m) a ball's edge or its velocity arrow's tip (0.4 s of travel)
+        gets within the scene's duration, run ahead on a cradle of its own."""
+        cradle = Cradle(self.sent, self.first_mass)
+        far = 0.0
+        while cradle.t < self.duration + self.dt / 2:
+            cradle.step(self.dt)
+            for ball in cradle.balls:
+                x, v = ball.pos.x, ball.vel.x
+                far = max(far, x + RADIUS, x + ARROW_SECONDS * v)
+        return far
 
     def step(self, dt: float) -> None:
         self.cradle.step(dt)
@@ -327,7 +348,9 @@ class CradleScene(Scene):
             if abs(v) > 1e-3:  # its velocity above it: an arrow as long as 0.4 s of travel
                 tail = (pos.x, pos.y + 1.6 * RADIUS)
                 dark = _darker(COLOURS[k])
-                draw_vector(surface, self.camera, tail, (v, 0.0), 0.4, dark, width=3 * self.s)
+                draw_vector(
+                    surface, self.camera, tail, (v, 0.0), ARROW_SECONDS, dark, width=3 * self.s
+                )
         self._bars(surface, sample.velocities)
         self._readouts(surface, sample)
 
@@ -346,7 +369,7 @@ class CradleScene(Scene):
 
     def _floor(self, surface: pygame.Surface) -> None:
         cam, s = self.camera, self.s
-        left, right = cam.point((VIEW[0], 0.0)), cam.point((VIEW[1], 0.0))
+        left, right = cam.point((self.view[0], 0.0)), cam.point((self.view[1], 0.0))
         pygame.draw.line(surface, FLOOR, left, right, max(2, round(2 * s)))
         # Hatching under the floor, and a tick at each ball's place of rest.
         step = max(6, round(10 * s))
@@ -578,7 +601,7 @@ class HungScene(CradleScene):
             if abs(v) > 1e-3:  # its horizontal velocity under it, as long as 0.4 s of travel
                 tail = (place[0], place[1] - 1.6 * RADIUS)
                 dark = _darker(COLOURS[k])
-                draw_vector(surface, cam, tail, (v, 0.0), 0.4, dark, width=3 * s)
+                draw_vector(surface, cam, tail, (v, 0.0), ARROW_SECONDS, dark, width=3 * s)
         self._bars(surface, sample.velocities)
         self._readouts(surface, sample)
 

@@ -323,4 +323,6 @@ DEMO = Demo(
     summary="A small game: steer Alfred to the crumb with the arrow keys, in the wind",
     add_arguments=_add_arguments,
     run=_run,
+    # A game, not scenes: no --scene, no motion diagram, no clip (yet).
+    takes=frozenset({"--fps", "--seconds", "--size", "--out", "--overwrite", "--window", "--seed"}),
 )

@@ -29,11 +29,13 @@ What makes the choice at each peg close to a fair, independent coin (see ``Board
   static friction would hold one near a peg's top for ever).
 * Balls differ a little, as real ones do. Each ball's restitution is drawn (seeded) from 0.6
   to 0.75. How much a ball's choices depend on each other varies sharply with restitution
-  (with one value for all, 0.67 gives a variance of the bins 26% too small and 0.73 one 31%
-  too large, 1,000 balls each); a spread of values averages those resonances out.
+  (with one value for all, 0.67 gives a variance of the bins 24% too small and 0.73 one 36%
+  too large, 1,000 balls each, measured on 2026-11-25); a spread of values averages those
+  resonances out.
 * The step. The engine brings a rebound slower than |a_n| dt / 2 to rest on the peg, so dt
   is part of the model: at ``DT`` = 1/60 s the bins' variance came out 0.94 to 1.11 times the
-  binomial's in the runs of 1,000 balls measured (seeds, lanes), at 1/120 s 1.23 times.
+  binomial's in the runs of 1,000 balls measured (seeds, lanes), at 1/120 s 1.21 times (the
+  test's pour, measured on 2026-11-25).
 * Guard pegs and walls. The outer pegs of each row have a guard peg beside them, half in the
   side wall, where the next peg of an endless lattice would be, so a ball at the edge of the
   triangle chooses as freely as one in the middle, and no pocket between a wall and a peg
@@ -45,14 +47,21 @@ when it lands on the bins' floor. So the counts do not depend on what happens in
 (balls landing on one another there).
 The pour is sparse enough (one ball every 0.5 s, each taking about 2 s to cross the board)
 that balls seldom meet on the pegs: of the first 300, 20 touch another one above the counting
-line. Two balls that meet on a peg can sink into each other by 5 to 15% of a radius, and the
-World then warns once (a ``StabilityWarning`` about piles); it changes no count.
+line. Two balls that meet, squeezed between pegs, can sink into each other, deeper than the
+contact solver keeps a pile (its limits are in the README): in the default run (seed 1, 60 s)
+the deepest is 42% of a radius, at 56.9 s (``tests/test_galton.py`` checks it), and in the
+same 60 s for seeds 2 to 8 it was 0 to 16% (measured on 2026-11-25; ``python -m demos galton
+--seed N`` shows it on the frame once past 5%). The World says so once, with a
+``StabilityWarning``; the frame shows it and the deepest overlap so far (``Galton.deepest``)
+instead of a line on stderr. It changes no count: the balls part again and each still lands
+in one bin.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -62,7 +71,7 @@ import pygame
 from numpy.typing import ArrayLike
 
 from demos.cli import Demo, number_option
-from engine import Body, Circle, Segment, Vector, World
+from engine import Body, Circle, Segment, StabilityWarning, Vector, World
 from engine.forces import Gravity
 from engine.render import GRID, INK, MUTED, PAPER, Camera, Scene, draw_text
 from engine.world import WorldSnapshot
@@ -347,6 +356,8 @@ class GaltonSnapshot:
     counts: tuple[int, ...]
     landed: tuple[tuple[float, int], ...]
     lost: int
+    deeper: tuple[tuple[float, float], ...] = ()
+    warning: tuple[float, str] | None = None
 
 
 class Galton:
@@ -407,6 +418,10 @@ class Galton:
         self.landed: list[tuple[float, int]] = []
         #: Balls taken out before they were counted (see STALL): none, on this board.
         self.lost = 0
+        #: Each new deepest overlap of two balls, (time s, depth cm), measured after each step.
+        self.deeper: list[tuple[float, float]] = []
+        #: The World's StabilityWarning, (time s, its text), once it came (it comes once).
+        self.warning: tuple[float, str] | None = None
 
     @property
     def t(self) -> float:
@@ -448,7 +463,18 @@ class Galton:
             self.poured += 1
         if due:
             self.balls.extend(self.world.add_all(due))
-        self.world.step(dt)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", StabilityWarning)
+            self.world.step(dt)
+        for w in caught:  # the World's warning goes on the frame, not to stderr
+            if not issubclass(w.category, StabilityWarning):
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+            elif self.warning is None:
+                self.warning = (self.world.t, str(w.message))
+        if len(self.balls) > 1:
+            depth = self.world.overlap()
+            if depth > self.deepest()[1]:
+                self.deeper.append((self.world.t, depth))
         if not self.balls:
             return
         xy = self.world.positions()
@@ -468,6 +494,10 @@ class Galton:
                 self.balls.remove(body)
                 del self._index[id(body)]
                 self.lost += k not in self.counted
+
+    def deepest(self, t: float = math.inf) -> tuple[float, float]:
+        """The deepest two balls had sunk into each other by time t (s): (when s, depth cm)."""
+        return next(((w, d) for w, d in reversed(self.deeper) if w <= t + 1e-9), (0.0, 0.0))
 
     @property
     def done(self) -> bool:
@@ -489,6 +519,8 @@ class Galton:
             tuple(int(c) for c in self.counts),
             tuple(self.landed),
             self.lost,
+            tuple(self.deeper),
+            self.warning,
         )
 
     def restore(self, snapshot: GaltonSnapshot) -> None:
@@ -515,6 +547,7 @@ class Galton:
         self.counts = np.array(snapshot.counts, dtype=int)
         self.landed = list(snapshot.landed)
         self.lost = snapshot.lost
+        self.deeper, self.warning = list(snapshot.deeper), snapshot.warning
 
 
 # -- drawing -----------------------------------------------------------------------------------
@@ -725,6 +758,27 @@ class GaltonScene(Scene):
         _text(surface, f"at significance {ALPHA:g}", (x, y + 16 * s), 15 * s, MUTED)
         if galton.lost:
             _text(surface, f"{galton.lost} lost", (x, y + 34 * s), 15 * s, MISFITS)
+        self._overlap(surface, t, (x, y + 56 * s))
+
+    def _overlap(self, surface: pygame.Surface, t: float, at: tuple[float, float]) -> None:
+        """Once two balls have sunk into each other past 5% of a radius: how deep, when, and
+        that the World warned (its StabilityWarning, shown here rather than on stderr)."""
+        galton, s = self.galton, self.s
+        when, depth = galton.deepest(t)
+        share = depth / self.board.ball_radius
+        if share <= 0.05:
+            return
+        x, y = at
+        warned = galton.warning is not None and galton.warning[0] <= t + 1e-9
+        lines = [
+            ("two balls met on a peg:", INK),
+            (f"{share:.0%} of r deep at {when:.1f} s", MISFITS),
+            ("(the World warned: StabilityWarning)" if warned else "", MUTED),
+        ]
+        for text, colour in lines:
+            if text:
+                _text(surface, text, (x, y), 14 * s, colour)
+            y += 15 * s
 
     def _table(self, surface: pygame.Surface, counts: np.ndarray) -> None:
         s, w = self.s, self.size[0]

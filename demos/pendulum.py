@@ -45,9 +45,10 @@ from demos.bench.pendulum import period
 from demos.bounce import dashed, draw_text  # the legible text and dashes of the bounce lesson
 from demos.cli import Demo
 from demos.cradle import faded  # colours mixed toward white, as the cradle's strobe fades
+from demos.stability import fitting
 from engine import Body, Pin, Rod, Vector, World
 from engine.forces import Gravity
-from engine.render import GRID, INK, MUTED, PAPER, Camera, Plot, Scene
+from engine.render import GRID, INK, MUTED, PAPER, Camera, Plot, Scene, marks
 
 __all__ = [
     "G",
@@ -368,9 +369,14 @@ class PendulumScene(Scene):
             **kw,
         )
 
+    #: Shorter titles, for a narrow left column (the first that fits is shown).
+    short_titles: tuple[str, ...] = ()
+
     def header(self, surface: pygame.Surface, t: float, line: str) -> None:
         s, m = self.s, self.margin
-        draw_text(surface, self.title, (m, 4 * s), round(18 * s))
+        size = max(12, round(18 * s))
+        title = fitting([self.title, *self.short_titles], size, self.plot_left - m - 4 * s)
+        draw_text(surface, title, (m, 4 * s), round(18 * s))
         draw_text(surface, f"t = {t:5.2f} s   {line}", (m, 25 * s), round(14 * s), MUTED)
 
     def pivot(self, surface: pygame.Surface, at: tuple[float, float] = (0.0, 0.0)) -> None:
@@ -417,6 +423,7 @@ class SingleScene(PendulumScene):
 
     name = "single"
     title = "A pendulum on a rod: L = 1 m, let go at 120\u00b0"
+    short_titles = ("Pendulum: L = 1 m, from 120\u00b0",)
     summary = "one bob let go at 120 deg: theta(t) against the exact period, energy kept"
     duration = 10.0
     strobe_interval = 0.1
@@ -429,8 +436,10 @@ class SingleScene(PendulumScene):
         self.theta_plot = self.plot(
             0, (-160.0, 220.0), "\u03b8(t)  degrees", t_step=2.0, y_step=60.0, color=BOB
         )
+        # Room above KE's peaks (m g L (1 - cos 120 deg) = 14.7 J) for the total's read-out,
+        # and under PE's troughs (-m g L = -9.8 J) for the names of the curves.
         self.energy_plot = self.plot(
-            1, (-12.0, 18.0), "energy  J", t_step=2.0, y_step=6.0, color=TOTAL
+            1, (-15.0, 24.0), "energy  J", t_step=2.0, y_step=6.0, color=TOTAL
         )
 
     def draw(self, surface: pygame.Surface, alpha: float) -> None:
@@ -450,24 +459,34 @@ class SingleScene(PendulumScene):
         plot = self.theta_plot
         plot.draw_frame(surface)
         a = plot.area
-        # The exact period: a dashed line at every whole period, where theta is back at theta0.
+        small_angle = 2 * math.pi * math.sqrt(LENGTH / G)
+        captions = [
+            f"dashed: T = 4 sqrt(L/g) K(sin(\u03b80/2)) = {self.exact:.4f} s  "
+            f"(small-angle: {small_angle:.3f} s)",
+            f"dashed: T = {self.exact:.4f} s exactly  (small-angle: {small_angle:.3f} s)",
+            f"dashed: T = {self.exact:.4f} s",
+        ]
+        size = max(12, round(13 * s))  # (bounce's draw_text keeps text at least 12 px)
+        caption = draw_text(
+            surface,
+            fitting(captions, size, a.width - 8 * s),
+            (a.left + 3 * s, a.top + 2 * s),
+            round(13 * s),
+            INK,
+        )
+        # The exact period: a dashed line at every whole period, where theta is back at theta0,
+        # from under the caption down.
         k = 1
         while k * self.exact <= self.duration:
             px = float(plot.to_px(k * self.exact, 0.0)[0])
-            dashed(surface, INK, (px, a.top), (px, a.bottom - 1), dash=5)
+            top = caption.bottom + 2
+            dashed(surface, INK, (px, top), (px, a.bottom - 1), dash=5)
+            marks.note(surface, "marker", pygame.Rect(round(px), top, 1, a.bottom - top))
             draw_text(
                 surface, f"{k}T", (px + 3 * s, a.bottom - 1), round(13 * s), INK, "bottomleft"
             )
             k += 1
         plot.draw_curve(surface, ts, [p.theta for p in samples])
-        draw_text(
-            surface,
-            f"dashed: T = 4 sqrt(L/g) K(sin(\u03b80/2)) = {self.exact:.4f} s  "
-            f"(small-angle: {2 * math.pi * math.sqrt(LENGTH / G):.3f} s)",
-            (a.left + 3 * s, a.top + 2 * s),
-            round(13 * s),
-            INK,
-        )
         plot = self.energy_plot
         plot.draw_frame(surface)
         for values, colour in (
@@ -533,6 +552,7 @@ class DoubleScene(PendulumScene):
 
     name = "double"
     title = "Double pendulum: two copies 1e-9 rad apart"
+    short_titles = ("Two double pendulums 1e-9 apart", "Two double pendulums")
     summary = "chaos: two double pendulums 1e-9 rad apart, the difference growing on a log plot"
     duration = 20.0
     strobe_interval = 0.05
@@ -645,6 +665,7 @@ class ChainScene(PendulumScene):
 
     name = "chain"
     title = "A chain of six bobs on 0.3 m rods"
+    short_titles = ("A chain of six bobs",)
     summary = "six bobs on rods from a pinned body, let go level: the whip, the lengths held"
     duration = 6.0
     strobe_interval = 0.1

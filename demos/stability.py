@@ -21,6 +21,7 @@ from __future__ import annotations
 import copy
 import math
 import warnings
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -30,10 +31,10 @@ from demos.cli import Demo
 from engine import Body, SimulationDiverged, StabilityWarning, Vector, World
 from engine.forces import Spring
 from engine.integrators import INTEGRATORS
-from engine.render import GRID, INK, MUTED, PAPER, Plot, Scene, draw_text, font
+from engine.render import GRID, INK, MUTED, PAPER, Plot, Scene, draw_text, font, marks
 from engine.stability import OSCILLATION_LIMITS
 
-__all__ = ["OrbitsScene", "LimitsScene", "wrap", "DEMO"]
+__all__ = ["OrbitsScene", "LimitsScene", "wrap", "fitting", "DEMO"]
 
 Color = tuple[int, int, int]
 
@@ -71,6 +72,12 @@ def wrap(text: str, size: int, width: int) -> list[str]:
     if line:
         lines.append(line)
     return lines
+
+
+def fitting(options: Sequence[str], size: int, width: float) -> str:
+    """The first of ``options`` (longest first) that fits ``width`` px at ``size``, or the last."""
+    f = font(size)
+    return next((text for text in options if f.size(text)[0] <= width), options[-1])
 
 
 def _spring_world(method: str) -> tuple[World, Body]:
@@ -160,24 +167,38 @@ class _FourSprings(Scene):
         return draw_text(surface, text, pos, size, color, anchor)
 
     def _orbit_panel(
-        self, surface: pygame.Surface, rect: pygame.Rect, method: str, alpha: float
+        self,
+        surface: pygame.Surface,
+        rect: pygame.Rect,
+        method: str,
+        alpha: float,
+        ahead: bool = False,
     ) -> None:
-        """The orbit of ``method`` in ``rect``: the true circle, the recent path, the body."""
+        """The orbit of ``method`` in ``rect``: the true circle, the recent path, the body.
+
+        ``ahead``: the world's last step is past the time shown, so its trail leaves it out.
+        """
         pygame.draw.rect(surface, (255, 255, 255), rect, border_radius=4)
         pygame.draw.rect(surface, GRID, rect, 1, border_radius=4)
         world, body = self.worlds[method]
         scale = (min(rect.width, rect.height) - 8) / (2 * VIEW)  # px per m
         cx, cy = rect.center
 
+        # A runaway body is drawn at the edge of the orbit's square, kept clear of the rows of
+        # words along the panel's top and bottom.
+        room = rect.inflate(-2 * 9, -2 * 24)
+
         def px(p: tuple[float, float]) -> tuple[float, float]:
-            # Clamp to the panel before converting: a runaway body is drawn at the edge.
             x = min(max(p[0], -VIEW), VIEW)
             y = min(max(p[1], -VIEW), VIEW)
-            return cx + x * scale, cy - y * scale
+            return (
+                min(max(cx + x * scale, room.left), room.right),
+                min(max(cy - y * scale, room.top), room.bottom),
+            )
 
         pygame.draw.circle(surface, GRID, (cx, cy), round(scale), 1)  # the exact orbit
         pygame.draw.circle(surface, INK, (cx, cy), 3)  # the spring's anchor
-        trail = self.trails[method]
+        trail = self.trails[method][:-1] if ahead else self.trails[method]
         if len(trail) >= 2:
             pts = [px(p) for p in trail]
             pygame.draw.lines(surface, COLORS[method], False, pts, 2)
@@ -189,11 +210,13 @@ class _FourSprings(Scene):
         q = px(p)
         pygame.draw.line(surface, MUTED, (cx, cy), q, 1)  # the spring
         pygame.draw.circle(surface, COLORS[method], (round(q[0]), round(q[1])), 7)
+        marks.note(surface, "marker", pygame.Rect(round(q[0]) - 7, round(q[1]) - 7, 15, 15))
         if abs(p[0]) > VIEW or abs(p[1]) > VIEW:
             r = math.hypot(*p)
+            options = [f"off the panel: |x| = {r:.2g} m", f"off: |x| = {r:.2g} m", f"{r:.2g} m"]
             self._text(
                 surface,
-                f"off the panel: |x| = {r:.2g} m",
+                fitting(options, 14, rect.width - 6),
                 (rect.centerx, rect.bottom - 4),
                 14,
                 ERROR,
@@ -231,27 +254,41 @@ class OrbitsScene(_FourSprings):
             self.energy[method].append((world.t, world.energy() / self.e0))
         self._remember()
 
+    def shown(self, alpha: float) -> tuple[float, bool]:
+        """(the time of the frame, whether the worlds' last step is past it).
+
+        A method knows its state only at whole steps, so a frame shows each world as it was
+        at its last step at or before the frame's time: the state, its energy and its path
+        so far are the method's own, never a blend of two steps nor one from after the frame.
+        """
+        t = self.time(alpha)
+        return t, self.world.t > t + 1e-9
+
     def draw(self, surface: pygame.Surface, alpha: float) -> None:
         """Four orbit panels side by side, each with its energy plot under it."""
         self.drawn_text, self.drawn_positions = [], []
         w, h = surface.get_size()
         surface.fill(PAPER)
-        self._text(
-            surface,
+        t, ahead = self.shown(alpha)
+        step_t = self.world.t - self.dt if ahead else self.world.t
+        clock = f"t = {t:.2f} s: step {round(step_t / self.dt)}"
+        room = w - 16 - 12 - font(20).size(clock)[0]
+        titles = [
             f"One spring, four integrators, the same dt = {self.dt:g} s "
             f"(omega dt = {OMEGA * self.dt:.2f})",
-            (8, 4),
-            20,
-            INK,
-        )
+            f"Four integrators, dt = {self.dt:g} s (omega dt = {OMEGA * self.dt:.2f})",
+            f"dt = {self.dt:g} s",
+        ]
+        self._text(surface, fitting(titles, 20, room), (8, 4), 20, INK)
+        self._text(surface, clock, (w - 8, 4), 20, INK, "topright")
         col = w // 4
         orbit_h = int(h * 0.50)
         for i, method in enumerate(METHODS):
             left = i * col + 4
             self._text(surface, LABELS[method], (left + 4, 26), 18, COLORS[method])
             rect = pygame.Rect(left, 44, col - 8, orbit_h)
-            self._orbit_panel(surface, rect, method, alpha)
-            ts, es = zip(*self.energy[method], strict=True)
+            self._orbit_panel(surface, rect, method, 0.0 if ahead else 1.0, ahead)
+            ts, es = zip(*[p for p in self.energy[method] if p[0] <= t + 1e-9], strict=True)
             plot = Plot(
                 (left, 48 + orbit_h, col - 8, h - orbit_h - 52),
                 self.duration,
@@ -311,7 +348,7 @@ class LimitsScene(_FourSprings):
         self._text(surface, f"Raising dt: omega dt = {self.omega_dt:.2f}", (8, 4), 20, INK)
         col = w // 4
         strip = max(64, h // 4)
-        ruler_h = 40
+        ruler_h = 52
         orbit_h = h - 44 - strip - ruler_h - 8
         for i, method in enumerate(METHODS):
             left = i * col + 4
@@ -319,12 +356,12 @@ class LimitsScene(_FourSprings):
             rect = pygame.Rect(left, 44, col - 8, orbit_h)
             self._orbit_panel(surface, rect, method, 1.0)
             state = self.status[method]
-            text, color = {
-                "stable": ("stable", (0, 130, 60)),
-                "warned": ("WARNING: past its limit", WARN),
-                "diverged": ("DIVERGED: stopped", ERROR),
+            texts, color = {
+                "stable": (["stable"], (0, 130, 60)),
+                "warned": (["WARNING: past its limit", "WARNING"], WARN),
+                "diverged": (["DIVERGED: stopped", "DIVERGED"], ERROR),
             }[state]
-            self._text(surface, text, (left + 6, 46), 15, color)
+            self._text(surface, fitting(texts, 15, rect.width - 10), (left + 6, 46), 15, color)
         self._ruler(surface, pygame.Rect(16, 44 + orbit_h + 4, w - 32, ruler_h))
         top = h - strip
         pygame.draw.rect(surface, (255, 255, 255), (4, top, w - 8, strip - 4), border_radius=4)
@@ -356,24 +393,20 @@ class LimitsScene(_FourSprings):
         def x_of(v: float) -> int:
             return round(rect.left + v / hi * rect.width)
 
-        y = rect.top + 12
+        # Three rows: the limits' names on top, the marker of omega dt now just above the
+        # line, the numbers under it; so the marker never covers a name, wherever it is.
+        y = rect.top + 24
         pygame.draw.line(surface, INK, (rect.left, y), (rect.right, y), 2)
         for v in range(5):
             pygame.draw.line(surface, INK, (x_of(v), y - 4), (x_of(v), y + 4), 1)
             draw_text(surface, str(v), (x_of(v), y + 5), 14, MUTED, "midtop")
         for limit, label in ((2.0, "Euler, Verlet: 2"), (OSCILLATION_LIMITS["rk4"], "RK4: 2.83")):
-            pygame.draw.line(surface, ERROR, (x_of(limit), y - 10), (x_of(limit), y + 10), 2)
-            self._text(surface, label, (x_of(limit) + 3, y - 12), 14, ERROR)
-        pygame.draw.polygon(
-            surface,
-            INK,
-            [
-                (x_of(self.omega_dt), y - 2),
-                (x_of(self.omega_dt) - 6, y - 12),
-                (x_of(self.omega_dt) + 6, y - 12),
-            ],
-        )
-        draw_text(surface, "omega dt", (rect.right, y - 4), 14, MUTED, "bottomright")
+            pygame.draw.line(surface, ERROR, (x_of(limit), y - 22), (x_of(limit), y + 10), 2)
+            self._text(surface, label, (x_of(limit) + 3, y - 24), 14, ERROR)
+        x = x_of(self.omega_dt)
+        pygame.draw.polygon(surface, INK, [(x, y - 2), (x - 6, y - 12), (x + 6, y - 12)])
+        marks.note(surface, "marker", pygame.Rect(x - 6, y - 12, 13, 11), "omega dt now")
+        draw_text(surface, "omega dt", (rect.right, y - 24), 14, MUTED, "topright")
 
 
 def _finite(points: list[tuple[float, float]]) -> bool:

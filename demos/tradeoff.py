@@ -42,7 +42,17 @@ from demos.bench import pendulum, solver, throughput
 from demos.cli import Demo
 from engine import measure
 from engine.measure import PROBLEMS, Point
-from engine.render import INK, MUTED, PAPER, Progress, draw_text, font, init_headless, save_png
+from engine.render import (
+    INK,
+    MUTED,
+    PAPER,
+    FramesExistError,
+    Progress,
+    draw_text,
+    font,
+    init_headless,
+    save_png,
+)
 from engine.render.chart import LogLogChart, decade_range, draw_legend
 
 __all__ = [
@@ -640,13 +650,46 @@ def summary(points: Sequence[Point], timed: dict[int, float] | None = None) -> s
     return "\n".join(lines)
 
 
+#: What a run writes into its folder.
+OUTPUTS = (
+    "work_precision.png",
+    "work_precision.csv",
+    "pendulum.csv",
+    "throughput.png",
+    "throughput.csv",
+    "contacts.png",
+    "contacts.csv",
+)
+#: How long a whole run takes, measured on the 2-core machine the project is built on
+#: (`python -m demos tradeoff`: 132 s alone on 2026-11-25, about 170 s beside another job;
+#: --quick: 11 s): said before it starts, and on its progress lines.
+TAKES = {False: "about 2 to 3 minutes", True: "about 10 to 20 seconds"}
+
+
 def run(args: argparse.Namespace) -> int:
     """Measure, write the charts and CSVs, print the tables; the CLI's hook."""
     quick = bool(getattr(args, "quick", False))
     out = Path(args.out) if getattr(args, "out", None) else Path("out") / "tradeoff"
-    size = tuple(args.size) if getattr(args, "size", None) not in (None, (640, 360)) else None
-    size = size or (1280, 720)
-    bar = Progress(label="tradeoff")
+    size = tuple(getattr(args, "size", None) or DEMO.size)
+    overwrite = bool(getattr(args, "overwrite", False))
+    there = [name for name in OUTPUTS if (out / name).exists()]
+    if there and not overwrite:  # refused before minutes of measuring, not after
+        raise FramesExistError(
+            f"{out} already holds {', '.join(there)}; pass overwrite=True to replace them",
+            out / there[0],
+        )
+    takes = TAKES[quick]
+    other = (
+        f"--quick; the full sweep takes {TAKES[False]}"
+        if quick
+        else f"--quick: a coarser sweep in {TAKES[True]}"
+    )
+    print(f"tradeoff: four measurements, {takes} in all on a 2-core machine ({other})")
+
+    def bar_for(step: int, what: str) -> Progress:
+        return Progress(label=f"tradeoff {step}/4 ({takes} in all): {what}", unit="runs")
+
+    bar = bar_for(1, "integrators")
     print(f"tradeoff: measuring {'(quick) ' if quick else ''}the work-precision sweep ...")
     points = measure.sweep(
         PROBLEMS.values(),
@@ -658,7 +701,7 @@ def run(args: argparse.Namespace) -> int:
     )
     bar.done()
     print("tradeoff: measuring the pendulum on a rod (energy over many periods) ...")
-    bar = Progress(label="pendulum")
+    bar = bar_for(2, "pendulum")
     swing = pendulum.measure(quick, progress=bar)
     bar.done()
     print(pendulum.table(swing))
@@ -666,7 +709,7 @@ def run(args: argparse.Namespace) -> int:
     csv_path = out / "work_precision.csv"
     _write(csv_path, [measure.csv_header(), *map(measure.csv_row, points)])
     chart = draw_work_precision(points, size, swing)
-    png_path = save_png(chart, out / "work_precision.png", True)
+    png_path = save_png(chart, out / "work_precision.png", True)  # (checked at the start)
     print(
         f"tradeoff: wrote {png_path}, {csv_path} and {out / 'pendulum.csv'} ({len(points)} points)"
     )
@@ -681,7 +724,7 @@ def run(args: argparse.Namespace) -> int:
     times = measure.side_by_side(runs, rounds=5 if quick else 9, min_steps=300 if quick else 2000)
     timed = {i: times[2 * k] / times[2 * k + 1] for k, (i, _) in enumerate(pairs)}
     print(summary(points, timed))
-    print("tradeoff: measuring throughput ...")
+    print(f"tradeoff: measuring throughput (3/4; {takes} in all) ...")
     rows = throughput.measure(quick)
     _write(
         out / "throughput.csv",
@@ -692,7 +735,7 @@ def run(args: argparse.Namespace) -> int:
     print(throughput.table(rows))
     print(f"tradeoff: wrote {tp} and {out / 'throughput.csv'}")
     print("tradeoff: measuring contacts (solver iterations, this engine and pymunk) ...")
-    bar = Progress(label="contacts")
+    bar = bar_for(4, "contacts")
     contact_rows = solver.measure(quick, progress=bar)
     bar.done()
     _write(out / "contacts.csv", [solver.csv_header(), *map(solver.csv_row, contact_rows)])
@@ -714,4 +757,7 @@ DEMO = Demo(
     summary="Work-precision chart (error vs cost per integrator) and throughput chart",
     add_arguments=_add_arguments,
     run=run,
+    takes=frozenset({"--size", "--out", "--overwrite"}),
+    size=(1280, 720),
+    min_size=(1280, 720),  # its smallest: each panel then holds its words
 )

@@ -105,6 +105,12 @@ class Body:
     friction slows its sliding, and nothing makes it spin. Bodies with a radius collide with
     each other unless their ``filter`` (engine.Filter: a group, category bits) says not.
     A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``).
+
+    ``velocity`` and ``acceleration`` default to zero (``Body(Vector(0, 5))`` is at rest at
+    (0, 5); ``Body(0.0)`` at rest at 0 on a line). pymunk's names answer beside the lesson's:
+    ``position`` is ``pos``, ``velocity`` is ``vel`` and ``acceleration`` is ``acc``; a pymunk
+    name with no counterpart here (``force``, ``space``, ``body_type``, ...) raises an
+    AttributeError that says what to use instead.
     """
 
     # Position and velocity are kept as plain floats (y parts unused in 1D): a lone body's
@@ -130,8 +136,8 @@ class Body:
     def __init__(
         self,
         position: Any,
-        velocity: Any,
-        acceleration: Any,
+        velocity: Any = None,
+        acceleration: Any = None,
         mass: float = 1.0,
         *,
         radius: float = 0.0,
@@ -140,6 +146,11 @@ class Body:
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
         kinematic: bool = False,
     ) -> None:
+        if velocity is None or acceleration is None:
+            # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
+            zero: Any = {1: 0.0, 2: Vector(0.0, 0.0)}.get(_dim_of(position) or 0, 0.0)
+            velocity = zero if velocity is None else velocity
+            acceleration = zero if acceleration is None else acceleration
         given = {"position": position, "velocity": velocity, "acceleration": acceleration}
         dims = {name: _dim_of(value) for name, value in given.items()}
         for name, d in dims.items():
@@ -266,6 +277,34 @@ class Body:
         else:
             self._acc = state
 
+    # -- pymunk's names for the same three (and the constructor's) --------------------------
+    @property
+    def position(self) -> Any:
+        """The same as ``pos`` (pymunk's name): length units, a float in 1D, a Vector in 2D."""
+        return self.pos
+
+    @position.setter
+    def position(self, value: Any) -> None:
+        self.pos = value
+
+    @property
+    def velocity(self) -> Any:
+        """The same as ``vel`` (pymunk's name): length units per second."""
+        return self.vel
+
+    @velocity.setter
+    def velocity(self, value: Any) -> None:
+        self.vel = value
+
+    @property
+    def acceleration(self) -> Any:
+        """The same as ``acc`` (the constructor's name): length units per s^2."""
+        return self.acc
+
+    @acceleration.setter
+    def acceleration(self, value: Any) -> None:
+        self.acc = value
+
     @property
     def mass(self) -> float:
         """Mass (kg, or the scene's mass unit); always positive and finite."""
@@ -287,20 +326,36 @@ class Body:
         """Radius (length units) for contacts; 0.0 for a point."""
         return self._radius
 
+    @radius.setter
+    def radius(self, value: Any) -> None:
+        _fixed("radius", value)
+
     @property
     def restitution(self) -> float:
         """Restitution e in [0, 1]: the fraction of the normal speed kept by a bounce."""
         return self._e
+
+    @restitution.setter
+    def restitution(self, value: Any) -> None:
+        _fixed("restitution", value)
 
     @property
     def friction(self) -> float:
         """Coulomb friction coefficient mu >= 0."""
         return self._mu
 
+    @friction.setter
+    def friction(self, value: Any) -> None:
+        _fixed("friction", value)
+
     @property
     def filter(self) -> Filter:
         """Which other bodies this one collides with (engine.Filter; bodies of radius 0 never)."""
         return self._filter
+
+    @filter.setter
+    def filter(self, value: Any) -> None:
+        _fixed("filter", value)
 
     @property
     def kinematic(self) -> bool:
@@ -310,6 +365,10 @@ class Body:
         (what the contacts in that step see), after which its ``vel`` is again the one last
         written (zero by default): a paddle the game places each frame stops when it does."""
         return self._kinematic
+
+    @kinematic.setter
+    def kinematic(self, value: Any) -> None:
+        _fixed("kinematic", value)
 
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:
@@ -371,3 +430,60 @@ class Body:
             f"Body(position={self.pos!r}, velocity={self.vel!r}, "
             f"acceleration={self.own_acc!r}, mass={self.mass!r}{size}{kin})"
         )
+
+
+def _fixed(name: str, value: Any) -> None:
+    """Refuse a change of what a Body is made with, saying how to get it."""
+    raise AttributeError(
+        f"a Body's {name} is fixed when it is made (the World keeps it in its arrays), so "
+        f"body.{name} = {value!r} cannot change it: make a new Body(..., {name}={value!r}) "
+        f"instead (world.remove(body), then world.add(new))"
+    )
+
+
+class _Advice:
+    """A name from pymunk with no counterpart here: reading or writing it says what to use."""
+
+    def __init__(self, name: str, advice: str) -> None:
+        self.name, self.advice = name, advice
+
+    def _refuse(self) -> AttributeError:
+        return AttributeError(f"a Body has no {self.name} (pymunk's name): {self.advice}")
+
+    def __get__(self, body: Any, owner: Any = None) -> Any:
+        if body is None:
+            return self
+        raise self._refuse()
+
+    def __set__(self, body: Any, value: Any) -> None:
+        raise self._refuse()
+
+
+_PUSH = (
+    "for a push that lasts, set body.own_acc = force / body.mass (kept until changed), or "
+    "world.add_force(ConstantForce(...)) (engine.forces) for every body"
+)
+_IMPULSE = "change the velocity by impulse / mass: body.vel = body.vel + impulse / body.mass"
+#: pymunk Body names, and what to write here instead.
+PYMUNK_NAMES: dict[str, str] = {
+    "force": _PUSH,
+    "apply_force_at_world_point": _PUSH,
+    "apply_force_at_local_point": _PUSH,
+    "apply_impulse_at_world_point": _IMPULSE,
+    "apply_impulse_at_local_point": _IMPULSE,
+    "space": "body.world is the World it is in",
+    "body_type": "Body(..., kinematic=True) makes a body the game moves; static geometry is a "
+    "collider (world.add_collider(Segment(...)))",
+    "is_sleeping": "ask the World: world.is_sleeping(body)",
+    "shapes": "a Body is its own round shape: give Body(..., radius=..., restitution=..., "
+    "friction=...)",
+    "elasticity": "its bounce is Body(..., restitution=e), 0 to 1",
+    "velocity_func": "forces act through the World: world.add_force(...) (engine.forces)",
+    "position_func": "a body the game moves is Body(..., kinematic=True): write its pos or vel",
+    "kinetic_energy": "world.energy() is the World's total; m v^2 / 2 is "
+    "0.5 * body.mass * body.vel.length_squared()",
+}
+for _name, _text in PYMUNK_NAMES.items():
+    if not hasattr(Body, _name):  # a name the Body comes to have itself keeps its own meaning
+        setattr(Body, _name, _Advice(_name, _text))
+del _name, _text

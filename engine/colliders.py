@@ -19,6 +19,12 @@ the body's own material in force.
 A sensor is not solid: bodies pass through it, and the World reports when they begin and end
 overlapping it (``World.began`` / ``World.ended``). The crumb in the crumb game is one.
 
+A collider is fixed once made: the World builds its contact tables from it, so writing
+``peg.center = ...`` (or any of its attributes) raises an AttributeError that says what to do
+instead: take it out and add a new one (``world.remove_collider(peg)``,
+``world.add_collider(Circle(...))``), or, for an obstacle that moves every frame, use a
+kinematic body (``Body(..., radius=r, kinematic=True)``, moved by writing its ``pos``).
+
 >>> floor = Plane((0, 0), (0, 1))
 >>> floor.distance((3, 2))
 2.0
@@ -68,6 +74,31 @@ def point_of(value: Any, name: str) -> tuple[float, float]:
     if not (math.isfinite(x) and math.isfinite(y)):
         raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
     return x, y
+
+
+def _fixed(collider: Collider, name: str) -> str:
+    """Why ``collider.name`` cannot change, and what to do instead."""
+    kind = type(collider).__name__
+    what = (
+        "material"
+        if name in ("restitution", "friction", "sensor")
+        else "geometry"
+        if name in collider.__slots__
+        else None
+    )
+    if what is None:
+        return f"a {kind} has no attribute {name!r} to set"
+    moving = (
+        "; for an obstacle that moves, use a kinematic body, Body(position, radius=r, "
+        "kinematic=True), and write its pos each frame"
+        if what == "geometry"
+        else ""
+    )
+    return (
+        f"a {kind}'s {name} cannot change once it is made (the World built its contacts from "
+        f"its {what}): take it out and add a new one, world.remove_collider(old) then "
+        f"world.add_collider({kind}(..., {name}=...)){moving}"
+    )
 
 
 def _unit(x: float, y: float) -> tuple[float, float] | None:
@@ -127,6 +158,20 @@ class Collider:
         #: Which bodies meet it (engine.Filter, as a body's): a body whose filter and this one
         #: do not collide passes through it, is not sensed by it, and queries filter it alike.
         self.filter = _filter(filter)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        # Each public attribute is set once, when the collider is made; after that it is
+        # refused (the World built its contact tables from it, so a change would be ignored).
+        # Private ones (a leading _) are the engine's own business.
+        if name[0] != "_" and hasattr(self, name):
+            raise AttributeError(_fixed(self, name))
+        object.__setattr__(self, name, value)
+
+    def __delattr__(self, name: str) -> None:
+        if name[0] == "_":
+            object.__delattr__(self, name)
+            return
+        raise AttributeError(_fixed(self, name))
 
     def distance(self, point: Any) -> float:
         """Signed distance (length units) from ``point`` to the surface: > 0 in free space."""

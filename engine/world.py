@@ -209,6 +209,15 @@ class _EventView:
         return self._world._impulses(keys)
 
 
+class _Count:
+    """A World's count of steps since its time base (World._n), written by every step."""
+
+    __slots__ = ("n",)
+
+    def __init__(self) -> None:
+        self.n = 0
+
+
 class World:
     """Point bodies, the forces on them, and ``step(dt)``: the only way time moves.
 
@@ -238,7 +247,7 @@ class World:
         # steps never accumulates the round-off of adding dt again and again.
         self._t_base = 0.0
         self._dt: float | None = None
-        self._n = 0
+        self._count = _Count()  # holds _n, the steps of dt since t_base
         self._steps_base = 0  # steps taken before the current run of equal dt
         self._model: ForceModel | None = None
         self._evaluations = 0  # force evaluations of models since replaced, and of the kernel
@@ -1129,9 +1138,20 @@ class World:
 
     # -- time --------------------------------------------------------------------------------
     @property
+    def _n(self) -> int:
+        # The steps of dt taken since t_base, kept in a _Count so that the step adds to it
+        # without a call of World.__setattr__.
+        return self._count.n
+
+    @_n.setter
+    def _n(self, value: int) -> None:
+        self._count.n = value
+
+    @property
     def t(self) -> float:
         """Simulated time (s) since the world began."""
-        return self._t_base + self._n * self._dt if self._dt is not None else self._t_base
+        n = self._count.n
+        return self._t_base + n * self._dt if self._dt is not None else self._t_base
 
     @property
     def dt(self) -> float | None:
@@ -1142,7 +1162,7 @@ class World:
     @property
     def steps(self) -> int:
         """How many steps have been taken."""
-        return self._steps_base + self._n
+        return self._steps_base + self._count.n
 
     def step(self, dt: float) -> None:
         """Advance every body by ``dt`` seconds (usually 1/60 or 1/120).
@@ -1153,9 +1173,10 @@ class World:
         state stops being finite.
         """
         k = self._kernel
+        count = self._count
         # type(dt) is float: True == 1.0 and 1 == 1.0, so without it step(True) after
         # step(1.0) would skip check_dt and run a step of "True" seconds.
-        if k is not None and self._n < k.n_stop and type(dt) is float and k.dt == dt:
+        if k is not None and count.n < k.n_stop and type(dt) is float and k.dt == dt:
             # The affine kernel (derived in _prepare_affine), inlined: the fixed cost per step
             # is what small scenes pay, so this path makes no call it can avoid. A kernel
             # exists only while nothing has changed since it was made (_changed_structure
@@ -1172,7 +1193,7 @@ class World:
                 _mul(v, dt, x_new)
                 _add(x, x_new, x_new)
             store.prev_x, store.x = x, x_new
-            self._n += 1
+            count.n += 1  # (self._n += 1 would go through __setattr__: 0.1 us a call)
             return
         fast = self._fast
         if fast is not None and type(dt) is float and fast[0] == dt and fast[1] == self._version:
@@ -1206,7 +1227,7 @@ class World:
             self._void_budget()
             self._t_base, self._steps_base = self.t, self._steps_base + self._n
             self._n, self._dt = 0, dt
-        if self._t_base + (self._n + 1) * dt == math.inf:
+        if self._t_base + (count.n + 1) * dt == math.inf:
             raise ValueError(
                 f"dt must keep the time finite: a step of dt={dt!r} s from t={self.t!r} s would "
                 f"pass the float range (1.8e308 s)"
@@ -1218,7 +1239,7 @@ class World:
             self._step_general(dt, name, step, model)
         else:
             self._quiet()  # nothing moved: no solver reports anything
-        self._n += 1
+        count.n += 1
         if after is not None:
             # A kinematic body moved by pos stops there: its velocity is what it was before.
             held = self._store
@@ -1293,7 +1314,7 @@ class World:
         store = self._store
         assert store is not None
         t0 = self.t
-        t1 = self._t_base + (self._n + 1) * dt
+        t1 = self._t_base + (self._count.n + 1) * dt
         contacts = self._contacts
         if not self._links or self._substeps or (contacts is None and not self._pairs_on):
             self._step_once(dt, name, step, model, t0, t1)
@@ -1861,6 +1882,19 @@ class World:
             )
         return masses, own_acc
 
+    # -- names the World does not have ----------------------------------------------------
+    def __setattr__(self, name: str, value: Any) -> None:
+        """Set the World's own attributes; refuse a name it does not have, saying what to use.
+
+        Without this, ``world.gravity = (0, -9.8)`` (pymunk's habit) would be kept and
+        ignored. A subclass may add names of its own. (No ``__getattr__``: it would slow every
+        attribute read; pymunk's names are class attributes that say what to use instead.)
+        """
+        if name[0] == "_" or hasattr(type(self), name) or type(self) is not World:
+            object.__setattr__(self, name, value)
+        else:
+            raise AttributeError(_unknown(name, "set"))
+
     def __repr__(self) -> str:
         """``World(integrator='auto', tolerance=0.001, bodies=3, forces=2, t=1.5)``."""
         tol = self._policy.tolerance
@@ -1869,3 +1903,73 @@ class World:
             f"World(integrator={self._requested!r}, {tolerance}bodies={len(self._bodies)}, "
             f"forces={len(self._forces)}, t={self.t:g})"
         )
+
+
+#: pymunk Space names, and what to write here instead.
+PYMUNK_NAMES: dict[str, str] = {
+    "gravity": "gravity is a force: world.add_force(Gravity((0, -9.81))) "
+    "(from engine.forces import Gravity)",
+    "damping": "damping is a force: world.add_force(Drag(k)) (F = -k v; pymunk's damping d "
+    "is k = -m ln(d)), from engine.forces",
+    "iterations": "world.contact_iterations (default 8)",
+    "sleep_time_threshold": "world.sleep_time (s; math.inf never sleeps)",
+    "idle_speed_threshold": "a resting group sleeps once slower than |a| dt for "
+    "world.sleep_time seconds",
+    "collision_slop": "there is no slop: overlaps past 0.2% of a radius are pushed out",
+    "collision_bias": "there is no bias: overlaps past 0.2% of a radius are pushed out",
+    "collision_persistence": "contacts carry their impulses from step to step by themselves",
+    "static_body": "static geometry goes straight into the World: "
+    "world.add_collider(Segment(...)) (Plane, Segment, Circle, Box)",
+    "shapes": "world.colliders (static shapes); a Body's own shape is its radius",
+    "constraints": "world.links (rods, cables, pins)",
+    "add_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",
+    "add_wildcard_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",
+    "add_default_collision_handler": "world.on_contact(...), or read world.began and "
+    "world.ended after each step",
+    "on_collision": "world.on_contact(body_or_collider, begin=..., end=...)",
+    "current_time_step": "the dt you pass to world.step(dt); world.t is the time",
+    "debug_draw": "draw with engine.render (Camera, draw_dot, ...)",
+    "bb_query": "world.point_query(point, max_distance)",
+    "shape_query": "world.point_query(point, max_distance)",
+    "add_post_step_callback": "act after world.step(dt) returns: events are in world.began",
+    "threads": "the World steps in one thread",
+    "threaded": "the World steps in one thread",
+}
+
+
+def _unknown(name: str, how: str) -> str:
+    """The message for a World attribute ``name`` it does not have (``how``: read or set)."""
+    advice = PYMUNK_NAMES.get(name)
+    if advice is not None:
+        return f"a World has no {name} (pymunk's name): {advice}"
+    settable = sorted(
+        n
+        for n, v in vars(World).items()
+        if isinstance(v, property) and v.fset is not None and n[0] != "_"
+    )
+    return (
+        f"a World has no attribute {name!r} to {how}; what can be set on it is "
+        f"{', '.join(settable)} (and it is changed through add, add_force, add_collider, "
+        f"add_link and step)"
+    )
+
+
+class _Advice:
+    """A pymunk Space name the World lacks: reading or writing it says what to use instead."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, world: Any, owner: Any = None) -> Any:
+        if world is None:
+            return self
+        raise AttributeError(_unknown(self.name, "read"))
+
+    def __set__(self, world: Any, value: Any) -> None:
+        raise AttributeError(_unknown(self.name, "set"))
+
+
+for _name in PYMUNK_NAMES:
+    if not hasattr(World, _name):  # a name the World comes to have keeps its own meaning
+        setattr(World, _name, _Advice(_name))
+del _name

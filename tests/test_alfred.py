@@ -9,7 +9,8 @@ from pixels import angle_between, long_axis
 
 from demos import alfred
 from engine import Vector
-from engine.render import init_headless, iter_frames, record, strobe
+from engine.render import init_headless, iter_frames, marks, record, strobe
+from engine.render.recorder import draw_strobe
 
 SIZE = (640, 360)
 
@@ -247,3 +248,90 @@ def test_the_same_recording_twice_is_byte_identical(tmp_path):
     assert first.count == second.count == 7
     for a, b in zip(first.paths(), second.paths(), strict=True):
         assert a.read_bytes() == b.read_bytes()
+
+
+# -- what a teacher sees: nothing cut at an edge, every label where it belongs ----------------
+
+
+def _ant_box(scene: alfred.Paper, t: float) -> pygame.Rect:
+    """The box of Alfred's visible pixels at time t on the paper (px)."""
+    pos, vel = scene.exact(t)
+    image = scene.facing(t, vel)
+    rect = image.get_rect(
+        center=tuple(math.floor(c + 0.5) for c in scene.camera.to_px(pos.x, pos.y))
+    )
+    boxes = pygame.mask.from_surface(image).get_bounding_rects()
+    return boxes[0].unionall(boxes[1:]).move(rect.topleft)
+
+
+def test_paper_keeps_alfred_and_his_velocity_arrow_on_the_paper_in_every_frame():
+    # At frame 90 (t = 3 s) the arrow and the ant ran past the paper's border.
+    scene = alfred.Paper()
+    heads = 0
+    for k, t, surface in iter_frames(scene, fps=30, size=SIZE):
+        paper = scene.paper_rect
+        found = marks.marks(surface)
+        for m in found:
+            if m.kind == "arrowhead" or m.text == "v":
+                assert paper.inflate(-2, -2).contains(m.rect), (k, str(m), paper)
+        heads += sum(m.kind == "arrowhead" for m in found)
+        assert paper.inflate(-2, -2).contains(_ant_box(scene, t)), (k, t)
+        assert marks.problems(surface) == [], k
+    assert heads == 90 + 91  # the position arrow (none at t = 0: he is at 0) and velocity
+
+
+def test_paper_strobe_labels_each_alfred_beside_him_and_off_the_arrows(tmp_path):
+    # In the strobe, "t = 0 s" and "t = 0.5 s" sat on the position arrows, away from their ants.
+    scene = alfred.Paper()
+    scene.build(SIZE)
+    surface = pygame.Surface(SIZE)
+    draw_strobe(scene, surface)
+    times = scene.strobe_times()
+    origin = scene.camera.to_px(0.0, 0.0)
+    names = {f"t = {alfred.common.number(t)} s" for t in times}
+    labels = {m.text: m.rect for m in marks.marks(surface) if m.text in names}
+    assert sorted(labels) == sorted(names)
+    ants = {t: _ant_box(scene, t) for t in times}
+    for t in times:
+        box = labels[f"t = {alfred.common.number(t)} s"]
+        for other in times:
+            pos, _ = scene.exact(other)
+            assert not box.clipline(origin, scene.camera.to_px(pos.x, pos.y)), (t, other)
+        # Nearer his own dot than any other Alfred's, and within about an ant's length of him.
+        dots = {u: scene.camera.to_px(*scene.exact(u)[0]) for u in times}
+        near = {u: math.dist(box.center, dots[u]) for u in times}
+        assert near[t] == min(near.values()), (t, near)
+        assert _gap(box, ants[t]) <= 40, (t, _gap(box, ants[t]))
+    assert marks.problems(surface) == []
+
+
+def _gap(a: pygame.Rect, b: pygame.Rect) -> float:
+    """The distance (px) between two rectangles, 0 if they touch."""
+    dx = max(b.left - a.right, a.left - b.right, 0)
+    dy = max(b.top - a.bottom, a.top - b.bottom, 0)
+    return math.hypot(dx, dy)
+
+
+@pytest.mark.parametrize(("name", "frames"), [("stroll", {297, 299, 300}), ("sprint", None)])
+def test_the_velocity_arrow_is_never_cut_at_the_edge(name, frames):
+    # The stroll's arrowhead was cut at the right edge at frame 297 and gone at frame 300 while
+    # the formula says v = 1 in/s; the sprint's ran off the frame as he neared the end.
+    scene = alfred.DEMO.scenes[name]()
+    for k, _, surface in iter_frames(scene, fps=30, size=SIZE, only=frames):
+        assert marks.problems(surface) == [], k
+    if name == "stroll":  # the last frame (t = 10 s, when he arrives) still shows v = 1 in/s
+        heads = [m for m in marks.marks(surface) if m.kind == "arrowhead"]
+        assert len(heads) == 1 and "v = 1.0 in/s" in [m.text for m in marks.marks(surface)]
+
+
+def test_the_sprints_euler_ant_says_which_moments_speed_he_walks_at():
+    # "From rest", yet the Euler ant showed v = 1.0 in/s at t = 0: semi-implicit Euler walks
+    # each step at the speed the step ends with, and the label now says so.
+    scene = alfred.Sprint()
+    said = {}
+    for _, t, surface in iter_frames(scene, fps=2, seconds=4.0, size=SIZE):
+        said[t] = [m.text for m in marks.marks(surface)]
+    assert "v(1 s) = 1.0 in/s" in said[0.0]
+    assert "v = 0 in/s" in said[0.0]  # the exact ant, at rest, says so
+    assert "v(2 s) = 2.0 in/s" in said[1.5]
+    assert "v(4 s) = 4.0 in/s" in said[3.5]

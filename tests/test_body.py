@@ -81,7 +81,7 @@ def test_mixing_dimensions_is_a_type_error_naming_the_argument(
         ((None, 0.0, 0.0), "position"),
         ((0.0, "fast", 0.0), "velocity"),
         ((0.0, [1, 2, 3], 0.0), "velocity"),
-        ((0.0, 0.0, None), "acceleration"),
+        ((0.0, 0.0, "slow"), "acceleration"),  # (None is the default: zero)
         ((True, 0.0, 0.0), "position"),
         (((0, "y"), (0, 0), (0, 0)), "position"),
     ],

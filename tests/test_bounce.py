@@ -10,7 +10,8 @@ import pytest
 
 import demos.bounce as bounce
 from demos.cli import main
-from engine.render import iter_frames
+from engine.render import iter_frames, marks
+from engine.render.recorder import draw_strobe
 
 E = bounce.Drop.restitution  # 0.8
 
@@ -135,3 +136,39 @@ def test_the_ball_is_drawn_where_the_closed_form_puts_it() -> None:
         assert np.abs(centre - np.array(want)).max() < 1.0, t
         checked += 1
     assert checked >= 50
+
+
+def test_the_drop_strobe_spreads_the_balls_by_time_and_labels_each() -> None:
+    # The balls overlapped each other, hid the n = 2 and n = 3 apex labels and carried no time.
+    scene = bounce.DropScene()
+    size = (640, 360)
+    scene.build(size)
+    surface = pygame.Surface(size)
+    draw_strobe(scene, surface)
+    found = marks.marks(surface)
+    balls = [m.rect for m in found if m.kind == "marker"]
+    times = [t for t in scene.strobe_times() if t <= 4.0]
+    assert len(balls) == len(times) == 17
+    for i, a in enumerate(balls):
+        assert a.collidelist(balls[i + 1 :]) < 0, i  # no ball on another
+    texts = [m.text for m in found if m.kind == "text"]
+    assert [f"{t:g}" for t in times] == [x for x in texts if x in {f"{t:g}" for t in times}]
+    assert {"h0 = 10 m", "n=1: 6.40 m", "n=2: 4.10 m", "n=3: 2.62 m"} <= set(texts)
+    assert marks.problems(surface) == []  # no label on a ball, on a label, or cut
+
+
+def test_the_drift_frame_lists_every_apex_numbered() -> None:
+    # Only the last 3 apexes were kept, unnumbered: by frame 450 the 10.077 m and 10.313 m
+    # apexes of the discrete check were gone.
+    scene = bounce.DriftScene()
+    for _, t, surface in iter_frames(scene, fps=30, size=(640, 360), only={450}):
+        texts = [m.text for m in marks.marks(surface)]
+        for name in ("naive", "engine"):
+            heights = [h for ta, h in scene.drift.apexes[name] if ta <= t]
+            assert len(heights) == 5
+            shown = [f"{h:.3f} m" for h in heights]
+            assert [x for x in texts if x in shown] == shown, name
+        column = [m.text for m in marks.marks(surface) if m.rect.right < scene.column]
+        assert [x for x in column if x.isdigit()] == ["1", "2", "3", "4", "5"]
+        assert "10.077 m" in texts and "10.313 m" in texts
+        assert marks.problems(surface) == []

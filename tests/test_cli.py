@@ -160,3 +160,99 @@ def test_the_recorder_refuses_a_canvas_below_the_scenes_minimum(tmp_path) -> Non
     with pytest.raises(ValueError, match=f"at least {need_w}x{need_h} px"):
         record(MainStreet(), tmp_path / "car", size=(need_w, need_h - 1))
     assert not list(tmp_path.glob("car/frame_*.png"))
+
+
+# -- one rule for every demo: an option it cannot honour is refused, exit 2, saying why -------
+
+
+def _demos_and_refused() -> list[tuple[str, str]]:
+    """(demo, option) for every shared option a demo with a run hook does not take."""
+    values = {"--scene": "x", "--fps": "10", "--seconds": "1", "--size": "1280x720", "--seed": "1"}
+    values |= {"--out": "out/x", "--video": "x.mp4", "--gif": "x.gif"}
+    cases = []
+    for name, demo in cli.discover().items():
+        if isinstance(demo, cli.Demo) and demo.run is not None:
+            for option in cli.SHARED:
+                if option not in demo.takes:
+                    cases.append(
+                        (name, f"{option}={values[option]}" if option in values else option)
+                    )
+    return cases
+
+
+@pytest.mark.parametrize(("name", "option"), _demos_and_refused())
+def test_a_shared_option_a_demo_cannot_honour_is_refused_the_same_way(name, option, capsys):
+    # --strobe was silently ignored by breakout, crumb and tradeoff (breakout wrote all its
+    # frames); other demos said "skipped" or refused.
+    code, out, err = run([name, option], capsys)
+    flag = option.split("=")[0]
+    assert code == 2, (name, option, out, err)
+    assert f"argument {flag}: the demo '{name}' cannot honour it" in err
+    assert err.startswith(f"usage: python -m demos {name}")
+    assert out == ""
+
+
+def test_every_game_and_chart_says_what_it_takes() -> None:
+    taken = {n: d.takes for n, d in cli.discover().items() if isinstance(d, cli.Demo)}
+    assert "--strobe" not in taken["breakout"] | taken["crumb"] | taken["tradeoff"]
+    assert {"--out", "--overwrite"} <= taken["tradeoff"]
+    assert "--window" in taken["breakout"] and "--window" in taken["crumb"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "says"),
+    [
+        (["car", "--strobe"], "argument --strobe: the demo 'car' has no motion diagram"),
+        (
+            ["bounce", "--scene", "drift", "--strobe"],
+            "argument --strobe: the scene 'drift' has no motion diagram (scenes with one: "
+            "drop, tunnel)",
+        ),
+        (["alfred", "--strobe", "--fps", "10"], "argument --fps: not allowed with argument"),
+        (["alfred", "--strobe", "--seconds", "2"], "argument --seconds: not allowed with"),
+        (["alfred", "--window", "--out", "x"], "argument --out: not allowed with argument"),
+        (["alfred", "--window", "--overwrite"], "argument --overwrite: not allowed with"),
+    ],
+)
+def test_a_scene_demo_refuses_what_its_scenes_cannot_honour(argv, says, capsys, tmp_path):
+    code, out, err = run(argv, capsys)
+    assert code == 2 and says in err, err
+    assert err.startswith(f"usage: python -m demos {argv[0]}")
+
+
+def test_a_strobe_of_every_scene_skips_those_without_one_and_says_so(capsys, tmp_path):
+    code, out, _ = run(["bounce", "--strobe", "--size", "480x270", "--out", str(tmp_path)], capsys)
+    assert code == 0
+    assert "bounce/drift: no motion diagram for this scene, skipped" in out
+    assert (tmp_path / "drop" / "strobe.png").is_file()
+
+
+def test_an_error_in_a_shared_option_shows_the_demos_usage_not_the_top_levels(capsys):
+    # An error in a shared flag printed the top-level usage, "python -m demos [-h] ...".
+    for argv in (
+        ["alfred", "--fps", "0"],
+        ["tradeoff", "--size", "big"],
+        ["galton", "--seed", "x"],
+    ):
+        code, _, err = run(argv, capsys)
+        assert code == 2
+        assert err.startswith(f"usage: python -m demos {argv[0]} "), err
+        assert f"argument {argv[1]}:" in err
+
+
+def test_one_frame_is_one_frame(capsys, tmp_path):
+    argv = ["alfred", "--scene", "lazy", "--fps", "1", "--seconds", "0.5", "--out", str(tmp_path)]
+    code, out, _ = run(argv, capsys)
+    assert code == 0
+    assert "alfred/lazy: wrote 1 frame (640x360, 1 fps, 0.5 s)" in out and "1 frames" not in out
+
+
+def test_a_refusal_to_overwrite_names_the_option_not_the_python_argument(capsys, tmp_path):
+    # The refusal said "pass overwrite=True (--overwrite)": a Python argument to a command line.
+    frames = ["alfred", "--scene", "lazy", "--fps", "1", "--seconds", "1", "--out", str(tmp_path)]
+    strobe = ["alfred", "--scene", "lazy", "--strobe", "--out", str(tmp_path)]
+    for argv in (frames, strobe):
+        assert run(argv, capsys)[0] == 0
+        code, _, err = run(argv, capsys)
+        assert code == 1
+        assert "add --overwrite to replace" in err and "overwrite=True" not in err, err

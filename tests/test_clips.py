@@ -138,8 +138,10 @@ def test_a_clip_alone_writes_no_frames(ffmpeg, tmp_path):
 def test_an_existing_clip_is_refused_before_any_work_without_overwrite(ffmpeg, tmp_path):
     target = tmp_path / "slide.gif"
     target.write_bytes(b"the teacher's own file")
-    with pytest.raises(ClipExistsError, match="--overwrite"):
+    # A library call names its argument; the command line names its option (test_cli).
+    with pytest.raises(ClipExistsError, match="pass overwrite=True") as refused:
         record(Slide(), tmp_path / "frames", fps=FPS, size=(64, 48), progress=False, gif=target)
+    assert refused.value.path == target
     assert target.read_bytes() == b"the teacher's own file"
     assert sorted(os.listdir(tmp_path)) == ["slide.gif"]  # no frames folder, no temp file
     record(Slide(), fps=FPS, size=(64, 48), progress=False, gif=target, overwrite=True)
@@ -228,7 +230,8 @@ SHORT = ["alfred", "--fps", "2", "--seconds", "1", "--size", "160x90"]
 def test_the_cli_writes_a_clip_per_scene_and_checks_them_all_first(ffmpeg, tmp_path, capsys):
     (tmp_path / "lesson-paper.mp4").write_bytes(b"kept")
     code, out, err = run_cli([*SHORT, "--video", str(tmp_path / "lesson.mp4")], capsys)
-    assert code == 1 and "lesson-paper.mp4 already exists" in err and "--overwrite" in err
+    assert code == 1 and "lesson-paper.mp4 already exists" in err
+    assert "add --overwrite to replace it" in err and "overwrite=True" not in err
     assert os.listdir(tmp_path) == ["lesson-paper.mp4"]  # refused before the first scene
     code, out, err = run_cli(
         [*SHORT, "--video", str(tmp_path / "lesson.mp4"), "--overwrite"], capsys

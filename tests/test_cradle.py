@@ -16,7 +16,7 @@ import pytest
 import demos.cradle as cradle
 from demos.cli import main
 from engine import Vector
-from engine.render import iter_frames
+from engine.render import frame_count, iter_frames, marks
 
 #: The moment the first ball (pulled back PULL m, at SPEED m/s) meets the row.
 T_HIT = cradle.PULL / cradle.SPEED
@@ -325,3 +325,14 @@ def test_the_hung_frames_draw_the_rods_each_ball_where_it_is_and_its_velocity_as
                 assert (rows < zero).all() if v > 0 else (rows >= zero).all(), (t, k)
         checked += 1
     assert checked == 41
+
+
+@pytest.mark.parametrize("name", ["five", "two", "heavy"])
+def test_every_velocity_arrow_stays_whole_in_the_frame(name: str) -> None:
+    # The heavy scene's ball 5 ran its arrowhead into the right edge by frame 105.
+    scene = cradle.DEMO.scenes[name]()
+    last = frame_count(scene.duration, 30) - 1
+    for k, _, surface in iter_frames(scene, fps=30, size=(640, 360), only={0, last // 2, last}):
+        heads = [m for m in marks.marks(surface) if m.kind == "arrowhead"]
+        assert heads, k
+        assert marks.problems(surface) == [], k

@@ -172,6 +172,9 @@ def test_body_constructor_accepts_only_finite_states_of_one_dimension(
     p: Any, v: Any, a: Any, mass: Any
 ) -> None:
     ok, body = attempt(lambda: Body(p, v, a, mass), "position", "velocity", "acceleration", "mass")
+    # None for the velocity or the acceleration is the default: zero, of the position's kind.
+    zero = {1: 0.0, 2: (0.0, 0.0)}.get(_dim(p) or 0, 0.0)
+    v, a = (zero if s is None else s for s in (v, a))
     dims = {_dim(p), _dim(v), _dim(a)}
     valid = (
         len(dims) == 1

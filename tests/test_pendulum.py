@@ -16,7 +16,7 @@ import demos.pendulum as pendulum
 from demos.bench.pendulum import agm, pendulum_world, period
 from demos.cli import main
 from engine import Body, Vector, World
-from engine.render import iter_frames
+from engine.render import iter_frames, marks
 
 G, L, DT = pendulum.G, pendulum.LENGTH, 1.0 / 240.0
 
@@ -249,3 +249,40 @@ def test_the_strobes_are_motion_diagrams(tmp_path: Path) -> None:
 def test_the_demo_lists_its_scenes() -> None:
     assert list(pendulum.DEMO.scenes) == ["single", "double", "chain"]
     assert all(isinstance(b, Body) for b in pendulum.Chain().bobs)
+
+
+def test_the_single_pendulums_words_stay_clear_of_its_lines() -> None:
+    # The dashed 1T and 2T lines crossed the caption; the kinetic energy's peaks touched the
+    # read-out of the total (and the potential's troughs the names of the curves).
+    scene = pendulum.SingleScene()
+    for k, _, surface in iter_frames(scene, fps=30, size=(640, 360), only={300}):  # t = 10 s
+        assert marks.problems(surface) == [], k
+        found = {m.text: m.rect for m in marks.marks(surface)}
+        dashes = [m.rect for m in marks.marks(surface) if m.kind == "marker"]
+        assert len(dashes) == 3  # 1T, 2T, 3T within 10 s
+        history = scene.single.history
+        ts = [p.t for p in history]
+        curves = {
+            scene.theta_plot: [[p.theta for p in history]],
+            scene.energy_plot: [
+                [p.kinetic for p in history],
+                [p.potential for p in history],
+                [p.kinetic + p.potential for p in history],
+            ],
+        }
+        names = ("dashed:", "E = KE", "KE", "PE")
+        words = [r for text, r in found.items() if text.startswith(names)]
+        assert len(words) == 4
+        for plot, ys in curves.items():
+            for values in ys:
+                px, py = plot.to_px(np.array(ts), np.array(values))
+                points = np.column_stack((px, py))
+                for box in words:
+                    near = box.inflate(2, 2)  # a pixel of air around the letters
+                    inside = (
+                        (points[:, 0] >= near.left)
+                        & (points[:, 0] < near.right)
+                        & (points[:, 1] >= near.top)
+                        & (points[:, 1] < near.bottom)
+                    )
+                    assert not inside.any(), (box, points[inside][:3])

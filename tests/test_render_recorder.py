@@ -1,5 +1,6 @@
 """The recorder drives a scene through the fixed-step loop, drawing each frame at its own time."""
 
+import argparse
 import math
 import subprocess
 import sys
@@ -154,6 +155,37 @@ def test_progress_is_quiet_off_a_terminal_and_after_a_delay_on_one():
     bar(10, 10)
     bar.done()
     assert tty.text.startswith("\rstroll 10/10 frames 100%") and tty.text.endswith("\n")
+
+
+def test_the_tradeoff_progress_line_counts_runs_and_says_how_long_it_all_takes(
+    monkeypatch, tmp_path
+):
+    # The whole tradeoff demo took minutes and nothing said so before it started.
+    import demos.tradeoff as tradeoff
+
+    lines = []
+
+    class Seen(Progress):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs, stream=FakeTerminal(True), delay=0.0)
+            lines.append(self)
+
+    monkeypatch.setattr(tradeoff, "Progress", Seen)
+    monkeypatch.setattr(tradeoff.measure, "sweep", lambda *a, **k: [])
+    monkeypatch.setattr(tradeoff.pendulum, "measure", lambda quick, progress: progress(1, 2) or [])
+
+    class Stop(Exception):
+        pass
+
+    def stop(*args, **kwargs):
+        raise Stop
+
+    monkeypatch.setattr(tradeoff, "draw_work_precision", stop)
+    args = argparse.Namespace(quick=False, out=tmp_path, size=None, overwrite=False)
+    with pytest.raises(Stop):
+        tradeoff.run(args)
+    text = lines[1].stream.text
+    assert text.startswith(f"\rtradeoff 2/4 ({tradeoff.TAKES[False]} in all): pendulum 1/2 runs")
 
 
 def test_import_engine_does_not_import_pygame():

@@ -79,3 +79,44 @@ def test_frames_are_not_flat() -> None:
 
                 pixels = pygame.surfarray.array3d(surface).reshape(-1, 3)
                 assert len(np.unique(pixels, axis=0)) > 10
+
+
+def test_orbits_frames_show_each_method_at_its_last_step_with_the_time() -> None:
+    # Frames 0 to 2 (t < dt = 0.1 s) drew the ball at its start while the read-out and the
+    # energy plot already said E/E0 = 1.39 (explicit Euler), 1.08, 0.999: the next step's.
+    from engine.render import marks
+
+    scene = OrbitsScene()
+    y = OMEGA * scene.dt
+    seen = {}
+    for k, t, surface in frames(scene, fps=30, seconds=0.2, size=(640, 360)):
+        texts = [m.text for m in marks.marks(surface)]
+        steps = math.floor(t / scene.dt + 1e-9)  # the steps taken by the frame's time
+        assert f"t = {t:.2f} s: step {steps}" in texts, (k, texts)
+        readouts = [x for x in texts if x.startswith("E/E0 = ")]
+        assert len(readouts) == 4
+        seen[k] = readouts
+        # Explicit Euler's energy is exactly (1 + (omega dt)^2)^n after n steps.
+        assert readouts[0] == f"E/E0 = {(1 + y * y) ** steps:.3g}", (k, readouts)
+        # The ball is where explicit Euler has it after those steps: no blend, none ahead.
+        x, v = np.array([1.0, 0.0]), np.array([0.0, OMEGA])
+        for _ in range(steps):
+            x, v = x + v * scene.dt, v - OMEGA * OMEGA * x * scene.dt
+        assert scene.drawn_positions[0] == pytest.approx(tuple(x), abs=1e-12), k
+        assert marks.problems(surface) == []
+    assert seen[0] == seen[1] == seen[2] == ["E/E0 = 1"] * 4
+    assert seen[3] == ["E/E0 = 1.39", "E/E0 = 1.08", "E/E0 = 1", "E/E0 = 0.999"]
+
+
+def test_limits_marker_of_omega_dt_never_covers_a_limits_name() -> None:
+    # At frame 173 (omega dt = 2.4) the marker covered "Euler, Verlet: 2".
+    from engine.render import marks
+
+    scene = LimitsScene()
+    for k, _, surface in frames(scene, fps=30, size=(640, 360), only={173, *range(0, 346, 9)}):
+        found = marks.marks(surface)
+        (marker,) = [m for m in found if m.text == "omega dt now"]
+        names = [m for m in found if m.text in ("Euler, Verlet: 2", "RK4: 2.83")]
+        assert len(names) == 2
+        assert not any(marker.rect.colliderect(n.rect) for n in names), k
+        assert marks.problems(surface) == [], k

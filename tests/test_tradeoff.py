@@ -14,7 +14,15 @@ import pytest
 
 from demos import cli
 from demos.bench import pendulum, solver
-from demos.tradeoff import COLORS, SOLVER_COLORS, _hidden_under, draw_contacts, draw_work_precision
+from demos.tradeoff import (
+    COLORS,
+    OUTPUTS,
+    SOLVER_COLORS,
+    TAKES,
+    _hidden_under,
+    draw_contacts,
+    draw_work_precision,
+)
 from engine import World
 from engine.measure import PROBLEMS, Point, measure
 
@@ -417,3 +425,20 @@ def _fake_rows() -> list[pendulum.Row]:
         for m in pendulum.METHODS
         for dt in (1 / 30, 1 / 60, 1 / 120)
     ]
+
+
+def test_charts_already_in_the_folder_are_refused_without_overwrite(
+    quick_run: tuple[Path, list[dict[str, str]], str], capsys: pytest.CaptureFixture[str]
+) -> None:
+    # tradeoff overwrote its charts in --out without --overwrite; now it refuses, before
+    # minutes of measuring, as the frame folders are refused.
+    out, _, text = quick_run
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert sorted(before) == sorted(OUTPUTS)
+    code = cli.main(["tradeoff", "--quick", "--out", str(out)], out=io.StringIO())
+    err = capsys.readouterr().err
+    assert code == 1
+    assert f"error: {out / 'work_precision.png'} already exists; add --overwrite" in err
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # nothing measured, kept
+    # Before it starts, a run says how long it takes (the whole run, and --quick).
+    assert f"tradeoff: four measurements, {TAKES[True]} in all" in text

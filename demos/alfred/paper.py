@@ -6,6 +6,7 @@ x(t) = t^2 / 2, y(t) = 2t - t^2, with his position vector from the origin and hi
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 
@@ -31,6 +32,7 @@ from engine.render import (
     draw_vector,
     font,
 )
+from engine.render.marks import marks, panel
 
 from .common import ant_sprite, fmt, font_size, number, sprite_zoom
 
@@ -45,10 +47,11 @@ class Paper(Scene):
     duration = 3.0
     dt = 1.0 / 120.0
     strobe_interval = 0.5
-    #: The sheet of paper, in inches: x0, y0, x1, y1.
+    #: The sheet of paper, in inches: x0, y0, x1, y1 (build() widens it to hold his whole
+    #: walk, every velocity arrow and his body around them).
     box = (-0.4, -3.4, 5.4, 1.5)
     #: A velocity arrow shows this many seconds of travel.
-    arrow_seconds = 0.5
+    arrow_seconds = 0.25
     s0 = Vector(0.0, 0.0)
     v0 = Vector(0.0, 2.0)
     a = Vector(1.0, -2.0)
@@ -67,8 +70,27 @@ class Paper(Scene):
         title_h = font_size(size, 24) + 14
         paper_w = min(w * 0.6, (h - title_h - 10) * 1.1)
         self.paper_rect = pygame.Rect(10, title_h, round(paper_w), h - title_h - 10)
+        self.fit(arrows=True)
+
+    def fit(self, arrows: bool) -> None:
+        """Fit the camera to what the paper must hold: the walk and, with ``arrows``, the tip
+        of every velocity arrow along it (world inches), and around them his body turned any
+        way and the arrowheads (px). The grid then fills the paper (``box``)."""
         inner = self.paper_rect.inflate(-16, -16)
-        self.camera = Camera.fit(self.box, (inner.x, inner.y, inner.w, inner.h))
+        ts = np.linspace(0.0, self.duration, 301)
+        walk = [self.exact(float(t)) for t in ts]
+        points = [p for p, _ in walk]
+        if arrows:
+            points += [p + v * self.arrow_seconds for p, v in walk]
+        x0, _, _, y1 = type(self).box
+        xs, ys = [p.x for p in points] + [x0], [p.y for p in points] + [y1]
+        reach = round(math.hypot(*self.sprite.get_size()) / 2) + 4
+        reach = min(reach, min(inner.w, inner.h) // 4)  # a tiny canvas keeps some paper
+        fit = inner.inflate(-2 * reach, -2 * reach)
+        self.camera = Camera.fit((min(xs), min(ys), max(xs), max(ys)), (fit.x, fit.y, fit.w, fit.h))
+        left, top = self.camera.to_world(inner.left, inner.top)
+        right, bottom = self.camera.to_world(inner.right, inner.bottom)
+        self.box = (left, bottom, right, top)
 
     def exact(self, t: float) -> tuple[Vector, Vector]:
         """Alfred's position (in) and velocity (in/s) at time t by the closed form."""
@@ -111,7 +133,8 @@ class Paper(Scene):
         draw_text(surface, "Alfred on a sheet of paper", (12, 8), font_size(self.size, 24), INK)
         pygame.draw.rect(surface, (255, 255, 255), self.paper_rect)
         pygame.draw.rect(surface, GRID, self.paper_rect, 1)
-        draw_grid(surface, self.camera, self.box, 1.0, unit="in", size=font_size(self.size, 15))
+        with panel(self.paper_rect):
+            draw_grid(surface, self.camera, self.box, 1.0, unit="in", size=font_size(self.size, 15))
         ts = np.linspace(0.0, self.duration, 120)
         xs, ys = ts * ts / 2, 2 * ts - ts * ts
         px, py = self.camera.to_px(xs, ys)
@@ -135,12 +158,20 @@ class Paper(Scene):
                 surface, POSITION, False, list(zip(px.tolist(), py.tolist(), strict=True)), 2
             )
         # Position vector from the origin, velocity arrow along the path.
-        draw_arrow(
-            surface, self.camera.to_px(0.0, 0.0), self.camera.to_px(pos.x, pos.y), POSITION, 3
-        )
-        draw_vector(
-            surface, self.camera, pos, vel, self.arrow_seconds, VELOCITY, label="v", label_side=-1
-        )
+        with panel(self.paper_rect):
+            draw_arrow(
+                surface, self.camera.to_px(0.0, 0.0), self.camera.to_px(pos.x, pos.y), POSITION, 3
+            )
+            draw_vector(
+                surface,
+                self.camera,
+                pos,
+                vel,
+                self.arrow_seconds,
+                VELOCITY,
+                label="v",
+                label_side=-1,
+            )
         # Seen from above, he stands centred on his position.
         anchor = self.camera.to_px(pos.x, pos.y)
         draw_sprite(surface, self.facing(t, vel), anchor, "center")
@@ -180,7 +211,11 @@ class Paper(Scene):
         ]
 
     def draw_strobe(self, surface: pygame.Surface, times: Sequence[float]) -> None:
-        """Alfred at equal time steps along his path, older images fainter, each labelled t."""
+        """Alfred at equal time steps along his path, older images fainter, each labelled t.
+
+        No velocity arrows here: the paper holds his walk alone, drawn larger than in the frames.
+        """
+        self.fit(arrows=False)
         self.draw_paper(surface, max(times))
         n = len(times)
         # Each time's age (0 newest, 1 oldest), pixel position and velocity (in/s).
@@ -197,14 +232,21 @@ class Paper(Scene):
             rect = draw_sprite(surface, image, anchor, "center", alpha=round(255 - 175 * age))
             draw_dot(surface, anchor, 3, INK)
             drawn.append((rect, pygame.mask.from_surface(image)))
-        # Each label goes beside its image, across his heading, where it covers no other ant
-        # and no label: first on the outside of the bend (away from a, where the path is not),
-        # then the inside, a little further out at each try; if none is free, the first place
-        # on the paper.
+        # Each label goes beside its image, where it covers no ant, no position arrow and no
+        # other words (the grid's numbers, the labels placed before it): the nearest such place
+        # around him, trying across his heading first (the outside of the bend, away from a,
+        # where the path is not), then along it and between. If no place is free, the one that
+        # breaks the fewest of these rules, nearest first.
         size = font_size(self.size, 16)
         reach = self.sprite.get_height() / 2  # his legs' reach either side of his axis (px)
         ax, ay = self.a.x, -self.a.y  # a as a pixel direction (pixel y points down)
-        labels: list[pygame.Rect] = []
+        origin = self.camera.to_px(0.0, 0.0)
+        arrows = [(origin, anchor) for _, anchor, _ in states]
+        inside = self.paper_rect
+        arrows += [((inside.left, origin[1]), (inside.right, origin[1]))]  # the axes
+        arrows += [((origin[0], inside.top), (origin[0], inside.bottom))]
+        words = [m.rect for m in marks(surface) if m.kind == "text"]
+        paper = self.paper_rect.inflate(-4, -4)
         for i, t in enumerate(times):
             _, anchor, vel = states[i]
             text = f"t = {number(t)} s"
@@ -212,29 +254,53 @@ class Paper(Scene):
             theta = math.radians(self.heading(t, vel))
             # His heading in pixels is (cos theta, -sin theta) (see facing); across it are
             # (sin theta, cos theta) and its opposite (their dot product with it is 0).
+            ahead = (math.cos(theta), -math.sin(theta))
             across = [(math.sin(theta), math.cos(theta)), (-math.sin(theta), -math.cos(theta))]
             across.sort(key=lambda d: d[0] * ax + d[1] * ay)  # against a first
-            others = drawn[:i] + drawn[i + 1 :]
+            ways = [*across, ahead, (-ahead[0], -ahead[1])]
+            ways += [(a[0] + b[0], a[1] + b[1]) for a in across for b in ways[2:]]
             places = []
-            for gap in (2, 6, 10, 14):
-                for dx, dy in across:
+            for gap in (2, 6, 10, 16, 24, 34):
+                for dx, dy in ways:
+                    norm = math.hypot(dx, dy)
+                    dx, dy = dx / norm, dy / norm
                     # A box w x h reaches |dx| w/2 + |dy| h/2 from its centre in the direction
                     # (dx, dy): centred this far out, all of it lies gap px beyond his legs.
                     r = reach + abs(dx) * box.w / 2 + abs(dy) * box.h / 2 + gap
                     places.append((anchor[0] + dx * r, anchor[1] + dy * r))
-            on_paper = []
-            for place in places:
-                box.center = (round(place[0]), round(place[1]))
-                if self.paper_rect.contains(box):
-                    on_paper.append(place)
-                    if box.collidelist(labels) < 0 and not _covers(box, others):
-                        point = place
-                        break
-            else:
-                point = (on_paper or places)[0]
-            labels.append(draw_text(surface, text, point, size, INK, "center"))
+
+            others = [state[1] for state in states]
+            faults = functools.partial(_faults, box, anchor, others, words, drawn, arrows, paper)
+            point = min(places, key=faults)  # the first of the fewest: nearest, in order
+            words.append(draw_text(surface, text, point, size, INK, "center"))
         pos, vel = self.exact(max(times))
         self.draw_numbers(surface, max(times), pos, vel)
+
+
+def _faults(
+    box: pygame.Rect,
+    anchor: tuple[float, float],
+    anchors: Sequence[tuple[float, float]],
+    words: Sequence[pygame.Rect],
+    images: Sequence[tuple[pygame.Rect, pygame.mask.Mask]],
+    lines: Sequence[tuple[tuple[float, float], tuple[float, float]]],
+    paper: pygame.Rect,
+    place: tuple[float, float],
+) -> int:
+    """How many rules a label ``box`` centred at ``place`` breaks, for the Alfred at ``anchor``
+    (px): off the ``paper`` (counts 99), on other ``words`` (with a few px to spare), on an
+    Alfred among ``images``, across one of ``lines`` (the arrows and axes), nearer another of
+    the ``anchors`` than its own."""
+    box.center = (round(place[0]), round(place[1]))
+    if not paper.contains(box):
+        return 99
+    mine = math.dist(box.center, anchor)
+    return (
+        (box.inflate(6, 4).collidelist(list(words)) >= 0)
+        + _covers(box, images)
+        + any(box.clipline(a, b) for a, b in lines)
+        + any(math.dist(box.center, other) < mine for other in anchors)
+    )
 
 
 def _covers(box: pygame.Rect, images: Sequence[tuple[pygame.Rect, pygame.mask.Mask]]) -> bool:

@@ -167,11 +167,21 @@ class TubeScene(Scene):
         rows = len(self.ants)
         # With two tubes, a column on the left names them.
         self.label_width = round(0.2 * w) if rows > 1 else 0
-        # The tube spans 0..10 in; leave 0.7 in each side for Alfred's body and the arrows.
-        scale = (w - 40 - self.label_width) / (TUBE_LENGTH + 1.4)
+        # The tube spans 0..10 in; leave 0.7 in on the left for Alfred's body, and on the
+        # right room for his longest velocity arrow (its head 11 px past its length).
+        reach = self.arrow_seconds * max(self.top_speed(ant) for ant in self.ants)
+        right = max(0.7, reach)
+        scale = (w - 40 - 11 - self.label_width) / (TUBE_LENGTH + 0.7 + right)
         # Pixel rows of the tube tops: below the title, with room above each tube for Alfred
         # (35 px) and his velocity arrow; the ruler under the last tube; plots below that.
         first = (0.33 if rows == 1 else 0.31) * h
+        # Room above the first tube, under the two lines of title, for Alfred and the label
+        # of his velocity arrow, whatever the canvas.
+        big, small = font_size(size, 24), font_size(size, 17)
+        under_title = 10 + big + font(small).get_linesize()
+        label = font(font_size(size, 18)).get_height()
+        sprite_h = ant_sprite(zoom=sprite_zoom(size)).get_height()
+        first = max(first, under_title + label + 9 + sprite_h)
         row_px = [first + 0.215 * h * i for i in range(rows)]
         self.camera = Camera(scale, (20 + self.label_width + 0.7 * scale, row_px[0]))
         for ant, px in zip(self.ants, row_px, strict=True):
@@ -187,7 +197,7 @@ class TubeScene(Scene):
             ("a(t)  in/s\u00b2", self.a_range, ACCELERATION),
         ]
         # On a small canvas there is no room for readable plots: leave them out.
-        fits = pw >= 120 and ph >= 80
+        fits = pw >= 120 and ph >= 70
         self.plots = [
             Plot(
                 (12 + i * (pw + gap), plot_top, pw, ph),
@@ -202,6 +212,23 @@ class TubeScene(Scene):
             if fits
         ]
         self.world = Tubes(self.ants)
+
+    def top_speed(self, ant: Ant) -> float:
+        """The fastest Alfred goes (in/s) until he reaches the end or the scene ends.
+
+        A stepped ant's speed is taken from his own method, run ahead on a copy of his body:
+        what he walks at between steps (semi-implicit Euler at dt = 1 s: 1, 2, 3, 4 in/s).
+        """
+        if not ant.stepped:
+            end = min(ant.arrival, self.duration)
+            return max(abs(ant.v0), abs(float(kinematics.velocity(ant.v0, ant.a, end))))
+        world = World(integrator=ant.world.integrator)
+        body = world.add(Body(ant.s0, ant.v0, ant.a))
+        fastest, s = abs(ant.v0), ant.s0
+        while s < TUBE_LENGTH and world.t < self.duration:
+            world.step(self.dt)
+            s, fastest = float(body.pos), max(fastest, abs(float(body.vel)))
+        return fastest
 
     # --- where an ant is -------------------------------------------------------------------
 
@@ -236,8 +263,12 @@ class TubeScene(Scene):
         return history[-1][1], 0.0
 
     def velocity(self, ant: Ant, t: float) -> float:
-        """Alfred's velocity (in/s) at t: for a stepped ant, the slope he is drawn moving at."""
-        if t >= ant.arrival:
+        """Alfred's velocity (in/s) at t: for a stepped ant, the slope he is drawn moving at.
+
+        At the moment he reaches the end he still has the speed he arrived with; after it he
+        stands still.
+        """
+        if t > ant.arrival:
             return 0.0
         if ant.stepped:
             return self._stepped_at(ant, t)[1]
@@ -253,8 +284,9 @@ class TubeScene(Scene):
             s = self.position(ant, t, alpha)
             anchor = self.camera.to_px(s, ant.row)
             v = self.velocity(ant, t)
-            if t < ant.arrival and v != 0.0:
-                arrow_y = anchor[1] - ant.sprite.get_height() - 9
+            arrow_y = anchor[1] - ant.sprite.get_height() - 9
+            size = font_size(self.size, 18)
+            if v != 0.0:
                 draw_vector(
                     surface,
                     self.camera,
@@ -262,12 +294,32 @@ class TubeScene(Scene):
                     v,
                     self.arrow_seconds,
                     VELOCITY,
-                    label=f"v = {fmt(v, 1)} in/s",
+                    label=self.speed_label(ant, t, v),
                     label_side=0,
-                    label_size=font_size(self.size, 18),
+                    label_size=size,
                 )
+            else:
+                # No arrow to draw: say so, where it would be.
+                still = "v = 0: at the end" if t > ant.arrival else "v = 0 in/s"
+                draw_text(surface, still, (anchor[0], arrow_y), size, VELOCITY, "midleft")
             draw_sprite(surface, ant.sprite, anchor, "midbottom")
         self.draw_plots(surface, t)
+
+    def speed_label(self, ant: Ant, t: float, v: float) -> str:
+        """The words by his velocity arrow: v, and for a stepped ant, which moment's it is.
+
+        Semi-implicit Euler moves each step at the velocity it has at the step's end, so the
+        ant the lesson lets go from rest at t = 0 walks the first second at v(1 s) = 1 in/s.
+        """
+        if not ant.stepped:
+            return f"v = {fmt(v, 1)} in/s"
+        history = ant.history
+        # The step he is drawn walking (as _stepped_at finds it) ends at t1.
+        t1 = next(
+            (b[0] for a, b in zip(history, history[1:], strict=False) if a[0] <= t <= b[0]),
+            ant.world.t,
+        )
+        return f"v({number(t1)} s) = {fmt(v, 1)} in/s"
 
     def draw_background(self, surface: pygame.Surface, t: float, clock: str = "") -> None:
         """Paper, title, the time (or ``clock``), the tubes with their names and the ruler."""

@@ -13,7 +13,8 @@ from collections.abc import Sequence
 import numpy as np
 import pygame
 
-from engine.render.draw import GRID, INK, MUTED, Color, draw_text, font
+from engine.render import marks
+from engine.render.draw import GRID, INK, MUTED, Color, draw_text, font, ink
 
 __all__ = ["LogLogChart", "decade_range", "draw_power_of_ten", "draw_legend"]
 
@@ -54,6 +55,8 @@ def draw_power_of_ten(
     surface.blit(base, (rect.left, rect.bottom - base.get_height()))
     if exp is not None:
         surface.blit(exp, (rect.left + base.get_width() + 1, rect.top))
+    text = "1" if exponent == 0 else "10" if exponent == 1 else f"10^{exponent}"
+    marks.note(surface, "text", rect.inflate(-2, -2), text)
     return rect
 
 
@@ -104,6 +107,11 @@ class LogLogChart:
 
     def draw_frame(self, surface: pygame.Surface) -> None:
         """Background, a grid line at every power of ten, numbered decades, labels and title."""
+        with marks.panel(self.rect):
+            marks.note(surface, "panel", self.rect)
+            self._draw_frame(surface)
+
+    def _draw_frame(self, surface: pygame.Surface) -> None:
         pygame.draw.rect(surface, (255, 255, 255), self.rect, border_radius=4)
         pygame.draw.rect(surface, GRID, self.rect, 1, border_radius=4)
         a = self.area
@@ -117,13 +125,19 @@ class LogLogChart:
             py = round(float(self.to_px(1.0, 10.0**k)[1]))
             pygame.draw.line(surface, GRID, (a.left, py), (a.right - 1, py), 1)
             if (k - y0) % self.y_label_every == 0:
-                draw_power_of_ten(surface, k, (a.left - 4, py), 16, MUTED, "midright")
+                # The lowest sits above its line, clear of the x axis's first number.
+                anchor = "bottomright" if k == y0 else "midright"
+                draw_power_of_ten(surface, k, (a.left - 4, py + (k == y0)), 16, MUTED, anchor)
         pygame.draw.rect(surface, INK, a, 1)
         draw_text(surface, self.title, (self.rect.left + 8, self.rect.top + 6), 22, INK)
         draw_text(surface, self.x_label, (a.centerx, a.bottom + 22), 16, INK, "midtop")
         label = font(16).render(self.y_label, True, INK)
         label = pygame.transform.rotate(label, 90)
-        surface.blit(label, label.get_rect(midleft=(self.rect.left + 3, a.centery)))
+        where = label.get_rect(midleft=(self.rect.left + 3, a.centery))
+        surface.blit(label, where)
+        box = ink(self.y_label, 16)  # turned a quarter left: (x, y) -> (y, width - x)
+        turned = pygame.Rect(box.top, where.height - box.right, box.height, box.width)
+        marks.note(surface, "text", turned.move(where.topleft), self.y_label)
 
     def draw_series(
         self,
@@ -209,6 +223,8 @@ def draw_legend(
         pygame.draw.line(surface, color, (x, mid), (x + 26, mid), max(2, width))
         pygame.draw.circle(surface, color, (x + 13, mid), 4)
         surface.blit(text, (x + 34, mid - text.get_height() // 2))
+        box = ink(label, size).move(x + 34, mid - text.get_height() // 2)
+        marks.note(surface, "text", box, label)
         x += w
         right = max(right, x)
     return pygame.Rect(x0, pos[1], right - x0, y + row_h - pos[1])

@@ -80,7 +80,11 @@ class EncoderUnavailableError(ImportError):
 
 
 class ClipExistsError(FileExistsError):
-    """The clip's file already exists and overwriting was not asked for."""
+    """The clip's file (``path``) already exists and overwriting was not asked for."""
+
+    def __init__(self, message: str, path: Path | None = None) -> None:
+        super().__init__(message)
+        self.path = path
 
 
 class ClipWriteError(OSError):
@@ -133,8 +137,8 @@ def check_clip_path(path: object, kind: str, overwrite: bool = False) -> Path:
         )
     if target.exists() and not overwrite:
         raise ClipExistsError(
-            f"{target} already exists; pass overwrite=True (--overwrite) to replace it, "
-            "or choose another name"
+            f"{target} already exists; pass overwrite=True to replace it, or choose another name",
+            target,
         )
     return target
 

@@ -12,11 +12,12 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import pygame
 
+from engine.render import marks
 from engine.render.camera import Camera
 
 __all__ = [
@@ -71,6 +72,21 @@ def _rendered(
     return font(size).render(text, True, color, background)
 
 
+@functools.lru_cache(maxsize=1024)
+def ink(text: str, size: int) -> pygame.Rect:
+    """The box of the pixels ``text`` inks at ``size``, within its rendered image (px).
+
+    The font's own box is a pixel or two wider and taller than the letters; the marks of a
+    frame (``engine.render.marks``) hold this tighter one, so lines set close but clear of
+    each other do not count as touching.
+    """
+    image = font(size).render(text, True, (0, 0, 0))
+    boxes = cast(list[pygame.Rect], pygame.mask.from_surface(image).get_bounding_rects())
+    if not boxes:
+        return pygame.Rect(0, 0, 0, 0)
+    return boxes[0].unionall(boxes[1:])
+
+
 def draw_text(
     surface: pygame.Surface,
     text: str,
@@ -87,6 +103,8 @@ def draw_text(
         raise ValueError(f"anchor must be a pygame.Rect position such as 'center', got {anchor!r}")
     setattr(rect, anchor, (round(pos[0]), round(pos[1])))
     surface.blit(image, rect)
+    box = rect if background is not None else ink(text, size).move(rect.topleft)
+    marks.note(surface, "text", box, text)
     return rect
 
 
@@ -166,6 +184,10 @@ def draw_arrow(
     ]
     pygame.draw.polygon(surface, color, tip)
     pygame.draw.aalines(surface, color, True, tip)
+    xs, ys = [p[0] for p in tip], [p[1] for p in tip]
+    left, top = math.floor(min(xs)), math.floor(min(ys))
+    head_box = pygame.Rect(left, top, math.ceil(max(xs)) - left + 1, math.ceil(max(ys)) - top + 1)
+    marks.note(surface, "arrowhead", head_box)
 
 
 def _as_xy(value: Any) -> tuple[float, float]:
@@ -201,15 +223,14 @@ def draw_vector(
     end = camera.to_px(tx + vx * scale, ty + vy * scale)
     draw_arrow(surface, start, end, color, width)
     if label and label_side == 0:
-        image = font(label_size).render(label, True, color)
-        rect = image.get_rect()
+        rect = pygame.Rect((0, 0), font(label_size).size(label))
         forward = end[0] >= start[0]
         rect.midleft = (round(max(end[0], start[0]) + 6), round(end[1]))
         if not forward or rect.right > surface.get_width():
             rect.midright = (round(min(end[0], start[0]) - 6), round(end[1]))
         if forward and rect.left < 0:
             rect.midleft = (round(end[0] + 6), round(end[1]))
-        surface.blit(image, rect)
+        draw_text(surface, label, rect.topleft, label_size, color)
     elif label:
         dx, dy = end[0] - start[0], end[1] - start[1]
         length = math.hypot(dx, dy)
@@ -336,7 +357,10 @@ def draw_grid(
         px = round(camera.to_px(float(x))[0])
         last = draw_text(surface, _number(float(x)), (px, label_y + 3), size, MUTED, "midtop")
     if unit and last is not None:
-        draw_text(surface, unit, (last.right + 3, last.top), size, MUTED)
+        if last.right + 3 + font(size).size(unit)[0] <= right:
+            draw_text(surface, unit, (last.right + 3, last.top), size, MUTED)
+        else:  # no room after the last number, within the box: under it
+            draw_text(surface, unit, (last.centerx, last.bottom), size, MUTED, "midtop")
     label_x = min(max(ox, round(left)), round(right))
     for yv in _ticks(y0, y1, step):
         if yv == 0.0:

@@ -48,7 +48,13 @@ class FrameWriteError(OSError):
 
 
 class FramesExistError(FileExistsError):
-    """The output folder already holds frames and overwriting was not asked for."""
+    """The output folder already holds frames (or a file to be written exists) and
+    overwriting was not asked for. ``path`` is the folder or file, ``count`` the frames found
+    in the folder (None for a single file)."""
+
+    def __init__(self, message: str, path: Path | None = None, count: int | None = None) -> None:
+        super().__init__(message)
+        self.path, self.count = path, count
 
 
 def frame_name(index: int) -> str:
@@ -208,7 +214,7 @@ def save_png(
     target = Path(path)
     if target.exists() and not overwrite:
         raise FramesExistError(
-            f"{target} already exists; pass overwrite=True (--overwrite) to replace it"
+            f"{target} already exists; pass overwrite=True to replace it", target
         )
     width, height = surface.get_size()
     data = encode_png(pygame.image.tobytes(surface, "RGB"), width, height)
@@ -285,7 +291,9 @@ class FrameWriter:
         if frames and not overwrite:
             raise FramesExistError(
                 f"{self.folder} already holds {len(frames)} frame(s); "
-                "pass overwrite=True (--overwrite) to replace them, or choose another folder"
+                "pass overwrite=True to replace them, or choose another folder",
+                self.folder,
+                len(frames),
             )
         stale = frames + [name for name in names if _TEMP_PATTERN.fullmatch(name)]
         try:

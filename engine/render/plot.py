@@ -13,7 +13,9 @@ from collections.abc import Sequence
 import numpy as np
 import pygame
 
-from engine.render.draw import GRID, INK, MUTED, Color, _number, _ticks, draw_text
+from engine.render import marks
+from engine.render.draw import GRID, INK, MUTED, Color, _number, _ticks, draw_text, font, ink
+from engine.render.marks import panel
 
 __all__ = ["Plot"]
 
@@ -54,13 +56,25 @@ class Plot:
         k = self.text_scale
         self.number_size = round(15 * k)
         self.title_size = round(18 * k)
-        # The plotting area: room on the left for y numbers, below for t numbers, above for title.
+        # The plotting area: room on the left for y numbers (the widest, 4 px from the axis
+        # and 3 px from the panel's edge), below for t numbers, above for the title.
+        numbers = [_number(float(y)) for y in self._y_ticks()]
+        size = self.number_size
+        widest = max((font(size).size(t)[0] - ink(t, size).left for t in numbers), default=0)
+        left = max(round(26 * k), widest + 4 + 3)
+        # The top y number, centred on the top grid line, stays a pixel under the title.
+        top_number = _number(float(self._y_ticks()[-1])) if len(self._y_ticks()) else "0"
+        half = font(size).size(top_number)[1] // 2 - ink(top_number, size).top
+        top = max(round(20 * k), 3 + ink(title, self.title_size).bottom + 1 + half)
         self.area = pygame.Rect(
-            self.rect.left + round(26 * k),
-            self.rect.top + round(20 * k),
-            self.rect.width - round(34 * k),
-            self.rect.height - round(38 * k),
+            self.rect.left + left,
+            self.rect.top + top,
+            self.rect.width - left - round(8 * k),
+            self.rect.height - top - round(18 * k),
         )
+
+    def _y_ticks(self) -> np.ndarray:
+        return _ticks(self.y_min, self.y_max, self.y_step)
 
     def to_px(self, t: np.ndarray | float, y: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """Pixel coordinates of the point (t s, y) inside the panel (y up)."""
@@ -72,6 +86,11 @@ class Plot:
 
     def draw_frame(self, surface: pygame.Surface) -> None:
         """The panel's background, grid, axes, tick numbers and title."""
+        with panel(self.rect):
+            marks.note(surface, "panel", self.rect)
+            self._draw_frame(surface)
+
+    def _draw_frame(self, surface: pygame.Surface) -> None:
         pygame.draw.rect(surface, (255, 255, 255), self.rect, border_radius=4)
         pygame.draw.rect(surface, GRID, self.rect, 1, border_radius=4)
         a = self.area
@@ -81,7 +100,7 @@ class Plot:
             draw_text(
                 surface, _number(float(t)), (px, a.bottom + 2), self.number_size, MUTED, "midtop"
             )
-        for y in _ticks(self.y_min, self.y_max, self.y_step):
+        for y in self._y_ticks():
             py = round(float(self.to_px(0.0, y)[1]))
             pygame.draw.line(surface, GRID, (a.left, py), (a.right - 1, py), 1)
             draw_text(

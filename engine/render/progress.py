@@ -12,6 +12,8 @@ __all__ = ["Progress"]
 class Progress:
     """Call it with (done, total) after each frame; it shows ``label 120/331 frames 36%``.
 
+    ``unit`` names what is counted ("frames"; a measurement counts "runs").
+
     Nothing is printed until ``delay`` seconds (default 2 s) have passed, so short renders stay
     quiet, and nothing at all when ``stream`` is not a terminal (pipes, logs, tests). The line is
     redrawn in place at most ``rate`` times a second and ended with a newline by :meth:`done`.
@@ -24,9 +26,11 @@ class Progress:
         delay: float = 2.0,
         rate: float = 10.0,
         force: bool = False,
+        unit: str = "frames",
     ) -> None:
         self.stream = sys.stderr if stream is None else stream
         self.label = label
+        self.unit = unit
         self.delay = delay
         self.interval = 1.0 / rate
         isatty = getattr(self.stream, "isatty", None)
@@ -47,7 +51,8 @@ class Progress:
         elapsed = now - self._start
         rate = done / elapsed if elapsed > 0 else 0.0
         prefix = f"{self.label} " if self.label else ""
-        self.stream.write(f"\r{prefix}{done}/{total} frames {percent:3d}%  {rate:5.0f} frames/s ")
+        unit = self.unit
+        self.stream.write(f"\r{prefix}{done}/{total} {unit} {percent:3d}%  {rate:5.0f} {unit}/s ")
         self.stream.flush()
         self._shown = True
 

@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Container, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 import pygame
 
 from engine.loop import FixedStep, RealClock, VirtualClock
+from engine.render import marks
 from engine.render.clips import (
     ClipWriter,
     check_clip_path,
@@ -133,11 +134,16 @@ def iter_frames(
     fps: int = 30,
     seconds: float | None = None,
     size: tuple[int, int] = (640, 360),
+    only: Container[int] | None = None,
 ) -> Iterator[tuple[int, float, pygame.Surface]]:
     """Build ``scene`` and yield (index, t, surface) for each frame; the surface is reused.
 
+    ``only``: the frame indices to draw and yield (default: every one); the scene is stepped
+    through the others as for a whole recording, so frame k is the same picture either way.
+
     Frame ``index`` shows the simulated time ``t = index / fps`` s. The same surface object is
-    drawn on for every frame, so save or copy it before asking for the next one.
+    drawn on for every frame, so save or copy it before asking for the next one. While a frame
+    is yielded, ``engine.render.marks.marks(surface)`` lists the labels and arrowheads on it.
     """
     fps = _check_fps(fps)
     seconds = _check_seconds(scene.duration if seconds is None else seconds)
@@ -155,6 +161,9 @@ def iter_frames(
         if index > 0:
             for _ in range(loop.advance(clock.tick())):
                 scene.step(scene.dt)
+        if only is not None and index not in only:
+            continue
+        marks.clear(surface)
         scene.draw(surface, loop.alpha)
         yield index, index / fps, surface
 
@@ -290,8 +299,14 @@ def strobe(
     init_headless()
     surface = pygame.Surface(size)
     scene.build(size)
-    scene.draw_strobe(surface, scene.strobe_times() if times is None else times)
+    draw_strobe(scene, surface, times)
     return save_png(surface, path, overwrite=overwrite)
+
+
+def draw_strobe(scene: Scene, surface: pygame.Surface, times: list[float] | None = None) -> None:
+    """Draw ``scene``'s motion diagram (built already) on ``surface``, its marks noted afresh."""
+    marks.clear(surface)
+    scene.draw_strobe(surface, scene.strobe_times() if times is None else times)
 
 
 def play(
@@ -338,6 +353,7 @@ def play(
                 frame = 0.0 if paused else max(0.0, min(elapsed, remaining))
                 for _ in range(loop.advance(frame)):
                     scene.step(scene.dt)
+                marks.clear(screen)
                 scene.draw(screen, loop.alpha)
                 pygame.display.flip()
                 limiter.tick(fps)
