@@ -27,15 +27,14 @@ What makes the choice at each peg close to a fair, independent coin (see ``Board
   a few rows the jitter of the start is amplified into a choice no smooth rule predicts.
   Without friction a ball cannot stick on a peg (the engine's particles do not roll, and
   static friction would hold one near a peg's top for ever).
-* Balls differ a little, as real ones do. Each ball's restitution is drawn (seeded) from 0.6
-  to 0.75. How much a ball's choices depend on each other varies sharply with restitution
-  (with one value for all, 0.67 gives a variance of the bins 24% too small and 0.73 one 36%
+* Balls differ a little, as real ones do. Each ball's restitution is drawn (seeded) from 0.5
+  to 0.7. How much a ball's choices depend on each other varies sharply with restitution
+  (with one value for all, 0.67 gives a variance of the bins 28% too small and 0.73 one 41%
   too large, 1,000 balls each, measured on 2026-11-25); a spread of values averages those
   resonances out.
 * The step. The engine brings a rebound slower than |a_n| dt / 2 to rest on the peg, so dt
-  is part of the model: at ``DT`` = 1/60 s the bins' variance came out 0.94 to 1.11 times the
-  binomial's in the runs of 1,000 balls measured (seeds, lanes), at 1/120 s 1.21 times (the
-  test's pour, measured on 2026-11-25).
+  is part of the model: in the test's pour of 1,000 balls the bins' variance is 0.98 times
+  the binomial's at ``DT`` = 1/60 s and 1.05 times at 1/120 s (measured on 2026-11-25).
 * Guard pegs and walls. The outer pegs of each row have a guard peg beside them, half in the
   side wall, where the next peg of an endless lattice would be, so a ball at the edge of the
   triangle chooses as freely as one in the middle, and no pocket between a wall and a peg
@@ -49,8 +48,8 @@ The pour is sparse enough (one ball every 0.5 s, each taking about 2 s to cross 
 that balls seldom meet on the pegs: of the first 300, 20 touch another one above the counting
 line. Two balls that meet, squeezed between pegs, can sink into each other, deeper than the
 contact solver keeps a pile (its limits are in the README): in the default run (seed 1, 60 s)
-the deepest is 42% of a radius, at 56.9 s (``tests/test_galton.py`` checks it), and in the
-same 60 s for seeds 2 to 8 it was 0 to 16% (measured on 2026-11-25; ``python -m demos galton
+the deepest is 21% of a radius, at 21.4 s (``tests/test_galton.py`` checks it), and in the
+same 60 s for seeds 2 to 8 it was 7 to 27% (measured on 2026-11-25; ``python -m demos galton
 --seed N`` shows it on the frame once past 5%). The World says so once, with a
 ``StabilityWarning``; the frame shows it and the deepest overlap so far (``Galton.deepest``)
 instead of a line on stderr. It changes no count: the balls part again and each still lands
@@ -132,7 +131,7 @@ class Board:
     ball_radius: float = 0.4
     #: Each ball's restitution is drawn uniformly from this range; pegs and walls keep the
     #: default material (1.0, 1.0), so the ball's own is in force. No friction: see the module.
-    restitution: tuple[float, float] = (0.6, 0.75)
+    restitution: tuple[float, float] = (0.5, 0.7)
     friction: float = 0.0
     #: Half the width of the funnel's neck, and the largest jitter of a ball's start in x.
     neck: float = 0.8

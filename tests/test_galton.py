@@ -192,21 +192,23 @@ def test_a_frame_shows_the_pegs_the_balls_and_the_histogram() -> None:
     width = r.width / (ROWS + 1)
     per_ball = r.height / scene.histogram_top(counts)
     for k, c in enumerate(counts):
-        # A column near the bar's left edge and one near its right: the binomial's dots are
-        # at its middle, and its line crosses each column at one place, 2 px thick (more
-        # where it is steep: the column it crosses more flatly is the one measured).
-        columns = [math.ceil(r.left + k * width) + 2, math.floor(r.left + (k + 1) * width) - 3]
-        bar = max(
-            (
-                np.flatnonzero(np.all(pixels[x, r.top : r.bottom] == galton.BAR, axis=-1))
-                for x in columns
-            ),
-            key=len,
-        )
+        # A column near the bar's left edge: from the histogram's floor up, the bar as tall
+        # as its count (a bin that just took a ball wears a red cap, in the bar's height),
+        # crossed only by the binomial's line: nothing of the background shows in it.
+        x = math.ceil(r.left + k * width) + 2
+        column = pixels[x, r.top : r.bottom]
+        ink = np.all(column == galton.BAR, axis=-1) | np.all(column == galton.BALL, axis=-1)
+        bar = np.flatnonzero(ink)
         height = round(c * per_ball)
-        assert height - 4 <= len(bar) <= height, (k, c)
-        if len(bar):
-            assert r.top + bar.min() >= r.bottom - height and r.top + bar.max() == r.bottom - 1
+        if not height:
+            assert not np.all(column == galton.BAR, axis=-1).any(), (k, c)
+            continue
+        assert len(bar) and r.top + bar.max() == r.bottom - 1, (k, c)
+        assert abs((r.bottom - (r.top + bar.min())) - height) <= 1, (k, c, height)
+        inside = column[bar.min() : bar.max() + 1]
+        assert not np.all(inside == column[0], axis=-1).any(), (k, c)  # no background gap
+        crossed = ~(np.all(inside == galton.BAR, axis=-1) | np.all(inside == galton.BALL, axis=-1))
+        assert crossed.sum() <= 8, (k, c, int(crossed.sum()))  # the line's crossing, at most
     assert found(galton.EXPECTED, np.s_[r.left : r.right, r.top : r.bottom]) > 50
 
 
