@@ -194,13 +194,13 @@ class ContactLedger:
                 gap, slack = gaps(ends)
                 still = set(ends[gap <= slack].tolist())
             began, ended = self.began, self.ended
-            known = set(prev.tolist()) if len(prev) < 64 else None
+            known = set(prev.tolist())
             held = self.held
             for spec in raw:
                 k = spec[1]
                 s = state.get(k)
                 if s is None:
-                    s = (k in known) if known is not None else bool(_isin(np.array([k]), prev)[0])
+                    s = k in known
                 if spec[2]:
                     held.pop(k, None)  # it touched again: an end held for it is void
                     if not s:
