@@ -1,6 +1,6 @@
 """Static colliders: the world's walls, floors, pegs and rooms, which bodies with a size meet.
 
-Four shapes, each with a material (``restitution``, ``friction``) and a ``sensor`` flag:
+Five shapes, each with a material (``restitution``, ``friction``) and a ``sensor`` flag:
 
 * ``Plane(point, normal)``: an infinite floor or wall; the solid side is behind ``normal``.
 * ``Segment(a, b, radius=0.0)``: a thin wall from a to b, or a capsule when ``radius`` > 0
@@ -8,6 +8,8 @@ Four shapes, each with a material (``restitution``, ``friction``) and a ``sensor
 * ``Circle(center, radius)``: a peg or a bumper.
 * ``Box(lower_left, upper_right)``: the walls of a room that holds bodies *inside*: its
   solid is everything outside the rectangle.
+* ``Polygon(vertices, radius=0.0)``: a convex polygon, solid inside, rounded by ``radius``
+  when it is > 0; ``Polygon.box(width, height)`` makes a box-shaped one (a crate, a step).
 
 Add one with ``world.add_collider(c)``. A body of radius r touches a collider when its centre
 is at distance r from the collider's surface.
@@ -41,12 +43,12 @@ import math
 from numbers import Real
 from typing import Any
 
-from . import checks
+from . import checks, convex
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter
 from .vector import Vector, _as_pair
 
-__all__ = ["Collider", "Plane", "Segment", "Circle", "Box", "point_of"]
+__all__ = ["Collider", "Plane", "Segment", "Circle", "Box", "Polygon", "point_of"]
 
 
 def point_of(value: Any, name: str) -> tuple[float, float]:
@@ -359,7 +361,11 @@ class Circle(Collider):
 
 
 class Box(Collider):
-    """The four walls of a room from ``lower_left`` to ``upper_right``; bodies stay inside."""
+    """The four walls of a room from ``lower_left`` to ``upper_right``; bodies stay inside.
+
+    Its solid is everything *outside* the rectangle; for a solid box-shaped thing that bodies
+    bounce off and rest on (a crate, a step), use ``Polygon.box(width, height, center)``.
+    """
 
     __slots__ = ("lower_left", "upper_right")
 
@@ -414,3 +420,158 @@ class Box(Collider):
         return (
             f"Box({tuple(self.lower_left)!r}, {tuple(self.upper_right)!r}{self._material_repr()})"
         )
+
+
+class Polygon(Collider):
+    """A solid convex polygon, rounded by ``radius`` (length units) when it is > 0.
+
+    ``vertices`` are 3 to 8 points (``engine.convex.MAX_VERTICES``), in either order round the
+    polygon: clockwise input is reversed, so ``vertices`` always runs counter-clockwise.
+    A polygon that is not convex is refused (split it into convex ones), as are repeated
+    points, a vertex on the line between its neighbours, and points that enclose no area.
+    A rounded polygon is every point within ``radius`` of the polygon (Box2D's rounded box):
+    its corners are round, which lets things roll off them.
+
+    For the exact contacts each edge is a one-sided flat face pushed out by ``radius`` and
+    each vertex a round face of radius ``radius``: a ball of radius r touches the polygon
+    when its centre is r from that surface.
+
+    >>> tri = Polygon([(0, 0), (0, 3), (4, 0)])  # clockwise: reversed
+    >>> [tuple(v) for v in tri.vertices]
+    [(0.0, 0.0), (4.0, 0.0), (0.0, 3.0)]
+    >>> tri.area, tuple(tri.centroid), tri.distance((0, 5))
+    (6.0, (1.3333333333333333, 1.0), 2.0)
+    >>> Polygon.box(2, 1, center=(0, 0.5)).bounds()
+    (-1.0, 0.0, 1.0, 1.0)
+    """
+
+    __slots__ = ("vertices", "normals", "radius", "centroid", "area")
+
+    def __init__(
+        self,
+        vertices: Any,
+        radius: float = 0.0,
+        *,
+        restitution: float = 1.0,
+        friction: float = 1.0,
+        sensor: bool = False,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+    ) -> None:
+        if isinstance(vertices, (str, bytes)) or not hasattr(vertices, "__iter__"):
+            raise TypeError(
+                f"vertices must be a sequence of 2D points such as [(0, 0), (1, 0), (0, 1)], "
+                f"got {type(vertices).__name__} {vertices!r}"
+            )
+        pts = [point_of(v, f"vertices[{i}]") for i, v in enumerate(vertices)]
+        ccw = convex.convex_polygon(pts, "vertices", max_count=convex.MAX_VERTICES)
+        r = checks.real(radius, "radius", nonneg=True)
+        super().__init__(restitution, friction, sensor, filter)
+        #: The corners (length units), counter-clockwise, in the world's frame.
+        self.vertices = tuple(Vector(x, y) for x, y in ccw)
+        #: The outward unit normal of each edge, from vertices[i] to vertices[i + 1].
+        self.normals = tuple(Vector(x, y) for x, y in convex.edge_normals(ccw))
+        #: The rounding (length units): the solid is every point within it of the polygon.
+        self.radius = r
+        #: The centroid of the solid, rounding included (length units).
+        self.centroid = Vector(*convex.centroid(ccw, r))
+        #: The area of the solid, rounding included (length units squared).
+        self.area = convex.area(ccw, r)
+
+    @classmethod
+    def box(
+        cls,
+        width: float,
+        height: float,
+        center: Any = (0.0, 0.0),
+        radius: float = 0.0,
+        *,
+        restitution: float = 1.0,
+        friction: float = 1.0,
+        sensor: bool = False,
+        filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+    ) -> Polygon:
+        """A solid box ``width`` by ``height`` (length units, full sizes) around ``center``.
+
+        pymunk's ``Poly.create_box`` (Box2D's ``b2MakeOffsetRoundedBox`` takes half sizes);
+        with ``radius`` > 0 its corners are rounded and it grows by ``radius`` on every side.
+        Not ``Box``, which is a room whose walls keep bodies inside.
+        """
+        sizes = []
+        for name, value in (("width", width), ("height", height)):
+            size = checks.real(value, name)
+            if not size > 0.0:
+                raise ValueError(
+                    f"{name} must be > 0 (the box's full {name} in length units, e.g. 1.0), "
+                    f"got {value!r}"
+                )
+            sizes.append(size)
+        cx, cy = point_of(center, "center")
+        hw, hh = 0.5 * sizes[0], 0.5 * sizes[1]
+        corners = [(cx - hw, cy - hh), (cx + hw, cy - hh), (cx + hw, cy + hh), (cx - hw, cy + hh)]
+        if not all(math.isfinite(c) for corner in corners for c in corner):
+            raise ValueError(
+                f"center, width and height must keep the corners within the float range, got "
+                f"center={center!r}, width={width!r}, height={height!r}"
+            )
+        return cls(
+            corners,
+            radius,
+            restitution=restitution,
+            friction=friction,
+            sensor=sensor,
+            filter=filter,
+        )
+
+    def closest(self, point: Any) -> tuple[Vector, Vector, float]:
+        x, y = point_of(point, "point")
+        verts, normals, r = self.vertices, self.normals, self.radius
+        count = len(verts)
+        # The separation from edge i's line, s_i = n_i.(x - v_i), is largest for the nearest
+        # face when x is inside (all s_i <= 0; the foot of the perpendicular on that face's
+        # line lies on the face, since the disc of that radius about x fits inside).
+        seps = [n.x * (x - v.x) + n.y * (y - v.y) for v, n in zip(verts, normals, strict=True)]
+        k = max(range(count), key=seps.__getitem__)
+        s = seps[k]
+        if s <= 0.0:
+            n = normals[k]
+            fx, fy = x - s * n.x, y - s * n.y
+            return Vector(fx + r * n.x, fy + r * n.y), n, s - r
+        # Outside: the nearest point of the boundary lies on one of the edges.
+        best = (math.inf, 0.0, 0.0)
+        for i in range(count):
+            a, b = verts[i], verts[(i + 1) % count]
+            dx, dy = b.x - a.x, b.y - a.y
+            u = ((x - a.x) * dx + (y - a.y) * dy) / (dx * dx + dy * dy)
+            u = min(1.0, max(0.0, u))
+            cx, cy = a.x + u * dx, a.y + u * dy
+            d = math.hypot(x - cx, y - cy)
+            if d < best[0]:
+                best = (d, cx, cy)
+        d, cx, cy = best
+        nx, ny = _unit(x - cx, y - cy) or tuple(normals[k])
+        return Vector(cx + r * nx, cy + r * ny), Vector(nx, ny), d - r
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        r = self.radius
+        xs = [v.x for v in self.vertices]
+        ys = [v.y for v in self.vertices]
+        return min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r
+
+    def lines(self) -> list[Line]:
+        # Edge i from v_i to v_{i+1}: its outward normal n = (e_y, -e_x) / L makes the tangent
+        # (-n_y, n_x) = e / L, so u runs from 0 at v_i to L at v_{i+1}.
+        verts, count = self.vertices, len(self.vertices)
+        out: list[Line] = []
+        for i, n in enumerate(self.normals):
+            a, b = verts[i], verts[(i + 1) % count]
+            length = math.hypot(b.x - a.x, b.y - a.y)
+            out.append(((a.x, a.y), (n.x, n.y), self.radius, False, 0.0, length))
+        return out
+
+    def discs(self) -> list[Disc]:
+        return [((v.x, v.y), self.radius) for v in self.vertices]
+
+    def __repr__(self) -> str:
+        pts = tuple(tuple(v) for v in self.vertices)
+        size = "" if self.radius == 0.0 else f", radius={self.radius!r}"
+        return f"Polygon({pts!r}{size}{self._material_repr()})"
