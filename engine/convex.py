@@ -27,6 +27,7 @@ from collections.abc import Sequence
 
 __all__ = [
     "MAX_VERTICES",
+    "TOO_CLOSE",
     "convex_polygon",
     "edge_normals",
     "area",
@@ -37,6 +38,9 @@ __all__ = [
 #: The most vertices a polygon shape may have (Box2D's B2_MAX_POLYGON_VERTICES): the
 #: narrowphase pads every polygon of a batch to the batch's largest count, so this bounds it.
 MAX_VERTICES = 8
+
+#: Neighbouring vertices nearer than this fraction of the polygon's size are one point.
+TOO_CLOSE = 1e-9
 
 Point = tuple[float, float]
 
@@ -53,9 +57,9 @@ def convex_polygon(
     ``points`` are finite (x, y) pairs of floats, in either winding: clockwise input is
     reversed (and started from the same first point). Refused, each with the index of the
     vertex at fault: fewer than 3 points (or more than ``max_count``), a point repeated next
-    to itself, every point on one line (no area), a vertex on the straight line between its
-    neighbours, a turn the other way (not convex) and a polygon that winds round more than
-    once (a star).
+    to itself (or nearer it than ``TOO_CLOSE`` of the polygon's size), every point on one
+    line (no area), a vertex on the straight line between its neighbours, a turn the other
+    way (not convex) and a polygon that winds round more than once (a star).
     """
     pts = [(float(x), float(y)) for x, y in points]
     count = len(pts)
@@ -69,11 +73,21 @@ def convex_polygon(
             f"{name} must have at most {max_count} points (as Box2D), got {count}; "
             f"split the shape into several polygons"
         )
+    xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+    size = max(max(xs) - min(xs), max(ys) - min(ys))
     for i in range(count):
         j = (i + 1) % count
         if pts[i] == pts[j]:
             raise ValueError(
                 f"{name}[{i}] and {name}[{j}] are the same point {pts[i]}: leave the repeat out"
+            )
+        # Nearer than rounding can tell apart once the polygon is turned and moved: the
+        # narrowphase could not say which of the two touches (Box2D welds within 5 mm).
+        gap = max(abs(pts[j][0] - pts[i][0]), abs(pts[j][1] - pts[i][1]))
+        if gap <= TOO_CLOSE * size:
+            raise ValueError(
+                f"{name}[{i}] = {pts[i]} and {name}[{j}] = {pts[j]} are {gap:.3g} apart, the same "
+                f"point to {TOO_CLOSE:g} of the polygon's size {size:.3g}: leave one out"
             )
     # Twice the signed area by the shoelace formula, about the first point (for round-off):
     # positive when the points run counter-clockwise.

@@ -48,6 +48,7 @@ SQUARE = [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)]
         ([(0, 0), (1, 0)], ValueError, "at least 3 points"),
         ([(math.cos(k), math.sin(k)) for k in range(9)], ValueError, "at most 8 points"),
         ([(0, 0), (1, 0), (1, 0), (0, 1)], ValueError, "vertices[1] and vertices[2] are the same"),
+        ([(0, 0), (1, 0), (1, 1e-12), (0, 1)], ValueError, "are 1e-12 apart, the same point"),
         ([(0, 0), (1, 1), (2, 2)], ValueError, "all 3 points lie on one line"),
         ([(0, 0), (1, 0), (2, 0), (1, 1)], ValueError, "vertices[1] = (1.0, 0.0) lies on the"),
         ([(0, 0), (2, 0), (1, 0.5), (2, 2), (0, 2)], ValueError, "turns the other way"),
@@ -98,7 +99,7 @@ def test_bad_radius_and_material_are_refused_by_name(kwargs: Any, error: type, w
         ((1.0, True), {}, TypeError, "height must be a real number"),
         ((1.0, 1.0), {"center": (1.0,)}, TypeError, "center must be a 2D point"),
         ((1.0, 1.0), {"radius": -1.0}, ValueError, "radius must be >= 0"),
-        ((1e308, 1.0), {"center": (1e308, 0.0)}, ValueError, "within the float range"),
+        ((1e308, 1.0), {"center": (1.7e308, 0.0)}, ValueError, "within the float range"),
     ],
 )
 def test_polygon_box_refuses_sizes_that_are_not_positive(
