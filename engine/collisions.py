@@ -31,43 +31,43 @@ takes its speed at the same instant and meets the third, and so on down the row;
 that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
 ``MAX_ROUNDS`` (a light ball squeezed between heavy ones bounces about pi sqrt(M/m) times);
 then each body with an impact still to come stops where its path is at the earliest one left
-(its velocity the step's end one, so momentum changes by the forces' impulse alone) and goes
-on from there next step: bodies never fly through each other for want of rounds, at the cost
-of the rest of that step's motion for those bodies. The count of steps
-that reached the cap is kept in ``capped``. The pairs searched are those a body's speed can
-bring together within the step, and those of a body an impact may send off faster (a light
-ball struck by a heavy one: ``_struck_pairs``).
+(its velocity the step's end one, so momentum changes by the forces' impulse alone), and so
+does every body that would run into a stopped one, and goes on from there next step: bodies
+never fly through each other for want of rounds, at the cost of the rest of that step's
+motion for those bodies. Pairs still closing there with restitution up to ``COLLAPSE_E``
+are an inelastic collapse (impacts without end, ever slower: balls in a row with e = 0)
+and take their plastic impulses at once instead (``_plastic``: sequential impulses, which
+never add energy). The count of steps that reached the cap is kept in ``capped``.
+The impacts are found on each body's path as a parabola to its end state; a body that
+bounced off a wall within the step took another path before, and may end inside a ball that
+path never met: such pairs, rare (two balls meeting on a Galton board's peg), are moved
+apart at the end, their closing stopped (``_separate``). The pairs searched are those a
+body's speed can bring together within the step, and those of a body an impact may send off
+faster (a light ball struck by a heavy one: ``_struck_pairs``).
 
-**Resting contacts.** A closing speed below ``rest_speed`` (2 |A| dt: what the acceleration
-adds in two steps), or a pair that carried load in the last step, is not a bounce but a
-contact at rest, the one a pile is made of (a pile does not bounce inside). Those pairs, and
-the bodies' contacts with static faces, are solved together as constraints, in four passes:
+**Piles: the bodies that rest on one another are solved together** (``engine.soft``). Which
+pairs are a pile's and which meet at their exact moments is decided as the step begins
+(``plan``), by one rule:
 
-1. *Velocities, all at once.* The normal impulse lam >= 0 makes the normal velocity >= 0 (or
-   lets a gap close in one step, no faster), friction keeps |lam_t| <= mu lam. Jacobi
-   iterations over all contacts at once (``iterations``, each body's mass split between its
-   contacts so that the sum converges, Tonge et al. 2012; sped up by Chebyshev's
-   semi-iteration, Wang 2015), started from the last step's impulses (warm starting: a
-   settled pile is already solved). The exact solution never adds kinetic energy; if the
-   iterations stop short with more than they began with, their change is scaled back
-   (``_dissipative``).
-2. *Velocities, from the ground up.* Jacobi passes information one contact per iteration,
-   so a pile many layers deep is not held by a few iterations. Shock propagation
-   (Guendelman, Bridson and Fedkiw 2003) ends the solve with one pass from the bottom up:
-   bodies are sorted into bands of height (up being against the mean acceleration), and
-   each band's contacts with the bands below, already final, are made to hold (no closing,
-   no sliding past friction) with the lower body taken as immovable, by Gauss-Seidel over
-   each body's two or three supports (a ball wedged between a ball and a wall is held).
-   Contacts within one band (side by side) are left to the iterations.
-3. A resting contact acts as a force through the step, so its velocity change dv moves the
-   body by the method's share of dv dt (1/2 under the closed form, velocity Verlet and RK4,
-   1 under semi-implicit Euler, 0 under explicit Euler: each method's own rule for a
-   constant force), but only for a body whose loaded contacts were closed as the step
-   began: one still closing a gap met its contact late in the step and keeps its end
-   position (else it would hover at its start).
-4. *Positions.* Overlap past ``SLOP`` of a radius is removed by moving positions, never
-   velocities, so no energy is added: Jacobi iterations, then the same pass from the
-   ground up.
+* a pair rests (is a pile's) if it carried load in the last step, or if it is near enough to
+  touch within the step, closes or parts no faster than its rest speed (2 |a| dt, what the
+  forces add in two steps) and is pressed together by the forces (a ball landing softly on
+  another; a body resting on a collider counts as held up, so a ball landing on a ball
+  that rests on a peg presses it), or if it overlaps by more than ``SLOP``;
+* whatever can reach a resting pair's body within the step joins the pile too (a ball
+  falling onto it: its contact is a speculative one, stopped where it touches);
+* every other pair (two balls that meet in flight, a ball striking a ball that rests alone on
+  a floor, Newton's cradle on a frictionless floor, whose balls touch but carry nothing)
+  meets at its exact moment, as above.
+
+The bodies of a pile are stepped again from the start of the step by Box2D v3's soft step,
+``iterations`` parts (``World.contact_iterations``) with their pairs and the faces they can
+reach (the static contacts leave them to it), warm started from the last step's impulses:
+it holds a pile many layers deep, keeps rows landing at speed from sinking into it, and
+adds no energy (the push that takes out an overlap is relaxed out of the speeds; what the
+few iterations still add is scaled back: ``_dissipative``). Nothing it moves is left inside
+a wall (``Contacts.push_out_rows``). A sleeping group keeps its contacts' impulses, so that
+it wakes holding its weight.
 
 **Sleep.** A group of bodies resting on one another (or one body held still on a collider)
 that has been still for ``sleep_time`` seconds (every speed below |A| dt, the speed the
@@ -85,67 +85,119 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from . import coloring
 from .impact import TOUCH, disc_hits, line_hits
+from .soft import Rows, SoftStep
 
 if TYPE_CHECKING:
     from .contacts import Contacts
 
-__all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "BAUMGARTE", "deepest_overlap"]
+__all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "PUSH", "deepest_overlap"]
 
 #: Impact rounds in one step (each resolves every pair that comes first for both bodies).
 MAX_ROUNDS = 64
-#: Overlap (fraction of the smaller radius) left alone: contacts touch, they do not chatter.
+#: Overlap (fraction of the smaller radius) that counts as touching: contacts touch, they do
+#: not chatter.
 SLOP = 0.002
-#: Gauss-Seidel sweeps over each band's contacts in the shock passes (a body rests on two or
-#: three; a wedge of normals 120 degrees apart keeps 1/16 of its error after two).
-SHOCK_ITERATIONS = 2
-#: Thickness of the shock passes' bands of height, in smallest radii: contacts steeper than
-#: asin(BAND / 2) (44 degrees; a pile's are 60) always join two bands.
-BAND = 1.4
+#: Restitution up to which pairs still closing at the impact cap take plastic impacts at once
+#: (three balls in a line collapse inelastically, without end, below 7 - 4 sqrt(3) = 0.072).
+COLLAPSE_E = 0.1
 #: A body sleeps only while it overlaps others by at most this fraction of its radius.
 SLEEP_OVERLAP = 0.0075
-#: Most position iterations a step takes while overlaps are past twice SLOP.
-MAX_POSITION_ITERATIONS = 8
-#: Fraction of the overlap past SLOP removed per step by moving positions.
-BAUMGARTE = 1.0
+#: The fastest the soft step pushes overlapping bodies apart, in smallest radii a second
+#: (Box2D's 3 m/s for bodies of half a metre).
+PUSH = 6.0
+#: A body joins a pile by closing on it within the step by at most this many times the sum
+#: of the two radii (a speculative contact catches it); faster, it meets the pile's bodies
+#: at the exact moments.
+CATCH = 2.0
+THRESH = 3.0
+PUSHOUT = True
 
 
-def _clip_two_calls(x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    return np.minimum(np.maximum(x, lo), hi)
+def _separate(
+    la: np.ndarray, lb: np.ndarray, X: np.ndarray, V: np.ndarray, w: np.ndarray, r: np.ndarray
+) -> bool:
+    """Move the pairs (la, lb) that overlap past SLOP apart, in place on X, each body by
+    its share w_a / (w_a + w_b) of the excess (a body of w = 0 stays), averaged over its
+    pairs (one Jacobi sweep), after stopping their closing (``_plastic``). Whether any
+    moved."""
+    d = X[la] - X[lb]
+    dist = _norm(d)
+    R = r[la] + r[lb]
+    over = R - dist - SLOP * np.minimum(r[la], r[lb])
+    ws = w[la] + w[lb]
+    k = np.flatnonzero((over > 0.0) & (ws > 0.0))
+    if not len(k):
+        return False
+    a, b = la[k], lb[k]
+    _plastic(a, b, X, V, w, 0.0)
+    push = _unit(d[k], dist[k]) * (over[k] / ws[k])[:, None]
+    move = np.zeros_like(X)
+    count = np.zeros(len(X))
+    np.add.at(move, a, push * w[a, None])
+    np.add.at(move, b, -push * w[b, None])
+    np.add.at(count, a, 1.0)
+    np.add.at(count, b, 1.0)
+    X += move / np.maximum(count, 1.0)[:, None]
+    return True
 
 
-# np.clip's ufunc, called directly: the np.clip wrapper costs 3 us a call, and the pile
-# passes call it thousands of times a step (numpy 2; else two calls, the same numbers).
-_clip = getattr(getattr(getattr(np, "_core", None), "umath", None), "clip", _clip_two_calls)
+def _plastic(
+    pa: np.ndarray, pb: np.ndarray, X: np.ndarray, V: np.ndarray, w: np.ndarray, rest: float
+) -> None:
+    """Stop the closing of pairs (pa, pb) at once, in place on V: sequential plastic
+    impulses (restitution 0, along the line of centres, each at most what stops its pair, the
+    pair's total never pulling) swept over the pairs in colours (engine.coloring) until none
+    closes faster than ``rest`` plus rounding. Each impulse is a projection in the mass metric,
+    so kinetic energy never grows, and momentum is kept."""
+    d = X[pa] - X[pb]
+    nrm = _unit(d, _norm(d))
+    ws = w[pa] + w[pb]
+    ok = ws > 0.0
+    pa, pb, nrm, ws = pa[ok], pb[ok], nrm[ok], ws[ok]
+    if not len(pa):
+        return
+    moves = w > 0.0
+    order = coloring.batches(coloring.colors(pa, pb, moves), pa, pb, moves)
+    lam = np.zeros(len(pa))
+    speed = float(_norm(V).max())
+    for _ in range(200):
+        worst = 0.0
+        for rows in order:
+            a, b, n = pa[rows], pb[rows], nrm[rows]
+            vn = _dot(V[a] - V[b], n)  # < 0: closing
+            new = np.maximum(lam[rows] - vn / ws[rows], 0.0)
+            dl = new - lam[rows]
+            lam[rows] = new
+            V[a] += n * (dl * w[a])[:, None]
+            V[b] -= n * (dl * w[b])[:, None]
+            worst = max(worst, float(-vn.min()))
+        if worst <= rest + 1e-12 * speed:
+            break
 
 
-def _dissipative(
-    V: np.ndarray, V0: np.ndarray, w: np.ndarray, lam: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """The resting contacts' velocities V (from V0) and impulses lam, scaled back if they
-    gained kinetic energy.
+def _dissipative(V: np.ndarray, V0: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """The pile's velocities V (the forces alone would give V0), with the contacts' change
+    scaled back if it gained kinetic energy.
 
-    The exact solution of the resting contacts (no closing faster than a gap allows: a
-    convex set of velocities that holds 0) is a projection of V0 in the mass metric, which
-    never lengthens it, and Coulomb friction only dissipates, so it never adds kinetic energy
-    (when no body the game moves is among them). The iterations stop short of it, and the
-    impulses they start from, the last step's, can push contacts that already part: a
-    heavy ball that has just stopped on a light one against a wall is sent back (kinetic
-    energy x36 in 4 steps). Then the change dV = V - V0 is scaled by the s in [0, 1] that
-    leaves the least energy, KE(s) = KE0 + s B + s^2 C with B = sum m V0.dV and
-    C = sum m |dV|^2 / 2: s = -B / (2 C), or 0 if B >= 0. Momentum is kept, impulses between
-    bodies being equal and opposite at any s.
+    Contacts only take energy (an exact solution of resting contacts is a projection of V0
+    in the mass metric, which never lengthens it; friction dissipates; restitution e <= 1
+    gives back at most what the impact took), but the soft step's few iterations, and its
+    push apart of an overlap, can stop short and add a little. Then the change dV = V - V0
+    is scaled by the s in [0, 1] that leaves the least energy: KE(s) = KE0 + s B + s^2 C
+    with B = sum m V0.dV, C = sum m |dV|^2 / 2, so s = -B / (2 C). Momentum is kept: the
+    contacts' impulses between bodies are equal and opposite at any s (a wall's are not,
+    and lose only what s takes off them).
     """
-    m = np.where(w > 0.0, 1.0 / np.where(w > 0.0, w, 1.0), 0.0)
     dV = V - V0
-    B = float((m * (V0[:, 0] * dV[:, 0] + V0[:, 1] * dV[:, 1])).sum())
-    C = 0.5 * float((m * (dV[:, 0] * dV[:, 0] + dV[:, 1] * dV[:, 1])).sum())
-    # KE(1) - KE0 = B + C: past rounding of KE0 itself, the iterations added energy.
-    KE0 = 0.5 * float((m * (V0[:, 0] * V0[:, 0] + V0[:, 1] * V0[:, 1])).sum())
-    if not B + C > 1e-12 * KE0 + 1e-300:
-        return V, lam
+    B = float((m * _dot(V0, dV)).sum())
+    C = 0.5 * float((m * _dot(dV, dV)).sum())
+    KE0 = 0.5 * float((m * _dot(V0, V0)).sum())
+    if not B + C > 1e-13 * KE0 + 1e-300:
+        return V
     s = min(max(-B / (2.0 * C), 0.0), 1.0)
-    return V0 + s * dV, lam * s
+    return V0 + s * dV
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -260,12 +312,8 @@ class Collisions:
     """The contacts of a World's bodies with one another (see the module's docstring)."""
 
     def __init__(self) -> None:
-        #: Jacobi iterations of the resting-contact solver per step.
-        self.iterations = 8
-        #: Spectral radius assumed for Chebyshev's acceleration (0: plain Jacobi).
-        self.rho = 0.97
-        #: Position iterations removing overlap per step.
-        self.position_iterations = 2
+        #: Parts (substeps) a step of a pile takes in the soft step (engine.soft).
+        self.iterations = 4
         #: Seconds a touching group must stay still before it sleeps (inf: never).
         self.sleep_time = 0.5
         #: Speed (length units / s) under which a body counts as still; None: |a| dt, the
@@ -285,6 +333,8 @@ class Collisions:
         # Warm start: the last step's resting contacts, keyed a * N + b, and their impulses.
         self._keys = np.zeros(0, dtype=np.int64)
         self._lam = np.zeros((0, 2))
+        self._color_keys = np.zeros(0, dtype=np.int64)  # the last step's rows' colours, by key
+        self._colors = np.zeros(0, dtype=np.int64)
         # Pairs touching after the last step (for began / ended), keyed as above.
         self._touching = np.zeros(0, dtype=np.int64)
         self._began: list[tuple[Any, ...]] = []
@@ -293,6 +343,10 @@ class Collisions:
         self.asleep = np.zeros(0, dtype=bool)  # (N,)
         self._group = np.zeros(0, dtype=np.intp)  # (N,) the sleeping group of each sleeper
         self._lam_dt = 1.0
+        # The step's pairs and the bodies of piles, found before the static contacts (plan).
+        self._plan: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        #: The contacts of piles' bodies with faces after the last step: (World rows, faces).
+        self.face_touching = (np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
         self._base = 0
         self.rest_speed = 0.0  # 2 dt times the largest pull in the last step
         self._P = np.zeros((0, 2))
@@ -306,6 +360,7 @@ class Collisions:
         self._live = None
         self._keys = np.zeros(0, dtype=np.int64)
         self._lam = np.zeros((0, 2))
+        self._color_keys = np.zeros(0, dtype=np.int64)
         self._touching = np.zeros(0, dtype=np.int64)
         self.wake(n)
 
@@ -329,6 +384,7 @@ class Collisions:
             self._keys = a * self._base + b
         else:
             self._keys, self._lam = np.zeros(0, dtype=np.int64), np.zeros((0, 2))
+        self._color_keys = np.zeros(0, dtype=np.int64)  # coloured afresh
         a, b = np.divmod(self._touching, old)  # a * n + b for the pairs touching
         self._touching = a * n + b
         self.still = np.concatenate([self.still, np.zeros(extra)])
@@ -382,11 +438,14 @@ class Collisions:
             self._group.copy(),
             self.capped,
             self.warned,
+            self._color_keys.copy(),
+            self._colors.copy(),
         )
 
     def set_state(self, state: tuple[Any, ...]) -> None:
         """Bring back a state from ``state()``."""
-        keys, lam, lam_dt, base, touching, still, asleep, group, capped, warned = state
+        keys, lam, lam_dt, base, touching, still, asleep, group, capped, warned, ck, cv = state
+        self._color_keys, self._colors = ck.copy(), cv.copy()
         self._keys, self._lam, self._lam_dt, self._base = keys.copy(), lam.copy(), lam_dt, base
         self._touching = touching.copy()
         self.still, self.asleep, self._group = still.copy(), asleep.copy(), group.copy()
@@ -400,6 +459,81 @@ class Collisions:
         return len(live) >= 2 and not self._one_group
 
     # -- the step ------------------------------------------------------------------------------
+    def plan(
+        self,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        x1: np.ndarray,
+        v1: np.ndarray,
+        A: np.ndarray,
+        dt: float,
+        store: Any,
+        held: np.ndarray | None = None,
+    ) -> np.ndarray | None:
+        """Find the step's pairs and which bodies the pile's soft step takes (module text):
+        their mask (N,), or None. Called before the static contacts, which leave those
+        bodies to the soft step (it steps them again from the step's start). ``held`` (N,):
+        bodies resting on a collider at the start (it bears their weight: a ball landing on
+        one resting on a peg presses it into the peg, as into a pile)."""
+        self._plan = None
+        n = len(x1)
+        if len(self.still) != n:
+            self.wake(n)
+        live = self._prepare(store.radius, store.group, store.categories, store.mask)
+        if len(live) < 2 or self._one_group:
+            return None
+        if self.asleep.any():
+            x1, v1 = x1.copy(), v1.copy()
+            x1[self.asleep], v1[self.asleep] = x0[self.asleep], 0.0
+        self._has_kin = bool(store.kinematic.any())
+        self._kin = store.kinematic
+        a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
+        if len(a) and self.asleep.any():
+            a, b = self._wake_met(a, b, x1, v1, store.radius)
+        island = np.zeros(n, dtype=bool)
+        if len(a):
+            # A pair that carried load in the last step rests on.
+            loaded = np.zeros(len(a), dtype=bool)
+            if len(self._keys):
+                keys = a.astype(np.int64) * self._base + b
+                pos = np.minimum(np.searchsorted(self._keys, keys), len(self._keys) - 1)
+                loaded = (self._keys[pos] == keys) & (self._lam[pos, 0] > 0.0)
+            # A pair that closes no faster than its rest speed while the forces press it
+            # together, near enough to touch, comes to rest: a ball landing softly on one.
+            d = x0[a] - x0[b]
+            dist = _norm(d)
+            nrm = _unit(d, dist)
+            gap = dist - store.radius[a] - store.radius[b]
+            closing = -_dot(v0[a] - v0[b], nrm)
+            if held is not None and held.any():
+                Ah = np.where(held[:, None], 0.0, A)
+                press = _dot(Ah[a] - Ah[b], nrm)
+            else:
+                press = _dot(A[a] - A[b], nrm)
+            pull = np.maximum(_norm(A[a]), _norm(A[b]))
+            margin = 0.05 * np.minimum(store.radius[a], store.radius[b]) + closing.clip(0) * dt
+            near = gap <= margin
+            rest = near & (np.abs(closing) <= 2.0 * dt * pull) & (press < -1e-9 * pull)
+            # (Overlap past the slop: balls hung touching, as in a cradle, are no pile.)
+            seed = loaded | rest | (gap < -SLOP * np.minimum(store.radius[a], store.radius[b]))
+            island[a[seed]] = island[b[seed]] = True
+            # What can reach the pile within the step at a speed its contacts can catch (a
+            # ball landing on it) joins it; a faster body (a bullet) stays out, and meets the
+            # pile's bodies at its exact moments, as moving walls (``_exact``).
+            rel = _norm(v0[a] - v0[b]) + _norm(A[a] - A[b]) * dt
+            catch = rel * dt <= CATCH * (store.radius[a] + store.radius[b])
+            if self._has_kin:
+                catch |= store.kinematic[a] | store.kinematic[b]  # moved by the game: joins
+            for _ in range(4):
+                grow = (island[a] != island[b]) & catch
+                if not grow.any():
+                    break
+                island[a[grow]] = island[b[grow]] = True
+        island &= ~self.asleep  # (a sleeper beside a pile was woken above, or stays put)
+        a, b = self._struck(a, b, island, dt, store)
+        self._plan = (a, b, island)
+        return island if island.any() else None
+
     def resolve(
         self,
         x0: np.ndarray,
@@ -409,29 +543,29 @@ class Collisions:
         A: np.ndarray,
         dt: float,
         t0: float,
-        share: float,
         store: Any,
         contacts: Contacts | None,
         A_force: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The state after dt with every contact between bodies applied: new (x, v) arrays.
 
-        ``A`` (N, 2): each body's acceleration along its path this step. ``share``: the
-        fraction of dv dt by which a resting contact's velocity change dv moves the body
-        (1/2 for the closed form, velocity Verlet and RK4, 1 for semi-implicit Euler, 0 for
-        explicit Euler). ``store``: the World's BodyStore (radius, material, filters, mass).
-        Bodies that meet no other keep (x1, v1) bit for bit.
+        ``A`` (N, 2): each body's acceleration along its path this step (the forces' pull
+        ``A_force``, and what a static contact carried for one resting on a collider).
+        Pairs of bodies that are not in a pile meet at their exact moments; the bodies of a
+        pile (``plan``) are stepped again from (x0, v0) by the soft step. Bodies that meet
+        no other keep (x1, v1) bit for bit.
         """
         self.moved = False
         self._began, self._ended = [], []
         self.last_rounds = 0
         self._overlap = np.zeros(0)
+        self.face_touching = (np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
         n = len(x1)
-        if len(self.still) != n:
-            self.wake(n)
+        plan = self._plan
         live = self._prepare(store.radius, store.group, store.categories, store.mask)
-        if len(live) < 2 or self._one_group:
+        if plan is None:
             return x1, v1
+        a, b, island = plan
         asleep = self.asleep
         if asleep.any():
             # Sleeping bodies stay exactly where they were, whatever the method computed.
@@ -445,66 +579,279 @@ class Collisions:
             self._still_speed = a_max * dt
         else:
             self._still_speed = self.sleep_speed
-        self._has_kin = bool(store.kinematic.any())
-        self._kin = store.kinematic
-        a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
-        if len(a) and self.moved:
-            a, b = self._wake_met(a, b, x1, v1, store.radius)
-        if not len(a):
-            self._events_of(np.zeros(0, dtype=np.int64), [], n, t0, dt, live)
-            none = np.zeros(0, dtype=np.intp)
-            self._sleep_still(v1, dt, live, none, none, contacts)
-            return x1, v1
-        # Solve on the bodies in pairs only, in local arrays (U: local -> World row).
-        present = np.zeros(n, dtype=bool)
+        P = A if A_force is None else A_force
+        self.rest_speed = 2.0 * dt * float(_norm(P[live]).max())
+        self._dt, self._t0 = dt, t0
+        x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
+        self.moved = True
+        impacts: list[tuple[np.ndarray, ...]] = []
+        exact = ~(island[a] & island[b])
+        kick = None
+        if exact.any():
+            impacts, kick = self._exact(a[exact], b[exact], island, x, v, A, P, dt, store, contacts)
+        touching = np.zeros(0, dtype=np.int64)
+        pa = pb = np.zeros(0, dtype=np.intp)
+        if island.any():
+            if kick is not None:
+                v0 = v0.copy()
+                v0[island] += kick[island] / store.mass[island, None]
+            touching, pa, pb = self._pile(island, a, b, x0, v0, x, v, P, dt, store, contacts)
+        else:
+            kept = self._asleep_rows(n, self._base)
+            self._color_keys, self._colors = self._keys[kept], self._slept_colors(kept)
+            self._keys, self._lam = self._keys[kept], self._lam[kept]
+        # The deepest overlap of any pair (what the World warns about), resting or not, that
+        # this step made or deepened: bodies put inside each other are being pushed apart.
+        self._overlap = np.zeros(n)
+        if len(a):
+            R = store.radius[a] + store.radius[b]
+            over = R - _norm(x[a] - x[b])
+            grew = over > R - _norm(x0[a] - x0[b]) + 1e-9 * R
+            self.last_overlap = max(float(over[grew].max()), 0.0) if grew.any() else 0.0
+            # The overlap each body is left with, in the smaller radius of each pair: a group
+            # sleeps only once it is small.
+            share = over / np.minimum(store.radius[a], store.radius[b])
+            np.maximum.at(self._overlap, a, share)
+            np.maximum.at(self._overlap, b, share)
+        else:
+            self.last_overlap = 0.0
+        self._events_of(touching, impacts, n, t0, dt)
+        if self.asleep.any():
+            # Sleepers stay exactly put (nothing above moves a body of infinite mass, but a
+            # wall's push-out or rounding must not either).
+            x[self.asleep], v[self.asleep] = x0[self.asleep], 0.0
+        self._sleep_still(v, dt, live, pa, pb, contacts)
+        return x, v
+
+    def _exact(
+        self,
+        a: np.ndarray,
+        b: np.ndarray,
+        island: np.ndarray,
+        x: np.ndarray,
+        v: np.ndarray,
+        A: np.ndarray,
+        P: np.ndarray,
+        dt: float,
+        store: Any,
+        contacts: Contacts | None,
+    ) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray | None]:
+        """Impacts of the pairs (World rows a, b) not both in a pile, at their exact moments,
+        in place on the end state (x, v): what ``_impacts`` found, for the events, and the
+        impulses (N, 2) the pile's bodies took (None if none): a body of a pile meets a body
+        from outside it as a moving wall (infinite mass on its free path), and takes the
+        impulse in the soft step, from its start."""
+        present = np.zeros(len(x), dtype=bool)
         present[a] = present[b] = True
         U = np.flatnonzero(present)
         local = np.cumsum(present) - 1  # World row -> local index, for the rows in U
         la, lb = local[a], local[b]
-        X, V, AU = x1[U], v1[U], A[U]
-        self._U, self._t0 = U, t0
-        # Each body's pull (its forces' acceleration; not a wall's push) sets the rest speeds.
-        self._P = (A if A_force is None else A_force)[U]
-        self.rest_speed = 2.0 * dt * float(_norm(self._P).max())
-        self._dt = dt
+        X, V, AU = x[U], v[U], A[U]
+        self._U = U
+        self._P = P[U]
         w = 1.0 / store.mass[U]
         # A kinematic body (moved by the game) has infinite mass here: no impulse moves it.
         self._kinU = store.kinematic[U] if self._has_kin else None
         if self._kinU is not None:
             w[self._kinU] = 0.0
+        walls = island[U]
+        w[walls] = 0.0
+        if self.asleep.any():
+            w[self.asleep[U]] = 0.0  # a sleeper an awake body did not wake stays put
         r = store.radius[U]
         impacts = self._impacts(
             la, lb, X, V, AU, w, r, store.restitution[U], store.friction[U], dt, contacts, U
         )
-        rest_a, rest_b = self._resting(
-            la, lb, X, x0[U], V, AU, w, r, store.friction[U], dt, share, U, n, contacts
-        )
-        if contacts is not None and len(contacts.faces.owner):
+        walled = contacts if contacts is not None and len(contacts.faces.owner) else None
+        r_wall = r if self._kinU is None else np.where(self._kinU, -np.inf, r)
+        if impacts and walled is not None:
             # Nothing the pairs pushed is left inside a wall (with its speed into it taken).
             # (A kinematic body is no wall's business: its radius is taken as -inf there.)
-            contacts.push_out_rows(
-                X, V, r if self._kinU is None else np.where(self._kinU, -np.inf, r), U
-            )
-        # The overlap each body is left with: a group sleeps only once it is small.
-        over = r[rest_a] + r[rest_b] - _norm(X[rest_a] - X[rest_b])
-        deepest = np.zeros(len(U))
-        np.maximum.at(deepest, rest_a, over)
-        np.maximum.at(deepest, rest_b, over)
-        self._overlap = np.zeros(n)
-        self._overlap[U] = deepest / r
-        # The deepest overlap of any pair (what the World warns about), resting or not.
-        every = r[la] + r[lb] - _norm(X[la] - X[lb])
-        self.last_overlap = max(float(every.max()), 0.0) if len(every) else 0.0
-        x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
+            walled.push_out_rows(X, V, r_wall, U)
+        for _ in range(3):
+            # The impacts are found on each body's path as a parabola to its end state: a
+            # body that bounced off a wall in the step took another path before the bounce,
+            # and may end inside a ball that path never met; a ball struck against a wall
+            # in the step it lands there is put back out of the wall, into the ball that
+            # struck it. Such pairs are moved apart (positions), their closing stopped
+            # (plastic impulses), and out of the walls again, a few times.
+            if not _separate(la, lb, X, V, w, r):
+                break
+            if walled is not None:
+                walled.push_out_rows(X, V, r_wall, U)
+        kick = None
+        if walls.any() and impacts:
+            kick = np.zeros((len(x), 2))
+            for pa, pb, _, _, J, _ in impacts:
+                np.add.at(kick, U[pa[walls[pa]]], J[walls[pa]])
+                np.add.at(kick, U[pb[walls[pb]]], -J[walls[pb]])
+            X[walls], V[walls] = x[U[walls]], v[U[walls]]  # the soft step moves those
         x[U], v[U] = X, V
-        self.moved = True
-        # Which pairs touch now, at rest: events, and the groups that may sleep.
-        D = X[rest_a] - X[rest_b]
-        touch = _norm(D) <= (r[rest_a] + r[rest_b]) * (1.0 + 1e-9) + TOUCH
-        keys = U[rest_a[touch]].astype(np.int64) * n + U[rest_b[touch]]
-        self._events_of(keys, impacts, n, t0, dt, U)
-        self._sleep_still(v, dt, live, U[rest_a], U[rest_b], contacts)
-        return x, v
+        # Events are given in World rows.
+        return [(U[pa], U[pb], pt, nrm, J, t) for pa, pb, pt, nrm, J, t in impacts], kick
+
+    def _pile(
+        self,
+        island: np.ndarray,
+        a: np.ndarray,
+        b: np.ndarray,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        x: np.ndarray,
+        v: np.ndarray,
+        P: np.ndarray,
+        dt: float,
+        store: Any,
+        contacts: Contacts | None,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Step the bodies of the pile (``island``) again from (x0, v0) by the soft step
+        (engine.soft), with every contact among them and with the faces they can reach, in
+        place on (x, v). Returns the keys (a * N + b) of pairs touching now, and the pairs
+        that pressed (for sleep)."""
+        n = len(x)
+        U = np.flatnonzero(island)
+        nU = len(U)
+        local = np.full(n, -1, dtype=np.intp)
+        local[U] = np.arange(nU)
+        both = island[a] & island[b]
+        pa, pb = a[both], b[both]
+        la, lb = local[pa], local[pb]
+        r = store.radius[U]
+        x0U, v0U = x0[U], v0[U]
+        # Pairs: A the lower row, B the higher; the normal from A to B.
+        d = x0U[lb] - x0U[la]
+        dist = _norm(d)
+        nrm = _unit(d, dist)
+        sep = dist - r[la] - r[lb]
+        mu, e = store.friction[U], store.restitution[U]
+        rows_a, rows_b = [la], [lb]
+        normals, seps = [nrm], [sep]
+        fric, rest = [mu[la] * mu[lb]], [e[la] * e[lb]]
+        n_faces = 0 if contacts is None else len(contacts.faces.owner)
+        base = n + n_faces
+        keys = [pa.astype(np.int64) * base + pb]
+        fa = fk = np.zeros(0, dtype=np.intp)
+        if n_faces and contacts is not None:
+            # Faces within reach of a body this step: the static world is B, the slot nU.
+            speed = _norm(v0U) + _norm(P[U]) * dt
+            fa, fn, fg, fmu, fk = _face_rows(contacts, x0U, r, 0.05 * r + speed * dt)
+            if contacts.faces.filters is not None:
+                ok = contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
+                fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
+            kin = store.kinematic[U]
+            walls = ~kin[fa]  # walls do not hold what the game moves
+            fa, fn, fg, fmu, fk = fa[walls], fn[walls], fg[walls], fmu[walls], fk[walls]
+            rows_a.append(np.full(len(fa), nU))
+            rows_b.append(fa)
+            normals.append(fn)
+            seps.append(fg)
+            fric.append(mu[fa] * fmu)
+            rest.append(e[fa] * contacts.faces.e[fk])
+            keys.append(U[fa].astype(np.int64) * base + n + fk)
+        ra, rb = np.concatenate(rows_a), np.concatenate(rows_b)
+        nv = np.concatenate(normals)
+        key = np.concatenate(keys)
+        static = ra == nU
+        w = np.append(1.0 / store.mass[U], 0.0)
+        moves = np.append(~store.kinematic[U], False)
+        w[:-1][~moves[:-1]] = 0.0
+        # Warm start: the last step's impulses of the same contacts, per part of this step.
+        lam = np.zeros((len(key), 2))
+        if len(self._keys) and base == self._base:
+            pos = np.minimum(np.searchsorted(self._keys, key), len(self._keys) - 1)
+            same = self._keys[pos] == key
+            lam[same] = self._lam[pos[same]] * (dt / (self._lam_dt * self.iterations))
+        rows = Rows(
+            ra,
+            rb,
+            nv[:, 0] + 1j * nv[:, 1],
+            np.concatenate(seps),
+            np.concatenate(fric),
+            np.concatenate(rest),
+            lam[:, 0].copy(),
+            lam[:, 1].copy(),
+            static,
+        )
+        rmin = float(r.min())
+        # Each row keeps its colour from the last step where its key did (engine.coloring).
+        prior = np.full(len(key), -1, dtype=np.int64)
+        if len(self._color_keys) and base == self._base:
+            pos = np.minimum(np.searchsorted(self._color_keys, key), len(self._color_keys) - 1)
+            same = self._color_keys[pos] == key
+            prior[same] = self._colors[pos[same]]
+        solver = SoftStep(
+            rows,
+            w,
+            moves,
+            dt,
+            self.iterations,
+            push_speed=PUSH * rmin,
+            threshold=THRESH * self.rest_speed,
+            slop=SLOP * np.concatenate([np.minimum(r[la], r[lb]), r[fa]]),
+            prior=prior,
+        )
+        acc = np.append(P[U, 0] + 1j * P[U, 1], 0.0)
+        acc[:-1][~moves[:-1]] = 0.0
+        X, V = solver.run(
+            np.append(x0U[:, 0] + 1j * x0U[:, 1], 0.0),
+            np.append(v0U[:, 0] + 1j * v0U[:, 1], 0.0),
+            acc,
+        )
+        Xr = np.stack([X[:nU].real, X[:nU].imag], axis=1)
+        Vr = np.stack([V[:nU].real, V[:nU].imag], axis=1)
+        # A kinematic body goes where the game sends it, whatever it touched.
+        kin = ~moves[:-1]
+        if not kin.any():
+            Vr = _dissipative(Vr, v0U + P[U] * dt, store.mass[U])
+        if kin.any():
+            Xr[kin], Vr[kin] = x[U][kin], v[U][kin]
+        if n_faces and contacts is not None:
+            # No body of the pile ends inside a wall: the soft contacts give a little.
+            if PUSHOUT:
+                contacts.push_out_rows(Xr, Vr, np.where(kin, -np.inf, r), U)
+        x[U], v[U] = Xr, Vr
+        # The impulses over the whole step, kept by key (sorted) for the next one.
+        kept = self._asleep_rows(n, base)
+        key = np.concatenate([key, self._keys[kept]])
+        lam = np.concatenate(
+            [np.stack([rows.lam_n, rows.lam_t], axis=1) * self.iterations, self._lam[kept]]
+        )
+        color = np.concatenate([solver.color, self._slept_colors(kept)])
+        order = np.argsort(key)
+        self._keys, self._lam = key[order], lam[order]
+        self._lam_dt, self._base = dt, base
+        self._color_keys, self._colors = self._keys, color[order]
+        # Which contacts touch now: the pairs for the events and sleep, the faces too.
+        m = len(pa)
+        gap = _norm(Xr[lb] - Xr[la]) - r[la] - r[lb]
+        touch = gap <= SLOP * np.minimum(r[la], r[lb]) + TOUCH
+        pressed = solver.total[:m] > 0.0
+        hold = touch | pressed
+        f_gap = _dot(Xr[fa], nv[m:]) - _dot(x0U[fa], nv[m:]) + np.concatenate(seps)[m:]
+        f_touch = (f_gap <= SLOP * r[fa] + TOUCH) | (solver.total[m:] > 0.0)
+        self.face_touching = (U[fa[f_touch]], fk[f_touch])
+        touching = pa[hold].astype(np.int64) * n + pb[hold]
+        # Sleep joins bodies as near as ``_wake_met`` wakes them by: a group falls asleep
+        # whole, or a body left awake beside it would wake it again at once.
+        near = gap <= 0.05 * np.minimum(r[la], r[lb])
+        return touching, pa[near], pb[near]
+
+    def _asleep_rows(self, n: int, base: int) -> np.ndarray:
+        """Which of the last step's contact rows (``_keys``) join only sleepers: they keep
+        their impulses while the group sleeps, so that it wakes holding its weight (without
+        them a woken pile would sag for a step and ring)."""
+        keys = self._keys
+        if not len(keys) or base != self._base or len(self.asleep) != n:
+            return np.zeros(len(keys), dtype=bool)
+        a, b = np.divmod(keys, base)
+        face = b >= n
+        return self.asleep[a] & (face | self.asleep[np.where(face, 0, b)])
+
+    def _slept_colors(self, kept: np.ndarray) -> np.ndarray:
+        """The colours of the kept rows, where the cache still has them (else -1)."""
+        if len(self._color_keys) == len(self._keys) and len(self._colors) == len(self._keys):
+            return self._colors[kept]
+        return np.full(int(kept.sum()), -1, dtype=np.int64)
 
     # -- finding pairs ---------------------------------------------------------------------------
     def _pairs(
@@ -561,9 +908,39 @@ class Collisions:
             far = r[ia] + r[ib] + reach[ia] + reach[ib]
             keep = _dot(D, D) <= far * far
             ia, ib = ia[keep], ib[keep]
-            ia, ib = self._struck_pairs(
-                ia, ib, P, r, v0[live], v1[live], A[live], reach, dt, live, store
-            )
+        # What the struck bodies' search needs, once the piles are known (``_struck``).
+        self._search = (P, r, v0[live], v1[live], A[live], reach, live)
+        return self._rows_of(ia, ib, live, store)
+
+    def _struck(
+        self, a: np.ndarray, b: np.ndarray, island: np.ndarray, dt: float, store: Any
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The pairs (a, b) with those of bodies not in a pile that an impact may send off
+        faster than their own speed reaches (``_struck_pairs``); a pile's bodies meet what
+        they meet as contacts of the soft step, which needs no such search."""
+        P, r, v0l, v1l, Al, reach, live = self._search
+        free = ~island[live]
+        if not free.any() or not len(a):
+            return a, b
+        where = np.full(len(island), -1, dtype=np.intp)
+        where[live] = np.arange(len(live))
+        ia, ib = where[a], where[b]
+        both = free[ia] & free[ib]
+        ja, jb = self._struck_pairs(
+            ia[both], ib[both], P, r, v0l, v1l, Al, reach, dt, live, store, free
+        )
+        if len(ja) == int(both.sum()):
+            return a, b  # nobody is struck faster than it reaches: the same pairs
+        na, nb = self._rows_of(ja, jb, live, store)
+        keys = _sorted_unique(
+            np.concatenate([a, na]).astype(np.int64) * len(island) + np.concatenate([b, nb])
+        )
+        return keys // len(island), keys % len(island)
+
+    def _rows_of(
+        self, ia: np.ndarray, ib: np.ndarray, live: np.ndarray, store: Any
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Pairs of places in ``live`` as World rows, less those that never collide."""
         a, b = live[ia], live[ib]
         if self._has_kin and len(a):
             # Two bodies the game moves pass through each other (as in pymunk).
@@ -590,6 +967,7 @@ class Collisions:
         dt: float,
         live: np.ndarray,
         store: Any,
+        free: np.ndarray,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The pairs (ia, ib) (places in live) with those of bodies an impact may send farther
         than their own speed reaches: a light ball struck by a fast one flies off at up to
@@ -617,7 +995,7 @@ class Collisions:
             gain = np.zeros(len(P))
             np.maximum.at(gain, ia, close * w[ia])
             np.maximum.at(gain, ib, close * w[ib])
-            grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done)
+            grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done & free)
             if not len(grown):
                 break
             done[grown] = True
@@ -650,23 +1028,11 @@ class Collisions:
         """Resolve the step's impacts in time order, in place on the end state (X, V)."""
         nU = len(X)
         R = r[la] + r[lb]
-        # A closing speed below rest, 2 |a_n| dt for the larger pull a_n of the pair's bodies
-        # along the normal, is a contact at rest, not a bounce (in a pile, below 2 g dt along a
-        # contact; two balls lying on a floor meet sideways, where gravity adds nothing, so
-        # every meeting of theirs is an impact). Only pairs that can close faster than that
-        # (bounded here by the pulls' sizes) can have an impact.
+        # Pairs that close at all within the step can meet (``_toi`` finds when, if ever).
         P = self._P
-        rest = 2.0 * dt * np.maximum(_norm(P[la]), _norm(P[lb]))
         Vr = V[la] - V[lb]
         Ar = A[la] - A[lb]
-        can = _norm(Vr) + _norm(Ar) * dt > rest
-        if len(self._keys) and len(la):
-            # A pair that carried load at rest in the last step rests on: its contact is
-            # solved with the pile's (a pile does not bounce inside).
-            keys = self._U[la].astype(np.int64) * self._base + self._U[lb]
-            pos = np.clip(np.searchsorted(self._keys, keys), 0, len(self._keys) - 1)
-            loaded = (self._keys[pos] == keys) & (self._lam[pos, 0] > 0.0)
-            can &= ~loaded
+        can = (_norm(Vr) + _norm(Ar) * dt) > 0.0
         if not can.any():
             return []
         pa, pb, pR = la, lb, R
@@ -758,9 +1124,30 @@ class Collisions:
             left[pa[hit]] = left[pb[hit]] = True
             left |= np.isfinite(face_t)
             t_first = min(float(toi[hit].min()) if hit.any() else math.inf, float(face_t.min()))
-            i = np.flatnonzero(left)
-            if len(i) and math.isfinite(t_first):
-                X[i] = self._state_at(i, np.full(len(i), t_first), X, V, A, dt)[0]
+            if math.isfinite(t_first):
+                # A body resting against a stopped one (no impact of theirs pending) would
+                # run into it: it stops too, and so on along the contacts.
+                T = np.full(nU, t_first)
+                end = self._state_at(np.arange(nU), T, X, V, A, dt)[0]
+                for _ in range(nU):
+                    one = left[pa] != left[pb]
+                    if not one.any():
+                        break
+                    ia, ib = pa[one], pb[one]
+                    qa = np.where(left[ia, None], end[ia], X[ia])
+                    qb = np.where(left[ib, None], end[ib], X[ib])
+                    meet = _norm(qa - qb) < pR[one]
+                    if not meet.any():
+                        break
+                    left[ia[meet]] = left[ib[meet]] = True
+                i = np.flatnonzero(left)
+                X[i] = end[i]
+            plastic = hit & (e[pa] * e[pb] <= COLLAPSE_E)
+            if plastic.any():
+                # An inelastic collapse (impacts without end, closing ever slower: a light
+                # ball between heavy ones, e small) would meet the cap again every step, and
+                # stop there: its pairs take their plastic impacts all at once instead.
+                _plastic(pa[plastic], pb[plastic], X, V, w, 2.0 * dt * float(_norm(P).max()))
         return found
 
     @staticmethod
@@ -797,10 +1184,12 @@ class Collisions:
             d = D[ok] + Vr[ok] * T + Ar[ok] * (0.5 * T * T)
             dn = np.maximum(_norm(d), 1e-300)
             u = -_dot(Vr[ok] + Ar[ok] * T, d) / dn
-            P = self._P
-            pulls = np.maximum(np.abs(_dot(P[pa[ok]], d)), np.abs(_dot(P[pb[ok]], d)))
-            rest = 2.0 * dt * pulls / dn
-            t[ok[u <= rest]] = np.inf
+            # Only rounding: two discs that an inelastic impact left moving together close
+            # at ~1e-16 of their speed, which is no impact. (A pair closing slowly under
+            # the forces, to rest on each other, is a pile's: ``plan`` gave it to the soft
+            # step; any other meeting is an impact, however slow.)
+            speed = _norm(va[ok]) + _norm(vb[ok])
+            t[ok[u <= 1e-12 * speed]] = np.inf
         return t
 
     def _bounce(
@@ -876,269 +1265,6 @@ class Collisions:
         U = self._U
         contacts.record(U[i], faces.owner[f], x - nrm * r[i, None], nrm, dv, self._t0 + t)
 
-    # -- resting contacts ------------------------------------------------------------------------
-    def _resting(
-        self,
-        la: np.ndarray,
-        lb: np.ndarray,
-        X: np.ndarray,
-        X0: np.ndarray,
-        V: np.ndarray,
-        A: np.ndarray,
-        w: np.ndarray,
-        r: np.ndarray,
-        mu: np.ndarray,
-        dt: float,
-        share: float,
-        U: np.ndarray,
-        n: int,
-        contacts: Contacts | None,
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Solve the contacts at rest (pairs and the static faces their bodies touch) in place
-        on (X, V); return the local pairs that rest on each other."""
-        nU = len(X)
-        R = r[la] + r[lb]
-        D = X[la] - X[lb]
-        dist = _norm(D)
-        margin = 0.05 * np.minimum(r[la], r[lb])
-        # Resting: near and closing no faster than rest_speed (a faster pair just touching at
-        # the end of the step is an impact early in the next one).
-        closing = -_dot(V[la] - V[lb], D) / np.where(dist > 0.0, dist, 1.0)
-        P = self._P
-        pulls = np.maximum(np.abs(_dot(P[la], D)), np.abs(_dot(P[lb], D)))
-        rest = 2.0 * dt * pulls / np.where(dist > 0.0, dist, 1.0)
-        near = (dist - R <= margin) & ((closing <= rest) | (dist < R))
-        ra, rb = la[near], lb[near]
-        nrm = _unit(D[near], dist[near])
-        gap = dist[near] - R[near]
-        fric = mu[ra] * mu[rb]
-        # Keys of the contacts, for warm starting: a * base + b for a pair, a * base + n + f
-        # for body a on face f.
-        n_faces = 0 if contacts is None else len(contacts.faces.owner)
-        base = n + n_faces
-        if base != self._base:
-            self._keys, self._base = np.zeros(0, dtype=np.int64), base
-        keys = U[ra].astype(np.int64) * base + U[rb]
-        if n_faces and contacts is not None:
-            fa, fn, fg, fmu, fk = _face_rows(contacts, X, r, 0.05 * r)
-            if contacts.faces.filters is not None:
-                ok = contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
-                fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
-            # As for pairs: a body closing on a wall faster than rest_speed, not yet in it,
-            # meets it early in the next step (the static contacts bounce it exactly).
-            slow = (-_dot(V[fa], fn) <= 2.0 * dt * np.abs(_dot(P[fa], fn))) | (fg < 0.0)
-            if self._kinU is not None:
-                slow &= ~self._kinU[fa]  # walls do not hold what the game moves
-            fa, fn, fg, fmu, fk = fa[slow], fn[slow], fg[slow], fmu[slow], fk[slow]
-            if len(fa):
-                ra = np.concatenate([ra, fa])
-                # nU: the static world. Pairs first, then faces: _project splits them so.
-                rb = np.concatenate([rb, np.full(len(fa), nU)])
-                nrm = np.concatenate([nrm, fn])
-                gap = np.concatenate([gap, fg])
-                fric = np.concatenate([fric, mu[fa] * fmu])
-                keys = np.concatenate([keys, U[fa].astype(np.int64) * base + n + fk])
-        if not len(ra):
-            return ra[:0], rb[:0]
-        wx = np.append(w, 0.0)
-        # Each body's mass is split between its contacts (so Jacobi converges).
-        count = np.bincount(ra, minlength=nU + 1) + np.bincount(rb, minlength=nU + 1)
-        count[nU] = 0
-        eff = 1.0 / (wx[ra] * count[ra] + wx[rb] * count[rb])
-        tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
-        # A contact not yet closed may close by its gap this step, no more.
-        target = np.where(gap > 0.0, -gap / dt, 0.0)
-        # Warm start from the last step's impulses of the same contacts.
-        lam = np.zeros((len(ra), 2))
-        if len(self._keys):
-            pos = np.clip(np.searchsorted(self._keys, keys), 0, len(self._keys) - 1)
-            same = self._keys[pos] == keys
-            lam[same] = self._lam[pos[same]] * (dt / self._lam_dt)
-            lam[:, 0] = np.maximum(lam[:, 0], 0.0)
-            cap = fric * lam[:, 0]
-            lam[:, 1] = np.clip(lam[:, 1], -cap, cap)
-        Vx = np.vstack([V, np.zeros((1, 2))])
-        V_before = Vx.copy()
-        X_ref = X.copy()  # where the gaps were measured
-        idx = np.concatenate([ra, rb])
-        if lam.any():
-            self._apply(Vx, idx, lam, nrm, tang, wx, ra, rb, nU)
-        # Chebyshev's semi-iteration (Wang 2015) speeds Jacobi up: each iterate is pushed
-        # on from the one two before by omega, which grows from 1 toward its limit for the
-        # spectral radius rho of the plain iteration.
-        #
-        # The iterations work in complex numbers, a vector (x, y) being x + iy: with the
-        # normal n, the relative velocity d gives d conj(n) = (d.n) + i (d.t), t = i n the
-        # tangent, both parts in one product; an impulse (p_n, p_t) is n (p_n + i p_t).
-        nc = nrm[:, 0] + 1j * nrm[:, 1]
-        ncc = np.conj(nc)
-        Vc = Vx[:, 0] + 1j * Vx[:, 1]
-        w2 = np.concatenate([wx[ra], -wx[rb]])
-        lam_n, lam_t = lam[:, 0].copy(), lam[:, 1].copy()
-        old_n, old_t = lam_n, lam_t
-        rho2 = self.rho * self.rho
-        omega = 1.0
-        size = nU + 1
-        w_max = float(wx.max())
-        tol_v = 1e-6 * self.rest_speed + 1e-300
-        for k in range(self.iterations):
-            z = (Vc[ra] - Vc[rb]) * ncc
-            new_n = lam_n - eff * (z.real - target)
-            new_t = lam_t - eff * z.imag
-            if k >= 1:
-                omega = 2.0 / (2.0 - rho2) if k == 1 else 4.0 / (4.0 - rho2 * omega)
-                new_n = omega * (new_n - old_n) + old_n
-                new_t = omega * (new_t - old_t) + old_t
-            np.maximum(new_n, 0.0, out=new_n)
-            cap = fric * new_n
-            np.clip(new_t, -cap, cap, out=new_t)
-            d_n, d_t = new_n - lam_n, new_t - lam_t
-            # Converged (no impulse would change any speed by a millionth of rest_speed): stop.
-            if float(np.abs(d_n).max() + np.abs(d_t).max()) * w_max <= tol_v:
-                break
-            P = nc * (d_n + 1j * d_t)
-            old_n, old_t, lam_n, lam_t = lam_n, lam_t, new_n, new_t
-            P2 = np.concatenate([P, P]) * w2
-            Vc += np.bincount(idx, P2.real, minlength=size) + 1j * np.bincount(
-                idx, P2.imag, minlength=size
-            )
-            Vc[nU] = 0.0
-        lam = np.stack([lam_n, lam_t], axis=1)
-        Vx = np.stack([Vc.real, Vc.imag], axis=1)
-        if self._kinU is None or not self._kinU.any():
-            Vx, lam = _dissipative(Vx, V_before, wx, lam)
-        bands = _Bands.of(ra, rb, nU, X, A, self.rmin, self._kinU)
-        if bands is not None:
-            tol = 1e-6 * self.rest_speed + 1e-300
-            bands.velocity(Vx, nrm, target, fric, lam[:, 0], wx, tol)
-        V[:] = Vx[:nU]
-        # The contact forces acted through the step on a body whose contacts were closed as
-        # it began: they move it by the method's share of dv dt. A body that was still
-        # closing a gap met its contact only late in the step: it keeps its end position
-        # (the position passes below take back any overlap), else it would hover.
-        if share:
-            d0 = X0[ra] - np.vstack([X0, X0[:1]])[rb]
-            gap0 = np.where(
-                rb < nU, _norm(d0) - r[ra] - np.append(r, 0.0)[rb], gap + _dot(X0[ra] - X[ra], nrm)
-            )
-            late = (gap0 > SLOP * r[ra]) & (lam[:, 0] > 0.0)  # pushing, and open at the start
-            open_ = np.zeros(nU + 1, dtype=bool)
-            open_[ra[late]] = True
-            open_[rb[late]] = True
-            moving = (Vx[:nU] - V_before[:nU]) * (share * dt)
-            moving[open_[:nU]] = 0.0
-            X += moving
-        order = np.argsort(keys)
-        self._keys, self._lam, self._lam_dt = keys[order], lam[order], dt
-        self._project(ra, rb, nU, X, X_ref, nrm, gap, wx, r, eff)
-        if bands is not None:
-            bands.position(X, X_ref, nrm, gap, r)
-        sel = rb < nU
-        return ra[sel], rb[sel]
-
-    @staticmethod
-    def _apply(
-        Vx: np.ndarray,
-        idx: np.ndarray,
-        d_lam: np.ndarray,
-        nrm: np.ndarray,
-        tang: np.ndarray,
-        wx: np.ndarray,
-        ra: np.ndarray,
-        rb: np.ndarray,
-        nU: int,
-    ) -> None:
-        """Add the impulses d_lam (normal, tangential) of each contact to both its bodies."""
-        P = nrm * d_lam[:, :1] + tang * d_lam[:, 1:]
-        Pa, Pb = P * wx[ra, None], P * -wx[rb, None]
-        both = np.concatenate([Pa, Pb])
-        Vx[:, 0] += np.bincount(idx, both[:, 0], minlength=nU + 1)
-        Vx[:, 1] += np.bincount(idx, both[:, 1], minlength=nU + 1)
-        Vx[nU] = 0.0
-
-    def _project(
-        self,
-        ra: np.ndarray,
-        rb: np.ndarray,
-        nU: int,
-        X: np.ndarray,
-        X_ref: np.ndarray,
-        nrm: np.ndarray,
-        gap: np.ndarray,
-        wx: np.ndarray,
-        r: np.ndarray,
-        eff: np.ndarray,
-    ) -> None:
-        """Move positions (never velocities) to remove BAUMGARTE of each overlap past SLOP.
-
-        A pair's overlap is measured anew each iteration; a face's is its gap when measured
-        plus how far the body has moved along the face's normal since (a face does not move).
-        The rows are the pairs, then the faces (rb == nU), as ``_resting`` lists them; each
-        part is worked on alone, in complex numbers (x + iy), as the iterations are.
-        """
-        m = int(np.count_nonzero(rb < nU))
-        pa, pb, fa = ra[:m], rb[:m], ra[m:]
-        Xc = X[:, 0] + 1j * X[:, 1]
-        # Pairs: overlap R - |x_a - x_b|, pushed apart along the line of centres.
-        R = r[pa] + r[pb]
-        slop_p = SLOP * np.minimum(r[pa], r[pb])
-        k = BAUMGARTE * eff[:m]
-        ka, kb = k * wx[pa], k * -wx[pb]
-        # Faces: overlap base - x.n, with base = -gap + x_ref.n; pushed out along n.
-        nf = nrm[m:, 0] + 1j * nrm[m:, 1]
-        nfc = np.conj(nf)
-        base = -gap[m:] + _dot(X_ref[fa], nrm[m:])
-        slop_f = SLOP * r[fa]
-        kf = BAUMGARTE * eff[m:] * wx[fa]
-        deepest_rest = 0.0  # the deepest overlap among pairs left out of later iterations
-        # At least position_iterations over every row; then, up to MAX_POSITION_ITERATIONS,
-        # more over the rows near an overlap past twice SLOP (a pile settling, or a ball just
-        # landed on it: the work goes where the overlap is).
-        for it in range(MAX_POSITION_ITERATIONS + 1):
-            D = Xc[pa] - Xc[pb]
-            dist = np.abs(D)
-            over_p = R - dist
-            over_f = base - (Xc[fa] * nfc).real
-            push_p = np.maximum(over_p - slop_p, 0.0)
-            push_f = np.maximum(over_f - slop_f, 0.0)
-            if it == MAX_POSITION_ITERATIONS or not (push_p.any() or push_f.any()):
-                break
-            if it >= self.position_iterations:
-                deep_p, deep_f = over_p > 2.0 * slop_p, over_f > 2.0 * slop_f
-                if not (deep_p.any() or deep_f.any()):
-                    break
-                if it == self.position_iterations:
-                    hot = np.zeros(nU, dtype=bool)
-                    hot[pa[deep_p]] = hot[pb[deep_p]] = hot[fa[deep_f]] = True
-                    keep_p, keep_f = hot[pa] | hot[pb], hot[fa]
-                    if not keep_p.all():
-                        left = over_p[~keep_p]
-                        deepest_rest = float(left.max())
-                        pa, pb, R, slop_p, ka, kb = (
-                            pa[keep_p], pb[keep_p], R[keep_p], slop_p[keep_p], ka[keep_p],
-                            kb[keep_p],
-                        )  # fmt: skip
-                        D, dist, push_p = D[keep_p], dist[keep_p], push_p[keep_p]
-                    if not keep_f.all():
-                        fa, nf, nfc, base = fa[keep_f], nf[keep_f], nfc[keep_f], base[keep_f]
-                        slop_f, kf, push_f = slop_f[keep_f], kf[keep_f], push_f[keep_f]
-            # Straight up where two centres coincide, so that they are still pushed apart.
-            # (Subnormal distances count as coinciding: complex division by them overflows.)
-            apart = dist > 1e-290
-            unit = D / np.where(apart, dist, 1.0)
-            if not apart.all():
-                unit[~apart] = 1j
-            Pp = unit * push_p
-            Pf = nf * push_f
-            idx = np.concatenate([pa, pb, fa])
-            P = np.concatenate([Pp * ka, Pp * kb, Pf * kf])
-            Xc += np.bincount(idx, P.real, minlength=nU) + 1j * np.bincount(
-                idx, P.imag, minlength=nU
-            )
-        deepest = max(float(over_p.max()) if len(over_p) else 0.0, deepest_rest)
-        X[:, 0], X[:, 1] = Xc.real, Xc.imag
-        self.last_overlap = max(deepest, 0.0)
-
     # -- events ----------------------------------------------------------------------------------
     def _events_of(
         self,
@@ -1147,7 +1273,6 @@ class Collisions:
         n: int,
         t0: float,
         dt: float,
-        U: np.ndarray,
     ) -> None:
         """Began: each impact, and each pair at rest touching now that did not before; ended:
         each impact whose pair no longer touches, and each pair that touched and no longer
@@ -1159,9 +1284,8 @@ class Collisions:
             return  # the same pairs touch as before: nothing began or ended
         struck = np.zeros(0, dtype=np.int64)
         if impacts:
-            for pa, pb, point, nrm, P, tau in impacts:
+            for ga, gb, point, nrm, P, tau in impacts:  # (World rows)
                 t = t0 + tau
-                ga, gb = U[pa], U[pb]
                 self._began.append((ga, gb, point, nrm, P, t))
                 k = ga.astype(np.int64) * n + gb
                 struck = np.concatenate([struck, k])
@@ -1196,8 +1320,6 @@ class Collisions:
         """Drop pairs of two sleepers; wake the group of a sleeper an awake body meets."""
         asleep = self.asleep
         sa, sb = asleep[a], asleep[b]
-        keep = ~(sa & sb)
-        a, b, sa, sb = a[keep], b[keep], sa[keep], sb[keep]
         mixed = np.flatnonzero(sa != sb)
         if len(mixed):
             awake = np.where(sa[mixed], b[mixed], a[mixed])
@@ -1213,7 +1335,10 @@ class Collisions:
                 woken = asleep & _isin_sorted(self._group, groups)
                 asleep[woken] = False
                 self.still[woken] = 0.0
-        return a, b
+        # The pairs of two sleepers left asleep are dropped (after the waking: a woken
+        # group's own pairs are its contacts this step).
+        keep = ~(asleep[a] & asleep[b])
+        return a[keep], b[keep]
 
     def _sleep_still(
         self,
@@ -1243,6 +1368,7 @@ class Collisions:
         # flight never does, however slow.
         member = np.zeros(len(v), dtype=bool)
         member[pa] = member[pb] = True
+        member[self.face_touching[0]] = True  # a pile's body resting on a wall alone
         if contacts is not None and len(contacts.rest) == len(v):
             # Held still on a collider by friction (exactly still: a slow frictionless puck
             # glides on).
@@ -1273,272 +1399,6 @@ class Collisions:
             asleep[sleepers] = True
             self._group = np.where(sleepers, label, self._group)
             v[sleepers] = 0.0
-
-
-class _Bands:
-    """The contacts of a pile in layers from the ground up, for shock propagation.
-
-    Jacobi passes information one contact per iteration, so a pile many layers deep cannot
-    be held by a few iterations. Shock propagation (Guendelman, Bridson and Fedkiw 2003) ends
-    the solve with one pass from the bottom up: bodies are sorted into bands of height (up
-    being against the mean acceleration, BAND smallest radii thick), and each band's contacts
-    with the bands below, already final, are made to hold with the lower body taken as
-    immovable. Contacts within one band (side by side) are left to the iterations.
-
-    Within a band the upper bodies are independent (the bodies below are held), but one body
-    may rest on two or three rows at once: a ball in the groove of two below, or wedged
-    between a ball and a wall. Those rows are solved by Gauss-Seidel, not Jacobi: a body's
-    first rows (slot 0) all at once, then its second rows (slot 1), and so on, each taking
-    the full correction, in SHOCK_ITERATIONS sweeps. For a wedge whose two normals are 120
-    degrees apart, Jacobi with the mass split between the rows keeps (1 + |cos|) / 2 = 3/4 of
-    the error an iteration, Gauss-Seidel cos^2 = 1/4 a sweep: Jacobi left a ball against a
-    wall slipping at 0.2 m/s for a step now and then, and a pile that could not fall asleep.
-
-    The passes are a Python loop over the bands (each band waits for the ones below), so
-    each band's work is kept to a few array calls on short slices (``np.count_nonzero``, not
-    ``.any()``, whose Python wrapper costs 2 us a call). Rows are kept in flat arrays sorted
-    by (band, slot, upper body): a band is a slice, and so is each of its slots, in which a
-    body appears once. Vectors are complex numbers (x + iy), as in the iterations: with the
-    unit normal n, d conj(n) is (d.n) + i (d.t) for the tangent t = i n, and the impulse
-    (p_n, p_t) is n (p_n + i p_t).
-    """
-
-    def __init__(
-        self,
-        rows: np.ndarray,
-        upper: np.ndarray,
-        lower: np.ndarray,
-        sign: np.ndarray,
-        bounds: np.ndarray,
-        nU: int,
-    ) -> None:
-        # Sorted by (band, upper body): runs of one upper body, each body's rows in a band
-        # being one run (a band starts a run, even on the same body).
-        nb = len(bounds) - 1
-        new = np.ones(len(rows), dtype=bool)
-        new[1:] = upper[1:] != upper[:-1]
-        new[bounds[1:-1]] = True
-        starts = np.flatnonzero(new)
-        run = np.cumsum(new) - 1
-        run_bounds = np.append(run[bounds[:-1]], len(starts))
-        band_of_row = np.repeat(np.arange(nb), np.diff(bounds))
-        slot = np.arange(len(rows)) - starts[run]
-        self.run_body = upper[starts]
-        # Re-sorted by (band, slot, run): each band's slots are slices within it.
-        perm = np.lexsort((run, slot, band_of_row))
-        rows, upper, lower, sign = rows[perm], upper[perm], lower[perm], sign[perm]
-        run, slot = run[perm], slot[perm]
-        self.rows, self.upper, self.lower, self.sign = rows, upper, lower, sign
-        self.bounds, self.nU = bounds, nU
-        self.run_bounds = run_bounds
-        # Each row's body among its band's: the index into that band's bodies.
-        self.local_run = run - run_bounds[:-1][band_of_row]
-        # Slot slices: cut where the slot changes within a band, and at every band.
-        cut_at = np.ones(len(rows), dtype=bool)
-        cut_at[1:] = slot[1:] != slot[:-1]
-        cut_at[bounds[:-1]] = True
-        seg = np.append(np.flatnonzero(cut_at), len(rows))
-        first = np.searchsorted(seg, bounds).tolist()
-        seg_list = seg.tolist()
-        self.slots = [seg_list[first[i] : first[i + 1] + 1] for i in range(nb)]
-        self.face = lower == nU
-        self.band_has_face = np.logical_or.reduceat(self.face, bounds[:-1]).tolist()
-
-    @classmethod
-    def of(
-        cls,
-        ra: np.ndarray,
-        rb: np.ndarray,
-        nU: int,
-        X: np.ndarray,
-        A: np.ndarray,
-        rmin: float,
-        fixed: np.ndarray | None = None,
-    ) -> _Bands | None:
-        """The bands of contacts (ra, rb) (rb == nU: a static face); None without "up".
-        ``fixed`` (nU,) bool: kinematic bodies, which lie below everything, as the static
-        world does (they hold what rests on them and are never moved)."""
-        g = A.sum(axis=0)
-        size = math.hypot(float(g[0]), float(g[1]))
-        if not size > 0.0 or not len(ra):
-            return None
-        up = -g / size
-        h = X @ up
-        # Bands from a fixed origin, in the World's smallest radius (not those of the bodies
-        # paired now): a pile's bands do not depend on bodies it never touches.
-        band = np.floor(h / (BAND * rmin)).astype(np.int64)
-        bandx = np.append(band, -1)  # the static world lies below everything
-        hx = np.append(h, -np.inf)
-        if fixed is not None:
-            bandx[:nU][fixed], hx[:nU][fixed] = -1, -np.inf
-        a_up = hx[ra] > hx[rb]
-        upper = np.where(a_up, ra, rb)
-        rows = np.flatnonzero(bandx[np.where(a_up, rb, ra)] < bandx[upper])
-        if not len(rows):
-            return None
-        # Sorted by (band, upper body): bands are slices, a body's rows in a band are a run.
-        key = bandx[upper[rows]] * (nU + 1) + upper[rows]
-        order = np.argsort(key, kind="stable")
-        rows, key = rows[order], key[order]
-        band_of = key // (nU + 1)
-        cut = np.flatnonzero(band_of[1:] != band_of[:-1]) + 1
-        bounds = np.concatenate([[0], cut, [len(rows)]])
-        up_rows = upper[rows]
-        lo_rows = np.where(a_up[rows], rb[rows], ra[rows])
-        sign = np.where(a_up[rows], 1.0, -1.0)
-        # Only the rows that rest on something held (a face, a kinematic body, or a body
-        # that rests on one, band below band) are worked on: bodies falling freely together
-        # are left alone (taking a lower one as immovable would take momentum out of them),
-        # and their contacts to the iterations.
-        held = np.zeros(nU + 1, dtype=bool)
-        held[nU] = True  # the static world
-        if fixed is not None:
-            held[:nU][fixed] = True
-        sup = np.zeros(len(rows), dtype=bool)
-        for i in range(len(bounds) - 1):
-            a0, a1 = bounds[i], bounds[i + 1]
-            s = held[lo_rows[a0:a1]]
-            if np.count_nonzero(s):
-                sup[a0:a1] = s
-                held[up_rows[a0:a1][s]] = True
-        if not np.count_nonzero(sup):
-            return None
-        if not sup.all():
-            band_of_row = np.repeat(np.arange(len(bounds) - 1), np.diff(bounds))[sup]
-            rows, up_rows, lo_rows, sign = rows[sup], up_rows[sup], lo_rows[sup], sign[sup]
-            cut = np.flatnonzero(band_of_row[1:] != band_of_row[:-1]) + 1
-            bounds = np.concatenate([[0], cut, [len(rows)]])
-        return cls(rows, up_rows, lo_rows, sign, bounds, nU)
-
-    def velocity(
-        self,
-        Vx: np.ndarray,
-        nrm: np.ndarray,
-        target: np.ndarray,
-        fric: np.ndarray,
-        lam_n: np.ndarray,
-        wx: np.ndarray,
-        tol: float,
-    ) -> None:
-        """From the ground up: no body left closing on a body below it (faster than its gap
-        allows in one step), nor sliding on it past what friction allows.
-
-        Friction may take up to mu times the speed the iterations' normal impulse ``lam_n``
-        gave the upper body, plus mu times this pass's own normal change, off the sliding.
-        A band is skipped unless one of its rows needs a change above ``tol`` or a body
-        below it has moved in this pass.
-        """
-        rows, up, lo = self.rows, self.upper, self.lower
-        n = nrm[rows] * self.sign[:, None]
-        nc = n[:, 0] + 1j * n[:, 1]
-        ncc = np.conj(nc)
-        inc = 1j * nc  # the tangent
-        least, mu = target[rows], fric[rows]
-        budget = mu * lam_n[rows] * wx[up]
-        Vc = Vx[:, 0] + 1j * Vx[:, 1]
-        z = (Vc[up] - Vc[lo]) * ncc
-        need = np.logical_or.reduceat(
-            (least - z.real > tol) | (np.abs(z.imag) > tol), self.bounds[:-1]
-        ).tolist()
-        moved = np.zeros(len(Vc), dtype=bool)
-        b, rb, local_run, run_body = self.bounds, self.run_bounds, self.local_run, self.run_body
-        for i, segs in enumerate(self.slots):
-            a0, a1 = b[i], b[i + 1]
-            low = lo[a0:a1]
-            if not need[i] and not np.count_nonzero(moved[low]):
-                continue
-            uu = run_body[rb[i] : rb[i + 1]]
-            Vu = Vc[uu]
-            Vl = Vc[low]  # final already: lower bands came first
-            changed = False
-            for _ in range(SHOCK_ITERATIONS):
-                acted = False
-                for s0, s1 in zip(segs[:-1], segs[1:], strict=True):
-                    inv = local_run[s0:s1]  # each body once in a slot
-                    vi = Vu[inv]
-                    z = (vi - Vl[s0 - a0 : s1 - a0]) * ncc[s0:s1]
-                    push = least[s0:s1] - z.real
-                    np.maximum(push, 0.0, out=push)
-                    bud = budget[s0:s1]
-                    bud += mu[s0:s1] * push
-                    slide = _clip(z.imag, -bud, bud)
-                    bud -= np.abs(slide)
-                    if np.count_nonzero(push) or np.count_nonzero(slide):
-                        # dv = n push - t slide
-                        Vu[inv] = vi + (nc[s0:s1] * push - inc[s0:s1] * slide)
-                        acted = True
-                if not acted:
-                    break
-                changed = True
-            if changed:
-                Vc[uu] = Vu
-                moved[uu] = True
-        Vx[:, 0], Vx[:, 1] = Vc.real, Vc.imag
-
-    def position(
-        self, X: np.ndarray, X_ref: np.ndarray, nrm: np.ndarray, gap: np.ndarray, r: np.ndarray
-    ) -> None:
-        """From the ground up: each body moved out of the bodies below it (past SLOP)."""
-        nU = self.nU
-        rows, up, lo, face = self.rows, self.upper, self.lower, self.face
-        Xc = np.zeros(nU + 1, dtype=complex)
-        Xc[:nU] = X[:, 0] + 1j * X[:, 1]
-        rx = np.append(r, 0.0)
-        n0 = nrm[rows] * self.sign[:, None]
-        nc = n0[:, 0] + 1j * n0[:, 1]
-        ncc = np.conj(nc)
-        ru = r[up]
-        # The overlap past SLOP that a push removes: R - |d| - slop for a pair, and for a
-        # face -gap as measured less how far the body has moved along the face's normal
-        # since (base - X.n), less slop. (The static world's X is 0: d = X for a face.)
-        R_slop = ru + rx[lo] - SLOP * np.where(face, ru, np.minimum(ru, rx[lo]))
-        base_slop = -gap[rows] + _dot(X_ref[up], n0) - SLOP * ru
-        d = Xc[up] - Xc[lo]
-        over = np.where(face, base_slop - (d * ncc).real, R_slop - np.abs(d))
-        need = np.logical_or.reduceat(over > 0.0, self.bounds[:-1]).tolist()
-        moved = np.zeros(nU + 1, dtype=bool)
-        b, rb, local_run, run_body = self.bounds, self.run_bounds, self.local_run, self.run_body
-        has_face = self.band_has_face
-        for i, segs in enumerate(self.slots):
-            a0, a1 = b[i], b[i + 1]
-            low = lo[a0:a1]
-            if not need[i] and not np.count_nonzero(moved[low]):
-                continue
-            uu = run_body[rb[i] : rb[i + 1]]
-            faces = has_face[i]
-            Xu = Xc[uu]
-            Xl = Xc[low]
-            changed = False
-            for _ in range(SHOCK_ITERATIONS):
-                acted = False
-                for s0, s1 in zip(segs[:-1], segs[1:], strict=True):
-                    inv = local_run[s0:s1]  # each body once in a slot
-                    xi = Xu[inv]
-                    d = xi - Xl[s0 - a0 : s1 - a0]
-                    dist = np.abs(d)
-                    push = R_slop[s0:s1] - dist
-                    if faces:
-                        bf = face[s0:s1]
-                        np.copyto(push, base_slop[s0:s1] - (d * ncc[s0:s1]).real, where=bf)
-                    np.maximum(push, 0.0, out=push)
-                    if not np.count_nonzero(push):
-                        continue
-                    # Along the line of centres (straight up where two centres coincide), or
-                    # the face's normal.
-                    unit = d / np.where(dist > 0.0, dist, 1.0)
-                    if np.count_nonzero(dist) < len(dist):
-                        unit[dist == 0.0] = 1j
-                    if faces:
-                        np.copyto(unit, nc[s0:s1], where=bf)
-                    Xu[inv] = xi + push * unit
-                    acted = True
-                if not acted:
-                    break
-                changed = True
-            if changed:
-                Xc[uu] = Xu
-                moved[uu] = True
-        X[:, 0], X[:, 1] = Xc[:nU].real, Xc[:nU].imag
 
 
 def _wall_hits(

@@ -76,12 +76,6 @@ _mul, _add = np.multiply, np.add
 #: The methods the World steps by its affine kernel when every force is folded.
 _EULERS = ("semi_implicit_euler", "explicit_euler")
 
-#: How far a resting contact's velocity change dv moves a body within the step, as a
-#: fraction of dv dt: a constant force moves a body by a dt^2 / 2 under the closed form,
-#: velocity Verlet and RK4, by a dt^2 under semi-implicit Euler (x moves with the new v) and
-#: not at all under explicit Euler (x moves with the old v). A method given as a function
-#: takes 1/2.
-_SHARE = {"exact": 0.5, "semi_implicit_euler": 1.0, "explicit_euler": 0.0}
 
 #: Entries below this in size cannot overflow in one more step of the affine kernel.
 _SAFE = 1e300
@@ -765,6 +759,10 @@ class World:
                 sensing = collider_keys(slots[rows], serials[sensors[s]])
         if self._pairs_on:
             pairs = self._collisions
+            rows, faces = pairs.face_touching
+            if len(rows) and contacts is not None:
+                owner = contacts.faces.owner[faces]
+                resting = np.concatenate([resting, collider_keys(slots[rows], serials[owner])])
             raw += raw_specs(pairs._began, True, slots, None)
             raw += raw_specs(pairs._ended, False, slots, None)
             touching = pairs._touching
@@ -1413,6 +1411,18 @@ class World:
         v_method = v1
         v_free = v1
         contacts = self._contacts
+        pairs = self._collisions
+        pull = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
+        frozen = self._frozen(store)
+        if self._pairs_on:
+            # Which bodies are in a pile (engine.collisions): the soft step takes them, from
+            # the start of the step; the static contacts leave them to it.
+            held = None if contacts is None else contacts.rest >= 0
+            pile = pairs.plan(store.x, store.v, x1, v1, pull, dt, store, held)
+            if pile is not None:
+                frozen = pile if frozen is None else frozen | pile
+                if contacts is not None:
+                    contacts.rest[pile] = -1  # their faces are the pile's rows now
         if contacts is not None:
             # The path of the step is swept for impacts (engine.contacts); under the closed
             # form it is the exact parabola.
@@ -1429,19 +1439,19 @@ class World:
                 store.friction,
                 store.mass,
                 model.a0 if step is None else None,
-                self._frozen(store),
+                frozen,
+                sense=not self._pairs_on,
             )
             if contacts.moved:
                 self._anchor = None  # the closed form starts anew from the changed state
             # What the static contacts did to each velocity (a resting contact's impulse).
             self._contact_dv = v1 - v_free if contacts.moved else None
-        pairs = self._collisions
         if not self._pairs_on:
             pairs.quiet()  # no pair solved: none of its reports is this step's
-        if pairs is not None and self._pairs_on:
+        if self._pairs_on:
             # Bodies meet one another (engine.collisions) on the paths that end where the
             # method and the static contacts left them.
-            A = pull = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
+            A = pull
             if contacts is not None and contacts.moved:
                 # A body resting on a collider is carried by it: its acceleration along the
                 # path is the step's mean one.
@@ -1449,12 +1459,11 @@ class World:
                 if on.any():
                     A = A.copy()
                     A[on] = (v1[on] - store.v[on]) * (1.0 / dt)
-            share = _SHARE.get(name, 0.5)
-            x1, v1 = pairs.resolve(
-                store.x, store.v, x1, v1, A, dt, t0, share, store, contacts, pull
-            )
+            x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, store, contacts, pull)
             if pairs.moved:
                 self._anchor = None
+            if contacts is not None:
+                contacts.sense(x1, dt, t0, store.radius)  # where every body ended
             if pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned:
                 # The resting solver's limit: a pile too deep for its iterations sinks into
                 # itself (README: "Limits of the contact solver").

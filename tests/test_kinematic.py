@@ -78,7 +78,10 @@ def test_a_ball_on_a_moving_platform_rides_it() -> None:
     for _ in range(240):
         world.step(DT)
     assert rider.vel.x == pytest.approx(1.0, rel=1e-6)
-    assert rider.pos.x - platform.pos.x == pytest.approx(0.0, abs=0.05)
+    # It slips while friction mu g brings it up to speed: by v^2 / (2 mu g) in the closed
+    # form; the step's discrete pushes may miss that by a step's worth of slip (v dt / 2).
+    slip = 1.0**2 / (2.0 * 1.0 * 9.81)
+    assert platform.pos.x - rider.pos.x == pytest.approx(slip, abs=0.5 * DT)
     assert rider.pos.y == pytest.approx(5.5, abs=0.01 * 0.5)
 
 
