@@ -64,10 +64,11 @@ from typing import Any
 
 import numpy as np
 
-from .colliders import Box, Circle, Collider, Plane, Segment
+from .colliders import Box, Circle, Collider, Plane, Polygon, Segment
 from .events import ContactEvent
 from .filters import DEFAULT as DEFAULT_FILTER
 from .impact import TOUCH, Pair, disc_hit_one, disc_hits, line_hit_one, line_hits
+from .manifold import polygon_distance
 
 __all__ = ["Contacts", "ContactEvent", "MAX_IMPACTS", "signed_distance"]
 
@@ -102,6 +103,8 @@ def signed_distance(collider: Collider, X: np.ndarray) -> np.ndarray:
         return np.minimum(
             np.minimum(X[:, 0] - x0, x1 - X[:, 0]), np.minimum(X[:, 1] - y0, y1 - X[:, 1])
         )
+    if isinstance(collider, Polygon):
+        return polygon_distance(collider, X)
     raise TypeError(f"unknown collider {collider!r}")
 
 
@@ -131,6 +134,9 @@ class _Faces:
     # The owners' filters (engine.Filter: group, categories, mask), by face; None when every
     # collider has the default filter (then every body meets every face).
     filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+    # The solid polygons' flat faces, one index array each (a body is inside a polygon only
+    # when inside every face of it, not behind one: ``push_out_rows``).
+    polygons: tuple[np.ndarray, ...] = ()
 
 
 def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
@@ -181,6 +187,10 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
             np.array([f.categories for f in fs], dtype=np.int64),
             np.array([f.mask for f in fs], dtype=np.int64),
         )
+    lines_of = np.array(lown, dtype=np.intp)
+    polygons = tuple(
+        np.flatnonzero(lines_of == k) for k in indices if isinstance(colliders[k], Polygon)
+    )
     return _Faces(
         p,
         n,
@@ -201,6 +211,7 @@ def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
         mu.tolist(),
         owner.tolist(),
         filters,
+        polygons,
     )
 
 
@@ -406,12 +417,15 @@ class Contacts:
         mass: np.ndarray,
         acceleration: np.ndarray | None = None,
         frozen: np.ndarray | None = None,
+        sense: bool = True,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The state after dt with every contact on the way applied: new (x, v) arrays.
 
         ``acceleration`` (N, 2): the bodies' constant acceleration over the step when it is
         known (the closed form); else the path is taken from the step's own update.
-        ``frozen`` (N,) bool: bodies asleep in a pile (engine.collisions), left alone here.
+        ``frozen`` (N,) bool: bodies left alone here (asleep, moved by the game, or in a pile:
+        engine.collisions steps them). ``sense``: report the sensors now (else the World
+        calls ``sense`` once the bodies between them have moved too).
         """
         self._began, self._ended = [], []
         faces = self.faces
@@ -448,8 +462,8 @@ class Contacts:
                         x, v = x1.copy(), v1.copy()
                     x[changed], v[changed] = X, V
                     self.moved = True
-        if self._sensors:
-            self._sense(x, dt, t0, radius)
+        if sense:
+            self.sense(x, dt, t0, radius)
         return x, v
 
     def record(
@@ -836,7 +850,9 @@ class Contacts:
             n_f = len(faces.owner)
             meets = self.allowed(np.repeat(rows, n_f), np.tile(np.arange(n_f), len(rows)))
             meets = meets.reshape(len(rows), n_f)
-        for _ in range(3):
+        for _ in range(4):
+            # Each round pushes each body out of the face it is deepest in (all bodies at
+            # once), then looks again: a body in the corner of two faces leaves one a round.
             moved = False
             if L:
                 # n.x by columns, not X @ n.T: a matrix product may round a row differently
@@ -846,15 +862,29 @@ class Contacts:
                 gap = side * d - faces.rho[None, :] - r[:, None]
                 tang = np.stack([-faces.n[:, 1], faces.n[:, 0]], axis=1)
                 u = X[:, :1] * tang[:, 0] + X[:, 1:] * tang[:, 1] - _dot(faces.p, tang)
-                inside = (gap < -TOUCH * (1.0 + r[:, None])) & (u >= faces.lo) & (u <= faces.hi)
+                deep = gap < -TOUCH * (1.0 + r[:, None])
+                inside = deep & (u >= faces.lo) & (u <= faces.hi)
+                for cols in faces.polygons:
+                    # A convex polygon: the body overlaps it when it is behind every face
+                    # (checked exactly at the corners: ``polygon_distance``), and leaves by
+                    # the face it is least deep behind.
+                    sub = gap[:, cols]
+                    top = sub.max(axis=1)
+                    hit = deep[:, cols].all(axis=1)
+                    if hit.any():
+                        owner = self.colliders[int(faces.owner[cols[0]])]
+                        assert isinstance(owner, Polygon)
+                        k = np.flatnonzero(hit)
+                        hit[k] = polygon_distance(owner, X[k]) < r[k] - TOUCH * (1.0 + r[k])
+                    inside[:, cols] = (sub == top[:, None]) & hit[:, None]
                 if meets is not None:
                     inside &= meets[:, :L]
-                for i, j in zip(*np.nonzero(inside), strict=True):
-                    nrm = side[i, j] * faces.n[j]
-                    X[i] -= gap[i, j] * nrm
-                    vn = V[i] @ nrm
-                    if vn < 0.0:
-                        V[i] -= vn * nrm
+                i = np.flatnonzero(inside.any(axis=1))
+                if len(i):
+                    j = np.argmin(np.where(inside[i], gap[i], np.inf), axis=1)
+                    nrm = side[i, j][:, None] * faces.n[j]
+                    X[i] -= gap[i, j][:, None] * nrm
+                    _take_speed_into(V, i, nrm)
                     moved = True
                     pushed[i] = True
             if len(faces.c):
@@ -864,18 +894,20 @@ class Contacts:
                 inside = gap < -TOUCH * (1.0 + r[:, None])
                 if meets is not None:
                     inside &= meets[:, L:]
-                for i, j in zip(*np.nonzero(inside), strict=True):
-                    nrm = D[i, j] / dist[i, j] if dist[i, j] > 0 else np.array([0.0, 1.0])
-                    X[i] = faces.c[j] + nrm * (faces.r[j] + r[i])
-                    vn = V[i] @ nrm
-                    if vn < 0.0:
-                        V[i] -= vn * nrm
+                i = np.flatnonzero(inside.any(axis=1))
+                if len(i):
+                    j = np.argmin(np.where(inside[i], gap[i], np.inf), axis=1)
+                    dij = dist[i, j]
+                    safe = np.where(dij > 0.0, dij, 1.0)[:, None]
+                    nrm = np.where((dij > 0.0)[:, None], D[i, j] / safe, (0.0, 1.0))
+                    X[i] = faces.c[j] + nrm * (faces.r[j] + r[i])[:, None]
+                    _take_speed_into(V, i, nrm)
                     moved = True
                     pushed[i] = True
             if not moved:
                 break
         else:
-            # Three rounds did not settle it: a body pressed into the corner of two faces
+            # Four rounds did not settle it: a body pressed into the corner of two faces
             # (between a peg and a wall, pushed out of each in turn) is put at the corner.
             for i in np.flatnonzero(pushed).tolist():
                 self._out_of_corner(X, V, i, float(r[i]), None if meets is None else meets[i])
@@ -1427,8 +1459,11 @@ class Contacts:
         return x, v, touched or rest >= 0 or rest_before >= 0, rest
 
     # -- sensors ----------------------------------------------------------------------------
-    def _sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
-        """Report bodies that began or ended overlapping each sensor this step."""
+    def sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
+        """Report bodies that began or ended overlapping each sensor this step (x1: where the
+        bodies ended it)."""
+        if not self._sensors:
+            return
         for s, k in enumerate(self._sensors):
             c = self.colliders[k]
             d = signed_distance(c, x1)
@@ -1460,6 +1495,14 @@ class Contacts:
                         )
                     )
             self.inside[:, s] = now
+
+
+def _take_speed_into(V: np.ndarray, i: np.ndarray, nrm: np.ndarray) -> None:
+    """Take the part of rows i of V that goes into the faces of normals ``nrm``, in place."""
+    vn = V[i, 0] * nrm[:, 0] + V[i, 1] * nrm[:, 1]
+    into = vn < 0.0
+    if into.any():
+        V[i[into]] -= vn[into][:, None] * nrm[into]
 
 
 def _corners(

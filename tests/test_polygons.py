@@ -9,17 +9,13 @@ numbers and the textbook's closed forms.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from typing import Any
 
-import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-import engine.contacts
-import engine.world
-from engine import Body, Box, Plane, Vector, World, convex
+from engine import Body, Box, OverlapWarning, Plane, Vector, World, convex
 from engine.colliders import Polygon
 from engine.convex import MAX_VERTICES
 from engine.forces import Gravity
@@ -241,36 +237,15 @@ def test_faces_are_the_edges_pushed_out_by_the_radius_and_the_corners() -> None:
 
 
 # -- in the World --------------------------------------------------------------------------------
-@pytest.fixture
-def polygon_aware_contacts(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
-    """Until engine.contacts.signed_distance knows a Polygon (a file another engineer owns),
-    give it the Polygon's own signed distance (``Polygon.distance``, checked above); once it
-    does, this does nothing and the World runs as shipped."""
-    original = engine.contacts.signed_distance
-    try:
-        original(Polygon(SQUARE), np.zeros((1, 2)))
-    except TypeError:
-
-        def signed_distance(collider: Any, X: np.ndarray) -> np.ndarray:
-            if isinstance(collider, Polygon):
-                return np.array([collider.distance(p) for p in X.tolist()], dtype=float)
-            return original(collider, X)
-
-        monkeypatch.setattr(engine.contacts, "signed_distance", signed_distance)
-        monkeypatch.setattr(engine.world, "signed_distance", signed_distance)
-    yield
-
-
-@pytest.mark.xfail(
-    strict=True,
-    raises=TypeError,
-    reason="engine.contacts.signed_distance does not know Polygon yet (its owner adds a branch, "
-    "e.g. engine.manifold.polygon_distance(collider, X)); drop this mark and the fixture then",
-)
-def test_the_world_takes_a_polygon_without_help() -> None:
+def test_a_body_put_inside_a_polygon_leaves_by_the_nearest_face() -> None:
+    """A box 2 m x 1 m about the origin; a ball of r 0.5 at (0.3, 0.2) is 0.8 m from leaving by
+    the top (y = 0.5 + r), 1.2 m by the right side: it is put on the top, and told so."""
     w = World()
-    w.add(Body(Vector(0.0, 5.0), radius=0.5))
-    w.add_collider(Polygon.box(2.0, 1.0))
+    box = w.add_collider(Polygon.box(2.0, 1.0))
+    with pytest.warns(OverlapWarning, match="started inside Polygon"):
+        b = w.add(Body(Vector(0.3, 0.2), radius=0.5))
+    assert b.pos == Vector(0.3, 1.0)
+    assert box.distance(b.pos) == pytest.approx(0.5, abs=1e-12)
 
 
 def _world() -> World:
@@ -279,7 +254,6 @@ def _world() -> World:
     return w
 
 
-@pytest.mark.usefixtures("polygon_aware_contacts")
 @pytest.mark.parametrize("angle", [0.0, 0.5])
 def test_a_ball_dropped_on_a_box_rests_on_its_top(angle: float) -> None:
     """The top face is a one-sided line y = top, pushed out by the box's radius: the ball comes
@@ -299,7 +273,6 @@ def test_a_ball_dropped_on_a_box_rests_on_its_top(angle: float) -> None:
     assert b.vel.x == 0.0 and b.vel.y == 0.0
 
 
-@pytest.mark.usefixtures("polygon_aware_contacts")
 @pytest.mark.parametrize(("x0", "radius"), [(1.1, 0.0), (1.05, 0.0), (-1.15, 0.0), (1.1, 0.1)])
 def test_a_ball_dropped_past_a_corner_rolls_off_it_and_lands_beside(
     x0: float, radius: float
@@ -332,7 +305,6 @@ def test_a_ball_dropped_past_a_corner_rolls_off_it_and_lands_beside(
     assert side * b.pos.x > 1.0 + radius + r  # beside the box, on the side it fell
 
 
-@pytest.mark.usefixtures("polygon_aware_contacts")
 @pytest.mark.xfail(
     strict=True,
     reason="engine.contacts: a ball sliding on a face stops dead at the face's end (a Segment's "
@@ -349,7 +321,6 @@ def test_a_ball_sliding_off_the_top_leaves_the_edge() -> None:
     assert b.pos.x > 1.0 + r and b.pos.y == r
 
 
-@pytest.mark.usefixtures("polygon_aware_contacts")
 @pytest.mark.parametrize("tilt", [math.radians(30.0), math.radians(45.0), math.radians(60.0)])
 def test_a_ball_off_a_diamonds_slanted_face_leaves_by_the_mirror_law(tilt: float) -> None:
     """No gravity, e = 1, mu = 0: a ball moving straight down meets a face whose outward normal
