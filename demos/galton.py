@@ -29,7 +29,7 @@ What makes the choice at each peg close to a fair, independent coin (see ``Board
   static friction would hold one near a peg's top for ever).
 * Balls differ a little, as real ones do. Each ball's restitution is drawn (seeded) from 0.5
   to 0.7. How much a ball's choices depend on each other varies sharply with restitution
-  (with one value for all, 0.67 gives a variance of the bins 28% too small and 0.73 one 41%
+  (with one value for all, 0.67 gives a variance of the bins 29% too small and 0.73 one 45%
   too large, 1,000 balls each, measured on 2026-11-25); a spread of values averages those
   resonances out.
 * The step. The engine brings a rebound slower than |a_n| dt / 2 to rest on the peg, so dt
@@ -45,15 +45,16 @@ between the dividers, where nothing can change its bin any more; it is taken out
 when it lands on the bins' floor. So the counts do not depend on what happens in the bins
 (balls landing on one another there).
 The pour is sparse enough (one ball every 0.5 s, each taking about 2 s to cross the board)
-that balls seldom meet on the pegs: of the first 300, 20 touch another one above the counting
-line. Two balls that meet, squeezed between pegs, can sink into each other, deeper than the
-contact solver keeps a pile (its limits are in the README): in the default run (seed 1, 60 s)
-the deepest is 21% of a radius, at 21.4 s (``tests/test_galton.py`` checks it), and in the
-same 60 s for seeds 2 to 8 it was 7 to 27% (measured on 2026-11-25; ``python -m demos galton
---seed N`` shows it on the frame once past 5%). The World says so once, with a
-``StabilityWarning``; the frame shows it and the deepest overlap so far (``Galton.deepest``)
-instead of a line on stderr. It changes no count: the balls part again and each still lands
-in one bin.
+that balls seldom meet on the pegs: of the first 300, 5 touch another one above the counting
+line. Two balls that meet there, one of them bounced off a peg or lying on one in that very
+step, could sink into each other (the impacts are found on paths that do not know of the
+peg's bounce); the contacts then move such a pair apart at once, so in the default run (seed
+1, 60 s) the deepest is 0.4% of a radius, at 21.4 s (``tests/test_galton.py`` checks it), and
+in the same 60 s for seeds 2 to 8 it was 0 to 5% (measured on 2026-11-25). A pour ten times
+as dense (``--interval 0.05``) crowds the pegs deeper; past 5% the World says so once, with a
+``StabilityWarning``, and the frame shows it and the deepest overlap so far
+(``Galton.deepest``) instead of a line on stderr. It changes no count: the balls part again
+and each still lands in one bin.
 """
 
 from __future__ import annotations
