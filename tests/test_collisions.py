@@ -186,7 +186,7 @@ def test_a_sleeping_stack_wakes_when_struck() -> None:
     stack = [disc(w, (0.0, 0.5 + 1.0 * k), (0.0, 0.0), radius=0.5) for k in range(3)]
     for _ in range(300):
         w.step(1 / 60)
-    assert w._collisions.asleep.sum() == 3
+    assert w.sleeping == 3
     disc(w, (-5.0, 2.5), (10.0, 0.0), radius=0.5, restitution=1.0)
     for _ in range(60):
         w.step(1 / 60)
