@@ -99,6 +99,9 @@ MAX_ROUNDS = 64
 #: Overlap (fraction of the smaller radius) that counts as touching: contacts touch, they do
 #: not chatter.
 SLOP = 0.002
+#: Rounds of impacts after which a crowd under load (rows landing on rows) is given to the
+#: pile's soft step instead of being taken on impact by impact (a cradle needs one a ball).
+HANDOVER_ROUNDS = 16
 #: Restitution up to which pairs still closing at the impact cap take plastic impacts at once
 #: (three balls in a line collapse inelastically, without end, below 7 - 4 sqrt(3) = 0.072).
 COLLAPSE_E = 0.1
@@ -320,6 +323,7 @@ class Collisions:
         #: speed the largest acceleration adds in one step (Chipmunk's idle speed).
         self.sleep_speed: float | None = None
         self.capped = 0  # steps whose impacts reached MAX_ROUNDS
+        self._handed = np.zeros(0, dtype=np.intp)  # a crowd's bodies (``_impacts``)
         self.warned = False  # the World has warned that a pile is past the solver
         self.moved = False  # whether the last step changed any body's state
         self.last_rounds = 0  # impact rounds in the last step
@@ -517,22 +521,48 @@ class Collisions:
             # (Overlap past the slop: balls hung touching, as in a cradle, are no pile.)
             seed = loaded | rest | (gap < -SLOP * np.minimum(store.radius[a], store.radius[b]))
             island[a[seed]] = island[b[seed]] = True
-            # What can reach the pile within the step at a speed its contacts can catch (a
-            # ball landing on it) joins it; a faster body (a bullet) stays out, and meets the
-            # pile's bodies at its exact moments, as moving walls (``_exact``).
-            rel = _norm(v0[a] - v0[b]) + _norm(A[a] - A[b]) * dt
-            catch = rel * dt <= CATCH * (store.radius[a] + store.radius[b])
-            if self._has_kin:
-                catch |= store.kinematic[a] | store.kinematic[b]  # moved by the game: joins
-            for _ in range(4):
-                grow = (island[a] != island[b]) & catch
-                if not grow.any():
-                    break
-                island[a[grow]] = island[b[grow]] = True
+            island = self._grow(island, a, b, x0, v0, A, dt, store)
         island &= ~self.asleep  # (a sleeper beside a pile was woken above, or stays put)
         a, b = self._struck(a, b, island, dt, store)
         self._plan = (a, b, island)
         return island if island.any() else None
+
+    def _grow(
+        self,
+        island: np.ndarray,
+        a: np.ndarray,
+        b: np.ndarray,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        A: np.ndarray,
+        dt: float,
+        store: Any,
+    ) -> np.ndarray:
+        """The piles (mask ``island``) with what can reach them within the step at a speed
+        their contacts can catch (a ball landing on one) joined; a faster body (a bullet)
+        stays out, and meets the pile's bodies at its exact moments, as moving walls
+        (``_exact``)."""
+        if not len(a):
+            return island
+        # Only pairs that can touch within the step (their gap closes by at most the relative
+        # speed's and acceleration's reach, plus a margin): a crowd falling in formation
+        # beside a pile stays out of it until it lands.
+        ra, rb = store.radius[a], store.radius[b]
+        Ar = _norm(A[a] - A[b])
+        rel = _norm(v0[a] - v0[b])
+        gap = _norm(x0[a] - x0[b]) - ra - rb
+        reach = rel * dt + 0.5 * Ar * dt * dt + 0.05 * np.minimum(ra, rb)
+        catch = (gap <= reach) & ((rel + Ar * dt) * dt <= CATCH * (ra + rb))
+        if self._has_kin:
+            catch |= store.kinematic[a] | store.kinematic[b]  # moved by the game: joins
+        if self.asleep.any():
+            catch &= ~(self.asleep[a] | self.asleep[b])
+        for _ in range(4):
+            grow = (island[a] != island[b]) & catch
+            if not grow.any():
+                break
+            island[a[grow]] = island[b[grow]] = True
+        return island
 
     def resolve(
         self,
@@ -588,7 +618,25 @@ class Collisions:
         exact = ~(island[a] & island[b])
         kick = None
         if exact.any():
-            impacts, kick = self._exact(a[exact], b[exact], island, x, v, A, P, dt, store, contacts)
+            # A chain of impacts past HANDOVER_ROUNDS among bodies under load (rows landing
+            # on rows, bouncing off the floor into the next) is given to the pile instead.
+            loaded = bool((_norm(P[a[exact]]) > 0.0).any())
+            got = self._exact(a[exact], b[exact], island, x, v, A, P, dt, store, contacts, loaded)
+            if got is None:
+                handed = np.zeros(n, dtype=bool)
+                handed[self._handed] = True
+                handed &= ~self.asleep
+                if self._has_kin:
+                    handed &= ~store.kinematic
+                island = self._grow(island | handed, a, b, x0, v0, A, dt, store)
+                if contacts is not None and len(contacts.rest) == n:
+                    contacts.rest[island] = -1  # their faces are the pile's rows now
+                exact = ~(island[a] & island[b])
+                got = ([], None)
+                if exact.any():
+                    got = self._exact(a[exact], b[exact], island, x, v, A, P, dt, store, contacts)
+                assert got is not None
+            impacts, kick = got
         touching = np.zeros(0, dtype=np.int64)
         pa = pb = np.zeros(0, dtype=np.intp)
         if island.any():
@@ -635,7 +683,8 @@ class Collisions:
         dt: float,
         store: Any,
         contacts: Contacts | None,
-    ) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray | None]:
+        handover: bool = False,
+    ) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray | None] | None:
         """Impacts of the pairs (World rows a, b) not both in a pile, at their exact moments,
         in place on the end state (x, v): what ``_impacts`` found, for the events, and the
         impulses (N, 2) the pile's bodies took (None if none): a body of a pile meets a body
@@ -659,9 +708,26 @@ class Collisions:
         if self.asleep.any():
             w[self.asleep[U]] = 0.0  # a sleeper an awake body did not wake stays put
         r = store.radius[U]
-        impacts = self._impacts(
-            la, lb, X, V, AU, w, r, store.restitution[U], store.friction[U], dt, contacts, U
+        found = self._impacts(
+            la,
+            lb,
+            X,
+            V,
+            AU,
+            w,
+            r,
+            store.restitution[U],
+            store.friction[U],
+            dt,
+            contacts,
+            U,
+            handover,
         )
+        if found is None:
+            # A crowd under load: nothing written back; the World rows of its bodies.
+            self._handed = U[self._handed]
+            return None
+        impacts = found
         walled = contacts if contacts is not None and len(contacts.faces.owner) else None
         r_wall = r if self._kinU is None else np.where(self._kinU, -np.inf, r)
         if impacts and walled is not None:
@@ -1024,8 +1090,13 @@ class Collisions:
         dt: float,
         contacts: Contacts | None = None,
         U: np.ndarray | None = None,
-    ) -> list[tuple[np.ndarray, ...]]:
-        """Resolve the step's impacts in time order, in place on the end state (X, V)."""
+        handover: bool = False,
+    ) -> list[tuple[np.ndarray, ...]] | None:
+        """Resolve the step's impacts in time order, in place on the end state (X, V).
+
+        ``handover``: past ``HANDOVER_ROUNDS`` rounds, give up instead (return None, with
+        the bodies of every impact found or left in ``self._handed``, local): a crowd under
+        load (rows landing on rows) is the pile's, not a chain of exact impacts."""
         nU = len(X)
         R = r[la] + r[lb]
         # Pairs that close at all within the step can meet (``_toi`` finds when, if ever).
@@ -1048,7 +1119,7 @@ class Collisions:
         face_f = np.zeros(nU, dtype=np.intp)
         face_n = np.zeros((nU, 2))
         changed = np.zeros(nU, dtype=bool)
-        for k in range(MAX_ROUNDS):
+        for k in range(HANDOVER_ROUNDS if handover else MAX_ROUNDS):
             idx = np.flatnonzero(todo)
             if len(idx):
                 toi[idx] = self._toi(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
@@ -1109,6 +1180,17 @@ class Collisions:
             toi[again] = np.inf
             todo |= again
         else:
+            if handover:
+                involved = np.zeros(nU, dtype=bool)
+                for fa, fb, *_ in found:
+                    involved[fa] = involved[fb] = True
+                idx = np.flatnonzero(todo)
+                if len(idx):
+                    toi[idx] = self._toi(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+                hit = np.isfinite(toi)
+                involved[pa[hit]] = involved[pb[hit]] = True
+                self._handed = involved
+                return None
             # Impacts are left: rather than let the bodies fly through each other on their
             # paths, each body with an impact still to come stops at the earliest one left,
             # where its path is then (no overlap yet), and goes on from there next step. Only
