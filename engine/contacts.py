@@ -59,13 +59,13 @@ operation on 140 rows costs nearly what one on 1,000 does.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from .colliders import Box, Circle, Collider, Plane, Polygon, Segment
+from .colliders import Box, Collider, Polygon
 from .events import ContactEvent
+from .faces import Faces, allowed_pairs, compile_faces, dot, face_normals, signed_distance
 from .filters import DEFAULT as DEFAULT_FILTER
 from .impact import TOUCH, Pair, disc_hit_one, disc_hits, line_hit_one, line_hits
 from .manifold import polygon_distance
@@ -77,150 +77,12 @@ __all__ = ["Contacts", "ContactEvent", "MAX_IMPACTS", "signed_distance"]
 MAX_IMPACTS = 32
 
 
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
-
-
-def signed_distance(collider: Collider, X: np.ndarray) -> np.ndarray:
-    """Signed distance (length units) from each row of X (N, 2) to the collider's surface.
-
-    Positive in free space (inside a Box, outside everything else).
-    """
-    if isinstance(collider, Plane):
-        return (X[:, 0] - collider.point.x) * collider.normal.x + (
-            X[:, 1] - collider.point.y
-        ) * collider.normal.y
-    if isinstance(collider, Circle):
-        return np.hypot(X[:, 0] - collider.center.x, X[:, 1] - collider.center.y) - collider.radius
-    if isinstance(collider, Segment):
-        a, b = collider.a, collider.b
-        dx, dy = b.x - a.x, b.y - a.y
-        u = ((X[:, 0] - a.x) * dx + (X[:, 1] - a.y) * dy) / (dx * dx + dy * dy)
-        u = np.clip(u, 0.0, 1.0)
-        return np.hypot(X[:, 0] - a.x - u * dx, X[:, 1] - a.y - u * dy) - collider.radius
-    if isinstance(collider, Box):
-        (x0, y0), (x1, y1) = collider.lower_left, collider.upper_right
-        return np.minimum(
-            np.minimum(X[:, 0] - x0, x1 - X[:, 0]), np.minimum(X[:, 1] - y0, y1 - X[:, 1])
-        )
-    if isinstance(collider, Polygon):
-        return polygon_distance(collider, X)
-    raise TypeError(f"unknown collider {collider!r}")
-
-
-@dataclass
-class _Faces:
-    """The solid colliders' faces as arrays: flat ones first, then round ones."""
-
-    p: np.ndarray  # (L, 2) a point on each flat face's line
-    n: np.ndarray  # (L, 2) its unit normal
-    rho: np.ndarray  # (L,) offset of the face from the line
-    two: np.ndarray  # (L,) bool: met from either side
-    lo: np.ndarray  # (L,) extent along the tangent
-    hi: np.ndarray
-    c: np.ndarray  # (D, 2) round faces' centres
-    r: np.ndarray  # (D,) their radii
-    owner: np.ndarray  # (L + D,) index of the collider each face belongs to
-    e: np.ndarray  # (L + D,) the owner's restitution
-    mu: np.ndarray  # (L + D,) the owner's friction
-    infinite: np.ndarray  # (L,) bool: a line with no end (a Plane or a Box wall)
-    boxed: bool  # every line with no end is a Box's wall (none is a Plane's)
-    # The same numbers as Python floats, for the one-body-at-a-time path:
-    line_list: list[tuple[Pair, Pair, float, bool, float, float]]  # (p, n, rho, two, lo, hi)
-    disc_list: list[tuple[Pair, float]]  # (c, r)
-    e_list: list[float]
-    mu_list: list[float]
-    owner_list: list[int]
-    # The owners' filters (engine.Filter: group, categories, mask), by face; None when every
-    # collider has the default filter (then every body meets every face).
-    filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-    # The solid polygons' flat faces, one index array each (a body is inside a polygon only
-    # when inside every face of it, not behind one: ``push_out_rows``).
-    polygons: tuple[np.ndarray, ...] = ()
-
-
-def _compile(colliders: list[Collider], indices: list[int]) -> _Faces:
-    lines: list[Any] = []
-    discs: list[Any] = []
-    lown: list[int] = []
-    down: list[int] = []
-    for k in indices:
-        c = colliders[k]
-        for line in c.lines():
-            lines.append(line)
-            lown.append(k)
-        for disc in c.discs():
-            discs.append(disc)
-            down.append(k)
-    L = len(lines)
-    p = np.array([ln[0] for ln in lines], float).reshape(L, 2)
-    n = np.array([ln[1] for ln in lines], float).reshape(L, 2)
-    rho = np.array([ln[2] for ln in lines], float)
-    two = np.array([ln[3] for ln in lines], bool)
-    lo = np.array([ln[4] for ln in lines], float)
-    hi = np.array([ln[5] for ln in lines], float)
-    centres = np.array([d[0] for d in discs], float).reshape(len(discs), 2)
-    r = np.array([d[1] for d in discs], float)
-    owner = np.array(lown + down, dtype=np.intp)
-    e = np.array([colliders[k].restitution for k in owner], float)
-    mu = np.array([colliders[k].friction for k in owner], float)
-    infinite = np.isinf(lo) & np.isinf(hi)
-    boxed = all(isinstance(colliders[k], Box) for k in owner[: len(lo)][infinite].tolist())
-    line_list = [
-        ((px, py), (nx, ny), rh, tw, a, b)
-        for (px, py), (nx, ny), rh, tw, a, b in zip(
-            p.tolist(),
-            n.tolist(),
-            rho.tolist(),
-            two.tolist(),
-            lo.tolist(),
-            hi.tolist(),
-            strict=True,
-        )
-    ]
-    disc_list = [((cx, cy), rd) for (cx, cy), rd in zip(centres.tolist(), r.tolist(), strict=True)]
-    filters = None
-    if any(colliders[k].filter != DEFAULT_FILTER for k in indices):
-        fs = [colliders[k].filter for k in owner.tolist()]
-        filters = (
-            np.array([f.group for f in fs], dtype=np.int64),
-            np.array([f.categories for f in fs], dtype=np.int64),
-            np.array([f.mask for f in fs], dtype=np.int64),
-        )
-    lines_of = np.array(lown, dtype=np.intp)
-    polygons = tuple(
-        np.flatnonzero(lines_of == k) for k in indices if isinstance(colliders[k], Polygon)
-    )
-    return _Faces(
-        p,
-        n,
-        rho,
-        two,
-        lo,
-        hi,
-        centres,
-        r,
-        owner,
-        e,
-        mu,
-        infinite,
-        boxed,
-        line_list,
-        disc_list,
-        e.tolist(),
-        mu.tolist(),
-        owner.tolist(),
-        filters,
-        polygons,
-    )
-
-
 class Contacts:
     """The World's static colliders and the contact state of its bodies (resting or free)."""
 
     def __init__(self) -> None:
         self.colliders: list[Collider] = []
-        self._faces: _Faces | None = None
+        self._faces: Faces | None = None
         self._sensors: list[int] = []
         self.rest = np.zeros(0, dtype=np.intp) - 1  # (N,) face each body rests on, -1 if free
         self.inside = np.zeros((0, 0), dtype=bool)  # (N, sensors) overlapping each sensor
@@ -290,7 +152,7 @@ class Contacts:
     def _rebuild(self) -> None:
         solid = [k for k, c in enumerate(self.colliders) if not c.sensor]
         self._sensors = [k for k, c in enumerate(self.colliders) if c.sensor]
-        self._faces = _compile(self.colliders, solid)
+        self._faces = compile_faces(self.colliders, solid)
         n = len(self.rest)
         if self.inside.shape != (n, len(self._sensors)):
             inside = np.zeros((n, len(self._sensors)), dtype=bool)
@@ -300,7 +162,7 @@ class Contacts:
         self._grid = None
 
     @property
-    def faces(self) -> _Faces:
+    def faces(self) -> Faces:
         if self._faces is None:
             self._rebuild()
         assert self._faces is not None
@@ -353,20 +215,7 @@ class Contacts:
     def allowed(self, rows: np.ndarray, faces: np.ndarray) -> np.ndarray:
         """Whether each body (World row) meets each face (pairs of equal length): their
         filters collide (engine.filters), as for two bodies. All True without filters."""
-        ff, bf = self.faces.filters, self.body_filters
-        if ff is None or bf is None:
-            return np.ones(len(rows), dtype=bool)
-        g, c, m = bf[0][rows], bf[1][rows], bf[2][rows]
-        fg, fc, fm = ff[0][faces], ff[1][faces], ff[2][faces]
-        ok = ((c & fm) != 0) & ((fc & m) != 0)
-        return ok & ~((g == fg) & (g != 0))
-
-    def _allowed_faces(self, row: int) -> np.ndarray | None:
-        """Which faces the body in World row ``row`` meets, or None for all."""
-        if self.faces.filters is None or self.body_filters is None or row < 0:
-            return None
-        f = np.arange(len(self.faces.owner))
-        return self.allowed(np.full(len(f), row, dtype=np.intp), f)
+        return allowed_pairs(self.faces, self.body_filters, rows, faces)
 
     # -- pushing bodies out -----------------------------------------------------------------
     def push_out(
@@ -680,7 +529,7 @@ class Contacts:
         f = self.rest[still]
         nrm, _ = self._normals(f, x0[still])
         w = W[still]
-        a_n = _dot(w, nrm)
+        a_n = dot(w, nrm)
         a_t = w[:, 1] * nrm[:, 0] - w[:, 0] * nrm[:, 1]  # along the tangent (-n_y, n_x)
         held = np.abs(a_t) <= friction[still] * self.faces.mu[f] * -a_n * (1.0 + 1e-12)
         return still[(a_n <= 0.0) & held]
@@ -857,11 +706,11 @@ class Contacts:
             if L:
                 # n.x by columns, not X @ n.T: a matrix product may round a row differently
                 # with other rows beside it, and one row pushed alone must move as in a crowd.
-                d = X[:, :1] * faces.n[:, 0] + X[:, 1:] * faces.n[:, 1] - _dot(faces.p, faces.n)
+                d = X[:, :1] * faces.n[:, 0] + X[:, 1:] * faces.n[:, 1] - dot(faces.p, faces.n)
                 side = np.where(faces.two[None, :] & (d < 0.0), -1.0, 1.0)
                 gap = side * d - faces.rho[None, :] - r[:, None]
                 tang = np.stack([-faces.n[:, 1], faces.n[:, 0]], axis=1)
-                u = X[:, :1] * tang[:, 0] + X[:, 1:] * tang[:, 1] - _dot(faces.p, tang)
+                u = X[:, :1] * tang[:, 0] + X[:, 1:] * tang[:, 1] - dot(faces.p, tang)
                 deep = gap < -TOUCH * (1.0 + r[:, None])
                 inside = deep & (u >= faces.lo) & (u <= faces.hi)
                 for cols in faces.polygons:
@@ -981,24 +830,7 @@ class Contacts:
 
     def _normals(self, f: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Unit normals toward X of faces f (one per row), and 1 / radius (0 for flat faces)."""
-        faces = self.faces
-        L = len(faces.p)
-        line = f < L
-        fl = np.where(line, f, 0)
-        fd = np.where(line, 0, f - L)
-        nrm = np.zeros((len(f), 2))
-        curve = np.zeros(len(f))
-        if L:
-            n = faces.n[fl]
-            side = np.where(faces.two[fl] & (_dot(X - faces.p[fl], n) < 0.0), -1.0, 1.0)
-            nrm = n * side[:, None]
-        if len(faces.c) and not line.all():
-            d = X - faces.c[fd]
-            dist = np.sqrt(_dot(d, d))
-            safe = np.where(dist > 0.0, dist, 1.0)
-            nrm = np.where(line[:, None], nrm, d / safe[:, None])
-            curve = np.where(line, 0.0, 1.0 / safe)
-        return nrm, curve
+        return face_normals(self.faces, f, X)
 
     def _rest_paths(
         self,
@@ -1031,15 +863,15 @@ class Contacts:
         x, vel, w = Xa[res], Va[res], Wb[i]
         nrm, curve = self._normals(f, x)
         tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
-        a_n = _dot(w, nrm)
-        v_n = _dot(vel, nrm)
-        u = _dot(vel, tang)
+        a_n = dot(w, nrm)
+        v_n = dot(vel, nrm)
+        u = dot(vel, tang)
         off_end = np.zeros(len(res), dtype=bool)
         line = f < L
         if line.any():
             fl = np.where(line, f, 0)
             t0 = np.stack([-faces.n[fl, 1], faces.n[fl, 0]], axis=1)
-            pos = _dot(x - faces.p[fl], t0)
+            pos = dot(x - faces.p[fl], t0)
             off_end = line & ((pos < faces.lo[fl]) | (pos > faces.hi[fl]))
         over = u * u * curve + a_n > 0.0  # faster than the edge can turn it
         lift = (a_n > 0.0) | (v_n > 1e-9) | off_end | over
@@ -1055,7 +887,7 @@ class Contacts:
                     np.zeros(2),
                     float(when[res[k]]),
                 )
-        a_t = _dot(w, tang)
+        a_t = dot(w, tang)
         fr = mub[i] * faces.mu[f] * np.maximum(-a_n, 0.0)  # mu times the pressure per mass
         static = np.abs(a_t) <= fr * (1.0 + 1e-12)
         a = np.where(
@@ -1102,22 +934,22 @@ class Contacts:
         fl = np.where(line, f, 0)
         fd = np.where(line, 0, f - L)
         if L:
-            gap = _dot(x - faces.p[fl], nrm) - faces.rho[fl] - r[i]
+            gap = dot(x - faces.p[fl], nrm) - faces.rho[fl] - r[i]
             x_line = x - nrm * gap[:, None]
         else:
             x_line = x
         gain: Any = 0.0
         if len(faces.c):
             x_disc = faces.c[fd] + nrm * (faces.r[fd] + r[i])[:, None]
-            gain = 2.0 * _dot(Wb[i], x_disc - x)
+            gain = 2.0 * dot(Wb[i], x_disc - x)
             x = np.where(line[:, None], x_line, x_disc)
         else:
             x = x_line
-        vn = _dot(vel, nrm)
+        vn = dot(vel, nrm)
         v_flat = vel - nrm * vn[:, None]
         tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
-        speed = np.sqrt(np.maximum(_dot(vel, vel) + gain, 0.0))
-        sign = np.where(_dot(vel, tang) >= 0.0, 1.0, -1.0)
+        speed = np.sqrt(np.maximum(dot(vel, vel) + gain, 0.0))
+        sign = np.where(dot(vel, tang) >= 0.0, 1.0, -1.0)
         v_round = tang * (sign * speed)[:, None]
         Xn[rs] = x
         Vn[rs] = np.where(line[:, None], v_flat, v_round)
@@ -1177,7 +1009,7 @@ class Contacts:
         is_disc = wf >= L
         c = faces.c[np.where(is_disc, wf - L, 0)] if len(faces.c) else xt
         d = xt - c
-        length = np.sqrt(_dot(d, d))
+        length = np.sqrt(dot(d, d))
         nd = d / np.where(length > 0.0, length, 1.0)[:, None]
         if nrm_line is not None:
             pos = np.full(len(bi), -1, dtype=np.intp)
@@ -1218,16 +1050,16 @@ class Contacts:
         f = face[h]
         n = normal[h]
         vel = Vn[h]
-        vn = _dot(vel, n)
+        vn = dot(vel, n)
         vt = vel - n * vn[:, None]
         e = eb[i] * faces.e[f]
         mu = mub[i] * faces.mu[f]
         vn_in = np.minimum(vn, 0.0)
         vn_out = -e * vn_in
-        speed_t = np.sqrt(_dot(vt, vt))
+        speed_t = np.sqrt(dot(vt, vt))
         keep = np.maximum(speed_t + mu * (1.0 + e) * vn_in, 0.0)
         scale = keep / np.where(speed_t > 0.0, speed_t, 1.0)
-        a_n = _dot(Wb[i], n)
+        a_n = dot(Wb[i], n)
         settles = (a_n < 0.0) & (vn_out <= -a_n * (0.5 * dt))
         vn_out = np.where(settles, 0.0, vn_out)
         new_v = vt * scale[:, None] + n * vn_out[:, None]
@@ -1239,7 +1071,7 @@ class Contacts:
         wedged = np.zeros(len(h), dtype=bool)
         if was.any():
             on, _ = self._normals(np.where(was, old, 0), Xn[h])
-            stays = was & (np.abs(_dot(on, n)) < 1e-9)
+            stays = was & (np.abs(dot(on, n)) < 1e-9)
             # Wedged: resting on face 1, settling on face 2, and the acceleration presses into
             # both: W = l1 n1 + l2 n2 with l1, l2 <= 0. The two faces then carry it all and
             # the body stays put for the rest of the step (the forces are constant within it).
@@ -1359,7 +1191,7 @@ class Contacts:
 
     def _path_one(
         self,
-        faces: _Faces,
+        faces: Faces,
         k: int,
         row: int,
         x: Pair,
@@ -1506,7 +1338,7 @@ def _take_speed_into(V: np.ndarray, i: np.ndarray, nrm: np.ndarray) -> None:
 
 
 def _corners(
-    faces: _Faces, L: int, a: int, b: int, x: np.ndarray, nrm: np.ndarray, r: float
+    faces: Faces, L: int, a: int, b: int, x: np.ndarray, nrm: np.ndarray, r: float
 ) -> list[np.ndarray]:
     """Where the surfaces of faces a and b, offset by r toward x, meet: points (2,)."""
 
@@ -1555,7 +1387,7 @@ def _corners(
 # -- one body at a time: the twins of Contacts._solve's helpers ------------------------------
 
 
-def _normal_one(faces: _Faces, f: int, x: Pair) -> tuple[float, float, float]:
+def _normal_one(faces: Faces, f: int, x: Pair) -> tuple[float, float, float]:
     """``Contacts._normals`` for one face and point: (n_x, n_y, 1 / radius or 0 if flat)."""
     L = len(faces.line_list)
     if f < L:
@@ -1570,7 +1402,7 @@ def _normal_one(faces: _Faces, f: int, x: Pair) -> tuple[float, float, float]:
 
 
 def _rest_path_one(
-    faces: _Faces, f: int, x: Pair, v: Pair, w: Pair, mub: float
+    faces: Faces, f: int, x: Pair, v: Pair, w: Pair, mub: float
 ) -> tuple[Pair, Pair, float] | bool | None:
     """``Contacts._rest_paths`` for one body resting on face f: None if it lifts off (False
     if over a round edge faster than it can turn it), else its sliding path (velocity,
@@ -1615,7 +1447,7 @@ def _disc_normal_one(c: Pair, x: Pair, v: Pair, b: Pair, t: float) -> Pair:
 
 
 def _bounce_one(
-    faces: _Faces,
+    faces: Faces,
     k: int,
     row: int,
     round_: int,
@@ -1675,7 +1507,7 @@ def _bounce_one(
     return new_v, rest, wedged
 
 
-def _project_one(faces: _Faces, f: int, x: Pair, vel: Pair, r: float, w: Pair) -> tuple[Pair, Pair]:
+def _project_one(faces: Faces, f: int, x: Pair, vel: Pair, r: float, w: Pair) -> tuple[Pair, Pair]:
     """``Contacts._project`` for one body resting on face f: (position, velocity)."""
     L = len(faces.line_list)
     nx, ny, _ = _normal_one(faces, f, x)
@@ -1736,7 +1568,7 @@ class _FaceGrid:
     one directly.
     """
 
-    def __init__(self, faces: _Faces) -> None:
+    def __init__(self, faces: Faces) -> None:
         L = len(faces.p)
         inf_lines = np.flatnonzero(faces.infinite)
         self.n_inf = len(inf_lines)
@@ -1748,7 +1580,7 @@ class _FaceGrid:
         # The columns p_x, p_y, n_x, n_y, each a row to broadcast against a column of bodies.
         self.inf_cols = tuple(np.ascontiguousarray(a) for a in (*self.inf_p.T, *self.inf_n.T))
         # n.x - (n.p + rho): the distance of x from each endless face.
-        self.inf_c = _dot(self.inf_p, self.inf_n) + self.inf_rho
+        self.inf_c = dot(self.inf_p, self.inf_n) + self.inf_rho
         fin_lines = np.flatnonzero(~faces.infinite)
         self.finite = np.concatenate([fin_lines, L + np.arange(len(faces.c))]).astype(np.intp)
         self.n_finite = len(self.finite)
@@ -1772,7 +1604,7 @@ class _FaceGrid:
         self.cap_inv = np.full(F, np.nan)
         self.cap_rad = np.full(F, np.nan)
         seg = Bq - A
-        seg2 = _dot(seg, seg)
+        seg2 = dot(seg, seg)
         self.cap_a[self.finite] = A
         self.cap_ab[self.finite] = seg
         self.cap_inv[self.finite] = np.where(seg2 > 0.0, 1.0 / np.where(seg2 > 0.0, seg2, 1.0), 0.0)
@@ -1885,7 +1717,7 @@ class _FaceGrid:
 
     def _fast_lists(
         self,
-        faces: _Faces,
+        faces: Faces,
         A: np.ndarray,
         Bq: np.ndarray,
         rad: np.ndarray,
