@@ -255,12 +255,12 @@ def test_rare_cases_give_the_same_steps(method: str) -> None:
 @pytest.mark.parametrize("seed", range(3))
 def test_the_grid_lists_every_face_within_reach(seed: int) -> None:
     """The broadphase (also used by engine.collisions): every face a ball can reach is among
-    its pairs, both as the solver lists them and as ``_FaceGrid.pairs`` does."""
+    its pairs, both as the solver lists them and as ``FaceGrid.pairs`` does."""
     rng = np.random.default_rng(seed)
     world, _ = scene(seed, "auto")
     contacts = world._contacts
     assert contacts is not None
-    faces, grid = contacts.faces, contacts._grid_of()
+    faces, grid = contacts.faces, contacts.grid
     X = rng.uniform(-12.0, 12.0, (400, 2))
     reach = rng.choice([0.01, 0.1, 0.5, 3.0], 400)
     L = len(faces.p)

@@ -1,9 +1,9 @@
 """The contacts' first looks skip only bodies that cannot meet anything.
 
-``Contacts._near`` compares each body's reach with a lower bound on its distance to every
-face (``_FaceGrid.gap``: the grid's bounds, which hold the endless faces too), and
-``Contacts._narrow`` takes each body's faces from its cell's list, by the quick way
-(``_FaceGrid.listed_fast``: endless faces listed as capsules, for bodies in cells clear of
+``engine.face_grid.near`` compares each body's reach with a lower bound on its distance to
+every face (``FaceGrid.gap``: the grid's bounds, which hold the endless faces too), and
+``engine.face_grid.narrow`` takes each body's faces from its cell's list, by the quick way
+(``FaceGrid.listed_fast``: endless faces listed as capsules, for bodies in cells clear of
 their backs) or the other (endless faces against every body). Here: the bound never exceeds
 the true distance, the quick lists hold every face a body can reach, the two ways give the
 same steps bit for bit, and fast balls, thin walls and velocities set by hand are caught.
@@ -52,7 +52,7 @@ def test_the_bound_never_exceeds_the_distance(seed: int) -> None:
     world, _ = scene(seed, "auto")
     contacts = world._contacts
     assert contacts is not None
-    grid = contacts._grid_of()
+    grid = contacts.grid
     # Inside the room, on its walls, outside it and far away.
     X = np.concatenate(
         [
@@ -68,7 +68,7 @@ def test_the_bound_never_exceeds_the_distance(seed: int) -> None:
     # distances from the endless faces are measured as n.x - (n.p + rho), rounding apart from
     # (x - p).n - rho by an ulp or so (the reach they are compared with is widened by TOUCH
     # and 1e-9 of itself).
-    inside = ~grid._outside[cell]
+    inside = ~grid.outside[cell]
     assert inside.sum() > 3000 and (~inside).sum() > 300
     assert np.all(bound[inside] <= truth[inside]), np.max(bound - truth)
     assert np.all(bound <= truth + 1e-13 * (1.0 + np.abs(X).max(axis=1)))
@@ -80,7 +80,7 @@ def test_the_quick_lists_hold_every_face_within_reach(seed: int) -> None:
     world, _ = scene(seed, "auto")
     contacts = world._contacts
     assert contacts is not None
-    grid = contacts._grid_of()
+    grid = contacts.grid
     assert grid.table is not None
     X = rng.uniform(-10.5, 10.5, (4000, 2))
     cell = grid.cells(X)
@@ -112,8 +112,8 @@ def test_the_quick_lists_hold_every_face_within_reach(seed: int) -> None:
 def test_the_quick_way_and_the_other_give_the_same_steps(seed: int, method: str) -> None:
     quick, other = box_world(100, seed, method=method), box_world(100, seed, method=method)
     assert quick._contacts is not None and other._contacts is not None
-    other._contacts._grid_of().table = None  # the endless faces against every body
-    grid = quick._contacts._grid_of()
+    other._contacts.grid.table = None  # the endless faces against every body
+    grid = quick._contacts.grid
     used = [0]
     listed_fast = grid.listed_fast
 
@@ -238,13 +238,13 @@ def test_a_box_much_larger_than_its_segments() -> None:
 
     quick, other = world(), world()
     assert quick._contacts is not None and other._contacts is not None
-    grid = quick._contacts._grid_of()
-    assert not grid._boxed  # the box is far larger than the segments: not covered
+    grid = quick._contacts.grid
+    assert not grid.boxed  # the box is far larger than the segments: not covered
     X = np.random.default_rng(4).uniform(-5.0, 205.0, (3000, 2))
     bound = grid.gap(X, grid.cells(X))
     truth = true_gaps(quick, X).min(axis=1)
     assert np.all(bound <= truth + 1e-13 * (1.0 + np.abs(X).max(axis=1)))
-    other._contacts._grid_of().table = None
+    other._contacts.grid.table = None
     for step in range(240):
         quick.step(1.0 / 120.0)
         other.step(1.0 / 120.0)
