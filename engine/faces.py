@@ -25,7 +25,15 @@ from .filters import DEFAULT as DEFAULT_FILTER
 from .impact import Pair
 from .manifold import polygon_distance
 
-__all__ = ["Faces", "allowed_pairs", "compile_faces", "dot", "face_normals", "signed_distance"]
+__all__ = [
+    "Faces",
+    "allowed_pairs",
+    "compile_faces",
+    "dot",
+    "face_meets",
+    "face_normals",
+    "signed_distance",
+]
 
 
 def dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -206,3 +214,19 @@ def allowed_pairs(
     fg, fc, fm = ff[0][f], ff[1][f], ff[2][f]
     ok = ((c & fm) != 0) & ((fc & m) != 0)
     return ok & ~((g == fg) & (g != 0))
+
+
+def face_meets(
+    faces: Faces,
+    body_filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None,
+    rows: np.ndarray,
+) -> np.ndarray | None:
+    """(len(rows), faces) bool: whether each body (World row) meets each face
+    (``allowed_pairs``), or None when no filter stands between any body and any face."""
+    if faces.filters is None or body_filters is None:
+        return None
+    n_f = len(faces.owner)
+    meets = allowed_pairs(
+        faces, body_filters, np.repeat(rows, n_f), np.tile(np.arange(n_f), len(rows))
+    )
+    return meets.reshape(len(rows), n_f)
