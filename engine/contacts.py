@@ -63,7 +63,7 @@ from typing import Any
 
 import numpy as np
 
-from .colliders import Box, Collider
+from .colliders import Collider
 from .events import ContactEvent
 from .face_grid import FaceGrid, narrow, near
 from .faces import (
@@ -75,9 +75,10 @@ from .faces import (
     face_normals,
     signed_distance,
 )
-from .filters import DEFAULT as DEFAULT_FILTER
 from .impact import Pair, disc_hit_one, disc_hits, line_hit_one, line_hits
 from .push_out import push_out, push_out_rows
+from .resting import asleep, project, rest_paths
+from .sensors import sense
 
 __all__ = ["Contacts", "ContactEvent", "MAX_IMPACTS", "signed_distance"]
 
@@ -385,16 +386,7 @@ class Contacts:
         onto their face (a_n <= 0) and held by static friction (|a_t| <= mu |a_n|)."""
         if len(res) < self.few_resting:
             return self._asleep_few(res, x0, v0, W, friction)
-        still = res[(v0[res, 0] == 0.0) & (v0[res, 1] == 0.0)]
-        if not len(still):
-            return still
-        f = self.rest[still]
-        nrm, _ = self._normals(f, x0[still])
-        w = W[still]
-        a_n = dot(w, nrm)
-        a_t = w[:, 1] * nrm[:, 0] - w[:, 0] * nrm[:, 1]  # along the tangent (-n_y, n_x)
-        held = np.abs(a_t) <= friction[still] * self.faces.mu[f] * -a_n * (1.0 + 1e-12)
-        return still[(a_n <= 0.0) & held]
+        return asleep(self.faces, self.rest, res, x0, v0, W, friction)
 
     def _asleep_few(
         self,
@@ -450,6 +442,7 @@ class Contacts:
         lifted off) and their new positions and velocities.
         """
         self._rows = rows
+        faces = self.faces
         X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
         Bb, Wb = Bf.take(rows, axis=0), Wf.take(rows, axis=0)
         r, eb, mub, m = radius[rows], restitution[rows], friction[rows], mass[rows]
@@ -468,9 +461,10 @@ class Contacts:
             stop = np.zeros(len(active), dtype=bool)
             res = np.flatnonzero(ra >= 0)
             if len(res):
-                lifted, edge = self._rest_paths(
-                    res, active, Xa, Va, Bp, Wp, dur, ra, Wb, mub, r, stop, t0 + dt - ta
-                )
+                lifted, edge = rest_paths(
+                    faces, res, active, Xa, Va, Bp, Wp, dur, ra, Wb, mub, r, stop,
+                    t0 + dt - ta, rows, self._ended,
+                )  # fmt: skip
                 if len(lifted):
                     rest[active[lifted]] = -1
                     ra = rest[active]
@@ -515,7 +509,7 @@ class Contacts:
                 touched[active[h]] = True
             rs = np.flatnonzero(rest[active] >= 0)
             if len(rs):
-                self._project(rs, active, Xn, Vn, rest, r, Wb)
+                project(faces, rs, active, Xn, Vn, rest, r, Wb)
                 # A body rolling over a round edge onto a flat side it now overlaps has left
                 # the edge: it stands on the side and is in flight again (it settles there).
                 L = len(self.faces.p)
@@ -560,128 +554,6 @@ class Contacts:
     def _normals(self, f: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Unit normals toward X of faces f (one per row), and 1 / radius (0 for flat faces)."""
         return face_normals(self.faces, f, X)
-
-    def _rest_paths(
-        self,
-        res: np.ndarray,
-        active: np.ndarray,
-        Xa: np.ndarray,
-        Va: np.ndarray,
-        Bp: np.ndarray,
-        Wp: np.ndarray,
-        dur: np.ndarray,
-        ra: np.ndarray,
-        Wb: np.ndarray,
-        mub: np.ndarray,
-        r: np.ndarray,
-        stop: np.ndarray,
-        when: np.ndarray,
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Set the sliding path of resting bodies (local ``res``); return those that lift off,
-        and those of them that went over a round edge faster than it can turn them.
-
-        Along the surface the motion is one-dimensional: speed u along the tangent, pull a_t,
-        and friction mu |a_n| against the motion. While sliding, u' = a_t - sign(u) mu |a_n|;
-        the stop comes at t_s = -u / u' (exactly, by the closed form); at rest the body stays
-        while |a_t| <= mu |a_n| and else starts sliding at a_t - sign(a_t) mu |a_n|.
-        """
-        faces = self.faces
-        L = len(faces.p)
-        i = active[res]
-        f = ra[res]
-        x, vel, w = Xa[res], Va[res], Wb[i]
-        nrm, curve = self._normals(f, x)
-        tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
-        a_n = dot(w, nrm)
-        v_n = dot(vel, nrm)
-        u = dot(vel, tang)
-        off_end = np.zeros(len(res), dtype=bool)
-        line = f < L
-        if line.any():
-            fl = np.where(line, f, 0)
-            t0 = np.stack([-faces.n[fl, 1], faces.n[fl, 0]], axis=1)
-            pos = dot(x - faces.p[fl], t0)
-            off_end = line & ((pos < faces.lo[fl]) | (pos > faces.hi[fl]))
-        over = u * u * curve + a_n > 0.0  # faster than the edge can turn it
-        lift = (a_n > 0.0) | (v_n > 1e-9) | off_end | over
-        edge = lift & over & ~((a_n > 0.0) | (v_n > 1e-9) | off_end)
-        if lift.any():
-            for k in np.flatnonzero(lift):
-                self._event(
-                    self._ended,
-                    int(i[k]),
-                    int(f[k]),
-                    x[k] - nrm[k] * r[i[k]],
-                    nrm[k],
-                    np.zeros(2),
-                    float(when[res[k]]),
-                )
-        a_t = dot(w, tang)
-        fr = mub[i] * faces.mu[f] * np.maximum(-a_n, 0.0)  # mu times the pressure per mass
-        static = np.abs(a_t) <= fr * (1.0 + 1e-12)
-        a = np.where(
-            u > 0.0,
-            a_t - fr,
-            np.where(u < 0.0, a_t + fr, np.where(static, 0.0, a_t - np.copysign(fr, a_t))),
-        )
-        slowing = ((u > 0.0) & (a < 0.0)) | ((u < 0.0) & (a > 0.0))
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a subnormal a: inf
-            ts = np.where(slowing, -u / np.where(a != 0.0, a, 1.0), np.inf)
-        keep = ~lift
-        k = res[keep]
-        Va[k] = tang[keep] * u[keep][:, None]
-        Bp[k] = Wp[k] = tang[keep] * a[keep][:, None]
-        stops = keep & (ts < dur[res])
-        dur[res[stops]] = ts[stops]
-        stop[res[stops]] = True
-        return res[lift], res[edge]
-
-    def _project(
-        self,
-        rs: np.ndarray,
-        active: np.ndarray,
-        Xn: np.ndarray,
-        Vn: np.ndarray,
-        rest: np.ndarray,
-        r: np.ndarray,
-        Wb: np.ndarray,
-    ) -> None:
-        """Put resting bodies exactly at contact distance; turn velocity along a round face.
-
-        On a round face the round's path ran along the tangent (``_rest_paths``) and is put
-        back on the arc here, at the same speed plus the pull's work over that move: with
-        the pull W constant, |v|^2 gains 2 W.dx (the surface's push does no work), so a ball
-        going over a peg keeps the energy it has on the arc, and leaves the peg where the
-        closed form says, within a step."""
-        faces = self.faces
-        L = len(faces.p)
-        i = active[rs]
-        f = rest[i]
-        x, vel = Xn[rs], Vn[rs]
-        nrm, _ = self._normals(f, x)
-        line = f < L
-        fl = np.where(line, f, 0)
-        fd = np.where(line, 0, f - L)
-        if L:
-            gap = dot(x - faces.p[fl], nrm) - faces.rho[fl] - r[i]
-            x_line = x - nrm * gap[:, None]
-        else:
-            x_line = x
-        gain: Any = 0.0
-        if len(faces.c):
-            x_disc = faces.c[fd] + nrm * (faces.r[fd] + r[i])[:, None]
-            gain = 2.0 * dot(Wb[i], x_disc - x)
-            x = np.where(line[:, None], x_line, x_disc)
-        else:
-            x = x_line
-        vn = dot(vel, nrm)
-        v_flat = vel - nrm * vn[:, None]
-        tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
-        speed = np.sqrt(np.maximum(dot(vel, vel) + gain, 0.0))
-        sign = np.where(dot(vel, tang) >= 0.0, 1.0, -1.0)
-        v_round = tang * (sign * speed)[:, None]
-        Xn[rs] = x
-        Vn[rs] = np.where(line[:, None], v_flat, v_round)
 
     def _first_hits(
         self,
@@ -831,27 +703,6 @@ class Contacts:
                 self._ended.append((rows[b], owner[b], point[b], n[b], impulse[b], when[h][b]))
         Vn[h] = new_v
         return wedged
-
-    def _event(
-        self,
-        where: list[Any],
-        local: int,
-        f: int,
-        point: Any,
-        normal: Any,
-        impulse: Any,
-        when: float,
-    ) -> None:
-        where.append(
-            (
-                self._rows[[local]],
-                self.faces.owner[[f]],
-                np.asarray(point, float)[None, :],
-                np.asarray(normal, float)[None, :],
-                np.asarray(impulse, float)[None, :],
-                np.array([when]),
-            )
-        )
 
     # -- a few bodies, one at a time ---------------------------------------------------------
     # The same steps as _solve and its helpers, for one body in Python floats: _path_one is
@@ -1022,40 +873,11 @@ class Contacts:
     # -- sensors ----------------------------------------------------------------------------
     def sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
         """Report bodies that began or ended overlapping each sensor this step (x1: where the
-        bodies ended it)."""
-        if not self._sensors:
-            return
-        for s, k in enumerate(self._sensors):
-            c = self.colliders[k]
-            d = signed_distance(c, x1)
-            now = d > -radius if isinstance(c, Box) else d < radius
-            bf = self.body_filters
-            if c.filter != DEFAULT_FILTER and bf is not None:
-                f = c.filter  # a sensor senses only the bodies its filter meets
-                now &= ((bf[1] & f.mask) != 0) & ((f.categories & bf[2]) != 0)
-                now &= ~((bf[0] == f.group) & (bf[0] != 0))
-            was = self.inside[:, s]
-            for where, rows in (
-                (self._began, np.flatnonzero(now & ~was)),
-                (self._ended, np.flatnonzero(was & ~now)),
-            ):
-                if len(rows):
-                    pts, nrms = [], []
-                    for i in rows:
-                        point, normal, _ = c.closest((float(x1[i, 0]), float(x1[i, 1])))
-                        pts.append(tuple(point))
-                        nrms.append(tuple(normal))
-                    where.append(
-                        (
-                            rows,
-                            np.full(len(rows), k),
-                            np.array(pts, float),
-                            np.array(nrms, float),
-                            np.zeros((len(rows), 2)),
-                            np.full(len(rows), t0 + dt),
-                        )
-                    )
-            self.inside[:, s] = now
+        bodies ended it; engine.sensors)."""
+        sense(
+            self.colliders, self._sensors, self.inside, self.body_filters, x1, dt, t0, radius,
+            self._began, self._ended,
+        )  # fmt: skip
 
 
 # -- one body at a time: the twins of Contacts._solve's helpers ------------------------------
