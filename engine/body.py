@@ -124,6 +124,7 @@ class Body:
         "_acc",
         "_mass",
         "_radius",
+        "_shape",
         "_e",
         "_mu",
         "_filter",
@@ -145,6 +146,7 @@ class Body:
         friction: float = 0.5,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
         kinematic: bool = False,
+        shape: Any = None,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -174,6 +176,10 @@ class Body:
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
         self._mass: float = coerce_mass(mass)
         self._radius, self._e, self._mu = _material(radius, restitution, friction)
+        self._shape: Any = None
+        if shape is not None:
+            self._radius = self._take_shape(shape, dim)
+            self._shape = shape
         if not isinstance(filter, Filter):
             raise TypeError(
                 f"filter must be an engine.Filter (group, categories, mask), got "
@@ -188,6 +194,24 @@ class Body:
         self._kinematic = kinematic
         self._store: BodyStore | None = None  # set by the World that holds this body
         self._slot: int = -1
+
+    def _take_shape(self, shape: Any, dim: int) -> float:
+        """Check ``shape`` for this body; its bounding radius (length units)."""
+        if self._radius != 0.0:
+            raise TypeError(
+                f"give a Body radius=... or shape=..., not both (radius={self._radius!r} is "
+                f"short for shape=Circle((0, 0), {self._radius!r})), got shape={shape!r}"
+            )
+        if dim != 2:
+            raise TypeError(f"only a 2D body takes a shape, got shape={shape!r} on a 1D body")
+        take = getattr(shape, "as_body_shape", None)
+        if take is None:
+            raise TypeError(
+                f"shape must be a Circle((0, 0), r), a Polygon (Polygon.box(width, height) for "
+                f"a box) or a Segment (a capsule) from engine.colliders, got "
+                f"{type(shape).__name__} {shape!r}"
+            )
+        return float(take())
 
     def _store_pos(self, state: State) -> None:
         if self._dim == 1:
@@ -323,12 +347,24 @@ class Body:
 
     @property
     def radius(self) -> float:
-        """Radius (length units) for contacts; 0.0 for a point."""
+        """Radius (length units) for contacts; 0.0 for a point. For a body with a shape other
+        than a circle: the radius of the circle about its position that holds the shape."""
         return self._radius
 
     @radius.setter
     def radius(self, value: Any) -> None:
         _fixed("radius", value)
+
+    @property
+    def shape(self) -> Any:
+        """The shape given as ``Body(..., shape=...)`` (engine.colliders: a Circle, Polygon
+        or Segment, in the body's frame, about its position), or None for a round body made
+        with ``radius`` (a disc of that radius) or a point."""
+        return self._shape
+
+    @shape.setter
+    def shape(self, value: Any) -> None:
+        _fixed("shape", value)
 
     @property
     def restitution(self) -> float:
@@ -425,6 +461,8 @@ class Body:
 
     def __repr__(self) -> str:
         size = "" if self._radius == 0.0 else f", radius={self._radius!r}"
+        if self._shape is not None:
+            size = f", shape={self._shape!r}"
         kin = ", kinematic=True" if self._kinematic else ""
         return (
             f"Body(position={self.pos!r}, velocity={self.vel!r}, "
@@ -475,8 +513,9 @@ PYMUNK_NAMES: dict[str, str] = {
     "body_type": "Body(..., kinematic=True) makes a body the game moves; static geometry is a "
     "collider (world.add_collider(Segment(...)))",
     "is_sleeping": "ask the World: world.is_sleeping(body)",
-    "shapes": "a Body is its own round shape: give Body(..., radius=..., restitution=..., "
-    "friction=...)",
+    "shapes": "a Body has one shape: Body(..., radius=r) for a disc, or Body(..., "
+    "shape=Polygon.box(width, height)) (or a Polygon, a Segment); its material is the Body's "
+    "(restitution=..., friction=...)",
     "elasticity": "its bounce is Body(..., restitution=e), 0 to 1",
     "velocity_func": "forces act through the World: world.add_force(...) (engine.forces)",
     "position_func": "a body the game moves is Body(..., kinematic=True): write its pos or vel",

@@ -195,6 +195,35 @@ class Collider:
         """The round faces, for the contact kernels."""
         return []
 
+    def as_body_shape(self) -> float:
+        """Check this shape for a Body's ``shape`` (its coordinates then in the body's frame,
+        about its position) and return the radius of the circle about the position that holds
+        it (length units): what the broadphase and the queries use. A body's material and
+        filter are the Body's own, so the shape must leave them at their defaults."""
+        raise TypeError(
+            f"{type(self).__name__} cannot be a body's shape: give Body(..., shape=...) a "
+            f"Circle((0, 0), r), a Polygon (Polygon.box(width, height) for a box) or a "
+            f"Segment (a capsule)"
+        )
+
+    def _body_material(self) -> None:
+        """Refuse a body shape that carries a material, filter or sensor of its own."""
+        if self.material_given():
+            raise ValueError(
+                f"{self!r} as a body's shape: a body's restitution, friction and filter are "
+                f"the Body's, e.g. Body(..., shape={type(self).__name__}(...), friction=0.2); "
+                f"give the shape its geometry only (a sensor on a body is not supported yet)"
+            )
+
+    def material_given(self) -> bool:
+        """Whether the material, filter or sensor differ from a collider's defaults."""
+        return (
+            self.restitution != 1.0
+            or self.friction != 1.0
+            or self.sensor
+            or self.filter != DEFAULT_FILTER
+        )
+
     def _material_repr(self) -> str:
         parts = []
         if self.restitution != 1.0:
@@ -306,6 +335,11 @@ class Segment(Collider):
         a, b, r = self.a, self.b, self.radius
         return min(a.x, b.x) - r, min(a.y, b.y) - r, max(a.x, b.x) + r, max(a.y, b.y) + r
 
+    def as_body_shape(self) -> float:
+        self._body_material()
+        a, b = self.a, self.b
+        return max(math.hypot(a.x, a.y), math.hypot(b.x, b.y)) + self.radius
+
     def lines(self) -> list[Line]:
         a, b = self.a, self.b
         length = math.hypot(b.x - a.x, b.y - a.y)
@@ -355,6 +389,16 @@ class Circle(Collider):
 
     def discs(self) -> list[Disc]:
         return [((self.center.x, self.center.y), self.radius)]
+
+    def as_body_shape(self) -> float:
+        self._body_material()
+        if self.center.x != 0.0 or self.center.y != 0.0:
+            raise ValueError(
+                f"a round body's shape is centred on its position: Circle((0, 0), "
+                f"{self.radius!r}) (or Body(..., radius={self.radius!r})), got centre "
+                f"{tuple(self.center)!r} (an offset shape needs bodies that turn)"
+            )
+        return self.radius
 
     def __repr__(self) -> str:
         return f"Circle({tuple(self.center)!r}, {self.radius!r}{self._material_repr()})"
@@ -415,6 +459,12 @@ class Box(Collider):
             ((x0, y0), (0.0, 1.0), 0.0, False, -inf, inf),
             ((x0, y1), (0.0, -1.0), 0.0, False, -inf, inf),
         ]
+
+    def as_body_shape(self) -> float:
+        raise TypeError(
+            f"{self!r} is a room (four walls facing in: a collider, world.add_collider); a "
+            f"box-shaped body is Body(..., shape=Polygon.box(width, height))"
+        )
 
     def __repr__(self) -> str:
         return (
@@ -521,6 +571,10 @@ class Polygon(Collider):
             sensor=sensor,
             filter=filter,
         )
+
+    def as_body_shape(self) -> float:
+        self._body_material()
+        return max(math.hypot(v.x, v.y) for v in self.vertices) + self.radius
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
         x, y = point_of(point, "point")

@@ -86,7 +86,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from . import coloring
+from .colliders import Circle
 from .impact import TOUCH, disc_hits, line_hits
+from .manifold import StaticShapes, static_shapes
+from .shaped import ShapeTable, pair_rows, static_rows
 from .soft import Rows, SoftStep
 
 if TYPE_CHECKING:
@@ -324,6 +327,12 @@ class Collisions:
         self.sleep_speed: float | None = None
         self.capped = 0  # steps whose impacts reached MAX_ROUNDS
         self._handed = np.zeros(0, dtype=np.intp)  # a crowd's bodies (``_impacts``)
+        self._table: ShapeTable | None = None  # the bodies' shapes (``_shapes``)
+        # What the struck bodies' search needs from ``_pairs`` (None: no pairs searched).
+        self._search: tuple[np.ndarray, ...] | None = None
+        self._static: tuple[Any, StaticShapes, np.ndarray, np.ndarray] | None = None
+        #: After the last step, each shaped body's deepest overlap (length units).
+        self._shape_over = np.zeros(0)
         self.warned = False  # the World has warned that a pile is past the solver
         self.moved = False  # whether the last step changed any body's state
         self.last_rounds = 0  # impact rounds in the last step
@@ -362,6 +371,7 @@ class Collisions:
     def changed(self, n: int) -> None:
         """Bodies were added or removed (now n): drop what was keyed by row, wake everyone."""
         self._live = None
+        self._table = None
         self._keys = np.zeros(0, dtype=np.int64)
         self._lam = np.zeros((0, 2))
         self._color_keys = np.zeros(0, dtype=np.int64)
@@ -378,10 +388,14 @@ class Collisions:
             self.changed(n)
             return
         self._live = None  # the new rows may have a radius; the old ones keep their places
+        self._table = None
         # Keys are a * base + b with b < old for a pair and b = old + f for face f (base: the
         # bodies and faces then); rows keep their numbers, so only the faces' b moves. The
         # mapping keeps their order, so the keys stay sorted.
         if len(self._keys) and self._base > old:
+            # (The rows of bodies with shapes, keyed past old * base, start afresh.)
+            disc = self._keys < old * self._base
+            self._keys, self._lam = self._keys[disc], self._lam[disc]
             a, b = np.divmod(self._keys, self._base)
             b[b >= old] += extra
             self._base += extra
@@ -456,10 +470,19 @@ class Collisions:
         self.capped, self.warned = capped, warned
 
     def active(
-        self, radius: np.ndarray, group: np.ndarray, cat: np.ndarray, mask: np.ndarray
+        self,
+        radius: np.ndarray,
+        group: np.ndarray,
+        cat: np.ndarray,
+        mask: np.ndarray,
+        shapes: list[Any] | None = None,
     ) -> bool:
-        """Whether any pair of bodies may collide at all (else a step costs nothing here)."""
+        """Whether any pair of bodies may collide at all, or a body has a shape (whose
+        contacts, with the colliders too, are the soft step's): else a step costs nothing
+        here."""
         live = self._prepare(radius, group, cat, mask)
+        if shapes is not None and any(s is not None and not isinstance(s, Circle) for s in shapes):
+            return True
         return len(live) >= 2 and not self._one_group
 
     # -- the step ------------------------------------------------------------------------------
@@ -484,17 +507,28 @@ class Collisions:
         if len(self.still) != n:
             self.wake(n)
         live = self._prepare(store.radius, store.group, store.categories, store.mask)
-        if len(live) < 2 or self._one_group:
+        shaped = self._shapes(store).shaped
+        if (len(live) < 2 or self._one_group) and not shaped.any():
             return None
         if self.asleep.any():
             x1, v1 = x1.copy(), v1.copy()
             x1[self.asleep], v1[self.asleep] = x0[self.asleep], 0.0
         self._has_kin = bool(store.kinematic.any())
         self._kin = store.kinematic
-        a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
+        if len(live) >= 2 and not self._one_group:
+            a, b = self._pairs(x0, v0, x1, v1, A, dt, live, store)
+        else:
+            a = b = np.zeros(0, dtype=np.intp)
+            self._search = None
         if len(a) and self.asleep.any():
             a, b = self._wake_met(a, b, x1, v1, store.radius)
         island = np.zeros(n, dtype=bool)
+        if shaped.any():
+            # A body with a shape is always the soft step's (engine.shaped), and so is what
+            # may touch it.
+            island |= shaped
+            with_shape = shaped[a] | shaped[b]
+            island[a[with_shape]] = island[b[with_shape]] = True
         if len(a):
             # A pair that carried load in the last step rests on.
             loaded = np.zeros(len(a), dtype=bool)
@@ -526,6 +560,30 @@ class Collisions:
         a, b = self._struck(a, b, island, dt, store)
         self._plan = (a, b, island)
         return island if island.any() else None
+
+    def _shapes(self, store: Any) -> ShapeTable:
+        """The bodies' shapes as narrowphase kinds (built again when bodies change)."""
+        table = self._table
+        if table is None or len(table) != len(store.radius):
+            shapes = getattr(store, "shapes", None)
+            if shapes is None or len(shapes) != len(store.radius):
+                shapes = [None] * len(store.radius)
+            table = self._table = ShapeTable(shapes, store.radius)
+        return table
+
+    def _statics(self, contacts: Contacts) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
+        """The colliders as narrowphase kinds, which are solid, and each collider's first
+        face (what the events and filters name a shape's contact with it by)."""
+        faces = contacts.faces
+        if self._static is None or self._static[0] is not faces:
+            cols = contacts.colliders
+            solid = np.array([not c.sensor for c in cols], dtype=bool)
+            first = np.full(len(cols), -1, dtype=np.intp)
+            owner = faces.owner
+            order = np.arange(len(owner))[::-1]
+            first[owner[order]] = order
+            self._static = (faces, static_shapes(cols), solid, first)
+        return self._static[1], self._static[2], self._static[3]
 
     def _grow(
         self,
@@ -589,6 +647,7 @@ class Collisions:
         self._began, self._ended = [], []
         self.last_rounds = 0
         self._overlap = np.zeros(0)
+        self._shape_over = np.zeros(0)
         self.face_touching = (np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
         n = len(x1)
         plan = self._plan
@@ -651,18 +710,25 @@ class Collisions:
         # The deepest overlap of any pair (what the World warns about), resting or not, that
         # this step made or deepened: bodies put inside each other are being pushed apart.
         self._overlap = np.zeros(n)
+        self.last_overlap = 0.0
+        if len(a) and self._table is not None and self._table.shaped.any():
+            # A shape's bounding circle says nothing of its overlaps: the soft step's rows do.
+            disc = ~(self._table.shaped[a] | self._table.shaped[b])
+            a, b = a[disc], b[disc]
+        if len(self._shape_over) == n:
+            self._overlap = self._shape_over / np.where(store.radius > 0.0, store.radius, 1.0)
+            self.last_overlap = float(self._shape_over.max(initial=0.0))
         if len(a):
             R = store.radius[a] + store.radius[b]
             over = R - _norm(x[a] - x[b])
             grew = over > R - _norm(x0[a] - x0[b]) + 1e-9 * R
-            self.last_overlap = max(float(over[grew].max()), 0.0) if grew.any() else 0.0
+            deepest = max(float(over[grew].max()), 0.0) if grew.any() else 0.0
+            self.last_overlap = max(self.last_overlap, deepest)
             # The overlap each body is left with, in the smaller radius of each pair: a group
             # sleeps only once it is small.
             share = over / np.minimum(store.radius[a], store.radius[b])
             np.maximum.at(self._overlap, a, share)
             np.maximum.at(self._overlap, b, share)
-        else:
-            self.last_overlap = 0.0
         self._events_of(touching, impacts, n, t0, dt)
         if self.asleep.any():
             # Sleepers stay exactly put (nothing above moves a body of infinite mass, but a
@@ -779,8 +845,13 @@ class Collisions:
         nU = len(U)
         local = np.full(n, -1, dtype=np.intp)
         local[U] = np.arange(nU)
+        table = self._shapes(store)
+        shapedU = table.shaped[U]
         both = island[a] & island[b]
         pa, pb = a[both], b[both]
+        with_shape = table.shaped[pa] | table.shaped[pb]
+        sa, sb = pa[with_shape], pb[with_shape]  # pairs with a shape: engine.shaped
+        pa, pb = pa[~with_shape], pb[~with_shape]
         la, lb = local[pa], local[pb]
         r = store.radius[U]
         x0U, v0U = x0[U], v0[U]
@@ -793,33 +864,69 @@ class Collisions:
         rows_a, rows_b = [la], [lb]
         normals, seps = [nrm], [sep]
         fric, rest = [mu[la] * mu[lb]], [e[la] * e[lb]]
+        slops = [SLOP * np.minimum(r[la], r[lb])]
         n_faces = 0 if contacts is None else len(contacts.faces.owner)
         base = n + n_faces
         keys = [pa.astype(np.int64) * base + pb]
         fa = fk = np.zeros(0, dtype=np.intp)
+        speed = _norm(v0U) + _norm(P[U]) * dt
+        kin = store.kinematic[U]
         if n_faces and contacts is not None:
             # Faces within reach of a body this step: the static world is B, the slot nU.
-            speed = _norm(v0U) + _norm(P[U]) * dt
             fa, fn, fg, fmu, fk = _face_rows(contacts, x0U, r, 0.05 * r + speed * dt)
+            ok = ~kin[fa] & ~shapedU[fa]  # walls do not hold what the game moves
             if contacts.faces.filters is not None:
-                ok = contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
-                fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
-            kin = store.kinematic[U]
-            walls = ~kin[fa]  # walls do not hold what the game moves
-            fa, fn, fg, fmu, fk = fa[walls], fn[walls], fg[walls], fmu[walls], fk[walls]
+                ok &= contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
+            fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
             rows_a.append(np.full(len(fa), nU))
             rows_b.append(fa)
             normals.append(fn)
             seps.append(fg)
             fric.append(mu[fa] * fmu)
             rest.append(e[fa] * contacts.faces.e[fk])
+            slops.append(SLOP * r[fa])
             keys.append(U[fa].astype(np.int64) * base + n + fk)
+        m_disc = sum(len(k) for k in keys)
+        # Bodies with shapes (engine.shaped): a row a point of each manifold, keyed past the
+        # discs' keys (n * base), by pair and point, or by body, static shape and point.
+        s_off = np.int64(n) * base
+        margin = float((0.05 * r + speed * dt).max()) if nU else 0.0
+        m_pairs = 0
+        if len(sa):
+            ia, ib, sn, ss, slot = pair_rows(table, sa, sb, x0, margin)
+            m_pairs = len(ia)
+            rows_a.append(local[ia])
+            rows_b.append(local[ib])
+            normals.append(sn)
+            seps.append(ss)
+            fric.append(store.friction[ia] * store.friction[ib])
+            rest.append(store.restitution[ia] * store.restitution[ib])
+            slops.append(SLOP * np.minimum(store.radius[ia], store.radius[ib]))
+            keys.append(s_off + (ia.astype(np.int64) * n + ib) * 2 + slot)
+        s_rows = s_col = np.zeros(0, dtype=np.intp)
+        if n_faces and contacts is not None and (shapedU & ~kin).any():
+            statics, solid, first = self._statics(contacts)
+            mine = U[shapedU & ~kin]
+            s_rows, s_col, sn, ss, skey = static_rows(table, mine, x0, statics, solid, margin)
+            if contacts.faces.filters is not None:
+                ok = contacts.allowed(s_rows, first[s_col])
+                s_rows, s_col, sn, ss, skey = s_rows[ok], s_col[ok], sn[ok], ss[ok], skey[ok]
+            rows_a.append(np.full(len(s_rows), nU))
+            rows_b.append(local[s_rows])
+            normals.append(sn)
+            seps.append(ss)
+            cols = contacts.colliders
+            fric.append(store.friction[s_rows] * np.array([cols[k].friction for k in s_col]))
+            rest.append(store.restitution[s_rows] * np.array([cols[k].restitution for k in s_col]))
+            slops.append(SLOP * store.radius[s_rows])
+            keys.append(s_off + 2 * np.int64(n) * n + s_rows.astype(np.int64) * 2**40 + skey)
         ra, rb = np.concatenate(rows_a), np.concatenate(rows_b)
         nv = np.concatenate(normals)
+        sep_all = np.concatenate(seps)
         key = np.concatenate(keys)
         static = ra == nU
         w = np.append(1.0 / store.mass[U], 0.0)
-        moves = np.append(~store.kinematic[U], False)
+        moves = np.append(~kin, False)
         w[:-1][~moves[:-1]] = 0.0
         # Warm start: the last step's impulses of the same contacts, per part of this step.
         lam = np.zeros((len(key), 2))
@@ -831,7 +938,7 @@ class Collisions:
             ra,
             rb,
             nv[:, 0] + 1j * nv[:, 1],
-            np.concatenate(seps),
+            sep_all,
             np.concatenate(fric),
             np.concatenate(rest),
             lam[:, 0].copy(),
@@ -839,6 +946,7 @@ class Collisions:
             static,
         )
         rmin = float(r.min())
+        slop_rows = np.concatenate(slops)
         # Each row keeps its colour from the last step where its key did (engine.coloring).
         prior = np.full(len(key), -1, dtype=np.int64)
         if len(self._color_keys) and base == self._base:
@@ -853,7 +961,7 @@ class Collisions:
             self.iterations,
             push_speed=PUSH * rmin,
             threshold=THRESH * self.rest_speed,
-            slop=SLOP * np.concatenate([np.minimum(r[la], r[lb]), r[fa]]),
+            slop=slop_rows,
             prior=prior,
         )
         acc = np.append(P[U, 0] + 1j * P[U, 1], 0.0)
@@ -866,15 +974,15 @@ class Collisions:
         Xr = np.stack([X[:nU].real, X[:nU].imag], axis=1)
         Vr = np.stack([V[:nU].real, V[:nU].imag], axis=1)
         # A kinematic body goes where the game sends it, whatever it touched.
-        kin = ~moves[:-1]
         if not kin.any():
             Vr = _dissipative(Vr, v0U + P[U] * dt, store.mass[U])
         if kin.any():
             Xr[kin], Vr[kin] = x[U][kin], v[U][kin]
         if n_faces and contacts is not None:
-            # No body of the pile ends inside a wall: the soft contacts give a little.
+            # No disc of the pile ends inside a wall: the soft contacts give a little. (A
+            # shape is held out by its rows alone; a kinematic body is no wall's business.)
             if PUSHOUT:
-                contacts.push_out_rows(Xr, Vr, np.where(kin, -np.inf, r), U)
+                contacts.push_out_rows(Xr, Vr, np.where(kin | shapedU, -np.inf, r), U)
         x[U], v[U] = Xr, Vr
         # The impulses over the whole step, kept by key (sorted) for the next one.
         kept = self._asleep_rows(n, base)
@@ -893,14 +1001,42 @@ class Collisions:
         touch = gap <= SLOP * np.minimum(r[la], r[lb]) + TOUCH
         pressed = solver.total[:m] > 0.0
         hold = touch | pressed
-        f_gap = _dot(Xr[fa], nv[m:]) - _dot(x0U[fa], nv[m:]) + np.concatenate(seps)[m:]
-        f_touch = (f_gap <= SLOP * r[fa] + TOUCH) | (solver.total[m:] > 0.0)
-        self.face_touching = (U[fa[f_touch]], fk[f_touch])
+        # Every other row's gap now: its gap at the start plus the bodies' moves along it.
+        moved = np.append(Xr - x0U, [[0.0, 0.0]], axis=0)
+        now = sep_all + _dot(moved[rb] - moved[ra], nv)
+        held_rows = (now <= slop_rows + TOUCH) | (solver.total > 0.0)
+        f = slice(m, m_disc)
+        self.face_touching = (U[fa[held_rows[f]]], fk[held_rows[f]])
         touching = pa[hold].astype(np.int64) * n + pb[hold]
         # Sleep joins bodies as near as ``_wake_met`` wakes them by: a group falls asleep
         # whole, or a body left awake beside it would wake it again at once.
         near = gap <= 0.05 * np.minimum(r[la], r[lb])
-        return touching, pa[near], pb[near]
+        near_a, near_b = pa[near], pb[near]
+        self._shape_over = np.zeros(n)
+        if m_disc < len(key) - int(kept.sum()):
+            # The rows of shapes: touching pairs and faces for the events, sleep joined by
+            # them, and their overlaps (a shape's bounding circle says nothing of them).
+            sp = slice(m_disc, m_disc + m_pairs)
+            st = slice(m_disc + m_pairs, len(ra))
+            ua, ub = U[ra[sp]], U[rb[sp]]
+            hs = held_rows[sp]
+            tk = _sorted_unique(ua[hs].astype(np.int64) * n + ub[hs])
+            touching = np.concatenate([touching, tk])
+            near_s = now[sp] <= 0.05 * np.minimum(store.radius[ua], store.radius[ub])
+            near_a = np.concatenate([near_a, ua[near_s]])
+            near_b = np.concatenate([near_b, ub[near_s]])
+            hf = held_rows[st]
+            if contacts is not None and hf.any():
+                first = self._statics(contacts)[2]
+                self.face_touching = (
+                    np.concatenate([self.face_touching[0], s_rows[hf]]),
+                    np.concatenate([self.face_touching[1], first[s_col[hf]]]),
+                )
+            over = np.maximum(-now[m_disc:], 0.0)
+            body = np.concatenate([ua, ub, U[rb[st]]])
+            depth = np.concatenate([over[:m_pairs], over[:m_pairs], over[m_pairs:]])
+            np.maximum.at(self._shape_over, body, depth)
+        return touching, near_a, near_b
 
     def _asleep_rows(self, n: int, base: int) -> np.ndarray:
         """Which of the last step's contact rows (``_keys``) join only sleepers: they keep
@@ -909,9 +1045,10 @@ class Collisions:
         keys = self._keys
         if not len(keys) or base != self._base or len(self.asleep) != n:
             return np.zeros(len(keys), dtype=bool)
-        a, b = np.divmod(keys, base)
+        disc = keys < n * base  # the rows of bodies with shapes are keyed past those
+        a, b = np.divmod(np.where(disc, keys, 0), base)
         face = b >= n
-        return self.asleep[a] & (face | self.asleep[np.where(face, 0, b)])
+        return disc & self.asleep[a] & (face | self.asleep[np.where(face, 0, b)])
 
     def _slept_colors(self, kept: np.ndarray) -> np.ndarray:
         """The colours of the kept rows, where the cache still has them (else -1)."""
@@ -984,6 +1121,8 @@ class Collisions:
         """The pairs (a, b) with those of bodies not in a pile that an impact may send off
         faster than their own speed reaches (``_struck_pairs``); a pile's bodies meet what
         they meet as contacts of the soft step, which needs no such search."""
+        if self._search is None:
+            return a, b
         P, r, v0l, v1l, Al, reach, live = self._search
         free = ~island[live]
         if not free.any() or not len(a):

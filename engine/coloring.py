@@ -80,11 +80,13 @@ def colors(
         return color
     n = len(moves)
     if priority is None:
-        # A fixed scramble of the pair (Knuth's multiplicative hash), ties broken by row.
+        # A fixed scramble of the pair (Knuth's multiplicative hash), ties broken by row: 24
+        # bits of it, so that the fraction of the row survives in a float64 (at 2^53 it did
+        # not, and two rows of one pair, a box's two points, tied and took one colour).
         h = (a.astype(np.uint64) * np.uint64(2654435761) + b.astype(np.uint64)) * np.uint64(
             11400714819323198485
         )
-        priority = (h >> np.uint64(11)).astype(np.float64) + np.arange(rows) / (rows + 1.0)
+        priority = (h >> np.uint64(40)).astype(np.float64) + np.arange(rows) / (rows + 1.0)
     mask = np.zeros(n + 1, dtype=np.int64)  # bit c set: a row of colour c holds the body
     ma = np.where(moves[a], a, n)  # bodies that do not move: the slot n, never claimed
     mb = np.where(moves[b], b, n)
@@ -131,6 +133,8 @@ def colors(
 def batches(color: np.ndarray, a: np.ndarray, b: np.ndarray, moves: np.ndarray) -> list[np.ndarray]:
     """The rows in solving order, one index array per batch: each colour in turn, and the
     last colour's rows split into rounds in which no moving body repeats."""
+    if not len(color):
+        return []
     order = np.argsort(color, kind="stable")
     sc = color[order]
     starts: list[int] = []

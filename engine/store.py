@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from .colliders import Circle
 from .vector import Vector
 
 __all__ = ["BodyStore"]
@@ -71,10 +72,21 @@ class BodyStore:
         # Bodies held by the game or a pin (Body.kinematic, engine.links.Pin): no force acts
         # on them, and contacts and links take their mass as infinite.
         self.kinematic = np.zeros(0, dtype=bool)
+        #: Each body's shape (Body.shape: engine.colliders, in the body's frame), None for a
+        #: disc or a point (engine.shaped turns them into narrowphase kinds).
+        self.shapes: list[Any] = []
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
 
     def __len__(self) -> int:
         return len(self.mass)
+
+    def round(self, rows: np.ndarray) -> np.ndarray:
+        """Which of ``rows`` are discs or points (no shape, or a Circle), as a bool array."""
+        shapes = self.shapes
+        return np.array(
+            [shapes[i] is None or isinstance(shapes[i], Circle) for i in rows.tolist()],
+            dtype=bool,
+        ).reshape(len(rows))
 
     def append(
         self,
@@ -85,13 +97,15 @@ class BodyStore:
         material: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
         filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
         kinematic: np.ndarray | None = None,
+        shapes: list[Any] | None = None,
     ) -> list[int]:
         """Add rows for new bodies; return their slots (one array copy for the whole batch).
 
         ``material``: (radius, restitution, friction) arrays; points of restitution 0.5 and
         friction 0.5 (Body's defaults) when None. ``filters``: (group, categories, mask)
         integer arrays; engine.filters' default (no group, every bit) when None.
-        ``kinematic``: (k,) bools, all False when None.
+        ``kinematic``: (k,) bools, all False when None. ``shapes``: each body's shape (None:
+        a disc or a point), all None when None.
         """
         n0, k = len(self), len(mass)
         if material is None:
@@ -107,6 +121,7 @@ class BodyStore:
         self.mask = np.concatenate([self.mask, filters[2]])
         kin = np.zeros(k, dtype=bool) if kinematic is None else kinematic
         self.kinematic = np.concatenate([self.kinematic, kin])
+        self.shapes.extend([None] * k if shapes is None else shapes)
         self.x = np.concatenate([self.x, x])
         self.v = np.concatenate([self.v, v])
         self.prev_x = np.concatenate([self.prev_x, x])
@@ -126,6 +141,7 @@ class BodyStore:
         self.friction = self.friction[keep]
         self.group, self.categories = self.group[keep], self.categories[keep]
         self.mask, self.kinematic = self.mask[keep], self.kinematic[keep]
+        del self.shapes[i]
         rows = self._row_of
         rows[slot] = -1
         rows[rows > i] -= 1

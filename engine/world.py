@@ -36,7 +36,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from . import checks, queries
+from . import checks, habits, queries
 from .body import Body, State, coerce_mass, coerce_state
 from .colliders import Collider
 from .collisions import Collisions, deepest_overlap
@@ -56,6 +56,7 @@ from .events import (
 from .filters import Filter
 from .forcefield import ForceModel
 from .forces import Force, as_force
+from .habits import PYMUNK_NAMES
 from .integrators import Integrator
 from .links import Cable, Link, LinkSolver, Pin, Rod
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
@@ -64,7 +65,15 @@ from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
 from .vector import Vector
 
-__all__ = ["World", "WorldSnapshot", "METHODS", "check_dt", "OverlapWarning", "QueryHit"]
+__all__ = [
+    "World",
+    "WorldSnapshot",
+    "METHODS",
+    "check_dt",
+    "OverlapWarning",
+    "QueryHit",
+    "PYMUNK_NAMES",
+]
 
 # Kept for code that imported it from here: "auto" tries these, cheapest first.
 _AUTO_ORDER = AUTO_ORDER
@@ -349,6 +358,7 @@ class World:
                 np.array([b.filter.mask for b in batch], dtype=np.int64),
             ),
             np.array([b.kinematic for b in batch], dtype=bool),
+            [b.shape for b in batch],
         )
         for b, slot in zip(batch, slots, strict=True):
             b._store, b._slot = store, slot
@@ -587,6 +597,8 @@ class World:
         assert contacts is not None and store is not None
         idx = np.fromiter(rows, dtype=np.intp)
         idx = idx[~store.kinematic[idx]]  # walls do not hold what the game moves
+        # (A body with a shape other than a disc is held out by its contacts: engine.shaped.)
+        idx = idx[store.round(idx)]
         if not len(idx):
             return
         x, v = store.x[idx], store.v[idx]
@@ -1208,7 +1220,7 @@ class World:
             self._pairs_on = (
                 st is not None
                 and st.dim == 2
-                and self._collisions.active(st.radius, st.group, st.categories, st.mask)
+                and self._collisions.active(st.radius, st.group, st.categories, st.mask, st.shapes)
             )
             affine = (
                 name in _EULERS
@@ -1902,7 +1914,7 @@ class World:
         if name[0] == "_" or hasattr(type(self), name) or type(self) is not World:
             object.__setattr__(self, name, value)
         else:
-            raise AttributeError(_unknown(name, "set"))
+            raise AttributeError(habits.unknown(World, name, "set"))
 
     def __repr__(self) -> str:
         """``World(integrator='auto', tolerance=0.001, bodies=3, forces=2, t=1.5)``."""
@@ -1914,71 +1926,4 @@ class World:
         )
 
 
-#: pymunk Space names, and what to write here instead.
-PYMUNK_NAMES: dict[str, str] = {
-    "gravity": "gravity is a force: world.add_force(Gravity((0, -9.81))) "
-    "(from engine.forces import Gravity)",
-    "damping": "damping is a force: world.add_force(Drag(k)) (F = -k v; pymunk's damping d "
-    "is k = -m ln(d)), from engine.forces",
-    "iterations": "world.contact_iterations (default 8)",
-    "sleep_time_threshold": "world.sleep_time (s; math.inf never sleeps)",
-    "idle_speed_threshold": "a resting group sleeps once slower than |a| dt for "
-    "world.sleep_time seconds",
-    "collision_slop": "there is no slop: overlaps past 0.2% of a radius are pushed out",
-    "collision_bias": "there is no bias: overlaps past 0.2% of a radius are pushed out",
-    "collision_persistence": "contacts carry their impulses from step to step by themselves",
-    "static_body": "static geometry goes straight into the World: "
-    "world.add_collider(Segment(...)) (Plane, Segment, Circle, Box)",
-    "shapes": "world.colliders (static shapes); a Body's own shape is its radius",
-    "constraints": "world.links (rods, cables, pins)",
-    "add_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",
-    "add_wildcard_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",
-    "add_default_collision_handler": "world.on_contact(...), or read world.began and "
-    "world.ended after each step",
-    "on_collision": "world.on_contact(body_or_collider, begin=..., end=...)",
-    "current_time_step": "the dt you pass to world.step(dt); world.t is the time",
-    "debug_draw": "draw with engine.render (Camera, draw_dot, ...)",
-    "bb_query": "world.point_query(point, max_distance)",
-    "shape_query": "world.point_query(point, max_distance)",
-    "add_post_step_callback": "act after world.step(dt) returns: events are in world.began",
-    "threads": "the World steps in one thread",
-    "threaded": "the World steps in one thread",
-}
-
-
-def _unknown(name: str, how: str) -> str:
-    """The message for a World attribute ``name`` it does not have (``how``: read or set)."""
-    advice = PYMUNK_NAMES.get(name)
-    if advice is not None:
-        return f"a World has no {name} (pymunk's name): {advice}"
-    settable = sorted(
-        n
-        for n, v in vars(World).items()
-        if isinstance(v, property) and v.fset is not None and n[0] != "_"
-    )
-    return (
-        f"a World has no attribute {name!r} to {how}; what can be set on it is "
-        f"{', '.join(settable)} (and it is changed through add, add_force, add_collider, "
-        f"add_link and step)"
-    )
-
-
-class _Advice:
-    """A pymunk Space name the World lacks: reading or writing it says what to use instead."""
-
-    def __init__(self, name: str) -> None:
-        self.name = name
-
-    def __get__(self, world: Any, owner: Any = None) -> Any:
-        if world is None:
-            return self
-        raise AttributeError(_unknown(self.name, "read"))
-
-    def __set__(self, world: Any, value: Any) -> None:
-        raise AttributeError(_unknown(self.name, "set"))
-
-
-for _name in PYMUNK_NAMES:
-    if not hasattr(World, _name):  # a name the World comes to have keeps its own meaning
-        setattr(World, _name, _Advice(_name))
-del _name
+habits.install(World)

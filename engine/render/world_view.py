@@ -2,7 +2,8 @@
 
 A game that needs no art of its own, a test, or a lesson that shows the physics as it is,
 draws the World with ``draw_world(surface, world, camera)``: colliders in ink (sensors as
-outlines only), bodies as discs of their radius (points as dots) in blue, asleep in grey,
+outlines only), bodies as discs of their radius (points as dots), or as their shape (a box,
+a polygon, a capsule: ``Body(..., shape=...)``), in blue, asleep in grey,
 moved by the game in vermillion, links as lines. ``alpha`` blends the last two steps as
 ``World.positions(alpha)`` does, for a fixed-step loop.
 """
@@ -45,6 +46,12 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
     for k, body in enumerate(world.bodies):
         centre = camera.point((float(xy[k, 0]), float(xy[k, 1])))
         colour = KINEMATIC if body.kinematic else ASLEEP if world.is_sleeping(body) else BODY
+        shape = body.shape
+        if shape is not None and type(shape).__name__ in ("Polygon", "Segment"):
+            at = (float(xy[k, 0]), float(xy[k, 1]))
+            _draw_shape(surface, shape, camera, at, colour, 0)
+            _draw_shape(surface, shape, camera, at, INK, 1)
+            continue
         r_px = body.radius * camera.scale
         if r_px < 1.5:
             pygame.draw.circle(surface, colour, centre, 2)
@@ -78,6 +85,8 @@ def _draw_collider(surface: pygame.Surface, c: Any, camera: Camera) -> None:
         x1, y1 = camera.point(tuple(c.upper_right))
         rect = pygame.Rect(min(x0, x1), min(y0, y1), abs(x1 - x0), abs(y1 - y0))
         pygame.draw.rect(surface, colour, rect, 2)
+    elif kind == "Polygon":
+        _draw_shape(surface, c, camera, (0.0, 0.0), colour, width)
     elif kind == "Plane":
         # The line across the whole surface: its point +- the surface's diagonal along it.
         w, h = surface.get_size()
@@ -87,6 +96,41 @@ def _draw_collider(surface: pygame.Surface, c: Any, camera: Camera) -> None:
         a = camera.point((p.x - t[0] * reach, p.y - t[1] * reach))
         b = camera.point((p.x + t[0] * reach, p.y + t[1] * reach))
         pygame.draw.line(surface, colour, a, b, 2)
+
+
+def _draw_shape(
+    surface: pygame.Surface,
+    shape: Any,
+    camera: Camera,
+    at: tuple[float, float],
+    colour: Color,
+    width: int,
+) -> None:
+    """A Polygon (with its rounding) or a Segment (a capsule) whose coordinates are about
+    ``at`` (a body's position; the origin for a collider); ``width`` 0 fills it."""
+    ox, oy = at
+    r_px = round(shape.radius * camera.scale)
+    if type(shape).__name__ == "Segment":
+        a = camera.point((shape.a.x + ox, shape.a.y + oy))
+        b = camera.point((shape.b.x + ox, shape.b.y + oy))
+        if width and r_px:
+            _capsule_outline(surface, colour, a, b, r_px)
+            return
+        if width:
+            pygame.draw.line(surface, colour, a, b, width)
+            return
+        pygame.draw.line(surface, colour, a, b, max(2 * r_px, 2))
+        for end in (a, b):
+            pygame.draw.circle(surface, colour, end, max(r_px, 1))
+        return
+    pts = [camera.point((v.x + ox, v.y + oy)) for v in shape.vertices]
+    if r_px >= 1:
+        # The rounding: the edges thickened by r and a disc at each corner.
+        for p, q in zip(pts, pts[1:] + pts[:1], strict=True):
+            pygame.draw.line(surface, colour, p, q, 2 * r_px if not width else width)
+        for p in pts:
+            pygame.draw.circle(surface, colour, p, r_px, width)
+    pygame.draw.polygon(surface, colour, pts, width)
 
 
 def _capsule_outline(

@@ -1,0 +1,189 @@
+"""Bodies with a shape (a box, a polygon, a capsule): their contacts as rows of the soft step.
+
+A body made with ``Body(..., shape=...)`` carries a convex shape in its own frame, about its
+position (``engine.colliders``: a ``Polygon``, ``Polygon.box(width, height)``, or a
+``Segment``, a capsule). Until bodies turn (the issue "Bodies that turn") a shape keeps its
+angle, 0: a box slides, lands flat and stacks, like a platformer's crate with fixed rotation.
+
+Such a body is always stepped with the piles (``engine.soft``): its contacts are the points
+of Box2D's manifolds (``engine.manifold``), up to two a pair, each a row with a normal and a
+separation, solved with the pile's contacts of discs. A body that does not turn moves by
+translation only, so a row's point does not matter, only its normal and gap: the same
+row as two discs', with the lever arms r x n of the next issue still zero. A disc meets a
+shape as a ``Circles`` row of the table.
+
+The rows are speculative (Box2D's): a pair or a wall within ``margin`` of each other at the
+step's start gets its rows, which hold the gap from closing past zero; a shape moving faster
+than its margin a step (a box thrown at a thin wall at tens of metres a second) can pass
+through, as in Box2D without its bullets (the exact impacts are for discs).
+
+>>> import numpy as np
+>>> from engine.colliders import Polygon
+>>> table = ShapeTable([Polygon.box(1.0, 1.0), None], np.array([0.7071, 0.5]))
+>>> a, b, n, s, k = pair_rows(table, np.array([0]), np.array([1]),
+...                           np.array([[0.0, 0.0], [1.0, 0.0]]), 0.1)
+>>> a.tolist(), b.tolist(), n.tolist(), s.tolist()
+([0], [1], [[1.0, 0.0]], [0.0])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from .colliders import Circle, Polygon, Segment
+from .manifold import (
+    Capsules,
+    Circles,
+    Kind,
+    Manifold,
+    Polygons,
+    StaticShapes,
+    collide,
+)
+
+__all__ = ["ShapeTable", "pair_rows", "static_rows", "DISC", "CAPSULE", "POLYGON"]
+
+#: The kinds of a body's shape, by code.
+DISC, CAPSULE, POLYGON = 0, 1, 2
+
+
+class ShapeTable:
+    """The shapes of a World's bodies, by row, as narrowphase kinds (built once for a set of
+    bodies: a shape never changes)."""
+
+    def __init__(self, shapes: Sequence[Any], radius: np.ndarray) -> None:
+        n = len(shapes)
+        self.kind = np.zeros(n, dtype=np.int8)
+        self.index = np.zeros(n, dtype=np.intp)  # the row's place in its kind's arrays
+        caps: list[Segment] = []
+        polys: list[Polygon] = []
+        for row, shape in enumerate(shapes):
+            if shape is None or isinstance(shape, Circle):
+                continue
+            if isinstance(shape, Segment):
+                self.kind[row], self.index[row] = CAPSULE, len(caps)
+                caps.append(shape)
+            elif isinstance(shape, Polygon):
+                self.kind[row], self.index[row] = POLYGON, len(polys)
+                polys.append(shape)
+            else:  # Body checked it: only the kinds above reach here
+                raise TypeError(f"no narrowphase for a body's shape {shape!r}")
+        #: Which rows carry a shape other than a disc (the soft step always takes them).
+        self.shaped = self.kind != DISC
+        self.index[~self.shaped] = np.arange(n)[~self.shaped]
+        self.circles = Circles(np.zeros((n, 2)), np.asarray(radius, dtype=float))
+        self.capsules = Capsules(
+            np.array([(s.a.x, s.a.y) for s in caps], dtype=float).reshape(-1, 2),
+            np.array([(s.b.x, s.b.y) for s in caps], dtype=float).reshape(-1, 2),
+            np.array([s.radius for s in caps], dtype=float),
+        )
+        self.polygons = (
+            Polygons.of([[tuple(v) for v in p.vertices] for p in polys], [p.radius for p in polys])
+            if polys
+            else None
+        )
+
+    def __len__(self) -> int:
+        return len(self.kind)
+
+    def kinds(self, rows: np.ndarray) -> Kind:
+        """The shapes of ``rows`` (all of one kind) as one narrowphase kind."""
+        code = int(self.kind[rows[0]]) if len(rows) else DISC
+        idx = self.index[rows]
+        if code == CAPSULE:
+            return self.capsules.take(idx)
+        if code == POLYGON:
+            assert self.polygons is not None
+            return self.polygons.take(idx)
+        return self.circles.take(idx)
+
+
+def _points(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
+    """(pair index, point slot) of each point the manifolds hold (count 0 to 2 each)."""
+    pair = np.repeat(np.arange(len(m)), 2)
+    slot = np.tile(np.arange(2), len(m))
+    has = slot < np.repeat(m.count, 2)
+    return pair[has], slot[has]
+
+
+def pair_rows(
+    table: ShapeTable, a: np.ndarray, b: np.ndarray, x: np.ndarray, margin: float
+) -> tuple[np.ndarray, ...]:
+    """The rows of pairs (World rows a, b) at positions x (N, 2), angle 0: (a, b, the unit
+    normal from a to b (R, 2), the separation (R,), the point's key within its pair: 0 or 1),
+    one row a point of each pair's manifold (``engine.manifold.collide``), every pair of
+    kinds at once a kind pair."""
+    out: list[list[np.ndarray]] = [[], [], [], [], []]
+    ka, kb = table.kind[a], table.kind[b]
+    for code_a in (DISC, CAPSULE, POLYGON):
+        for code_b in (DISC, CAPSULE, POLYGON):
+            sel = np.flatnonzero((ka == code_a) & (kb == code_b))
+            if not len(sel):
+                continue
+            ia, ib = a[sel], b[sel]
+            m = collide(table.kinds(ia), x[ia], 0.0, table.kinds(ib), x[ib], 0.0, margin)
+            pair, slot = _points(m)
+            out[0].append(ia[pair])
+            out[1].append(ib[pair])
+            out[2].append(m.normal[pair])
+            out[3].append(m.separation[pair, slot])
+            out[4].append(slot)
+    return _joined(out)
+
+
+def static_rows(
+    table: ShapeTable,
+    rows: np.ndarray,
+    x: np.ndarray,
+    statics: StaticShapes,
+    solid: np.ndarray,
+    margin: float,
+) -> tuple[np.ndarray, ...]:
+    """The rows of bodies ``rows`` (World rows, with shapes) against the World's colliders
+    (``statics``, ``engine.manifold.static_shapes``; ``solid`` (C,) bool: which colliders
+    are solid, not sensors): (row, the collider's index, the unit normal from the collider
+    to the body (R, 2), the separation (R,), the point's key: 2 c + slot for the c-th static
+    shape of its kind)."""
+    out: list[list[np.ndarray]] = [[], [], [], [], []]
+    for code in (DISC, CAPSULE, POLYGON):
+        mine = rows[table.kind[rows] == code]
+        if not len(mine):
+            continue
+        shapes = table.kinds(mine)
+        for base, (kind, owner) in enumerate(statics.kinds()):
+            keep = np.flatnonzero(solid[owner])
+            if not len(keep):
+                continue
+            r_i = np.repeat(np.arange(len(mine)), len(keep))
+            c_i = np.tile(keep, len(mine))
+            m = collide(
+                shapes.take(r_i), x[mine[r_i]], 0.0, kind.take(c_i), (0.0, 0.0), 0.0, margin
+            )
+            pair, slot = _points(m)
+            out[0].append(mine[r_i[pair]])
+            out[1].append(owner[c_i[pair]])
+            out[2].append(-m.normal[pair])
+            out[3].append(m.separation[pair, slot])
+            out[4].append((base * 1_000_003 + c_i[pair]) * 2 + slot)
+    return _joined(out)
+
+
+def _joined(out: list[list[np.ndarray]]) -> tuple[np.ndarray, ...]:
+    if not out[0]:
+        return (
+            np.zeros(0, dtype=np.intp),
+            np.zeros(0, dtype=np.intp),
+            np.zeros((0, 2)),
+            np.zeros(0),
+            np.zeros(0, dtype=np.int64),
+        )
+    return (
+        np.concatenate(out[0]),
+        np.concatenate(out[1]),
+        np.concatenate(out[2]),
+        np.concatenate(out[3]),
+        np.concatenate(out[4]).astype(np.int64),
+    )
