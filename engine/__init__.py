@@ -24,7 +24,7 @@ from . import (
     stability,
 )
 from .body import Body
-from .colliders import Box, Circle, Collider, Plane, Segment
+from .colliders import Box, Circle, Collider, Plane, Polygon, Segment
 from .events import ContactEvent
 from .filters import Filter
 from .links import Cable, Link, Pin, Rod
@@ -41,6 +41,7 @@ __all__ = [
     "Segment",
     "Circle",
     "Box",
+    "Polygon",
     "Collider",
     "ContactEvent",
     "Filter",

@@ -207,3 +207,34 @@ def test_a_body_shape_is_checked_and_the_errors_say_what_to_write() -> None:
         b.shape = Polygon.box(1.0, 1.0)  # type: ignore[misc]
     # A round shape is a disc: the same as radius=.
     assert Body(Vector(0.0, 0.0), shape=Circle((0.0, 0.0), 0.5)).radius == 0.5
+
+
+@pytest.mark.parametrize("speed", [10.0, 100.0, 1000.0])
+@pytest.mark.parametrize("other", ["thin box", "capsule", "disc", "thin wall"])
+def test_fast_shapes_never_pass_through_each_other_or_a_thin_wall(speed: float, other: str) -> None:
+    # A box thrown head-on at a body coming the other way (or at a thin static wall), from
+    # gaps that the two close within one step and from farther: elastic, frictionless, so
+    # they come apart at their speeds of approach, and the box is never past the other.
+    for gap in (0.35, 0.9 * 2.0 * speed * DT, 1.3 * 2.0 * speed * DT, 2.5 * 2.0 * speed * DT):
+        w = World(integrator="auto")
+        box = w.add(Body(Vector(0.0, 0.0), Vector(speed, 0.0), shape=Polygon.box(0.5, 0.5),
+                         restitution=1.0, friction=0.0))  # fmt: skip
+        x_far = 0.25 + gap + 0.05
+        if other == "thin wall":
+            w.add_collider(Segment((x_far, -5.0), (x_far, 5.0)))
+            target = None
+        else:
+            shape = {
+                "thin box": Polygon.box(0.1, 0.5),
+                "capsule": Segment((0.0, -0.2), (0.0, 0.2), 0.05),
+                "disc": None,
+            }[other]
+            kw = {"radius": 0.05} if shape is None else {"shape": shape}
+            target = w.add(Body(Vector(x_far, 0.1), Vector(-speed, 0.0), restitution=1.0,
+                                friction=0.0, **kw))  # fmt: skip
+        for _ in range(int(gap / speed / DT) + 4):
+            w.step(DT)
+            assert box.pos.x < (x_far if target is None else target.pos.x)
+        assert box.vel.x == pytest.approx(-speed, rel=1e-9)
+        if target is not None:
+            assert target.vel.x == pytest.approx(speed, rel=1e-9)
