@@ -30,8 +30,8 @@ PYMUNK_NAMES: dict[str, str] = {
     "collision_bias": "there is no bias: overlaps past 0.2% of a radius are pushed out",
     "collision_persistence": "contacts carry their impulses from step to step by themselves",
     "static_body": "static geometry goes straight into the World: "
-    "world.add_collider(Segment(...)) (Plane, Segment, Circle, Box)",
-    "shapes": "world.colliders (static shapes); a Body's own shape is its radius",
+    "world.add_collider(Segment(...)) (Plane, Segment, Circle, Polygon, Box)",
+    "shapes": "world.colliders (static shapes); a Body has one shape: Body(..., shape=...)",
     "constraints": "world.links (rods, cables, pins)",
     "add_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",
     "add_wildcard_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",

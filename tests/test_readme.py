@@ -264,6 +264,20 @@ def test_the_contacts_example_meets_the_peg_the_ramp_and_the_floor(capsys) -> No
     assert scope["ball"].filter.group == 1  # type: ignore[attr-defined]
 
 
+def test_the_shapes_example_stacks_its_crates_and_carries_its_rider(capsys) -> None:
+    scope: dict[str, object] = {}
+    exec(block("shape=Polygon.box(1, 1)"), scope)  # noqa: S102
+    printed = capsys.readouterr().out.strip()
+    assert f"It prints `{printed}`" in " ".join(README.split())
+    world, crates = scope["world"], scope["crates"]
+    heights = [c.pos.y for c in crates]  # type: ignore[attr-defined]
+    # Stacked: each crate 1 m above the one below, within 1% of a crate's height, asleep.
+    assert all(abs(h - (0.5 + k)) < 0.01 for k, h in enumerate(heights))
+    assert all(world.is_sleeping(c) for c in crates)  # type: ignore[attr-defined]
+    rider, lift = scope["rider"], scope["lift"]
+    assert rider.pos.y - lift.pos.y == pytest.approx(0.35, abs=0.0035)  # type: ignore[attr-defined]
+
+
 def test_the_readme_says_the_venv_before_its_first_bare_python_command() -> None:
     # The later sections wrote `python -m demos ...` without saying the venv must be active.
     first_bare = re.search(r"(?<![/\w])python -m demos", README)
