@@ -1,7 +1,9 @@
 """Benchmarks: speed measured side by side in one run and reported as ratios.
 
 ``python -m demos.bench`` runs every topic; ``python -m demos.bench core --quick``
-runs one, briefly. Each topic is a module here with ``report(quick) -> str``. No test
+runs one, briefly. Each topic is a module here with ``report(quick) -> str``; a topic that
+draws pictures (``pit``) takes ``out`` too, the folder it writes them into (``out/bench``,
+or ``--out DIR``; files of the same name there are replaced). No test
 asserts a time: machines are shared and noisy, so the numbers that matter are ratios
 of things measured in the same run, round by round, as medians.
 
@@ -26,6 +28,9 @@ TOPICS: dict[str, str] = {
     "throughput": "demos.bench.throughput",
     "contacts": "demos.bench.contacts",
     "pit": "demos.bench.pit",
+    "board": "demos.bench.board",
+    "limits": "demos.bench.limits",
+    "before": "demos.bench.before",
     "solver": "demos.bench.solver",
     "pendulum": "demos.bench.pendulum",
 }

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import inspect
 import sys
+from pathlib import Path
 
 from demos.bench import TOPICS
 
@@ -21,6 +23,12 @@ def main(argv: list[str] | None = None) -> int:
         help=f"which to run (default all): {', '.join(TOPICS)}",
     )
     parser.add_argument("--quick", action="store_true", help="fewer, shorter rounds")
+    parser.add_argument(
+        "--out",
+        type=Path,
+        default=Path("out") / "bench",
+        help="folder for the pictures a topic draws (default out/bench; same names replaced)",
+    )
     args = parser.parse_args(argv)
     unknown = [t for t in args.topics if t not in TOPICS]
     if unknown:
@@ -31,7 +39,9 @@ def main(argv: list[str] | None = None) -> int:
         except ModuleNotFoundError as error:
             print(f"{topic}: not available ({error})", file=sys.stderr)
             continue
-        print(module.report(quick=args.quick), flush=True)
+        takes_out = "out" in inspect.signature(module.report).parameters
+        extra = {"out": args.out} if takes_out else {}
+        print(module.report(quick=args.quick, **extra), flush=True)
         print()
     return 0
 
