@@ -37,13 +37,13 @@ from typing import Any, TypeVar
 import numpy as np
 
 from . import checks, habits, queries
+from .affine import EULERS, prepare_affine
 from .body import Body, State, coerce_mass, coerce_state
 from .colliders import Collider
 from .collisions import Collisions, deepest_overlap
 from .contacts import Contacts, signed_distance
 from .events import (
     ContactEvent,
-    WorldEvents,
     collider_keys,
     keys_of,
     other_of,
@@ -59,11 +59,13 @@ from .forces import Force, as_force
 from .habits import PYMUNK_NAMES
 from .integrators import Integrator
 from .links import Cable, Link, LinkSolver, Pin, Rod
+from .overlaps import OverlapWarning, freed, push_out
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
 from .queries import QueryHit
 from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
 from .vector import Vector
+from .world_state import AttachedForce, WorldState
 
 __all__ = [
     "World",
@@ -80,44 +82,11 @@ _AUTO_ORDER = AUTO_ORDER
 
 # np.add.reduce(a, None) sums every entry without the Python wrapper of ndarray.sum.
 _sum = np.add.reduce
-_mul, _add = np.multiply, np.add
-
-#: The methods the World steps by its affine kernel when every force is folded.
-_EULERS = ("semi_implicit_euler", "explicit_euler")
-
-
-#: Entries below this in size cannot overflow in one more step of the affine kernel.
-_SAFE = 1e300
-
-
-def _safe_steps(x_max: float, v_max: float, d: float, b: float, dt: float) -> int:
-    """How many affine Euler steps surely keep every entry below 1e300 (0 to 2^20).
-
-    From |x| <= X, |v| <= V and v' = D v + B, x' = x + v dt (v old or new), with d = max |D|
-    and b = max |B|: after m steps |v| <= q (V + m b) with q = max(1, d)^m, and
-    |x| <= X + m dt q (V + m b). The bound doubles m while it stays below 1e300 / 2 (the
-    factor 2 is far above the round-off of 2^20 steps, ~1e-10 relative).
-    """
-    best = 0
-    m = 1
-    while m <= 2**20:
-        q = max(1.0, d) ** m if d <= 1.0 or m * math.log(d) < 690.0 else math.inf
-        v_m = q * (v_max + m * b)
-        x_m = x_max + m * dt * v_m
-        if not 2.0 * (x_m + v_m) < _SAFE:
-            break
-        best = m
-        m *= 2
-    return best
 
 
 def check_dt(dt: Any) -> float:
     """``dt`` as a positive finite float (s), else TypeError / ValueError naming it."""
     return checks.seconds(dt, "dt")
-
-
-class OverlapWarning(UserWarning):
-    """A body started inside a collider and was pushed out to its surface."""
 
 
 #: How many parts a step is taken again in when a linked body is struck in it.
@@ -155,29 +124,6 @@ class WorldSnapshot:
     events: tuple[Any, ...] | None = None  # the contacts open (engine.events), by row and place
 
 
-@dataclass
-class _Attached:
-    force: Force
-    bodies: list[Body] | None  # None: every body in the world
-
-
-@dataclass(slots=True)
-class _Kernel:
-    """An Euler step for affine forces at one dt, folded: v' = D v + B (World._step_affine)."""
-
-    dt: float
-    model: ForceModel
-    store: BodyStore
-    explicit: bool  # explicit Euler (x moves with the old v) rather than semi-implicit
-    damp: Any  # D = 1 - c dt, shaped like v, or None without drag
-    kick: Any  # B = a0 dt, shaped like v
-    damp_max: float  # max |D| (1.0 without drag)
-    kick_max: float  # max |B|
-    n_stop: int = 0  # the World's step count (of this dt) up to which no step can overflow
-    n_from: int = 0  # the step count at which that proof was made
-    taken: int = 0  # steps taken under earlier proofs (one force evaluation each)
-
-
 class _EventView:
     """What the events (engine.events) read of a World: bodies by slot, where they are now,
     and the impulses its open contacts carried over the last step."""
@@ -212,15 +158,6 @@ class _EventView:
         return self._world._impulses(keys)
 
 
-class _Count:
-    """A World's count of steps since its time base (World._n), written by every step."""
-
-    __slots__ = ("n",)
-
-    def __init__(self) -> None:
-        self.n = 0
-
-
 class World:
     """Point bodies, the forces on them, and ``step(dt)``: the only way time moves.
 
@@ -241,81 +178,51 @@ class World:
     def __init__(
         self, integrator: str | Integrator = "semi_implicit_euler", tolerance: float | None = None
     ) -> None:
-        self._policy = MethodPolicy(integrator, tolerance)
-        self._requested = self._policy.requested
-        self._store: BodyStore | None = None  # made when the World's dimension is known
-        self._bodies: list[Body] = []
-        self._forces: list[_Attached] = []
-        # Time: t = t_base + n_since_base * dt, with n an integer, so a run of equal
-        # steps never accumulates the round-off of adding dt again and again.
-        self._t_base = 0.0
-        self._dt: float | None = None
-        self._count = _Count()  # holds _n, the steps of dt since t_base
-        self._steps_base = 0  # steps taken before the current run of equal dt
-        self._model: ForceModel | None = None
-        self._evaluations = 0  # force evaluations of models since replaced, and of the kernel
-        self._anchor: tuple[Any, Any, float] | None = None  # (x0, v0, t0) for "exact"
-        self._version = 0  # bumped whenever bodies, forces or masses change
-        self._fast: tuple[Any, ...] | None = None  # (dt, version, method, step, model, kernel)
-        self._kernel: _Kernel | None = None
-        self._huge = False  # the state is near overflow: step with numpy's warnings off
-        self._contacts: Contacts | None = None  # made by the first add_collider
-        self._collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
-        self._pairs_on = False  # whether any two bodies may collide
-        # on_contact handlers: (target, begin, end, post_solve).
-        self._handlers: list[tuple[Any, Any, Any, Any]] = []
-        self._events = WorldEvents()  # the contacts kept open, and each step's events
-        self._events._view = _EventView(self)
-        self._contact_dv: np.ndarray | None = None  # velocity change by the static contacts
-        # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
-        self._targets: dict[Body, Any] = {}
-        self._links: list[Link] = []  # rods, cables and pins (engine.links)
-        self._retired: list[Link] = []  # links taken out (a snapshot may bring one back)
-        self._link_solver: LinkSolver | None = None  # the links as arrays; made when needed
-        self._substeps = False  # taking a step again in parts (_step_general)
+        self._s = WorldState(self, MethodPolicy(integrator, tolerance))
+        self._s.events._view = _EventView(self)
+
+    # Names the tests and engine.queries read: the body arrays, the bodies, the compiled
+    # forces, the static contacts and the contacts between bodies.
+    @property
+    def _store(self) -> BodyStore | None:
+        return self._s.store
+
+    @property
+    def _bodies(self) -> list[Body]:
+        return self._s.bodies
+
+    @property
+    def _model(self) -> ForceModel | None:
+        return self._s.model
+
+    @property
+    def _contacts(self) -> Contacts | None:
+        return self._s.contacts
+
+    @property
+    def _collisions(self) -> Collisions:
+        return self._s.collisions
 
     # -- bodies and forces ----------------------------------------------------------------
     @property
     def bodies(self) -> tuple[Body, ...]:
         """The bodies in the world, in the order they were added."""
-        return tuple(self._bodies)
+        return tuple(self._s.bodies)
 
     @property
     def forces(self) -> tuple[Force, ...]:
         """The forces in the world, in the order they were added."""
-        return tuple(a.force for a in self._forces)
+        return tuple(a.force for a in self._s.forces)
 
     @property
     def dim(self) -> int | None:
         """1 (floats), 2 (Vectors), or None while the world has neither bodies nor shaped forces."""
-        return None if self._store is None else self._store.dim
+        return None if self._s.store is None else self._s.store.dim
 
     @property
     def integrator(self) -> str:
         """The method asked for: a name from METHODS, or the custom function's name."""
-        return self._requested
-
-    def _check_dim(self, dim: int, what: str, world_dim: int | None = None) -> None:
-        """TypeError unless ``what``, of dimension ``dim``, fits this World (or ``world_dim``)."""
-        expected = self.dim if world_dim is None else world_dim
-        if expected is not None and dim != expected:
-            raise TypeError(
-                f"{what} is {dim}D but this World is {expected}D: a World holds bodies "
-                f"of one dimension (1D: floats, 2D: Vectors)"
-            )
-
-    def _ensure_store(self, dim: int) -> BodyStore:
-        if self._store is None:
-            self._store = BodyStore(
-                dim,
-                self,
-                on_state=self._state_written,
-                on_own_acc=self._own_acc_written,
-                on_mass=self._changed_structure,
-                on_kinematic=self._kinematic_moved,
-                acceleration_at=self._acceleration_at,
-            )
-        return self._store
+        return self._s.requested
 
     def add(self, body: Body) -> Body:
         """Add ``body`` and return it; from now on its pos/vel are the world's live state."""
@@ -340,8 +247,8 @@ class World:
         # An empty World takes the dimension of the first body; every body must share it.
         dim = self.dim if self.dim is not None else batch[0].dim
         for b in batch:
-            self._check_dim(b.dim, "the body", dim)
-        store = self._ensure_store(dim)
+            self._s.check_dim(b.dim, "the body", dim)
+        store = self._s.ensure_store(dim)
         slots = store.append(
             np.array([b.pos for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
             np.array([b.vel for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
@@ -362,43 +269,43 @@ class World:
         )
         for b, slot in zip(batch, slots, strict=True):
             b._store, b._slot = store, slot
-            self._bodies.append(b)
-        if self._contacts is not None:
-            self._contacts.bodies_added(len(batch))
-            self._push_out(range(len(self._bodies) - len(batch), len(self._bodies)))
-        self._changed_structure(appended=True)
+            self._s.bodies.append(b)
+        if self._s.contacts is not None:
+            self._s.contacts.bodies_added(len(batch))
+            push_out(self._s, range(len(self._s.bodies) - len(batch), len(self._s.bodies)))
+        self._s.changed_structure(appended=True)
         return batch
 
     def remove(self, body: Body) -> None:
         """Take ``body`` out of the world; it keeps its last position, velocity and mass."""
         if not isinstance(body, Body) or body.world is not self:
             raise ValueError(f"that body is not in this World: {body!r}")
-        store = self._store
+        store = self._s.store
         assert store is not None
         pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
         row = store.row(body._slot)
         # The last step's events are named now, before the rows shift, and the body's open
         # contacts end (reported with the next step).
-        self._events.body_removed(body._slot, self.t)
-        del self._bodies[row]
-        self._targets.pop(body, None)
+        self._s.events.body_removed(body._slot, self.t)
+        del self._s.bodies[row]
+        self._s.targets.pop(body, None)
         store.remove(body._slot)
-        gone = [k for k in self._links if body in k.bodies]
+        gone = [k for k in self._s.links if body in k.bodies]
         if gone:
             # Its links go with it.
-            self._links = [k for k in self._links if body not in k.bodies]
-            self._links_changed()
-        if self._contacts is not None:
-            self._contacts.body_removed(row)
-            self._freed([b for k in gone for b in k.bodies if b is not body])
-        for attached in self._forces:
+            self._s.links = [k for k in self._s.links if body not in k.bodies]
+            self._s.links_changed()
+        if self._s.contacts is not None:
+            self._s.contacts.body_removed(row)
+            freed(self._s, [b for k in gone for b in k.bodies if b is not body])
+        for attached in self._s.forces:
             if attached.bodies is not None and body in attached.bodies:
                 attached.bodies.remove(body)
         body._store, body._slot = None, -1
         body._store_pos(pos)
         body._store_vel(vel)
         body._mass, body._acc = mass, own
-        self._changed_structure()
+        self._s.changed_structure()
 
     def add_force(
         self, force: Force | Callable[..., Any], bodies: Iterable[Body] | None = None
@@ -409,8 +316,8 @@ class World:
         """
         f = as_force(force)
         if f.dim is not None:
-            self._check_dim(f.dim, repr(f))
-        if self._requested == "exact" and not f.constant:
+            self._s.check_dim(f.dim, repr(f))
+        if self._s.requested == "exact" and not f.constant:
             raise ValueError(
                 f"integrator 'exact' moves bodies by the closed form, which needs constant "
                 f"forces, and {f!r} is not constant; use integrator='auto' or an integrator "
@@ -431,16 +338,16 @@ class World:
                         f"bodies must be bodies already added to this World, got {b!r}"
                     )
         if f.dim is not None:
-            self._ensure_store(f.dim)  # checked above; an empty World takes the force's dim
-        self._forces.append(_Attached(f, members))
-        self._changed_structure()
+            self._s.ensure_store(f.dim)  # checked above; an empty World takes the force's dim
+        self._s.forces.append(AttachedForce(f, members))
+        self._s.changed_structure()
         return f
 
     # -- links ------------------------------------------------------------------------------
     @property
     def links(self) -> tuple[Link, ...]:
         """The links (rods, cables, pins), in the order they were added."""
-        return tuple(self._links)
+        return tuple(self._s.links)
 
     def add_link(self, link: LinkT) -> LinkT:
         """Add a link (``engine.links``: Rod, Cable, Pin) between bodies of this World, or a
@@ -450,7 +357,7 @@ class World:
                 f"add_link takes a link from engine.links (Rod, Cable, Pin), got "
                 f"{type(link).__name__} {link!r}"
             )
-        if any(k is link for k in self._links):
+        if any(k is link for k in self._s.links):
             raise ValueError(
                 f"that link is already in this World (a link is added only once): {link!r}"
             )
@@ -460,7 +367,7 @@ class World:
                     f"the link's bodies must be in this World first (world.add(body)): {b!r}"
                 )
         if isinstance(link, Pin):
-            if any(isinstance(k, Pin) and k.body is link.body for k in self._links):
+            if any(isinstance(k, Pin) and k.body is link.body for k in self._s.links):
                 raise ValueError(
                     f"that body is pinned already: a body takes only one Pin (remove_link the "
                     f"old one first): {link.body!r}"
@@ -469,53 +376,25 @@ class World:
                 raise ValueError(
                     f"a kinematic body is moved by the game and cannot be pinned: {link.body!r}"
                 )
-        self._links.append(link)
-        self._links_changed()
+        self._s.links.append(link)
+        self._s.links_changed()
         if isinstance(link, Pin):
-            store = self._store
+            store = self._s.store
             assert store is not None
             row = store.row(link.body._slot)
             store.x[row] = store.prev_x[row] = tuple(link.point)
             store.v[row] = 0.0
-            self._state_written()
+            self._s.state_written()
         return link
 
     def remove_link(self, link: Link) -> None:
         """Take a link out of the world (a pinned body is free again)."""
-        if not any(k is link for k in self._links):
+        if not any(k is link for k in self._s.links):
             raise ValueError(f"that link is not in this World: {link!r}")
-        self._links = [k for k in self._links if k is not link]
-        self._retired.append(link)
-        self._links_changed()
-        self._freed(list(link.bodies))
-
-    def _freed(self, bodies: list[Body]) -> None:
-        """Bodies whose links were taken out: one no longer linked to anything that a link
-        held inside a collider (links act after the contacts; a pin holds a body where a
-        collider is added) is pushed out, as a teleport is."""
-        store = self._store
-        if self._contacts is None or store is None:
-            return
-        linked = {id(b) for k in self._links for b in k.bodies}
-        rows = [
-            store.row(b._slot)
-            for b in bodies
-            if b.world is self and not b.kinematic and id(b) not in linked
-        ]
-        if rows:
-            self._push_out(rows, "was freed", stacklevel=4)
-
-    def _links_changed(self) -> None:
-        """The set of links changed: pinned bodies are held as kinematic ones are."""
-        store = self._store
-        if store is not None:
-            store.kinematic = np.array([b.kinematic for b in self._bodies], dtype=bool)
-            for k in self._links:
-                if isinstance(k, Pin):
-                    store.kinematic[store.row(k.body._slot)] = True
-        # A body no longer held goes nowhere it was sent while held.
-        self._targets = {b: p for b, p in self._targets.items() if b.kinematic}
-        self._changed_structure()
+        self._s.links = [k for k in self._s.links if k is not link]
+        self._s.retired.append(link)
+        self._s.links_changed()
+        freed(self._s, list(link.bodies))
 
     def _solve_links(
         self,
@@ -527,13 +406,13 @@ class World:
     ) -> tuple[np.ndarray, np.ndarray]:
         """Correct the step's end state for the links (engine.links), warning once per link
         stretched past what a step can hold."""
-        solver = self._link_solver
+        solver = self._s.link_solver
         if solver is None:
-            solver = self._link_solver = LinkSolver(self._links, lambda b: store.row(b._slot))
+            solver = self._s.link_solver = LinkSolver(self._s.links, lambda b: store.row(b._slot))
         w = np.where(store.kinematic, 0.0, 1.0 / store.mass)
         x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
         if solver.moved:
-            self._anchor = None
+            self._s.anchor = None
         for link in solver.stretched:
             if not link.warned:
                 link.warned = True
@@ -549,7 +428,7 @@ class World:
     @property
     def colliders(self) -> tuple[Collider, ...]:
         """The static colliders, in the order they were added."""
-        return () if self._contacts is None else tuple(self._contacts.colliders)
+        return () if self._s.contacts is None else tuple(self._s.contacts.colliders)
 
     def add_collider(self, collider: ColliderT) -> ColliderT:
         """Add a static collider (``engine.colliders``) and return it.
@@ -562,61 +441,32 @@ class World:
                 f"add_collider takes a collider from engine.colliders (Plane, Segment, Circle, "
                 f"Box), got {type(collider).__name__} {collider!r}"
             )
-        self._check_dim(2, f"the collider {collider!r}")
+        self._s.check_dim(2, f"the collider {collider!r}")
         if collider in self.colliders:
             raise ValueError(f"that collider is already in this World: {collider!r}")
-        store = self._ensure_store(2)
-        if self._contacts is None:
-            self._contacts = Contacts()
-            self._contacts.bodies_added(len(store))
-        self._events.settle_reading()
-        self._contacts.add(collider)
-        self._events.collider_added(collider)
-        self._collisions.wake(len(self._bodies))
-        self._push_out(range(len(self._bodies)))
-        self._changed_structure()
+        store = self._s.ensure_store(2)
+        if self._s.contacts is None:
+            self._s.contacts = Contacts()
+            self._s.contacts.bodies_added(len(store))
+        self._s.events.settle_reading()
+        self._s.contacts.add(collider)
+        self._s.events.collider_added(collider)
+        self._s.collisions.wake(len(self._s.bodies))
+        push_out(self._s, range(len(self._s.bodies)))
+        self._s.changed_structure()
         return collider
 
     def remove_collider(self, collider: Collider) -> None:
         """Take a collider out of the world."""
         if collider not in self.colliders:
             raise ValueError(f"that collider is not in this World: {collider!r}")
-        assert self._contacts is not None
+        assert self._s.contacts is not None
         # The last step's events are named now, and the collider's open contacts end
         # (reported with the next step).
-        self._events.collider_removed(collider, self.t)
-        self._contacts.remove(collider)
-        self._collisions.wake(len(self._bodies))
-        self._changed_structure()
-
-    def _push_out(self, rows: Iterable[int], how: str = "started", stacklevel: int = 3) -> None:
-        """Push the bodies in ``rows`` out of every solid collider, to the nearest place
-        outside all of them, warning for each (``how`` it got inside: "started", "was put").
-        A body pushed out rests on nothing until it lands again."""
-        contacts, store = self._contacts, self._store
-        assert contacts is not None and store is not None
-        idx = np.fromiter(rows, dtype=np.intp)
-        idx = idx[~store.kinematic[idx]]  # walls do not hold what the game moves
-        # (A body with a shape other than a disc is held out by its contacts: engine.shaped.)
-        idx = idx[store.round(idx)]
-        if not len(idx):
-            return
-        x, v = store.x[idx], store.v[idx]
-        contacts.body_filters = (store.group, store.categories, store.mask)
-        moved = contacts.push_out(x, v, store.radius[idx], idx)
-        if not moved:
-            return
-        store.x[idx], store.v[idx], store.prev_x[idx] = x, v, x
-        contacts.rest[idx[[i for i, _ in moved]]] = -1
-        self._state_written()
-        for i, k in moved[:10]:
-            body = self._bodies[int(idx[i])]
-            warnings.warn(
-                f"{body!r} {how} inside {contacts.colliders[k]!r}; it was pushed out to the "
-                f"nearest place outside every solid collider",
-                OverlapWarning,
-                stacklevel=stacklevel,
-            )
+        self._s.events.collider_removed(collider, self.t)
+        self._s.contacts.remove(collider)
+        self._s.collisions.wake(len(self._s.bodies))
+        self._s.changed_structure()
 
     def on_contact(
         self,
@@ -643,35 +493,35 @@ class World:
             if fn is not None and not callable(fn):
                 raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
         entry = (target, begin, end, post_solve)
-        self._handlers.append(entry)
+        self._s.handlers.append(entry)
 
         def remove() -> None:
             """Take this handler off (again: nothing happens)."""
-            self._handlers = [h for h in self._handlers if h is not entry]
+            self._s.handlers = [h for h in self._s.handlers if h is not entry]
 
         return remove
 
     @property
     def sleeping(self) -> int:
         """How many bodies sleep (a still pile: they cost nothing until something meets them)."""
-        return int(self._collisions.asleep.sum())
+        return int(self._s.collisions.asleep.sum())
 
     def is_sleeping(self, body: Body) -> bool:
         """Whether ``body`` sleeps (it stays exactly put until an awake body meets its group)."""
         if not isinstance(body, Body) or body.world is not self:
             raise ValueError(f"that body is not in this World: {body!r}")
-        asleep = self._collisions.asleep
-        assert self._store is not None
-        row = self._store.row(body._slot)
+        asleep = self._s.collisions.asleep
+        assert self._s.store is not None
+        row = self._s.store.row(body._slot)
         return bool(row < len(asleep) and asleep[row])
 
     def overlap(self) -> float:
         """The deepest overlap (length units) between two bodies that collide, now."""
-        store = self._store
-        if store is None or store.dim != 2 or not self._bodies:
+        store = self._s.store
+        if store is None or store.dim != 2 or not self._s.bodies:
             return 0.0
-        live = self._collisions._prepare(store.radius, store.group, store.categories, store.mask)
-        if len(live) < 2 or self._collisions._one_group:
+        live = self._s.collisions._prepare(store.radius, store.group, store.categories, store.mask)
+        if len(live) < 2 or self._s.collisions._one_group:
             return 0.0
         filters = (store.group[live], store.categories[live], store.mask[live])
         return deepest_overlap(store.x[live], store.radius[live], filters)
@@ -680,7 +530,7 @@ class World:
     def sleep_time(self) -> float:
         """Seconds a group of resting bodies must stay still before it sleeps (default 0.5;
         math.inf: never, every body stays awake)."""
-        return self._collisions.sleep_time
+        return self._s.collisions.sleep_time
 
     @sleep_time.setter
     def sleep_time(self, value: float) -> None:
@@ -690,21 +540,21 @@ class World:
                 f"got {value!r}"
             )
         t = float(value)
-        self._collisions.sleep_time = t
+        self._s.collisions.sleep_time = t
         if t == math.inf:
-            self._collisions.wake(len(self._bodies))
+            self._s.collisions.wake(len(self._s.bodies))
 
     @property
     def contact_iterations(self) -> int:
         """Iterations a step of the solver for bodies resting on one another (default 8):
         more hold deeper piles with less overlap, at a cost per iteration."""
-        return self._collisions.iterations
+        return self._s.collisions.iterations
 
     @contact_iterations.setter
     def contact_iterations(self, value: int) -> None:
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"contact_iterations must be an int >= 1, got {value!r}")
-        self._collisions.iterations = value
+        self._s.collisions.iterations = value
 
     @property
     def capped(self) -> int:
@@ -712,14 +562,14 @@ class World:
         MAX_IMPACTS impacts with colliders (placed on a surface instead), or a step whose
         impacts between bodies passed MAX_ROUNDS rounds (the bodies with impacts left
         stopped at the first of them, to go on next step)."""
-        static = 0 if self._contacts is None else self._contacts.capped
-        return static + self._collisions.capped
+        static = 0 if self._s.contacts is None else self._s.contacts.capped
+        return static + self._s.collisions.capped
 
     def resting(self, body: Body) -> Collider | None:
         """The collider ``body`` rests on (slides or sits on), or None while it is in flight."""
         if not isinstance(body, Body) or body.world is not self:
             raise ValueError(f"that body is not in this World: {body!r}")
-        contacts, store = self._contacts, self._store
+        contacts, store = self._s.contacts, self._s.store
         if contacts is None or store is None:
             return None
         f = int(contacts.rest[store.row(body._slot)])
@@ -729,25 +579,25 @@ class World:
     def began(self) -> list[ContactEvent]:
         """The contacts that began in the last step (a bounce, a landing, entering a sensor),
         in time order; each contact begins once and ends once (``engine.events``)."""
-        return self._events.began
+        return self._s.events.began
 
     @property
     def ended(self) -> list[ContactEvent]:
         """The contacts that ended in the last step (a bounce ends as it begins; a rest ends
         when the body lifts off; leaving a sensor; a body or collider taken out since the
         step before, with ``removal`` True), in time order."""
-        return self._events.ended
+        return self._s.events.ended
 
     @property
     def touching(self) -> list[ContactEvent]:
         """Every contact open after the last step, with the impulse (N s) it carried over the
         step (pymunk's arbiters and their ``total_impulse``)."""
-        return self._events.touching
+        return self._s.events.touching
 
     def _settle_events(self, t0: float, t_end: float) -> None:
         """Make the last step's events from what the solvers reported (engine.events)."""
-        store, contacts = self._store, self._contacts
-        events = self._events
+        store, contacts = self._s.store, self._s.contacts
+        events = self._s.events
         events.forget()
         if store is None or store.dim != 2:
             events.ledger.quiet()
@@ -769,8 +619,8 @@ class World:
                 rows, s = np.nonzero(contacts.inside)
                 sensors = np.array(contacts._sensors, dtype=np.intp)
                 sensing = collider_keys(slots[rows], serials[sensors[s]])
-        if self._pairs_on:
-            pairs = self._collisions
+        if self._s.pairs_on:
+            pairs = self._s.collisions
             rows, faces = pairs.face_touching
             if len(rows) and contacts is not None:
                 owner = contacts.faces.owner[faces]
@@ -788,7 +638,7 @@ class World:
     def _gaps(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each contact key's gap now (length units, < 0 overlapping) and the slack a contact
         at rest keeps (engine.events.CONTACT_SLACK of the smaller radius)."""
-        store = self._store
+        store = self._s.store
         assert store is not None
         row_of = store.row_of
         a = row_of[slot_of(keys)]
@@ -803,7 +653,7 @@ class World:
             r[pair] = np.minimum(r[pair], store.radius[b])
         for serial in np.unique(other[is_c]).tolist():
             sel = np.flatnonzero(is_c & (other == serial))
-            collider = self._events._collider.get(serial)
+            collider = self._s.events._collider.get(serial)
             if collider is not None:
                 gap[sel] = signed_distance(collider, store.x[a[sel]]) - r[sel]
         return gap, slack_for(r)
@@ -813,7 +663,7 @@ class World:
         a body at rest on a collider, the change of momentum the static contacts gave it
         (m (v - v_free)); a pile's contacts (with bodies, and with the faces its bodies touch),
         the resting solver's impulses (engine.collisions)."""
-        store, contacts = self._store, self._contacts
+        store, contacts = self._s.store, self._s.contacts
         out: dict[int, tuple[float, float]] = {}
         if store is None or not len(keys):
             return out
@@ -822,8 +672,8 @@ class World:
         is_c, other = other_of(keys)
         serials = None
         if contacts is not None:
-            serials = np.array([self._events.serial(c) for c in contacts.colliders], np.int64)
-            dv = self._contact_dv
+            serials = np.array([self._s.events.serial(c) for c in contacts.colliders], np.int64)
+            dv = self._s.contact_dv
             if dv is not None and len(dv) == len(store):
                 for k, row, c, o in zip(
                     keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
@@ -832,8 +682,8 @@ class World:
                     if c and f >= 0 and serials[contacts.faces.owner[f]] == o:
                         j = dv[row] * store.mass[row]
                         out[k] = (float(j[0]), float(j[1]))
-        pairs = self._collisions
-        if self._pairs_on and len(pairs._keys):
+        pairs = self._s.collisions
+        if self._s.pairs_on and len(pairs._keys):
             n = len(store)
             base = pairs._base
             lam_keys, lam = pairs._keys, pairs._lam
@@ -873,14 +723,14 @@ class World:
 
     def _report(self) -> None:
         """Call the on_contact handlers with the last step's events."""
-        if not self._handlers:
+        if not self._s.handlers:
             return
         for which in (1, 2, 3):
-            if not any(h[which] is not None for h in self._handlers):
+            if not any(h[which] is not None for h in self._s.handlers):
                 continue
             event_list = self.began if which == 1 else self.ended if which == 2 else self.touching
             for ev in event_list:
-                for handler in self._handlers:
+                for handler in self._s.handlers:
                     fn = handler[which]
                     if fn is None:
                         continue
@@ -949,138 +799,32 @@ class World:
         return queries.shape_query(self, shape, filter)
 
     # -- derived state ----------------------------------------------------------------------
-    def _changed_structure(self, appended: bool = False) -> None:
-        """Bodies, forces or masses changed: rebuild the force model and the choice.
-        ``appended``: only bodies were added, at the end (the others keep their sleep and
-        their contacts' warm start: a game spawning a ball does not wake a pile)."""
-        if self._model is not None:
-            self._evaluations += self._model.evaluations
-        self._drop_kernel()
-        self._model = None
-        self._anchor = None
-        self._policy.choice = None
-        self._version += 1
-        if appended:
-            self._collisions.grew(len(self._bodies))
-        else:
-            self._collisions.changed(len(self._bodies))
-        self._link_solver = None
-
-    def _drop_kernel(self) -> None:
-        self._void_budget()
-        k = self._kernel
-        if k is not None:
-            self._evaluations += k.taken
-        self._kernel = None
-
-    def _kinematic_moved(self, row: int, target: Any) -> None:
-        """The game moved a kinematic body: to ``target`` over the next step, or (None) by
-        writing its velocity. Nothing sleeping wakes unless the body touches it."""
-        body = self._bodies[row]
-        if target is None:
-            self._targets.pop(body, None)
-        elif not body.kinematic:
-            pin = next(k for k in self._links if isinstance(k, Pin) and k.body is body)
-            raise ValueError(
-                f"pos: that body is pinned at {tuple(pin.point)} and stays there; take the pin "
-                f"out (world.remove_link) or add a Pin where it should be: {body!r}"
-            )
-        else:
-            self._targets[body] = target
-        self._anchor = None
-        self._drop_kernel()
-
     def _apply_targets(self, dt: float) -> dict[Body, np.ndarray]:
         """Each kinematic body with a target takes the velocity that reaches it in ``dt``;
         return the velocities they had, to be given back after the step."""
-        store = self._store
+        store = self._s.store
         assert store is not None
         before = {}
         moves = {}
-        for body, target in self._targets.items():
+        for body, target in self._s.targets.items():
             row = store.row(body._slot)
             with np.errstate(over="ignore", invalid="ignore"):
                 v = (np.asarray(target, dtype=float) - store.x[row]) * (1.0 / dt)
             if not np.isfinite(v).all():
-                del self._targets[body]
+                del self._s.targets[body]
                 raise ValueError(
                     f"pos={target!r} of a kinematic body is too far to reach in one step of "
                     f"dt={dt!r} s (the speed passes the float range): the move was dropped; "
                     f"give a nearer position"
                 )
             moves[row] = v
-        for body in self._targets:
+        for body in self._s.targets:
             row = store.row(body._slot)
             before[body] = store.v[row].copy()
             store.v[row] = moves[row]
-        self._targets.clear()
-        self._anchor = None
+        self._s.targets.clear()
+        self._s.anchor = None
         return before
-
-    def _state_written(self, row: int | None = None, moved: bool = False) -> None:
-        """A position or velocity was set by hand: the closed form and the kernel start anew,
-        and every sleeping body wakes. A body moved by hand (``row``, ``moved``) is no longer
-        at rest where it was, and is pushed out of any solid collider it was put into."""
-        self._anchor = None
-        self._void_budget()
-        self._collisions.wake(len(self._bodies))
-        if moved and row is not None and self._contacts is not None:
-            self._contacts.rest[row] = -1
-            self._push_out([row], "was put", stacklevel=5)
-
-    def _void_budget(self) -> None:
-        """The kernel's step budget was proved for the state before: take back what is left."""
-        k = self._kernel
-        if k is not None:
-            k.taken += max(0, min(self._n, k.n_stop) - k.n_from)
-            k.n_stop = k.n_from = self._n
-
-    def _own_acc_written(self, row: int) -> None:
-        """One body's own acceleration changed: one entry of a0, no recompiling."""
-        if self._model is not None:
-            assert self._store is not None
-            self._model.set_own_acc(row, self._store.own[row])
-        self._anchor = None
-        self._drop_kernel()
-        self._collisions.wake(len(self._bodies))
-
-    def _ready(self) -> ForceModel:
-        if self._model is None:
-            attached = [
-                (a.force, None if a.bodies is None else self._rows_of(a.bodies))
-                for a in self._forces
-            ]
-            store = self._store
-            if store is None:  # no body and no shaped force yet: nothing to fold
-                self._model = ForceModel.compile(np.zeros(0), np.zeros(0), attached)
-            else:
-                kin = store.kinematic
-                if kin.any():
-                    # No force acts on a body the game moves.
-                    free = np.flatnonzero(~kin)
-                    attached = [
-                        (f, free if rows is None else rows[~kin[rows]]) for f, rows in attached
-                    ]
-                self._model = ForceModel.compile(store.mass, store.own, attached)
-        return self._model
-
-    def _rows_of(self, bodies: list[Body]) -> np.ndarray:
-        if not bodies or self._store is None:
-            return np.zeros(0, dtype=np.intp)
-        return self._store.rows([b._slot for b in bodies])
-
-    def _state_now(self) -> tuple[Any, Any, Any] | None:
-        """(x, v, a) of every body now, for the method policy's predictions; None if empty."""
-        if not self._bodies:
-            return None
-        assert self._store is not None
-        x, v = self._store.x, self._store.v
-        return x, v, self._ready().accel(self.t, x, v)
-
-    def _acceleration_at(self, row: int) -> Any:
-        """The acceleration of the body in ``row`` now (only that body's forces are evaluated)."""
-        assert self._store is not None
-        return self._ready().accel_of(row, self.t, self._store.x, self._store.v)
 
     @property
     def evaluations(self) -> int:
@@ -1090,13 +834,11 @@ class World:
         RK4, 0 for the closed form); "auto" with a tolerance adds one for each method it
         predicts at a new dt.
         """
-        k = self._kernel
-        kernel = 0 if k is None else k.taken + max(0, min(self._n, k.n_stop) - k.n_from)
-        return self._evaluations + kernel + (0 if self._model is None else self._model.evaluations)
+        return self._s.evaluations_now
 
     # -- choosing the method ------------------------------------------------------------------
     def _integrator_named(self, name: str) -> Integrator:
-        return self._policy.integrator(name)
+        return self._s.policy.integrator(name)
 
     def max_stable_dt(self, integrator: str | None = None) -> float:
         """The largest stable dt (s) for the springs and drags held, for ``integrator``.
@@ -1104,12 +846,12 @@ class World:
         ``integrator`` defaults to the method in use (for "auto": the best available).
         ``math.inf`` when nothing held limits the step; 0.0 when no dt is stable.
         """
-        return self._policy.max_stable_dt(integrator or self.method, self._ready())
+        return self._s.policy.max_stable_dt(integrator or self.method, self._s.ready())
 
     @property
     def tolerance(self) -> float | None:
         """The position error (m) "auto" must keep within over 1 s, or None (stability only)."""
-        return self._policy.tolerance
+        return self._s.policy.tolerance
 
     def predicted_error(self, method: str, dt: float) -> float:
         """Predicted largest position error (m) of any body over the next 1 s of steps of ``dt``.
@@ -1119,27 +861,27 @@ class World:
         now. ``math.inf`` when ``method`` blows up within that second. See ``engine.accuracy``.
         """
         dt = check_dt(dt)
-        return self._policy.predicted_error(method, dt, self._ready(), self._state_now)
+        return self._s.policy.predicted_error(method, dt, self._s.ready(), self._s.state_now)
 
     def choose_method(self, dt: float) -> tuple[str, str]:
         """(method, one-line reason) that this World uses for a step of ``dt`` seconds."""
         dt = check_dt(dt)
-        return self._policy.choose(dt, self._ready(), self._state_now)
+        return self._s.policy.choose(dt, self._s.ready(), self._s.state_now)
 
     @property
     def method(self) -> str:
         """The method in use; for "auto", the one chosen at the last step (or "auto" before)."""
-        if self._policy.choice is not None:
-            return self._policy.choice[1]
-        fixed = self._policy.fixed_choice(self._ready())
+        if self._s.policy.choice is not None:
+            return self._s.policy.choice[1]
+        fixed = self._s.policy.fixed_choice(self._s.ready())
         return "auto" if fixed is None else fixed[0]
 
     @property
     def method_reason(self) -> str:
         """One line saying why ``method`` is the method in use."""
-        if self._policy.choice is not None:
-            return self._policy.choice[2]
-        fixed = self._policy.fixed_choice(self._ready())
+        if self._s.policy.choice is not None:
+            return self._s.policy.choice[2]
+        fixed = self._s.policy.fixed_choice(self._s.ready())
         return (
             "chosen at the first step, from its dt and the forces held"
             if fixed is None
@@ -1148,31 +890,21 @@ class World:
 
     # -- time --------------------------------------------------------------------------------
     @property
-    def _n(self) -> int:
-        # The steps of dt taken since t_base, kept in a _Count so that the step adds to it
-        # without a call of World.__setattr__.
-        return self._count.n
-
-    @_n.setter
-    def _n(self, value: int) -> None:
-        self._count.n = value
-
-    @property
     def t(self) -> float:
         """Simulated time (s) since the world began."""
-        n = self._count.n
-        return self._t_base + n * self._dt if self._dt is not None else self._t_base
+        n = self._s.count.n
+        return self._s.t_base + n * self._s.dt if self._s.dt is not None else self._s.t_base
 
     @property
     def dt(self) -> float | None:
         """The length (s) of the last step, or None before the first (pymunk's
         ``current_time_step``)."""
-        return self._dt
+        return self._s.dt
 
     @property
     def steps(self) -> int:
         """How many steps have been taken."""
-        return self._steps_base + self._count.n
+        return self._s.steps_base + self._s.count.n
 
     def step(self, dt: float) -> None:
         """Advance every body by ``dt`` seconds (usually 1/60 or 1/120).
@@ -1182,133 +914,74 @@ class World:
         held, and raises SimulationDiverged, keeping the last finite state, if the
         state stops being finite.
         """
-        k = self._kernel
-        count = self._count
-        # type(dt) is float: True == 1.0 and 1 == 1.0, so without it step(True) after
-        # step(1.0) would skip check_dt and run a step of "True" seconds.
-        if k is not None and count.n < k.n_stop and type(dt) is float and k.dt == dt:
-            # The affine kernel (derived in _prepare_affine), inlined: the fixed cost per step
-            # is what small scenes pay, so this path makes no call it can avoid. A kernel
-            # exists only while nothing has changed since it was made (_changed_structure
-            # drops it), and its budget only while no state was written by hand.
-            store = k.store
-            v, x, x_new = store.v, store.x, store.prev_x
-            if k.explicit:
-                _mul(v, dt, x_new)
-                _add(x, x_new, x_new)
-            if k.damp is not None:
-                _mul(v, k.damp, v)
-            _add(v, k.kick, v)
-            if not k.explicit:
-                _mul(v, dt, x_new)
-                _add(x, x_new, x_new)
-            store.prev_x, store.x = x, x_new
-            count.n += 1  # (self._n += 1 would go through __setattr__: 0.1 us a call)
-            return
-        fast = self._fast
-        if fast is not None and type(dt) is float and fast[0] == dt and fast[1] == self._version:
+        k = self._s.kernel
+        if k is not None and k.take(dt):
+            return  # the affine kernel (engine.affine): what small scenes take, call-light
+        count = self._s.count
+        fast = self._s.fast
+        if fast is not None and type(dt) is float and fast[0] == dt and fast[1] == self._s.version:
             # Same dt, nothing changed since the last step.
             _, _, name, step, model, affine = fast
         else:
             dt = check_dt(dt)
-            model = self._ready()
-            name = self._policy.method_for(dt, self._version, model, self._state_now)
+            model = self._s.ready()
+            name = self._s.policy.method_for(dt, self._s.version, model, self._s.state_now)
             step = None if name == "exact" else self._integrator_named(name)
             # Either Euler method on forces that are all folded (a = a0 - c v) is a fixed
             # affine map of the state: the World takes it in four array operations.
-            st = self._store
-            self._pairs_on = (
+            st = self._s.store
+            self._s.pairs_on = (
                 st is not None
                 and st.dim == 2
-                and self._collisions.active(st.radius, st.group, st.categories, st.mask, st.shapes)
+                and self._s.collisions.active(
+                    st.radius, st.group, st.categories, st.mask, st.shapes
+                )
             )
             affine = (
-                name in _EULERS
-                and self._policy.custom is None
+                name in EULERS
+                and self._s.policy.custom is None
                 and model.affine
-                and self._contacts is None
-                and not self._pairs_on
-                and not self._links
-                and not self._events.busy
+                and self._s.contacts is None
+                and not self._s.pairs_on
+                and not self._s.links
+                and not self._s.events.busy
             )
-            self._fast = (dt, self._version, name, step, model, affine)
-        if dt != self._dt:
+            self._s.fast = (dt, self._s.version, name, step, model, affine)
+        if dt != self._s.dt:
             # Fold the time so far into the base before counting steps of a new dt.
-            self._void_budget()
-            self._t_base, self._steps_base = self.t, self._steps_base + self._n
-            self._n, self._dt = 0, dt
-        if self._t_base + (count.n + 1) * dt == math.inf:
+            self._s.void_budget()
+            self._s.t_base, self._s.steps_base = self.t, self._s.steps_base + self._s.n
+            self._s.n, self._s.dt = 0, dt
+        if self._s.t_base + (count.n + 1) * dt == math.inf:
             raise ValueError(
                 f"dt must keep the time finite: a step of dt={dt!r} s from t={self.t!r} s would "
                 f"pass the float range (1.8e308 s)"
             )
-        after = self._apply_targets(dt) if self._targets else None
-        if self._bodies and affine and after is None and self._prepare_affine(dt, model, name):
+        after = self._apply_targets(dt) if self._s.targets else None
+        if self._s.bodies and affine and after is None and prepare_affine(self._s, dt, model, name):
             return self.step(dt)  # now the fast path above takes it
-        if self._bodies:
+        if self._s.bodies:
             self._step_general(dt, name, step, model)
         else:
             self._quiet()  # nothing moved: no solver reports anything
         count.n += 1
         if after is not None:
             # A kinematic body moved by pos stops there: its velocity is what it was before.
-            held = self._store
+            held = self._s.store
             assert held is not None
             for body, v in after.items():
                 held.v[held.row(body._slot)] = v
-        if self._contacts is not None or self._pairs_on or self._events.busy:
+        if self._s.contacts is not None or self._s.pairs_on or self._s.events.busy:
             # The step ran from t0 = t_base + (n - 1) dt (the time it started at, summed the
             # same way) to t.
-            self._settle_events(self._t_base + (self._n - 1) * dt, self.t)
+            self._settle_events(self._s.t_base + (self._s.n - 1) * dt, self.t)
             self._report()
 
     def _quiet(self) -> None:
         """A step in which no body moved: the solvers report nothing."""
-        if self._contacts is not None:
-            self._contacts.quiet()
-        self._collisions.quiet()
-
-    def _prepare_affine(self, dt: float, model: ForceModel, name: str) -> bool:
-        """Ready the affine Euler kernel for ``dt``; False if its next step might overflow.
-
-        Semi-implicit Euler is v' = v + a dt, then x' = x + v' dt; explicit Euler moves x
-        with the old v first. With a = a0 - c v, v' = (1 - c dt) v + a0 dt = D v + B, with D
-        and B computed once per dt. (Without drag, D = 1 and v' = v + a0 dt bit for bit as the
-        integrator functions compute it.) Four in-place array operations, no temporaries; the
-        new positions go into the buffer of the old previous positions.
-
-        No finiteness check is needed: the kernel gets a budget of steps proved not to
-        overflow (``_safe_steps``), and is rebuilt, or the checked general step taken, when it
-        is spent or anything is written by hand.
-        """
-        store = self._store
-        assert store is not None
-        k = self._kernel
-        if k is None or k.dt != dt or k.model is not model or k.store is not store:
-            self._drop_kernel()
-            damp = None if model.c is None else 1.0 - model.c * dt
-            kick = model.a0 * dt
-            damp_max = 1.0 if damp is None else float(np.abs(damp).max())
-            k = self._kernel = _Kernel(
-                dt,
-                model,
-                store,
-                name == "explicit_euler",
-                damp,
-                kick,
-                damp_max,
-                float(np.abs(kick).max()),
-            )
-            self._anchor = None
-        if store.prev_x is store.x:
-            store.prev_x = store.x.copy()
-        x_max, v_max = float(np.abs(store.x).max()), float(np.abs(store.v).max())
-        budget = _safe_steps(x_max, v_max, k.damp_max, k.kick_max, dt)
-        # ... and the time t_base + (n + 1) dt must stay a finite float too.
-        budget = min(budget, int(min((1e308 - self._t_base) / dt, 2.0**62)) - self._n)
-        self._void_budget()
-        k.n_from, k.n_stop = self._n, self._n + max(budget, 0)
-        return budget > 0
+        if self._s.contacts is not None:
+            self._s.contacts.quiet()
+        self._s.collisions.quiet()
 
     def _step_general(
         self, dt: float, name: str, step: Integrator | None, model: ForceModel
@@ -1321,36 +994,36 @@ class World:
         the step (engine.links; README "Links"), and 16 times smaller steps make it 256
         times smaller where it matters, at the cost of one step's work 17 times.
         """
-        store = self._store
+        store = self._s.store
         assert store is not None
         t0 = self.t
-        t1 = self._t_base + (self._count.n + 1) * dt
-        contacts = self._contacts
-        if not self._links or self._substeps or (contacts is None and not self._pairs_on):
+        t1 = self._s.t_base + (self._s.count.n + 1) * dt
+        contacts = self._s.contacts
+        if not self._s.links or self._s.substeps or (contacts is None and not self._s.pairs_on):
             self._step_once(dt, name, step, model, t0, t1)
             return
         saved = (
             store.x.copy(),
             store.v.copy(),
             store.prev_x,
-            self._anchor,
-            self._huge,
-            self._collisions.state(),
+            self._s.anchor,
+            self._s.huge,
+            self._s.collisions.state(),
             None if contacts is None else contacts.state(),
         )
         self._step_once(dt, name, step, model, t0, t1)
         if not self._struck_linked():
             return
         store.x, store.v, store.prev_x = saved[0], saved[1], saved[2]
-        self._anchor, self._huge = saved[3], saved[4]
-        self._collisions.set_state(saved[5])
+        self._s.anchor, self._s.huge = saved[3], saved[4]
+        self._s.collisions.set_state(saved[5])
         if contacts is not None and saved[6] is not None:
             contacts.set_state(saved[6], len(store))
         k = SUBSTEPS_AT_IMPACT
         h = dt / k
-        sources = [self._collisions] + ([] if contacts is None else [contacts])
+        sources = [self._s.collisions] + ([] if contacts is None else [contacts])
         events: list[tuple[list[Any], list[Any]]] = [([], []) for _ in sources]
-        self._substeps = True
+        self._s.substeps = True
         try:
             for i in range(k):
                 end = t1 if i == k - 1 else t0 + (i + 1) * h
@@ -1359,27 +1032,27 @@ class World:
                     began += source._began
                     ended += source._ended
         finally:
-            self._substeps = False
+            self._s.substeps = False
         for source, (began, ended) in zip(sources, events, strict=True):
             source._began, source._ended = began, ended
         store.prev_x = saved[0]  # drawing blends from where the whole step began
 
     def _struck_linked(self) -> bool:
         """Whether a contact began in the last step for a body with a link."""
-        solver = self._link_solver
+        solver = self._s.link_solver
         if solver is None:
             return False
-        linked = np.zeros(len(self._bodies), dtype=bool)
+        linked = np.zeros(len(self._s.bodies), dtype=bool)
         linked[solver.i] = True
         linked[solver.j[solver.j >= 0]] = True
-        for rows, others, *_ in self._collisions._began if self._pairs_on else []:
+        for rows, others, *_ in self._s.collisions._began if self._s.pairs_on else []:
             if linked[np.asarray(rows, dtype=np.intp)].any():
                 return True
             if linked[np.asarray(others, dtype=np.intp)].any():
                 return True
-        if self._contacts is not None:
+        if self._s.contacts is not None:
             # (The few-bodies path lists its rows as a tuple, the arrays' as an array.)
-            for rows, *_ in self._contacts._began:
+            for rows, *_ in self._s.contacts._began:
                 if linked[np.asarray(rows, dtype=np.intp)].any():
                     return True
         return False
@@ -1394,39 +1067,39 @@ class World:
         t1: float,
     ) -> None:
         """One step of ``dt`` from time t0 to t1 (what _step_general takes, once or in parts)."""
-        store = self._store
+        store = self._s.store
         assert store is not None
-        if self._pairs_on and self._collisions.all_asleep(len(store)):
+        if self._s.pairs_on and self._s.collisions.all_asleep(len(store)):
             # Every body sleeps: nothing moves until something wakes them.
             store.prev_x = store.x
-            self._collisions.quiet()
-            if self._contacts is not None:
-                self._contacts.quiet()
+            self._s.collisions.quiet()
+            if self._s.contacts is not None:
+                self._s.contacts.quiet()
             return
         if step is None:
-            if self._anchor is None:
-                self._anchor = (store.x.copy(), store.v.copy(), t0)
-            x0, v0, ta = self._anchor
+            if self._s.anchor is None:
+                self._s.anchor = (store.x.copy(), store.v.copy(), t0)
+            x0, v0, ta = self._s.anchor
             # Closed form from the anchor: s = s0 + v0 T + a T^2 / 2, v = v0 + a T.
             elapsed = t1 - ta
             a = model.a0
             x1 = x0 + v0 * elapsed + a * (0.5 * elapsed * elapsed)
             v1 = v0 + a * elapsed
-        elif self._huge:
+        elif self._s.huge:
             # Near overflow (a blow-up under way): numpy's own overflow warnings would
             # only come before our clear SimulationDiverged, so silence them.
             with np.errstate(over="ignore", invalid="ignore"):
                 x1, v1 = step(store.x, store.v, model.accel, t0, dt)
         else:
             x1, v1 = step(store.x, store.v, model.accel, t0, dt)
-        self._huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
+        self._s.huge = self._check_finite(x1, v1, name, dt, t0) > 1e100
         v_method = v1
         v_free = v1
-        contacts = self._contacts
-        pairs = self._collisions
+        contacts = self._s.contacts
+        pairs = self._s.collisions
         pull = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
         frozen = self._frozen(store)
-        if self._pairs_on:
+        if self._s.pairs_on:
             # Which bodies are in a pile (engine.collisions): the soft step takes them, from
             # the start of the step; the static contacts leave them to it.
             held = None if contacts is None else contacts.rest >= 0
@@ -1452,15 +1125,15 @@ class World:
                 store.mass,
                 model.a0 if step is None else None,
                 frozen,
-                sense=not self._pairs_on,
+                sense=not self._s.pairs_on,
             )
             if contacts.moved:
-                self._anchor = None  # the closed form starts anew from the changed state
+                self._s.anchor = None  # the closed form starts anew from the changed state
             # What the static contacts did to each velocity (a resting contact's impulse).
-            self._contact_dv = v1 - v_free if contacts.moved else None
-        if not self._pairs_on:
+            self._s.contact_dv = v1 - v_free if contacts.moved else None
+        if not self._s.pairs_on:
             pairs.quiet()  # no pair solved: none of its reports is this step's
-        if self._pairs_on:
+        if self._s.pairs_on:
             # Bodies meet one another (engine.collisions) on the paths that end where the
             # method and the static contacts left them.
             A = pull
@@ -1473,7 +1146,7 @@ class World:
                     A[on] = (v1[on] - store.v[on]) * (1.0 / dt)
             x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, store, contacts, pull)
             if pairs.moved:
-                self._anchor = None
+                self._s.anchor = None
             if contacts is not None:
                 contacts.sense(x1, dt, t0, store.radius)  # where every body ended
             if pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned:
@@ -1488,17 +1161,21 @@ class World:
                     StabilityWarning,
                     stacklevel=3,
                 )
-        if self._links:
+        if self._s.links:
             kinked = None
             if v1 is not v_free:
                 kinked = (v1 != v_free).any(axis=1)
             x1, v1 = self._solve_links(store, x1, v1, dt, kinked)
         store.prev_x, store.x, store.v = store.x, x1, v1
-        self._void_budget()
+        self._s.void_budget()
 
     def _frozen(self, store: BodyStore) -> np.ndarray | None:
         """Bodies the static contacts leave alone: asleep, or moved by the game."""
-        frozen = self._collisions.asleep if self._pairs_on and self._collisions.any_asleep else None
+        frozen = (
+            self._s.collisions.asleep
+            if self._s.pairs_on and self._s.collisions.any_asleep
+            else None
+        )
         kin = store.kinematic
         if kin.any():
             frozen = kin if frozen is None else frozen | kin
@@ -1510,7 +1187,7 @@ class World:
         # inf - inf = nan), so two sums check every entry. Only when one is not finite (or
         # huge finite values overflowed it) look closer. Not a BLAS dot product: OpenBLAS
         # takes milliseconds on arrays that are not 64-byte aligned, which numpy's are not.
-        if self._huge:
+        if self._s.huge:
             with np.errstate(over="ignore", invalid="ignore"):
                 s = abs(float(_sum(x, None) + _sum(v, None)))
         else:
@@ -1521,7 +1198,7 @@ class World:
             return math.inf
         bad = [
             f"{i}"
-            for i in range(len(self._bodies))
+            for i in range(len(self._s.bodies))
             if not (np.isfinite(x[i]).all() and np.isfinite(v[i]).all())
         ]
         limit = self.max_stable_dt(name) if name != "exact" else None
@@ -1557,8 +1234,8 @@ class World:
         """
         if isinstance(alpha, bool) or not isinstance(alpha, Real) or not 0.0 <= alpha <= 1.0:
             raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")
-        store = self._store
-        if store is None or not self._bodies:
+        store = self._s.store
+        if store is None or not self._s.bodies:
             return self._empty()
         if alpha == 1.0:
             return store.x.copy()
@@ -1570,7 +1247,7 @@ class World:
             raise ValueError(f"that body is not in this World: {body!r}")
         if isinstance(alpha, bool) or not isinstance(alpha, Real) or not 0.0 <= alpha <= 1.0:
             raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")
-        store = self._store
+        store = self._s.store
         assert store is not None
         row = store.row(body._slot)
         x, prev = store.x[row], store.prev_x[row]
@@ -1578,9 +1255,9 @@ class World:
 
     def velocities(self) -> np.ndarray:
         """Velocities of all bodies now, shape (N,) or (N, 2); a new array."""
-        if self._store is None or not self._bodies:
+        if self._s.store is None or not self._s.bodies:
             return self._empty()
-        return self._store.v.copy()
+        return self._s.store.v.copy()
 
     def energy(self) -> float:
         """Total mechanical energy (J): kinetic plus the potential of the forces that have one.
@@ -1589,10 +1266,10 @@ class World:
         Kinematic and pinned bodies are left out: the game (or the pin) moves them, and no
         force acts on them.
         """
-        if not self._bodies:
+        if not self._s.bodies:
             return 0.0
-        model = self._ready()
-        store = self._store
+        model = self._s.ready()
+        store = self._s.store
         assert store is not None
         x, v, m = store.x, store.v, store.mass
         held = store.kinematic
@@ -1602,11 +1279,11 @@ class World:
         total = 0.5 * float(np.sum(m * v2))
         dot = store.own * x if self.dim == 1 else np.einsum("ij,ij->i", store.own, x)
         total -= float(np.sum(m * dot))
-        for attached in self._forces:
+        for attached in self._s.forces:
             if attached.bodies is None:
                 idx = np.flatnonzero(~held) if held.any() else None
             else:
-                idx = self._rows_of(attached.bodies)
+                idx = self._s.rows_of(attached.bodies)
                 idx = idx[~held[idx]]
             if idx is None:
                 u = attached.force.potential(x, model.mass)
@@ -1620,30 +1297,30 @@ class World:
     def snapshot(self) -> WorldSnapshot:
         """Everything needed to bring this world back to this moment, bit for bit."""
         anchor = None
-        if self._anchor is not None:
-            anchor = (self._anchor[0].copy(), self._anchor[1].copy(), self._anchor[2])
-        store = self._store
-        empty = store is None or not self._bodies
+        if self._s.anchor is not None:
+            anchor = (self._s.anchor[0].copy(), self._s.anchor[1].copy(), self._s.anchor[2])
+        store = self._s.store
+        empty = store is None or not self._s.bodies
         return WorldSnapshot(
-            n_bodies=len(self._bodies),
+            n_bodies=len(self._s.bodies),
             x=None if empty else _copy(store.x),  # type: ignore[union-attr]
             v=None if empty else _copy(store.v),  # type: ignore[union-attr]
             prev_x=None if empty else _copy(store.prev_x),  # type: ignore[union-attr]
-            masses=tuple(b.mass for b in self._bodies),
-            own_acc=tuple(b.own_acc for b in self._bodies),
-            t_base=self._t_base,
-            dt=self._dt,
-            n_since_base=self._n,
+            masses=tuple(b.mass for b in self._s.bodies),
+            own_acc=tuple(b.own_acc for b in self._s.bodies),
+            t_base=self._s.t_base,
+            dt=self._s.dt,
+            n_since_base=self._s.n,
             steps=self.steps,
             anchor=anchor,
-            warned=frozenset(self._policy.warned),
-            contacts=None if self._contacts is None else self._contacts.state(),
-            pairs=self._collisions.state(),
+            warned=frozenset(self._s.policy.warned),
+            contacts=None if self._s.contacts is None else self._s.contacts.state(),
+            pairs=self._s.collisions.state(),
             events=self._events_state(),
-            links=tuple((self._describe(k), k.warned, k.impulse) for k in self._links),
+            links=tuple((self._describe(k), k.warned, k.impulse) for k in self._s.links),
             moves=tuple(
-                (self._bodies.index(b), tuple(float(c) for c in target))
-                for b, target in self._targets.items()
+                (self._s.bodies.index(b), tuple(float(c) for c in target))
+                for b, target in self._s.targets.items()
             ),
         )
 
@@ -1654,18 +1331,18 @@ class World:
                 f"restore takes a WorldSnapshot from World.snapshot(), got "
                 f"{type(snapshot).__name__}"
             )
-        if snapshot.n_bodies != len(self._bodies):
+        if snapshot.n_bodies != len(self._s.bodies):
             raise ValueError(
                 f"the snapshot holds {snapshot.n_bodies} bodies but this World has "
-                f"{len(self._bodies)}: restore into the world (or a copy) it was taken from"
+                f"{len(self._s.bodies)}: restore into the world (or a copy) it was taken from"
             )
         masses, own_acc = self._check_snapshot(snapshot)
         links = self._check_links(snapshot.links)
         moves = self._check_moves(snapshot.moves)
-        if self._contacts is not None and snapshot.contacts is not None:
-            self._contacts.check_state(snapshot.contacts, len(self._bodies))
-        store = self._store
-        if store is not None and self._bodies:
+        if self._s.contacts is not None and snapshot.contacts is not None:
+            self._s.contacts.check_state(snapshot.contacts, len(self._s.bodies))
+        store = self._s.store
+        if store is not None and self._s.bodies:
             store.x, store.v, store.prev_x = (
                 _copy(snapshot.x),
                 _copy(snapshot.v),
@@ -1673,40 +1350,40 @@ class World:
             )
             store.mass = np.array(masses, dtype=float)
             store.own = np.array(own_acc, dtype=float).reshape(store.x.shape)
-        self._t_base = float(snapshot.t_base)
-        self._dt = None if snapshot.dt is None else float(snapshot.dt)
-        self._void_budget()
-        self._n = snapshot.n_since_base
-        self._steps_base = snapshot.steps - snapshot.n_since_base
+        self._s.t_base = float(snapshot.t_base)
+        self._s.dt = None if snapshot.dt is None else float(snapshot.dt)
+        self._s.void_budget()
+        self._s.n = snapshot.n_since_base
+        self._s.steps_base = snapshot.steps - snapshot.n_since_base
         chosen = self._links_of([d for d, _, _ in links])
-        if [id(k) for k in chosen] != [id(k) for k in self._links]:
-            self._links = chosen
-            self._links_changed()
+        if [id(k) for k in chosen] != [id(k) for k in self._s.links]:
+            self._s.links = chosen
+            self._s.links_changed()
         for k, (_, warned, impulse) in zip(chosen, links, strict=True):
             k.warned, k.impulse = warned, impulse
-        self._targets = {self._bodies[row]: target for row, target in moves}
-        self._changed_structure()
+        self._s.targets = {self._s.bodies[row]: target for row, target in moves}
+        self._s.changed_structure()
         if snapshot.anchor is not None:
             x0, v0, ta = snapshot.anchor
-            self._anchor = (x0.copy(), v0.copy(), ta)
-        self._policy.warned = set(snapshot.warned)
-        if self._contacts is not None:
+            self._s.anchor = (x0.copy(), v0.copy(), ta)
+        self._s.policy.warned = set(snapshot.warned)
+        if self._s.contacts is not None:
             if snapshot.contacts is None:
-                self._contacts.rest[:] = -1
-                self._contacts.inside[:] = False
+                self._s.contacts.rest[:] = -1
+                self._s.contacts.inside[:] = False
             else:
-                self._contacts.set_state(snapshot.contacts, len(self._bodies))
+                self._s.contacts.set_state(snapshot.contacts, len(self._s.bodies))
         if snapshot.pairs is not None:
-            self._collisions.set_state(snapshot.pairs)
+            self._s.collisions.set_state(snapshot.pairs)
         self._set_events_state(snapshot.events)
 
     def _events_state(self) -> tuple[Any, ...] | None:
         """The open contacts and their held ends, by body row and collider place."""
-        store = self._store
+        store = self._s.store
         if store is None or store.dim != 2:
             return None
-        index_of = {self._events.serial(c): k for k, c in enumerate(self.colliders)}
-        keys, exact, held = self._events.ledger.state()
+        index_of = {self._s.events.serial(c): k for k, c in enumerate(self.colliders)}
+        keys, exact, held = self._s.events.ledger.state()
         row_of = store.row_of
 
         def plain(k: np.ndarray) -> np.ndarray:
@@ -1717,12 +1394,12 @@ class World:
             for k, spec in held
         )
         # The ends of things taken out, waiting for the next step's report, as they are.
-        return plain(keys), plain(exact), held_plain, tuple(self._events.ledger.pending)
+        return plain(keys), plain(exact), held_plain, tuple(self._s.events.ledger.pending)
 
     def _set_events_state(self, state: Any) -> None:
         """Bring back ``_events_state()`` (None: no contact open)."""
-        store = self._store
-        ledger = self._events.ledger
+        store = self._s.store
+        ledger = self._s.events.ledger
         if state is None or store is None:
             ledger.set_state((np.zeros(0, np.int64), np.zeros(0, np.int64), ()))
             return
@@ -1742,7 +1419,7 @@ class World:
                 "with these bodies and colliders"
             )
         slots = store.slots()
-        serials = np.array([self._events.serial(c) for c in self.colliders], np.int64)
+        serials = np.array([self._s.events.serial(c) for c in self.colliders], np.int64)
         serials = serials.reshape(-1)
         held = []
         for (a, b), t, payload in state[2]:
@@ -1756,7 +1433,7 @@ class World:
             )
         )
         ledger.pending = list(state[3])
-        self._events.forget()
+        self._s.events.forget()
 
     def _check_moves(self, moves: Any) -> list[tuple[int, tuple[float, float]]]:
         """The snapshot's pending kinematic moves, checked: (row of a kinematic body, a
@@ -1766,7 +1443,7 @@ class World:
         out = []
         for item in moves:
             ok = isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], int)
-            ok = ok and 0 <= item[0] < len(self._bodies) and self._bodies[item[0]].kinematic
+            ok = ok and 0 <= item[0] < len(self._s.bodies) and self._s.bodies[item[0]].kinematic
             # (Only a body kinematic by itself has moves: a pinned one refuses them.)
             if ok:
                 try:
@@ -1787,7 +1464,7 @@ class World:
         """What a link joins, in plain numbers: (kind, body row, other row or -1, fixed point
         or None, length, restitution). A snapshot holds this, not the link, so that it can
         be restored into a World built afresh (its own bodies and links)."""
-        store = self._store
+        store = self._s.store
         assert store is not None
         other = link.other
         return (
@@ -1802,15 +1479,17 @@ class World:
     def _links_of(self, descriptions: list[tuple[Any, ...]]) -> list[Link]:
         """Links matching ``descriptions``: this World's own where one matches (in force now,
         or taken out since), else new ones."""
-        known = self._links + [k for k in self._retired if all(b.world is self for b in k.bodies)]
+        known = self._s.links + [
+            k for k in self._s.retired if all(b.world is self for b in k.bodies)
+        ]
         mine = [(self._describe(k), k) for k in known]
         out: list[Link] = []
         for d in descriptions:
             match = next((k for dk, k in mine if dk == d and all(k is not o for o in out)), None)
             if match is None:
                 kind, row, other_row, point, length, e = d
-                body = self._bodies[row]
-                other: Any = self._bodies[other_row] if other_row >= 0 else point
+                body = self._s.bodies[row]
+                other: Any = self._s.bodies[other_row] if other_row >= 0 else point
                 if kind == "Pin":
                     match = Pin(body, point)
                 elif kind == "Cable":
@@ -1825,7 +1504,7 @@ class World:
         impulse) each, joining bodies of this World."""
         if not isinstance(links, tuple):
             raise TypeError("snapshot.links must be a tuple from World.snapshot")
-        n = len(self._bodies)
+        n = len(self._s.bodies)
         out = []
         for item in links:
             ok = isinstance(item, tuple) and len(item) == 3 and isinstance(item[0], tuple)
@@ -1857,7 +1536,7 @@ class World:
         """Refuse a snapshot (a plain dataclass, so one can be built or altered by hand) that
         would put nan, inf, a wrong shape or a negative count into this World; return its
         masses and own accelerations, checked."""
-        n, dim = len(self._bodies), self.dim or 1
+        n, dim = len(self._s.bodies), self.dim or 1
         shape = (n,) if dim == 1 else (n, 2)
         for name in ("x", "v", "prev_x"):
             value = getattr(snap, name)
@@ -1918,11 +1597,11 @@ class World:
 
     def __repr__(self) -> str:
         """``World(integrator='auto', tolerance=0.001, bodies=3, forces=2, t=1.5)``."""
-        tol = self._policy.tolerance
+        tol = self._s.policy.tolerance
         tolerance = "" if tol is None else f"tolerance={tol:g}, "
         return (
-            f"World(integrator={self._requested!r}, {tolerance}bodies={len(self._bodies)}, "
-            f"forces={len(self._forces)}, t={self.t:g})"
+            f"World(integrator={self._s.requested!r}, {tolerance}bodies={len(self._s.bodies)}, "
+            f"forces={len(self._s.forces)}, t={self.t:g})"
         )
 
 

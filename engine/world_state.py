@@ -1,0 +1,319 @@
+"""A World's state, and what is derived from it: the force model, the method's choice, the
+affine kernel and the closed form's anchor, each dropped when what it was made from changes.
+
+The World (``engine.world``) is a door onto this state; the modules it composes (the step
+pipeline, snapshots, contact events, push-out) read and write it here, by public names.
+Time is counted in whole steps: t = t_base + n * dt, with n an integer, so a run of equal
+steps never accumulates the round-off of adding dt again and again.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from numbers import Real
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .body import Body
+from .collisions import Collisions
+from .contacts import Contacts
+from .events import WorldEvents
+from .forcefield import ForceModel
+from .forces import Force
+from .links import Link, LinkSolver, Pin
+from .overlaps import push_out
+from .policy import MethodPolicy
+from .store import BodyStore
+
+if TYPE_CHECKING:
+    from .affine import AffineKernel
+
+__all__ = ["AttachedForce", "StepCount", "WorldState"]
+
+
+@dataclass
+class AttachedForce:
+    """A force held by a World, and the bodies it acts on."""
+
+    force: Force
+    bodies: list[Body] | None  # None: every body in the world
+
+
+class StepCount:
+    """A World's count of steps since its time base (n in t = t_base + n dt), written by
+    every step (the affine kernel adds to it without a call)."""
+
+    __slots__ = ("n",)
+
+    def __init__(self) -> None:
+        self.n = 0
+
+
+class WorldState:
+    """Everything a World holds: bodies and their arrays, forces, colliders and contacts,
+    links, time, and the derived parts (force model, kernel, anchor) with their rebuilding."""
+
+    def __init__(self, world: Any, policy: MethodPolicy) -> None:
+        self.world = world  # the World this is the state of (what Body.world answers)
+        self.policy = policy
+        self.requested = policy.requested
+        self.store: BodyStore | None = None  # made when the World's dimension is known
+        self.bodies: list[Body] = []
+        self.forces: list[AttachedForce] = []
+        # Time: t = t_base + n * dt (s), n in count.n.
+        self.t_base = 0.0
+        self.dt: float | None = None
+        self.count = StepCount()  # the steps of dt since t_base
+        self.steps_base = 0  # steps taken before the current run of equal dt
+        self.model: ForceModel | None = None
+        self.evaluations = 0  # force evaluations of models since replaced, and of the kernel
+        self.anchor: tuple[Any, Any, float] | None = None  # (x0, v0, t0) for "exact"
+        self.version = 0  # bumped whenever bodies, forces or masses change
+        self.fast: tuple[Any, ...] | None = None  # (dt, version, method, step, model, affine)
+        self.kernel: AffineKernel | None = None
+        self.huge = False  # the state is near overflow: step with numpy's warnings off
+        self.contacts: Contacts | None = None  # made by the first add_collider
+        self.collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
+        self.pairs_on = False  # whether any two bodies may collide
+        # on_contact handlers: (target, begin, end, post_solve).
+        self.handlers: list[tuple[Any, Any, Any, Any]] = []
+        self.events = WorldEvents()  # the contacts kept open, and each step's events
+        self.contact_dv: np.ndarray | None = None  # velocity change by the static contacts
+        # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
+        self.targets: dict[Body, Any] = {}
+        self.links: list[Link] = []  # rods, cables and pins (engine.links)
+        self.retired: list[Link] = []  # links taken out (a snapshot may bring one back)
+        self.link_solver: LinkSolver | None = None  # the links as arrays; made when needed
+        self.substeps = False  # taking a step again in parts (engine.stepping)
+
+    # -- time ----------------------------------------------------------------------------------
+    @property
+    def n(self) -> int:
+        """The steps of dt taken since t_base."""
+        return self.count.n
+
+    @n.setter
+    def n(self, value: int) -> None:
+        self.count.n = value
+
+    @property
+    def t(self) -> float:
+        """Simulated time (s) since the world began."""
+        n = self.count.n
+        return self.t_base + n * self.dt if self.dt is not None else self.t_base
+
+    @property
+    def steps(self) -> int:
+        """How many steps have been taken."""
+        return self.steps_base + self.count.n
+
+    # -- bodies ----------------------------------------------------------------------------------
+    @property
+    def dim(self) -> int | None:
+        """1 (floats), 2 (Vectors), or None while the world has neither bodies nor shaped forces."""
+        return None if self.store is None else self.store.dim
+
+    def check_dim(self, dim: int, what: str, world_dim: int | None = None) -> None:
+        """TypeError unless ``what``, of dimension ``dim``, fits this World (or ``world_dim``)."""
+        expected = self.dim if world_dim is None else world_dim
+        if expected is not None and dim != expected:
+            raise TypeError(
+                f"{what} is {dim}D but this World is {expected}D: a World holds bodies "
+                f"of one dimension (1D: floats, 2D: Vectors)"
+            )
+
+    def ensure_store(self, dim: int) -> BodyStore:
+        """The body arrays, made of dimension ``dim`` if the World has none yet."""
+        if self.store is None:
+            self.store = BodyStore(
+                dim,
+                self.world,
+                on_state=self.state_written,
+                on_own_acc=self.own_acc_written,
+                on_mass=self.changed_structure,
+                on_kinematic=self.kinematic_moved,
+                acceleration_at=self.acceleration_at,
+            )
+        return self.store
+
+    def rows_of(self, bodies: list[Body]) -> np.ndarray:
+        """The rows of ``bodies`` in the body arrays."""
+        if not bodies or self.store is None:
+            return np.zeros(0, dtype=np.intp)
+        return self.store.rows([b._slot for b in bodies])
+
+    # -- the contacts between bodies: sleep and the solver's iterations -------------------------
+    def set_sleep_time(self, value: float) -> None:
+        """Seconds (>= 0; math.inf: never) a resting group must stay still before it sleeps."""
+        if isinstance(value, bool) or not isinstance(value, Real) or not float(value) >= 0.0:
+            raise ValueError(
+                f"sleep_time must be a number of seconds >= 0 (math.inf: never sleep), "
+                f"got {value!r}"
+            )
+        t = float(value)
+        self.collisions.sleep_time = t
+        if t == math.inf:
+            self.collisions.wake(len(self.bodies))
+
+    def set_contact_iterations(self, value: int) -> None:
+        """Iterations (an int >= 1) a step of the solver for bodies resting on one another."""
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise ValueError(f"contact_iterations must be an int >= 1, got {value!r}")
+        self.collisions.iterations = value
+
+    @property
+    def colliders(self) -> tuple[Any, ...]:
+        """The static colliders, in the order they were added."""
+        return () if self.contacts is None else tuple(self.contacts.colliders)
+
+    # -- derived state ----------------------------------------------------------------------
+    def changed_structure(self, appended: bool = False) -> None:
+        """Bodies, forces or masses changed: rebuild the force model and the choice.
+        ``appended``: only bodies were added, at the end (the others keep their sleep and
+        their contacts' warm start: a game spawning a ball does not wake a pile)."""
+        if self.model is not None:
+            self.evaluations += self.model.evaluations
+        self.drop_kernel()
+        self.model = None
+        self.anchor = None
+        self.policy.choice = None
+        self.version += 1
+        if appended:
+            self.collisions.grew(len(self.bodies))
+        else:
+            self.collisions.changed(len(self.bodies))
+        self.link_solver = None
+
+    def links_changed(self) -> None:
+        """The set of links changed: pinned bodies are held as kinematic ones are."""
+        store = self.store
+        if store is not None:
+            store.kinematic = np.array([b.kinematic for b in self.bodies], dtype=bool)
+            for k in self.links:
+                if isinstance(k, Pin):
+                    store.kinematic[store.row(k.body._slot)] = True
+        # A body no longer held goes nowhere it was sent while held.
+        self.targets = {b: p for b, p in self.targets.items() if b.kinematic}
+        self.changed_structure()
+
+    def drop_kernel(self) -> None:
+        """Forget the affine kernel, counting the steps it took."""
+        self.void_budget()
+        k = self.kernel
+        if k is not None:
+            self.evaluations += k.taken
+        self.kernel = None
+
+    def void_budget(self) -> None:
+        """The kernel's step budget was proved for the state before: take back what is left."""
+        k = self.kernel
+        if k is not None:
+            n = self.count.n
+            k.taken += max(0, min(n, k.n_stop) - k.n_from)
+            k.n_stop = k.n_from = n
+
+    def kinematic_moved(self, row: int, target: Any) -> None:
+        """The game moved a kinematic body: to ``target`` over the next step, or (None) by
+        writing its velocity. Nothing sleeping wakes unless the body touches it."""
+        body = self.bodies[row]
+        if target is None:
+            self.targets.pop(body, None)
+        elif not body.kinematic:
+            pin = next(k for k in self.links if isinstance(k, Pin) and k.body is body)
+            raise ValueError(
+                f"pos: that body is pinned at {tuple(pin.point)} and stays there; take the pin "
+                f"out (world.remove_link) or add a Pin where it should be: {body!r}"
+            )
+        else:
+            self.targets[body] = target
+        self.anchor = None
+        self.drop_kernel()
+
+    def state_written(self, row: int | None = None, moved: bool = False) -> None:
+        """A position or velocity was set by hand: the closed form and the kernel start anew,
+        and every sleeping body wakes. A body moved by hand (``row``, ``moved``) is no longer
+        at rest where it was, and is pushed out of any solid collider it was put into."""
+        self.anchor = None
+        self.void_budget()
+        self.collisions.wake(len(self.bodies))
+        if moved and row is not None and self.contacts is not None:
+            self.contacts.rest[row] = -1
+            push_out(self, [row], "was put", stacklevel=5)
+
+    def own_acc_written(self, row: int) -> None:
+        """One body's own acceleration changed: one entry of a0, no recompiling."""
+        if self.model is not None:
+            assert self.store is not None
+            self.model.set_own_acc(row, self.store.own[row])
+        self.anchor = None
+        self.drop_kernel()
+        self.collisions.wake(len(self.bodies))
+
+    def ready(self) -> ForceModel:
+        """The forces compiled into per-body arrays (engine.forcefield), made when needed."""
+        if self.model is None:
+            attached = [
+                (a.force, None if a.bodies is None else self.rows_of(a.bodies)) for a in self.forces
+            ]
+            store = self.store
+            if store is None:  # no body and no shaped force yet: nothing to fold
+                self.model = ForceModel.compile(np.zeros(0), np.zeros(0), attached)
+            else:
+                kin = store.kinematic
+                if kin.any():
+                    # No force acts on a body the game moves.
+                    free = np.flatnonzero(~kin)
+                    attached = [
+                        (f, free if rows is None else rows[~kin[rows]]) for f, rows in attached
+                    ]
+                self.model = ForceModel.compile(store.mass, store.own, attached)
+        return self.model
+
+    def state_now(self) -> tuple[Any, Any, Any] | None:
+        """(x, v, a) of every body now, for the method policy's predictions; None if empty."""
+        if not self.bodies:
+            return None
+        assert self.store is not None
+        x, v = self.store.x, self.store.v
+        return x, v, self.ready().accel(self.t, x, v)
+
+    def acceleration_at(self, row: int) -> Any:
+        """The acceleration of the body in ``row`` now (only that body's forces are evaluated)."""
+        assert self.store is not None
+        return self.ready().accel_of(row, self.t, self.store.x, self.store.v)
+
+    @property
+    def method(self) -> str:
+        """The method in use; for "auto", the one chosen at the last step (or "auto" before)."""
+        if self.policy.choice is not None:
+            return self.policy.choice[1]
+        fixed = self.policy.fixed_choice(self.ready())
+        return "auto" if fixed is None else fixed[0]
+
+    @property
+    def method_reason(self) -> str:
+        """One line saying why ``method`` is the method in use."""
+        if self.policy.choice is not None:
+            return self.policy.choice[2]
+        fixed = self.policy.fixed_choice(self.ready())
+        return (
+            "chosen at the first step, from its dt and the forces held"
+            if fixed is None
+            else (fixed[1])
+        )
+
+    @property
+    def capped(self) -> int:
+        """How many times impacts passed their cap in one step (static contacts and pairs)."""
+        static = 0 if self.contacts is None else self.contacts.capped
+        return static + self.collisions.capped
+
+    @property
+    def evaluations_now(self) -> int:
+        """How many times the forces on all bodies have been evaluated, the kernel's too."""
+        k = self.kernel
+        n = self.count.n
+        kernel = 0 if k is None else k.taken + max(0, min(n, k.n_stop) - k.n_from)
+        return self.evaluations + kernel + (0 if self.model is None else self.model.evaluations)
