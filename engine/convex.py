@@ -101,7 +101,16 @@ def convex_polygon(
             f"got {pts!r}"
         )
     if twice == 0.0:
-        raise ValueError(f"{name} must enclose an area: all {count} points lie on one line")
+        # No area: every point on one line, or a path that crosses itself so that its two
+        # lobes cancel (a bow tie given out of order).
+        far = max(range(1, count), key=lambda i: abs(pts[i][0] - x0) + abs(pts[i][1] - y0))
+        dx, dy = pts[far][0] - x0, pts[far][1] - y0
+        if all(_cross(dx, dy, x - x0, y - y0) == 0.0 for x, y in pts):
+            raise ValueError(f"{name} must enclose an area: all {count} points lie on one line")
+        raise ValueError(
+            f"{name} must go in order round the polygon: {pts!r} cross over themselves and "
+            f"enclose no area; give the corners in order, clockwise or counter-clockwise"
+        )
     if twice < 0.0:  # clockwise: reverse, keeping the first point first
         pts = [pts[0], *pts[:0:-1]]
         index = [0, *range(count - 1, 0, -1)]  # where each vertex was in the input

@@ -46,6 +46,7 @@ SQUARE = [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)]
         ([(0, 0), (1, 0), (1, 0), (0, 1)], ValueError, "vertices[1] and vertices[2] are the same"),
         ([(0, 0), (1, 0), (1, 1e-12), (0, 1)], ValueError, "are 1e-12 apart, the same point"),
         ([(0, 0), (1, 1), (2, 2)], ValueError, "all 3 points lie on one line"),
+        ([(0, 0), (10, 10), (20, 0), (-10, 10)], ValueError, "must go in order round the"),
         ([(0, 0), (1, 0), (2, 0), (1, 1)], ValueError, "vertices[1] = (1.0, 0.0) lies on the"),
         ([(0, 0), (2, 0), (1, 0.5), (2, 2), (0, 2)], ValueError, "turns the other way"),
         ([(0, 0), (1e308, 0), (0, 1e308)], ValueError, "the area overflows"),
