@@ -30,41 +30,30 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
-from numbers import Real
 from typing import Any, TypeVar
 
 import numpy as np
 
-from . import checks, habits, queries
+from . import checks, event_dispatch, habits, queries, readout
+from . import snapshot as snapshots
 from .affine import EULERS, prepare_affine
-from .body import Body, State, coerce_mass, coerce_state
+from .body import Body, State
 from .colliders import Collider
-from .collisions import Collisions, deepest_overlap
-from .contacts import Contacts, signed_distance
-from .events import (
-    ContactEvent,
-    collider_keys,
-    keys_of,
-    other_of,
-    pair_keys,
-    plain_keys,
-    raw_specs,
-    slack_for,
-    slot_of,
-)
+from .collisions import Collisions
+from .contacts import Contacts
+from .events import ContactEvent
 from .filters import Filter
 from .forcefield import ForceModel
 from .forces import Force, as_force
 from .habits import PYMUNK_NAMES
 from .integrators import Integrator
-from .links import Cable, Link, LinkSolver, Pin, Rod
+from .links import Link, LinkSolver, Pin
 from .overlaps import OverlapWarning, freed, push_out
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
 from .queries import QueryHit
+from .snapshot import WorldSnapshot
 from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
-from .vector import Vector
 from .world_state import AttachedForce, WorldState
 
 __all__ = [
@@ -97,67 +86,6 @@ ColliderT = TypeVar("ColliderT", bound=Collider)
 LinkT = TypeVar("LinkT", bound=Link)
 
 
-def _copy(array: Any) -> Any:
-    return None if array is None else array.copy()
-
-
-@dataclass(frozen=True)
-class WorldSnapshot:
-    """Every bit of a World's state at one moment; hand it to ``World.restore``."""
-
-    n_bodies: int
-    x: Any
-    v: Any
-    prev_x: Any
-    masses: tuple[float, ...]
-    own_acc: tuple[State, ...]
-    t_base: float
-    dt: float | None
-    n_since_base: int
-    steps: int
-    anchor: tuple[Any, Any, float] | None
-    warned: frozenset[Any] = field(default_factory=frozenset)
-    contacts: tuple[Any, ...] | None = None  # which bodies rest on what, sensors overlapped
-    pairs: tuple[Any, ...] | None = None  # contacts between bodies: warm start, sleep
-    links: tuple[Any, ...] = ()  # each link in force: (what it joins, warned, last impulse)
-    moves: tuple[Any, ...] = ()  # (row, target): kinematic bodies' pos written, not yet reached
-    events: tuple[Any, ...] | None = None  # the contacts open (engine.events), by row and place
-
-
-class _EventView:
-    """What the events (engine.events) read of a World: bodies by slot, where they are now,
-    and the impulses its open contacts carried over the last step."""
-
-    def __init__(self, world: World) -> None:
-        self._world = world
-
-    @property
-    def t(self) -> float:
-        return self._world.t
-
-    def _row(self, slot: int) -> int:
-        store = self._world._store
-        assert store is not None
-        return store.row(slot)
-
-    def body(self, slot: int) -> Body:
-        return self._world._bodies[self._row(slot)]
-
-    def position(self, slot: int) -> tuple[float, float]:
-        store = self._world._store
-        assert store is not None
-        x = store.x[store.row(slot)]
-        return float(x[0]), float(x[1])
-
-    def radius(self, slot: int) -> float:
-        store = self._world._store
-        assert store is not None
-        return float(store.radius[store.row(slot)])
-
-    def impulses(self, keys: np.ndarray) -> dict[int, tuple[float, float]]:
-        return self._world._impulses(keys)
-
-
 class World:
     """Point bodies, the forces on them, and ``step(dt)``: the only way time moves.
 
@@ -179,9 +107,9 @@ class World:
         self, integrator: str | Integrator = "semi_implicit_euler", tolerance: float | None = None
     ) -> None:
         self._s = WorldState(self, MethodPolicy(integrator, tolerance))
-        self._s.events._view = _EventView(self)
+        self._s.events._view = event_dispatch.EventView(self._s)
 
-    # Names the tests and engine.queries read: the body arrays, the bodies, the compiled
+    # The parts that tests and engine.queries read: the body arrays, the bodies, the compiled
     # forces, the static contacts and the contacts between bodies.
     @property
     def _store(self) -> BodyStore | None:
@@ -485,21 +413,7 @@ class World:
         list them too). For a Body, ``event.body`` is that Body (the other is
         ``event.collider``). Returns a function that takes the handler off again.
         """
-        if not isinstance(target, (Body, Collider)):
-            raise TypeError(
-                f"target must be a Body or a collider, got {type(target).__name__} {target!r}"
-            )
-        for name, fn in (("begin", begin), ("end", end), ("post_solve", post_solve)):
-            if fn is not None and not callable(fn):
-                raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
-        entry = (target, begin, end, post_solve)
-        self._s.handlers.append(entry)
-
-        def remove() -> None:
-            """Take this handler off (again: nothing happens)."""
-            self._s.handlers = [h for h in self._s.handlers if h is not entry]
-
-        return remove
+        return event_dispatch.add_handler(self._s, target, begin, end, post_solve)
 
     @property
     def sleeping(self) -> int:
@@ -508,23 +422,11 @@ class World:
 
     def is_sleeping(self, body: Body) -> bool:
         """Whether ``body`` sleeps (it stays exactly put until an awake body meets its group)."""
-        if not isinstance(body, Body) or body.world is not self:
-            raise ValueError(f"that body is not in this World: {body!r}")
-        asleep = self._s.collisions.asleep
-        assert self._s.store is not None
-        row = self._s.store.row(body._slot)
-        return bool(row < len(asleep) and asleep[row])
+        return readout.is_sleeping(self._s, body)
 
     def overlap(self) -> float:
         """The deepest overlap (length units) between two bodies that collide, now."""
-        store = self._s.store
-        if store is None or store.dim != 2 or not self._s.bodies:
-            return 0.0
-        live = self._s.collisions._prepare(store.radius, store.group, store.categories, store.mask)
-        if len(live) < 2 or self._s.collisions._one_group:
-            return 0.0
-        filters = (store.group[live], store.categories[live], store.mask[live])
-        return deepest_overlap(store.x[live], store.radius[live], filters)
+        return readout.overlap(self._s)
 
     @property
     def sleep_time(self) -> float:
@@ -534,15 +436,7 @@ class World:
 
     @sleep_time.setter
     def sleep_time(self, value: float) -> None:
-        if isinstance(value, bool) or not isinstance(value, Real) or not float(value) >= 0.0:
-            raise ValueError(
-                f"sleep_time must be a number of seconds >= 0 (math.inf: never sleep), "
-                f"got {value!r}"
-            )
-        t = float(value)
-        self._s.collisions.sleep_time = t
-        if t == math.inf:
-            self._s.collisions.wake(len(self._s.bodies))
+        self._s.set_sleep_time(value)
 
     @property
     def contact_iterations(self) -> int:
@@ -552,9 +446,7 @@ class World:
 
     @contact_iterations.setter
     def contact_iterations(self, value: int) -> None:
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-            raise ValueError(f"contact_iterations must be an int >= 1, got {value!r}")
-        self._s.collisions.iterations = value
+        self._s.set_contact_iterations(value)
 
     @property
     def capped(self) -> int:
@@ -562,18 +454,11 @@ class World:
         MAX_IMPACTS impacts with colliders (placed on a surface instead), or a step whose
         impacts between bodies passed MAX_ROUNDS rounds (the bodies with impacts left
         stopped at the first of them, to go on next step)."""
-        static = 0 if self._s.contacts is None else self._s.contacts.capped
-        return static + self._s.collisions.capped
+        return self._s.capped
 
     def resting(self, body: Body) -> Collider | None:
         """The collider ``body`` rests on (slides or sits on), or None while it is in flight."""
-        if not isinstance(body, Body) or body.world is not self:
-            raise ValueError(f"that body is not in this World: {body!r}")
-        contacts, store = self._s.contacts, self._s.store
-        if contacts is None or store is None:
-            return None
-        f = int(contacts.rest[store.row(body._slot)])
-        return None if f < 0 else contacts.colliders[int(contacts.faces.owner[f])]
+        return readout.resting(self._s, body)
 
     @property
     def began(self) -> list[ContactEvent]:
@@ -593,151 +478,6 @@ class World:
         """Every contact open after the last step, with the impulse (N s) it carried over the
         step (pymunk's arbiters and their ``total_impulse``)."""
         return self._s.events.touching
-
-    def _settle_events(self, t0: float, t_end: float) -> None:
-        """Make the last step's events from what the solvers reported (engine.events)."""
-        store, contacts = self._s.store, self._s.contacts
-        events = self._s.events
-        events.forget()
-        if store is None or store.dim != 2:
-            events.ledger.quiet()
-            return
-        slots = store.slots()
-        raw = []
-        resting = sensing = np.zeros(0, dtype=np.int64)
-        if contacts is not None:
-            serials = np.array(
-                [events.serial(c) for c in contacts.colliders], dtype=np.int64
-            ).reshape(-1)
-            raw += raw_specs(contacts._began, True, slots, serials)
-            raw += raw_specs(contacts._ended, False, slots, serials)
-            on = np.flatnonzero(contacts.rest >= 0)
-            if len(on):
-                owner = contacts.faces.owner[contacts.rest[on]]
-                resting = collider_keys(slots[on], serials[owner])
-            if contacts.inside.size:
-                rows, s = np.nonzero(contacts.inside)
-                sensors = np.array(contacts._sensors, dtype=np.intp)
-                sensing = collider_keys(slots[rows], serials[sensors[s]])
-        if self._s.pairs_on:
-            pairs = self._s.collisions
-            rows, faces = pairs.face_touching
-            if len(rows) and contacts is not None:
-                owner = contacts.faces.owner[faces]
-                resting = np.concatenate([resting, collider_keys(slots[rows], serials[owner])])
-            raw += raw_specs(pairs._began, True, slots, None)
-            raw += raw_specs(pairs._ended, False, slots, None)
-            touching = pairs._touching
-            if len(touching):
-                n = len(slots)
-                resting = np.concatenate(
-                    [resting, pair_keys(slots[touching // n], slots[touching % n])]
-                )
-        events.ledger.settle(t0, t_end, raw, resting, sensing, self._gaps)
-
-    def _gaps(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Each contact key's gap now (length units, < 0 overlapping) and the slack a contact
-        at rest keeps (engine.events.CONTACT_SLACK of the smaller radius)."""
-        store = self._s.store
-        assert store is not None
-        row_of = store.row_of
-        a = row_of[slot_of(keys)]
-        is_c, other = other_of(keys)
-        gap = np.full(len(keys), np.inf)
-        r = store.radius[a].copy()
-        pair = np.flatnonzero(~is_c)
-        if len(pair):
-            b = row_of[other[pair]]
-            d = store.x[a[pair]] - store.x[b]
-            gap[pair] = np.hypot(d[:, 0], d[:, 1]) - r[pair] - store.radius[b]
-            r[pair] = np.minimum(r[pair], store.radius[b])
-        for serial in np.unique(other[is_c]).tolist():
-            sel = np.flatnonzero(is_c & (other == serial))
-            collider = self._s.events._collider.get(serial)
-            if collider is not None:
-                gap[sel] = signed_distance(collider, store.x[a[sel]]) - r[sel]
-        return gap, slack_for(r)
-
-    def _impulses(self, keys: np.ndarray) -> dict[int, tuple[float, float]]:
-        """The impulse (N s, on the key's body) each open contact carried over the last step:
-        a body at rest on a collider, the change of momentum the static contacts gave it
-        (m (v - v_free)); a pile's contacts (with bodies, and with the faces its bodies touch),
-        the resting solver's impulses (engine.collisions)."""
-        store, contacts = self._s.store, self._s.contacts
-        out: dict[int, tuple[float, float]] = {}
-        if store is None or not len(keys):
-            return out
-        row_of = store.row_of
-        a = row_of[slot_of(keys)]
-        is_c, other = other_of(keys)
-        serials = None
-        if contacts is not None:
-            serials = np.array([self._s.events.serial(c) for c in contacts.colliders], np.int64)
-            dv = self._s.contact_dv
-            if dv is not None and len(dv) == len(store):
-                for k, row, c, o in zip(
-                    keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
-                ):
-                    f = int(contacts.rest[row])
-                    if c and f >= 0 and serials[contacts.faces.owner[f]] == o:
-                        j = dv[row] * store.mass[row]
-                        out[k] = (float(j[0]), float(j[1]))
-        pairs = self._s.collisions
-        if self._s.pairs_on and len(pairs._keys):
-            n = len(store)
-            base = pairs._base
-            lam_keys, lam = pairs._keys, pairs._lam
-            n_faces = base - n
-            for k, row, c, o in zip(
-                keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
-            ):
-                if c:
-                    if contacts is None or serials is None or n_faces <= 0:
-                        continue
-                    # The pile's rows for the faces of this collider that touch this body.
-                    faces = np.flatnonzero(serials[contacts.faces.owner] == o)
-                    wanted = row * base + n + faces
-                else:
-                    b = int(row_of[o])
-                    wanted = np.array([min(row, b) * base + max(row, b)], dtype=np.int64)
-                pos = np.minimum(np.searchsorted(lam_keys, wanted), len(lam_keys) - 1)
-                hit = lam_keys[pos] == wanted
-                if not hit.any():
-                    continue
-                total = np.zeros(2)
-                for f_or_b, p in zip(wanted[hit].tolist(), pos[hit].tolist(), strict=True):
-                    # The solver's normal points toward the key's body (a face's, or from the
-                    # other body, whose row is the higher); its tangent is (-n_y, n_x).
-                    if c:
-                        assert contacts is not None
-                        f = f_or_b - row * base - n
-                        nrm = contacts._normals(np.array([f]), store.x[[row]])[0][0]
-                    else:
-                        d = store.x[row] - store.x[int(row_of[o])]
-                        nrm = d / max(float(np.hypot(d[0], d[1])), 1e-300)
-                    tang = np.array([-nrm[1], nrm[0]])
-                    total += nrm * lam[p, 0] + tang * lam[p, 1]
-                prev = out.get(k, (0.0, 0.0))
-                out[k] = (prev[0] + float(total[0]), prev[1] + float(total[1]))
-        return out
-
-    def _report(self) -> None:
-        """Call the on_contact handlers with the last step's events."""
-        if not self._s.handlers:
-            return
-        for which in (1, 2, 3):
-            if not any(h[which] is not None for h in self._s.handlers):
-                continue
-            event_list = self.began if which == 1 else self.ended if which == 2 else self.touching
-            for ev in event_list:
-                for handler in self._s.handlers:
-                    fn = handler[which]
-                    if fn is None:
-                        continue
-                    if handler[0] is ev.body:
-                        fn(ev)
-                    elif handler[0] is ev.collider:
-                        fn(ev.flipped() if isinstance(ev.collider, Body) else ev)
 
     # -- queries (engine.queries) ---------------------------------------------------------
     def segment_query(
@@ -837,9 +577,6 @@ class World:
         return self._s.evaluations_now
 
     # -- choosing the method ------------------------------------------------------------------
-    def _integrator_named(self, name: str) -> Integrator:
-        return self._s.policy.integrator(name)
-
     def max_stable_dt(self, integrator: str | None = None) -> float:
         """The largest stable dt (s) for the springs and drags held, for ``integrator``.
 
@@ -871,22 +608,12 @@ class World:
     @property
     def method(self) -> str:
         """The method in use; for "auto", the one chosen at the last step (or "auto" before)."""
-        if self._s.policy.choice is not None:
-            return self._s.policy.choice[1]
-        fixed = self._s.policy.fixed_choice(self._s.ready())
-        return "auto" if fixed is None else fixed[0]
+        return self._s.method
 
     @property
     def method_reason(self) -> str:
         """One line saying why ``method`` is the method in use."""
-        if self._s.policy.choice is not None:
-            return self._s.policy.choice[2]
-        fixed = self._s.policy.fixed_choice(self._s.ready())
-        return (
-            "chosen at the first step, from its dt and the forces held"
-            if fixed is None
-            else (fixed[1])
-        )
+        return self._s.method_reason
 
     # -- time --------------------------------------------------------------------------------
     @property
@@ -926,7 +653,7 @@ class World:
             dt = check_dt(dt)
             model = self._s.ready()
             name = self._s.policy.method_for(dt, self._s.version, model, self._s.state_now)
-            step = None if name == "exact" else self._integrator_named(name)
+            step = None if name == "exact" else self._s.policy.integrator(name)
             # Either Euler method on forces that are all folded (a = a0 - c v) is a fixed
             # affine map of the state: the World takes it in four array operations.
             st = self._s.store
@@ -974,8 +701,8 @@ class World:
         if self._s.contacts is not None or self._s.pairs_on or self._s.events.busy:
             # The step ran from t0 = t_base + (n - 1) dt (the time it started at, summed the
             # same way) to t.
-            self._settle_events(self._s.t_base + (self._s.n - 1) * dt, self.t)
-            self._report()
+            event_dispatch.settle(self._s, self._s.t_base + (self._s.n - 1) * dt, self.t)
+            event_dispatch.report(self._s)
 
     def _quiet(self) -> None:
         """A step in which no body moved: the solvers report nothing."""
@@ -1220,9 +947,6 @@ class World:
         )
 
     # -- reading the state ---------------------------------------------------------------------
-    def _empty(self) -> np.ndarray:
-        return np.zeros((0,) if self.dim != 2 else (0, 2))
-
     def positions(self, alpha: float = 1.0) -> np.ndarray:
         """Positions of all bodies blended from the previous step: prev + (now - prev) alpha.
 
@@ -1232,32 +956,15 @@ class World:
         behind ``t``: step once ahead before the first frame (as ``engine.render.record``
         does) to draw each frame exactly at its own time.
         """
-        if isinstance(alpha, bool) or not isinstance(alpha, Real) or not 0.0 <= alpha <= 1.0:
-            raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")
-        store = self._s.store
-        if store is None or not self._s.bodies:
-            return self._empty()
-        if alpha == 1.0:
-            return store.x.copy()
-        return store.prev_x + (store.x - store.prev_x) * float(alpha)
+        return readout.positions(self._s, alpha)
 
     def position_of(self, body: Body, alpha: float = 1.0) -> State:
         """One body's position, blended like ``positions(alpha)``: a float or a Vector."""
-        if not isinstance(body, Body) or body.world is not self:
-            raise ValueError(f"that body is not in this World: {body!r}")
-        if isinstance(alpha, bool) or not isinstance(alpha, Real) or not 0.0 <= alpha <= 1.0:
-            raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")
-        store = self._s.store
-        assert store is not None
-        row = store.row(body._slot)
-        x, prev = store.x[row], store.prev_x[row]
-        return store.value(x if alpha == 1.0 else prev + (x - prev) * float(alpha))
+        return readout.position_of(self._s, body, alpha)
 
     def velocities(self) -> np.ndarray:
         """Velocities of all bodies now, shape (N,) or (N, 2); a new array."""
-        if self._s.store is None or not self._s.bodies:
-            return self._empty()
-        return self._s.store.v.copy()
+        return readout.velocities(self._s)
 
     def energy(self) -> float:
         """Total mechanical energy (J): kinetic plus the potential of the forces that have one.
@@ -1266,321 +973,16 @@ class World:
         Kinematic and pinned bodies are left out: the game (or the pin) moves them, and no
         force acts on them.
         """
-        if not self._s.bodies:
-            return 0.0
-        model = self._s.ready()
-        store = self._s.store
-        assert store is not None
-        x, v, m = store.x, store.v, store.mass
-        held = store.kinematic
-        if held.any():
-            m = np.where(held, 0.0, m)
-        v2 = v * v if self.dim == 1 else np.einsum("ij,ij->i", v, v)
-        total = 0.5 * float(np.sum(m * v2))
-        dot = store.own * x if self.dim == 1 else np.einsum("ij,ij->i", store.own, x)
-        total -= float(np.sum(m * dot))
-        for attached in self._s.forces:
-            if attached.bodies is None:
-                idx = np.flatnonzero(~held) if held.any() else None
-            else:
-                idx = self._s.rows_of(attached.bodies)
-                idx = idx[~held[idx]]
-            if idx is None:
-                u = attached.force.potential(x, model.mass)
-            else:
-                u = attached.force.potential(x[idx], model.mass[idx]) if len(idx) else 0.0
-            if u is not None:
-                total += float(np.sum(u))
-        return total
+        return readout.energy(self._s)
 
-    # -- snapshot and restore -------------------------------------------------------------------
+    # -- snapshot and restore (engine.snapshot) ---------------------------------------------------
     def snapshot(self) -> WorldSnapshot:
         """Everything needed to bring this world back to this moment, bit for bit."""
-        anchor = None
-        if self._s.anchor is not None:
-            anchor = (self._s.anchor[0].copy(), self._s.anchor[1].copy(), self._s.anchor[2])
-        store = self._s.store
-        empty = store is None or not self._s.bodies
-        return WorldSnapshot(
-            n_bodies=len(self._s.bodies),
-            x=None if empty else _copy(store.x),  # type: ignore[union-attr]
-            v=None if empty else _copy(store.v),  # type: ignore[union-attr]
-            prev_x=None if empty else _copy(store.prev_x),  # type: ignore[union-attr]
-            masses=tuple(b.mass for b in self._s.bodies),
-            own_acc=tuple(b.own_acc for b in self._s.bodies),
-            t_base=self._s.t_base,
-            dt=self._s.dt,
-            n_since_base=self._s.n,
-            steps=self.steps,
-            anchor=anchor,
-            warned=frozenset(self._s.policy.warned),
-            contacts=None if self._s.contacts is None else self._s.contacts.state(),
-            pairs=self._s.collisions.state(),
-            events=self._events_state(),
-            links=tuple((self._describe(k), k.warned, k.impulse) for k in self._s.links),
-            moves=tuple(
-                (self._s.bodies.index(b), tuple(float(c) for c in target))
-                for b, target in self._s.targets.items()
-            ),
-        )
+        return snapshots.take(self._s)
 
     def restore(self, snapshot: WorldSnapshot) -> None:
         """Bring back the state saved by ``snapshot()`` (same bodies, in the same order)."""
-        if not isinstance(snapshot, WorldSnapshot):
-            raise TypeError(
-                f"restore takes a WorldSnapshot from World.snapshot(), got "
-                f"{type(snapshot).__name__}"
-            )
-        if snapshot.n_bodies != len(self._s.bodies):
-            raise ValueError(
-                f"the snapshot holds {snapshot.n_bodies} bodies but this World has "
-                f"{len(self._s.bodies)}: restore into the world (or a copy) it was taken from"
-            )
-        masses, own_acc = self._check_snapshot(snapshot)
-        links = self._check_links(snapshot.links)
-        moves = self._check_moves(snapshot.moves)
-        if self._s.contacts is not None and snapshot.contacts is not None:
-            self._s.contacts.check_state(snapshot.contacts, len(self._s.bodies))
-        store = self._s.store
-        if store is not None and self._s.bodies:
-            store.x, store.v, store.prev_x = (
-                _copy(snapshot.x),
-                _copy(snapshot.v),
-                _copy(snapshot.prev_x),
-            )
-            store.mass = np.array(masses, dtype=float)
-            store.own = np.array(own_acc, dtype=float).reshape(store.x.shape)
-        self._s.t_base = float(snapshot.t_base)
-        self._s.dt = None if snapshot.dt is None else float(snapshot.dt)
-        self._s.void_budget()
-        self._s.n = snapshot.n_since_base
-        self._s.steps_base = snapshot.steps - snapshot.n_since_base
-        chosen = self._links_of([d for d, _, _ in links])
-        if [id(k) for k in chosen] != [id(k) for k in self._s.links]:
-            self._s.links = chosen
-            self._s.links_changed()
-        for k, (_, warned, impulse) in zip(chosen, links, strict=True):
-            k.warned, k.impulse = warned, impulse
-        self._s.targets = {self._s.bodies[row]: target for row, target in moves}
-        self._s.changed_structure()
-        if snapshot.anchor is not None:
-            x0, v0, ta = snapshot.anchor
-            self._s.anchor = (x0.copy(), v0.copy(), ta)
-        self._s.policy.warned = set(snapshot.warned)
-        if self._s.contacts is not None:
-            if snapshot.contacts is None:
-                self._s.contacts.rest[:] = -1
-                self._s.contacts.inside[:] = False
-            else:
-                self._s.contacts.set_state(snapshot.contacts, len(self._s.bodies))
-        if snapshot.pairs is not None:
-            self._s.collisions.set_state(snapshot.pairs)
-        self._set_events_state(snapshot.events)
-
-    def _events_state(self) -> tuple[Any, ...] | None:
-        """The open contacts and their held ends, by body row and collider place."""
-        store = self._s.store
-        if store is None or store.dim != 2:
-            return None
-        index_of = {self._s.events.serial(c): k for k, c in enumerate(self.colliders)}
-        keys, exact, held = self._s.events.ledger.state()
-        row_of = store.row_of
-
-        def plain(k: np.ndarray) -> np.ndarray:
-            return plain_keys(k, row_of, index_of)
-
-        held_plain = tuple(
-            (tuple(plain(np.array([k], dtype=np.int64))[0].tolist()), spec[0], spec[3])
-            for k, spec in held
-        )
-        # The ends of things taken out, waiting for the next step's report, as they are.
-        return plain(keys), plain(exact), held_plain, tuple(self._s.events.ledger.pending)
-
-    def _set_events_state(self, state: Any) -> None:
-        """Bring back ``_events_state()`` (None: no contact open)."""
-        store = self._s.store
-        ledger = self._s.events.ledger
-        if state is None or store is None:
-            ledger.set_state((np.zeros(0, np.int64), np.zeros(0, np.int64), ()))
-            return
-        n, m = len(store), len(self.colliders)
-        ok = isinstance(state, tuple) and len(state) == 4
-        ok = ok and all(isinstance(e, ContactEvent) for e in state[3])
-        if ok:
-            arrays = [a for a in state[:2] if isinstance(a, np.ndarray)]
-            ok = len(arrays) == 2 and all(a.ndim == 2 and a.shape[1:] == (2,) for a in arrays)
-            ok = ok and all(
-                ((a[:, 0] >= 0) & (a[:, 0] < n) & (a[:, 1] >= -m) & (a[:, 1] < n)).all()
-                for a in arrays
-            )
-        if not ok:
-            raise ValueError(
-                "snapshot.events must be the open contacts from World.snapshot() of a World "
-                "with these bodies and colliders"
-            )
-        slots = store.slots()
-        serials = np.array([self._s.events.serial(c) for c in self.colliders], np.int64)
-        serials = serials.reshape(-1)
-        held = []
-        for (a, b), t, payload in state[2]:
-            (k,) = keys_of(np.array([[a, b]], dtype=np.int64), slots, serials).tolist()
-            held.append((k, (t, k, False, payload)))
-        ledger.set_state(
-            (
-                np.sort(keys_of(state[0], slots, serials)),
-                np.sort(keys_of(state[1], slots, serials)),
-                tuple(held),
-            )
-        )
-        ledger.pending = list(state[3])
-        self._s.events.forget()
-
-    def _check_moves(self, moves: Any) -> list[tuple[int, tuple[float, float]]]:
-        """The snapshot's pending kinematic moves, checked: (row of a kinematic body, a
-        finite point)."""
-        if not isinstance(moves, tuple):
-            raise TypeError("snapshot.moves must be a tuple of (row, point) from World.snapshot")
-        out = []
-        for item in moves:
-            ok = isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], int)
-            ok = ok and 0 <= item[0] < len(self._s.bodies) and self._s.bodies[item[0]].kinematic
-            # (Only a body kinematic by itself has moves: a pinned one refuses them.)
-            if ok:
-                try:
-                    point = Vector.coerce(item[1], "snapshot.moves")
-                except (TypeError, ValueError):
-                    ok = False
-                else:
-                    ok = point.is_finite()
-            if not ok:
-                raise ValueError(
-                    f"snapshot.moves holds (row of a kinematic body, finite point) pairs, got "
-                    f"{item!r}"
-                )
-            out.append((item[0], (float(point[0]), float(point[1]))))
-        return out
-
-    def _describe(self, link: Link) -> tuple[Any, ...]:
-        """What a link joins, in plain numbers: (kind, body row, other row or -1, fixed point
-        or None, length, restitution). A snapshot holds this, not the link, so that it can
-        be restored into a World built afresh (its own bodies and links)."""
-        store = self._s.store
-        assert store is not None
-        other = link.other
-        return (
-            type(link).__name__,
-            store.row(link.body._slot),
-            store.row(other._slot) if isinstance(other, Body) else -1,
-            None if isinstance(other, Body) else (float(other[0]), float(other[1])),
-            link.length,
-            link.restitution,
-        )
-
-    def _links_of(self, descriptions: list[tuple[Any, ...]]) -> list[Link]:
-        """Links matching ``descriptions``: this World's own where one matches (in force now,
-        or taken out since), else new ones."""
-        known = self._s.links + [
-            k for k in self._s.retired if all(b.world is self for b in k.bodies)
-        ]
-        mine = [(self._describe(k), k) for k in known]
-        out: list[Link] = []
-        for d in descriptions:
-            match = next((k for dk, k in mine if dk == d and all(k is not o for o in out)), None)
-            if match is None:
-                kind, row, other_row, point, length, e = d
-                body = self._s.bodies[row]
-                other: Any = self._s.bodies[other_row] if other_row >= 0 else point
-                if kind == "Pin":
-                    match = Pin(body, point)
-                elif kind == "Cable":
-                    match = Cable(body, other, length, e)
-                else:
-                    match = Rod(body, other, length)
-            out.append(match)
-        return out
-
-    def _check_links(self, links: Any) -> list[tuple[tuple[Any, ...], bool, float]]:
-        """The snapshot's links, checked: ((kind, row, other row, point, length, e), warned,
-        impulse) each, joining bodies of this World."""
-        if not isinstance(links, tuple):
-            raise TypeError("snapshot.links must be a tuple from World.snapshot")
-        n = len(self._s.bodies)
-        out = []
-        for item in links:
-            ok = isinstance(item, tuple) and len(item) == 3 and isinstance(item[0], tuple)
-            ok = ok and len(item[0]) == 6 and isinstance(item[1], bool)
-            ok = ok and isinstance(item[2], float) and math.isfinite(item[2])
-            if ok:
-                kind, row, other_row, point, length, e = item[0]
-                ok = kind in ("Rod", "Cable", "Pin") and type(row) is int and 0 <= row < n
-                ok = ok and type(other_row) is int and -1 <= other_row < n and other_row != row
-                ok = ok and (other_row >= 0) == (point is None)
-                if ok and point is not None:
-                    ok = (
-                        isinstance(point, tuple)
-                        and len(point) == 2
-                        and all(isinstance(c, float) and math.isfinite(c) for c in point)
-                    )
-                ok = ok and isinstance(length, float) and math.isfinite(length) and length >= 0.0
-                ok = ok and isinstance(e, float) and 0.0 <= e <= 1.0
-                ok = ok and (length > 0.0) == (kind != "Pin")
-            if not ok:
-                raise ValueError(
-                    f"snapshot.links holds ((kind, row, other row, point, length, restitution), "
-                    f"warned, impulse) for links between this World's bodies, got {item!r}"
-                )
-            out.append((item[0], item[1], item[2]))
-        return out
-
-    def _check_snapshot(self, snap: WorldSnapshot) -> tuple[list[float], list[State]]:
-        """Refuse a snapshot (a plain dataclass, so one can be built or altered by hand) that
-        would put nan, inf, a wrong shape or a negative count into this World; return its
-        masses and own accelerations, checked."""
-        n, dim = len(self._s.bodies), self.dim or 1
-        shape = (n,) if dim == 1 else (n, 2)
-        for name in ("x", "v", "prev_x"):
-            value = getattr(snap, name)
-            if n == 0 and value is None:
-                continue
-            if not (isinstance(value, np.ndarray) and value.shape == shape):
-                raise ValueError(
-                    f"snapshot.{name} must be an array of shape {shape} from World.snapshot(), "
-                    f"got {value!r}"
-                )
-            if not np.isfinite(value).all():
-                raise ValueError(f"snapshot.{name} must be finite (no nan or inf), got {value!r}")
-        if not (isinstance(snap.masses, tuple) and isinstance(snap.own_acc, tuple)):
-            raise TypeError("snapshot.masses and snapshot.own_acc must be tuples, one per body")
-        if len(snap.masses) != n or len(snap.own_acc) != n:
-            raise ValueError(f"snapshot.masses and snapshot.own_acc must hold {n} values each")
-        try:
-            masses = [coerce_mass(m) for m in snap.masses]
-        except (TypeError, ValueError) as exc:
-            raise type(exc)(f"snapshot.masses: {exc}") from None
-        own_acc = [coerce_state(a, dim, "snapshot.own_acc") for a in snap.own_acc]
-        if snap.dt is not None:
-            check_dt(snap.dt)
-        t = snap.t_base
-        try:
-            t_ok = not isinstance(t, bool) and isinstance(t, Real) and 0.0 <= float(t) < 1e300
-        except OverflowError:  # an int beyond the float range
-            t_ok = False
-        if not t_ok:
-            raise ValueError(f"snapshot.t_base must be a finite time >= 0 s, got {t!r}")
-        for name in ("n_since_base", "steps"):
-            count = getattr(snap, name)
-            if isinstance(count, bool) or not isinstance(count, int) or count < 0:
-                raise ValueError(f"snapshot.{name} must be a whole number >= 0, got {count!r}")
-        try:  # the time it stands for, t_base + n_since_base * dt, must be a float too
-            t_now = float(t) + snap.n_since_base * (0.0 if snap.dt is None else float(snap.dt))
-        except OverflowError:
-            t_now = math.inf
-        if not t_now < 1e300:
-            raise ValueError(
-                "snapshot.t_base + snapshot.n_since_base * snapshot.dt must be a finite time, "
-                f"got {snap.t_base!r} + {snap.n_since_base!r} * {snap.dt!r}"
-            )
-        return masses, own_acc
+        snapshots.restore(self._s, snapshot)
 
     # -- names the World does not have ----------------------------------------------------
     def __setattr__(self, name: str, value: Any) -> None:

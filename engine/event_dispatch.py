@@ -1,0 +1,245 @@
+"""Contact events, the World's side: what the solvers reported in a step made into events
+(engine.events keeps the ledger), the gap and impulse of each open contact, and the
+on_contact handlers called with them after the step.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from functools import partial
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .body import Body
+from .colliders import Collider
+from .contacts import signed_distance
+from .events import (
+    ContactEvent,
+    collider_keys,
+    other_of,
+    pair_keys,
+    raw_specs,
+    slack_for,
+    slot_of,
+)
+
+if TYPE_CHECKING:
+    from .world_state import WorldState
+
+__all__ = ["EventView", "add_handler", "gaps", "impulses", "report", "settle"]
+
+
+class EventView:
+    """What the events (engine.events) read of a World: bodies by slot, where they are now,
+    and the impulses its open contacts carried over the last step."""
+
+    def __init__(self, state: WorldState) -> None:
+        self.state = state
+
+    @property
+    def t(self) -> float:
+        """The World's time now (s)."""
+        return self.state.t
+
+    def row(self, slot: int) -> int:
+        """The row of the body in ``slot``."""
+        store = self.state.store
+        assert store is not None
+        return store.row(slot)
+
+    def body(self, slot: int) -> Body:
+        """The body in ``slot``."""
+        return self.state.bodies[self.row(slot)]
+
+    def position(self, slot: int) -> tuple[float, float]:
+        """Where the body in ``slot`` is now (length units)."""
+        store = self.state.store
+        assert store is not None
+        x = store.x[store.row(slot)]
+        return float(x[0]), float(x[1])
+
+    def radius(self, slot: int) -> float:
+        """The radius of the body in ``slot`` (length units)."""
+        store = self.state.store
+        assert store is not None
+        return float(store.radius[store.row(slot)])
+
+    def impulses(self, keys: np.ndarray) -> dict[int, tuple[float, float]]:
+        """The impulse (N s) each open contact of ``keys`` carried over the last step."""
+        return impulses(self.state, keys)
+
+
+def settle(state: WorldState, t0: float, t_end: float) -> None:
+    """Make the last step's events from what the solvers reported (engine.events)."""
+    store, contacts = state.store, state.contacts
+    events = state.events
+    events.forget()
+    if store is None or store.dim != 2:
+        events.ledger.quiet()
+        return
+    slots = store.slots()
+    raw = []
+    resting = sensing = np.zeros(0, dtype=np.int64)
+    if contacts is not None:
+        serials = np.array([events.serial(c) for c in contacts.colliders], dtype=np.int64).reshape(
+            -1
+        )
+        raw += raw_specs(contacts._began, True, slots, serials)
+        raw += raw_specs(contacts._ended, False, slots, serials)
+        on = np.flatnonzero(contacts.rest >= 0)
+        if len(on):
+            owner = contacts.faces.owner[contacts.rest[on]]
+            resting = collider_keys(slots[on], serials[owner])
+        if contacts.inside.size:
+            rows, s = np.nonzero(contacts.inside)
+            sensors = np.array(contacts._sensors, dtype=np.intp)
+            sensing = collider_keys(slots[rows], serials[sensors[s]])
+    if state.pairs_on:
+        pairs = state.collisions
+        rows, faces = pairs.face_touching
+        if len(rows) and contacts is not None:
+            owner = contacts.faces.owner[faces]
+            resting = np.concatenate([resting, collider_keys(slots[rows], serials[owner])])
+        raw += raw_specs(pairs._began, True, slots, None)
+        raw += raw_specs(pairs._ended, False, slots, None)
+        touching = pairs._touching
+        if len(touching):
+            n = len(slots)
+            resting = np.concatenate(
+                [resting, pair_keys(slots[touching // n], slots[touching % n])]
+            )
+    events.ledger.settle(t0, t_end, raw, resting, sensing, partial(gaps, state))
+
+
+def gaps(state: WorldState, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each contact key's gap now (length units, < 0 overlapping) and the slack a contact
+    at rest keeps (engine.events.CONTACT_SLACK of the smaller radius)."""
+    store = state.store
+    assert store is not None
+    row_of = store.row_of
+    a = row_of[slot_of(keys)]
+    is_c, other = other_of(keys)
+    gap = np.full(len(keys), np.inf)
+    r = store.radius[a].copy()
+    pair = np.flatnonzero(~is_c)
+    if len(pair):
+        b = row_of[other[pair]]
+        d = store.x[a[pair]] - store.x[b]
+        gap[pair] = np.hypot(d[:, 0], d[:, 1]) - r[pair] - store.radius[b]
+        r[pair] = np.minimum(r[pair], store.radius[b])
+    for serial in np.unique(other[is_c]).tolist():
+        sel = np.flatnonzero(is_c & (other == serial))
+        collider = state.events._collider.get(serial)
+        if collider is not None:
+            gap[sel] = signed_distance(collider, store.x[a[sel]]) - r[sel]
+    return gap, slack_for(r)
+
+
+def impulses(state: WorldState, keys: np.ndarray) -> dict[int, tuple[float, float]]:
+    """The impulse (N s, on the key's body) each open contact carried over the last step:
+    a body at rest on a collider, the change of momentum the static contacts gave it
+    (m (v - v_free)); a pile's contacts (with bodies, and with the faces its bodies touch),
+    the resting solver's impulses (engine.collisions)."""
+    store, contacts = state.store, state.contacts
+    out: dict[int, tuple[float, float]] = {}
+    if store is None or not len(keys):
+        return out
+    row_of = store.row_of
+    a = row_of[slot_of(keys)]
+    is_c, other = other_of(keys)
+    serials = None
+    if contacts is not None:
+        serials = np.array([state.events.serial(c) for c in contacts.colliders], np.int64)
+        dv = state.contact_dv
+        if dv is not None and len(dv) == len(store):
+            for k, row, c, o in zip(
+                keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
+            ):
+                f = int(contacts.rest[row])
+                if c and f >= 0 and serials[contacts.faces.owner[f]] == o:
+                    j = dv[row] * store.mass[row]
+                    out[k] = (float(j[0]), float(j[1]))
+    pairs = state.collisions
+    if state.pairs_on and len(pairs._keys):
+        n = len(store)
+        base = pairs._base
+        lam_keys, lam = pairs._keys, pairs._lam
+        n_faces = base - n
+        for k, row, c, o in zip(
+            keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
+        ):
+            if c:
+                if contacts is None or serials is None or n_faces <= 0:
+                    continue
+                # The pile's rows for the faces of this collider that touch this body.
+                faces = np.flatnonzero(serials[contacts.faces.owner] == o)
+                wanted = row * base + n + faces
+            else:
+                b = int(row_of[o])
+                wanted = np.array([min(row, b) * base + max(row, b)], dtype=np.int64)
+            pos = np.minimum(np.searchsorted(lam_keys, wanted), len(lam_keys) - 1)
+            hit = lam_keys[pos] == wanted
+            if not hit.any():
+                continue
+            total = np.zeros(2)
+            for f_or_b, p in zip(wanted[hit].tolist(), pos[hit].tolist(), strict=True):
+                # The solver's normal points toward the key's body (a face's, or from the
+                # other body, whose row is the higher); its tangent is (-n_y, n_x).
+                if c:
+                    assert contacts is not None
+                    f = f_or_b - row * base - n
+                    nrm = contacts._normals(np.array([f]), store.x[[row]])[0][0]
+                else:
+                    d = store.x[row] - store.x[int(row_of[o])]
+                    nrm = d / max(float(np.hypot(d[0], d[1])), 1e-300)
+                tang = np.array([-nrm[1], nrm[0]])
+                total += nrm * lam[p, 0] + tang * lam[p, 1]
+            prev = out.get(k, (0.0, 0.0))
+            out[k] = (prev[0] + float(total[0]), prev[1] + float(total[1]))
+    return out
+
+
+def report(state: WorldState) -> None:
+    """Call the on_contact handlers with the last step's events."""
+    if not state.handlers:
+        return
+    events = state.events
+    for which in (1, 2, 3):
+        if not any(h[which] is not None for h in state.handlers):
+            continue
+        event_list = events.began if which == 1 else events.ended if which == 2 else events.touching
+        for ev in event_list:
+            for handler in state.handlers:
+                fn = handler[which]
+                if fn is None:
+                    continue
+                if handler[0] is ev.body:
+                    fn(ev)
+                elif handler[0] is ev.collider:
+                    fn(ev.flipped() if isinstance(ev.collider, Body) else ev)
+
+
+def add_handler(
+    state: WorldState,
+    target: Body | Collider,
+    begin: Callable[[ContactEvent], Any] | None = None,
+    end: Callable[[ContactEvent], Any] | None = None,
+    post_solve: Callable[[ContactEvent], Any] | None = None,
+) -> Callable[[], None]:
+    """Hold an on_contact handler for ``target``; return the function that takes it off."""
+    if not isinstance(target, (Body, Collider)):
+        raise TypeError(
+            f"target must be a Body or a collider, got {type(target).__name__} {target!r}"
+        )
+    for name, fn in (("begin", begin), ("end", end), ("post_solve", post_solve)):
+        if fn is not None and not callable(fn):
+            raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
+    entry = (target, begin, end, post_solve)
+    state.handlers.append(entry)
+
+    def remove() -> None:
+        """Take this handler off (again: nothing happens)."""
+        state.handlers = [h for h in state.handlers if h is not entry]
+
+    return remove
