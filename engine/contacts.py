@@ -58,6 +58,7 @@ operation on 140 rows costs nearly what one on 1,000 does.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -72,6 +73,8 @@ from .faces import (
     compile_faces,
     face_meets,
     face_normals,
+    faces_added,
+    faces_removed,
     signed_distance,
 )
 from .resting import asleep
@@ -111,48 +114,63 @@ class Contacts:
 
     # -- colliders and bodies ---------------------------------------------------------------
     def add(self, collider: Collider) -> None:
-        """Add a collider (the World checks its type and pushes bodies out of it)."""
-        keys = self._face_keys()
+        """Add a collider (the World checks its type and pushes bodies out of it).
+
+        What it changes is changed in place, in a few array operations whatever the count of
+        colliders: its faces are put among the others (``engine.faces.faces_added``, the same
+        arrays as compiling every collider afresh), the faces after them renumbered (bodies
+        resting on them follow), and the grid takes them in (``FaceGrid.added``) unless it
+        must be laid afresh (then it is, when next needed).
+        """
+        k = len(self.colliders)
         self.colliders.append(collider)
-        self._rebuild()
-        self._renumber(keys, removed=None)
+        old = self._faces
+        if old is None:
+            self._rebuild()
+            return
+        if collider.sensor:
+            self._sensors.append(k)
+            self.inside = np.concatenate(
+                [self.inside, np.zeros((len(self.inside), 1), dtype=bool)], axis=1
+            )
+            self._faces = replace(old)  # a new layout (the same faces) for the caches keyed on it
+            return
+        faces = self._faces = faces_added(old, self.colliders)
+        first, flat = len(old.p), len(faces.p) - len(old.p)
+        if flat:
+            rest = self.rest
+            rest[rest >= first] += flat  # round faces move up past the new flat ones
+        if self._grid is not None:
+            new_round = len(faces.c) - len(old.c)
+            if not self._grid.added(faces, first, flat, new_round):
+                self._grid = None
 
     def remove(self, collider: Collider) -> None:
-        """Take a collider out; bodies resting on it are in flight again."""
+        """Take a collider out; bodies resting on it are in flight again (in place, as
+        ``add``: ``engine.faces.faces_removed``, ``FaceGrid.removed``)."""
         k = self.colliders.index(collider)
-        if collider.sensor:
-            self.inside = np.delete(self.inside, self._sensors.index(k), axis=1)
-        keys = self._face_keys()
         del self.colliders[k]
-        self._rebuild()
-        self._renumber(keys, removed=k)
-
-    def _face_keys(self) -> list[tuple[int, bool, int]]:
-        """Each face's (collider, round?, rank among that collider's faces of its kind)."""
-        faces = self.faces
-        L = len(faces.p)
-        seen: dict[tuple[int, bool], int] = {}
-        keys = []
-        for j, owner in enumerate(faces.owner.tolist()):
-            kind = (owner, j >= L)
-            seen[kind] = seen.get(kind, -1) + 1
-            keys.append((owner, j >= L, seen[kind]))
-        return keys
-
-    def _renumber(self, old_keys: list[tuple[int, bool, int]], removed: int | None) -> None:
-        """Faces were renumbered (a collider added or removed): follow the resting bodies."""
-        resting = np.flatnonzero(self.rest >= 0)
-        if not len(resting):
+        if collider.sensor:
+            j = self._sensors.index(k)
+            self.inside = np.delete(self.inside, j, axis=1)
+            del self._sensors[j]
+        self._sensors = [s - (s > k) for s in self._sensors]
+        old = self._faces
+        if old is None:
+            self._rebuild()
             return
-        new_index = {key: j for j, key in enumerate(self._face_keys())}
-        for i in resting:
-            owner, kind, rank = old_keys[int(self.rest[i])]
-            if owner == removed:
-                self.rest[i] = -1  # its face is gone: it falls
-                continue
-            if removed is not None and owner > removed:
-                owner -= 1
-            self.rest[i] = new_index[(owner, kind, rank)]
+        faces, index = faces_removed(old, self.colliders, k)
+        self._faces = faces
+        if index is None:
+            return
+        rest = self.rest
+        on = rest >= 0
+        if on.any():
+            rest[on] = index[rest[on]]  # -1 for its own faces: those bodies fall
+        if self._grid is not None:
+            gone = np.flatnonzero(index < 0)
+            if not self._grid.removed(faces, index, gone):
+                self._grid = None
 
     def _rebuild(self) -> None:
         solid = [k for k, c in enumerate(self.colliders) if not c.sensor]
@@ -232,7 +250,9 @@ class Contacts:
 
         The velocity's part into the surfaces it then touches is removed.
         """
-        return push_out.push_out(self.colliders, self.faces, self.body_filters, x, v, radius, rows)
+        return push_out.push_out(
+            self.colliders, self.faces, self.body_filters, x, v, radius, rows, self._grid
+        )
 
     # -- the step ---------------------------------------------------------------------------
     def resolve(

@@ -238,6 +238,9 @@ class FaceGrid:
         fin_lines = np.flatnonzero(~faces.infinite)
         self.finite = np.concatenate([fin_lines, L + np.arange(len(faces.c))]).astype(np.intp)
         self.n_finite = len(self.finite)
+        self.table: np.ndarray | None = None
+        self.fin_table: np.ndarray | None = None
+        self._ident = True
         if not self.n_finite:
             return
         # Each finite face as a capsule: segment a-b, radius rad.
@@ -302,34 +305,38 @@ class FaceGrid:
         gx = self.lo[0] + (np.arange(nx) + 0.5) * h
         gy = self.lo[1] + (np.arange(ny) + 0.5) * h
         half_diag = h * math.sqrt(0.5)
+        self._gx, self._gy, self._half_diag = gx, gy, half_diag
+        # What a collider added or taken out (``added``, ``removed``) needs: the extent the
+        # grid was laid over, and each face's capsule and window of cells. The lists hold
+        # slots, each a face's place when it was listed; ``_slot_face`` gives its index now.
+        self._ext = (np.minimum(A, Bq).min(axis=0), np.maximum(A, Bq).max(axis=0), rad.max())
+        self._slot_face = np.arange(F, dtype=np.intp)
+        self._face_slot = np.arange(F, dtype=np.intp)
+        self._slot_inf = np.concatenate([faces.infinite, np.zeros(len(faces.c), dtype=bool)])
+        # Each finite face's capsule: a, b, rad, and |b - a|^2 as ``_distances`` takes it.
+        self._seg = np.full((F, 6), np.nan)
+        self._win = np.zeros((F, 4), dtype=np.intp)  # its window of cells: i0, i1, j0, j1
+        # Whether every slot is its face's index (true until a face is added or taken out).
         bound = np.full((nx, ny), self.far)
         cell_parts: list[np.ndarray] = []
         face_parts: list[np.ndarray] = []
         for k in range(self.n_finite):
             a, b, rr = A[k], Bq[k], rad[k]
-            # Only cells within `far` of the face (its box, grown) can hold a nearer bound.
-            grow = rr + self.far + h
-            i0 = max(int((min(a[0], b[0]) - grow - self.lo[0]) / h), 0)
-            i1 = min(int((max(a[0], b[0]) + grow - self.lo[0]) / h) + 1, nx)
-            j0 = max(int((min(a[1], b[1]) - grow - self.lo[1]) / h), 0)
-            j1 = min(int((max(a[1], b[1]) + grow - self.lo[1]) / h) + 1, ny)
-            cx, cy = np.meshgrid(gx[i0:i1], gy[j0:j1], indexing="ij")
-            ab = b - a
-            ab2 = float(ab @ ab)
-            u = ((cx - a[0]) * ab[0] + (cy - a[1]) * ab[1]) / ab2 if ab2 > 0 else cx * 0.0
-            u = np.clip(u, 0.0, 1.0)
-            # No point of a cell is nearer the face than its centre less half its diagonal.
-            dist = np.hypot(cx - a[0] - u * ab[0], cy - a[1] - u * ab[1]) - rr - half_diag
+            f = int(self.finite[k])
+            i0, i1, j0, j1 = win = self._window(a, b, rr)
+            dist = self._distances(a, b, rr, win)
             np.minimum(bound[i0:i1, j0:j1], dist, out=bound[i0:i1, j0:j1])
             di, dj = np.nonzero(dist <= self.pad)
             cell_parts.append((i0 + di) * ny + (j0 + dj))
-            face_parts.append(np.full(len(di), self.finite[k], dtype=np.intp))
-        self.bound = bound
+            face_parts.append(np.full(len(di), f, dtype=np.intp))
+            self._seg[f] = (a[0], a[1], b[0], b[1], rr, _length2(a, b))
+            self._win[f] = win
         # The bounds with a ring of cells around them holding the margin: any point outside
         # the grid is looked up in the ring (clipped), so a lookup needs no inside test.
         ring = np.full((nx + 2, ny + 2), self.margin)
         ring[1:-1, 1:-1] = bound
         self._ring = ring.reshape(-1)
+        self.bound = ring[1:-1, 1:-1]  # a view: the same numbers
         # ``gap``'s bounds: the same with the endless faces in them, so inside the grid a
         # lookup is the whole lower bound. The signed distance from a face, n.x - c, changes
         # by at most |x - x'| between two points, so over a cell it is at least its value at
@@ -340,18 +347,22 @@ class FaceGrid:
         # are all a Box's walls and the grid covers its corners, the ring holds -inf: a body
         # outside the grid is outside the box, in the wall, and is always looked at.
         self._gap_ring = self._ring
+        self._gap_inner = self.bound
         self.boxed = faces.boxed and covers
+        self._inf_bound: np.ndarray | None = None
         if self.n_inf:
-            both = bound.copy()
+            endless = np.full((nx, ny), np.inf)
             for k in range(self.n_inf):
                 (pnx, pny), c = self.inf_n[k], self.inf_c[k]
                 at = np.add.outer(gx * pnx, gy * pny)  # cx n_x + cy n_y, cell by cell
                 at -= c
                 at -= half_diag + 1e-9 * h
-                np.minimum(both, at, out=both)
+                np.minimum(endless, at, out=endless)
+            self._inf_bound = endless  # the endless faces' part of the bounds, kept
             ring = np.full((nx + 2, ny + 2), -np.inf if self.boxed else self.margin)
-            ring[1:-1, 1:-1] = both
+            np.minimum(bound, endless, out=ring[1:-1, 1:-1])
             self._gap_ring = ring.reshape(-1)
+            self._gap_inner = ring[1:-1, 1:-1]
             outside = np.ones((nx + 2, ny + 2), dtype=bool)
             outside[1:-1, 1:-1] = False
             self.outside = outside.reshape(-1)
@@ -446,15 +457,295 @@ class FaceGrid:
         else:  # no endless faces: the lists are the finite ones, already sorted
             faces_sorted, counts = self.faces_of, self.count
             cells_sorted = np.repeat(np.arange(len(counts)), counts)
-        width = max(int(counts.max()), 1)
-        self.table: np.ndarray | None = None
-        if len(counts) * width <= 4_000_000:  # else (faces crowded in a cell) the other way
-            start = np.cumsum(counts) - counts
-            table = np.full((len(counts), width), -1, dtype=np.int32)
-            table[cells_sorted, np.arange(len(cells_sorted)) - start[cells_sorted]] = faces_sorted
-            self.table = table
+        self.table = _as_table(cells_sorted, faces_sorted, counts)
+        #: The finite faces' lists alone as a table too (``listed``), when they fit one:
+        #: rows can take a face or give one up in place (``added``, ``removed``). Without it
+        #: (faces crowded in a cell) ``listed`` reads the sorted lists, and a change of the
+        #: colliders builds the grid afresh.
+        self.fin_table = None
+        if self.table is not None:
+            if wall_cells:
+                cells_fin = np.repeat(np.arange(len(self.count)), self.count)
+                self.fin_table = _as_table(cells_fin, self.faces_of, self.count)
+            else:
+                self.fin_table = self.table
         # Each face's capsule numbers in one table (a row per face) for ``narrow``.
         self.cap = np.column_stack([self.cap_a, self.cap_ab, self.cap_inv, self.cap_rad])
+
+    def _window(self, a: np.ndarray, b: np.ndarray, rr: float) -> tuple[int, int, int, int]:
+        """The cells (i0:i1, j0:j1) that can hold a bound from the capsule a-b of radius rr:
+        those within ``far`` of it (its box, grown)."""
+        h, (nx, ny) = self.h, self.shape
+        grow = rr + self.far + h
+        i0 = max(int((min(a[0], b[0]) - grow - self.lo[0]) / h), 0)
+        i1 = min(int((max(a[0], b[0]) + grow - self.lo[0]) / h) + 1, nx)
+        j0 = max(int((min(a[1], b[1]) - grow - self.lo[1]) / h), 0)
+        j1 = min(int((max(a[1], b[1]) + grow - self.lo[1]) / h) + 1, ny)
+        return i0, i1, j0, j1
+
+    def _distances(
+        self, a: np.ndarray, b: np.ndarray, rr: float, win: tuple[int, int, int, int]
+    ) -> np.ndarray:
+        """The lower bound the capsule a-b of radius rr gives the cells of ``win``: the
+        distance from each cell's centre less half its diagonal (no point of a cell is
+        nearer). Cell by cell the same numbers whatever the window."""
+        i0, i1, j0, j1 = win
+        # The cells' centres as a column of x and a row of y, broadcast: each cell's numbers
+        # come from the same operations on the same two coordinates as over a full mesh.
+        dx = self._gx[i0:i1, None] - a[0]
+        dy = self._gy[None, j0:j1] - a[1]
+        ab = b - a
+        ab2 = _length2(a, b)
+        if ab2 > 0:
+            u = (dx * ab[0] + dy * ab[1]) / ab2
+            np.clip(u, 0.0, 1.0, out=u)
+            dist = np.hypot(dx - u * ab[0], dy - u * ab[1])
+        else:  # a point: u = 0, and x - 0 * 0 is x
+            dist = np.hypot(dx, dy)
+        dist -= rr
+        dist -= self._half_diag
+        return dist
+
+    def added(self, faces: Faces, first: int, flat: int, round_: int) -> bool:
+        """Take in the faces of a collider just added (``engine.faces.faces_added``: its
+        ``flat`` flat faces are ``first``..., its ``round_`` round ones the last), in place:
+        its lists, bounds and capsules, the same as building the grid afresh. False (and
+        nothing changed) when the grid must be built afresh instead: it has no finite faces
+        or no tables, the collider has an endless face, or it reaches past the extent the
+        grid was laid over."""
+        if not self.n_finite or self.fin_table is None or self.table is None:
+            return False
+        if flat and bool(faces.infinite[first : first + flat].any()):
+            return False
+        F, D = len(faces.owner), len(faces.c)
+        # Each new face's capsule a-b of radius rad, as __init__ takes it.
+        A: list[np.ndarray] = []
+        Bq: list[np.ndarray] = []
+        rad: list[float] = []
+        if flat:
+            fl = slice(first, first + flat)
+            n = faces.n[fl]
+            tang = np.stack([-n[:, 1], n[:, 0]], axis=1)
+            A += list(faces.p[fl] + tang * faces.lo[fl, None])
+            Bq += list(faces.p[fl] + tang * faces.hi[fl, None])
+            rad += faces.rho[fl].tolist()
+        A += list(faces.c[D - round_ :])
+        Bq += A[flat:]
+        rad += faces.r[D - round_ :].tolist()
+        lo, hi, rmax = self._ext
+        for a, b, rr in zip(A, Bq, rad, strict=True):
+            if (
+                rr > rmax
+                or min(a[0], b[0]) < lo[0]
+                or min(a[1], b[1]) < lo[1]
+                or max(a[0], b[0]) > hi[0]
+                or max(a[1], b[1]) > hi[1]
+            ):
+                return False  # a grid laid afresh would be laid differently
+        count = flat + round_
+        ids = list(range(first, first + flat)) + list(range(F - round_, F))
+        S = len(self._slot_face)
+        slots = list(range(S, S + count))
+        sf = self._slot_face
+        shifted = flat and D > round_  # round faces before it move up past its flat ones
+        if shifted:
+            sf[sf >= first] += flat
+        self._slot_face = np.concatenate([sf, ids])
+        fs = self._face_slot
+        if flat:
+            self._face_slot = np.concatenate([fs[:first], slots[:flat], fs[first:], slots[flat:]])
+        else:
+            self._face_slot = np.concatenate([fs, slots])
+        self._slot_inf = np.concatenate([self._slot_inf, np.zeros(count, dtype=bool)])
+        # Capsule rows, as __init__ makes them (the same operations, in floats).
+        seg, rows, wins = [], [], []
+        for a, b, rr in zip(A, Bq, rad, strict=True):
+            abx, aby = float(b[0] - a[0]), float(b[1] - a[1])
+            ab2 = abx * abx + aby * aby
+            inv = 1.0 / ab2 if ab2 > 0.0 else 0.0
+            rows.append(
+                (a[0], a[1], abx, aby, inv, rr * (1.0 + 1e-8) + 1e-10 * (1.0 + math.sqrt(ab2)))
+            )
+            seg.append((a[0], a[1], b[0], b[1], rr, _length2(a, b)))
+            wins.append(self._window(a, b, rr))
+        self._seg = np.concatenate([self._seg, seg])
+        self._win = np.concatenate([self._win, wins])
+        cap, new_rows = self.cap, np.array(rows)
+        if flat:
+            self.cap = np.concatenate([cap[:first], new_rows[:flat], cap[first:], new_rows[flat:]])
+        else:
+            self.cap = np.concatenate([cap, new_rows])
+        self._ident = self._ident and not shifted
+        if flat:
+            self._renumbered(faces)
+        else:
+            self.finite = np.concatenate([self.finite, ids])
+            self.n_finite = len(self.finite)
+        key = self._keys() if shifted else None
+        ny = self.shape[1]
+        for k in range(count):
+            s, f = slots[k], ids[k]
+            i0, i1, j0, j1 = win = wins[k]
+            dist = self._distances(A[k], Bq[k], rad[k], win)
+            np.minimum(self.bound[i0:i1, j0:j1], dist, out=self.bound[i0:i1, j0:j1])
+            self._bounds_changed(win)
+            di, dj = np.nonzero(dist <= self.pad)
+            cells = (i0 + di + 1) * (ny + 2) + (j0 + dj + 1)
+            for which in ("table", "fin_table"):
+                if which == "fin_table" and self.fin_table is self.table:
+                    continue
+                table = getattr(self, which)
+                # The face goes last in each list unless it is flat and round faces are
+                # listed after it (then by ``key``).
+                grown = _insert(table, cells, s, f, key)
+                if grown is None:
+                    return False  # the caller drops this grid
+                if grown is not table:
+                    if self.fin_table is table:
+                        self.fin_table = grown
+                    setattr(self, which, grown)
+        return True
+
+    def removed(self, faces: Faces, index: np.ndarray, gone: np.ndarray) -> bool:
+        """Let go of the faces ``gone`` of a collider just taken out (old indices;
+        ``index``: each old face's new index, ``engine.faces.faces_removed``), in place: the
+        same lists, bounds and capsules as building the grid afresh. False when it must be
+        built afresh instead (as for ``added``, or when the extent the grid was laid over
+        shrinks)."""
+        if not self.n_finite or self.fin_table is None or self.table is None:
+            return False
+        slots = self._face_slot[gone]
+        if bool(self._slot_inf[slots].any()):
+            return False
+        live = (self._slot_face >= 0) & ~self._slot_inf
+        live[slots] = False
+        if not live.any():
+            return False
+        lo, hi, rmax = self._ext
+        inner = all(
+            rr < rmax
+            and min(a0, b0) > lo[0]
+            and min(a1, b1) > lo[1]
+            and max(a0, b0) < hi[0]
+            and max(a1, b1) < hi[1]
+            for a0, a1, b0, b1, rr, _ in self._seg[slots].tolist()
+        )
+        if not inner:
+            # It touches the extent the grid was laid over: is that extent still the same?
+            seg = self._seg[live]
+            A, Bq, rad = seg[:, :2], seg[:, 2:4], seg[:, 4]
+            if not (
+                np.array_equal(np.minimum(A, Bq).min(axis=0), lo)
+                and np.array_equal(np.maximum(A, Bq).max(axis=0), hi)
+                and float(rad.max()) == rmax
+            ):
+                return False
+        tables = [self.table] if self.fin_table is self.table else [self.table, self.fin_table]
+        sf = self._slot_face
+        self._slot_face = np.where(sf >= 0, index[np.maximum(sf, 0)], -1)
+        self._face_slot = np.delete(self._face_slot, gone)
+        self.cap = np.delete(self.cap, gone, axis=0)
+        self._renumbered(faces)
+        ny = self.shape[1]
+        for s in slots.tolist():
+            sg = self._seg[s]
+            i0, i1, j0, j1 = w = tuple(self._win[s].tolist())
+            dist = self._distances(sg[:2], sg[2:4], sg[4], w)
+            di, dj = np.nonzero(dist <= self.pad)
+            cells = (i0 + di + 1) * (ny + 2) + (j0 + dj + 1)
+            for table in tables:
+                _take_out(table, cells, s)
+            # The cells it was the least bound of (or tied): only there the bound changes,
+            # to the least of the faces left whose windows hold the cell, or ``far``.
+            di, dj = np.nonzero(dist <= self.bound[i0:i1, j0:j1])
+            if len(di):
+                self.bound[i0 + di, j0 + dj] = self._least(live, i0 + di, j0 + dj)
+                self._bounds_changed(w)
+            self._seg[s] = np.nan
+        if 2 * int(live.sum()) + 64 < len(self._slot_face):
+            self._compact()
+        return True
+
+    def _least(self, live: np.ndarray, ci: np.ndarray, cj: np.ndarray) -> np.ndarray:
+        """The bounds of cells (ci, cj) from the ``live`` faces (by slot) whose windows hold
+        them, at most ``far``: what building afresh gives them, by the same operations as
+        ``_distances`` on each face's numbers, all faces at once."""
+        win = self._win
+        near = np.flatnonzero(
+            live
+            & (win[:, 0] <= int(ci.max()))
+            & (win[:, 1] > int(ci.min()))
+            & (win[:, 2] <= int(cj.max()))
+            & (win[:, 3] > int(cj.min()))
+        )
+        least = np.full(len(ci), self.far)
+        if not len(near):
+            return least
+        sg, w = self._seg[near], win[near]
+        a0, a1, b0, b1 = (sg[:, k : k + 1] for k in range(4))
+        rr, ab2 = sg[:, 4:5], sg[:, 5:6]
+        held = (ci >= w[:, 0:1]) & (ci < w[:, 1:2]) & (cj >= w[:, 2:3]) & (cj < w[:, 3:4])
+        dx = self._gx[ci] - a0  # (faces, cells)
+        dy = self._gy[cj] - a1
+        abx, aby = b0 - a0, b1 - a1
+        point = ab2 <= 0.0
+        u = (dx * abx + dy * aby) / np.where(point, 1.0, ab2)
+        np.clip(u, 0.0, 1.0, out=u)
+        u[np.broadcast_to(point, u.shape)] = 0.0  # a point: x - 0 * 0 is x
+        dist = np.hypot(dx - u * abx, dy - u * aby)
+        dist -= rr
+        dist -= self._half_diag
+        dist[~held] = np.inf
+        np.minimum(least, dist.min(axis=0), out=least)
+        return least
+
+    def _renumbered(self, faces: Faces) -> None:
+        """After faces were added or taken out: the endless and finite faces' indices, and
+        whether every slot is its face's index."""
+        L = len(faces.p)
+        self.inf_ids = np.flatnonzero(faces.infinite)
+        self.finite = np.concatenate([np.flatnonzero(~faces.infinite), L + np.arange(len(faces.c))])
+        self.finite = self.finite.astype(np.intp)
+        self.n_finite = len(self.finite)
+        sf = self._slot_face
+        self._ident = len(sf) == len(faces.owner) and bool(np.array_equal(sf, np.arange(len(sf))))
+
+    def _keys(self) -> np.ndarray:
+        """Each slot's place in a table's rows: the endless faces first (-1), then by index."""
+        return np.where(self._slot_inf, -1, self._slot_face)
+
+    def _bounds_changed(self, win: tuple[int, int, int, int]) -> None:
+        """``gap``'s bounds over ``win`` from ``bound`` (the ring's share the same numbers)."""
+        i0, i1, j0, j1 = win
+        if self._inf_bound is not None:
+            np.minimum(
+                self.bound[i0:i1, j0:j1],
+                self._inf_bound[i0:i1, j0:j1],
+                out=self._gap_inner[i0:i1, j0:j1],
+            )
+
+    def _compact(self) -> None:
+        """Slots renumbered as the faces' indices (many faces were taken out)."""
+        sf = self._slot_face
+        live = sf >= 0
+        order = sf[live]  # the faces of the live slots, slot order
+        for name in ("table", "fin_table"):
+            table = getattr(self, name)
+            if table is None or (name == "fin_table" and table is self.table):
+                continue
+            ok = table >= 0
+            table[ok] = sf[table[ok]]
+        F = len(self._face_slot)
+        seg = np.full((F, 6), np.nan)
+        win = np.zeros((F, 4), dtype=np.intp)
+        inf = np.zeros(F, dtype=bool)
+        seg[order] = self._seg[live]
+        win[order] = self._win[live]
+        inf[order] = self._slot_inf[live]
+        self._seg, self._win, self._slot_inf = seg, win, inf
+        self._slot_face = np.arange(F, dtype=np.intp)
+        self._face_slot = np.arange(F, dtype=np.intp)
+        self._ident = True
 
     def listed_fast(self, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, face) pairs from ``table`` for bodies in safe cells reaching at most pad:
@@ -463,7 +754,8 @@ class FaceGrid:
         rows = self.table.take(cell, axis=0)
         has = rows >= 0
         fb, _ = np.nonzero(has)
-        return fb, rows[has].astype(np.intp)
+        ff = rows[has].astype(np.intp)
+        return fb, ff if self._ident else self._slot_face.take(ff)
 
     def cells(self, x: np.ndarray) -> np.ndarray:
         """Each point's cell (with the ring; a point outside the grid takes the ring cell
@@ -542,8 +834,21 @@ class FaceGrid:
         parts_f: list[np.ndarray] = []
         listed = reach <= self.pad
         every = bool(listed.all())  # the usual case: no body reaches past its cell's list
-        cnt = self.count.take(cell) if every else np.where(listed, self.count[cell], 0)
-        total = int(cnt.sum())
+        table = self.fin_table
+        if table is not None:
+            # Each listed body's row of the table: its cell's faces in order.
+            some = None if every else np.flatnonzero(listed)
+            rows = table.take(cell if some is None else cell.take(some), axis=0)
+            has = rows >= 0
+            fb, _ = np.nonzero(has)
+            if len(fb):
+                ff = rows[has].astype(np.intp)
+                parts_b.append(fb if some is None else some.take(fb))
+                parts_f.append(ff if self._ident else self._slot_face.take(ff))
+            total = 0
+        else:
+            cnt = self.count.take(cell) if every else np.where(listed, self.count[cell], 0)
+            total = int(cnt.sum())
         if total:
             # Body b's k-th pair is the k-th face of its cell's list:
             # faces_of[start[cell_b] + k], with k = (pair index) - (b's first pair index).
@@ -565,3 +870,76 @@ class FaceGrid:
         if len(parts_b) == 1:
             return parts_b[0], parts_f[0]
         return np.concatenate(parts_b), np.concatenate(parts_f)
+
+
+#: The most entries a cell table (``FaceGrid.table``) may hold: beyond it (faces crowded in a
+#: cell) the lists are read from their sorted form.
+TABLE_SIZE = 4_000_000
+
+
+def _as_table(
+    cells_sorted: np.ndarray, faces_sorted: np.ndarray, counts: np.ndarray
+) -> np.ndarray | None:
+    """Lists sorted by cell (each cell's faces in order, ``counts`` of them) as the rows of a
+    table, -1 past each list's end; None when it would hold more than TABLE_SIZE entries."""
+    width = max(int(counts.max()), 1)
+    if len(counts) * width > TABLE_SIZE:
+        return None
+    start = np.cumsum(counts) - counts
+    table = np.full((len(counts), width), -1, dtype=np.int32)
+    table[cells_sorted, np.arange(len(cells_sorted)) - start[cells_sorted]] = faces_sorted
+    return table
+
+
+def _length2(a: np.ndarray, b: np.ndarray) -> float:
+    """|b - a|^2 of two points (2,), as ``FaceGrid._distances`` has always taken it."""
+    ab = b - a
+    return float(ab @ ab)
+
+
+def _insert(
+    table: np.ndarray, cells: np.ndarray, slot: int, face: int, key: np.ndarray | None
+) -> np.ndarray | None:
+    """Put ``slot`` (face index ``face``) into the lists of ``cells``, each in its place by
+    ``key`` (the slots' order: ``FaceGrid._keys``; None: last, after every face listed), in
+    place; a wider table when a list is full (the old one otherwise), None when a wider one
+    would hold more than TABLE_SIZE."""
+    if not len(cells):
+        return table
+    rows = table.take(cells, axis=0)
+    has = rows >= 0
+    count = has.sum(axis=1)
+    width = table.shape[1]
+    if int(count.max()) >= width:
+        wider = width + max(2, width // 2)
+        if len(table) * wider > TABLE_SIZE:
+            return None
+        grown = np.full((len(table), wider), -1, dtype=table.dtype)
+        grown[:, :width] = table
+        table = grown
+        rows = table.take(cells, axis=0)
+        has = rows >= 0
+        width = wider
+    if key is None:  # it goes last
+        table[cells, count] = slot
+        return table
+    before = has & (key.take(np.where(has, rows, 0)) < face)
+    pos = before.sum(axis=1)[:, None]
+    col = np.arange(width)
+    shifted = np.empty_like(rows)
+    shifted[:, 0] = -1
+    shifted[:, 1:] = rows[:, :-1]
+    table[cells] = np.where(col < pos, rows, np.where(col == pos, slot, shifted))
+    return table
+
+
+def _take_out(table: np.ndarray, cells: np.ndarray, slot: int) -> None:
+    """Take ``slot`` out of the lists of ``cells`` (each holds it), in place."""
+    if not len(cells):
+        return
+    rows = table.take(cells, axis=0)
+    pos = np.argmax(rows == slot, axis=1)[:, None]
+    shifted = np.empty_like(rows)
+    shifted[:, -1] = -1
+    shifted[:, :-1] = rows[:, 1:]
+    table[cells] = np.where(np.arange(rows.shape[1]) < pos, rows, shifted)

@@ -10,12 +10,14 @@ test of the contacts is a test of the ball's centre against the faces grown by R
 
 ``compile_faces`` lays them out as arrays, flat faces first and round ones after (a face's
 index f is a flat face's when f < L, the count of flat faces, and the round face f - L's
-otherwise), each with its owner's material and filter.
+otherwise), each with its owner's material and filter. ``faces_added`` and ``faces_removed``
+give the layout after one collider is added or taken out, the same as compiling the new list
+afresh, in a few array operations (a game adding a peg pays for the peg, not for the board).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -29,6 +31,8 @@ __all__ = [
     "Faces",
     "allowed_pairs",
     "compile_faces",
+    "faces_added",
+    "faces_removed",
     "dot",
     "face_meets",
     "face_normals",
@@ -230,3 +234,154 @@ def face_meets(
         faces, body_filters, np.repeat(rows, n_f), np.tile(np.arange(n_f), len(rows))
     )
     return meets.reshape(len(rows), n_f)
+
+
+def _filter_columns(faces: Faces) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The faces' owners' filters (group, categories, mask), the defaults when ``filters`` is
+    None."""
+    if faces.filters is not None:
+        return faces.filters
+    F = len(faces.owner)
+    d = DEFAULT_FILTER
+    return (
+        np.full(F, d.group, dtype=np.int64),
+        np.full(F, d.categories, dtype=np.int64),
+        np.full(F, d.mask, dtype=np.int64),
+    )
+
+
+def faces_added(faces: Faces, colliders: list[Collider]) -> Faces:
+    """``compile_faces`` of ``colliders`` (the solid ones) when ``faces`` are those of all but
+    the last and the last is solid and new: its flat faces go at the end of the flat ones,
+    its round faces at the end (every round face before them moves up by its count of flat
+    ones). The same arrays as compiling afresh, bit for bit."""
+    k = len(colliders) - 1
+    collider = colliders[k]
+    new = compile_faces([collider], [0])
+    L0 = len(faces.p)
+    nl = len(new.p)
+    owner_new = np.full(len(new.owner), k, dtype=np.intp)
+
+    def merge(old: np.ndarray, add: np.ndarray) -> np.ndarray:
+        # Flat faces first, then round ones: old flat, new flat, old round, new round.
+        return np.concatenate([old[:L0], add[:nl], old[L0:], add[nl:]])
+
+    def merge_list(old: list[Any], add: list[Any]) -> list[Any]:
+        return old[:L0] + add[:nl] + old[L0:] + add[nl:]
+
+    owner = merge(faces.owner, owner_new)
+    boxed = faces.boxed and (isinstance(collider, Box) or not bool(new.infinite.any()))
+    filters = None
+    if faces.filters is not None or new.filters is not None:
+        old_f, add_f = _filter_columns(faces), _filter_columns(new)
+        filters = (
+            merge(old_f[0], add_f[0]),
+            merge(old_f[1], add_f[1]),
+            merge(old_f[2], add_f[2]),
+        )
+    polygons = faces.polygons
+    if isinstance(collider, Polygon):
+        polygons = (*polygons, np.arange(L0, L0 + nl, dtype=np.intp))
+    nd = len(new.c)
+
+    def cat(old: np.ndarray, add: np.ndarray, count: int) -> np.ndarray:
+        # (No faces of a kind added: the old array, unchanged, as the new layout's.)
+        return np.concatenate([old, add]) if count else old
+
+    return Faces(
+        cat(faces.p, new.p, nl),
+        cat(faces.n, new.n, nl),
+        cat(faces.rho, new.rho, nl),
+        cat(faces.two, new.two, nl),
+        cat(faces.lo, new.lo, nl),
+        cat(faces.hi, new.hi, nl),
+        cat(faces.c, new.c, nd),
+        cat(faces.r, new.r, nd),
+        owner,
+        merge(faces.e, new.e),
+        merge(faces.mu, new.mu),
+        cat(faces.infinite, new.infinite, nl),
+        boxed,
+        faces.line_list + new.line_list if nl else faces.line_list,
+        faces.disc_list + new.disc_list if nd else faces.disc_list,
+        merge_list(faces.e_list, new.e_list),
+        merge_list(faces.mu_list, new.mu_list),
+        merge_list(faces.owner_list, [k] * len(new.owner)),
+        filters,
+        polygons,
+    )
+
+
+def faces_removed(
+    faces: Faces, colliders: list[Collider], k: int
+) -> tuple[Faces, np.ndarray | None]:
+    """``compile_faces`` of ``colliders`` (the solid ones) when ``faces`` are those of the same
+    list with collider k still in it (``colliders`` is the list without it), and each old
+    face's new index (-1 for k's own faces), or None when no face moved (k was a sensor, or
+    had no faces). The same arrays as compiling afresh, bit for bit."""
+    L, F = len(faces.p), len(faces.owner)
+    mine = np.flatnonzero(faces.owner == k)
+    owner = faces.owner - (faces.owner > k)
+    if not len(mine):
+        # A sensor (no faces): only the owners after it move down.
+        return replace(faces, owner=owner, owner_list=owner.tolist()), None
+    flat = mine[mine < L]
+    disc = mine[mine >= L]
+    # A collider's faces of each kind are one run (compile_faces goes collider by collider).
+    a, nl = (int(flat[0]), len(flat)) if len(flat) else (L, 0)
+    b, nd = (int(disc[0]), len(disc)) if len(disc) else (F, 0)
+    keep = np.ones(F, dtype=bool)
+    keep[mine] = False
+    index = np.cumsum(keep) - 1
+    index[mine] = -1
+
+    def cut(arr: np.ndarray) -> np.ndarray:  # both runs out of an array over every face
+        return np.concatenate([arr[:a], arr[a + nl : b], arr[b + nd :]])
+
+    def drop(arr: np.ndarray, at: int, count: int) -> np.ndarray:  # one run out
+        return np.concatenate([arr[:at], arr[at + count :]]) if count else arr
+
+    def cut_list(old: list[Any]) -> list[Any]:
+        return old[:a] + old[a + nl : b] + old[b + nd :]
+
+    owner = cut(owner)
+    p, n = drop(faces.p, a, nl), drop(faces.n, a, nl)
+    infinite = drop(faces.infinite, a, nl)
+    inf_owner = owner[: len(p)][infinite]
+    boxed = all(isinstance(colliders[j], Box) for j in inf_owner.tolist())
+    filters = None
+    if faces.filters is not None:
+        cols = tuple(cut(col) for col in faces.filters)
+        d = DEFAULT_FILTER
+        if bool(np.any((cols[0] != d.group) | (cols[1] != d.categories) | (cols[2] != d.mask))):
+            filters = (cols[0], cols[1], cols[2])
+    polygons = tuple(
+        np.where(cols >= a + nl, cols - nl, cols)
+        for cols in faces.polygons
+        if not (nl and a <= int(cols[0]) < a + nl)
+    )
+    return (
+        Faces(
+            p,
+            n,
+            drop(faces.rho, a, nl),
+            drop(faces.two, a, nl),
+            drop(faces.lo, a, nl),
+            drop(faces.hi, a, nl),
+            drop(faces.c, b - L, nd),
+            drop(faces.r, b - L, nd),
+            owner,
+            cut(faces.e),
+            cut(faces.mu),
+            infinite,
+            boxed,
+            faces.line_list[:a] + faces.line_list[a + nl :] if nl else faces.line_list,
+            faces.disc_list[: b - L] + faces.disc_list[b - L + nd :] if nd else faces.disc_list,
+            cut_list(faces.e_list),
+            cut_list(faces.mu_list),
+            owner.tolist(),
+            filters,
+            polygons,
+        ),
+        index,
+    )

@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from .colliders import Collider, Polygon
+from .face_grid import FaceGrid
 from .faces import Faces, dot, face_meets, signed_distance
 from .filters import DEFAULT as DEFAULT_FILTER
 from .impact import TOUCH
@@ -37,11 +38,16 @@ def push_out(
     v: np.ndarray,
     radius: np.ndarray,
     rows: np.ndarray,
+    grid: FaceGrid | None = None,
 ) -> list[tuple[int, int]]:
     """Move bodies (World ``rows``) that overlap a solid collider they meet to the nearest
     place outside every one (``push_out_rows``), in place; return (place in x, a
     collider it overlapped) for each. ``faces``: the solid colliders' (engine.faces);
     ``body_filters``: the World's bodies' (group, categories, mask) arrays by row, or None.
+    ``grid``: the faces' broadphase if it is built: then only the bodies its bounds put
+    within reach of a face, against the colliders of the faces near them (and every
+    polygon, whose inside the bounds do not see), are looked at; the rest overlap nothing.
+    The same answer as looking at every body against every collider.
 
     The velocity's part into the surfaces it then touches is removed.
     """
@@ -49,10 +55,20 @@ def push_out(
         return []
     overlapped = []
     bf = body_filters
-    for k, c in enumerate(colliders):
+    some: np.ndarray | None = None  # the rows to look at, None for all
+    look: list[int] | range = range(len(colliders))
+    if grid is not None:
+        some, look = _near(grid, faces, colliders, x, radius)
+    for k in look:
+        c = colliders[k]
         if not c.sensor:
-            d = signed_distance(c, x) - radius
-            bad = d < -1e-9 * (1.0 + radius)
+            if some is None or isinstance(c, Polygon):
+                d = signed_distance(c, x) - radius
+                bad = d < -1e-9 * (1.0 + radius)
+            else:
+                r = radius[some]
+                bad = np.zeros(len(x), dtype=bool)
+                bad[some] = signed_distance(c, x[some]) - r < -1e-9 * (1.0 + r)
             if c.filter != DEFAULT_FILTER and bf is not None and bad.any():
                 f = c.filter
                 g, cat, m = bf[0][rows], bf[1][rows], bf[2][rows]
@@ -68,6 +84,45 @@ def push_out(
         if first is not None:
             moved.append((i, first))
     return moved
+
+
+def _near(
+    grid: FaceGrid, faces: Faces, colliders: list[Collider], x: np.ndarray, radius: np.ndarray
+) -> tuple[np.ndarray, list[int]]:
+    """(the rows of x that may overlap a face, the colliders to look at, in order): the rows
+    whose lower bound on the distance to every face (``FaceGrid.gap``) is within their
+    radius (a body overlaps a collider by more than 1e-9 (1 + r) only inside its faces grown
+    by r, and the bound is below the distance by far more than its rounding), and the
+    colliders of the faces within reach of those, with every polygon."""
+    cell = grid.cells(x) if grid.n_finite else None
+    slack = 1e-9 * (1.0 + radius)
+    some = np.flatnonzero(grid.gap(x, cell) - radius <= slack)
+    owners: list[np.ndarray] = (
+        [np.array([k for k, c in enumerate(colliders) if isinstance(c, Polygon)], dtype=np.intp)]
+        if faces.polygons
+        else []
+    )
+    if len(some):
+        X, r = x[some], radius[some] + 2.0 * slack[some]
+        bi, f = grid.pairs(X, r)
+        finite = f >= len(faces.p)
+        finite[~finite] = ~faces.infinite[f[~finite]]
+        if finite.any():
+            # The listed faces as capsules (``FaceGrid.cap``: a, b - a, 1 / |b - a|^2,
+            # radius grown): only those a ball reaches.
+            k = np.flatnonzero(finite)
+            cap = grid.cap[f[k]]
+            D = X[bi[k]] - cap[:, :2]
+            along = np.clip(dot(D, cap[:, 2:4]) * cap[:, 4], 0.0, 1.0)
+            C = D - cap[:, 2:4] * along[:, None]
+            far = np.sqrt(dot(C, C)) - cap[:, 5] > r[bi[k]]
+            keep = np.ones(len(f), dtype=bool)
+            keep[k[far]] = False
+            f = f[keep]
+        owners.append(faces.owner[f])
+    if not owners:
+        return some, []
+    return some, np.unique(np.concatenate(owners)).tolist()
 
 
 def push_out_rows(
