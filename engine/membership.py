@@ -1,0 +1,245 @@
+"""What a World holds, and how things come and go: bodies (added in batches, all or
+nothing), forces and the bodies they act on, links (rods, cables, pins) and static colliders.
+
+Adding a body or a collider pushes out any body found inside a solid collider
+(engine.overlaps); taking a body out ends its open contacts and its links.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Any, TypeVar
+
+import numpy as np
+
+from .body import Body
+from .colliders import Collider
+from .contacts import Contacts
+from .forces import Force, as_force
+from .links import Link, Pin
+from .overlaps import freed, push_out
+from .world_state import AttachedForce
+
+if TYPE_CHECKING:
+    from .world_state import WorldState
+
+__all__ = [
+    "ColliderT",
+    "LinkT",
+    "add_all",
+    "add_collider",
+    "add_force",
+    "add_link",
+    "remove",
+    "remove_collider",
+    "remove_link",
+]
+
+#: What add_collider and add_link hand back: the very object given, with its own type.
+ColliderT = TypeVar("ColliderT", bound=Collider)
+LinkT = TypeVar("LinkT", bound=Link)
+
+
+def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
+    """Add many bodies at once (one array copy instead of one per body); return them.
+
+    All or nothing: a batch with one bad body is refused whole and changes nothing.
+    """
+    batch = list(bodies)
+    for b in batch:
+        if not isinstance(b, Body):
+            raise TypeError(f"World.add takes a Body, got {type(b).__name__} {b!r}")
+        if b.world is not None:
+            which = "this" if b.world is state.world else "another"
+            raise ValueError(f"that body is already in {which} World; remove it first")
+    if len({id(b) for b in batch}) != len(batch):
+        raise ValueError("World.add_all was given the same body twice")
+    if not batch:
+        return batch
+    # An empty World takes the dimension of the first body; every body must share it.
+    dim = state.dim if state.dim is not None else batch[0].dim
+    for b in batch:
+        state.check_dim(b.dim, "the body", dim)
+    store = state.ensure_store(dim)
+    slots = store.append(
+        np.array([b.pos for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+        np.array([b.vel for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+        np.array([b.mass for b in batch], dtype=float),
+        np.array([b.own_acc for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+        (
+            np.array([b.radius for b in batch], dtype=float),
+            np.array([b.restitution for b in batch], dtype=float),
+            np.array([b.friction for b in batch], dtype=float),
+        ),
+        (
+            np.array([b.filter.group for b in batch], dtype=np.int64),
+            np.array([b.filter.categories for b in batch], dtype=np.int64),
+            np.array([b.filter.mask for b in batch], dtype=np.int64),
+        ),
+        np.array([b.kinematic for b in batch], dtype=bool),
+        [b.shape for b in batch],
+    )
+    for b, slot in zip(batch, slots, strict=True):
+        b._store, b._slot = store, slot
+        state.bodies.append(b)
+    if state.contacts is not None:
+        state.contacts.bodies_added(len(batch))
+        push_out(state, range(len(state.bodies) - len(batch), len(state.bodies)), stacklevel=4)
+    state.changed_structure(appended=True)
+    return batch
+
+
+def remove(state: WorldState, body: Body) -> None:
+    """Take ``body`` out of the world; it keeps its last position, velocity and mass."""
+    if not isinstance(body, Body) or body.world is not state.world:
+        raise ValueError(f"that body is not in this World: {body!r}")
+    store = state.store
+    assert store is not None
+    pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
+    row = store.row(body._slot)
+    # The last step's events are named now, before the rows shift, and the body's open
+    # contacts end (reported with the next step).
+    state.events.body_removed(body._slot, state.t)
+    del state.bodies[row]
+    state.targets.pop(body, None)
+    store.remove(body._slot)
+    gone = [k for k in state.links if body in k.bodies]
+    if gone:
+        # Its links go with it.
+        state.links = [k for k in state.links if body not in k.bodies]
+        state.links_changed()
+    if state.contacts is not None:
+        state.contacts.body_removed(row)
+        freed(state, [b for k in gone for b in k.bodies if b is not body], stacklevel=5)
+    for attached in state.forces:
+        if attached.bodies is not None and body in attached.bodies:
+            attached.bodies.remove(body)
+    body._store, body._slot = None, -1
+    body._store_pos(pos)
+    body._store_vel(vel)
+    body._mass, body._acc = mass, own
+    state.changed_structure()
+
+
+def add_force(
+    state: WorldState, force: Force | Callable[..., Any], bodies: Iterable[Body] | None = None
+) -> Force:
+    """Add a force (a Force, or a callable ``f(t, x, v, mass) -> force``); return it.
+
+    ``bodies``: the bodies it acts on (all of them, now and later, when None).
+    """
+    f = as_force(force)
+    if f.dim is not None:
+        state.check_dim(f.dim, repr(f))
+    if state.requested == "exact" and not f.constant:
+        raise ValueError(
+            f"integrator 'exact' moves bodies by the closed form, which needs constant "
+            f"forces, and {f!r} is not constant; use integrator='auto' or an integrator "
+            f"such as 'rk4'"
+        )
+    members: list[Body] | None = None
+    if bodies is not None:
+        try:
+            members = list(bodies)
+        except TypeError:
+            raise TypeError(
+                f"bodies must be an iterable of bodies in this World, or None for all, "
+                f"got {type(bodies).__name__} {bodies!r}"
+            ) from None
+        for b in members:
+            if not isinstance(b, Body) or b.world is not state.world:
+                raise ValueError(f"bodies must be bodies already added to this World, got {b!r}")
+    if f.dim is not None:
+        state.ensure_store(f.dim)  # checked above; an empty World takes the force's dim
+    state.forces.append(AttachedForce(f, members))
+    state.changed_structure()
+    return f
+
+
+def add_link(state: WorldState, link: LinkT) -> LinkT:
+    """Add a link (``engine.links``: Rod, Cable, Pin) between bodies of this World, or a
+    body and a fixed point, and return it. A pinned body is moved to its pin at once."""
+    if not isinstance(link, Link):
+        raise TypeError(
+            f"add_link takes a link from engine.links (Rod, Cable, Pin), got "
+            f"{type(link).__name__} {link!r}"
+        )
+    if any(k is link for k in state.links):
+        raise ValueError(
+            f"that link is already in this World (a link is added only once): {link!r}"
+        )
+    for b in link.bodies:
+        if b.world is not state.world:
+            raise ValueError(
+                f"the link's bodies must be in this World first (world.add(body)): {b!r}"
+            )
+    if isinstance(link, Pin):
+        if any(isinstance(k, Pin) and k.body is link.body for k in state.links):
+            raise ValueError(
+                f"that body is pinned already: a body takes only one Pin (remove_link the "
+                f"old one first): {link.body!r}"
+            )
+        if link.body.kinematic:
+            raise ValueError(
+                f"a kinematic body is moved by the game and cannot be pinned: {link.body!r}"
+            )
+    state.links.append(link)
+    state.links_changed()
+    if isinstance(link, Pin):
+        store = state.store
+        assert store is not None
+        row = store.row(link.body._slot)
+        store.x[row] = store.prev_x[row] = tuple(link.point)
+        store.v[row] = 0.0
+        state.state_written()
+    return link
+
+
+def remove_link(state: WorldState, link: Link) -> None:
+    """Take a link out of the world (a pinned body is free again)."""
+    if not any(k is link for k in state.links):
+        raise ValueError(f"that link is not in this World: {link!r}")
+    state.links = [k for k in state.links if k is not link]
+    state.retired.append(link)
+    state.links_changed()
+    freed(state, list(link.bodies), stacklevel=5)
+
+
+def add_collider(state: WorldState, collider: ColliderT) -> ColliderT:
+    """Add a static collider (``engine.colliders``) and return it.
+
+    Bodies already inside it are pushed out to its surface, with an OverlapWarning naming
+    both. Colliders are 2D: a 1D World refuses them.
+    """
+    if not isinstance(collider, Collider):
+        raise TypeError(
+            f"add_collider takes a collider from engine.colliders (Plane, Segment, Circle, "
+            f"Box), got {type(collider).__name__} {collider!r}"
+        )
+    state.check_dim(2, f"the collider {collider!r}")
+    if collider in state.colliders:
+        raise ValueError(f"that collider is already in this World: {collider!r}")
+    store = state.ensure_store(2)
+    if state.contacts is None:
+        state.contacts = Contacts()
+        state.contacts.bodies_added(len(store))
+    state.events.settle_reading()
+    state.contacts.add(collider)
+    state.events.collider_added(collider)
+    state.collisions.wake(len(state.bodies))
+    push_out(state, range(len(state.bodies)), stacklevel=4)
+    state.changed_structure()
+    return collider
+
+
+def remove_collider(state: WorldState, collider: Collider) -> None:
+    """Take a collider out of the world."""
+    if collider not in state.colliders:
+        raise ValueError(f"that collider is not in this World: {collider!r}")
+    assert state.contacts is not None
+    # The last step's events are named now, and the collider's open contacts end
+    # (reported with the next step).
+    state.events.collider_removed(collider, state.t)
+    state.contacts.remove(collider)
+    state.collisions.wake(len(state.bodies))
+    state.changed_structure()

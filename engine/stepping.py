@@ -1,0 +1,408 @@
+"""The step pipeline: what ``World.step`` does after the fast affine kernel (engine.affine)
+declines a step, top to bottom.
+
+1. The plan for a step of dt, made once per (dt, what the World holds): the method and its
+   integrator function, whether any two bodies may collide, whether the affine kernel can
+   take the steps.
+2. Time: a new dt folds the time so far into the base (t = t_base + n dt, n whole).
+3. Kinematic bodies given a position take the velocity that reaches it in the step.
+4. The method's step (the closed form from its anchor, or the integrator), every entry
+   checked finite; then the static contacts (engine.contacts: the path swept for impacts),
+   the contacts between bodies (engine.collisions: impacts and piles), and the links
+   (engine.links: RATTLE). A step in which a linked body is struck is taken again in parts.
+5. The step's contact events, and the on_contact handlers (engine.event_dispatch).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .affine import EULERS, prepare_affine
+from .body import Body
+from .event_dispatch import report, settle
+from .forcefield import ForceModel
+from .integrators import Integrator
+from .links import LinkSolver
+from .stability import SimulationDiverged, StabilityWarning
+from .store import BodyStore
+
+if TYPE_CHECKING:
+    from .world_state import WorldState
+
+__all__ = ["SUBSTEPS_AT_IMPACT", "Plan", "advance", "plan"]
+
+# np.add.reduce(a, None) sums every entry without the Python wrapper of ndarray.sum.
+_sum = np.add.reduce
+
+#: How many parts a step is taken again in when a linked body is struck in it.
+SUBSTEPS_AT_IMPACT = 16
+
+#: A step's plan: (dt, the World's version, method, integrator or None, force model, affine).
+Plan = tuple[float, int, str, Integrator | None, ForceModel, bool]
+
+
+def plan(state: WorldState, dt: float, model: ForceModel, name: str) -> Plan:
+    """The plan for steps of ``dt`` (s) by the method ``name``; kept as ``state.fast``."""
+    step = None if name == "exact" else state.policy.integrator(name)
+    # Either Euler method on forces that are all folded (a = a0 - c v) is a fixed
+    # affine map of the state: the World takes it in four array operations.
+    st = state.store
+    state.pairs_on = (
+        st is not None
+        and st.dim == 2
+        and state.collisions.active(st.radius, st.group, st.categories, st.mask, st.shapes)
+    )
+    affine = (
+        name in EULERS
+        and state.policy.custom is None
+        and model.affine
+        and state.contacts is None
+        and not state.pairs_on
+        and not state.links
+        and not state.events.busy
+    )
+    made: Plan = (dt, state.version, name, step, model, affine)
+    state.fast = made
+    return made
+
+
+def advance(state: WorldState, dt: float, made: Plan) -> bool:
+    """Take one step of ``dt`` (s) by the plan; True: the affine kernel is ready to take it
+    instead (nothing has moved yet)."""
+    _, _, name, step, model, affine = made
+    count = state.count
+    if dt != state.dt:
+        # Fold the time so far into the base before counting steps of a new dt.
+        state.void_budget()
+        state.t_base, state.steps_base = state.t, state.steps_base + state.n
+        state.n, state.dt = 0, dt
+    if state.t_base + (count.n + 1) * dt == math.inf:
+        raise ValueError(
+            f"dt must keep the time finite: a step of dt={dt!r} s from t={state.t!r} s would "
+            f"pass the float range (1.8e308 s)"
+        )
+    after = _apply_targets(state, dt) if state.targets else None
+    if state.bodies and affine and after is None and prepare_affine(state, dt, model, name):
+        return True
+    if state.bodies:
+        _step_general(state, dt, name, step, model)
+    else:
+        _quiet(state)  # nothing moved: no solver reports anything
+    count.n += 1
+    if after is not None:
+        # A kinematic body moved by pos stops there: its velocity is what it was before.
+        held = state.store
+        assert held is not None
+        for body, v in after.items():
+            held.v[held.row(body._slot)] = v
+    if state.contacts is not None or state.pairs_on or state.events.busy:
+        # The step ran from t0 = t_base + (n - 1) dt (the time it started at, summed the
+        # same way) to t.
+        settle(state, state.t_base + (state.n - 1) * dt, state.t)
+        report(state)
+    return False
+
+
+def _apply_targets(state: WorldState, dt: float) -> dict[Body, np.ndarray]:
+    """Each kinematic body with a target takes the velocity that reaches it in ``dt``;
+    return the velocities they had, to be given back after the step."""
+    store = state.store
+    assert store is not None
+    before = {}
+    moves = {}
+    for body, target in state.targets.items():
+        row = store.row(body._slot)
+        with np.errstate(over="ignore", invalid="ignore"):
+            v = (np.asarray(target, dtype=float) - store.x[row]) * (1.0 / dt)
+        if not np.isfinite(v).all():
+            del state.targets[body]
+            raise ValueError(
+                f"pos={target!r} of a kinematic body is too far to reach in one step of "
+                f"dt={dt!r} s (the speed passes the float range): the move was dropped; "
+                f"give a nearer position"
+            )
+        moves[row] = v
+    for body in state.targets:
+        row = store.row(body._slot)
+        before[body] = store.v[row].copy()
+        store.v[row] = moves[row]
+    state.targets.clear()
+    state.anchor = None
+    return before
+
+
+def _quiet(state: WorldState) -> None:
+    """A step in which no body moved: the solvers report nothing."""
+    if state.contacts is not None:
+        state.contacts.quiet()
+    state.collisions.quiet()
+
+
+def _step_general(
+    state: WorldState, dt: float, name: str, step: Integrator | None, model: ForceModel
+) -> None:
+    """One step by the closed form or an integrator function, every entry checked.
+
+    With links and contacts both in the World, a step in which a linked body is struck
+    is taken again as SUBSTEPS_AT_IMPACT steps: the blow is found on each body's free
+    path, which misses the links' pull within the step, so its error is second order in
+    the step (engine.links; README "Links"), and 16 times smaller steps make it 256
+    times smaller where it matters, at the cost of one step's work 17 times.
+    """
+    store = state.store
+    assert store is not None
+    t0 = state.t
+    t1 = state.t_base + (state.count.n + 1) * dt
+    contacts = state.contacts
+    if not state.links or state.substeps or (contacts is None and not state.pairs_on):
+        _step_once(state, dt, name, step, model, t0, t1)
+        return
+    saved = (
+        store.x.copy(),
+        store.v.copy(),
+        store.prev_x,
+        state.anchor,
+        state.huge,
+        state.collisions.state(),
+        None if contacts is None else contacts.state(),
+    )
+    _step_once(state, dt, name, step, model, t0, t1)
+    if not _struck_linked(state):
+        return
+    store.x, store.v, store.prev_x = saved[0], saved[1], saved[2]
+    state.anchor, state.huge = saved[3], saved[4]
+    state.collisions.set_state(saved[5])
+    if contacts is not None and saved[6] is not None:
+        contacts.set_state(saved[6], len(store))
+    k = SUBSTEPS_AT_IMPACT
+    h = dt / k
+    sources = [state.collisions] + ([] if contacts is None else [contacts])
+    events: list[tuple[list[Any], list[Any]]] = [([], []) for _ in sources]
+    state.substeps = True
+    try:
+        for i in range(k):
+            end = t1 if i == k - 1 else t0 + (i + 1) * h
+            _step_once(state, h, name, step, model, t0 + i * h, end)
+            for source, (began, ended) in zip(sources, events, strict=True):
+                began += source._began
+                ended += source._ended
+    finally:
+        state.substeps = False
+    for source, (began, ended) in zip(sources, events, strict=True):
+        source._began, source._ended = began, ended
+    store.prev_x = saved[0]  # drawing blends from where the whole step began
+
+
+def _struck_linked(state: WorldState) -> bool:
+    """Whether a contact began in the last step for a body with a link."""
+    solver = state.link_solver
+    if solver is None:
+        return False
+    linked = np.zeros(len(state.bodies), dtype=bool)
+    linked[solver.i] = True
+    linked[solver.j[solver.j >= 0]] = True
+    for rows, others, *_ in state.collisions._began if state.pairs_on else []:
+        if linked[np.asarray(rows, dtype=np.intp)].any():
+            return True
+        if linked[np.asarray(others, dtype=np.intp)].any():
+            return True
+    if state.contacts is not None:
+        # (The few-bodies path lists its rows as a tuple, the arrays' as an array.)
+        for rows, *_ in state.contacts._began:
+            if linked[np.asarray(rows, dtype=np.intp)].any():
+                return True
+    return False
+
+
+def _step_once(
+    state: WorldState,
+    dt: float,
+    name: str,
+    step: Integrator | None,
+    model: ForceModel,
+    t0: float,
+    t1: float,
+) -> None:
+    """One step of ``dt`` from time t0 to t1 (what _step_general takes, once or in parts)."""
+    store = state.store
+    assert store is not None
+    if state.pairs_on and state.collisions.all_asleep(len(store)):
+        # Every body sleeps: nothing moves until something wakes them.
+        store.prev_x = store.x
+        state.collisions.quiet()
+        if state.contacts is not None:
+            state.contacts.quiet()
+        return
+    if step is None:
+        if state.anchor is None:
+            state.anchor = (store.x.copy(), store.v.copy(), t0)
+        x0, v0, ta = state.anchor
+        # Closed form from the anchor: s = s0 + v0 T + a T^2 / 2, v = v0 + a T.
+        elapsed = t1 - ta
+        a = model.a0
+        x1 = x0 + v0 * elapsed + a * (0.5 * elapsed * elapsed)
+        v1 = v0 + a * elapsed
+    elif state.huge:
+        # Near overflow (a blow-up under way): numpy's own overflow warnings would
+        # only come before our clear SimulationDiverged, so silence them.
+        with np.errstate(over="ignore", invalid="ignore"):
+            x1, v1 = step(store.x, store.v, model.accel, t0, dt)
+    else:
+        x1, v1 = step(store.x, store.v, model.accel, t0, dt)
+    state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
+    v_method = v1
+    v_free = v1
+    contacts = state.contacts
+    pairs = state.collisions
+    pull = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
+    frozen = _frozen(state, store)
+    if state.pairs_on:
+        # Which bodies are in a pile (engine.collisions): the soft step takes them, from
+        # the start of the step; the static contacts leave them to it.
+        held = None if contacts is None else contacts.rest >= 0
+        pile = pairs.plan(store.x, store.v, x1, v1, pull, dt, store, held)
+        if pile is not None:
+            frozen = pile if frozen is None else frozen | pile
+            if contacts is not None:
+                contacts.rest[pile] = -1  # their faces are the pile's rows now
+    if contacts is not None:
+        # The path of the step is swept for impacts (engine.contacts); under the closed
+        # form it is the exact parabola.
+        contacts.body_filters = (store.group, store.categories, store.mask)
+        x1, v1 = contacts.resolve(
+            store.x,
+            store.v,
+            x1,
+            v1,
+            dt,
+            t0,
+            store.radius,
+            store.restitution,
+            store.friction,
+            store.mass,
+            model.a0 if step is None else None,
+            frozen,
+            sense=not state.pairs_on,
+        )
+        if contacts.moved:
+            state.anchor = None  # the closed form starts anew from the changed state
+        # What the static contacts did to each velocity (a resting contact's impulse).
+        state.contact_dv = v1 - v_free if contacts.moved else None
+    if not state.pairs_on:
+        pairs.quiet()  # no pair solved: none of its reports is this step's
+    if state.pairs_on:
+        # Bodies meet one another (engine.collisions) on the paths that end where the
+        # method and the static contacts left them.
+        A = pull
+        if contacts is not None and contacts.moved:
+            # A body resting on a collider is carried by it: its acceleration along the
+            # path is the step's mean one.
+            on = contacts.rest >= 0
+            if on.any():
+                A = A.copy()
+                A[on] = (v1[on] - store.v[on]) * (1.0 / dt)
+        x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, store, contacts, pull)
+        if pairs.moved:
+            state.anchor = None
+        if contacts is not None:
+            contacts.sense(x1, dt, t0, store.radius)  # where every body ended
+        if pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned:
+            # The resting solver's limit: a pile too deep for its iterations sinks into
+            # itself (README: "Limits of the contact solver").
+            pairs.warned = True
+            warnings.warn(
+                f"bodies overlap by {pairs.last_overlap:.3g} length units "
+                f"({100 * pairs.last_overlap / pairs.rmin:.0f}% of the smallest radius): "
+                f"this pile is past what {pairs.iterations} contact iterations a step can "
+                f"hold; raise world.contact_iterations or take a smaller dt",
+                StabilityWarning,
+                stacklevel=4,  # (the line in World.step, as before the split)
+            )
+    if state.links:
+        kinked = None
+        if v1 is not v_free:
+            kinked = (v1 != v_free).any(axis=1)
+        x1, v1 = _solve_links(state, store, x1, v1, dt, kinked)
+    store.prev_x, store.x, store.v = store.x, x1, v1
+    state.void_budget()
+
+
+def _frozen(state: WorldState, store: BodyStore) -> np.ndarray | None:
+    """Bodies the static contacts leave alone: asleep, or moved by the game."""
+    frozen = state.collisions.asleep if state.pairs_on and state.collisions.any_asleep else None
+    kin = store.kinematic
+    if kin.any():
+        frozen = kin if frozen is None else frozen | kin
+    return frozen
+
+
+def _check_finite(state: WorldState, x: Any, v: Any, name: str, dt: float, t: float) -> float:
+    """Raise SimulationDiverged if x or v has a nan or inf; else return |sum of x and v|."""
+    # A sum is nan or inf whenever any of its terms is (nan + anything = nan,
+    # inf - inf = nan), so two sums check every entry. Only when one is not finite (or
+    # huge finite values overflowed it) look closer. Not a BLAS dot product: OpenBLAS
+    # takes milliseconds on arrays that are not 64-byte aligned, which numpy's are not.
+    if state.huge:
+        with np.errstate(over="ignore", invalid="ignore"):
+            s = abs(float(_sum(x, None) + _sum(v, None)))
+    else:
+        s = abs(float(_sum(x, None) + _sum(v, None)))
+    if math.isfinite(s):
+        return s
+    if np.isfinite(x).all() and np.isfinite(v).all():
+        return math.inf
+    bad = [
+        f"{i}"
+        for i in range(len(state.bodies))
+        if not (np.isfinite(x[i]).all() and np.isfinite(v[i]).all())
+    ]
+    limit = state.policy.max_stable_dt(name, state.ready()) if name != "exact" else None
+    hint = ""
+    if limit is not None and limit < math.inf:
+        hint = (
+            f"; for the springs and drags held, {name} is stable only for dt < {limit:.4g} s"
+            if limit > 0
+            else f"; {name} is unstable at every dt for the springs held"
+        )
+    raise SimulationDiverged(
+        f"{name} diverged in the step from t={t:g} s with dt={dt:g} s: body "
+        f"{', '.join(bad[:5])}{' ...' if len(bad) > 5 else ''} would become non-finite "
+        f"(nan or inf){hint}. The last finite state is kept.",
+        integrator=name,
+        dt=dt,
+        t=t,
+        max_stable_dt=limit,
+    )
+
+
+def _solve_links(
+    state: WorldState,
+    store: BodyStore,
+    x1: np.ndarray,
+    v1: np.ndarray,
+    dt: float,
+    kinked: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Correct the step's end state for the links (engine.links), warning once per link
+    stretched past what a step can hold."""
+    solver = state.link_solver
+    if solver is None:
+        solver = state.link_solver = LinkSolver(state.links, lambda b: store.row(b._slot))
+    w = np.where(store.kinematic, 0.0, 1.0 / store.mass)
+    x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
+    if solver.moved:
+        state.anchor = None
+    for link in solver.stretched:
+        if not link.warned:
+            link.warned = True
+            warnings.warn(
+                f"{link!r} was stretched past what one step of dt={dt:g} s can pull back "
+                f"along it: it was put back to its length directly; take a smaller dt",
+                StabilityWarning,
+                stacklevel=5,  # (the line in World.step, as before the split)
+            )
+    return x1, v1
