@@ -1,0 +1,312 @@
+"""The broadphase for pairs of bodies: which pairs may touch within a step.
+
+A step's pairs (engine.collisions) are those whose discs can come within reach of each other
+during it. Each body's centre moves on the path that ends at (x1, v1),
+
+    x(t) = x1 - v1 s + A s^2 / 2,    v(t) = v1 - A s,    s = dt - t,
+
+whose velocity is linear in t, so its speed |v(t)| is convex and peaks at an end of the step:
+at most max(|v0|, |v1|) + |A| dt (a bounce off a wall within the step never speeds it up). A
+centre is then never farther from its end position than its ``reach``, that speed times dt,
+plus a margin (5% of its radius) for resting contacts about to close; two bodies can touch
+within the step only if their end positions are at most r_a + r_b + reach_a + reach_b apart.
+
+**The grid** (``grid_pairs``). With cells of side h >= 2 (r_max + reach_max), two bodies
+that can touch lie in the same or neighbouring cells. A cell (c_x, c_y) is keyed by one
+integer, (c_x + 1) ny + (c_y + 1), the bodies sorted by key; each body looks up its own cell
+and four of its eight neighbours, +1, ny - 1, ny and ny + 1 (the other four look it up), each a
+range of the sorted keys found by binary search, so no Python loop runs over bodies. The
+cells hold a body's reach up to a radius, or up to what all but the fastest 2% reach (a
+falling crowd), at most four radii; the faster bodies, few, are tested against every body
+(``pairs_of``): a grid of their size would make every cell hold everyone.
+
+**Struck bodies** (``struck``). An impact can send a body off faster than its own speed
+reaches: a light ball struck by a heavy one. An impact changes a's velocity by
+
+    dv_a = (1 + e) u w_a / (w_a + w_b),    w = 1 / m,
+
+for the closing speed u, which is at most the pair's relative speed over the step,
+|v_a - v_b| at its start or end plus |A_a - A_b| dt, plus what impacts gave either. A body
+whose gain over the step, times dt, passes the margin its reach has is searched again against
+every body with the larger reach, and so on down a chain of such impacts (three links). A
+crowd falling together, or a pile, has small relative speeds and gains nothing here.
+
+Pairs are World rows (a < b), less those that never collide: two kinematic bodies pass
+through each other (as in pymunk), and a pymunk-style filter turns pairs off (the same
+nonzero group, or categories that the other's mask leaves out).
+"""
+
+from __future__ import annotations
+
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .pair_math import dot, norm, sorted_unique
+
+__all__ = [
+    "Search",
+    "deepest_overlap",
+    "find_pairs",
+    "grid_pairs",
+    "pairs_of",
+    "rows_of",
+    "struck",
+    "struck_pairs",
+]
+
+
+class Search(NamedTuple):
+    """What the struck bodies' search (``struck``) needs from ``find_pairs``: each live body's
+    end position, radius, start and end velocities, acceleration and reach (places in
+    ``live``, the World rows of the bodies that collide)."""
+
+    P: np.ndarray
+    r: np.ndarray
+    v0: np.ndarray
+    v1: np.ndarray
+    A: np.ndarray
+    reach: np.ndarray
+    live: np.ndarray
+
+
+def grid_pairs(P: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs (a < b) of points in the same or neighbouring cells of a grid of side h.
+
+    Cells are keyed by one integer, the points sorted by key; each point looks up its own
+    cell and four of its eight neighbours (the other four look it up), each a range of the
+    sorted keys found by binary search. No Python loop over points.
+    """
+    n = len(P)
+    c = np.floor(P * (1.0 / h))
+    c -= c.min(axis=0)
+    c = c.astype(np.int64)
+    ny = int(c[:, 1].max()) + 3
+    key = (c[:, 0] + 1) * ny + (c[:, 1] + 1)
+    order = np.argsort(key, kind="stable")
+    sk = key[order]
+    offsets = np.array([0, 1, ny - 1, ny, ny + 1], dtype=np.int64)
+    q = (key[:, None] + offsets[None, :]).ravel()
+    lo = np.searchsorted(sk, q, "left")
+    cnt = np.searchsorted(sk, q, "right") - lo
+    total = int(cnt.sum())
+    if not total:
+        return np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp)
+    a = np.repeat(np.arange(n * 5) // 5, cnt)
+    first = np.cumsum(cnt) - cnt
+    b = order[np.arange(total) - np.repeat(first - lo, cnt)]
+    same = np.repeat(np.arange(n * 5) % 5 == 0, cnt)
+    keep = np.where(same, a < b, True)
+    return a[keep], b[keep]
+
+
+def pairs_of(
+    bodies: np.ndarray, P: np.ndarray, r: np.ndarray, reach: np.ndarray
+) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """Each of ``bodies`` (a few) against every body it can reach this step: pairs (lower
+    index, higher index) as one array per body, from the positions P, radii r and reaches."""
+    fa, fb = [], []
+    for k in bodies.tolist():
+        near = norm(P - P[k]) <= r + r[k] + reach + reach[k]
+        near[k] = False
+        j = np.flatnonzero(near)
+        fa.append(np.minimum(j, k))
+        fb.append(np.maximum(j, k))
+    return fa, fb
+
+
+def deepest_overlap(
+    x: np.ndarray,
+    radius: np.ndarray,
+    filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+) -> float:
+    """The deepest overlap (length units, 0 if none) of discs at positions x (N, 2) with radii
+    ``radius`` (N,): max of r_a + r_b - |x_a - x_b| over every pair (that ``filters``, arrays of
+    group, categories and mask, lets collide), found through a grid.
+
+    >>> deepest_overlap(np.array([[0.0, 0.0], [0.9, 0.0], [5.0, 0.0]]), np.full(3, 0.5))
+    0.09999999999999998
+    """
+    x = np.asarray(x, dtype=float).reshape(-1, 2)
+    radius = np.broadcast_to(np.asarray(radius, dtype=float), (len(x),))
+    if len(x) < 2:
+        return 0.0
+    a, b = grid_pairs(x, 2.0 * float(radius.max()) + 1e-300)
+    if filters is not None and len(a):
+        g, c, m = filters
+        ok = ~((g[a] == g[b]) & (g[a] != 0)) & ((c[a] & m[b]) != 0) & ((c[b] & m[a]) != 0)
+        a, b = a[ok], b[ok]
+    if not len(a):
+        return 0.0
+    over = radius[a] + radius[b] - norm(x[a] - x[b])
+    return max(float(over.max()), 0.0)
+
+
+def find_pairs(
+    x0: np.ndarray,
+    v0: np.ndarray,
+    x1: np.ndarray,
+    v1: np.ndarray,
+    A: np.ndarray,
+    dt: float,
+    live: np.ndarray,
+    store: Any,
+    has_kin: bool,
+    plain: bool,
+) -> tuple[np.ndarray, np.ndarray, Search]:
+    """World rows (a < b) of the pairs that may touch within the step or are near enough
+    to rest on each other: a grid for the many, every body for the fast few. With them, what
+    the struck bodies' search needs once the piles are known (``struck``). ``has_kin``: some
+    body is kinematic; ``plain``: every live body has the default filter."""
+    P = x1[live]
+    r = store.radius[live]
+    # How far a centre can be from its end position during the step: its speed on a
+    # parabola peaks at an end, and a bounce off a wall never speeds it up.
+    speed = np.maximum(norm(v0[live]), norm(v1[live])) + norm(A[live]) * dt
+    reach = speed * dt + 0.05 * r  # plus a margin for resting contacts about to close
+    rmax = float(r.max())
+    # The grid's cells hold a body's reach: up to a radius, or to what all but the
+    # fastest 2% reach (a falling crowd), at most four radii. Faster bodies, few, are
+    # tested against everyone.
+    fast = reach > rmax
+    if fast.any():
+        cap = min(
+            float(np.partition(reach, int(0.98 * (len(reach) - 1)))[int(0.98 * (len(reach) - 1))]),
+            4.0 * rmax,
+        )
+        fast = reach > max(rmax, cap)
+    slow_reach = float(reach[~fast].max()) if (~fast).any() else 0.0
+    h = 2.0 * (rmax + slow_reach)
+    span = float((P.max(axis=0) - P.min(axis=0)).max())
+    h = max(h, span / 2.0**30)  # keeps cell keys within int64
+    ia, ib = grid_pairs(P, h)
+    # Each pair as (lower row, higher row): one key per pair, step after step (the warm
+    # start and the events find it by that key), and no pair listed twice below.
+    ia, ib = np.minimum(ia, ib), np.maximum(ia, ib)
+    F = np.flatnonzero(fast)
+    if len(F):
+        # Fast bodies against every body (few of them; a grid of their size would make
+        # every cell hold everyone).
+        fa, fb = pairs_of(F, P, r, reach)
+        ia = np.concatenate([ia, *fa])
+        ib = np.concatenate([ib, *fb])
+        key = sorted_unique(ia.astype(np.int64) * len(P) + ib)
+        ia, ib = key // len(P), key % len(P)
+    if len(ia):
+        D = P[ia] - P[ib]
+        far = r[ia] + r[ib] + reach[ia] + reach[ib]
+        keep = dot(D, D) <= far * far
+        ia, ib = ia[keep], ib[keep]
+    search = Search(P, r, v0[live], v1[live], A[live], reach, live)
+    a, b = rows_of(ia, ib, live, store, has_kin, plain)
+    return a, b, search
+
+
+def struck(
+    a: np.ndarray,
+    b: np.ndarray,
+    island: np.ndarray,
+    dt: float,
+    store: Any,
+    search: Search | None,
+    has_kin: bool,
+    plain: bool,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs (a, b) with those of bodies not in a pile that an impact may send off
+    faster than their own speed reaches (``struck_pairs``); a pile's bodies meet what
+    they meet as contacts of the soft step, which needs no such search. ``search``: from
+    ``find_pairs`` (None: no pairs were searched)."""
+    if search is None:
+        return a, b
+    P, r, v0l, v1l, Al, reach, live = search
+    free = ~island[live]
+    if not free.any() or not len(a):
+        return a, b
+    where = np.full(len(island), -1, dtype=np.intp)
+    where[live] = np.arange(len(live))
+    ia, ib = where[a], where[b]
+    both = free[ia] & free[ib]
+    ja, jb = struck_pairs(
+        ia[both], ib[both], P, r, v0l, v1l, Al, reach, dt, live, store, free, has_kin
+    )
+    if len(ja) == int(both.sum()):
+        return a, b  # nobody is struck faster than it reaches: the same pairs
+    na, nb = rows_of(ja, jb, live, store, has_kin, plain)
+    keys = sorted_unique(
+        np.concatenate([a, na]).astype(np.int64) * len(island) + np.concatenate([b, nb])
+    )
+    return keys // len(island), keys % len(island)
+
+
+def rows_of(
+    ia: np.ndarray, ib: np.ndarray, live: np.ndarray, store: Any, has_kin: bool, plain: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs of places in ``live`` as World rows, less those that never collide."""
+    a, b = live[ia], live[ib]
+    if has_kin and len(a):
+        # Two bodies the game moves pass through each other (as in pymunk).
+        kin = store.kinematic
+        ok = ~(kin[a] & kin[b])
+        a, b = a[ok], b[ok]
+    if not plain and len(a):
+        g, c, m = store.group, store.categories, store.mask
+        ok = ~((g[a] == g[b]) & (g[a] != 0))
+        ok &= ((c[a] & m[b]) != 0) & ((c[b] & m[a]) != 0)
+        a, b = a[ok], b[ok]
+    return a, b
+
+
+def struck_pairs(
+    ia: np.ndarray,
+    ib: np.ndarray,
+    P: np.ndarray,
+    r: np.ndarray,
+    v0: np.ndarray,
+    v1: np.ndarray,
+    A: np.ndarray,
+    reach: np.ndarray,
+    dt: float,
+    live: np.ndarray,
+    store: Any,
+    free: np.ndarray,
+    has_kin: bool,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs (ia, ib) (places in live) with those of bodies an impact may send farther
+    than their own speed reaches: a light ball struck by a fast one flies off at up to
+    (1 + e) times their closing speed, and must meet the balls beyond it, not pass them.
+
+    An impact changes a body's velocity by at most (1 + e) w_a / (w_a + w_b) times the
+    pair's closing speed (w = 1 / m; a kinematic body, w = 0, gains nothing), and that
+    is at most their relative speed over the step, |v_a - v_b| at its start or end plus
+    |A_a - A_b| dt, plus what impacts gave either. A body whose gain over the step passes
+    the margin its reach already has (5% of its radius) is searched again against every
+    body with the larger reach, and so on down a chain of such impacts (three links). A
+    crowd falling together, or a pile, has small relative speeds and gains nothing here.
+    """
+    w = 1.0 / store.mass[live]
+    if has_kin:
+        w[store.kinematic[live]] = 0.0
+    e = store.restitution[live]
+    got = np.zeros(len(P))  # what impacts may add to each body's speed
+    done = np.zeros(len(P), dtype=bool)
+    for _ in range(3):
+        rel = np.maximum(norm(v0[ia] - v0[ib]), norm(v1[ia] - v1[ib]))
+        rel += norm(A[ia] - A[ib]) * dt + got[ia] + got[ib]
+        tot = w[ia] + w[ib]
+        close = (1.0 + e[ia] * e[ib]) * rel / np.where(tot > 0.0, tot, 1.0)
+        gain = np.zeros(len(P))
+        np.maximum.at(gain, ia, close * w[ia])
+        np.maximum.at(gain, ib, close * w[ib])
+        grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done & free)
+        if not len(grown):
+            break
+        done[grown] = True
+        got[grown] = gain[grown]
+        reach = reach.copy()
+        reach[grown] += gain[grown] * dt
+        fa, fb = pairs_of(grown, P, r, reach)
+        key = sorted_unique(
+            np.concatenate([ia, *fa]).astype(np.int64) * len(P) + np.concatenate([ib, *fb])
+        )
+        ia, ib = key // len(P), key % len(P)
+    return ia, ib

@@ -1,0 +1,633 @@
+"""Impacts between bodies at their exact moments, in time order, within one step.
+
+The pairs that are no pile's (engine.collisions, ``plan``) meet at their exact moments. Within
+the step a body's centre is taken on the path that ends at its end state (x1, v1),
+
+    x(t) = x1 - v1 s + A s^2 / 2,    v(t) = v1 - A s,    s = dt - t,
+
+the exact parabola under the closed form (``state_at``). Two balls touch when the distance of
+their centres is R = r_a + r_b; along the paths, the difference d(t) = x_a(t) - x_b(t) is
+itself a parabola, so the moment of impact is the first root of |d(t)|^2 = R^2
+(``times_of_impact``, with ``engine.impact.disc_hits``: a quadratic when both share one
+acceleration, as under gravity). At that moment, with the unit normal n = d / R toward a and
+the closing speed u = -(v_a - v_b).n > 0, the impulse along n is
+
+    J = (1 + e) u / (1/m_a + 1/m_b),        e = e_a e_b (pymunk's product rule),
+
+which conserves momentum exactly and, with e = 1, energy: it is the closed-form 2D collision
+of two discs (``bounce``). Coulomb friction (mu = mu_a mu_b) takes up to mu J of the
+tangential relative momentum, never reversing it. Each velocity changes by dv = J n / m, and
+the position at the end of the step by dv (dt - t): the rest of the step is flown on the new
+path. A body sent off by an impact may meet a wall on its new path within the step
+(``wall_hits``); that impact takes its place in the time order too, and bounces as the static
+contacts do (``wall_bounce``).
+
+**Rounds** (``impacts_in_order``). In each, every pair that is the earliest impact of both its
+bodies is resolved (they share no body, so they are independent), then the paths of the
+bodies that changed are searched again. Newton's cradle is the test: the first ball stops, the
+second takes its speed at the same instant and meets the third, and so on down the row; a
+solver that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
+``MAX_ROUNDS`` (a light ball squeezed between heavy ones bounces about pi sqrt(M/m) times);
+then each body with an impact still to come stops where its path is at the earliest one left
+(its velocity the step's end one, so momentum changes by the forces' impulse alone), and so
+does every body that would run into a stopped one, and goes on from there next step: bodies
+never fly through each other for want of rounds, at the cost of the rest of that step's
+motion for those bodies. Pairs still closing there with restitution up to ``COLLAPSE_E`` are an
+inelastic collapse (impacts without end, ever slower: balls in a row with e = 0) and take
+their plastic impulses at once instead (``plastic``: sequential impulses, which never add
+energy). A crowd under load (rows landing on rows, bounced off the floor into the next) that
+runs past ``HANDOVER_ROUNDS`` is given up instead, and its bodies join the pile's soft step.
+
+**Moving walls.** A body of a pile met by one from outside it is a wall to it (w = 1/m = 0 on
+its free path), and takes the impulse in the soft step, from the step's start (``exact``'s
+kick); so are a kinematic body and a sleeper the impact does not wake.
+
+**Afterwards** (``separate``). The impacts are found on each body's path as a parabola to its
+end state; a body that bounced off a wall within the step took another path before, and may
+end inside a ball that path never met: such pairs, rare (two balls meeting on a Galton
+board's peg), are moved apart at the end, their closing stopped, and out of the walls again.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from . import coloring
+from .impact import TOUCH, disc_hits, line_hits
+from .pair_math import SLOP, dot, norm, unit
+
+if TYPE_CHECKING:
+    from .contacts import Contacts
+
+__all__ = [
+    "COLLAPSE_E",
+    "Exact",
+    "HANDOVER_ROUNDS",
+    "MAX_ROUNDS",
+    "Rounds",
+    "bounce",
+    "exact",
+    "impacts_in_order",
+    "plastic",
+    "separate",
+    "state_at",
+    "times_of_impact",
+    "wall_bounce",
+    "wall_hits",
+]
+
+#: Impact rounds in one step (each resolves every pair that comes first for both bodies).
+MAX_ROUNDS = 64
+#: Rounds of impacts after which a crowd under load (rows landing on rows) is given to the
+#: pile's soft step instead of being taken on impact by impact (a cradle needs one a ball).
+HANDOVER_ROUNDS = 16
+#: Restitution up to which pairs still closing at the impact cap take plastic impacts at once
+#: (three balls in a line collapse inelastically, without end, below 7 - 4 sqrt(3) = 0.072).
+COLLAPSE_E = 0.1
+
+
+class Rounds(NamedTuple):
+    """What ``impacts_in_order`` did: the impacts found (local rows), None if given up."""
+
+    #: Each round's impacts as (a, b, point, normal toward a, impulse on a, time in the step);
+    #: None: a crowd under load was given up past ``HANDOVER_ROUNDS``.
+    found: list[tuple[np.ndarray, ...]] | None
+    #: Rounds that resolved an impact.
+    rounds: int
+    #: Whether the rounds reached ``MAX_ROUNDS`` with impacts left.
+    capped: bool
+    #: When given up: the bodies of every impact found or left (mask over the local rows).
+    handed: np.ndarray | None
+
+
+class Exact(NamedTuple):
+    """What ``exact`` did, in World rows."""
+
+    #: The impacts, as ``Rounds.found`` in World rows; None: given up (``handed``).
+    impacts: list[tuple[np.ndarray, ...]] | None
+    #: The impulses (N, 2) the pile's bodies took as moving walls, or None.
+    kick: np.ndarray | None
+    #: Rounds that resolved an impact.
+    rounds: int
+    #: Whether the rounds reached ``MAX_ROUNDS`` with impacts left.
+    capped: bool
+    #: When given up: the World rows of the crowd's bodies.
+    handed: np.ndarray | None
+
+
+def exact(
+    a: np.ndarray,
+    b: np.ndarray,
+    island: np.ndarray,
+    x: np.ndarray,
+    v: np.ndarray,
+    A: np.ndarray,
+    P: np.ndarray,
+    dt: float,
+    t0: float,
+    store: Any,
+    contacts: Contacts | None,
+    asleep: np.ndarray,
+    has_kin: bool,
+    handover: bool = False,
+) -> Exact:
+    """Impacts of the pairs (World rows a, b) not both in a pile, at their exact moments,
+    in place on the end state (x, v): what ``impacts_in_order`` found, for the events, and
+    the impulses (N, 2) the pile's bodies took (None if none): a body of a pile meets a body
+    from outside it as a moving wall (infinite mass on its free path), and takes the
+    impulse in the soft step, from its start. ``P`` (N, 2): the forces' pull on each body;
+    ``t0``: the time at the step's start; ``asleep`` (N,): the sleepers (an awake body that
+    meets one without waking it meets a wall); ``has_kin``: some body is kinematic.
+    ``handover``: a crowd under load past ``HANDOVER_ROUNDS`` is given up (``Exact``)."""
+    present = np.zeros(len(x), dtype=bool)
+    present[a] = present[b] = True
+    U = np.flatnonzero(present)
+    local = np.cumsum(present) - 1  # World row -> local index, for the rows in U
+    la, lb = local[a], local[b]
+    X, V, AU = x[U], v[U], A[U]
+    pull = P[U]
+    w = 1.0 / store.mass[U]
+    # A kinematic body (moved by the game) has infinite mass here: no impulse moves it.
+    kinU = store.kinematic[U] if has_kin else None
+    if kinU is not None:
+        w[kinU] = 0.0
+    walls = island[U]
+    w[walls] = 0.0
+    if asleep.any():
+        w[asleep[U]] = 0.0  # a sleeper an awake body did not wake stays put
+    r = store.radius[U]
+    rounds = impacts_in_order(
+        la,
+        lb,
+        X,
+        V,
+        AU,
+        w,
+        r,
+        store.restitution[U],
+        store.friction[U],
+        dt,
+        pull,
+        t0,
+        contacts,
+        U,
+        handover,
+    )
+    if rounds.found is None:
+        # A crowd under load: nothing written back; the World rows of its bodies.
+        assert rounds.handed is not None
+        return Exact(None, None, rounds.rounds, rounds.capped, U[rounds.handed])
+    impacts = rounds.found
+    walled = contacts if contacts is not None and len(contacts.faces.owner) else None
+    r_wall = r if kinU is None else np.where(kinU, -np.inf, r)
+    if impacts and walled is not None:
+        # Nothing the pairs pushed is left inside a wall (with its speed into it taken).
+        # (A kinematic body is no wall's business: its radius is taken as -inf there.)
+        walled.push_out_rows(X, V, r_wall, U)
+    for _ in range(3):
+        # The impacts are found on each body's path as a parabola to its end state: a
+        # body that bounced off a wall in the step took another path before the bounce,
+        # and may end inside a ball that path never met; a ball struck against a wall
+        # in the step it lands there is put back out of the wall, into the ball that
+        # struck it. Such pairs are moved apart (positions), their closing stopped
+        # (plastic impulses), and out of the walls again, a few times.
+        if not separate(la, lb, X, V, w, r):
+            break
+        if walled is not None:
+            walled.push_out_rows(X, V, r_wall, U)
+    kick = None
+    if walls.any() and impacts:
+        kick = np.zeros((len(x), 2))
+        for pa, pb, _, _, J, _ in impacts:
+            np.add.at(kick, U[pa[walls[pa]]], J[walls[pa]])
+            np.add.at(kick, U[pb[walls[pb]]], -J[walls[pb]])
+        X[walls], V[walls] = x[U[walls]], v[U[walls]]  # the soft step moves those
+    x[U], v[U] = X, V
+    # Events are given in World rows.
+    found: list[tuple[np.ndarray, ...]] = [
+        (U[pa], U[pb], pt, nrm, J, t) for pa, pb, pt, nrm, J, t in impacts
+    ]
+    return Exact(found, kick, rounds.rounds, rounds.capped, None)
+
+
+def impacts_in_order(
+    la: np.ndarray,
+    lb: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    w: np.ndarray,
+    r: np.ndarray,
+    e: np.ndarray,
+    mu: np.ndarray,
+    dt: float,
+    pull: np.ndarray,
+    t0: float,
+    contacts: Contacts | None,
+    U: np.ndarray,
+    handover: bool = False,
+) -> Rounds:
+    """Resolve the step's impacts in time order, in place on the end state (X, V) of the
+    local bodies (World rows U), with inverse masses w (0: a wall), radii r, restitutions e,
+    frictions mu and the forces' ``pull`` (what a slow impact is measured against); ``t0``:
+    the time at the step's start, for the walls' events.
+
+    ``handover``: past ``HANDOVER_ROUNDS`` rounds, give up instead (``found`` None, with
+    the bodies of every impact found or left in ``handed``, local): a crowd under load (rows
+    landing on rows) is the pile's, not a chain of exact impacts."""
+    nU = len(X)
+    R = r[la] + r[lb]
+    # Pairs that close at all within the step can meet (``times_of_impact``: when, if ever).
+    P = pull
+    rounds = 0
+    Vr = V[la] - V[lb]
+    Ar = A[la] - A[lb]
+    can = (norm(Vr) + norm(Ar) * dt) > 0.0
+    if not can.any():
+        return Rounds([], rounds, False, None)
+    pa, pb, pR = la, lb, R
+    ts = np.zeros(nU)  # when each body's current path starts
+    toi = np.full(len(pa), np.inf)
+    todo = can  # the others are searched once a body of theirs changes path
+    found: list[tuple[np.ndarray, ...]] = []
+    pid = np.arange(len(pa))
+    # A body sent off by an impact may meet a wall on its new path within the step: those
+    # impacts (face_t: when, face_f: which face) take their place in the time order too.
+    walls = contacts is not None and len(contacts.faces.owner) > 0
+    face_t = np.full(nU, np.inf)
+    face_f = np.zeros(nU, dtype=np.intp)
+    face_n = np.zeros((nU, 2))
+    changed = np.zeros(nU, dtype=bool)
+    capped = False
+    for k in range(HANDOVER_ROUNDS if handover else MAX_ROUNDS):
+        idx = np.flatnonzero(todo)
+        if len(idx):
+            toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+            todo[idx] = False
+        if walls and changed.any():
+            assert contacts is not None
+            moved = np.flatnonzero(changed)
+            face_t[moved], face_f[moved], face_n[moved] = wall_hits(
+                contacts, moved, X, V, A, r, ts, dt, pull[moved], U
+            )
+        hit = np.isfinite(toi)
+        if not hit.any() and not np.isfinite(face_t).any():
+            break
+        rounds = k + 1
+        # The pairs that come first for both their bodies (ties: the lower pair index),
+        # and before either body meets a wall.
+        h = np.flatnonzero(hit)
+        best = face_t.copy()
+        np.minimum.at(best, pa[h], toi[h])
+        np.minimum.at(best, pb[h], toi[h])
+        first = np.full(nU, len(pa))
+        ca = h[toi[h] == best[pa[h]]]
+        cb = h[toi[h] == best[pb[h]]]
+        np.minimum.at(first, pa[ca], pid[ca])
+        np.minimum.at(first, pb[cb], pid[cb])
+        s = h[(first[pa[h]] == pid[h]) & (first[pb[h]] == pid[h])]
+        s = s[(toi[s] < face_t[pa[s]]) & (toi[s] < face_t[pb[s]])]
+        # A body whose wall comes before any pair of its own.
+        wall = np.flatnonzero(np.isfinite(face_t) & (face_t <= best))
+        changed = np.zeros(nU, dtype=bool)
+        if len(s):
+            found.append(bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt))
+            ts[pa[s]] = toi[s]
+            ts[pb[s]] = toi[s]
+            changed[pa[s]] = changed[pb[s]] = True
+        if len(wall):
+            assert contacts is not None
+            wall_bounce(
+                contacts,
+                U,
+                t0,
+                wall,
+                face_t[wall],
+                face_f[wall],
+                face_n[wall],
+                X,
+                V,
+                A,
+                w,
+                r,
+                e,
+                mu,
+                dt,
+            )
+            ts[wall] = face_t[wall]
+            changed[wall] = True
+        # Every pair of a body whose path changed is searched again, and its walls.
+        face_t[changed] = np.inf
+        again = changed[pa] | changed[pb]
+        toi[again] = np.inf
+        todo |= again
+    else:
+        if handover:
+            involved = np.zeros(nU, dtype=bool)
+            for fa, fb, *_ in found:
+                involved[fa] = involved[fb] = True
+            idx = np.flatnonzero(todo)
+            if len(idx):
+                toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+            hit = np.isfinite(toi)
+            involved[pa[hit]] = involved[pb[hit]] = True
+            return Rounds(None, rounds, False, involved)
+        # Impacts are left: rather than let the bodies fly through each other on their
+        # paths, each body with an impact still to come stops at the earliest one left,
+        # where its path is then (no overlap yet), and goes on from there next step. Only
+        # those bodies lose the rest of this step's motion; their velocities keep what
+        # the forces gave them over the whole step, so momentum changes by exactly the
+        # forces' impulse, as in every other step.
+        capped = True
+        idx = np.flatnonzero(todo)
+        if len(idx):
+            toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+        hit = np.isfinite(toi)
+        left = np.zeros(nU, dtype=bool)
+        left[pa[hit]] = left[pb[hit]] = True
+        left |= np.isfinite(face_t)
+        t_first = min(float(toi[hit].min()) if hit.any() else math.inf, float(face_t.min()))
+        if math.isfinite(t_first):
+            # A body resting against a stopped one (no impact of theirs pending) would
+            # run into it: it stops too, and so on along the contacts.
+            T = np.full(nU, t_first)
+            end = state_at(np.arange(nU), T, X, V, A, dt)[0]
+            for _ in range(nU):
+                one = left[pa] != left[pb]
+                if not one.any():
+                    break
+                ia, ib = pa[one], pb[one]
+                qa = np.where(left[ia, None], end[ia], X[ia])
+                qb = np.where(left[ib, None], end[ib], X[ib])
+                meet = norm(qa - qb) < pR[one]
+                if not meet.any():
+                    break
+                left[ia[meet]] = left[ib[meet]] = True
+            i = np.flatnonzero(left)
+            X[i] = end[i]
+        collapse = hit & (e[pa] * e[pb] <= COLLAPSE_E)
+        if collapse.any():
+            # An inelastic collapse (impacts without end, closing ever slower: a light
+            # ball between heavy ones, e small) would meet the cap again every step, and
+            # stop there: its pairs take their plastic impacts all at once instead.
+            plastic(pa[collapse], pb[collapse], X, V, w, 2.0 * dt * float(norm(P).max()))
+    return Rounds(found, rounds, capped, None)
+
+
+def state_at(
+    i: np.ndarray, t: np.ndarray, X: np.ndarray, V: np.ndarray, A: np.ndarray, dt: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Position and velocity of local bodies i at times t, on the paths ending at (X, V)."""
+    s = (dt - t)[:, None]
+    Ai = A[i]
+    return X[i] - V[i] * s + Ai * (0.5 * s * s), V[i] - Ai * s
+
+
+def times_of_impact(
+    pa: np.ndarray,
+    pb: np.ndarray,
+    R: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    ts: np.ndarray,
+    dt: float,
+) -> np.ndarray:
+    """Time of the first impact (closing faster than its rest speed) of each pair, or inf."""
+    start = np.maximum(ts[pa], ts[pb])
+    xa, va = state_at(pa, start, X, V, A, dt)
+    xb, vb = state_at(pb, start, X, V, A, dt)
+    D, Vr, Ar = xa - xb, va - vb, A[pa] - A[pb]
+    tau = disc_hits(D, Vr, Ar, np.zeros_like(D), R, dt - start)
+    t = start + tau
+    ok = np.flatnonzero(np.isfinite(tau))
+    if len(ok):
+        # Closing speed at the moment of contact: a slow one is a contact at rest.
+        T = tau[ok, None]
+        d = D[ok] + Vr[ok] * T + Ar[ok] * (0.5 * T * T)
+        dn = np.maximum(norm(d), 1e-300)
+        u = -dot(Vr[ok] + Ar[ok] * T, d) / dn
+        # Only rounding: two discs that an inelastic impact left moving together close
+        # at ~1e-16 of their speed, which is no impact. (A pair closing slowly under
+        # the forces, to rest on each other, is a pile's: ``plan`` gave it to the soft
+        # step; any other meeting is an impact, however slow.)
+        speed = norm(va[ok]) + norm(vb[ok])
+        t[ok[u <= 1e-12 * speed]] = np.inf
+    return t
+
+
+def bounce(
+    pa: np.ndarray,
+    pb: np.ndarray,
+    t: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    w: np.ndarray,
+    r: np.ndarray,
+    e: np.ndarray,
+    mu: np.ndarray,
+    dt: float,
+) -> tuple[np.ndarray, ...]:
+    """Apply the impulses of impacts (pa, pb) at times t; return them for the events."""
+    xa, va = state_at(pa, t, X, V, A, dt)
+    xb, vb = state_at(pb, t, X, V, A, dt)
+    d = xa - xb
+    # hypot, not sqrt(d.d): centres 1e-200 apart would square to 0; coincident ones
+    # part straight up (engine.pair_math.unit).
+    nrm = unit(d, np.hypot(d[:, 0], d[:, 1]))
+    vr = va - vb
+    vn = dot(vr, nrm)  # < 0: closing
+    wsum = w[pa] + w[pb]
+    J = -(1.0 + e[pa] * e[pb]) * vn / wsum
+    # Friction: up to mu J against the tangential relative velocity, never reversing it.
+    tang = vr - nrm * vn[:, None]
+    vt = norm(tang)
+    Jt = np.minimum(mu[pa] * mu[pb] * J, vt / wsum)
+    tdir = tang / np.where(vt > 0.0, vt, 1.0)[:, None]
+    P = nrm * J[:, None] - tdir * Jt[:, None]  # impulse on a; -P on b
+    dva, dvb = P * w[pa, None], -P * w[pb, None]
+    rem = (dt - t)[:, None]
+    V[pa] += dva
+    V[pb] += dvb
+    X[pa] += dva * rem
+    X[pb] += dvb * rem
+    return pa, pb, xb + nrm * r[pb, None], nrm, P, t
+
+
+def wall_bounce(
+    contacts: Contacts,
+    U: np.ndarray,
+    t0: float,
+    i: np.ndarray,
+    t: np.ndarray,
+    f: np.ndarray,
+    nrm: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    w: np.ndarray,
+    r: np.ndarray,
+    e: np.ndarray,
+    mu: np.ndarray,
+    dt: float,
+) -> None:
+    """Bounce local bodies i off faces f at times t, as the static contacts do: the normal
+    speed v_n becomes -e v_n and friction takes up to mu (1 + e) |v_n| off the tangential
+    speed, never reversing it (e, mu: the body's times the face's). The contacts record the
+    bounce as an event of World row U[i] at time t0 + t."""
+    faces = contacts.faces
+    x, v = state_at(i, t, X, V, A, dt)
+    vn = np.minimum(dot(v, nrm), 0.0)
+    ee, mm = e[i] * faces.e[f], mu[i] * faces.mu[f]
+    tang = v - nrm * dot(v, nrm)[:, None]
+    speed_t = norm(tang)
+    keep = np.maximum(speed_t + mm * (1.0 + ee) * vn, 0.0)
+    scale = keep / np.where(speed_t > 0.0, speed_t, 1.0)
+    v_new = tang * scale[:, None] - nrm * (ee * vn)[:, None]
+    dv = v_new - v
+    V[i] += dv
+    X[i] += dv * (dt - t)[:, None]
+    contacts.record(U[i], faces.owner[f], x - nrm * r[i, None], nrm, dv, t0 + t)
+
+
+def wall_hits(
+    contacts: Contacts,
+    i: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    r: np.ndarray,
+    ts: np.ndarray,
+    dt: float,
+    pull: np.ndarray,
+    U: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(time, face, unit normal toward the body) of the first wall each local body i meets
+    on its path from ts to the end of the step closing faster than its rest speed (2 dt times
+    its ``pull`` along the normal); time inf where none (``engine.impact`` solves for the
+    times)."""
+    faces = contacts.faces
+    L = len(faces.p)
+    m = len(i)
+    t_out = np.full(m, np.inf)
+    f_out = np.zeros(m, dtype=np.intp)
+    n_out = np.zeros((m, 2))
+    T = dt - ts[i]
+    s = T[:, None]
+    Ai = A[i]
+    x = X[i] - V[i] * s + Ai * (0.5 * s * s)  # the state at ts, on the path ending at (X, V)
+    v = V[i] - Ai * s
+    reach = r[i] + norm(v) * T + norm(Ai) * (0.5 * T * T) + TOUCH
+    bi, f = contacts.grid.pairs(x, reach)
+    if len(bi) and U is not None and contacts.faces.filters is not None:
+        ok = contacts.allowed(U[i[bi]], f)  # faces a body's filter does not meet
+        bi, f = bi[ok], f[ok]
+    if not len(bi):
+        return t_out, f_out, n_out
+    t = np.full(len(bi), np.inf)
+    n = np.zeros((len(bi), 2))
+    line = f < L
+    if line.any():
+        k, fl = np.flatnonzero(line), f[line]
+        b = bi[k]
+        t[k], n[k] = line_hits(
+            x[b],
+            v[b],
+            Ai[b],
+            faces.p[fl],
+            faces.n[fl],
+            faces.rho[fl] + r[i][b],
+            faces.two[fl],
+            faces.lo[fl],
+            faces.hi[fl],
+            T[b],
+        )
+    if (~line).any():
+        k, fd = np.flatnonzero(~line), f[~line] - L
+        b = bi[k]
+        t[k] = disc_hits(x[b], v[b], Ai[b], faces.c[fd], faces.r[fd] + r[i][b], T[b])
+        ok = np.isfinite(t[k])
+        tt = np.where(ok, t[k], 0.0)[:, None]
+        d = x[b] + v[b] * tt + Ai[b] * (0.5 * tt * tt) - faces.c[fd]
+        n[k] = d / np.maximum(norm(d), 1e-300)[:, None]
+    # Only an impact closing faster than rest counts (a ball rolling along a floor meets it
+    # at every moment).
+    ok = np.flatnonzero(np.isfinite(t))
+    if len(ok):
+        tt = t[ok, None]
+        vt = v[bi[ok]] + Ai[bi[ok]] * tt
+        slow = -dot(vt, n[ok]) <= 2.0 * dt * np.abs(dot(pull[bi[ok]], n[ok]))
+        t[ok[slow]] = np.inf
+    order = np.lexsort((t, bi))  # by body, earliest first
+    bi, t, f, n = bi[order], t[order], f[order], n[order]
+    first = np.ones(len(bi), dtype=bool)
+    first[1:] = bi[1:] != bi[:-1]
+    b = bi[first]
+    t_out[b], f_out[b], n_out[b] = t[first], f[first], n[first]
+    return ts[i] + t_out, f_out, n_out
+
+
+def separate(
+    la: np.ndarray, lb: np.ndarray, X: np.ndarray, V: np.ndarray, w: np.ndarray, r: np.ndarray
+) -> bool:
+    """Move the pairs (la, lb) that overlap past SLOP apart, in place on X, each body by
+    its share w_a / (w_a + w_b) of the excess (a body of w = 0 stays), averaged over its
+    pairs (one Jacobi sweep), after stopping their closing (``plastic``). Whether any
+    moved."""
+    d = X[la] - X[lb]
+    dist = norm(d)
+    R = r[la] + r[lb]
+    over = R - dist - SLOP * np.minimum(r[la], r[lb])
+    ws = w[la] + w[lb]
+    k = np.flatnonzero((over > 0.0) & (ws > 0.0))
+    if not len(k):
+        return False
+    a, b = la[k], lb[k]
+    plastic(a, b, X, V, w, 0.0)
+    push = unit(d[k], dist[k]) * (over[k] / ws[k])[:, None]
+    move = np.zeros_like(X)
+    count = np.zeros(len(X))
+    np.add.at(move, a, push * w[a, None])
+    np.add.at(move, b, -push * w[b, None])
+    np.add.at(count, a, 1.0)
+    np.add.at(count, b, 1.0)
+    X += move / np.maximum(count, 1.0)[:, None]
+    return True
+
+
+def plastic(
+    pa: np.ndarray, pb: np.ndarray, X: np.ndarray, V: np.ndarray, w: np.ndarray, rest: float
+) -> None:
+    """Stop the closing of pairs (pa, pb) at once, in place on V: sequential plastic
+    impulses (restitution 0, along the line of centres, each at most what stops its pair, the
+    pair's total never pulling) swept over the pairs in colours (engine.coloring) until none
+    closes faster than ``rest`` plus rounding. Each impulse is a projection in the mass metric,
+    so kinetic energy never grows, and momentum is kept."""
+    d = X[pa] - X[pb]
+    nrm = unit(d, norm(d))
+    ws = w[pa] + w[pb]
+    ok = ws > 0.0
+    pa, pb, nrm, ws = pa[ok], pb[ok], nrm[ok], ws[ok]
+    if not len(pa):
+        return
+    moves = w > 0.0
+    order = coloring.batches(coloring.colors(pa, pb, moves), pa, pb, moves)
+    lam = np.zeros(len(pa))
+    speed = float(norm(V).max())
+    for _ in range(200):
+        worst = 0.0
+        for rows in order:
+            a, b, n = pa[rows], pb[rows], nrm[rows]
+            vn = dot(V[a] - V[b], n)  # < 0: closing
+            new = np.maximum(lam[rows] - vn / ws[rows], 0.0)
+            dl = new - lam[rows]
+            lam[rows] = new
+            V[a] += n * (dl * w[a])[:, None]
+            V[b] -= n * (dl * w[b])[:, None]
+            worst = max(worst, float(-vn.min()))
+        if worst <= rest + 1e-12 * speed:
+            break
