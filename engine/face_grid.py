@@ -643,8 +643,9 @@ class FaceGrid:
         tables = [self.table] if self.fin_table is self.table else [self.table, self.fin_table]
         sf = self._slot_face
         self._slot_face = np.where(sf >= 0, index[np.maximum(sf, 0)], -1)
-        self._face_slot = np.delete(self._face_slot, gone)
-        self.cap = np.delete(self.cap, gone, axis=0)
+        kept = index >= 0
+        self._face_slot = self._face_slot[kept]
+        self.cap = self.cap[kept]
         self._renumbered(faces)
         ny = self.shape[1]
         for s in slots.tolist():
@@ -671,13 +672,11 @@ class FaceGrid:
         them, at most ``far``: what building afresh gives them, by the same operations as
         ``_distances`` on each face's numbers, all faces at once."""
         win = self._win
-        near = np.flatnonzero(
-            live
-            & (win[:, 0] <= int(ci.max()))
-            & (win[:, 1] > int(ci.min()))
-            & (win[:, 2] <= int(cj.max()))
-            & (win[:, 3] > int(cj.min()))
-        )
+        # Windows (i0, i1, j0, j1) that meet the cells' box: i0 <= i_max, -i1 <= -i_min - 1,
+        # j0 <= j_max and -j1 <= -j_min - 1, all at once.
+        i_lo, i_hi, j_lo, j_hi = int(ci.min()), int(ci.max()), int(cj.min()), int(cj.max())
+        meets = (win * _FLIP <= (i_hi, -i_lo - 1, j_hi, -j_lo - 1)).all(axis=1)
+        near = np.flatnonzero(meets & live)
         least = np.full(len(ci), self.far)
         if not len(near):
             return least
@@ -871,6 +870,8 @@ class FaceGrid:
             return parts_b[0], parts_f[0]
         return np.concatenate(parts_b), np.concatenate(parts_f)
 
+
+_FLIP = np.array([1, -1, 1, -1], dtype=np.intp)  # for ``FaceGrid._least``'s test of windows
 
 #: The most entries a cell table (``FaceGrid.table``) may hold: beyond it (faces crowded in a
 #: cell) the lists are read from their sorted form.

@@ -353,3 +353,30 @@ def test_a_box_room_takes_pegs_in_place() -> None:
     w.remove_collider(w.colliders[3])
     check(w)
     assert w._contacts._grid is grid
+
+
+def test_a_board_emptied_peg_by_peg_keeps_its_grid_and_its_steps() -> None:
+    pegs = _pegs(150)
+    changed, again = _board(pegs + _walls()), _board([*_pegs(150), *_walls()])
+    for w in (changed, again):
+        _drop(w, 20, 4)
+        w.step(1.0 / 60.0)
+    assert changed._contacts is not None and again._contacts is not None
+    grid = changed._contacts._grid
+    order = np.random.default_rng(8).permutation(150)[:130].tolist()
+    for k, j in enumerate(order):
+        for w in (changed, again):
+            w.remove_collider(
+                w.colliders[[c.center for c in w.colliders[:-3]].index(pegs[j].center)]
+            )  # type: ignore[attr-defined]
+        rebuilt(again)
+        if k % 20 == 0:
+            check(changed)
+        changed.step(1.0 / 60.0)
+        again.step(1.0 / 60.0)
+        assert np.array_equal(changed.positions(), again.positions()), k
+        assert np.array_equal(changed.velocities(), again.velocities()), k
+        assert events(changed, changed.began) == events(again, again.began), k
+    check(changed)
+    # Kept, with its slots renumbered once more were let go than kept.
+    assert changed._contacts._grid is grid and len(grid._slot_face) < 150 + 9
