@@ -220,6 +220,13 @@ class FaceGrid:
     walls) are few: the grid covers a Box's corners too, its cells' bounds for the first look
     (``gap``) count them as well, and the narrow pass checks them against each body near
     one directly.
+
+    A game adds and takes out colliders between steps: ``added`` and ``removed`` change the
+    grid in place, in the new or old faces' windows of cells, and leave it as building it
+    afresh would (the same bounds, lists in the same order, capsules), unless that would lay
+    it differently (its extent or its endless faces change): then the caller drops it. The
+    lists hold slots, each a face's index when it was listed (``_slot_face`` gives its index
+    now), so faces renumbered by a change need no pass over the lists.
     """
 
     def __init__(self, faces: Faces) -> None:
