@@ -22,7 +22,7 @@ PYMUNK_NAMES: dict[str, str] = {
     "(from engine.forces import Gravity)",
     "damping": "damping is a force: world.add_force(Drag(k)) (F = -k v; pymunk's damping d "
     "is k = -m ln(d)), from engine.forces",
-    "iterations": "world.contact_iterations (default 8)",
+    "iterations": "world.contact_iterations (default 4, the soft step's substeps)",
     "sleep_time_threshold": "world.sleep_time (s; math.inf never sleeps)",
     "idle_speed_threshold": "a resting group sleeps once slower than |a| dt for "
     "world.sleep_time seconds",

@@ -242,8 +242,8 @@ class World:
 
     @property
     def contact_iterations(self) -> int:
-        """Iterations a step of the solver for bodies resting on one another (default 8):
-        more hold deeper piles with less overlap, at a cost per iteration."""
+        """Substeps a step of the soft step for bodies resting on one another (default 4,
+        Box2D's): more hold deeper piles with less overlap, at a cost per substep."""
         return self._s.collisions.iterations
 
     @contact_iterations.setter

@@ -87,8 +87,8 @@ def test_space_testProperties() -> None:
 
 @pytest.mark.xfail(
     strict=True,
-    reason="8 iterations by default, not pymunk's 10: impacts are solved exactly and in order, "
-    "so the iterations only settle piles (README: choosing contact_iterations)",
+    reason="4 by default, not pymunk's 10: they are the substeps of the soft step for piles "
+    "(Box2D v3's 4); impacts are solved exactly and in order (README: contact_iterations)",
 )
 def test_space_testProperties_iterations_default() -> None:
     assert World().contact_iterations == 10
