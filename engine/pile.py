@@ -1,0 +1,447 @@
+"""A pile's step: the bodies that rest on one another, stepped together by the soft step.
+
+Which pairs are a pile's is decided as the step begins (engine.collisions, ``plan``): a pair
+that carried load in the last step, or that is near enough to touch, closes or parts no faster
+than its rest speed and is pressed together by the forces, or that overlaps past ``SLOP``;
+and whatever can reach such a pair's body within the step at a speed its contacts can catch.
+The bodies of a pile are stepped again here from the start of the step (x0, v0), by Box2D
+v3's soft step (engine.soft), with every contact among them and with the faces they can reach
+(the static contacts leave them to it).
+
+**Rows** (``step_pile``). A contact is a row between bodies A and B (the lower World row A;
+the static world is one more body, the last slot, of infinite mass) with the unit normal n
+from A to B, the gap along it at the step's start, friction mu = mu_a mu_b and restitution
+e = e_a e_b:
+
+* two discs: n = (x_b - x_a) / |x_b - x_a|, gap |x_b - x_a| - r_a - r_b;
+* a disc and a face within reach (``face_rows``): the face's normal toward the disc, the gap
+  from the face grown by the radius;
+* bodies with shapes (engine.shaped): a row a point of each manifold, pair against pair or
+  shape against the colliders' shapes.
+
+Each row is keyed by one integer, stable from step to step, so the last step's impulses warm
+start it: a * base + b for two discs, a * base + n + f for a disc and face f (base: the bodies
+and faces, n + faces), and past n * base the rows of shapes, by pair and point. The impulses
+(``Carried``) are kept over the whole step lam_dt, and start each of the next step's parts at
+lam dt / (lam_dt iterations), so a change of dt or of ``iterations`` scales them; a sleeping
+group's rows keep theirs (``asleep_rows``), so that it wakes holding its weight (without them
+a woken pile would sag for a step and ring), and each row keeps its colour (engine.coloring),
+so the solver's order does not shuffle.
+
+**The soft step** (engine.soft): ``iterations`` parts, each integrating the velocities, warm
+starting, solving the rows as soft springs (pushing an overlap out at most ``PUSH`` smallest
+radii a second), moving the positions and relaxing the springs' push out of the speeds; then
+restitution for rows that closed faster than ``THRESH`` times the rest speed 2 |a| dt.
+
+**No energy added** (``dissipative``). Contacts only take energy: an exact solution of
+resting contacts is a projection of V0 (what the forces alone would give) in the mass metric,
+which never lengthens it; friction dissipates; restitution e <= 1 gives back at most what the
+impact took. The soft step's few iterations, and its push apart of an overlap, can stop short
+and add a little; then the change dV = V - V0 is scaled by the s in [0, 1] that leaves the
+least energy,
+
+    KE(s) = KE0 + s B + s^2 C,    B = sum m V0.dV,    C = sum m |dV|^2 / 2,    s = -B / (2 C),
+
+which keeps momentum (the impulses between bodies are equal and opposite at any s). Nothing
+the pile moves is left inside a wall (``Contacts.push_out_rows``).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from .faces import face_normals
+from .impact import TOUCH
+from .manifold import StaticShapes, static_shapes
+from .pair_math import SLOP, dot, norm, sorted_unique, unit
+from .shaped import ShapeTable, pair_rows, static_rows
+from .soft import Rows, SoftStep
+
+if TYPE_CHECKING:
+    from .contacts import Contacts
+
+__all__ = [
+    "PUSH",
+    "PUSHOUT",
+    "THRESH",
+    "Carried",
+    "Pile",
+    "Statics",
+    "asleep_rows",
+    "dissipative",
+    "face_rows",
+    "keep_asleep",
+    "slept_colors",
+    "step_pile",
+]
+
+#: The fastest the soft step pushes overlapping bodies apart, in smallest radii a second
+#: (Box2D's 3 m/s for bodies of half a metre).
+PUSH = 6.0
+#: Restitution acts on a pile's contacts that closed faster than this many times the rest
+#: speed 2 |a| dt (3: 6 |a| dt, 1 m/s under gravity at dt = 1/60, Box2D's threshold).
+THRESH = 3.0
+#: Whether the discs of a pile are pushed out of the walls after the soft step.
+PUSHOUT = True
+
+
+class Carried(NamedTuple):
+    """The impulses a pile's contacts carry from one step to the next (the warm start)."""
+
+    #: Each row's key (sorted): a * base + b for a pair, a * base + n + f for a face.
+    keys: np.ndarray
+    #: (normal, tangent) impulse of each row over the whole step, shape (rows, 2).
+    lam: np.ndarray
+    #: The step they were taken over (s).
+    lam_dt: float
+    #: The base of the keys: bodies and faces then.
+    base: int
+    #: Keys of the rows whose colours are kept (sorted), and the colours.
+    color_keys: np.ndarray
+    colors: np.ndarray
+
+
+class Pile(NamedTuple):
+    """What ``step_pile`` found, besides the new state it wrote."""
+
+    #: Keys (a * N + b) of the pairs touching now (for the events).
+    touching: np.ndarray
+    #: The pairs near enough to touch (World rows), which join bodies for sleep.
+    near_a: np.ndarray
+    near_b: np.ndarray
+    #: The contacts of the pile's bodies with faces now: (World rows, faces).
+    face_touching: tuple[np.ndarray, np.ndarray]
+    #: Each shaped body's deepest overlap (length units), (N,).
+    shape_over: np.ndarray
+    #: The impulses to carry into the next step.
+    carried: Carried
+
+
+class Statics:
+    """The colliders as narrowphase kinds, built again when the faces change."""
+
+    def __init__(self) -> None:
+        self._cached: tuple[Any, StaticShapes, np.ndarray, np.ndarray] | None = None
+
+    def of(self, contacts: Contacts) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
+        """The colliders as narrowphase kinds, which are solid, and each collider's first
+        face (what the events and filters name a shape's contact with it by)."""
+        faces = contacts.faces
+        if self._cached is None or self._cached[0] is not faces:
+            cols = contacts.colliders
+            solid = np.array([not c.sensor for c in cols], dtype=bool)
+            first = np.full(len(cols), -1, dtype=np.intp)
+            owner = faces.owner
+            order = np.arange(len(owner))[::-1]
+            first[owner[order]] = order
+            self._cached = (faces, static_shapes(cols), solid, first)
+        return self._cached[1], self._cached[2], self._cached[3]
+
+
+def asleep_rows(carried: Carried, asleep: np.ndarray, n: int, base: int) -> np.ndarray:
+    """Which of the last step's contact rows (``carried.keys``) join only sleepers: they keep
+    their impulses while the group sleeps, so that it wakes holding its weight (without
+    them a woken pile would sag for a step and ring)."""
+    keys = carried.keys
+    if not len(keys) or base != carried.base or len(asleep) != n:
+        return np.zeros(len(keys), dtype=bool)
+    disc = keys < n * base  # the rows of bodies with shapes are keyed past those
+    a, b = np.divmod(np.where(disc, keys, 0), base)
+    face = b >= n
+    return disc & asleep[a] & (face | asleep[np.where(face, 0, b)])
+
+
+def slept_colors(carried: Carried, kept: np.ndarray) -> np.ndarray:
+    """The colours of the kept rows, where the cache still has them (else -1)."""
+    keys = carried.keys
+    if len(carried.color_keys) == len(keys) and len(carried.colors) == len(keys):
+        return carried.colors[kept]
+    return np.full(int(kept.sum()), -1, dtype=np.int64)
+
+
+def keep_asleep(carried: Carried, asleep: np.ndarray, n: int) -> Carried:
+    """What a step without a pile carries on: the rows of the sleepers alone."""
+    kept = asleep_rows(carried, asleep, n, carried.base)
+    keys = carried.keys[kept]
+    return carried._replace(
+        keys=keys, lam=carried.lam[kept], color_keys=keys, colors=slept_colors(carried, kept)
+    )
+
+
+def step_pile(
+    island: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    x0: np.ndarray,
+    v0: np.ndarray,
+    x: np.ndarray,
+    v: np.ndarray,
+    P: np.ndarray,
+    dt: float,
+    store: Any,
+    contacts: Contacts | None,
+    table: ShapeTable,
+    statics: Statics,
+    carried: Carried,
+    asleep: np.ndarray,
+    iterations: int,
+    rest_speed: float,
+) -> Pile:
+    """Step the bodies of the pile (``island``) again from (x0, v0) by the soft step
+    (engine.soft), with every contact among them (pairs a, b) and with the faces they can
+    reach, in place on (x, v). ``P`` (N, 2): the forces' pull; ``table``: the bodies' shapes;
+    ``carried``: the last step's impulses; ``asleep`` (N,): the sleepers, whose rows keep
+    theirs; ``iterations``: the soft step's parts; ``rest_speed``: 2 dt times the largest
+    pull (restitution acts on contacts closing faster than ``THRESH`` times it)."""
+    n = len(x)
+    U = np.flatnonzero(island)
+    nU = len(U)
+    local = np.full(n, -1, dtype=np.intp)
+    local[U] = np.arange(nU)
+    shapedU = table.shaped[U]
+    both = island[a] & island[b]
+    pa, pb = a[both], b[both]
+    with_shape = table.shaped[pa] | table.shaped[pb]
+    sa, sb = pa[with_shape], pb[with_shape]  # pairs with a shape: engine.shaped
+    pa, pb = pa[~with_shape], pb[~with_shape]
+    la, lb = local[pa], local[pb]
+    r = store.radius[U]
+    x0U, v0U = x0[U], v0[U]
+    # Pairs: A the lower row, B the higher; the normal from A to B.
+    d = x0U[lb] - x0U[la]
+    dist = norm(d)
+    nrm = unit(d, dist)
+    sep = dist - r[la] - r[lb]
+    mu, e = store.friction[U], store.restitution[U]
+    rows_a, rows_b = [la], [lb]
+    normals, seps = [nrm], [sep]
+    fric, rest = [mu[la] * mu[lb]], [e[la] * e[lb]]
+    slops = [SLOP * np.minimum(r[la], r[lb])]
+    n_faces = 0 if contacts is None else len(contacts.faces.owner)
+    base = n + n_faces
+    keys = [pa.astype(np.int64) * base + pb]
+    fa = fk = np.zeros(0, dtype=np.intp)
+    speed = norm(v0U) + norm(P[U]) * dt
+    kin = store.kinematic[U]
+    if n_faces and contacts is not None:
+        # Faces within reach of a body this step: the static world is B, the slot nU.
+        fa, fn, fg, fmu, fk = face_rows(contacts, x0U, r, 0.05 * r + speed * dt)
+        ok = ~kin[fa] & ~shapedU[fa]  # walls do not hold what the game moves
+        if contacts.faces.filters is not None:
+            ok &= contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
+        fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
+        rows_a.append(np.full(len(fa), nU))
+        rows_b.append(fa)
+        normals.append(fn)
+        seps.append(fg)
+        fric.append(mu[fa] * fmu)
+        rest.append(e[fa] * contacts.faces.e[fk])
+        slops.append(SLOP * r[fa])
+        keys.append(U[fa].astype(np.int64) * base + n + fk)
+    m_disc = sum(len(k) for k in keys)
+    # Bodies with shapes (engine.shaped): a row a point of each manifold, keyed past the
+    # discs' keys (n * base), by pair and point, or by body, static shape and point.
+    s_off = np.int64(n) * base
+    margin = float((0.05 * r + speed * dt).max()) if nU else 0.0
+    m_pairs = 0
+    if len(sa):
+        ia, ib, sn, ss, slot = pair_rows(table, sa, sb, x0, margin)
+        m_pairs = len(ia)
+        rows_a.append(local[ia])
+        rows_b.append(local[ib])
+        normals.append(sn)
+        seps.append(ss)
+        fric.append(store.friction[ia] * store.friction[ib])
+        rest.append(store.restitution[ia] * store.restitution[ib])
+        slops.append(SLOP * np.minimum(store.radius[ia], store.radius[ib]))
+        keys.append(s_off + (ia.astype(np.int64) * n + ib) * 2 + slot)
+    s_rows = s_col = np.zeros(0, dtype=np.intp)
+    if n_faces and contacts is not None and (shapedU & ~kin).any():
+        shapes, solid, first = statics.of(contacts)
+        mine = U[shapedU & ~kin]
+        s_rows, s_col, sn, ss, skey = static_rows(table, mine, x0, shapes, solid, margin)
+        if contacts.faces.filters is not None:
+            ok = contacts.allowed(s_rows, first[s_col])
+            s_rows, s_col, sn, ss, skey = s_rows[ok], s_col[ok], sn[ok], ss[ok], skey[ok]
+        rows_a.append(np.full(len(s_rows), nU))
+        rows_b.append(local[s_rows])
+        normals.append(sn)
+        seps.append(ss)
+        cols = contacts.colliders
+        fric.append(store.friction[s_rows] * np.array([cols[k].friction for k in s_col]))
+        rest.append(store.restitution[s_rows] * np.array([cols[k].restitution for k in s_col]))
+        slops.append(SLOP * store.radius[s_rows])
+        keys.append(s_off + 2 * np.int64(n) * n + s_rows.astype(np.int64) * 2**40 + skey)
+    ra, rb = np.concatenate(rows_a), np.concatenate(rows_b)
+    nv = np.concatenate(normals)
+    sep_all = np.concatenate(seps)
+    key = np.concatenate(keys)
+    static = ra == nU
+    w = np.append(1.0 / store.mass[U], 0.0)
+    moves = np.append(~kin, False)
+    w[:-1][~moves[:-1]] = 0.0
+    # Warm start: the last step's impulses of the same contacts, per part of this step.
+    lam = np.zeros((len(key), 2))
+    if len(carried.keys) and base == carried.base:
+        pos = np.minimum(np.searchsorted(carried.keys, key), len(carried.keys) - 1)
+        same = carried.keys[pos] == key
+        lam[same] = carried.lam[pos[same]] * (dt / (carried.lam_dt * iterations))
+    rows = Rows(
+        ra,
+        rb,
+        nv[:, 0] + 1j * nv[:, 1],
+        sep_all,
+        np.concatenate(fric),
+        np.concatenate(rest),
+        lam[:, 0].copy(),
+        lam[:, 1].copy(),
+        static,
+    )
+    rmin = float(r.min())
+    slop_rows = np.concatenate(slops)
+    # Each row keeps its colour from the last step where its key did (engine.coloring).
+    prior = np.full(len(key), -1, dtype=np.int64)
+    if len(carried.color_keys) and base == carried.base:
+        pos = np.minimum(np.searchsorted(carried.color_keys, key), len(carried.color_keys) - 1)
+        same = carried.color_keys[pos] == key
+        prior[same] = carried.colors[pos[same]]
+    solver = SoftStep(
+        rows,
+        w,
+        moves,
+        dt,
+        iterations,
+        push_speed=PUSH * rmin,
+        threshold=THRESH * rest_speed,
+        slop=slop_rows,
+        prior=prior,
+    )
+    acc = np.append(P[U, 0] + 1j * P[U, 1], 0.0)
+    acc[:-1][~moves[:-1]] = 0.0
+    X, V = solver.run(
+        np.append(x0U[:, 0] + 1j * x0U[:, 1], 0.0),
+        np.append(v0U[:, 0] + 1j * v0U[:, 1], 0.0),
+        acc,
+    )
+    Xr = np.stack([X[:nU].real, X[:nU].imag], axis=1)
+    Vr = np.stack([V[:nU].real, V[:nU].imag], axis=1)
+    # A kinematic body goes where the game sends it, whatever it touched.
+    if not kin.any():
+        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U])
+    if kin.any():
+        Xr[kin], Vr[kin] = x[U][kin], v[U][kin]
+    if n_faces and contacts is not None:
+        # No disc of the pile ends inside a wall: the soft contacts give a little. (A
+        # shape is held out by its rows alone; a kinematic body is no wall's business.)
+        if PUSHOUT:
+            contacts.push_out_rows(Xr, Vr, np.where(kin | shapedU, -np.inf, r), U)
+    x[U], v[U] = Xr, Vr
+    # The impulses over the whole step, kept by key (sorted) for the next one.
+    kept = asleep_rows(carried, asleep, n, base)
+    key = np.concatenate([key, carried.keys[kept]])
+    lam = np.concatenate(
+        [np.stack([rows.lam_n, rows.lam_t], axis=1) * iterations, carried.lam[kept]]
+    )
+    color = np.concatenate([solver.color, slept_colors(carried, kept)])
+    order = np.argsort(key)
+    keys_now = key[order]
+    now_carried = Carried(keys_now, lam[order], dt, base, keys_now, color[order])
+    # Which contacts touch now: the pairs for the events and sleep, the faces too.
+    m = len(pa)
+    gap = norm(Xr[lb] - Xr[la]) - r[la] - r[lb]
+    touch = gap <= SLOP * np.minimum(r[la], r[lb]) + TOUCH
+    pressed = solver.total[:m] > 0.0
+    hold = touch | pressed
+    # Every other row's gap now: its gap at the start plus the bodies' moves along it.
+    moved = np.append(Xr - x0U, [[0.0, 0.0]], axis=0)
+    now = sep_all + dot(moved[rb] - moved[ra], nv)
+    held_rows = (now <= slop_rows + TOUCH) | (solver.total > 0.0)
+    f = slice(m, m_disc)
+    face_touching = (U[fa[held_rows[f]]], fk[held_rows[f]])
+    touching = pa[hold].astype(np.int64) * n + pb[hold]
+    # Sleep joins bodies as near as engine.sleep.wake_met wakes them by: a group falls asleep
+    # whole, or a body left awake beside it would wake it again at once.
+    near = gap <= 0.05 * np.minimum(r[la], r[lb])
+    near_a, near_b = pa[near], pb[near]
+    shape_over = np.zeros(n)
+    if m_disc < len(key) - int(kept.sum()):
+        # The rows of shapes: touching pairs and faces for the events, sleep joined by
+        # them, and their overlaps (a shape's bounding circle says nothing of them).
+        sp = slice(m_disc, m_disc + m_pairs)
+        st = slice(m_disc + m_pairs, len(ra))
+        ua, ub = U[ra[sp]], U[rb[sp]]
+        hs = held_rows[sp]
+        tk = sorted_unique(ua[hs].astype(np.int64) * n + ub[hs])
+        touching = np.concatenate([touching, tk])
+        near_s = now[sp] <= 0.05 * np.minimum(store.radius[ua], store.radius[ub])
+        near_a = np.concatenate([near_a, ua[near_s]])
+        near_b = np.concatenate([near_b, ub[near_s]])
+        hf = held_rows[st]
+        if contacts is not None and hf.any():
+            first = statics.of(contacts)[2]
+            face_touching = (
+                np.concatenate([face_touching[0], s_rows[hf]]),
+                np.concatenate([face_touching[1], first[s_col[hf]]]),
+            )
+        over = np.maximum(-now[m_disc:], 0.0)
+        body = np.concatenate([ua, ub, U[rb[st]]])
+        depth = np.concatenate([over[:m_pairs], over[:m_pairs], over[m_pairs:]])
+        np.maximum.at(shape_over, body, depth)
+    return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried)
+
+
+def face_rows(
+    contacts: Contacts, X: np.ndarray, r: np.ndarray, margin: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """(body, unit normal toward it, gap, friction, face) of each solid face within ``margin``
+    of a ball (X, r)."""
+    grid = contacts.grid
+    faces = contacts.faces
+    bi, f = grid.pairs(X, r + margin)  # endless faces within reach, and the listed ones
+    if not len(bi):
+        z = np.zeros(0, dtype=np.intp)
+        return z, np.zeros((0, 2)), np.zeros(0), np.zeros(0), z
+    L = len(faces.p)
+    x = X[bi]
+    nrm, _ = face_normals(faces, f, x)
+    line = f < L
+    gap = np.empty(len(f))
+    inside = np.ones(len(f), dtype=bool)
+    if L:
+        fl = np.where(line, f, 0)
+        gap_l = dot(x - faces.p[fl], nrm) - faces.rho[fl] - r[bi]
+        t_dir = np.stack([-faces.n[fl, 1], faces.n[fl, 0]], axis=1)
+        u = dot(x - faces.p[fl], t_dir)
+        inside = ~line | ((u >= faces.lo[fl]) & (u <= faces.hi[fl]))
+        gap = gap_l
+    if len(faces.c):
+        fd = np.where(line, 0, f - L)
+        d = x - faces.c[fd]
+        gap = np.where(line, gap, norm(d) - faces.r[fd] - r[bi])
+    keep = inside & (gap <= margin[bi])
+    return bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep]
+
+
+def dissipative(V: np.ndarray, V0: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """The pile's velocities V (the forces alone would give V0), with the contacts' change
+    scaled back if it gained kinetic energy.
+
+    Contacts only take energy (an exact solution of resting contacts is a projection of V0
+    in the mass metric, which never lengthens it; friction dissipates; restitution e <= 1
+    gives back at most what the impact took), but the soft step's few iterations, and its
+    push apart of an overlap, can stop short and add a little. Then the change dV = V - V0
+    is scaled by the s in [0, 1] that leaves the least energy: KE(s) = KE0 + s B + s^2 C
+    with B = sum m V0.dV, C = sum m |dV|^2 / 2, so s = -B / (2 C). Momentum is kept: the
+    contacts' impulses between bodies are equal and opposite at any s (a wall's are not,
+    and lose only what s takes off them).
+    """
+    dV = V - V0
+    B = float((m * dot(V0, dV)).sum())
+    C = 0.5 * float((m * dot(dV, dV)).sum())
+    KE0 = 0.5 * float((m * dot(V0, V0)).sum())
+    if not B + C > 1e-13 * KE0 + 1e-300:
+        return V
+    s = min(max(-B / (2.0 * C), 0.0), 1.0)
+    return V0 + s * dV
