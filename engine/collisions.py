@@ -57,9 +57,9 @@ import numpy as np
 
 from .colliders import Circle
 from .pair_events import events_of, unpack
-from .pair_grid import Search, deepest_overlap, find_pairs, struck
+from .pair_grid import Search, deepest_overlap, find_pairs, grid_pairs, struck
 from .pair_impacts import MAX_ROUNDS, exact
-from .pair_math import SLOP, dot, norm, unit
+from .pair_math import SLOP, dot, isin_sorted, norm, sorted_unique, unit
 from .pile import PUSH, Carried, Statics, keep_asleep, step_pile
 from .shaped import ShapeTable
 from .sleep import sleep_still, wake_met
@@ -376,15 +376,27 @@ class Collisions:
         ra, rb = store.radius[a], store.radius[b]
         Ar = norm(A[a] - A[b])
         rel = norm(v0[a] - v0[b])
-        gap = norm(x0[a] - x0[b]) - ra - rb
+        d = x0[a] - x0[b]
+        dist = norm(d)
+        gap = dist - ra - rb
         reach = rel * dt + 0.5 * Ar * dt * dt + 0.05 * np.minimum(ra, rb)
-        catch = (gap <= reach) & ((rel + Ar * dt) * dt <= CATCH * (ra + rb))
+        fast = (rel + Ar * dt) * dt <= CATCH * (ra + rb)
+        # A pile may stop its body or send it back (a ball landing on the pile bounces off
+        # it): a body beside it that moved with it in formation (a column falling onto a
+        # stack) then closes on it by up to twice its speed along their normal.
+        nrm = unit(d, dist)
+        turn_a = 2.0 * np.abs(dot(v0[a], nrm)) * dt
+        turn_b = 2.0 * np.abs(dot(v0[b], nrm)) * dt
+        near_a = (gap <= reach + turn_a) & fast  # joins if a is the pile's
+        near_b = (gap <= reach + turn_b) & fast  # joins if b is the pile's
         if self._has_kin:
-            catch |= store.kinematic[a] | store.kinematic[b]  # moved by the game: joins
+            kin = store.kinematic[a] | store.kinematic[b]  # moved by the game: joins
+            near_a, near_b = near_a | kin, near_b | kin
         if self.asleep.any():
-            catch &= ~(self.asleep[a] | self.asleep[b])
+            awake = ~(self.asleep[a] | self.asleep[b])
+            near_a, near_b = near_a & awake, near_b & awake
         for _ in range(4):
-            grow = (island[a] != island[b]) & catch
+            grow = (island[a] & ~island[b] & near_a) | (island[b] & ~island[a] & near_b)
             if not grow.any():
                 break
             island[a[grow]] = island[b[grow]] = True
@@ -439,6 +451,7 @@ class Collisions:
         P = A if A_force is None else A_force
         self.rest_speed = 2.0 * dt * float(norm(P[live]).max())
         self._dt, self._t0 = dt, t0
+        x_free = x1.copy()  # where each body's own path ends: what the pairs were found on
         x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
         self.moved = True
         impacts: list[tuple[np.ndarray, ...]] = []
@@ -501,6 +514,17 @@ class Collisions:
             share = over / np.minimum(store.radius[a], store.radius[b])
             np.maximum.at(self._overlap, a, share)
             np.maximum.at(self._overlap, b, share)
+        # A pair the plan did not list can meet too: a body the impacts or the pile sent off
+        # its own path (a ball struck within the step into one that stood still). Such a
+        # pair left overlapping is counted here, so that the World warns of it.
+        stray = self._stray_overlap(x, x_free, live, a, b, store)
+        if stray is not None:
+            sa, sb, over = stray
+            self.last_overlap = max(self.last_overlap, float(over.max()))
+            share = over / np.minimum(store.radius[sa], store.radius[sb])
+            if len(self._overlap) == n:
+                np.maximum.at(self._overlap, sa, share)
+                np.maximum.at(self._overlap, sb, share)
         self._touching = events_of(
             touching, impacts, n, t0, dt, self._touching, self._began, self._ended
         )
@@ -514,6 +538,49 @@ class Collisions:
             self._overlap, self.face_touching[0],
         )  # fmt: skip
         return x, v
+
+    def _stray_overlap(
+        self,
+        x: np.ndarray,
+        x_free: np.ndarray,
+        live: np.ndarray,
+        a: np.ndarray,
+        b: np.ndarray,
+        store: Any,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """Pairs of discs overlapping at the step's end that the plan did not list, one of
+        them off its own path by more than 5% of its radius (the plan's margin): (a, b,
+        overlap in length units), or None. One grid over the live discs, only when a body
+        strayed that far (a pile at rest does not: gravity's dt^2 is far less)."""
+        r = store.radius
+        off = norm(x[live] - x_free[live]) > 0.05 * r[live]
+        if not off.any() or len(live) < 2:
+            return None
+        round_ = live if self._table is None else live[~self._table.shaped[live]]
+        if len(round_) < 2:
+            return None
+        strayed = np.zeros(len(x), dtype=bool)
+        strayed[live[off]] = True
+        i, j = grid_pairs(x[round_], 2.0 * float(r[round_].max()) + 1e-300)
+        pa, pb = round_[i], round_[j]
+        keep = strayed[pa] | strayed[pb]
+        pa, pb = np.minimum(pa[keep], pb[keep]), np.maximum(pa[keep], pb[keep])
+        if not self._plain:
+            g, c, m = store.group, store.categories, store.mask
+            ok = ~((g[pa] == g[pb]) & (g[pa] != 0)) & ((c[pa] & m[pb]) != 0)
+            ok &= (c[pb] & m[pa]) != 0
+            pa, pb = pa[ok], pb[ok]
+        over = r[pa] + r[pb] - norm(x[pa] - x[pb])
+        deep = over > SLOP * np.minimum(r[pa], r[pb])
+        if not deep.any():
+            return None
+        pa, pb, over = pa[deep], pb[deep], over[deep]
+        if len(a):
+            n = np.int64(len(x))
+            listed = sorted_unique(np.minimum(a, b).astype(np.int64) * n + np.maximum(a, b))
+            new = ~isin_sorted(pa.astype(np.int64) * n + pb, listed)
+            pa, pb, over = pa[new], pb[new], over[new]
+        return (pa, pb, over) if len(pa) else None
 
     def _exact(
         self,

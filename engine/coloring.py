@@ -17,7 +17,7 @@ any number of rows of one colour may share one.
 >>> import numpy as np
 >>> a = np.array([0, 1, 2, 0]); b = np.array([1, 2, 3, 2])
 >>> colors(a, b, np.array([True] * 4)).tolist()
-[0, 1, 0, 2]
+[0, 2, 0, 1]
 """
 
 from __future__ import annotations
@@ -67,10 +67,10 @@ def colors(
 
     Jones and Plassmann's parallel greedy colouring: in each round, every row whose priority
     is the highest among the uncoloured rows at both its bodies takes the lowest colour
-    free at both (such rows share no body, so they never clash). With priorities spread at
-    random a round colours most of what is left, and a pile takes about ten rounds.
-    ``priority`` (float by row, distinct): a row's place in that order; by default a hash of
-    its bodies, so that the same pair gets the same colour step after step. ``prior``: a
+    free at both (such rows share no body, so they never clash).
+    ``priority`` (float by row, distinct): a row's place in that order; by default the
+    order of its bodies (lower first), so that the same pair gets the same colour step after
+    step, and a pile the same colours whatever other bodies the World holds. ``prior``: a
     colour (or -1) each row keeps from the step before (the rows of a pile persist: only the
     new ones need colouring; those kept must not clash, as a colouring's subset does not).
     """
@@ -80,13 +80,12 @@ def colors(
         return color
     n = len(moves)
     if priority is None:
-        # A fixed scramble of the pair (Knuth's multiplicative hash), ties broken by row: 24
-        # bits of it, so that the fraction of the row survives in a float64 (at 2^53 it did
-        # not, and two rows of one pair, a box's two points, tied and took one colour).
-        h = (a.astype(np.uint64) * np.uint64(2654435761) + b.astype(np.uint64)) * np.uint64(
-            11400714819323198485
-        )
-        priority = (h >> np.uint64(40)).astype(np.float64) + np.arange(rows) / (rows + 1.0)
+        # The pair's place in the order of the bodies (the lower first), ties broken by row:
+        # it depends on the bodies' order only, not on their row numbers, so two piles that
+        # never meet colour (and solve) their rows as each would alone. (A hash of the row
+        # numbers, which spread the order at random, did not: a pile solved differently with
+        # another World's bodies numbered among its own.)
+        priority = -(a.astype(np.float64) * n + b) - np.arange(rows) / (rows + 1.0)
     mask = np.zeros(n + 1, dtype=np.int64)  # bit c set: a row of colour c holds the body
     ma = np.where(moves[a], a, n)  # bodies that do not move: the slot n, never claimed
     mb = np.where(moves[b], b, n)

@@ -245,7 +245,8 @@ def impacts_in_order(
     rounds = 0
     Vr = V[la] - V[lb]
     Ar = A[la] - A[lb]
-    can = (norm(Vr) + norm(Ar) * dt) > 0.0
+    # (Two bodies that no impulse moves, a sleeper and a pile's body, cannot bounce.)
+    can = ((norm(Vr) + norm(Ar) * dt) > 0.0) & (w[la] + w[lb] > 0.0)
     if not can.any():
         return Rounds([], rounds, False, None)
     pa, pb, pR = la, lb, R
@@ -326,14 +327,22 @@ def impacts_in_order(
         todo |= again
     else:
         if handover:
-            involved = np.zeros(nU, dtype=bool)
-            for fa, fb, *_ in found:
-                involved[fa] = involved[fb] = True
+            # The crowd: the bodies with an impact still to come, and every body linked to
+            # them by an impact of this step or one to come. A chain elsewhere that ended
+            # stays exact: bodies that never meet the crowd move as if it were not there.
             idx = np.flatnonzero(todo)
             if len(idx):
                 toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
             hit = np.isfinite(toi)
+            involved = np.zeros(nU, dtype=bool)
             involved[pa[hit]] = involved[pb[hit]] = True
+            ea = np.concatenate([np.asarray(f[0], dtype=np.intp) for f in found] + [pa[hit]])
+            eb = np.concatenate([np.asarray(f[1], dtype=np.intp) for f in found] + [pb[hit]])
+            for _ in range(nU):
+                grow = involved[ea] != involved[eb]
+                if not grow.any():
+                    break
+                involved[ea[grow]] = involved[eb[grow]] = True
             return Rounds(None, rounds, False, involved)
         # Impacts are left: rather than let the bodies fly through each other on their
         # paths, each body with an impact still to come stops at the earliest one left,

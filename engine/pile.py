@@ -299,7 +299,6 @@ def step_pile(
         lam[:, 1].copy(),
         static,
     )
-    rmin = float(r.min())
     slop_rows = np.concatenate(slops)
     # Each row keeps its colour from the last step where its key did (engine.coloring).
     prior = np.full(len(key), -1, dtype=np.int64)
@@ -313,7 +312,7 @@ def step_pile(
         moves,
         dt,
         iterations,
-        push_speed=PUSH * rmin,
+        push_speed=PUSH * slop_rows / SLOP,  # PUSH radii a second, the pair's smaller
         threshold=THRESH * rest_speed,
         slop=slop_rows,
         prior=prior,
@@ -329,7 +328,8 @@ def step_pile(
     Vr = np.stack([V[:nU].real, V[:nU].imag], axis=1)
     # A kinematic body goes where the game sends it, whatever it touched.
     if not kin.any():
-        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U])
+        # Each pile on its own: the bodies of one never change another's motion.
+        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], components(nU, ra, rb))
     if kin.any():
         Xr[kin], Vr[kin] = x[U][kin], v[U][kin]
     if n_faces and contacts is not None:
@@ -424,7 +424,29 @@ def face_rows(
     return bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep]
 
 
-def dissipative(V: np.ndarray, V0: np.ndarray, m: np.ndarray) -> np.ndarray:
+def components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The connected component of each of ``n`` bodies joined by rows (a, b), as a label
+    (the least body of it; b = n, the static world, joins nothing): label propagation with
+    pointer jumping, a few rounds of array operations."""
+    label = np.arange(n + 1)
+    inner = (a < n) & (b < n)
+    a, b = a[inner], b[inner]
+    if not len(a):
+        return label[:n]
+    while True:
+        low = np.minimum(label[a], label[b])
+        before = label.copy()
+        np.minimum.at(label, a, low)
+        np.minimum.at(label, b, low)
+        for _ in range(4):  # pointer jumping: each body takes its label's label
+            label = label[label]
+        if np.array_equal(label, before):
+            return label[:n]
+
+
+def dissipative(
+    V: np.ndarray, V0: np.ndarray, m: np.ndarray, group: np.ndarray | None = None
+) -> np.ndarray:
     """The pile's velocities V (the forces alone would give V0), with the contacts' change
     scaled back if it gained kinetic energy.
 
@@ -432,16 +454,23 @@ def dissipative(V: np.ndarray, V0: np.ndarray, m: np.ndarray) -> np.ndarray:
     in the mass metric, which never lengthens it; friction dissipates; restitution e <= 1
     gives back at most what the impact took), but the soft step's few iterations, and its
     push apart of an overlap, can stop short and add a little. Then the change dV = V - V0
-    is scaled by the s in [0, 1] that leaves the least energy: KE(s) = KE0 + s B + s^2 C
+    is scaled, in each ``group`` (a pile; by default all one), by the s in [0, 1] that leaves
+    the least energy: KE(s) = KE0 + s B + s^2 C
     with B = sum m V0.dV, C = sum m |dV|^2 / 2, so s = -B / (2 C). Momentum is kept: the
     contacts' impulses between bodies are equal and opposite at any s (a wall's are not,
     and lose only what s takes off them).
     """
     dV = V - V0
-    B = float((m * dot(V0, dV)).sum())
-    C = 0.5 * float((m * dot(dV, dV)).sum())
-    KE0 = 0.5 * float((m * dot(V0, V0)).sum())
-    if not B + C > 1e-13 * KE0 + 1e-300:
+    n = len(V)
+    if group is None:
+        group = np.zeros(n, dtype=np.intp)
+    B = np.bincount(group, m * dot(V0, dV), minlength=n)
+    C = 0.5 * np.bincount(group, m * dot(dV, dV), minlength=n)
+    KE0 = 0.5 * np.bincount(group, m * dot(V0, V0), minlength=n)
+    gained = B + C > 1e-13 * KE0 + 1e-300
+    if not gained.any():
         return V
-    s = min(max(-B / (2.0 * C), 0.0), 1.0)
-    return V0 + s * dV
+    s = np.ones(n)
+    g = np.flatnonzero(gained)
+    s[g] = np.clip(-B[g] / (2.0 * C[g]), 0.0, 1.0)
+    return V0 + s[group][:, None] * dV

@@ -59,9 +59,11 @@ DAMPING = 10.0
 #: The share of the load a contact carried as the step began that its spring holds rigidly
 #: (relaxing only the rest): a soft contact sags under a load M g by M g / (m omega^2), a
 #: pile's bottom contacts by several percent of a radius; holding it all (1) lets a pile
-#: ring, four fifths keeps it still (measured on the 1,000-ball pit). A wall or floor holds
-#: all of its load.
-HELD = 0.8
+#: ring (the ballpit demo's 2,000 balls never sleep); four fifths left deep piles 2% of a
+#: radius into each other and awake (those 2,000, a column of 50); 0.95 brings both to rest
+#: within 0.5% and asleep (``python -m demos.bench limits``). A wall or floor holds all of
+#: its load.
+HELD = 0.95
 HELD_STATIC = 1.0
 #: Gauss-Seidel sweeps of the position pass that takes out what overlap the step left.
 PROJECT_SWEEPS = 2
@@ -104,7 +106,7 @@ class SoftStep:
         moves: np.ndarray,
         dt: float,
         substeps: int = SUBSTEPS,
-        push_speed: float = math.inf,
+        push_speed: float | np.ndarray = math.inf,
         threshold: float = 0.0,
         slop: np.ndarray | None = None,
         prior: np.ndarray | None = None,
@@ -113,7 +115,7 @@ class SoftStep:
         self.w = w  # (n + 1,) inverse masses, the static slot's 0
         self.dt, self.substeps = dt, substeps
         self.h = h = dt / substeps
-        self.push_speed, self.threshold = push_speed, threshold
+        self.threshold = threshold
         # The solving order: batches of rows that share no moving body. Every per-row array
         # below is held in that order, so that a batch is a slice (a view, no copy).
         self.color = color = coloring.colors(rows.a, rows.b, moves, prior=prior)
@@ -126,6 +128,8 @@ class SoftStep:
         self.n = rows.normal[order]
         self.nc = np.conj(self.n)
         self.sep = rows.separation[order]
+        # The push out of an overlap is capped per row (length units/s).
+        self.push = -np.broadcast_to(np.asarray(push_speed, dtype=float), rows.a.shape)[order]
         self.mu = rows.friction[order]
         self.e = rows.restitution[order]
         self.wa, self.wb = w[self.a], w[self.b]
@@ -186,7 +190,7 @@ class SoftStep:
 
     def _solve(self, v: np.ndarray, dp: np.ndarray) -> None:
         """The normal impulses, with the soft push out of overlap (Box2D's useBias)."""
-        inv_h, push = 1.0 / self.h, -self.push_speed
+        inv_h, push_all = 1.0 / self.h, self.push
         lam_all, total = self.lam, self.total
         for k in self.slices:
             a, b, nc, m = self.a[k], self.b[k], self.nc[k], self.m[k]
@@ -197,9 +201,8 @@ class SoftStep:
             # spring's push, and its relaxation of what the impulse grew past the load it
             # carried as the step began (a stack's weight is carried as by a rigid contact;
             # only its error is soft: little sag under load).
-            closed = -m * (self.ms[k] * vn + np.maximum(self.soft[k] * s, push)) - self.isc[k] * (
-                lam - self.held[k]
-            )
+            bias = np.maximum(self.soft[k] * s, push_all[k])
+            closed = -m * (self.ms[k] * vn + bias) - self.isc[k] * (lam - self.held[k])
             d = np.where(s > 0.0, -m * (vn + s * inv_h), closed)
             new = np.maximum(lam + d, 0.0)
             d = new - lam

@@ -223,7 +223,7 @@ def test_reruns_are_bit_for_bit_the_same() -> None:
 
 def test_the_default_run_keeps_meetings_shallow_as_the_module_says() -> None:
     # Two balls that meet on a peg sank up to 21% of r into each other before the contacts
-    # moved such pairs apart (engine.collisions._separate); the module says how deep now.
+    # moved such pairs apart (engine.pair_impacts.separate); the module says how deep now.
     scene = galton.GaltonScene()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
