@@ -42,6 +42,7 @@ STILLS = [
     ("cradle", ["cradle", "--scene", "heavy"], 20),
     ("galton", ["galton", "--seconds", "300"], 3000),
     ("pendulum", ["pendulum", "--scene", "double", "--seconds", "17"], 170),
+    ("crates", ["crates"], 4),
 ]
 
 

@@ -1,0 +1,50 @@
+"""The crates demo: bodies with shapes stack, get shoved and ride, and the frame shows them."""
+
+from __future__ import annotations
+
+import pygame
+import pytest
+
+from demos.crates import CRATE, LIFT_STOP, CratesScene, deepest_crate_overlap
+from engine.render.world_view import ASLEEP
+
+
+@pytest.fixture(scope="module")
+def scene() -> CratesScene:
+    s = CratesScene()
+    s.build((640, 360))
+    for _ in range(round(4.0 / s.dt)):
+        s.step(s.dt)
+    return s
+
+
+def test_the_crates_stand_in_columns_and_sleep(scene: CratesScene) -> None:
+    crates = scene.bodies["crates"]
+    left, right = crates[:4], crates[4:]
+    # Each column stacked: a crate's centre one crate above the one below, to 1% of a crate.
+    for column in (left, right):
+        for k in range(1, len(column)):
+            assert column[k].pos.y - column[k - 1].pos.y == pytest.approx(CRATE, abs=0.01)
+    assert left[0].pos.y == pytest.approx(0.5 * CRATE, abs=0.01)
+    # The ball shoved the left column's bottom crate along the floor, to the right.
+    assert left[0].pos.x > 1.5 + 0.05
+    # The plank lies across the right column: its centre a crate's half and its radius above.
+    plank = scene.bodies["plank"][0]
+    assert plank.pos.y == pytest.approx(right[-1].pos.y + 0.5 * CRATE + 0.1, abs=0.01)
+    assert scene.deepest < 0.01 * CRATE and deepest_crate_overlap(crates) < 0.01 * CRATE
+    assert all(scene.world.is_sleeping(b) for b in crates + [plank])
+
+
+def test_the_platform_lifts_its_crate_and_stops(scene: CratesScene) -> None:
+    lift, rider = scene.bodies["lift"][0], scene.bodies["rider"][0]
+    assert lift.pos.y == pytest.approx(0.1 + 0.5 * LIFT_STOP, abs=1e-9)
+    assert lift.vel.y == 0.0
+    assert rider.pos.y - lift.pos.y == pytest.approx(0.1 + 0.3, abs=0.005)
+
+
+def test_the_frame_draws_the_sleeping_crates_in_grey(scene: CratesScene) -> None:
+    surface = pygame.Surface((640, 360))
+    scene.draw(surface, 1.0)
+    for crate in scene.bodies["crates"]:
+        x, y = scene.camera.point((crate.pos.x, crate.pos.y))
+        assert tuple(surface.get_at((round(x), round(y))))[:3] == ASLEEP
