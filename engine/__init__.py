@@ -1,4 +1,4 @@
-"""A headless 2D physics engine for point particles, grown from lesson 1 (particle motion).
+"""A headless 2D physics engine for particles, balls and crates, grown from lesson 1.
 
 >>> from engine import Vector, Body, World
 >>> from engine.forces import Gravity
