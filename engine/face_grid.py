@@ -1,215 +1,58 @@
-"""The broadphase for static faces: a grid over the faces, and a step's first two looks.
+"""The broadphase for static faces: a uniform grid over them, built and looked up.
 
-A step's contacts (engine.contacts) are solved cheapest test first, since in a typical scene
-few bodies meet anything:
+A body of radius r at x meets a face only if its distance from the face is at most r plus
+how far it moves. The grid answers, for many bodies at once and in a few array operations,
+a lower bound on that distance (``FaceGrid.gap``) and the few faces worth the exact tests
+(``FaceGrid.listed``, ``pairs``, ``listed_fast``).
 
-1. ``near``, over every body in about twenty array operations: a lower bound on its distance
-   to every face (one look-up in the grid, whose cells' bounds hold the endless lines too)
-   against how far it can reach (``reach``).
-2. ``narrow``, over those near a face: the faces each can reach, and whether its path, not
-   yet turned by any bounce, can meet one at all (a tangent-line bound; see there). Bodies
-   that cannot, and do not rest on a face, keep the state their method reached. Usually every
-   body it looks at is in a cell clear of the endless lines' backs, and then each body's
-   faces, endless or not, come from one row of a table and are tested alike
-   (``FaceGrid._fast_lists``).
+The cells. The finite faces (segments and discs, each a capsule: the points within rad of a
+segment a-b) are covered by a square grid of side h = span / 384 over their extent grown by a
+margin m = max(0.02 span, 1e-3). The distance from a face is 1-Lipschitz (it changes by at
+most |x - x'| between two points), so over a cell it is at least its value at the centre
+less half the diagonal, h / sqrt(2): each cell keeps that bound, least over the faces
+(``FaceGridEdits.distances``), up to far = 16 h (a farther cell holds far, still a lower
+bound). A cell lists the faces whose bound there is at most pad = 4 h; a body reaching at
+most pad from a point of the cell is within pad + h / sqrt(2) of the centre, so every face it
+can reach is listed. A ring of cells around the grid holds m: the faces are at least m from
+any point outside, and a point is found in a cell by clipping to the ring, with no test of
+inside (``cells``). Since pad = 4 h <= 4 (1.04 span) / 384 < m, a body out in the ring that
+reaches at most pad meets no finite face, and the ring's lists are empty.
 
-The rest are swept impact by impact (engine.sweep, engine.sweep_one).
+The endless faces. Lines without end (a Plane, a Box's walls) are few. The signed distance
+from one, n.x - (n.p + rho), is linear, so over a cell it is at least its value at the
+centre less h / sqrt(2) (less 1e-9 h more, for rounding): the bounds of ``gap`` include them,
+and inside the grid one look-up is the whole lower bound. The grid is grown to a Box's
+corners when that costs at most a factor 4 in extent, and then a body outside it is in a
+wall (its ring holds -inf); otherwise ``gap`` adds each endless face's distance out there.
 
-At a thousand bodies the cost is the count of array operations, each a microsecond or two
-whatever its length, and the Python of the few impacts, not the arithmetic per body. A
-clearance budget carried from step to step (a body's distance to the faces when last
-looked at, less how far it has moved since) was measured and does not pay here: in the
-benchmark's box balls move 0.1 to 0.2 m a step and the nearest face is a metre or two away,
-so 110 to 140 of 1,000 need a fresh bound every step even with exact distances, and an
-operation on 140 rows costs nearly what one on 1,000 does.
+The quick lists (``_fast_lists``). On the free side of an endless face the distance from it
+is the distance from its line, and over the grid from the line's piece between the
+projections of the grid's corners, grown by h at each end: a capsule, listed and tested like
+the finite faces. A cell wholly on the free side of every endless face is ``safe``: a body
+there reaching at most pad finds every face it can reach in one row of ``table``. A floor's
+line is put just under a cell's lower edge (by 1e-6 h), so a ball resting on it is in a
+safe cell.
+
+The tables and their in-place edits when colliders are added or taken out are their own
+modules (engine.cell_table, engine.face_grid_edits); a step's first looks, which use the
+grid, are engine.face_looks (``near``, ``narrow``, ``reach``: importable from here too).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 
 import numpy as np
 
+from .cell_table import as_table
+from .face_grid_edits import FaceGridEdits, length2
+from .face_looks import narrow, near, reach
 from .faces import Faces, dot
-from .impact import TOUCH
 
 __all__ = ["FaceGrid", "narrow", "near", "reach"]
 
 
-def reach(speed: np.ndarray, a: float, T: float, r: np.ndarray) -> np.ndarray:
-    """How far from its start a ball can reach within T, bounces and all (length units), from
-    its speed |V| (the array, turned into the answer in place) and a bound a on the sizes of
-    its path's B and W.
-
-    On each piece of its path x = x_k + V_k t + B t^2 / 2, and a bounce never raises the speed
-    (e <= 1), so |V_k| <= |V| + |W| t: the distance covered is at most
-    |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre. (Sliding on a
-    face, friction only slows it: its speed along the face is at most |V| + |W| t too.)
-    """
-    grow = 1.0 + 1e-9
-    reach = speed
-    reach *= T * grow
-    reach += r * grow
-    reach += 1.5 * a * (T * T) * grow + TOUCH
-    return reach
-
-
-def near(
-    grid: FaceGrid,
-    x0: np.ndarray,
-    v0: np.ndarray,
-    B: np.ndarray,
-    W: np.ndarray,
-    dt: float,
-    radius: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray | None, np.ndarray, float]:
-    """(whether each body's path this step may come within reach of a solid face, every
-    body's grid cell or None, every body's reach, a bound on every body's |B| and |W|), for
-    bodies on the paths x0 + v0 t + B t^2 / 2 with velocity v0 + W t over dt.
-
-    This pass goes over every body, so it is kept to a few array operations: the reach
-    (``reach``) takes the largest acceleration of all bodies, |B| <= sqrt(2) max |B_x|,
-    |B_y|, in place of each body's own (a larger reach only lets more bodies through to
-    the exact tests), and one lower bound on the distance to every face (``FaceGrid.gap``)
-    is compared with it.
-    """
-    a_max = float(np.abs(B).max()) if W is B else float(max(np.abs(B).max(), np.abs(W).max()))
-    a_bound = 1.4142136 * a_max
-    vv = v0 * v0
-    speed = vv[:, 0] + vv[:, 1]
-    far = reach(np.sqrt(speed, out=speed), a_bound, dt, radius)
-    cell = grid.cells(x0) if grid.n_finite else None
-    need = grid.gap(x0, cell) <= far
-    return need, cell, far, a_bound
-
-
-def narrow(
-    grid: FaceGrid,
-    rows: np.ndarray,
-    busy: np.ndarray,
-    cell: np.ndarray | None,
-    reach: np.ndarray,
-    a_bound: float,
-    x0: np.ndarray,
-    v0: np.ndarray,
-    dt: float,
-    radius: np.ndarray,
-    allowed: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Of the rows near a face, those that may meet one this step or rest on one, with the
-    (body, face) pairs each is to test: (rows, pair bodies as places in rows, pair faces).
-
-    ``busy``: the rows resting on a face (they slide, lift or stay: always solved), turned
-    here into the rows kept. ``cell``, ``reach`` and ``a_bound``: ``near``'s, for these rows.
-    ``allowed(rows, faces)``: whether each body meets each face, when colliders have filters.
-
-    The pairs are every face a body can reach this step, bounces and all (``reach``);
-    the solver needs them all, since a bounce turns the path. But a body meets nothing at
-    all unless its first path, unturned, meets a face, so the bodies whose first paths
-    surely meet nothing are dropped, by a test that errs only toward keeping them. With
-    d(x) the distance of x from a face (less its radius rho), a ball of radius r meets it
-    when d(x(t)) <= r. For a convex face, d is convex, so it lies above its tangent:
-
-        d(x(t)) >= d(x0) + u.(x(t) - x0) = d(x0) + u.V t + u.B t^2 / 2,
-
-    u being the unit vector from the face's nearest point to x0 (its normal s n for an
-    endless line on side s). On [0, T] that is at least d(x0) + min(u.V, 0) T - |B| T^2 / 2,
-    so a body whose bound stays above r on every face it can reach is dropped. The test is
-    widened by 1e-8 of the lengths in it, far more than the root finders' rounding, so no
-    pair the exact kernels would find a hit in is lost. The faces are an endless line
-    (convex: a half-plane) or a capsule, the points within rho of a segment a-b: a flat
-    face is the middle of its segment's capsule, a round face one with a = b.
-    """
-    T = dt
-    grow = 1.0 + 1e-8
-    # The right side of the test, r + |B| T^2 / 2, widened (reach > |V| T + |B| T^2).
-    slack = radius.take(rows) * grow
-    slack += 0.5 * a_bound * (T * T) * grow + 1e-8
-    slack += 1e-8 * reach
-    parts_b: list[np.ndarray] = []
-    parts_f: list[np.ndarray] = []
-    # The quick way (``FaceGrid._fast_lists``): every body in a cell wholly on the free
-    # side of every endless face and reaching at most pad, so its cell's list holds every
-    # face it can reach, the endless ones as capsules, all tested alike below.
-    quick = (
-        cell is not None
-        and grid.table is not None
-        and float(reach.max()) <= grid.pad
-        and bool(grid.safe.take(cell).all())
-    )
-    if quick:
-        assert cell is not None
-        fb, ff = grid.listed_fast(cell)
-        at = rows.take(fb)
-        Xf, Vf = x0.take(at, axis=0), v0.take(at, axis=0)
-    else:
-        X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
-        if grid.n_inf:
-            # Endless faces (one-sided, s = 1: u = n), all rows against all of them at
-            # once; d0 = n.(x0 - p) as the kernels compute it, so no rounding differs.
-            px, py, nx, ny = grid.inf_cols
-            d0 = X[:, :1] - px
-            d0 *= nx
-            dy = X[:, 1:] - py
-            dy *= ny
-            d0 += dy
-            toward = V[:, :1] * nx
-            toward += V[:, 1:] * ny
-            np.minimum(toward, 0.0, out=toward)
-            toward *= T
-            low = d0 * (1.0 - 1e-8)
-            low += toward
-            busy |= (low <= grid.inf_rho_up + slack[:, None]).any(axis=1)
-            bi, fi = np.nonzero(d0 - grid.inf_rho <= reach[:, None])
-            parts_b.append(bi)
-            parts_f.append(grid.inf_ids[fi])
-        if cell is not None:
-            fb, ff = grid.listed(reach, cell)
-            Xf, Vf = X.take(fb, axis=0), V.take(fb, axis=0)
-    if cell is not None:
-        # The faces the grid lists, each a capsule: the points within rad of its segment
-        # a-b (a flat face is the middle of one, a round face one with a = b). Their
-        # numbers in one table: a, b - a, 1 / |b - a|^2, rad. (Each dot product as one
-        # product and one sum of its columns: the same operations as column by column.)
-        cap = grid.cap.take(ff, axis=0)
-        ab = cap[:, 2:4]
-        D = Xf - cap[:, :2]
-        P = D * ab
-        along = P[:, 0] + P[:, 1]
-        along *= cap[:, 4]  # the nearest point: a + along (b - a)
-        np.minimum(np.maximum(along, 0.0, out=along), 1.0, out=along)
-        C = D - ab * along[:, None]  # from the nearest point of the segment to the ball
-        P = C * C
-        dist = P[:, 0] + P[:, 1]
-        np.sqrt(dist, out=dist)
-        gap = dist - cap[:, 5]
-        # u = C / |C|; the test is multiplied by |C|, so it needs no division.
-        P = C * Vf
-        toward = P[:, 0] + P[:, 1]
-        np.minimum(toward, 0.0, out=toward)
-        meets = gap * dist * (1.0 - 1e-8) + toward * T <= slack[fb] * dist
-        busy[fb[meets]] = True
-        within = gap <= reach[fb]
-        parts_b.append(fb[within])
-        parts_f.append(ff[within])
-    kept = np.flatnonzero(busy)
-    if not len(kept):
-        return kept, kept, kept
-    pb = np.concatenate(parts_b) if len(parts_b) > 1 else parts_b[0]
-    pf = np.concatenate(parts_f) if len(parts_f) > 1 else parts_f[0]
-    if allowed is not None:
-        # Faces of colliders whose filters a body's does not meet are not there for it.
-        ok = allowed(rows[pb], pf)
-        pb, pf = pb[ok], pf[ok]
-    if len(kept) < len(rows):
-        mine = busy[pb]
-        pb, pf = np.searchsorted(kept, pb[mine]), pf[mine]  # its place among the kept
-        rows = rows.take(kept)
-    return rows, pb, pf
-
-
-class FaceGrid:
+class FaceGrid(FaceGridEdits):
     """The broadphase for static faces: a uniform grid over the finite faces.
 
     Each cell stores a lower bound on the distance from any of its points to the nearest
@@ -221,12 +64,13 @@ class FaceGrid:
     (``gap``) count them as well, and the narrow pass checks them against each body near
     one directly.
 
-    A game adds and takes out colliders between steps: ``added`` and ``removed`` change the
-    grid in place, in the new or old faces' windows of cells, and leave it as building it
-    afresh would (the same bounds, lists in the same order, capsules), unless that would lay
-    it differently (its extent or its endless faces change): then the caller drops it. The
-    lists hold slots, each a face's index when it was listed (``_slot_face`` gives its index
-    now), so faces renumbered by a change need no pass over the lists.
+    A game adds and takes out colliders between steps: ``added`` and ``removed``
+    (engine.face_grid_edits) change the grid in place, in the new or old faces' windows of
+    cells, and leave it as building it afresh would (the same bounds, lists in the same
+    order, capsules), unless that would lay it differently (its extent or its endless faces
+    change): then the caller drops it. The lists hold slots, each a face's index when it was
+    listed (``_slot_face`` gives its index now), so faces renumbered by a change need no pass
+    over the lists.
     """
 
     def __init__(self, faces: Faces) -> None:
@@ -312,7 +156,7 @@ class FaceGrid:
         gx = self.lo[0] + (np.arange(nx) + 0.5) * h
         gy = self.lo[1] + (np.arange(ny) + 0.5) * h
         half_diag = h * math.sqrt(0.5)
-        self._gx, self._gy, self._half_diag = gx, gy, half_diag
+        self.gx, self.gy, self.half_diag = gx, gy, half_diag
         # What a collider added or taken out (``added``, ``removed``) needs: the extent the
         # grid was laid over, and each face's capsule and window of cells. The lists hold
         # slots, each a face's place when it was listed; ``_slot_face`` gives its index now.
@@ -320,7 +164,7 @@ class FaceGrid:
         self._slot_face = np.arange(F, dtype=np.intp)
         self._face_slot = np.arange(F, dtype=np.intp)
         self._slot_inf = np.concatenate([faces.infinite, np.zeros(len(faces.c), dtype=bool)])
-        # Each finite face's capsule: a, b, rad, and |b - a|^2 as ``_distances`` takes it.
+        # Each finite face's capsule: a, b, rad, and |b - a|^2 as ``distances`` takes it.
         self._seg = np.full((F, 6), np.nan)
         self._win = np.zeros((F, 4), dtype=np.intp)  # its window of cells: i0, i1, j0, j1
         # Whether every slot is its face's index (true until a face is added or taken out).
@@ -330,13 +174,13 @@ class FaceGrid:
         for k in range(self.n_finite):
             a, b, rr = A[k], Bq[k], rad[k]
             f = int(self.finite[k])
-            i0, i1, j0, j1 = win = self._window(a, b, rr)
-            dist = self._distances(a, b, rr, win)
+            i0, i1, j0, j1 = win = self.window(a, b, rr)
+            dist = self.distances(a, b, rr, win)
             np.minimum(bound[i0:i1, j0:j1], dist, out=bound[i0:i1, j0:j1])
             di, dj = np.nonzero(dist <= self.pad)
             cell_parts.append((i0 + di) * ny + (j0 + dj))
             face_parts.append(np.full(len(di), f, dtype=np.intp))
-            self._seg[f] = (a[0], a[1], b[0], b[1], rr, _length2(a, b))
+            self._seg[f] = (a[0], a[1], b[0], b[1], rr, length2(a, b))
             self._win[f] = win
         # The bounds with a ring of cells around them holding the margin: any point outside
         # the grid is looked up in the ring (clipped), so a lookup needs no inside test.
@@ -464,7 +308,7 @@ class FaceGrid:
         else:  # no endless faces: the lists are the finite ones, already sorted
             faces_sorted, counts = self.faces_of, self.count
             cells_sorted = np.repeat(np.arange(len(counts)), counts)
-        self.table = _as_table(cells_sorted, faces_sorted, counts)
+        self.table = as_table(cells_sorted, faces_sorted, counts)
         #: The finite faces' lists alone as a table too (``listed``), when they fit one:
         #: rows can take a face or give one up in place (``added``, ``removed``). Without it
         #: (faces crowded in a cell) ``listed`` reads the sorted lists, and a change of the
@@ -473,285 +317,11 @@ class FaceGrid:
         if self.table is not None:
             if wall_cells:
                 cells_fin = np.repeat(np.arange(len(self.count)), self.count)
-                self.fin_table = _as_table(cells_fin, self.faces_of, self.count)
+                self.fin_table = as_table(cells_fin, self.faces_of, self.count)
             else:
                 self.fin_table = self.table
         # Each face's capsule numbers in one table (a row per face) for ``narrow``.
         self.cap = np.column_stack([self.cap_a, self.cap_ab, self.cap_inv, self.cap_rad])
-
-    def _window(self, a: np.ndarray, b: np.ndarray, rr: float) -> tuple[int, int, int, int]:
-        """The cells (i0:i1, j0:j1) that can hold a bound from the capsule a-b of radius rr:
-        those within ``far`` of it (its box, grown)."""
-        h, (nx, ny) = self.h, self.shape
-        grow = rr + self.far + h
-        i0 = max(int((min(a[0], b[0]) - grow - self.lo[0]) / h), 0)
-        i1 = min(int((max(a[0], b[0]) + grow - self.lo[0]) / h) + 1, nx)
-        j0 = max(int((min(a[1], b[1]) - grow - self.lo[1]) / h), 0)
-        j1 = min(int((max(a[1], b[1]) + grow - self.lo[1]) / h) + 1, ny)
-        return i0, i1, j0, j1
-
-    def _distances(
-        self, a: np.ndarray, b: np.ndarray, rr: float, win: tuple[int, int, int, int]
-    ) -> np.ndarray:
-        """The lower bound the capsule a-b of radius rr gives the cells of ``win``: the
-        distance from each cell's centre less half its diagonal (no point of a cell is
-        nearer). Cell by cell the same numbers whatever the window."""
-        i0, i1, j0, j1 = win
-        # The cells' centres as a column of x and a row of y, broadcast: each cell's numbers
-        # come from the same operations on the same two coordinates as over a full mesh.
-        dx = self._gx[i0:i1, None] - a[0]
-        dy = self._gy[None, j0:j1] - a[1]
-        ab = b - a
-        ab2 = _length2(a, b)
-        if ab2 > 0:
-            u = (dx * ab[0] + dy * ab[1]) / ab2
-            np.clip(u, 0.0, 1.0, out=u)
-            dist = np.hypot(dx - u * ab[0], dy - u * ab[1])
-        else:  # a point: u = 0, and x - 0 * 0 is x
-            dist = np.hypot(dx, dy)
-        dist -= rr
-        dist -= self._half_diag
-        return dist
-
-    def added(self, faces: Faces, first: int, flat: int, round_: int) -> bool:
-        """Take in the faces of a collider just added (``engine.faces.faces_added``: its
-        ``flat`` flat faces are ``first``..., its ``round_`` round ones the last), in place:
-        its lists, bounds and capsules, the same as building the grid afresh. False (and
-        nothing changed) when the grid must be built afresh instead: it has no finite faces
-        or no tables, the collider has an endless face, or it reaches past the extent the
-        grid was laid over."""
-        if not self.n_finite or self.fin_table is None or self.table is None:
-            return False
-        if flat and bool(faces.infinite[first : first + flat].any()):
-            return False
-        F, D = len(faces.owner), len(faces.c)
-        # Each new face's capsule a-b of radius rad, as __init__ takes it.
-        A: list[np.ndarray] = []
-        Bq: list[np.ndarray] = []
-        rad: list[float] = []
-        if flat:
-            fl = slice(first, first + flat)
-            n = faces.n[fl]
-            tang = np.stack([-n[:, 1], n[:, 0]], axis=1)
-            A += list(faces.p[fl] + tang * faces.lo[fl, None])
-            Bq += list(faces.p[fl] + tang * faces.hi[fl, None])
-            rad += faces.rho[fl].tolist()
-        A += list(faces.c[D - round_ :])
-        Bq += A[flat:]
-        rad += faces.r[D - round_ :].tolist()
-        lo, hi, rmax = self._ext
-        for a, b, rr in zip(A, Bq, rad, strict=True):
-            if (
-                rr > rmax
-                or min(a[0], b[0]) < lo[0]
-                or min(a[1], b[1]) < lo[1]
-                or max(a[0], b[0]) > hi[0]
-                or max(a[1], b[1]) > hi[1]
-            ):
-                return False  # a grid laid afresh would be laid differently
-        count = flat + round_
-        ids = list(range(first, first + flat)) + list(range(F - round_, F))
-        S = len(self._slot_face)
-        slots = list(range(S, S + count))
-        sf = self._slot_face
-        shifted = flat and D > round_  # round faces before it move up past its flat ones
-        if shifted:
-            sf[sf >= first] += flat
-        self._slot_face = np.concatenate([sf, ids])
-        fs = self._face_slot
-        if flat:
-            self._face_slot = np.concatenate([fs[:first], slots[:flat], fs[first:], slots[flat:]])
-        else:
-            self._face_slot = np.concatenate([fs, slots])
-        self._slot_inf = np.concatenate([self._slot_inf, np.zeros(count, dtype=bool)])
-        # Capsule rows, as __init__ makes them (the same operations, in floats).
-        seg, rows, wins = [], [], []
-        for a, b, rr in zip(A, Bq, rad, strict=True):
-            abx, aby = float(b[0] - a[0]), float(b[1] - a[1])
-            ab2 = abx * abx + aby * aby
-            inv = 1.0 / ab2 if ab2 > 0.0 else 0.0
-            rows.append(
-                (a[0], a[1], abx, aby, inv, rr * (1.0 + 1e-8) + 1e-10 * (1.0 + math.sqrt(ab2)))
-            )
-            seg.append((a[0], a[1], b[0], b[1], rr, _length2(a, b)))
-            wins.append(self._window(a, b, rr))
-        self._seg = np.concatenate([self._seg, seg])
-        self._win = np.concatenate([self._win, wins])
-        cap, new_rows = self.cap, np.array(rows)
-        if flat:
-            self.cap = np.concatenate([cap[:first], new_rows[:flat], cap[first:], new_rows[flat:]])
-        else:
-            self.cap = np.concatenate([cap, new_rows])
-        self._ident = self._ident and not shifted
-        if flat:
-            self._renumbered(faces)
-        else:
-            self.finite = np.concatenate([self.finite, ids])
-            self.n_finite = len(self.finite)
-        key = self._keys() if shifted else None
-        ny = self.shape[1]
-        for k in range(count):
-            s, f = slots[k], ids[k]
-            i0, i1, j0, j1 = win = wins[k]
-            dist = self._distances(A[k], Bq[k], rad[k], win)
-            np.minimum(self.bound[i0:i1, j0:j1], dist, out=self.bound[i0:i1, j0:j1])
-            self._bounds_changed(win)
-            di, dj = np.nonzero(dist <= self.pad)
-            cells = (i0 + di + 1) * (ny + 2) + (j0 + dj + 1)
-            for which in ("table", "fin_table"):
-                if which == "fin_table" and self.fin_table is self.table:
-                    continue
-                table = getattr(self, which)
-                # The face goes last in each list unless it is flat and round faces are
-                # listed after it (then by ``key``).
-                grown = _insert(table, cells, s, f, key)
-                if grown is None:
-                    return False  # the caller drops this grid
-                if grown is not table:
-                    if self.fin_table is table:
-                        self.fin_table = grown
-                    setattr(self, which, grown)
-        return True
-
-    def removed(self, faces: Faces, index: np.ndarray, gone: np.ndarray) -> bool:
-        """Let go of the faces ``gone`` of a collider just taken out (old indices;
-        ``index``: each old face's new index, ``engine.faces.faces_removed``), in place: the
-        same lists, bounds and capsules as building the grid afresh. False when it must be
-        built afresh instead (as for ``added``, or when the extent the grid was laid over
-        shrinks)."""
-        if not self.n_finite or self.fin_table is None or self.table is None:
-            return False
-        slots = self._face_slot[gone]
-        if bool(self._slot_inf[slots].any()):
-            return False
-        live = (self._slot_face >= 0) & ~self._slot_inf
-        live[slots] = False
-        if not live.any():
-            return False
-        lo, hi, rmax = self._ext
-        inner = all(
-            rr < rmax
-            and min(a0, b0) > lo[0]
-            and min(a1, b1) > lo[1]
-            and max(a0, b0) < hi[0]
-            and max(a1, b1) < hi[1]
-            for a0, a1, b0, b1, rr, _ in self._seg[slots].tolist()
-        )
-        if not inner:
-            # It touches the extent the grid was laid over: is that extent still the same?
-            seg = self._seg[live]
-            A, Bq, rad = seg[:, :2], seg[:, 2:4], seg[:, 4]
-            if not (
-                np.array_equal(np.minimum(A, Bq).min(axis=0), lo)
-                and np.array_equal(np.maximum(A, Bq).max(axis=0), hi)
-                and float(rad.max()) == rmax
-            ):
-                return False
-        tables = [self.table] if self.fin_table is self.table else [self.table, self.fin_table]
-        sf = self._slot_face
-        self._slot_face = np.where(sf >= 0, index[np.maximum(sf, 0)], -1)
-        kept = index >= 0
-        self._face_slot = self._face_slot[kept]
-        self.cap = self.cap[kept]
-        self._renumbered(faces)
-        ny = self.shape[1]
-        for s in slots.tolist():
-            sg = self._seg[s]
-            i0, i1, j0, j1 = w = tuple(self._win[s].tolist())
-            dist = self._distances(sg[:2], sg[2:4], sg[4], w)
-            di, dj = np.nonzero(dist <= self.pad)
-            cells = (i0 + di + 1) * (ny + 2) + (j0 + dj + 1)
-            for table in tables:
-                _take_out(table, cells, s)
-            # The cells it was the least bound of (or tied): only there the bound changes,
-            # to the least of the faces left whose windows hold the cell, or ``far``.
-            di, dj = np.nonzero(dist <= self.bound[i0:i1, j0:j1])
-            if len(di):
-                self.bound[i0 + di, j0 + dj] = self._least(live, i0 + di, j0 + dj)
-                self._bounds_changed(w)
-            self._seg[s] = np.nan
-        if 2 * int(live.sum()) + 64 < len(self._slot_face):
-            self._compact()
-        return True
-
-    def _least(self, live: np.ndarray, ci: np.ndarray, cj: np.ndarray) -> np.ndarray:
-        """The bounds of cells (ci, cj) from the ``live`` faces (by slot) whose windows hold
-        them, at most ``far``: what building afresh gives them, by the same operations as
-        ``_distances`` on each face's numbers, all faces at once."""
-        win = self._win
-        # Windows (i0, i1, j0, j1) that meet the cells' box: i0 <= i_max, -i1 <= -i_min - 1,
-        # j0 <= j_max and -j1 <= -j_min - 1, all at once.
-        i_lo, i_hi, j_lo, j_hi = int(ci.min()), int(ci.max()), int(cj.min()), int(cj.max())
-        meets = (win * _FLIP <= (i_hi, -i_lo - 1, j_hi, -j_lo - 1)).all(axis=1)
-        near = np.flatnonzero(meets & live)
-        least = np.full(len(ci), self.far)
-        if not len(near):
-            return least
-        sg, w = self._seg[near], win[near]
-        a0, a1, b0, b1 = (sg[:, k : k + 1] for k in range(4))
-        rr, ab2 = sg[:, 4:5], sg[:, 5:6]
-        held = (ci >= w[:, 0:1]) & (ci < w[:, 1:2]) & (cj >= w[:, 2:3]) & (cj < w[:, 3:4])
-        dx = self._gx[ci] - a0  # (faces, cells)
-        dy = self._gy[cj] - a1
-        abx, aby = b0 - a0, b1 - a1
-        point = ab2 <= 0.0
-        u = (dx * abx + dy * aby) / np.where(point, 1.0, ab2)
-        np.clip(u, 0.0, 1.0, out=u)
-        u[np.broadcast_to(point, u.shape)] = 0.0  # a point: x - 0 * 0 is x
-        dist = np.hypot(dx - u * abx, dy - u * aby)
-        dist -= rr
-        dist -= self._half_diag
-        dist[~held] = np.inf
-        np.minimum(least, dist.min(axis=0), out=least)
-        return least
-
-    def _renumbered(self, faces: Faces) -> None:
-        """After faces were added or taken out: the endless and finite faces' indices, and
-        whether every slot is its face's index."""
-        L = len(faces.p)
-        self.inf_ids = np.flatnonzero(faces.infinite)
-        self.finite = np.concatenate([np.flatnonzero(~faces.infinite), L + np.arange(len(faces.c))])
-        self.finite = self.finite.astype(np.intp)
-        self.n_finite = len(self.finite)
-        sf = self._slot_face
-        self._ident = len(sf) == len(faces.owner) and bool(np.array_equal(sf, np.arange(len(sf))))
-
-    def _keys(self) -> np.ndarray:
-        """Each slot's place in a table's rows: the endless faces first (-1), then by index."""
-        return np.where(self._slot_inf, -1, self._slot_face)
-
-    def _bounds_changed(self, win: tuple[int, int, int, int]) -> None:
-        """``gap``'s bounds over ``win`` from ``bound`` (the ring's share the same numbers)."""
-        i0, i1, j0, j1 = win
-        if self._inf_bound is not None:
-            np.minimum(
-                self.bound[i0:i1, j0:j1],
-                self._inf_bound[i0:i1, j0:j1],
-                out=self._gap_inner[i0:i1, j0:j1],
-            )
-
-    def _compact(self) -> None:
-        """Slots renumbered as the faces' indices (many faces were taken out)."""
-        sf = self._slot_face
-        live = sf >= 0
-        order = sf[live]  # the faces of the live slots, slot order
-        for name in ("table", "fin_table"):
-            table = getattr(self, name)
-            if table is None or (name == "fin_table" and table is self.table):
-                continue
-            ok = table >= 0
-            table[ok] = sf[table[ok]]
-        F = len(self._face_slot)
-        seg = np.full((F, 6), np.nan)
-        win = np.zeros((F, 4), dtype=np.intp)
-        inf = np.zeros(F, dtype=bool)
-        seg[order] = self._seg[live]
-        win[order] = self._win[live]
-        inf[order] = self._slot_inf[live]
-        self._seg, self._win, self._slot_inf = seg, win, inf
-        self._slot_face = np.arange(F, dtype=np.intp)
-        self._face_slot = np.arange(F, dtype=np.intp)
-        self._ident = True
 
     def listed_fast(self, cell: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(body, face) pairs from ``table`` for bodies in safe cells reaching at most pad:
@@ -876,78 +446,3 @@ class FaceGrid:
         if len(parts_b) == 1:
             return parts_b[0], parts_f[0]
         return np.concatenate(parts_b), np.concatenate(parts_f)
-
-
-_FLIP = np.array([1, -1, 1, -1], dtype=np.intp)  # for ``FaceGrid._least``'s test of windows
-
-#: The most entries a cell table (``FaceGrid.table``) may hold: beyond it (faces crowded in a
-#: cell) the lists are read from their sorted form.
-TABLE_SIZE = 4_000_000
-
-
-def _as_table(
-    cells_sorted: np.ndarray, faces_sorted: np.ndarray, counts: np.ndarray
-) -> np.ndarray | None:
-    """Lists sorted by cell (each cell's faces in order, ``counts`` of them) as the rows of a
-    table, -1 past each list's end; None when it would hold more than TABLE_SIZE entries."""
-    width = max(int(counts.max()), 1)
-    if len(counts) * width > TABLE_SIZE:
-        return None
-    start = np.cumsum(counts) - counts
-    table = np.full((len(counts), width), -1, dtype=np.int32)
-    table[cells_sorted, np.arange(len(cells_sorted)) - start[cells_sorted]] = faces_sorted
-    return table
-
-
-def _length2(a: np.ndarray, b: np.ndarray) -> float:
-    """|b - a|^2 of two points (2,), as ``FaceGrid._distances`` has always taken it."""
-    ab = b - a
-    return float(ab @ ab)
-
-
-def _insert(
-    table: np.ndarray, cells: np.ndarray, slot: int, face: int, key: np.ndarray | None
-) -> np.ndarray | None:
-    """Put ``slot`` (face index ``face``) into the lists of ``cells``, each in its place by
-    ``key`` (the slots' order: ``FaceGrid._keys``; None: last, after every face listed), in
-    place; a wider table when a list is full (the old one otherwise), None when a wider one
-    would hold more than TABLE_SIZE."""
-    if not len(cells):
-        return table
-    rows = table.take(cells, axis=0)
-    has = rows >= 0
-    count = has.sum(axis=1)
-    width = table.shape[1]
-    if int(count.max()) >= width:
-        wider = width + max(2, width // 2)
-        if len(table) * wider > TABLE_SIZE:
-            return None
-        grown = np.full((len(table), wider), -1, dtype=table.dtype)
-        grown[:, :width] = table
-        table = grown
-        rows = table.take(cells, axis=0)
-        has = rows >= 0
-        width = wider
-    if key is None:  # it goes last
-        table[cells, count] = slot
-        return table
-    before = has & (key.take(np.where(has, rows, 0)) < face)
-    pos = before.sum(axis=1)[:, None]
-    col = np.arange(width)
-    shifted = np.empty_like(rows)
-    shifted[:, 0] = -1
-    shifted[:, 1:] = rows[:, :-1]
-    table[cells] = np.where(col < pos, rows, np.where(col == pos, slot, shifted))
-    return table
-
-
-def _take_out(table: np.ndarray, cells: np.ndarray, slot: int) -> None:
-    """Take ``slot`` out of the lists of ``cells`` (each holds it), in place."""
-    if not len(cells):
-        return
-    rows = table.take(cells, axis=0)
-    pos = np.argmax(rows == slot, axis=1)[:, None]
-    shifted = np.empty_like(rows)
-    shifted[:, -1] = -1
-    shifted[:, :-1] = rows[:, 1:]
-    table[cells] = np.where(np.arange(rows.shape[1]) < pos, rows, shifted)
