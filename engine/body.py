@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, cast
 from . import checks
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter
-from .vector import Vector, _as_pair, _new
+from .vector import Vector, as_pair, new_unchecked
 
 if TYPE_CHECKING:
     from .store import BodyStore
@@ -48,7 +48,7 @@ def _dim_of(value: Any) -> int | None:
     """1 for a real number, 2 for a Vector or pair of numbers, None for anything else."""
     if isinstance(value, Real) and not isinstance(value, bool):
         return 1
-    if _as_pair(value) is not None:
+    if as_pair(value) is not None:
         return 2
     return None
 
@@ -236,13 +236,34 @@ class Body:
         """The World this body is in, or None."""
         return None if self._store is None else self._store.owner
 
+    # -- the World's handle (engine.membership sets it; the World's modules read ``slot``) ----
+    @property
+    def slot(self) -> int:
+        """The body's slot in its World's arrays (``engine.store``: ``store.row(slot)`` is
+        its row now), kept while it is in the World; -1 out of a World. A count, no unit."""
+        return self._slot
+
+    def attach(self, store: BodyStore, slot: int) -> None:
+        """Become a handle onto ``slot`` of ``store`` (a World's arrays, which now hold its
+        position, velocity, mass and own acceleration): the World's side of adding it."""
+        self._store, self._slot = store, slot
+
+    def detach(self, pos: State, vel: State, mass: float, own_acc: State) -> None:
+        """Stop being a World's handle and hold its own state again: ``pos`` (length units),
+        ``vel`` (length units / s), ``mass`` (kg) and ``own_acc`` (length units / s^2), as
+        they were in the World (taken unchecked): the World's side of removing it."""
+        self._store, self._slot = None, -1
+        self._store_pos(pos)
+        self._store_vel(vel)
+        self._mass, self._acc = mass, own_acc
+
     @property
     def pos(self) -> Any:
         """Position (length units): a float in 1D, a Vector in 2D."""
         store = self._store
         if store is not None:
             return store.value(store.x[store.row(self._slot)])
-        return self._px if self._dim == 1 else _new(Vector, (self._px, self._py))
+        return self._px if self._dim == 1 else new_unchecked(Vector, (self._px, self._py))
 
     @pos.setter
     def pos(self, value: Any) -> None:
@@ -258,7 +279,7 @@ class Body:
         store = self._store
         if store is not None:
             return store.value(store.v[store.row(self._slot)])
-        return self._vx if self._dim == 1 else _new(Vector, (self._vx, self._vy))
+        return self._vx if self._dim == 1 else new_unchecked(Vector, (self._vx, self._vy))
 
     @vel.setter
     def vel(self, value: Any) -> None:

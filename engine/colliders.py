@@ -46,14 +46,14 @@ from typing import Any
 from . import checks, convex
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter
-from .vector import Vector, _as_pair
+from .vector import Vector, as_pair
 
 __all__ = ["Collider", "Plane", "Segment", "Circle", "Box", "Polygon", "point_of"]
 
 
 def point_of(value: Any, name: str) -> tuple[float, float]:
     """A finite 2D point (a Vector or a pair of numbers); TypeError / ValueError naming ``name``."""
-    pair = _as_pair(value)
+    pair = as_pair(value)
     if pair is None and not isinstance(value, (str, bytes)):
         try:  # any other 2-sequence of real numbers: a numpy row, a pygame Vector2
             if len(value) == 2 and all(

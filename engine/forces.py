@@ -38,7 +38,7 @@ from typing import Any
 import numpy as np
 
 from .checks import real
-from .vector import Vector, _as_pair
+from .vector import Vector, as_pair
 
 __all__ = [
     "Force",
@@ -65,7 +65,7 @@ class _Param:
             f = real(value, name)
             self.dim, self.value, self.array = 1, f, f
             return
-        pair = _as_pair(value)
+        pair = as_pair(value)
         if pair is None:
             raise TypeError(
                 f"{name} must be a number (1D) or a Vector / pair of numbers (2D), "

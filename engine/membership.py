@@ -80,7 +80,7 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
         [b.shape for b in batch],
     )
     for b, slot in zip(batch, slots, strict=True):
-        b._store, b._slot = store, slot
+        b.attach(store, slot)
         state.bodies.append(b)
     if state.contacts is not None:
         state.contacts.bodies_added(len(batch))
@@ -96,13 +96,13 @@ def remove(state: WorldState, body: Body) -> None:
     store = state.store
     assert store is not None
     pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
-    row = store.row(body._slot)
+    row = store.row(body.slot)
     # The last step's events are named now, before the rows shift, and the body's open
     # contacts end (reported with the next step).
-    state.events.body_removed(body._slot, state.t)
+    state.events.body_removed(body.slot, state.t)
     del state.bodies[row]
     state.targets.pop(body, None)
-    store.remove(body._slot)
+    store.remove(body.slot)
     gone = [k for k in state.links if body in k.bodies]
     if gone:
         # Its links go with it.
@@ -114,10 +114,7 @@ def remove(state: WorldState, body: Body) -> None:
     for attached in state.forces:
         if attached.bodies is not None and body in attached.bodies:
             attached.bodies.remove(body)
-    body._store, body._slot = None, -1
-    body._store_pos(pos)
-    body._store_vel(vel)
-    body._mass, body._acc = mass, own
+    body.detach(pos, vel, mass, own)
     state.changed_structure()
 
 
@@ -188,7 +185,7 @@ def add_link(state: WorldState, link: LinkT) -> LinkT:
     if isinstance(link, Pin):
         store = state.store
         assert store is not None
-        row = store.row(link.body._slot)
+        row = store.row(link.body.slot)
         store.x[row] = store.prev_x[row] = tuple(link.point)
         store.v[row] = 0.0
         state.state_written()

@@ -34,7 +34,7 @@ def is_sleeping(state: WorldState, body: Body) -> bool:
         raise ValueError(f"that body is not in this World: {body!r}")
     asleep = state.collisions.asleep
     assert state.store is not None
-    row = state.store.row(body._slot)
+    row = state.store.row(body.slot)
     return bool(row < len(asleep) and asleep[row])
 
 
@@ -43,8 +43,8 @@ def overlap(state: WorldState) -> float:
     store = state.store
     if store is None or store.dim != 2 or not state.bodies:
         return 0.0
-    live = state.collisions._prepare(store.radius, store.group, store.categories, store.mask)
-    if len(live) < 2 or state.collisions._one_group:
+    live = state.collisions.live(store.radius, store.group, store.categories, store.mask)
+    if len(live) < 2 or state.collisions.one_group:
         return 0.0
     filters = (store.group[live], store.categories[live], store.mask[live])
     return deepest_overlap(store.x[live], store.radius[live], filters)
@@ -57,7 +57,7 @@ def resting(state: WorldState, body: Body) -> Collider | None:
     contacts, store = state.contacts, state.store
     if contacts is None or store is None:
         return None
-    f = int(contacts.rest[store.row(body._slot)])
+    f = int(contacts.rest[store.row(body.slot)])
     return None if f < 0 else contacts.colliders[int(contacts.faces.owner[f])]
 
 
@@ -92,7 +92,7 @@ def position_of(state: WorldState, body: Body, alpha: float = 1.0) -> State:
         raise ValueError(f"alpha must be a number in [0, 1], got {alpha!r}")
     store = state.store
     assert store is not None
-    row = store.row(body._slot)
+    row = store.row(body.slot)
     x, prev = store.x[row], store.prev_x[row]
     return store.value(x if alpha == 1.0 else prev + (x - prev) * float(alpha))
 

@@ -234,8 +234,8 @@ def _describe(state: WorldState, link: Link) -> tuple[Any, ...]:
     other = link.other
     return (
         type(link).__name__,
-        store.row(link.body._slot),
-        store.row(other._slot) if isinstance(other, Body) else -1,
+        store.row(link.body.slot),
+        store.row(other.slot) if isinstance(other, Body) else -1,
         None if isinstance(other, Body) else (float(other[0]), float(other[1])),
         link.length,
         link.restitution,

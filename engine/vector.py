@@ -40,7 +40,7 @@ from numbers import Real
 from operator import itemgetter
 from typing import Any, SupportsFloat, TypeVar, Union
 
-__all__ = ["Vector", "VectorLike"]
+__all__ = ["Vector", "VectorLike", "as_pair", "new_unchecked"]
 
 VectorLike = Union["Vector", tuple[float, float]]
 
@@ -48,9 +48,12 @@ _V = TypeVar("_V", bound="Vector")
 
 # Vector is a tuple underneath: immutable for free, made at C speed, compared and hashed
 # like the pair it holds (so Vector(1, 2) == (1.0, 2.0) and their hashes agree), and
-# turned into numpy arrays directly. _new(Vector, (x, y)) skips the checks in __new__
-# and is used where x and y are already floats (the results of float arithmetic).
-_new = tuple.__new__
+# turned into numpy arrays directly.
+#: ``new_unchecked(Vector, (x, y))``: a Vector of two floats (length units) made at C speed,
+#: without the checks of ``Vector(x, y)``; only where x and y are already floats (the
+#: results of float arithmetic).
+new_unchecked: Callable[..., Any] = tuple.__new__
+_new = new_unchecked  # the old name, used throughout this module
 
 # pygame's Vector2 tolerance (VECTOR_EPSILON in pygame's src_c/math.c): the methods named
 # after pygame's use it exactly where pygame does, so they refuse the same near-zero input.
@@ -74,8 +77,8 @@ def _component(value: Any, name: str) -> float:
         ) from None
 
 
-def _as_pair(other: Any) -> tuple[float, float] | None:
-    """The (x, y) of a Vector or of any 2-sequence of real numbers, else None.
+def as_pair(other: Any) -> tuple[float, float] | None:
+    """The (x, y) floats (in the value's own units) of a Vector or 2-sequence of reals, else None.
 
     A 2-sequence is anything with ``len(s) == 2`` and ``s[0]``, ``s[1]``: a tuple, a list,
     a numpy row, a pygame ``Vector2``, a pymunk ``Vec2d``. Strings and mappings are not.
@@ -106,6 +109,9 @@ def _as_pair(other: Any) -> tuple[float, float] | None:
         return float(x), float(y)
     except OverflowError:  # an int beyond the float range is not a usable pair
         return None
+
+
+_as_pair = as_pair  # the old name, used throughout this module
 
 
 def _pair(value: Any, name: str) -> tuple[float, float]:

@@ -142,7 +142,7 @@ class WorldState:
         """The rows of ``bodies`` in the body arrays."""
         if not bodies or self.store is None:
             return np.zeros(0, dtype=np.intp)
-        return self.store.rows([b._slot for b in bodies])
+        return self.store.rows([b.slot for b in bodies])
 
     # -- the contacts between bodies: sleep and the solver's iterations -------------------------
     def set_sleep_time(self, value: float) -> None:
@@ -193,7 +193,7 @@ class WorldState:
             store.kinematic = np.array([b.kinematic for b in self.bodies], dtype=bool)
             for k in self.links:
                 if isinstance(k, Pin):
-                    store.kinematic[store.row(k.body._slot)] = True
+                    store.kinematic[store.row(k.body.slot)] = True
         # A body no longer held goes nowhere it was sent while held.
         self.targets = {b: p for b, p in self.targets.items() if b.kinematic}
         self.changed_structure()
