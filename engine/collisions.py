@@ -642,6 +642,11 @@ class Collisions:
         """``ended`` as held, as ``began_arrays``."""
         return self._ended
 
+    def set_events(self, began: list[tuple[Any, ...]], ended: list[tuple[Any, ...]]) -> None:
+        """Hold ``began`` and ``ended`` (batches as ``began_arrays``) as the last step's
+        events: a step taken again in substeps reports all of theirs (engine.stepping)."""
+        self._began, self._ended = began, ended
+
     @property
     def began(self) -> list[tuple[int, int, Any, Any, Any, float]]:
         """Contacts between bodies that began in the last step: (row, other row, point, normal

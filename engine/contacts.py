@@ -41,7 +41,7 @@ How a step is solved, cheapest test first (in a typical scene few bodies meet an
    yet turned by any bounce, can meet one at all (a tangent-line bound; see there). Bodies
    that cannot, and do not rest on a face, keep (x1, v1). Usually every body it looks at is
    in a cell clear of the endless lines' backs, and then each body's faces, endless or not,
-   come from one row of a table and are tested alike (``_FaceGrid._fast_lists``).
+   come from one row of a table and are tested alike (engine.face_grid).
 3. The rest are solved impact by impact: a few one body at a time in Python floats
    (``_solve_few``), many at once in numpy arrays (``_solve``). Both do the same arithmetic in
    the same order and give the same bits; only their cost differs (numpy's fixed cost per
@@ -72,7 +72,6 @@ from .faces import (
     allowed_pairs,
     compile_faces,
     face_meets,
-    face_normals,
     faces_added,
     faces_removed,
     signed_distance,
@@ -358,15 +357,33 @@ class Contacts:
         return _unpack(self._ended)
 
     @property
+    def began_arrays(self) -> list[tuple[Any, ...]]:
+        """``began`` as held: (rows, collider indices, points, normals, impulses (N s),
+        times (s)) arrays or tuples, a batch a tuple (engine.events.raw_specs reads them)."""
+        return self._began
+
+    @property
+    def ended_arrays(self) -> list[tuple[Any, ...]]:
+        """``ended`` as held, as ``began_arrays``."""
+        return self._ended
+
+    def set_events(self, began: list[tuple[Any, ...]], ended: list[tuple[Any, ...]]) -> None:
+        """Hold ``began`` and ``ended`` (batches as ``began_arrays``) as the last step's
+        events: a step taken again in substeps reports all of theirs (engine.stepping)."""
+        self._began, self._ended = began, ended
+
+    @property
+    def sensor_indices(self) -> list[int]:
+        """The places among ``colliders`` of the sensors, in order (the columns of
+        ``inside``). Indices, no unit."""
+        return self._sensors
+
+    @property
     def grid(self) -> FaceGrid:
         """The broadphase over the solid faces (engine.face_grid), built when first needed."""
         if self._grid is None:
             self._grid = FaceGrid(self.faces)
         return self._grid
-
-    def _grid_of(self) -> FaceGrid:
-        """``grid`` by its old name, for callers not yet switched (engine.collisions)."""
-        return self.grid
 
     def _near(
         self,
@@ -414,10 +431,6 @@ class Contacts:
         faces = self.faces
         meets = None if rows is None else face_meets(faces, self.body_filters, rows)
         return push_out.push_out_rows(faces, self.colliders, X, V, r, meets)
-
-    def _normals(self, f: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Unit normals toward X of faces f (one per row), and 1 / radius (0 for flat faces)."""
-        return face_normals(self.faces, f, X)
 
     # -- sensors ----------------------------------------------------------------------------
     def sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:

@@ -23,6 +23,7 @@ from .events import (
     slack_for,
     slot_of,
 )
+from .faces import face_normals
 
 if TYPE_CHECKING:
     from .world_state import WorldState
@@ -85,15 +86,15 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
         serials = np.array([events.serial(c) for c in contacts.colliders], dtype=np.int64).reshape(
             -1
         )
-        raw += raw_specs(contacts._began, True, slots, serials)
-        raw += raw_specs(contacts._ended, False, slots, serials)
+        raw += raw_specs(contacts.began_arrays, True, slots, serials)
+        raw += raw_specs(contacts.ended_arrays, False, slots, serials)
         on = np.flatnonzero(contacts.rest >= 0)
         if len(on):
             owner = contacts.faces.owner[contacts.rest[on]]
             resting = collider_keys(slots[on], serials[owner])
         if contacts.inside.size:
             rows, s = np.nonzero(contacts.inside)
-            sensors = np.array(contacts._sensors, dtype=np.intp)
+            sensors = np.array(contacts.sensor_indices, dtype=np.intp)
             sensing = collider_keys(slots[rows], serials[sensors[s]])
     if state.pairs_on:
         pairs = state.collisions
@@ -101,9 +102,9 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
         if len(rows) and contacts is not None:
             owner = contacts.faces.owner[faces]
             resting = np.concatenate([resting, collider_keys(slots[rows], serials[owner])])
-        raw += raw_specs(pairs._began, True, slots, None)
-        raw += raw_specs(pairs._ended, False, slots, None)
-        touching = pairs._touching
+        raw += raw_specs(pairs.began_arrays, True, slots, None)
+        raw += raw_specs(pairs.ended_arrays, False, slots, None)
+        touching = pairs.touching
         if len(touching):
             n = len(slots)
             resting = np.concatenate(
@@ -130,7 +131,7 @@ def gaps(state: WorldState, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         r[pair] = np.minimum(r[pair], store.radius[b])
     for serial in np.unique(other[is_c]).tolist():
         sel = np.flatnonzero(is_c & (other == serial))
-        collider = state.events._collider.get(serial)
+        collider = state.events.collider_of(serial)
         if collider is not None:
             gap[sel] = signed_distance(collider, store.x[a[sel]]) - r[sel]
     return gap, slack_for(r)
@@ -160,11 +161,11 @@ def impulses(state: WorldState, keys: np.ndarray) -> dict[int, tuple[float, floa
                 if c and f >= 0 and serials[contacts.faces.owner[f]] == o:
                     j = dv[row] * store.mass[row]
                     out[k] = (float(j[0]), float(j[1]))
-    pairs = state.collisions
-    if state.pairs_on and len(pairs._keys):
+    carried = state.collisions.carried if state.pairs_on else None
+    if carried is not None and len(carried.keys):
         n = len(store)
-        base = pairs._base
-        lam_keys, lam = pairs._keys, pairs._lam
+        base = carried.base
+        lam_keys, lam = carried.keys, carried.lam
         n_faces = base - n
         for k, row, c, o in zip(
             keys.tolist(), a.tolist(), is_c.tolist(), other.tolist(), strict=True
@@ -189,7 +190,7 @@ def impulses(state: WorldState, keys: np.ndarray) -> dict[int, tuple[float, floa
                 if c:
                     assert contacts is not None
                     f = f_or_b - row * base - n
-                    nrm = contacts._normals(np.array([f]), store.x[[row]])[0][0]
+                    nrm = face_normals(contacts.faces, np.array([f]), store.x[[row]])[0][0]
                 else:
                     d = store.x[row] - store.x[int(row_of[o])]
                     nrm = d / max(float(np.hypot(d[0], d[1])), 1e-300)

@@ -296,6 +296,16 @@ class WorldEvents:
         """Whether any contact is open or any end is waiting to be reported."""
         return bool(len(self.ledger.keys) or self.ledger.pending)
 
+    @property
+    def view(self) -> Any:
+        """How the events read the World now (engine.event_dispatch.EventView: bodies by slot,
+        their positions in length units, impulses in N s); None until the World sets it."""
+        return self._view
+
+    @view.setter
+    def view(self, value: Any) -> None:
+        self._view = value
+
     # -- names -------------------------------------------------------------------------------
     def collider_added(self, collider: Any) -> None:
         """Give a new collider its serial number (kept while it is in the World)."""
@@ -306,6 +316,10 @@ class WorldEvents:
     def serial(self, collider: Any) -> int:
         """The serial number of a collider in the World."""
         return self._serial[collider]
+
+    def collider_of(self, serial: int) -> Any | None:
+        """The collider in the World with serial number ``serial``, or None (taken out)."""
+        return self._collider.get(serial)
 
     def collider_removed(self, collider: Any, t: float) -> None:
         """A collider leaves: its open contacts end (reported with the next step)."""

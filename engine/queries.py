@@ -40,7 +40,7 @@ from .filters import DEFAULT, Filter
 from .vector import Vector
 
 if TYPE_CHECKING:
-    from .world import World
+    from .world_state import WorldState
 
 __all__ = [
     "QueryHit",
@@ -75,9 +75,9 @@ def _filter(value: Any) -> Filter:
     return value
 
 
-def _bodies_seen(world: World, f: Filter) -> np.ndarray:
+def _bodies_seen(state: WorldState, f: Filter) -> np.ndarray:
     """Rows of the World's 2D bodies that the filter f sees."""
-    store = world._store
+    store = state.store
     if store is None or store.dim != 2 or not len(store):
         return np.zeros(0, dtype=np.intp)
     rows = np.arange(len(store))
@@ -90,11 +90,11 @@ def _bodies_seen(world: World, f: Filter) -> np.ndarray:
     return rows[ok]
 
 
-def _shaped(world: World, rows: np.ndarray) -> tuple[np.ndarray, list[tuple[int, Any]]]:
+def _shaped(state: WorldState, rows: np.ndarray) -> tuple[np.ndarray, list[tuple[int, Any]]]:
     """Split body rows into those that are discs (or points) and [(row, shape)] of bodies
     with a shape other than a circle about their position (a box, a polygon, a capsule),
     which a query meets as that shape placed at the body's position."""
-    store = world._store
+    store = state.store
     shapes = [] if store is None else store.shapes
     if not any(s is not None for s in shapes):  # only discs and points: the usual World
         return rows, []
@@ -109,8 +109,8 @@ def _shaped(world: World, rows: np.ndarray) -> tuple[np.ndarray, list[tuple[int,
     return np.array([k for k in rows.tolist() if k not in out], dtype=np.intp), shaped
 
 
-def _colliders_seen(world: World, f: Filter) -> list[Collider]:
-    return [c for c in world.colliders if f is DEFAULT or f.collides(c.filter)]
+def _colliders_seen(state: WorldState, f: Filter) -> list[Collider]:
+    return [c for c in state.colliders if f is DEFAULT or f.collides(c.filter)]
 
 
 def _unit_or_zero(x: float, y: float) -> Vector:
@@ -123,7 +123,7 @@ def _unit_or_zero(x: float, y: float) -> Vector:
 
 
 # -- point queries -----------------------------------------------------------------------------
-def point_query(world: World, point: Any, max_distance: Any, filter: Any) -> list[QueryHit]:  # noqa: A002
+def point_query(state: WorldState, point: Any, max_distance: Any, filter: Any) -> list[QueryHit]:  # noqa: A002
     """Shapes whose surface lies within ``max_distance`` of ``point``, nearest first: each
     hit's ``point`` is the nearest point of the shape's surface, ``normal`` the unit normal
     there pointing away from the shape's solid (toward ``point`` when outside), ``distance``
@@ -131,15 +131,15 @@ def point_query(world: World, point: Any, max_distance: Any, filter: Any) -> lis
     px, py = point_of(point, "point")
     reach = checks.real(max_distance, "max_distance", nonneg=True)
     f = _filter(filter)
-    store = world._store
+    store = state.store
     hits: list[QueryHit] = []
-    rows, shaped = _shaped(world, _bodies_seen(world, f))
+    rows, shaped = _shaped(state, _bodies_seen(state, f))
     for k, shape in shaped:
         assert store is not None
         cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
         surface, n, d = shape.closest((px - cx, py - cy))  # in the body's frame
         if d <= reach:
-            hits.append(QueryHit(world._bodies[k], surface + Vector(cx, cy), n, 0.0, d))
+            hits.append(QueryHit(state.bodies[k], surface + Vector(cx, cy), n, 0.0, d))
     if len(rows):
         assert store is not None
         x, r = store.x[rows], store.radius[rows]
@@ -152,8 +152,8 @@ def point_query(world: World, point: Any, max_distance: Any, filter: Any) -> lis
                 n = Vector(0.0, 1.0)  # at the centre itself: up, as pymunk
             cx, cy = float(x[k, 0]), float(x[k, 1])
             surface = Vector(cx + n.x * float(r[k]), cy + n.y * float(r[k]))
-            hits.append(QueryHit(world._bodies[int(rows[k])], surface, n, 0.0, float(gap[k])))
-    for c in _colliders_seen(world, f):
+            hits.append(QueryHit(state.bodies[int(rows[k])], surface, n, 0.0, float(gap[k])))
+    for c in _colliders_seen(state, f):
         surface, n, d = c.closest((px, py))
         if d <= reach:
             hits.append(QueryHit(c, surface, n, 0.0, d))
@@ -181,7 +181,7 @@ def _ray_disc(a: tuple[float, float], v: tuple[float, float], c: np.ndarray, R: 
 
 
 def segment_query(
-    world: World,
+    state: WorldState,
     start: Any,
     end: Any,
     radius: Any,
@@ -201,27 +201,27 @@ def segment_query(
         point = Vector(a[0] + v[0] * t, a[1] + v[1] * t) if t > 0.0 else Vector(*a)
         hits.append(QueryHit(shape, point, normal, fraction=t))
 
-    rows, shaped = _shaped(world, _bodies_seen(world, f))
+    rows, shaped = _shaped(state, _bodies_seen(state, f))
     for k, shape in shaped:
-        store = world._store
+        store = state.store
         assert store is not None
         cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
         found = _collider_hit(shape, (a[0] - cx, a[1] - cy), v, q, back)  # the body's frame
         if found is not None:
-            hit_at(world._bodies[k], *found)
+            hit_at(state.bodies[k], *found)
     if len(rows):
-        store = world._store
+        store = state.store
         assert store is not None
         c, R = store.x[rows], store.radius[rows] + q
         t, inside = _ray_disc(a, v, c, R)
         for k in np.flatnonzero(inside).tolist():
-            hit_at(world._bodies[int(rows[k])], 0.0, Vector(0.0, 0.0))
+            hit_at(state.bodies[int(rows[k])], 0.0, Vector(0.0, 0.0))
         for k in np.flatnonzero(np.isfinite(t)).tolist():
             tk = float(t[k])
             x = (a[0] + v[0] * tk - float(c[k, 0]), a[1] + v[1] * tk - float(c[k, 1]))
             n = _unit_or_zero(*x)
-            hit_at(world._bodies[int(rows[k])], tk, n if n != Vector(0.0, 0.0) else back)
-    for col in _colliders_seen(world, f):
+            hit_at(state.bodies[int(rows[k])], tk, n if n != Vector(0.0, 0.0) else back)
+    for col in _colliders_seen(state, f):
         found = _collider_hit(col, a, v, q, back)
         if found is not None:
             hit_at(col, *found)
@@ -282,14 +282,14 @@ def _box_distance(bb: tuple[float, float, float, float], x: float, y: float) -> 
     return math.hypot(max(x0 - x, 0.0, x - x1), max(y0 - y, 0.0, y - y1))
 
 
-def bb_query(world: World, bb: Any, filter: Any) -> list[Any]:  # noqa: A002
+def bb_query(state: WorldState, bb: Any, filter: Any) -> list[Any]:  # noqa: A002
     """The shapes (Bodies and colliders) that overlap the box ``bb`` = (left, bottom, right,
     top), in the World's order: bodies first, then colliders."""
     box = _bb(bb)
     f = _filter(filter)
     out: list[Any] = []
-    seen, shaped = _shaped(world, _bodies_seen(world, f))
-    store = world._store
+    seen, shaped = _shaped(state, _bodies_seen(state, f))
+    store = state.store
     found = np.zeros(0, dtype=np.intp)
     if len(seen):
         assert store is not None
@@ -306,8 +306,8 @@ def bb_query(world: World, bb: Any, filter: Any) -> list[Any]:  # noqa: A002
             if _collider_overlaps_box(shape, (box[0] - cx, box[1] - cy, box[2] - cx, box[3] - cy)):
                 more.append(k)
         found = np.sort(np.concatenate([found, np.array(more, dtype=np.intp)]))
-    out += [world._bodies[int(k)] for k in found]
-    for c in _colliders_seen(world, f):
+    out += [state.bodies[int(k)] for k in found]
+    for c in _colliders_seen(state, f):
         if _collider_overlaps_box(c, box):
             out.append(c)
     return out
@@ -372,7 +372,7 @@ def _point_segment(p: tuple[float, float], a: tuple[float, float], b: tuple[floa
     return math.hypot(p[0] - a[0] - u * dx, p[1] - a[1] - u * dy)
 
 
-def shape_query(world: World, shape: Any, filter: Any) -> list[QueryHit]:  # noqa: A002
+def shape_query(state: WorldState, shape: Any, filter: Any) -> list[QueryHit]:  # noqa: A002
     """The shapes that a query shape overlaps, deepest first: ``shape`` is a ``Circle`` or a
     ``Segment`` (a capsule) placed where it is asked about, not added to the World. Each hit:
     the shape found, the deepest point of its surface toward the query shape, the unit normal
@@ -389,15 +389,15 @@ def shape_query(world: World, shape: Any, filter: Any) -> list[QueryHit]:  # noq
         a, b = (shape.a.x, shape.a.y), (shape.b.x, shape.b.y)
     q = shape.radius
     hits: list[QueryHit] = []
-    rows, shaped = _shaped(world, _bodies_seen(world, f))
-    store = world._store
+    rows, shaped = _shaped(state, _bodies_seen(state, f))
+    store = state.store
     for k, body_shape in shaped:
         assert store is not None
         cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
         found = _collider_depth(body_shape, (a[0] - cx, a[1] - cy), (b[0] - cx, b[1] - cy), q)
         if found is not None:
             point = found[0] + Vector(cx, cy)
-            hits.append(QueryHit(world._bodies[k], point, found[1], 0.0, found[2]))
+            hits.append(QueryHit(state.bodies[k], point, found[1], 0.0, found[2]))
     for k in rows.tolist():
         assert store is not None
         cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
@@ -409,8 +409,8 @@ def shape_query(world: World, shape: Any, filter: Any) -> list[QueryHit]:  # noq
             n = Vector(0.0, 1.0)
         gap = math.hypot(near[0] - cx, near[1] - cy) - r - q
         if gap < 0.0:
-            hits.append(QueryHit(world._bodies[k], Vector(cx + n.x * r, cy + n.y * r), n, 0.0, gap))
-    for c in _colliders_seen(world, f):
+            hits.append(QueryHit(state.bodies[k], Vector(cx + n.x * r, cy + n.y * r), n, 0.0, gap))
+    for c in _colliders_seen(state, f):
         found = _collider_depth(c, a, b, q)
         if found is not None:
             hits.append(QueryHit(c, found[0], found[1], 0.0, found[2]))

@@ -98,7 +98,7 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         held = state.store
         assert held is not None
         for body, v in after.items():
-            held.v[held.row(body._slot)] = v
+            held.v[held.row(body.slot)] = v
     if state.contacts is not None or state.pairs_on or state.events.busy:
         # The step ran from t0 = t_base + (n - 1) dt (the time it started at, summed the
         # same way) to t.
@@ -115,7 +115,7 @@ def _apply_targets(state: WorldState, dt: float) -> dict[Body, np.ndarray]:
     before = {}
     moves = {}
     for body, target in state.targets.items():
-        row = store.row(body._slot)
+        row = store.row(body.slot)
         with np.errstate(over="ignore", invalid="ignore"):
             v = (np.asarray(target, dtype=float) - store.x[row]) * (1.0 / dt)
         if not np.isfinite(v).all():
@@ -127,7 +127,7 @@ def _apply_targets(state: WorldState, dt: float) -> dict[Body, np.ndarray]:
             )
         moves[row] = v
     for body in state.targets:
-        row = store.row(body._slot)
+        row = store.row(body.slot)
         before[body] = store.v[row].copy()
         store.v[row] = moves[row]
     state.targets.clear()
@@ -188,12 +188,12 @@ def _step_general(
             end = t1 if i == k - 1 else t0 + (i + 1) * h
             _step_once(state, h, name, step, model, t0 + i * h, end)
             for source, (began, ended) in zip(sources, events, strict=True):
-                began += source._began
-                ended += source._ended
+                began += source.began_arrays
+                ended += source.ended_arrays
     finally:
         state.substeps = False
     for source, (began, ended) in zip(sources, events, strict=True):
-        source._began, source._ended = began, ended
+        source.set_events(began, ended)
     store.prev_x = saved[0]  # drawing blends from where the whole step began
 
 
@@ -205,14 +205,14 @@ def _struck_linked(state: WorldState) -> bool:
     linked = np.zeros(len(state.bodies), dtype=bool)
     linked[solver.i] = True
     linked[solver.j[solver.j >= 0]] = True
-    for rows, others, *_ in state.collisions._began if state.pairs_on else []:
+    for rows, others, *_ in state.collisions.began_arrays if state.pairs_on else []:
         if linked[np.asarray(rows, dtype=np.intp)].any():
             return True
         if linked[np.asarray(others, dtype=np.intp)].any():
             return True
     if state.contacts is not None:
         # (The few-bodies path lists its rows as a tuple, the arrays' as an array.)
-        for rows, *_ in state.contacts._began:
+        for rows, *_ in state.contacts.began_arrays:
             if linked[np.asarray(rows, dtype=np.intp)].any():
                 return True
     return False
@@ -391,7 +391,7 @@ def _solve_links(
     stretched past what a step can hold."""
     solver = state.link_solver
     if solver is None:
-        solver = state.link_solver = LinkSolver(state.links, lambda b: store.row(b._slot))
+        solver = state.link_solver = LinkSolver(state.links, lambda b: store.row(b.slot))
     w = np.where(store.kinematic, 0.0, 1.0 / store.mass)
     x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
     if solver.moved:

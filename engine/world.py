@@ -38,7 +38,6 @@ from . import checks, event_dispatch, habits, membership, queries, readout, step
 from . import snapshot as snapshots
 from .body import Body, State
 from .colliders import Collider
-from .collisions import Collisions
 from .contacts import Contacts
 from .events import ContactEvent
 from .filters import Filter
@@ -53,7 +52,6 @@ from .policy import AUTO_ORDER, METHODS, MethodPolicy
 from .queries import QueryHit
 from .snapshot import WorldSnapshot
 from .stepping import SUBSTEPS_AT_IMPACT as SUBSTEPS_AT_IMPACT  # README: engine.world's
-from .store import BodyStore
 from .world_state import WorldState
 
 __all__ = [
@@ -96,18 +94,10 @@ class World:
         self, integrator: str | Integrator = "semi_implicit_euler", tolerance: float | None = None
     ) -> None:
         self._s = WorldState(self, MethodPolicy(integrator, tolerance))
-        self._s.events._view = event_dispatch.EventView(self._s)
+        self._s.events.view = event_dispatch.EventView(self._s)
 
-    # The parts that tests and engine.queries read: the body arrays, the bodies, the compiled
-    # forces, the static contacts and the contacts between bodies.
-    @property
-    def _store(self) -> BodyStore | None:
-        return self._s.store
-
-    @property
-    def _bodies(self) -> list[Body]:
-        return self._s.bodies
-
+    # The parts that tests read: the compiled forces and the static contacts (the World's
+    # own modules read its state, self._s, by public names).
     @property
     def _model(self) -> ForceModel | None:
         return self._s.model
@@ -115,10 +105,6 @@ class World:
     @property
     def _contacts(self) -> Contacts | None:
         return self._s.contacts
-
-    @property
-    def _collisions(self) -> Collisions:
-        return self._s.collisions
 
     # -- bodies and forces ----------------------------------------------------------------
     @property
@@ -293,7 +279,7 @@ class World:
         the order met: a QueryHit each with ``fraction`` (0 at start, 1 at end), the point
         where the swept centre first touches and the normal there. ``radius`` > 0 sweeps a
         disc; ``filter`` (an engine.Filter) sees only the shapes it collides with."""
-        return queries.segment_query(self, start, end, radius, filter)
+        return queries.segment_query(self._s, start, end, radius, filter)
 
     def segment_query_first(
         self,
@@ -304,7 +290,7 @@ class World:
     ) -> QueryHit | None:
         """The first body or collider (sensors too; a filter can leave them out) a segment
         from ``start`` to ``end`` meets, as ``segment_query``; None when nothing is met."""
-        hits = queries.segment_query(self, start, end, radius, filter)
+        hits = queries.segment_query(self._s, start, end, radius, filter)
         return hits[0] if hits else None
 
     def point_query(
@@ -318,7 +304,7 @@ class World:
         Nearest first; ``distance`` is from the shape's surface (< 0 inside), ``point`` the
         nearest point of that surface. A mouse pick is ``world.point_query(mouse, 0.1)``.
         """
-        return queries.point_query(self, point, max_distance, filter)
+        return queries.point_query(self._s, point, max_distance, filter)
 
     def point_query_nearest(
         self,
@@ -328,17 +314,17 @@ class World:
     ) -> QueryHit | None:
         """The nearest shape within ``max_distance`` of ``point`` (``point_query``'s first),
         or None."""
-        hits = queries.point_query(self, point, max_distance, filter)
+        hits = queries.point_query(self._s, point, max_distance, filter)
         return hits[0] if hits else None
 
     def bb_query(self, bb: Any, filter: Filter | None = None) -> list[Any]:  # noqa: A002
         """The bodies and colliders that overlap the box ``bb`` = (left, bottom, right, top)."""
-        return queries.bb_query(self, bb, filter)
+        return queries.bb_query(self._s, bb, filter)
 
     def shape_query(self, shape: Any, filter: Filter | None = None) -> list[QueryHit]:  # noqa: A002
         """The bodies and colliders a ``Circle`` or ``Segment`` (placed where asked, not
         added) overlaps, deepest first; ``distance`` < 0 is the depth of each overlap."""
-        return queries.shape_query(self, shape, filter)
+        return queries.shape_query(self._s, shape, filter)
 
     # -- choosing the method ------------------------------------------------------------------
     @property
