@@ -68,7 +68,7 @@ def freed(state: WorldState, bodies: list[Body], stacklevel: int = 4) -> None:
         return
     linked = {id(b) for k in state.links for b in k.bodies}
     rows = [
-        store.row(b._slot)
+        store.row(b.slot)
         for b in bodies
         if b.world is state.world and not b.kinematic and id(b) not in linked
     ]
