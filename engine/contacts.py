@@ -1,59 +1,23 @@
 """Contacts with static colliders: impacts solved at their exact moment, rest, and sliding.
 
-The World hands this module each step's start state (x0, v0) and the state its method reached
-(x1, v1) after dt. Between them a body's centre follows a known path:
+``Contacts`` composes a step against the world's colliders from the modules that hold each
+part, cheapest test first (in a typical scene few bodies meet anything):
 
-    x(t) = x0 + v0 t + B t^2 / 2,    v(t) = v0 + W t,    0 <= t <= dt,
+1. the first looks (engine.face_looks: ``near``, then ``narrow``, over the face grid of
+   engine.face_grid): which bodies can meet a face this step at all. Bodies that cannot, and
+   do not rest on a face, keep the state their method reached, bit for bit;
+2. the sweep (engine.sweep): each remaining body's path within the step, x(t) = x0 + v0 t +
+   B t^2 / 2 (derived there), meets the faces in time order, bouncing at each impact's exact
+   moment (engine.impact), up to ``MAX_IMPACTS``; a few bodies go one at a time in Python
+   floats (engine.sweep_one: the same arithmetic, the same bits, no fixed cost per call);
+3. rest (engine.resting): a rebound too slow to fly for one step ends in rest on the face,
+   sliding under Coulomb friction to the closed form's stop, lifting off when pulled away;
+   a body resting still and held by static friction costs one array write;
+4. push-out (engine.push_out) of a body found inside a solid collider, and sensors
+   (engine.sensors), which push nothing and report bodies entering and leaving them.
 
-with B = W = the constant acceleration under the closed form ("exact"), which is exact; for an
-integrator, W = (v1 - v0) / dt is the step's mean acceleration and B = 2 (x1 - x0 - v0 dt) / dt^2
-makes the path end where the method ended (the step's own update is what is swept: explicit
-Euler's straight line, velocity Verlet's parabola, semi-implicit Euler's x0 + v1 t in
-its mean). A body that meets nothing on that path keeps (x1, v1) bit for bit.
-
-Where the path first touches a collider (``engine.impact`` solves for the time), the body is
-moved there and bounces: with the unit normal n, the normal velocity v_n becomes -e v_n and
-Coulomb friction takes up to mu (1 + e) |v_n| off the tangential velocity (never reversing
-it), e and mu being the products of the body's and the collider's materials. It then goes on
-along the same kind of path for the rest of the step, meeting whatever comes next, in time
-order, up to ``MAX_IMPACTS`` impacts; past that it stops where the last impact put it, on
-the surface, for the rest of the step, and the count is kept in ``capped``. A body resting on
-one face and settling against a second that together carry its load (a ball in a corner or a
-V) is wedged: it stays put while the load presses into both.
-
-Rest: a rebound too slow to fly for one step (normal speed below |a_n| dt / 2, where a_n is
-the acceleration pressing the body onto the surface) ends in rest: the body's centre is put at
-exactly its radius from the surface, the surface takes the pressing part of its acceleration,
-and it slides along the surface under the tangential part, slowed by friction mu |a_n| until
-it stops, at the exact moment the closed form gives, and stays stopped while the tangential
-pull is at most mu |a_n| (Coulomb: static on a slope of tan(theta) <= mu). It lifts off when
-pulled away from the surface, when its velocity is set to leave it, or when it goes over a
-round edge faster than the edge can turn it (v^2 / rho > |a_n|).
-
-A sensor does not push: the contacts report when a body begins and ends overlapping it.
-
-How a step is solved, cheapest test first (in a typical scene few bodies meet anything):
-
-1. ``_near``, over every body in about twenty array operations: a lower bound on its distance
-   to every face (one look-up in the grid, whose cells' bounds hold the endless lines too)
-   against how far it can reach.
-2. ``_narrow``, over those near a face: the faces each can reach, and whether its path, not
-   yet turned by any bounce, can meet one at all (a tangent-line bound; see there). Bodies
-   that cannot, and do not rest on a face, keep (x1, v1). Usually every body it looks at is
-   in a cell clear of the endless lines' backs, and then each body's faces, endless or not,
-   come from one row of a table and are tested alike (engine.face_grid).
-3. The rest are solved impact by impact: a few one body at a time in Python floats
-   (``_solve_few``), many at once in numpy arrays (``_solve``). Both do the same arithmetic in
-   the same order and give the same bits; only their cost differs (numpy's fixed cost per
-   call is about a microsecond, which a handful of bodies never pays back).
-
-At a thousand bodies the cost is the count of array operations, each a microsecond or two
-whatever its length, and the Python of the few impacts, not the arithmetic per body. A
-clearance budget carried from step to step (a body's distance to the faces when last
-looked at, less how far it has moved since) was measured and does not pay here: in the
-benchmark's box balls move 0.1 to 0.2 m a step and the nearest face is a metre or two away,
-so 110 to 140 of 1,000 need a fresh bound every step even with exact distances, and an
-operation on 140 rows costs nearly what one on 1,000 does.
+It keeps what lasts from step to step (the compiled faces, engine.faces, updated in place when
+a collider comes or goes; the grid; each body's resting face) and the step's events.
 """
 
 from __future__ import annotations

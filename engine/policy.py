@@ -19,8 +19,8 @@ import warnings
 from collections.abc import Callable
 from typing import Any
 
+from . import accuracy
 from .accuracy import HORIZON
-from .accuracy import predicted_error as _predicted_error
 from .checks import real
 from .forcefield import ForceModel
 from .integrators import INTEGRATORS, Integrator, get_integrator
@@ -170,7 +170,7 @@ class MethodPolicy:
             return 0.0
         x, v, acc = now
         step = self.integrator(method)
-        return _predicted_error(step, x, v, acc, model.omega, model.rate, dt)
+        return accuracy.predicted_error(step, x, v, acc, model.omega, model.rate, dt)
 
     def choose(self, dt: float, model: ForceModel, state: Callable[[], Any]) -> tuple[str, str]:
         """(method, one-line reason) for a step of ``dt`` seconds."""

@@ -40,6 +40,8 @@ __all__ = [
     "draw_trail",
     "draw_vector",
     "font",
+    "tick_label",
+    "ticks",
 ]
 
 Color = tuple[int, int, int]
@@ -266,15 +268,15 @@ def draw_trail(
         pygame.draw.lines(surface, color, False, px.tolist(), width)
 
 
-def _ticks(start: float, stop: float, step: float) -> np.ndarray:
-    # Multiples of step in [start, stop], computed as k * step (no float drift from adding).
+def ticks(start: float, stop: float, step: float) -> np.ndarray:
+    """Multiples of ``step`` in [start, stop], each k * step (no float drift from adding)."""
     first = math.ceil(start / step - 1e-9)
     last = math.floor(stop / step + 1e-9)
     return np.arange(first, last + 1) * step
 
 
-def _number(value: float) -> str:
-    # Tick labels: "3" rather than "3.0", "0.5" kept.
+def tick_label(value: float) -> str:
+    """A tick's number as text: "3" rather than "3.0", "0.5" kept, never "-0"."""
     text = f"{value:.2f}".rstrip("0").rstrip(".")
     return "0" if text in ("-0", "") else text
 
@@ -303,14 +305,14 @@ def draw_ruler(
     py = round(py)
     pygame.draw.line(surface, color, (round(left), py), (round(right), py), 2)
     if minor > 0:
-        for x in _ticks(x0, x1, step / minor):
+        for x in ticks(x0, x1, step / minor):
             px = round(camera.to_px(float(x), y)[0])
             pygame.draw.line(surface, MUTED, (px, py), (px, py + 5), 1)
     last = None
-    for x in _ticks(x0, x1, step):
+    for x in ticks(x0, x1, step):
         px = round(camera.to_px(float(x), y)[0])
         pygame.draw.line(surface, color, (px, py), (px, py + 10), 2)
-        last = draw_text(surface, _number(float(x)), (px, py + 12), size, color, "midtop")
+        last = draw_text(surface, tick_label(float(x)), (px, py + 12), size, color, "midtop")
     if unit and last is not None:
         draw_text(surface, unit, (last.right + 4, last.top), size, color, "topleft")
 
@@ -334,10 +336,10 @@ def draw_grid(
     x0, y0, x1, y1 = box
     left, top = camera.to_px(x0, y1)
     right, bottom = camera.to_px(x1, y0)
-    for x in _ticks(x0, x1, step):
+    for x in ticks(x0, x1, step):
         px = round(camera.to_px(float(x))[0])
         pygame.draw.line(surface, color, (px, round(top)), (px, round(bottom)), 1)
-    for yv in _ticks(y0, y1, step):
+    for yv in ticks(y0, y1, step):
         py = round(camera.to_px(0.0, float(yv))[1])
         pygame.draw.line(surface, color, (round(left), py), (round(right), py), 1)
     if axes is None:
@@ -351,20 +353,20 @@ def draw_grid(
         return
     label_y = min(max(oy, round(top)), round(bottom))
     last = None
-    for x in _ticks(x0, x1, step):
+    for x in ticks(x0, x1, step):
         if x == 0.0:
             continue
         px = round(camera.to_px(float(x))[0])
-        last = draw_text(surface, _number(float(x)), (px, label_y + 3), size, MUTED, "midtop")
+        last = draw_text(surface, tick_label(float(x)), (px, label_y + 3), size, MUTED, "midtop")
     if unit and last is not None:
         if last.right + 3 + font(size).size(unit)[0] <= right:
             draw_text(surface, unit, (last.right + 3, last.top), size, MUTED)
         else:  # no room after the last number, within the box: under it
             draw_text(surface, unit, (last.centerx, last.bottom), size, MUTED, "midtop")
     label_x = min(max(ox, round(left)), round(right))
-    for yv in _ticks(y0, y1, step):
+    for yv in ticks(y0, y1, step):
         if yv == 0.0:
             continue
         py = round(camera.to_px(0.0, float(yv))[1])
-        draw_text(surface, _number(float(yv)), (label_x - 4, py), size, MUTED, "midright")
+        draw_text(surface, tick_label(float(yv)), (label_x - 4, py), size, MUTED, "midright")
     draw_text(surface, "0", (label_x - 4, label_y + 3), size, MUTED, "topright")

@@ -14,7 +14,7 @@ import numpy as np
 import pygame
 
 from engine.render import marks
-from engine.render.draw import GRID, INK, MUTED, Color, _number, _ticks, draw_text, font, ink
+from engine.render.draw import GRID, INK, MUTED, Color, draw_text, font, ink, tick_label, ticks
 from engine.render.marks import panel
 
 __all__ = ["Plot"]
@@ -58,12 +58,12 @@ class Plot:
         self.title_size = round(18 * k)
         # The plotting area: room on the left for y numbers (the widest, 4 px from the axis
         # and 3 px from the panel's edge), below for t numbers, above for the title.
-        numbers = [_number(float(y)) for y in self._y_ticks()]
+        numbers = [tick_label(float(y)) for y in self._y_ticks()]
         size = self.number_size
         widest = max((font(size).size(t)[0] - ink(t, size).left for t in numbers), default=0)
         left = max(round(26 * k), widest + 4 + 3)
         # The top y number, centred on the top grid line, stays a pixel under the title.
-        top_number = _number(float(self._y_ticks()[-1])) if len(self._y_ticks()) else "0"
+        top_number = tick_label(float(self._y_ticks()[-1])) if len(self._y_ticks()) else "0"
         half = font(size).size(top_number)[1] // 2 - ink(top_number, size).top
         top = max(round(20 * k), 3 + ink(title, self.title_size).bottom + 1 + half)
         self.area = pygame.Rect(
@@ -74,7 +74,7 @@ class Plot:
         )
 
     def _y_ticks(self) -> np.ndarray:
-        return _ticks(self.y_min, self.y_max, self.y_step)
+        return ticks(self.y_min, self.y_max, self.y_step)
 
     def to_px(self, t: np.ndarray | float, y: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """Pixel coordinates of the point (t s, y) inside the panel (y up)."""
@@ -94,17 +94,17 @@ class Plot:
         pygame.draw.rect(surface, (255, 255, 255), self.rect, border_radius=4)
         pygame.draw.rect(surface, GRID, self.rect, 1, border_radius=4)
         a = self.area
-        for t in _ticks(0.0, self.t_max, self.t_step):
+        for t in ticks(0.0, self.t_max, self.t_step):
             px = round(float(self.to_px(t, 0.0)[0]))
             pygame.draw.line(surface, GRID, (px, a.top), (px, a.bottom - 1), 1)
             draw_text(
-                surface, _number(float(t)), (px, a.bottom + 2), self.number_size, MUTED, "midtop"
+                surface, tick_label(float(t)), (px, a.bottom + 2), self.number_size, MUTED, "midtop"
             )
         for y in self._y_ticks():
             py = round(float(self.to_px(0.0, y)[1]))
             pygame.draw.line(surface, GRID, (a.left, py), (a.right - 1, py), 1)
             draw_text(
-                surface, _number(float(y)), (a.left - 4, py), self.number_size, MUTED, "midright"
+                surface, tick_label(float(y)), (a.left - 4, py), self.number_size, MUTED, "midright"
             )
         # The axes: t along y = 0 (or the bottom if 0 is out of range), y along t = 0.
         zero = min(max(0.0, self.y_min), self.y_max)
