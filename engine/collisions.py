@@ -81,6 +81,8 @@ class Collisions:
     def __init__(self) -> None:
         #: Parts (substeps) a step of a pile takes in the soft step (engine.soft).
         self.iterations = 4
+        #: Whether the stages run their loop kernels (engine.kernels: the fast path).
+        self.fast = False
         #: Seconds a touching group must stay still before it sleeps (inf: never).
         self.sleep_time = 0.5
         #: Speed (length units / s) under which a body counts as still; None: |a| dt, the
@@ -486,6 +488,7 @@ class Collisions:
             pile = step_pile(
                 island, a, b, x0, v0, x, v, P, dt, store, contacts, self._shapes(store),
                 self._static, self._carried(), self.asleep, self.iterations, self.rest_speed,
+                fast=self.fast,
             )  # fmt: skip
             touching, pa, pb = pile.touching, pile.near_a, pile.near_b
             self.face_touching, self._shape_over = pile.face_touching, pile.shape_over

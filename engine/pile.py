@@ -188,13 +188,15 @@ def step_pile(
     asleep: np.ndarray,
     iterations: int,
     rest_speed: float,
+    fast: bool = False,
 ) -> Pile:
     """Step the bodies of the pile (``island``) again from (x0, v0) by the soft step
     (engine.soft), with every contact among them (pairs a, b) and with the faces they can
     reach, in place on (x, v). ``P`` (N, 2): the forces' pull; ``table``: the bodies' shapes;
     ``carried``: the last step's impulses; ``asleep`` (N,): the sleepers, whose rows keep
     theirs; ``iterations``: the soft step's parts; ``rest_speed``: 2 dt times the largest
-    pull (restitution acts on contacts closing faster than ``THRESH`` times it)."""
+    pull (restitution acts on contacts closing faster than ``THRESH`` times it); ``fast``:
+    run the soft step's loop kernel (engine.kernels)."""
     n = len(x)
     U = np.flatnonzero(island)
     nU = len(U)
@@ -316,6 +318,7 @@ def step_pile(
         threshold=THRESH * rest_speed,
         slop=slop_rows,
         prior=prior,
+        fast=fast,
     )
     acc = np.append(P[U, 0] + 1j * P[U, 1], 0.0)
     acc[:-1][~moves[:-1]] = 0.0

@@ -36,7 +36,12 @@ s_i = a3 (impulse scale); contacts with the static world take twice the frequenc
 the floor does not give).
 
 Velocities are complex numbers here, x + iy: with the normal n, d = dv conj(n) gives the
-normal speed d.real and the tangential d.imag (along t = i n) in one product.
+normal speed d.real and the tangential d.imag (along t = i n); the product is written out
+(``_along``, ``_across``), so both paths round alike on every machine.
+
+**Two paths, one algorithm** (engine.kernels): ``SoftStep.run`` in numpy, a colour at a
+time, and ``run_rows``, the loop kernel of the fast path, a row at a time in the same order.
+They give the same numbers to the last bit on the piles of the tests and benchmarks.
 """
 
 from __future__ import annotations
@@ -46,7 +51,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import coloring
+from . import coloring, kernels
 
 __all__ = ["Rows", "SoftStep", "SUBSTEPS", "CONTACT_HERTZ", "DAMPING"]
 
@@ -85,6 +90,27 @@ class Rows:
     static: np.ndarray  # (R,) bool: B is the static world
 
 
+# The products with the normal, written out: numpy's complex product may fuse a multiply and
+# an add (one rounding, by the machine's SIMD), so written out the numpy twin rounds as the
+# loop kernel does, on every machine.
+def _along(d: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """(d conj(n)).real: the part of d (complex) along the unit normal n."""
+    return d.real * n.real + d.imag * n.imag
+
+
+def _across(d: np.ndarray, n: np.ndarray) -> np.ndarray:
+    """(d conj(n)).imag: the part of d along the tangent t = i n."""
+    return d.imag * n.real - d.real * n.imag
+
+
+def _turn(n: np.ndarray, along: np.ndarray, across: np.ndarray) -> np.ndarray:
+    """n (along + i across): a vector given by its parts along n and t = i n."""
+    out = np.empty(np.shape(along), dtype=complex)
+    out.real = n.real * along - n.imag * across
+    out.imag = n.real * across + n.imag * along
+    return out
+
+
 def _soft(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
     """(bias rate 1/s, mass scale, impulse scale) of a soft constraint (Box2D's b2MakeSoft)."""
     omega = 2.0 * math.pi * hertz
@@ -110,8 +136,10 @@ class SoftStep:
         threshold: float = 0.0,
         slop: np.ndarray | None = None,
         prior: np.ndarray | None = None,
+        fast: bool = False,
     ) -> None:
         self.rows = rows
+        self.fast = fast  # run the loop kernel (``run_rows``, compiled), not the numpy twin
         self.w = w  # (n + 1,) inverse masses, the static slot's 0
         self.dt, self.substeps = dt, substeps
         self.h = h = dt / substeps
@@ -126,7 +154,6 @@ class SoftStep:
         self.order = order
         self.a, self.b = rows.a[order], rows.b[order]
         self.n = rows.normal[order]
-        self.nc = np.conj(self.n)
         self.sep = rows.separation[order]
         # The push out of an overlap is capped per row (length units/s).
         self.push = -np.broadcast_to(np.asarray(push_speed, dtype=float), rows.a.shape)[order]
@@ -157,8 +184,17 @@ class SoftStep:
         h = self.h
         v = v0.copy()
         dp = np.zeros_like(v0)
+        if self.fast:
+            slop = self.slop
+            run_rows(
+                v, dp, acc * h, self.a, self.b, self.n, self.sep, self.push, self.mu,
+                self.e, self.wa, self.wb, self.m, self.soft, self.ms, self.isc, self.held,
+                self.lam, self.lam_t, self.total, h, self.substeps, self.threshold,
+                self.sep if slop is None else slop, 0 if slop is None else PROJECT_SWEEPS,
+            )  # fmt: skip
+            return self._finish(x0, dp, v)
         # Each contact's relative normal speed as the step began, for restitution.
-        rel = ((v0[self.b] - v0[self.a]) * self.nc).real
+        rel = _along(v0[self.b] - v0[self.a], self.n)
         step = acc * h
         idx = np.concatenate([self.a, self.b])
         for _ in range(self.substeps):
@@ -170,6 +206,10 @@ class SoftStep:
         self._restitution(v, rel)
         if self.slop is not None:
             self._project(dp)
+        return self._finish(x0, dp, v)
+
+    def _finish(self, x0: np.ndarray, dp: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, ...]:
+        """Write the impulses back in rows' order; the end state (x0 + dp, v)."""
         rows, order = self.rows, self.order
         rows.lam_n[order], rows.lam_t[order] = self.lam, self.lam_t
         total = np.empty_like(self.total)
@@ -181,7 +221,7 @@ class SoftStep:
         """Every row's impulse of the part before, again, at once."""
         if not self.lam.any() and not self.lam_t.any():
             return
-        p = self.n * (self.lam + 1j * self.lam_t)
+        p = _turn(self.n, self.lam, self.lam_t)
         self.total += self.lam
         dv = np.concatenate([-p * self.wa, p * self.wb])
         n = len(v)
@@ -193,10 +233,10 @@ class SoftStep:
         inv_h, push_all = 1.0 / self.h, self.push
         lam_all, total = self.lam, self.total
         for k in self.slices:
-            a, b, nc, m = self.a[k], self.b[k], self.nc[k], self.m[k]
+            a, b, n, m = self.a[k], self.b[k], self.n[k], self.m[k]
             lam = lam_all[k]
-            vn = ((v[b] - v[a]) * nc).real
-            s = self.sep[k] + ((dp[b] - dp[a]) * nc).real
+            vn = _along(v[b] - v[a], n)
+            s = self.sep[k] + _along(dp[b] - dp[a], n)
             # Open: the gap may close in this part, no more (speculative); closed: the
             # spring's push, and its relaxation of what the impulse grew past the load it
             # carried as the step began (a stack's weight is carried as by a rigid contact;
@@ -219,11 +259,11 @@ class SoftStep:
         inv_h = 1.0 / self.h
         lam_all, lam_t_all, total = self.lam, self.lam_t, self.total
         for k in self.slices:
-            a, b, nc, m = self.a[k], self.b[k], self.nc[k], self.m[k]
+            a, b, n, m = self.a[k], self.b[k], self.n[k], self.m[k]
             lam = lam_all[k]
-            z = (v[b] - v[a]) * nc
-            s = self.sep[k] + ((dp[b] - dp[a]) * nc).real
-            new = np.maximum(lam - m * (z.real + np.maximum(s, 0.0) * inv_h), 0.0)
+            dv = v[b] - v[a]
+            s = self.sep[k] + _along(dp[b] - dp[a], n)
+            new = np.maximum(lam - m * (_along(dv, n) + np.maximum(s, 0.0) * inv_h), 0.0)
             d = new - lam
             lam_all[k] = new
             total[k] += d
@@ -231,8 +271,8 @@ class SoftStep:
             # turn, so a push along n leaves it.
             lt = lam_t_all[k]
             cap = self.mu[k] * new
-            newt = np.minimum(np.maximum(lt - m * z.imag, -cap), cap)
-            p = self.n[k] * (d + 1j * (newt - lt))
+            newt = np.minimum(np.maximum(lt - m * _across(dv, n), -cap), cap)
+            p = _turn(n, d, newt - lt)
             lam_t_all[k] = newt
             v[a] -= p * self.wa[k]
             v[b] += p * self.wb[k]
@@ -248,7 +288,7 @@ class SoftStep:
             if not len(hit):
                 continue
             a, b = self.a[hit], self.b[hit]
-            vn = ((v[b] - v[a]) * self.nc[hit]).real
+            vn = _along(v[b] - v[a], self.n[hit])
             lam = self.lam[hit]
             new = np.maximum(lam - self.m[hit] * (vn + self.e[hit] * rel[hit]), 0.0)
             d = new - lam
@@ -268,9 +308,157 @@ class SoftStep:
         for _ in range(PROJECT_SWEEPS):
             for k in self.slices:
                 a, b = self.a[k], self.b[k]
-                s = self.sep[k] + ((dp[b] - dp[a]) * self.nc[k]).real
+                s = self.sep[k] + _along(dp[b] - dp[a], self.n[k])
                 deep = np.maximum(-s - self.slop[k], 0.0)
                 push = self.n[k] * (deep * self.m[k])
                 dp[a] -= push * self.wa[k]
                 dp[b] += push * self.wb[k]
             dp[-1] = 0.0
+
+
+# -- the loop kernel (engine.kernels: the fast path) ------------------------------------------
+# The same step as SoftStep.run, row after row in the solving order. Rows of one colour share
+# no moving body, so taking them one at a time gives what the numpy twin's one array call a
+# colour gives; the warm start sums each body's impulses in bincount's order (the a's, then
+# the b's), so the two paths agree to rounding (tests/test_kernels.py).
+
+
+def _sample_rows() -> tuple[object, ...]:
+    """The smallest call of ``run_rows``: two bodies on the floor, one row each."""
+    c, f, i = np.zeros(3, dtype=complex), np.zeros(2), np.array([2, 2])
+    one = np.ones(2)
+    return (c, c.copy(), c.copy(), i, np.array([0, 1]), one + 0j, f, f, f, f, f, one, one,
+            f, f, f, f, f, f, f, 0.01, 1, 0.0, f, 1)  # fmt: skip
+
+
+@kernels.loop(sample=_sample_rows)
+def run_rows(
+    v: np.ndarray,
+    dp: np.ndarray,
+    step: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    n: np.ndarray,
+    sep: np.ndarray,
+    push: np.ndarray,
+    mu: np.ndarray,
+    e: np.ndarray,
+    wa: np.ndarray,
+    wb: np.ndarray,
+    m: np.ndarray,
+    soft: np.ndarray,
+    ms: np.ndarray,
+    isc: np.ndarray,
+    held: np.ndarray,
+    lam: np.ndarray,
+    lam_t: np.ndarray,
+    total: np.ndarray,
+    h: float,
+    substeps: int,
+    threshold: float,
+    slop: np.ndarray,
+    sweeps: int,
+) -> None:
+    """SoftStep.run's parts, restitution and projection, in place on v, dp (complex, the
+    static slot last), lam, lam_t and total, over rows in the solving order."""
+    rows, bodies = len(a), len(v)
+    last = bodies - 1
+    inv_h = 1.0 / h
+    rel = np.empty(rows)
+    for k in range(rows):
+        d = v[b[k]] - v[a[k]]
+        rel[k] = d.real * n[k].real + d.imag * n[k].imag
+    acc_re, acc_im = np.zeros(bodies), np.zeros(bodies)
+    for _ in range(substeps):
+        for j in range(bodies):
+            v[j] += step[j]
+        # Warm start: every row's impulse of the part before, summed by body as bincount does.
+        warm = False
+        for k in range(rows):
+            if lam[k] != 0.0 or lam_t[k] != 0.0:
+                warm = True
+                break
+        if warm:
+            acc_re[:] = 0.0
+            acc_im[:] = 0.0
+            for k in range(rows):
+                total[k] += lam[k]
+                nr, ni = n[k].real, n[k].imag
+                p = complex(nr * lam[k] - ni * lam_t[k], nr * lam_t[k] + ni * lam[k])
+                q = -p * wa[k]
+                acc_re[a[k]] += q.real
+                acc_im[a[k]] += q.imag
+            for k in range(rows):
+                nr, ni = n[k].real, n[k].imag
+                p = complex(nr * lam[k] - ni * lam_t[k], nr * lam_t[k] + ni * lam[k])
+                q = p * wb[k]
+                acc_re[b[k]] += q.real
+                acc_im[b[k]] += q.imag
+            for j in range(bodies):
+                v[j] += complex(acc_re[j], acc_im[j])
+            v[last] = 0.0
+        # Solve, with the soft push out of overlap.
+        for k in range(rows):
+            nr, ni = n[k].real, n[k].imag
+            dv, dx = v[b[k]] - v[a[k]], dp[b[k]] - dp[a[k]]
+            vn = dv.real * nr + dv.imag * ni
+            s = sep[k] + (dx.real * nr + dx.imag * ni)
+            if s > 0.0:
+                d = -m[k] * (vn + s * inv_h)
+            else:
+                bias = max(soft[k] * s, push[k])
+                d = -m[k] * (ms[k] * vn + bias) - isc[k] * (lam[k] - held[k])
+            new = max(lam[k] + d, 0.0)
+            d = new - lam[k]
+            lam[k] = new
+            total[k] += d
+            p = n[k] * d
+            v[a[k]] -= p * wa[k]
+            v[b[k]] += p * wb[k]
+        v[last] = 0.0
+        for j in range(bodies):
+            dp[j] += v[j] * h
+        # Relax: the normal impulses without the push, then friction.
+        for k in range(rows):
+            nr, ni = n[k].real, n[k].imag
+            dv, dx = v[b[k]] - v[a[k]], dp[b[k]] - dp[a[k]]
+            s = sep[k] + (dx.real * nr + dx.imag * ni)
+            new = max(lam[k] - m[k] * ((dv.real * nr + dv.imag * ni) + max(s, 0.0) * inv_h), 0.0)
+            d = new - lam[k]
+            lam[k] = new
+            total[k] += d
+            lt = lam_t[k]
+            cap = mu[k] * new
+            newt = min(max(lt - m[k] * (dv.imag * nr - dv.real * ni), -cap), cap)
+            dt_ = newt - lt
+            p = complex(nr * d - ni * dt_, nr * dt_ + ni * d)
+            lam_t[k] = newt
+            v[a[k]] -= p * wa[k]
+            v[b[k]] += p * wb[k]
+        v[last] = 0.0
+    # Restitution for rows that met faster than threshold and pressed.
+    hit = False
+    for k in range(rows):
+        if rel[k] < -threshold and total[k] > 0.0 and e[k] > 0.0:
+            hit = True
+            dv = v[b[k]] - v[a[k]]
+            vn = dv.real * n[k].real + dv.imag * n[k].imag
+            new = max(lam[k] - m[k] * (vn + e[k] * rel[k]), 0.0)
+            d = new - lam[k]
+            lam[k] = new
+            total[k] += d
+            p = n[k] * d
+            v[a[k]] -= p * wa[k]
+            v[b[k]] += p * wb[k]
+    if hit:
+        v[last] = 0.0
+    # Projection: what overlap is left past slop, out by positions only.
+    for _ in range(sweeps):
+        for k in range(rows):
+            dx = dp[b[k]] - dp[a[k]]
+            s = sep[k] + (dx.real * n[k].real + dx.imag * n[k].imag)
+            deep = max(-s - slop[k], 0.0)
+            p = n[k] * (deep * m[k])
+            dp[a[k]] -= p * wa[k]
+            dp[b[k]] += p * wb[k]
+        dp[last] = 0.0

@@ -45,6 +45,7 @@ from .forcefield import ForceModel
 from .forces import Force
 from .habits import PYMUNK_NAMES
 from .integrators import Integrator
+from .kernels import choose as kernels_path
 from .links import Link
 from .membership import ColliderT, LinkT
 from .overlaps import OverlapWarning
@@ -88,12 +89,20 @@ class World:
     cheapest stable method predicted to meet it (``predicted_error``, derived in
     ``engine.accuracy``), or the most accurate stable one when none does (``method_reason``
     then says which dt would meet it).
+
+    ``kernels``: the path the hot loops take (``engine.kernels``): ``"fast"`` (numba's
+    compiled loops, the ``fast`` extra), ``"numpy"`` (the reference), or None, the default:
+    ``ENGINE_KERNELS`` if set, else fast where numba is installed. ``world.kernels`` says
+    which this World runs; both give the same numbers to rounding.
     """
 
     def __init__(
-        self, integrator: str | Integrator = "semi_implicit_euler", tolerance: float | None = None
+        self,
+        integrator: str | Integrator = "semi_implicit_euler",
+        tolerance: float | None = None,
+        kernels: str | None = None,
     ) -> None:
-        self._s = WorldState(self, MethodPolicy(integrator, tolerance))
+        self._s = WorldState(self, MethodPolicy(integrator, tolerance), kernels_path(kernels))
         self._s.events.view = event_dispatch.EventView(self._s)
 
     # The parts that tests read: the compiled forces and the static contacts (the World's
@@ -391,6 +400,11 @@ class World:
     def steps(self) -> int:
         """How many steps have been taken."""
         return self._s.steps
+
+    @property
+    def kernels(self) -> str:
+        """The path this World's hot loops take: ``"fast"`` (compiled) or ``"numpy"``."""
+        return self._s.kernels
 
     def step(self, dt: float) -> None:
         """Advance every body by ``dt`` seconds (usually 1/60 or 1/120).

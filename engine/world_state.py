@@ -55,8 +55,9 @@ class WorldState:
     """Everything a World holds: bodies and their arrays, forces, colliders and contacts,
     links, time, and the derived parts (force model, kernel, anchor) with their rebuilding."""
 
-    def __init__(self, world: Any, policy: MethodPolicy) -> None:
+    def __init__(self, world: Any, policy: MethodPolicy, kernels: str = "numpy") -> None:
         self.world = world  # the World this is the state of (what Body.world answers)
+        self.kernels = kernels  # the hot loops' path (engine.kernels): "numpy" or "fast"
         self.policy = policy
         self.requested = policy.requested
         self.store: BodyStore | None = None  # made when the World's dimension is known
@@ -76,6 +77,7 @@ class WorldState:
         self.huge = False  # the state is near overflow: step with numpy's warnings off
         self.contacts: Contacts | None = None  # made by the first add_collider
         self.collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
+        self.collisions.fast = kernels == "fast"
         self.pairs_on = False  # whether any two bodies may collide
         # on_contact handlers: (target, begin, end, post_solve).
         self.handlers: list[tuple[Any, Any, Any, Any]] = []

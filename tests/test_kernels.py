@@ -1,0 +1,183 @@
+"""The loop kernels (engine.kernels) against their numpy twins, and the choice of path.
+
+Each kernel is the same algorithm as its numpy twin, so a single call on the same inputs gives
+the same numbers to rounding: 1e-12 relative (a call is a function of its inputs; chaos over
+many steps, which amplifies rounding, is not in it). Without numba the kernels run as the plain
+Python they are written in (``LoopKernel.py``), so the algorithm is checked on every machine;
+with the ``fast`` extra installed they run compiled.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from engine import Body, Vector, World, kernels
+from engine.kernels import LoopKernel
+from engine.soft import Rows, SoftStep
+
+COMPILED = kernels.available()
+
+
+@pytest.fixture(autouse=True)
+def _kernels_run(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without numba, a kernel's call runs its plain Python (the same loop, uncompiled)."""
+    if not COMPILED:
+        monkeypatch.setattr(LoopKernel, "fast", property(lambda self: self.py))
+
+
+def close(x: np.ndarray, y: np.ndarray, rel: float = 1e-12) -> bool:
+    """Equal to ``rel`` relative, against the largest magnitude of either."""
+    scale = max(1.0, float(np.abs(x).max(initial=0.0)), float(np.abs(y).max(initial=0.0)))
+    return bool(np.all(np.abs(np.asarray(x) - np.asarray(y)) <= rel * scale))
+
+
+def random_pile(seed: int, bodies: int, rows: int) -> tuple[Rows, np.ndarray, np.ndarray, dict]:
+    """Rows of a made-up pile: pairs of bodies and bodies against the static slot (the last),
+    unit normals, gaps and overlaps, materials, warm-start impulses; some bodies held."""
+    rng = np.random.default_rng(seed)
+    a = rng.integers(0, bodies, rows)
+    b = rng.integers(0, bodies + 1, rows)  # bodies: the static slot
+    same = a == b
+    b[same] = bodies
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    static = hi == bodies
+    a = np.where(static, bodies, lo)  # A is the static slot for a wall, as in engine.pile
+    b = np.where(static, lo, hi)
+    angle = rng.uniform(0, 2 * np.pi, rows)
+    warm = rng.random(rows) < 0.6
+    r = Rows(
+        a,
+        b,
+        np.exp(1j * angle),
+        rng.uniform(-0.05, 0.05, rows),
+        rng.uniform(0.0, 1.0, rows),
+        rng.uniform(0.0, 1.0, rows),
+        np.where(warm, rng.uniform(0.0, 0.2, rows), 0.0),
+        np.where(warm, rng.uniform(-0.05, 0.05, rows), 0.0),
+        static,
+    )
+    moves = np.append(rng.random(bodies) < 0.9, False)
+    w = np.append(1.0 / rng.uniform(0.2, 5.0, bodies), 0.0)
+    w[~moves] = 0.0
+    slop = rng.uniform(0.0, 0.02, rows)
+    options = dict(
+        push_speed=rng.uniform(0.1, 2.0, rows),
+        threshold=float(rng.uniform(0.0, 0.5)),
+        slop=slop if rng.random() < 0.7 else None,
+    )
+    return r, w, moves, options
+
+
+def copy_rows(r: Rows) -> Rows:
+    return Rows(*(np.array(getattr(r, f)) for f in Rows.__dataclass_fields__))
+
+
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    bodies=st.integers(1, 25),
+    rows=st.integers(0, 60),
+    substeps=st.integers(1, 6),
+    dt=st.sampled_from([1 / 240, 1 / 60, 1 / 7]),
+)
+def test_soft_step_kernel_is_its_numpy_twin(
+    seed: int, bodies: int, rows: int, substeps: int, dt: float
+) -> None:
+    """SoftStep.run on the fast path (``run_rows``) gives the numpy twin's state, impulses
+    and totals to 1e-12 relative, on random piles."""
+    r, w, moves, options = random_pile(seed, bodies, rows)
+    rng = np.random.default_rng(seed + 1)
+    x0 = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    v0 = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    acc = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    acc[:-1][~moves[:-1]] = 0.0
+    out = {}
+    for fast in (False, True):
+        rows_copy = copy_rows(r)
+        step = SoftStep(rows_copy, w, moves, dt, substeps, fast=fast, **options)
+        x, v = step.run(x0.copy(), v0.copy(), acc)
+        out[fast] = (x, v, rows_copy.lam_n, rows_copy.lam_t, step.total)
+    for got, want in zip(out[True], out[False], strict=True):
+        assert close(got, want)
+
+
+def test_the_twins_differ_where_the_algorithm_does() -> None:
+    """The comparison can fail: a kernel that skips friction is caught by it."""
+    r, w, moves, options = random_pile(7, 10, 40)
+    r.friction[:] = 0.9
+    x0 = v0 = np.zeros(11, dtype=complex)
+    acc = np.append(np.full(10, 1.0 - 9.81j), 0.0)
+    ref = SoftStep(copy_rows(r), w, moves, 1 / 60, fast=False, **options).run(x0, v0, acc)
+    r.friction[:] = 0.0
+    other = SoftStep(copy_rows(r), w, moves, 1 / 60, fast=True, **options).run(x0, v0, acc)
+    assert not close(ref[1], other[1])
+
+
+# -- the path a World takes -------------------------------------------------------------------
+
+
+def test_a_world_says_its_path_and_takes_the_one_asked(monkeypatch: pytest.MonkeyPatch) -> None:
+    assert World(kernels="numpy").kernels == "numpy"
+    monkeypatch.setenv("ENGINE_KERNELS", "numpy")
+    assert World().kernels == "numpy"
+    monkeypatch.delenv("ENGINE_KERNELS")
+    assert World().kernels == ("fast" if COMPILED else "numpy")
+
+
+@pytest.mark.parametrize("bad", ["gpu", "", "Fast", 3])
+def test_a_path_that_is_not_one_is_refused_by_name(bad: object) -> None:
+    with pytest.raises(ValueError, match="kernels must be 'numpy' or 'fast'"):
+        World(kernels=bad)  # type: ignore[arg-type]
+
+
+def test_a_bad_environment_value_is_named(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("ENGINE_KERNELS", "cuda")
+    with pytest.raises(ValueError, match="ENGINE_KERNELS must be 'numpy' or 'fast'.*'cuda'"):
+        World()
+
+
+@pytest.mark.skipif(COMPILED, reason="numba is installed: fast is available")
+def test_fast_without_numba_says_how_to_install_it() -> None:
+    with pytest.raises(ValueError, match=r"pip install -e '\.\[fast\]'"):
+        World(kernels="fast")
+
+
+def test_import_engine_does_not_import_numba() -> None:
+    code = "import sys, engine; from engine import World; World(); print('numba' in sys.modules)"
+    env = {**os.environ, "ENGINE_KERNELS": ""}
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert out.stdout.strip() == "False"
+
+
+def test_a_pile_lands_the_same_on_both_paths() -> None:
+    """Ten balls dropped into a bin, one step at a time on each path: the same to 1e-9 m
+    over the first half second (before rounding's chaos, which a pile amplifies, grows)."""
+    from engine import Box
+    from engine.forces import Gravity
+
+    def bin_world(path: str) -> World:
+        world = World(integrator="auto", kernels=path)
+        world.add_force(Gravity((0.0, -9.81)))
+        world.add_collider(Box((0.0, 0.0), (4.0, 100.0)))
+        for k in range(10):
+            world.add(Body(Vector(0.6 + 0.9 * (k % 4), 0.5 + 1.05 * (k // 4)), Vector(0, 0),
+                           Vector(0, 0), radius=0.45, restitution=0.3, friction=0.5))  # fmt: skip
+        return world
+
+    paths = ["numpy", "fast"] if COMPILED else ["numpy"]
+    worlds = [bin_world(p) for p in paths]
+    for _ in range(30):
+        for world in worlds:
+            world.step(1 / 60)
+    y = worlds[0].positions()[:, 1]
+    assert y.min() > 0.4  # the balls rest on the floor, not through it
+    if len(worlds) == 2:
+        assert np.abs(worlds[0].positions() - worlds[1].positions()).max() < 1e-9
