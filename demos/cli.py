@@ -550,6 +550,10 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
         previous = signal.signal(signal.SIGTERM, stop)
     except ValueError:  # not the main thread: leave signals alone
         previous = None
+    # On the fast path, a kernel's first run compiles it (engine.kernels): say why we wait.
+    from engine import kernels
+
+    kernels.waiting = lambda message: print(f"{demo.name}: {message} ...", file=out, flush=True)
     try:
         if demo.run is not None:
             code = demo.run(args)
@@ -576,5 +580,6 @@ def main(argv: Sequence[str] | None = None, out: TextIO | None = None) -> int:
         # The shell's convention: 128 + the signal's number.
         return 128 + (signals[0] if signals else signal.SIGINT)
     finally:
+        kernels.waiting = None
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)

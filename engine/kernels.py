@@ -116,13 +116,50 @@ class LoopKernel(Generic[F]):
 
     def __call__(self, *args: Any) -> Any:
         """The compiled kernel's result for ``args`` (the fast path's call)."""
-        return self.fast(*args)
+        f = self._compiled
+        if f is None:
+            return self._first(args)
+        return f(*args)
+
+    def _first(self, args: tuple[Any, ...]) -> Any:
+        """The first call: compile (or load from the cache) and run, telling ``waiting``
+        if that takes long enough to be a compile."""
+        fast = self.fast  # numba imported and the kernel made: not yet compiled or loaded
+        timer = _timer()
+        try:
+            return fast(*args)
+        finally:
+            if timer is not None:
+                timer.cancel()
 
     def __repr__(self) -> str:
         return f"LoopKernel({self.name})"
 
 
 _ALL: list[LoopKernel[Any]] = []
+#: Told "compiling (first run only)" when a kernel's first call waits on numba's compiler
+#: (a demo's progress line sets it); None: nobody is told.
+waiting: Callable[[str], None] | None = None
+#: Seconds a first call may take before it counts as a compile (a cache load takes less).
+COMPILE_AFTER = 0.3
+_told = False
+
+
+def _tell() -> None:
+    global _told
+    if waiting is not None and not _told:
+        _told = True
+        waiting("compiling (first run only)")
+
+
+def _timer() -> threading.Timer | None:
+    """A timer that tells ``waiting`` after COMPILE_AFTER s (None: nobody to tell)."""
+    if waiting is None or _told:
+        return None
+    timer = threading.Timer(COMPILE_AFTER, _tell)
+    timer.daemon = True
+    timer.start()
+    return timer
 #: The modules that hold loop kernels (``prepare`` imports them all).
 MODULES = ("engine.soft",)
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
@@ -147,20 +184,14 @@ def kernels() -> list[LoopKernel[Any]]:
     return list(_ALL)
 
 
-def prepare(say: Callable[[str], None] | None = None, after: float = 0.3) -> float:
-    """Compile every loop kernel of the engine now (or load them from numba's cache) and
-    return the seconds it took. ``say`` is told ``"compiling (first run only)"`` once this
-    has taken ``after`` s (loading from the cache takes about 0.1 s; a first compile, some
-    seconds), so a demo can say why it waits. Does nothing without numba."""
+def prepare() -> float:
+    """Compile every loop kernel of the engine now (or load them from numba's cache), telling
+    ``waiting`` if it takes long, and return the seconds it took (0 without numba)."""
     if not available():
         return 0.0
     for name in MODULES:
         importlib.import_module(name)
-    timer = None
-    if say is not None:
-        timer = threading.Timer(after, say, args=("compiling (first run only)",))
-        timer.daemon = True
-        timer.start()
+    timer = _timer()
     t0 = time.perf_counter()
     try:
         for k in _ALL:

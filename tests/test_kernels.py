@@ -181,3 +181,22 @@ def test_a_pile_lands_the_same_on_both_paths() -> None:
     assert y.min() > 0.4  # the balls rest on the floor, not through it
     if len(worlds) == 2:
         assert np.abs(worlds[0].positions() - worlds[1].positions()).max() < 1e-9
+
+
+def _twice(x: float) -> float:
+    return 2.0 * x
+
+
+@pytest.mark.skipif(not COMPILED, reason="numba is not installed: nothing compiles")
+def test_a_first_compile_is_announced_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A demo's progress line is told "compiling (first run only)" when a first call waits
+    on numba's compiler, once."""
+    told: list[str] = []
+    monkeypatch.setattr(kernels, "waiting", told.append)
+    monkeypatch.setattr(kernels, "COMPILE_AFTER", 0.0)
+    monkeypatch.setattr(kernels, "_told", False)
+    k = LoopKernel(_twice)
+    kernels._ALL.remove(k)  # not one of the engine's kernels
+    assert k(1.5) == 3.0
+    assert k(2.0) == 4.0
+    assert told == ["compiling (first run only)"]

@@ -33,6 +33,7 @@ TOPICS: dict[str, str] = {
     "before": "demos.bench.before",
     "solver": "demos.bench.solver",
     "pendulum": "demos.bench.pendulum",
+    "kernels": "demos.bench.kernels",
 }
 
 

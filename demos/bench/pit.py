@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from engine import Body, Box, StabilityWarning, Vector, World
+from engine import kernels as engine_kernels
 from engine.collisions import deepest_overlap
 from engine.forces import Gravity
 
@@ -85,10 +86,16 @@ def scene(n: int, seed: int = 1, *, width: float = WIDTH) -> np.ndarray:
 
 
 def make_world(
-    n: int, iterations: int | None = None, *, width: float = WIDTH, seed: int = 1
+    n: int,
+    iterations: int | None = None,
+    *,
+    width: float = WIDTH,
+    seed: int = 1,
+    kernels: str | None = None,
 ) -> World:
-    """The pit as a World ("auto": the closed form under gravity), ``width`` m wide."""
-    world = World(integrator="auto")
+    """The pit as a World ("auto": the closed form under gravity), ``width`` m wide, on the
+    path ``kernels`` (None: the default, engine.kernels)."""
+    world = World(integrator="auto", kernels=kernels)
     if iterations is not None:
         world.contact_iterations = iterations
     world.add_force(Gravity((0.0, -G)))
@@ -189,9 +196,13 @@ class Run:
 
 
 def _sims(n: int) -> dict[str, tuple[Any, Any]]:
-    """engine -> (its step function, the thing stepped): the World, and pymunk if installed."""
-    world = make_world(n)
+    """engine -> (its step function, the thing stepped): the World on the numpy path
+    ("World"), on the fast path if numba is installed ("fast"), and pymunk if installed."""
+    world = make_world(n, kernels="numpy")
     sims: dict[str, tuple[Any, Any]] = {"World": (world.step, world)}
+    if engine_kernels.available():
+        fast = make_world(n, kernels="fast")
+        sims["fast"] = (fast.step, fast)
     space = make_space(n)
     if space is not None:
         sims["pymunk"] = (space.step, space)  # type: ignore[attr-defined]
@@ -284,12 +295,13 @@ def _state(thing: Any) -> tuple[np.ndarray, np.ndarray]:
     return _space_state(thing)
 
 
-def ratio(runs: dict[str, Run], clock: str = "wall") -> float | None:
-    """World's time over pymunk's for the window (``clock`` "wall" or "cpu"), None without
-    pymunk. The wall-clock ratio is the median of the rounds' ratios (each round side by side)."""
-    if "pymunk" not in runs:
+def ratio(runs: dict[str, Run], clock: str = "wall", engine: str = "World") -> float | None:
+    """``engine``'s time over pymunk's for the window (``clock`` "wall" or "cpu"), None
+    without either. The wall-clock ratio is the median of the rounds' ratios (each round side
+    by side)."""
+    if "pymunk" not in runs or engine not in runs:
         return None
-    w, p = runs["World"], runs["pymunk"]
+    w, p = runs[engine], runs["pymunk"]
     if clock == "cpu":
         return w.cpu / p.cpu
     return statistics.median(a / b for a, b in zip(w.rounds, p.rounds, strict=True))
@@ -308,7 +320,7 @@ def summary(runs: dict[str, Run], seconds: float = SECONDS) -> list[str]:
         asleep = (
             f", {run.asleep:,} asleep at {seconds:g} s"
             + (f" (all from {run.asleep_at:.2f} s)" if math.isfinite(run.asleep_at) else "")
-            if run.engine == "World"
+            if run.engine != "pymunk"
             else " (sleep off)"
         )
         lines.append(
@@ -326,6 +338,12 @@ def summary(runs: dict[str, Run], seconds: float = SECONDS) -> list[str]:
         spread = ", ".join(f"{a / b:.2f}" for a, b in pairs)
         lines.append(
             f"    World / pymunk: {wall:.2f}x wall (rounds: {spread}), {cpu:.2f}x CPU{aim}"
+        )
+    fast_wall, fast_cpu = ratio(runs, engine="fast"), ratio(runs, "cpu", engine="fast")
+    if fast_wall is not None and fast_cpu is not None:
+        lines.append(
+            f"    fast / pymunk: {fast_wall:.2f}x wall, {fast_cpu:.2f}x CPU (issue 27's target "
+            f"<= 0.5x: {_met(fast_wall <= 0.5)}); fast / World {runs['fast'].wall / w.wall:.2f}x"
         )
     if target is not None:
         _, deep, rest, sleeps, centres = target
@@ -425,7 +443,11 @@ def _chart_class() -> Any:
 
 
 #: This engine and pymunk, in the colours of the tradeoff demo's contacts chart.
-ENGINE_COLORS: dict[str, tuple[int, int, int]] = {"World": (0, 114, 178), "pymunk": (204, 121, 167)}
+ENGINE_COLORS: dict[str, tuple[int, int, int]] = {
+    "World": (0, 114, 178),
+    "fast": (0, 158, 115),
+    "pymunk": (204, 121, 167),
+}
 
 
 def draw_pit(runs: dict[str, Run], size: tuple[int, int] = (1280, 720)) -> Any:
@@ -490,7 +512,11 @@ def draw_pit(runs: dict[str, Run], size: tuple[int, int] = (1280, 720)) -> Any:
         run = runs[name]
         over_chart.draw_line(surface, run.t, run.overlap, ENGINE_COLORS[name])
         ke_chart.draw_line(surface, run.t, run.kinetic, ENGINE_COLORS[name])
-    labels = {"World": "this engine (World)", "pymunk": "pymunk 7"}
+    labels = {
+        "World": "this engine (World, numpy)",
+        "fast": "this engine (fast: compiled)",
+        "pymunk": "pymunk 7",
+    }
     items = [
         (
             f"{labels[name]}: {runs[name].wall:.2f} s for the {seconds:g} s, deepest "
