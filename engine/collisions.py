@@ -296,7 +296,7 @@ class Collisions:
         self._kin = store.kinematic
         if len(live) >= 2 and not self._one_group:
             a, b, self._search = find_pairs(
-                x0, v0, x1, v1, A, dt, live, store, self._has_kin, self._plain
+                x0, v0, x1, v1, A, dt, live, store, self._has_kin, self._plain, fast=self.fast
             )
         else:
             a = b = np.zeros(0, dtype=np.intp)
@@ -564,7 +564,7 @@ class Collisions:
             return None
         strayed = np.zeros(len(x), dtype=bool)
         strayed[live[off]] = True
-        i, j = grid_pairs(x[round_], 2.0 * float(r[round_].max()) + 1e-300)
+        i, j = grid_pairs(x[round_], 2.0 * float(r[round_].max()) + 1e-300, fast=self.fast)
         pa, pb = round_[i], round_[j]
         keep = strayed[pa] | strayed[pb]
         pa, pb = np.minimum(pa[keep], pb[keep]), np.maximum(pa[keep], pb[keep])

@@ -34,6 +34,11 @@ crowd falling together, or a pile, has small relative speeds and gains nothing h
 Pairs are World rows (a < b), less those that never collide: two kinematic bodies pass
 through each other (as in pymunk), and a pymunk-style filter turns pairs off (the same
 nonzero group, or categories that the other's mask leaves out).
+
+**Two paths, one algorithm** (engine.kernels): ``grid_pairs`` in numpy, and
+``grid_pairs_loop``, the loop kernel of the fast path, which walks each point's five cells and
+(for ``find_pairs``) drops the pairs beyond reach as it goes. They give the same pairs in the
+same order, to the bit (tests/test_kernels_pair_grid.py).
 """
 
 from __future__ import annotations
@@ -42,6 +47,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from . import kernels
 from .pair_math import dot, norm, sorted_unique
 
 __all__ = [
@@ -49,6 +55,7 @@ __all__ = [
     "deepest_overlap",
     "find_pairs",
     "grid_pairs",
+    "grid_pairs_loop",
     "pairs_of",
     "rows_of",
     "struck",
@@ -70,13 +77,20 @@ class Search(NamedTuple):
     live: np.ndarray
 
 
-def grid_pairs(P: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
-    """Index pairs (a < b) of points in the same or neighbouring cells of a grid of side h.
+def grid_pairs(P: np.ndarray, h: float, fast: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Index pairs of points (P: (N, 2), length units) in the same or neighbouring cells of a
+    grid of side h (length units): each pair once, a < b within a cell.
 
     Cells are keyed by one integer, the points sorted by key; each point looks up its own
     cell and four of its eight neighbours (the other four look it up), each a range of the
-    sorted keys found by binary search. No Python loop over points.
+    sorted keys found by binary search. No Python loop over points. ``fast``: the loop kernel
+    (``grid_pairs_loop``, compiled), the same pairs in the same order.
     """
+    if fast:
+        a, b = grid_pairs_loop(
+            np.ascontiguousarray(P, dtype=np.float64), float(h), _NONE, _NONE, False
+        )
+        return a, b
     n = len(P)
     c = np.floor(P * (1.0 / h))
     c -= c.min(axis=0)
@@ -153,11 +167,14 @@ def find_pairs(
     store: Any,
     has_kin: bool,
     plain: bool,
+    fast: bool = False,
 ) -> tuple[np.ndarray, np.ndarray, Search]:
     """World rows (a < b) of the pairs that may touch within the step or are near enough
     to rest on each other: a grid for the many, every body for the fast few. With them, what
     the struck bodies' search needs once the piles are known (``struck``). ``has_kin``: some
-    body is kinematic; ``plain``: every live body has the default filter."""
+    body is kinematic; ``plain``: every live body has the default filter. ``fast``: the
+    grid and the filter by distance in the loop kernel (``grid_pairs_loop``), the same pairs
+    in the same order."""
     P = x1[live]
     r = store.radius[live]
     # How far a centre can be from its end position during the step: its speed on a
@@ -168,22 +185,29 @@ def find_pairs(
     # The grid's cells hold a body's reach: up to a radius, or to what all but the
     # fastest 2% reach (a falling crowd), at most four radii. Faster bodies, few, are
     # tested against everyone.
-    fast = reach > rmax
-    if fast.any():
+    few = reach > rmax  # the fast few
+    if few.any():
         cap = min(
             float(np.partition(reach, int(0.98 * (len(reach) - 1)))[int(0.98 * (len(reach) - 1))]),
             4.0 * rmax,
         )
-        fast = reach > max(rmax, cap)
-    slow_reach = float(reach[~fast].max()) if (~fast).any() else 0.0
+        few = reach > max(rmax, cap)
+    slow_reach = float(reach[~few].max()) if (~few).any() else 0.0
     h = 2.0 * (rmax + slow_reach)
     span = float((P.max(axis=0) - P.min(axis=0)).max())
     h = max(h, span / 2.0**30)  # keeps cell keys within int64
-    ia, ib = grid_pairs(P, h)
-    # Each pair as (lower row, higher row): one key per pair, step after step (the warm
-    # start and the events find it by that key), and no pair listed twice below.
-    ia, ib = np.minimum(ia, ib), np.maximum(ia, ib)
-    F = np.flatnonzero(fast)
+    F = np.flatnonzero(few)
+    if fast:
+        # The grid's pairs as (lower, higher), those beyond reach left out, in the grid's
+        # order: what the lines below make of them (the filter keeps a pair or not by the
+        # pair alone, so filtering before the union with the fast few's pairs, and again
+        # after it, leaves what filtering once after it leaves).
+        ia, ib = grid_pairs_loop(P, h, r, reach, True)
+    else:
+        ia, ib = grid_pairs(P, h)
+        # Each pair as (lower row, higher row): one key per pair, step after step (the warm
+        # start and the events find it by that key), and no pair listed twice below.
+        ia, ib = np.minimum(ia, ib), np.maximum(ia, ib)
     if len(F):
         # Fast bodies against every body (few of them; a grid of their size would make
         # every cell hold everyone).
@@ -192,7 +216,7 @@ def find_pairs(
         ib = np.concatenate([ib, *fb])
         key = sorted_unique(ia.astype(np.int64) * len(P) + ib)
         ia, ib = key // len(P), key % len(P)
-    if len(ia):
+    if len(ia) and (len(F) or not fast):
         D = P[ia] - P[ib]
         far = r[ia] + r[ib] + reach[ia] + reach[ib]
         keep = dot(D, D) <= far * far
@@ -310,3 +334,113 @@ def struck_pairs(
         )
         ia, ib = key // len(P), key % len(P)
     return ia, ib
+
+
+# -- the loop kernel (engine.kernels: the fast path) ------------------------------------------
+# grid_pairs as the loop it is. The same keys (the same float products, floors and integer
+# casts), the same stable sort by key, and then, point by point in index order, the same five
+# ranges of the sorted keys in the same order (own cell, +1, ny - 1, ny, ny + 1): the same
+# pairs in the same order. The ranges come without binary searches: the sorted keys fall into
+# runs of one key (one cell each), the own cell is the run a point sits in, the cell +1 is the
+# run after it if its key is one more, and the three cells of the next column are consecutive
+# keys, found from the first key >= key + ny - 1 (a pointer that walks the sorted keys once).
+
+_NONE = np.zeros(0)  # the radii and reaches of a call that filters nothing
+
+
+def _sample_grid() -> tuple[object, ...]:
+    """The smallest call of ``grid_pairs_loop``: two touching discs, filtered by reach."""
+    return np.array([[0.0, 0.0], [1.0, 0.0]]), 2.0, np.full(2, 0.5), np.zeros(2), True
+
+
+@kernels.loop(sample=_sample_grid)
+def grid_pairs_loop(
+    P: np.ndarray, h: float, r: np.ndarray, reach: np.ndarray, near: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    """``grid_pairs(P, h)``'s pairs in its order (P: (N, 2), h: length units); with ``near``,
+    each as (lower, higher), only those find_pairs keeps: centres at most r_a + r_b +
+    reach_a + reach_b apart (r, reach: (N,), length units)."""
+    n = len(P)
+    inv = 1.0 / h
+    fx, fy = np.empty(n), np.empty(n)
+    for i in range(n):
+        fx[i] = np.floor(P[i, 0] * inv)
+        fy[i] = np.floor(P[i, 1] * inv)
+    mx, my = fx.min(), fy.min()
+    cx, cy = np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64)
+    for i in range(n):
+        cx[i] = np.int64(fx[i] - mx)
+        cy[i] = np.int64(fy[i] - my)
+    ny = cy.max() + 3
+    key = (cx + 1) * ny + (cy + 1)
+    # Sorted by key, stably (as numpy's argsort, kind="stable"): a stable sort has one
+    # result. Where the keys span few cells (a crowd), by counting; else by merge sort.
+    kmin, kmax = key.min(), key.max()
+    if kmax - kmin <= 4 * n + 64:
+        first = np.zeros(kmax - kmin + 2, dtype=np.int64)  # where each key's run begins
+        for i in range(n):
+            first[key[i] - kmin + 1] += 1
+        for k in range(1, len(first)):
+            first[k] += first[k - 1]
+        order = np.empty(n, dtype=np.int64)
+        for i in range(n):
+            k = key[i] - kmin
+            order[first[k]] = i
+            first[k] += 1
+    else:
+        order = np.argsort(key, kind="mergesort")
+    sk = key[order]
+    rank = np.empty(n, dtype=np.int64)  # each point's place in the sorted keys
+    for p in range(n):
+        rank[order[p]] = p
+    # The run of one key each sorted place is in: [start, end).
+    start, end = np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64)
+    for p in range(n):
+        start[p] = start[p - 1] if p and sk[p] == sk[p - 1] else p
+    for p in range(n - 1, -1, -1):
+        end[p] = end[p + 1] if p < n - 1 and sk[p] == sk[p + 1] else p + 1
+    # The first sorted place whose key is >= key + ny - 1 (the next column's three cells).
+    nxt = np.empty(n, dtype=np.int64)
+    q = 0
+    for p in range(n):
+        while q < n and sk[q] < sk[p] + ny - 1:
+            q += 1
+        nxt[p] = q
+    # Each point's five ranges (own cell, +1, ny - 1, ny, ny + 1; empty: lo = hi), counted.
+    lo, hi = np.zeros((n, 5), dtype=np.int64), np.zeros((n, 5), dtype=np.int64)
+    total = 0
+    for i in range(n):
+        p = rank[i]
+        k = key[i]
+        lo[i, 0], hi[i, 0] = start[p], end[p]
+        e = end[p]
+        if e < n and sk[e] == k + 1:
+            lo[i, 1], hi[i, 1] = e, end[e]
+        q = nxt[p]
+        for j in range(3):
+            if q < n and sk[q] == k + ny - 1 + j:
+                lo[i, 2 + j], hi[i, 2 + j] = q, end[q]
+                q = end[q]
+        for j in range(5):
+            total += hi[i, j] - lo[i, j]
+    a, b = np.empty(total, dtype=np.int64), np.empty(total, dtype=np.int64)
+    m = 0
+    for i in range(n):
+        for j in range(5):
+            for q in range(lo[i, j], hi[i, j]):
+                o = order[q]
+                if j == 0 and o <= i:
+                    continue  # within a cell, each pair once (a < b)
+                if near:
+                    # find_pairs' filter: (lower, higher), then |D|^2 <= far^2 with D and
+                    # far summed in its order.
+                    u, w = min(i, o), max(i, o)
+                    dx, dy = P[u, 0] - P[w, 0], P[u, 1] - P[w, 1]
+                    far = r[u] + r[w] + reach[u] + reach[w]
+                    if not dx * dx + dy * dy <= far * far:
+                        continue
+                    a[m], b[m] = u, w
+                else:
+                    a[m], b[m] = i, o
+                m += 1
+    return a[:m], b[:m]
