@@ -538,7 +538,7 @@ class Collisions:
         self._group = sleep_still(
             v, dt, live, pa, pb, contacts, self.still, self.asleep, self._group,
             self.sleep_time, self._still_speed, self._kin if self._has_kin else None,
-            self._overlap, self.face_touching[0],
+            self._overlap, self.face_touching[0], self.fast,
         )  # fmt: skip
         return x, v
 

@@ -161,7 +161,7 @@ def _timer() -> threading.Timer | None:
     timer.start()
     return timer
 #: The modules that hold loop kernels (``prepare`` imports them all).
-MODULES = ("engine.soft", "engine.pair_grid")
+MODULES = ("engine.pair_grid", "engine.coloring", "engine.soft", "engine.pile")
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}
 

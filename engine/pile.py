@@ -52,6 +52,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
+from . import kernels
 from .faces import face_normals
 from .impact import TOUCH
 from .manifold import StaticShapes, static_shapes
@@ -196,7 +197,7 @@ def step_pile(
     ``carried``: the last step's impulses; ``asleep`` (N,): the sleepers, whose rows keep
     theirs; ``iterations``: the soft step's parts; ``rest_speed``: 2 dt times the largest
     pull (restitution acts on contacts closing faster than ``THRESH`` times it); ``fast``:
-    run the soft step's loop kernel (engine.kernels)."""
+    run the loop kernels (engine.kernels: the soft step's, the colouring's, the piles')."""
     n = len(x)
     U = np.flatnonzero(island)
     nU = len(U)
@@ -332,7 +333,7 @@ def step_pile(
     # A kinematic body goes where the game sends it, whatever it touched.
     if not kin.any():
         # Each pile on its own: the bodies of one never change another's motion.
-        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], components(nU, ra, rb))
+        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], components(nU, ra, rb, fast))
     if kin.any():
         Xr[kin], Vr[kin] = x[U][kin], v[U][kin]
     if n_faces and contacts is not None:
@@ -427,10 +428,13 @@ def face_rows(
     return bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep]
 
 
-def components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def components(n: int, a: np.ndarray, b: np.ndarray, fast: bool = False) -> np.ndarray:
     """The connected component of each of ``n`` bodies joined by rows (a, b), as a label
     (the least body of it; b = n, the static world, joins nothing): label propagation with
-    pointer jumping, a few rounds of array operations."""
+    pointer jumping, a few rounds of array operations. ``fast``: the loop kernel
+    ``label_rows``, a union-find (the same labels: a component's least body is one)."""
+    if fast:
+        return label_rows(n, a, b)  # type: ignore[no-any-return]
     label = np.arange(n + 1)
     inner = (a < n) & (b < n)
     a, b = a[inner], b[inner]
@@ -445,6 +449,37 @@ def components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
             label = label[label]
         if np.array_equal(label, before):
             return label[:n]
+
+
+def _sample_labels() -> tuple[object, ...]:
+    """The smallest call of ``label_rows``: two bodies joined, one on the static world."""
+    return 3, np.array([0, 3]), np.array([1, 2])
+
+
+@kernels.loop(sample=_sample_labels)
+def label_rows(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``components`` as a loop (int64 label by body): a union-find whose root is always the
+    least body of its set (a union hangs the greater root under the lesser), so the labels
+    are the twin's."""
+    parent = np.arange(n)  # parent[j] <= j: a chain from a body falls to its root
+    for k in range(len(a)):
+        i, j = a[k], b[k]
+        if i >= n or j >= n:  # the static world joins nothing
+            continue
+        while parent[i] != i:  # the roots, halving the paths on the way
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        while parent[j] != j:
+            parent[j] = parent[parent[j]]
+            j = parent[j]
+        if i < j:
+            parent[j] = i
+        elif j < i:
+            parent[i] = j
+    # In body order each body's parent, a lesser body, already holds its root.
+    for j in range(n):
+        parent[j] = parent[parent[j]]
+    return parent
 
 
 def dissipative(

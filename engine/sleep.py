@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .pair_math import isin_sorted, norm, sorted_unique
+from .pile import components
 
 if TYPE_CHECKING:
     from .contacts import Contacts
@@ -94,6 +95,7 @@ def sleep_still(
     kinematic: np.ndarray | None,
     overlap: np.ndarray,
     on_wall: np.ndarray,
+    fast: bool = False,
 ) -> np.ndarray:
     """Count how long each body has been still (in place on ``still``); put to sleep each
     group (bodies resting on one another, pairs pa, pb, or one resting on a collider) that
@@ -102,7 +104,8 @@ def sleep_still(
 
     ``live``: the rows that collide; ``kinematic`` (N,) or None: bodies the game moves;
     ``overlap`` (N,): each body's deepest overlap over its radius (empty: not measured);
-    ``on_wall``: the rows of a pile's bodies resting on a wall."""
+    ``on_wall``: the rows of a pile's bodies resting on a wall; ``fast``: label the groups
+    by the loop kernel (engine.kernels)."""
     if not math.isfinite(sleep_time):
         return group
     slow = norm(v[live]) <= still_speed
@@ -128,20 +131,10 @@ def sleep_still(
     member &= ~asleep
     if not (member & ready).any():
         return group
-    # Groups: connected pieces of the graph of resting pairs among awake bodies (each
-    # body takes the smallest label of its neighbours, then labels follow labels).
+    # Groups: connected pieces of the graph of resting pairs among awake bodies, each
+    # labelled by its least body (engine.pile.components, the piles' labels).
     keep = ~asleep[pa] & ~asleep[pb]
-    pa, pb = pa[keep], pb[keep]
-    label = np.arange(len(v))
-    while len(pa):
-        low = np.minimum(label[pa], label[pb])
-        new = label.copy()
-        np.minimum.at(new, pa, low)
-        np.minimum.at(new, pb, low)
-        new = new[new]
-        if np.array_equal(new, label):
-            break
-        label = new
+    label = components(len(v), pa[keep], pb[keep], fast)
     # A group sleeps when every body in it is ready.
     not_ready = sorted_unique(label[member & ~ready])
     sleepers = member & ready & ~isin_sorted(label, not_ready)

@@ -146,8 +146,8 @@ class SoftStep:
         self.threshold = threshold
         # The solving order: batches of rows that share no moving body. Every per-row array
         # below is held in that order, so that a batch is a slice (a view, no copy).
-        self.color = color = coloring.colors(rows.a, rows.b, moves, prior=prior)
-        batches = coloring.batches(color, rows.a, rows.b, moves)
+        self.color = color = coloring.colors(rows.a, rows.b, moves, prior=prior, fast=fast)
+        batches = coloring.batches(color, rows.a, rows.b, moves, fast=fast)
         order = np.concatenate(batches) if batches else np.zeros(0, dtype=np.intp)
         ends = np.cumsum([len(k) for k in batches]).tolist()
         self.slices = [slice(e - len(k), e) for k, e in zip(batches, ends, strict=True)]
