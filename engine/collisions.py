@@ -36,8 +36,9 @@ rule:
   that rests on a peg presses it), or if it overlaps by more than ``SLOP``;
 * whatever can reach a resting pair's body within the step joins the pile too (a ball
   falling onto it: its contact is a speculative one, stopped where it touches), if it closes
-  on it by at most ``CATCH`` times the two radii (``_grow``); a faster body (a bullet) stays
-  out and meets the pile's bodies at its exact moments;
+  on it by at most ``CATCH`` times the two radii (``_grow``; the tests themselves are in
+  engine.pair_plan); a faster body (a bullet) stays out and meets the pile's bodies at its
+  exact moments;
 * a body with a shape is always the soft step's, and so is what may touch it;
 * every other pair (two balls that meet in flight, a ball striking a ball that rests alone on
   a floor, Newton's cradle on a frictionless floor, whose balls touch but carry nothing)
@@ -59,7 +60,8 @@ from .colliders import Circle
 from .pair_events import events_of, unpack
 from .pair_grid import Search, deepest_overlap, find_pairs, grid_pairs, struck
 from .pair_impacts import MAX_ROUNDS, exact
-from .pair_math import SLOP, dot, isin_sorted, norm, sorted_unique, unit
+from .pair_math import SLOP, isin_sorted, norm, sorted_unique
+from .pair_plan import grow, join_masks, plan_pairs, rest_seeds
 from .pile import PUSH, Carried, Statics, keep_asleep, step_pile
 from .shaped import ShapeTable
 from .sleep import sleep_still, wake_met
@@ -68,11 +70,6 @@ if TYPE_CHECKING:
     from .contacts import Contacts
 
 __all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "PUSH", "deepest_overlap"]
-
-#: A body joins a pile by closing on it within the step by at most this many times the sum
-#: of the two radii (a speculative contact catches it); faster, it meets the pile's bodies
-#: at the exact moments.
-CATCH = 2.0
 
 
 class Collisions:
@@ -320,26 +317,17 @@ class Collisions:
                 keys = a.astype(np.int64) * self._base + b
                 pos = np.minimum(np.searchsorted(self._keys, keys), len(self._keys) - 1)
                 loaded = (self._keys[pos] == keys) & (self._lam[pos, 0] > 0.0)
-            # A pair that closes no faster than its rest speed while the forces press it
-            # together, near enough to touch, comes to rest: a ball landing softly on one.
-            d = x0[a] - x0[b]
-            dist = norm(d)
-            nrm = unit(d, dist)
-            gap = dist - store.radius[a] - store.radius[b]
-            closing = -dot(v0[a] - v0[b], nrm)
-            if held is not None and held.any():
-                Ah = np.where(held[:, None], 0.0, A)
-                press = dot(Ah[a] - Ah[b], nrm)
+            # The rule's tests on the pairs (engine.pair_plan): what rests seeds a pile, and
+            # the pile grows by what can reach it within the step.
+            Ah = A if held is None or not held.any() else np.where(held[:, None], 0.0, A)
+            r = store.radius
+            if self.fast:
+                kin = store.kinematic if self._has_kin else np.zeros(n, dtype=bool)
+                plan_pairs(a, b, x0, v0, A, Ah, r, dt, loaded, island, kin, self.asleep)
             else:
-                press = dot(A[a] - A[b], nrm)
-            pull = np.maximum(norm(A[a]), norm(A[b]))
-            margin = 0.05 * np.minimum(store.radius[a], store.radius[b]) + closing.clip(0) * dt
-            near = gap <= margin
-            rest = near & (np.abs(closing) <= 2.0 * dt * pull) & (press < -1e-9 * pull)
-            # (Overlap past the slop: balls hung touching, as in a cradle, are no pile.)
-            seed = loaded | rest | (gap < -SLOP * np.minimum(store.radius[a], store.radius[b]))
-            island[a[seed]] = island[b[seed]] = True
-            island = self._grow(island, a, b, x0, v0, A, dt, store)
+                seed = rest_seeds(a, b, x0, v0, A, Ah, r, dt, loaded)
+                island[a[seed]] = island[b[seed]] = True
+                island = self._grow(island, a, b, x0, v0, A, dt, store)
         island &= ~self.asleep  # (a sleeper beside a pile was woken above, or stays put)
         a, b = struck(a, b, island, dt, store, self._search, self._has_kin, self._plain)
         self._plan = (a, b, island)
@@ -372,37 +360,14 @@ class Collisions:
         (``_exact``)."""
         if not len(a):
             return island
-        # Only pairs that can touch within the step (their gap closes by at most the relative
-        # speed's and acceleration's reach, plus a margin): a crowd falling in formation
-        # beside a pile stays out of it until it lands.
-        ra, rb = store.radius[a], store.radius[b]
-        Ar = norm(A[a] - A[b])
-        rel = norm(v0[a] - v0[b])
-        d = x0[a] - x0[b]
-        dist = norm(d)
-        gap = dist - ra - rb
-        reach = rel * dt + 0.5 * Ar * dt * dt + 0.05 * np.minimum(ra, rb)
-        fast = (rel + Ar * dt) * dt <= CATCH * (ra + rb)
-        # A pile may stop its body or send it back (a ball landing on the pile bounces off
-        # it): a body beside it that moved with it in formation (a column falling onto a
-        # stack) then closes on it by up to twice its speed along their normal.
-        nrm = unit(d, dist)
-        turn_a = 2.0 * np.abs(dot(v0[a], nrm)) * dt
-        turn_b = 2.0 * np.abs(dot(v0[b], nrm)) * dt
-        near_a = (gap <= reach + turn_a) & fast  # joins if a is the pile's
-        near_b = (gap <= reach + turn_b) & fast  # joins if b is the pile's
+        near_a, near_b = join_masks(a, b, x0, v0, A, store.radius, dt)
         if self._has_kin:
             kin = store.kinematic[a] | store.kinematic[b]  # moved by the game: joins
             near_a, near_b = near_a | kin, near_b | kin
         if self.asleep.any():
             awake = ~(self.asleep[a] | self.asleep[b])
             near_a, near_b = near_a & awake, near_b & awake
-        for _ in range(4):
-            grow = (island[a] & ~island[b] & near_a) | (island[b] & ~island[a] & near_b)
-            if not grow.any():
-                break
-            island[a[grow]] = island[b[grow]] = True
-        return island
+        return grow(island, a, b, near_a, near_b)
 
     def resolve(
         self,
