@@ -203,13 +203,15 @@ class ContactLedger:
                 gap, slack = gaps(ends)
                 still = set(ends[gap <= slack].tolist())
             began, ended = self.began, self.ended
-            known = set(prev.tolist())
+            # Whether each report's contact was open as the step began (one binary search
+            # each, not a set of every open contact: a pile holds thousands).
+            known = _isin(np.array([s[1] for s in raw], dtype=np.int64), prev).tolist()
             held = self.held
-            for spec in raw:
+            for spec, was_open in zip(raw, known, strict=True):
                 k = spec[1]
                 s = state.get(k)
                 if s is None:
-                    s = k in known
+                    s = was_open
                 if spec[2]:
                     held.pop(k, None)  # it touched again: an end held for it is void
                     if not s:
