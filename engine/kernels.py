@@ -124,7 +124,7 @@ class LoopKernel(Generic[F]):
 
 _ALL: list[LoopKernel[Any]] = []
 #: The modules that hold loop kernels (``prepare`` imports them all).
-MODULES = ("engine.soft",)
+MODULES = ("engine.soft", "engine.pair_impacts")
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}
 
