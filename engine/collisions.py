@@ -569,7 +569,7 @@ class Collisions:
         None when a crowd under load was handed over (its World rows in ``_handed``)."""
         got = exact(
             a, b, island, x, v, A, P, dt, self._t0, store, contacts,
-            self.asleep, self._has_kin, handover,
+            self.asleep, self._has_kin, handover, self.fast,
         )  # fmt: skip
         if got.rounds:
             self.last_rounds = got.rounds

@@ -46,6 +46,11 @@ kick); so are a kinematic body and a sleeper the impact does not wake.
 end state; a body that bounced off a wall within the step took another path before, and may
 end inside a ball that path never met: such pairs, rare (two balls meeting on a Galton
 board's peg), are moved apart at the end, their closing stopped, and out of the walls again.
+
+**Two paths** (engine.kernels). The times of impact, searched again for every pair of a body
+an impact sent off, round after round, are found on the fast path by the loop kernel
+``pair_times``, pair by pair with the twin's operations in its order (the same bits; a cubic
+or quartic, whose eigenvalues numba has no LAPACK for, is left to the twin).
 """
 
 from __future__ import annotations
@@ -55,7 +60,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from . import coloring
+from . import coloring, kernels
 from .impact import TOUCH, disc_hits, line_hits
 from .pair_math import SLOP, dot, norm, unit
 
@@ -133,6 +138,7 @@ def exact(
     asleep: np.ndarray,
     has_kin: bool,
     handover: bool = False,
+    fast: bool = False,
 ) -> Exact:
     """Impacts of the pairs (World rows a, b) not both in a pile, at their exact moments,
     in place on the end state (x, v): what ``impacts_in_order`` found, for the events, and
@@ -141,7 +147,8 @@ def exact(
     impulse in the soft step, from its start. ``P`` (N, 2): the forces' pull on each body;
     ``t0``: the time at the step's start; ``asleep`` (N,): the sleepers (an awake body that
     meets one without waking it meets a wall); ``has_kin``: some body is kinematic.
-    ``handover``: a crowd under load past ``HANDOVER_ROUNDS`` is given up (``Exact``)."""
+    ``handover``: a crowd under load past ``HANDOVER_ROUNDS`` is given up (``Exact``);
+    ``fast``: the times of impact by the loop kernel (``pair_times``: the same bits)."""
     present = np.zeros(len(x), dtype=bool)
     present[a] = present[b] = True
     U = np.flatnonzero(present)
@@ -175,6 +182,7 @@ def exact(
         contacts,
         U,
         handover,
+        fast,
     )
     if rounds.found is None:
         # A crowd under load: nothing written back; the World rows of its bodies.
@@ -229,6 +237,7 @@ def impacts_in_order(
     contacts: Contacts | None,
     U: np.ndarray,
     handover: bool = False,
+    fast: bool = False,
 ) -> Rounds:
     """Resolve the step's impacts in time order, in place on the end state (X, V) of the
     local bodies (World rows U), with inverse masses w (0: a wall), radii r, restitutions e,
@@ -237,7 +246,8 @@ def impacts_in_order(
 
     ``handover``: past ``HANDOVER_ROUNDS`` rounds, give up instead (``found`` None, with
     the bodies of every impact found or left in ``handed``, local): a crowd under load (rows
-    landing on rows) is the pile's, not a chain of exact impacts."""
+    landing on rows) is the pile's, not a chain of exact impacts. ``fast``: the times of
+    impact by the loop kernel (``times_of_impact``)."""
     nU = len(X)
     R = r[la] + r[lb]
     # Pairs that close at all within the step can meet (``times_of_impact``: when, if ever).
@@ -266,7 +276,7 @@ def impacts_in_order(
     for k in range(HANDOVER_ROUNDS if handover else MAX_ROUNDS):
         idx = np.flatnonzero(todo)
         if len(idx):
-            toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+            toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, fast)
             todo[idx] = False
         if walls and changed.any():
             assert contacts is not None
@@ -332,7 +342,7 @@ def impacts_in_order(
             # stays exact: bodies that never meet the crowd move as if it were not there.
             idx = np.flatnonzero(todo)
             if len(idx):
-                toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+                toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, fast)
             hit = np.isfinite(toi)
             involved = np.zeros(nU, dtype=bool)
             involved[pa[hit]] = involved[pb[hit]] = True
@@ -353,7 +363,7 @@ def impacts_in_order(
         capped = True
         idx = np.flatnonzero(todo)
         if len(idx):
-            toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt)
+            toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, fast)
         hit = np.isfinite(toi)
         left = np.zeros(nU, dtype=bool)
         left[pa[hit]] = left[pb[hit]] = True
@@ -404,8 +414,19 @@ def times_of_impact(
     A: np.ndarray,
     ts: np.ndarray,
     dt: float,
+    fast: bool = False,
 ) -> np.ndarray:
-    """Time of the first impact (closing faster than its rest speed) of each pair, or inf."""
+    """Time (s, in the step) of the first impact (closing faster than its rest speed) of each
+    pair, or inf. ``fast``: by the loop kernel ``pair_times`` (the same bits), which leaves
+    the pairs whose paths curve apart (a cubic or quartic: eigenvalues) to this numpy twin."""
+    if fast:
+        t = np.empty(len(pa))
+        curved = np.zeros(len(pa), dtype=np.bool_)
+        pair_times(pa, pb, R, X, V, A, ts, float(dt), t, curved)
+        if curved.any():
+            k = np.flatnonzero(curved)  # each pair's time is its own: a subset is the same
+            t[k] = times_of_impact(pa[k], pb[k], R[k], X, V, A, ts, dt)
+        return t
     start = np.maximum(ts[pa], ts[pb])
     xa, va = state_at(pa, start, X, V, A, dt)
     xb, vb = state_at(pb, start, X, V, A, dt)
@@ -426,6 +447,134 @@ def times_of_impact(
         speed = norm(va[ok]) + norm(vb[ok])
         t[ok[u <= 1e-12 * speed]] = np.inf
     return t
+
+
+# -- the loop kernel of times_of_impact (engine.kernels: the fast path) ---------------------
+# times_of_impact with engine.impact.disc_hits (the disc's centre 0: the difference of two
+# paths), pair by pair: the same operations in the same order, with an ``if`` where the twin
+# picks with np.where (as impact.disc_hit_one does), so the two give the same bits. A pair
+# whose polynomial is a cubic or a quartic (accelerations that differ) needs the eigenvalues
+# of its companion matrix: it is marked ``curved`` and left to the twin.
+
+
+def _sample_pairs() -> tuple[object, ...]:
+    """The smallest call of ``pair_times``: two balls 3 m apart closing at 2 m/s."""
+    x, v = np.array([[0.0, 0.0], [3.0, 0.0]]), np.array([[1.0, 0.0], [-1.0, 0.0]])
+    i, j = np.array([0]), np.array([1])
+    return (i, j, np.ones(1), x, v, np.zeros((2, 2)), np.zeros(2), 1.0, np.empty(1),
+            np.zeros(1, dtype=np.bool_))  # fmt: skip
+
+
+@kernels.loop(sample=_sample_pairs)
+def pair_times(
+    pa: np.ndarray,
+    pb: np.ndarray,
+    R: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    ts: np.ndarray,
+    dt: float,
+    t: np.ndarray,
+    curved: np.ndarray,
+) -> None:
+    """``times_of_impact``'s times (s) into t, pair by pair; the pairs marked in ``curved``
+    (their t unset) are the twin's."""
+    inf = math.inf
+    for k in range(len(pa)):
+        i, j = pa[k], pb[k]
+        curved[k] = False
+        # Both bodies where their paths are when the later of them starts (state_at).
+        start = max(ts[i], ts[j])
+        s = dt - start
+        h = 0.5 * s * s
+        ax, ay = X[i, 0] - V[i, 0] * s + A[i, 0] * h, X[i, 1] - V[i, 1] * s + A[i, 1] * h
+        bx, by = X[j, 0] - V[j, 0] * s + A[j, 0] * h, X[j, 1] - V[j, 1] * s + A[j, 1] * h
+        vax, vay = V[i, 0] - A[i, 0] * s, V[i, 1] - A[i, 1] * s
+        vbx, vby = V[j, 0] - A[j, 0] * s, V[j, 1] - A[j, 1] * s
+        Dx, Dy, Vx, Vy = ax - bx, ay - by, vax - vbx, vay - vby
+        Bx, By = A[i, 0] - A[j, 0], A[i, 1] - A[j, 1]
+        rho, T = R[k], s
+        # disc_hits: |D + V t + B t^2 / 2|^2 = rho^2, first root in [0, T].
+        dd, vv = Dx * Dx + Dy * Dy, Vx * Vx + Vy * Vy
+        dv, db, bb = Dx * Vx + Dy * Vy, Dx * Bx + Dy * By, Bx * Bx + By * By
+        dist0 = math.sqrt(dd) - rho
+        reach = math.sqrt(vv) * T + math.sqrt(bb) * (0.5 * T * T)
+        tau = inf
+        leaving = False
+        search = False
+        if dist0 <= TOUCH * (1.0 + rho):  # touching: now if heading in
+            k1 = 2.0 * dv
+            slack = 1e-12 * math.sqrt(dd * vv)
+            if k1 < -slack or (k1 <= slack and vv + db < 0.0):
+                tau = 0.0
+            elif reach > 0.0:
+                leaving = search = True  # it may curve back within the step
+        elif dist0 <= reach * (1.0 + 1e-9):
+            search = True
+        if search:
+            # The chord test: the path strays at most |B| T^2 / 2 from D + V t.
+            c = -dv / (vv if vv > 0.0 else 1.0)
+            c = min(max(c, 0.0), T)
+            Cx, Cy = Dx + Vx * c, Dy + Vy * c
+            stray = 0.5 * math.sqrt(bb) * T * T
+            near = math.sqrt(Cx * Cx + Cy * Cy) - stray <= rho * (1.0 + 1e-9) + TOUCH
+            search = leaving or near
+        if search:
+            # The quartic in tau = t / T, deflated by tau for a pair leaving contact.
+            T2 = T * T
+            k0, k1, k2 = dd - rho * rho, 2.0 * dv * T, (vv + db) * T2
+            k3, k4 = (Vx * Bx + Vy * By) * (T2 * T), 0.25 * bb * (T2 * T2)
+            if leaving:
+                k0, k1, k2, k3, k4 = k1, k2, k3, k4, 0.0
+            scale = max(abs(k0), abs(k1), abs(k2), abs(k3), abs(k4))
+            if math.isnan(k0 + k1 + k2 + k3 + k4):
+                scale = math.nan  # as np.max: a nan leaves only the quadratic
+            small = 1e-9 * scale
+            low = k0 + min(k1, 0.0) + min(k2, 0.0) + min(k3, 0.0) + min(k4, 0.0)
+            clear = low > 1e-6 * scale  # above zero on [0, 1]: no root
+            if not clear and (abs(k4) > small or abs(k3) > small):
+                curved[k] = True  # a cubic or a quartic: the twin's eigenvalues
+                continue
+            if not clear:
+                # quadratic_first_root(k0, k1, k2, 1.0), as impact.quadratic_first_root_one.
+                if k0 <= 0.0:
+                    if k1 < 0.0 or (k1 <= 0.0 and k2 < 0.0):
+                        r = 0.0
+                    else:
+                        r = -k1 / k2 if k2 < 0.0 and k1 > 0.0 else inf
+                elif k2 == 0.0:
+                    r = -k0 / k1 if k1 < 0.0 else inf
+                else:
+                    disc = k1 * k1 - 4.0 * k2 * k0
+                    r = inf
+                    if disc >= 0.0:
+                        q = -0.5 * (k1 + math.copysign(math.sqrt(max(disc, 0.0)), k1))
+                        r1 = q / k2
+                        r2 = k0 / q if q != 0.0 else inf
+                        r1 = r1 if r1 >= 0.0 else inf
+                        r2 = r2 if r2 >= 0.0 else inf
+                        r = r1 if r1 < r2 else r2
+                r = r if r <= 1.0 else inf
+                if r > (1e-9 if leaving else -1e-9) and r != inf:
+                    # _polish: three Newton steps, kept unless they stray (a double root).
+                    x = r
+                    for _ in range(3):
+                        f = k0 + x * (k1 + x * (k2 + x * (k3 + x * k4)))
+                        df = k1 + x * (2.0 * k2 + x * (3.0 * k3 + x * 4.0 * k4))
+                        x = x - (f / df if df != 0.0 else 0.0)
+                    x = x if abs(x - r) <= 1e-6 else r
+                    tau = max(x, 0.0) * T if x <= 1.0 else inf
+        t[k] = start + tau
+        if math.isfinite(tau):
+            # Closing speed at the moment of contact: a slow one is a contact at rest.
+            g = 0.5 * tau * tau
+            dx, dy = Dx + Vx * tau + Bx * g, Dy + Vy * tau + By * g
+            dn = max(math.sqrt(dx * dx + dy * dy), 1e-300)
+            u = -((Vx + Bx * tau) * dx + (Vy + By * tau) * dy) / dn
+            speed = math.sqrt(vax * vax + vay * vay) + math.sqrt(vbx * vbx + vby * vby)
+            if u <= 1e-12 * speed:
+                t[k] = inf
 
 
 def bounce(
