@@ -160,8 +160,17 @@ def _timer() -> threading.Timer | None:
     timer.daemon = True
     timer.start()
     return timer
+
+
 #: The modules that hold loop kernels (``prepare`` imports them all).
-MODULES = ("engine.pair_grid", "engine.coloring", "engine.soft", "engine.pile")
+MODULES = (
+    "engine.pair_grid",
+    "engine.coloring",
+    "engine.soft",
+    "engine.pile",
+    "engine.pile_rows",
+    "engine.push_out",
+)
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}
 
