@@ -189,19 +189,23 @@ def carry_out(
 ) -> Carried:
     """What a step carries into the next: its rows' (``key``) impulses over the whole step
     (lam_n, lam_t: a part's, ``iterations`` parts) and colours, with the rows the sleepers
-    keep (``asleep_rows``), sorted by key. ``fast``: the loop kernel ``carry_loop`` (where
-    no key repeats: numpy's sort leaves repeated keys in an order of its own)."""
+    keep (``asleep_rows``), sorted by key. ``fast``: the loop kernels ``carry_keys`` and
+    ``carry_gather`` around the twin's sort."""
     if fast:
+        # The keys in loops, numpy's own sort (so repeated keys fall as the twin's do), then
+        # the impulses and colours taken in its order in a loop.
         keys = carried.keys
         colors = carried.colors
         if not (len(carried.color_keys) == len(keys) and len(colors) == len(keys)):
             colors = np.full(len(keys), -1, dtype=np.int64)  # slept_colors: none kept
         keep = len(keys) > 0 and base == carried.base and len(asleep) == n
-        keys_now, lam, color_now, repeats = carry_loop(
-            key, lam_n, lam_t, iterations, color, keys, carried.lam, colors, asleep, n, base, keep
+        all_keys, kept = carry_keys(key, keys, asleep, n, base, keep)
+        order = np.argsort(all_keys)
+        lam, color_now = carry_gather(
+            order, lam_n, lam_t, iterations, color, carried.lam, colors, kept
         )
-        if not repeats:
-            return Carried(keys_now, lam, dt, base, keys_now, color_now)
+        keys_now = all_keys[order]
+        return Carried(keys_now, lam, dt, base, keys_now, color_now)
     kept = asleep_rows(carried, asleep, n, base)
     key = np.concatenate([key, carried.keys[kept]])
     lam = np.concatenate([np.stack([lam_n, lam_t], axis=1) * iterations, carried.lam[kept]])
@@ -543,30 +547,18 @@ def dissipate_rows(V: np.ndarray, V0: np.ndarray, m: np.ndarray, group: np.ndarr
     return out
 
 
-def _sample_carry() -> tuple[object, ...]:
-    """The smallest call of ``carry_loop``: one row, and one a sleeper keeps."""
+def _sample_carry_keys() -> tuple[object, ...]:
+    """The smallest call of ``carry_keys``: one row, and one a sleeper keeps."""
     k = np.array([5], dtype=np.int64)
-    one, b = np.ones(1), np.ones(2, dtype=bool)
-    return k, one, one, 4, k * 0, k - 4, np.ones((1, 2)), k * 0, b, 2, 3, True
+    return k, k - 4, np.ones(2, dtype=bool), 2, 3, True
 
 
-@kernels.loop(sample=_sample_carry)
-def carry_loop(
-    key: np.ndarray,
-    lam_n: np.ndarray,
-    lam_t: np.ndarray,
-    iterations: int,
-    color: np.ndarray,
-    keys: np.ndarray,
-    lam: np.ndarray,
-    colors: np.ndarray,
-    asleep: np.ndarray,
-    n: int,
-    base: int,
-    keep: bool,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool]:
-    """``carry_out`` as a loop: (keys, impulses, colours) sorted by key (a stable merge
-    sort), and whether a key repeats (then the twin's own sort must order them)."""
+@kernels.loop(sample=_sample_carry_keys)
+def carry_keys(
+    key: np.ndarray, keys: np.ndarray, asleep: np.ndarray, n: int, base: int, keep: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    """``carry_out``'s keys as a loop: (the rows' keys, then those of the carried rows the
+    sleepers keep; which carried rows those are)."""
     # The carried rows the sleepers keep (``asleep_rows``): both bodies asleep, or one on a
     # face; the rows of shapes (keys from n * base on) are not kept.
     kept = np.zeros(len(keys), dtype=np.bool_)
@@ -577,26 +569,51 @@ def carry_loop(
                 a, b = q // base, q % base
                 kept[k] = asleep[a] and (b >= n or asleep[b])
     m = len(key)
-    total = m + int(kept.sum())
-    all_keys, all_lam = np.empty(total, dtype=np.int64), np.empty((total, 2))
-    all_color = np.empty(total, dtype=np.int64)
-    for k in range(m):
-        all_keys[k], all_color[k] = key[k], color[k]
-        all_lam[k, 0], all_lam[k, 1] = lam_n[k] * iterations, lam_t[k] * iterations
+    out = np.empty(m + int(kept.sum()), dtype=np.int64)
+    out[:m] = key
     j = m
     for k in range(len(keys)):
         if kept[k]:
-            all_keys[j], all_color[j] = keys[k], colors[k]
-            all_lam[j, 0], all_lam[j, 1] = lam[k, 0], lam[k, 1]
+            out[j] = keys[k]
             j += 1
-    order = np.argsort(all_keys, kind="mergesort")
-    out_keys, out_lam = np.empty(total, dtype=np.int64), np.empty((total, 2))
-    out_color = np.empty(total, dtype=np.int64)
-    repeats = False
-    for k in range(total):
+    return out, kept
+
+
+def _sample_carry_gather() -> tuple[object, ...]:
+    """The smallest call of ``carry_gather``: a row and a kept one, swapped."""
+    one = np.ones(1)
+    return np.array([1, 0]), one, one, 4, np.zeros(1, dtype=np.int64), np.ones((1, 2)), \
+        np.zeros(1, dtype=np.int64), np.ones(1, dtype=bool)  # fmt: skip
+
+
+@kernels.loop(sample=_sample_carry_gather)
+def carry_gather(
+    order: np.ndarray,
+    lam_n: np.ndarray,
+    lam_t: np.ndarray,
+    iterations: int,
+    color: np.ndarray,
+    lam: np.ndarray,
+    colors: np.ndarray,
+    kept: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """``carry_out``'s impulses and colours as a loop: the rows' (over the whole step), then
+    the kept carried rows', taken in ``order``."""
+    m = len(lam_n)
+    place = np.empty(len(order) - m, dtype=np.int64)  # each kept row's place in the carried
+    j = 0
+    for k in range(len(kept)):
+        if kept[k]:
+            place[j] = k
+            j += 1
+    out_lam, out_color = np.empty((len(order), 2)), np.empty(len(order), dtype=np.int64)
+    for k in range(len(order)):
         o = order[k]
-        out_keys[k], out_color[k] = all_keys[o], all_color[o]
-        out_lam[k, 0], out_lam[k, 1] = all_lam[o, 0], all_lam[o, 1]
-        if k > 0 and out_keys[k] == out_keys[k - 1]:
-            repeats = True
-    return out_keys, out_lam, out_color, repeats
+        if o < m:
+            out_lam[k, 0], out_lam[k, 1] = lam_n[o] * iterations, lam_t[o] * iterations
+            out_color[k] = color[o]
+        else:
+            q = place[o - m]
+            out_lam[k, 0], out_lam[k, 1] = lam[q, 0], lam[q, 1]
+            out_color[k] = colors[q]
+    return out_lam, out_color

@@ -169,10 +169,10 @@ def test_dissipative_kernel_scales_a_gain_back() -> None:
 def test_carry_out_kernel_is_its_numpy_twin(
     seed: int, n_carried: int, rows: int, colored: bool, base: int
 ) -> None:
-    """``carry_out(fast=True)`` (``carry_loop``): the sleepers' rows kept (pairs of
-    sleepers, sleepers on faces, none of the shapes' rows), the impulses over the step, the
-    colours (-1 where the cache lost them), sorted by key alike; a repeated key leaves it to
-    the twin's sort."""
+    """``carry_out(fast=True)`` (``carry_keys``, the twin's sort, ``carry_gather``): the
+    sleepers' rows kept (pairs of sleepers, sleepers on faces, none of the shapes' rows),
+    the impulses over the step, the colours (-1 where the cache lost them), sorted by key
+    alike, repeated keys too."""
     rng = np.random.default_rng(seed)
     n = 8
     keys = np.sort(rng.choice(n * 12 + 30, n_carried, replace=False)).astype(np.int64)
@@ -296,7 +296,8 @@ def test_the_kernels_are_the_engines_and_have_samples() -> None:
     assert {"engine.pile", "engine.pile_rows", "engine.push_out"} <= set(kernels.MODULES)
     mine = (
         pile.dissipate_rows,
-        pile.carry_loop,
+        pile.carry_keys,
+        pile.carry_gather,
         pile_rows.disc_loop,
         pile_rows.face_loop,
         pile_rows.carry_in,
