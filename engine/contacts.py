@@ -387,14 +387,20 @@ class Contacts:
         return few(self.faces, self.rest, res, x0, v0, W, friction)
 
     def push_out_rows(
-        self, X: np.ndarray, V: np.ndarray, r: np.ndarray, rows: np.ndarray | None = None
+        self,
+        X: np.ndarray,
+        V: np.ndarray,
+        r: np.ndarray,
+        rows: np.ndarray | None = None,
+        fast: bool = False,
     ) -> np.ndarray:
         """Push rows of X out of any solid face they overlap (by more than TOUCH), in place;
         return which rows moved (engine.push_out). ``rows``: the World rows of X's rows, whose
-        filters say which faces they meet (needed only when a collider has a filter)."""
+        filters say which faces they meet (needed only when a collider has a filter);
+        ``fast``: the loop kernel (engine.kernels)."""
         faces = self.faces
         meets = None if rows is None else face_meets(faces, self.body_filters, rows)
-        return push_out.push_out_rows(faces, self.colliders, X, V, r, meets)
+        return push_out.push_out_rows(faces, self.colliders, X, V, r, meets, fast)
 
     # -- sensors ----------------------------------------------------------------------------
     def sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:

@@ -170,6 +170,8 @@ MODULES = (
     "engine.coloring",
     "engine.soft",
     "engine.pile",
+    "engine.pile_rows",
+    "engine.push_out",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}

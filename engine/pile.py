@@ -19,6 +19,10 @@ e = e_a e_b:
 * bodies with shapes (engine.shaped): a row a point of each manifold, pair against pair or
   shape against the colliders' shapes.
 
+(The rows of discs and faces are assembled, warm started and checked after the step in
+engine.pile_rows; on the fast path each of those parts, the carry below, ``dissipative``
+and the push out of the walls runs as a loop kernel beside its numpy twin, to the same bits.)
+
 Each row is keyed by one integer, stable from step to step, so the last step's impulses warm
 start it: a * base + b for two discs, a * base + n + f for a disc and face f (base: the bodies
 and faces, n + faces), and past n * base the rows of shapes, by pair and point. The impulses
@@ -53,10 +57,9 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from . import kernels
-from .faces import face_normals
-from .impact import TOUCH
 from .manifold import StaticShapes, static_shapes
-from .pair_math import SLOP, dot, norm, sorted_unique, unit
+from .pair_math import SLOP, dot, norm, sorted_unique
+from .pile_rows import disc_rows, face_rows, held, warm_start
 from .shaped import ShapeTable, pair_rows, static_rows
 from .soft import Rows, SoftStep
 
@@ -71,8 +74,8 @@ __all__ = [
     "Pile",
     "Statics",
     "asleep_rows",
+    "carry_out",
     "dissipative",
-    "face_rows",
     "keep_asleep",
     "slept_colors",
     "step_pile",
@@ -171,6 +174,47 @@ def keep_asleep(carried: Carried, asleep: np.ndarray, n: int) -> Carried:
     )
 
 
+def carry_out(
+    carried: Carried,
+    asleep: np.ndarray,
+    n: int,
+    base: int,
+    key: np.ndarray,
+    lam_n: np.ndarray,
+    lam_t: np.ndarray,
+    iterations: int,
+    color: np.ndarray,
+    dt: float,
+    fast: bool = False,
+) -> Carried:
+    """What a step carries into the next: its rows' (``key``) impulses over the whole step
+    (lam_n, lam_t: a part's, ``iterations`` parts) and colours, with the rows the sleepers
+    keep (``asleep_rows``), sorted by key. ``fast``: the loop kernels ``carry_keys`` and
+    ``carry_gather`` around the twin's sort."""
+    if fast:
+        # The keys in loops, numpy's own sort (so repeated keys fall as the twin's do), then
+        # the impulses and colours taken in its order in a loop.
+        keys = carried.keys
+        colors = carried.colors
+        if not (len(carried.color_keys) == len(keys) and len(colors) == len(keys)):
+            colors = np.full(len(keys), -1, dtype=np.int64)  # slept_colors: none kept
+        keep = len(keys) > 0 and base == carried.base and len(asleep) == n
+        all_keys, kept = carry_keys(key, keys, asleep, n, base, keep)
+        order = np.argsort(all_keys)
+        lam, color_now = carry_gather(
+            order, lam_n, lam_t, iterations, color, carried.lam, colors, kept
+        )
+        keys_now = all_keys[order]
+        return Carried(keys_now, lam, dt, base, keys_now, color_now)
+    kept = asleep_rows(carried, asleep, n, base)
+    key = np.concatenate([key, carried.keys[kept]])
+    lam = np.concatenate([np.stack([lam_n, lam_t], axis=1) * iterations, carried.lam[kept]])
+    color = np.concatenate([color, slept_colors(carried, kept)])
+    order = np.argsort(key)
+    keys_now = key[order]
+    return Carried(keys_now, lam[order], dt, base, keys_now, color[order])
+
+
 def step_pile(
     island: np.ndarray,
     a: np.ndarray,
@@ -212,25 +256,24 @@ def step_pile(
     la, lb = local[pa], local[pb]
     r = store.radius[U]
     x0U, v0U = x0[U], v0[U]
-    # Pairs: A the lower row, B the higher; the normal from A to B.
-    d = x0U[lb] - x0U[la]
-    dist = norm(d)
-    nrm = unit(d, dist)
-    sep = dist - r[la] - r[lb]
     mu, e = store.friction[U], store.restitution[U]
-    rows_a, rows_b = [la], [lb]
-    normals, seps = [nrm], [sep]
-    fric, rest = [mu[la] * mu[lb]], [e[la] * e[lb]]
-    slops = [SLOP * np.minimum(r[la], r[lb])]
     n_faces = 0 if contacts is None else len(contacts.faces.owner)
     base = n + n_faces
-    keys = [pa.astype(np.int64) * base + pb]
+    # Pairs: A the lower row, B the higher; the normal from A to B.
+    nrm, sep, pair_mu, pair_e, pair_slop, pair_key = disc_rows(
+        pa, pb, la, lb, x0U, r, mu, e, base, fast
+    )
+    rows_a, rows_b = [la], [lb]
+    normals, seps = [nrm], [sep]
+    fric, rest = [pair_mu], [pair_e]
+    slops = [pair_slop]
+    keys = [pair_key]
     fa = fk = np.zeros(0, dtype=np.intp)
     speed = norm(v0U) + norm(P[U]) * dt
     kin = store.kinematic[U]
     if n_faces and contacts is not None:
         # Faces within reach of a body this step: the static world is B, the slot nU.
-        fa, fn, fg, fmu, fk = face_rows(contacts, x0U, r, 0.05 * r + speed * dt)
+        fa, fn, fg, fmu, fk = face_rows(contacts, x0U, r, 0.05 * r + speed * dt, fast)
         ok = ~kin[fa] & ~shapedU[fa]  # walls do not hold what the game moves
         if contacts.faces.filters is not None:
             ok &= contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
@@ -285,12 +328,9 @@ def step_pile(
     w = np.append(1.0 / store.mass[U], 0.0)
     moves = np.append(~kin, False)
     w[:-1][~moves[:-1]] = 0.0
-    # Warm start: the last step's impulses of the same contacts, per part of this step.
-    lam = np.zeros((len(key), 2))
-    if len(carried.keys) and base == carried.base:
-        pos = np.minimum(np.searchsorted(carried.keys, key), len(carried.keys) - 1)
-        same = carried.keys[pos] == key
-        lam[same] = carried.lam[pos[same]] * (dt / (carried.lam_dt * iterations))
+    # Warm start: the last step's impulses of the same contacts, per part of this step, and
+    # each row's colour from the last step where its key had one (engine.coloring).
+    lam, prior = warm_start(carried, key, base, dt, iterations, fast)
     rows = Rows(
         ra,
         rb,
@@ -303,12 +343,6 @@ def step_pile(
         static,
     )
     slop_rows = np.concatenate(slops)
-    # Each row keeps its colour from the last step where its key did (engine.coloring).
-    prior = np.full(len(key), -1, dtype=np.int64)
-    if len(carried.color_keys) and base == carried.base:
-        pos = np.minimum(np.searchsorted(carried.color_keys, key), len(carried.color_keys) - 1)
-        same = carried.color_keys[pos] == key
-        prior[same] = carried.colors[pos[same]]
     solver = SoftStep(
         rows,
         w,
@@ -333,44 +367,30 @@ def step_pile(
     # A kinematic body goes where the game sends it, whatever it touched.
     if not kin.any():
         # Each pile on its own: the bodies of one never change another's motion.
-        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], components(nU, ra, rb, fast))
+        group = components(nU, ra, rb, fast)
+        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], group, fast)
     if kin.any():
         Xr[kin], Vr[kin] = x[U][kin], v[U][kin]
     if n_faces and contacts is not None:
         # No disc of the pile ends inside a wall: the soft contacts give a little. (A
         # shape is held out by its rows alone; a kinematic body is no wall's business.)
         if PUSHOUT:
-            contacts.push_out_rows(Xr, Vr, np.where(kin | shapedU, -np.inf, r), U)
+            contacts.push_out_rows(Xr, Vr, np.where(kin | shapedU, -np.inf, r), U, fast)
     x[U], v[U] = Xr, Vr
     # The impulses over the whole step, kept by key (sorted) for the next one.
-    kept = asleep_rows(carried, asleep, n, base)
-    key = np.concatenate([key, carried.keys[kept]])
-    lam = np.concatenate(
-        [np.stack([rows.lam_n, rows.lam_t], axis=1) * iterations, carried.lam[kept]]
+    now_carried = carry_out(
+        carried, asleep, n, base, key, rows.lam_n, rows.lam_t, iterations, solver.color, dt, fast
     )
-    color = np.concatenate([solver.color, slept_colors(carried, kept)])
-    order = np.argsort(key)
-    keys_now = key[order]
-    now_carried = Carried(keys_now, lam[order], dt, base, keys_now, color[order])
     # Which contacts touch now: the pairs for the events and sleep, the faces too.
     m = len(pa)
-    gap = norm(Xr[lb] - Xr[la]) - r[la] - r[lb]
-    touch = gap <= SLOP * np.minimum(r[la], r[lb]) + TOUCH
-    pressed = solver.total[:m] > 0.0
-    hold = touch | pressed
-    # Every other row's gap now: its gap at the start plus the bodies' moves along it.
-    moved = np.append(Xr - x0U, [[0.0, 0.0]], axis=0)
-    now = sep_all + dot(moved[rb] - moved[ra], nv)
-    held_rows = (now <= slop_rows + TOUCH) | (solver.total > 0.0)
+    hold, near, now, held_rows = held(Xr, x0U, la, lb, r, ra, rb, nv, sep_all, slop_rows,
+                                      solver.total, fast)  # fmt: skip
     f = slice(m, m_disc)
     face_touching = (U[fa[held_rows[f]]], fk[held_rows[f]])
     touching = pa[hold].astype(np.int64) * n + pb[hold]
-    # Sleep joins bodies as near as engine.sleep.wake_met wakes them by: a group falls asleep
-    # whole, or a body left awake beside it would wake it again at once.
-    near = gap <= 0.05 * np.minimum(r[la], r[lb])
     near_a, near_b = pa[near], pb[near]
     shape_over = np.zeros(n)
-    if m_disc < len(key) - int(kept.sum()):
+    if m_disc < len(ra):
         # The rows of shapes: touching pairs and faces for the events, sleep joined by
         # them, and their overlaps (a shape's bounding circle says nothing of them).
         sp = slice(m_disc, m_disc + m_pairs)
@@ -394,38 +414,6 @@ def step_pile(
         depth = np.concatenate([over[:m_pairs], over[:m_pairs], over[m_pairs:]])
         np.maximum.at(shape_over, body, depth)
     return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried)
-
-
-def face_rows(
-    contacts: Contacts, X: np.ndarray, r: np.ndarray, margin: np.ndarray
-) -> tuple[np.ndarray, ...]:
-    """(body, unit normal toward it, gap, friction, face) of each solid face within ``margin``
-    of a ball (X, r)."""
-    grid = contacts.grid
-    faces = contacts.faces
-    bi, f = grid.pairs(X, r + margin)  # endless faces within reach, and the listed ones
-    if not len(bi):
-        z = np.zeros(0, dtype=np.intp)
-        return z, np.zeros((0, 2)), np.zeros(0), np.zeros(0), z
-    L = len(faces.p)
-    x = X[bi]
-    nrm, _ = face_normals(faces, f, x)
-    line = f < L
-    gap = np.empty(len(f))
-    inside = np.ones(len(f), dtype=bool)
-    if L:
-        fl = np.where(line, f, 0)
-        gap_l = dot(x - faces.p[fl], nrm) - faces.rho[fl] - r[bi]
-        t_dir = np.stack([-faces.n[fl, 1], faces.n[fl, 0]], axis=1)
-        u = dot(x - faces.p[fl], t_dir)
-        inside = ~line | ((u >= faces.lo[fl]) & (u <= faces.hi[fl]))
-        gap = gap_l
-    if len(faces.c):
-        fd = np.where(line, 0, f - L)
-        d = x - faces.c[fd]
-        gap = np.where(line, gap, norm(d) - faces.r[fd] - r[bi])
-    keep = inside & (gap <= margin[bi])
-    return bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep]
 
 
 def components(n: int, a: np.ndarray, b: np.ndarray, fast: bool = False) -> np.ndarray:
@@ -483,7 +471,11 @@ def label_rows(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def dissipative(
-    V: np.ndarray, V0: np.ndarray, m: np.ndarray, group: np.ndarray | None = None
+    V: np.ndarray,
+    V0: np.ndarray,
+    m: np.ndarray,
+    group: np.ndarray | None = None,
+    fast: bool = False,
 ) -> np.ndarray:
     """The pile's velocities V (the forces alone would give V0), with the contacts' change
     scaled back if it gained kinetic energy.
@@ -496,12 +488,14 @@ def dissipative(
     the least energy: KE(s) = KE0 + s B + s^2 C
     with B = sum m V0.dV, C = sum m |dV|^2 / 2, so s = -B / (2 C). Momentum is kept: the
     contacts' impulses between bodies are equal and opposite at any s (a wall's are not,
-    and lose only what s takes off them).
+    and lose only what s takes off them). ``fast``: the loop kernel ``dissipate_rows``.
     """
-    dV = V - V0
     n = len(V)
     if group is None:
         group = np.zeros(n, dtype=np.intp)
+    if fast:
+        return dissipate_rows(V, V0, m, group)  # type: ignore[no-any-return]
+    dV = V - V0
     B = np.bincount(group, m * dot(V0, dV), minlength=n)
     C = 0.5 * np.bincount(group, m * dot(dV, dV), minlength=n)
     KE0 = 0.5 * np.bincount(group, m * dot(V0, V0), minlength=n)
@@ -517,3 +511,116 @@ def dissipative(
     sel = gained[group]
     out[sel] = V0[sel] + s[group[sel]][:, None] * dV[sel]
     return out
+
+
+# -- the loop kernels (engine.kernels: the fast path) -----------------------------------------
+# Each does its numpy twin's products and sums in the same order, so the two paths give the
+# same bits (engine.pile_rows has the kernels of a pile's rows).
+
+
+def _sample_dissipate() -> tuple[object, ...]:
+    """The smallest call of ``dissipate_rows``: one body that gained speed."""
+    return np.ones((1, 2)), np.zeros((1, 2)), np.ones(1), np.zeros(1, dtype=np.intp)
+
+
+@kernels.loop(sample=_sample_dissipate)
+def dissipate_rows(V: np.ndarray, V0: np.ndarray, m: np.ndarray, group: np.ndarray) -> np.ndarray:
+    """``dissipative`` as a loop: each group's B, C and KE0 summed in row order, then the rows
+    of the groups that gained V0 + s dV (the others keep V)."""
+    n = len(V)
+    B, C, K = np.zeros(n), np.zeros(n), np.zeros(n)
+    for i in range(n):
+        g = group[i]
+        dx, dy = V[i, 0] - V0[i, 0], V[i, 1] - V0[i, 1]
+        B[g] += m[i] * (V0[i, 0] * dx + V0[i, 1] * dy)
+        C[g] += m[i] * (dx * dx + dy * dy)
+        K[g] += m[i] * (V0[i, 0] * V0[i, 0] + V0[i, 1] * V0[i, 1])
+    s = np.ones(n)
+    gained = np.zeros(n, dtype=np.bool_)
+    some = False
+    for g in range(n):
+        c = 0.5 * C[g]
+        if B[g] + c > 1e-13 * (0.5 * K[g]) + 1e-300:
+            gained[g] = some = True
+            s[g] = min(max(-B[g] / (2.0 * c), 0.0), 1.0)
+    if not some:
+        return V
+    out = V.copy()  # only the groups that gained change (as in the twin)
+    for i in range(n):
+        if gained[group[i]]:
+            sg = s[group[i]]
+            out[i, 0] = V0[i, 0] + sg * (V[i, 0] - V0[i, 0])
+            out[i, 1] = V0[i, 1] + sg * (V[i, 1] - V0[i, 1])
+    return out
+
+
+def _sample_carry_keys() -> tuple[object, ...]:
+    """The smallest call of ``carry_keys``: one row, and one a sleeper keeps."""
+    k = np.array([5], dtype=np.int64)
+    return k, k - 4, np.ones(2, dtype=bool), 2, 3, True
+
+
+@kernels.loop(sample=_sample_carry_keys)
+def carry_keys(
+    key: np.ndarray, keys: np.ndarray, asleep: np.ndarray, n: int, base: int, keep: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    """``carry_out``'s keys as a loop: (the rows' keys, then those of the carried rows the
+    sleepers keep; which carried rows those are)."""
+    # The carried rows the sleepers keep (``asleep_rows``): both bodies asleep, or one on a
+    # face; the rows of shapes (keys from n * base on) are not kept.
+    kept = np.zeros(len(keys), dtype=np.bool_)
+    if keep:
+        for k in range(len(keys)):
+            q = keys[k]
+            if q < n * base:
+                a, b = q // base, q % base
+                kept[k] = asleep[a] and (b >= n or asleep[b])
+    m = len(key)
+    out = np.empty(m + int(kept.sum()), dtype=np.int64)
+    out[:m] = key
+    j = m
+    for k in range(len(keys)):
+        if kept[k]:
+            out[j] = keys[k]
+            j += 1
+    return out, kept
+
+
+def _sample_carry_gather() -> tuple[object, ...]:
+    """The smallest call of ``carry_gather``: a row and a kept one, swapped."""
+    one = np.ones(1)
+    return np.array([1, 0]), one, one, 4, np.zeros(1, dtype=np.int64), np.ones((1, 2)), \
+        np.zeros(1, dtype=np.int64), np.ones(1, dtype=bool)  # fmt: skip
+
+
+@kernels.loop(sample=_sample_carry_gather)
+def carry_gather(
+    order: np.ndarray,
+    lam_n: np.ndarray,
+    lam_t: np.ndarray,
+    iterations: int,
+    color: np.ndarray,
+    lam: np.ndarray,
+    colors: np.ndarray,
+    kept: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """``carry_out``'s impulses and colours as a loop: the rows' (over the whole step), then
+    the kept carried rows', taken in ``order``."""
+    m = len(lam_n)
+    place = np.empty(len(order) - m, dtype=np.int64)  # each kept row's place in the carried
+    j = 0
+    for k in range(len(kept)):
+        if kept[k]:
+            place[j] = k
+            j += 1
+    out_lam, out_color = np.empty((len(order), 2)), np.empty(len(order), dtype=np.int64)
+    for k in range(len(order)):
+        o = order[k]
+        if o < m:
+            out_lam[k, 0], out_lam[k, 1] = lam_n[o] * iterations, lam_t[o] * iterations
+            out_color[k] = color[o]
+        else:
+            q = place[o - m]
+            out_lam[k, 0], out_lam[k, 1] = lam[q, 0], lam[q, 1]
+            out_color[k] = colors[q]
+    return out_lam, out_color

@@ -12,6 +12,11 @@ ball pressed between a peg and a wall, pushed out of each in turn) end in ``out_
 the nearest point outside every face, a projection out of one face or a point where the
 surfaces of two, offset by the radius, meet. After each move the part of the velocity going
 into the faces the body then touches is removed.
+
+On the fast path (engine.kernels) ``push_out_rows`` runs its rounds as the loop kernel
+``push_rows``: a body's rounds depend on its own position alone, so each row is taken through
+its rounds in turn, with the twin's arithmetic, to the same numbers bit for bit. A polygon
+(whose inside needs ``polygon_distance``) keeps the numpy rounds.
 """
 
 from __future__ import annotations
@@ -20,6 +25,7 @@ import math
 
 import numpy as np
 
+from . import kernels
 from .colliders import Collider, Polygon
 from .face_grid import FaceGrid
 from .faces import Faces, dot, face_meets, signed_distance
@@ -132,12 +138,23 @@ def push_out_rows(
     V: np.ndarray,
     r: np.ndarray,
     meets: np.ndarray | None = None,
+    fast: bool = False,
 ) -> np.ndarray:
     """Push rows of X (balls of radii r, velocities V) out of any solid face they overlap (by
     more than TOUCH), in place; return which rows moved. ``colliders``: the World's, which
     ``faces.owner`` indexes. ``meets`` (rows, faces) bool: which faces each row meets
-    (``engine.faces.face_meets``), or None for all."""
+    (``engine.faces.face_meets``), or None for all. ``fast``: the rounds by the loop kernel
+    ``push_rows`` (unless a polygon is among the faces)."""
     L = len(faces.p)
+    if fast and not faces.polygons and X.dtype == V.dtype == r.dtype == np.float64:
+        some = meets is not None
+        m = meets if meets is not None else np.zeros((0, 0), dtype=bool)
+        pushed, unsettled = push_rows(X, V, r, faces.p, faces.n, faces.rho, faces.two,
+                                      faces.lo, faces.hi, faces.c, faces.r, m, some)  # fmt: skip
+        if unsettled:
+            for i in np.flatnonzero(pushed).tolist():
+                out_of_corner(faces, X, V, i, float(r[i]), None if meets is None else meets[i])
+        return pushed  # type: ignore[no-any-return]
     pushed = np.zeros(len(X), dtype=bool)
     for _ in range(4):
         # Each round pushes each body out of the face it is deepest in (all bodies at
@@ -201,6 +218,105 @@ def push_out_rows(
         for i in np.flatnonzero(pushed).tolist():
             out_of_corner(faces, X, V, i, float(r[i]), None if meets is None else meets[i])
     return pushed
+
+
+# -- the loop kernel (engine.kernels: the fast path) ------------------------------------------
+# push_out_rows' rounds row by row. The twin moves every row at once, a round at a time, until
+# a round moves none; a row's round depends on its own position alone, and a row that a round
+# does not move no later round moves, so each row can be taken through its rounds on its own:
+# up to four, ending at the first that does not move it. The rounds end unsettled (the twin's
+# ``else``: out_of_corner for every pushed row) when some row moved in the fourth. The same
+# products and sums as the twin's columns, in the same order, so the same bits.
+
+
+def _sample_push() -> tuple[object, ...]:
+    """The smallest call of ``push_rows``: a ball sunk into a floor, a peg beside it."""
+    f2, f1 = np.zeros((1, 2)), np.zeros(1)
+    return (np.array([[0.0, 0.1]]), np.array([[0.0, -1.0]]), np.ones(1), f2,
+            np.array([[0.0, 1.0]]), f1, np.zeros(1, dtype=bool), f1 - 10.0, f1 + 10.0,
+            np.array([[5.0, 0.0]]), f1 + 1.0, np.zeros((0, 0), dtype=bool), False)  # fmt: skip
+
+
+@kernels.loop(sample=_sample_push)
+def push_rows(
+    X: np.ndarray,
+    V: np.ndarray,
+    r: np.ndarray,
+    p: np.ndarray,
+    n: np.ndarray,
+    rho: np.ndarray,
+    two: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    c: np.ndarray,
+    cr: np.ndarray,
+    meets: np.ndarray,
+    some: bool,
+) -> tuple[np.ndarray, bool]:
+    """push_out_rows' rounds on rows of X (length units) and V (length units/s) in place, for
+    flat faces (p, n, rho, two, lo, hi) and round ones (c, cr) met where ``meets`` says (if
+    ``some``): (which rows moved, whether some row still moved in the fourth round)."""
+    L, D = len(p), len(c)
+    # Each face's n.p and t.p (t = (-n_y, n_x)), as the twin's dot(faces.p, ...) rounds them.
+    pn, pt = np.empty(L), np.empty(L)
+    for f in range(L):
+        pn[f] = p[f, 0] * n[f, 0] + p[f, 1] * n[f, 1]
+        pt[f] = p[f, 0] * -n[f, 1] + p[f, 1] * n[f, 0]
+    pushed = np.zeros(len(X), dtype=np.bool_)
+    unsettled = False
+    for i in range(len(X)):
+        ri = r[i]
+        deep = -TOUCH * (1.0 + ri)
+        for round_ in range(4):
+            moved = False
+            # The flat face the row is deepest in (the first of the least gaps).
+            best, best_gap, best_side = -1, np.inf, 1.0
+            for f in range(L):
+                x, y = X[i, 0], X[i, 1]
+                d = x * n[f, 0] + y * n[f, 1] - pn[f]
+                side = -1.0 if two[f] and d < 0.0 else 1.0
+                gap = side * d - rho[f] - ri
+                u = x * -n[f, 1] + y * n[f, 0] - pt[f]
+                inside = gap < deep and u >= lo[f] and u <= hi[f]
+                if inside and (not some or meets[i, f]) and (best < 0 or gap < best_gap):
+                    best, best_gap, best_side = f, gap, side
+            if best >= 0:
+                nx, ny = best_side * n[best, 0], best_side * n[best, 1]
+                X[i, 0] -= best_gap * nx
+                X[i, 1] -= best_gap * ny
+                vn = V[i, 0] * nx + V[i, 1] * ny  # take_speed_into: the speed into it taken
+                if vn < 0.0:
+                    V[i, 0] -= vn * nx
+                    V[i, 1] -= vn * ny
+                moved = True
+            # Then the round face it is deepest in, from where the flat one left it.
+            best, best_gap, best_dist = -1, np.inf, 0.0
+            for f in range(D):
+                dx, dy = X[i, 0] - c[f, 0], X[i, 1] - c[f, 1]
+                dist = np.sqrt(dx * dx + dy * dy)
+                gap = dist - cr[f] - ri
+                if gap < deep and (not some or meets[i, L + f]) and (best < 0 or gap < best_gap):
+                    best, best_gap, best_dist = f, gap, dist
+            if best >= 0:
+                dx, dy = X[i, 0] - c[best, 0], X[i, 1] - c[best, 1]
+                if best_dist > 0.0:
+                    nx, ny = dx / best_dist, dy / best_dist
+                else:
+                    nx, ny = 0.0, 1.0
+                reach = cr[best] + ri
+                X[i, 0] = c[best, 0] + nx * reach
+                X[i, 1] = c[best, 1] + ny * reach
+                vn = V[i, 0] * nx + V[i, 1] * ny
+                if vn < 0.0:
+                    V[i, 0] -= vn * nx
+                    V[i, 1] -= vn * ny
+                moved = True
+            if not moved:
+                break
+            pushed[i] = True
+            if round_ == 3:
+                unsettled = True
+    return pushed, unsettled
 
 
 def take_speed_into(V: np.ndarray, i: np.ndarray, nrm: np.ndarray) -> None:
