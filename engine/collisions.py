@@ -323,13 +323,13 @@ class Collisions:
             r = store.radius
             if self.fast:
                 kin = store.kinematic if self._has_kin else np.zeros(n, dtype=bool)
-                plan_pairs(a, b, x0, v0, A, Ah, r, dt, loaded, island, kin, self.asleep)
+                plan_pairs(a, b, x0, v0, A, Ah, r, dt, loaded, island, kin, self.asleep, True)
             else:
                 seed = rest_seeds(a, b, x0, v0, A, Ah, r, dt, loaded)
                 island[a[seed]] = island[b[seed]] = True
                 island = self._grow(island, a, b, x0, v0, A, dt, store)
         island &= ~self.asleep  # (a sleeper beside a pile was woken above, or stays put)
-        a, b = struck(a, b, island, dt, store, self._search, self._has_kin, self._plain)
+        a, b = struck(a, b, island, dt, store, self._search, self._has_kin, self._plain, self.fast)
         self._plan = (a, b, island)
         return island if island.any() else None
 
@@ -359,6 +359,11 @@ class Collisions:
         stays out, and meets the pile's bodies at its exact moments, as moving walls
         (``_exact``)."""
         if not len(a):
+            return island
+        if self.fast:  # the plan's kernel without its seeds (engine.pair_plan)
+            kin = store.kinematic if self._has_kin else np.zeros(len(island), dtype=bool)
+            no = np.zeros(len(a), dtype=bool)
+            plan_pairs(a, b, x0, v0, A, A, store.radius, dt, no, island, kin, self.asleep, False)
             return island
         near_a, near_b = join_masks(a, b, x0, v0, A, store.radius, dt)
         if self._has_kin:

@@ -43,6 +43,7 @@ same order, to the bit (tests/test_kernels_pair_grid.py).
 
 from __future__ import annotations
 
+import math
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -115,10 +116,14 @@ def grid_pairs(P: np.ndarray, h: float, fast: bool = False) -> tuple[np.ndarray,
 
 
 def pairs_of(
-    bodies: np.ndarray, P: np.ndarray, r: np.ndarray, reach: np.ndarray
+    bodies: np.ndarray, P: np.ndarray, r: np.ndarray, reach: np.ndarray, fast: bool = False
 ) -> tuple[list[np.ndarray], list[np.ndarray]]:
     """Each of ``bodies`` (a few) against every body it can reach this step: pairs (lower
-    index, higher index) as one array per body, from the positions P, radii r and reaches."""
+    index, higher index) as one array per body (``fast``: all in one, by the loop kernel
+    ``reach_pairs``), from the positions P, radii r and reaches."""
+    if fast:
+        a, b = reach_pairs(bodies, P, r, reach)
+        return [a], [b]
     fa, fb = [], []
     for k in bodies.tolist():
         near = norm(P - P[k]) <= r + r[k] + reach + reach[k]
@@ -211,7 +216,7 @@ def find_pairs(
     if len(F):
         # Fast bodies against every body (few of them; a grid of their size would make
         # every cell hold everyone).
-        fa, fb = pairs_of(F, P, r, reach)
+        fa, fb = pairs_of(F, P, r, reach, fast)
         ia = np.concatenate([ia, *fa])
         ib = np.concatenate([ib, *fb])
         key = sorted_unique(ia.astype(np.int64) * len(P) + ib)
@@ -235,11 +240,12 @@ def struck(
     search: Search | None,
     has_kin: bool,
     plain: bool,
+    fast: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The pairs (a, b) with those of bodies not in a pile that an impact may send off
     faster than their own speed reaches (``struck_pairs``); a pile's bodies meet what
     they meet as contacts of the soft step, which needs no such search. ``search``: from
-    ``find_pairs`` (None: no pairs were searched)."""
+    ``find_pairs`` (None: no pairs were searched); ``fast``: the loop kernels."""
     if search is None:
         return a, b
     P, r, v0l, v1l, Al, reach, live = search
@@ -251,7 +257,7 @@ def struck(
     ia, ib = where[a], where[b]
     both = free[ia] & free[ib]
     ja, jb = struck_pairs(
-        ia[both], ib[both], P, r, v0l, v1l, Al, reach, dt, live, store, free, has_kin
+        ia[both], ib[both], P, r, v0l, v1l, Al, reach, dt, live, store, free, has_kin, fast
     )
     if len(ja) == int(both.sum()):
         return a, b  # nobody is struck faster than it reaches: the same pairs
@@ -294,6 +300,7 @@ def struck_pairs(
     store: Any,
     free: np.ndarray,
     has_kin: bool,
+    fast: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The pairs (ia, ib) (places in live) with those of bodies an impact may send farther
     than their own speed reaches: a light ball struck by a fast one flies off at up to
@@ -328,7 +335,7 @@ def struck_pairs(
         got[grown] = gain[grown]
         reach = reach.copy()
         reach[grown] += gain[grown] * dt
-        fa, fb = pairs_of(grown, P, r, reach)
+        fa, fb = pairs_of(grown, P, r, reach, fast)
         key = sorted_unique(
             np.concatenate([ia, *fa]).astype(np.int64) * len(P) + np.concatenate([ib, *fb])
         )
@@ -442,5 +449,32 @@ def grid_pairs_loop(
                     a[m], b[m] = u, w
                 else:
                     a[m], b[m] = i, o
+                m += 1
+    return a[:m], b[:m]
+
+
+def _sample_reach() -> tuple[object, ...]:
+    """The smallest call of ``reach_pairs``: one body against another within reach."""
+    P = np.array([[0.0, 0.0], [1.0, 0.0]])
+    return np.array([0]), P, np.full(2, 0.5), np.zeros(2)
+
+
+@kernels.loop(sample=_sample_reach)
+def reach_pairs(
+    bodies: np.ndarray, P: np.ndarray, r: np.ndarray, reach: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """``pairs_of`` as a loop, its pairs in one array each: each of ``bodies`` against every
+    body whose centre is within r + r_k + reach + reach_k (summed in the twin's order)."""
+    n = len(P)
+    a = np.empty(len(bodies) * n, dtype=np.int64)
+    b = np.empty(len(bodies) * n, dtype=np.int64)
+    m = 0
+    for k in bodies:
+        for j in range(n):
+            if j == k:
+                continue
+            dx, dy = P[j, 0] - P[k, 0], P[j, 1] - P[k, 1]
+            if math.sqrt(dx * dx + dy * dy) <= r[j] + r[k] + reach[j] + reach[k]:
+                a[m], b[m] = min(j, k), max(j, k)
                 m += 1
     return a[:m], b[:m]

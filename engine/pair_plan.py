@@ -121,7 +121,7 @@ def _sample_plan() -> tuple[object, ...]:
     one, no = np.ones(2), np.zeros(2, dtype=bool)
 
     i, j = np.array([0]), np.array([1])
-    return (i, j, x, z, g, g, one * 0.5, 1 / 60, np.zeros(1, dtype=bool), no.copy(), no, no)
+    return (i, j, x, z, g, g, one * 0.5, 1 / 60, np.zeros(1, dtype=bool), no.copy(), no, no, True)
 
 
 @kernels.loop(sample=_sample_plan)
@@ -138,10 +138,11 @@ def plan_pairs(
     island: np.ndarray,
     kin: np.ndarray,
     asleep: np.ndarray,
+    seeding: bool,
 ) -> None:
-    """``rest_seeds``, ``join_masks`` and ``grow`` in one pass over the pairs, in place on
-    ``island``. ``kin`` (N,): bodies the game moves (their pairs always join); ``asleep``
-    (N,): sleepers (their pairs never join)."""
+    """``rest_seeds`` (if ``seeding``), ``join_masks`` and ``grow`` in one pass over the
+    pairs, in place on ``island``. ``kin`` (N,): bodies the game moves (their pairs always
+    join); ``asleep`` (N,): sleepers (their pairs never join)."""
     m = len(a)
     near_a = np.zeros(m, dtype=np.bool_)
     near_b = np.zeros(m, dtype=np.bool_)
@@ -166,8 +167,9 @@ def plan_pairs(
         pj = math.sqrt(A[j, 0] * A[j, 0] + A[j, 1] * A[j, 1])
         pull = max(pi, pj)
         margin = 0.05 * small + max(closing, 0.0) * dt
-        rest = gap <= margin and abs(closing) <= 2.0 * dt * pull and press < -1e-9 * pull
-        seed[k] = loaded[k] or rest or gap < -SLOP * small
+        if seeding:
+            rest = gap <= margin and abs(closing) <= 2.0 * dt * pull and press < -1e-9 * pull
+            seed[k] = loaded[k] or rest or gap < -SLOP * small
         # join_masks
         gx, gy = A[i, 0] - A[j, 0], A[i, 1] - A[j, 1]
         Ar = math.sqrt(gx * gx + gy * gy)

@@ -161,3 +161,26 @@ def test_the_kernel_is_one_of_the_engines_and_compiles_from_its_sample() -> None
     a, b = grid_pairs_loop(np.array([[0.0, 0.0], [1.0, 0.0]]), 2.0, np.full(2, 0.5),
                            np.zeros(2), True)  # fmt: skip
     assert a.tolist() == [0] and b.tolist() == [1]
+
+
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n=st.integers(1, 60),
+    few=st.integers(0, 5),
+)
+def test_reach_pairs_is_pairs_of(seed: int, n: int, few: int) -> None:
+    """The fast few against everyone: the same pairs, in the same order, on both paths."""
+    from engine.pair_grid import pairs_of
+
+    rng = np.random.default_rng(seed)
+    P = rng.uniform(-5, 5, (n, 2))
+    P[rng.random(n) < 0.1] = 0.0  # some centres at one place
+    r = rng.uniform(0.0, 0.8, n)
+    reach = rng.uniform(0.0, 3.0, n) * (rng.random(n) < 0.5)
+    bodies = rng.choice(n, size=min(few, n), replace=False)
+    fa, fb = pairs_of(bodies, P, r, reach)
+    ga, gb = pairs_of(bodies, P, r, reach, fast=True)
+    want_a = np.concatenate([np.zeros(0, dtype=np.int64), *fa])
+    want_b = np.concatenate([np.zeros(0, dtype=np.int64), *fb])
+    assert np.array_equal(np.concatenate(ga), want_a)
+    assert np.array_equal(np.concatenate(gb), want_b)

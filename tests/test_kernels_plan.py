@@ -65,8 +65,26 @@ def test_plan_kernel_marks_the_numpy_twins_bodies(seed, n, pairs, spread) -> Non
     args = scene(seed, n, pairs, spread)
     want = numpy_plan(*args)
     island = args[9].copy()
-    plan_pairs(*args[:9], island, *args[10:])
+    plan_pairs(*args[:9], island, *args[10:], True)
     assert np.array_equal(island, want)
+
+
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n=st.integers(2, 40),
+    pairs=st.integers(0, 120),
+    spread=st.sampled_from([0.5, 2.0, 10.0]),
+)
+def test_plan_kernel_without_seeds_grows_as_the_numpy_twin(seed, n, pairs, spread) -> None:
+    """Collisions._grow on the fast path: the piles given, grown, no new seeds."""
+    a, b, x0, v0, A, _, r, dt, loaded, island, kin, asleep = scene(seed, n, pairs, spread)
+    near_a, near_b = join_masks(a, b, x0, v0, A, r, dt)
+    k = kin[a] | kin[b]
+    awake = ~(asleep[a] | asleep[b])
+    want = grow(island.copy(), a, b, (near_a | k) & awake, (near_b | k) & awake)
+    got = island.copy()
+    plan_pairs(a, b, x0, v0, A, A, r, dt, loaded, got, kin, asleep, False)
+    assert np.array_equal(got, want)
 
 
 def test_the_comparison_can_fail() -> None:
@@ -76,7 +94,7 @@ def test_the_comparison_can_fail() -> None:
     want = numpy_plan(*args)
     island = args[9].copy()
     args[8] = np.zeros(len(args[0]), dtype=bool)
-    plan_pairs(*args[:9], island, *args[10:])
+    plan_pairs(*args[:9], island, *args[10:], True)
     assert not np.array_equal(island, want)
 
 
