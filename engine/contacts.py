@@ -31,6 +31,7 @@ from . import push_out, sensors
 from .colliders import Collider
 from .events import ContactEvent
 from .face_grid import FaceGrid, narrow, near
+from .face_looks import first_looks, looks_ready
 from .faces import (
     Faces,
     allowed_pairs,
@@ -71,6 +72,9 @@ class Contacts:
         #: cost more than a few rows' arithmetic.
         self.few_resting = 8
         self.moved = False  # whether the last step's contacts changed any body's state
+        #: Whether the first looks take the loop kernel (engine.face_looks.looks_loop): the
+        #: World's path (engine.kernels), set where the World makes this.
+        self.fast = False
         #: The World's bodies' filters (group, categories, mask arrays by row), for colliders
         #: with filters of their own (``allowed``); set by the World.
         self.body_filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
@@ -252,22 +256,30 @@ class Contacts:
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         self.moved = False
         if len(faces.owner):
-            rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
-            if frozen is not None and frozen[rows].any():
-                awake = ~frozen[rows]
-                rows, reach = rows[awake], reach[awake]
-                cell = None if cell is None else cell[awake]
+            allowed = self.allowed if faces.filters is not None else None
+            if self.fast and looks_ready(self.grid):
+                # The fast path: both looks in one compiled loop over the bodies, the same
+                # rows and pairs as below (engine.face_looks.looks_loop).
+                _, asleep = self._staying(x0, v0, W, friction)
+                rows, pb, pf = first_looks(
+                    self.grid, x0, v0, B, W, dt, radius, self.rest, asleep, frozen, allowed
+                )
+            else:
+                rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
+                if frozen is not None and frozen[rows].any():
+                    awake = ~frozen[rows]
+                    rows, reach = rows[awake], reach[awake]
+                    cell = None if cell is None else cell[awake]
+                if len(rows):
+                    busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay
+                    rows, pb, pf = narrow(
+                        self.grid, rows, busy, cell, reach, a_bound, x0, v0, dt, radius, allowed
+                    )
             if len(asleep):
                 # Resting and held by friction: they stay put, whatever the method computed.
                 x, v = x1.copy(), v1.copy()
                 x[asleep], v[asleep] = x0[asleep], 0.0
                 self.moved = True
-            if len(rows):
-                busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay
-                allowed = self.allowed if faces.filters is not None else None
-                rows, pb, pf = narrow(
-                    self.grid, rows, busy, cell, reach, a_bound, x0, v0, dt, radius, allowed
-                )
             if len(rows):
                 # A few bodies are solved one at a time in Python floats, many in arrays:
                 # the same arithmetic, so the same result either way.
@@ -363,15 +375,23 @@ class Contacts:
         one, rows that rest and stay put, the first rows' grid cells or None, their reach,
         a bound on every body's |B| and |W|): ``face_grid.near``, with the resting bodies."""
         need, cell, reach, a_bound = near(self.grid, x0, v0, B, W, dt, radius)
-        asleep = np.zeros(0, dtype=np.intp)
-        if len(self.rest) and self.rest.max() >= 0:
-            resting = np.flatnonzero(self.rest >= 0)
-            asleep = self._asleep(resting, x0, v0, W, friction)
+        resting, asleep = self._staying(x0, v0, W, friction)
+        if len(resting):
             need[resting] = True
             need[asleep] = False
         rows = np.flatnonzero(need)
         cell_rows = None if cell is None else cell.take(rows)
         return rows, asleep, cell_rows, reach.take(rows), a_bound
+
+    def _staying(
+        self, x0: np.ndarray, v0: np.ndarray, W: np.ndarray, friction: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(the rows resting on a face, those of them that stay put this step: ``_asleep``)."""
+        none = np.zeros(0, dtype=np.intp)
+        if not len(self.rest) or self.rest.max() < 0:
+            return none, none
+        resting = np.flatnonzero(self.rest >= 0)
+        return resting, self._asleep(resting, x0, v0, W, friction)
 
     def _asleep(
         self,

@@ -163,7 +163,14 @@ def _timer() -> threading.Timer | None:
 
 
 #: The modules that hold loop kernels (``prepare`` imports them all).
-MODULES = ("engine.pair_grid", "engine.pair_plan", "engine.coloring", "engine.soft", "engine.pile")
+MODULES = (
+    "engine.pair_grid",
+    "engine.pair_plan",
+    "engine.coloring",
+    "engine.soft",
+    "engine.pile",
+    "engine.face_looks",
+)
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}
 

@@ -1,0 +1,241 @@
+"""The first looks' loop kernel (engine.face_looks.looks_loop, called by ``first_looks``)
+against its numpy twins ``near`` and ``narrow`` as engine.contacts takes them: the same rows
+and (body, face) pairs, in the same order, on random bodies among random faces, and a World
+whose static contacts take either path ends bit-identical."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from engine import Body, Box, Circle, Filter, Segment, Vector, World, kernels
+from engine.contacts import Contacts
+from engine.face_grid import FaceGrid
+from engine.face_looks import first_looks, grid_args, looks_loop, looks_ready, narrow, near
+from engine.forces import Gravity
+from engine.kernels import LoopKernel
+
+Allowed = Callable[[np.ndarray, np.ndarray], np.ndarray] | None
+
+
+@pytest.fixture(autouse=True)
+def _kernels_run(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without numba, a kernel's call runs its plain Python (the same loop, uncompiled)."""
+    if not kernels.available():
+        monkeypatch.setattr(LoopKernel, "fast", property(lambda self: self.py))
+
+
+def numpy_looks(
+    grid: FaceGrid,
+    x0: np.ndarray,
+    v0: np.ndarray,
+    B: np.ndarray,
+    W: np.ndarray,
+    dt: float,
+    radius: np.ndarray,
+    rest: np.ndarray,
+    asleep: np.ndarray,
+    frozen: np.ndarray | None,
+    allowed: Allowed,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The looks as Contacts.resolve takes them on the numpy path (``_near``, then the
+    frozen rows dropped, then ``narrow``)."""
+    need, cell, reach, a_bound = near(grid, x0, v0, B, W, dt, radius)
+    resting = np.flatnonzero(rest >= 0)
+    if len(resting):
+        need[resting] = True
+        need[asleep] = False
+    rows = np.flatnonzero(need)
+    assert cell is not None
+    cell, reach = cell.take(rows), reach.take(rows)
+    if frozen is not None and frozen[rows].any():
+        awake = ~frozen[rows]
+        rows, reach, cell = rows[awake], reach[awake], cell[awake]
+    if not len(rows):
+        return rows, rows, rows
+    busy = rest.take(rows) >= 0
+    return narrow(grid, rows, busy, cell, reach, a_bound, x0, v0, dt, radius, allowed)
+
+
+def make_grid(rng: np.random.Generator, kind: str) -> tuple[FaceGrid, np.ndarray]:
+    """A grid over random faces: segments and pegs, inside a Box unless ``kind`` is "open";
+    "edited": one segment taken out after the grid was laid (its slots renumbered). Returns
+    the grid and points on the faces (where bodies are put near)."""
+    contacts = Contacts()
+    if kind != "open":
+        contacts.add(Box((0.0, 0.0), (20.0, 15.0)))
+    points = []
+    segments = []
+    for _ in range(int(rng.integers(2 if kind == "edited" else 1, 8))):
+        a = rng.uniform((2.0, 2.0), (18.0, 13.0))
+        b = a + rng.uniform(-3.0, 3.0, 2)
+        seg = Segment(tuple(a), tuple(b), float(rng.choice([0.0, 0.05, 0.3])))
+        segments.append(seg)
+        contacts.add(seg)
+        points += [a, b, 0.5 * (a + b)]
+    for _ in range(int(rng.integers(0, 4))):
+        c = rng.uniform((2.0, 2.0), (18.0, 13.0))
+        contacts.add(Circle(tuple(c), float(rng.uniform(0.1, 1.0))))
+        points.append(c)
+    if kind == "edited":
+        contacts.grid  # noqa: B018  (laid now, so the removal edits it in place)
+        contacts.remove(segments[0])
+    return contacts.grid, np.array(points)
+
+
+def bodies(
+    rng: np.random.Generator,
+    n: int,
+    points: np.ndarray,
+    speed: float,
+    faces: int,
+    small: bool = False,
+    inside: bool = False,
+):
+    """n random bodies, many of them near the faces' points; some resting, asleep, frozen.
+    ``small``: radii that let the quick way hold (each body's faces from its cell's list);
+    ``inside``: all within the box, clear of its walls."""
+    x0 = rng.uniform((-1.0, -1.0), (21.0, 16.0), (n, 2))
+    near_face = rng.random(n) < 0.6
+    x0[near_face] = points[rng.integers(0, len(points), int(near_face.sum()))]
+    x0[near_face] += rng.normal(0.0, 0.3, (int(near_face.sum()), 2))
+    if inside:
+        x0 = np.clip(x0, (0.5, 0.5), (19.5, 14.5))
+    v0 = rng.normal(0.0, speed, (n, 2)) * rng.choice([0.0, 1.0], (n, 1), p=[0.1, 0.9])
+    B = np.tile([0.0, -9.81], (n, 1)) + rng.normal(0.0, 1.0, (n, 2)) * (rng.random((n, 1)) < 0.3)
+    W = B if rng.random() < 0.5 else B + rng.normal(0.0, 0.5, (n, 2))
+    radius = rng.choice([0.02, 0.05] if small else [0.02, 0.05, 0.1, 0.3], n)
+    rest = np.where(rng.random(n) < 0.2, rng.integers(0, faces, n), -1).astype(np.intp)
+    resting = np.flatnonzero(rest >= 0)
+    asleep = resting[rng.random(len(resting)) < 0.5]
+    frozen = rng.random(n) < 0.1 if rng.random() < 0.5 else None
+    return x0, v0, B, W, radius, rest, asleep, frozen
+
+
+def filters(rows: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """A stand-in for colliders' filters: some (body, face) pairs do not meet."""
+    return (rows + 2 * faces) % 3 != 0
+
+
+@settings(deadline=None)
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n=st.integers(1, 60),
+    kind=st.sampled_from(["box", "open", "edited"]),
+    speed=st.sampled_from([0.5, 3.0, 30.0]),
+    dt=st.sampled_from([1 / 120, 1 / 60, 1 / 20]),
+    filtered=st.booleans(),
+    small=st.booleans(),
+    inside=st.booleans(),
+)
+def test_first_looks_give_the_numpy_twins_rows_and_pairs(
+    seed: int,
+    n: int,
+    kind: str,
+    speed: float,
+    dt: float,
+    filtered: bool,
+    small: bool,
+    inside: bool,
+) -> None:
+    rng = np.random.default_rng(seed)
+    grid, points = make_grid(rng, kind)
+    assert looks_ready(grid)
+    faces = len(grid.cap)
+    x0, v0, B, W, radius, rest, asleep, frozen = bodies(rng, n, points, speed, faces, small, inside)
+    allowed = filters if filtered else None
+    args = (grid, x0, v0, B, W, dt, radius, rest, asleep, frozen, allowed)
+    want = numpy_looks(*args)
+    got = first_looks(*args)
+    for g, w in zip(got, want, strict=True):
+        assert g.dtype == w.dtype
+        assert np.array_equal(g, w)
+
+
+def test_the_quick_way_is_taken_and_finds_pairs() -> None:
+    """Slow small balls by the faces: the kernel's own narrow look answers (pairs found)."""
+    rng = np.random.default_rng(5)
+    grid, points = make_grid(rng, "box")
+    x0, v0, B, W, radius, rest, asleep, _ = bodies(
+        rng, 200, points, 0.5, len(grid.cap), small=True, inside=True
+    )
+    out = kernels_call(grid, x0, v0, B, W, radius, rest, asleep)
+    assert out[3]  # the quick way held
+    assert len(out[1]) > 0
+    want = numpy_looks(grid, x0, v0, B, W, 1 / 120, radius, rest, asleep, None, None)
+    assert all(np.array_equal(g, w) for g, w in zip(out[:3], want, strict=True))
+
+
+def kernels_call(grid, x0, v0, B, W, radius, rest, asleep):
+    """``looks_loop`` called as ``first_looks`` calls it, at dt = 1/120 s."""
+    return looks_loop(
+        *grid_args(grid), x0, v0, B, W, 1 / 120, radius, rest, asleep, np.zeros(0, bool)
+    )
+
+
+def test_the_comparison_can_fail() -> None:
+    """Looks that forget which bodies rest keep fewer rows than the numpy twins do."""
+    rng = np.random.default_rng(11)
+    grid, points = make_grid(rng, "box")
+    x0, v0, B, W, radius, rest, asleep, frozen = bodies(rng, 60, points, 0.5, len(grid.cap))
+    rest[:30] = 0
+    want = numpy_looks(grid, x0, v0, B, W, 1 / 120, radius, rest, asleep, None, None)
+    free = np.full(len(rest), -1, dtype=np.intp)
+    got = first_looks(grid, x0, v0, B, W, 1 / 120, radius, free, asleep, None, None)
+    assert not np.array_equal(got[0], want[0])
+
+
+def box_world(n: int, fast: bool) -> World:
+    """Balls (not colliding with each other) in a box with segments and a peg."""
+    rng = np.random.default_rng(2)
+    world = World(integrator="auto", kernels="numpy")
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Box((0.0, 0.0), (20.0, 15.0)))
+    for _ in range(10):
+        a = rng.uniform((2.0, 2.0), (18.0, 13.0))
+        b = a + rng.uniform(-2.0, 2.0, 2)
+        world.add_collider(Segment(tuple(a), tuple(b)))
+    world.add_collider(Circle((10.0, 5.0), 0.5))
+    one = Filter(group=1)
+    for p, v in zip(
+        rng.uniform((1.0, 1.0), (19.0, 14.0), (n, 2)).tolist(),
+        rng.uniform(-8.0, 8.0, (n, 2)).tolist(),
+        strict=True,
+    ):
+        world.add(
+            Body(Vector(*p), Vector(*v), Vector(0, 0), radius=0.1, restitution=0.9, filter=one)
+        )
+    # The path of the static contacts alone (the World's own kernels stay numpy's).
+    world._s.contacts.fast = fast  # type: ignore[union-attr]
+    return world
+
+
+@pytest.mark.filterwarnings("ignore")
+def test_a_box_of_balls_ends_bit_identical_on_both_paths() -> None:
+    fast, slow = box_world(150, True), box_world(150, False)
+    events = 0
+    for _ in range(240):
+        fast.step(1 / 120)
+        slow.step(1 / 120)
+        a, b = fast._s.contacts.began, slow._s.contacts.began  # type: ignore[union-attr]
+        events += len(b)
+        assert len(a) == len(b)
+        assert all(np.array_equal(np.hstack(e), np.hstack(f)) for e, f in zip(a, b, strict=True))
+    assert events > 100
+    assert np.array_equal(fast.positions(), slow.positions())
+    assert np.array_equal(fast.velocities(), slow.velocities())
+
+
+def test_a_world_on_the_fast_path_says_so() -> None:
+    """Contacts takes the World's path when the World makes them."""
+    world = World(kernels="numpy")
+    world.add_collider(Box((0.0, 0.0), (1.0, 1.0)))
+    assert world._s.contacts.fast is False  # type: ignore[union-attr]
+    if kernels.available():
+        world = World(kernels="fast")
+        world.add_collider(Box((0.0, 0.0), (1.0, 1.0)))
+        assert world._s.contacts.fast is True  # type: ignore[union-attr]
