@@ -284,10 +284,12 @@ class Contacts:
                 # A few bodies are solved one at a time in Python floats, many in arrays:
                 # the same arithmetic, so the same result either way.
                 paths = Paths(x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
-                solve = solve_few if len(rows) < self.few else sweep
+                # On the fast path a loop kernel takes the free bodies, however many
+                # (engine.sweep_one.paths_loop: the same bits).
+                solve = solve_few if len(rows) < self.few or self.fast else sweep
                 changed, X, V, capped = solve(
                     faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
-                    self._began, self._ended,
+                    self._began, self._ended, *((True,) if self.fast else ()),
                 )  # fmt: skip
                 self.capped += capped
                 # Only bodies that met something change: the rest keep (x1, v1) bit for bit.

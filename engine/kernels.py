@@ -170,6 +170,7 @@ MODULES = (
     "engine.soft",
     "engine.pile",
     "engine.face_looks",
+    "engine.sweep_one",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}

@@ -18,6 +18,8 @@ from engine.face_grid import FaceGrid
 from engine.face_looks import first_looks, grid_args, looks_loop, looks_ready, narrow, near
 from engine.forces import Gravity
 from engine.kernels import LoopKernel
+from engine.sweep import Paths
+from engine.sweep_one import MET, PYTHON, _paths_fast, solve_few
 
 Allowed = Callable[[np.ndarray, np.ndarray], np.ndarray] | None
 
@@ -239,3 +241,92 @@ def test_a_world_on_the_fast_path_says_so() -> None:
         world = World(kernels="fast")
         world.add_collider(Box((0.0, 0.0), (1.0, 1.0)))
         assert world._s.contacts.fast is True  # type: ignore[union-attr]
+
+
+def solve_both(seed: int, n: int, kind: str, speed: float, dt: float, resting_share: float):
+    """``solve_few`` on random bodies among random faces, each body against every face,
+    without and with the loop kernel ``paths_loop``: (numpy's floats, the kernel's), each
+    (changed, x, v, capped, began, ended, resting faces after)."""
+    rng = np.random.default_rng(seed)
+    contacts = Contacts()
+    if kind != "open":
+        contacts.add(Box((0.0, 0.0), (20.0, 15.0), friction=0.5))
+    points = []
+    for _ in range(int(rng.integers(1, 6))):
+        a = rng.uniform((2.0, 2.0), (18.0, 13.0))
+        b = a + rng.uniform(-3.0, 3.0, 2)
+        contacts.add(Segment(tuple(a), tuple(b), float(rng.choice([0.0, 0.2])), friction=0.4))
+        points += [a, b]
+    for _ in range(int(rng.integers(0, 3))):
+        c = rng.uniform((2.0, 2.0), (18.0, 13.0))
+        contacts.add(Circle(tuple(c), float(rng.uniform(0.2, 1.0)), restitution=0.8))
+        points.append(c)
+    faces = contacts.faces
+    F = len(faces.owner)
+    x0, v0, B, W, radius, rest, _, _ = bodies(rng, n, np.array(points), speed, F, inside=True)
+    rest = np.where(rng.random(n) < resting_share, rest, -1).astype(np.intp)
+    contacts.bodies_added(n)
+    restitution = rng.choice([0.0, 0.5, 0.9, 1.0], n)
+    friction, mass = rng.uniform(0.0, 1.0, n), rng.uniform(0.5, 2.0, n)
+    paths = Paths(x0, v0, B, W, dt, 1.5, radius, restitution, friction, mass)
+    rows = np.flatnonzero(rng.random(n) < 0.8)
+    pb = np.repeat(np.arange(len(rows)), F)
+    pf = np.tile(np.arange(F), len(rows))
+    keep = rng.random(len(pb)) < 0.9  # some pairs left out
+    pb, pf = pb[keep], pf[keep]
+    out = []
+    for fast in (False, True):
+        began: list = []
+        ended: list = []
+        resting = rest.copy()
+        changed, X, V, capped = solve_few(
+            faces, paths, rows, pb, pf, resting, contacts.push_out_rows, began, ended, fast
+        )
+        out.append((changed, X, V, capped, began, ended, resting))
+    return out
+
+
+@settings(deadline=None)
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    n=st.integers(1, 30),
+    kind=st.sampled_from(["box", "open"]),
+    speed=st.sampled_from([0.5, 5.0, 50.0]),
+    dt=st.sampled_from([1 / 120, 1 / 30]),
+    resting_share=st.sampled_from([0.0, 0.3]),
+)
+@pytest.mark.filterwarnings("ignore")
+def test_paths_loop_gives_the_python_floats_results(
+    seed: int, n: int, kind: str, speed: float, dt: float, resting_share: float
+) -> None:
+    slow, fast = solve_both(seed, n, kind, speed, dt, resting_share)
+    for a, b in zip(slow, fast, strict=True):
+        if isinstance(a, np.ndarray):
+            assert a.dtype == b.dtype and np.array_equal(a, b)
+        else:
+            assert a == b
+
+
+def test_paths_loop_takes_most_bodies_and_the_comparison_can_fail() -> None:
+    """Most bouncing bodies are the kernel's own (not left to Python), and its results
+    differ from those of a step one ulp longer."""
+    rng = np.random.default_rng(4)
+    contacts = Contacts()
+    contacts.add(Box((0.0, 0.0), (20.0, 15.0)))
+    contacts.add(Segment((5.0, 5.0), (15.0, 6.0)))
+    faces = contacts.faces
+    n = 50
+    x0 = rng.uniform((1.0, 1.0), (19.0, 14.0), (n, 2))
+    v0 = rng.normal(0.0, 200.0, (n, 2))
+    B = np.tile([0.0, -9.81], (n, 1))
+    one = np.ones(n)
+    F = len(faces.owner)
+    pb, pf = np.repeat(np.arange(n), F), np.tile(np.arange(F), n)
+    results = []
+    for dt in (1 / 60, np.nextafter(1 / 60, 1.0)):
+        paths = Paths(x0, v0, B, B, dt, 0.0, 0.1 * one, 0.9 * one, 0.5 * one, one)
+        status, X, V, ev = _paths_fast(faces, paths, np.arange(n), pb, pf, np.full(n, -1))
+        results.append((X, V))
+    assert (status == MET).sum() > 10 and (status == PYTHON).sum() < 5
+    assert len(ev) > 10
+    assert not np.array_equal(results[0][0][status == MET], results[1][0][status == MET])
