@@ -77,10 +77,9 @@ def solve_few(
     """``engine.sweep.sweep``, one body after another in Python floats (for a few rows): the
     same arguments and results. ``fast``: the free bodies go through the loop kernel
     ``paths_loop`` first (the same bits), the rest through ``_path_one``."""
-    x0, v0, Bf, Wf, dt, t0 = paths.x0, paths.v0, paths.B, paths.W, paths.dt, paths.t0
-    status = None
     if fast:
-        status, kx, kv, kev = _paths_fast(faces, paths, rows, pb, pf, resting)
+        return _solve_fast(faces, paths, rows, pb, pf, resting, push_out, began, ended)
+    x0, v0, Bf, Wf, dt, t0 = paths.x0, paths.v0, paths.B, paths.W, paths.dt, paths.t0
     faces_of: list[list[int]] = [[] for _ in range(len(rows))]
     for b, f in zip(pb.tolist(), pf.tolist(), strict=True):
         faces_of[b].append(f)
@@ -100,23 +99,7 @@ def solve_few(
     changed: list[int] = []
     Xc: list[float] = []
     Vc: list[float] = []
-    if status is not None:
-        # The kernel's impacts, each begun and ended at once (``_bounce_one``'s reports).
-        owner = faces.owner_list
-        for k, rnd, f, px, py, nx, ny, ix, iy, when in kev.tolist():
-            k, rnd, f = int(k), int(rnd), int(f)
-            event = (row_list[k], owner[f], (px, py), (nx, ny), (ix, iy), when)
-            began_keyed.append(((rnd, 1, k), event))
-            ended_keyed.append(((rnd, 1, k), event))
-        kx_l, kv_l, status_l = kx.tolist(), kv.tolist(), status.tolist()
     for k, row in enumerate(row_list):
-        if status is not None and status_l[k] != PYTHON:
-            if status_l[k] == MET:
-                changed.append(row)
-                Xc += kx_l[k]
-                Vc += kv_l[k]
-                resting[row] = -1
-            continue
         x, v, touched, rest_k, cap = _path_one(
             faces, k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
             faces_of[k], dt, t0, began_keyed, ended_keyed, push_out,
@@ -127,10 +110,7 @@ def solve_few(
             Xc += x  # flat: one np.array of floats is cheaper than one of pairs
             Vc += v
             resting[row] = rest_k
-    for where, events in ((began, began_keyed), (ended, ended_keyed)):
-        if events:
-            events.sort()  # by key: each (round, phase, place) holds one event
-            where.append(tuple(zip(*[ev for _, ev in events], strict=True)))
+    _keep_events(began, ended, began_keyed, ended_keyed)
     shape = (len(changed), 2)
     return (
         np.array(changed, dtype=np.intp),
@@ -140,6 +120,74 @@ def solve_few(
     )
 
 
+Keyed = list[tuple[tuple[int, int, int], tuple[Any, ...]]]
+
+
+def _keep_events(
+    began: list[Any], ended: list[Any], began_keyed: Keyed, ended_keyed: Keyed
+) -> None:
+    """Put the keyed events in sweep's order, each list as one batch of columns."""
+    for where, events in ((began, began_keyed), (ended, ended_keyed)):
+        if events:
+            events.sort()  # by key: each (round, phase, place) holds one event
+            where.append(tuple(zip(*[ev for _, ev in events], strict=True)))
+
+
+def _solve_fast(
+    faces: Faces,
+    paths: Paths,
+    rows: np.ndarray,
+    pb: np.ndarray,
+    pf: np.ndarray,
+    resting: np.ndarray,
+    push_out: PushOut,
+    began: list[Any],
+    ended: list[Any],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """``solve_few`` on the fast path: the loop kernel ``paths_loop`` for the free bodies,
+    ``_path_one`` for those it leaves (the same results, in the same order)."""
+    status, X, V, kev, start, flat = _paths_fast(faces, paths, rows, pb, pf, resting)
+    began_keyed: Keyed = []
+    ended_keyed: Keyed = []
+    row_list = rows.tolist()
+    # The kernel's impacts, each begun and ended at once (``_bounce_one``'s reports).
+    owner = faces.owner_list
+    for k, rnd, f, px, py, nx, ny, ix, iy, when in kev.tolist():
+        k, rnd, f = int(k), int(rnd), int(f)
+        event = (row_list[k], owner[f], (px, py), (nx, ny), (ix, iy), when)
+        began_keyed.append(((rnd, 1, k), event))
+        ended_keyed.append(((rnd, 1, k), event))
+    capped = 0
+    left = np.flatnonzero(status == PYTHON)
+    if len(left):
+        # The bodies the kernel left, in Python floats (their places k among the rows kept).
+        sub = rows.take(left)
+        Xl = paths.x0.take(sub, axis=0).tolist()
+        Vl = paths.v0.take(sub, axis=0).tolist()
+        Bl = paths.B.take(sub, axis=0).tolist()
+        Wl = Bl if paths.W is paths.B else paths.W.take(sub, axis=0).tolist()
+        r, e = paths.radius.take(sub).tolist(), paths.restitution.take(sub).tolist()
+        mu, m = paths.friction.take(sub).tolist(), paths.mass.take(sub).tolist()
+        rest = resting.take(sub).tolist()
+        bounds = start.tolist()
+        for i, k in enumerate(left.tolist()):
+            row = row_list[k]
+            x, v, touched, rest_k, cap = _path_one(
+                faces, k, row, Xl[i], Vl[i], Bl[i], Wl[i], r[i], e[i], mu[i], m[i], rest[i],
+                flat[bounds[k] : bounds[k + 1]].tolist(), paths.dt, paths.t0, began_keyed,
+                ended_keyed, push_out,
+            )  # fmt: skip
+            capped += cap
+            status[k] = MET if touched else MISSED
+            if touched:
+                X[k], V[k] = x, v
+                resting[row] = rest_k
+    _keep_events(began, ended, began_keyed, ended_keyed)
+    met = np.flatnonzero(status == MET)
+    changed = rows.take(met)
+    return changed, X.take(met, axis=0), V.take(met, axis=0), capped
+
+
 def _paths_fast(
     faces: Faces,
     paths: Paths,
@@ -147,20 +195,23 @@ def _paths_fast(
     pb: np.ndarray,
     pf: np.ndarray,
     resting: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """``paths_loop``'s (status, x, v, impacts) for ``rows``, each with its faces in pair order."""
+) -> tuple[np.ndarray, ...]:
+    """``paths_loop``'s (status, x, v, impacts) for ``rows``, and each row's faces in pair
+    order, ``flat[start[k]:start[k + 1]]`` (start, flat)."""
     K = len(rows)
     order = np.argsort(pb, kind="stable")  # each body's faces together, in their order
     start = np.zeros(K + 1, dtype=np.intp)
     np.cumsum(np.bincount(pb, minlength=K), out=start[1:])
     B = paths.B.take(rows, axis=0)
     W = B if paths.W is paths.B else paths.W.take(rows, axis=0)
-    return paths_loop(  # type: ignore[no-any-return]
+    flat = pf.take(order)
+    status, X, V, events = paths_loop(
         faces.p, faces.n, faces.rho, faces.two, faces.lo, faces.hi, faces.c, faces.r,
         faces.e, faces.mu, paths.x0.take(rows, axis=0), paths.v0.take(rows, axis=0), B, W,
         paths.radius.take(rows), paths.restitution.take(rows), paths.friction.take(rows),
-        paths.mass.take(rows), resting.take(rows), start, pf.take(order), paths.dt, paths.t0,
+        paths.mass.take(rows), resting.take(rows), start, flat, paths.dt, paths.t0,
     )  # fmt: skip
+    return status, X, V, events, start, flat
 
 
 def _path_one(

@@ -325,7 +325,7 @@ def test_paths_loop_takes_most_bodies_and_the_comparison_can_fail() -> None:
     results = []
     for dt in (1 / 60, np.nextafter(1 / 60, 1.0)):
         paths = Paths(x0, v0, B, B, dt, 0.0, 0.1 * one, 0.9 * one, 0.5 * one, one)
-        status, X, V, ev = _paths_fast(faces, paths, np.arange(n), pb, pf, np.full(n, -1))
+        status, X, V, ev, _, _ = _paths_fast(faces, paths, np.arange(n), pb, pf, np.full(n, -1))
         results.append((X, V))
     assert (status == MET).sum() > 10 and (status == PYTHON).sum() < 5
     assert len(ev) > 10
