@@ -258,12 +258,13 @@ class Contacts:
         if len(faces.owner):
             allowed = self.allowed if faces.filters is not None else None
             if self.fast and looks_ready(self.grid):
-                # The fast path: both looks in one compiled loop over the bodies, the same
-                # rows and pairs as below (engine.face_looks.looks_loop).
-                _, asleep = self._staying(x0, v0, W, friction)
-                rows, pb, pf = first_looks(
-                    self.grid, x0, v0, B, W, dt, radius, self.rest, asleep, frozen, allowed
-                )
+                # The fast path: both looks and the resting bodies' staying put in one
+                # compiled loop over the bodies, the same rows and pairs as below
+                # (engine.face_looks.looks_loop).
+                rows, pb, pf, asleep = first_looks(
+                    self.grid, faces, x0, v0, B, W, dt, radius, friction, self.rest, frozen,
+                    allowed,
+                )  # fmt: skip
             else:
                 rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
                 if frozen is not None and frozen[rows].any():

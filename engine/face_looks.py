@@ -46,6 +46,7 @@ from .impact import TOUCH
 
 if TYPE_CHECKING:
     from .face_grid import FaceGrid
+    from .faces import Faces
 
 __all__ = ["first_looks", "grid_args", "looks_loop", "looks_ready", "narrow", "near", "reach"]
 
@@ -236,37 +237,39 @@ _NO_LINES = (np.zeros((0, 2)), np.zeros(0))
 
 def first_looks(
     grid: FaceGrid,
+    faces: Faces,
     x0: np.ndarray,
     v0: np.ndarray,
     B: np.ndarray,
     W: np.ndarray,
     dt: float,
     radius: np.ndarray,
+    friction: np.ndarray,
     rest: np.ndarray,
-    asleep: np.ndarray,
     frozen: np.ndarray | None,
     allowed: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``narrow``'s (rows, pair bodies as places in rows, pair faces) for every body, as
-    ``near`` then ``narrow`` give them on the numpy path (engine.contacts), from one call of
-    the loop kernel ``looks_loop`` (``looks_ready(grid)`` must hold). ``rest``: each body's
-    resting face (-1: free); ``asleep``: resting rows that stay put; ``frozen``: rows left
-    alone (or None). When a near body is not in the quick way's reach (``narrow``), its
-    rows go to numpy's ``narrow``: the same pairs."""
-    rows, pb, pf, quick, cell, far, a_bound = looks_loop(
-        *grid_args(grid), x0, v0, B, W, dt, radius, rest, asleep,
-        _NO_ROWS if frozen is None else frozen,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``narrow``'s (rows, pair bodies as places in rows, pair faces) for every body and the
+    resting rows that stay put (``engine.resting.asleep``), as engine.contacts finds them on
+    the numpy path (``near``, ``asleep``, ``narrow``), from one call of the loop kernel
+    ``looks_loop`` (``looks_ready(grid)`` must hold). ``rest``: each body's resting face (-1:
+    free); ``frozen``: rows left alone (or None). When a near body is not in the quick way's
+    reach (``narrow``), its rows go to numpy's ``narrow``: the same pairs."""
+    rows, pb, pf, quick, cell, far, a_bound, asleep = looks_loop(
+        *grid_args(grid), faces.p, faces.n, faces.two, faces.c, faces.mu, x0, v0, B, W, dt,
+        radius, friction, rest, _NO_ROWS if frozen is None else frozen,
     )  # fmt: skip
     if not quick:
         if not len(rows):
-            return rows, rows, rows
+            return rows, rows, rows, asleep
         busy = rest.take(rows) >= 0
-        return narrow(grid, rows, busy, cell, far, a_bound, x0, v0, dt, radius, allowed)
+        rows, pb, pf = narrow(grid, rows, busy, cell, far, a_bound, x0, v0, dt, radius, allowed)
+        return rows, pb, pf, asleep
     if allowed is not None and len(pb):
         # The filters drop pairs, not bodies (``narrow``): kept or not, in order.
         ok = allowed(rows[pb], pf)
         pb, pf = pb[ok], pf[ok]
-    return rows, pb, pf
+    return rows, pb, pf, asleep
 
 
 def grid_args(grid: FaceGrid) -> tuple[object, ...]:
@@ -293,8 +296,8 @@ def _sample_looks() -> tuple[object, ...]:
     i = np.zeros(1, dtype=np.intp)
     return (
         np.zeros(9), -1.0, -1.0, 1.0, 2.0, 2.0, 3, _NO_ROWS, *_NO_LINES, table, i, True,
-        np.ones(9, dtype=bool),
-        4.0, cap, x, x, x, x, 0.01, np.ones(1), i - 1, i[:0], _NO_ROWS,
+        np.ones(9, dtype=bool), 4.0, cap, x, x, i == 0, x, np.ones(1), x, x, x, x, 0.01,
+        np.ones(1), np.ones(1), i - 1, _NO_ROWS,
     )  # fmt: skip
 
 
@@ -316,19 +319,25 @@ def looks_loop(
     safe: np.ndarray,
     pad: float,
     cap: np.ndarray,
+    lp: np.ndarray,
+    ln: np.ndarray,
+    ltwo: np.ndarray,
+    dc: np.ndarray,
+    fmu: np.ndarray,
     x0: np.ndarray,
     v0: np.ndarray,
     B: np.ndarray,
     W: np.ndarray,
     dt: float,
     radius: np.ndarray,
+    friction: np.ndarray,
     rest: np.ndarray,
-    asleep: np.ndarray,
     frozen: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool, np.ndarray, np.ndarray, float]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool, np.ndarray, np.ndarray, float, np.ndarray]:
     """``near`` and then ``narrow``'s quick way, body by body: (rows, pair bodies as places
     in rows, pair faces, whether the quick way held, and for ``narrow`` when it did not: the
-    near rows, their cells and reaches (length units), the bound on |B| and |W|).
+    near rows, their cells and reaches (length units), the bound on |B| and |W|; and the
+    resting rows that stay put, ``engine.sweep_one.asleep_few``'s).
 
     The grid as ``FaceGrid`` holds it: ``ring`` the bounds with the ring (``gap``), the
     ring's corner, 1 / h, the top cells and the row stride (``cells``), the ring cells
@@ -336,8 +345,9 @@ def looks_loop(
     (``gap``; empty: none are), ``table``,
     ``slot_face`` (unless ``ident``), ``safe``, ``pad`` and ``cap`` (``narrow``). A body is
     near when its grid bound is within its reach or it rests on a face, and not when asleep
-    or frozen. Each number is the numpy twins' own operations in their order, so the pairs
-    are theirs bit for bit.
+    or frozen. The faces (lines p, n, two; discs c; mu) give a resting body's normal. Each
+    number is the twins' own operations in their order, so the answers are theirs bit for
+    bit.
     """
     n = x0.shape[0]
     # The bound on |B| and |W| of every body, as near's (|x| >= 0: the max starts at 0).
@@ -354,19 +364,39 @@ def looks_loop(
     grow = 1.0 + 1e-9
     T_grow = dt * grow
     extra = 1.5 * a_bound * (dt * dt) * grow + TOUCH  # reach's part shared by all
-    off = np.zeros(n, dtype=np.bool_)
-    for j in range(asleep.shape[0]):
-        off[asleep[j]] = True
-    for i in range(frozen.shape[0]):
-        if frozen[i]:
-            off[i] = True
+    L = lp.shape[0]
+    sleeping = np.empty(n, dtype=np.intp)
+    ns = 0
     rows = np.empty(n, dtype=np.intp)
     cells = np.empty(n, dtype=np.intp)
     far = np.empty(n)
     m = 0
     quick = True
     for i in range(n):
-        if off[i]:
+        f = rest[i]
+        if f >= 0 and v0[i, 0] == 0.0 and v0[i, 1] == 0.0:
+            # Resting still: it stays put if pressed onto its face and held by static
+            # friction (``asleep_few``, with ``_normal_one``: the normal toward the body).
+            px, py = x0[i, 0], x0[i, 1]
+            if f < L:
+                nx, ny = ln[f, 0], ln[f, 1]
+                side = 1.0
+                if ltwo[f] and (px - lp[f, 0]) * nx + (py - lp[f, 1]) * ny < 0.0:
+                    side = -1.0
+                nx, ny = nx * side, ny * side
+            else:
+                ddx, ddy = px - dc[f - L, 0], py - dc[f - L, 1]
+                dist = math.sqrt(ddx * ddx + ddy * ddy)
+                length = dist if dist > 0.0 else 1.0
+                nx, ny = ddx / length, ddy / length
+            wx, wy = W[i, 0], W[i, 1]
+            a_n = wx * nx + wy * ny
+            a_t = wy * nx - wx * ny  # along the tangent (-n_y, n_x)
+            if a_n <= 0.0 and abs(a_t) <= friction[i] * fmu[f] * -a_n * (1.0 + 1e-12):
+                sleeping[ns] = i
+                ns += 1
+                continue
+        if frozen.shape[0] and frozen[i]:
             continue
         # The first look: the reach (``reach``) against the bound of the body's cell
         # (``FaceGrid.cells``: clipped to the ring, then truncated).
@@ -396,7 +426,7 @@ def looks_loop(
             quick = False
     if not quick or m == 0:
         none = np.zeros(0, dtype=np.intp)
-        return rows[:m], none, none, quick, cells[:m], far[:m], a_bound
+        return rows[:m], none, none, quick, cells[:m], far[:m], a_bound, sleeping[:ns]
     # The narrow look (``narrow``'s quick way): each near body against its cell's faces, each
     # a capsule. A body is kept if it rests or its first path may meet a face; its pairs are
     # the faces within its reach, numbered by its place among the kept.
@@ -448,4 +478,4 @@ def looks_loop(
             nk += 1
         else:
             q = first  # not kept: its pairs go
-    return kept[:nk], pb[:q], pf[:q], True, cells[:m], far[:m], a_bound
+    return kept[:nk], pb[:q], pf[:q], True, cells[:m], far[:m], a_bound, sleeping[:ns]

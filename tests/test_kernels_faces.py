@@ -1,7 +1,9 @@
-"""The first looks' loop kernel (engine.face_looks.looks_loop, called by ``first_looks``)
-against its numpy twins ``near`` and ``narrow`` as engine.contacts takes them: the same rows
-and (body, face) pairs, in the same order, on random bodies among random faces, and a World
-whose static contacts take either path ends bit-identical."""
+"""The static contacts' loop kernels against their twins: the first looks
+(engine.face_looks.looks_loop, called by ``first_looks``) against ``near``, ``asleep`` and
+``narrow`` as engine.contacts takes them (the same rows, sleepers and (body, face) pairs, in
+the same order), the free bodies' paths (engine.sweep_one.paths_loop) against ``solve_few``'s
+Python floats (the same states, events and resting faces), on random bodies among random
+faces; and a World whose static contacts take either path ends bit-identical."""
 
 from __future__ import annotations
 
@@ -16,10 +18,12 @@ from engine import Body, Box, Circle, Filter, Segment, Vector, World, kernels
 from engine.contacts import Contacts
 from engine.face_grid import FaceGrid
 from engine.face_looks import first_looks, grid_args, looks_loop, looks_ready, narrow, near
+from engine.faces import Faces
 from engine.forces import Gravity
 from engine.kernels import LoopKernel
+from engine.resting import asleep as asleep_arrays
 from engine.sweep import Paths
-from engine.sweep_one import MET, PYTHON, _paths_fast, solve_few
+from engine.sweep_one import MET, PYTHON, _paths_fast, asleep_few, solve_few
 
 Allowed = Callable[[np.ndarray, np.ndarray], np.ndarray] | None
 
@@ -33,21 +37,24 @@ def _kernels_run(monkeypatch: pytest.MonkeyPatch) -> None:
 
 def numpy_looks(
     grid: FaceGrid,
+    faces: Faces,
     x0: np.ndarray,
     v0: np.ndarray,
     B: np.ndarray,
     W: np.ndarray,
     dt: float,
     radius: np.ndarray,
+    friction: np.ndarray,
     rest: np.ndarray,
-    asleep: np.ndarray,
     frozen: np.ndarray | None,
     allowed: Allowed,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The looks as Contacts.resolve takes them on the numpy path (``_near``, then the
-    frozen rows dropped, then ``narrow``)."""
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The looks as Contacts.resolve takes them on the numpy path (``_near`` with the resting
+    rows that stay put, then the frozen rows dropped, then ``narrow``)."""
     need, cell, reach, a_bound = near(grid, x0, v0, B, W, dt, radius)
     resting = np.flatnonzero(rest >= 0)
+    asleep = asleep_arrays(faces, rest, resting, x0, v0, W, friction)
+    assert np.array_equal(asleep, asleep_few(faces, rest, resting, x0, v0, W, friction))
     if len(resting):
         need[resting] = True
         need[asleep] = False
@@ -58,15 +65,16 @@ def numpy_looks(
         awake = ~frozen[rows]
         rows, reach, cell = rows[awake], reach[awake], cell[awake]
     if not len(rows):
-        return rows, rows, rows
+        return rows, rows, rows, asleep
     busy = rest.take(rows) >= 0
-    return narrow(grid, rows, busy, cell, reach, a_bound, x0, v0, dt, radius, allowed)
+    rows, pb, pf = narrow(grid, rows, busy, cell, reach, a_bound, x0, v0, dt, radius, allowed)
+    return rows, pb, pf, asleep
 
 
-def make_grid(rng: np.random.Generator, kind: str) -> tuple[FaceGrid, np.ndarray]:
+def make_grid(rng: np.random.Generator, kind: str) -> tuple[FaceGrid, Faces, np.ndarray]:
     """A grid over random faces: segments and pegs, inside a Box unless ``kind`` is "open";
     "edited": one segment taken out after the grid was laid (its slots renumbered). Returns
-    the grid and points on the faces (where bodies are put near)."""
+    the grid, the faces and points on them (where bodies are put near)."""
     contacts = Contacts()
     if kind != "open":
         contacts.add(Box((0.0, 0.0), (20.0, 15.0)))
@@ -86,7 +94,7 @@ def make_grid(rng: np.random.Generator, kind: str) -> tuple[FaceGrid, np.ndarray
     if kind == "edited":
         contacts.grid  # noqa: B018  (laid now, so the removal edits it in place)
         contacts.remove(segments[0])
-    return contacts.grid, np.array(points)
+    return contacts.grid, contacts.faces, np.array(points)
 
 
 def bodies(
@@ -98,9 +106,10 @@ def bodies(
     small: bool = False,
     inside: bool = False,
 ):
-    """n random bodies, many of them near the faces' points; some resting, asleep, frozen.
-    ``small``: radii that let the quick way hold (each body's faces from its cell's list);
-    ``inside``: all within the box, clear of its walls."""
+    """n random bodies, many of them near the faces' points; some resting (half of those
+    still), some frozen: (x0, v0, B, W, radius, rest, friction, frozen). ``small``: radii
+    that let the quick way hold (each body's faces from its cell's list); ``inside``: all
+    within the box, clear of its walls."""
     x0 = rng.uniform((-1.0, -1.0), (21.0, 16.0), (n, 2))
     near_face = rng.random(n) < 0.6
     x0[near_face] = points[rng.integers(0, len(points), int(near_face.sum()))]
@@ -112,10 +121,10 @@ def bodies(
     W = B if rng.random() < 0.5 else B + rng.normal(0.0, 0.5, (n, 2))
     radius = rng.choice([0.02, 0.05] if small else [0.02, 0.05, 0.1, 0.3], n)
     rest = np.where(rng.random(n) < 0.2, rng.integers(0, faces, n), -1).astype(np.intp)
-    resting = np.flatnonzero(rest >= 0)
-    asleep = resting[rng.random(len(resting)) < 0.5]
+    v0[(rest >= 0) & (rng.random(n) < 0.5)] = 0.0
+    friction = rng.uniform(0.0, 1.5, n)
     frozen = rng.random(n) < 0.1 if rng.random() < 0.5 else None
-    return x0, v0, B, W, radius, rest, asleep, frozen
+    return x0, v0, B, W, radius, rest, friction, frozen
 
 
 def filters(rows: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -145,12 +154,13 @@ def test_first_looks_give_the_numpy_twins_rows_and_pairs(
     inside: bool,
 ) -> None:
     rng = np.random.default_rng(seed)
-    grid, points = make_grid(rng, kind)
+    grid, faces, points = make_grid(rng, kind)
     assert looks_ready(grid)
-    faces = len(grid.cap)
-    x0, v0, B, W, radius, rest, asleep, frozen = bodies(rng, n, points, speed, faces, small, inside)
+    x0, v0, B, W, radius, rest, friction, frozen = bodies(
+        rng, n, points, speed, len(grid.cap), small, inside
+    )
     allowed = filters if filtered else None
-    args = (grid, x0, v0, B, W, dt, radius, rest, asleep, frozen, allowed)
+    args = (grid, faces, x0, v0, B, W, dt, radius, friction, rest, frozen, allowed)
     want = numpy_looks(*args)
     got = first_looks(*args)
     for g, w in zip(got, want, strict=True):
@@ -158,36 +168,45 @@ def test_first_looks_give_the_numpy_twins_rows_and_pairs(
         assert np.array_equal(g, w)
 
 
-def test_the_quick_way_is_taken_and_finds_pairs() -> None:
-    """Slow small balls by the faces: the kernel's own narrow look answers (pairs found)."""
-    rng = np.random.default_rng(5)
-    grid, points = make_grid(rng, "box")
-    x0, v0, B, W, radius, rest, asleep, _ = bodies(
-        rng, 200, points, 0.5, len(grid.cap), small=True, inside=True
-    )
-    out = kernels_call(grid, x0, v0, B, W, radius, rest, asleep)
-    assert out[3]  # the quick way held
-    assert len(out[1]) > 0
-    want = numpy_looks(grid, x0, v0, B, W, 1 / 120, radius, rest, asleep, None, None)
-    assert all(np.array_equal(g, w) for g, w in zip(out[:3], want, strict=True))
-
-
-def kernels_call(grid, x0, v0, B, W, radius, rest, asleep):
+def kernels_call(grid, faces, x0, v0, B, W, radius, friction, rest):
     """``looks_loop`` called as ``first_looks`` calls it, at dt = 1/120 s."""
     return looks_loop(
-        *grid_args(grid), x0, v0, B, W, 1 / 120, radius, rest, asleep, np.zeros(0, bool)
+        *grid_args(grid), faces.p, faces.n, faces.two, faces.c, faces.mu, x0, v0, B, W,
+        1 / 120, radius, friction, rest, np.zeros(0, bool),
+    )  # fmt: skip
+
+
+def test_the_quick_way_is_taken_and_finds_pairs_and_sleepers() -> None:
+    """Slow small balls by the faces, five still on the floor: the kernel's own narrow look
+    answers (pairs found) and the five stay put."""
+    rng = np.random.default_rng(5)
+    grid, faces, points = make_grid(rng, "box")
+    x0, v0, B, W, radius, rest, friction, _ = bodies(
+        rng, 200, points, 0.5, len(grid.cap), small=True, inside=True
     )
+    floor = int(np.flatnonzero((faces.n[:, 0] == 0.0) & (faces.n[:, 1] == 1.0))[0])
+    rest[:5], v0[:5], x0[:5, 1] = floor, 0.0, 0.05 + 1e-9
+    radius[:5] = 0.05
+    B = W = np.tile([0.0, -9.81], (len(x0), 1))
+    out = kernels_call(grid, faces, x0, v0, B, W, radius, friction, rest)
+    assert out[3]  # the quick way held
+    assert len(out[1]) > 0
+    assert set(range(5)) <= set(out[7].tolist())
+    want = numpy_looks(grid, faces, x0, v0, B, W, 1 / 120, radius, friction, rest, None, None)
+    got = (*out[:3], out[7])
+    assert all(np.array_equal(g, w) for g, w in zip(got, want, strict=True))
 
 
 def test_the_comparison_can_fail() -> None:
     """Looks that forget which bodies rest keep fewer rows than the numpy twins do."""
     rng = np.random.default_rng(11)
-    grid, points = make_grid(rng, "box")
-    x0, v0, B, W, radius, rest, asleep, frozen = bodies(rng, 60, points, 0.5, len(grid.cap))
+    grid, faces, points = make_grid(rng, "box")
+    x0, v0, B, W, radius, rest, friction, _ = bodies(rng, 60, points, 0.5, len(grid.cap))
     rest[:30] = 0
-    want = numpy_looks(grid, x0, v0, B, W, 1 / 120, radius, rest, asleep, None, None)
+    v0[:30] += 1.0
+    want = numpy_looks(grid, faces, x0, v0, B, W, 1 / 120, radius, friction, rest, None, None)
     free = np.full(len(rest), -1, dtype=np.intp)
-    got = first_looks(grid, x0, v0, B, W, 1 / 120, radius, free, asleep, None, None)
+    got = first_looks(grid, faces, x0, v0, B, W, 1 / 120, radius, friction, free, None, None)
     assert not np.array_equal(got[0], want[0])
 
 
