@@ -198,20 +198,11 @@ def _paths_fast(
 ) -> tuple[np.ndarray, ...]:
     """``paths_loop``'s (status, x, v, impacts) for ``rows``, and each row's faces in pair
     order, ``flat[start[k]:start[k + 1]]`` (start, flat)."""
-    K = len(rows)
-    order = np.argsort(pb, kind="stable")  # each body's faces together, in their order
-    start = np.zeros(K + 1, dtype=np.intp)
-    np.cumsum(np.bincount(pb, minlength=K), out=start[1:])
-    B = paths.B.take(rows, axis=0)
-    W = B if paths.W is paths.B else paths.W.take(rows, axis=0)
-    flat = pf.take(order)
-    status, X, V, events = paths_loop(
+    return paths_loop(  # type: ignore[no-any-return]
         faces.p, faces.n, faces.rho, faces.two, faces.lo, faces.hi, faces.c, faces.r,
-        faces.e, faces.mu, paths.x0.take(rows, axis=0), paths.v0.take(rows, axis=0), B, W,
-        paths.radius.take(rows), paths.restitution.take(rows), paths.friction.take(rows),
-        paths.mass.take(rows), resting.take(rows), start, flat, paths.dt, paths.t0,
+        faces.e, faces.mu, rows, paths.x0, paths.v0, paths.B, paths.W, paths.radius,
+        paths.restitution, paths.friction, paths.mass, resting, pb, pf, paths.dt, paths.t0,
     )  # fmt: skip
-    return status, X, V, events, start, flat
 
 
 def _path_one(
@@ -471,9 +462,9 @@ def _sample_paths() -> tuple[object, ...]:
     i = np.zeros(1, dtype=np.intp)
     line = (pair, np.array([[0.0, 1.0]]), 0.0 * one, i == 0, -one, one)
     return (
-        *line, np.zeros((0, 2)), np.zeros(0), one, one, np.array([[0.0, 0.1]]), pair,
+        *line, np.zeros((0, 2)), np.zeros(0), one, one, i, np.array([[0.0, 0.1]]), pair,
         np.array([[0.0, -9.81]]), np.array([[0.0, -9.81]]), 0.1 * one, one, one, one, i - 1,
-        np.array([0, 1], dtype=np.intp), i, 0.01, 0.0,
+        i, i, 0.01, 0.0,
     )  # fmt: skip
 
 
@@ -489,6 +480,7 @@ def paths_loop(
     dr: np.ndarray,
     fe: np.ndarray,
     fmu: np.ndarray,
+    rows: np.ndarray,
     X: np.ndarray,
     V: np.ndarray,
     Bm: np.ndarray,
@@ -498,24 +490,36 @@ def paths_loop(
     mub: np.ndarray,
     m: np.ndarray,
     rest: np.ndarray,
-    start: np.ndarray,
-    flat: np.ndarray,
+    pb: np.ndarray,
+    pf: np.ndarray,
     dt: float,
     t0: float,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """``_path_one`` for each free body that bounces off faces and flies on: (status, new
-    positions, new velocities, its impacts: k, round, face, point, normal, impulse, time).
+    positions, new velocities, its impacts: k, round, face, point, normal, impulse, time;
+    and each body's faces, ``flat[start[k]:start[k + 1]]``, for ``_path_one``).
 
     The faces as ``Faces`` holds them (lines p, n, rho, two, lo, hi; discs c, r; e, mu), the
-    bodies' rows (x, v, B, W, radius, restitution, friction, mass, resting face), and each
-    one's faces, ``flat[start[k]:start[k + 1]]``. A body that rests or comes to rest, meets a
-    round face's quartic (its eigenvalues are LAPACK's, in numpy) or is capped is left to
-    ``_path_one`` (status PYTHON). Each number is ``_path_one``'s own operations in their
-    order (``line_hit_one``, ``disc_hit_one`` up to its roots, ``_disc_normal_one`` and
-    ``_bounce_one`` inline), so the bits are its.
+    World ``rows`` solved, the bodies' arrays by World row (x, v, B, W, radius, restitution,
+    friction, mass, resting face), and the pairs (place in rows ``pb``, face ``pf``). A
+    body that rests or comes to rest, meets a round face's quartic (its eigenvalues are
+    LAPACK's, in numpy) or is capped is left to ``_path_one`` (status PYTHON). Each number
+    is ``_path_one``'s own operations in their order (``line_hit_one``, ``disc_hit_one`` up
+    to its roots, ``_disc_normal_one`` and ``_bounce_one`` inline), so the bits are its.
     """
-    K = X.shape[0]
+    K = rows.shape[0]
     L = lp.shape[0]
+    # Each body's faces together, in pair order (a counting sort of the pairs by body).
+    start = np.zeros(K + 1, dtype=np.intp)
+    for q in range(pb.shape[0]):
+        start[pb[q] + 1] += 1
+    for j in range(K):
+        start[j + 1] += start[j]
+    flat = np.empty(pb.shape[0], dtype=np.intp)
+    fill = start[:K].copy()
+    for q in range(pb.shape[0]):
+        flat[fill[pb[q]]] = pf[q]
+        fill[pb[q]] += 1
     inf = math.inf
     status = np.zeros(K, dtype=np.intp)
     Xo = np.empty((K, 2))
@@ -523,14 +527,15 @@ def paths_loop(
     ev = np.empty((K * MAX_IMPACTS, 10))
     ne = 0
     for j in range(K):
-        if rest[j] >= 0:
+        i = rows[j]
+        if rest[i] >= 0:
             status[j] = PYTHON
             continue
-        x, y = X[j, 0], X[j, 1]
-        vx, vy = V[j, 0], V[j, 1]
-        bx, by = Bm[j, 0], Bm[j, 1]
-        wx, wy = Wm[j, 0], Wm[j, 1]
-        rr = r[j]
+        x, y = X[i, 0], X[i, 1]
+        vx, vy = V[i, 0], V[i, 1]
+        bx, by = Bm[i, 0], Bm[i, 1]
+        wx, wy = Wm[i, 0], Wm[i, 1]
+        rr = r[i]
         left = dt
         touched = False
         python = False
@@ -661,8 +666,8 @@ def paths_loop(
                 nx, ny = hnx, hny
                 vn = vxn * nx + vyn * ny
                 vtx, vty = vxn - nx * vn, vyn - ny * vn
-                e = eb[j] * fe[face]
-                mu = mub[j] * fmu[face]
+                e = eb[i] * fe[face]
+                mu = mub[i] * fmu[face]
                 vn_in = 0.0 if 0.0 < vn else vn
                 vn_out = -e * vn_in
                 speed_t = math.sqrt(vtx * vtx + vty * vty)
@@ -679,7 +684,7 @@ def paths_loop(
                     row[0], row[1], row[2] = j, round_, face
                     row[3], row[4] = xn - nx * rr, yn - ny * rr
                     row[5], row[6] = nx, ny
-                    row[7], row[8] = (new_vx - vxn) * m[j], (new_vy - vyn) * m[j]
+                    row[7], row[8] = (new_vx - vxn) * m[i], (new_vy - vyn) * m[i]
                     row[9] = when
                     ne += 1
                 vxn, vyn = new_vx, new_vy
@@ -696,4 +701,4 @@ def paths_loop(
         status[j] = MET if touched else MISSED
         Xo[j, 0], Xo[j, 1] = x, y
         Vo[j, 0], Vo[j, 1] = vx, vy
-    return status, Xo, Vo, ev[:ne]
+    return status, Xo, Vo, ev[:ne], start, flat
