@@ -16,6 +16,12 @@ part, cheapest test first (in a typical scene few bodies meet anything):
 4. push-out (engine.push_out) of a body found inside a solid collider, and sensors
    (engine.sensors), which push nothing and report bodies entering and leaving them.
 
+On the fast path (engine.kernels; ``Contacts.fast``, the World's path) 1 and the resting
+bodies' staying put are one loop kernel over the bodies (``face_looks.looks_loop``) and 2 is
+another over the bodies solved (``sweep_one.paths_loop``), each beside its twin and giving
+its numbers bit for bit; what a kernel does not take (a round face's quartic, a resting body)
+goes the numpy path's way.
+
 It keeps what lasts from step to step (the compiled faces, engine.faces, updated in place when
 a collider comes or goes; the grid; each body's resting face) and the step's events.
 """

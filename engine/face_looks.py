@@ -31,6 +31,11 @@ looked at, less how far it has moved since) was measured and does not pay here: 
 benchmark's box balls move 0.1 to 0.2 m a step and the nearest face is a metre or two away,
 so 110 to 140 of 1,000 need a fresh bound every step even with exact distances, and an
 operation on 140 rows costs nearly what one on 1,000 does.
+
+On the fast path (engine.kernels) both looks, with the resting bodies' test of staying put,
+are one loop over the bodies, ``looks_loop`` (called by ``first_looks``): the same numbers
+in the same order, at 1,000 bodies about 10 us a step where the array operations take about
+60 (measured on a 2-core machine).
 """
 
 from __future__ import annotations

@@ -14,6 +14,11 @@ contacts' own time): the Galton board's first 20 s 0.46 s in floats against 1.60
 breakout's ball 93 us a step it meets something against 438 us; eight balls resting in a box
 check staying put (``asleep_few``) in half the time of the arrays. Contacts chooses by count
 (``Contacts.few``, ``Contacts.few_resting``).
+
+On the fast path (engine.kernels) the free bodies go through ``paths_loop``, a loop kernel
+of ``_path_one``'s arithmetic for a body that bounces and flies on (compiled by numba: about
+1 us a body, against ~10 in floats); a body that rests, comes to rest, is capped or meets a
+round face's quartic (whose eigenvalues are numpy's LAPACK) is left to ``_path_one``.
 """
 
 from __future__ import annotations
