@@ -16,6 +16,12 @@ part, cheapest test first (in a typical scene few bodies meet anything):
 4. push-out (engine.push_out) of a body found inside a solid collider, and sensors
    (engine.sensors), which push nothing and report bodies entering and leaving them.
 
+On the fast path (engine.kernels; ``Contacts.fast``, the World's path) 1 and the resting
+bodies' staying put are one loop kernel over the bodies (``face_looks.looks_loop``) and 2 is
+another over the bodies solved (``sweep_one.paths_loop``), each beside its twin and giving
+its numbers bit for bit; what a kernel does not take (a round face's quartic, a resting body)
+goes the numpy path's way.
+
 It keeps what lasts from step to step (the compiled faces, engine.faces, updated in place when
 a collider comes or goes; the grid; each body's resting face) and the step's events.
 """
@@ -31,6 +37,7 @@ from . import push_out, sensors
 from .colliders import Collider
 from .events import ContactEvent
 from .face_grid import FaceGrid, narrow, near
+from .face_looks import first_looks, looks_ready
 from .faces import (
     Faces,
     allowed_pairs,
@@ -71,6 +78,9 @@ class Contacts:
         #: cost more than a few rows' arithmetic.
         self.few_resting = 8
         self.moved = False  # whether the last step's contacts changed any body's state
+        #: Whether the first looks take the loop kernel (engine.face_looks.looks_loop): the
+        #: World's path (engine.kernels), set where the World makes this.
+        self.fast = False
         #: The World's bodies' filters (group, categories, mask arrays by row), for colliders
         #: with filters of their own (``allowed``); set by the World.
         self.body_filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
@@ -252,30 +262,41 @@ class Contacts:
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         self.moved = False
         if len(faces.owner):
-            rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
-            if frozen is not None and frozen[rows].any():
-                awake = ~frozen[rows]
-                rows, reach = rows[awake], reach[awake]
-                cell = None if cell is None else cell[awake]
+            allowed = self.allowed if faces.filters is not None else None
+            if self.fast and looks_ready(self.grid):
+                # The fast path: both looks and the resting bodies' staying put in one
+                # compiled loop over the bodies, the same rows and pairs as below
+                # (engine.face_looks.looks_loop).
+                rows, pb, pf, asleep = first_looks(
+                    self.grid, faces, x0, v0, B, W, dt, radius, friction, self.rest, frozen,
+                    allowed,
+                )  # fmt: skip
+            else:
+                rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
+                if frozen is not None and frozen[rows].any():
+                    awake = ~frozen[rows]
+                    rows, reach = rows[awake], reach[awake]
+                    cell = None if cell is None else cell[awake]
+                if len(rows):
+                    busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay
+                    rows, pb, pf = narrow(
+                        self.grid, rows, busy, cell, reach, a_bound, x0, v0, dt, radius, allowed
+                    )
             if len(asleep):
                 # Resting and held by friction: they stay put, whatever the method computed.
                 x, v = x1.copy(), v1.copy()
                 x[asleep], v[asleep] = x0[asleep], 0.0
                 self.moved = True
             if len(rows):
-                busy = self.rest.take(rows) >= 0  # resting bodies slide, lift or stay
-                allowed = self.allowed if faces.filters is not None else None
-                rows, pb, pf = narrow(
-                    self.grid, rows, busy, cell, reach, a_bound, x0, v0, dt, radius, allowed
-                )
-            if len(rows):
                 # A few bodies are solved one at a time in Python floats, many in arrays:
                 # the same arithmetic, so the same result either way.
                 paths = Paths(x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
-                solve = solve_few if len(rows) < self.few else sweep
+                # On the fast path a loop kernel takes the free bodies, however many
+                # (engine.sweep_one.paths_loop: the same bits).
+                solve = solve_few if len(rows) < self.few or self.fast else sweep
                 changed, X, V, capped = solve(
                     faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
-                    self._began, self._ended,
+                    self._began, self._ended, *((True,) if self.fast else ()),
                 )  # fmt: skip
                 self.capped += capped
                 # Only bodies that met something change: the rest keep (x1, v1) bit for bit.
@@ -363,15 +384,23 @@ class Contacts:
         one, rows that rest and stay put, the first rows' grid cells or None, their reach,
         a bound on every body's |B| and |W|): ``face_grid.near``, with the resting bodies."""
         need, cell, reach, a_bound = near(self.grid, x0, v0, B, W, dt, radius)
-        asleep = np.zeros(0, dtype=np.intp)
-        if len(self.rest) and self.rest.max() >= 0:
-            resting = np.flatnonzero(self.rest >= 0)
-            asleep = self._asleep(resting, x0, v0, W, friction)
+        resting, asleep = self._staying(x0, v0, W, friction)
+        if len(resting):
             need[resting] = True
             need[asleep] = False
         rows = np.flatnonzero(need)
         cell_rows = None if cell is None else cell.take(rows)
         return rows, asleep, cell_rows, reach.take(rows), a_bound
+
+    def _staying(
+        self, x0: np.ndarray, v0: np.ndarray, W: np.ndarray, friction: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(the rows resting on a face, those of them that stay put this step: ``_asleep``)."""
+        none = np.zeros(0, dtype=np.intp)
+        if not len(self.rest) or self.rest.max() < 0:
+            return none, none
+        resting = np.flatnonzero(self.rest >= 0)
+        return resting, self._asleep(resting, x0, v0, W, friction)
 
     def _asleep(
         self,

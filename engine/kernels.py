@@ -172,6 +172,8 @@ MODULES = (
     "engine.pile",
     "engine.pile_rows",
     "engine.push_out",
+    "engine.face_looks",
+    "engine.sweep_one",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}

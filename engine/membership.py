@@ -219,6 +219,7 @@ def add_collider(state: WorldState, collider: ColliderT) -> ColliderT:
     store = state.ensure_store(2)
     if state.contacts is None:
         state.contacts = Contacts()
+        state.contacts.fast = state.kernels == "fast"
         state.contacts.bodies_added(len(store))
     state.events.settle_reading()
     state.contacts.add(collider)

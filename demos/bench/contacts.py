@@ -42,11 +42,14 @@ def scene(n: int, seed: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.stack([a, b], axis=1), pos, vel
 
 
-def make_world(n: int, *, colliders: bool = True, radius: float = RADIUS) -> World:
-    """The scene as a World ("auto": the closed form under gravity); ``radius`` 0 makes the
-    balls points, which never collide: a World with no contact machinery at all."""
+def make_world(
+    n: int, *, colliders: bool = True, radius: float = RADIUS, kernels: str | None = None
+) -> World:
+    """The scene as a World ("auto": the closed form under gravity) on the path ``kernels``
+    (None: the default, engine.kernels); ``radius`` 0 makes the balls points, which never
+    collide: a World with no contact machinery at all."""
     segs, pos, vel = scene(n)
-    world = World(integrator="auto")
+    world = World(integrator="auto", kernels=kernels)
     world.add_force(Gravity((0.0, -9.81)))
     if colliders:
         world.add_collider(Box((0.0, 0.0), SIZE))
