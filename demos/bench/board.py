@@ -24,7 +24,7 @@ import warnings
 from collections.abc import Callable
 from functools import partial
 
-from engine import Body, Circle, Segment, Vector, World
+from engine import Body, Circle, Segment, Vector, World, kernels
 from engine.forces import Gravity
 
 __all__ = [
@@ -55,10 +55,13 @@ def _size(pegs: int) -> tuple[int, int, float, float]:
     return cols, rows, (cols + 1) * SPACING, (rows + 4) * SPACING
 
 
-def make_board(pegs: int = SMALL_PEGS, *, colliders: bool = True) -> tuple[World, Body]:
-    """The board of ``pegs`` pegs and 6 segments (none with ``colliders=False``) and its ball."""
+def make_board(
+    pegs: int = SMALL_PEGS, *, colliders: bool = True, kernels: str | None = None
+) -> tuple[World, Body]:
+    """The board of ``pegs`` pegs and 6 segments (none with ``colliders=False``) and its ball,
+    on the path ``kernels`` (None: the default, engine.kernels)."""
     cols, rows, w, h = _size(pegs)
-    world = World(integrator="auto")
+    world = World(integrator="auto", kernels=kernels)
     world.add_force(Gravity((0.0, -G)))
     if colliders:
         placed = 0
@@ -89,15 +92,20 @@ def _timed(fn: Callable[[], object]) -> float:
     return time.perf_counter() - t
 
 
-def small_board(seconds: float = 2.0, rounds: int = 5) -> dict[str, float]:
+def small_board(
+    seconds: float = 2.0, rounds: int = 5, kernels: str | None = None
+) -> dict[str, float]:
     """Seconds a step, the mean over the first ``seconds`` of play of each step's median over
     ``rounds`` fresh drops: "board" (82 pegs, 6 segments) and "bare" (the same World, no
     colliders); "ratio", board / bare; "typical", the same for the median step (the steps
-    between bounces)."""
+    between bounces). ``kernels``: the Worlds' path."""
     steps = round(seconds / DT)
     per: dict[str, list[list[float]]] = {"board": [], "bare": []}
     for _ in range(rounds):
-        worlds = {"board": make_board()[0], "bare": make_board(colliders=False)[0]}
+        worlds = {
+            "board": make_board(kernels=kernels)[0],
+            "bare": make_board(colliders=False, kernels=kernels)[0],
+        }
         for world in worlds.values():
             world.step(DT)  # the first step builds what later ones reuse: not the steady state
         times: dict[str, list[float]] = {name: [] for name in worlds}
@@ -121,14 +129,17 @@ def small_board(seconds: float = 2.0, rounds: int = 5) -> dict[str, float]:
 CHANGES = ("add a collider", "remove it", "add a body", "remove it again")
 
 
-def changes(colliders: int, cycles: int = 40) -> dict[str, tuple[float, float]]:
+def changes(
+    colliders: int, cycles: int = 40, kernels: str | None = None
+) -> dict[str, tuple[float, float]]:
     """On a board of ``colliders`` colliders (pegs + 6 segments), after 0.5 s of play: per
-    cycle a plain step, then each change of CHANGES followed by a step, all timed.
+    cycle a plain step, then each change of CHANGES followed by a step, all timed, on the
+    path ``kernels``.
 
     Returns "plain" -> (0, seconds a plain step) and each change -> (seconds of the change's
     call, seconds of the step after it), medians over the cycles.
     """
-    world, _ = make_board(colliders - SEGMENTS)
+    world, _ = make_board(colliders - SEGMENTS, kernels=kernels)
     _, _, w, h = _size(colliders - SEGMENTS)
     for _ in range(30):
         world.step(DT)
@@ -163,22 +174,27 @@ def _met(ok: bool) -> str:
 
 
 def report(quick: bool = False) -> str:
-    """Run both board measurements and return their table as text."""
-    small = small_board(seconds=1.0 if quick else 2.0, rounds=3 if quick else 7)
+    """Run both board measurements, on each path, and return their table as text."""
+    kernels.prepare()  # compiled (or loaded from the cache) before the clock starts
+    paths = ["numpy", "fast"] if kernels.available() else ["numpy"]
     lines = [
         f"board: one ball (r {BALL:g} m, e 0.7) among round pegs (r {PEG:g} m) and "
-        f"{SEGMENTS} segments, dt = 1/60 s",
-        f"  {SMALL_PEGS} pegs: a step {small['board'] * 1e6:.0f} us against "
-        f"{small['bare'] * 1e6:.1f} us for the same World with no colliders: "
-        f"{small['ratio']:.1f}x (target <= 5x: {_met(small['ratio'] <= 5.0)}); the median "
-        f"step (between bounces) {small['typical']:.1f}x",
+        f"{SEGMENTS} segments, dt = 1/60 s"
     ]
-    for total in CHANGE_COLLIDERS:
-        got = changes(total, cycles=10 if quick else 40)
+    for path in paths:
+        small = small_board(seconds=1.0 if quick else 2.0, rounds=3 if quick else 7, kernels=path)
+        lines.append(
+            f"  {SMALL_PEGS} pegs ({path}): a step {small['board'] * 1e6:.0f} us against "
+            f"{small['bare'] * 1e6:.1f} us for the same World with no colliders: "
+            f"{small['ratio']:.1f}x (target <= 5x: {_met(small['ratio'] <= 5.0)}); the median "
+            f"step (between bounces) {small['typical']:.1f}x"
+        )
+    for total, path in ((total, path) for total in CHANGE_COLLIDERS for path in paths):
+        got = changes(total, cycles=10 if quick else 40, kernels=path)
         plain = got["plain"][1]
         lines.append(
-            f"  {total:,} colliders: a plain step {plain * 1e6:.0f} us; each change, then the "
-            "step after it (medians):"
+            f"  {total:,} colliders ({path}): a plain step {plain * 1e6:.0f} us; each change, "
+            "then the step after it (medians):"
         )
         for name in CHANGES:
             call, after = got[name]
