@@ -42,6 +42,7 @@ from .faces import (
     Faces,
     allowed_pairs,
     compile_faces,
+    face_filters,
     face_meets,
     faces_added,
     faces_removed,
@@ -82,8 +83,22 @@ class Contacts:
         #: World's path (engine.kernels), set where the World makes this.
         self.fast = False
         #: The World's bodies' filters (group, categories, mask arrays by row), for colliders
-        #: with filters of their own (``allowed``); set by the World.
+        #: with filters of their own (``allowed``); set by the World (``set_body_filters``).
         self.body_filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        self._ghosts_seen: np.ndarray | None = None  # the mask array last looked through
+
+    def set_body_filters(self, group: np.ndarray, categories: np.ndarray, mask: np.ndarray) -> None:
+        """The World's bodies' filters, by row. The faces carry no filters while every
+        collider has the default one, and then every body meets every face, except a body
+        that meets nothing (mask 0) or that nothing meets (categories 0): such a body makes
+        the faces' filters explicit (the defaults), so it passes through them as
+        ``Filter.collides`` says. Looked at again only when the bodies' arrays change."""
+        self.body_filters = (group, categories, mask)
+        if self._ghosts_seen is mask or self.faces.filters is not None:
+            return
+        self._ghosts_seen = mask
+        if len(mask) and bool(((mask == 0) | (categories == 0)).any()):
+            self.faces.filters = face_filters(self.faces)
 
     # -- colliders and bodies ---------------------------------------------------------------
     def add(self, collider: Collider) -> None:

@@ -236,7 +236,7 @@ def face_meets(
     return meets.reshape(len(rows), n_f)
 
 
-def _filter_columns(faces: Faces) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def face_filters(faces: Faces) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The faces' owners' filters (group, categories, mask), the defaults when ``filters`` is
     None."""
     if faces.filters is not None:
@@ -273,7 +273,7 @@ def faces_added(faces: Faces, colliders: list[Collider]) -> Faces:
     boxed = faces.boxed and (isinstance(collider, Box) or not bool(new.infinite.any()))
     filters = None
     if faces.filters is not None or new.filters is not None:
-        old_f, add_f = _filter_columns(faces), _filter_columns(new)
+        old_f, add_f = face_filters(faces), face_filters(new)
         filters = (
             merge(old_f[0], add_f[0]),
             merge(old_f[1], add_f[1]),

@@ -42,7 +42,7 @@ def push_out(
     if not len(idx):
         return
     x, v = store.x[idx], store.v[idx]
-    contacts.body_filters = (store.group, store.categories, store.mask)
+    contacts.set_body_filters(store.group, store.categories, store.mask)
     moved = contacts.push_out(x, v, store.radius[idx], idx)
     if not moved:
         return

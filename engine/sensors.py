@@ -15,7 +15,6 @@ import numpy as np
 
 from .colliders import Box, Collider
 from .faces import signed_distance
-from .filters import DEFAULT as DEFAULT_FILTER
 
 __all__ = ["sense"]
 
@@ -44,7 +43,7 @@ def sense(
         d = signed_distance(c, x1)
         now = d > -radius if isinstance(c, Box) else d < radius
         bf = body_filters
-        if c.filter != DEFAULT_FILTER and bf is not None:
+        if bf is not None:
             f = c.filter  # a sensor senses only the bodies its filter meets
             now &= ((bf[1] & f.mask) != 0) & ((f.categories & bf[2]) != 0)
             now &= ~((bf[0] == f.group) & (bf[0] != 0))

@@ -272,7 +272,7 @@ def _step_once(
     if contacts is not None:
         # The path of the step is swept for impacts (engine.contacts); under the closed
         # form it is the exact parabola.
-        contacts.body_filters = (store.group, store.categories, store.mask)
+        contacts.set_body_filters(store.group, store.categories, store.mask)
         x1, v1 = contacts.resolve(
             store.x,
             store.v,

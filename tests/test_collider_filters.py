@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import warnings
 
+import pytest
+
 from engine import Body, Circle, Filter, OverlapWarning, Plane, Vector, World
 from engine.forces import Gravity
 
@@ -67,3 +69,25 @@ def test_a_sensor_senses_only_the_bodies_its_filter_meets() -> None:
     )
     w.step(1 / 60)
     assert seen == [ghost] and player not in seen
+
+
+def test_a_body_that_meets_nothing_passes_through_colliders_with_default_filters() -> None:
+    """Filter.collides says a body of mask 0 (it meets nothing) or of categories 0 (nothing
+    meets it) collides with no collider, even one with the default filter: it falls through
+    the floor at g (x = x0 - g t^2 / 2, exactly: the closed form) and no sensor senses it,
+    while a plain ball rests on the floor."""
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -10.0)))
+    world.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    sensor = world.add_collider(Circle((0.0, -3.0), 1.0, sensor=True))
+    blind = world.add(Body(Vector(0.0, 1.0), radius=0.5, filter=Filter(mask=0)))
+    unseen = world.add(Body(Vector(0.0, 1.0), radius=0.5, filter=Filter(categories=0)))
+    ball = world.add(Body(Vector(5.0, 0.5), radius=0.5))
+    sensed = []
+    for _ in range(60):
+        world.step(1 / 60)
+        sensed += [e.body for e in world.began if e.collider is sensor]
+    for body in (blind, unseen):
+        assert body.pos.y == pytest.approx(1.0 - 5.0 * world.t**2, abs=1e-9)
+    assert ball.pos.y == 0.5
+    assert sensed == []
