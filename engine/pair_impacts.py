@@ -599,7 +599,9 @@ def bounce(
     nrm = unit(d, np.hypot(d[:, 0], d[:, 1]))
     vr = va - vb
     vn = dot(vr, nrm)  # < 0: closing
+    # Two bodies that neither moves (a pile's, met as walls, or the game's) take no impulse.
     wsum = w[pa] + w[pb]
+    wsum = np.where(wsum > 0.0, wsum, math.inf)
     J = -(1.0 + e[pa] * e[pb]) * vn / wsum
     # Friction: up to mu J against the tangential relative velocity, never reversing it.
     tang = vr - nrm * vn[:, None]

@@ -278,10 +278,30 @@ BORN_ON_ONE_POINT = {
     "gravity": (4.0, 0.0),
 }
 
+#: Two discs born on one point with two points, kicked apart at dt 0.5 under a strong pull:
+#: an impact of two bodies that neither moves (w_a + w_b = 0) made nan (engine.pair_impacts
+#: ``bounce``), found by a random run.
+TWO_IMMOVABLE_MEET = {
+    "colliders": [Segment((-8.0, -8.0), (-7.99, -8.0), restitution=0.0, friction=0.0)],
+    "room": Box((-8.0, -8.0), (15.0, 8.0), restitution=0.375, friction=0.0),
+    "balls": [
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
+        (0.0, 0.0, 0.0, 0.0, 0.01, 0.0, 0.0, 1.0),
+        (0.0, 0.0, 0.0, 0.0, 0.01, 0.0, 0.0, 1.0),
+        (0.0, 0.0, 0.0, 1.0, 0.1, 0.0, 0.0, 1.0),
+        (2.0, 0.0, 2.0, 0.0, 0.01, 0.75, 0.0, 1.0),
+    ],
+    "dt": 0.5,
+    "method": "auto",
+    "gravity": (14.0, 10.0),
+}
+
 
 @fuzz(80)
 @given(spec=scene)
 @example(spec=BORN_ON_ONE_POINT)
+@example(spec=TWO_IMMOVABLE_MEET)
 def test_scenes_stay_finite_outside_colliders_and_rerun_identically(spec: dict[str, Any]) -> None:
     first, again = run(spec), run(spec)
     differ = [k for k, (x, y) in enumerate(zip(first, again, strict=True)) if x != y]
