@@ -62,8 +62,8 @@ METHODS = ("auto", "semi_implicit_euler", "velocity_verlet")
 
 #: The filters a ball may carry (an index into this tuple). 0 to 4, in most scenes: most
 #: balls meet everyone; two share a group; two meet only some categories; one (a ghost)
-#: meets nothing. 5 to 8, in the scenes of two worlds in one: 5 and 6 meet only each other
-#: (and 6 never 6: a group), 7 and 8 the same among themselves.
+#: meets nothing, colliders included. 5 to 8, in the scenes of two worlds in one: 5 and 6
+#: meet only each other (and 6 never 6: a group), 7 and 8 the same among themselves.
 FILTERS = (
     Filter(),
     Filter(group=1),
@@ -279,12 +279,14 @@ class Probe:
         return max(float(self.overlaps().max(initial=0.0)), 0.0)
 
     def inside(self) -> float:
-        """How far the deepest body reaches into a solid collider, past 1e-9 (1 + |x|)."""
+        """How far the deepest body reaches into a solid collider it collides with (its
+        filter meets the collider's: a ghost passes through walls), past 1e-9 (1 + |x|)."""
         worst = 0.0
-        for x, r in zip(self.world.positions(), self.r, strict=True):
+        for x, r, body in zip(self.world.positions(), self.r, self.bodies, strict=True):
             tol = 1e-9 * (1.0 + float(np.abs(x).max()))
             for c in self.solid:
-                worst = max(worst, r - c.distance(x) - tol)
+                if body.filter.collides(c.filter):
+                    worst = max(worst, r - c.distance(x) - tol)
         return worst
 
     def momentum(self) -> np.ndarray:
