@@ -138,7 +138,8 @@ def test_the_board_measurements_have_their_parts() -> None:
     assert small["ratio"] == pytest.approx(small["board"] / small["bare"])
     got = board.changes(48, cycles=2)
     assert set(got) == {"plain", *board.CHANGES}
-    assert all(call >= 0 and step > 0 for call, step in got.values())
+    assert all(call >= 0 and step > 0 and own > 0 for call, step, own in got.values())
+    assert got["plain"][1] == got["plain"][2]
 
 
 def test_the_limits_table_reads_its_runs() -> None:
