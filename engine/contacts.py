@@ -85,20 +85,24 @@ class Contacts:
         #: The World's bodies' filters (group, categories, mask arrays by row), for colliders
         #: with filters of their own (``allowed``); set by the World (``set_body_filters``).
         self.body_filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-        self._ghosts_seen: np.ndarray | None = None  # the mask array last looked through
+        # The bodies' mask array and the faces last looked through for such bodies.
+        self._ghosts_seen: tuple[np.ndarray, Faces] | None = None
 
     def set_body_filters(self, group: np.ndarray, categories: np.ndarray, mask: np.ndarray) -> None:
         """The World's bodies' filters, by row. The faces carry no filters while every
         collider has the default one, and then every body meets every face, except a body
         that meets nothing (mask 0) or that nothing meets (categories 0): such a body makes
         the faces' filters explicit (the defaults), so it passes through them as
-        ``Filter.collides`` says. Looked at again only when the bodies' arrays change."""
+        ``Filter.collides`` says. Looked at again only when the bodies' arrays or the faces
+        (a collider added or taken out) change."""
         self.body_filters = (group, categories, mask)
-        if self._ghosts_seen is mask or self.faces.filters is not None:
+        faces = self.faces
+        seen = self._ghosts_seen
+        if faces.filters is not None or (seen is not None and seen[0] is mask and seen[1] is faces):
             return
-        self._ghosts_seen = mask
+        self._ghosts_seen = (mask, faces)
         if len(mask) and bool(((mask == 0) | (categories == 0)).any()):
-            self.faces.filters = face_filters(self.faces)
+            faces.filters = face_filters(faces)
 
     # -- colliders and bodies ---------------------------------------------------------------
     def add(self, collider: Collider) -> None:

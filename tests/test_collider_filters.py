@@ -8,7 +8,7 @@ import warnings
 
 import pytest
 
-from engine import Body, Circle, Filter, OverlapWarning, Plane, Vector, World
+from engine import Body, Circle, Filter, OverlapWarning, Plane, Segment, Vector, World
 from engine.forces import Gravity
 
 PLAYERS, GHOSTS = 0b01, 0b10
@@ -91,3 +91,19 @@ def test_a_body_that_meets_nothing_passes_through_colliders_with_default_filters
         assert body.pos.y == pytest.approx(1.0 - 5.0 * world.t**2, abs=1e-9)
     assert ball.pos.y == 0.5
     assert sensed == []
+
+
+def test_a_body_that_meets_nothing_still_passes_after_the_colliders_change() -> None:
+    """The same after a collider is taken out and put back and another added (the faces are
+    made again): the body of mask 0 keeps falling at g, through the new floor too."""
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -10.0)))
+    floor = world.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    blind = world.add(Body(Vector(0.0, 1.0), radius=0.5, filter=Filter(mask=0)))
+    world.step(1 / 60)
+    world.remove_collider(floor)
+    world.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    world.add_collider(Segment((5.0, 0.0), (6.0, 0.0)))
+    for _ in range(59):
+        world.step(1 / 60)
+    assert blind.pos.y == pytest.approx(1.0 - 5.0 * world.t**2, abs=1e-9)
