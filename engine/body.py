@@ -132,6 +132,11 @@ class Body:
         "_dim",
         "_store",
         "_slot",
+        "_angle",
+        "_omega",
+        "_moment",
+        "_fixed",
+        "_torque",
     )
 
     def __init__(
@@ -147,6 +152,11 @@ class Body:
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
         kinematic: bool = False,
         shape: Any = None,
+        angle: float = 0.0,
+        angular_velocity: float = 0.0,
+        moment: float | None = None,
+        fixed_rotation: bool = False,
+        torque: float = 0.0,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -194,6 +204,80 @@ class Body:
         self._kinematic = kinematic
         self._store: BodyStore | None = None  # set by the World that holds this body
         self._slot: int = -1
+        self._take_rotation(angle, angular_velocity, moment, fixed_rotation, torque)
+
+    def _take_rotation(self, angle: Any, omega: Any, moment: Any, fixed: Any, torque: Any) -> None:
+        """Check and keep the rotation arguments (engine.rotation says what they mean)."""
+        if not isinstance(fixed, bool):
+            raise TypeError(
+                f"fixed_rotation must be True (the body never turns) or False, got "
+                f"{type(fixed).__name__} {fixed!r}"
+            )
+        self._fixed = fixed
+        self._moment: float | None = None
+        if moment is not None:
+            m = _real(moment, "moment")
+            if not m > 0.0:
+                raise ValueError(
+                    f"moment must be a moment of inertia > 0 in kg m^2 (math.inf: the body "
+                    f"never turns), or None to take it from the shape and mass, got {moment!r}"
+                )
+            self._moment = m
+        self._angle = _finite(angle, "angle")
+        self._omega = _finite(omega, "angular_velocity")
+        self._torque = _finite(torque, "torque")
+        if (self._angle or self._omega or self._torque) and not self.turns:
+            raise ValueError(self._why_not("angle", self._angle, self._omega, self._torque))
+
+    def _why_not(self, name: str, *values: float) -> str:
+        """Why this body cannot take a rotation (``name``: the argument given)."""
+        given = (
+            ", ".join(
+                f"{n}={v!r}"
+                for n, v in zip(("angle", "angular_velocity", "torque"), values, strict=False)
+                if v
+            )
+            or f"{name}=..."
+        )
+        if self._dim != 2:
+            why = "a 1D body does not turn"
+        elif self._kinematic:
+            why = "a kinematic body does not turn in this version (set its vel or pos)"
+        elif self._fixed:
+            why = "the body was made with fixed_rotation=True"
+        elif not self._round():
+            why = (
+                "a body with corners (a Polygon or Segment shape) does not turn in this "
+                "version: it stays upright, like a platformer's crate"
+            )
+        elif self._moment is None and self._radius == 0.0:
+            why = (
+                "a point has no moment of inertia: give it a radius=... (a disc) or a "
+                "moment=... (kg m^2)"
+            )
+        else:
+            why = f"its moment is {self.moment!r}"
+        return f"this body cannot turn ({given}): {why}"
+
+    def _round(self) -> bool:
+        shape = self._shape
+        return shape is None or type(shape).__name__ == "Circle"
+
+    def _own_moment(self) -> float:
+        """The moment of inertia (kg m^2) the body turns with; inf for one that does not."""
+        if self._dim != 2 or self._kinematic or self._fixed or not self._round():
+            return math.inf
+        if self._moment is not None:
+            return self._moment
+        if self._radius == 0.0:
+            return math.inf  # a point: nothing can make it turn
+        mass = self.mass
+        shape = self._shape
+        if shape is None:
+            return 0.5 * mass * self._radius * self._radius  # a solid disc: m r^2 / 2
+        # A Circle about its centre c in the body's frame: m r^2 / 2 + m |c|^2.
+        cx, cy = shape.center
+        return mass * (0.5 * shape.radius * shape.radius + cx * cx + cy * cy)
 
     def _take_shape(self, shape: Any, dim: int) -> float:
         """Check ``shape`` for this body; its bounding radius (length units)."""
@@ -248,14 +332,23 @@ class Body:
         position, velocity, mass and own acceleration): the World's side of adding it."""
         self._store, self._slot = store, slot
 
-    def detach(self, pos: State, vel: State, mass: float, own_acc: State) -> None:
+    def detach(
+        self,
+        pos: State,
+        vel: State,
+        mass: float,
+        own_acc: State,
+        spin: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    ) -> None:
         """Stop being a World's handle and hold its own state again: ``pos`` (length units),
-        ``vel`` (length units / s), ``mass`` (kg) and ``own_acc`` (length units / s^2), as
-        they were in the World (taken unchecked): the World's side of removing it."""
+        ``vel`` (length units / s), ``mass`` (kg), ``own_acc`` (length units / s^2) and
+        ``spin`` (angle in rad, angular velocity in rad/s, torque in N m), as they were in
+        the World (taken unchecked): the World's side of removing it."""
         self._store, self._slot = None, -1
         self._store_pos(pos)
         self._store_vel(vel)
         self._mass, self._acc = mass, own_acc
+        self._angle, self._omega, self._torque = spin
 
     @property
     def pos(self) -> Any:
@@ -365,6 +458,8 @@ class Body:
             self._store.set_mass(self._slot, m)
         else:
             self._mass = m
+        if self._store is not None and self._moment is None and self.turns:
+            self._store.set_moment(self._slot, self._own_moment())  # m r^2 / 2 follows m
 
     @property
     def radius(self) -> float:
@@ -426,6 +521,133 @@ class Body:
     @kinematic.setter
     def kinematic(self, value: Any) -> None:
         _fixed("kinematic", value)
+
+    # -- rotation (engine.rotation) ----------------------------------------------------------
+    @property
+    def turns(self) -> bool:
+        """Whether this body turns: a disc (or a body given a ``moment``), not kinematic, not
+        ``fixed_rotation``. A point, and in this version a body with corners, does not."""
+        return math.isfinite(self._own_moment())
+
+    @property
+    def fixed_rotation(self) -> bool:
+        """True for a body made never to turn (pymunk: a moment of inf)."""
+        return self._fixed
+
+    @fixed_rotation.setter
+    def fixed_rotation(self, value: Any) -> None:
+        _fixed("fixed_rotation", value)
+
+    @property
+    def moment(self) -> float:
+        """Moment of inertia about the body's position (kg m^2): the one given, else from the
+        shape and mass (m r^2 / 2 for a disc); inf for a body that does not turn."""
+        store = self._store
+        if store is not None:
+            return float(store.moment[store.row(self._slot)])
+        return self._own_moment()
+
+    @moment.setter
+    def moment(self, value: Any) -> None:
+        m = _real(value, "moment")
+        if not m > 0.0:
+            raise ValueError(f"moment must be > 0 in kg m^2 (math.inf: never turns), got {value!r}")
+        if not self.turns and math.isfinite(m):
+            raise ValueError(self._why_not("moment"))
+        self._moment = m
+        if self._store is not None:
+            self._store.set_moment(self._slot, self._own_moment())
+
+    @property
+    def angle(self) -> float:
+        """The angle the body has turned through (rad, counter-clockwise; not wrapped)."""
+        store = self._store
+        if store is not None:
+            return float(store.angle[store.row(self._slot)])
+        return self._angle
+
+    @angle.setter
+    def angle(self, value: Any) -> None:
+        a = _finite(value, "angle")
+        if a and not self.turns:
+            raise ValueError(self._why_not("angle", a))
+        if self._store is not None:
+            self._store.set_spin(self._slot, a, None)
+        else:
+            self._angle = a
+
+    @property
+    def angular_velocity(self) -> float:
+        """Angular velocity (rad/s, counter-clockwise)."""
+        store = self._store
+        if store is not None:
+            return float(store.omega[store.row(self._slot)])
+        return self._omega
+
+    @angular_velocity.setter
+    def angular_velocity(self, value: Any) -> None:
+        w = _finite(value, "angular_velocity")
+        if w and not self.turns:
+            raise ValueError(self._why_not("angular_velocity", 0.0, w))
+        if self._store is not None:
+            self._store.set_spin(self._slot, None, w)
+        else:
+            self._omega = w
+
+    @property
+    def torque(self) -> float:
+        """The body's own constant torque (N m, counter-clockwise), kept until changed (as
+        ``own_acc`` is): its angular acceleration is torque / moment."""
+        store = self._store
+        if store is not None:
+            return float(store.torque[store.row(self._slot)])
+        return self._torque
+
+    @torque.setter
+    def torque(self, value: Any) -> None:
+        tau = _finite(value, "torque")
+        if tau and not self.turns:
+            raise ValueError(self._why_not("torque", 0.0, 0.0, tau))
+        if self._store is not None:
+            self._store.set_torque(self._slot, tau)
+        else:
+            self._torque = tau
+
+    def apply_impulse(self, impulse: Any, at: Any = None) -> None:
+        """Give the body an impulse (N s, a Vector) at the world point ``at`` (its position
+        by default): v += J / m, and a body that turns gains (at - pos) x J / I in angular
+        velocity (pymunk's ``apply_impulse_at_world_point``)."""
+        if self._dim != 2:
+            raise TypeError("apply_impulse takes a 2D body; for a 1D body set body.vel")
+        if self._kinematic:
+            raise ValueError(
+                "a kinematic body is moved by the game and takes no impulse: set its vel"
+            )
+        jx, jy = _pair(impulse, "impulse")
+        pos = self.pos
+        px, py = (pos.x, pos.y) if at is None else _pair(at, "at")
+        m = self.mass
+        vel = self.vel
+        self.vel = Vector(vel.x + jx / m, vel.y + jy / m)
+        if self.turns:
+            rx, ry = px - pos.x, py - pos.y
+            self.angular_velocity = self.angular_velocity + (rx * jy - ry * jx) / self.moment
+
+    def local_to_world(self, point: Any) -> Vector:
+        """A point given in the body's own frame (length units), in world coordinates:
+        pos + R(angle) point."""
+        x, y = _pair(point, "point")
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        pos = self.pos
+        return Vector(pos.x + c * x - s * y, pos.y + s * x + c * y)
+
+    def world_to_local(self, point: Any) -> Vector:
+        """A world point (length units) in the body's own frame: R(-angle) (point - pos)."""
+        x, y = _pair(point, "point")
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        pos = self.pos
+        dx, dy = x - pos.x, y - pos.y
+        return Vector(c * dx + s * dy, -s * dx + c * dy)
 
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:
@@ -491,6 +713,37 @@ class Body:
         )
 
 
+def _real(value: Any, name: str) -> float:
+    """A real number (not a bool) as a float; TypeError / ValueError naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
+    number = float(value)
+    if math.isnan(number):
+        raise ValueError(f"{name} must be a number, got nan")
+    return number
+
+
+def _finite(value: Any, name: str) -> float:
+    """A finite real number as a float; TypeError / ValueError naming ``name``."""
+    number = _real(value, name)
+    if not math.isfinite(number):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return number
+
+
+def _pair(value: Any, name: str) -> tuple[float, float]:
+    """A finite 2D point or vector (a Vector or a pair of numbers), naming ``name``."""
+    pair = as_pair(value)
+    if pair is None:
+        raise TypeError(
+            f"{name} must be a Vector or a pair of numbers, got {type(value).__name__} {value!r}"
+        )
+    x, y = float(pair[0]), float(pair[1])
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return x, y
+
+
 def _fixed(name: str, value: Any) -> None:
     """Refuse a change of what a Body is made with, saying how to get it."""
     raise AttributeError(
@@ -519,10 +772,11 @@ class _Advice:
 
 
 _PUSH = (
-    "for a push that lasts, set body.own_acc = force / body.mass (kept until changed), or "
+    "for a push that lasts, set body.own_acc = force / body.mass and body.torque (both kept "
+    "until changed), or "
     "world.add_force(ConstantForce(...)) (engine.forces) for every body"
 )
-_IMPULSE = "change the velocity by impulse / mass: body.vel = body.vel + impulse / body.mass"
+_IMPULSE = "body.apply_impulse(impulse, at=world_point) (at: the position by default)"
 #: pymunk Body names, and what to write here instead.
 PYMUNK_NAMES: dict[str, str] = {
     "force": _PUSH,

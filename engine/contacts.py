@@ -49,6 +49,7 @@ from .faces import (
     signed_distance,
 )
 from .resting import asleep
+from .rotation import Spin
 from .sweep import MAX_IMPACTS, Paths, sweep
 from .sweep_one import asleep_few, solve_few
 
@@ -262,6 +263,7 @@ class Contacts:
         acceleration: np.ndarray | None = None,
         frozen: np.ndarray | None = None,
         sense: bool = True,
+        spin: Spin | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The state after dt with every contact on the way applied: new (x, v) arrays.
 
@@ -269,7 +271,9 @@ class Contacts:
         known (the closed form); else the path is taken from the step's own update.
         ``frozen`` (N,) bool: bodies left alone here (asleep, moved by the game, or in a pile:
         engine.collisions steps them). ``sense``: report the sensors now (else the World
-        calls ``sense`` once the bodies between them have moved too).
+        calls ``sense`` once the bodies between them have moved too). ``spin``: the rotation
+        of the bodies over the step (engine.rotation), None when none turns; the friction of
+        the faces turns those it touches (its ``angle`` and ``omega`` are written).
         """
         self._began, self._ended = [], []
         faces = self.faces
@@ -280,6 +284,14 @@ class Contacts:
             W = (v1 - v0) * (1.0 / dt)
             B = (x1 - x0 - v0 * dt) * (2.0 / (dt * dt))
         self.moved = False
+        look_friction = friction
+        if spin is not None:
+            # Bodies that turn and have friction roll, slip and spin on the faces: none of
+            # them is held still by the look's static-friction test (nan fails every
+            # comparison; the rolling law of engine.resting decides instead).
+            rolls = spin.turns & (friction > 0.0)
+            if rolls.any():
+                look_friction = np.where(rolls, np.nan, friction)
         if len(faces.owner):
             allowed = self.allowed if faces.filters is not None else None
             if self.fast and looks_ready(self.grid):
@@ -287,11 +299,13 @@ class Contacts:
                 # compiled loop over the bodies, the same rows and pairs as below
                 # (engine.face_looks.looks_loop).
                 rows, pb, pf, asleep = first_looks(
-                    self.grid, faces, x0, v0, B, W, dt, radius, friction, self.rest, frozen,
-                    allowed,
+                    self.grid, faces, x0, v0, B, W, dt, radius, look_friction, self.rest,
+                    frozen, allowed,
                 )  # fmt: skip
             else:
-                rows, asleep, cell, reach, a_bound = self._near(x0, v0, B, W, dt, radius, friction)
+                rows, asleep, cell, reach, a_bound = self._near(
+                    x0, v0, B, W, dt, radius, look_friction
+                )
                 if frozen is not None and frozen[rows].any():
                     awake = ~frozen[rows]
                     rows, reach = rows[awake], reach[awake]
@@ -312,11 +326,18 @@ class Contacts:
                 paths = Paths(x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
                 # On the fast path a loop kernel takes the free bodies, however many
                 # (engine.sweep_one.paths_loop: the same bits).
-                solve = solve_few if len(rows) < self.few or self.fast else sweep
-                changed, X, V, capped = solve(
-                    faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
-                    self._began, self._ended, *((True,) if self.fast else ()),
-                )  # fmt: skip
+                if spin is not None and spin.rows_turn(rows):
+                    # Bodies that turn are swept with their spin, in arrays on both paths.
+                    changed, X, V, capped = sweep(
+                        faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
+                        self._began, self._ended, spin,
+                    )  # fmt: skip
+                else:
+                    solve = solve_few if len(rows) < self.few or self.fast else sweep
+                    changed, X, V, capped = solve(
+                        faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
+                        self._began, self._ended, *((True,) if self.fast else ()),
+                    )  # fmt: skip
                 self.capped += capped
                 # Only bodies that met something change: the rest keep (x1, v1) bit for bit.
                 if len(changed):

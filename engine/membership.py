@@ -78,6 +78,12 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
         ),
         np.array([b.kinematic for b in batch], dtype=bool),
         [b.shape for b in batch],
+        (
+            np.array([b.angle for b in batch], dtype=float),
+            np.array([b.angular_velocity for b in batch], dtype=float),
+            np.array([b.moment for b in batch], dtype=float),
+            np.array([b.torque for b in batch], dtype=float),
+        ),
     )
     for b, slot in zip(batch, slots, strict=True):
         b.attach(store, slot)
@@ -96,6 +102,7 @@ def remove(state: WorldState, body: Body) -> None:
     store = state.store
     assert store is not None
     pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
+    spin = (body.angle, body.angular_velocity, body.torque)
     row = store.row(body.slot)
     # The last step's events are named now, before the rows shift, and the body's open
     # contacts end (reported with the next step).
@@ -114,7 +121,7 @@ def remove(state: WorldState, body: Body) -> None:
     for attached in state.forces:
         if attached.bodies is not None and body in attached.bodies:
             attached.bodies.remove(body)
-    body.detach(pos, vel, mass, own)
+    body.detach(pos, vel, mass, own, spin)
     state.changed_structure()
 
 

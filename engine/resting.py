@@ -66,6 +66,7 @@ def rest_paths(
     when: np.ndarray,
     rows: np.ndarray,
     ended: list[Any],
+    turning: tuple[Any, np.ndarray] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Set the sliding path of resting bodies (local ``res``); return those that lift off,
     and those of them that went over a round edge faster than it can turn them.
@@ -79,6 +80,19 @@ def rest_paths(
     and friction mu |a_n| against the motion. While sliding, u' = a_t - sign(u) mu |a_n|;
     the stop comes at t_s = -u / u' (exactly, by the closed form); at rest the body stays
     while |a_t| <= mu |a_n| and else starts sliding at a_t - sign(a_t) mu |a_n|.
+
+    ``turning``: (engine.sweep's ``Turning`` by place among ``rows``, the angular
+    acceleration of the part by active place, set here) when some bodies turn. A disc that
+    turns, with q = m r^2 / I, own angular acceleration alpha0 and slip speed
+    s = u - omega r (engine.rotation), takes the friction f (per mass, along the tangent):
+
+    * rolling (s = 0), while it can: f = -(a_t - alpha0 r) / (1 + q), which keeps s' = 0,
+      so u' = a_t + f (a = g sin(theta) q / (1 + q) down a slope: 2/3 of it for a disc);
+    * slipping: f = -sign(s) mu |a_n| (or, from rolling, -sign(a_t - alpha0 r) mu |a_n|
+      when rolling would need more than that), until s reaches 0 at t_s = -s / s' with
+      s' = a_t - alpha0 r + f (1 + q); it rolls from there;
+
+    and omega' = alpha0 - f q / r. All of it is constant over the part: the closed form.
     """
     L = len(faces.p)
     i = active[res]
@@ -124,6 +138,31 @@ def rest_paths(
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # a subnormal a: inf
         ts = np.where(slowing, -u / np.where(a != 0.0, a, 1.0), np.inf)
     keep = ~lift
+    if turning is not None:
+        turn, Ap = turning
+        spun = turn.rolls[i]
+        if spun.any():
+            # The rolling law (docstring), for the bodies that turn.
+            q, rr = turn.q[i], r[i]
+            om, al0 = turn.omega[i], turn.alpha[i]
+            s = u - om * rr
+            gs = a_t - al0 * rr
+            tol = 1e-12 * (np.abs(u) + np.abs(om * rr))
+            can_roll = np.abs(gs) <= fr * (1.0 + q) * (1.0 + 1e-12)
+            f = np.where(
+                s > tol,
+                -fr,
+                np.where(s < -tol, fr, np.where(can_roll, -gs / (1.0 + q), -np.copysign(fr, gs))),
+            )
+            ds = gs + f * (1.0 + q)
+            slows = ((s > tol) & (ds < 0.0)) | ((s < -tol) & (ds > 0.0))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ts_turn = np.where(slows, -s / np.where(ds != 0.0, ds, 1.0), np.inf)
+            a = np.where(spun, a_t + f, a)
+            ts = np.where(spun, ts_turn, ts)
+            turned = spun & keep
+            with np.errstate(divide="ignore", invalid="ignore"):
+                Ap[res[turned]] = (al0 - f * q / rr)[turned]
     k = res[keep]
     Va[k] = tang[keep] * u[keep][:, None]
     Bp[k] = Wp[k] = tang[keep] * a[keep][:, None]

@@ -55,6 +55,8 @@ class WorldSnapshot:
     links: tuple[Any, ...] = ()  # each link in force: (what it joins, warned, last impulse)
     moves: tuple[Any, ...] = ()  # (row, target): kinematic bodies' pos written, not yet reached
     events: tuple[Any, ...] | None = None  # the contacts open (engine.events), by row and place
+    #: Rotation by row: (angle, angular velocity, moment, torque) arrays (engine.rotation).
+    spin: tuple[Any, ...] | None = None
 
 
 def take(state: WorldState) -> WorldSnapshot:
@@ -81,6 +83,12 @@ def take(state: WorldState) -> WorldSnapshot:
         pairs=state.collisions.state(),
         events=_events_state(state),
         links=tuple((_describe(state, k), k.warned, k.impulse) for k in state.links),
+        spin=None
+        if empty
+        else tuple(
+            a.copy()
+            for a in (store.angle, store.omega, store.moment, store.torque)  # type: ignore[union-attr]
+        ),
         moves=tuple(
             (state.bodies.index(b), tuple(float(c) for c in target))
             for b, target in state.targets.items()
@@ -113,6 +121,9 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
         )
         store.mass = np.array(masses, dtype=float)
         store.own = np.array(own_acc, dtype=float).reshape(store.x.shape)
+        if snapshot.spin is not None:
+            store.angle, store.omega, store.moment, store.torque = (a.copy() for a in snapshot.spin)
+            store.set_moments(store.moment)
     state.t_base = float(snapshot.t_base)
     state.dt = None if snapshot.dt is None else float(snapshot.dt)
     state.void_budget()

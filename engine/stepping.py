@@ -27,6 +27,7 @@ from .event_dispatch import report, settle
 from .forcefield import ForceModel
 from .integrators import Integrator
 from .links import LinkSolver
+from .rotation import Spin
 from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
 
@@ -86,8 +87,10 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
             f"pass the float range (1.8e308 s)"
         )
     after = _apply_targets(state, dt) if state.targets else None
-    if state.bodies and affine and after is None and prepare_affine(state, dt, model, name):
-        return True
+    spins = state.store is not None and state.store.spins()
+    if state.bodies and affine and after is None and not spins:
+        if prepare_affine(state, dt, model, name):
+            return True
     if state.bodies:
         _step_general(state, dt, name, step, model)
     else:
@@ -254,6 +257,14 @@ def _step_once(
     else:
         x1, v1 = step(store.x, store.v, model.accel, t0, dt)
     state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
+    # Bodies that turn turn freely by the closed form (engine.rotation); the contacts
+    # change the spin of those they touch.
+    spin = None
+    if store.turns_any:
+        spin = Spin.free(
+            store.angle, store.omega, store.inv_moment, store.torque, store.mass,
+            store.radius, dt,
+        )  # fmt: skip
     v_method = v1
     v_free = v1
     contacts = state.contacts
@@ -267,6 +278,10 @@ def _step_once(
         pile = pairs.plan(store.x, store.v, x1, v1, pull, dt, store, held)
         if pile is not None:
             frozen = pile if frozen is None else frozen | pile
+            if spin is not None:
+                # In this version the pile's solver has no lever arms: a disc in a pile
+                # does not turn (its spin stops; engine.rotation).
+                spin.angle[pile], spin.omega[pile] = spin.angle0[pile], 0.0
             if contacts is not None:
                 contacts.rest[pile] = -1  # their faces are the pile's rows now
     if contacts is not None:
@@ -287,6 +302,7 @@ def _step_once(
             model.a0 if step is None else None,
             frozen,
             sense=not state.pairs_on,
+            spin=spin,
         )
         if contacts.moved:
             state.anchor = None  # the closed form starts anew from the changed state
@@ -328,6 +344,12 @@ def _step_once(
             kinked = (v1 != v_free).any(axis=1)
         x1, v1 = _solve_links(state, store, x1, v1, dt, kinked)
     store.prev_x, store.x, store.v = store.x, x1, v1
+    if spin is not None:
+        if state.pairs_on and state.collisions.any_asleep:
+            # A sleeping body stops turning where it fell asleep.
+            asleep = state.collisions.asleep
+            spin.angle[asleep], spin.omega[asleep] = spin.angle0[asleep], 0.0
+        store.angle, store.omega = spin.angle, spin.omega
     state.void_budget()
 
 

@@ -75,6 +75,16 @@ class BodyStore:
         #: Each body's shape (Body.shape: engine.colliders, in the body's frame), None for a
         #: disc or a point (engine.shaped turns them into narrowphase kinds).
         self.shapes: list[Any] = []
+        # Rotation (engine.rotation), used in 2D only: each body's angle (rad), angular
+        # velocity (rad/s), moment of inertia (kg m^2; inf for a body that does not turn), its
+        # inverse (0 for one that does not turn) and own constant torque (N m).
+        self.angle = np.zeros(0)
+        self.omega = np.zeros(0)
+        self.moment = np.zeros(0)
+        self.inv_moment = np.zeros(0)
+        self.torque = np.zeros(0)
+        #: Whether any body turns (1 / I > 0): a World with none does no rotation at all.
+        self.turns_any = False
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
 
     def __len__(self) -> int:
@@ -98,6 +108,7 @@ class BodyStore:
         filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
         kinematic: np.ndarray | None = None,
         shapes: list[Any] | None = None,
+        rotation: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None,
     ) -> list[int]:
         """Add rows for new bodies; return their slots (one array copy for the whole batch).
 
@@ -105,7 +116,8 @@ class BodyStore:
         friction 0.5 (Body's defaults) when None. ``filters``: (group, categories, mask)
         integer arrays; engine.filters' default (no group, every bit) when None.
         ``kinematic``: (k,) bools, all False when None. ``shapes``: each body's shape (None:
-        a disc or a point), all None when None.
+        a disc or a point), all None when None. ``rotation``: (angle, angular velocity,
+        moment, torque) arrays; at rest, not turning (moment inf) when None.
         """
         n0, k = len(self), len(mass)
         if material is None:
@@ -122,6 +134,13 @@ class BodyStore:
         kin = np.zeros(k, dtype=bool) if kinematic is None else kinematic
         self.kinematic = np.concatenate([self.kinematic, kin])
         self.shapes.extend([None] * k if shapes is None else shapes)
+        if rotation is None:
+            rotation = (np.zeros(k), np.zeros(k), np.full(k, np.inf), np.zeros(k))
+        self.angle = np.concatenate([self.angle, rotation[0]])
+        self.omega = np.concatenate([self.omega, rotation[1]])
+        self.moment = np.concatenate([self.moment, rotation[2]])
+        self.torque = np.concatenate([self.torque, rotation[3]])
+        self._moments_changed()
         self.x = np.concatenate([self.x, x])
         self.v = np.concatenate([self.v, v])
         self.prev_x = np.concatenate([self.prev_x, x])
@@ -142,9 +161,48 @@ class BodyStore:
         self.group, self.categories = self.group[keep], self.categories[keep]
         self.mask, self.kinematic = self.mask[keep], self.kinematic[keep]
         del self.shapes[i]
+        self.angle, self.omega = self.angle[keep], self.omega[keep]
+        self.moment, self.torque = self.moment[keep], self.torque[keep]
+        self._moments_changed()
         rows = self._row_of
         rows[slot] = -1
         rows[rows > i] -= 1
+
+    def _moments_changed(self) -> None:
+        """Recompute 1 / I (0 where I is inf: the body does not turn) and ``turns_any``."""
+        with np.errstate(divide="ignore"):
+            self.inv_moment = np.where(np.isfinite(self.moment), 1.0 / self.moment, 0.0)
+        self.turns_any = bool((self.inv_moment > 0.0).any())
+
+    def spins(self) -> bool:
+        """Whether any body turns now or is made to (an angular velocity or a torque)."""
+        return self.turns_any and bool(self.omega.any() or self.torque.any())
+
+    def set_spin(self, slot: int, angle: float | None, omega: float | None) -> None:
+        """Set one body's angle (rad) and/or angular velocity (rad/s): a state written by
+        hand, as a velocity is (a sleeping body wakes)."""
+        row = self.row(slot)
+        if angle is not None:
+            self.angle[row] = angle
+        if omega is not None:
+            self.omega[row] = omega
+        self._on_state(row, False)  # a disc turned in place has not moved
+
+    def set_torque(self, slot: int, value: float) -> None:
+        """Set one body's own constant torque (N m)."""
+        row = self.row(slot)
+        self.torque[row] = value
+        self._on_state(row, False)
+
+    def set_moments(self, moments: np.ndarray) -> None:
+        """Set every body's moment of inertia at once (a snapshot restored)."""
+        self.moment = moments
+        self._moments_changed()
+
+    def set_moment(self, slot: int, value: float) -> None:
+        """Set one body's moment of inertia (kg m^2; inf: it does not turn)."""
+        self.moment[self.row(slot)] = value
+        self._moments_changed()
 
     @property
     def row_of(self) -> np.ndarray:

@@ -39,6 +39,7 @@ import numpy as np
 from .faces import Faces, dot, face_normals
 from .impact import disc_hits, line_hits
 from .resting import project, rest_paths
+from .rotation import Spin
 
 __all__ = ["MAX_IMPACTS", "Paths", "PushOut", "bounce", "first_hits", "sweep"]
 
@@ -78,6 +79,7 @@ def sweep(
     push_out: PushOut,
     began: list[Any],
     ended: list[Any],
+    spin: Spin | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
     """Move the bodies in ``rows`` through their step, impact by impact, in time order.
 
@@ -88,6 +90,12 @@ def sweep(
     reported in ``began`` and ``ended`` (arrays of rows, colliders, points, normals,
     impulses, times). Returns the rows that met anything (struck, rested, slid or lifted
     off), their new positions and velocities, and how many bodies were capped.
+
+    ``spin`` (engine.rotation), when some of the bodies turn: they turn on each part of the
+    path, freely in flight and by the rolling law on a face (engine.resting), and a bounce's
+    friction acts at the point of contact (``bounce``); their angles and angular velocities
+    are written into ``spin`` for the rows returned. Bodies that do not turn are swept as
+    without it, to the bit.
     """
     x0, v0, Bf, Wf, dt, t0 = paths.x0, paths.v0, paths.B, paths.W, paths.dt, paths.t0
     X, V = x0.take(rows, axis=0), v0.take(rows, axis=0)
@@ -100,9 +108,20 @@ def sweep(
     active = np.arange(len(rows))
     slot = np.full(len(rows), -1, dtype=np.intp)  # row -> index among the active
     capped = 0
+    turn: Turning | None = None
+    if spin is not None:
+        # Rows that turn under friction (the rest keep their free spin, set in ``spin``).
+        tr = spin.turns[rows] & (mub > 0.0)
+        turn = Turning(
+            spin.angle0[rows], spin.omega0[rows].copy(), np.where(tr, spin.q[rows], 0.0),
+            spin.alpha[rows], tr,
+        )  # fmt: skip
+        TH = turn.angle.copy()
     for _ in range(MAX_IMPACTS):
         Xa, Va, ta = X[active], V[active], left[active]
         Bp, Wp, ra = Bb[active], Wb[active], rest[active]
+        # The angular acceleration of the part (engine.resting sets it for those that roll).
+        Ap = turn.alpha[active] if turn is not None else np.zeros(0)
         slot[active] = np.arange(len(active))
         live = np.flatnonzero((slot[pb] >= 0) & (pf != rest[pb]))
         bi, fj = slot[pb[live]], pf[live]
@@ -112,7 +131,7 @@ def sweep(
         if len(res):
             lifted, edge = rest_paths(
                 faces, res, active, Xa, Va, Bp, Wp, dur, ra, Wb, mub, r, stop,
-                t0 + dt - ta, rows, ended,
+                t0 + dt - ta, rows, ended, None if turn is None else (turn, Ap),
             )  # fmt: skip
             if len(lifted):
                 rest[active[lifted]] = -1
@@ -134,8 +153,14 @@ def sweep(
         Xn = Xa + Va * tc + Bp * (0.5 * tc * tc)
         Vn = Va + Wp * tc
         stopped = stop & ~hit
-        if stopped.any():
-            Vn[stopped] = 0.0  # slid to a stop: exactly at rest
+        halted = stopped
+        if turn is not None:
+            OMn = turn.omega[active] + Ap * tt
+            THn = TH[active] + turn.omega[active] * tt + Ap * (0.5 * tt * tt)
+            # A body that turns and stops slipping rolls on (engine.resting).
+            halted = stopped & ~turn.rolls[active]
+        if halted.any():
+            Vn[halted] = 0.0  # slid to a stop: exactly at rest
         h = np.flatnonzero(hit)
         done = np.zeros(len(active), dtype=bool)
         if len(h):
@@ -158,6 +183,7 @@ def sweep(
                 rows,
                 began,
                 ended,
+                None if turn is None else (turn, OMn),
             )
             touched[active[h]] = True
         rs = np.flatnonzero(rest[active] >= 0)
@@ -172,6 +198,9 @@ def sweep(
                 moved = push_out(Xr, Vr, r[active[rolled]], rows[active[rolled]])
                 Xn[rolled], Vn[rolled] = Xr, Vr
                 rest[active[rolled[moved]]] = -1
+        if turn is not None:
+            roll_exactly(faces, turn, active, rest, Xn, Vn, OMn, r)
+            turn.omega[active], TH[active] = OMn, THn
         X[active], V[active] = Xn, Vn
         more = (hit | stopped) & ~done
         left[active] = np.where(more, ta - tt, 0.0)
@@ -192,7 +221,49 @@ def sweep(
     touched |= resting[rows] >= 0  # lifted off this step
     resting[rows] = rest
     t = np.flatnonzero(touched)
+    if turn is not None and spin is not None:
+        # Only the rows that turn under friction: the others keep their free spin.
+        k = t[turn.rolls[t]]
+        spin.angle[rows[k]], spin.omega[rows[k]] = TH[k], turn.omega[k]
     return rows[t], X[t], V[t], capped
+
+
+@dataclass
+class Turning:
+    """The spin of the bodies swept, by place among the rows (engine.rotation's ``Spin``
+    for them): angle (rad) and angular velocity (rad/s) at the start, ``q`` = m r^2 / I
+    (0 where friction cannot turn them), own angular acceleration (rad/s^2), and ``rolls``:
+    which turn under friction."""
+
+    angle: np.ndarray
+    omega: np.ndarray
+    q: np.ndarray
+    alpha: np.ndarray
+    rolls: np.ndarray
+
+
+def roll_exactly(
+    faces: Faces,
+    turn: Turning,
+    active: np.ndarray,
+    rest: np.ndarray,
+    Xn: np.ndarray,
+    Vn: np.ndarray,
+    OMn: np.ndarray,
+    r: np.ndarray,
+) -> None:
+    """Bodies that turn and end a part of the step resting on a face with a slip speed s =
+    u - omega r under 1e-9 of their speeds roll: omega = u / r exactly (in place on OMn),
+    so rounding does not build up into a slip over many steps."""
+    on = np.flatnonzero((rest[active] >= 0) & turn.rolls[active])
+    if not len(on):
+        return
+    i = active[on]
+    nrm, _ = face_normals(faces, rest[i], Xn[on])
+    u = Vn[on, 1] * nrm[:, 0] - Vn[on, 0] * nrm[:, 1]  # along t = (-n_y, n_x)
+    rim = OMn[on] * r[i]
+    near = np.abs(u - rim) <= 1e-9 * (np.abs(u) + np.abs(rim))
+    OMn[on[near]] = u[near] / r[i[near]]
 
 
 def first_hits(
@@ -281,6 +352,7 @@ def bounce(
     rows: np.ndarray,
     began: list[Any],
     ended: list[Any],
+    turning: tuple[Turning, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Apply the impacts of the bodies ``active[h]`` (places among ``rows``; the arrays are
     ``sweep``'s), at the World's times ``when``: restitution, friction, rest.
@@ -290,6 +362,13 @@ def bounce(
     With the unit normal n: v_n' = -e v_n; the tangential speed loses up to mu (1 + e)
     |v_n| (the friction impulse is at most mu times the normal one), never reversing.
     A rebound slower than |a_n| dt / 2 (it would fly for less than one step) settles.
+
+    ``turning``: (the bodies' spin, their angular velocities by active place, written here)
+    when some turn. Friction then acts at the point of contact: it takes the slip speed
+    s = u - omega r toward 0 (engine.rotation: an impulse per mass du changes s by
+    du (1 + q)), by at most mu (1 + e) |v_n| in u, so u' = u + du and omega' =
+    omega - du q / r; a ball thrown spinning onto a floor leaves it rolling, or with the
+    spin friction could not take out.
     """
     i = active[h]
     f = face[h]
@@ -308,6 +387,20 @@ def bounce(
     settles = (a_n < 0.0) & (vn_out <= -a_n * (0.5 * dt))
     vn_out = np.where(settles, 0.0, vn_out)
     new_v = vt * scale[:, None] + n * vn_out[:, None]
+    if turning is not None:
+        turn, OMn = turning
+        spun = np.flatnonzero(turn.rolls[i])
+        if len(spun):
+            k, ik = h[spun], i[spun]
+            nk = n[spun]
+            tang = np.stack([-nk[:, 1], nk[:, 0]], axis=1)
+            u = dot(vel[spun], tang)
+            q, rk = turn.q[ik], r[ik]
+            slip = u - OMn[k] * rk
+            cap = mu[spun] * (1.0 + e[spun]) * -vn_in[spun]  # the most friction takes off u
+            du = -np.copysign(np.minimum(np.abs(slip) / (1.0 + q), cap), slip)
+            new_v[spun] = tang * (u + du)[:, None] + nk * vn_out[spun][:, None]
+            OMn[k] = OMn[k] - du * q / rk
     # A body resting on one face that hits another across it (a floor into a wall) stays
     # resting on the first; anything else that bounces is in flight.
     old = rest[i]

@@ -122,6 +122,11 @@ class World:
         return tuple(self._s.bodies)
 
     @property
+    def turning(self) -> tuple[Body, ...]:
+        """The bodies that turn (``Body.turns``); with none, a step does no rotation."""
+        return tuple(b for b in self._s.bodies if b.turns)
+
+    @property
     def forces(self) -> tuple[Force, ...]:
         """The forces in the world, in the order they were added."""
         return tuple(a.force for a in self._s.forces)

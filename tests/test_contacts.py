@@ -140,7 +140,8 @@ def test_materials_multiply() -> None:
     w = World(integrator="exact")
     w.add_force(Gravity((0.0, -G)))
     w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=0.5))
-    b = ball(w, (0.0, r), (v0, 0.0), radius=r, friction=0.3)
+    # A disc that does not turn slides as a block (one that turns rolls: test_rotation.py).
+    b = ball(w, (0.0, r), (v0, 0.0), radius=r, friction=0.3, fixed_rotation=True)
     while w.t < v0 / (0.15 * G) + 0.1:
         w.step(1 / 60)
     assert rel_err(b.pos.x, v0 * v0 / (2 * 0.15 * G)) < REL and b.vel.x == 0.0
@@ -428,7 +429,8 @@ def test_zeno_cascade_ends_by_the_closed_form_time() -> None:
 def test_slide_stops_at_v0_squared_over_2_mu_g() -> None:
     v0, mu, r, dt = 5.0, 0.3, 0.5, 1 / 60
     w, floor = floor_world("exact")
-    b = ball(w, (0.0, r), (v0, 0.0), radius=r, friction=mu)
+    # The block's law: a disc that does not turn (one that turns rolls: test_rotation.py).
+    b = ball(w, (0.0, r), (v0, 0.0), radius=r, friction=mu, fixed_rotation=True)
     t_stop = v0 / (mu * G)
     while w.t < t_stop + 0.5:
         w.step(dt)
@@ -444,13 +446,14 @@ def test_slide_stops_at_v0_squared_over_2_mu_g() -> None:
 
 
 def _slope_world(theta: float, mu: float) -> tuple[World, Body, Vector]:
-    """A Plane through the origin rising at theta; the ball touching it at the origin."""
+    """A Plane through the origin rising at theta; the ball touching it at the origin. It
+    does not turn: the block's law (a disc that turns rolls down: test_rotation.py)."""
     n = Vector(-math.sin(theta), math.cos(theta))
     w = World(integrator="exact")
     w.add_force(Gravity((0.0, -G)))
     w.add_collider(Plane((0.0, 0.0), n))
     r = 0.5
-    b = ball(w, (n.x * r, n.y * r), radius=r, friction=mu)
+    b = ball(w, (n.x * r, n.y * r), radius=r, friction=mu, fixed_rotation=True)
     return w, b, Vector(math.cos(theta), math.sin(theta))
 
 
@@ -544,6 +547,7 @@ def test_bounce_event_point_normal_impulse_time() -> None:
             radius=r,
             restitution=e,
             friction=mu,
+            fixed_rotation=True,  # the closed forms of a disc that does not turn
         )
     )
     t_hit = math.sqrt(2 * h0 / G)

@@ -250,7 +250,7 @@ def test_the_contacts_example_meets_the_peg_the_ramp_and_the_floor(capsys) -> No
     assert names[:3] == ["peg", "ramp", "floor"] and set(names[3:]) == {"floor"}
     assert len(names) > 10  # bounce after bounce
     # The peg first, when the ball's centre is 0.75 m from the peg's: a free fall from 8 m.
-    drop = 8 - 5 - math.sqrt(0.75**2 - 0.4**2)
+    drop = 8 - 5 - math.sqrt(0.75**2 - 0.3**2)
     assert lines[0] == f"peg {math.sqrt(2 * drop / 9.81):.3f} s"
     assert f"It prints the peg at {math.sqrt(2 * drop / 9.81):.3f} s" in " ".join(README.split())
     world, ball, floor = scope["world"], scope["ball"], scope["floor"]
@@ -366,3 +366,13 @@ def test_the_readme_says_how_long_the_tradeoff_demo_takes() -> None:
     text = " ".join(README.split())
     said = f"A whole run takes {TAKES[False]} on a 2-core machine (`--quick`: {TAKES[True]})"
     assert said in text
+
+
+def test_the_rolling_example_prints_what_the_readme_says(capsys) -> None:
+    scope: dict[str, object] = {}
+    exec(block("slope = math.radians(30)"), scope)  # noqa: S102
+    printed = capsys.readouterr().out.strip()
+    assert f"It prints `{printed}`" in " ".join(README.split())
+    # (2/3) g sin(30 degrees) t at t = 1 s, and the rim's speed equal to it: rolling.
+    speed, rim, _ = printed.split()
+    assert float(speed) == float(rim) == round(2 / 3 * 9.81 * 0.5, 6)

@@ -82,6 +82,7 @@ def column(n: int, heavy: float) -> Callable[[int, int], tuple[World, float | No
                 radius=RADIUS,
                 restitution=0.5,
                 friction=0.5,
+                fixed_rotation=True,  # the pile's solver, as in engine.bench's pit
             )
             for k in range(n)
         )

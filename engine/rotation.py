@@ -1,0 +1,72 @@
+"""Rotation: the angle and angular velocity of bodies that turn, over one step.
+
+A body that turns (``Body.turns``: a disc with a moment of inertia I, not ``fixed_rotation``,
+not kinematic) has an angle theta (rad, counter-clockwise) and an angular velocity omega
+(rad/s). Its own torque tau (N m, ``Body.torque``) is constant over a step, so the angular
+acceleration alpha = tau / I is too, and the closed form is exact:
+
+    theta(t) = theta0 + omega0 t + alpha t^2 / 2,      omega(t) = omega0 + alpha t.
+
+That is what a step does to every body that turns and meets nothing (``Spin.free``). A body
+that touches a collider turns under its friction too (engine.sweep, engine.resting: rolling,
+slipping, the spin a bounce gives); contacts between bodies do not turn them yet, and a
+sleeping body stops turning.
+
+Model no more than a scene needs: a point, a body with corners (in this version), a kinematic
+body or one with ``fixed_rotation=True`` has 1 / I = 0, and a World none of whose bodies turn
+does none of this (``BodyStore.turns_any``).
+
+For contacts, a body that turns is described by q = m r^2 / I (2 for a solid disc, 1 for a
+hoop, 0 for what does not turn): the point of a disc of radius r that touches a surface of
+unit normal n (toward the disc) is at -r n from its centre, and moves along the tangent
+t = (-n_y, n_x) at the slip speed s = v.t - omega r. A tangential impulse J t there changes
+v.t by J / m and omega by -J r / I, so s by J (1 + q) / m.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Spin"]
+
+
+@dataclass
+class Spin:
+    """The rotation of a World's bodies over one step, by World row: where it started
+    (``angle0``, ``omega0``) and where it ends (``angle``, ``omega``, written by the contacts
+    for the bodies they move), with each body's ``q`` = m r^2 / I (0: does not turn) and own
+    angular acceleration ``alpha`` = tau / I (rad/s^2)."""
+
+    angle0: np.ndarray  # (N,) rad
+    omega0: np.ndarray  # (N,) rad/s
+    angle: np.ndarray  # (N,) rad, after the step
+    omega: np.ndarray  # (N,) rad/s, after the step
+    q: np.ndarray  # (N,) m r^2 / I, no unit
+    alpha: np.ndarray  # (N,) rad/s^2
+    turns: np.ndarray  # (N,) bool: the rows that turn
+
+    @classmethod
+    def free(
+        cls,
+        angle0: np.ndarray,
+        omega0: np.ndarray,
+        inv_moment: np.ndarray,
+        torque: np.ndarray,
+        mass: np.ndarray,
+        radius: np.ndarray,
+        dt: float,
+    ) -> Spin:
+        """Every body turned freely for ``dt`` s by the closed form (exact for a constant
+        torque); the bodies that do not turn (1 / I = 0) keep their angle."""
+        turns = inv_moment > 0.0
+        alpha = torque * inv_moment
+        angle = angle0 + omega0 * dt + alpha * (0.5 * dt * dt)
+        omega = omega0 + alpha * dt
+        q = mass * radius * radius * inv_moment
+        return cls(angle0, omega0, angle, omega, q, alpha, turns)
+
+    def rows_turn(self, rows: np.ndarray) -> bool:
+        """Whether any of the World ``rows`` turns."""
+        return bool(self.turns[rows].any())
