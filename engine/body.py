@@ -633,6 +633,28 @@ class Body:
             rx, ry = px - pos.x, py - pos.y
             self.angular_velocity = self.angular_velocity + (rx * jy - ry * jx) / self.moment
 
+    def apply_force(self, force: Any, at: Any = None) -> None:
+        """Push the body with ``force`` (N, a Vector) at the world point ``at`` (its position
+        by default) over the World's next step only, as pymunk's ``apply_force_at_world_point``
+        does (call it every frame for a force that lasts; ``own_acc`` and ``torque`` keep
+        theirs). A body that turns takes the torque (at - pos) x F too."""
+        if self._dim != 2:
+            raise TypeError("apply_force takes a 2D body; for a 1D body set body.own_acc")
+        fx, fy = _pair(force, "force")
+        store = self._store
+        if store is None:
+            raise ValueError(
+                "apply_force acts over a World's next step: add the body to a World first "
+                "(or set body.own_acc for its own constant acceleration)"
+            )
+        if self._kinematic:
+            raise ValueError("a kinematic body is moved by the game and takes no force")
+        pos = self.pos
+        px, py = (pos.x, pos.y) if at is None else _pair(at, "at")
+        torque = (px - pos.x) * fy - (py - pos.y) * fx if self.turns else 0.0
+        m = self.mass
+        store.push(self._slot, (fx / m, fy / m), torque)
+
     def local_to_world(self, point: Any) -> Vector:
         """A point given in the body's own frame (length units), in world coordinates:
         pos + R(angle) point."""
@@ -777,13 +799,16 @@ _PUSH = (
     "world.add_force(ConstantForce(...)) (engine.forces) for every body"
 )
 _IMPULSE = "body.apply_impulse(impulse, at=world_point) (at: the position by default)"
+_IMPULSE_LOCAL = "body.apply_impulse(impulse, at=body.local_to_world(point))"
 #: pymunk Body names, and what to write here instead.
 PYMUNK_NAMES: dict[str, str] = {
     "force": _PUSH,
-    "apply_force_at_world_point": _PUSH,
-    "apply_force_at_local_point": _PUSH,
+    "apply_force_at_world_point": "body.apply_force(force, at=world_point): for the next "
+    "step only, as pymunk's",
+    "apply_force_at_local_point": "body.apply_force(force, at=body.local_to_world(point)): for "
+    "the next step only, as pymunk's",
     "apply_impulse_at_world_point": _IMPULSE,
-    "apply_impulse_at_local_point": _IMPULSE,
+    "apply_impulse_at_local_point": _IMPULSE_LOCAL,
     "space": "body.world is the World it is in",
     "body_type": "Body(..., kinematic=True) makes a body the game moves; static geometry is a "
     "collider (world.add_collider(Segment(...)))",

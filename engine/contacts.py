@@ -326,17 +326,16 @@ class Contacts:
                 paths = Paths(x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
                 # On the fast path a loop kernel takes the free bodies, however many
                 # (engine.sweep_one.paths_loop: the same bits).
-                if spin is not None and spin.rows_turn(rows):
-                    # Bodies that turn are swept with their spin, in arrays on both paths.
-                    changed, X, V, capped = sweep(
+                turning = spin if spin is not None and spin.rows_turn(rows) else None
+                if len(rows) < self.few or self.fast:
+                    changed, X, V, capped = solve_few(
                         faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
-                        self._began, self._ended, spin,
+                        self._began, self._ended, self.fast, turning,
                     )  # fmt: skip
                 else:
-                    solve = solve_few if len(rows) < self.few or self.fast else sweep
-                    changed, X, V, capped = solve(
+                    changed, X, V, capped = sweep(
                         faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
-                        self._began, self._ended, *((True,) if self.fast else ()),
+                        self._began, self._ended, turning,
                     )  # fmt: skip
                 self.capped += capped
                 # Only bodies that met something change: the rest keep (x1, v1) bit for bit.

@@ -87,8 +87,11 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
             f"pass the float range (1.8e308 s)"
         )
     after = _apply_targets(state, dt) if state.targets else None
-    spins = state.store is not None and state.store.spins()
-    if state.bodies and affine and after is None and not spins:
+    store = state.store
+    # Bodies that turn, or a force applied for this step only (Body.apply_force), take the
+    # general step: the affine kernel knows neither.
+    plain = store is None or not (store.spins() or store.pushes)
+    if state.bodies and affine and after is None and plain:
         if prepare_affine(state, dt, model, name):
             return True
     if state.bodies:
@@ -96,6 +99,8 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
     else:
         _quiet(state)  # nothing moved: no solver reports anything
     count.n += 1
+    if store is not None and store.pushes:
+        store.release_pushes()  # Body.apply_force lasts one step, as pymunk's force does
     if after is not None:
         # A kinematic body moved by pos stops there: its velocity is what it was before.
         held = state.store
@@ -257,10 +262,10 @@ def _step_once(
     else:
         x1, v1 = step(store.x, store.v, model.accel, t0, dt)
     state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
-    # Bodies that turn turn freely by the closed form (engine.rotation); the contacts
-    # change the spin of those they touch.
+    # Bodies that turn turn freely by the closed form (engine.rotation); the colliders
+    # change the spin of those they touch (without colliders, discs at rest stay so).
     spin = None
-    if store.turns_any:
+    if store.turns_any and (state.contacts is not None or store.spins()):
         spin = Spin.free(
             store.angle, store.omega, store.inv_moment, store.torque, store.mass,
             store.radius, dt,

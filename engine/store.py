@@ -85,6 +85,9 @@ class BodyStore:
         self.torque = np.zeros(0)
         #: Whether any body turns (1 / I > 0): a World with none does no rotation at all.
         self.turns_any = False
+        #: Forces applied for the next step only (Body.apply_force): slot -> the own
+        #: acceleration and torque to go back to after it.
+        self.pushes: dict[int, tuple[Any, float]] = {}
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
 
     def __len__(self) -> int:
@@ -166,6 +169,7 @@ class BodyStore:
         self._moments_changed()
         rows = self._row_of
         rows[slot] = -1
+        self.pushes.pop(slot, None)
         rows[rows > i] -= 1
 
     def _moments_changed(self) -> None:
@@ -187,6 +191,26 @@ class BodyStore:
         if omega is not None:
             self.omega[row] = omega
         self._on_state(row, False)  # a disc turned in place has not moved
+
+    def push(self, slot: int, acc: tuple[float, float], torque: float) -> None:
+        """Add ``acc`` (length units / s^2) to one body's own acceleration and ``torque``
+        (N m) to its torque for the next step only (``release_pushes`` takes them back)."""
+        row = self.row(slot)
+        if slot not in self.pushes:
+            self.pushes[slot] = (tuple(self.own[row].tolist()), float(self.torque[row]))
+        own = self.own[row]
+        self.set_own_acc(slot, (float(own[0]) + acc[0], float(own[1]) + acc[1]))
+        if torque:
+            self.set_torque(slot, float(self.torque[row]) + torque)
+
+    def release_pushes(self) -> None:
+        """A step has passed: the bodies pushed for it go back to their own acceleration and
+        torque, exactly as they were."""
+        pushes, self.pushes = self.pushes, {}
+        for slot, (own, torque) in pushes.items():
+            if self._row_of[slot] >= 0:  # (not removed meanwhile)
+                self.set_own_acc(slot, own)
+                self.set_torque(slot, torque)
 
     def set_torque(self, slot: int, value: float) -> None:
         """Set one body's own constant torque (N m)."""

@@ -24,13 +24,14 @@ round face's quartic (whose eigenvalues are numpy's LAPACK) is left to ``_path_o
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from . import kernels
 from .faces import Faces
 from .impact import TOUCH, Pair, disc_hit_one, line_hit_one
+from .rotation import Spin
 from .sweep import MAX_IMPACTS, Paths, PushOut
 
 __all__ = ["asleep_few", "solve_few"]
@@ -78,12 +79,15 @@ def solve_few(
     began: list[Any],
     ended: list[Any],
     fast: bool = False,
+    spin: Spin | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
     """``engine.sweep.sweep``, one body after another in Python floats (for a few rows): the
-    same arguments and results. ``fast``: the free bodies go through the loop kernel
-    ``paths_loop`` first (the same bits), the rest through ``_path_one``."""
+    same arguments and results (``spin`` too: the bodies that turn under friction have
+    their angle and angular velocity written there). ``fast``: the free bodies go through
+    the loop kernel ``paths_loop`` first (the same bits), the rest through ``_path_one``."""
+    spins = _spins_of(spin, rows, paths.friction)
     if fast:
-        return _solve_fast(faces, paths, rows, pb, pf, resting, push_out, began, ended)
+        return _solve_fast(faces, paths, rows, pb, pf, resting, push_out, began, ended, spin, spins)
     x0, v0, Bf, Wf, dt, t0 = paths.x0, paths.v0, paths.B, paths.W, paths.dt, paths.t0
     faces_of: list[list[int]] = [[] for _ in range(len(rows))]
     for b, f in zip(pb.tolist(), pf.tolist(), strict=True):
@@ -105,9 +109,10 @@ def solve_few(
     Xc: list[float] = []
     Vc: list[float] = []
     for k, row in enumerate(row_list):
-        x, v, touched, rest_k, cap = _path_one(
+        turn = None if spins is None else spins.one(k)
+        x, v, touched, rest_k, cap, turned = _path_one(
             faces, k, row, X[k], V[k], Bl[k], Wl[k], r[k], e[k], mu[k], m[k], rest[k],
-            faces_of[k], dt, t0, began_keyed, ended_keyed, push_out,
+            faces_of[k], dt, t0, began_keyed, ended_keyed, push_out, turn,
         )  # fmt: skip
         capped += cap
         if touched:
@@ -115,6 +120,8 @@ def solve_few(
             Xc += x  # flat: one np.array of floats is cheaper than one of pairs
             Vc += v
             resting[row] = rest_k
+            if turned is not None and spin is not None:
+                spin.angle[row], spin.omega[row] = turned
     _keep_events(began, ended, began_keyed, ended_keyed)
     shape = (len(changed), 2)
     return (
@@ -126,6 +133,41 @@ def solve_few(
 
 
 Keyed = list[tuple[tuple[int, int, int], tuple[Any, ...]]]
+#: A body that turns under friction, for ``_path_one``: (angle, angular velocity, q = m r^2 /
+#: I, own angular acceleration) at the step's start (engine.rotation).
+SpinOne = tuple[float, float, float, float]
+
+
+def _spins_of(spin: Spin | None, rows: np.ndarray, friction: np.ndarray) -> Spins | None:
+    """The spin of the ``rows`` that turn under friction (engine.sweep's ``Turning.rolls``),
+    by place among them; None when none does."""
+    if spin is None:
+        return None
+    rolls = spin.turns[rows] & (friction[rows] > 0.0)
+    if not rolls.any():
+        return None
+    return Spins(spin.angle0[rows], spin.omega0[rows], spin.q[rows], spin.alpha[rows], rolls)
+
+
+class Spins(NamedTuple):
+    """The spin of the rows solved, by place among them (engine.sweep's ``Turning``)."""
+
+    angle: np.ndarray
+    omega: np.ndarray
+    q: np.ndarray
+    alpha: np.ndarray
+    rolls: np.ndarray
+
+    def one(self, k: int) -> SpinOne | None:
+        """Place k's ``SpinOne`` for ``_path_one``, or None if it does not turn."""
+        if not self.rolls[k]:
+            return None
+        return (
+            float(self.angle[k]),
+            float(self.omega[k]),
+            float(self.q[k]),
+            float(self.alpha[k]),
+        )
 
 
 def _keep_events(
@@ -148,10 +190,12 @@ def _solve_fast(
     push_out: PushOut,
     began: list[Any],
     ended: list[Any],
+    spin: Spin | None = None,
+    spins: Spins | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
     """``solve_few`` on the fast path: the loop kernel ``paths_loop`` for the free bodies,
     ``_path_one`` for those it leaves (the same results, in the same order)."""
-    status, X, V, kev, start, flat = _paths_fast(faces, paths, rows, pb, pf, resting)
+    status, X, V, kev, start, flat, TH, OM = _paths_fast(faces, paths, rows, pb, pf, resting, spins)
     began_keyed: Keyed = []
     ended_keyed: Keyed = []
     row_list = rows.tolist()
@@ -177,19 +221,24 @@ def _solve_fast(
         bounds = start.tolist()
         for i, k in enumerate(left.tolist()):
             row = row_list[k]
-            x, v, touched, rest_k, cap = _path_one(
+            x, v, touched, rest_k, cap, turned = _path_one(
                 faces, k, row, Xl[i], Vl[i], Bl[i], Wl[i], r[i], e[i], mu[i], m[i], rest[i],
                 flat[bounds[k] : bounds[k + 1]].tolist(), paths.dt, paths.t0, began_keyed,
-                ended_keyed, push_out,
+                ended_keyed, push_out, None if spins is None else spins.one(k),
             )  # fmt: skip
             capped += cap
             status[k] = MET if touched else MISSED
             if touched:
                 X[k], V[k] = x, v
                 resting[row] = rest_k
+                if turned is not None:
+                    TH[k], OM[k] = turned
     _keep_events(began, ended, began_keyed, ended_keyed)
     met = np.flatnonzero(status == MET)
     changed = rows.take(met)
+    if spins is not None and spin is not None:
+        turned = met[spins.rolls[met]]
+        spin.angle[rows[turned]], spin.omega[rows[turned]] = TH[turned], OM[turned]
     return changed, X.take(met, axis=0), V.take(met, axis=0), capped
 
 
@@ -200,13 +249,18 @@ def _paths_fast(
     pb: np.ndarray,
     pf: np.ndarray,
     resting: np.ndarray,
+    spins: Spins | None = None,
 ) -> tuple[np.ndarray, ...]:
-    """``paths_loop``'s (status, x, v, impacts) for ``rows``, and each row's faces in pair
-    order, ``flat[start[k]:start[k + 1]]`` (start, flat)."""
+    """``paths_loop``'s (status, x, v, impacts) for ``rows``, each row's faces in pair
+    order, ``flat[start[k]:start[k + 1]]`` (start, flat), and the angles and angular
+    velocities of those that turn under friction (``spins``, by place among the rows)."""
+    none = np.zeros(1)
+    th, om, q, al, rolls = (none, none, none, none, none == 1.0) if spins is None else spins
     return paths_loop(  # type: ignore[no-any-return]
         faces.p, faces.n, faces.rho, faces.two, faces.lo, faces.hi, faces.c, faces.r,
         faces.e, faces.mu, rows, paths.x0, paths.v0, paths.B, paths.W, paths.radius,
         paths.restitution, paths.friction, paths.mass, resting, pb, pf, paths.dt, paths.t0,
+        spins is not None, th, om, q, al, rolls,
     )  # fmt: skip
 
 
@@ -229,22 +283,28 @@ def _path_one(
     began: list[Any],
     ended: list[Any],
     push_out: PushOut,
-) -> tuple[Pair, Pair, bool, int, bool]:
+    turn: SpinOne | None = None,
+) -> tuple[Pair, Pair, bool, int, bool, tuple[float, float] | None]:
     """One body through its step, impact by impact (sweep's loop for one row ``row``,
     ``k`` its place among the rows solved): (x, v, whether it met anything, its rest,
-    whether it was capped)."""
+    whether it was capped, and for a body that turns under friction (``turn``) its angle
+    and angular velocity at the end, else None)."""
     line_list, disc_list = faces.line_list, faces.disc_list
     L = len(line_list)
     rest_before = rest
     touched = capped = False
     left = dt
+    th = om = q = al = 0.0
+    if turn is not None:
+        th, om, q, al = turn
     for round_ in range(MAX_IMPACTS):
         ta = left
         vp, bp, wp = v, b, w  # this round's path (a resting body slides along its face)
+        ap = al  # its angular acceleration (a rolling body's from the rolling law)
         dur = ta
         stop = False
         if rest >= 0:
-            slide = _rest_path_one(faces, rest, x, v, w, mu)
+            slide = _rest_path_one(faces, rest, x, v, w, mu, r, (om, q, al) if turn else None)
             if slide is False:  # over a round edge: flown on W (as in sweep)
                 b = bp = w
             if slide is None or slide is False:  # lifts off
@@ -255,7 +315,7 @@ def _path_one(
                 rest = -1
             else:
                 assert not isinstance(slide, bool)
-                vp, bp, ts = slide
+                vp, bp, ts, ap = slide
                 wp = bp
                 if ts < dur:
                     dur, stop = ts, True
@@ -281,14 +341,17 @@ def _path_one(
         xn = (x[0] + vp[0] * tt + bp[0] * half_tt2, x[1] + vp[1] * tt + bp[1] * half_tt2)
         vn = (vp[0] + wp[0] * tt, vp[1] + wp[1] * tt)
         stopped = stop and not hit
-        if stopped:
-            vn = (0.0, 0.0)  # slid to a stop: exactly at rest
+        if turn is not None:
+            om_n = om + ap * tt
+            th_n = th + om * tt + ap * (0.5 * tt * tt)
+        if stopped and turn is None:
+            vn = (0.0, 0.0)  # slid to a stop: exactly at rest (one that turns rolls on)
         done = False
         if hit:
             when = t0 + dt - ta + t_hit
-            vn, rest, done = _bounce_one(
+            vn, rest, done, om_n = _bounce_one(
                 faces, k, row, round_, xn, vn, face, normal, rest, w, r, e, mu, m, dt, when,
-                began, ended,
+                began, ended, (om_n, q) if turn is not None else None,
             )  # fmt: skip
             touched = True
         if rest >= 0:
@@ -298,6 +361,14 @@ def _path_one(
                 if push_out(Xr, Vr, np.array([r]), np.array([row]))[0]:
                     rest = -1
                 xn, vn = (float(Xr[0, 0]), float(Xr[0, 1])), (float(Vr[0, 0]), float(Vr[0, 1]))
+        if turn is not None:
+            if rest >= 0:  # engine.sweep.roll_exactly
+                nx, ny, _ = _normal_one(faces, rest, xn)
+                u = vn[1] * nx - vn[0] * ny
+                rim = om_n * r
+                if abs(u - rim) <= 1e-9 * (abs(u) + abs(rim)):
+                    om_n = u / r
+            th, om = th_n, om_n
         x, v = xn, vn
         more = (hit or stopped) and not done
         left = ta - tt if more else 0.0
@@ -310,7 +381,8 @@ def _path_one(
         Xt, Vt = np.array([x]), np.zeros((1, 2))
         push_out(Xt, Vt, np.array([r]), np.array([row]))
         x, v = (float(Xt[0, 0]), float(Xt[0, 1])), (float(Vt[0, 0]), float(Vt[0, 1]))
-    return x, v, touched or rest >= 0 or rest_before >= 0, rest, capped
+    turned = None if turn is None else (th, om)
+    return x, v, touched or rest >= 0 or rest_before >= 0, rest, capped, turned
 
 
 def _normal_one(faces: Faces, f: int, x: Pair) -> tuple[float, float, float]:
@@ -328,11 +400,20 @@ def _normal_one(faces: Faces, f: int, x: Pair) -> tuple[float, float, float]:
 
 
 def _rest_path_one(
-    faces: Faces, f: int, x: Pair, v: Pair, w: Pair, mub: float
-) -> tuple[Pair, Pair, float] | bool | None:
+    faces: Faces,
+    f: int,
+    x: Pair,
+    v: Pair,
+    w: Pair,
+    mub: float,
+    r: float = 0.0,
+    turn: tuple[float, float, float] | None = None,
+) -> tuple[Pair, Pair, float, float] | bool | None:
     """``engine.resting.rest_paths`` for one body resting on face f: None if it lifts off (False
     if over a round edge faster than it can turn it), else its sliding path (velocity,
-    acceleration along the face, time it stops or inf)."""
+    acceleration along the face, time it stops or inf, angular acceleration). ``turn``:
+    (angular velocity, q, own angular acceleration) of a body of radius ``r`` that turns
+    under friction: the rolling law."""
     nx, ny, curve = _normal_one(faces, f, x)
     tx, ty = -ny, nx
     a_n = w[0] * nx + w[1] * ny
@@ -357,9 +438,27 @@ def _rest_path_one(
         a = 0.0
     else:
         a = a_t - math.copysign(fr, a_t)
+    if turn is not None:
+        om, q, al0 = turn
+        sl = u - om * r
+        gs = a_t - al0 * r
+        tol = 1e-12 * (abs(u) + abs(om * r))
+        if sl > tol:
+            fric = -fr
+        elif sl < -tol:
+            fric = fr
+        elif abs(gs) <= fr * (1.0 + q) * (1.0 + 1e-12):  # it can roll
+            fric = -gs / (1.0 + q)
+        else:
+            fric = -math.copysign(fr, gs)
+        ds = gs + fric * (1.0 + q)
+        slows = (sl > tol and ds < 0.0) or (sl < -tol and ds > 0.0)
+        ts = -sl / (ds if ds != 0.0 else 1.0) if slows else math.inf
+        a = a_t + fric
+        return (tx * u, ty * u), (tx * a, ty * a), ts, al0 - fric * q / r
     slowing = (u > 0.0 and a < 0.0) or (u < 0.0 and a > 0.0)
     ts = -u / a if slowing else math.inf
-    return (tx * u, ty * u), (tx * a, ty * a), ts
+    return (tx * u, ty * u), (tx * a, ty * a), ts, 0.0
 
 
 def _disc_normal_one(c: Pair, x: Pair, v: Pair, b: Pair, t: float) -> Pair:
@@ -391,8 +490,11 @@ def _bounce_one(
     when: float,
     began: list[Any],
     ended: list[Any],
-) -> tuple[Pair, int, bool]:
-    """``engine.sweep.bounce`` for one body: (new velocity, face it rests on or -1, wedged)."""
+    turn: tuple[float, float] | None = None,
+) -> tuple[Pair, int, bool, float]:
+    """``engine.sweep.bounce`` for one body: (new velocity, face it rests on or -1, wedged,
+    angular velocity). ``turn``: (angular velocity, q) of a body that turns under friction:
+    friction acts at the point of contact."""
     nx, ny = n
     vx, vy = vel
     wx, wy = w
@@ -410,6 +512,15 @@ def _bounce_one(
     if settles:
         vn_out = 0.0
     new_v = (vtx * scale + nx * vn_out, vty * scale + ny * vn_out)
+    om = 0.0
+    if turn is not None:
+        om, q = turn
+        u = vx * -ny + vy * nx
+        slip = u - om * r
+        cap = mu * (1.0 + e) * -vn_in
+        du = -math.copysign(min(abs(slip) / (1.0 + q), cap), slip)
+        new_v = (-ny * (u + du) + nx * vn_out, nx * (u + du) + ny * vn_out)
+        om = om - du * q / r
     stays = wedged = False
     if old >= 0:
         onx, ony, _ = _normal_one(faces, old, x)
@@ -430,7 +541,7 @@ def _bounce_one(
         began.append(((round_, 1, k), event))
         if not settles:
             ended.append(((round_, 1, k), event))
-    return new_v, rest, wedged
+    return new_v, rest, wedged, om
 
 
 def _project_one(faces: Faces, f: int, x: Pair, vel: Pair, r: float, w: Pair) -> tuple[Pair, Pair]:
@@ -469,7 +580,7 @@ def _sample_paths() -> tuple[object, ...]:
     return (
         *line, np.zeros((0, 2)), np.zeros(0), one, one, i, np.array([[0.0, 0.1]]), pair,
         np.array([[0.0, -9.81]]), np.array([[0.0, -9.81]]), 0.1 * one, one, one, one, i - 1,
-        i, i, 0.01, 0.0,
+        i, i, 0.01, 0.0, True, 0.0 * one, one, 2.0 * one, 0.0 * one, i == 0,
     )  # fmt: skip
 
 
@@ -499,10 +610,22 @@ def paths_loop(
     pf: np.ndarray,
     dt: float,
     t0: float,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    spun: bool,
+    th0: np.ndarray,
+    om0: np.ndarray,
+    sqm: np.ndarray,
+    sal: np.ndarray,
+    srolls: np.ndarray,
+) -> tuple[np.ndarray, ...]:
     """``_path_one`` for each free body that bounces off faces and flies on: (status, new
     positions, new velocities, its impacts: k, round, face, point, normal, impulse, time;
-    and each body's faces, ``flat[start[k]:start[k + 1]]``, for ``_path_one``).
+    each body's faces, ``flat[start[k]:start[k + 1]]``, for ``_path_one``; and the angles
+    and angular velocities of the bodies that turn under friction).
+
+    ``spun``: whether any does; then by place among the rows, each one's angle, angular
+    velocity, q = m r^2 / I and own angular acceleration at the start (``th0``, ``om0``,
+    ``sqm``, ``sal``) and whether it turns under friction (``srolls``): ``_path_one``'s
+    ``turn``.
 
     The faces as ``Faces`` holds them (lines p, n, rho, two, lo, hi; discs c, r; e, mu), the
     World ``rows`` solved, the bodies' arrays by World row (x, v, B, W, radius, restitution,
@@ -529,6 +652,8 @@ def paths_loop(
     status = np.zeros(K, dtype=np.intp)
     Xo = np.empty((K, 2))
     Vo = np.empty((K, 2))
+    THo = np.zeros(K)
+    OMo = np.zeros(K)
     ev = np.empty((K * MAX_IMPACTS, 10))
     ne = 0
     for j in range(K):
@@ -536,6 +661,10 @@ def paths_loop(
         if rest[i] >= 0:
             status[j] = PYTHON
             continue
+        turning = spun and srolls[j]
+        th = om = sqj = al = 0.0
+        if turning:
+            th, om, sqj, al = th0[j], om0[j], sqm[j], sal[j]
         x, y = X[i, 0], X[i, 1]
         vx, vy = V[i, 0], V[i, 1]
         bx, by = Bm[i, 0], Bm[i, 1]
@@ -665,6 +794,8 @@ def paths_loop(
             half_tt2 = 0.5 * tt * tt
             xn, yn = x + vx * tt + bx * half_tt2, y + vy * tt + by * half_tt2
             vxn, vyn = vx + wx * tt, vy + wy * tt
+            om_n = om + al * tt
+            th_n = th + om * tt + al * half_tt2
             if hit:
                 # _bounce_one for a free body (old = -1)
                 when = t0 + dt - ta + t_hit
@@ -684,6 +815,15 @@ def paths_loop(
                     python = True  # it settles: rest, in _path_one
                     break
                 new_vx, new_vy = vtx * scale + nx * vn_out, vty * scale + ny * vn_out
+                if turning:  # friction at the point of contact (_bounce_one's turn)
+                    u = vxn * -ny + vyn * nx
+                    slip = u - om_n * rr
+                    cap = mu * (1.0 + e) * -vn_in
+                    most = abs(slip) / (1.0 + sqj)
+                    du = -math.copysign(most if most < cap else cap, slip)
+                    new_vx = -ny * (u + du) + nx * vn_out
+                    new_vy = nx * (u + du) + ny * vn_out
+                    om_n = om_n - du * sqj / rr
                 if vn_in < 0.0:  # struck: the impact begins and ends
                     row = ev[ne]
                     row[0], row[1], row[2] = j, round_, face
@@ -695,6 +835,7 @@ def paths_loop(
                 vxn, vyn = new_vx, new_vy
                 touched = True
             x, y, vx, vy = xn, yn, vxn, vyn
+            th, om = th_n, om_n
             left = ta - tt if hit else 0.0
             if not (hit and ta - tt > 0.0):
                 through = True
@@ -706,4 +847,5 @@ def paths_loop(
         status[j] = MET if touched else MISSED
         Xo[j, 0], Xo[j, 1] = x, y
         Vo[j, 0], Vo[j, 1] = vx, vy
-    return status, Xo, Vo, ev[:ne], start, flat
+        THo[j], OMo[j] = th, om
+    return status, Xo, Vo, ev[:ne], start, flat, THo, OMo

@@ -22,6 +22,7 @@ from engine.faces import Faces
 from engine.forces import Gravity
 from engine.kernels import LoopKernel
 from engine.resting import asleep as asleep_arrays
+from engine.rotation import Spin
 from engine.sweep import Paths
 from engine.sweep_one import MET, PYTHON, _paths_fast, asleep_few, solve_few
 
@@ -262,10 +263,19 @@ def test_a_world_on_the_fast_path_says_so() -> None:
         assert world._s.contacts.fast is True  # type: ignore[union-attr]
 
 
-def solve_both(seed: int, n: int, kind: str, speed: float, dt: float, resting_share: float):
+def solve_both(
+    seed: int,
+    n: int,
+    kind: str,
+    speed: float,
+    dt: float,
+    resting_share: float,
+    spinning: bool = False,
+):
     """``solve_few`` on random bodies among random faces, each body against every face,
     without and with the loop kernel ``paths_loop``: (numpy's floats, the kernel's), each
-    (changed, x, v, capped, began, ended, resting faces after)."""
+    (changed, x, v, capped, began, ended, resting faces after; and with ``spinning``, some
+    bodies turn: their angles and angular velocities after)."""
     rng = np.random.default_rng(seed)
     contacts = Contacts()
     if kind != "open":
@@ -298,11 +308,29 @@ def solve_both(seed: int, n: int, kind: str, speed: float, dt: float, resting_sh
         began: list = []
         ended: list = []
         resting = rest.copy()
+        spin = None
+        if spinning:
+            turns = rng_spin(seed, n)
+            spin = Spin.free(*turns, dt)
         changed, X, V, capped = solve_few(
-            faces, paths, rows, pb, pf, resting, contacts.push_out_rows, began, ended, fast
-        )
-        out.append((changed, X, V, capped, began, ended, resting))
+            faces, paths, rows, pb, pf, resting, contacts.push_out_rows, began, ended, fast,
+            spin,
+        )  # fmt: skip
+        spun = () if spin is None else (spin.angle, spin.omega)
+        out.append((changed, X, V, capped, began, ended, resting, *spun))
     return out
+
+
+def rng_spin(seed: int, n: int) -> tuple[np.ndarray, ...]:
+    """Random rotation for n bodies (``Spin.free``'s arguments but dt): some do not turn
+    (1 / I = 0), some spin, some have a torque."""
+    rng = np.random.default_rng(seed + 1)
+    inv = np.where(rng.random(n) < 0.7, rng.uniform(0.5, 3.0, n), 0.0)
+    omega = np.where(inv > 0.0, rng.normal(0.0, 20.0, n) * rng.integers(0, 2, n), 0.0)
+    torque = np.where(inv > 0.0, rng.normal(0.0, 1.0, n) * rng.integers(0, 2, n), 0.0)
+    mass = rng.uniform(0.5, 2.0, n)
+    radius = rng.uniform(0.1, 0.5, n)
+    return rng.uniform(-3.0, 3.0, n), omega, inv, torque, mass, radius
 
 
 @settings(deadline=None)
@@ -313,12 +341,13 @@ def solve_both(seed: int, n: int, kind: str, speed: float, dt: float, resting_sh
     speed=st.sampled_from([0.5, 5.0, 50.0]),
     dt=st.sampled_from([1 / 120, 1 / 30]),
     resting_share=st.sampled_from([0.0, 0.3]),
+    spinning=st.booleans(),
 )
 @pytest.mark.filterwarnings("ignore")
 def test_paths_loop_gives_the_python_floats_results(
-    seed: int, n: int, kind: str, speed: float, dt: float, resting_share: float
+    seed: int, n: int, kind: str, speed: float, dt: float, resting_share: float, spinning: bool
 ) -> None:
-    slow, fast = solve_both(seed, n, kind, speed, dt, resting_share)
+    slow, fast = solve_both(seed, n, kind, speed, dt, resting_share, spinning)
     for a, b in zip(slow, fast, strict=True):
         if isinstance(a, np.ndarray):
             assert a.dtype == b.dtype and np.array_equal(a, b)
@@ -344,7 +373,7 @@ def test_paths_loop_takes_most_bodies_and_the_comparison_can_fail() -> None:
     results = []
     for dt in (1 / 60, np.nextafter(1 / 60, 1.0)):
         paths = Paths(x0, v0, B, B, dt, 0.0, 0.1 * one, 0.9 * one, 0.5 * one, one)
-        status, X, V, ev, _, _ = _paths_fast(faces, paths, np.arange(n), pb, pf, np.full(n, -1))
+        status, X, V, ev, *_ = _paths_fast(faces, paths, np.arange(n), pb, pf, np.full(n, -1))
         results.append((X, V))
     assert (status == MET).sum() > 10 and (status == PYTHON).sum() < 5
     assert len(ev) > 10

@@ -253,3 +253,34 @@ def test_snapshot_restore_and_removal_keep_the_spin() -> None:
     assert (b.angle, b.angular_velocity) == (angle, omega)
     w.remove(b)
     assert (b.angle, b.angular_velocity) == (angle, omega)
+
+
+def test_apply_force_lasts_one_step_and_turns_a_disc() -> None:
+    """pymunk's apply_force_at_world_point: F over the next step only, and (at - pos) x F."""
+    w = World()
+    b = w.add(Body(Vector(0, 0), radius=0.5, mass=2.0, acceleration=Vector(0.0, -1.0)))
+    dt = 0.1
+    b.apply_force(Vector(4.0, 0.0), at=(0.0, 0.5))  # on top of the disc, to the right
+    w.step(dt)
+    assert b.vel.x == pytest.approx(4.0 / 2.0 * dt, rel=1e-15)
+    torque = 0.5 * -4.0  # r x F = (0, 0.5) x (4, 0) = -2 N m: clockwise
+    assert b.angular_velocity == pytest.approx(torque / b.moment * dt, rel=1e-15)
+    # Gone after the step: the body's own acceleration and torque are back as they were.
+    assert (b.own_acc.x, b.own_acc.y, b.torque) == (0.0, -1.0, 0.0)
+    v, w0 = b.vel, b.angular_velocity
+    w.step(dt)
+    assert b.vel.x == v.x and b.angular_velocity == w0
+    with pytest.raises(ValueError, match="add the body to a World first"):
+        Body(Vector(0, 0), radius=1.0).apply_force((1, 0))
+    with pytest.raises(ValueError, match="force must be finite"):
+        b.apply_force((math.nan, 0))
+
+
+def test_apply_force_every_frame_is_a_constant_force() -> None:
+    w = World()
+    b = w.add(Body(Vector(0, 0), mass=3.0))
+    for _ in range(60):
+        b.apply_force((6.0, 0.0))
+        w.step(1 / 60)
+    assert b.vel.x == pytest.approx(2.0, rel=1e-12)  # a = F / m = 2 for 1 s
+    assert b.own_acc.x == 0.0
