@@ -18,7 +18,7 @@ part, cheapest test first (in a typical scene few bodies meet anything):
 
 On the fast path (engine.kernels; ``Contacts.fast``, the World's path) 1 and the resting
 bodies' staying put are one loop kernel over the bodies (``face_looks.looks_loop``) and 2 is
-another over the bodies solved (``sweep_one.paths_loop``), each beside its twin and giving
+another over the bodies solved (``sweep_paths.paths_loop``), each beside its twin and giving
 its numbers bit for bit; what a kernel does not take (a round face's quartic, a resting body)
 goes the numpy path's way.
 
@@ -325,7 +325,7 @@ class Contacts:
                 # the same arithmetic, so the same result either way.
                 paths = Paths(x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
                 # On the fast path a loop kernel takes the free bodies, however many
-                # (engine.sweep_one.paths_loop: the same bits).
+                # (engine.sweep_paths.paths_loop: the same bits).
                 turning = spin if spin is not None and spin.rows_turn(rows) else None
                 if len(rows) < self.few or self.fast:
                     changed, X, V, capped = solve_few(

@@ -173,7 +173,7 @@ MODULES = (
     "engine.pile_rows",
     "engine.push_out",
     "engine.face_looks",
-    "engine.sweep_one",
+    "engine.sweep_paths",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}

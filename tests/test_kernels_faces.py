@@ -1,7 +1,7 @@
 """The static contacts' loop kernels against their twins: the first looks
 (engine.face_looks.looks_loop, called by ``first_looks``) against ``near``, ``asleep`` and
 ``narrow`` as engine.contacts takes them (the same rows, sleepers and (body, face) pairs, in
-the same order), the free bodies' paths (engine.sweep_one.paths_loop) against ``solve_few``'s
+the same order), the free bodies' paths (engine.sweep_paths.paths_loop) against ``solve_few``'s
 Python floats (the same states, events and resting faces), on random bodies among random
 faces; and a World whose static contacts take either path ends bit-identical."""
 

@@ -1,0 +1,69 @@
+"""pymunk's Body habits: the names a Body lacks, and what to write instead.
+
+``body.force = ...`` or ``body.apply_impulse_at_world_point(...)`` is pymunk's habit;
+``install`` puts a descriptor on the Body class for each such name, so that reading or writing
+one raises an AttributeError that says what to use (engine.habits does the same for a World).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["PYMUNK_NAMES", "Advice", "install"]
+
+
+class Advice:
+    """A name from pymunk with no counterpart here: reading or writing it says what to use."""
+
+    def __init__(self, name: str, advice: str) -> None:
+        self.name, self.advice = name, advice
+
+    def _refuse(self) -> AttributeError:
+        return AttributeError(f"a Body has no {self.name} (pymunk's name): {self.advice}")
+
+    def __get__(self, body: Any, owner: Any = None) -> Any:
+        if body is None:
+            return self
+        raise self._refuse()
+
+    def __set__(self, body: Any, value: Any) -> None:
+        raise self._refuse()
+
+
+_PUSH = (
+    "for a push that lasts, set body.own_acc = force / body.mass and body.torque (both kept "
+    "until changed), or "
+    "world.add_force(ConstantForce(...)) (engine.forces) for every body"
+)
+_IMPULSE = "body.apply_impulse(impulse, at=world_point) (at: the position by default)"
+_IMPULSE_LOCAL = "body.apply_impulse(impulse, at=body.local_to_world(point))"
+#: pymunk Body names, and what to write here instead.
+PYMUNK_NAMES: dict[str, str] = {
+    "force": _PUSH,
+    "apply_force_at_world_point": "body.apply_force(force, at=world_point): for the next "
+    "step only, as pymunk's",
+    "apply_force_at_local_point": "body.apply_force(force, at=body.local_to_world(point)): for "
+    "the next step only, as pymunk's",
+    "apply_impulse_at_world_point": _IMPULSE,
+    "apply_impulse_at_local_point": _IMPULSE_LOCAL,
+    "space": "body.world is the World it is in",
+    "body_type": "Body(..., kinematic=True) makes a body the game moves; static geometry is a "
+    "collider (world.add_collider(Segment(...)))",
+    "is_sleeping": "ask the World: world.is_sleeping(body)",
+    "shapes": "a Body has one shape: Body(..., radius=r) for a disc, or Body(..., "
+    "shape=Polygon.box(width, height)) (or a Polygon, a Segment); its material is the Body's "
+    "(restitution=..., friction=...)",
+    "elasticity": "its bounce is Body(..., restitution=e), 0 to 1",
+    "velocity_func": "forces act through the World: world.add_force(...) (engine.forces)",
+    "position_func": "a body the game moves is Body(..., kinematic=True): write its pos or vel",
+    "kinetic_energy": "world.energy() is the World's total; m v^2 / 2 is "
+    "0.5 * body.mass * body.vel.length_squared()",
+}
+
+
+def install(cls: type) -> None:
+    """Put an ``Advice`` on the Body class ``cls`` for every name of ``PYMUNK_NAMES`` (a name
+    the Body comes to have itself keeps its own meaning)."""
+    for name, text in PYMUNK_NAMES.items():
+        if not hasattr(cls, name):
+            setattr(cls, name, Advice(name, text))
