@@ -43,6 +43,7 @@ STILLS = [
     ("galton", ["galton", "--seconds", "300"], 3000),
     ("pendulum", ["pendulum", "--scene", "double", "--seconds", "17"], 170),
     ("crates", ["crates"], 4),
+    ("incline", ["incline", "--scene", "race"], 24),
 ]
 
 
