@@ -508,20 +508,27 @@ class SlipScene(Scene):
         self.plot.draw_curve(surface, ts, [q[2] for q in shown], POSITION)
         self.plot.draw_curve(surface, ts, [q[1] - q[2] for q in shown], EULER)
         if shown:
+            # Each curve's name at its end, pushed apart where the curves run together (at
+            # first all three are 0).
+            ends = []
             for value, name, colour in (
                 (shown[-1][1], "v", VELOCITY),
                 (shown[-1][2], "\u03c9 r", POSITION),
                 (shown[-1][1] - shown[-1][2], "slip", EULER),
             ):
                 px, py = self.plot.to_px(shown[-1][0], min(value, 12.0))
-                draw_text(
-                    surface,
-                    name,
-                    (float(px) - 4 * s, float(py) - 5 * s),
-                    round(15 * s),
-                    colour,
-                    "bottomright",
-                )
+                ends.append((float(py) - 5 * s, float(px), name, colour))
+            # Right of the curves' ends while they are short (left of them the axis has its
+            # numbers), left of them once they are long.
+            early = shown[-1][0] < 0.5 * self.duration
+            ends.sort(reverse=True)
+            above = math.inf
+            for py, px, name, colour in ends:
+                py = min(py, above - 16 * s)  # above the label below it
+                above = py
+                at = (px + 4 * s, py) if early else (px - 4 * s, py)
+                anchor = "bottomleft" if early else "bottomright"
+                draw_text(surface, name, at, round(15 * s), colour, anchor)
 
     def draw_strobe(self, surface: pygame.Surface, times: Sequence[float]) -> None:
         """The disc every strobe_interval: its radius line turns more slowly than it slides."""
