@@ -148,6 +148,36 @@ def test_body_material_arguments_are_checked(radius: Any, e: Any, mu: Any) -> No
         assert 0.0 <= b.radius < math.inf
 
 
+@fuzz(200)
+@given(
+    radius=st.sampled_from([0.0, 0.5]),
+    angle=st.one_of(numbers, anything),
+    omega=st.one_of(numbers, anything),
+    moment=st.one_of(st.none(), numbers, anything),
+    torque=st.one_of(numbers, anything),
+)
+def test_body_rotation_arguments_are_checked(
+    radius: float, angle: Any, omega: Any, moment: Any, torque: Any
+) -> None:
+    def make() -> Body:
+        return Body(
+            Vector(0, 0),
+            radius=radius,
+            angle=angle,
+            angular_velocity=omega,
+            moment=moment,
+            torque=torque,
+        )
+
+    ok, b = attempt(make, "angle", "angular_velocity", "moment", "torque", "turn")
+    if ok:
+        assert b is not None
+        assert all(map(math.isfinite, (b.angle, b.angular_velocity, b.torque)))
+        assert b.moment > 0.0
+        if not b.turns:
+            assert b.angle == b.angular_velocity == b.torque == 0.0
+
+
 # -- scenes -------------------------------------------------------------------------------------
 
 coord = st.floats(-10, 10, allow_nan=False)
@@ -200,6 +230,7 @@ ball_spec = st.tuples(
     unit,
     st.floats(0, 2),  # restitution, friction
     st.floats(0.1, 10),  # mass
+    st.floats(-100, 100),  # angular velocity (a disc turns; a point is given none)
 )
 METHODS = ["auto", "exact", "semi_implicit_euler", "velocity_verlet", "rk4", "explicit_euler"]
 
@@ -224,7 +255,7 @@ def build(spec: dict[str, Any]) -> tuple[World, list[Any], list[Body]]:
         w.add_collider(c)
     solid = [c for c in cols if not c.sensor]
     bodies = []
-    for x, y, vx, vy, r, e, mu, m in spec["balls"]:
+    for x, y, vx, vy, r, e, mu, m, *spin in spec["balls"]:
         if all(c.distance((x, y)) > r + 1e-6 for c in solid):
             bodies.append(
                 w.add(
@@ -236,6 +267,7 @@ def build(spec: dict[str, Any]) -> tuple[World, list[Any], list[Body]]:
                         radius=r,
                         restitution=e,
                         friction=mu,
+                        angular_velocity=spin[0] if spin and r > 0.0 else 0.0,
                     )
                 )
             )
@@ -256,7 +288,9 @@ def run(spec: dict[str, Any], steps: int = 25) -> list[bytes]:
                 assert d >= b.radius - scale, (c, b, d - b.radius, w.t)
         for ev in w.began + w.ended:
             assert all(map(math.isfinite, (*ev.point, *ev.normal, *ev.impulse, ev.time)))
-        trace.append(X.tobytes() + V.tobytes())
+        spins = np.array([(b.angle, b.angular_velocity) for b in bodies], dtype=float)
+        assert np.isfinite(spins).all(), spins
+        trace.append(X.tobytes() + V.tobytes() + spins.tobytes())
     return trace
 
 
