@@ -68,6 +68,7 @@ from .sleep import sleep_still, wake_met
 
 if TYPE_CHECKING:
     from .contacts import Contacts
+    from .rotation import Spin
 
 __all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "PUSH", "deepest_overlap"]
 
@@ -386,6 +387,7 @@ class Collisions:
         store: Any,
         contacts: Contacts | None,
         A_force: np.ndarray | None = None,
+        spin: Spin | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """The state after dt with every contact between bodies applied: new (x, v) arrays.
 
@@ -393,7 +395,9 @@ class Collisions:
         ``A_force``, and what a static contact carried for one resting on a collider).
         Pairs of bodies that are not in a pile meet at their exact moments; the bodies of a
         pile (``plan``) are stepped again from (x0, v0) by the soft step. Bodies that meet
-        no other keep (x1, v1) bit for bit.
+        no other keep (x1, v1) bit for bit. ``spin``: the step's rotation (engine.rotation):
+        the soft step turns a pile's discs that turn (in place on its angle and omega), and
+        a disc that spins is not still (sleep).
         """
         self.moved = False
         self._began, self._ended = [], []
@@ -458,7 +462,7 @@ class Collisions:
             pile = step_pile(
                 island, a, b, x0, v0, x, v, P, dt, store, contacts, self._shapes(store),
                 self._static, self._carried(), self.asleep, self.iterations, self.rest_speed,
-                fast=self.fast,
+                fast=self.fast, spin=spin,
             )  # fmt: skip
             touching, pa, pb = pile.touching, pile.near_a, pile.near_b
             self.face_touching, self._shape_over = pile.face_touching, pile.shape_over
@@ -509,6 +513,7 @@ class Collisions:
             v, dt, live, pa, pb, contacts, self.still, self.asleep, self._group,
             self.sleep_time, self._still_speed, self._kin if self._has_kin else None,
             self._overlap, self.face_touching[0], self.fast,
+            None if spin is None else np.abs(spin.omega) * store.radius,
         )  # fmt: skip
         return x, v
 

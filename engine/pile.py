@@ -52,19 +52,20 @@ the pile moves is left inside a wall (``Contacts.push_out_rows``).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, overload
 
 import numpy as np
 
 from . import kernels
 from .manifold import StaticShapes, static_shapes
 from .pair_math import SLOP, dot, norm, sorted_unique
-from .pile_rows import disc_rows, face_rows, held, warm_start
+from .pile_rows import disc_rows, face_rows, held, lever_arms, turning, warm_start
 from .shaped import ShapeTable, pair_rows, static_rows
 from .soft import Rows, SoftStep
 
 if TYPE_CHECKING:
     from .contacts import Contacts
+    from .rotation import Spin
 
 __all__ = [
     "PUSH",
@@ -234,6 +235,7 @@ def step_pile(
     iterations: int,
     rest_speed: float,
     fast: bool = False,
+    spin: Spin | None = None,
 ) -> Pile:
     """Step the bodies of the pile (``island``) again from (x0, v0) by the soft step
     (engine.soft), with every contact among them (pairs a, b) and with the faces they can
@@ -241,7 +243,9 @@ def step_pile(
     ``carried``: the last step's impulses; ``asleep`` (N,): the sleepers, whose rows keep
     theirs; ``iterations``: the soft step's parts; ``rest_speed``: 2 dt times the largest
     pull (restitution acts on contacts closing faster than ``THRESH`` times it); ``fast``:
-    run the loop kernels (engine.kernels: the soft step's, the colouring's, the piles')."""
+    run the loop kernels (engine.kernels: the soft step's, the colouring's, the piles');
+    ``spin``: the step's rotation (engine.rotation), whose discs of the pile that turn are
+    turned by their rows' friction (engine.soft, ``Arms``), in place on its angle and omega."""
     n = len(x)
     U = np.flatnonzero(island)
     nU = len(U)
@@ -343,6 +347,14 @@ def step_pile(
         static,
     )
     slop_rows = np.concatenate(slops)
+    acc = np.append(P[U, 0] + 1j * P[U, 1], 0.0)
+    acc[:-1][~moves[:-1]] = 0.0
+    turn = None
+    if spin is not None:
+        turn = turning(spin, store, U, moves[:-1] & ~shapedU)
+    arms = None
+    if turn is not None:
+        arms = lever_arms(turn, r, ra, rb, sep_all, m_disc, len(pa), fa, nU)
     solver = SoftStep(
         rows,
         w,
@@ -354,21 +366,36 @@ def step_pile(
         slop=slop_rows,
         prior=prior,
         fast=fast,
+        arms=arms,
     )
-    acc = np.append(P[U, 0] + 1j * P[U, 1], 0.0)
-    acc[:-1][~moves[:-1]] = 0.0
     X, V = solver.run(
         np.append(x0U[:, 0] + 1j * x0U[:, 1], 0.0),
         np.append(v0U[:, 0] + 1j * v0U[:, 1], 0.0),
         acc,
+        None if turn is None else turn.omega0,
+        None if turn is None else turn.alpha,
     )
     Xr = np.stack([X[:nU].real, X[:nU].imag], axis=1)
     Vr = np.stack([V[:nU].real, V[:nU].imag], axis=1)
+    W = solver.omega[:nU]
     # A kinematic body goes where the game sends it, whatever it touched.
     if not kin.any():
         # Each pile on its own: the bodies of one never change another's motion.
         group = components(nU, ra, rb, fast)
-        Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], group, fast)
+        if turn is None:
+            Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], group, fast)
+        else:
+            # The spins' energy I omega^2 / 2 counts too (friction trades it with v's).
+            W0 = turn.omega0[:nU] + turn.alpha[:nU] * dt
+            Vr, W = dissipative(
+                Vr, v0U + P[U] * dt, store.mass[U], group, fast, (W, W0, turn.moment)
+            )
+    if turn is not None:
+        # The discs that turn end the step at the soft step's spin, having turned by the
+        # sum of omega h over its parts (as the positions by v h).
+        t = turn.turns
+        spin.angle[U[t]] = spin.angle0[U[t]] + solver.turned[:nU][t]  # type: ignore[union-attr]
+        spin.omega[U[t]] = W[t]  # type: ignore[union-attr]
     if kin.any():
         Xr[kin], Vr[kin] = x[U][kin], v[U][kin]
     if n_faces and contacts is not None:
@@ -470,13 +497,36 @@ def label_rows(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return parent
 
 
+@overload
 def dissipative(
     V: np.ndarray,
     V0: np.ndarray,
     m: np.ndarray,
     group: np.ndarray | None = None,
     fast: bool = False,
-) -> np.ndarray:
+    spins: None = None,
+) -> np.ndarray: ...
+
+
+@overload
+def dissipative(
+    V: np.ndarray,
+    V0: np.ndarray,
+    m: np.ndarray,
+    group: np.ndarray | None,
+    fast: bool,
+    spins: tuple[np.ndarray, np.ndarray, np.ndarray],
+) -> tuple[np.ndarray, np.ndarray]: ...
+
+
+def dissipative(
+    V: np.ndarray,
+    V0: np.ndarray,
+    m: np.ndarray,
+    group: np.ndarray | None = None,
+    fast: bool = False,
+    spins: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
     """The pile's velocities V (the forces alone would give V0), with the contacts' change
     scaled back if it gained kinetic energy.
 
@@ -489,19 +539,35 @@ def dissipative(
     with B = sum m V0.dV, C = sum m |dV|^2 / 2, so s = -B / (2 C). Momentum is kept: the
     contacts' impulses between bodies are equal and opposite at any s (a wall's are not,
     and lose only what s takes off them). ``fast``: the loop kernel ``dissipate_rows``.
+
+    ``spins``: (W, W0, I) of bodies that turn (rad/s, rad/s, kg m^2; I = 0 for one that does
+    not): their energy I omega^2 / 2 counts in each sum (B += I W0 dW, ...) and dW is scaled
+    with dV (the same s scales every impulse, so angular momentum is kept as momentum is);
+    then (V, W) is returned.
     """
     n = len(V)
     if group is None:
         group = np.zeros(n, dtype=np.intp)
+    if spins is None:
+        W = W0 = inertia = np.zeros(n)
+    else:
+        W, W0, inertia = spins
     if fast:
-        return dissipate_rows(V, V0, m, group)  # type: ignore[no-any-return]
+        out, w_out = dissipate_rows(V, V0, m, group, W, W0, inertia)
+        return out if spins is None else (out, w_out)
     dV = V - V0
-    B = np.bincount(group, m * dot(V0, dV), minlength=n)
-    C = 0.5 * np.bincount(group, m * dot(dV, dV), minlength=n)
-    KE0 = 0.5 * np.bincount(group, m * dot(V0, V0), minlength=n)
+    dW = W - W0
+    b, c, k = m * dot(V0, dV), m * dot(dV, dV), m * dot(V0, V0)
+    if spins is not None:
+        # The spins' terms (0 for bodies that do not turn: x + 0.0 is x, the same bits).
+        i = inertia
+        b, c, k = b + i * (W0 * dW), c + i * (dW * dW), k + i * (W0 * W0)
+    B = np.bincount(group, b, minlength=n)
+    C = 0.5 * np.bincount(group, c, minlength=n)
+    KE0 = 0.5 * np.bincount(group, k, minlength=n)
     gained = B + C > 1e-13 * KE0 + 1e-300
     if not gained.any():
-        return V
+        return V if spins is None else (V, W)
     s = np.ones(n)
     g = np.flatnonzero(gained)
     s[g] = np.clip(-B[g] / (2.0 * C[g]), 0.0, 1.0)
@@ -510,7 +576,11 @@ def dissipative(
     out = V.copy()
     sel = gained[group]
     out[sel] = V0[sel] + s[group[sel]][:, None] * dV[sel]
-    return out
+    if spins is None:
+        return out
+    w_out = W.copy()
+    w_out[sel] = W0[sel] + s[group[sel]] * dW[sel]
+    return out, w_out
 
 
 # -- the loop kernels (engine.kernels: the fast path) -----------------------------------------
@@ -520,21 +590,33 @@ def dissipative(
 
 def _sample_dissipate() -> tuple[object, ...]:
     """The smallest call of ``dissipate_rows``: one body that gained speed."""
-    return np.ones((1, 2)), np.zeros((1, 2)), np.ones(1), np.zeros(1, dtype=np.intp)
+    z = np.zeros(1)
+    return np.ones((1, 2)), np.zeros((1, 2)), np.ones(1), np.zeros(1, dtype=np.intp), z, z, z
 
 
 @kernels.loop(sample=_sample_dissipate)
-def dissipate_rows(V: np.ndarray, V0: np.ndarray, m: np.ndarray, group: np.ndarray) -> np.ndarray:
-    """``dissipative`` as a loop: each group's B, C and KE0 summed in row order, then the rows
-    of the groups that gained V0 + s dV (the others keep V)."""
+def dissipate_rows(
+    V: np.ndarray,
+    V0: np.ndarray,
+    m: np.ndarray,
+    group: np.ndarray,
+    W: np.ndarray,
+    W0: np.ndarray,
+    inertia: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """``dissipative`` as a loop: each group's B, C and KE0 summed in row order (the spins'
+    terms I W0 dW, ... (``inertia``: I) added to each body's as in the twin), then the rows
+    of the groups that gained V0 + s dV and W0 + s dW (the others keep V and W)."""
     n = len(V)
     B, C, K = np.zeros(n), np.zeros(n), np.zeros(n)
     for i in range(n):
         g = group[i]
         dx, dy = V[i, 0] - V0[i, 0], V[i, 1] - V0[i, 1]
-        B[g] += m[i] * (V0[i, 0] * dx + V0[i, 1] * dy)
-        C[g] += m[i] * (dx * dx + dy * dy)
-        K[g] += m[i] * (V0[i, 0] * V0[i, 0] + V0[i, 1] * V0[i, 1])
+        dw = W[i] - W0[i]
+        mi, ii = m[i], inertia[i]
+        B[g] += mi * (V0[i, 0] * dx + V0[i, 1] * dy) + ii * (W0[i] * dw)
+        C[g] += mi * (dx * dx + dy * dy) + ii * (dw * dw)
+        K[g] += mi * (V0[i, 0] * V0[i, 0] + V0[i, 1] * V0[i, 1]) + ii * (W0[i] * W0[i])
     s = np.ones(n)
     gained = np.zeros(n, dtype=np.bool_)
     some = False
@@ -544,14 +626,16 @@ def dissipate_rows(V: np.ndarray, V0: np.ndarray, m: np.ndarray, group: np.ndarr
             gained[g] = some = True
             s[g] = min(max(-B[g] / (2.0 * c), 0.0), 1.0)
     if not some:
-        return V
+        return V, W
     out = V.copy()  # only the groups that gained change (as in the twin)
+    w_out = W.copy()
     for i in range(n):
         if gained[group[i]]:
             sg = s[group[i]]
             out[i, 0] = V0[i, 0] + sg * (V[i, 0] - V0[i, 0])
             out[i, 1] = V0[i, 1] + sg * (V[i, 1] - V0[i, 1])
-    return out
+            w_out[i] = W0[i] + sg * (W[i] - W0[i])
+    return out, w_out
 
 
 def _sample_carry_keys() -> tuple[object, ...]:

@@ -12,7 +12,9 @@ compiled by numba), the same algorithm giving the same numbers bit for bit:
 * ``warm_start``: each row's impulses and colour of the last step, found by its key in the
   sorted keys carried (a binary search, as searchsorted);
 * ``held``: after the step, which pairs touch or pressed, which are near enough for sleep to
-  join, and every row's gap now.
+  join, and every row's gap now;
+* ``turning`` and ``lever_arms``: the discs of the pile that turn, and the rows' lever arms
+  for them (engine.soft, ``Arms``), the same array calls on both paths.
 
 The kernels do their twin's products and sums in the same order (a - b - c as (a - b) - c, a
 dot as x x' + y y', nothing fused), so the two paths give the same bits.
@@ -20,7 +22,7 @@ dot as x x' + y y', nothing fused), so the two paths give the same bits.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -28,12 +30,14 @@ from . import kernels
 from .faces import face_normals
 from .impact import TOUCH
 from .pair_math import SLOP, dot, norm, unit
+from .soft import Arms
 
 if TYPE_CHECKING:
     from .contacts import Contacts
     from .pile import Carried
+    from .rotation import Spin
 
-__all__ = ["disc_rows", "face_rows", "held", "warm_start"]
+__all__ = ["Turning", "disc_rows", "face_rows", "held", "lever_arms", "turning", "warm_start"]
 
 
 def disc_rows(
@@ -164,6 +168,65 @@ def face_rows(
         gap = np.where(line, gap, norm(d) - faces.r[fd] - r[bi])
     keep = inside & (gap <= margin[bi])
     return bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep]
+
+
+class Turning(NamedTuple):
+    """The pile's discs that turn, by local body (the static slot last where (n + 1,))."""
+
+    turns: np.ndarray  # (n,) bool
+    inv_moment: np.ndarray  # (n + 1,) 1 / I (1/(kg m^2)), 0 for what does not turn
+    moment: np.ndarray  # (n,) I (kg m^2), 0 for what does not turn
+    omega0: np.ndarray  # (n + 1,) rad/s at the step's start, 0 for what does not turn
+    alpha: np.ndarray  # (n + 1,) own angular acceleration tau / I (rad/s^2)
+
+
+def turning(spin: Spin, store: Any, U: np.ndarray, can: np.ndarray) -> Turning | None:
+    """The pile's (World rows ``U``) discs that turn, of those that ``can`` (they move and
+    have no corners), or None where none does."""
+    t = spin.turns[U] & can
+    if not t.any():
+        return None
+    i = np.where(t, store.inv_moment[U], 0.0)
+    moment = np.where(t, store.moment[U], 0.0)
+    return Turning(
+        t,
+        np.append(i, 0.0),
+        moment,
+        np.append(np.where(t, spin.omega0[U], 0.0), 0.0),
+        np.append(np.where(t, spin.alpha[U], 0.0), 0.0),
+    )
+
+
+def lever_arms(
+    turn: Turning,
+    r: np.ndarray,
+    ra: np.ndarray,
+    rb: np.ndarray,
+    sep: np.ndarray,
+    m_disc: int,
+    m_pairs: int,
+    fa: np.ndarray,
+    nU: int,
+) -> Arms:
+    """The rows' lever arms (engine.soft, ``Arms``) for the discs that turn: the rows of
+    disc pairs (the first ``m_pairs``) and of a disc on a face (to ``m_disc``; A the static
+    slot, B the disc ``fa``); the rows of shapes have none.
+
+    A disc's contact point is on its surface, r along the normal, where the gap is open; where
+    two surfaces overlap by -s it is Box2D's, midway between them, r + s / 2 from each centre:
+    then l_A + l_B is the distance between the centres, the contact point is one point, and
+    the friction between two discs changes no angular momentum about any point (the
+    impulse's moment about the origin, (x_B - x_A) x P, is what it gives the spins,
+    -(l_A + l_B) n x P, with the opposite sign)."""
+    la, lb = np.zeros(len(ra)), np.zeros(len(ra))
+    half = 0.5 * np.minimum(sep[:m_disc], 0.0)
+    pairs = slice(0, m_pairs)
+    a, b = ra[pairs], rb[pairs]
+    la[pairs] = np.where(turn.turns[a], r[a] + half[pairs], 0.0)
+    lb[pairs] = np.where(turn.turns[b], r[b] + half[pairs], 0.0)
+    faces = slice(m_pairs, m_disc)
+    lb[faces] = np.where(turn.turns[fa], r[fa] + half[faces], 0.0)
+    return Arms(la, lb, turn.inv_moment)
 
 
 # -- the loop kernels (engine.kernels: the fast path) -----------------------------------------

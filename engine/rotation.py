@@ -9,8 +9,10 @@ acceleration alpha = tau / I is too, and the closed form is exact:
 
 That is what a step does to every body that turns and meets nothing (``Spin.free``). A body
 that touches a collider turns under its friction too (engine.sweep, engine.resting: rolling,
-slipping, the spin a bounce gives); contacts between bodies do not turn them yet, and a
-sleeping body stops turning.
+slipping, the spin a bounce gives), and the discs of a pile under its rows' friction (the soft
+step's lever arms: engine.soft, ``Arms``; engine.pile); two bodies that meet at an exact impact,
+outside a pile (engine.pair_impacts), do not turn each other yet, and a sleeping body stops
+turning.
 
 Model no more than a scene needs: a point, a body with corners (in this version), a kinematic
 body or one with ``fixed_rotation=True`` has 1 / I = 0, and a World none of whose bodies turn

@@ -96,6 +96,7 @@ def sleep_still(
     overlap: np.ndarray,
     on_wall: np.ndarray,
     fast: bool = False,
+    spin_speed: np.ndarray | None = None,
 ) -> np.ndarray:
     """Count how long each body has been still (in place on ``still``); put to sleep each
     group (bodies resting on one another, pairs pa, pb, or one resting on a collider) that
@@ -105,10 +106,14 @@ def sleep_still(
     ``live``: the rows that collide; ``kinematic`` (N,) or None: bodies the game moves;
     ``overlap`` (N,): each body's deepest overlap over its radius (empty: not measured);
     ``on_wall``: the rows of a pile's bodies resting on a wall; ``fast``: label the groups
-    by the loop kernel (engine.kernels)."""
+    by the loop kernel (engine.kernels); ``spin_speed`` (N,) or None: how fast each body's
+    surface turns about its centre, |omega| r (length units/s): a disc spinning in place is
+    not still."""
     if not math.isfinite(sleep_time):
         return group
     slow = norm(v[live]) <= still_speed
+    if spin_speed is not None:
+        slow &= spin_speed[live] <= still_speed
     still[live] = np.where(slow, still[live] + dt, 0.0)
     ready = (still >= sleep_time) & ~asleep
     if kinematic is not None:

@@ -35,6 +35,24 @@ a3 = 1 / (1 + a2), bias = max(s_m (omega / a1) s, -push_speed), s_m = a2 a3 (mas
 s_i = a3 (impulse scale); contacts with the static world take twice the frequency (stiffer:
 the floor does not give).
 
+**Discs that turn** (``Arms``). A row's contact point is at r_A = l_A n from A's centre and at
+r_B = -l_B n from B's (l: the lever arm, about the radius; 0 for what does not turn: a point, a
+box in this version, a body with ``fixed_rotation``, the static world). In 2D, omega x p is
+omega (i p) in complex form, so the point of A moves at v_A + omega_A l_A (i n) = v_A +
+omega_A l_A t, and B's at v_B - omega_B l_B t: the tangential slip of B on A is
+
+    vt = (v_B - v_A).t - omega_B l_B - omega_A l_A.
+
+The normal passes through both centres (r x n = 0), so the normal rows are those of bodies that
+do not turn; only friction gains lever arms. A tangential impulse lam_t t on B (and -lam_t t on
+A) turns B by i_B (r_B x lam_t t) = -i_B l_B lam_t (n x t = 1) and A by i_A (l_A n x -lam_t t) =
+-i_A l_A lam_t (i = 1 / I, rad/s per N m s), so it changes vt by lam_t (w_A + w_B + l_A^2 i_A +
+l_B^2 i_B), and the tangent row's mass is m_t = 1 / (w_A + w_B + l_A^2 i_A + l_B^2 i_B). The
+warm start gives each body's spin the same share of the stored impulses, the substeps add the
+torque's alpha h to omega as the forces' a h to v, and the angle moves by omega h a substep, as
+the position by v h. With every lever arm 0 the numbers are those of bodies that do not turn,
+bit for bit (x - 0.0 is x, k + 0.0 is k, and a spin that is 0 stays 0).
+
 Velocities are complex numbers here, x + iy: with the normal n, d = dv conj(n) gives the
 normal speed d.real and the tangential d.imag (along t = i n); the product is written out
 (``_along``, ``_across``), so both paths round alike on every machine.
@@ -53,7 +71,7 @@ import numpy as np
 
 from . import coloring, kernels
 
-__all__ = ["Rows", "SoftStep", "SUBSTEPS", "CONTACT_HERTZ", "DAMPING"]
+__all__ = ["Arms", "Rows", "SoftStep", "SUBSTEPS", "CONTACT_HERTZ", "DAMPING"]
 
 #: Parts a step of the pile is taken in (Box2D v3's default).
 SUBSTEPS = 4
@@ -88,6 +106,16 @@ class Rows:
     lam_n: np.ndarray  # (R,) normal impulse of a part (warm start), >= 0
     lam_t: np.ndarray  # (R,) tangential impulse of a part
     static: np.ndarray  # (R,) bool: B is the static world
+
+
+@dataclass
+class Arms:
+    """The lever arms of a pile's rows, for the discs that turn (module text): a row's contact
+    point is at ``a`` n from A's centre and at -``b`` n from B's."""
+
+    a: np.ndarray  # (R,) A's lever arm (length units), 0 where A does not turn
+    b: np.ndarray  # (R,) B's lever arm (length units), 0 where B does not turn
+    inv_moment: np.ndarray  # (n + 1,) 1 / I (1/(kg m^2)) by body, 0: does not turn (static: 0)
 
 
 # The products with the normal, written out: numpy's complex product may fuse a multiply and
@@ -137,6 +165,7 @@ class SoftStep:
         slop: np.ndarray | None = None,
         prior: np.ndarray | None = None,
         fast: bool = False,
+        arms: Arms | None = None,
     ) -> None:
         self.rows = rows
         self.fast = fast  # run the loop kernel (``run_rows``, compiled), not the numpy twin
@@ -162,6 +191,22 @@ class SoftStep:
         self.wa, self.wb = w[self.a], w[self.b]
         k = self.wa + self.wb
         self.m = np.where(k > 0.0, 1.0 / np.where(k > 0.0, k, 1.0), 0.0)
+        # Discs that turn (``arms``, module text): each row's lever arms l, the spin a unit
+        # tangential impulse takes from A and B (l i, rad/s per N s), and the tangent row's
+        # mass 1 / (w_A + w_B + l_A^2 i_A + l_B^2 i_B) (without lever arms: m, the same bits).
+        self.turning = arms is not None
+        if arms is not None:
+            self.la, self.lb = arms.a[order], arms.b[order]
+            self.ka = self.la * arms.inv_moment[self.a]
+            self.kb = self.lb * arms.inv_moment[self.b]
+            kt = k + self.la * self.ka + self.lb * self.kb
+            self.mt = np.where(kt > 0.0, 1.0 / np.where(kt > 0.0, kt, 1.0), 0.0)
+        else:
+            self.la = self.lb = self.ka = self.kb = np.zeros(len(order))
+            self.mt = self.m
+        #: After ``run``: each body's angular velocity (rad/s) and the angle it turned (rad),
+        #: (n + 1,), the static slot last (zeros without ``arms``).
+        self.omega = self.turned = np.zeros(0)
         # Soft contacts (Box2D's b2MakeSoft), stiffer with the static world: per row, the
         # bias rate times the mass scale, the mass scale, the impulse scale.
         hertz = min(CONTACT_HERTZ, 0.125 / h)
@@ -177,32 +222,54 @@ class SoftStep:
         self.total = np.zeros(len(order))  # the normal impulse each row gave in the step
         self.slop = None if slop is None else slop[order]
 
-    def run(self, x0: np.ndarray, v0: np.ndarray, acc: np.ndarray) -> tuple[np.ndarray, ...]:
+    def run(
+        self,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        acc: np.ndarray,
+        omega0: np.ndarray | None = None,
+        alpha: np.ndarray | None = None,
+    ) -> tuple[np.ndarray, ...]:
         """Step the bodies from (x0, v0) (complex, (n + 1,), the static slot last) under the
         accelerations ``acc``: their (x, v) at the end, complex. The rows' impulses are
-        written back to ``rows`` (per part) and ``total`` (over the step), in rows' order."""
+        written back to ``rows`` (per part) and ``total`` (over the step), in rows' order.
+        With ``arms``: the bodies turn from ``omega0`` (rad/s, (n + 1,), 0 for what does not
+        turn; None: all 0) under their own ``alpha`` (rad/s^2, None: 0), and end at
+        ``self.omega``, having turned by ``self.turned`` (rad)."""
         h = self.h
         v = v0.copy()
         dp = np.zeros_like(v0)
+        nb = len(v0)
+        om = np.zeros(nb) if omega0 is None else np.array(omega0, dtype=float)
+        th = np.zeros(nb)
+        self.omega, self.turned = om, th
         if self.fast:
             slop = self.slop
+            spin_step = np.zeros(nb) if alpha is None else alpha * h
             run_rows(
                 v, dp, acc * h, self.a, self.b, self.n, self.sep, self.push, self.mu,
                 self.e, self.wa, self.wb, self.m, self.soft, self.ms, self.isc, self.held,
                 self.lam, self.lam_t, self.total, h, self.substeps, self.threshold,
                 self.sep if slop is None else slop, 0 if slop is None else PROJECT_SWEEPS,
+                om, th, spin_step, self.la, self.lb, self.ka, self.kb, self.mt,
             )  # fmt: skip
             return self._finish(x0, dp, v)
         # Each contact's relative normal speed as the step began, for restitution.
         rel = _along(v0[self.b] - v0[self.a], self.n)
         step = acc * h
+        spin = om if self.turning else None
+        turn_step = None if alpha is None or spin is None else alpha * h
         idx = np.concatenate([self.a, self.b])
         for _ in range(self.substeps):
             v += step
-            self._warm_start(v, idx)
+            if turn_step is not None:
+                om += turn_step
+            self._warm_start(v, idx, spin)
             self._solve(v, dp)
             dp += v * h
-            self._relax(v, dp)
+            if spin is not None:
+                th += om * h
+            self._relax(v, dp, spin)
         self._restitution(v, rel)
         if self.slop is not None:
             self._project(dp)
@@ -217,8 +284,9 @@ class SoftStep:
         self.total = total
         return x0 + dp, v
 
-    def _warm_start(self, v: np.ndarray, idx: np.ndarray) -> None:
-        """Every row's impulse of the part before, again, at once."""
+    def _warm_start(self, v: np.ndarray, idx: np.ndarray, om: np.ndarray | None) -> None:
+        """Every row's impulse of the part before, again, at once (to the spins ``om`` of
+        the bodies that turn too: -l i lam_t each)."""
         if not self.lam.any() and not self.lam_t.any():
             return
         p = _turn(self.n, self.lam, self.lam_t)
@@ -227,6 +295,10 @@ class SoftStep:
         n = len(v)
         v += np.bincount(idx, dv.real, minlength=n) + 1j * np.bincount(idx, dv.imag, minlength=n)
         v[-1] = 0.0
+        if om is not None:
+            dw = np.concatenate([-self.ka * self.lam_t, -self.kb * self.lam_t])
+            om += np.bincount(idx, dw, minlength=n)
+            om[-1] = 0.0
 
     def _solve(self, v: np.ndarray, dp: np.ndarray) -> None:
         """The normal impulses, with the soft push out of overlap (Box2D's useBias)."""
@@ -253,9 +325,10 @@ class SoftStep:
             v[b] += p * self.wb[k]
         v[-1] = 0.0
 
-    def _relax(self, v: np.ndarray, dp: np.ndarray) -> None:
+    def _relax(self, v: np.ndarray, dp: np.ndarray, om: np.ndarray | None) -> None:
         """The normal impulses without the push (it moved positions, and leaves no speed),
-        then friction, against the tangential speed: |lam_t| <= mu lam_n."""
+        then friction, against the tangential slip at the contact point (the spins ``om``
+        of the bodies that turn in it): |lam_t| <= mu lam_n."""
         inv_h = 1.0 / self.h
         lam_all, lam_t_all, total = self.lam, self.lam_t, self.total
         for k in self.slices:
@@ -267,16 +340,26 @@ class SoftStep:
             d = new - lam
             lam_all[k] = new
             total[k] += d
-            # The tangential speed is the one before the normal impulse: the bodies do not
-            # turn, so a push along n leaves it.
+            # The tangential slip is the one before the normal impulse: a push along n goes
+            # through the centres, and changes neither v.t nor a spin.
             lt = lam_t_all[k]
             cap = self.mu[k] * new
-            newt = np.minimum(np.maximum(lt - m * _across(dv, n), -cap), cap)
+            if om is None:
+                newt = np.minimum(np.maximum(lt - m * _across(dv, n), -cap), cap)
+            else:
+                # vt = (v_B - v_A).t - omega_B l_B - omega_A l_A (module text).
+                vt = _across(dv, n) - om[b] * self.lb[k] - om[a] * self.la[k]
+                newt = np.minimum(np.maximum(lt - self.mt[k] * vt, -cap), cap)
+                dlt = newt - lt
+                om[a] -= self.ka[k] * dlt
+                om[b] -= self.kb[k] * dlt
             p = _turn(n, d, newt - lt)
             lam_t_all[k] = newt
             v[a] -= p * self.wa[k]
             v[b] += p * self.wb[k]
         v[-1] = 0.0
+        if om is not None:
+            om[-1] = 0.0
 
     def _restitution(self, v: np.ndarray, rel: np.ndarray) -> None:
         """Contacts that met faster than ``threshold`` and pressed part at e times that."""
@@ -326,9 +409,10 @@ class SoftStep:
 def _sample_rows() -> tuple[object, ...]:
     """The smallest call of ``run_rows``: two bodies on the floor, one row each."""
     c, f, i = np.zeros(3, dtype=complex), np.zeros(2), np.array([2, 2])
-    one = np.ones(2)
+    one, w = np.ones(2), np.zeros(3)
     return (c, c.copy(), c.copy(), i, np.array([0, 1]), one + 0j, f, f, f, f, f, one, one,
-            f, f, f, f, f, f, f, 0.01, 1, 0.0, f, 1)  # fmt: skip
+            f, f, f, f, f, f, f, 0.01, 1, 0.0, f, 1, w, w.copy(), w.copy(), f, f, f, f,
+            one)  # fmt: skip
 
 
 @kernels.loop(sample=_sample_rows)
@@ -358,9 +442,19 @@ def run_rows(
     threshold: float,
     slop: np.ndarray,
     sweeps: int,
+    om: np.ndarray,
+    th: np.ndarray,
+    spin_step: np.ndarray,
+    la: np.ndarray,
+    lb: np.ndarray,
+    ka: np.ndarray,
+    kb: np.ndarray,
+    mt: np.ndarray,
 ) -> None:
     """SoftStep.run's parts, restitution and projection, in place on v, dp (complex, the
-    static slot last), lam, lam_t and total, over rows in the solving order."""
+    static slot last), lam, lam_t and total, over rows in the solving order; and on the
+    spins om and angles turned th (rad/s, rad; all 0 for bodies that do not turn: their
+    lever arms la, lb and ka = la i_A, kb = lb i_B are 0, and mt is then m)."""
     rows, bodies = len(a), len(v)
     last = bodies - 1
     inv_h = 1.0 / h
@@ -368,10 +462,11 @@ def run_rows(
     for k in range(rows):
         d = v[b[k]] - v[a[k]]
         rel[k] = d.real * n[k].real + d.imag * n[k].imag
-    acc_re, acc_im = np.zeros(bodies), np.zeros(bodies)
+    acc_re, acc_im, acc_w = np.zeros(bodies), np.zeros(bodies), np.zeros(bodies)
     for _ in range(substeps):
         for j in range(bodies):
             v[j] += step[j]
+            om[j] += spin_step[j]
         # Warm start: every row's impulse of the part before, summed by body as bincount does.
         warm = False
         for k in range(rows):
@@ -381,6 +476,7 @@ def run_rows(
         if warm:
             acc_re[:] = 0.0
             acc_im[:] = 0.0
+            acc_w[:] = 0.0
             for k in range(rows):
                 total[k] += lam[k]
                 nr, ni = n[k].real, n[k].imag
@@ -388,15 +484,19 @@ def run_rows(
                 q = -p * wa[k]
                 acc_re[a[k]] += q.real
                 acc_im[a[k]] += q.imag
+                acc_w[a[k]] += -ka[k] * lam_t[k]
             for k in range(rows):
                 nr, ni = n[k].real, n[k].imag
                 p = complex(nr * lam[k] - ni * lam_t[k], nr * lam_t[k] + ni * lam[k])
                 q = p * wb[k]
                 acc_re[b[k]] += q.real
                 acc_im[b[k]] += q.imag
+                acc_w[b[k]] += -kb[k] * lam_t[k]
             for j in range(bodies):
                 v[j] += complex(acc_re[j], acc_im[j])
+                om[j] += acc_w[j]
             v[last] = 0.0
+            om[last] = 0.0
         # Solve, with the soft push out of overlap.
         for k in range(rows):
             nr, ni = n[k].real, n[k].imag
@@ -418,6 +518,7 @@ def run_rows(
         v[last] = 0.0
         for j in range(bodies):
             dp[j] += v[j] * h
+            th[j] += om[j] * h
         # Relax: the normal impulses without the push, then friction.
         for k in range(rows):
             nr, ni = n[k].real, n[k].imag
@@ -429,13 +530,18 @@ def run_rows(
             total[k] += d
             lt = lam_t[k]
             cap = mu[k] * new
-            newt = min(max(lt - m[k] * (dv.imag * nr - dv.real * ni), -cap), cap)
+            # The slip at the contact point: vt = (v_B - v_A).t - omega_B l_B - omega_A l_A.
+            vt = (dv.imag * nr - dv.real * ni) - om[b[k]] * lb[k] - om[a[k]] * la[k]
+            newt = min(max(lt - mt[k] * vt, -cap), cap)
             dt_ = newt - lt
+            om[a[k]] -= ka[k] * dt_
+            om[b[k]] -= kb[k] * dt_
             p = complex(nr * d - ni * dt_, nr * dt_ + ni * d)
             lam_t[k] = newt
             v[a[k]] -= p * wa[k]
             v[b[k]] += p * wb[k]
         v[last] = 0.0
+        om[last] = 0.0
     # Restitution for rows that met faster than threshold and pressed.
     hit = False
     for k in range(rows):

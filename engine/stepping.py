@@ -283,10 +283,6 @@ def _step_once(
         pile = pairs.plan(store.x, store.v, x1, v1, pull, dt, store, held)
         if pile is not None:
             frozen = pile if frozen is None else frozen | pile
-            if spin is not None:
-                # In this version the pile's solver has no lever arms: a disc in a pile
-                # does not turn (its spin stops; engine.rotation).
-                spin.angle[pile], spin.omega[pile] = spin.angle0[pile], 0.0
             if contacts is not None:
                 contacts.rest[pile] = -1  # their faces are the pile's rows now
     if contacts is not None:
@@ -326,7 +322,11 @@ def _step_once(
             if on.any():
                 A = A.copy()
                 A[on] = (v1[on] - store.v[on]) * (1.0 / dt)
-        x1, v1 = pairs.resolve(store.x, store.v, x1, v1, A, dt, t0, store, contacts, pull)
+        # The pile's discs that turn are turned by its rows' friction (engine.soft: lever
+        # arms), from the step's start, in place on the spin.
+        x1, v1 = pairs.resolve(
+            store.x, store.v, x1, v1, A, dt, t0, store, contacts, pull, spin=spin
+        )
         if pairs.moved:
             state.anchor = None
         if contacts is not None:

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 from engine import Body, Vector, World, kernels
 from engine.kernels import LoopKernel
-from engine.soft import Rows, SoftStep
+from engine.soft import Arms, Rows, SoftStep
 
 COMPILED = kernels.available()
 
@@ -117,6 +117,91 @@ def test_the_twins_differ_where_the_algorithm_does() -> None:
     r.friction[:] = 0.0
     other = SoftStep(copy_rows(r), w, moves, 1 / 60, fast=True, **options).run(x0, v0, acc)
     assert not close(ref[1], other[1])
+
+
+def random_arms(seed: int, bodies: int, r: Rows, moves: np.ndarray) -> tuple[Arms, ...]:
+    """Lever arms for a made-up pile: some moving bodies turn (a radius and a moment each),
+    with a spin and an angular acceleration; (arms, omega0, alpha), the static slot last."""
+    rng = np.random.default_rng(seed + 2)
+    turns = np.append(rng.random(bodies) < 0.7, False) & moves
+    radius = rng.uniform(0.1, 1.0, bodies + 1)
+    inv = np.where(turns, 1.0 / rng.uniform(0.05, 3.0, bodies + 1), 0.0)
+    # A row's lever arm: the radius, less half of an overlap (engine.pile_rows.lever_arms).
+    half = 0.5 * np.minimum(r.separation, 0.0)
+    la = np.where(turns[r.a], radius[r.a] + half, 0.0)
+    lb = np.where(turns[r.b], radius[r.b] + half, 0.0)
+    omega0 = np.where(turns, rng.normal(0.0, 5.0, bodies + 1), 0.0)
+    alpha = np.where(turns, rng.normal(0.0, 3.0, bodies + 1), 0.0)
+    return Arms(la, lb, inv), omega0, alpha
+
+
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    bodies=st.integers(1, 25),
+    rows=st.integers(0, 60),
+    substeps=st.integers(1, 6),
+    dt=st.sampled_from([1 / 240, 1 / 60, 1 / 7]),
+)
+def test_soft_step_kernel_with_lever_arms_is_its_numpy_twin(
+    seed: int, bodies: int, rows: int, substeps: int, dt: float
+) -> None:
+    """With discs that turn (lever arms, spins, torques), the loop kernel gives the numpy
+    twin's state, spins, angles, impulses and totals bit for bit, on random piles."""
+    r, w, moves, options = random_pile(seed, bodies, rows)
+    arms, omega0, alpha = random_arms(seed, bodies, r, moves)
+    rng = np.random.default_rng(seed + 1)
+    x0 = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    v0 = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    acc = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    acc[:-1][~moves[:-1]] = 0.0
+    out = {}
+    for fast in (False, True):
+        rows_copy = copy_rows(r)
+        step = SoftStep(rows_copy, w, moves, dt, substeps, fast=fast, arms=arms, **options)
+        x, v = step.run(x0.copy(), v0.copy(), acc, omega0.copy(), alpha)
+        out[fast] = (x, v, rows_copy.lam_n, rows_copy.lam_t, step.total, step.omega, step.turned)
+    for got, want in zip(out[True], out[False], strict=True):
+        assert np.array_equal(got, want)
+
+
+@given(seed=st.integers(0, 2**32 - 1), bodies=st.integers(1, 25), rows=st.integers(0, 60))
+def test_lever_arms_of_zero_leave_every_number_as_it_was(seed: int, bodies: int, rows: int) -> None:
+    """Rows whose lever arms are all 0 (no disc turns) give, on both paths, the bits of rows
+    without lever arms: x - 0.0 is x, k + 0.0 is k, and a spin of 0 stays 0."""
+    r, w, moves, options = random_pile(seed, bodies, rows)
+    zero = Arms(np.zeros(rows), np.zeros(rows), np.zeros(bodies + 1))
+    rng = np.random.default_rng(seed + 1)
+    v0 = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    acc = np.append(rng.normal(size=bodies) + 1j * rng.normal(size=bodies), 0.0)
+    acc[:-1][~moves[:-1]] = 0.0
+    for fast in (False, True):
+        plain, armed = copy_rows(r), copy_rows(r)
+        a = SoftStep(plain, w, moves, 1 / 60, fast=fast, **options)
+        b = SoftStep(armed, w, moves, 1 / 60, fast=fast, arms=zero, **options)
+        got_a = a.run(v0.copy(), v0.copy(), acc)
+        got_b = b.run(v0.copy(), v0.copy(), acc, np.zeros(bodies + 1), np.zeros(bodies + 1))
+        for x, y in zip(got_a, got_b, strict=True):
+            assert np.array_equal(x, y)
+        assert np.array_equal(plain.lam_n, armed.lam_n)
+        assert np.array_equal(plain.lam_t, armed.lam_t)
+        assert np.array_equal(a.total, b.total)
+        assert not b.omega.any() and not b.turned.any()
+
+
+def test_the_twins_differ_where_the_lever_arms_do() -> None:
+    """The comparison can fail: a kernel given the lever arms' opposite sign (the slip's
+    omega terms added, not taken off) is caught by it."""
+    r, w, moves, options = random_pile(11, 10, 40)
+    r.friction[:] = 0.9
+    arms, omega0, alpha = random_arms(11, 10, r, moves)
+    x0 = np.zeros(11, dtype=complex)
+    acc = np.append(np.full(10, 1.0 - 9.81j), 0.0)
+    ref = SoftStep(copy_rows(r), w, moves, 1 / 60, fast=False, arms=arms, **options)
+    ref.run(x0, x0, acc, omega0, alpha)
+    flipped = Arms(-arms.a, -arms.b, arms.inv_moment)
+    other = SoftStep(copy_rows(r), w, moves, 1 / 60, fast=True, arms=flipped, **options)
+    other.run(x0, x0, acc, omega0, alpha)
+    assert not close(ref.omega, other.omega)
 
 
 # -- the path a World takes -------------------------------------------------------------------

@@ -150,6 +150,43 @@ def test_dissipative_kernel_is_its_numpy_twin(
     assert same(dissipative(V, V0, m, fast=True), dissipative(V, V0, m))
 
 
+@given(seed=seeds, bodies=st.integers(1, 40), groups=st.integers(1, 5), gain=st.booleans())
+def test_dissipative_kernel_with_spins_is_its_numpy_twin(
+    seed: int, bodies: int, groups: int, gain: bool
+) -> None:
+    """With bodies that turn (spins W, W0, moments I; I = 0 for some), the kernel scales the
+    same groups' V and W as the twin, bit for bit; with every I and spin 0 it gives the V of
+    no spins at all."""
+    rng = np.random.default_rng(seed)
+    V0 = rng.normal(0, 1, (bodies, 2))
+    V = V0 + (rng.normal(0, 0.1, (bodies, 2)) if gain else -0.05 * V0)
+    W0 = rng.normal(0, 3, bodies)
+    W = W0 + (rng.normal(0, 0.5, bodies) if gain else -0.05 * W0)
+    inertia = np.where(rng.random(bodies) < 0.7, rng.uniform(0.01, 1.0, bodies), 0.0)
+    m = rng.uniform(0.1, 3.0, bodies)
+    group = np.minimum(rng.integers(0, groups, bodies), bodies - 1).astype(np.int64)
+    spins = (W, W0, inertia)
+    assert same(
+        dissipative(V, V0, m, group, True, spins), dissipative(V, V0, m, group, False, spins)
+    )
+    z = np.zeros(bodies)
+    for fast in (False, True):
+        got, w = dissipative(V, V0, m, group, fast, (z, z, z))
+        assert same(got, dissipative(V, V0, m, group, fast)) and not w.any()
+
+
+def test_dissipative_counts_the_spins_energy() -> None:
+    """Friction that passes a spin's energy to a body's speed is no gain: the spin's
+    I omega^2 / 2 counts (without it, the speed's gain would be scaled away)."""
+    V0, V = np.zeros((1, 2)), np.array([[1.0, 0.0]])  # 0.5 J of speed gained ...
+    W0, W = np.array([4.0]), np.array([2.0])  # ... from 0.125 (16 - 4) / 2 = 0.75 J of spin
+    inertia, m = np.array([0.125]), np.ones(1)
+    for fast in (False, True):
+        out, w = dissipative(V, V0, m, None, fast, (W, W0, inertia))
+        assert same(out, V) and same(w, W)
+        assert not same(dissipative(V, V0, m, None, fast), V)  # the speed alone: a gain
+
+
 def test_dissipative_kernel_scales_a_gain_back() -> None:
     """A pile that gained energy is scaled back to its least, as the twin does."""
     V0, V = np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([[2.0, 0.0], [-2.0, 0.0]])

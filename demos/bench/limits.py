@@ -92,13 +92,13 @@ def column(n: int, heavy: float) -> Callable[[int, int], tuple[World, float | No
 
 
 def pit_of(
-    n: int, width: float, log_masses: bool = False
+    n: int, width: float, log_masses: bool = False, turning: bool = False
 ) -> Callable[[int, int], tuple[World, float | None]]:
     """``n`` balls on the bench pit's grid in a box ``width`` m wide; masses equal, or drawn
-    log-uniform from 1 to 1,000 (seeded)."""
+    log-uniform from 1 to 1,000 (seeded); ``turning``: balls that turn (else they do not)."""
 
     def build(iterations: int, seed: int) -> tuple[World, float | None]:
-        world = pit.make_world(n, iterations, width=width, seed=seed)
+        world = pit.make_world(n, iterations, width=width, seed=seed, fixed_rotation=not turning)
         if log_masses:
             masses = 10.0 ** np.random.default_rng(seed).uniform(0.0, 3.0, n)
             for body, m in zip(world.bodies, masses.tolist(), strict=True):

@@ -92,19 +92,21 @@ def make_world(
     width: float = WIDTH,
     seed: int = 1,
     kernels: str | None = None,
+    fixed_rotation: bool = True,
 ) -> World:
     """The pit as a World ("auto": the closed form under gravity), ``width`` m wide, on the
-    path ``kernels`` (None: the default, engine.kernels)."""
+    path ``kernels`` (None: the default, engine.kernels); ``fixed_rotation=False``: balls
+    that turn (the pile's friction turns them: engine.soft, lever arms)."""
     world = World(integrator="auto", kernels=kernels)
     if iterations is not None:
         world.contact_iterations = iterations
     world.add_force(Gravity((0.0, -G)))
     world.add_collider(Box((0.0, 0.0), (width, 1e4)))  # walls and a floor; the top far away
-    # The balls do not turn (fixed_rotation): the pile's solver has no lever arms yet
-    # (engine.rotation), and the pit measures that solver, as it did before bodies turned.
+    # The balls do not turn by default (fixed_rotation): the pit measures the pile's solver
+    # as it did before bodies turned, its numbers comparable from run to run.
     world.add_all(
         Body(Vector(*p), Vector(0, 0), Vector(0, 0), radius=RADIUS, restitution=E, friction=MU,
-             fixed_rotation=True)
+             fixed_rotation=fixed_rotation)
         for p in scene(n, seed, width=width).tolist()
     )  # fmt: skip
     return world
