@@ -152,21 +152,38 @@ class Collisions:
         # bodies and faces then); rows keep their numbers, so only the faces' b moves. The
         # mapping keeps their order, so the keys stay sorted.
         if len(self._keys) and self._base > old:
-            # (The rows of bodies with shapes, keyed past old * base, start afresh.)
-            disc = self._keys < old * self._base
-            self._keys, self._lam = self._keys[disc], self._lam[disc]
-            a, b = np.divmod(self._keys, self._base)
-            b[b >= old] += extra
+            # (The rows of bodies with shapes, keyed past old * base, start afresh.) The
+            # colours too: the next step solves its rows in the same order, so a pile goes on
+            # as in a World without the new bodies (the order matters while it moves).
+            base = self._base
+            shared = self._color_keys is self._keys
+            keys, self._lam = self._renumber(self._keys, self._lam, old, base, extra)
+            self._color_keys, self._colors = self._renumber(
+                self._color_keys, self._colors, old, base, extra
+            )
+            self._keys = self._color_keys if shared else keys
             self._base += extra
-            self._keys = a * self._base + b
         else:
             self._keys, self._lam = np.zeros(0, dtype=np.int64), np.zeros((0, 2))
-        self._color_keys = np.zeros(0, dtype=np.int64)  # coloured afresh
+            self._color_keys = np.zeros(0, dtype=np.int64)  # coloured afresh
         a, b = np.divmod(self._touching, old)  # a * n + b for the pairs touching
         self._touching = a * n + b
         self.still = np.concatenate([self.still, np.zeros(extra)])
         self.asleep = np.concatenate([self.asleep, np.zeros(extra, dtype=bool)])
         self._group = np.concatenate([self._group, np.zeros(extra, dtype=np.intp)])
+
+    @staticmethod
+    def _renumber(
+        keys: np.ndarray, values: np.ndarray, old: int, base: int, extra: int
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Carried (keys, values) of the discs' rows (keys below old * base) renumbered for
+        ``extra`` bodies added after the ``old`` ones: a face's b = old + f moves by extra,
+        in the new base (the order, and so the sorting, is kept)."""
+        disc = keys < old * base
+        keys, values = keys[disc], values[disc]
+        a, b = np.divmod(keys, base)
+        b[b >= old] += extra
+        return a * (base + extra) + b, values
 
     @property
     def any_asleep(self) -> bool:

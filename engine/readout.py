@@ -105,7 +105,8 @@ def velocities(state: WorldState) -> np.ndarray:
 
 
 def energy(state: WorldState) -> float:
-    """Total mechanical energy (J): kinetic plus the potential of the forces that have one.
+    """Total mechanical energy (J): kinetic (m v^2 / 2, and I omega^2 / 2 for a body that
+    turns) plus the potential of the forces that have one.
 
     A body's own constant acceleration a counts like gravity, with potential -m a . x.
     Kinematic and pinned bodies are left out: the game (or the pin) moves them, and no
@@ -122,6 +123,12 @@ def energy(state: WorldState) -> float:
         m = np.where(held, 0.0, m)
     v2 = v * v if state.dim == 1 else np.einsum("ij,ij->i", v, v)
     total = 0.5 * float(np.sum(m * v2))
+    if store.turns_any:
+        # Bodies that turn: I omega^2 / 2 (the others have no spin, or an infinite moment).
+        spin = store.omega
+        total += 0.5 * float(
+            np.sum(np.where(store.inv_moment > 0.0, store.moment, 0.0) * spin * spin)
+        )
     dot = store.own * x if state.dim == 1 else np.einsum("ij,ij->i", store.own, x)
     total -= float(np.sum(m * dot))
     for attached in state.forces:
