@@ -45,6 +45,7 @@ from engine.render import (
     draw_disc,
     draw_text,
 )
+from engine.render.draw import Color
 from engine.render.world_view import angle_of
 
 __all__ = [
@@ -510,7 +511,7 @@ class SlipScene(Scene):
         if shown:
             # Each curve's name at its end, pushed apart where the curves run together (at
             # first all three are 0).
-            ends = []
+            ends: list[tuple[float, float, str, Color]] = []
             for value, name, colour in (
                 (shown[-1][1], "v", VELOCITY),
                 (shown[-1][2], "\u03c9 r", POSITION),
@@ -523,10 +524,10 @@ class SlipScene(Scene):
             early = shown[-1][0] < 0.5 * self.duration
             ends.sort(reverse=True)
             above = math.inf
-            for py, px, name, colour in ends:
-                py = min(py, above - 16 * s)  # above the label below it
-                above = py
-                at = (px + 4 * s, py) if early else (px - 4 * s, py)
+            for top, left, name, colour in ends:
+                y = min(top, above - 16 * s)  # above the label below it
+                above = y
+                at = (left + 4 * s, y) if early else (left - 4 * s, y)
                 anchor = "bottomleft" if early else "bottomright"
                 draw_text(surface, name, at, round(15 * s), colour, anchor)
 

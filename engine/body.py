@@ -743,7 +743,7 @@ def _real(value: Any, name: str) -> float:
     try:
         number = float(value)
     except OverflowError:  # an int or a fraction beyond the float range
-        number = math.inf if value > 0 else -math.inf
+        number = math.inf if value > 0 else -math.inf  # type: ignore[operator]
     if math.isnan(number):
         raise ValueError(f"{name} must be a number, got nan")
     return number
