@@ -136,7 +136,8 @@ class CratesScene(Scene):
         )
         draw_text(
             surface,
-            "they do not turn yet; blue: awake, grey: asleep, vermillion: moved by the game",
+            "crates do not turn yet, the ball rolls; blue: awake, grey: asleep, vermillion: moved"
+            " by the game",
             (x, 50 * s),
             round(15 * s),
             MUTED,
