@@ -355,6 +355,7 @@ def _step_once(
             asleep = state.collisions.asleep
             spin.angle[asleep], spin.omega[asleep] = spin.angle0[asleep], 0.0
         store.angle, store.omega = spin.angle, spin.omega
+        store.spin_written()
     state.void_budget()
 
 

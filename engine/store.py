@@ -85,6 +85,7 @@ class BodyStore:
         self.torque = np.zeros(0)
         #: Whether any body turns (1 / I > 0): a World with none does no rotation at all.
         self.turns_any = False
+        self._spinning = False  # any angular velocity or torque (``spins``)
         #: Forces applied for the next step only (Body.apply_force): slot -> the own
         #: acceleration and torque to go back to after it.
         self.pushes: dict[int, tuple[Any, float]] = {}
@@ -177,10 +178,17 @@ class BodyStore:
         with np.errstate(divide="ignore"):
             self.inv_moment = np.where(np.isfinite(self.moment), 1.0 / self.moment, 0.0)
         self.turns_any = bool((self.inv_moment > 0.0).any())
+        self.spin_written()
 
     def spins(self) -> bool:
-        """Whether any body turns now or is made to (an angular velocity or a torque)."""
-        return self.turns_any and bool(self.omega.any() or self.torque.any())
+        """Whether any body turns now or is made to (an angular velocity or a torque): kept
+        as a flag (``spin_written``), so a step of bodies that do not spin costs no look."""
+        return self._spinning
+
+    def spin_written(self) -> None:
+        """Angular velocities or torques were written (by hand, or by a step): look again
+        whether any body spins."""
+        self._spinning = self.turns_any and bool(self.omega.any() or self.torque.any())
 
     def set_spin(self, slot: int, angle: float | None, omega: float | None) -> None:
         """Set one body's angle (rad) and/or angular velocity (rad/s): a state written by
@@ -190,6 +198,7 @@ class BodyStore:
             self.angle[row] = angle
         if omega is not None:
             self.omega[row] = omega
+        self.spin_written()
         self._on_state(row, False)  # a disc turned in place has not moved
 
     def push(self, slot: int, acc: tuple[float, float], torque: float) -> None:
@@ -216,6 +225,7 @@ class BodyStore:
         """Set one body's own constant torque (N m)."""
         row = self.row(slot)
         self.torque[row] = value
+        self.spin_written()
         self._on_state(row, False)
 
     def set_moments(self, moments: np.ndarray) -> None:
