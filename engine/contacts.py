@@ -286,12 +286,15 @@ class Contacts:
         self.moved = False
         look_friction = friction
         if spin is not None:
-            # Bodies that turn and have friction roll, slip and spin on the faces: none of
-            # them is held still by the look's static-friction test (nan fails every
-            # comparison; the rolling law of engine.resting decides instead).
+            # Bodies that turn and have friction roll, slip and spin on the faces: the look's
+            # static-friction test holds one still only where nothing pulls it along the face
+            # (friction 0: |a_t| <= 0) and it neither spins nor is made to (the rolling law,
+            # engine.resting, leaves exactly such a body where it is); any other is swept
+            # (nan fails every comparison).
             rolls = spin.turns & (friction > 0.0)
             if rolls.any():
-                look_friction = np.where(rolls, np.nan, friction)
+                idle = (spin.omega0 == 0.0) & (spin.alpha == 0.0)
+                look_friction = np.where(rolls, np.where(idle, 0.0, np.nan), friction)
         if len(faces.owner):
             allowed = self.allowed if faces.filters is not None else None
             if self.fast and looks_ready(self.grid):
