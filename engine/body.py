@@ -102,9 +102,11 @@ class Body:
     Units are the scene's own: inches and seconds for Alfred, metres and seconds for the car.
     ``radius`` (length units, 0 for a point) gives it a size for contacts; ``restitution``
     (0: no bounce, 1: elastic) and ``friction`` (Coulomb's mu, >= 0) are its material, combined
-    with a collider's by product (pymunk's rule). A round particle still has no rotation: its
-    friction slows its sliding, and nothing makes it spin. Bodies with a radius collide with
-    each other unless their ``filter`` (engine.Filter: a group, category bits) says not.
+    with a collider's by product (pymunk's rule). A disc turns (``angle``, ``angular_velocity``,
+    ``moment``, ``torque``; engine.rotation): its friction makes it roll and spin; a point, a
+    body with corners (in this version) or one made with ``fixed_rotation=True`` does not.
+    Bodies with a radius collide with each other unless their ``filter`` (engine.Filter: a
+    group, category bits) says not.
     A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``).
 
     ``velocity`` and ``acceleration`` default to zero (``Body(Vector(0, 5))`` is at rest at
