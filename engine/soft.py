@@ -332,9 +332,7 @@ class SoftStep:
             om += np.bincount(idx, dw, minlength=n)
             om[-1] = 0.0
 
-    def _solve(
-        self, v: np.ndarray, dp: np.ndarray, om: np.ndarray | None, th: np.ndarray
-    ) -> None:
+    def _solve(self, v: np.ndarray, dp: np.ndarray, om: np.ndarray | None, th: np.ndarray) -> None:
         """The normal impulses, with the soft push out of overlap (Box2D's useBias); the
         spins ``om`` and the angles turned ``th`` of the bodies that turn count at the
         contact point."""
@@ -369,9 +367,7 @@ class SoftStep:
         if om is not None:
             om[-1] = 0.0
 
-    def _relax(
-        self, v: np.ndarray, dp: np.ndarray, om: np.ndarray | None, th: np.ndarray
-    ) -> None:
+    def _relax(self, v: np.ndarray, dp: np.ndarray, om: np.ndarray | None, th: np.ndarray) -> None:
         """The normal impulses without the push (it moved positions, and leaves no speed),
         then friction, against the tangential slip at the contact point (the spins ``om``
         of the bodies that turn in it): |lam_t| <= mu lam_n."""
