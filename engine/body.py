@@ -41,6 +41,14 @@ __all__ = ["Body", "State"]
 
 _isfinite = math.isfinite
 
+#: Whether bodies with corners (a Polygon, a Segment's capsule) turn, with the moment of their
+#: shape (``shape.moment(mass)``), in the piles' soft step (engine.soft: lever arms r x n on
+#: the normal rows too). Off in this version: a box tips, topples and stacks with it on
+#: (tests/test_rotation_shapes.py), but the crates demo's columns and a box's bounce and
+#: slide (tests/test_crates.py, tests/test_boxes.py) are still measured without it. Read as
+#: a body is made or added: set it before.
+CORNERS_TURN = False
+
 #: A state value: a float for a 1D body, a Vector for a 2D body.
 State = float | Vector
 
@@ -246,7 +254,7 @@ class Body:
             why = "a kinematic body does not turn in this version (set its vel or pos)"
         elif self._fixed:
             why = "the body was made with fixed_rotation=True"
-        elif not self._round():
+        elif not self._round() and not CORNERS_TURN:
             why = (
                 "a body with corners (a Polygon or Segment shape) does not turn in this "
                 "version: it stays upright, like a platformer's crate"
@@ -266,7 +274,9 @@ class Body:
 
     def _own_moment(self) -> float:
         """The moment of inertia (kg m^2) the body turns with; inf for one that does not."""
-        if self._dim != 2 or self._kinematic or self._fixed or not self._round():
+        if self._dim != 2 or self._kinematic or self._fixed:
+            return math.inf
+        if not CORNERS_TURN and not self._round():
             return math.inf
         if self._moment is not None:
             return self._moment
@@ -276,6 +286,10 @@ class Body:
         shape = self._shape
         if shape is None:
             return 0.5 * mass * self._radius * self._radius  # a solid disc: m r^2 / 2
+        if not self._round():
+            # A body with corners (a Polygon, a Segment's capsule): the shape's own moment
+            # about the body's position (engine.mass, exact; the parallel axes' term in it).
+            return float(shape.moment(mass))
         # A Circle about its centre c in the body's frame: m r^2 / 2 + m |c|^2.
         cx, cy = shape.center
         return mass * (0.5 * shape.radius * shape.radius + cx * cx + cy * cy)
@@ -526,8 +540,8 @@ class Body:
     # -- rotation (engine.rotation) ----------------------------------------------------------
     @property
     def turns(self) -> bool:
-        """Whether this body turns: a disc (or a body given a ``moment``), not kinematic, not
-        ``fixed_rotation``. A point, and in this version a body with corners, does not."""
+        """Whether this body turns: a disc, a body with corners (a Polygon, a Segment) or one
+        given a ``moment``, not kinematic, not ``fixed_rotation``. A point does not."""
         return math.isfinite(self._own_moment())
 
     @property
