@@ -43,11 +43,10 @@ _isfinite = math.isfinite
 
 #: Whether bodies with corners (a Polygon, a Segment's capsule) turn, with the moment of their
 #: shape (``shape.moment(mass)``), in the piles' soft step (engine.soft: lever arms r x n on
-#: the normal rows too). Off in this version: a box tips, topples and stacks with it on
-#: (tests/test_rotation_shapes.py), but the crates demo's columns and a box's bounce and
-#: slide (tests/test_crates.py, tests/test_boxes.py) are still measured without it. Read as
-#: a body is made or added: set it before.
-CORNERS_TURN = False
+#: the normal rows too): a box tips, topples and stacks (tests/test_rotation_shapes.py).
+#: False gives the earlier version's boxes, which keep their angle. Read as a body is made or
+#: added: set it before.
+CORNERS_TURN = True
 
 #: A state value: a float for a 1D body, a Vector for a 2D body.
 State = float | Vector

@@ -319,7 +319,7 @@ class Collisions:
         if len(a) and self.asleep.any():
             a, b = wake_met(
                 a, b, x1, v1, store.radius, self.asleep, self.still, self._group,
-                self._still_speed,
+                self._still_speed, shaped if shaped.any() else None, self._touching,
             )  # fmt: skip
         island = np.zeros(n, dtype=bool)
         if shaped.any():

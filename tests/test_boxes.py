@@ -1,4 +1,7 @@
-"""Bodies with a shape (Body(..., shape=...)): boxes, polygons and capsules that do not turn.
+"""Bodies with a shape (Body(..., shape=...)): boxes, polygons and capsules.
+
+They turn (tests/test_rotation_shapes.py has what turning does); where a test is about a box
+that keeps its angle it says ``fixed_rotation=True``.
 
 Each is checked against the closed form or a theorem: a column of boxes lands and rests
 with overlaps at most 1% of a box's height and sleeps; a box on a slope stays when
@@ -35,8 +38,10 @@ def _world(floor_friction: float = 1.0) -> World:
 
 @pytest.fixture(scope="module")
 def column() -> tuple[World, list[Body], list[float]]:
-    """Ten unit boxes dropped in a column (each 0.1 m above the one below, 2 cm to the side),
-    stepped 4 s: the world, the boxes, and the deepest overlap of any step after 1 s."""
+    """Ten unit boxes that do not turn (``fixed_rotation``; the column of boxes that turn is
+    in tests/test_rotation_shapes.py) dropped in a column (each 0.1 m above the one below,
+    2 cm to the side), stepped 4 s: the world, the boxes, and the deepest overlap of any
+    step after 1 s."""
     w = _world()
     boxes = [
         w.add(
@@ -45,6 +50,7 @@ def column() -> tuple[World, list[Body], list[float]]:
                 shape=Polygon.box(1.0, 1.0),
                 restitution=0.0,
                 friction=0.5,
+                fixed_rotation=True,
             )
         )
         for k in range(10)
@@ -104,13 +110,16 @@ def test_a_box_on_a_slope_stays_or_slides_at_g_sin_minus_mu_cos(degrees: float, 
     w = World(integrator="auto")
     w.add_force(Gravity((0.0, -G)))
     w.add_collider(Plane((0.0, 0.0), n, friction=1.0))
-    # A unit box that does not turn touches the slope with one corner: placed with its
-    # lowest corner (along the normal) on the plane.
+    # A unit box that does not turn (fixed_rotation: a box that turns, set on one corner,
+    # topples onto a face, its weight acting beside its one point of support; the box that
+    # turns lies flat on its slope in tests/test_rotation_shapes.py) touches the slope with
+    # one corner: placed with its lowest corner (along the normal) on the plane.
     lowest = min(
         (Vector(sx * 0.5, sy * 0.5) for sx in (-1, 1) for sy in (-1, 1)),
         key=lambda c: c.x * n[0] + c.y * n[1],
     )
-    box = w.add(Body(-lowest, shape=Polygon.box(1.0, 1.0), friction=mu, restitution=0.0))
+    box = w.add(Body(-lowest, shape=Polygon.box(1.0, 1.0), friction=mu, restitution=0.0,
+                     fixed_rotation=True))  # fmt: skip
     for _ in range(30):  # settle onto the corner
         w.step(DT)
     t0, v0 = w.t, box.vel.dot(down)
