@@ -351,6 +351,11 @@ class Collisions:
         self._plan = (a, b, island)
         return island if island.any() else None
 
+    def has_shapes(self, store: Any) -> bool:
+        """Whether any body has a shape other than a disc (a box that may be turned by the
+        bodies it meets, even where nothing spins and there are no colliders)."""
+        return bool(self._shapes(store).shaped.any())
+
     def _shapes(self, store: Any) -> ShapeTable:
         """The bodies' shapes as narrowphase kinds (built again when bodies change)."""
         table = self._table

@@ -50,6 +50,15 @@ def test_a_box_takes_its_moment_from_its_shape() -> None:
     off = Body(Vector(0.0, 0.0), shape=Polygon.box(2.0, 1.0, center=(1.0, 0.0)), mass=3.0)
     assert off.moment == pytest.approx(3.0 * (5.0 / 12.0 + 1.0), rel=1e-12)
     assert not Body(Vector(0.0, 0.0), shape=Polygon.box(1.0, 1.0), kinematic=True).turns
+    # A capsule: engine.mass's exact moment (a rod of length 2 and radius 0.1 about its
+    # middle), and a rod with no radius m L^2 / 12.
+    from engine.colliders import Segment
+    from engine.mass import moment_for_segment
+
+    cap = Body(Vector(0.0, 0.0), shape=Segment((-1.0, 0.0), (1.0, 0.0), 0.1), mass=2.0)
+    assert cap.moment == moment_for_segment(2.0, (-1.0, 0.0), (1.0, 0.0), 0.1)
+    rod = Body(Vector(0.0, 0.0), shape=Segment((-1.0, 0.0), (1.0, 0.0)), mass=2.0)
+    assert rod.moment == pytest.approx(2.0 * 4.0 / 12.0, rel=1e-12)
 
 
 def test_a_box_spinning_in_flight_keeps_its_energy_and_angular_momentum() -> None:
@@ -282,3 +291,25 @@ def test_a_leaning_column_of_ten_boxes_lands_rests_and_sleeps() -> None:
     assert all(w.is_sleeping(b) for b in boxes)
     assert max(abs(b.angle) for b in boxes) < math.radians(0.1)
     assert max(abs(b.pos.x - 0.02 * k) for k, b in enumerate(boxes)) < 0.025
+
+
+def test_boxes_that_meet_off_centre_in_free_space_turn_each_other() -> None:
+    # No colliders, nothing spinning: a box at 3 m/s hits another 0.8 m higher up. The
+    # impulse along +x on B acts 0.4 m below its centre, along -x on A 0.4 m above its: both
+    # turn counter-clockwise; momentum is kept, and no energy is gained (e = 0.5).
+    w = World(integrator="auto")
+    a = w.add(Body(Vector(0.0, 0.0), Vector(3.0, 0.0), shape=Polygon.box(1.0, 1.0),
+                   restitution=0.5, friction=0.0))  # fmt: skip
+    b = w.add(Body(Vector(2.0, 0.8), shape=Polygon.box(1.0, 1.0), restitution=0.5,
+                   friction=0.0))  # fmt: skip
+
+    def energy() -> float:
+        return sum(0.5 * c.mass * c.vel.dot(c.vel) + 0.5 * c.moment * c.angular_velocity**2
+                   for c in (a, b))  # fmt: skip
+
+    e0 = energy()
+    run(w, 1.0)
+    assert a.angular_velocity > 0.5 and b.angular_velocity > 0.5
+    p = a.vel * a.mass + b.vel * b.mass
+    assert abs(p - Vector(3.0, 0.0)) <= 1e-12
+    assert energy() < e0
