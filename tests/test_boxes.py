@@ -138,10 +138,14 @@ def test_shapes_meet_with_momentum_kept_and_restitution_along_the_normal(other: 
     # No gravity, no walls: a box (2 kg) at 3 m/s head-on into a body (0.7 kg) at -1 m/s;
     # the normal is x. Momentum is kept to 1e-12; the relative normal speed after is e times
     # what it was (e = e_a e_b = 0.8 x 0.9), the tangential one untouched without friction.
+    # That is the law of the centres' speeds for bodies that do not turn (fixed_rotation: the
+    # pentagon meets the box at a corner 0.1 m off its centre, and a body that turns takes
+    # some of the impulse as spin; tests/test_rotation_shapes.py has an off-centre impact of
+    # a box that turns against its closed form).
     w = World(integrator="auto")
     a = w.add(
         Body(Vector(0.0, 0.0), Vector(3.0, 0.5), shape=Polygon.box(1.0, 0.6), mass=2.0,
-             restitution=0.8, friction=0.0)
+             restitution=0.8, friction=0.0, fixed_rotation=True)
     )  # fmt: skip
     shape = {
         "disc": None,
@@ -151,7 +155,7 @@ def test_shapes_meet_with_momentum_kept_and_restitution_along_the_normal(other: 
     }[other]
     kw = {"radius": 0.3} if shape is None else {"shape": shape}
     b = w.add(Body(Vector(2.0, 0.0), Vector(-1.0, 0.5), mass=0.7, restitution=0.9,
-                   friction=0.0, **kw))  # fmt: skip
+                   friction=0.0, fixed_rotation=True, **kw))  # fmt: skip
     p0 = a.mass * a.vel + b.mass * b.vel
     scale = a.mass * abs(a.vel) + b.mass * abs(b.vel)
     began = []
@@ -225,10 +229,13 @@ def test_fast_shapes_never_pass_through_each_other_or_a_thin_wall(speed: float, 
     # A box thrown head-on at a body coming the other way (or at a thin static wall), from
     # gaps that the two close within one step and from farther: elastic, frictionless, so
     # they come apart at their speeds of approach, and the box is never past the other.
+    # Bodies that do not turn (fixed_rotation): the target is 0.1 m off the box's centre
+    # line, and a box that turns takes part of the impulse as spin (see
+    # tests/test_rotation_shapes.py for that impact's closed form).
     for gap in (0.35, 0.9 * 2.0 * speed * DT, 1.3 * 2.0 * speed * DT, 2.5 * 2.0 * speed * DT):
         w = World(integrator="auto")
         box = w.add(Body(Vector(0.0, 0.0), Vector(speed, 0.0), shape=Polygon.box(0.5, 0.5),
-                         restitution=1.0, friction=0.0))  # fmt: skip
+                         restitution=1.0, friction=0.0, fixed_rotation=True))  # fmt: skip
         x_far = 0.25 + gap + 0.05
         if other == "thin wall":
             w.add_collider(Segment((x_far, -5.0), (x_far, 5.0)))
@@ -241,7 +248,7 @@ def test_fast_shapes_never_pass_through_each_other_or_a_thin_wall(speed: float, 
             }[other]
             kw = {"radius": 0.05} if shape is None else {"shape": shape}
             target = w.add(Body(Vector(x_far, 0.1), Vector(-speed, 0.0), restitution=1.0,
-                                friction=0.0, **kw))  # fmt: skip
+                                friction=0.0, fixed_rotation=True, **kw))  # fmt: skip
         for _ in range(int(gap / speed / DT) + 4):
             w.step(DT)
             assert box.pos.x < (x_far if target is None else target.pos.x)

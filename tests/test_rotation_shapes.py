@@ -313,3 +313,47 @@ def test_boxes_that_meet_off_centre_in_free_space_turn_each_other() -> None:
     p = a.vel * a.mass + b.vel * b.mass
     assert abs(p - Vector(3.0, 0.0)) <= 1e-12
     assert energy() < e0
+
+
+@pytest.mark.parametrize("gap", [0.35, 0.3])
+def test_an_off_centre_elastic_impact_spins_a_box_as_the_closed_form_says(gap: float) -> None:
+    # No gravity, no walls, frictionless: a 0.5 m box (1 kg, I = m (w^2 + h^2) / 12 = 1/24)
+    # at 10 m/s meets a small disc (1 kg) at -10 m/s whose centre is 0.1 m above the box's
+    # centre line. The normal is x, through the disc's centre (it does not turn), and at
+    # r = (0.25, 0.1) from the box's: r x n = -0.1. The impulse makes the contact point part
+    # at e = 1 times its closing speed 20 m/s: J = 2 * 20 / (1/m + 1/m + (r x n)^2 / I)
+    # = 40 / 2.24; the box ends at 10 - J, the disc at -10 + J, the box spinning at
+    # 0.1 J / I (counter-clockwise: the push acts above its centre, backwards).
+    w = World(integrator="auto")
+    box = w.add(Body(Vector(0.0, 0.0), Vector(10.0, 0.0), shape=Polygon.box(0.5, 0.5),
+                     restitution=1.0, friction=0.0))  # fmt: skip
+    disc = w.add(Body(Vector(0.25 + gap + 0.05, 0.1), Vector(-10.0, 0.0), radius=0.05,
+                      restitution=1.0, friction=0.0))  # fmt: skip
+    run(w, 0.1)
+    J = 40.0 / 2.24
+    assert box.vel.x == pytest.approx(10.0 - J, rel=1e-9)
+    assert disc.vel.x == pytest.approx(-10.0 + J, rel=1e-9)
+    assert box.angular_velocity == pytest.approx(0.1 * J * 24.0, rel=1e-9)
+    energy = 0.5 * (box.vel.dot(box.vel) + disc.vel.dot(disc.vel)) + 0.5 * box.moment * (
+        box.angular_velocity**2
+    )
+    assert energy == pytest.approx(100.0, rel=1e-9)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="not yet: a box that turns, thrown at 100 m/s at a disc 0.1 m off its centre "
+    "line, is passed by the disc after the impact, which spins it at about 430 rad/s (a "
+    "corner sweeps 2.5 m a step); why the rows do not hold it is not found yet. Bodies that "
+    "do not turn are caught at 1,000 m/s (tests/test_boxes.py), and so is this one at 10 m/s",
+)
+def test_a_box_that_turns_thrown_fast_off_centre_never_passes_a_disc() -> None:
+    speed = 100.0
+    w = World(integrator="auto")
+    box = w.add(Body(Vector(0.0, 0.0), Vector(speed, 0.0), shape=Polygon.box(0.5, 0.5),
+                     restitution=1.0, friction=0.0))  # fmt: skip
+    disc = w.add(Body(Vector(0.25 + 0.35 + 0.05, 0.1), Vector(-speed, 0.0), radius=0.05,
+                      restitution=1.0, friction=0.0))  # fmt: skip
+    for _ in range(10):
+        w.step(DT)
+        assert box.pos.x < disc.pos.x
