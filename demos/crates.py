@@ -4,14 +4,17 @@ Run with ``python -m demos crates``. Two columns of 1 m crates (boxes, 2 kg, fri
 are let go a hand's breadth apart and land on one another; a plank (a capsule ``Segment``
 with a radius) falls across the right column; a ball rolls in from the left at 5 m/s into
 the left column and shoves it along the floor; a platform the game moves (a kinematic box)
-lifts a small crate and stops. Bodies do not turn yet (the issue "Bodies that turn"): a crate
-slides and stacks like a platformer's, flat. The read-outs: how many of the bodies sleep, and
-the deepest overlap of two crates (or a crate and the floor) as a fraction of a crate's
+lifts a small crate and stops. The crates turn (the issue "Bodies that turn"): they land,
+stack and are shoved at their angles. The read-outs: how many of the bodies sleep, and the
+deepest overlap of two crates (or a crate and the floor) as a fraction of a crate's
 height, measured from the positions. Everything is drawn by ``engine.render.draw_world``.
 """
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
 import pygame
 
 from demos.cli import Demo
@@ -66,19 +69,39 @@ def crates_world() -> tuple[World, dict[str, list[Body]]]:
     return w, bodies
 
 
+def _corners(crate: Body) -> np.ndarray:
+    """A crate's corners in the world (4, 2): its box turned by its angle, at its position."""
+    c, s = math.cos(crate.angle), math.sin(crate.angle)
+    v = np.array([(p.x, p.y) for p in crate.shape.vertices])
+    return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=1) + (
+        crate.pos.x,
+        crate.pos.y,
+    )
+
+
+def _overlap(p: np.ndarray, q: np.ndarray) -> float:
+    """How deep two convex polygons (corners counter-clockwise) overlap: the least overlap of
+    their shadows over the normals of both one's edges (separating axes); <= 0: apart."""
+    least = math.inf
+    for poly in (p, q):
+        edges = np.roll(poly, -1, axis=0) - poly
+        normals = np.stack([edges[:, 1], -edges[:, 0]], axis=1)
+        normals /= np.hypot(normals[:, 0], normals[:, 1])[:, None]
+        for n in normals:
+            a, b = p @ n, q @ n
+            least = min(least, min(a.max(), b.max()) - max(a.min(), b.min()))
+    return least
+
+
 def deepest_crate_overlap(crates: list[Body]) -> float:
-    """The deepest overlap (m) of two crates, or of a crate and the floor (y = 0): crates are
-    boxes that do not turn, so two overlap by the lesser of their overlaps along x and y."""
+    """The deepest overlap (m) of two crates, or of a crate and the floor (y = 0), at their
+    angles: the floor's by the lowest corner, two crates' by the separating axes."""
     deepest = 0.0
-    sides = [c.shape.bounds() for c in crates]
-    for i, (a, sa) in enumerate(zip(crates, sides, strict=True)):
-        half = (sa[3] - sa[1]) / 2
-        deepest = max(deepest, half - a.pos.y)
-        for b, sb in zip(crates[i + 1 :], sides[i + 1 :], strict=True):
-            ox = (sa[2] - sa[0] + sb[2] - sb[0]) / 2 - abs(a.pos.x - b.pos.x)
-            oy = (sa[3] - sa[1] + sb[3] - sb[1]) / 2 - abs(a.pos.y - b.pos.y)
-            if ox > 0.0 and oy > 0.0:
-                deepest = max(deepest, min(ox, oy))
+    corners = [_corners(c) for c in crates]
+    for i, p in enumerate(corners):
+        deepest = max(deepest, -float(p[:, 1].min()))
+        for q in corners[i + 1 :]:
+            deepest = max(deepest, _overlap(p, q))
     return deepest
 
 
@@ -136,8 +159,7 @@ class CratesScene(Scene):
         )
         draw_text(
             surface,
-            "crates do not turn yet, the ball rolls; blue: awake, grey: asleep, vermillion: moved"
-            " by the game",
+            "crates and the ball turn; blue: awake, grey: asleep, vermillion: moved by the game",
             (x, 50 * s),
             round(15 * s),
             MUTED,

@@ -5,7 +5,7 @@ Run with ``python -m demos incline``. Two scenes, each checked against its close
 - ``race``: three lanes tilted by 20 degrees, side by side, and on each a body let go from
   rest at the same height: a hoop (``moment=m r^2``), a solid disc (the default moment,
   m r^2 / 2) and a slider (a disc with friction 0: nothing turns it, so it slides as a
-  frictionless box would; boxes do not turn in this version). Rolling without slipping,
+  frictionless box would: friction is what would turn a box on a slope). Rolling without slipping,
   a = g sin(theta) / (1 + I / (m r^2)), so a body covers L = 4 m along its lane in
   t = sqrt(2 L / a): the times stand 1 : sqrt(3/2) : sqrt(2) for slider : disc : hoop,
   whatever the masses and radii. Each crossing is timed within its step by solving that
@@ -274,7 +274,7 @@ class RaceScene(Scene):
         draw_text(
             surface,
             "the slider is a disc with friction 0: it never turns, so it stands for a "
-            "frictionless box (boxes do not turn yet)",
+            "frictionless box",
             (x, 43 * s),
             round(14 * s),
             MUTED,

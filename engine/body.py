@@ -41,6 +41,13 @@ __all__ = ["Body", "State"]
 
 _isfinite = math.isfinite
 
+#: Whether bodies with corners (a Polygon, a Segment's capsule) turn, with the moment of their
+#: shape (``shape.moment(mass)``), in the piles' soft step (engine.soft: lever arms r x n on
+#: the normal rows too): a box tips, topples and stacks (tests/test_rotation_shapes.py).
+#: False gives the earlier version's boxes, which keep their angle. Read as a body is made or
+#: added: set it before.
+CORNERS_TURN = True
+
 #: A state value: a float for a 1D body, a Vector for a 2D body.
 State = float | Vector
 
@@ -102,9 +109,9 @@ class Body:
     Units are the scene's own: inches and seconds for Alfred, metres and seconds for the car.
     ``radius`` (length units, 0 for a point) gives it a size for contacts; ``restitution``
     (0: no bounce, 1: elastic) and ``friction`` (Coulomb's mu, >= 0) are its material, combined
-    with a collider's by product (pymunk's rule). A disc turns (``angle``, ``angular_velocity``,
-    ``moment``, ``torque``; engine.rotation): its friction makes it roll and spin; a point, a
-    body with corners (in this version) or one made with ``fixed_rotation=True`` does not.
+    with a collider's by product (pymunk's rule). A disc or a body with corners turns
+    (``angle``, ``angular_velocity``, ``moment``, ``torque``; engine.rotation): friction makes
+    a disc roll and a box tip; a point or a body made with ``fixed_rotation=True`` does not.
     Bodies with a radius collide with each other unless their ``filter`` (engine.Filter: a
     group, category bits) says not.
     A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``).
@@ -248,7 +255,7 @@ class Body:
             why = "a kinematic body does not turn in this version (set its vel or pos)"
         elif self._fixed:
             why = "the body was made with fixed_rotation=True"
-        elif not self._round():
+        elif not self._round() and not CORNERS_TURN:
             why = (
                 "a body with corners (a Polygon or Segment shape) does not turn in this "
                 "version: it stays upright, like a platformer's crate"
@@ -268,7 +275,9 @@ class Body:
 
     def _own_moment(self) -> float:
         """The moment of inertia (kg m^2) the body turns with; inf for one that does not."""
-        if self._dim != 2 or self._kinematic or self._fixed or not self._round():
+        if self._dim != 2 or self._kinematic or self._fixed:
+            return math.inf
+        if not CORNERS_TURN and not self._round():
             return math.inf
         if self._moment is not None:
             return self._moment
@@ -278,6 +287,10 @@ class Body:
         shape = self._shape
         if shape is None:
             return 0.5 * mass * self._radius * self._radius  # a solid disc: m r^2 / 2
+        if not self._round():
+            # A body with corners (a Polygon, a Segment's capsule): the shape's own moment
+            # about the body's position (engine.mass, exact; the parallel axes' term in it).
+            return float(shape.moment(mass))
         # A Circle about its centre c in the body's frame: m r^2 / 2 + m |c|^2.
         cx, cy = shape.center
         return mass * (0.5 * shape.radius * shape.radius + cx * cx + cy * cy)
@@ -528,8 +541,8 @@ class Body:
     # -- rotation (engine.rotation) ----------------------------------------------------------
     @property
     def turns(self) -> bool:
-        """Whether this body turns: a disc (or a body given a ``moment``), not kinematic, not
-        ``fixed_rotation``. A point, and in this version a body with corners, does not."""
+        """Whether this body turns: a disc, a body with corners (a Polygon, a Segment) or one
+        given a ``moment``, not kinematic, not ``fixed_rotation``. A point does not."""
         return math.isfinite(self._own_moment())
 
     @property

@@ -340,6 +340,13 @@ class Segment(Collider):
         a, b = self.a, self.b
         return max(math.hypot(a.x, a.y), math.hypot(b.x, b.y)) + self.radius
 
+    def moment(self, mass: float) -> float:
+        """The moment of inertia (kg m^2) of a body of ``mass`` with this capsule for its
+        shape, about the body's position (``engine.mass.moment_for_segment``)."""
+        from .mass import moment_for_segment  # engine.mass takes point_of from here
+
+        return moment_for_segment(mass, self.a, self.b, self.radius)
+
     def lines(self) -> list[Line]:
         a, b = self.a, self.b
         length = math.hypot(b.x - a.x, b.y - a.y)
@@ -575,6 +582,14 @@ class Polygon(Collider):
     def as_body_shape(self) -> float:
         self._body_material()
         return max(math.hypot(v.x, v.y) for v in self.vertices) + self.radius
+
+    def moment(self, mass: float) -> float:
+        """The moment of inertia (kg m^2) of a body of ``mass`` with this polygon (rounded by
+        its radius) for its shape, about the body's position, the parallel axes' term
+        included (``engine.mass.moment_for_polygon``)."""
+        from .mass import moment_for_polygon  # engine.mass takes point_of from here
+
+        return moment_for_polygon(mass, self.vertices, radius=self.radius)
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
         x, y = point_of(point, "point")

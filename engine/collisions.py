@@ -319,7 +319,7 @@ class Collisions:
         if len(a) and self.asleep.any():
             a, b = wake_met(
                 a, b, x1, v1, store.radius, self.asleep, self.still, self._group,
-                self._still_speed,
+                self._still_speed, shaped if shaped.any() else None, self._touching,
             )  # fmt: skip
         island = np.zeros(n, dtype=bool)
         if shaped.any():
@@ -350,6 +350,11 @@ class Collisions:
         a, b = struck(a, b, island, dt, store, self._search, self._has_kin, self._plain, self.fast)
         self._plan = (a, b, island)
         return island if island.any() else None
+
+    def has_shapes(self, store: Any) -> bool:
+        """Whether any body has a shape other than a disc (a box that may be turned by the
+        bodies it meets, even where nothing spins and there are no colliders)."""
+        return bool(self._shapes(store).shaped.any())
 
     def _shapes(self, store: Any) -> ShapeTable:
         """The bodies' shapes as narrowphase kinds (built again when bodies change)."""

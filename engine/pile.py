@@ -59,7 +59,7 @@ import numpy as np
 from . import kernels
 from .manifold import StaticShapes, static_shapes
 from .pair_math import SLOP, dot, norm, sorted_unique
-from .pile_rows import disc_rows, face_rows, held, lever_arms, turning, warm_start
+from .pile_rows import disc_rows, face_rows, held, lever_arms, shape_arms, turning, warm_start
 from .shaped import ShapeTable, pair_rows, static_rows
 from .soft import Rows, SoftStep
 
@@ -294,10 +294,20 @@ def step_pile(
     # Bodies with shapes (engine.shaped): a row a point of each manifold, keyed past the
     # discs' keys (n * base), by pair and point, or by body, static shape and point.
     s_off = np.int64(n) * base
-    margin = float((0.05 * r + speed * dt).max()) if nU else 0.0
+    reach = 0.05 * r + speed * dt
+    angle = store.angle if spin is None else spin.angle0
+    if spin is not None:
+        # A body that turns sweeps its corners round by up to |omega| R dt in the step (R:
+        # its bounding radius), so a spinning box does not pass a wall.
+        turns_u = spin.turns[U] & shapedU
+        reach = reach + np.where(
+            turns_u, (np.abs(spin.omega0[U]) + np.abs(spin.alpha[U]) * dt) * r * dt, 0.0
+        )
+    margin = float(reach.max()) if nU else 0.0
     m_pairs = 0
+    anchors = [np.zeros((0, 2))] * 3
     if len(sa):
-        ia, ib, sn, ss, slot = pair_rows(table, sa, sb, x0, margin)
+        ia, ib, sn, ss, slot, anchors[0], anchors[1] = pair_rows(table, sa, sb, x0, margin, angle)
         m_pairs = len(ia)
         rows_a.append(local[ia])
         rows_b.append(local[ib])
@@ -306,15 +316,18 @@ def step_pile(
         fric.append(store.friction[ia] * store.friction[ib])
         rest.append(store.restitution[ia] * store.restitution[ib])
         slops.append(SLOP * np.minimum(store.radius[ia], store.radius[ib]))
-        keys.append(s_off + (ia.astype(np.int64) * n + ib) * 2 + slot)
+        keys.append(s_off + (ia.astype(np.int64) * n + ib) * 65536 + slot)
     s_rows = s_col = np.zeros(0, dtype=np.intp)
     if n_faces and contacts is not None and (shapedU & ~kin).any():
         shapes, solid, first = statics.of(contacts)
         mine = U[shapedU & ~kin]
-        s_rows, s_col, sn, ss, skey = static_rows(table, mine, x0, shapes, solid, margin)
+        s_rows, s_col, sn, ss, skey, anchors[2] = static_rows(
+            table, mine, x0, shapes, solid, margin, angle
+        )
         if contacts.faces.filters is not None:
             ok = contacts.allowed(s_rows, first[s_col])
             s_rows, s_col, sn, ss, skey = s_rows[ok], s_col[ok], sn[ok], ss[ok], skey[ok]
+            anchors[2] = anchors[2][ok]
         rows_a.append(np.full(len(s_rows), nU))
         rows_b.append(local[s_rows])
         normals.append(sn)
@@ -323,7 +336,7 @@ def step_pile(
         fric.append(store.friction[s_rows] * np.array([cols[k].friction for k in s_col]))
         rest.append(store.restitution[s_rows] * np.array([cols[k].restitution for k in s_col]))
         slops.append(SLOP * store.radius[s_rows])
-        keys.append(s_off + 2 * np.int64(n) * n + s_rows.astype(np.int64) * 2**40 + skey)
+        keys.append(s_off + 65536 * np.int64(n) * n + s_rows.astype(np.int64) * 2**40 + skey)
     ra, rb = np.concatenate(rows_a), np.concatenate(rows_b)
     nv = np.concatenate(normals)
     sep_all = np.concatenate(seps)
@@ -351,10 +364,13 @@ def step_pile(
     acc[:-1][~moves[:-1]] = 0.0
     turn = None
     if spin is not None:
-        turn = turning(spin, store, U, moves[:-1] & ~shapedU)
+        turn = turning(spin, store, U, moves[:-1])
     arms = None
     if turn is not None:
         arms = lever_arms(turn, r, ra, rb, sep_all, m_disc, len(pa), fa, nU)
+        if m_disc < len(ra):
+            # The rows of shapes: lever arms from the manifolds' anchors (engine.shaped).
+            arms = shape_arms(arms, turn, ra, rb, nv, m_disc, m_pairs, anchors)
     solver = SoftStep(
         rows,
         w,
@@ -410,7 +426,14 @@ def step_pile(
     )
     # Which contacts touch now: the pairs for the events and sleep, the faces too.
     m = len(pa)
-    hold, near, now, held_rows = held(Xr, x0U, la, lb, r, ra, rb, nv, sep_all, slop_rows,
+    sep_now = sep_all
+    if arms is not None and arms.na is not None and arms.nb is not None and m_disc < len(ra):
+        # The rows of shapes: their points moved with the angles turned too (linearized, as
+        # in the soft step).
+        sep_now = sep_all.copy()
+        th, sh = solver.turned, slice(m_disc, len(ra))
+        sep_now[sh] += th[rb[sh]] * arms.nb[sh] - th[ra[sh]] * arms.na[sh]
+    hold, near, now, held_rows = held(Xr, x0U, la, lb, r, ra, rb, nv, sep_now, slop_rows,
                                       solver.total, fast)  # fmt: skip
     f = slice(m, m_disc)
     face_touching = (U[fa[held_rows[f]]], fk[held_rows[f]])

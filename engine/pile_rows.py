@@ -37,7 +37,16 @@ if TYPE_CHECKING:
     from .pile import Carried
     from .rotation import Spin
 
-__all__ = ["Turning", "disc_rows", "face_rows", "held", "lever_arms", "turning", "warm_start"]
+__all__ = [
+    "Turning",
+    "disc_rows",
+    "face_rows",
+    "held",
+    "lever_arms",
+    "shape_arms",
+    "turning",
+    "warm_start",
+]
 
 
 def disc_rows(
@@ -181,8 +190,8 @@ class Turning(NamedTuple):
 
 
 def turning(spin: Spin, store: Any, U: np.ndarray, can: np.ndarray) -> Turning | None:
-    """The pile's (World rows ``U``) discs that turn, of those that ``can`` (they move and
-    have no corners), or None where none does."""
+    """The pile's (World rows ``U``) bodies that turn (discs, bodies with corners), of those
+    that ``can`` (they move), or None where none does."""
     t = spin.turns[U] & can
     if not t.any():
         return None
@@ -227,6 +236,41 @@ def lever_arms(
     faces = slice(m_pairs, m_disc)
     lb[faces] = np.where(turn.turns[fa], r[fa] + half[faces], 0.0)
     return Arms(la, lb, turn.inv_moment)
+
+
+def shape_arms(
+    arms: Arms,
+    turn: Turning,
+    ra: np.ndarray,
+    rb: np.ndarray,
+    nv: np.ndarray,
+    m_disc: int,
+    m_pairs: int,
+    anchors: list[np.ndarray],
+) -> Arms:
+    """``arms`` with the lever arms of the rows of shapes (from ``m_disc`` on: ``m_pairs``
+    rows of pairs, then those on the colliders, A the static slot) from the manifolds'
+    anchors (engine.shaped: the pairs' points less A's and B's positions, ``anchors[0]`` and
+    ``[1]``; the colliders' rows' less the body's, ``anchors[2]``), for the bodies that turn:
+    with n the row's normal, la = r_A.n, lb = -(r_B.n), na = r_A x n, nb = r_B x n
+    (engine.soft, ``Arms``)."""
+    rows = len(ra)
+    turns = np.append(turn.turns, False)  # the static slot does not turn
+    r_a, r_b = np.zeros((rows, 2)), np.zeros((rows, 2))
+    pairs = slice(m_disc, m_disc + m_pairs)
+    r_a[pairs], r_b[pairs] = anchors[0], anchors[1]
+    r_b[m_disc + m_pairs :] = anchors[2]
+    r_a[~turns[ra]] = 0.0
+    r_b[~turns[rb]] = 0.0
+    sh = slice(m_disc, rows)
+    la, lb = arms.a.copy(), arms.b.copy()
+    na, nb = np.zeros(rows), np.zeros(rows)
+    n = nv[sh]
+    la[sh] = dot(r_a[sh], n)
+    lb[sh] = -dot(r_b[sh], n)
+    na[sh] = r_a[sh, 0] * n[:, 1] - r_a[sh, 1] * n[:, 0]
+    nb[sh] = r_b[sh, 0] * n[:, 1] - r_b[sh, 1] * n[:, 0]
+    return Arms(la, lb, arms.inv_moment, na, nb)
 
 
 # -- the loop kernels (engine.kernels: the fast path) -----------------------------------------

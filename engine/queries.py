@@ -109,6 +109,45 @@ def _shaped(state: WorldState, rows: np.ndarray) -> tuple[np.ndarray, list[tuple
     return np.array([k for k in rows.tolist() if k not in out], dtype=np.intp), shaped
 
 
+class _Frame:
+    """A body's frame (``engine.body.CORNERS_TURN``: a box that turned): its position and
+    angle, to take a query into the frame its shape is given in and the answers back out."""
+
+    def __init__(self, store: Any, k: int) -> None:
+        self.cx, self.cy = float(store.x[k, 0]), float(store.x[k, 1])
+        angle = float(store.angle[k]) if len(store.angle) > k else 0.0
+        self.c, self.s = math.cos(angle), math.sin(angle)
+
+    def into(self, p: tuple[float, float]) -> tuple[float, float]:
+        """A world point in the body's frame."""
+        dx, dy = p[0] - self.cx, p[1] - self.cy
+        if self.s == 0.0:
+            return dx, dy
+        return self.c * dx + self.s * dy, -self.s * dx + self.c * dy
+
+    def turn_in(self, v: tuple[float, float]) -> tuple[float, float]:
+        """A world direction in the body's frame."""
+        if self.s == 0.0:
+            return v
+        return self.c * v[0] + self.s * v[1], -self.s * v[0] + self.c * v[1]
+
+    def turn_out(self, v: Vector) -> Vector:
+        """A direction of the body's frame in the world's."""
+        if self.s == 0.0:
+            return v
+        return Vector(self.c * v.x - self.s * v.y, self.s * v.x + self.c * v.y)
+
+    def out(self, p: Vector) -> Vector:
+        """A point of the body's frame in the world's."""
+        return self.turn_out(p) + Vector(self.cx, self.cy)
+
+    def placed(self, shape: Any) -> Collider:
+        """The body's shape (a Polygon or a Segment) placed in the world as it stands."""
+        if isinstance(shape, Segment):
+            return Segment(tuple(self.out(shape.a)), tuple(self.out(shape.b)), shape.radius)
+        return Polygon([tuple(self.out(v)) for v in shape.vertices], shape.radius)
+
+
 def _colliders_seen(state: WorldState, f: Filter) -> list[Collider]:
     return [c for c in state.colliders if f is DEFAULT or f.collides(c.filter)]
 
@@ -136,10 +175,10 @@ def point_query(state: WorldState, point: Any, max_distance: Any, filter: Any) -
     rows, shaped = _shaped(state, _bodies_seen(state, f))
     for k, shape in shaped:
         assert store is not None
-        cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
-        surface, n, d = shape.closest((px - cx, py - cy))  # in the body's frame
+        fr = _Frame(store, k)
+        surface, n, d = shape.closest(fr.into((px, py)))  # in the body's frame
         if d <= reach:
-            hits.append(QueryHit(state.bodies[k], surface + Vector(cx, cy), n, 0.0, d))
+            hits.append(QueryHit(state.bodies[k], fr.out(surface), fr.turn_out(n), 0.0, d))
     if len(rows):
         assert store is not None
         x, r = store.x[rows], store.radius[rows]
@@ -205,10 +244,11 @@ def segment_query(
     for k, shape in shaped:
         store = state.store
         assert store is not None
-        cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
-        found = _collider_hit(shape, (a[0] - cx, a[1] - cy), v, q, back)  # the body's frame
+        fr = _Frame(store, k)
+        bk = fr.turn_in((back.x, back.y))
+        found = _collider_hit(shape, fr.into(a), fr.turn_in(v), q, Vector(*bk))  # body's frame
         if found is not None:
-            hit_at(state.bodies[k], *found)
+            hit_at(state.bodies[k], found[0], fr.turn_out(found[1]))
     if len(rows):
         store = state.store
         assert store is not None
@@ -302,7 +342,13 @@ def bb_query(state: WorldState, bb: Any, filter: Any) -> list[Any]:  # noqa: A00
         assert store is not None
         more = []
         for k, shape in shaped:
-            cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
+            fr = _Frame(store, k)
+            if fr.s != 0.0:
+                # A shape that turned: placed in the world as it stands, then met as a collider.
+                if _collider_overlaps_box(fr.placed(shape), box):
+                    more.append(k)
+                continue
+            cx, cy = fr.cx, fr.cy
             if _collider_overlaps_box(shape, (box[0] - cx, box[1] - cy, box[2] - cx, box[3] - cy)):
                 more.append(k)
         found = np.sort(np.concatenate([found, np.array(more, dtype=np.intp)]))
@@ -393,11 +439,11 @@ def shape_query(state: WorldState, shape: Any, filter: Any) -> list[QueryHit]:  
     store = state.store
     for k, body_shape in shaped:
         assert store is not None
-        cx, cy = float(store.x[k, 0]), float(store.x[k, 1])
-        found = _collider_depth(body_shape, (a[0] - cx, a[1] - cy), (b[0] - cx, b[1] - cy), q)
+        fr = _Frame(store, k)
+        found = _collider_depth(body_shape, fr.into(a), fr.into(b), q)  # the body's frame
         if found is not None:
-            point = found[0] + Vector(cx, cy)
-            hits.append(QueryHit(state.bodies[k], point, found[1], 0.0, found[2]))
+            point = fr.out(found[0])
+            hits.append(QueryHit(state.bodies[k], point, fr.turn_out(found[1]), 0.0, found[2]))
     for k in rows.tolist():
         assert store is not None
         cx, cy = float(store.x[k, 0]), float(store.x[k, 1])

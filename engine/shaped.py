@@ -2,15 +2,16 @@
 
 A body made with ``Body(..., shape=...)`` carries a convex shape in its own frame, about its
 position (``engine.colliders``: a ``Polygon``, ``Polygon.box(width, height)``, or a
-``Segment``, a capsule). Until bodies turn (the issue "Bodies that turn") a shape keeps its
-angle, 0: a box slides, lands flat and stacks, like a platformer's crate with fixed rotation.
+``Segment``, a capsule), turned by the body's angle (``angle``: the angles at the step's
+start, by World row; None: 0, a body that does not turn).
 
 Such a body is always stepped with the piles (``engine.soft``): its contacts are the points
 of Box2D's manifolds (``engine.manifold``), up to two a pair, each a row with a normal and a
 separation, solved with the pile's contacts of discs. A body that does not turn moves by
 translation only, so a row's point does not matter, only its normal and gap: the same
-row as two discs', with the lever arms r x n of the next issue still zero. A disc meets a
-shape as a ``Circles`` row of the table.
+row as two discs'. A body that turns needs the point too: each row comes with its anchors,
+the point less each body's position (r_A, r_B), of which the pile makes the lever arms
+(engine.pile_rows, ``shape_arms``). A disc meets a shape as a ``Circles`` row of the table.
 
 The rows are speculative (Box2D's): a wall within ``margin`` of a body at the step's start,
 or a pair within twice it, gets its rows, which hold the gap from closing past zero. The
@@ -23,10 +24,10 @@ swept); the exact impacts in time order are for discs.
 >>> import numpy as np
 >>> from engine.colliders import Polygon
 >>> table = ShapeTable([Polygon.box(1.0, 1.0), None], np.array([0.7071, 0.5]))
->>> a, b, n, s, k = pair_rows(table, np.array([0]), np.array([1]),
-...                           np.array([[0.0, 0.0], [1.0, 0.0]]), 0.1)
->>> a.tolist(), b.tolist(), n.tolist(), s.tolist()
-([0], [1], [[1.0, 0.0]], [0.0])
+>>> a, b, n, s, k, ra, rb = pair_rows(table, np.array([0]), np.array([1]),
+...                                   np.array([[0.0, 0.0], [1.0, 0.0]]), 0.1)
+>>> a.tolist(), b.tolist(), n.tolist(), s.tolist(), ra.tolist(), rb.tolist()
+([0], [1], [[1.0, 0.0]], [0.0], [[0.5, 0.0]], [[-0.5, 0.0]])
 """
 
 from __future__ import annotations
@@ -113,16 +114,25 @@ def _points(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
 
 
 def pair_rows(
-    table: ShapeTable, a: np.ndarray, b: np.ndarray, x: np.ndarray, margin: float
+    table: ShapeTable,
+    a: np.ndarray,
+    b: np.ndarray,
+    x: np.ndarray,
+    margin: float,
+    angle: np.ndarray | None = None,
 ) -> tuple[np.ndarray, ...]:
-    """The rows of pairs (World rows a, b) at positions x (N, 2), angle 0: (a, b, the unit
-    normal from a to b (R, 2), the separation (R,), the point's key within its pair: 0 or 1),
+    """The rows of pairs (World rows a, b) at positions x (N, 2) and angles ``angle`` (N,)
+    (rad; None: all 0): (a, b, the unit normal from a to b (R, 2), the separation (R,), the
+    point's key within its pair: its feature id (Box2D's: the vertices that make it, < 2^16,
+    so a point keeps its warm start while the same features touch), the point less a's
+    position (R, 2), less b's),
     one row a point of each pair's manifold (``engine.manifold.collide``), every pair of
     kinds at once a kind pair. ``margin`` (length units) is the farthest one body may move
     in the step, slack included: both bodies of a pair may close on each other, so a pair
     gets its rows while its gap is within twice that."""
-    out: list[list[np.ndarray]] = [[], [], [], [], []]
+    out: list[list[np.ndarray]] = [[], [], [], [], [], [], []]
     reach = 2.0 * margin
+    q = np.zeros(len(x)) if angle is None else angle
     ka, kb = table.kind[a], table.kind[b]
     for code_a in (DISC, CAPSULE, POLYGON):
         for code_b in (DISC, CAPSULE, POLYGON):
@@ -130,13 +140,15 @@ def pair_rows(
             if not len(sel):
                 continue
             ia, ib = a[sel], b[sel]
-            m = collide(table.kinds(ia), x[ia], 0.0, table.kinds(ib), x[ib], 0.0, reach)
+            m = collide(table.kinds(ia), x[ia], q[ia], table.kinds(ib), x[ib], q[ib], reach)
             pair, slot = _points(m)
             out[0].append(ia[pair])
             out[1].append(ib[pair])
             out[2].append(m.normal[pair])
             out[3].append(m.separation[pair, slot])
-            out[4].append(slot)
+            out[4].append(m.feature[pair, slot] & 0xFFFF)
+            out[5].append(m.anchor_a[pair, slot])
+            out[6].append(m.anchor_b[pair, slot])
     return _joined(out)
 
 
@@ -147,13 +159,16 @@ def static_rows(
     statics: StaticShapes,
     solid: np.ndarray,
     margin: float,
+    angle: np.ndarray | None = None,
 ) -> tuple[np.ndarray, ...]:
     """The rows of bodies ``rows`` (World rows, with shapes) against the World's colliders
     (``statics``, ``engine.manifold.static_shapes``; ``solid`` (C,) bool: which colliders
     are solid, not sensors): (row, the collider's index, the unit normal from the collider
-    to the body (R, 2), the separation (R,), the point's key: 2 c + slot for the c-th static
-    shape of its kind)."""
-    out: list[list[np.ndarray]] = [[], [], [], [], []]
+    to the body (R, 2), the separation (R,), the point's key: 2^16 c + its feature id for the
+    c-th static shape of its kind, the point less the body's position (R, 2)), the bodies at their
+    ``angle`` (N,) (rad; None: all 0)."""
+    out: list[list[np.ndarray]] = [[], [], [], [], [], []]
+    q = np.zeros(len(x)) if angle is None else angle
     for code in (DISC, CAPSULE, POLYGON):
         mine = rows[table.kind[rows] == code]
         if not len(mine):
@@ -165,19 +180,20 @@ def static_rows(
                 continue
             r_i = np.repeat(np.arange(len(mine)), len(keep))
             c_i = np.tile(keep, len(mine))
-            m = collide(
-                shapes.take(r_i), x[mine[r_i]], 0.0, kind.take(c_i), (0.0, 0.0), 0.0, margin
-            )
+            body = mine[r_i]
+            m = collide(shapes.take(r_i), x[body], q[body], kind.take(c_i), (0.0, 0.0), 0.0, margin)
             pair, slot = _points(m)
             out[0].append(mine[r_i[pair]])
             out[1].append(owner[c_i[pair]])
             out[2].append(-m.normal[pair])
             out[3].append(m.separation[pair, slot])
-            out[4].append((base * 1_000_003 + c_i[pair]) * 2 + slot)
+            out[4].append((base * 1_000_003 + c_i[pair]) * 65536 + (m.feature[pair, slot] & 0xFFFF))
+            out[5].append(m.anchor_a[pair, slot])
     return _joined(out)
 
 
 def _joined(out: list[list[np.ndarray]]) -> tuple[np.ndarray, ...]:
+    anchors = tuple(np.zeros((0, 2)) for _ in out[5:])
     if not out[0]:
         return (
             np.zeros(0, dtype=np.intp),
@@ -185,6 +201,7 @@ def _joined(out: list[list[np.ndarray]]) -> tuple[np.ndarray, ...]:
             np.zeros((0, 2)),
             np.zeros(0),
             np.zeros(0, dtype=np.int64),
+            *anchors,
         )
     return (
         np.concatenate(out[0]),
@@ -192,4 +209,5 @@ def _joined(out: list[list[np.ndarray]]) -> tuple[np.ndarray, ...]:
         np.concatenate(out[2]),
         np.concatenate(out[3]),
         np.concatenate(out[4]).astype(np.int64),
+        *(np.concatenate(k) for k in out[5:]),
     )

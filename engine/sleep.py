@@ -54,10 +54,14 @@ def wake_met(
     still: np.ndarray,
     group: np.ndarray,
     still_speed: float,
+    shaped: np.ndarray | None = None,
+    touching_keys: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Drop pairs (a, b) of two sleepers; wake the group of a sleeper an awake body meets
     (in place on ``asleep`` and ``still``, seconds each body has been still; ``group``: each
-    sleeper's group label)."""
+    sleeper's group label). ``shaped`` (N,) bool or None: the bodies with shapes other than
+    discs, whose bounding circles say nothing of touching: a pair with one touches where
+    its key a * N + b (a < b) is in ``touching_keys`` (the pairs the last step's rows found)."""
     sa, sb = asleep[a], asleep[b]
     mixed = np.flatnonzero(sa != sb)
     if len(mixed):
@@ -67,6 +71,13 @@ def wake_met(
         # group (a sleeper pushed while asleep would be put back every step).
         ra, rs = radius[awake], radius[sleeper]
         touching = norm(x[awake] - x[sleeper]) <= ra + rs + 0.05 * np.minimum(ra, rs)
+        if shaped is not None and touching_keys is not None:
+            pair = shaped[awake] | shaped[sleeper]
+            if pair.any():
+                lo, hi = np.minimum(awake, sleeper), np.maximum(awake, sleeper)
+                keys = lo.astype(np.int64) * len(x) + hi
+                met = np.isin(keys, np.asarray(touching_keys, dtype=np.int64))
+                touching = np.where(pair, met, touching)
         moving = (norm(v[awake]) > still_speed) | touching
         if moving.any():
             sleeper = sleeper[moving]

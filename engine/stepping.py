@@ -265,7 +265,11 @@ def _step_once(
     # Bodies that turn turn freely by the closed form (engine.rotation); the colliders
     # change the spin of those they touch (without colliders, discs at rest stay so).
     spin = None
-    if store.turns_any and (state.contacts is not None or store.spins()):
+    if store.turns_any and (
+        state.contacts is not None
+        or store.spins()
+        or (state.pairs_on and state.collisions.has_shapes(store))
+    ):
         spin = Spin.free(
             store.angle, store.omega, store.inv_moment, store.torque, store.mass,
             store.radius, dt,

@@ -1,4 +1,7 @@
-"""Bodies with a shape (Body(..., shape=...)): boxes, polygons and capsules that do not turn.
+"""Bodies with a shape (Body(..., shape=...)): boxes, polygons and capsules.
+
+They turn (tests/test_rotation_shapes.py has what turning does); where a test is about a box
+that keeps its angle it says ``fixed_rotation=True``.
 
 Each is checked against the closed form or a theorem: a column of boxes lands and rests
 with overlaps at most 1% of a box's height and sleeps; a box on a slope stays when
@@ -35,8 +38,10 @@ def _world(floor_friction: float = 1.0) -> World:
 
 @pytest.fixture(scope="module")
 def column() -> tuple[World, list[Body], list[float]]:
-    """Ten unit boxes dropped in a column (each 0.1 m above the one below, 2 cm to the side),
-    stepped 4 s: the world, the boxes, and the deepest overlap of any step after 1 s."""
+    """Ten unit boxes that do not turn (``fixed_rotation``; the column of boxes that turn is
+    in tests/test_rotation_shapes.py) dropped in a column (each 0.1 m above the one below,
+    2 cm to the side), stepped 4 s: the world, the boxes, and the deepest overlap of any
+    step after 1 s."""
     w = _world()
     boxes = [
         w.add(
@@ -45,6 +50,7 @@ def column() -> tuple[World, list[Body], list[float]]:
                 shape=Polygon.box(1.0, 1.0),
                 restitution=0.0,
                 friction=0.5,
+                fixed_rotation=True,
             )
         )
         for k in range(10)
@@ -104,13 +110,16 @@ def test_a_box_on_a_slope_stays_or_slides_at_g_sin_minus_mu_cos(degrees: float, 
     w = World(integrator="auto")
     w.add_force(Gravity((0.0, -G)))
     w.add_collider(Plane((0.0, 0.0), n, friction=1.0))
-    # A unit box that does not turn touches the slope with one corner: placed with its
-    # lowest corner (along the normal) on the plane.
+    # A unit box that does not turn (fixed_rotation: a box that turns, set on one corner,
+    # topples onto a face, its weight acting beside its one point of support; the box that
+    # turns lies flat on its slope in tests/test_rotation_shapes.py) touches the slope with
+    # one corner: placed with its lowest corner (along the normal) on the plane.
     lowest = min(
         (Vector(sx * 0.5, sy * 0.5) for sx in (-1, 1) for sy in (-1, 1)),
         key=lambda c: c.x * n[0] + c.y * n[1],
     )
-    box = w.add(Body(-lowest, shape=Polygon.box(1.0, 1.0), friction=mu, restitution=0.0))
+    box = w.add(Body(-lowest, shape=Polygon.box(1.0, 1.0), friction=mu, restitution=0.0,
+                     fixed_rotation=True))  # fmt: skip
     for _ in range(30):  # settle onto the corner
         w.step(DT)
     t0, v0 = w.t, box.vel.dot(down)
@@ -129,10 +138,14 @@ def test_shapes_meet_with_momentum_kept_and_restitution_along_the_normal(other: 
     # No gravity, no walls: a box (2 kg) at 3 m/s head-on into a body (0.7 kg) at -1 m/s;
     # the normal is x. Momentum is kept to 1e-12; the relative normal speed after is e times
     # what it was (e = e_a e_b = 0.8 x 0.9), the tangential one untouched without friction.
+    # That is the law of the centres' speeds for bodies that do not turn (fixed_rotation: the
+    # pentagon meets the box at a corner 0.1 m off its centre, and a body that turns takes
+    # some of the impulse as spin; tests/test_rotation_shapes.py has an off-centre impact of
+    # a box that turns against its closed form).
     w = World(integrator="auto")
     a = w.add(
         Body(Vector(0.0, 0.0), Vector(3.0, 0.5), shape=Polygon.box(1.0, 0.6), mass=2.0,
-             restitution=0.8, friction=0.0)
+             restitution=0.8, friction=0.0, fixed_rotation=True)
     )  # fmt: skip
     shape = {
         "disc": None,
@@ -142,7 +155,7 @@ def test_shapes_meet_with_momentum_kept_and_restitution_along_the_normal(other: 
     }[other]
     kw = {"radius": 0.3} if shape is None else {"shape": shape}
     b = w.add(Body(Vector(2.0, 0.0), Vector(-1.0, 0.5), mass=0.7, restitution=0.9,
-                   friction=0.0, **kw))  # fmt: skip
+                   friction=0.0, fixed_rotation=True, **kw))  # fmt: skip
     p0 = a.mass * a.vel + b.mass * b.vel
     scale = a.mass * abs(a.vel) + b.mass * abs(b.vel)
     began = []
@@ -216,10 +229,13 @@ def test_fast_shapes_never_pass_through_each_other_or_a_thin_wall(speed: float, 
     # A box thrown head-on at a body coming the other way (or at a thin static wall), from
     # gaps that the two close within one step and from farther: elastic, frictionless, so
     # they come apart at their speeds of approach, and the box is never past the other.
+    # Bodies that do not turn (fixed_rotation): the target is 0.1 m off the box's centre
+    # line, and a box that turns takes part of the impulse as spin (see
+    # tests/test_rotation_shapes.py for that impact's closed form).
     for gap in (0.35, 0.9 * 2.0 * speed * DT, 1.3 * 2.0 * speed * DT, 2.5 * 2.0 * speed * DT):
         w = World(integrator="auto")
         box = w.add(Body(Vector(0.0, 0.0), Vector(speed, 0.0), shape=Polygon.box(0.5, 0.5),
-                         restitution=1.0, friction=0.0))  # fmt: skip
+                         restitution=1.0, friction=0.0, fixed_rotation=True))  # fmt: skip
         x_far = 0.25 + gap + 0.05
         if other == "thin wall":
             w.add_collider(Segment((x_far, -5.0), (x_far, 5.0)))
@@ -232,7 +248,7 @@ def test_fast_shapes_never_pass_through_each_other_or_a_thin_wall(speed: float, 
             }[other]
             kw = {"radius": 0.05} if shape is None else {"shape": shape}
             target = w.add(Body(Vector(x_far, 0.1), Vector(-speed, 0.0), restitution=1.0,
-                                friction=0.0, **kw))  # fmt: skip
+                                friction=0.0, fixed_rotation=True, **kw))  # fmt: skip
         for _ in range(int(gap / speed / DT) + 4):
             w.step(DT)
             assert box.pos.x < (x_far if target is None else target.pos.x)

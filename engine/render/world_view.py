@@ -49,8 +49,9 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
         shape = body.shape
         at = (float(xy[k, 0]), float(xy[k, 1]))
         if shape is not None and type(shape).__name__ in ("Polygon", "Segment"):
-            _draw_shape(surface, shape, camera, at, colour, 0)
-            _draw_shape(surface, shape, camera, at, INK, 1)
+            angle = angle_of(world, body, alpha) or 0.0  # a box that turns, at its angle
+            _draw_shape(surface, shape, camera, at, colour, 0, angle)
+            _draw_shape(surface, shape, camera, at, INK, 1, angle)
             continue
         draw_disc(surface, camera, at, body.radius, angle_of(world, body, alpha), colour)
 
@@ -114,14 +115,20 @@ def _draw_shape(
     at: tuple[float, float],
     colour: Color,
     width: int,
+    angle: float = 0.0,
 ) -> None:
     """A Polygon (with its rounding) or a Segment (a capsule) whose coordinates are about
-    ``at`` (a body's position; the origin for a collider); ``width`` 0 fills it."""
+    ``at`` (a body's position; the origin for a collider), turned by ``angle`` (rad,
+    counter-clockwise) about it; ``width`` 0 fills it."""
     ox, oy = at
+    c, s = math.cos(angle), math.sin(angle)
+
+    def place(v: Any) -> tuple[int, int]:
+        return camera.point((c * v.x - s * v.y + ox, s * v.x + c * v.y + oy))
+
     r_px = round(shape.radius * camera.scale)
     if type(shape).__name__ == "Segment":
-        a = camera.point((shape.a.x + ox, shape.a.y + oy))
-        b = camera.point((shape.b.x + ox, shape.b.y + oy))
+        a, b = place(shape.a), place(shape.b)
         if width and r_px:
             _capsule_outline(surface, colour, a, b, r_px)
             return
@@ -132,7 +139,7 @@ def _draw_shape(
         for end in (a, b):
             pygame.draw.circle(surface, colour, end, max(r_px, 1))
         return
-    pts = [camera.point((v.x + ox, v.y + oy)) for v in shape.vertices]
+    pts = [place(v) for v in shape.vertices]
     if r_px >= 1:
         # The rounding: the edges thickened by r and a disc at each corner.
         for p, q in zip(pts, pts[1:] + pts[:1], strict=True):
