@@ -44,6 +44,7 @@ STILLS = [
     ("pendulum", ["pendulum", "--scene", "double", "--seconds", "17"], 170),
     ("crates", ["crates"], 4),
     ("incline", ["incline", "--scene", "race"], 24),
+    ("stack", ["stack", "--scene", "dominoes"], 25),
 ]
 
 

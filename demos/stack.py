@@ -1,0 +1,206 @@
+"""Stacks: boxes that turn stack into a pyramid, topple as dominoes, and stand as a tower.
+
+Run with ``python -m demos stack``. Boxes of 1 kg with friction 0.6 on a floor, dt = 1/60 s:
+
+* ``pyramid``: 210 boxes of 1 m, a base of 20, let go touching: they settle and sleep (grey);
+  the read-out says how far any box has moved from where it was put and when all slept (the
+  issue "Bodies that turn" asks at most 1 cm by 60 s and asleep within 2 s);
+* ``dominoes``: 30 dominoes 0.1 m thick and 1 m tall, 0.5 m apart; the first is flicked at its
+  top (an impulse of 0.3 N s, ``apply_impulse(j, at=...)``) and each knocks over the next;
+  the read-out counts those down and marks each one's angle by its colour;
+* ``tower``: 20 boxes in a column with sleeping off, the scene where iterative solvers fail
+  (pymunk's falls at 1.7 s); the read-out gives the top box's drift and the column's sag: this
+  engine's tower stands but walks (about 0.5 m sideways and 25 mm of sag by 60 s, measured),
+  short of the issue's 1 mm and 5 mm: a limit shown, not hidden.
+
+Everything is drawn by ``engine.render.draw_world``: awake boxes blue, asleep grey.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pygame
+
+from demos.cli import Demo
+from engine import Body, Plane, Polygon, Vector, World
+from engine.forces import Gravity
+from engine.render import INK, MUTED, PAPER, Camera, Scene, draw_text
+from engine.render.world_view import draw_world
+
+__all__ = ["DEMO", "PyramidScene", "DominoScene", "TowerScene", "pyramid", "dominoes", "tower"]
+
+DT = 1.0 / 60.0  # s
+FRICTION = 0.6
+BASE = 20  # boxes in the pyramid's bottom row
+DOMINOES = 30
+FLICK = 0.3  # N s, at the first domino's top
+
+
+def _world() -> World:
+    """A floor under gravity."""
+    w = World(integrator="auto")
+    w.add_force(Gravity((0.0, -9.81)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=1.0))
+    return w
+
+
+def _box(w: World, x: float, y: float, width: float = 1.0, height: float = 1.0) -> Body:
+    return w.add(
+        Body(Vector(x, y), shape=Polygon.box(width, height), mass=1.0, friction=FRICTION,
+             restitution=0.0)
+    )  # fmt: skip
+
+
+def pyramid(base: int = BASE) -> tuple[World, list[Body]]:
+    """A pyramid of 1 m boxes, ``base`` in the bottom row, each row centred on the one below."""
+    w = _world()
+    boxes = [
+        _box(w, k + 0.5 * row - 0.5 * (base - 1), 0.5 + row)
+        for row in range(base)
+        for k in range(base - row)
+    ]
+    return w, boxes
+
+
+def dominoes(n: int = DOMINOES) -> tuple[World, list[Body]]:
+    """``n`` dominoes (0.1 by 1 m) 0.5 m apart, the first flicked forward at its top."""
+    w = _world()
+    row = [_box(w, 0.5 * k, 0.5, 0.1, 1.0) for k in range(n)]
+    row[0].apply_impulse(Vector(FLICK, 0.0), at=(0.0, 0.95))
+    return w, row
+
+
+def tower(n: int = 20) -> tuple[World, list[Body]]:
+    """``n`` 1 m boxes in a column, with sleeping off (every step is solved)."""
+    w = _world()
+    w.sleep_time = math.inf
+    return w, [_box(w, 0.0, 0.5 + k) for k in range(n)]
+
+
+class _StackScene(Scene):
+    """What the three scenes share: a World of boxes, a camera on ``view``, a title."""
+
+    dt = DT
+    min_size = (480, 270)
+    strobe_interval = 0.5
+    title = ""
+    view = (0.0, 0.0, 1.0, 1.0)  # (left, bottom, right, top) in metres
+    world: World
+    boxes: list[Body]
+
+    def make(self) -> tuple[World, list[Body]]:
+        raise NotImplementedError
+
+    def build(self, size: tuple[int, int]) -> None:
+        self.world, self.boxes = self.make()
+        self.start = np.array([tuple(b.pos) for b in self.boxes])
+        w, h = size
+        s = self.s = h / 360
+        header = round(72 * s)
+        m = round(8 * s)
+        x0, y0, x1, y1 = self.view
+        scale = min((w - 2 * m) / (x1 - x0), (h - header - m) / (y1 - y0))
+        self.camera = Camera(
+            scale, ((w - scale * (x1 - x0)) / 2 - scale * x0, (h - m) + scale * y0)
+        )
+        self.asleep_at: float | None = None
+
+    def step(self, dt: float) -> None:
+        self.world.step(dt)
+        if self.asleep_at is None and self.world.sleeping == len(self.boxes):
+            self.asleep_at = self.world.t
+
+    def moved(self) -> np.ndarray:
+        """How far each box is from where it was put (m)."""
+        now = np.array([tuple(b.pos) for b in self.boxes])
+        return np.hypot(*(now - self.start).T)
+
+    def lines(self) -> list[str]:
+        raise NotImplementedError
+
+    def draw(self, surface: pygame.Surface, alpha: float) -> None:
+        surface.fill(PAPER)
+        draw_world(surface, self.world, self.camera, alpha)
+        s, w = self.s, surface.get_width()
+        x = round(8 * s)
+        draw_text(surface, self.title, (x, 4 * s), round(22 * s))
+        t = self.time(alpha)
+        draw_text(surface, f"t = {t:4.2f} s", (w - x, 4 * s), round(22 * s), INK, "topright")
+        for k, line in enumerate(self.lines()):
+            draw_text(surface, line, (x, (32 + 18 * k) * s), round(15 * s), MUTED)
+
+
+class PyramidScene(_StackScene):
+    """210 boxes settle into a pyramid and sleep."""
+
+    name = "pyramid"
+    summary = "210 boxes of 1 m, a base of 20: they settle and sleep"
+    duration = 3.0
+    title = "A pyramid of 210 boxes"
+    view = (-10.6, -0.3, 10.6, 20.3)
+
+    def make(self) -> tuple[World, list[Body]]:
+        return pyramid()
+
+    def lines(self) -> list[str]:
+        asleep = self.world.sleeping
+        when = "" if self.asleep_at is None else f", all since {self.asleep_at:.2f} s"
+        return [
+            f"asleep {asleep} of {len(self.boxes)}{when}   the most any box moved "
+            f"{1000 * float(self.moved().max()):.1f} mm",
+            "boxes that turn, mu 0.6, dt 1/60 s; blue: awake, grey: asleep",
+        ]
+
+
+class DominoScene(_StackScene):
+    """A row of dominoes, the first flicked: each knocks over the next."""
+
+    name = "dominoes"
+    summary = "30 dominoes, the first flicked at its top: each knocks over the next"
+    duration = 6.0
+    title = "Dominoes"
+    view = (-0.8, -0.3, 15.6, 5.0)
+
+    def make(self) -> tuple[World, list[Body]]:
+        return dominoes()
+
+    def fallen(self) -> int:
+        """Dominoes tipped past 0.3 rad."""
+        return sum(abs(b.angle) > 0.3 for b in self.boxes)
+
+    def lines(self) -> list[str]:
+        return [
+            f"fallen {self.fallen()} of {len(self.boxes)}   asleep {self.world.sleeping}",
+            f"0.1 x 1 m, 0.5 m apart; the first flicked with {FLICK} N s at its top",
+        ]
+
+
+class TowerScene(_StackScene):
+    """A column of 20 boxes with sleeping off: does it stand?"""
+
+    name = "tower"
+    summary = "20 boxes in a column, sleeping off: it stands, and how far it drifts"
+    duration = 10.0
+    title = "A tower of 20 boxes, sleeping off"
+    view = (-6.0, -0.3, 6.0, 20.5)
+
+    def make(self) -> tuple[World, list[Body]]:
+        return tower()
+
+    def lines(self) -> list[str]:
+        top = self.boxes[-1]
+        drift = abs(top.pos.x - self.start[-1, 0])
+        sag = self.start[-1, 1] - top.pos.y
+        return [
+            f"the top box: {1000 * drift:.1f} mm sideways, {1000 * sag:.1f} mm lower than put",
+            "(the issue asks 1 mm and 5 mm over 60 s; pymunk's tower falls at 1.7 s)",
+        ]
+
+
+DEMO = Demo(
+    name="stack",
+    summary="Boxes that turn: a pyramid of 210, a row of dominoes, a tower of 20",
+    scenes={"pyramid": PyramidScene, "dominoes": DominoScene, "tower": TowerScene},
+)
