@@ -291,7 +291,7 @@ class Contacts:
             # (friction 0: |a_t| <= 0) and it neither spins nor is made to (the rolling law,
             # engine.resting, leaves exactly such a body where it is); any other is swept
             # (nan fails every comparison).
-            rolls = spin.turns & (friction > 0.0)
+            rolls = spin.rolls(friction)
             if rolls.any():
                 idle = (spin.omega0 == 0.0) & (spin.alpha == 0.0)
                 look_friction = np.where(rolls, np.where(idle, 0.0, np.nan), friction)
@@ -329,16 +329,15 @@ class Contacts:
                 paths = Paths(x0, v0, B, W, dt, t0, radius, restitution, friction, mass)
                 # On the fast path a loop kernel takes the free bodies, however many
                 # (engine.sweep_paths.paths_loop: the same bits).
-                turning = spin if spin is not None and spin.rows_turn(rows) else None
                 if len(rows) < self.few or self.fast:
                     changed, X, V, capped = solve_few(
                         faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
-                        self._began, self._ended, self.fast, turning,
+                        self._began, self._ended, self.fast, spin,
                     )  # fmt: skip
                 else:
                     changed, X, V, capped = sweep(
                         faces, paths, rows, pb, pf, self.rest, self.push_out_rows,
-                        self._began, self._ended, turning,
+                        self._began, self._ended, spin,
                     )  # fmt: skip
                 self.capped += capped
                 # Only bodies that met something change: the rest keep (x1, v1) bit for bit.

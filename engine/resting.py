@@ -81,7 +81,7 @@ def rest_paths(
     the stop comes at t_s = -u / u' (exactly, by the closed form); at rest the body stays
     while |a_t| <= mu |a_n| and else starts sliding at a_t - sign(a_t) mu |a_n|.
 
-    ``turning``: (engine.sweep's ``Turning`` by place among ``rows``, the angular
+    ``turning``: (engine.rotation's ``Rolling`` by place among ``rows``, the angular
     acceleration of the part by active place, set here) when some bodies turn. A disc that
     turns, with q = m r^2 / I, own angular acceleration alpha0 and slip speed
     s = u - omega r (engine.rotation), takes the friction f (per mass, along the tangent):

@@ -28,10 +28,11 @@ v.t by J / m and omega by -J r / I, so s by J (1 + q) / m.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["Spin"]
+__all__ = ["Spin", "Rolling", "rolling"]
 
 
 @dataclass
@@ -69,6 +70,41 @@ class Spin:
         q = mass * radius * radius * inv_moment
         return cls(angle0, omega0, angle, omega, q, alpha, turns)
 
-    def rows_turn(self, rows: np.ndarray) -> bool:
-        """Whether any of the World ``rows`` turns."""
-        return bool(self.turns[rows].any())
+    def rolls(self, friction: np.ndarray) -> np.ndarray:
+        """Which bodies turn under friction (they turn, and have some), by World row."""
+        return self.turns & (friction > 0.0)
+
+
+class Rolling(NamedTuple):
+    """The spin of the bodies a sweep takes that turn under friction (``rolling``), by place
+    among its rows: angle (rad) and angular velocity (rad/s) at the step's start (the sweep
+    writes ``omega`` as it goes), q = m r^2 / I, own angular acceleration (rad/s^2), and
+    ``rolls``: which of the rows turn under friction (the others keep their free spin)."""
+
+    angle: np.ndarray
+    omega: np.ndarray
+    q: np.ndarray
+    alpha: np.ndarray
+    rolls: np.ndarray
+
+    def one(self, k: int) -> tuple[float, float, float, float] | None:
+        """Place k's (angle, omega, q, alpha) as floats, or None if it does not roll."""
+        if not self.rolls[k]:
+            return None
+        return (
+            float(self.angle[k]),
+            float(self.omega[k]),
+            float(self.q[k]),
+            float(self.alpha[k]),
+        )
+
+
+def rolling(spin: Spin | None, rows: np.ndarray, friction: np.ndarray) -> Rolling | None:
+    """The ``Rolling`` of the World ``rows`` (``friction`` by World row), or None when none of
+    them turns under friction (then the sweep is that of bodies that do not turn)."""
+    if spin is None:
+        return None
+    rolls = spin.turns[rows] & (friction[rows] > 0.0)
+    if not rolls.any():
+        return None
+    return Rolling(spin.angle0[rows], spin.omega0[rows], spin.q[rows], spin.alpha[rows], rolls)

@@ -39,7 +39,7 @@ import numpy as np
 from .faces import Faces, dot, face_normals
 from .impact import disc_hits, line_hits
 from .resting import project, rest_paths
-from .rotation import Spin
+from .rotation import Rolling, Spin, rolling
 
 __all__ = ["MAX_IMPACTS", "Paths", "PushOut", "bounce", "first_hits", "sweep"]
 
@@ -108,14 +108,8 @@ def sweep(
     active = np.arange(len(rows))
     slot = np.full(len(rows), -1, dtype=np.intp)  # row -> index among the active
     capped = 0
-    turn: Turning | None = None
-    if spin is not None:
-        # Rows that turn under friction (the rest keep their free spin, set in ``spin``).
-        tr = spin.turns[rows] & (mub > 0.0)
-        turn = Turning(
-            spin.angle0[rows], spin.omega0[rows].copy(), np.where(tr, spin.q[rows], 0.0),
-            spin.alpha[rows], tr,
-        )  # fmt: skip
+    turn = rolling(spin, rows, paths.friction)
+    if turn is not None:
         TH = turn.angle.copy()
     for _ in range(MAX_IMPACTS):
         Xa, Va, ta = X[active], V[active], left[active]
@@ -228,23 +222,9 @@ def sweep(
     return rows[t], X[t], V[t], capped
 
 
-@dataclass
-class Turning:
-    """The spin of the bodies swept, by place among the rows (engine.rotation's ``Spin``
-    for them): angle (rad) and angular velocity (rad/s) at the start, ``q`` = m r^2 / I
-    (0 where friction cannot turn them), own angular acceleration (rad/s^2), and ``rolls``:
-    which turn under friction."""
-
-    angle: np.ndarray
-    omega: np.ndarray
-    q: np.ndarray
-    alpha: np.ndarray
-    rolls: np.ndarray
-
-
 def roll_exactly(
     faces: Faces,
-    turn: Turning,
+    turn: Rolling,
     active: np.ndarray,
     rest: np.ndarray,
     Xn: np.ndarray,
@@ -352,7 +332,7 @@ def bounce(
     rows: np.ndarray,
     began: list[Any],
     ended: list[Any],
-    turning: tuple[Turning, np.ndarray] | None = None,
+    turning: tuple[Rolling, np.ndarray] | None = None,
 ) -> np.ndarray:
     """Apply the impacts of the bodies ``active[h]`` (places among ``rows``; the arrays are
     ``sweep``'s), at the World's times ``when``: restitution, friction, rest.

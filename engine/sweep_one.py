@@ -25,13 +25,13 @@ round face's quartic (whose eigenvalues are numpy's LAPACK) is left to ``_path_o
 from __future__ import annotations
 
 import math
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from .faces import Faces
 from .impact import Pair, disc_hit_one, line_hit_one
-from .rotation import Spin
+from .rotation import Rolling, Spin, rolling
 from .sweep import MAX_IMPACTS, Paths, PushOut
 from .sweep_paths import MET, MISSED, PYTHON, paths_loop
 
@@ -86,7 +86,7 @@ def solve_few(
     same arguments and results (``spin`` too: the bodies that turn under friction have
     their angle and angular velocity written there). ``fast``: the free bodies go through
     the loop kernel ``paths_loop`` first (the same bits), the rest through ``_path_one``."""
-    spins = _spins_of(spin, rows, paths.friction)
+    spins = rolling(spin, rows, paths.friction)
     if fast:
         return _solve_fast(faces, paths, rows, pb, pf, resting, push_out, began, ended, spin, spins)
     x0, v0, Bf, Wf, dt, t0 = paths.x0, paths.v0, paths.B, paths.W, paths.dt, paths.t0
@@ -139,38 +139,6 @@ Keyed = list[tuple[tuple[int, int, int], tuple[Any, ...]]]
 SpinOne = tuple[float, float, float, float]
 
 
-def _spins_of(spin: Spin | None, rows: np.ndarray, friction: np.ndarray) -> Spins | None:
-    """The spin of the ``rows`` that turn under friction (engine.sweep's ``Turning.rolls``),
-    by place among them; None when none does."""
-    if spin is None:
-        return None
-    rolls = spin.turns[rows] & (friction[rows] > 0.0)
-    if not rolls.any():
-        return None
-    return Spins(spin.angle0[rows], spin.omega0[rows], spin.q[rows], spin.alpha[rows], rolls)
-
-
-class Spins(NamedTuple):
-    """The spin of the rows solved, by place among them (engine.sweep's ``Turning``)."""
-
-    angle: np.ndarray
-    omega: np.ndarray
-    q: np.ndarray
-    alpha: np.ndarray
-    rolls: np.ndarray
-
-    def one(self, k: int) -> SpinOne | None:
-        """Place k's ``SpinOne`` for ``_path_one``, or None if it does not turn."""
-        if not self.rolls[k]:
-            return None
-        return (
-            float(self.angle[k]),
-            float(self.omega[k]),
-            float(self.q[k]),
-            float(self.alpha[k]),
-        )
-
-
 def _keep_events(
     began: list[Any], ended: list[Any], began_keyed: Keyed, ended_keyed: Keyed
 ) -> None:
@@ -192,7 +160,7 @@ def _solve_fast(
     began: list[Any],
     ended: list[Any],
     spin: Spin | None = None,
-    spins: Spins | None = None,
+    spins: Rolling | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
     """``solve_few`` on the fast path: the loop kernel ``paths_loop`` for the free bodies,
     ``_path_one`` for those it leaves (the same results, in the same order)."""
@@ -250,7 +218,7 @@ def _paths_fast(
     pb: np.ndarray,
     pf: np.ndarray,
     resting: np.ndarray,
-    spins: Spins | None = None,
+    spins: Rolling | None = None,
 ) -> tuple[np.ndarray, ...]:
     """``paths_loop``'s (status, x, v, impacts) for ``rows``, each row's faces in pair
     order, ``flat[start[k]:start[k + 1]]`` (start, flat), and the angles and angular
