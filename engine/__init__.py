@@ -19,6 +19,7 @@ from . import (
     filters,
     forces,
     integrators,
+    joints,
     kernels,
     kinematics,
     links,
@@ -28,6 +29,7 @@ from .body import Body
 from .colliders import Box, Circle, Collider, Plane, Polygon, Segment
 from .events import ContactEvent
 from .filters import Filter
+from .joints import Hinge, Weld
 from .links import Cable, Link, Pin, Rod
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
 from .stability import SimulationDiverged, StabilityWarning
@@ -50,6 +52,8 @@ __all__ = [
     "Cable",
     "Pin",
     "Link",
+    "Hinge",
+    "Weld",
     "QueryHit",
     "OverlapWarning",
     "FixedStep",
@@ -65,6 +69,7 @@ __all__ = [
     "filters",
     "forces",
     "integrators",
+    "joints",
     "kinematics",
     "links",
     "stability",

@@ -101,6 +101,9 @@ class Collisions:
         self._live: np.ndarray | None = None  # rows with radius > 0
         self._plain = True  # every live body has the default filter
         self._one_group = False  # every live body shares one nonzero group: no pair collides
+        #: Pairs that never collide, as sorted keys a * N + b (a < b, World rows): bodies
+        #: joined by a joint (engine.joints, ``collide=False``).
+        self.apart = np.zeros(0, dtype=np.int64)
         self._has_kin = False  # some body is kinematic (infinite mass here)
         self._kin = np.zeros(0, dtype=bool)  # the World's kinematic bodies, by row
         # Warm start: the last step's resting contacts, keyed a * N + b, and their impulses.
@@ -316,6 +319,9 @@ class Collisions:
         else:
             a = b = np.zeros(0, dtype=np.intp)
             self._search = None
+        if len(a) and len(self.apart):
+            keep = ~np.isin(a.astype(np.int64) * n + b, self.apart)
+            a, b = a[keep], b[keep]
         if len(a) and self.asleep.any():
             a, b = wake_met(
                 a, b, x1, v1, store.radius, self.asleep, self.still, self._group,

@@ -29,10 +29,8 @@ PYMUNK_NAMES: dict[str, str] = {
     "collision_slop": "there is no slop: overlaps past 0.2% of a radius are pushed out",
     "collision_bias": "there is no bias: overlaps past 0.2% of a radius are pushed out",
     "collision_persistence": "contacts carry their impulses from step to step by themselves",
-    "static_body": "static geometry goes straight into the World: "
-    "world.add_collider(Segment(...)) (Plane, Segment, Circle, Polygon, Box)",
     "shapes": "world.colliders (static shapes); a Body has one shape: Body(..., shape=...)",
-    "constraints": "world.links (rods, cables, pins)",
+    "constraints": "world.links (rods, cables, pins, hinges, welds)",
     "add_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",
     "add_wildcard_collision_handler": "world.on_contact(body_or_collider, begin=..., end=...)",
     "add_default_collision_handler": "world.on_contact(...), or read world.began and "

@@ -56,7 +56,7 @@ from .vector import Vector
 if TYPE_CHECKING:
     from .body import Body
 
-__all__ = ["Link", "Rod", "Cable", "Pin", "LinkSolver", "TOLERANCE"]
+__all__ = ["Link", "Rod", "Cable", "Pin", "LinkSolver", "StaticBody", "STATIC", "TOLERANCE"]
 
 #: A link's length error after the solve, relative to its length.
 TOLERANCE = 1e-12
@@ -66,7 +66,7 @@ MAX_ITERATIONS = 25
 APART = 16
 
 
-def _point(value: Any, name: str) -> Vector:
+def fixed_point(value: Any, name: str) -> Vector:
     """A finite 2D point, or a TypeError / ValueError naming ``name``."""
     try:
         p = Vector.coerce(value, name)
@@ -80,7 +80,37 @@ def _point(value: Any, name: str) -> Vector:
     return p
 
 
-def _body(value: Any, name: str) -> Body:
+class StaticBody:
+    """The World itself as a body that never moves (``world.static_body``): a joint or link
+    to it holds a body to a fixed point, given in world coordinates (pymunk's static body)."""
+
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return "world.static_body"
+
+
+#: The one static body every World hands out as ``world.static_body``.
+STATIC = StaticBody()
+
+
+def _anchor(value: Any, name: str) -> Vector:
+    """A finite anchor in a body's own frame (length units), or an error naming ``name``."""
+    if value is None:
+        return Vector(0.0, 0.0)
+    try:
+        p = Vector.coerce(value, name)
+    except TypeError:
+        raise TypeError(
+            f"{name} must be a point in the body's own frame (a Vector or pair of numbers), "
+            f"got {type(value).__name__} {value!r}"
+        ) from None
+    if not p.is_finite():
+        raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
+    return p
+
+
+def plane_body(value: Any, name: str) -> Body:
     from .body import Body
 
     if not isinstance(value, Body):
@@ -93,27 +123,48 @@ def _body(value: Any, name: str) -> Body:
 class Link:
     """A link from ``body`` to ``other`` (a Body, or a fixed point): see the module's text."""
 
-    __slots__ = ("_body", "_other", "_point", "_length", "_e", "impulse", "warned")
+    __slots__ = (
+        "_body", "_other", "_point", "_length", "_e", "_anchor_a", "_anchor_b", "impulse",
+        "warned",
+    )  # fmt: skip
 
     #: Whether the link holds the distance both ways (a rod) or only at most (a cable).
     rigid = True
 
-    def __init__(self, body: Any, other: Any, length: Any, restitution: float = 0.0) -> None:
+    def __init__(
+        self,
+        body: Any,
+        other: Any,
+        length: Any,
+        restitution: float = 0.0,
+        anchor_a: Any = None,
+        anchor_b: Any = None,
+    ) -> None:
         from .body import Body
 
-        self._body = _body(body, "body")
+        self._body = plane_body(body, "body")
+        self._anchor_a = _anchor(anchor_a, "anchor_a")
+        self._anchor_b = _anchor(anchor_b, "anchor_b")
+        if other is STATIC:
+            # To the world: anchor_b is then the fixed point, in world coordinates.
+            other, self._anchor_b = self._anchor_b, Vector(0.0, 0.0)
         if isinstance(other, Body):
             if other is body:
                 raise ValueError(
                     "other must be another Body or a fixed point, got the body itself: a body "
                     "linked to itself holds nothing"
                 )
-            self._other: Body | None = _body(other, "other")
+            self._other: Body | None = plane_body(other, "other")
             self._point: Vector | None = None
         else:
-            self._other, self._point = None, _point(other, "other")
+            if anchor_b is not None and (self._anchor_b.x or self._anchor_b.y):
+                raise ValueError(
+                    f"anchor_b is the anchor on a second body; a link to a fixed point "
+                    f"({other!r}) has none: give the point itself, got anchor_b={anchor_b!r}"
+                )
+            self._other, self._point = None, fixed_point(other, "other")
         if length is None:
-            length = (self._body.pos - self._end()).length()
+            length = (self.end_a() - self.end_b()).length()
             if not length > 0.0:
                 raise ValueError(
                     "the link's ends are at one point, so length=None gives 0: move them "
@@ -135,6 +186,33 @@ class Link:
 
     def _end(self) -> Vector:
         return self._other.pos if self._other is not None else self._point  # type: ignore[return-value]
+
+    def end_a(self) -> Vector:
+        """Where the link holds ``body`` now: its anchor_a, in world coordinates."""
+        return self._body.local_to_world(self._anchor_a)
+
+    def end_b(self) -> Vector:
+        """Where the link holds its other end now, in world coordinates."""
+        if self._other is None:
+            return self._point  # type: ignore[return-value]
+        return self._other.local_to_world(self._anchor_b)
+
+    @property
+    def anchor_a(self) -> Vector:
+        """Where the link holds ``body``, in its own frame (length units; (0, 0): the centre)."""
+        return self._anchor_a
+
+    @property
+    def anchor_b(self) -> Vector:
+        """Where the link holds ``other``, in its own frame ((0, 0) for a fixed point)."""
+        return self._anchor_b
+
+    @property
+    def anchored(self) -> bool:
+        """Whether an end is held away from its body's centre (the joint solver then takes
+        the World's links: engine.joint_solver)."""
+        a, b = self._anchor_a, self._anchor_b
+        return bool(a.x or a.y or b.x or b.y)
 
     @property
     def body(self) -> Body:
@@ -176,8 +254,15 @@ class Rod(Link):
 
     __slots__ = ()
 
-    def __init__(self, body: Any, other: Any, length: float | None = None) -> None:
-        super().__init__(body, other, length)
+    def __init__(
+        self,
+        body: Any,
+        other: Any,
+        length: float | None = None,
+        anchor_a: Any = None,
+        anchor_b: Any = None,
+    ) -> None:
+        super().__init__(body, other, length, 0.0, anchor_a, anchor_b)
 
 
 class Cable(Link):
@@ -187,19 +272,31 @@ class Cable(Link):
     __slots__ = ()
     rigid = False
 
-    def __init__(self, body: Any, other: Any, length: float, restitution: float = 0.0) -> None:
+    def __init__(
+        self,
+        body: Any,
+        other: Any,
+        length: float,
+        restitution: float = 0.0,
+        anchor_a: Any = None,
+        anchor_b: Any = None,
+    ) -> None:
         if length is None:
             raise TypeError("length must be a real number for a Cable (its longest reach)")
-        super().__init__(body, other, length, restitution)
+        super().__init__(body, other, length, restitution, anchor_a, anchor_b)
 
 
 class Pin(Link):
-    """A pin: ``body`` stays at ``point`` (length units); contacts and links take it as fixed."""
+    """A pin: ``body`` stays at ``point`` (length units); contacts and links take it as fixed.
+    With ``anchor_a`` (in the body's own frame, away from its centre) that point of the body
+    stays at ``point`` and the body swings about it (a hinge to the world)."""
 
     __slots__ = ()
 
-    def __init__(self, body: Any, point: Any) -> None:
-        self._body = _body(body, "body")
+    def __init__(self, body: Any, point: Any, anchor_a: Any = None) -> None:
+        self._body = plane_body(body, "body")
+        self._anchor_a = _anchor(anchor_a, "anchor_a")
+        self._anchor_b = Vector(0.0, 0.0)
         from .body import Body
 
         if isinstance(point, Body):
@@ -207,7 +304,7 @@ class Pin(Link):
                 "point must be a fixed point (a Vector or pair of numbers); to hold two bodies "
                 "at a distance use a Rod"
             )
-        self._other, self._point = None, _point(point, "point")
+        self._other, self._point = None, fixed_point(point, "point")
         self._length, self._e = 0.0, 0.0
         self.impulse, self.warned = 0.0, False
 
@@ -216,6 +313,12 @@ class Pin(Link):
         """Where the body is held (length units)."""
         assert self._point is not None
         return self._point
+
+    @property
+    def holds(self) -> bool:
+        """Whether the pin holds its body still (at its centre: a fixed body), not only a
+        point of it (an anchor away from the centre: the body swings)."""
+        return not self.anchored
 
     def __repr__(self) -> str:
         return f"Pin(at {self._point!r})"
@@ -406,7 +509,7 @@ class LinkSolver:
             s = np.flatnonzero(keep)
             u = self._rel(v, nrm[s], sel[s])
             A = self._coupling(w, sel[s]) * (nrm[s] @ nrm[s].T)
-            mu_s = _solve(A, target[s] - u)
+            mu_s = solve_rows(A, target[s] - u)
             pushing = cable[s] & (mu_s > 0.0) & (u <= target[s])
             if not pushing.any():
                 break
@@ -545,7 +648,7 @@ class LinkSolver:
             if float(np.abs(c / (L * L)).max()) <= 2.0 * TOLERANCE:
                 return lam, True
             J = 2.0 * S * (d @ rs.T)
-            step = _solve(J, -c)
+            step = solve_rows(J, -c)
             if not np.isfinite(step).all():
                 break
             lam = lam + step
@@ -585,7 +688,7 @@ class LinkSolver:
         return X - x
 
 
-def _solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+def solve_rows(A: np.ndarray, b: np.ndarray) -> np.ndarray:
     """A x = b; least squares where A is singular (links that repeat one another)."""
     try:
         return np.linalg.solve(A, b)

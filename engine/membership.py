@@ -161,11 +161,13 @@ def add_force(
 
 
 def add_link(state: WorldState, link: LinkT) -> LinkT:
-    """Add a link (``engine.links``: Rod, Cable, Pin) between bodies of this World, or a
-    body and a fixed point, and return it. A pinned body is moved to its pin at once."""
+    """Add a link (``engine.links``: Rod, Cable, Pin; ``engine.joints``: Hinge, Weld)
+    between bodies of this World, or a body and a fixed point, and return it. A pinned body
+    is moved to its pin at once (its anchor onto the point)."""
     if not isinstance(link, Link):
         raise TypeError(
-            f"add_link takes a link from engine.links (Rod, Cable, Pin), got "
+            f"add_link takes a link from engine.links (Rod, Cable, Pin) or a joint from "
+            f"engine.joints (Hinge, Weld), got "
             f"{type(link).__name__} {link!r}"
         )
     if any(k is link for k in state.links):
@@ -177,8 +179,8 @@ def add_link(state: WorldState, link: LinkT) -> LinkT:
             raise ValueError(
                 f"the link's bodies must be in this World first (world.add(body)): {b!r}"
             )
-    if isinstance(link, Pin):
-        if any(isinstance(k, Pin) and k.body is link.body for k in state.links):
+    if isinstance(link, Pin) and link.holds:
+        if any(isinstance(k, Pin) and k.holds and k.body is link.body for k in state.links):
             raise ValueError(
                 f"that body is pinned already: a body takes only one Pin (remove_link the "
                 f"old one first): {link.body!r}"
@@ -193,8 +195,11 @@ def add_link(state: WorldState, link: LinkT) -> LinkT:
         store = state.store
         assert store is not None
         row = store.row(link.body.slot)
-        store.x[row] = store.prev_x[row] = tuple(link.point)
-        store.v[row] = 0.0
+        # The body moves so that its anchor is on the point (its centre, for a pin there).
+        off = link.end_a() - link.body.pos
+        store.x[row] = store.prev_x[row] = tuple(link.point - off)
+        if link.holds:
+            store.v[row] = 0.0
         state.state_written()
     return link
 

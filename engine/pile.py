@@ -406,10 +406,18 @@ def step_pile(
             Vr, W = dissipative(
                 Vr, v0U + P[U] * dt, store.mass[U], group, fast, (W, W0, turn.moment)
             )
+    # A body of the pile that no row reaches (a box in flight: shapes always come here)
+    # meets nothing in the step: it keeps the method's step and its free spin, bit for bit
+    # (exact under the closed form, and RATTLE's for a body on joints).
+    alone = np.ones(nU, dtype=bool)
+    alone[ra[ra < nU]] = False
+    alone[rb] = False
+    if alone.any():
+        Xr[alone], Vr[alone] = x[U][alone], v[U][alone]
     if turn is not None:
         # The discs that turn end the step at the soft step's spin, having turned by the
         # sum of omega h over its parts (as the positions by v h).
-        t = turn.turns
+        t = turn.turns & ~alone
         spin.angle[U[t]] = spin.angle0[U[t]] + solver.turned[:nU][t]  # type: ignore[union-attr]
         spin.omega[U[t]] = W[t]  # type: ignore[union-attr]
     if kin.any():

@@ -21,7 +21,8 @@ import numpy as np
 from .body import Body, State, coerce_mass, coerce_state
 from .checks import seconds
 from .events import ContactEvent, keys_of, plain_keys
-from .links import Cable, Link, Pin, Rod
+from .joints import KINDS, apply_settings, check_settings, geometry, rebuild, settings
+from .links import Link
 from .vector import Vector
 
 if TYPE_CHECKING:
@@ -52,7 +53,8 @@ class WorldSnapshot:
     warned: frozenset[Any] = field(default_factory=frozenset)
     contacts: tuple[Any, ...] | None = None  # which bodies rest on what, sensors overlapped
     pairs: tuple[Any, ...] | None = None  # contacts between bodies: warm start, sleep
-    links: tuple[Any, ...] = ()  # each link in force: (what it joins, warned, last impulse)
+    #: Each link or joint in force: (what it joins, warned, last impulse, its settings).
+    links: tuple[Any, ...] = ()
     moves: tuple[Any, ...] = ()  # (row, target): kinematic bodies' pos written, not yet reached
     events: tuple[Any, ...] | None = None  # the contacts open (engine.events), by row and place
     #: Rotation by row: (angle, angular velocity, moment, torque) arrays (engine.rotation).
@@ -82,7 +84,7 @@ def take(state: WorldState) -> WorldSnapshot:
         contacts=None if state.contacts is None else state.contacts.state(),
         pairs=state.collisions.state(),
         events=_events_state(state),
-        links=tuple((_describe(state, k), k.warned, k.impulse) for k in state.links),
+        links=tuple((_describe(state, k), k.warned, k.impulse, settings(k)) for k in state.links),
         spin=None
         if empty
         else tuple(
@@ -129,12 +131,13 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
     state.void_budget()
     state.n = snapshot.n_since_base
     state.steps_base = snapshot.steps - snapshot.n_since_base
-    chosen = _links_of(state, [d for d, _, _ in links])
+    chosen = _links_of(state, [d for d, _, _, _ in links])
     if [id(k) for k in chosen] != [id(k) for k in state.links]:
         state.links = chosen
         state.links_changed()
-    for k, (_, warned, impulse) in zip(chosen, links, strict=True):
+    for k, (_, warned, impulse, values) in zip(chosen, links, strict=True):
         k.warned, k.impulse = warned, impulse
+        apply_settings(k, values)
     state.targets = {state.bodies[row]: target for row, target in moves}
     state.changed_structure()
     if snapshot.anchor is not None:
@@ -238,8 +241,8 @@ def _check_moves(state: WorldState, moves: Any) -> list[tuple[int, tuple[float, 
 
 def _describe(state: WorldState, link: Link) -> tuple[Any, ...]:
     """What a link joins, in plain numbers: (kind, body row, other row or -1, fixed point
-    or None, length, restitution). A snapshot holds this, not the link, so that it can
-    be restored into a World built afresh (its own bodies and links)."""
+    or None, length, restitution, geometry: engine.joints). A snapshot holds this, not the
+    link, so that it can be restored into a World built afresh (its own bodies and links)."""
     store = state.store
     assert store is not None
     other = link.other
@@ -250,6 +253,7 @@ def _describe(state: WorldState, link: Link) -> tuple[Any, ...]:
         None if isinstance(other, Body) else (float(other[0]), float(other[1])),
         link.length,
         link.restitution,
+        geometry(link),
     )
 
 
@@ -264,51 +268,64 @@ def _links_of(state: WorldState, descriptions: list[tuple[Any, ...]]) -> list[Li
     for d in descriptions:
         match = next((k for dk, k in mine if dk == d and all(k is not o for o in out)), None)
         if match is None:
-            kind, row, other_row, point, length, e = d
-            body = state.bodies[row]
+            kind, row, other_row, point, length, e, shape = d
             other: Any = state.bodies[other_row] if other_row >= 0 else point
-            if kind == "Pin":
-                match = Pin(body, point)
-            elif kind == "Cable":
-                match = Cable(body, other, length, e)
-            else:
-                match = Rod(body, other, length)
+            match = rebuild(kind, state.bodies[row], other, length, e, shape)
         out.append(match)
     return out
 
 
-def _check_links(state: WorldState, links: Any) -> list[tuple[tuple[Any, ...], bool, float]]:
-    """The snapshot's links, checked: ((kind, row, other row, point, length, e), warned,
-    impulse) each, joining bodies of this World."""
+def _check_links(
+    state: WorldState, links: Any
+) -> list[tuple[tuple[Any, ...], bool, float, tuple[Any, ...]]]:
+    """The snapshot's links, checked: ((kind, row, other row, point, length, e, geometry),
+    warned, impulse, settings) each, joining bodies of this World."""
     if not isinstance(links, tuple):
         raise TypeError("snapshot.links must be a tuple from World.snapshot")
     n = len(state.bodies)
     out = []
     for item in links:
-        ok = isinstance(item, tuple) and len(item) == 3 and isinstance(item[0], tuple)
-        ok = ok and len(item[0]) == 6 and isinstance(item[1], bool)
+        ok = isinstance(item, tuple) and len(item) == 4 and isinstance(item[0], tuple)
+        ok = ok and len(item[0]) == 7 and isinstance(item[1], bool)
         ok = ok and isinstance(item[2], float) and math.isfinite(item[2])
         if ok:
-            kind, row, other_row, point, length, e = item[0]
-            ok = kind in ("Rod", "Cable", "Pin") and type(row) is int and 0 <= row < n
+            kind, row, other_row, point, length, e, shape = item[0]
+            ok = kind in KINDS and type(row) is int and 0 <= row < n
             ok = ok and type(other_row) is int and -1 <= other_row < n and other_row != row
             ok = ok and (other_row >= 0) == (point is None)
             if ok and point is not None:
-                ok = (
-                    isinstance(point, tuple)
-                    and len(point) == 2
-                    and all(isinstance(c, float) and math.isfinite(c) for c in point)
-                )
+                ok = _floats(point, 2)
             ok = ok and isinstance(length, float) and math.isfinite(length) and length >= 0.0
             ok = ok and isinstance(e, float) and 0.0 <= e <= 1.0
-            ok = ok and (length > 0.0) == (kind != "Pin")
+            ok = ok and (length > 0.0) == (kind in ("Rod", "Cable"))
+            ok = ok and check_settings(kind, item[3]) and _geometry_ok(shape)
         if not ok:
             raise ValueError(
-                f"snapshot.links holds ((kind, row, other row, point, length, restitution), "
-                f"warned, impulse) for links between this World's bodies, got {item!r}"
+                f"snapshot.links holds ((kind, row, other row, point, length, restitution, "
+                f"geometry), warned, impulse, settings) for links between this World's "
+                f"bodies, got {item!r}"
             )
-        out.append((item[0], item[1], item[2]))
+        out.append((item[0], item[1], item[2], item[3]))
     return out
+
+
+def _floats(value: Any, size: int) -> bool:
+    """Whether ``value`` is a tuple of ``size`` finite floats."""
+    return (
+        isinstance(value, tuple)
+        and len(value) == size
+        and all(isinstance(c, float) and math.isfinite(c) for c in value)
+    )
+
+
+def _geometry_ok(shape: Any) -> bool:
+    """Whether ``shape`` is a link's geometry (engine.joints): five finite floats, a hertz
+    (None or > 0), a damping ratio >= 0 and a bool."""
+    if not (isinstance(shape, tuple) and len(shape) == 8 and _floats(shape[:5], 5)):
+        return False
+    hz, zeta, collide = shape[5:]
+    ok = hz is None or (isinstance(hz, float) and math.isfinite(hz) and hz > 0.0)
+    return ok and _floats((zeta,), 1) and zeta >= 0.0 and isinstance(collide, bool)
 
 
 def _check_snapshot(state: WorldState, snap: WorldSnapshot) -> tuple[list[float], list[State]]:

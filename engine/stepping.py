@@ -26,6 +26,7 @@ from .body import Body
 from .event_dispatch import report, settle
 from .forcefield import ForceModel
 from .integrators import Integrator
+from .joint_solver import JointSolver
 from .links import LinkSolver
 from .rotation import Spin
 from .stability import SimulationDiverged, StabilityWarning
@@ -178,10 +179,12 @@ def _step_general(
         state.collisions.state(),
         None if contacts is None else contacts.state(),
     )
+    spun = (store.angle.copy(), store.omega.copy())
     _step_once(state, dt, name, step, model, t0, t1)
     if not _struck_linked(state):
         return
     store.x, store.v, store.prev_x = saved[0], saved[1], saved[2]
+    store.angle, store.omega = spun
     state.anchor, state.huge = saved[3], saved[4]
     state.collisions.set_state(saved[5])
     if contacts is not None and saved[6] is not None:
@@ -268,6 +271,7 @@ def _step_once(
     if store.turns_any and (
         state.contacts is not None
         or store.spins()
+        or state.jointed
         or (state.pairs_on and state.collisions.has_shapes(store))
     ):
         spin = Spin.free(
@@ -351,7 +355,7 @@ def _step_once(
         kinked = None
         if v1 is not v_free:
             kinked = (v1 != v_free).any(axis=1)
-        x1, v1 = _solve_links(state, store, x1, v1, dt, kinked)
+        x1, v1 = _solve_links(state, store, x1, v1, dt, kinked, spin)
     store.prev_x, store.x, store.v = store.x, x1, v1
     if spin is not None:
         if state.pairs_on and state.collisions.any_asleep:
@@ -418,14 +422,27 @@ def _solve_links(
     v1: np.ndarray,
     dt: float,
     kinked: np.ndarray | None = None,
+    spin: Spin | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Correct the step's end state for the links (engine.links), warning once per link
-    stretched past what a step can hold."""
+    """Correct the step's end state for the links (engine.links), or for the joints and
+    links together (engine.joint_solver: on ``spin`` too), warning once per link stretched
+    past what a step can hold."""
     solver = state.link_solver
     if solver is None:
-        solver = state.link_solver = LinkSolver(state.links, lambda b: store.row(b.slot))
+        kind = JointSolver if state.jointed else LinkSolver
+        solver = state.link_solver = kind(state.links, lambda b: store.row(b.slot))
     w = np.where(store.kinematic, 0.0, 1.0 / store.mass)
-    x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
+    if isinstance(solver, JointSolver):
+        if spin is None:  # nothing turns: the angles stay, 1 / I = 0
+            th, om, k = store.angle, store.omega, np.zeros(len(w))
+            x1, v1, _, _ = solver.resolve(store.x, x1, v1, th, th, om, w, k, dt, kinked)
+        else:
+            k = np.where(spin.turns, store.inv_moment, 0.0)
+            x1, v1, spin.angle, spin.omega = solver.resolve(
+                store.x, x1, v1, spin.angle0, spin.angle, spin.omega, w, k, dt, kinked
+            )
+    else:
+        x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
     if solver.moved:
         state.anchor = None
     for link in solver.stretched:

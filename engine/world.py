@@ -46,7 +46,7 @@ from .forces import Force
 from .habits import PYMUNK_NAMES
 from .integrators import Integrator
 from .kernels import choose as kernels_path
-from .links import Link
+from .links import STATIC, Link, StaticBody
 from .membership import ColliderT, LinkT
 from .overlaps import OverlapWarning
 from .policy import AUTO_ORDER, METHODS, MethodPolicy
@@ -168,12 +168,16 @@ class World:
     # -- links ------------------------------------------------------------------------------
     @property
     def links(self) -> tuple[Link, ...]:
-        """The links (rods, cables, pins), in the order they were added."""
+        """The links and joints (rods, cables, pins, hinges, welds), in the order added."""
         return tuple(self._s.links)
 
+    @property
+    def static_body(self) -> StaticBody:
+        """The world as a body that never moves: a joint's body_b that holds to a point."""
+        return STATIC
+
     def add_link(self, link: LinkT) -> LinkT:
-        """Add a link (``engine.links``: Rod, Cable, Pin) between bodies of this World, or a
-        body and a fixed point, and return it. A pinned body is moved to its pin at once."""
+        """Add a link or joint (engine.links, engine.joints) and return it (membership)."""
         return membership.add_link(self._s, link)
 
     def remove_link(self, link: Link) -> None:

@@ -22,6 +22,8 @@ from .contacts import Contacts
 from .events import WorldEvents
 from .forcefield import ForceModel
 from .forces import Force
+from .joint_solver import JointSolver
+from .joints import Joint
 from .links import Link, LinkSolver, Pin
 from .overlaps import push_out
 from .policy import MethodPolicy
@@ -87,7 +89,10 @@ class WorldState:
         self.targets: dict[Body, Any] = {}
         self.links: list[Link] = []  # rods, cables and pins (engine.links)
         self.retired: list[Link] = []  # links taken out (a snapshot may bring one back)
-        self.link_solver: LinkSolver | None = None  # the links as arrays; made when needed
+        # The links as arrays (engine.links), or as rows of the joint solver when a joint or
+        # an anchor away from a centre is among them (engine.joint_solver); made when needed.
+        self.link_solver: LinkSolver | JointSolver | None = None
+        self.jointed = False  # whether the joint solver takes the links
         self.substeps = False  # taking a step again in parts (engine.stepping)
 
     # -- time ----------------------------------------------------------------------------------
@@ -187,6 +192,18 @@ class WorldState:
         else:
             self.collisions.changed(len(self.bodies))
         self.link_solver = None
+        self._apart()
+
+    def _apart(self) -> None:
+        """Tell the contacts which pairs of bodies a joint keeps from colliding."""
+        store, keys = self.store, []
+        if store is not None:
+            n = len(self.bodies)
+            for k in self.links:
+                if isinstance(k, Joint) and not k.collide and isinstance(k.other, Body):
+                    a, b = sorted((store.row(k.body.slot), store.row(k.other.slot)))
+                    keys.append(a * n + b)
+        self.collisions.apart = np.unique(np.array(keys, dtype=np.int64))
 
     def links_changed(self) -> None:
         """The set of links changed: pinned bodies are held as kinematic ones are."""
@@ -194,8 +211,9 @@ class WorldState:
         if store is not None:
             store.kinematic = np.array([b.kinematic for b in self.bodies], dtype=bool)
             for k in self.links:
-                if isinstance(k, Pin):
+                if isinstance(k, Pin) and k.holds:
                     store.kinematic[store.row(k.body.slot)] = True
+        self.jointed = any(k.anchored or isinstance(k, Joint) for k in self.links)
         # A body no longer held goes nowhere it was sent while held.
         self.targets = {b: p for b, p in self.targets.items() if b.kinematic}
         self.changed_structure()
@@ -223,7 +241,7 @@ class WorldState:
         if target is None:
             self.targets.pop(body, None)
         elif not body.kinematic:
-            pin = next(k for k in self.links if isinstance(k, Pin) and k.body is body)
+            pin = next(k for k in self.links if isinstance(k, Pin) and k.holds and k.body is body)
             raise ValueError(
                 f"pos: that body is pinned at {tuple(pin.point)} and stays there; take the pin "
                 f"out (world.remove_link) or add a Pin where it should be: {body!r}"

@@ -124,7 +124,6 @@ def test_gravity_written_as_in_pymunk_is_refused_with_the_force_to_add() -> None
         ("damping", "Drag"),
         ("iterations", "contact_iterations"),
         ("sleep_time_threshold", "sleep_time"),
-        ("static_body", "add_collider"),
         ("add_collision_handler", "on_contact"),
         ("constraints", "world.links"),
     ],

@@ -268,8 +268,10 @@ def test_a_leaning_column_of_ten_boxes_lands_rests_and_sleeps() -> None:
     # top's centre 18 cm out: over its base, so it stands). Each lands on its two corners
     # at once, but the soft step takes the points one after the other, so a box tilts a
     # little as it lands and shifts a few millimetres (a rigid stack would keep its offsets
-    # exactly). Measured: asleep at 0.98 s, the deepest overlap 0.43% of a box, no box
-    # tilted past 0.06 degree, each within 2.41 cm of where it fell.
+    # exactly). Measured: asleep at 0.98 s, the deepest overlap 0.44% of a box, no box
+    # tilted past 0.06 degree, each within 2.53 cm of where it fell (2.41 cm while a box in
+    # flight was stepped by the soft step's parts, which fall g dt^2 / 8 a step too far;
+    # it now flies on the method's exact parabola until it has a contact row).
     w = _floor()
     boxes = [
         w.add(
@@ -290,7 +292,7 @@ def test_a_leaning_column_of_ten_boxes_lands_rests_and_sleeps() -> None:
     assert deepest < 0.01
     assert all(w.is_sleeping(b) for b in boxes)
     assert max(abs(b.angle) for b in boxes) < math.radians(0.1)
-    assert max(abs(b.pos.x - 0.02 * k) for k, b in enumerate(boxes)) < 0.025
+    assert max(abs(b.pos.x - 0.02 * k) for k, b in enumerate(boxes)) < 0.027
 
 
 def test_boxes_that_meet_off_centre_in_free_space_turn_each_other() -> None:

@@ -1,0 +1,395 @@
+"""Joints at anchors (engine.joints, engine.joint_solver): hinges with limits and motors, welds,
+and rods, cables and pins held away from a body's centre.
+
+Each behaviour is checked against the closed form or a theorem: the period of a rod on a
+hinge against the exact elliptic one, a motor's angular velocity against min(T t / I, speed),
+a flipper against its limit, a chain of planks against its joints' gaps, a hanging body's hinge
+force against m g, a welded pair against one rigid body's angular momentum.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from engine import Body, Cable, Hinge, Pin, Polygon, Rod, Vector, Weld, World
+from engine.forces import Gravity
+
+G = 9.81
+
+
+def plank(x: float, y: float, length: float = 1.0, width: float = 0.05, **kw: float) -> Body:
+    shape = Polygon.box(length, width)
+    return Body(Vector(x, y), Vector(0, 0), Vector(0, 0), shape=shape, **kw)  # type: ignore[arg-type]
+
+
+def gravity_world(integrator: str = "auto") -> World:
+    world = World(integrator=integrator)
+    world.add_force(Gravity((0.0, -G)))
+    return world
+
+
+def elliptic_k(k: float) -> float:
+    """The complete elliptic integral of the first kind K(k), by the arithmetic-geometric mean."""
+    a, b = 1.0, math.sqrt(1.0 - k * k)
+    for _ in range(40):
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+    return math.pi / (2.0 * a)
+
+
+def turning_points(world: World, body: Body, dt: float, until: float) -> list[float]:
+    """Times (s) at which body's angular velocity passes from < 0 to >= 0 (interpolated)."""
+    times, prev_w, prev_t = [], body.angular_velocity, world.t
+    while world.t < until:
+        world.step(dt)
+        w = body.angular_velocity
+        if prev_w < 0.0 <= w:
+            times.append(prev_t + dt * (-prev_w) / (w - prev_w))
+        prev_w, prev_t = w, world.t
+    return times
+
+
+@pytest.mark.parametrize("integrator", ["auto", "velocity_verlet", "semi_implicit_euler"])
+def test_a_rod_on_a_hinge_swings_with_the_exact_elliptic_period(integrator: str) -> None:
+    # A uniform rod of length L hinged at its end and let go level (90 degrees): a physical
+    # pendulum of equivalent length I_pivot / (m L / 2) = 2 L / 3 (for a thin rod), period
+    # 4 sqrt(L_eq / g) K(sin 45 degrees).
+    length, width, dt = 1.0, 0.05, 1.0 / 240.0
+    world = gravity_world(integrator)
+    rod = world.add(plank(length / 2, 0.0, length, width, mass=1.0))
+    hinge = world.add_link(Hinge(rod, world.static_body, (0.0, 0.0)))
+    i_pivot = rod.moment + rod.mass * (length / 2) ** 2
+    assert rod.moment == pytest.approx((length**2 + width**2) / 12, rel=1e-12)
+    l_eq = i_pivot / (rod.mass * length / 2)
+    period = 4.0 * math.sqrt(l_eq / G) * elliptic_k(math.sin(math.pi / 4))
+    times = turning_points(world, rod, dt, 3.2 * period)
+    measured = np.diff(times)
+    assert len(measured) >= 2
+    assert np.abs(measured / period - 1.0).max() < 1e-4
+    # The hinge point stays put, and the rod's end with it.
+    assert hinge.point.length() < 1e-9
+    assert rod.local_to_world((-length / 2, 0.0)).length() < 1e-9
+
+
+def test_a_thin_rod_period_is_that_of_the_point_pendulum_two_thirds_as_long() -> None:
+    # The rod of the lesson: a body of moment m L^2 / 12 (no shape) on a hinge at its end has
+    # the period of a point on a rod of 2 L / 3 (both measured here, side by side).
+    length, dt = 1.5, 1.0 / 240.0
+    world = gravity_world()
+    rod = world.add(
+        Body(
+            Vector(length / 2, 0), Vector(0, 0), Vector(0, 0), mass=2.0, moment=2.0 * length**2 / 12
+        )
+    )
+    world.add_link(Hinge(rod, world.static_body, (0.0, 0.0)))
+    point_world = gravity_world()
+    bob = point_world.add(Body(Vector(2 * length / 3, 0), Vector(0, 0), Vector(0, 0), mass=1.0))
+    point_world.add_link(Rod(bob, (0.0, 0.0)))
+    t_rod = np.diff(turning_points(world, rod, dt, 6.0))
+    # The bob's angle about the pivot, by its velocity across the rod.
+    times, prev, prev_t = [], 0.0, 0.0
+    while point_world.t < 6.0:
+        point_world.step(dt)
+        w = bob.pos.cross(bob.vel) / bob.pos.length_squared()
+        if prev < 0.0 <= w:
+            times.append(prev_t + dt * (-prev) / (w - prev))
+        prev, prev_t = w, point_world.t
+    t_point = np.diff(times)
+    exact = 4.0 * math.sqrt((2 * length / 3) / G) * elliptic_k(math.sin(math.pi / 4))
+    assert np.abs(t_rod / exact - 1).max() < 1e-4
+    assert np.abs(t_point / exact - 1).max() < 1e-4
+
+
+def test_a_motor_spins_a_wheel_up_at_its_torque_and_holds_its_speed() -> None:
+    # w(t) = min(T t / I, speed) at every step, to round-off: the motor's impulse each step
+    # is T dt until the speed is reached, then what holds it.
+    world = World(integrator="auto")
+    wheel = world.add(Body(Vector(2, 1), Vector(0, 0), Vector(0, 0), mass=2.0, radius=0.5))
+    torque, speed, dt = 0.3, 4.0, 1.0 / 60.0
+    hinge = world.add_link(
+        Hinge(wheel, world.static_body, (2, 1), motor_speed=speed, max_torque=torque)
+    )
+    inertia = wheel.moment
+    worst = 0.0
+    for n in range(1, 600):
+        world.step(dt)
+        worst = max(worst, abs(wheel.angular_velocity - min(torque * n * dt / inertia, speed)))
+        if n == 10:
+            assert hinge.motor_torque(dt) == pytest.approx(torque, rel=1e-12)
+            assert hinge.torque(dt) == hinge.motor_torque(dt)  # no limits
+    assert worst < 1e-9
+    assert wheel.angular_velocity == pytest.approx(speed, abs=1e-9)
+    assert abs(hinge.torque(dt)) < 1e-9  # holding a free wheel's speed takes no torque
+    assert (wheel.pos - Vector(2, 1)).length() < 1e-12
+
+
+def test_a_flipper_thrown_at_its_limit_stops_there_and_never_passes_it() -> None:
+    world = gravity_world()
+    flipper = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0, angular_velocity=30.0))
+    hinge = world.add_link(Hinge(flipper, world.static_body, (0.0, 0.0), limits=(-0.5, 0.4)))
+    highest = lowest = 0.0
+    for _ in range(240):
+        world.step(1.0 / 60.0)
+        highest, lowest = max(highest, hinge.angle), min(lowest, hinge.angle)
+    assert highest <= 0.4 + 1e-6
+    assert highest == pytest.approx(0.4, abs=1e-6)  # it reached the upper limit
+    assert lowest >= -0.5 - 1e-6
+    assert hinge.angle == pytest.approx(-0.5, abs=1e-6)  # it hangs at the lower one
+    assert flipper.angular_velocity == pytest.approx(0.0, abs=1e-9)
+
+
+def test_a_motor_drives_a_flipper_into_its_limit_and_holds_it_there() -> None:
+    # Gravity pulls the flipper down; the motor (max torque well above m g L / 2) lifts it
+    # to its upper limit at full torque and holds it.
+    world = gravity_world()
+    flipper = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
+    hinge = world.add_link(
+        Hinge(
+            flipper,
+            world.static_body,
+            (0.0, 0.0),
+            limits=(-0.5, 0.5),
+            motor_speed=20.0,
+            max_torque=50.0,
+        )
+    )
+    for _ in range(120):
+        world.step(1.0 / 60.0)
+        assert hinge.angle <= 0.5 + 1e-6
+    assert hinge.angle == pytest.approx(0.5, abs=1e-6)
+    assert hinge.motor_torque(1 / 60) == pytest.approx(50.0, rel=1e-9)  # the motor at its max
+    hinge.motor_speed = -20.0
+    for _ in range(60):
+        world.step(1.0 / 60.0)
+        assert hinge.angle >= -0.5 - 1e-6
+    assert hinge.angle == pytest.approx(-0.5, abs=1e-6)
+
+
+def test_a_chain_of_twenty_planks_holds_every_hinge_while_it_swings() -> None:
+    world = gravity_world()
+    planks = [world.add(plank(0.5 + k, 0.0, 1.0, 0.1, mass=1.0)) for k in range(20)]
+    world.add_link(Hinge(planks[0], world.static_body, (0.0, 0.0)))
+    hinges = [world.add_link(Hinge(planks[k], planks[k + 1], (k + 1.0, 0.0))) for k in range(19)]
+    gap = 0.0
+    for _ in range(480):
+        world.step(1.0 / 240.0)
+        gap = max(gap, max((h.end_a() - h.end_b()).length() for h in hinges))
+    assert gap < 1e-9  # the issue asks 1e-4
+    assert planks[-1].pos.y < -5.0  # it fell and swings
+
+
+def test_a_hanging_body_feels_m_g_at_its_hinge() -> None:
+    world = gravity_world()
+    dt = 1.0 / 60.0
+    box = world.add(plank(0.0, -0.5, 0.1, 1.0, mass=3.0))
+    hinge = world.add_link(Hinge(box, world.static_body, (0.0, 0.0)))
+    for _ in range(30):
+        world.step(dt)
+    force = hinge.force(dt)
+    assert force.x == pytest.approx(0.0, abs=1e-9)
+    assert force.y == pytest.approx(3.0 * G, rel=1e-9)
+    assert hinge.impulse == pytest.approx(3.0 * G * dt, rel=1e-9)
+
+
+def test_a_pin_at_an_anchor_is_a_hinge_to_the_world() -> None:
+    def swing(make: str) -> list[tuple[float, float, float]]:
+        world = gravity_world()
+        body = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
+        if make == "pin":
+            world.add_link(Pin(body, (0.0, 0.0), anchor_a=(-0.5, 0.0)))
+        else:
+            world.add_link(Hinge(body, world.static_body, (0.0, 0.0)))
+        out = []
+        for _ in range(100):
+            world.step(1 / 120)
+            out.append((body.pos.x, body.pos.y, body.angle))
+        return out
+
+    assert swing("pin") == swing("hinge")
+
+
+def test_a_rod_between_anchors_holds_the_anchors_apart() -> None:
+    world = gravity_world()
+    a = world.add(plank(0.0, 0.0, 1.0, 0.1, mass=1.0))
+    b = world.add(plank(0.0, -2.0, 1.0, 0.1, mass=1.0, angular_velocity=3.0))
+    world.add_link(Pin(a, (0.0, 0.0)))  # a held at its centre: it turns about it
+    rod = world.add_link(Rod(a, b, anchor_a=(0.5, 0.0), anchor_b=(-0.5, 0.0)))
+    assert rod.length == pytest.approx(math.hypot(1.0, 2.0), rel=1e-15)
+    cable = world.add_link(Cable(b, (3.0, -2.0), 10.0, anchor_a=(0.5, 0.0)))
+    for _ in range(300):
+        world.step(1 / 120)
+        assert (rod.end_a() - rod.end_b()).length() == pytest.approx(rod.length, rel=1e-12)
+        assert (cable.end_a() - cable.end_b()).length() <= cable.length * (1 + 1e-12)
+    assert a.pos == Vector(0.0, 0.0)
+    assert abs(a.angle) > 0.01  # the rod turned the pinned plank
+
+
+def test_a_weld_holds_two_bodies_as_one_that_keeps_its_angular_momentum() -> None:
+    world = World(integrator="auto")
+    a = world.add(plank(0.0, 0.0, 1.0, 0.2, mass=1.0))
+    b = world.add(plank(0.4, 0.3, 0.5, 0.5, mass=2.0))
+    # Spin the pair as one rigid body about its centre of mass at 2 rad/s.
+    com = (a.pos * a.mass + b.pos * b.mass) / (a.mass + b.mass)
+    w0 = 2.0
+    for body in (a, b):
+        r = body.pos - com
+        body.vel = Vector(-w0 * r.y, w0 * r.x) + Vector(1.0, 0.5)
+        body.angular_velocity = w0
+    weld = world.add_link(Weld(a, b))
+
+    def momentum() -> tuple[Vector, float]:
+        p = a.vel * a.mass + b.vel * b.mass
+        com_now = (a.pos * a.mass + b.pos * b.mass) / (a.mass + b.mass)
+        ang = sum(
+            (body.pos - com_now).cross(body.vel - p / 3.0) * body.mass
+            + body.moment * body.angular_velocity
+            for body in (a, b)
+        )
+        return p, ang
+
+    p0, l0 = momentum()
+    gap0 = (b.pos - a.pos).length()
+    for _ in range(600):
+        world.step(1 / 60)
+    p1, l1 = momentum()
+    assert (p1 - p0).length() < 1e-12
+    assert abs(l1 - l0) < 1e-9 * abs(l0)
+    assert (b.pos - a.pos).length() == pytest.approx(gap0, rel=1e-12)
+    assert weld.angle == pytest.approx(0.0, abs=1e-12)
+    assert a.angular_velocity == pytest.approx(w0, rel=1e-9)
+
+
+def test_a_soft_weld_rings_at_its_frequency() -> None:
+    # A body on a soft weld to the world, pulled aside, swings back at about its hertz (the
+    # implicit spring rings a little slower at a finite step) and, undamped, does not grow.
+    world = World(integrator="auto")
+    box = world.add(plank(0.0, 0.0, 0.5, 0.5, mass=1.0))
+    world.add_link(Weld(box, world.static_body, hertz=2.0, damping_ratio=0.0))
+    box.pos = Vector(0.1, 0.0)
+    dt, xs = 1 / 600, []
+    for _ in range(1200):
+        world.step(dt)
+        xs.append(box.pos.x)
+    x = np.array(xs)
+    ups = np.flatnonzero((x[:-1] < 0.0) & (x[1:] >= 0.0))
+    period = float(np.diff(ups).mean()) * dt
+    assert period == pytest.approx(0.5, rel=0.02)
+    assert np.abs(x).max() <= 0.1 + 1e-12
+
+
+def test_bodies_on_a_joint_do_not_collide_unless_asked() -> None:
+    def turned_apart(collide: bool) -> float:
+        # Two boxes half inside each other, hinged at a point they share: their contact, if
+        # they have one, turns them apart about it.
+        world = World(integrator="auto")
+        a = world.add(plank(0.0, 0.0, 1.0, 1.0, mass=1.0))
+        b = world.add(plank(0.5, 0.0, 1.0, 1.0, mass=1.0))
+        hinge = world.add_link(Hinge(a, b, (0.25, 0.1), collide=collide))
+        for _ in range(30):
+            world.step(1 / 60)
+        return abs(hinge.angle)
+
+    assert turned_apart(False) == 0.0  # left as they are
+    assert turned_apart(True) > 0.05
+
+
+def test_snapshot_and_restore_bring_back_joints_their_settings_and_impulses() -> None:
+    world = gravity_world()
+    flipper = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
+    hinge = world.add_link(
+        Hinge(
+            flipper,
+            world.static_body,
+            (0.0, 0.0),
+            limits=(-0.5, 0.5),
+            motor_speed=5.0,
+            max_torque=20.0,
+        )
+    )
+    for _ in range(10):
+        world.step(1 / 60)
+    snap = world.snapshot()
+    before = (hinge.linear_impulse, hinge.angular_impulse)
+    ahead = []
+    for _ in range(30):
+        world.step(1 / 60)
+        ahead.append((flipper.pos, flipper.angle))
+    hinge.motor_speed = -5.0  # a game changed it after the snapshot
+    world.restore(snap)
+    assert world.links == (hinge,)  # the same joint, its settings back
+    assert hinge.motor_speed == 5.0 and (hinge.linear_impulse, hinge.angular_impulse) == before
+    again = []
+    for _ in range(30):
+        world.step(1 / 60)
+        again.append((flipper.pos, flipper.angle))
+    assert again == ahead
+    # Into a World built afresh: a new Hinge as made, not as the state now.
+    fresh = gravity_world()
+    other = fresh.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
+    fresh.restore(snap)
+    (made,) = fresh.links
+    assert isinstance(made, Hinge) and made.limits == (-0.5, 0.5) and made.reference_angle == 0.0
+    assert made.body_a is other
+    replay = []
+    for _ in range(30):
+        fresh.step(1 / 60)
+        replay.append((other.pos, other.angle))
+    assert replay == ahead
+
+
+def test_removing_a_joint_frees_its_bodies() -> None:
+    world = gravity_world()
+    body = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
+    hinge = world.add_link(Hinge(body, world.static_body, (0.0, 0.0)))
+    world.step(1 / 60)
+    world.remove_link(hinge)
+    vy = body.vel.y
+    world.step(1 / 60)
+    assert body.vel.y == pytest.approx(vy - G / 60, rel=1e-12)  # falls freely
+    with pytest.raises(ValueError, match="not in this World"):
+        world.remove_link(hinge)
+
+
+@pytest.mark.parametrize(
+    "make, error, match",
+    [
+        (lambda a, b: Hinge(a, a, (0, 0)), ValueError, "joined to itself"),
+        (lambda a, b: Hinge(a, b, (math.nan, 0)), ValueError, "point must be finite"),
+        (lambda a, b: Hinge(a, b, (0, 0), limits=(1.0, -1.0)), ValueError, "lower <= upper"),
+        (lambda a, b: Hinge(a, b, (0, 0), limits=(math.nan, 1.0)), ValueError, "limits"),
+        (lambda a, b: Hinge(a, b, (0, 0), limits=3.0), TypeError, "pair"),
+        (lambda a, b: Hinge(a, b, (0, 0), max_torque=-1.0), ValueError, "max_torque must be >= 0"),
+        (lambda a, b: Hinge(a, b, (0, 0), motor_speed=math.inf), ValueError, "motor_speed"),
+        (lambda a, b: Hinge(a, "b", (0, 0)), TypeError, "body_b must be a Body"),
+        (lambda a, b: Hinge(a, b, (0, 0), collide=1), TypeError, "collide"),
+        (lambda a, b: Weld(a, b, hertz=0.0), ValueError, "hertz must be > 0"),
+        (lambda a, b: Weld(a, b, hertz=1.0, damping_ratio=-1.0), ValueError, "damping_ratio"),
+        (lambda a, b: Rod(a, b, anchor_a=(0, math.inf)), ValueError, "anchor_a must be finite"),
+        (lambda a, b: Rod(a, (3, 3), anchor_b=(1, 0)), ValueError, "anchor_b"),
+        (lambda a, b: Pin(a, (0, 0), anchor_a="x"), TypeError, "anchor_a"),
+    ],
+)
+def test_bad_joints_are_clear_errors(make, error, match) -> None:  # type: ignore[no-untyped-def]
+    a = plank(0.0, 0.0)
+    b = plank(2.0, 0.0)
+    with pytest.raises(error, match=match):
+        make(a, b)
+
+
+def test_a_joint_to_a_body_of_another_world_is_refused() -> None:
+    world, other = World(), World()
+    a = world.add(plank(0.0, 0.0))
+    b = other.add(plank(1.0, 0.0))
+    with pytest.raises(ValueError, match="in this World first"):
+        world.add_link(Hinge(a, b, (0.5, 0.0)))
+    assert world.links == ()
+
+
+def test_the_static_body_is_the_world_and_cannot_be_replaced() -> None:
+    world = World()
+    assert world.static_body is World().static_body
+    assert repr(world.static_body) == "world.static_body"
+    with pytest.raises(AttributeError):
+        world.static_body = plank(0.0, 0.0)  # type: ignore[misc]
