@@ -104,6 +104,9 @@ class Collisions:
         #: Pairs that never collide, as sorted keys a * N + b (a < b, World rows): bodies
         #: joined by a joint (engine.joints, ``collide=False``).
         self.apart = np.zeros(0, dtype=np.int64)
+        #: Bodies held by joints (World rows): they never sleep, nor what they touch (a
+        #: sleeper stays put, and a joint would pull it).
+        self.joined = np.zeros(0, dtype=np.intp)
         self._has_kin = False  # some body is kinematic (infinite mass here)
         self._kin = np.zeros(0, dtype=bool)  # the World's kinematic bodies, by row
         # Warm start: the last step's resting contacts, keyed a * N + b, and their impulses.
@@ -357,6 +360,14 @@ class Collisions:
         self._plan = (a, b, island)
         return island if island.any() else None
 
+    def _never_sleep(self, n: int) -> np.ndarray | None:
+        """Bodies that never sleep (moved by the game, or held by a joint), or None."""
+        if not len(self.joined):
+            return self._kin if self._has_kin else None
+        out = self._kin.copy() if self._has_kin else np.zeros(n, dtype=bool)
+        out[self.joined] = True
+        return out
+
     def has_shapes(self, store: Any) -> bool:
         """Whether any body has a shape other than a disc (a box that may be turned by the
         bodies it meets, even where nothing spins and there are no colliders)."""
@@ -539,7 +550,7 @@ class Collisions:
             x[self.asleep], v[self.asleep] = x0[self.asleep], 0.0
         self._group = sleep_still(
             v, dt, live, pa, pb, contacts, self.still, self.asleep, self._group,
-            self.sleep_time, self._still_speed, self._kin if self._has_kin else None,
+            self.sleep_time, self._still_speed, self._never_sleep(n),
             self._overlap, self.face_touching[0], self.fast,
             None if spin is None else np.abs(spin.omega) * store.radius,
         )  # fmt: skip

@@ -44,6 +44,7 @@ from .faces import (
     compile_faces,
     face_filters,
     face_meets,
+    face_normals,
     faces_added,
     faces_removed,
     signed_distance,
@@ -455,6 +456,23 @@ class Contacts:
         onto their face (a_n <= 0) and held by static friction (|a_t| <= mu |a_n|)."""
         few = asleep_few if len(res) < self.few_resting else asleep
         return few(self.faces, self.rest, res, x0, v0, W, friction)
+
+    def touch(
+        self, rows: np.ndarray, x: np.ndarray, radius: np.ndarray, friction: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Of World ``rows``, those resting on a face at positions ``x`` (N, 2): (rows, unit
+        normal toward each, friction (the body's times the collider's), gap: the signed
+        distance less the radius, length units)."""
+        on = rows[(self.rest[rows] >= 0) & (radius[rows] > 0.0)]
+        f = self.rest[on]
+        nrm, _ = face_normals(self.faces, f, x[on])
+        gap = np.array(
+            [
+                float(signed_distance(self.colliders[int(o)], x[r : r + 1])[0]) - radius[r]
+                for r, o in zip(on.tolist(), self.faces.owner[f].tolist(), strict=True)
+            ]
+        )
+        return on, nrm, friction[on] * self.faces.mu[f], gap.reshape(-1)
 
     def push_out_rows(
         self,

@@ -37,16 +37,15 @@ a StabilityWarning said the step was past what Newton's method could hold.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from .body import Body
 from .joints import Hinge, Joint, Weld
-from .links import Cable, Link, Pin, solve_rows
+from .links import Cable, Link, Pin
 
-__all__ = ["JointSolver", "TOLERANCE"]
+__all__ = ["JointSolver", "Touch", "TOLERANCE"]
 
 #: A row's error after the solve, relative to the scene's size (its largest anchor or length).
 TOLERANCE = 1e-12
@@ -54,7 +53,83 @@ TOLERANCE = 1e-12
 MAX_ITERATIONS = 25
 
 # Row kinds.
-_PX, _PY, _DIST, _ANGLE, _MOTOR, _SOFT_X, _SOFT_Y, _SOFT_ANGLE = range(8)
+_PX, _PY, _DIST, _ANGLE, _MOTOR, _SOFT_X, _SOFT_Y, _SOFT_ANGLE, _CN, _CT = range(10)
+
+
+class Touch(NamedTuple):
+    """Contacts of the joints' bodies as the step ends, one a row: the body (World row), the
+    other (World row; -1: the static world), the unit normal from the other to the body, the
+    contact point less each one's centre (``r_body``, ``r_other``; length units), the gap
+    (length units; what the correction may not close), friction (both materials'), the
+    impulse the contact gave in the step along n and along t = (-n_y, n_x) (N s), and
+    ``lift``: a disc resting on a collider (engine.contacts: the joints may take back its
+    contact's impulse, it may lift) or a contact of the pile (engine.pile: it only pushes,
+    and only while the two close)."""
+
+    body: np.ndarray
+    other: np.ndarray
+    normal: np.ndarray
+    r_body: np.ndarray
+    r_other: np.ndarray
+    gap: np.ndarray
+    mu: np.ndarray
+    pn: np.ndarray
+    pt: np.ndarray
+    lift: np.ndarray
+
+    @staticmethod
+    def join(parts: list[Touch | None]) -> Touch | None:
+        """The contacts of ``parts`` together (None: none)."""
+        given = [t for t in parts if t is not None and len(t.body)]
+        if not given:
+            return None
+        if len(given) == 1:
+            return given[0]
+        return Touch(*(np.concatenate(field) for field in zip(*given, strict=True)))
+
+
+class _Plan:
+    """Rows as arrays by row (engine.joint_solver's own): kind, bound, each end's place among
+    the joints' bodies (b: -1 for the world), anchors, and a resting disc's normal, point,
+    gap and radius; the kinds' row indices and the columns of J, made once."""
+
+    def __init__(
+        self,
+        kind: np.ndarray,
+        bound: np.ndarray,
+        a: np.ndarray,
+        b: np.ndarray,
+        aa: np.ndarray,
+        ab: np.ndarray,
+        touch: tuple[np.ndarray, ...],
+        width: int,
+    ) -> None:
+        self.kind, self.bound, self.a, self.b = kind, bound, a, b
+        self.aa, self.ab = aa, ab
+        # A contact row's normal, contact points less the centres, where the body and the
+        # other were (position, angle) as the step ended, and its gap.
+        self.touch = touch
+        self.n, self.rbod, self.roth, self.refb, self.refo, self.thb, self.tho, self.gap = touch
+        self.width = width
+        self.has = b >= 0
+        self.bc = np.maximum(b, 0)
+        self.px = np.flatnonzero((kind == _PX) | (kind == _SOFT_X))
+        self.py = np.flatnonzero((kind == _PY) | (kind == _SOFT_Y))
+        self.dist = np.flatnonzero(kind == _DIST)
+        self.ang = np.flatnonzero((kind == _ANGLE) | (kind == _SOFT_ANGLE) | (kind == _MOTOR))
+        self.cn = np.flatnonzero(kind == _CN)
+        self.ct = np.flatnonzero(kind == _CT)
+        self.r = np.arange(len(kind))
+        self.a3 = 3 * a
+        self.rb = np.flatnonzero(self.has)
+        self.b3 = 3 * b[self.rb]
+
+    def take(self, sel: np.ndarray) -> _Plan:
+        """The rows ``sel`` alone."""
+        return _Plan(
+            self.kind[sel], self.bound[sel], self.a[sel], self.b[sel], self.aa[sel],
+            self.ab[sel], tuple(t[sel] for t in self.touch), self.width,
+        )  # fmt: skip
 
 
 class JointSolver:
@@ -88,8 +163,54 @@ class JointSolver:
             size += [abs(k.anchor_a.x), abs(k.anchor_a.y), abs(k.anchor_b.x), abs(k.anchor_b.y)]
             size.append(k.length)
         self.size = max(size)
+        self._touch(None, None, None)
         self.moved = False
         self.stretched: list[Link] = []
+
+    def _touch(self, touch: Touch | None, x: np.ndarray | None, th: np.ndarray | None) -> None:
+        """The bodies and per-link arrays the rows index, with one entry more for each contact
+        of ``touch`` and its bodies among the joints' (x, th: where the step left them)."""
+        self._bodies = self.bodies
+        self._i, self._j, self._aa, self._ab = self.i, self.j, self.aa, self.ab
+        self._ca, self._cb = self.ca, self.cb
+        K = len(self.i)
+        z2, z1 = np.zeros((K, 2)), np.zeros(K)
+        self._contact: tuple[np.ndarray, ...] = (z2, z2, z2, z2, z2, z1, z1, z1)
+        if touch is None or x is None or th is None:
+            return
+        k = len(touch.body)
+        other = touch.other
+        has = other >= 0
+        rows = np.concatenate([self.bodies, touch.body, other[has]])
+        self._bodies = np.unique(rows)
+        col = np.full(int(self._bodies.max()) + 1, -1, dtype=np.intp)
+        col[self._bodies] = np.arange(len(self._bodies))
+        self._i = np.concatenate([self.i, touch.body])
+        self._j = np.concatenate([self.j, other])
+        self._aa = np.concatenate([self.aa, np.zeros((k, 2))])
+        self._ab = np.concatenate([self.ab, np.zeros((k, 2))])
+        self._ca = col[self._i]
+        self._cb = np.where(self._j >= 0, col[np.maximum(self._j, 0)], -1)
+        oc = np.maximum(other, 0)
+        refo = np.where(has[:, None], x[oc], 0.0)
+        tho = np.where(has, th[oc], 0.0)
+        self._contact = tuple(
+            np.concatenate([base, extra])
+            for base, extra in zip(
+                self._contact,
+                (
+                    touch.normal,
+                    touch.r_body,
+                    touch.r_other,
+                    x[touch.body],
+                    refo,
+                    th[touch.body],
+                    tho,
+                    touch.gap,
+                ),  # fmt: skip
+                strict=True,
+            )
+        )
 
     # -- rows ----------------------------------------------------------------------------
     def _rows(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -133,62 +254,80 @@ class JointSolver:
             np.array(speed, dtype=float),
         )
 
-    def _eval(
-        self, X: np.ndarray, TH: np.ndarray, link: np.ndarray, kind: np.ndarray, bound: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Each row's value c and gradient J (rows, 3 m) at positions X and angles TH."""
-        i, j = self.i, self.j
-        has = j >= 0
-        ta = TH[i]
+    def _plan(self, link: np.ndarray, kind: np.ndarray, bound: np.ndarray) -> _Plan:
+        """The rows as arrays by row, bodies by their place among the joints' bodies."""
+        i, j = self._ca[link], self._cb[link]
+        return _Plan(
+            kind, bound, i, j, self._aa[link], self._ab[link],
+            tuple(t[link] for t in self._contact), 3 * len(self._bodies),
+        )  # fmt: skip
+
+    def _eval(self, X: np.ndarray, TH: np.ndarray, P: _Plan) -> tuple[np.ndarray, np.ndarray]:
+        """Each row's value c and gradient J (rows, 3 m) at the joints' bodies' positions X
+        (m, 2) and angles TH (m,)."""
+        ta = TH[P.a]
         ca, sa = np.cos(ta), np.sin(ta)
-        ra = np.stack(
-            [ca * self.aa[:, 0] - sa * self.aa[:, 1], sa * self.aa[:, 0] + ca * self.aa[:, 1]], 1
-        )
-        tb = np.where(has, TH[np.maximum(j, 0)], 0.0)
+        ax, ay = P.aa[:, 0], P.aa[:, 1]
+        rax, ray = ca * ax - sa * ay, sa * ax + ca * ay
+        tb = np.where(P.has, TH[P.bc], 0.0)
         cb, sb = np.cos(tb), np.sin(tb)
-        rb = np.stack(
-            [cb * self.ab[:, 0] - sb * self.ab[:, 1], sb * self.ab[:, 0] + cb * self.ab[:, 1]], 1
-        )
-        rb[~has] = 0.0
-        pa = X[i] + ra
-        pb = np.where(has[:, None], X[np.maximum(j, 0)] + rb, self.ab)
-        d = pa - pb
-        R = len(link)
+        bx, by = P.ab[:, 0], P.ab[:, 1]
+        rbx = np.where(P.has, cb * bx - sb * by, 0.0)
+        rby = np.where(P.has, sb * bx + cb * by, 0.0)
+        Xa, Xb = X[P.a], X[P.bc]
+        dx = Xa[:, 0] + rax - np.where(P.has, Xb[:, 0] + rbx, bx)
+        dy = Xa[:, 1] + ray - np.where(P.has, Xb[:, 1] + rby, by)
+        R = len(P.kind)
         c = np.zeros(R)
-        J = np.zeros((R, 3 * len(self.bodies)))
-        ga = np.zeros((R, 3))  # the gradient on body_a: (x, y, theta)
-        ra_r, rb_r, d_r = ra[link], rb[link], d[link]
-        px = (kind == _PX) | (kind == _SOFT_X)
-        py = (kind == _PY) | (kind == _SOFT_Y)
-        c[px], c[py] = d_r[px, 0], d_r[py, 1]
-        ga[px] = np.stack([np.ones(px.sum()), np.zeros(px.sum()), -ra_r[px, 1]], 1)
-        ga[py] = np.stack([np.zeros(py.sum()), np.ones(py.sum()), ra_r[py, 0]], 1)
-        gb = -ga.copy()
-        gb[px, 2] = rb_r[px, 1]
-        gb[py, 2] = -rb_r[py, 0]
-        dist = kind == _DIST
-        if dist.any():
-            dd = d_r[dist]
-            length = np.sqrt(np.einsum("ij,ij->i", dd, dd))
-            n = dd / np.where(length > 0.0, length, 1.0)[:, None]
-            c[dist] = length - bound[dist]
-            ga[dist] = np.stack(
-                [n[:, 0], n[:, 1], ra_r[dist, 0] * n[:, 1] - ra_r[dist, 1] * n[:, 0]], 1
-            )
-            gb[dist] = -np.stack(
-                [n[:, 0], n[:, 1], rb_r[dist, 0] * n[:, 1] - rb_r[dist, 1] * n[:, 0]], 1
-            )
-        ang = (kind == _ANGLE) | (kind == _SOFT_ANGLE) | (kind == _MOTOR)
-        if ang.any():
-            c[ang] = ta[link[ang]] - tb[link[ang]] - bound[ang]
-            ga[ang] = (0.0, 0.0, 1.0)
-            gb[ang] = (0.0, 0.0, -1.0)
-        r = np.arange(R)
-        for q in range(3):
-            J[r, 3 * self.ca[link] + q] = ga[:, q]
-        on_b = self.cb[link] >= 0
-        for q in range(3):
-            J[r[on_b], 3 * self.cb[link][on_b] + q] += gb[on_b, q]
+        g = np.zeros((6, R))  # the gradient: (x, y, theta) on body_a, then on body_b
+        q = P.px
+        c[q] = dx[q]
+        g[0, q], g[2, q], g[3, q], g[5, q] = 1.0, -ray[q], -1.0, rby[q]
+        q = P.py
+        c[q] = dy[q]
+        g[1, q], g[2, q], g[4, q], g[5, q] = 1.0, rax[q], -1.0, -rbx[q]
+        q = P.dist
+        if len(q):
+            length = np.hypot(dx[q], dy[q])
+            safe = np.where(length > 0.0, length, 1.0)
+            nx, ny = dx[q] / safe, dy[q] / safe
+            c[q] = length - P.bound[q]
+            g[0, q], g[1, q], g[2, q] = nx, ny, rax[q] * ny - ray[q] * nx
+            g[3, q], g[4, q], g[5, q] = -nx, -ny, rby[q] * nx - rbx[q] * ny
+        q = P.ang
+        if len(q):
+            c[q] = ta[q] - tb[q] - P.bound[q]
+            g[2, q], g[5, q] = 1.0, -1.0
+        q = P.cn
+        if len(q):
+            # A contact: its gap along the normal, linear about where the step left the two
+            # (the body, a; the other, b), which the correction may not close; and the slip
+            # of its points along t (velocity only).
+            nx, ny = P.n[q, 0], P.n[q, 1]
+            kb = P.rbod[q, 0] * ny - P.rbod[q, 1] * nx  # r x n, the body's lever
+            ko = P.roth[q, 0] * ny - P.roth[q, 1] * nx
+            on = P.has[q]
+            c[q] = (
+                P.gap[q]
+                + (Xa[q, 0] - P.refb[q, 0]) * nx + (Xa[q, 1] - P.refb[q, 1]) * ny
+                + kb * (TH[P.a[q]] - P.thb[q])
+                - np.where(on, (Xb[q, 0] - P.refo[q, 0]) * nx + (Xb[q, 1] - P.refo[q, 1]) * ny
+                           + ko * (tb[q] - P.tho[q]), 0.0)
+            )  # fmt: skip
+            g[0, q], g[1, q], g[2, q] = nx, ny, kb
+            g[3, q], g[4, q], g[5, q] = -nx, -ny, -ko
+        q = P.ct
+        if len(q):
+            tx, ty = -P.n[q, 1], P.n[q, 0]
+            g[0, q], g[1, q] = tx, ty
+            g[2, q] = P.rbod[q, 0] * ty - P.rbod[q, 1] * tx
+            g[3, q], g[4, q] = -tx, -ty
+            g[5, q] = -(P.roth[q, 0] * ty - P.roth[q, 1] * tx)
+        J = np.zeros((R, P.width))
+        r = P.r
+        J[r, P.a3], J[r, P.a3 + 1], J[r, P.a3 + 2] = g[0], g[1], g[2]
+        rb, b3 = P.rb, P.b3
+        J[rb, b3], J[rb, b3 + 1], J[rb, b3 + 2] = g[3, rb], g[4, rb], g[5, rb]
         return c, J
 
     # -- the step ------------------------------------------------------------------------
@@ -204,10 +343,13 @@ class JointSolver:
         k: np.ndarray,
         dt: float,
         kinked: np.ndarray | None = None,
+        touch: Touch | None = None,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The step's end state (x1, v1, th1, om1) corrected for the joints; ``w`` (N,): 1/m
         and ``k`` (N,): 1/I, 0 for what nothing moves or turns; ``kinked``: bodies whose
-        velocity a contact changed in the step."""
+        velocity a contact changed in the step; ``touch``: the joints' bodies resting on a
+        collider, whose contact takes part in the correction (a wheel driven by a motor
+        rolls on its friction), with the impulse it already gave counted."""
         self.moved = False
         self.stretched = []
         x, v, th, om = x1, v1, th1, om1
@@ -226,23 +368,32 @@ class JointSolver:
         if not self.joined:
             return x, v, th, om
         link, kind, bound, sign, speed = self._rows()
-        b = self.bodies
+        self._touch(touch, x, th)
+        K = len(self.joined)
+        if touch is not None:
+            # Each contact: a row along its normal (no closer; position and velocity) and one
+            # of its slip (velocity only, within the friction's reach).
+            k_t = len(touch.body)
+            rest = K + np.arange(k_t)
+            link = np.concatenate([link, rest, rest])
+            kind = np.concatenate([kind, np.full(k_t, _CN), np.full(k_t, _CT)])
+            bound = np.concatenate([bound, np.zeros(2 * k_t)])
+            sign = np.concatenate([sign, np.ones(k_t, dtype=np.intp), np.zeros(k_t, dtype=np.intp)])
+            speed = np.concatenate([speed, np.zeros(2 * k_t)])
+        b = self._bodies
         m = len(b)
         Wm = np.stack([w[b], w[b], k[b]], 1).ravel()
         X1, T1 = x[b], th[b]
-
-        def full(Xc: np.ndarray, Tc: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            X, T = x.copy(), th.copy()
-            X[b], T[b] = Xc, Tc
-            return X, T
+        plan = self._plan(link, kind, bound)
 
         # 1. Positions.
         held = (kind != _MOTOR) & (kind != _SOFT_X) & (kind != _SOFT_Y) & (kind != _SOFT_ANGLE)
-        c1, J1 = self._eval(*full(X1, T1), link, kind, bound)
-        _, G = self._eval(x0, th0, link, kind, bound)
+        held &= kind != _CT
+        c1, J1 = self._eval(X1, T1, plan)
+        _, G = self._eval(x0[b], th0[b], plan)
         use_end = np.zeros(len(link), dtype=bool)
         if kinked is not None:
-            hit = kinked[self.i] | ((self.j >= 0) & kinked[np.maximum(self.j, 0)])
+            hit = kinked[self._i] | ((self._j >= 0) & kinked[np.maximum(self._j, 0)])
             use_end |= hit[link]
         use_end |= (kind == _DIST) & (np.einsum("ij,ij->i", G, J1) < 0.0)
         G[use_end] = J1[use_end]
@@ -258,7 +409,7 @@ class JointSolver:
                 lam[:] = 0.0
                 dq = np.zeros(3 * m)
                 break
-            lam_s, dq, ok = self._newton(X1, T1, full, link, kind, bound, G[sel], Wm, sel, tol)
+            lam_s, dq, ok = self._newton(X1, T1, plan.take(sel), G[sel], Wm, tol)
             if not ok:
                 break
             lam[:] = 0.0
@@ -267,9 +418,8 @@ class JointSolver:
             if wrong.any():
                 active[sel[wrong]] = False
                 continue
-            c, _ = self._eval(
-                *full(X1 + dq.reshape(m, 3)[:, :2], T1 + dq.reshape(m, 3)[:, 2]), link, kind, bound
-            )
+            D = dq.reshape(m, 3)
+            c, _ = self._eval(X1 + D[:, :2], T1 + D[:, 2], plan)
             broken = held & movable & ~active & (sign != 0) & (sign * c < -tol)
             if not broken.any():
                 break
@@ -278,33 +428,51 @@ class JointSolver:
             # Past what Newton's method holds along the start gradients: project along the
             # gradients where the bodies are (always possible), and say so.
             sel = np.flatnonzero(held & movable & ((sign == 0) | (sign * c1 <= 0.0)))
-            dq = self._project(X1, T1, full, link, kind, bound, Wm, sel, tol)
+            dq = self._project(X1, T1, plan.take(sel), Wm, tol)
             lam[:] = 0.0
-            self.stretched = list({id(self.joined[q]): self.joined[q] for q in link[sel]}.values())
+            self.stretched = list(
+                {id(self.joined[q]): self.joined[q] for q in link[sel] if q < K}.values()
+            )
         x, v, th, om = x.copy(), v.copy(), th.copy(), om.copy()
         D = dq.reshape(m, 3)
         x[b] += D[:, :2]
         th[b] += D[:, 2]
-        v[b] += D[:, :2] * (1.0 / dt)
-        om[b] += D[:, 2] * (1.0 / dt)
+        if ok:
+            # The joints' correction is an impulse (RATTLE); a contact's only keeps the two
+            # from closing, and gives them no speed.
+            own = link < K
+            kick = (Wm * (G[own].T @ lam[own])).reshape(m, 3) if own.any() else D * 0.0
+            v[b] += kick[:, :2] * (1.0 / dt)
+            om[b] += kick[:, 2] * (1.0 / dt)
+        # (The fallback's move is a projection, not an impulse: joints that cannot all hold
+        # would otherwise feed its correction into the speeds step after step. The velocity
+        # solve below is a projection in the mass metric too, so no energy comes of it.)
         self.moved = True
         # 2. Velocities, at the end configuration.
-        c, J = self._eval(x, th, link, kind, bound)
+        c, J = self._eval(x[b], th[b], plan)
         V = np.stack([v[b, 0], v[b, 1], om[b]], 1).ravel()
         target = np.zeros(len(link))
         target[kind == _MOTOR] = speed[kind == _MOTOR]
         cable = (kind == _DIST) & (sign != 0)
         if cable.any():
             # A cable slack as the step began snaps taut in it: the ends part at -e u.
-            c0, J0 = self._eval(x0, th0, link, kind, bound)
+            c0, J0 = self._eval(x0[b], th0[b], plan)
             V1 = np.stack([v1[b, 0], v1[b, 1], om1[b]], 1).ravel()
-            e = np.array([self.joined[q].restitution for q in link])
+            e = np.array(
+                [self.joined[q].restitution if cable[r] else 0.0 for r, q in enumerate(link)]
+            )
             snap = cable & (c0 < -1e-9 * np.maximum(bound, 1e-300))
             target[snap] = -e[snap] * np.maximum(J0[snap] @ V1, 0.0)
         soft = (kind == _SOFT_X) | (kind == _SOFT_Y) | (kind == _SOFT_ANGLE)
         # Inequalities act at their bound only (a cable taut, a limit reached).
         at = (sign != 0) & (sign * c <= tol)
         rows = movable & ((sign == 0) | at)
+        if touch is not None:
+            # A contact of the pile acts only while its two close (its own step gave the
+            # bounce); a disc resting on a collider whenever it touches. Its slip with it.
+            cn = np.flatnonzero(kind == _CN)
+            rows[cn] &= touch.lift | (J[cn] @ V < 0.0)
+            rows[cn + len(cn)] = rows[cn]
         clamp = np.full(len(link), np.inf)
         is_motor = kind == _MOTOR
         for q in np.flatnonzero(is_motor):
@@ -327,26 +495,98 @@ class JointSolver:
             if (same & (sign * speed[q] < 0.0)).any():
                 free[q] = False
                 fixed[q] = math.copysign(clamp[q], speed[q]) if math.isfinite(clamp[q]) else 0.0
-        mu = np.zeros(len(link))
-        for _ in range(2 * len(link) + 2):
-            s = np.flatnonzero(free)
-            Vf = V + Wm * (J.T @ fixed)
-            mu[:] = 0.0
-            if len(s):
-                Js = J[s]
-                A = (Js * Wm) @ Js.T + np.diag(mix[s])
-                mu[s] = solve_rows(A, target[s] - Js @ Vf)
-            wrong = free & (sign != 0) & (sign * mu < 0.0)
+        # The least each row may give (sign * mu >= sign * floor): 0 for a cable or a limit;
+        # for a resting disc's normal, minus what its contact already gave (it may lift).
+        floor = np.zeros(len(link))
+        slip = np.flatnonzero(kind == _CT)
+        slide = np.zeros(len(link))  # a sliding disc's friction: the sign it acts with
+        normal_of = np.zeros(len(link), dtype=np.intp)
+        pt_row = np.zeros(len(link))
+        pn_row = np.zeros(len(link))
+        reach = np.zeros(len(link))
+        if touch is not None:
+            floor[kind == _CN] = np.where(touch.lift, -touch.pn, 0.0)
+            normal_of[slip] = slip - len(slip)  # each slip row's normal row (in order)
+            pt_row[slip], pn_row[slip], reach[slip] = touch.pt, touch.pn, touch.mu
+        mu = np.zeros(len(link))  # each row's impulse (N s, or N m s), the rows' part
+        tried = np.zeros(len(link), dtype=bool)  # a sliding disc tried sticking again
+
+        def solve() -> None:
+            # Unknowns: the free rows. A sliding disc's friction is mu_f times its whole
+            # normal impulse, against its slip (Coulomb): a column of its normal's unknown.
+            F = np.flatnonzero(free)
+            E = np.zeros((len(link), len(F)))
+            E[F, np.arange(len(F))] = 1.0
+            lam0 = np.where(free, 0.0, fixed)
+            where = np.full(len(link), -1, dtype=np.intp)
+            where[F] = np.arange(len(F))
+            for q in np.flatnonzero(slide != 0.0):
+                nq = normal_of[q]
+                k = slide[q] * reach[q]
+                lam0[q] = k * (pn_row[q] + (0.0 if free[nq] else fixed[nq])) - pt_row[q]
+                if free[nq]:
+                    E[q, where[nq]] = k
+            mu[:] = lam0
+            if len(F):
+                WJE = (Wm[:, None] * J.T) @ E
+                A = J[F] @ WJE + np.diag(mix[F])
+                mu[:] = lam0 + E @ _solve(A, target[F] - J[F] @ (V + Wm * (J.T @ lam0)))
+
+        for _ in range(4 * len(link) + 2):
+            solve()
+            # A motor past its torque first (an unbounded one asks for anything), then rows
+            # that would pull, then friction past its reach; a row let go that the speeds
+            # then break is taken back.
             over = free & is_motor & (np.abs(mu) > clamp)
+            if over.any():
+                # At its torque, toward its speed from where the joint turns now (the rows'
+                # split among motors that drive one motion together says nothing of that).
+                free[over] = False
+                fixed[over] = np.copysign(clamp[over], target[over] - J[over] @ V)
+                continue
+            wrong = free & (sign != 0) & (sign * (mu - floor) < 0.0)
             if wrong.any():
                 free[wrong] = False
+                fixed[wrong] = floor[wrong]
                 continue
-            if over.any():
-                free[over] = False
-                fixed[over] = np.copysign(clamp[over], mu[over])
-                continue
+            if len(slip):
+                # Friction within mu_f times the normal impulse, both counted whole (what the
+                # contact gave in the step and what the rows add); past it, the disc slides.
+                total = pt_row[slip] + mu[slip]
+                most = reach[slip] * np.maximum(pn_row[slip] + mu[normal_of[slip]], 0.0)
+                past = free[slip] & (np.abs(total) > most * (1.0 + 1e-12))
+                if past.any():
+                    q = slip[past]
+                    free[q] = False
+                    slide[q] = np.sign(total[past])
+                    continue
+                # A sliding disc whose friction would drive its slip, not stop it, sticks.
+                u = J[slip] @ (V + Wm * (J.T @ mu))
+                wrong_way = (slide[slip] != 0.0) & (slide[slip] * u > 1e-12) & ~tried[slip]
+                if wrong_way.any():
+                    q = slip[wrong_way]
+                    free[q], slide[q], tried[q] = True, 0.0, True
+                    continue
+            held_m = is_motor & rows & ~free & ~tried
+            if held_m.any():
+                # A motor held at its torque that drove its joint past its speed lets go.
+                u = J[held_m] @ (V + Wm * (J.T @ mu))
+                past_m = (target[held_m] - u) * fixed[held_m] < -1e-12
+                if past_m.any():
+                    q = np.flatnonzero(held_m)[past_m]
+                    free[q], fixed[q], tried[q] = True, 0.0, True
+                    continue
+            let_go = rows & ~free & (sign != 0)
+            if let_go.any():
+                u = J[let_go] @ (V + Wm * (J.T @ mu))
+                back = sign[let_go] * (u - target[let_go]) < -1e-9
+                if back.any():
+                    q = np.flatnonzero(let_go)[back]
+                    free[q], fixed[q] = True, 0.0
+                    continue
             break
-        mu += fixed
+        else:
+            solve()  # (out of turns: the rows as they stand now, solved together)
         V = V + Wm * (J.T @ mu)
         Vm = V.reshape(m, 3)
         v[b] = Vm[:, :2]
@@ -358,31 +598,27 @@ class JointSolver:
         self,
         X1: np.ndarray,
         T1: np.ndarray,
-        full: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
-        link: np.ndarray,
-        kind: np.ndarray,
-        bound: np.ndarray,
+        P: _Plan,
         Gs: np.ndarray,
         Wm: np.ndarray,
-        sel: np.ndarray,
         tol: float,
     ) -> tuple[np.ndarray, np.ndarray, bool]:
-        """Newton's method for the multipliers of rows ``sel``: (lam, dq, converged)."""
+        """Newton's method for the multipliers of rows ``P``: (lam, dq, converged)."""
         m = len(X1)
-        lam = np.zeros(len(sel))
+        lam = np.zeros(len(P.kind))
         WG = Wm[:, None] * Gs.T  # (3m, rows): dq = WG lam
         dq = np.zeros(3 * m)
         prev = math.inf
         for it in range(MAX_ITERATIONS):
             D = dq.reshape(m, 3)
-            c, J = self._eval(*full(X1 + D[:, :2], T1 + D[:, 2]), link[sel], kind[sel], bound[sel])
+            c, J = self._eval(X1 + D[:, :2], T1 + D[:, 2], P)
             # Done at round-off: far below the tolerance, or within it and no longer halving
             # (an error left at the tolerance step after step would creep up to it).
             err = float(np.abs(c).max())
             if it and (err <= 1e-3 * tol or (err <= tol and err > 0.5 * prev)):
                 return lam, dq, True
             prev = err
-            step = solve_rows(J @ WG, -c)
+            step = _solve(J @ WG, -c)
             if not np.isfinite(step).all():
                 break
             lam = lam + step
@@ -390,29 +626,23 @@ class JointSolver:
         return lam, dq, False
 
     def _project(
-        self,
-        X1: np.ndarray,
-        T1: np.ndarray,
-        full: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
-        link: np.ndarray,
-        kind: np.ndarray,
-        bound: np.ndarray,
-        Wm: np.ndarray,
-        sel: np.ndarray,
-        tol: float,
+        self, X1: np.ndarray, T1: np.ndarray, P: _Plan, Wm: np.ndarray, tol: float
     ) -> np.ndarray:
         """The fallback: Gauss-Newton along the gradients where the bodies are now."""
         m = len(X1)
         dq = np.zeros(3 * m)
-        if not len(sel):
+        if not len(P.kind):
             return dq
-        for _ in range(200):
+        prev = math.inf
+        for _ in range(50):
             D = dq.reshape(m, 3)
-            c, J = self._eval(*full(X1 + D[:, :2], T1 + D[:, 2]), link[sel], kind[sel], bound[sel])
-            if float(np.abs(c).max()) <= tol:
-                break
+            c, J = self._eval(X1 + D[:, :2], T1 + D[:, 2], P)
+            err = float(np.abs(c).max())
+            if err <= tol or err > 0.99 * prev:
+                break  # held, or as near as joints that cannot all hold allow
+            prev = err
             WJ = Wm[:, None] * J.T
-            dq = dq - WJ @ solve_rows(J @ WJ, c)
+            dq = dq - WJ @ _solve(J @ WJ, c)
         return dq
 
     def _report(
@@ -430,6 +660,8 @@ class JointSolver:
         P = G * (lam / dt)[:, None] + J * mu[:, None]  # each row's generalized impulse
         pins: dict[int, tuple[float, float]] = {}
         for q in range(len(link)):
+            if link[q] >= len(self.joined):
+                continue  # a resting disc's contact rows: the contact's own report
             item = self.joined[link[q]]
             col = 3 * self.ca[link[q]]
             px, py, pt = float(P[q, col]), float(P[q, col + 1]), float(P[q, col + 2])
@@ -450,3 +682,27 @@ class JointSolver:
                 ox, oy = pins.get(int(link[q]), (0.0, 0.0))
                 pins[int(link[q])] = (ox + px, oy + py)
                 item.impulse = math.hypot(*pins[int(link[q])])
+
+
+#: Singular values below this share of the largest count as zero (rows that repeat others).
+RCOND = 1e-10
+#: Up to this many rows, least squares always (the singular value decomposition costs little
+#: more than a direct solve there, and motors or welds that repeat one another are common).
+FEW = 16
+
+
+def _solve(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """A x = b for joint rows: the direct solve where A is well conditioned, else the least
+    squares solution of least norm (joints that repeat each other, or cannot all hold: a
+    direct solve would answer round-off with huge impulses)."""
+    if len(A) <= FEW:
+        return np.linalg.lstsq(A, b, rcond=RCOND)[0]
+    try:
+        x = np.linalg.solve(A, b)
+        # |A| |x| >= |b| always; far more means A amplified round-off (it is near singular).
+        big = float(np.abs(A).sum(axis=1).max()) * float(np.abs(x).max())
+        if np.isfinite(x).all() and big <= float(np.abs(b).max()) / RCOND:
+            return x
+    except np.linalg.LinAlgError:
+        pass
+    return np.linalg.lstsq(A, b, rcond=RCOND)[0]

@@ -78,6 +78,10 @@ class Search(NamedTuple):
     live: np.ndarray
 
 
+#: The farthest cell a grid keys, either way (its keys then stay within an int64).
+CELLS = float(2**30)
+
+
 def grid_pairs(P: np.ndarray, h: float, fast: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Index pairs of points (P: (N, 2), length units) in the same or neighbouring cells of a
     grid of side h (length units): each pair once, a < b within a cell.
@@ -93,7 +97,9 @@ def grid_pairs(P: np.ndarray, h: float, fast: bool = False) -> tuple[np.ndarray,
         )
         return a, b
     n = len(P)
-    c = np.floor(P * (1.0 / h))
+    # (Cells past +-2^30 are the edge cell: a body flung 1e19 away keys no overflow, and
+    # shares its cell only with others as far out, which the distances then drop.)
+    c = np.clip(np.floor(P * (1.0 / h)), -CELLS, CELLS)
     c -= c.min(axis=0)
     c = c.astype(np.int64)
     ny = int(c[:, 1].max()) + 3
@@ -371,8 +377,8 @@ def grid_pairs_loop(
     inv = 1.0 / h
     fx, fy = np.empty(n), np.empty(n)
     for i in range(n):
-        fx[i] = np.floor(P[i, 0] * inv)
-        fy[i] = np.floor(P[i, 1] * inv)
+        fx[i] = min(max(np.floor(P[i, 0] * inv), -CELLS), CELLS)
+        fy[i] = min(max(np.floor(P[i, 1] * inv), -CELLS), CELLS)
     mx, my = fx.min(), fy.min()
     cx, cy = np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64)
     for i in range(n):

@@ -26,7 +26,7 @@ from .body import Body
 from .event_dispatch import report, settle
 from .forcefield import ForceModel
 from .integrators import Integrator
-from .joint_solver import JointSolver
+from .joint_solver import JointSolver, Touch
 from .links import LinkSolver
 from .rotation import Spin
 from .stability import SimulationDiverged, StabilityWarning
@@ -415,6 +415,28 @@ def _check_finite(state: WorldState, x: Any, v: Any, name: str, dt: float, t: fl
     )
 
 
+def _touch(
+    state: WorldState, store: BodyStore, solver: JointSolver, x1: np.ndarray
+) -> Touch | None:
+    """The joints' discs resting on a collider as the step ends, with the impulse their
+    contact gave in it (engine.joint_solver: a motor's wheel rolls on that contact)."""
+    contacts = state.contacts
+    if contacts is None or not len(solver.bodies):
+        return None
+    rows, nrm, mu, gap = contacts.touch(solver.bodies, x1, store.radius, store.friction)
+    if not len(rows):
+        return None
+    dv = state.contact_dv
+    p = np.zeros((len(rows), 2)) if dv is None else dv[rows] * store.mass[rows, None]
+    pn = p[:, 0] * nrm[:, 0] + p[:, 1] * nrm[:, 1]
+    pt = p[:, 1] * nrm[:, 0] - p[:, 0] * nrm[:, 1]  # along t = (-n_y, n_x)
+    k = len(rows)
+    return Touch(
+        rows, np.full(k, -1, dtype=np.intp), nrm, -store.radius[rows, None] * nrm,
+        np.zeros((k, 2)), gap, mu, pn, pt, np.ones(k, dtype=bool),
+    )  # fmt: skip
+
+
 def _solve_links(
     state: WorldState,
     store: BodyStore,
@@ -439,8 +461,9 @@ def _solve_links(
         else:
             k = np.where(spin.turns, store.inv_moment, 0.0)
             x1, v1, spin.angle, spin.omega = solver.resolve(
-                store.x, x1, v1, spin.angle0, spin.angle, spin.omega, w, k, dt, kinked
-            )
+                store.x, x1, v1, spin.angle0, spin.angle, spin.omega, w, k, dt, kinked,
+                _touch(state, store, solver, x1),
+            )  # fmt: skip
     else:
         x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
     if solver.moved:
@@ -448,9 +471,16 @@ def _solve_links(
     for link in solver.stretched:
         if not link.warned:
             link.warned = True
+            what = (
+                "it was put back to its length directly; take a smaller dt"
+                if isinstance(solver, LinkSolver)
+                else "the bodies were put back as near as the joints allow (joints that ask "
+                "for what cannot all hold, such as two pins of one body, or a step too large: "
+                "take a smaller dt)"
+            )
             warnings.warn(
                 f"{link!r} was stretched past what one step of dt={dt:g} s can pull back "
-                f"along it: it was put back to its length directly; take a smaller dt",
+                f"along it: {what}",
                 StabilityWarning,
                 stacklevel=5,  # (the line in World.step, as before the split)
             )

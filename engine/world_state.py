@@ -196,14 +196,17 @@ class WorldState:
 
     def _apart(self) -> None:
         """Tell the contacts which pairs of bodies a joint keeps from colliding."""
-        store, keys = self.store, []
+        store, keys, joined = self.store, [], []
         if store is not None:
             n = len(self.bodies)
             for k in self.links:
                 if isinstance(k, Joint) and not k.collide and isinstance(k.other, Body):
                     a, b = sorted((store.row(k.body.slot), store.row(k.other.slot)))
                     keys.append(a * n + b)
+                if isinstance(k, Joint) or k.anchored:
+                    joined += [store.row(b.slot) for b in k.bodies]
         self.collisions.apart = np.unique(np.array(keys, dtype=np.int64))
+        self.collisions.joined = np.unique(np.array(joined, dtype=np.intp))
 
     def links_changed(self) -> None:
         """The set of links changed: pinned bodies are held as kinematic ones are."""

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from engine import Body, Cable, Hinge, Pin, Polygon, Rod, Vector, Weld, World
+from engine import Body, Cable, Hinge, Pin, Polygon, Rod, Segment, Vector, Weld, World
 from engine.forces import Gravity
 
 G = 9.81
@@ -280,19 +280,24 @@ def test_a_soft_weld_rings_at_its_frequency() -> None:
 
 
 def test_bodies_on_a_joint_do_not_collide_unless_asked() -> None:
-    def turned_apart(collide: bool) -> float:
-        # Two boxes half inside each other, hinged at a point they share: their contact, if
-        # they have one, turns them apart about it.
+    def folded(collide: bool) -> float:
+        # A plank welded to the world and one hinged to its end, end to end; the second
+        # swings round at 5 rad/s and folds onto the first: it passes through unless asked
+        # to collide, then stops on it (the planks are 0.1 m thick: 0.1 rad short of pi).
         world = World(integrator="auto")
-        a = world.add(plank(0.0, 0.0, 1.0, 1.0, mass=1.0))
-        b = world.add(plank(0.5, 0.0, 1.0, 1.0, mass=1.0))
-        hinge = world.add_link(Hinge(a, b, (0.25, 0.1), collide=collide))
-        for _ in range(30):
+        a = world.add(plank(-0.5, 0.0, 1.0, 0.1, mass=1.0))
+        b = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0, angular_velocity=5.0))
+        b.vel = Vector(0.0, 2.5)  # the hinge's point at rest
+        world.add_link(Weld(a, world.static_body))
+        hinge = world.add_link(Hinge(b, a, (0.0, 0.0), collide=collide))
+        most = 0.0
+        for _ in range(60):
             world.step(1 / 60)
-        return abs(hinge.angle)
+            most = max(most, hinge.angle)
+        return most
 
-    assert turned_apart(False) == 0.0  # left as they are
-    assert turned_apart(True) > 0.05
+    assert folded(False) > math.pi  # through
+    assert folded(True) < math.pi - 0.05  # stopped on the other
 
 
 def test_snapshot_and_restore_bring_back_joints_their_settings_and_impulses() -> None:
@@ -393,3 +398,43 @@ def test_the_static_body_is_the_world_and_cannot_be_replaced() -> None:
     assert repr(world.static_body) == "world.static_body"
     with pytest.raises(AttributeError):
         world.static_body = plank(0.0, 0.0)  # type: ignore[misc]
+
+
+def test_a_car_driven_by_motors_climbs_a_slope_at_the_closed_form_speed() -> None:
+    # Two wheels (discs of mass m, radius r, I = m r^2 / 2) on hinges under a box chassis,
+    # each hinge's motor at max torque T: rolling without slipping, the car's speed along the
+    # slope grows at a = (2 T / r - M g sin(theta)) / (M + 2 I / r^2) (M: the whole car;
+    # the motors' work 2 T v / r against gravity's M g sin(theta) v), until the wheels turn
+    # at the motor's speed relative to the chassis: v = |motor_speed| r, held.
+    # (With twice the torque the front wheel, unloaded by the motors' pull on the chassis,
+    # would need more friction than mu N: then it slips, as it should.)
+    theta, r, dt = math.radians(15), 0.3, 1 / 60
+    m_wheel, m_body, torque, speed = 1.0, 2.0, 2.5, -10.0
+    along = Vector(math.cos(theta), math.sin(theta))
+    up = Vector(-math.sin(theta), math.cos(theta))
+    world = gravity_world()
+    world.add_collider(Segment(along * -20.0, along * 60.0))
+    back = world.add(Body(up * r, radius=r, mass=m_wheel, friction=1.0))
+    front = world.add(Body(up * r + along * 1.5, radius=r, mass=m_wheel, friction=1.0))
+    body = world.add(
+        Body(up * (r + 0.4) + along * 0.75, shape=Polygon.box(2.0, 0.3), mass=m_body, angle=theta)
+    )
+    for wheel in (back, front):
+        world.add_link(Hinge(wheel, body, wheel.pos, motor_speed=speed, max_torque=torque))
+    total = 2 * m_wheel + m_body
+    a = (2 * torque / r - total * G * math.sin(theta)) / (
+        total + 2 * (m_wheel * r * r / 2) / (r * r)
+    )
+    worst_v = worst_roll = worst_gap = 0.0
+    for n in range(1, 181):
+        world.step(dt)
+        v = back.vel.dot(along)
+        worst_v = max(worst_v, abs(v - min(a * n * dt, -speed * r)))
+        for wheel in (back, front):
+            worst_roll = max(worst_roll, abs(wheel.angular_velocity * r + wheel.vel.dot(along)))
+            worst_gap = max(worst_gap, abs(wheel.pos.dot(up) - r))
+    assert worst_v < 1e-9
+    assert worst_roll < 1e-9  # rolling, not slipping
+    assert worst_gap < 1e-9  # on the slope, not in it
+    assert body.angle == pytest.approx(theta, abs=1e-9)
+    assert back.vel.dot(along) == pytest.approx(-speed * r, abs=1e-9)  # 3 m/s, held
