@@ -15,7 +15,7 @@ Every piece is the engine's public API, and the game writes no collision code of
   body's position), held to the table by a ``Hinge`` to ``world.static_body`` with
   ``limits`` (rest and up, 55 degrees apart) and a motor: ``hinge.motor_speed`` is set to
   +/- FLIP_SPEED each step, up while the key is held and down when it is let go, with at
-  most FLIP_TORQUE (so the bat swings up in about 30 ms and a ball on it pushes back);
+  most FLIP_TORQUE (so the bat is at the top five steps, 42 ms, after the key is pressed);
 * the drain and the rollover lanes are sensors (``Segment(..., sensor=True)``): they push
   nothing and report the ball entering them;
 * the plunger sends the ball up the shooter lane with an impulse (``ball.apply_impulse``) of
@@ -89,7 +89,7 @@ FLIPPER_LENGTH, FLIPPER_ROOT, FLIPPER_TIP, FLIPPER_MASS = 8.0, 1.2, 0.6, 150.0
 REST, SWING = 30.0, 55.0
 FLIPPER_RESTITUTION, FLIPPER_FRICTION = 0.5, 0.8
 #: The flipper's motor: its speed (rad/s) up and down, and its most torque (g cm^2 / s^2):
-#: about 30 ms from rest to the top.
+#: five steps of 1/120 s from the key to the top.
 FLIP_SPEED, FLIP_TORQUE = 40.0, 6.0e6
 #: The inlane guides run from the side walls at this height down to just above each pivot.
 GUIDE_TOP = 24.0
@@ -501,7 +501,7 @@ class PinballGame:
             ]
             pygame.draw.polygon(surface, FLIPPER_COLOUR, corners)
             pygame.draw.circle(surface, INK, camera.point(pos), max(2, camera.length(0.5)))
-        ball = self.world.position_of(self.ball, alpha)
+        ball = Vector.coerce(self.world.position_of(self.ball, alpha), "ball")
         draw_disc(surface, camera, (ball.x, ball.y), BALL_RADIUS, self.ball.angle,
                   BALL_COLOUR, (60, 60, 80))  # fmt: skip
         s = self.score

@@ -9,7 +9,7 @@ drawn from 1 to 40 m/s (100 to 4,000 cm/s), in a direction up to 60 degrees eith
 straight into the bat, aimed at a point along the bat's top (from a fifth of its length to its
 tip), timed to arrive there (had the bat stayed at rest) at a moment drawn from 0 to 0.1 s;
 the key is pressed at FLIP_AT = 0.03 s, so balls arrive before, during (the swing takes about
-30 ms) and after the flip. A trial runs 0.15 s past the arrival.
+42 ms) and after the flip. A trial runs 0.15 s past the arrival.
 
 A ball *passes through* when its centre crosses the bat's centre line between two steps at a
 point within the bat's length (seen in the bat's frame at each step), or ends a step with its
@@ -184,9 +184,9 @@ class PymunkTable:
             for wall in probe.walls:
                 shapes.append(pymunk.Segment(static, tuple(wall.a), tuple(wall.b), wall.radius))
             for bumper in probe.bumpers:
-                c = pymunk.Circle(static, bumper.radius, tuple(bumper.center))
-                self.kinds[c] = "bumper"
-                shapes.append(c)
+                disc = pymunk.Circle(static, bumper.radius, tuple(bumper.center))
+                self.kinds[disc] = "bumper"
+                shapes.append(disc)
             for sling in probe.slings:
                 c = pymunk.Segment(static, tuple(sling.a), tuple(sling.b), sling.radius)
                 self.kinds[c] = "sling"
@@ -379,6 +379,45 @@ def step_times(seconds: float = 20.0, rounds: int = 5, seed: int = 1) -> dict[st
     return {name: statistics.median(s) for name, s in samples.items()}
 
 
+def fastest_ball(seconds: float = 60.0, seed: int = 1) -> float:
+    """The fastest the ball goes (cm/s, at the end of any step) in ``seconds`` of the game
+    played by the autopilot (new games as each ends)."""
+    game, top = pb.PinballGame(seed), 0.0
+    for _ in range(round(seconds / pb.DT)):
+        game.step(pb.DT)
+        top = max(top, game.ball.vel.length())
+        if game.score.over:
+            seed += 1
+            game = pb.PinballGame(seed)
+    return top
+
+
+def contact_step(trial: int, seed: int = 26) -> tuple[float, float, float, float]:
+    """Trial ``trial`` of ``tunnelling`` in this engine, up to the step in which the ball's
+    contact with the bat begins: (the ball's speed into the bat before that step, after it
+    (cm/s, along the bat's normal at its top; > 0: still approaching), the bat's angular
+    velocity after it (rad/s), and the joint's angle (rad))."""
+    speed, offset, aim_u, arrival = _trials(trial + 1, seed)[trial]
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -pb.GRAVITY)))
+    flipper, hinge = pb.add_flipper(world, -1)
+    start, vel = _throw(aim_u, offset, speed, arrival)
+    ball = pb.add_ball(world, (start.x, start.y))
+    ball.vel = vel
+    touched: list[Any] = []
+    world.on_contact(ball, begin=touched.append)
+    before = 0.0
+    for _ in range(round((arrival + 0.15) / pb.DT)):
+        pb.drive(hinge, -1, world.t >= FLIP_AT - 1e-12)
+        up = Vector(-math.sin(flipper.angle), math.cos(flipper.angle))
+        before = -ball.vel.dot(up)
+        world.step(pb.DT)
+        if touched:
+            up = Vector(-math.sin(flipper.angle), math.cos(flipper.angle))
+            return before, -ball.vel.dot(up), flipper.angular_velocity, hinge.angle
+    raise ValueError(f"the ball of trial {trial} never touched the bat")
+
+
 def report(quick: bool = False) -> str:
     """The pass-throughs and the step times, ours beside pymunk's."""
     flips = 100 if quick else 1000
@@ -386,10 +425,14 @@ def report(quick: bool = False) -> str:
         f"pinball: {flips} balls thrown at a flipper as it flips (1 to 40 m/s, arriving "
         f"0 to 0.1 s after the throw, the key at {FLIP_AT} s), dt = 1/{round(1 / pb.DT)} s",
     ]
-    for engine in ("ours", "pymunk"):
-        result = tunnelling(flips, engine=engine)
+    heavy = 10 * pb.FLIPPER_MASS
+    for engine, mass in (("ours", pb.FLIPPER_MASS), ("pymunk", pb.FLIPPER_MASS), ("ours", heavy)):
+        result = tunnelling(flips, engine=engine, mass=mass)
+        name = (
+            result.engine if mass == pb.FLIPPER_MASS else f"{result.engine}, a bat of {mass:.0f} g"
+        )
         lines.append(
-            f"  {result.engine:12s} passed through: {len(result.passes)} of {flips} "
+            f"  {name}: passed through: {len(result.passes)} of {flips} "
             f"(touched the bat: {result.hits})"
         )
         fastest = sorted(result.passes, key=lambda p: p.speed)
@@ -403,8 +446,20 @@ def report(quick: bool = False) -> str:
                 f"{' (ended inside)' if p.inside else ''}"
             )
         if result.passes:
-            slowest = min(p.speed for p in result.passes)
-            lines.append(f"      the slowest that passed: {slowest / 100:.1f} m/s")
+            slowest = min(result.passes, key=lambda p: p.speed)
+            lines.append(f"      the slowest that passed: {slowest.speed / 100:.1f} m/s")
+            if engine == "ours" and mass == pb.FLIPPER_MASS:
+                into, after, omega, angle = contact_step(slowest.trial)
+                lines.append(
+                    f"      its step of contact: into the bat at {into / 100:.2f} m/s before, "
+                    f"{after / 100:.2f} m/s after (> 0: still approaching), the bat then at "
+                    f"{omega:+.1f} rad/s and {math.degrees(angle):.1f} deg"
+                )
+    top = fastest_ball(10.0 if quick else 60.0)
+    lines.append(
+        f"  the game's own ball, {'10' if quick else '60'} s of autopilot play: at most "
+        f"{top / 100:.2f} m/s"
+    )
     times = step_times(seconds=5.0 if quick else 20.0, rounds=3 if quick else 5)
     ours, theirs = times["ours"], times["pymunk"]
     frame = 1.0 / 60.0
