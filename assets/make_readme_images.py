@@ -45,6 +45,7 @@ STILLS = [
     ("crates", ["crates"], 4),
     ("incline", ["incline", "--scene", "race"], 24),
     ("stack", ["stack", "--scene", "dominoes"], 25),
+    ("pinball", ["pinball", "--seconds", "5", "--size", "216x384"], 44),  # upright
 ]
 
 
@@ -61,7 +62,8 @@ def main_images(out: Path = HERE / "readme", only: list[str] | None = None) -> N
             if only and name not in only:
                 continue
             folder = Path(tmp) / name
-            code = main([*args, "--size", SIZE, "--fps", str(FPS), "--out", str(folder)])
+            size = [] if "--size" in args else ["--size", SIZE]  # a still may give its own
+            code = main([*args, *size, "--fps", str(FPS), "--out", str(folder)])
             if code != 0:
                 raise SystemExit(f"{' '.join(args)} failed with exit code {code}")
             frames = sorted(folder.rglob("frame_*.png"))

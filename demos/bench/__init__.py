@@ -34,6 +34,7 @@ TOPICS: dict[str, str] = {
     "solver": "demos.bench.solver",
     "pendulum": "demos.bench.pendulum",
     "kernels": "demos.bench.kernels",
+    "pinball": "demos.bench.pinball",
 }
 
 
