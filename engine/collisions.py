@@ -107,6 +107,8 @@ class Collisions:
         #: Bodies held by joints (World rows): they never sleep, nor what they touch (a
         #: sleeper stays put, and a joint would pull it).
         self.joined = np.zeros(0, dtype=np.intp)
+        #: The last step's pile contacts of those bodies (engine.pile, ``Pile.joined``).
+        self.joint_rows: tuple[np.ndarray, ...] | None = None
         self._has_kin = False  # some body is kinematic (infinite mass here)
         self._kin = np.zeros(0, dtype=bool)  # the World's kinematic bodies, by row
         # Warm start: the last step's resting contacts, keyed a * N + b, and their impulses.
@@ -445,6 +447,7 @@ class Collisions:
         self._shape_over = np.zeros(0)
         self.face_touching = (np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
         n = len(x1)
+        self.joint_rows = None
         plan = self._plan
         live = self._prepare(store.radius, store.group, store.categories, store.mask)
         if plan is None:
@@ -498,11 +501,16 @@ class Collisions:
             if kick is not None:
                 v0 = v0.copy()
                 v0[island] += kick[island] / store.mass[island, None]
+            held_by = None
+            if len(self.joined):
+                held_by = np.zeros(n, dtype=bool)
+                held_by[self.joined] = True
             pile = step_pile(
                 island, a, b, x0, v0, x, v, P, dt, store, contacts, self._shapes(store),
                 self._static, self._carried(), self.asleep, self.iterations, self.rest_speed,
-                fast=self.fast, spin=spin,
+                fast=self.fast, spin=spin, joined=held_by,
             )  # fmt: skip
+            self.joint_rows = pile.joined
             touching, pa, pb = pile.touching, pile.near_a, pile.near_b
             self.face_touching, self._shape_over = pile.face_touching, pile.shape_over
             self._carry(pile.carried)

@@ -468,10 +468,14 @@ class JointSolver:
         at = (sign != 0) & (sign * c <= tol)
         rows = movable & ((sign == 0) | at)
         if touch is not None:
-            # A contact of the pile acts only while its two close (its own step gave the
-            # bounce); a disc resting on a collider whenever it touches. Its slip with it.
+            # A contact acts while its two would close past their gap within the next step
+            # (a speculative contact, as the pile's: they may close by the gap, no more); a
+            # disc resting on a collider also whenever it touches. Its slip with it.
             cn = np.flatnonzero(kind == _CN)
-            rows[cn] &= touch.lift | (J[cn] @ V < 0.0)
+            ahead = np.maximum(c[cn], 0.0) / dt
+            target[cn] = -ahead
+            closing = J[cn] @ V < -ahead
+            rows[cn] = movable[cn] & (closing | (touch.lift & at[cn]))
             rows[cn + len(cn)] = rows[cn]
         clamp = np.full(len(link), np.inf)
         is_motor = kind == _MOTOR

@@ -122,6 +122,11 @@ class Pile(NamedTuple):
     shape_over: np.ndarray
     #: The impulses to carry into the next step.
     carried: Carried
+    #: The contacts of bodies held by joints (engine.joint_solver takes them into its solve):
+    #: (body, other (-1: the static world), normal from the other to the body, the contact
+    #: point less each one's position, the gap now, friction, the normal impulse given), or
+    #: None.
+    joined: tuple[np.ndarray, ...] | None = None
 
 
 class Statics:
@@ -236,6 +241,7 @@ def step_pile(
     rest_speed: float,
     fast: bool = False,
     spin: Spin | None = None,
+    joined: np.ndarray | None = None,
 ) -> Pile:
     """Step the bodies of the pile (``island``) again from (x0, v0) by the soft step
     (engine.soft), with every contact among them (pairs a, b) and with the faces they can
@@ -245,7 +251,8 @@ def step_pile(
     pull (restitution acts on contacts closing faster than ``THRESH`` times it); ``fast``:
     run the loop kernels (engine.kernels: the soft step's, the colouring's, the piles');
     ``spin``: the step's rotation (engine.rotation), whose discs of the pile that turn are
-    turned by their rows' friction (engine.soft, ``Arms``), in place on its angle and omega."""
+    turned by their rows' friction (engine.soft, ``Arms``), in place on its angle and omega;
+    ``joined`` (N,) bool or None: bodies held by joints, whose contacts the pile hands on."""
     n = len(x)
     U = np.flatnonzero(island)
     nU = len(U)
@@ -471,7 +478,50 @@ def step_pile(
         body = np.concatenate([ua, ub, U[rb[st]]])
         depth = np.concatenate([over[:m_pairs], over[:m_pairs], over[m_pairs:]])
         np.maximum.at(shape_over, body, depth)
-    return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried)
+    out = None
+    if joined is not None:
+        fr = np.concatenate(fric)
+        out = _joined_rows(joined, U, ra, rb, nv, now, r, fr, solver.total, m, m_disc, m_pairs,
+                           anchors)  # fmt: skip
+    return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried, out)
+
+
+def _joined_rows(
+    joined: np.ndarray,
+    U: np.ndarray,
+    ra: np.ndarray,
+    rb: np.ndarray,
+    nv: np.ndarray,
+    gap: np.ndarray,
+    r: np.ndarray,
+    friction: np.ndarray,
+    total: np.ndarray,
+    m: int,
+    m_disc: int,
+    m_pairs: int,
+    anchors: list[np.ndarray],
+) -> tuple[np.ndarray, ...] | None:
+    """The pile's rows that touch a body held by a joint, as ``Pile.joined`` holds them: the
+    body is the row's B, the other its A. A disc's contact point is r n from A's centre and
+    -r n from B's; a shape's, its manifold's anchors (at the step's start, as the rows)."""
+    nU = len(U)
+    ua = np.where(ra < nU, U[np.minimum(ra, nU - 1)], -1)
+    ub = U[rb]
+    hit = joined[ub] | ((ua >= 0) & joined[np.maximum(ua, 0)])
+    if not hit.any():
+        return None
+    q = np.flatnonzero(hit)
+    n = nv[q]
+    r_a = np.zeros((len(q), 2))
+    r_b = -r[rb[q], None] * n
+    pair = q < m
+    r_a[pair] = r[ra[q[pair]], None] * n[pair]
+    k = q - m_disc
+    sp = (k >= 0) & (k < m_pairs)
+    r_a[sp], r_b[sp] = anchors[0][k[sp]], anchors[1][k[sp]]
+    ss = k >= m_pairs
+    r_b[ss] = anchors[2][k[ss] - m_pairs]
+    return ub[q], ua[q], n, r_b, r_a, gap[q], friction[q], total[q]
 
 
 def components(n: int, a: np.ndarray, b: np.ndarray, fast: bool = False) -> np.ndarray:

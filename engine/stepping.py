@@ -420,21 +420,30 @@ def _touch(
 ) -> Touch | None:
     """The joints' discs resting on a collider as the step ends, with the impulse their
     contact gave in it (engine.joint_solver: a motor's wheel rolls on that contact)."""
+    pile = None
+    got = state.collisions.joint_rows if state.pairs_on else None
+    if got is not None:
+        # The pile's contacts of the joints' bodies: they only push, and only while closing.
+        body, other, n, r_body, r_other, gap_p, mu_p, pn_p = got
+        k = len(body)
+        pile = Touch(body, other, n, r_body, r_other, np.maximum(gap_p, 0.0), mu_p, pn_p,
+                     np.zeros(k), np.zeros(k, dtype=bool))  # fmt: skip
     contacts = state.contacts
     if contacts is None or not len(solver.bodies):
-        return None
+        return pile
     rows, nrm, mu, gap = contacts.touch(solver.bodies, x1, store.radius, store.friction)
     if not len(rows):
-        return None
+        return pile
     dv = state.contact_dv
     p = np.zeros((len(rows), 2)) if dv is None else dv[rows] * store.mass[rows, None]
     pn = p[:, 0] * nrm[:, 0] + p[:, 1] * nrm[:, 1]
     pt = p[:, 1] * nrm[:, 0] - p[:, 0] * nrm[:, 1]  # along t = (-n_y, n_x)
     k = len(rows)
-    return Touch(
+    rest = Touch(
         rows, np.full(k, -1, dtype=np.intp), nrm, -store.radius[rows, None] * nrm,
         np.zeros((k, 2)), gap, mu, pn, pt, np.ones(k, dtype=bool),
     )  # fmt: skip
+    return Touch.join([rest, pile])
 
 
 def _solve_links(
@@ -457,7 +466,9 @@ def _solve_links(
     if isinstance(solver, JointSolver):
         if spin is None:  # nothing turns: the angles stay, 1 / I = 0
             th, om, k = store.angle, store.omega, np.zeros(len(w))
-            x1, v1, _, _ = solver.resolve(store.x, x1, v1, th, th, om, w, k, dt, kinked)
+            x1, v1, _, _ = solver.resolve(
+                store.x, x1, v1, th, th, om, w, k, dt, kinked, _touch(state, store, solver, x1)
+            )
         else:
             k = np.where(spin.turns, store.inv_moment, 0.0)
             x1, v1, spin.angle, spin.omega = solver.resolve(

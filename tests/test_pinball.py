@@ -124,14 +124,23 @@ def test_no_ball_passes_through_a_flipper_at_the_games_speeds() -> None:
     assert result.passes == []
 
 
+def test_no_ball_passes_through_a_flipper_in_twenty_throws_at_up_to_40_m_s() -> None:
+    # The ball's contacts with the bat take part in the joints' solve (engine.joint_solver):
+    # the hinge, the limits and the motor hold the bat while the contact holds the ball.
+    result = bench.tunnelling(20)
+    assert result.hits >= 15
+    assert result.passes == []
+
+
 @pytest.mark.xfail(
     strict=True,
-    reason="a ball at 10 to 40 m/s passes through a 150 g bat: the soft step solves the contact "
-    "with the bat free and the joint solver puts it back on its hinge after (the README's "
-    "pinball section has the numbers); with a 1.5 kg bat none pass",
+    reason="a ball at 12 m/s or more can knock the bat from high up onto its lower stop "
+    "within one step, and pass it there (8 of the 1,000 throws: the README's pinball "
+    "section): the contact's rows are the manifold's at the step's start, and a bat turned "
+    "0.6 rad in one step leaves them behind",
 )
-def test_no_ball_passes_through_a_flipper_at_up_to_40_m_s() -> None:
-    assert bench.tunnelling(20).passes == []
+def test_a_ball_that_knocks_the_bat_onto_its_stop_does_not_pass_it() -> None:
+    assert bench.throw(741).passes == []
 
 
 def test_a_heavy_flipper_turns_back_every_ball_up_to_40_m_s() -> None:

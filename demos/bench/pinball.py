@@ -355,6 +355,11 @@ def tunnelling(
     return _ours(trials, mass) if engine == "ours" else _pymunk(trials)
 
 
+def throw(trial: int, flips: int = 1000, seed: int = 26) -> Tunnelling:
+    """Trial ``trial`` of ``tunnelling(flips, seed)`` alone, in this engine."""
+    return _ours([_trials(flips, seed, TOP_SPEED)[trial]], pb.FLIPPER_MASS)
+
+
 def step_times(seconds: float = 20.0, rounds: int = 5, seed: int = 1) -> dict[str, float]:
     """Median CPU seconds a game step of the whole table, ours and pymunk's, in rounds of
     ``seconds`` of game each, alternating (each game continues from round to round)."""
