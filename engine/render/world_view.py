@@ -60,7 +60,7 @@ JOINT: Color = INK  #: links, a hinge's ring, a weld's square
 LIMIT: Color = EULER  #: a hinge's limits: the arc its angle may sweep
 #: Sizes on a canvas 360 px tall, in px (scaled with the canvas's height): a hinge's ring
 #: (radius), its limits' arc (radius) and a weld's square (side).
-RING, ARC, SQUARE = 4, 20, 9
+RING, ARC, SQUARE = 3, 20, 9
 
 
 def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float = 1.0) -> None:
@@ -162,7 +162,7 @@ def _draw_joint(
     if arc is not None:
         _draw_arc(surface, (cx, cy), max(6.0, ARC * size), arc, line)
     centre = (math.floor(cx + 0.5), math.floor(cy + 0.5))
-    pygame.draw.circle(surface, JOINT, centre, max(2, round(RING * size)), line)
+    pygame.draw.circle(surface, JOINT, centre, max(2, round(RING * size)), max(1, round(size)))
 
 
 def _draw_arc(
