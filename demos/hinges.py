@@ -68,6 +68,7 @@ from engine.render import (
     Plot,
     Scene,
     draw_disc,
+    font,
     marks,
 )
 from engine.render.world_view import BODY, draw_world
@@ -495,9 +496,9 @@ class RodScene(HingeScene):
         size = max(12, round(13 * s))
         captions = [
             f"dashed: the rod's exact period, T = 4 sqrt(L_eq/g) K(sin 45\u00b0) = "
-            f"{self.exact:.4f} s,  L_eq = 2L/3 + w\u00b2/6L",
-            f"dashed: the rod's exact period, T = {self.exact:.4f} s",
-            f"dashed: T = {self.exact:.4f} s",
+            f"{self.exact:.5f} s,  L_eq = 2L/3 + w\u00b2/6L",
+            f"dashed: the rod's exact period, T = {self.exact:.5f} s",
+            f"dashed: T = {self.exact:.5f} s",
         ]
         caption = draw_text(
             surface,
@@ -587,7 +588,15 @@ class ChainScene(HingeScene):
         surface.fill(PAPER)
         samples = _upto(c.history, t, self.dt)
         worst = max(q.gap for q in samples)
-        self.header(surface, t, f"widest hinge gap so far: {worst:.1e} m", self.plot_left)
+        force, weight = samples[-1].force, PLANKS * PLANK_MASS * G
+        lines = [
+            f"widest hinge gap so far {worst:.1e} m;  top hinge {force:.1f} N "
+            f"(weight {weight:.1f})",
+            f"widest hinge gap so far {worst:.1e} m;  top hinge {force:.1f} N",
+            f"widest gap {worst:.1e} m",
+        ]
+        room = self.plot_left - round(8 * s) - font(round(14 * s)).size("t = 10.00 s   ")[0]
+        self.header(surface, t, fitting(lines, round(14 * s), room), self.plot_left)
         self.pivot(surface, (0.0, 0.0))
         draw_world(surface, c.world, self.camera, alpha)
         shown = _every(samples)
@@ -595,16 +604,6 @@ class ChainScene(HingeScene):
         plot = self.force_plot
         plot.draw_frame(surface)
         plot.draw_curve(surface, ts, [q.force for q in shown])
-        a = plot.area
-        weight = PLANKS * PLANK_MASS * G
-        draw_text(
-            surface,
-            f"now {samples[-1].force:6.2f} N;  the chain's weight {weight:.2f} N",
-            (a.right - 4 * s, a.top + 2 * s),
-            round(13 * s),
-            CLOSED,
-            "topright",
-        )
         plot = self.gap_plot
         plot.draw_frame(surface)
         # Where every gap is 0 to the last bit, log10 is -inf: drawn at the panel's floor.
@@ -633,7 +632,8 @@ class CarScene(HingeScene):
     summary = "two wheels on hinges with motors under a box climb 15 deg, against the closed form"
     duration = 4.0
     dt = CAR_DT
-    view = (-0.4, -0.3, SLOPE_LENGTH * math.cos(SLOPE) + 0.4, 3.7)
+    #: Sky over the slope: the plot sits in it, clear of the car as it passes under.
+    view = (-0.4, -0.3, SLOPE_LENGTH * math.cos(SLOPE) + 0.4, 4.6)
     world: Car
 
     def build(self, size: tuple[int, int]) -> None:
@@ -645,9 +645,9 @@ class CarScene(HingeScene):
         self.camera = Camera.fit(self.view, (m, top, w - 2 * m, h - top - m))
         # The plot in the empty corner over the slope's foot.
         self.speed_plot = Plot(
-            (m, top, round(w * 0.5), round(150 * s)),
+            (m, top, round(w * 0.47), round(135 * s)),
             t_max=self.duration,
-            y_range=(-0.5, 3.0),
+            y_range=(-0.2, 2.7),
             title="speed up the slope  m/s",
             t_step=1.0,
             y_step=1.0,
