@@ -86,7 +86,7 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
             _draw_shape(surface, shape, camera, (x, y), colour, 0, angle)
             _draw_shape(surface, shape, camera, (x, y), INK, 1, angle)
             continue
-        draw_disc(surface, camera, (x, y), body.radius, angle_of(world, body, alpha), colour)
+        draw_disc(surface, camera, (x, y), body.radius, angle if body.turns else None, colour)
     size = surface.get_height() / 360
     for link in world.links:
         if isinstance(link, (Joint, Pin)):
