@@ -132,7 +132,7 @@ def test_every_hinge_of_the_chain_holds_while_it_whips(chain: Run) -> None:
     assert c.planks[-1].pos.distance_to((hinges.PLANKS * hinges.PLANK, 0.0)) > 1.0  # it fell
 
 
-def test_the_car_climbs_at_the_closed_forms_acceleration_but_slips_a_few_percent(
+def test_the_car_climbs_at_the_closed_forms_acceleration_but_cruises_a_few_percent_slow(
     car: Run,
 ) -> None:
     history = car.scene.car.history
@@ -140,16 +140,29 @@ def test_the_car_climbs_at_the_closed_forms_acceleration_but_slips_a_few_percent
     at = {round(s.t, 6): s for s in history}
     # While the motors give their max torque (0.5 s to 1.5 s): the closed form's acceleration.
     a = (at[1.5].speed - at[0.5].speed) / 1.0
-    assert a == pytest.approx(hinges.Car.acceleration(), rel=0.01)
+    assert a == pytest.approx(hinges.Car.acceleration(), rel=1e-9)
+    assert -0.05 < at[1.0].speed - hinges.Car.closed_form(1.0) < 0.0  # behind it: 0.033 m/s
     # Cruising, it is short of the closed form's 2.4 m/s by a few percent (the docstring's
-    # 3.9%): the wheels slip. When the motors act before the contacts, this will fail: then
-    # the docstring and the README are to be changed.
+    # 3.4%): the wheels turn slower than the motors drive them, and slip. When the motors
+    # act before the contacts this will fail: the docstring and the README are then to change.
     end = history[-1]
     assert 0.95 * cruise < end.speed < 0.99 * cruise, end
-    assert end.rim > end.speed  # the rims outrun the car
+    assert end.speed < end.rim < cruise  # the rims outrun the car, the motors the rims
     assert car.scene.car.chassis.pos.dot(car.scene.car.along) > hinges.START + 3.0
     for motor in car.scene.car.motors:
         assert (motor.end_a() - motor.end_b()).length() < 1e-9
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="a motor acts after the contacts: the velocities the joint solve leaves (2.307 m/s, "
+    "the chassis at 0.034 rad/s) are not those the next step moves the car by (2.318 m/s, "
+    "the chassis still)",
+)
+def test_the_cars_velocity_is_how_fast_it_moves(car: Run) -> None:
+    end = car.scene.car.history[-1]
+    assert end.velocity == pytest.approx(end.speed, rel=1e-6)
+    assert abs(car.scene.car.chassis.angular_velocity) < 1e-6  # it is not turning
 
 
 # -- the frames --------------------------------------------------------------------------------
