@@ -132,37 +132,36 @@ def test_every_hinge_of_the_chain_holds_while_it_whips(chain: Run) -> None:
     assert c.planks[-1].pos.distance_to((hinges.PLANKS * hinges.PLANK, 0.0)) > 1.0  # it fell
 
 
-def test_the_car_climbs_at_the_closed_forms_acceleration_but_cruises_a_few_percent_slow(
-    car: Run,
-) -> None:
+def test_the_cars_velocity_is_the_closed_forms_and_its_positions_lag_a_little(car: Run) -> None:
     history = car.scene.car.history
     cruise = abs(hinges.MOTOR_SPEED) * hinges.WHEEL_RADIUS
-    at = {round(s.t, 6): s for s in history}
-    # While the motors give their max torque (0.5 s to 1.5 s): the closed form's acceleration.
-    a = (at[1.5].speed - at[0.5].speed) / 1.0
-    assert a == pytest.approx(hinges.Car.acceleration(), rel=1e-9)
-    assert -0.05 < at[1.0].speed - hinges.Car.closed_form(1.0) < 0.0  # behind it: 0.033 m/s
-    # Cruising, it is short of the closed form's 2.4 m/s by a few percent (the docstring's
-    # 3.4%): the wheels turn slower than the motors drive them, and slip. When the motors
-    # act before the contacts this will fail: the docstring and the README are then to change.
+    # a t up to the motors' speed, then |w| r: the World's velocity, at every step.
+    worst = max(abs(s.velocity - hinges.Car.closed_form(s.t)) for s in history)
+    assert worst < 1e-9, worst  # measured: 4e-14 m/s
+    assert history[-1].velocity == pytest.approx(cruise, abs=1e-9)
+    # The closed form tells a wrong model apart: the speed without the wheels' turning mass
+    # (I = 0) grows faster.
+    mass = hinges.CHASSIS_MASS + 2 * hinges.WHEEL_MASS
+    bare = 2 * hinges.MAX_TORQUE / hinges.WHEEL_RADIUS / mass - hinges.G * math.sin(hinges.SLOPE)
+    assert abs(bare / hinges.Car.acceleration() - 1) > 0.2
+    # Its positions lag (the docstring's 0.6% by 4 s): short of the closed form's distance,
+    # but by under 1%.
     end = history[-1]
-    assert 0.95 * cruise < end.speed < 0.99 * cruise, end
-    assert end.speed < end.rim < cruise  # the rims outrun the car, the motors the rims
-    assert car.scene.car.chassis.pos.dot(car.scene.car.along) > hinges.START + 3.0
+    closed = hinges.Car.closed_distance(end.t)
+    assert 0.99 * closed < end.climbed < closed, (end.climbed, closed)
+    assert 0.995 * cruise < end.speed < cruise  # measured: 2.3918 m/s
     for motor in car.scene.car.motors:
         assert (motor.end_a() - motor.end_b()).length() < 1e-9
 
 
 @pytest.mark.xfail(
     strict=True,
-    reason="a motor acts after the contacts: the velocities the joint solve leaves (2.307 m/s, "
-    "the chassis at 0.034 rad/s) are not those the next step moves the car by (2.318 m/s, "
-    "the chassis still)",
+    reason="the car's positions lag its velocity: at the motors' speed it moves 2.3918 m/s "
+    "(its distance in a step / dt) while its velocity reads 2.4000",
 )
-def test_the_cars_velocity_is_how_fast_it_moves(car: Run) -> None:
+def test_the_car_moves_as_its_velocity_says(car: Run) -> None:
     end = car.scene.car.history[-1]
-    assert end.velocity == pytest.approx(end.speed, rel=1e-6)
-    assert abs(car.scene.car.chassis.angular_velocity) < 1e-6  # it is not turning
+    assert end.speed == pytest.approx(end.velocity, rel=1e-6)
 
 
 # -- the frames --------------------------------------------------------------------------------
@@ -281,7 +280,7 @@ def test_the_chain_frames_draw_every_plank_and_a_ring_at_every_hinge(chain: Run)
 def test_the_car_frames_draw_its_wheels_with_rings_at_their_axles(car: Run) -> None:
     scene = car.scene
     history = scene.car.history
-    clear_of_words(car, scene.speed_plot, [q.speed for q in history], history)
+    clear_of_words(car, scene.speed_plot, [q.velocity for q in history], history)
     camera = scene.camera
     for frame, poses in zip(car.frames, car.poses, strict=True):
         assert frame.problems == [], (frame.t, frame.problems)
@@ -296,14 +295,22 @@ def test_the_car_frames_draw_its_wheels_with_rings_at_their_axles(car: Run) -> N
                 frame.pixels, BODY, pygame.Rect(round(cx - r), round(cy - r), 2 * r, 2 * r)
             )
             assert inside.sum() > 0.6 * math.pi * r * r, frame.t
-    # The speed plot: the measured curve (blue) under the closed form's (purple) when cruising.
+    # The plot: the World's velocity (blue) lies within the closed form's wide line (purple).
     plot = scene.speed_plot
     pixels = car.frames[-1].pixels
-    px = round(float(plot.to_px(2.4, 0.0)[0]))
-    column = pixels[px, plot.area.top : plot.area.bottom]
-    blue = np.flatnonzero(np.all(column == BODY, axis=1))
-    purple = np.flatnonzero(np.all(column == hinges.CLOSED, axis=1))
-    assert len(blue) and len(purple) and blue.mean() > purple.mean()  # lower on the screen
+    columns = 0
+    knee = abs(hinges.MOTOR_SPEED) * hinges.WHEEL_RADIUS / hinges.Car.acceleration()
+    corner = [round(float(plot.to_px(knee + d, 0.0)[0])) for d in (-0.05, 0.05)]
+    for px in range(plot.area.left + 2, round(float(plot.to_px(2.4, 0.0)[0]))):
+        if corner[0] <= px <= corner[1]:
+            continue  # pygame's wide line is notched at its corner
+        column = pixels[px, plot.area.top : plot.area.bottom]
+        blue = np.flatnonzero(np.all(column == BODY, axis=1))
+        purple = np.flatnonzero(np.all(column == hinges.CLOSED, axis=1))
+        if len(blue):
+            columns += 1
+            assert len(purple) and np.abs(purple[:, None] - blue[None, :]).min() <= 3, px
+    assert columns > 0.5 * (float(plot.to_px(2.4, 0.0)[0]) - plot.area.left)
 
 
 def test_the_command_line_writes_the_frames_the_scenes_draw(
