@@ -46,6 +46,7 @@ STILLS = [
     ("incline", ["incline", "--scene", "race"], 24),
     ("stack", ["stack", "--scene", "dominoes"], 25),
     ("pinball", ["pinball", "--seconds", "5", "--size", "216x384"], 44),  # upright
+    ("hinges", ["hinges", "--scene", "rod"], 45),
 ]
 
 

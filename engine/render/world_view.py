@@ -5,8 +5,12 @@ draws the World with ``draw_world(surface, world, camera)``: colliders in ink (s
 outlines only), bodies as discs of their radius (points as dots) with a radius line at the
 angle of a disc that turns (``Body.turns``), so a roll is seen, or as their shape (a box,
 a polygon, a capsule: ``Body(..., shape=...)``), in blue, asleep in grey,
-moved by the game in vermillion, links as lines. ``alpha`` blends the last two steps as
-``World.positions(alpha)`` does, for a fixed-step loop.
+moved by the game in vermillion. A link (a rod, a cable) is a line from anchor to anchor, the
+points where it holds its bodies (``end_a()``, ``end_b()``), under the bodies; over them, a
+hinge's point (and a pin's) is a small ring, a hinge's limits an arc about that point from the
+lower limit to the upper, and a weld a small square at the point it holds. ``alpha`` blends
+the last two steps as ``World.positions(alpha)`` does, for a fixed-step loop: positions and
+angles both, so an anchor is drawn where the blended body holds it.
 """
 
 from __future__ import annotations
@@ -16,16 +20,47 @@ from typing import Any
 
 import pygame
 
+from engine.joints import Hinge, Joint, Weld
+from engine.links import Pin
 from engine.render.camera import Camera
-from engine.render.draw import ACCELERATION, INK, MUTED, PAPER, VELOCITY, Color, draw_disc
+from engine.render.draw import (
+    ACCELERATION,
+    EULER,
+    INK,
+    MUTED,
+    PAPER,
+    VELOCITY,
+    Color,
+    draw_disc,
+)
 
-__all__ = ["draw_world", "angle_of", "BODY", "ASLEEP", "KINEMATIC", "SOLID", "SENSOR"]
+__all__ = [
+    "draw_world",
+    "angle_of",
+    "pose_of",
+    "limit_arc",
+    "BODY",
+    "ASLEEP",
+    "KINEMATIC",
+    "SOLID",
+    "SENSOR",
+    "JOINT",
+    "LIMIT",
+    "RING",
+    "ARC",
+    "SQUARE",
+]
 
 BODY: Color = VELOCITY  #: a body that moves under forces
 ASLEEP: Color = MUTED  #: a body asleep in a still pile
 KINEMATIC: Color = ACCELERATION  #: a body the game moves (a paddle, a platform)
 SOLID: Color = INK  #: the colliders
 SENSOR: Color = (204, 121, 167)  #: a sensor's outline
+JOINT: Color = INK  #: links, a hinge's ring, a weld's square
+LIMIT: Color = EULER  #: a hinge's limits: the arc its angle may sweep
+#: Sizes on a canvas 360 px tall, in px (scaled with the canvas's height): a hinge's ring
+#: (radius), its limits' arc (radius) and a weld's square (side).
+RING, ARC, SQUARE = 3, 20, 9
 
 
 def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float = 1.0) -> None:
@@ -35,25 +70,123 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
     if not world.bodies or world.dim != 2:
         return
     xy = world.positions(alpha)
-    row = {id(b): k for k, b in enumerate(world.bodies)}
+    poses = {
+        id(b): (float(xy[k, 0]), float(xy[k, 1]), _drawn_angle(world, b, alpha))
+        for k, b in enumerate(world.bodies)
+    }
     for link in world.links:
-        a = camera.point(tuple(xy[row[id(link.body)]]))
-        other = link.other
-        if isinstance(other, tuple) or not hasattr(other, "pos"):
-            b = camera.point(tuple(other))
-        else:
-            b = camera.point(tuple(xy[row[id(other)]]))
-        pygame.draw.line(surface, INK, a, b, 2)
-    for k, body in enumerate(world.bodies):
+        if not isinstance(link, (Joint, Pin)):
+            a, b = _ends(link, poses)
+            pygame.draw.line(surface, JOINT, camera.point(a), camera.point(b), 2)
+    for body in world.bodies:
         colour = KINEMATIC if body.kinematic else ASLEEP if world.is_sleeping(body) else BODY
         shape = body.shape
-        at = (float(xy[k, 0]), float(xy[k, 1]))
+        x, y, angle = poses[id(body)]
         if shape is not None and type(shape).__name__ in ("Polygon", "Segment"):
-            angle = angle_of(world, body, alpha) or 0.0  # a box that turns, at its angle
-            _draw_shape(surface, shape, camera, at, colour, 0, angle)
-            _draw_shape(surface, shape, camera, at, INK, 1, angle)
+            _draw_shape(surface, shape, camera, (x, y), colour, 0, angle)
+            _draw_shape(surface, shape, camera, (x, y), INK, 1, angle)
             continue
-        draw_disc(surface, camera, at, body.radius, angle_of(world, body, alpha), colour)
+        draw_disc(surface, camera, (x, y), body.radius, angle if body.turns else None, colour)
+    size = surface.get_height() / 360
+    for link in world.links:
+        if isinstance(link, (Joint, Pin)):
+            _draw_joint(surface, link, camera, poses, size)
+
+
+def pose_of(world: Any, body: Any, alpha: float = 1.0) -> tuple[float, float, float]:
+    """Where ``body`` is drawn: its position and angle (m, m, rad) blended by ``alpha`` as
+    ``draw_world`` blends them (a body that does not turn keeps its angle)."""
+    p = world.position_of(body, alpha)
+    return float(p.x), float(p.y), _drawn_angle(world, body, alpha)
+
+
+def _drawn_angle(world: Any, body: Any, alpha: float) -> float:
+    angle = angle_of(world, body, alpha)
+    return float(body.angle) if angle is None else angle
+
+
+def _at(pose: tuple[float, float, float], local: Any) -> tuple[float, float]:
+    """A point given in a body's own frame, in the world, for the body at ``pose``."""
+    x, y, angle = pose
+    c, s = math.cos(angle), math.sin(angle)
+    return (x + c * local.x - s * local.y, y + s * local.x + c * local.y)
+
+
+def _ends(link: Any, poses: dict[int, tuple[float, float, float]]) -> tuple[Any, Any]:
+    """Where ``link`` holds its two ends, for the bodies at their drawn ``poses``: its
+    ``end_a()`` and ``end_b()`` at the blended positions and angles."""
+    a = _at(poses[id(link.body)], link.anchor_a)
+    other = link.other
+    if isinstance(other, tuple) or not hasattr(other, "pos"):
+        return a, (float(other[0]), float(other[1]))  # a fixed point, in world coordinates
+    return a, _at(poses[id(other)], link.anchor_b)
+
+
+def limit_arc(link: Any, poses: Any = None) -> tuple[float, float] | None:
+    """The world angles (rad, counter-clockwise from +x) the arc of a Hinge's limits runs
+    between, lower to upper, or None without limits. They are measured from body_a's
+    direction at the hinge's reference angle (joint angle 0): the direction from the hinge
+    point to body_a's centre (for a hinge at the centre, body_a's own +x), turned as body_b
+    is now (``poses``: the drawn pose of each body by id; None: as the bodies are)."""
+    if not isinstance(link, Hinge) or link.limits is None:
+        return None
+    b_angle = 0.0
+    if link.bodies[1:]:
+        second = link.bodies[1]
+        b_angle = poses[id(second)][2] if poses is not None else float(second.angle)
+    anchor = link.anchor_a
+    own = math.atan2(-anchor.y, -anchor.x) if (anchor.x or anchor.y) else 0.0
+    zero = b_angle + link.reference_angle + own
+    lower, upper = link.limits
+    return zero + lower, zero + upper
+
+
+def _draw_joint(
+    surface: pygame.Surface,
+    link: Any,
+    camera: Camera,
+    poses: dict[int, tuple[float, float, float]],
+    size: float,
+) -> None:
+    """A hinge's (or a pin's) ring at its point, with the arc of its limits; a weld's square."""
+    a, _ = _ends(link, poses)
+    cx, cy = camera.to_px(*a)
+    line = max(1, round(2 * size))
+    if isinstance(link, Weld):
+        side = max(4, round(SQUARE * size))
+        square = pygame.Rect(0, 0, side, side)
+        square.center = (math.floor(cx + 0.5), math.floor(cy + 0.5))
+        pygame.draw.rect(surface, JOINT, square, line)
+        return
+    arc = limit_arc(link, poses)
+    if arc is not None:
+        _draw_arc(surface, (cx, cy), max(6.0, ARC * size), arc, line)
+    centre = (math.floor(cx + 0.5), math.floor(cy + 0.5))
+    pygame.draw.circle(surface, JOINT, centre, max(2, round(RING * size)), max(1, round(size)))
+
+
+def _draw_arc(
+    surface: pygame.Surface,
+    centre: tuple[float, float],
+    radius: float,
+    angles: tuple[float, float],
+    width: int,
+) -> None:
+    """An arc of ``radius`` px about the pixel ``centre`` from the world angle ``angles[0]``
+    to ``angles[1]`` (counter-clockwise; the screen's y points down), and a short radial line
+    at each end, so that limits a whole turn apart still show where they are."""
+    lower, upper = angles
+    cx, cy = centre
+    count = max(2, math.ceil(abs(upper - lower) * radius / 3) + 1)
+    points = [
+        (cx + radius * math.cos(phi), cy - radius * math.sin(phi))
+        for phi in (lower + (upper - lower) * k / (count - 1) for k in range(count))
+    ]
+    pygame.draw.lines(surface, LIMIT, False, points, width)
+    for phi in (lower, upper):
+        inner = (cx + 0.5 * radius * math.cos(phi), cy - 0.5 * radius * math.sin(phi))
+        outer = (cx + 1.25 * radius * math.cos(phi), cy - 1.25 * radius * math.sin(phi))
+        pygame.draw.line(surface, LIMIT, inner, outer, width)
 
 
 def angle_of(world: Any, body: Any, alpha: float = 1.0) -> float | None:
