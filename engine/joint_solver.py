@@ -595,6 +595,27 @@ class JointSolver:
         Vm = V.reshape(m, 3)
         v[b] = Vm[:, :2]
         om[b] = Vm[:, 2]
+        # 3. What acts on speeds alone (a motor, friction, a soft weld) acted through the step
+        # as the forces did: the positions take half its change of speed times dt (as the
+        # closed form's a dt^2 / 2), and are put back onto the joints and onto the contacts
+        # that held in the velocity solve (no impulse). A motor's wheel then turns by
+        # T t^2 / (2 I), and a car held by its brakes on a slope stays where it is.
+        alone = (kind == _MOTOR) | (kind == _CT) | soft
+        if alone.any() and mu[alone].any():
+            shift = (Wm * (J[alone].T @ mu[alone])) * (0.5 * dt)
+            S = shift.reshape(m, 3)
+            Xs, Ts = x[b] + S[:, :2], th[b] + S[:, 2]
+            c2, _ = self._eval(Xs, Ts, plan)
+            keep = held & movable & ((sign == 0) | (sign * c2 < 0.0) | ((kind == _CN) & rows))
+            for _ in range(4):
+                back = self._project(Xs, Ts, plan.take(np.flatnonzero(keep)), Wm, tol)
+                B = back.reshape(m, 3)
+                c2, _ = self._eval(Xs + B[:, :2], Ts + B[:, 2], plan)
+                broken = held & movable & ~keep & (sign != 0) & (sign * c2 < -tol)
+                if not broken.any():
+                    break
+                keep |= broken
+            x[b], th[b] = Xs + B[:, :2], Ts + B[:, 2]
         self._report(link, kind, sign, G, J, lam, mu, dt)
         return x, v, th, om
 

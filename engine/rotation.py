@@ -71,8 +71,9 @@ class Spin:
         return cls(angle0, omega0, angle, omega, q, alpha, turns)
 
     def rolls(self, friction: np.ndarray) -> np.ndarray:
-        """Which bodies turn under friction (they turn, and have some), by World row."""
-        return self.turns & (friction > 0.0)
+        """Which bodies turn under friction (they turn, have a surface to roll on, r > 0, and
+        friction), by World row. A point given a moment turns freely: it has no lever."""
+        return self.turns & (self.q > 0.0) & (friction > 0.0)
 
 
 class Rolling(NamedTuple):
@@ -104,7 +105,7 @@ def rolling(spin: Spin | None, rows: np.ndarray, friction: np.ndarray) -> Rollin
     them turns under friction (then the sweep is that of bodies that do not turn)."""
     if spin is None:
         return None
-    rolls = spin.turns[rows] & (friction[rows] > 0.0)
+    rolls = spin.turns[rows] & (spin.q[rows] > 0.0) & (friction[rows] > 0.0)
     if not rolls.any():
         return None
     return Rolling(spin.angle0[rows], spin.omega0[rows], spin.q[rows], spin.alpha[rows], rolls)

@@ -18,7 +18,7 @@ from engine import ContactEvent, Vector
 from engine.render import init_headless
 
 #: A seed whose whole game (three balls) the autopilot plays in a short time.
-SEED = 2
+SEED = 3
 
 
 @dataclass
@@ -207,7 +207,7 @@ def test_keys_and_mouse_buttons_drive_the_flippers_and_plunger(monkeypatch) -> N
     held.add(pygame.K_RSHIFT)
     for _ in range(4):
         game.step(pb.DT)
-    assert game.hinges[1].angle > -math.radians(pb.SWING) + 0.1  # not yet at the top
+    assert game.hinges[1].angle > -math.radians(pb.SWING) + 1e-3  # not yet at the top
     game.step(pb.DT)  # the fifth step, 42 ms after the key: at the top
     assert game.hinges[1].angle == pytest.approx(-math.radians(pb.SWING), abs=1e-9)
     assert game.hinges[0].angle == pytest.approx(0.0, abs=1e-9)

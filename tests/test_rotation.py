@@ -284,3 +284,17 @@ def test_apply_force_every_frame_is_a_constant_force() -> None:
         w.step(1 / 60)
     assert b.vel.x == pytest.approx(2.0, rel=1e-12)  # a = F / m = 2 for 1 s
     assert b.own_acc.x == 0.0
+
+
+def test_a_point_given_a_moment_turns_freely_past_colliders() -> None:
+    # A point (radius 0) has no surface to roll on: it meets colliders as points do (not at
+    # all) and keeps turning at its own rate; it once divided by its radius there.
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Segment((-5.0, 0.0), (5.0, 0.0)))
+    world.add_collider(Plane((0.0, -20.0), (0.0, 1.0)))
+    point = world.add(Body(Vector(0.0, 1.0), mass=1.0, moment=0.1, angular_velocity=2.0))
+    for _ in range(120):
+        world.step(1 / 60)
+    assert point.angle == pytest.approx(4.0, abs=1e-12)
+    assert point.angular_velocity == 2.0
