@@ -120,6 +120,8 @@ def test_a_motor_spins_a_wheel_up_at_its_torque_and_holds_its_speed() -> None:
             assert hinge.motor_torque(dt) == pytest.approx(torque, rel=1e-12)
             assert hinge.torque(dt) == hinge.motor_torque(dt)  # no limits
     assert worst < 1e-9
+    # Its angle too: T t^2 / (2 I) while the torque drives it (what the motor does to the
+    # speed acts on the angle through the step, as a force's a dt^2 / 2).
     assert wheel.angular_velocity == pytest.approx(speed, abs=1e-9)
     assert abs(hinge.torque(dt)) < 1e-9  # holding a free wheel's speed takes no torque
     assert (wheel.pos - Vector(2, 1)).length() < 1e-12
@@ -438,3 +440,40 @@ def test_a_car_driven_by_motors_climbs_a_slope_at_the_closed_form_speed() -> Non
     assert worst_gap < 1e-9  # on the slope, not in it
     assert body.angle == pytest.approx(theta, abs=1e-9)
     assert back.vel.dot(along) == pytest.approx(-speed * r, abs=1e-9)  # 3 m/s, held
+
+
+def test_a_motor_turns_its_wheel_through_the_closed_forms_angle() -> None:
+    world = World(integrator="auto")
+    wheel = world.add(Body(Vector(0, 0), Vector(0, 0), Vector(0, 0), mass=2.0, radius=0.5))
+    torque, dt = 0.3, 1 / 60
+    world.add_link(Hinge(wheel, world.static_body, (0, 0), motor_speed=100.0, max_torque=torque))
+    worst = 0.0
+    for n in range(1, 121):
+        world.step(dt)
+        worst = max(worst, abs(wheel.angle - torque * (n * dt) ** 2 / (2 * wheel.moment)))
+    assert worst < 1e-12
+
+
+def test_a_car_held_by_its_brakes_stays_where_it_is_on_a_slope() -> None:
+    # Motors at speed 0 with no torque bound hold the wheels to the chassis; friction holds
+    # the wheels to the slope: the car neither moves nor creeps (it crept at 17 mm/s when the
+    # brakes acted on the speeds alone, not on the positions through the step).
+    theta, r = math.radians(15), 0.3
+    along = Vector(math.cos(theta), math.sin(theta))
+    up = Vector(-math.sin(theta), math.cos(theta))
+    world = gravity_world()
+    world.add_collider(Segment(along * -20.0, along * 60.0))
+    back = world.add(Body(up * r, radius=r, mass=1.0, friction=1.0))
+    front = world.add(Body(up * r + along * 1.5, radius=r, mass=1.0, friction=1.0))
+    body = world.add(
+        Body(up * (r + 0.4) + along * 0.75, shape=Polygon.box(2.0, 0.3), mass=2.0, angle=theta)
+    )
+    for wheel in (back, front):
+        world.add_link(Hinge(wheel, body, wheel.pos, motor_speed=0.0, max_torque=math.inf))
+    start = [b.pos for b in (back, front, body)]
+    for _ in range(240):
+        world.step(1 / 60)
+    for b, p in zip((back, front, body), start, strict=True):
+        assert (b.pos - p).length() < 1e-12
+        assert b.vel.length() < 1e-12
+    assert body.angle == pytest.approx(theta, abs=1e-12)

@@ -135,7 +135,7 @@ def test_no_ball_passes_through_a_flipper_in_twenty_throws_at_up_to_40_m_s() -> 
 @pytest.mark.xfail(
     strict=True,
     reason="a ball at 12 m/s or more can knock the bat from high up onto its lower stop "
-    "within one step, and pass it there (8 of the 1,000 throws: the README's pinball "
+    "within one step, and pass it there (one of the 12 of 1,000 throws: the README's pinball "
     "section): the contact's rows are the manifold's at the step's start, and a bat turned "
     "0.6 rad in one step leaves them behind",
 )
