@@ -19,7 +19,18 @@ import numpy as np
 import pygame
 import pytest
 
-from demos import alfred, ballpit, bounce, car, cradle, crumb, fireworks, galton, stability
+from demos import (
+    alfred,
+    ballpit,
+    bounce,
+    car,
+    cradle,
+    crumb,
+    fireworks,
+    galton,
+    hinges,
+    stability,
+)
 from engine import FixedStep, Vector, VirtualClock
 from engine.render import Scene, init_headless
 
@@ -44,6 +55,7 @@ SCENES: dict[str, Callable[[], Scene]] = {
     **{f"cradle/{name}": make for name, make in cradle.DEMO.scenes.items()},
     "ballpit": small_ballpit,
     **{f"galton/{name}": make for name, make in galton.DEMO.scenes.items()},
+    **{f"hinges/{name}": make for name, make in hinges.DEMO.scenes.items()},
 }
 #: Scenes that do not resume yet, and why.
 
