@@ -52,9 +52,9 @@ import numpy as np
 import pygame
 
 from demos.cli import Demo
+from demos.games import run_game
 from engine import Body, ContactEvent, Segment, Vector, World
-from engine.render import Camera, FrameWriter, Scene, draw_dot, draw_text, iter_frames
-from engine.render import play as play_window
+from engine.render import Camera, Scene, draw_dot, draw_text
 from engine.world import WorldSnapshot
 
 #: The field inside the walls (m): x0, y0 (the paddle's line is near y0), x1, y1 (the ceiling).
@@ -406,18 +406,10 @@ def play(
     """
     scene = BreakoutScene(person=window)
     scene.seed = seed
-    if window:
-        play_window(scene, fps, size, WINDOW_SECONDS if seconds is None else seconds)
-        return scene.game.score
-    ended: float | None = None
-    with FrameWriter(out or Path("out/breakout"), overwrite=overwrite) as frames:
-        for index, t, surface in iter_frames(scene, fps, seconds or MAX_SECONDS, size):
-            if index > 0:  # the game's frames start one frame in
-                frames.write(surface)
-            if seconds is None and scene.game.score.over:
-                ended = t if ended is None else ended
-                if t >= ended + AFTER_END:
-                    break
+    run_game(
+        scene, window, seconds, fps, size, out or Path("out/breakout"), overwrite,
+        WINDOW_SECONDS, MAX_SECONDS, AFTER_END,
+    )  # fmt: skip
     return scene.game.score
 
 

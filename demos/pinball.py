@@ -61,10 +61,10 @@ import numpy as np
 import pygame
 
 from demos.cli import Demo
+from demos.games import run_game
 from engine import Body, Circle, ContactEvent, Filter, Hinge, Polygon, Segment, Vector, World
 from engine.forces import Gravity
-from engine.render import Camera, FrameWriter, Scene, draw_disc, draw_text, iter_frames
-from engine.render import play as play_window
+from engine.render import Camera, Scene, draw_disc, draw_text
 from engine.world import WorldSnapshot
 
 #: The tilt of the table (degrees) and the pull of gravity down it (cm/s^2).
@@ -619,18 +619,10 @@ def play(
     """
     scene = PinballScene(person=window)
     scene.seed = seed
-    if window:
-        play_window(scene, fps, size, WINDOW_SECONDS if seconds is None else seconds)
-        return scene.game.score
-    ended: float | None = None
-    with FrameWriter(out or Path("out/pinball"), overwrite=overwrite) as frames:
-        for index, t, surface in iter_frames(scene, fps, seconds or MAX_SECONDS, size):
-            if index > 0:  # the game's frames start one frame in
-                frames.write(surface)
-            if seconds is None and scene.game.score.over:
-                ended = t if ended is None else ended
-                if t >= ended + AFTER_END:
-                    break
+    run_game(
+        scene, window, seconds, fps, size, out or Path("out/pinball"), overwrite,
+        WINDOW_SECONDS, MAX_SECONDS, AFTER_END,
+    )  # fmt: skip
     return scene.game.score
 
 
