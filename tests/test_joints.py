@@ -31,6 +31,16 @@ def gravity_world(integrator: str = "auto") -> World:
     return world
 
 
+def flipper_world(speed: float, torque: float) -> tuple[World, Body, Hinge]:
+    """A 1 m flipper of 1 kg hinged at its end to the world, limits +-0.5 rad, its motor at
+    ``speed`` (rad/s) with at most ``torque`` (N m), under gravity."""
+    world = gravity_world()
+    flipper = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
+    hinge = Hinge(flipper, world.static_body, (0.0, 0.0), limits=(-0.5, 0.5),
+                  motor_speed=speed, max_torque=torque)  # fmt: skip
+    return world, flipper, world.add_link(hinge)
+
+
 def elliptic_k(k: float) -> float:
     """The complete elliptic integral of the first kind K(k), by the arithmetic-geometric mean."""
     a, b = 1.0, math.sqrt(1.0 - k * k)
@@ -145,18 +155,7 @@ def test_a_flipper_thrown_at_its_limit_stops_there_and_never_passes_it() -> None
 def test_a_motor_drives_a_flipper_into_its_limit_and_holds_it_there() -> None:
     # Gravity pulls the flipper down; the motor (max torque well above m g L / 2) lifts it
     # to its upper limit at full torque and holds it.
-    world = gravity_world()
-    flipper = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
-    hinge = world.add_link(
-        Hinge(
-            flipper,
-            world.static_body,
-            (0.0, 0.0),
-            limits=(-0.5, 0.5),
-            motor_speed=20.0,
-            max_torque=50.0,
-        )
-    )
+    world, flipper, hinge = flipper_world(20.0, 50.0)
     for _ in range(120):
         world.step(1.0 / 60.0)
         assert hinge.angle <= 0.5 + 1e-6
@@ -303,18 +302,7 @@ def test_bodies_on_a_joint_do_not_collide_unless_asked() -> None:
 
 
 def test_snapshot_and_restore_bring_back_joints_their_settings_and_impulses() -> None:
-    world = gravity_world()
-    flipper = world.add(plank(0.5, 0.0, 1.0, 0.1, mass=1.0))
-    hinge = world.add_link(
-        Hinge(
-            flipper,
-            world.static_body,
-            (0.0, 0.0),
-            limits=(-0.5, 0.5),
-            motor_speed=5.0,
-            max_torque=20.0,
-        )
-    )
+    world, flipper, hinge = flipper_world(5.0, 20.0)
     for _ in range(10):
         world.step(1 / 60)
     snap = world.snapshot()
