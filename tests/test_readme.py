@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import re
 import subprocess
+import sys
 from pathlib import Path
 
 import pygame
@@ -128,7 +129,7 @@ def test_every_image_the_readme_shows_exists() -> None:
 
 def test_every_demo_is_in_the_readme() -> None:
     listing = subprocess.run(
-        ["python", "-m", "demos"], cwd=ROOT, capture_output=True, text=True, check=True
+        [sys.executable, "-m", "demos"], cwd=ROOT, capture_output=True, text=True, check=True
     ).stdout
     names = re.findall(r"^  (\w+)\s", listing, flags=re.M)
     assert names
