@@ -1,135 +1,70 @@
 """The joint solver: a step corrected for joints at anchors (engine.joints) and links held
 away from a body's centre, on bodies that turn.
 
-Each joint is a few scalar equations c(q) = 0 on the configuration q = (x, y, theta) of its
-two bodies, where an anchor a (in body i's frame) is at p = x_i + R(theta_i) a, with lever
-arm r = R(theta_i) a, and moves with dp/dtheta_i = perp(r) = (-r_y, r_x):
-
-- a point the two bodies share (Hinge, Weld, a Pin with an anchor): c = p_a - p_b, two rows;
-- a distance (Rod; Cable, at most): c = |p_a - p_b| - L, gradient n = d / |d| at each end
-  (n . perp(r) = r x n on the angle);
-- an angle (Weld; a Hinge's limits, at least or at most): c = theta_a - theta_b - ref - bound;
-- a motor (velocity only): theta_a' - theta_b' = motor_speed, with |impulse| <= max_torque dt.
-
-The mass matrix diag(m, m, I) of (x, y, theta) is constant, so RATTLE (Andersen 1983) holds
-as for the rods of points (engine.links), now with the angle as one more coordinate:
+Each joint is a few scalar rows c(q) = 0 on the configuration q = (x, y, theta) of its two
+bodies (engine.joint_rows: a point two bodies share, a distance, an angle; a motor's and a
+soft weld's rows, for speeds only; the contacts of joined bodies). The mass matrix
+diag(m, m, I) of (x, y, theta) is constant, so RATTLE (Andersen 1983) holds as for the rods
+of points (engine.links), now with the angle as one more coordinate:
 
 1. Positions. The step moved every body as if free (its method, the free rotation under
    torque, the contacts). The correction moves q along the rows' gradients G at the start of
    the step, dq = W G^T lam (W = diag(1/m, 1/m, 1/I); 0 for what is held or does not turn),
    and Newton's method finds lam with c(q1 + dq) = 0: its Jacobian is J(q) W G^T. All the
    rows at once, so a chain's error does not creep from joint to joint.
-2. Velocities. The correction is an impulse: v gains dq / dt. Then the velocity rows at the
-   end, J v = target (0 for a joint's rows; the motor's speed; a cable's bounce), solve
+2. Velocities. The joints' correction is an impulse: v gains dq / dt (a contact's is not: it
+   only keeps two bodies from closing). Then the velocity rows at the end, J v = target (0
+   for a joint's rows; the motor's speed; a cable's bounce; a contact's gap / dt), solve
    (J W J^T) mu = target - J v.
+3. What acts on speeds alone (a motor, friction, a soft weld) moves the positions by half its
+   change of speed times dt, as a force's a dt^2 / 2, and the joints and the contacts that
+   held are put back after (no impulse).
 
-Inequalities (a cable, a limit) take part only while they hold something: an active set,
-dropping a row whose multiplier would push the wrong way and taking in one the others'
-correction violated; a motor whose impulse would pass max_torque dt is held at it. A soft
-weld is a velocity row with the implicit spring-damper's mixing (Box2D v3's soft step): its
-frequency omega and damping ratio zeta give (A + A_rr / (h omega (h omega + 2 zeta))) mu =
--J v - c omega / (h omega + 2 zeta).
+Inequalities (a cable, a limit, a contact) take part only while they hold something: an
+active set, dropping a row whose multiplier would push the wrong way and taking in one the
+others' correction violated; a motor whose impulse would pass max_torque dt is held at it;
+friction past mu times its normal impulse slides (Coulomb: its impulse is then mu_f times
+the normal's, a column of that unknown). A soft weld is a velocity row with the implicit
+spring-damper's mixing (Box2D v3's soft step): its frequency omega and damping ratio zeta
+give (A + A_rr / (h omega (h omega + 2 zeta))) mu = -J v - c omega / (h omega + 2 zeta).
 
 The error after a step: every joint's rows to 1e-12 of the scene's size (TOLERANCE), unless
-a StabilityWarning said the step was past what Newton's method could hold.
+a StabilityWarning said the step was past what Newton's method could hold (joints that cannot
+all hold are then projected as near as they go, by least squares, with no impulse).
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from .body import Body
+from .joint_rows import (
+    ANGLE,
+    CN,
+    CT,
+    DIST,
+    MOTOR,
+    PX,
+    PY,
+    SOFT_ANGLE,
+    SOFT_X,
+    SOFT_Y,
+    Plan,
+    Touch,
+    evaluate,
+)  # fmt: skip
 from .joints import Hinge, Joint, Weld
 from .links import Cable, Link, Pin
 
-__all__ = ["JointSolver", "Touch", "TOLERANCE"]
+__all__ = ["JointSolver", "TOLERANCE"]
 
 #: A row's error after the solve, relative to the scene's size (its largest anchor or length).
 TOLERANCE = 1e-12
 #: Newton iterations before a step counts as past what the solver can hold.
 MAX_ITERATIONS = 25
-
-# Row kinds.
-_PX, _PY, _DIST, _ANGLE, _MOTOR, _SOFT_X, _SOFT_Y, _SOFT_ANGLE, _CN, _CT = range(10)
-
-
-class Touch(NamedTuple):
-    """Contacts of the joints' bodies as the step ends, one a row: the body (World row), the
-    other (World row; -1: the static world), the unit normal from the other to the body, the
-    contact point less each one's centre (``r_body``, ``r_other``; length units), the gap
-    (length units; what the correction may not close), friction (both materials'), the
-    impulse the contact gave in the step along n and along t = (-n_y, n_x) (N s), and
-    ``lift``: a disc resting on a collider (engine.contacts: the joints may take back its
-    contact's impulse, it may lift) or a contact of the pile (engine.pile: it only pushes,
-    and only while the two close)."""
-
-    body: np.ndarray
-    other: np.ndarray
-    normal: np.ndarray
-    r_body: np.ndarray
-    r_other: np.ndarray
-    gap: np.ndarray
-    mu: np.ndarray
-    pn: np.ndarray
-    pt: np.ndarray
-    lift: np.ndarray
-
-    @staticmethod
-    def join(parts: list[Touch | None]) -> Touch | None:
-        """The contacts of ``parts`` together (None: none)."""
-        given = [t for t in parts if t is not None and len(t.body)]
-        if not given:
-            return None
-        if len(given) == 1:
-            return given[0]
-        return Touch(*(np.concatenate(field) for field in zip(*given, strict=True)))
-
-
-class _Plan:
-    """Rows as arrays by row (engine.joint_solver's own): kind, bound, each end's place among
-    the joints' bodies (b: -1 for the world), anchors, and a resting disc's normal, point,
-    gap and radius; the kinds' row indices and the columns of J, made once."""
-
-    def __init__(
-        self,
-        kind: np.ndarray,
-        bound: np.ndarray,
-        a: np.ndarray,
-        b: np.ndarray,
-        aa: np.ndarray,
-        ab: np.ndarray,
-        touch: tuple[np.ndarray, ...],
-        width: int,
-    ) -> None:
-        self.kind, self.bound, self.a, self.b = kind, bound, a, b
-        self.aa, self.ab = aa, ab
-        # A contact row's normal, contact points less the centres, where the body and the
-        # other were (position, angle) as the step ended, and its gap.
-        self.touch = touch
-        self.n, self.rbod, self.roth, self.refb, self.refo, self.thb, self.tho, self.gap = touch
-        self.width = width
-        self.has = b >= 0
-        self.bc = np.maximum(b, 0)
-        self.px = np.flatnonzero((kind == _PX) | (kind == _SOFT_X))
-        self.py = np.flatnonzero((kind == _PY) | (kind == _SOFT_Y))
-        self.dist = np.flatnonzero(kind == _DIST)
-        self.ang = np.flatnonzero((kind == _ANGLE) | (kind == _SOFT_ANGLE) | (kind == _MOTOR))
-        self.cn = np.flatnonzero(kind == _CN)
-        self.ct = np.flatnonzero(kind == _CT)
-        self.r = np.arange(len(kind))
-        self.a3 = 3 * a
-        self.rb = np.flatnonzero(self.has)
-        self.b3 = 3 * b[self.rb]
-
-    def take(self, sel: np.ndarray) -> _Plan:
-        """The rows ``sel`` alone."""
-        return _Plan(
-            self.kind[sel], self.bound[sel], self.a[sel], self.b[sel], self.aa[sel],
-            self.ab[sel], tuple(t[sel] for t in self.touch), self.width,
-        )  # fmt: skip
 
 
 class JointSolver:
@@ -229,23 +164,23 @@ class JointSolver:
         for k, item in enumerate(self.joined):
             if isinstance(item, Weld):
                 soft = item.hertz is not None
-                add(k, _SOFT_X if soft else _PX)
-                add(k, _SOFT_Y if soft else _PY)
-                add(k, _SOFT_ANGLE if soft else _ANGLE, item.reference_angle)
+                add(k, SOFT_X if soft else PX)
+                add(k, SOFT_Y if soft else PY)
+                add(k, SOFT_ANGLE if soft else ANGLE, item.reference_angle)
             elif isinstance(item, Hinge):
-                add(k, _PX)
-                add(k, _PY)
+                add(k, PX)
+                add(k, PY)
                 if item.limits is not None:
                     lo, hi = item.limits
-                    add(k, _ANGLE, item.reference_angle + lo, +1)
-                    add(k, _ANGLE, item.reference_angle + hi, -1)
+                    add(k, ANGLE, item.reference_angle + lo, +1)
+                    add(k, ANGLE, item.reference_angle + hi, -1)
                 if item.motor_speed is not None:
-                    add(k, _MOTOR, 0.0, 0, item.motor_speed)
+                    add(k, MOTOR, 0.0, 0, item.motor_speed)
             elif isinstance(item, Pin):
-                add(k, _PX)
-                add(k, _PY)
+                add(k, PX)
+                add(k, PY)
             else:
-                add(k, _DIST, item.length, -1 if isinstance(item, Cable) else 0)
+                add(k, DIST, item.length, -1 if isinstance(item, Cable) else 0)
         return (
             np.array(link, dtype=np.intp),
             np.array(kind, dtype=np.intp),
@@ -254,83 +189,18 @@ class JointSolver:
             np.array(speed, dtype=float),
         )
 
-    def _plan(self, link: np.ndarray, kind: np.ndarray, bound: np.ndarray) -> _Plan:
+    def _plan(self, link: np.ndarray, kind: np.ndarray, bound: np.ndarray) -> Plan:
         """The rows as arrays by row, bodies by their place among the joints' bodies."""
         i, j = self._ca[link], self._cb[link]
-        return _Plan(
+        return Plan(
             kind, bound, i, j, self._aa[link], self._ab[link],
             tuple(t[link] for t in self._contact), 3 * len(self._bodies),
         )  # fmt: skip
 
-    def _eval(self, X: np.ndarray, TH: np.ndarray, P: _Plan) -> tuple[np.ndarray, np.ndarray]:
-        """Each row's value c and gradient J (rows, 3 m) at the joints' bodies' positions X
-        (m, 2) and angles TH (m,)."""
-        ta = TH[P.a]
-        ca, sa = np.cos(ta), np.sin(ta)
-        ax, ay = P.aa[:, 0], P.aa[:, 1]
-        rax, ray = ca * ax - sa * ay, sa * ax + ca * ay
-        tb = np.where(P.has, TH[P.bc], 0.0)
-        cb, sb = np.cos(tb), np.sin(tb)
-        bx, by = P.ab[:, 0], P.ab[:, 1]
-        rbx = np.where(P.has, cb * bx - sb * by, 0.0)
-        rby = np.where(P.has, sb * bx + cb * by, 0.0)
-        Xa, Xb = X[P.a], X[P.bc]
-        dx = Xa[:, 0] + rax - np.where(P.has, Xb[:, 0] + rbx, bx)
-        dy = Xa[:, 1] + ray - np.where(P.has, Xb[:, 1] + rby, by)
-        R = len(P.kind)
-        c = np.zeros(R)
-        g = np.zeros((6, R))  # the gradient: (x, y, theta) on body_a, then on body_b
-        q = P.px
-        c[q] = dx[q]
-        g[0, q], g[2, q], g[3, q], g[5, q] = 1.0, -ray[q], -1.0, rby[q]
-        q = P.py
-        c[q] = dy[q]
-        g[1, q], g[2, q], g[4, q], g[5, q] = 1.0, rax[q], -1.0, -rbx[q]
-        q = P.dist
-        if len(q):
-            length = np.hypot(dx[q], dy[q])
-            safe = np.where(length > 0.0, length, 1.0)
-            nx, ny = dx[q] / safe, dy[q] / safe
-            c[q] = length - P.bound[q]
-            g[0, q], g[1, q], g[2, q] = nx, ny, rax[q] * ny - ray[q] * nx
-            g[3, q], g[4, q], g[5, q] = -nx, -ny, rby[q] * nx - rbx[q] * ny
-        q = P.ang
-        if len(q):
-            c[q] = ta[q] - tb[q] - P.bound[q]
-            g[2, q], g[5, q] = 1.0, -1.0
-        q = P.cn
-        if len(q):
-            # A contact: its gap along the normal, linear about where the step left the two
-            # (the body, a; the other, b), which the correction may not close; and the slip
-            # of its points along t (velocity only).
-            nx, ny = P.n[q, 0], P.n[q, 1]
-            kb = P.rbod[q, 0] * ny - P.rbod[q, 1] * nx  # r x n, the body's lever
-            ko = P.roth[q, 0] * ny - P.roth[q, 1] * nx
-            on = P.has[q]
-            c[q] = (
-                P.gap[q]
-                + (Xa[q, 0] - P.refb[q, 0]) * nx + (Xa[q, 1] - P.refb[q, 1]) * ny
-                + kb * (TH[P.a[q]] - P.thb[q])
-                - np.where(on, (Xb[q, 0] - P.refo[q, 0]) * nx + (Xb[q, 1] - P.refo[q, 1]) * ny
-                           + ko * (tb[q] - P.tho[q]), 0.0)
-            )  # fmt: skip
-            g[0, q], g[1, q], g[2, q] = nx, ny, kb
-            g[3, q], g[4, q], g[5, q] = -nx, -ny, -ko
-        q = P.ct
-        if len(q):
-            tx, ty = -P.n[q, 1], P.n[q, 0]
-            g[0, q], g[1, q] = tx, ty
-            g[2, q] = P.rbod[q, 0] * ty - P.rbod[q, 1] * tx
-            g[3, q], g[4, q] = -tx, -ty
-            g[5, q] = -(P.roth[q, 0] * ty - P.roth[q, 1] * tx)
-        J = np.zeros((R, P.width))
-        r = P.r
-        J[r, P.a3], J[r, P.a3 + 1], J[r, P.a3 + 2] = g[0], g[1], g[2]
-        rb, b3 = P.rb, P.b3
-        J[rb, b3], J[rb, b3 + 1], J[rb, b3 + 2] = g[3, rb], g[4, rb], g[5, rb]
-        return c, J
+    def _eval(self, X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.ndarray]:
+        """Each row's value c and gradient J (engine.joint_rows)."""
+        return evaluate(X, TH, P)
 
-    # -- the step ------------------------------------------------------------------------
     def resolve(
         self,
         x0: np.ndarray,
@@ -376,7 +246,7 @@ class JointSolver:
             k_t = len(touch.body)
             rest = K + np.arange(k_t)
             link = np.concatenate([link, rest, rest])
-            kind = np.concatenate([kind, np.full(k_t, _CN), np.full(k_t, _CT)])
+            kind = np.concatenate([kind, np.full(k_t, CN), np.full(k_t, CT)])
             bound = np.concatenate([bound, np.zeros(2 * k_t)])
             sign = np.concatenate([sign, np.ones(k_t, dtype=np.intp), np.zeros(k_t, dtype=np.intp)])
             speed = np.concatenate([speed, np.zeros(2 * k_t)])
@@ -387,15 +257,15 @@ class JointSolver:
         plan = self._plan(link, kind, bound)
 
         # 1. Positions.
-        held = (kind != _MOTOR) & (kind != _SOFT_X) & (kind != _SOFT_Y) & (kind != _SOFT_ANGLE)
-        held &= kind != _CT
+        held = (kind != MOTOR) & (kind != SOFT_X) & (kind != SOFT_Y) & (kind != SOFT_ANGLE)
+        held &= kind != CT
         c1, J1 = self._eval(X1, T1, plan)
         _, G = self._eval(x0[b], th0[b], plan)
         use_end = np.zeros(len(link), dtype=bool)
         if kinked is not None:
             hit = kinked[self._i] | ((self._j >= 0) & kinked[np.maximum(self._j, 0)])
             use_end |= hit[link]
-        use_end |= (kind == _DIST) & (np.einsum("ij,ij->i", G, J1) < 0.0)
+        use_end |= (kind == DIST) & (np.einsum("ij,ij->i", G, J1) < 0.0)
         G[use_end] = J1[use_end]
         movable = np.abs(J1) @ Wm > 0.0
         tol = TOLERANCE * self.size
@@ -452,8 +322,8 @@ class JointSolver:
         c, J = self._eval(x[b], th[b], plan)
         V = np.stack([v[b, 0], v[b, 1], om[b]], 1).ravel()
         target = np.zeros(len(link))
-        target[kind == _MOTOR] = speed[kind == _MOTOR]
-        cable = (kind == _DIST) & (sign != 0)
+        target[kind == MOTOR] = speed[kind == MOTOR]
+        cable = (kind == DIST) & (sign != 0)
         if cable.any():
             # A cable slack as the step began snaps taut in it: the ends part at -e u.
             c0, J0 = self._eval(x0[b], th0[b], plan)
@@ -463,7 +333,7 @@ class JointSolver:
             )
             snap = cable & (c0 < -1e-9 * np.maximum(bound, 1e-300))
             target[snap] = -e[snap] * np.maximum(J0[snap] @ V1, 0.0)
-        soft = (kind == _SOFT_X) | (kind == _SOFT_Y) | (kind == _SOFT_ANGLE)
+        soft = (kind == SOFT_X) | (kind == SOFT_Y) | (kind == SOFT_ANGLE)
         # Inequalities act at their bound only (a cable taut, a limit reached).
         at = (sign != 0) & (sign * c <= tol)
         rows = movable & ((sign == 0) | at)
@@ -471,14 +341,14 @@ class JointSolver:
             # A contact acts while its two would close past their gap within the next step
             # (a speculative contact, as the pile's: they may close by the gap, no more); a
             # disc resting on a collider also whenever it touches. Its slip with it.
-            cn = np.flatnonzero(kind == _CN)
+            cn = np.flatnonzero(kind == CN)
             ahead = np.maximum(c[cn], 0.0) / dt
             target[cn] = -ahead
             closing = J[cn] @ V < -ahead
             rows[cn] = movable[cn] & (closing | (touch.lift & at[cn]))
             rows[cn + len(cn)] = rows[cn]
         clamp = np.full(len(link), np.inf)
-        is_motor = kind == _MOTOR
+        is_motor = kind == MOTOR
         for q in np.flatnonzero(is_motor):
             clamp[q] = self.joined[link[q]].max_torque * dt  # type: ignore[attr-defined]
         mix = np.zeros(len(link))
@@ -495,21 +365,21 @@ class JointSolver:
         free = rows.copy()
         # A motor turning its joint into a limit it is at pushes with all it has.
         for q in np.flatnonzero(is_motor & rows):
-            same = (link == link[q]) & at & (kind == _ANGLE)
+            same = (link == link[q]) & at & (kind == ANGLE)
             if (same & (sign * speed[q] < 0.0)).any():
                 free[q] = False
                 fixed[q] = math.copysign(clamp[q], speed[q]) if math.isfinite(clamp[q]) else 0.0
         # The least each row may give (sign * mu >= sign * floor): 0 for a cable or a limit;
         # for a resting disc's normal, minus what its contact already gave (it may lift).
         floor = np.zeros(len(link))
-        slip = np.flatnonzero(kind == _CT)
+        slip = np.flatnonzero(kind == CT)
         slide = np.zeros(len(link))  # a sliding disc's friction: the sign it acts with
         normal_of = np.zeros(len(link), dtype=np.intp)
         pt_row = np.zeros(len(link))
         pn_row = np.zeros(len(link))
         reach = np.zeros(len(link))
         if touch is not None:
-            floor[kind == _CN] = np.where(touch.lift, -touch.pn, 0.0)
+            floor[kind == CN] = np.where(touch.lift, -touch.pn, 0.0)
             normal_of[slip] = slip - len(slip)  # each slip row's normal row (in order)
             pt_row[slip], pn_row[slip], reach[slip] = touch.pt, touch.pn, touch.mu
         mu = np.zeros(len(link))  # each row's impulse (N s, or N m s), the rows' part
@@ -600,13 +470,13 @@ class JointSolver:
         # closed form's a dt^2 / 2), and are put back onto the joints and onto the contacts
         # that held in the velocity solve (no impulse). A motor's wheel then turns by
         # T t^2 / (2 I), and a car held by its brakes on a slope stays where it is.
-        alone = (kind == _MOTOR) | (kind == _CT) | soft
+        alone = (kind == MOTOR) | (kind == CT) | soft
         if alone.any() and mu[alone].any():
             shift = (Wm * (J[alone].T @ mu[alone])) * (0.5 * dt)
             S = shift.reshape(m, 3)
             Xs, Ts = x[b] + S[:, :2], th[b] + S[:, 2]
             c2, _ = self._eval(Xs, Ts, plan)
-            keep = held & movable & ((sign == 0) | (sign * c2 < 0.0) | ((kind == _CN) & rows))
+            keep = held & movable & ((sign == 0) | (sign * c2 < 0.0) | ((kind == CN) & rows))
             for _ in range(4):
                 back = self._project(Xs, Ts, plan.take(np.flatnonzero(keep)), Wm, tol)
                 B = back.reshape(m, 3)
@@ -623,7 +493,7 @@ class JointSolver:
         self,
         X1: np.ndarray,
         T1: np.ndarray,
-        P: _Plan,
+        P: Plan,
         Gs: np.ndarray,
         Wm: np.ndarray,
         tol: float,
@@ -651,7 +521,7 @@ class JointSolver:
         return lam, dq, False
 
     def _project(
-        self, X1: np.ndarray, T1: np.ndarray, P: _Plan, Wm: np.ndarray, tol: float
+        self, X1: np.ndarray, T1: np.ndarray, P: Plan, Wm: np.ndarray, tol: float
     ) -> np.ndarray:
         """The fallback: Gauss-Newton along the gradients where the bodies are now."""
         m = len(X1)
@@ -690,18 +560,18 @@ class JointSolver:
             item = self.joined[link[q]]
             col = 3 * self.ca[link[q]]
             px, py, pt = float(P[q, col]), float(P[q, col + 1]), float(P[q, col + 2])
-            if kind[q] == _DIST:
+            if kind[q] == DIST:
                 # > 0 pulls the ends together: body_a's gradient points away from the other.
                 n0 = G[q, col : col + 2]
                 n1 = J[q, col : col + 2]
                 item.impulse = -(float(lam[q] * (n0 @ n1)) / dt + float(mu[q]))
             elif isinstance(item, Joint):
-                if kind[q] in (_PX, _PY, _SOFT_X, _SOFT_Y):
+                if kind[q] in (PX, PY, SOFT_X, SOFT_Y):
                     item.linear_impulse = item.linear_impulse + (px, py)
                     item.impulse = item.linear_impulse.length()
                 else:
                     item.angular_impulse += pt
-                    if kind[q] == _MOTOR:
+                    if kind[q] == MOTOR:
                         item.motor_impulse += pt  # type: ignore[attr-defined]
             else:  # a Pin with an anchor: the size of its impulse (N s)
                 ox, oy = pins.get(int(link[q]), (0.0, 0.0))

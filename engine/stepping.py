@@ -26,7 +26,8 @@ from .body import Body
 from .event_dispatch import report, settle
 from .forcefield import ForceModel
 from .integrators import Integrator
-from .joint_solver import JointSolver, Touch
+from .joint_rows import Touch
+from .joint_solver import JointSolver
 from .links import LinkSolver
 from .rotation import Spin
 from .stability import SimulationDiverged, StabilityWarning
