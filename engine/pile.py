@@ -328,13 +328,14 @@ def step_pile(
     if n_faces and contacts is not None and (shapedU & ~kin).any():
         shapes, solid, first = statics.of(contacts)
         mine = U[shapedU & ~kin]
-        s_rows, s_col, sn, ss, skey, anchors[2] = static_rows(
-            table, mine, x0, shapes, solid, margin, angle
-        )
+        meets = None
         if contacts.faces.filters is not None:
-            ok = contacts.allowed(s_rows, first[s_col])
-            s_rows, s_col, sn, ss, skey = s_rows[ok], s_col[ok], sn[ok], ss[ok], skey[ok]
-            anchors[2] = anchors[2][ok]
+            # Pairs a body's filter does not meet are left out before the narrowphase.
+            allowed = contacts.allowed
+            meets = lambda rows, cols: allowed(rows, first[cols])  # noqa: E731
+        s_rows, s_col, sn, ss, skey, anchors[2] = static_rows(
+            table, mine, x0, shapes, solid, margin, angle, meets
+        )
         rows_a.append(np.full(len(s_rows), nU))
         rows_b.append(local[s_rows])
         normals.append(sn)

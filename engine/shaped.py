@@ -32,7 +32,7 @@ swept); the exact impacts in time order are for discs.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -160,13 +160,15 @@ def static_rows(
     solid: np.ndarray,
     margin: float,
     angle: np.ndarray | None = None,
+    meets: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
 ) -> tuple[np.ndarray, ...]:
     """The rows of bodies ``rows`` (World rows, with shapes) against the World's colliders
     (``statics``, ``engine.manifold.static_shapes``; ``solid`` (C,) bool: which colliders
     are solid, not sensors): (row, the collider's index, the unit normal from the collider
     to the body (R, 2), the separation (R,), the point's key: 2^16 c + its feature id for the
     c-th static shape of its kind, the point less the body's position (R, 2)), the bodies at their
-    ``angle`` (N,) (rad; None: all 0)."""
+    ``angle`` (N,) (rad; None: all 0). ``meets(rows, colliders)``: which body-collider pairs
+    their filters let meet (None: all)."""
     out: list[list[np.ndarray]] = [[], [], [], [], [], []]
     q = np.zeros(len(x)) if angle is None else angle
     for code in (DISC, CAPSULE, POLYGON):
@@ -180,6 +182,21 @@ def static_rows(
                 continue
             r_i = np.repeat(np.arange(len(mine)), len(keep))
             c_i = np.tile(keep, len(mine))
+            if meets is not None:
+                ok = meets(mine[r_i], owner[c_i])
+                r_i, c_i = r_i[ok], c_i[ok]
+                if not len(r_i):
+                    continue
+            gap = _gaps(kind, c_i, x[mine[r_i]])
+            if gap is not None:
+                # Only the shapes the body's bounding circle comes within the margin of: the
+                # narrowphase would give the others no rows (the same rows, in the same
+                # order, for far less work on a table of many colliders).
+                gap -= table.circles.radius[mine[r_i]]
+                near = gap <= margin * (1.0 + 1e-9) + 1e-12
+                r_i, c_i = r_i[near], c_i[near]
+                if not len(r_i):
+                    continue
             body = mine[r_i]
             m = collide(shapes.take(r_i), x[body], q[body], kind.take(c_i), (0.0, 0.0), 0.0, margin)
             pair, slot = _points(m)
@@ -190,6 +207,28 @@ def static_rows(
             out[4].append((base * 1_000_003 + c_i[pair]) * 65536 + (m.feature[pair, slot] & 0xFFFF))
             out[5].append(m.anchor_a[pair, slot])
     return _joined(out)
+
+
+def _gaps(kind: Kind, c: np.ndarray, p: np.ndarray) -> np.ndarray | None:
+    """A lower bound on the gap (length units) from points ``p`` (R, 2) to the static shapes
+    ``c`` (R,) of ``kind``: to a circle or a capsule exactly, to a polygon its bounding
+    circle; None for half planes (no end)."""
+    if isinstance(kind, Circles):
+        d = p - kind.center[c]
+        return np.sqrt(np.einsum("ij,ij->i", d, d)) - kind.radius[c]
+    if isinstance(kind, Capsules):
+        a, ab = kind.a[c], kind.b[c] - kind.a[c]
+        u = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.einsum("ij,ij->i", ab, ab), 0.0, 1.0)
+        d = p - a - u[:, None] * ab
+        return np.sqrt(np.einsum("ij,ij->i", d, d)) - kind.radius[c]
+    if isinstance(kind, Polygons):
+        v = kind.vertices[c]
+        centre = v.mean(axis=1)
+        e = v - centre[:, None, :]
+        reach = np.sqrt(np.einsum("ijk,ijk->ij", e, e)).max(axis=1) + kind.radius[c]
+        d = p - centre
+        return np.sqrt(np.einsum("ij,ij->i", d, d)) - reach
+    return None
 
 
 def _joined(out: list[list[np.ndarray]]) -> tuple[np.ndarray, ...]:
