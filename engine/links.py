@@ -184,9 +184,6 @@ class Link:
         #: Whether the World has warned that this link was stretched past what a step holds.
         self.warned = False
 
-    def _end(self) -> Vector:
-        return self._other.pos if self._other is not None else self._point  # type: ignore[return-value]
-
     def end_a(self) -> Vector:
         """Where the link holds ``body`` now: its anchor_a, in world coordinates."""
         return self._body.local_to_world(self._anchor_a)

@@ -180,7 +180,8 @@ def _step_general(
         state.collisions.state(),
         None if contacts is None else contacts.state(),
     )
-    spun = (store.angle.copy(), store.omega.copy())
+    # (A step rebinds the angle arrays, never writes into them: the references are the state.)
+    spun = (store.angle, store.omega)
     _step_once(state, dt, name, step, model, t0, t1)
     if not _struck_linked(state):
         return

@@ -38,7 +38,18 @@ import math
 from collections.abc import Callable, Iterable, Mapping
 from numbers import Real
 from operator import itemgetter
-from typing import Any, SupportsFloat, TypeVar, Union
+from typing import TYPE_CHECKING, Any, SupportsFloat, TypeVar, Union
+
+from .vector_checks import OMITTED as _OMITTED
+from .vector_checks import ClassOnly as _ClassOnly
+from .vector_checks import component as _component
+from .vector_checks import is_scalar as _is_scalar
+from .vector_checks import not_a_pair as _not_a_pair
+from .vector_checks import refuse_in_place
+from .vector_checks import round_half_away as _round_half_away
+
+if TYPE_CHECKING:
+    from .vector_operators import Elementwise
 
 __all__ = ["Vector", "VectorLike", "as_pair", "new_unchecked"]
 
@@ -58,23 +69,6 @@ _new = new_unchecked  # the old name, used throughout this module
 # pygame's Vector2 tolerance (VECTOR_EPSILON in pygame's src_c/math.c): the methods named
 # after pygame's use it exactly where pygame does, so they refuse the same near-zero input.
 _EPSILON = 1e-6
-
-
-def _component(value: Any, name: str) -> float:
-    """Return ``value`` as a float, or raise TypeError naming the component."""
-    # bool is a subclass of int, but Vector(True, False) is almost surely a mistake.
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise TypeError(
-            f"Vector component {name} must be a real number (int or float), "
-            f"got {type(value).__name__} {value!r}"
-        )
-    try:
-        return float(value)
-    except OverflowError:  # an int (or Fraction) beyond the float range, ~1.8e308
-        raise ValueError(
-            f"Vector component {name} must be a number within the float range (|x| < 1.8e308), "
-            f"got {value!r}"
-        ) from None
 
 
 def as_pair(other: Any) -> tuple[float, float] | None:
@@ -111,93 +105,12 @@ def as_pair(other: Any) -> tuple[float, float] | None:
         return None
 
 
-_as_pair = as_pair  # the old name, used throughout this module
-
-
 def _pair(value: Any, name: str) -> tuple[float, float]:
-    """The (x, y) of ``value`` (see ``_as_pair``), else TypeError naming ``name``."""
-    pair = value if type(value) is Vector else _as_pair(value)
+    """The (x, y) of ``value`` (see ``as_pair``), else TypeError naming ``name``."""
+    pair = value if type(value) is Vector else as_pair(value)
     if pair is None:
         raise TypeError(_not_a_pair(value, name))
     return pair
-
-
-def _not_a_pair(value: Any, name: str) -> str:
-    """The message for a value that is not a 2-sequence of real numbers."""
-    why = ""
-    if not isinstance(value, (str, bytes)):
-        try:
-            n = len(value)
-        except TypeError:
-            pass
-        else:
-            why = f" (it has {n} items)" if n != 2 else " (its items are not both real numbers)"
-    return (
-        f"{name} must be a Vector or a pair of real numbers like (1.0, 2.0) "
-        f"(a tuple, list, numpy row or pygame Vector2), got {type(value).__name__} {value!r}{why}"
-    )
-
-
-def _round_half_away(y: float) -> float:
-    """C's round(y): the nearest integer, halves away from zero, keeping the sign of zero."""
-    if not math.isfinite(y):
-        return y
-    t = math.copysign(float(math.trunc(y)), y)
-    # y - trunc(y) is exact (both have the same sign and exponent or t is 0), so the
-    # comparison with 0.5 decides the half cases exactly.
-    if abs(y - t) >= 0.5:
-        t += math.copysign(1.0, y)
-    return t
-
-
-def _is_scalar(value: Any) -> bool:
-    t = type(value)
-    if t is float or t is int:
-        return True
-    return isinstance(value, Real) and not isinstance(value, bool)
-
-
-class _Omitted:
-    """The default of ``Vector(x, y)``'s y: omitted, y is 0.0, or x is a pair."""
-
-    def __repr__(self) -> str:
-        return "0.0"
-
-
-_OMITTED: Any = _Omitted()
-
-
-class _NotInPlace:
-    """A pygame in-place name (``normalize_ip``...): AttributeError naming what to write instead.
-
-    An immutable Vector cannot change in place; looking the name up raises at once, so
-    ``hasattr(v, "normalize_ip")`` is False and ``v.normalize_ip()`` says what to write.
-    """
-
-    def __init__(self, instead: str) -> None:
-        self.instead = instead
-        self.name = ""
-
-    def __set_name__(self, owner: type, name: str) -> None:
-        self.name = name
-
-    def __get__(self, obj: object, owner: type | None = None) -> Any:
-        raise AttributeError(
-            f"Vector is immutable, so it has no {self.name}(): write {self.instead} "
-            f"(a new Vector, bound to the name again)"
-        )
-
-
-class _ClassOnly(classmethod):  # type: ignore[type-arg]
-    """A classmethod that refuses instances: pygame's ``v.from_polar(p)`` changed v in place."""
-
-    def __get__(self, obj: Any, owner: type | None = None) -> Any:
-        if obj is not None:
-            raise AttributeError(
-                "Vector is immutable, so v.from_polar(...) cannot change v: "
-                "write v = Vector.from_polar((r, degrees))"
-            )
-        return super().__get__(obj, owner)
 
 
 class Vector(tuple):  # type: ignore[type-arg]
@@ -225,7 +138,7 @@ class Vector(tuple):  # type: ignore[type-arg]
             # Vector2((x, y)), the vector from a position tuple.
             if _is_scalar(x):
                 return _new(cls, (_component(x, "x"), 0.0))
-            pair = _as_pair(x)
+            pair = as_pair(x)
             if pair is None:
                 raise TypeError(
                     "Vector(x) with one argument takes a number x (y is then 0) or a pair: "
@@ -247,7 +160,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         """
         if type(value) is Vector:
             return value
-        pair = _as_pair(value)
+        pair = as_pair(value)
         if pair is None:
             raise TypeError(_not_a_pair(value, name))
         return _new(cls, pair)
@@ -298,17 +211,6 @@ class Vector(tuple):  # type: ignore[type-arg]
         (True, False)
         """
         return _new(type(self), (self[0], self[1]))
-
-    # pygame's in-place names: an immutable Vector has none; each says what to write instead.
-    normalize_ip = _NotInPlace("v = v.normalize()")
-    scale_to_length_ip = _NotInPlace("v = v.scale_to_length(length)")
-    rotate_ip = _NotInPlace("v = v.rotate(degrees)")
-    rotate_rad_ip = _NotInPlace("v = v.rotate_rad(radians)")
-    rotate_ip_rad = _NotInPlace("v = v.rotate_rad(radians)")
-    reflect_ip = _NotInPlace("v = v.reflect(normal)")
-    move_towards_ip = _NotInPlace("v = v.move_towards(target, max_distance)")
-    clamp_magnitude_ip = _NotInPlace("v = v.clamp_magnitude(max_length)")
-    update = _NotInPlace("v = Vector(x, y)")
 
     # -- text -------------------------------------------------------------------------
     def __str__(self) -> str:
@@ -361,10 +263,12 @@ class Vector(tuple):  # type: ignore[type-arg]
     # -- arithmetic ---------------------------------------------------------------------
     # The hot paths (+, -, * by a number) name Vector itself: _new(type(self), ...) would cost
     # every Vector ~5 ns (1.5%) an operation. A subclass gets the same operators returning the
-    # subclass instead, made for it by __init_subclass__ (see _arithmetic_returning below).
+    # subclass instead, made for it by __init_subclass__ (engine.vector_operators).
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        for name, method in _arithmetic_returning(cls).items():
+        from .vector_operators import arithmetic_returning  # (it builds on Vector)
+
+        for name, method in arithmetic_returning(cls).items():
             inherited = getattr(cls, name)
             # Replace only Vector's own operator or one made here: never the subclass's own.
             if getattr(Vector, name) is inherited or getattr(inherited, "_made_for", None):
@@ -372,13 +276,13 @@ class Vector(tuple):  # type: ignore[type-arg]
                     setattr(cls, name, method)
 
     def __add__(self, other: Any) -> Vector:  # type: ignore[override]
-        pair = other if type(other) is Vector else _as_pair(other)
+        pair = other if type(other) is Vector else as_pair(other)
         if pair is None:
             return NotImplemented
         return _new(Vector, (self[0] + pair[0], self[1] + pair[1]))
 
     def __radd__(self, other: Any) -> Vector:
-        pair = _as_pair(other)
+        pair = as_pair(other)
         if pair is None:
             if isinstance(other, tuple):
                 # NotImplemented would let the tuple answer: (1,) + v would concatenate into
@@ -392,13 +296,13 @@ class Vector(tuple):  # type: ignore[type-arg]
 
     def __sub__(self, other: Any) -> Vector:
         # The lesson's __sub__ added the y components; this subtracts both.
-        pair = other if type(other) is Vector else _as_pair(other)
+        pair = other if type(other) is Vector else as_pair(other)
         if pair is None:
             return NotImplemented
         return _new(Vector, (self[0] - pair[0], self[1] - pair[1]))
 
     def __rsub__(self, other: Any) -> Vector:
-        pair = _as_pair(other)
+        pair = as_pair(other)
         if pair is None:
             return NotImplemented
         return _new(Vector, (pair[0] - self[0], pair[1] - self[1]))
@@ -421,7 +325,7 @@ class Vector(tuple):  # type: ignore[type-arg]
             except OverflowError:  # an int beyond the float range
                 s = _component(other, "scale")  # raises ValueError naming it
             return _new(Vector, (self[0] * s, self[1] * s))
-        if isinstance(other, (tuple, list)) or _as_pair(other) is not None:
+        if isinstance(other, (tuple, list)) or as_pair(other) is not None:
             raise TypeError(
                 "Vector * Vector is ambiguous: use v.dot(w) for the dot product, "
                 "v.cross(w) for the 2D cross product or v.elementwise() * w for "
@@ -488,7 +392,7 @@ class Vector(tuple):  # type: ignore[type-arg]
     def __abs__(self) -> float:
         return self.magnitude()
 
-    def elementwise(self) -> _Elementwise:
+    def elementwise(self) -> Elementwise:
         """pygame's proxy for component-by-component operations: v.elementwise() * w.
 
         >>> Vector(2, 3).elementwise() * (4, 5)
@@ -496,7 +400,9 @@ class Vector(tuple):  # type: ignore[type-arg]
         >>> Vector(2, 3).elementwise() > 1
         True
         """
-        return _Elementwise(self)
+        from .vector_operators import Elementwise  # (it builds on Vector)
+
+        return Elementwise(self)
 
     # -- lengths --------------------------------------------------------------------------
     def magnitude(self) -> float:
@@ -890,160 +796,4 @@ class Vector(tuple):  # type: ignore[type-arg]
         return _new(type(self), (ox * factor, oy * factor))
 
 
-def _arithmetic_returning(cls: type[Vector]) -> dict[str, Callable[..., Any]]:
-    """Vector's operators, returning ``cls``: a subclass's arithmetic keeps the subclass.
-
-    The same bodies as Vector's own (tests/test_vector.py checks they agree), with the
-    subclass in place of Vector; Vector keeps its own so that it pays nothing for this.
-    """
-
-    def __add__(self: Vector, other: Any) -> Any:
-        pair = other if type(other) is Vector else _as_pair(other)
-        if pair is None:
-            return NotImplemented
-        return _new(cls, (self[0] + pair[0], self[1] + pair[1]))
-
-    def __radd__(self: Vector, other: Any) -> Any:
-        if _as_pair(other) is None:
-            return Vector.__radd__(self, other)  # NotImplemented, or its TypeError for a tuple
-        return __add__(self, other)
-
-    def __sub__(self: Vector, other: Any) -> Any:
-        pair = other if type(other) is Vector else _as_pair(other)
-        if pair is None:
-            return NotImplemented
-        return _new(cls, (self[0] - pair[0], self[1] - pair[1]))
-
-    def __rsub__(self: Vector, other: Any) -> Any:
-        pair = _as_pair(other)
-        if pair is None:
-            return NotImplemented
-        return _new(cls, (pair[0] - self[0], pair[1] - self[1]))
-
-    def __neg__(self: Vector) -> Any:
-        return _new(cls, (-self[0], -self[1]))
-
-    def __pos__(self: Vector) -> Any:
-        return _new(cls, (self[0], self[1]))
-
-    def __mul__(self: Vector, other: Any) -> Any:
-        result = Vector.__mul__(self, other)  # the checks and the messages are Vector's
-        return result if result is NotImplemented else _new(cls, result)
-
-    def __truediv__(self: Vector, other: Any) -> Any:
-        result = Vector.__truediv__(self, other)
-        return result if result is NotImplemented else _new(cls, result)
-
-    methods: dict[str, Callable[..., Any]] = {
-        "__add__": __add__,
-        "__radd__": __radd__,
-        "__sub__": __sub__,
-        "__rsub__": __rsub__,
-        "__neg__": __neg__,
-        "__pos__": __pos__,
-        "__mul__": __mul__,
-        "__rmul__": __mul__,
-        "__truediv__": __truediv__,
-    }
-    for method in methods.values():
-        method._made_for = cls  # type: ignore[attr-defined]
-    return methods
-
-
-def _elementwise_pair(other: Any) -> tuple[float, float] | None:
-    if type(other) is _Elementwise:
-        return other.vector
-    return _as_pair(other)
-
-
-def _binary(
-    op: Callable[[float, float], float], reflected: bool = False
-) -> Callable[[_Elementwise, Any], Any]:
-    """An operator of _Elementwise: ``op`` on each component, with a pair or a number."""
-
-    def method(self: _Elementwise, other: Any) -> Any:
-        v = self.vector
-        pair = _elementwise_pair(other)
-        if pair is not None:
-            a, b = pair
-        elif _is_scalar(other):
-            a = b = float(other)
-        else:
-            return NotImplemented
-        if reflected:
-            x, y = op(a, v[0]), op(b, v[1])
-        else:
-            x, y = op(v[0], a), op(v[1], b)
-        if not (isinstance(x, Real) and isinstance(y, Real)):  # (-1) ** 0.5 is complex
-            raise ValueError("negative number cannot be raised to a fractional power")
-        return _new(type(v), (float(x), float(y)))
-
-    return method
-
-
-def _compare(op: Callable[[float, float], bool]) -> Callable[[_Elementwise, Any], Any]:
-    """A comparison of _Elementwise: True when ``op`` holds for both components."""
-
-    def method(self: _Elementwise, other: Any) -> Any:
-        v = self.vector
-        pair = _elementwise_pair(other)
-        if pair is not None:
-            a, b = pair
-        elif _is_scalar(other):
-            a = b = float(other)
-        else:
-            return NotImplemented
-        return op(v[0], a) and op(v[1], b)
-
-    return method
-
-
-class _Elementwise:
-    """pygame's VectorElementwiseProxy: operators apply to each component on its own.
-
-    ``v.elementwise() * w`` is (v.x w.x, v.y w.y); ``v.elementwise() > 0`` is True when both
-    components are. The results are Vectors (of v's type); comparisons are plain bools.
-    """
-
-    __slots__ = ("vector",)
-
-    def __init__(self, vector: Vector) -> None:
-        self.vector = vector
-
-    __add__ = __radd__ = _binary(lambda a, b: a + b)
-    __sub__ = _binary(lambda a, b: a - b)
-    __rsub__ = _binary(lambda a, b: a - b, reflected=True)
-    __mul__ = __rmul__ = _binary(lambda a, b: a * b)
-    __truediv__ = _binary(lambda a, b: a / b)
-    __rtruediv__ = _binary(lambda a, b: a / b, reflected=True)
-    __floordiv__ = _binary(lambda a, b: a // b)
-    __rfloordiv__ = _binary(lambda a, b: a // b, reflected=True)
-    __mod__ = _binary(lambda a, b: a % b)
-    __rmod__ = _binary(lambda a, b: a % b, reflected=True)
-    __pow__ = _binary(lambda a, b: a**b)
-    __rpow__ = _binary(lambda a, b: a**b, reflected=True)
-
-    __eq__ = _compare(lambda a, b: a == b)  # type: ignore[assignment]
-    # pygame's elementwise != holds when every component differs (not "not ==").
-    __ne__ = _compare(lambda a, b: a != b)  # type: ignore[assignment]
-    __lt__ = _compare(lambda a, b: a < b)
-    __le__ = _compare(lambda a, b: a <= b)
-    __gt__ = _compare(lambda a, b: a > b)
-    __ge__ = _compare(lambda a, b: a >= b)
-    __hash__ = None  # type: ignore[assignment]
-
-    def __abs__(self) -> Vector:
-        v = self.vector
-        return _new(type(v), (abs(v[0]), abs(v[1])))
-
-    def __neg__(self) -> Vector:
-        return -self.vector
-
-    def __pos__(self) -> Vector:
-        return +self.vector
-
-    def __bool__(self) -> bool:
-        return bool(self.vector)
-
-    def __repr__(self) -> str:
-        return f"{self.vector!r}.elementwise()"
+refuse_in_place(Vector)  # pygame's in-place names, each saying what to write instead
