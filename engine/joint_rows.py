@@ -19,6 +19,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .joint_contacts import polygon_distance
+from .manifold_kinds import Polygons
+
 __all__ = [
     "Touch", "Plan", "evaluate", "PX", "PY", "DIST", "ANGLE", "MOTOR", "SOFT_X", "SOFT_Y",
     "SOFT_ANGLE", "CN", "CT",
@@ -36,7 +39,10 @@ class Touch(NamedTuple):
     impulse the contact gave in the step along n and along t = (-n_y, n_x) (N s), and
     ``lift``: a disc resting on a collider (engine.contacts: the joints may take back its
     contact's impulse, it may lift) or a contact of the pile (engine.pile: it only pushes,
-    and only while the two close)."""
+    and only while the two close). ``turn`` (engine.joint_contacts): 0, a row linear about
+    where the step left the two; +1 (-1), the body (the other) is a polygon, ``poly`` in the
+    World's polygons, and the other end a disc of ``radius``, its row exact wherever the
+    polygon turns; its gap is then the one at the step's start."""
 
     body: np.ndarray
     other: np.ndarray
@@ -48,6 +54,9 @@ class Touch(NamedTuple):
     pn: np.ndarray
     pt: np.ndarray
     lift: np.ndarray
+    turn: np.ndarray
+    poly: np.ndarray
+    radius: np.ndarray
 
     @staticmethod
     def join(parts: list[Touch | None]) -> Touch | None:
@@ -75,13 +84,17 @@ class Plan:
         ab: np.ndarray,
         touch: tuple[np.ndarray, ...],
         width: int,
+        polygons: Polygons | None = None,
     ) -> None:
         self.kind, self.bound, self.a, self.b = kind, bound, a, b
         self.aa, self.ab = aa, ab
         # A contact row's normal, contact points less the centres, where the body and the
-        # other were (position, angle) as the step ended, and its gap.
+        # other were (position, angle) as the step ended (began, for a disc and a polygon),
+        # its gap, and a disc and a polygon's (Touch.turn, poly, radius).
         self.touch = touch
-        self.n, self.rbod, self.roth, self.refb, self.refo, self.thb, self.tho, self.gap = touch
+        self.n, self.rbod, self.roth, self.refb, self.refo, self.thb, self.tho, self.gap = touch[:8]
+        self.turn, self.poly, self.radius = touch[8:]
+        self.polygons = polygons
         self.width = width
         self.has = b >= 0
         self.bc = np.maximum(b, 0)
@@ -100,7 +113,7 @@ class Plan:
         """The rows ``sel`` alone."""
         return Plan(
             self.kind[sel], self.bound[sel], self.a[sel], self.b[sel], self.aa[sel],
-            self.ab[sel], tuple(t[sel] for t in self.touch), self.width,
+            self.ab[sel], tuple(t[sel] for t in self.touch), self.width, self.polygons,
         )  # fmt: skip
 
 
@@ -140,31 +153,9 @@ def evaluate(X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.nda
     if len(q):
         c[q] = ta[q] - tb[q] - P.bound[q]
         g[2, q], g[5, q] = 1.0, -1.0
-    q = P.cn
+    q = np.concatenate([P.cn, P.ct])
     if len(q):
-        # A contact: its gap along the normal, linear about where the step left the two
-        # (the body, a; the other, b), which the correction may not close; and the slip
-        # of its points along t (velocity only).
-        nx, ny = P.n[q, 0], P.n[q, 1]
-        kb = P.rbod[q, 0] * ny - P.rbod[q, 1] * nx  # r x n, the body's lever
-        ko = P.roth[q, 0] * ny - P.roth[q, 1] * nx
-        on = P.has[q]
-        c[q] = (
-            P.gap[q]
-            + (Xa[q, 0] - P.refb[q, 0]) * nx + (Xa[q, 1] - P.refb[q, 1]) * ny
-            + kb * (TH[P.a[q]] - P.thb[q])
-            - np.where(on, (Xb[q, 0] - P.refo[q, 0]) * nx + (Xb[q, 1] - P.refo[q, 1]) * ny
-                       + ko * (tb[q] - P.tho[q]), 0.0)
-        )  # fmt: skip
-        g[0, q], g[1, q], g[2, q] = nx, ny, kb
-        g[3, q], g[4, q], g[5, q] = -nx, -ny, -ko
-    q = P.ct
-    if len(q):
-        tx, ty = -P.n[q, 1], P.n[q, 0]
-        g[0, q], g[1, q] = tx, ty
-        g[2, q] = P.rbod[q, 0] * ty - P.rbod[q, 1] * tx
-        g[3, q], g[4, q] = -tx, -ty
-        g[5, q] = -(P.roth[q, 0] * ty - P.roth[q, 1] * tx)
+        _contacts(q, X, TH, Xa, Xb, tb, P, c, g)
     J = np.zeros((R, P.width))
     r = P.r
     J[r, P.a3], J[r, P.a3 + 1], J[r, P.a3 + 2] = g[0], g[1], g[2]
@@ -174,3 +165,104 @@ def evaluate(X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.nda
 
 
 # -- the step ------------------------------------------------------------------------
+
+
+def _contacts(
+    q: np.ndarray,
+    X: np.ndarray,
+    TH: np.ndarray,
+    Xa: np.ndarray,
+    Xb: np.ndarray,
+    tb: np.ndarray,
+    P: Plan,
+    c: np.ndarray,
+    g: np.ndarray,
+) -> None:
+    """The contact rows ``q`` (P.cn then P.ct) of ``evaluate``: values into c, gradients
+    into g."""
+    k = len(P.cn)
+    cn, ct = q[:k], q[k:]
+    nx, ny = P.n[q, 0].copy(), P.n[q, 1].copy()
+    rbx, rby = P.rbod[q, 0].copy(), P.rbod[q, 1].copy()
+    rox, roy = P.roth[q, 0].copy(), P.roth[q, 1].copy()
+    # A row linear about where the step left the two (the body, a; the other, b): its gap
+    # along the normal, which the correction may not close.
+    kb = rbx[:k] * ny[:k] - rby[:k] * nx[:k]  # r x n, the body's lever
+    ko = rox[:k] * ny[:k] - roy[:k] * nx[:k]
+    on = P.has[cn]
+    c[cn] = (
+        P.gap[cn]
+        + (Xa[cn, 0] - P.refb[cn, 0]) * nx[:k] + (Xa[cn, 1] - P.refb[cn, 1]) * ny[:k]
+        + kb * (TH[P.a[cn]] - P.thb[cn])
+        - np.where(on, (Xb[cn, 0] - P.refo[cn, 0]) * nx[:k]
+                   + (Xb[cn, 1] - P.refo[cn, 1]) * ny[:k] + ko * (tb[cn] - P.tho[cn]), 0.0)
+    )  # fmt: skip
+    g[0, cn], g[1, cn], g[2, cn] = nx[:k], ny[:k], kb
+    g[3, cn], g[4, cn], g[5, cn] = -nx[:k], -ny[:k], -ko
+    shaped = np.flatnonzero(P.turn[q] != 0)
+    if len(shaped) and P.polygons is not None:
+        # A disc against a polygon (engine.joint_contacts): the disc's centre's distance from
+        # the polygon where it is now, less where the step began, plus the gap there. With
+        # d = x_disc - x_poly and the feature's outward normal m = R(theta) m_local:
+        #   a face, dist = m . d - m_local . v: d dist / d theta = m x d;
+        #   a corner v, e = d - R(theta) v, dist = |e|, m = e / |e|: d dist / d theta =
+        #   -(R(theta) v) x m.
+        # The row's normal (from the other to the body) is m, or -m when the body is the
+        # polygon; its contact point is the disc's centre less its radius along m.
+        rows = q[shaped]
+        mine = P.turn[rows] > 0  # the body is the polygon
+        Xp = np.where(mine[:, None], Xa[rows], Xb[rows])
+        Xd = np.where(mine[:, None], Xb[rows], Xa[rows])
+        tp = np.where(mine, TH[P.a[rows]], tb[rows])
+        Rp = np.where(mine[:, None], P.refb[rows], P.refo[rows])
+        Rd = np.where(mine[:, None], P.refo[rows], P.refb[rows])
+        rp = np.where(mine, P.thb[rows], P.tho[rows])
+        start = _local(Rd - Rp, rp)
+        dist, mx, my, dth, dx, dy = _polygon(P, rows, Xd - Xp, tp, start)
+        dist0 = _polygon(P, rows, Rd - Rp, rp, start)[0]
+        sg = np.where(mine, -1.0, 1.0)
+        nx[shaped], ny[shaped] = sg * mx, sg * my
+        rd = P.radius[rows]
+        pdx, pdy = -rd * mx, -rd * my  # the contact point less the disc's centre
+        ppx, ppy = dx + pdx, dy + pdy  # ... less the polygon's centre
+        rbx[shaped] = np.where(mine, ppx, pdx)
+        rby[shaped] = np.where(mine, ppy, pdy)
+        rox[shaped] = np.where(mine, pdx, ppx)
+        roy[shaped] = np.where(mine, pdy, ppy)
+        normal = shaped < k
+        r_n = rows[normal]
+        c[r_n] = (P.gap[rows] + dist - dist0)[normal]
+        g[0, r_n], g[1, r_n] = nx[shaped][normal], ny[shaped][normal]
+        g[3, r_n], g[4, r_n] = -nx[shaped][normal], -ny[shaped][normal]
+        g[2, r_n] = np.where(mine, dth, 0.0)[normal]
+        g[5, r_n] = np.where(mine, 0.0, dth)[normal]
+    # The slip of its points along t = (-n_y, n_x) (velocity only).
+    tx, ty = -ny[k:], nx[k:]
+    g[0, ct], g[1, ct] = tx, ty
+    g[2, ct] = rbx[k:] * ty - rby[k:] * tx
+    g[3, ct], g[4, ct] = -tx, -ty
+    g[5, ct] = -(rox[k:] * ty - roy[k:] * tx)
+
+
+def _local(d: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """Vectors d (k, 2) in frames turned theta (k,): R(-theta) d."""
+    cs, sn = np.cos(theta), np.sin(theta)
+    return np.stack([cs * d[:, 0] + sn * d[:, 1], -sn * d[:, 0] + cs * d[:, 1]], 1)
+
+
+def _polygon(
+    P: Plan, rows: np.ndarray, d: np.ndarray, theta: np.ndarray, start: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """The disc's centre's distance from the polygon less the radii (its centre d from the
+    polygon's, which is turned theta; ``start``: where the centre was in the polygon's frame
+    as the step began), the feature's world normal (mx, my), d dist / d theta, and d
+    (dx, dy)."""
+    assert P.polygons is not None
+    cs, sn = np.cos(theta), np.sin(theta)
+    dx, dy = d[:, 0], d[:, 1]
+    dist, m, corner, at = polygon_distance(P.polygons, P.poly[rows], _local(d, theta), start)
+    mx, my = cs * m[:, 0] - sn * m[:, 1], sn * m[:, 0] + cs * m[:, 1]
+    vx, vy = cs * at[:, 0] - sn * at[:, 1], sn * at[:, 0] + cs * at[:, 1]
+    dth = np.where(corner, -(vx * my - vy * mx), mx * dy - my * dx)
+    dist = dist - P.radius[rows] - P.polygons.radius[P.poly[rows]]
+    return dist, mx, my, dth, dx, dy

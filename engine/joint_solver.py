@@ -58,6 +58,7 @@ from .joint_rows import (
 )  # fmt: skip
 from .joints import Hinge, Joint, Weld
 from .links import Cable, Link, Pin
+from .manifold_kinds import Polygons
 
 __all__ = ["JointSolver", "TOLERANCE"]
 
@@ -99,18 +100,28 @@ class JointSolver:
             size.append(k.length)
         self.size = max(size)
         self._touch(None, None, None)
+        self._polygons: Polygons | None = None
         self.moved = False
         self.stretched: list[Link] = []
 
-    def _touch(self, touch: Touch | None, x: np.ndarray | None, th: np.ndarray | None) -> None:
+    def _touch(
+        self,
+        touch: Touch | None,
+        x: np.ndarray | None,
+        th: np.ndarray | None,
+        x0: np.ndarray | None = None,
+        th0: np.ndarray | None = None,
+    ) -> None:
         """The bodies and per-link arrays the rows index, with one entry more for each contact
-        of ``touch`` and its bodies among the joints' (x, th: where the step left them)."""
+        of ``touch`` and its bodies among the joints' (x, th: where the step left them; x0,
+        th0: where it began, the place of a contact against a face, Touch.turn)."""
         self._bodies = self.bodies
         self._i, self._j, self._aa, self._ab = self.i, self.j, self.aa, self.ab
         self._ca, self._cb = self.ca, self.cb
         K = len(self.i)
         z2, z1 = np.zeros((K, 2)), np.zeros(K)
-        self._contact: tuple[np.ndarray, ...] = (z2, z2, z2, z2, z2, z1, z1, z1)
+        z0, none = np.zeros(K, dtype=np.int8), np.full(K, -1, dtype=np.intp)
+        self._contact: tuple[np.ndarray, ...] = (z2, z2, z2, z2, z2, z1, z1, z1, z0, none, z1)
         if touch is None or x is None or th is None:
             return
         k = len(touch.body)
@@ -127,8 +138,15 @@ class JointSolver:
         self._ca = col[self._i]
         self._cb = np.where(self._j >= 0, col[np.maximum(self._j, 0)], -1)
         oc = np.maximum(other, 0)
+        refb, thb = x[touch.body], th[touch.body]
         refo = np.where(has[:, None], x[oc], 0.0)
         tho = np.where(has, th[oc], 0.0)
+        if x0 is not None and th0 is not None and touch.turn.any():
+            face = touch.turn != 0
+            refb = np.where(face[:, None], x0[touch.body], refb)
+            thb = np.where(face, th0[touch.body], thb)
+            refo = np.where((face & has)[:, None], x0[oc], refo)
+            tho = np.where(face & has, th0[oc], tho)
         self._contact = tuple(
             np.concatenate([base, extra])
             for base, extra in zip(
@@ -137,11 +155,14 @@ class JointSolver:
                     touch.normal,
                     touch.r_body,
                     touch.r_other,
-                    x[touch.body],
+                    refb,
                     refo,
-                    th[touch.body],
+                    thb,
                     tho,
                     touch.gap,
+                    touch.turn,
+                    touch.poly,
+                    touch.radius,
                 ),  # fmt: skip
                 strict=True,
             )
@@ -194,7 +215,7 @@ class JointSolver:
         i, j = self._ca[link], self._cb[link]
         return Plan(
             kind, bound, i, j, self._aa[link], self._ab[link],
-            tuple(t[link] for t in self._contact), 3 * len(self._bodies),
+            tuple(t[link] for t in self._contact), 3 * len(self._bodies), self._polygons,
         )  # fmt: skip
 
     def _eval(self, X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.ndarray]:
@@ -214,13 +235,16 @@ class JointSolver:
         dt: float,
         kinked: np.ndarray | None = None,
         touch: Touch | None = None,
+        polygons: Polygons | None = None,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The step's end state (x1, v1, th1, om1) corrected for the joints; ``w`` (N,): 1/m
         and ``k`` (N,): 1/I, 0 for what nothing moves or turns; ``kinked``: bodies whose
         velocity a contact changed in the step; ``touch``: the joints' bodies resting on a
         collider, whose contact takes part in the correction (a wheel driven by a motor
-        rolls on its friction), with the impulse it already gave counted."""
+        rolls on its friction), with the impulse it already gave counted; ``polygons``: the
+        World's, which its discs against polygons index (Touch.poly)."""
         self.moved = False
+        self._polygons = polygons
         self.stretched = []
         x, v, th, om = x1, v1, th1, om1
         if len(self.pin_rows):
@@ -238,7 +262,7 @@ class JointSolver:
         if not self.joined:
             return x, v, th, om
         link, kind, bound, sign, speed = self._rows()
-        self._touch(touch, x, th)
+        self._touch(touch, x, th, x0, th0)
         K = len(self.joined)
         if touch is not None:
             # Each contact: a row along its normal (no closer; position and velocity) and one
@@ -269,6 +293,7 @@ class JointSolver:
         G[use_end] = J1[use_end]
         movable = np.abs(J1) @ Wm > 0.0
         tol = TOLERANCE * self.size
+        contact = kind == CN  # (moved along their gradient where the bodies are: no impulse)
         active = held & movable & ((sign == 0) | (sign * c1 < 0.0))
         lam = np.zeros(len(link))
         dq = np.zeros(3 * m)
@@ -279,7 +304,7 @@ class JointSolver:
                 lam[:] = 0.0
                 dq = np.zeros(3 * m)
                 break
-            lam_s, dq, ok = self._newton(X1, T1, plan.take(sel), G[sel], Wm, tol)
+            lam_s, dq, ok = self._newton(X1, T1, plan.take(sel), G[sel], Wm, tol, contact[sel])
             if not ok:
                 break
             lam[:] = 0.0
@@ -338,14 +363,14 @@ class JointSolver:
         at = (sign != 0) & (sign * c <= tol)
         rows = movable & ((sign == 0) | at)
         if touch is not None:
-            # A contact acts while its two would close past their gap within the next step
-            # (a speculative contact, as the pile's: they may close by the gap, no more); a
-            # disc resting on a collider also whenever it touches. Its slip with it.
+            # A contact acts where its two touch as the step ends: while they close (they
+            # stop closing), and for a disc resting on a collider whenever it touches. Its
+            # slip with it. (Not sooner: two apart by a gap are the next step's pile's, whose
+            # speculative row sees the speeds this solve leaves; here such a row, linear
+            # about where the step left the two, would brake a ball passing by a bat's tip.)
             cn = np.flatnonzero(kind == CN)
-            ahead = np.maximum(c[cn], 0.0) / dt
-            target[cn] = -ahead
-            closing = J[cn] @ V < -ahead
-            rows[cn] = movable[cn] & (closing | (touch.lift & at[cn]))
+            closing = J[cn] @ V < 0.0
+            rows[cn] = movable[cn] & at[cn] & (closing | touch.lift)
             rows[cn + len(cn)] = rows[cn]
         clamp = np.full(len(link), np.inf)
         is_motor = kind == MOTOR
@@ -476,7 +501,10 @@ class JointSolver:
             S = shift.reshape(m, 3)
             Xs, Ts = x[b] + S[:, :2], th[b] + S[:, 2]
             c2, _ = self._eval(Xs, Ts, plan)
-            keep = held & movable & ((sign == 0) | (sign * c2 < 0.0) | ((kind == CN) & rows))
+            # (A contact that held while touching is kept touching, as a wheel on the ground;
+            # a speculative one, apart by its gap, only from closing past it.)
+            touching = (kind == CN) & rows & (c <= tol)
+            keep = held & movable & ((sign == 0) | (sign * c2 < 0.0) | touching)
             for _ in range(4):
                 back = self._project(Xs, Ts, plan.take(np.flatnonzero(keep)), Wm, tol)
                 B = back.reshape(m, 3)
@@ -497,12 +525,17 @@ class JointSolver:
         Gs: np.ndarray,
         Wm: np.ndarray,
         tol: float,
+        follow: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray, bool]:
-        """Newton's method for the multipliers of rows ``P``: (lam, dq, converged)."""
+        """Newton's method for the multipliers of rows ``P``: (lam, dq, converged). Rows
+        ``follow`` (contacts) move along their gradient at each iterate, not at the start: a
+        contact is a projection, not an impulse, and a bat turned far in the step meets the
+        ball with another face than it began with."""
         m = len(X1)
         lam = np.zeros(len(P.kind))
         WG = Wm[:, None] * Gs.T  # (3m, rows): dq = WG lam
         dq = np.zeros(3 * m)
+        follows = follow is not None and bool(follow.any())
         prev = math.inf
         for it in range(MAX_ITERATIONS):
             D = dq.reshape(m, 3)
@@ -513,11 +546,13 @@ class JointSolver:
             if it and (err <= 1e-3 * tol or (err <= tol and err > 0.5 * prev)):
                 return lam, dq, True
             prev = err
+            if follows:
+                WG = Wm[:, None] * np.where(follow[:, None], J, Gs).T  # type: ignore[index]
             step = _solve(J @ WG, -c)
             if not np.isfinite(step).all():
                 break
             lam = lam + step
-            dq = WG @ lam
+            dq = dq + WG @ step if follows else WG @ lam
         return lam, dq, False
 
     def _project(

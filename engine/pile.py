@@ -57,6 +57,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple, overload
 import numpy as np
 
 from . import kernels
+from .joint_contacts import joined_rows
 from .manifold import StaticShapes, static_shapes
 from .pair_math import SLOP, dot, norm, sorted_unique
 from .pile_rows import disc_rows, face_rows, held, lever_arms, shape_arms, turning, warm_start
@@ -124,8 +125,8 @@ class Pile(NamedTuple):
     carried: Carried
     #: The contacts of bodies held by joints (engine.joint_solver takes them into its solve):
     #: (body, other (-1: the static world), normal from the other to the body, the contact
-    #: point less each one's position, the gap now, friction, the normal impulse given), or
-    #: None.
+    #: point less each one's position, the gap now, friction, the normal impulse given, the
+    #: end whose face the normal is), or None.
     joined: tuple[np.ndarray, ...] | None = None
 
 
@@ -482,47 +483,9 @@ def step_pile(
     out = None
     if joined is not None:
         fr = np.concatenate(fric)
-        out = _joined_rows(joined, U, ra, rb, nv, now, r, fr, solver.total, m, m_disc, m_pairs,
-                           anchors)  # fmt: skip
+        out = joined_rows(joined, U, ra, rb, nv, now, sep_all, r, fr, solver.total, m, m_disc,
+                          m_pairs, anchors, table)  # fmt: skip
     return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried, out)
-
-
-def _joined_rows(
-    joined: np.ndarray,
-    U: np.ndarray,
-    ra: np.ndarray,
-    rb: np.ndarray,
-    nv: np.ndarray,
-    gap: np.ndarray,
-    r: np.ndarray,
-    friction: np.ndarray,
-    total: np.ndarray,
-    m: int,
-    m_disc: int,
-    m_pairs: int,
-    anchors: list[np.ndarray],
-) -> tuple[np.ndarray, ...] | None:
-    """The pile's rows that touch a body held by a joint, as ``Pile.joined`` holds them: the
-    body is the row's B, the other its A. A disc's contact point is r n from A's centre and
-    -r n from B's; a shape's, its manifold's anchors (at the step's start, as the rows)."""
-    nU = len(U)
-    ua = np.where(ra < nU, U[np.minimum(ra, nU - 1)], -1)
-    ub = U[rb]
-    hit = joined[ub] | ((ua >= 0) & joined[np.maximum(ua, 0)])
-    if not hit.any():
-        return None
-    q = np.flatnonzero(hit)
-    n = nv[q]
-    r_a = np.zeros((len(q), 2))
-    r_b = -r[rb[q], None] * n
-    pair = q < m
-    r_a[pair] = r[ra[q[pair]], None] * n[pair]
-    k = q - m_disc
-    sp = (k >= 0) & (k < m_pairs)
-    r_a[sp], r_b[sp] = anchors[0][k[sp]], anchors[1][k[sp]]
-    ss = k >= m_pairs
-    r_b[ss] = anchors[2][k[ss] - m_pairs]
-    return ub[q], ua[q], n, r_b, r_a, gap[q], friction[q], total[q]
 
 
 def components(n: int, a: np.ndarray, b: np.ndarray, fast: bool = False) -> np.ndarray:

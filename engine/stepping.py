@@ -426,10 +426,10 @@ def _touch(
     got = state.collisions.joint_rows if state.pairs_on else None
     if got is not None:
         # The pile's contacts of the joints' bodies: they only push, and only while closing.
-        body, other, n, r_body, r_other, gap_p, mu_p, pn_p = got
+        body, other, n, r_body, r_other, gap_p, mu_p, pn_p, turn, poly, radius = got
         k = len(body)
         pile = Touch(body, other, n, r_body, r_other, np.maximum(gap_p, 0.0), mu_p, pn_p,
-                     np.zeros(k), np.zeros(k, dtype=bool))  # fmt: skip
+                     np.zeros(k), np.zeros(k, dtype=bool), turn, poly, radius)  # fmt: skip
     contacts = state.contacts
     if contacts is None or not len(solver.bodies):
         return pile
@@ -443,7 +443,8 @@ def _touch(
     k = len(rows)
     rest = Touch(
         rows, np.full(k, -1, dtype=np.intp), nrm, -store.radius[rows, None] * nrm,
-        np.zeros((k, 2)), gap, mu, pn, pt, np.ones(k, dtype=bool),
+        np.zeros((k, 2)), gap, mu, pn, pt, np.ones(k, dtype=bool), np.zeros(k, dtype=np.int8),
+        np.full(k, -1, dtype=np.intp), np.zeros(k),
     )  # fmt: skip
     return Touch.join([rest, pile])
 
@@ -469,13 +470,14 @@ def _solve_links(
         if spin is None:  # nothing turns: the angles stay, 1 / I = 0
             th, om, k = store.angle, store.omega, np.zeros(len(w))
             x1, v1, _, _ = solver.resolve(
-                store.x, x1, v1, th, th, om, w, k, dt, kinked, _touch(state, store, solver, x1)
-            )
+                store.x, x1, v1, th, th, om, w, k, dt, kinked, _touch(state, store, solver, x1),
+                state.collisions.joint_polygons,
+            )  # fmt: skip
         else:
             k = np.where(spin.turns, store.inv_moment, 0.0)
             x1, v1, spin.angle, spin.omega = solver.resolve(
                 store.x, x1, v1, spin.angle0, spin.angle, spin.omega, w, k, dt, kinked,
-                _touch(state, store, solver, x1),
+                _touch(state, store, solver, x1), state.collisions.joint_polygons,
             )  # fmt: skip
     else:
         x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)

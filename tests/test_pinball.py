@@ -132,15 +132,21 @@ def test_no_ball_passes_through_a_flipper_in_twenty_throws_at_up_to_40_m_s() -> 
     assert result.passes == []
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a ball at 12 m/s or more can knock the bat from high up onto its lower stop "
-    "within one step, and pass it there (one of the 12 of 1,000 throws: the README's pinball "
-    "section): the contact's rows are the manifold's at the step's start, and a bat turned "
-    "0.6 rad in one step leaves them behind",
-)
-def test_a_ball_that_knocks_the_bat_onto_its_stop_does_not_pass_it() -> None:
-    assert bench.throw(741).passes == []
+#: The throws of ``bench.tunnelling(1000)`` (seed 26) that passed the bat before its contact's
+#: row followed the bat's turn within a step (README, "Joints at anchors"): most knock the
+#: bat from high up onto its lower stop within one step (it turns 0.7 rad); a few meet it as
+#: it swings up at full torque.
+PASSED_BEFORE = (241, 247, 310, 359, 366, 380, 410, 628, 741, 810, 820, 907)
+
+
+@pytest.mark.parametrize("trial", PASSED_BEFORE)
+def test_a_ball_that_knocks_the_bat_onto_its_stop_does_not_pass_it(trial: int) -> None:
+    # The disc's row is its distance from the bat wherever the joints' solve turns the bat,
+    # from the side it came in by (engine.joint_contacts); a row linear in the angle let it
+    # through. Each of these throws hits the bat (it is not a miss that passes).
+    result = bench.throw(trial)
+    assert result.hits == 1
+    assert result.passes == []
 
 
 def test_a_heavy_flipper_turns_back_every_ball_up_to_40_m_s() -> None:

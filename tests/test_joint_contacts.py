@@ -1,0 +1,104 @@
+"""A disc against a polygon in the joints' solve (engine.joint_contacts, engine.joint_rows):
+its distance from the polygon wherever the polygon turns, from the side it came in by.
+
+Checked against geometry worked by hand (a box's faces and corners) and against the
+derivative: each row's gradient is the finite difference of its value, for every kind of
+contact row, and its value where the step began is the gap it was handed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from engine.joint_contacts import polygon_distance
+from engine.joint_rows import CN, CT, Plan, evaluate
+from engine.manifold_kinds import Polygons
+
+# A bat 8 long and 1 thick (its centre line on y = 0, from x = 0 to 8), as a polygon.
+BAT = Polygons.of([[(0.0, -0.5), (8.0, -0.5), (8.0, 0.5), (0.0, 0.5)]])
+ONE = np.zeros(1, dtype=np.intp)
+
+
+def distance(p: tuple[float, float], p0: tuple[float, float]) -> tuple[float, ...]:
+    dist, normal, corner, at = polygon_distance(BAT, ONE, np.array([p]), np.array([p0]))
+    return float(dist[0]), float(normal[0, 0]), float(normal[0, 1]), bool(corner[0])
+
+
+def test_outside_a_face_it_is_the_distance_from_the_face() -> None:
+    assert distance((3.0, 2.5), (3.0, 4.0)) == pytest.approx((2.0, 0.0, 1.0, False), abs=1e-15)
+    assert distance((3.0, -1.0), (3.0, -4.0)) == pytest.approx((0.5, 0.0, -1.0, False), abs=1e-15)
+
+
+def test_past_a_face_s_end_it_is_the_distance_from_the_corner() -> None:
+    d, nx, ny, corner = distance((11.0, 4.5), (12.0, 6.0))
+    assert corner
+    assert d == pytest.approx(5.0, abs=1e-15)  # from (8, 0.5): (3, 4)
+    assert (nx, ny) == pytest.approx((0.6, 0.8), abs=1e-15)
+
+
+def test_a_centre_that_went_through_is_measured_from_the_face_it_entered_by() -> None:
+    # From above the bat to below it: nearest the bottom face (0.3 out), but it came in by the
+    # top, so it is 1.3 in, along the top's normal.
+    assert distance((4.0, -0.8), (4.0, 3.0)) == pytest.approx((-1.3, 0.0, 1.0, False), abs=1e-15)
+    # Inside, nearer the bottom: measured from the top too.
+    assert distance((4.0, -0.4), (4.0, 3.0)) == pytest.approx((-0.9, 0.0, 1.0, False), abs=1e-15)
+    # In by the tip's end face, from the right.
+    d, nx, ny, _ = distance((7.5, 0.0), (12.0, 0.0))
+    assert (d, nx, ny) == pytest.approx((-0.5, 1.0, 0.0), abs=1e-15)
+
+
+def test_a_path_round_the_tip_is_not_a_crossing() -> None:
+    # From above right of the tip to below right of it: the path misses the bat.
+    d, nx, ny, corner = distance((9.0, -2.0), (9.0, 2.0))
+    assert corner
+    assert d == pytest.approx(math.hypot(1.0, 1.5), abs=1e-15)
+    assert ny < 0.0
+
+
+def _plan(turn: int, rng: np.random.Generator) -> tuple[Plan, tuple[np.ndarray, ...]]:
+    n0 = rng.normal(size=2)
+    n0 /= np.linalg.norm(n0)
+    fields = (
+        n0, rng.normal(size=2), rng.normal(size=2), rng.normal(size=2) * 3.0,
+        rng.normal(size=2) * 3.0, rng.normal(), rng.normal(), abs(rng.normal()),
+    )  # fmt: skip
+    touch = tuple(np.array([f, f]) for f in fields) + (
+        np.array([turn, turn], dtype=np.int8),
+        np.array([0 if turn else -1] * 2, dtype=np.intp),
+        np.array([0.3, 0.3]),
+    )
+    plan = Plan(
+        np.array([CN, CT]), np.zeros(2), np.array([0, 0]), np.array([1, 1]), np.zeros((2, 2)),
+        np.zeros((2, 2)), touch, 6, BAT,
+    )  # fmt: skip
+    return plan, touch
+
+
+@pytest.mark.parametrize("turn", [0, 1, -1])
+def test_each_contact_row_s_gradient_is_the_derivative_of_its_value(turn: int) -> None:
+    rng = np.random.default_rng(7 + turn)
+    checked = 0
+    for _ in range(20):
+        plan, touch = _plan(turn, rng)
+        q = rng.normal(size=6) * 3.0
+        X, TH = q.reshape(2, 3)[:, :2], q.reshape(2, 3)[:, 2]
+        c, J = evaluate(X, TH, plan)
+        h = 1e-6
+        for i in range(6):
+            up, down = q.copy(), q.copy()
+            up[i] += h
+            down[i] -= h
+            cu = evaluate(up.reshape(2, 3)[:, :2], up.reshape(2, 3)[:, 2], plan)[0][0]
+            cd = evaluate(down.reshape(2, 3)[:, :2], down.reshape(2, 3)[:, 2], plan)[0][0]
+            # (A random pose can sit on a feature's border, where the value has a kink.)
+            if abs((cu - c[0]) - (c[0] - cd)) < 1e-9:
+                assert (cu - cd) / (2 * h) == pytest.approx(J[0, i], abs=1e-7)
+                checked += 1
+        # Where the step left the two (began, for a disc and a polygon), it is the gap.
+        X0 = np.array([touch[3][0], touch[4][0]])
+        T0 = np.array([touch[5][0], touch[6][0]])
+        assert evaluate(X0, T0, plan)[0][0] == pytest.approx(touch[7][0], abs=1e-12)
+    assert checked >= 100  # of 120
