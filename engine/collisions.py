@@ -671,6 +671,34 @@ class Collisions:
         """``ended`` as held, as ``began_arrays``."""
         return self._ended
 
+    def hold_touching(self, keys: np.ndarray) -> None:
+        """Pairs (a * n + b) that the joints' solve held touching at the step's end
+        (engine.joint_solver: a ball it caught on a bat): they touch now, for the events, as
+        the pile's pairs do; one that did not touch before begins, one the pile let go of
+        has not ended."""
+        n = len(self.asleep)
+        keys = sorted_unique(keys)
+        new = keys[~isin_sorted(keys, self._touching)]
+        if not len(new):
+            return
+        kept = []
+        for rows, others, *rest in self._ended:
+            gone = isin_sorted(rows.astype(np.int64) * n + others, new)
+            if gone.any():
+                ended_now = rows.astype(np.int64)[gone] * n + others[gone]
+                new = new[~isin_sorted(new, sorted_unique(ended_now))]
+                rest = [r if r is None else r[~gone] for r in rest]
+                rows, others = rows[~gone], others[~gone]
+            if len(rows):
+                kept.append((rows, others, *rest))
+        self._ended = kept
+        if len(new):
+            zero = np.zeros((len(new), 2))
+            self._began.append(
+                (new // n, new % n, None, zero, zero, np.full(len(new), self._t0 + self._dt))
+            )
+        self._touching = sorted_unique(np.concatenate([self._touching, keys]))
+
     def set_events(self, began: list[tuple[Any, ...]], ended: list[tuple[Any, ...]]) -> None:
         """Hold ``began`` and ``ended`` (batches as ``began_arrays``) as the last step's
         events: a step taken again in substeps reports all of theirs (engine.stepping)."""

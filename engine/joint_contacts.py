@@ -40,6 +40,7 @@ def joined_rows(
     sep: np.ndarray,
     r: np.ndarray,
     friction: np.ndarray,
+    restitution: np.ndarray,
     total: np.ndarray,
     m: int,
     m_disc: int,
@@ -50,9 +51,9 @@ def joined_rows(
     """The pile's rows (A ``ra``, B ``rb`` among the pile's bodies ``U``; the static slot past
     them) that touch a body held by a joint (``joined``, by World row): (body = B, other = A,
     normal n from A to B, contact point less each one's centre, gap (length units), friction,
-    impulse, turn). A disc's contact point is r n from A's centre and -r n from B's; a
-    shape's, its manifold's anchors (at the step's start, as the rows). ``gap``: the pile's
-    gap now; ``sep``: at the step's start."""
+    impulse, turn, polygon, disc's radius, restitution). A disc's contact point is r n from
+    A's centre and -r n from B's; a shape's, its manifold's anchors (at the step's start, as
+    the rows). ``gap``: the pile's gap now; ``sep``: at the step's start."""
     nU = len(U)
     ua = np.where(ra < nU, U[np.minimum(ra, nU - 1)], -1)
     ub = U[rb]
@@ -84,7 +85,7 @@ def joined_rows(
         poly[rows] = table.index[p_row[rows]]
         radius[rows] = table.circles.radius[d_row[rows]]
     gap_q = np.where(turn != 0, sep[q], gap[q])
-    return ub_q, ua_q, n, r_b, r_a, gap_q, friction[q], total[q], turn, poly, radius
+    return ub_q, ua_q, n, r_b, r_a, gap_q, friction[q], total[q], turn, poly, radius, restitution[q]
 
 
 def polygon_distance(

@@ -42,7 +42,9 @@ class Touch(NamedTuple):
     and only while the two close). ``turn`` (engine.joint_contacts): 0, a row linear about
     where the step left the two; +1 (-1), the body (the other) is a polygon, ``poly`` in the
     World's polygons, and the other end a disc of ``radius``, its row exact wherever the
-    polygon turns; its gap is then the one at the step's start."""
+    polygon turns; its gap is then the one at the step's start. ``restitution``: a contact of
+    the pile's bounces by it where the joints' solve catches it closing (a disc resting on
+    a collider: 0, its contact's own bounce is engine.contacts')."""
 
     body: np.ndarray
     other: np.ndarray
@@ -57,6 +59,7 @@ class Touch(NamedTuple):
     turn: np.ndarray
     poly: np.ndarray
     radius: np.ndarray
+    restitution: np.ndarray
 
     @staticmethod
     def join(parts: list[Touch | None]) -> Touch | None:

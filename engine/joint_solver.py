@@ -64,6 +64,10 @@ __all__ = ["JointSolver", "TOLERANCE"]
 
 #: A row's error after the solve, relative to the scene's size (its largest anchor or length).
 TOLERANCE = 1e-12
+#: A contact's row's error after the solve, relative to the scene's size: a contact beside a
+#: joint (a plank folded onto the one it is hinged to) may meet it only to second order in
+#: the step (its row is linear in the angles), which is far below any overlap that shows.
+CONTACT_TOLERANCE = 1e-9
 #: Newton iterations before a step counts as past what the solver can hold.
 MAX_ITERATIONS = 25
 
@@ -236,15 +240,22 @@ class JointSolver:
         kinked: np.ndarray | None = None,
         touch: Touch | None = None,
         polygons: Polygons | None = None,
+        start: tuple[np.ndarray, np.ndarray] | None = None,
+        bounce_at: float = math.inf,
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The step's end state (x1, v1, th1, om1) corrected for the joints; ``w`` (N,): 1/m
         and ``k`` (N,): 1/I, 0 for what nothing moves or turns; ``kinked``: bodies whose
         velocity a contact changed in the step; ``touch``: the joints' bodies resting on a
         collider, whose contact takes part in the correction (a wheel driven by a motor
         rolls on its friction), with the impulse it already gave counted; ``polygons``: the
-        World's, which its discs against polygons index (Touch.poly)."""
+        World's, which its discs against polygons index (Touch.poly); ``start``: the
+        velocities and angular velocities as the step began, and ``bounce_at`` (length
+        units/s): a contact of the pile caught closing bounces with its restitution times
+        the speed it closed at then, if faster than this. ``held`` then lists the contacts
+        (rows of ``touch``) held touching."""
         self.moved = False
         self._polygons = polygons
+        self.held = np.zeros(0, dtype=np.intp)
         self.stretched = []
         x, v, th, om = x1, v1, th1, om1
         if len(self.pin_rows):
@@ -298,6 +309,7 @@ class JointSolver:
         lam = np.zeros(len(link))
         dq = np.zeros(3 * m)
         ok = True
+        relaxed = False
         for _ in range(2 * len(link) + 2):
             sel = np.flatnonzero(active)
             if not len(sel):
@@ -305,6 +317,13 @@ class JointSolver:
                 dq = np.zeros(3 * m)
                 break
             lam_s, dq, ok = self._newton(X1, T1, plan.take(sel), G[sel], Wm, tol, contact[sel])
+            if not ok and contact[sel].any():
+                # Contacts the joints leave no room for (two points of a plank folded onto
+                # the one it is hinged to: one turn left, and rows linear in it): the joints
+                # hold, the contacts give (the next step's pile takes the overlap out).
+                active &= ~contact
+                relaxed = True
+                continue
             if not ok:
                 break
             lam[:] = 0.0
@@ -316,6 +335,8 @@ class JointSolver:
             D = dq.reshape(m, 3)
             c, _ = self._eval(X1 + D[:, :2], T1 + D[:, 2], plan)
             broken = held & movable & ~active & (sign != 0) & (sign * c < -tol)
+            if relaxed:
+                broken &= ~contact
             if not broken.any():
                 break
             active |= broken
@@ -363,14 +384,25 @@ class JointSolver:
         at = (sign != 0) & (sign * c <= tol)
         rows = movable & ((sign == 0) | at)
         if touch is not None:
-            # A contact acts where its two touch as the step ends: while they close (they
-            # stop closing), and for a disc resting on a collider whenever it touches. Its
-            # slip with it. (Not sooner: two apart by a gap are the next step's pile's, whose
-            # speculative row sees the speeds this solve leaves; here such a row, linear
-            # about where the step left the two, would brake a ball passing by a bat's tip.)
+            # A contact acts where its two touch as the step ends or met in it (the pile
+            # gave it an impulse), and only pushes (the active set lets go of one that would
+            # pull): they do not close, and a disc resting on a collider may press harder or
+            # lift. Its slip with it. (Not sooner: two apart by a gap are the next step's
+            # pile's, whose speculative row sees the speeds this solve leaves; here such a
+            # row, linear about where the step left the two, would brake a ball passing by a
+            # bat's tip.)
             cn = np.flatnonzero(kind == CN)
-            closing = J[cn] @ V < 0.0
-            rows[cn] = movable[cn] & at[cn] & (closing | touch.lift)
+            rows[cn] = movable[cn] & (at[cn] | (touch.pn > 0.0))
+            if start is not None and math.isfinite(bounce_at):
+                # One of the pile's that closed as the step began leaves at e times that
+                # speed at least: the pile's own bounce is undone where the joints' solve
+                # puts a bat back that the pile let give way (a light bat at its stop).
+                v0, om0 = start
+                V0 = np.stack([v0[b, 0], v0[b, 1], om0[b]], 1).ravel()
+                approach = -(J[cn] @ V0)
+                e = touch.restitution
+                bounce = rows[cn] & (e > 0.0) & (approach > bounce_at)
+                target[cn[bounce]] = (e * approach)[bounce]
             rows[cn + len(cn)] = rows[cn]
         clamp = np.full(len(link), np.inf)
         is_motor = kind == MOTOR
@@ -496,6 +528,12 @@ class JointSolver:
         # that held in the velocity solve (no impulse). A motor's wheel then turns by
         # T t^2 / (2 I), and a car held by its brakes on a slope stays where it is.
         alone = (kind == MOTOR) | (kind == CT) | soft
+        for q in np.flatnonzero(is_motor & (mu != 0.0)):
+            # A motor held at a limit its joint is at moves nothing: the limit takes it all
+            # (it pushes with all it has, max_torque dt, and the limit pushes back).
+            stop = (link == link[q]) & rows & at & (kind == ANGLE) & (mu != 0.0)
+            if stop.any():
+                alone[q] = False
         if alone.any() and mu[alone].any():
             shift = (Wm * (J[alone].T @ mu[alone])) * (0.5 * dt)
             S = shift.reshape(m, 3)
@@ -515,6 +553,10 @@ class JointSolver:
                 keep |= broken
             x[b], th[b] = Xs + B[:, :2], Ts + B[:, 2]
         self._report(link, kind, sign, G, J, lam, mu, dt)
+        if touch is not None:
+            cn = np.flatnonzero(kind == CN)
+            acted = (rows[cn] & (mu[cn] > 0.0)) | (active[cn] & (lam[cn] > 0.0))
+            self.held = np.flatnonzero(acted & (c[cn] <= tol))
         return x, v, th, om
 
     def _newton(
@@ -536,14 +578,18 @@ class JointSolver:
         WG = Wm[:, None] * Gs.T  # (3m, rows): dq = WG lam
         dq = np.zeros(3 * m)
         follows = follow is not None and bool(follow.any())
+        scale = tol if not follows else np.where(follow, CONTACT_TOLERANCE * tol / TOLERANCE, tol)  # type: ignore[arg-type]
         prev = math.inf
         for it in range(MAX_ITERATIONS):
             D = dq.reshape(m, 3)
             c, J = self._eval(X1 + D[:, :2], T1 + D[:, 2], P)
             # Done at round-off: far below the tolerance, or within it and no longer halving
-            # (an error left at the tolerance step after step would creep up to it).
-            err = float(np.abs(c).max())
-            if it and (err <= 1e-3 * tol or (err <= tol and err > 0.5 * prev)):
+            # (an error left at the tolerance step after step would creep up to it). A
+            # contact's tolerance is CONTACT_TOLERANCE's: its row is linear in the angles
+            # where a joint's is not, and a contact beside a hinge can hold both only to
+            # second order in the step.
+            err = float((np.abs(c) / scale).max())
+            if it and (err <= 1e-3 or (err <= 1.0 and err > 0.5 * prev)):
                 return lam, dq, True
             prev = err
             if follows:

@@ -125,8 +125,8 @@ class Pile(NamedTuple):
     carried: Carried
     #: The contacts of bodies held by joints (engine.joint_solver takes them into its solve):
     #: (body, other (-1: the static world), normal from the other to the body, the contact
-    #: point less each one's position, the gap now, friction, the normal impulse given, the
-    #: end whose face the normal is), or None.
+    #: point less each one's position, the gap, friction, the normal impulse given, and
+    #: engine.joint_contacts' turn, polygon, radius and restitution), or None.
     joined: tuple[np.ndarray, ...] | None = None
 
 
@@ -483,8 +483,8 @@ def step_pile(
     out = None
     if joined is not None:
         fr = np.concatenate(fric)
-        out = joined_rows(joined, U, ra, rb, nv, now, sep_all, r, fr, solver.total, m, m_disc,
-                          m_pairs, anchors, table)  # fmt: skip
+        out = joined_rows(joined, U, ra, rb, nv, now, sep_all, r, fr, rows.restitution,
+                          solver.total, m, m_disc, m_pairs, anchors, table)  # fmt: skip
     return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried, out)
 
 

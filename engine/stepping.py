@@ -29,6 +29,7 @@ from .integrators import Integrator
 from .joint_rows import Touch
 from .joint_solver import JointSolver
 from .links import LinkSolver
+from .pile import THRESH
 from .rotation import Spin
 from .stability import SimulationDiverged, StabilityWarning
 from .store import BodyStore
@@ -426,10 +427,10 @@ def _touch(
     got = state.collisions.joint_rows if state.pairs_on else None
     if got is not None:
         # The pile's contacts of the joints' bodies: they only push, and only while closing.
-        body, other, n, r_body, r_other, gap_p, mu_p, pn_p, turn, poly, radius = got
+        body, other, n, r_body, r_other, gap_p, mu_p, pn_p, turn, poly, radius, e = got
         k = len(body)
         pile = Touch(body, other, n, r_body, r_other, np.maximum(gap_p, 0.0), mu_p, pn_p,
-                     np.zeros(k), np.zeros(k, dtype=bool), turn, poly, radius)  # fmt: skip
+                     np.zeros(k), np.zeros(k, dtype=bool), turn, poly, radius, e)  # fmt: skip
     contacts = state.contacts
     if contacts is None or not len(solver.bodies):
         return pile
@@ -444,7 +445,7 @@ def _touch(
     rest = Touch(
         rows, np.full(k, -1, dtype=np.intp), nrm, -store.radius[rows, None] * nrm,
         np.zeros((k, 2)), gap, mu, pn, pt, np.ones(k, dtype=bool), np.zeros(k, dtype=np.int8),
-        np.full(k, -1, dtype=np.intp), np.zeros(k),
+        np.full(k, -1, dtype=np.intp), np.zeros(k), np.zeros(k),
     )  # fmt: skip
     return Touch.join([rest, pile])
 
@@ -467,18 +468,28 @@ def _solve_links(
         solver = state.link_solver = kind(state.links, lambda b: store.row(b.slot))
     w = np.where(store.kinematic, 0.0, 1.0 / store.mass)
     if isinstance(solver, JointSolver):
+        touch = _touch(state, store, solver, x1)
+        pairs = state.collisions if state.pairs_on else None
+        # A contact the joints' solve catches closing bounces if it closed faster than the
+        # pile's restitution threshold as the step began.
+        bounce_at = math.inf if pairs is None else THRESH * pairs.rest_speed
+        polygons = None if pairs is None else pairs.joint_polygons
         if spin is None:  # nothing turns: the angles stay, 1 / I = 0
             th, om, k = store.angle, store.omega, np.zeros(len(w))
             x1, v1, _, _ = solver.resolve(
-                store.x, x1, v1, th, th, om, w, k, dt, kinked, _touch(state, store, solver, x1),
-                state.collisions.joint_polygons,
+                store.x, x1, v1, th, th, om, w, k, dt, kinked, touch, polygons,
+                (store.v, om), bounce_at,
             )  # fmt: skip
         else:
             k = np.where(spin.turns, store.inv_moment, 0.0)
             x1, v1, spin.angle, spin.omega = solver.resolve(
-                store.x, x1, v1, spin.angle0, spin.angle, spin.omega, w, k, dt, kinked,
-                _touch(state, store, solver, x1), state.collisions.joint_polygons,
+                store.x, x1, v1, spin.angle0, spin.angle, spin.omega, w, k, dt, kinked, touch,
+                polygons, (store.v, spin.omega0), bounce_at,
             )  # fmt: skip
+        if pairs is not None and touch is not None and len(solver.held):
+            # The pairs it held touching touch now, for the events, as the pile's do.
+            held = solver.held[touch.other[solver.held] >= 0]
+            pairs.hold_touching(touch.other[held].astype(np.int64) * len(store) + touch.body[held])
     else:
         x1, v1 = solver.resolve(store.x, x1, store.v, v1, w, dt, kinked)
     if solver.moved:
