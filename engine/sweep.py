@@ -46,6 +46,10 @@ __all__ = ["MAX_IMPACTS", "Paths", "PushOut", "bounce", "first_hits", "sweep"]
 #: Impacts one body may meet in one step; past them it stops where the last one put it,
 #: on a surface, for the rest of the step (counted in ``Contacts.capped``).
 MAX_IMPACTS = 32
+#: Two faces wedge a body only if their normals differ by more than this (the sine of the
+#: angle between them): a face's round end meets a ball sliding off the face with the face's
+#: own normal, to the rounding of the moment it is met (2.6e-8 at 2 m/s), and is no wedge.
+WEDGE_SIN = 1e-6
 
 #: ``Contacts.push_out_rows``: push rows of X (with velocities V, radii r, World rows) out of
 #: the solid faces they overlap, in place; which rows moved.
@@ -395,13 +399,13 @@ def bounce(
         # the body stays put for the rest of the step (the forces are constant within it).
         det = on[:, 0] * n[:, 1] - on[:, 1] * n[:, 0]
         w = Wb[i]
-        safe = np.where(np.abs(det) > 1e-12, det, 1.0)
+        safe = np.where(np.abs(det) > WEDGE_SIN, det, 1.0)
         l1 = (w[:, 0] * n[:, 1] - w[:, 1] * n[:, 0]) / safe
         l2 = (on[:, 0] * w[:, 1] - on[:, 1] * w[:, 0]) / safe
         # It settles there when the rebound is too slow to fly one step against the load
         # -l2 that face 2 would carry (as for one face, with l2 in place of a_n).
         slow = vn_out <= -l2 * (0.5 * dt)
-        wedged = was & slow & (np.abs(det) > 1e-12) & (l1 <= 0.0) & (l2 <= 0.0)
+        wedged = was & slow & (np.abs(det) > WEDGE_SIN) & (l1 <= 0.0) & (l2 <= 0.0)
         if wedged.any():
             new_v[wedged] = 0.0
     rest[i] = np.where(wedged | stays, old, np.where(settles, f, -1))

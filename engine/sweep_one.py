@@ -32,7 +32,7 @@ import numpy as np
 from .faces import Faces
 from .impact import Pair, disc_hit_one, line_hit_one
 from .rotation import Rolling, Spin, rolling
-from .sweep import MAX_IMPACTS, Paths, PushOut
+from .sweep import MAX_IMPACTS, WEDGE_SIN, Paths, PushOut
 from .sweep_paths import MET, MISSED, PYTHON, paths_loop
 
 __all__ = ["asleep_few", "solve_few"]
@@ -495,11 +495,11 @@ def _bounce_one(
         onx, ony, _ = _normal_one(faces, old, x)
         stays = abs(onx * nx + ony * ny) < 1e-9
         det = onx * ny - ony * nx
-        safe = det if abs(det) > 1e-12 else 1.0
+        safe = det if abs(det) > WEDGE_SIN else 1.0
         l1 = (wx * ny - wy * nx) / safe
         l2 = (onx * wy - ony * wx) / safe
         slow = vn_out <= -l2 * (0.5 * dt)
-        wedged = slow and abs(det) > 1e-12 and l1 <= 0.0 and l2 <= 0.0
+        wedged = slow and abs(det) > WEDGE_SIN and l1 <= 0.0 and l2 <= 0.0
         if wedged:
             new_v = (0.0, 0.0)
     rest = old if wedged or stays else (f if settles else -1)
