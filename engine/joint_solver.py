@@ -310,13 +310,18 @@ class JointSolver:
         dq = np.zeros(3 * m)
         ok = True
         relaxed = False
+        end: tuple[np.ndarray, np.ndarray] | None = None  # (c, J) where the correction ends
         for _ in range(2 * len(link) + 2):
+            end = None
             sel = np.flatnonzero(active)
             if not len(sel):
                 lam[:] = 0.0
                 dq = np.zeros(3 * m)
+                end = (c1, J1)
                 break
-            lam_s, dq, ok = self._newton(X1, T1, plan.take(sel), G[sel], Wm, tol, contact[sel])
+            lam_s, dq, ok = self._newton(
+                X1, T1, plan.take(sel), G[sel], Wm, tol, contact[sel], (c1[sel], J1[sel])
+            )
             if not ok and contact[sel].any():
                 # Contacts the joints leave no room for (two points of a plank folded onto
                 # the one it is hinged to: one turn left, and rows linear in it): the joints
@@ -333,7 +338,8 @@ class JointSolver:
                 active[sel[wrong]] = False
                 continue
             D = dq.reshape(m, 3)
-            c, _ = self._eval(X1 + D[:, :2], T1 + D[:, 2], plan)
+            end = self._eval(X1 + D[:, :2], T1 + D[:, 2], plan)
+            c = end[0]
             broken = held & movable & ~active & (sign != 0) & (sign * c < -tol)
             if relaxed:
                 broken &= ~contact
@@ -364,8 +370,8 @@ class JointSolver:
         # would otherwise feed its correction into the speeds step after step. The velocity
         # solve below is a projection in the mass metric too, so no energy comes of it.)
         self.moved = True
-        # 2. Velocities, at the end configuration.
-        c, J = self._eval(x[b], th[b], plan)
+        # 2. Velocities, at the end configuration (as the last check of positions left it).
+        c, J = end if ok and end is not None else self._eval(x[b], th[b], plan)
         V = np.stack([v[b, 0], v[b, 1], om[b]], 1).ravel()
         target = np.zeros(len(link))
         target[kind == MOTOR] = speed[kind == MOTOR]
@@ -568,11 +574,13 @@ class JointSolver:
         Wm: np.ndarray,
         tol: float,
         follow: np.ndarray | None = None,
+        first: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> tuple[np.ndarray, np.ndarray, bool]:
         """Newton's method for the multipliers of rows ``P``: (lam, dq, converged). Rows
         ``follow`` (contacts) move along their gradient at each iterate, not at the start: a
         contact is a projection, not an impulse, and a bat turned far in the step meets the
-        ball with another face than it began with."""
+        ball with another face than it began with. ``first``: the rows' (c, J) at (X1, T1),
+        if known."""
         m = len(X1)
         lam = np.zeros(len(P.kind))
         WG = Wm[:, None] * Gs.T  # (3m, rows): dq = WG lam
@@ -581,8 +589,11 @@ class JointSolver:
         scale = tol if not follows else np.where(follow, CONTACT_TOLERANCE * tol / TOLERANCE, tol)  # type: ignore[arg-type]
         prev = math.inf
         for it in range(MAX_ITERATIONS):
-            D = dq.reshape(m, 3)
-            c, J = self._eval(X1 + D[:, :2], T1 + D[:, 2], P)
+            if it == 0 and first is not None:
+                c, J = first
+            else:
+                D = dq.reshape(m, 3)
+                c, J = self._eval(X1 + D[:, :2], T1 + D[:, 2], P)
             # Done at round-off: far below the tolerance, or within it and no longer halving
             # (an error left at the tolerance step after step would creep up to it). A
             # contact's tolerance is CONTACT_TOLERANCE's: its row is linear in the angles
