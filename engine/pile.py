@@ -350,6 +350,16 @@ def step_pile(
     nv = np.concatenate(normals)
     sep_all = np.concatenate(seps)
     key = np.concatenate(keys)
+    if not len(key):
+        # No row reaches a body of the pile (a flipper whose ball is far: shapes always come
+        # here): each keeps the method's step and its free spin, as ``alone`` below gives
+        # them, bit for bit, without the soft step's cost; the sleepers' rows carry on.
+        none = np.zeros(0)
+        now_carried = carry_out(carried, asleep, n, base, key, none, none, iterations,
+                                np.zeros(0, dtype=np.int64), dt, fast)  # fmt: skip
+        empty = np.zeros(0, dtype=np.intp)
+        return Pile(np.zeros(0, dtype=np.int64), empty, empty, (empty, empty), np.zeros(n),
+                    now_carried, None)  # fmt: skip
     static = ra == nU
     w = np.append(1.0 / store.mass[U], 0.0)
     moves = np.append(~kin, False)
