@@ -10,7 +10,9 @@ and moves with dp/dtheta_i = perp(r) = (-r_y, r_x). The kinds:
 - ``ANGLE``: theta_a - theta_b - ref - bound (a Weld; a Hinge's limits); ``MOTOR``: the same
   row, for speeds only; ``SOFT_*``: a soft weld's rows, for speeds only;
 - ``CN``, ``CT``: a contact of a joined body (``Touch``): its gap along the normal, linear about
-  where the step left the two, and the slip of its points along the tangent (speeds only).
+  where the step left the two (a disc against a polygon: its distance from the polygon
+  wherever it turns, engine.joint_contacts), and the slip of its points along the tangent
+  (speeds only).
 """
 
 from __future__ import annotations
@@ -39,10 +41,11 @@ class Touch(NamedTuple):
     impulse the contact gave in the step along n and along t = (-n_y, n_x) (N s), and
     ``lift``: a disc resting on a collider (engine.contacts: the joints may take back its
     contact's impulse, it may lift) or a contact of the pile (engine.pile: it only pushes,
-    and only while the two close). ``turn`` (engine.joint_contacts): 0, a row linear about
-    where the step left the two; +1 (-1), the body (the other) is a polygon, ``poly`` in the
-    World's polygons, and the other end a disc of ``radius``, its row exact wherever the
-    polygon turns; its gap is then the one at the step's start. ``restitution``: a contact of
+    and only where the two touch as the step ends or met in it). ``turn``
+    (engine.joint_contacts): 0, a row linear about where the step left the two; +1 (-1), the
+    body (the other) is a polygon, ``poly`` in the World's polygons, and the other end a disc
+    of ``radius``, its row exact wherever the polygon turns; its gap is then the one at the
+    step's start. ``restitution``: a contact of
     the pile's bounces by it where the joints' solve catches it closing (a disc resting on
     a collider: 0, its contact's own bounce is engine.contacts')."""
 

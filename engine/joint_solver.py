@@ -13,8 +13,11 @@ of points (engine.links), now with the angle as one more coordinate:
    and Newton's method finds lam with c(q1 + dq) = 0: its Jacobian is J(q) W G^T. All the
    rows at once, so a chain's error does not creep from joint to joint.
 2. Velocities. The joints' correction is an impulse: v gains dq / dt (a contact's is not: it
-   only keeps two bodies from closing). Then the velocity rows at the end, J v = target (0
-   for a joint's rows; the motor's speed; a cable's bounce; a contact's gap / dt), solve
+   only keeps two bodies from closing; it moves along its gradient where the bodies are, as
+   a disc's distance from a polygon is exact wherever the polygon turns, engine.joint_rows).
+   Then the velocity rows at the end, J v = target (0 for a joint's rows; the motor's speed;
+   a cable's bounce; for a contact that touches or met in the step, 0, or e times the speed
+   it closed at as the step began where the pile's own bounce was undone), solve
    (J W J^T) mu = target - J v.
 3. What acts on speeds alone (a motor, friction, a soft weld) moves the positions by half its
    change of speed times dt, as a force's a dt^2 / 2, and the joints and the contacts that
@@ -28,7 +31,8 @@ the normal's, a column of that unknown). A soft weld is a velocity row with the 
 spring-damper's mixing (Box2D v3's soft step): its frequency omega and damping ratio zeta
 give (A + A_rr / (h omega (h omega + 2 zeta))) mu = -J v - c omega / (h omega + 2 zeta).
 
-The error after a step: every joint's rows to 1e-12 of the scene's size (TOLERANCE), unless
+The error after a step: every joint's rows to 1e-12 of the scene's size (TOLERANCE), a
+contact's to 1e-9 (CONTACT_TOLERANCE; contacts the joints leave no room for give way), unless
 a StabilityWarning said the step was past what Newton's method could hold (joints that cannot
 all hold are then projected as near as they go, by least squares, with no impulse).
 """
@@ -105,6 +109,8 @@ class JointSolver:
         self.size = max(size)
         self._touch(None, None, None)
         self._polygons: Polygons | None = None
+        #: The contacts (rows of the last ``touch``) the last step held touching.
+        self.held = np.zeros(0, dtype=np.intp)
         self.moved = False
         self.stretched: list[Link] = []
 
