@@ -57,6 +57,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .colliders import Circle
+from .joint_contacts import shapes_of
 from .manifold_kinds import Polygons
 from .pair_events import events_of, unpack
 from .pair_grid import Search, deepest_overlap, find_pairs, grid_pairs, struck
@@ -110,7 +111,7 @@ class Collisions:
         self.joined = np.zeros(0, dtype=np.intp)
         #: The last step's pile contacts of those bodies (engine.pile, ``Pile.joined``).
         self.joint_rows: tuple[np.ndarray, ...] | None = None
-        #: The World's polygons, which those rows index (engine.joint_contacts).
+        #: The World's polygons and capsules, which those rows index (engine.joint_contacts).
         self.joint_polygons: Polygons | None = None
         self._has_kin = False  # some body is kinematic (infinite mass here)
         self._kin = np.zeros(0, dtype=bool)  # the World's kinematic bodies, by row
@@ -514,7 +515,7 @@ class Collisions:
                 fast=self.fast, spin=spin, joined=held_by,
             )  # fmt: skip
             self.joint_rows = pile.joined
-            self.joint_polygons = self._shapes(store).polygons
+            self.joint_polygons = shapes_of(self._shapes(store))
             touching, pa, pb = pile.touching, pile.near_a, pile.near_b
             self.face_touching, self._shape_over = pile.face_touching, pile.shape_over
             self._carry(pile.carried)

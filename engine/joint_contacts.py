@@ -4,30 +4,63 @@ that turns.
 
 A joint solve can turn a body far within one step (a flipper knocked onto its stop turns
 0.7 rad in a step of 1/120 s). A contact row linear in the angles turned then misses where
-the bat went, and a fast ball passes it. So a disc against a polygon is handed on whole: its
-row (engine.joint_rows, at each Newton iterate) is the disc's centre's distance from the
-polygon where the polygon is then (``polygon_distance``), less the radii, exact for any turn:
+the bat went, and a fast ball passes it. So a disc against a polygon or a capsule (its core a
+two-vertex polygon, ``shapes_of``) is handed on whole: its row (engine.joint_rows, at each
+Newton iterate) is the disc's centre's distance from the polygon where the polygon is then
+(``polygon_distance``), less the radii, exact for any turn:
 
 * the polygon's face of greatest separation (the separating axis), and if the centre's
   projection falls past that face's ends, its nearer corner (Box2D's polygon and circle);
 * the side it came from holds: when the centre's path in the polygon's frame, from where it
   was as the step began to where it is now, entered the polygon (it is inside, or went
   through), the distance is measured from the face it entered by, so a ball pushed through a
-  thin bat goes back out the way it came in, not on through.
+  thin bat goes back out the way it came in, not on through (a capsule's core has no ends to
+  clip by: its path must cross the segment itself).
 
 It is measured so that the row's value where the step began is the pile's separation there
 (the manifold's), not the gap the pile's step left (linear in the angles turned). Other
-contacts (two discs, two shapes, a capsule, the static world) keep the pile's linear row.
+contacts (two discs, two shapes, the static world) keep the pile's linear row.
 """
 
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 
 from .manifold_kinds import Polygons
-from .shaped import DISC, POLYGON, ShapeTable
+from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
 
-__all__ = ["joined_rows", "polygon_distance"]
+__all__ = ["joined_rows", "polygon_distance", "shapes_of"]
+
+_SHAPES: weakref.WeakKeyDictionary[ShapeTable, Polygons | None] = weakref.WeakKeyDictionary()
+
+
+def shapes_of(table: ShapeTable) -> Polygons | None:
+    """The polygons and the capsules of ``table`` as one set of polygons (a capsule as a
+    two-vertex polygon with its radius, Box2D's b2MakeCapsule), the polygons first, padded to
+    one size: what the rows of ``joined_rows`` index. Made once a table."""
+    if table in _SHAPES:
+        return _SHAPES[table]
+    parts = [] if table.polygons is None else [table.polygons]
+    if len(table.capsules):
+        parts.append(Polygons.from_capsules(table.capsules))
+    out = None
+    if parts:
+        m = max(p.vertices.shape[1] for p in parts)
+        v = np.concatenate([_pad(p.vertices, m) for p in parts])
+        nn = np.concatenate([_pad(p.normals, m) for p in parts])
+        count = np.concatenate([p.count for p in parts])
+        out = Polygons(v, nn, count, np.concatenate([p.radius for p in parts]))
+    _SHAPES[table] = out
+    return out
+
+
+def _pad(a: np.ndarray, m: int) -> np.ndarray:
+    """(N, k, 2) padded to (N, m, 2) by repeating the last entry (Polygons' padding)."""
+    if a.shape[1] == m:
+        return a
+    return np.concatenate([a, np.repeat(a[:, -1:], m - a.shape[1], axis=1)], axis=1)
 
 
 def joined_rows(
@@ -77,12 +110,17 @@ def joined_rows(
     radius = np.zeros(len(q))
     kind_a = np.where(sp, table.kind[np.maximum(ua_q, 0)], -1)
     kind_b = np.where(sp, table.kind[ub_q], -1)
+    n_poly = 0 if table.polygons is None else len(table.polygons)
+    shape_a = (kind_a == POLYGON) | (kind_a == CAPSULE)
+    shape_b = (kind_b == POLYGON) | (kind_b == CAPSULE)
     for side, p_row, d_row, rows in (
-        (1, ub_q, ua_q, np.flatnonzero((kind_b == POLYGON) & (kind_a == DISC))),
-        (-1, ua_q, ub_q, np.flatnonzero((kind_a == POLYGON) & (kind_b == DISC))),
+        (1, ub_q, ua_q, np.flatnonzero(shape_b & (kind_a == DISC))),
+        (-1, ua_q, ub_q, np.flatnonzero(shape_a & (kind_b == DISC))),
     ):
+        # (A capsule is the two-vertex polygon past the polygons in ``shapes_of``.)
         turn[rows] = side
-        poly[rows] = table.index[p_row[rows]]
+        pr = p_row[rows]
+        poly[rows] = table.index[pr] + np.where(table.kind[pr] == CAPSULE, n_poly, 0)
         radius[rows] = table.circles.radius[d_row[rows]]
     gap_q = np.where(turn != 0, sep[q], gap[q])
     return ub_q, ua_q, n, r_b, r_a, gap_q, friction[q], total[q], turn, poly, radius, restitution[q]
@@ -122,8 +160,16 @@ def polygon_distance(
     t_out = np.where(leaves, t, np.inf).min(axis=1)
     missed = ((s0 > 0.0) & (s > 0.0)).any(axis=1)
     crossed = ~missed & (t_in <= t_out) & np.isfinite(t_in)
+    g = np.argmax(np.where(enters, t, -np.inf), axis=1)
+    if (count == 2).any():
+        # A capsule's core has no ends to clip by: the path crossed its line, but within
+        # the segment? (A polygon's entry point always is on its entry face.)
+        q = p0 + np.where(np.isfinite(t_in), t_in, 0.0)[:, None] * (p - p0)
+        a, b = V[k, g], V[k, (g + 1) % count]
+        along = np.einsum("kj,kj->k", q - a, b - a)
+        within = (along >= 0.0) & (along <= np.einsum("kj,kj->k", b - a, b - a))
+        crossed &= (count != 2) | within
     if crossed.any():
-        g = np.argmax(np.where(enters, t, -np.inf), axis=1)
         dist = np.where(crossed, s[k, g], dist)
         normal = np.where(crossed[:, None], N[k, g], normal)
         corner = corner & ~crossed

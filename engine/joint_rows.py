@@ -43,7 +43,8 @@ class Touch(NamedTuple):
     contact's impulse, it may lift) or a contact of the pile (engine.pile: it only pushes,
     and only where the two touch as the step ends or met in it). ``turn``
     (engine.joint_contacts): 0, a row linear about where the step left the two; +1 (-1), the
-    body (the other) is a polygon, ``poly`` in the World's polygons, and the other end a disc
+    body (the other) is a polygon or a capsule, ``poly`` in engine.joint_contacts.shapes_of,
+    and the other end a disc
     of ``radius``, its row exact wherever the polygon turns; its gap is then the one at the
     step's start. ``restitution``: a contact of
     the pile's bounces by it where the joints' solve catches it closing (a disc resting on

@@ -213,14 +213,19 @@ _ = math
 
 @st.composite
 def bats_and_balls(draw: st.DrawFn) -> tuple[World, Body, Hinge, list[Body], float, int]:
-    """A bat of random length, thickness (a taper) and mass on a hinge at its root, with
-    limits and a motor of random speed and torque, and a few balls of random size thrown at
-    it from random sides at up to 40 (length units)/s, under gravity; when the key is pressed
-    (the step) and dt."""
+    """A bat (a tapered polygon or a capsule) of random length, thickness and mass on a hinge
+    at its root, with limits and a motor of random speed and torque, and a few balls of random
+    size thrown at it from random sides at up to 40 (length units)/s, under gravity; when the
+    key is pressed (the step) and dt."""
     length = draw(st.floats(2.0, 10.0))
     root = draw(st.floats(0.3, 1.5))
     tip = draw(st.floats(0.15, 1.0)) * root
-    shape = Polygon([(0.0, -root), (length, -tip), (length, tip), (0.0, root)])
+    shape: Polygon | Segment
+    if draw(st.booleans()):
+        shape = Polygon([(0.0, -root), (length, -tip), (length, tip), (0.0, root)])
+    else:  # a capsule (a Segment with a radius)
+        shape = Segment((0.0, 0.0), (length, 0.0), radius=root)
+        tip = root
     world = World(integrator="auto")
     world.add_force(Gravity((0.0, -draw(st.floats(0.0, 20.0)))))
     bat = world.add(Body(Vector(0.0, 0.0), shape=shape, mass=draw(st.floats(0.05, 5.0)),
@@ -233,13 +238,14 @@ def bats_and_balls(draw: st.DrawFn) -> tuple[World, Body, Hinge, list[Body], flo
               max_torque=draw(st.floats(1.0, 1e3)) * bat.moment)
     )  # fmt: skip
     balls = []
-    for _ in range(draw(st.integers(1, 3))):
+    for k in range(draw(st.integers(1, 3))):
         r = draw(st.floats(0.1, 1.0))
         aim = draw(st.floats(0.1, 1.0)) * length
         side = draw(st.sampled_from([1.0, -1.0]))
         toward = draw(st.floats(-1.2, 1.2)) + (-math.pi / 2 if side > 0 else math.pi / 2)
         v = draw(st.floats(1.0, 40.0))
-        start = Vector(aim, side * (root + r + draw(st.floats(0.05, 15.0))))
+        # (3 apart a ball: none starts inside another.)
+        start = Vector(aim, side * (root + r + 3.0 * k + draw(st.floats(0.05, 15.0))))
         vel = Vector(math.cos(toward), math.sin(toward)) * v
         balls.append(world.add(Body(start, vel, radius=r, mass=draw(st.floats(0.01, 2.0)),
                                     restitution=draw(st.floats(0.0, 1.0)),
@@ -252,6 +258,10 @@ def bats_and_balls(draw: st.DrawFn) -> tuple[World, Body, Hinge, list[Body], flo
 def inside(bat: Body, ball: Body) -> float:
     """How deep the ball's centre is inside the bat (> 0 inside; length units)."""
     p = bat.world_to_local(ball.pos)
+    if isinstance(bat.shape, Segment):
+        a, b = Vector(*bat.shape.a), Vector(*bat.shape.b)
+        u = min(max((p - a).dot(b - a) / (b - a).dot(b - a), 0.0), 1.0)
+        return bat.shape.radius - (p - (a + (b - a) * u)).length()
     vs = list(bat.shape.vertices)  # type: ignore[union-attr]
     depth = math.inf
     for a, b in zip(vs, vs[1:] + vs[:1], strict=True):

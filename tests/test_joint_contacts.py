@@ -15,7 +15,7 @@ import pytest
 
 from engine.joint_contacts import polygon_distance
 from engine.joint_rows import CN, CT, Plan, evaluate
-from engine.manifold_kinds import Polygons
+from engine.manifold_kinds import Capsules, Polygons
 
 # A bat 8 long and 1 thick (its centre line on y = 0, from x = 0 to 8), as a polygon.
 BAT = Polygons.of([[(0.0, -0.5), (8.0, -0.5), (8.0, 0.5), (0.0, 0.5)]])
@@ -102,3 +102,27 @@ def test_each_contact_row_s_gradient_is_the_derivative_of_its_value(turn: int) -
         T0 = np.array([touch[5][0], touch[6][0]])
         assert evaluate(X0, T0, plan)[0][0] == pytest.approx(touch[7][0], abs=1e-12)
     assert checked >= 100  # of 120
+
+
+# A capsule's core, from (0, 0) to (8, 0), as the two-vertex polygon the joints' solve takes.
+CAPSULE = Polygons.from_capsules(Capsules(np.array([[0.0, 0.0]]), np.array([[8.0, 0.0]]), [0.5]))
+
+
+def core(p: tuple[float, float], p0: tuple[float, float]) -> tuple[float, ...]:
+    dist, normal, corner, _ = polygon_distance(CAPSULE, ONE, np.array([p]), np.array([p0]))
+    return float(dist[0]), float(normal[0, 0]), float(normal[0, 1]), bool(corner[0])
+
+
+def test_a_capsule_s_core_is_a_segment_with_round_ends() -> None:
+    assert core((3.0, 2.0), (3.0, 4.0)) == pytest.approx((2.0, 0.0, 1.0, False), abs=1e-15)
+    d, nx, ny, corner = core((11.0, 4.0), (11.0, 6.0))  # past its end: from the end
+    assert corner and d == pytest.approx(5.0, abs=1e-15)
+    assert (nx, ny) == pytest.approx((0.6, 0.8), abs=1e-15)
+
+
+def test_a_path_through_a_capsule_s_core_is_measured_from_the_side_it_came_from() -> None:
+    # Through the segment, from above: 0.3 below it, it is -0.3 from the top side.
+    assert core((4.0, -0.3), (4.0, 3.0)) == pytest.approx((-0.3, 0.0, 1.0, False), abs=1e-15)
+    # Across its line past the end (round the tip): not through it; 0.3 from the end.
+    d, _, ny, corner = core((8.3, -1e-3), (8.3, 3.0))
+    assert corner and ny < 0.0 and d == pytest.approx(math.hypot(0.3, 1e-3), abs=1e-15)
