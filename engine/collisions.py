@@ -111,7 +111,8 @@ class Collisions:
         self.joined = np.zeros(0, dtype=np.intp)
         #: The last step's pile contacts of those bodies (engine.pile, ``Pile.joined``).
         self.joint_rows: tuple[np.ndarray, ...] | None = None
-        #: The World's polygons and capsules, which those rows index (engine.joint_contacts).
+        #: The World's polygons and capsules, which those rows index (engine.joint_contacts;
+        #: made with the shapes' table, ``_shapes``).
         self.joint_polygons: Polygons | None = None
         self._has_kin = False  # some body is kinematic (infinite mass here)
         self._kin = np.zeros(0, dtype=bool)  # the World's kinematic bodies, by row
@@ -387,6 +388,7 @@ class Collisions:
             if shapes is None or len(shapes) != len(store.radius):
                 shapes = [None] * len(store.radius)
             table = self._table = ShapeTable(shapes, store.radius)
+            self.joint_polygons = shapes_of(table)
         return table
 
     def _grow(
@@ -515,7 +517,6 @@ class Collisions:
                 fast=self.fast, spin=spin, joined=held_by,
             )  # fmt: skip
             self.joint_rows = pile.joined
-            self.joint_polygons = shapes_of(self._shapes(store))
             touching, pa, pb = pile.touching, pile.near_a, pile.near_b
             self.face_touching, self._shape_over = pile.face_touching, pile.shape_over
             self._carry(pile.carried)

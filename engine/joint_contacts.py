@@ -24,8 +24,6 @@ contacts (two discs, two shapes, the static world) keep the pile's linear row.
 
 from __future__ import annotations
 
-import weakref
-
 import numpy as np
 
 from .manifold_kinds import Polygons
@@ -33,27 +31,22 @@ from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
 
 __all__ = ["joined_rows", "polygon_distance", "shapes_of"]
 
-_SHAPES: weakref.WeakKeyDictionary[ShapeTable, Polygons | None] = weakref.WeakKeyDictionary()
-
 
 def shapes_of(table: ShapeTable) -> Polygons | None:
     """The polygons and the capsules of ``table`` as one set of polygons (a capsule as a
     two-vertex polygon with its radius, Box2D's b2MakeCapsule), the polygons first, padded to
-    one size: what the rows of ``joined_rows`` index. Made once a table."""
-    if table in _SHAPES:
-        return _SHAPES[table]
+    one size: what the rows of ``joined_rows`` index (engine.collisions makes it with the
+    table)."""
     parts = [] if table.polygons is None else [table.polygons]
     if len(table.capsules):
         parts.append(Polygons.from_capsules(table.capsules))
-    out = None
-    if parts:
-        m = max(p.vertices.shape[1] for p in parts)
-        v = np.concatenate([_pad(p.vertices, m) for p in parts])
-        nn = np.concatenate([_pad(p.normals, m) for p in parts])
-        count = np.concatenate([p.count for p in parts])
-        out = Polygons(v, nn, count, np.concatenate([p.radius for p in parts]))
-    _SHAPES[table] = out
-    return out
+    if not parts:
+        return None
+    m = max(p.vertices.shape[1] for p in parts)
+    v = np.concatenate([_pad(p.vertices, m) for p in parts])
+    nn = np.concatenate([_pad(p.normals, m) for p in parts])
+    count = np.concatenate([p.count for p in parts])
+    return Polygons(v, nn, count, np.concatenate([p.radius for p in parts]))
 
 
 def _pad(a: np.ndarray, m: int) -> np.ndarray:

@@ -189,9 +189,9 @@ def _contacts(
     into g."""
     k = len(P.cn)
     cn, ct = q[:k], q[k:]
-    nx, ny = P.n[q, 0].copy(), P.n[q, 1].copy()
-    rbx, rby = P.rbod[q, 0].copy(), P.rbod[q, 1].copy()
-    rox, roy = P.roth[q, 0].copy(), P.roth[q, 1].copy()
+    nx, ny = P.n[q, 0], P.n[q, 1]  # (indexed by an array: copies, written below)
+    rbx, rby = P.rbod[q, 0], P.rbod[q, 1]
+    rox, roy = P.roth[q, 0], P.roth[q, 1]
     # A row linear about where the step left the two (the body, a; the other, b): its gap
     # along the normal, which the correction may not close.
     kb = rbx[:k] * ny[:k] - rby[:k] * nx[:k]  # r x n, the body's lever

@@ -40,13 +40,15 @@ from numbers import Real
 from operator import itemgetter
 from typing import TYPE_CHECKING, Any, SupportsFloat, TypeVar, Union
 
-from .vector_checks import OMITTED as _OMITTED
-from .vector_checks import ClassOnly as _ClassOnly
-from .vector_checks import component as _component
-from .vector_checks import is_scalar as _is_scalar
-from .vector_checks import not_a_pair as _not_a_pair
-from .vector_checks import refuse_in_place
-from .vector_checks import round_half_away as _round_half_away
+from .vector_checks import (
+    OMITTED,
+    ClassOnly,
+    component,
+    is_scalar,
+    not_a_pair,
+    refuse_in_place,
+    round_half_away,
+)
 
 if TYPE_CHECKING:
     from .vector_operators import Elementwise
@@ -109,7 +111,7 @@ def _pair(value: Any, name: str) -> tuple[float, float]:
     """The (x, y) of ``value`` (see ``as_pair``), else TypeError naming ``name``."""
     pair = value if type(value) is Vector else as_pair(value)
     if pair is None:
-        raise TypeError(_not_a_pair(value, name))
+        raise TypeError(not_a_pair(value, name))
     return pair
 
 
@@ -124,7 +126,7 @@ class Vector(tuple):  # type: ignore[type-arg]
     __array_ufunc__ = None
 
     def __new__(
-        cls: type[_V], x: SupportsFloat | Iterable[SupportsFloat] = 0.0, y: SupportsFloat = _OMITTED
+        cls: type[_V], x: SupportsFloat | Iterable[SupportsFloat] = 0.0, y: SupportsFloat = OMITTED
     ) -> _V:
         # The fast path, first: two plain floats or ints (the lesson's Vector(x, y)).
         tx, ty = type(x), type(y)
@@ -132,20 +134,20 @@ class Vector(tuple):  # type: ignore[type-arg]
             try:
                 return _new(cls, (float(x), float(y)))  # type: ignore[arg-type]
             except OverflowError:
-                pass  # an int beyond the float range: _component names it
-        if y is _OMITTED:
+                pass  # an int beyond the float range: component() names it
+        if y is OMITTED:
             # One argument: a number is the lesson's Vector(x) = (x, 0); a pair is pygame's
             # Vector2((x, y)), the vector from a position tuple.
-            if _is_scalar(x):
-                return _new(cls, (_component(x, "x"), 0.0))
+            if is_scalar(x):
+                return _new(cls, (component(x, "x"), 0.0))
             pair = as_pair(x)
             if pair is None:
                 raise TypeError(
                     "Vector(x) with one argument takes a number x (y is then 0) or a pair: "
-                    + _not_a_pair(x, "x")
+                    + not_a_pair(x, "x")
                 )
             return _new(cls, pair)
-        return _new(cls, (_component(x, "x"), _component(y, "y")))
+        return _new(cls, (component(x, "x"), component(y, "y")))
 
     x = property(itemgetter(0), doc="The x component (length units).")
     y = property(itemgetter(1), doc="The y component (length units).")
@@ -162,7 +164,7 @@ class Vector(tuple):  # type: ignore[type-arg]
             return value
         pair = as_pair(value)
         if pair is None:
-            raise TypeError(_not_a_pair(value, name))
+            raise TypeError(not_a_pair(value, name))
         return _new(cls, pair)
 
     @classmethod
@@ -174,7 +176,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         """
         return _new(cls, (0.0, 0.0))
 
-    @_ClassOnly
+    @ClassOnly
     def from_polar(cls: type[_V], polar: Any) -> _V:  # noqa: N805
         """The vector of length r at phi degrees from the x axis, from the pair (r, phi).
 
@@ -250,7 +252,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         >>> 2 in Vector(1, 2), 3 in Vector(1, 2)
         (True, False)
         """
-        if not _is_scalar(value):
+        if not is_scalar(value):
             raise TypeError(
                 f"'value in vector' needs a real number, got {type(value).__name__} {value!r}"
             )
@@ -319,11 +321,11 @@ class Vector(tuple):  # type: ignore[type-arg]
         # which hides bugs (a vector times a vector silently becomes a number); and
         # its `*=` scaled only when the other operand was a vector.
         t = type(other)
-        if t is float or t is int or _is_scalar(other):
+        if t is float or t is int or is_scalar(other):
             try:
                 s = float(other)
             except OverflowError:  # an int beyond the float range
-                s = _component(other, "scale")  # raises ValueError naming it
+                s = component(other, "scale")  # raises ValueError naming it
             return _new(Vector, (self[0] * s, self[1] * s))
         if isinstance(other, (tuple, list)) or as_pair(other) is not None:
             raise TypeError(
@@ -339,13 +341,13 @@ class Vector(tuple):  # type: ignore[type-arg]
         try:
             s = float(other)
         except OverflowError:  # an int beyond the float range
-            s = _component(other, name)  # raises ValueError naming it
+            s = component(other, name)  # raises ValueError naming it
         if s == 0.0:
             raise ZeroDivisionError(f"cannot divide a Vector by zero ({name} is {other!r})")
         return s
 
     def __truediv__(self, other: Any) -> Vector:
-        if not _is_scalar(other):
+        if not is_scalar(other):
             return NotImplemented
         s = self._divisor(other, "divisor")
         return _new(Vector, (self[0] / s, self[1] / s))
@@ -356,7 +358,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         >>> Vector(7, -7) // 2
         Vector(3.0, -4.0)
         """
-        if not _is_scalar(other):
+        if not is_scalar(other):
             return NotImplemented
         s = self._divisor(other, "divisor")
         # Python's float // is the floor of the exact quotient; pygame computes floor(x * (1/s)),
@@ -383,7 +385,7 @@ class Vector(tuple):  # type: ignore[type-arg]
             )
         m = 10.0**n
         return _new(
-            type(self), (_round_half_away(self[0] * m) / m, _round_half_away(self[1] * m) / m)
+            type(self), (round_half_away(self[0] * m) / m, round_half_away(self[1] * m) / m)
         )
 
     # += -= *= are deliberately not defined: Python then falls back to + - *,
@@ -496,7 +498,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         >>> Vector(3, 4).scale_to_length(10)
         Vector(6.0, 8.0)
         """
-        new = _component(length, "length")
+        new = component(length, "length")
         old = math.sqrt(self[0] * self[0] + self[1] * self[1])
         if old < _EPSILON:
             raise ValueError(
@@ -518,10 +520,10 @@ class Vector(tuple):  # type: ignore[type-arg]
         Vector(0.6, 0.8)
         """
         if len(lengths) == 1:
-            min_length, max_length = 0.0, _component(lengths[0], "max_length")
+            min_length, max_length = 0.0, component(lengths[0], "max_length")
         elif len(lengths) == 2:
-            min_length = _component(lengths[0], "min_length")
-            max_length = _component(lengths[1], "max_length")
+            min_length = component(lengths[0], "min_length")
+            max_length = component(lengths[1], "max_length")
         else:
             raise TypeError(
                 f"clamp_magnitude takes (max_length) or (min_length, max_length), "
@@ -576,7 +578,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         Vector(2.5, 5.0)
         """
         ox, oy = _pair(other, "other")
-        t = _component(t, "t")
+        t = component(t, "t")
         if not 0.0 <= t <= 1.0:
             raise ValueError(f"lerp's t must be in range [0, 1], got {t!r}")
         s = 1.0 - t
@@ -592,7 +594,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         0.0
         """
         ox, oy = _pair(other, "other")
-        t = _component(t, "t")
+        t = component(t, "t")
         if abs(t) > 1.0:
             raise ValueError(f"slerp's t must be in range [-1, 1], got {t!r}")
         x, y = self[0], self[1]
@@ -636,7 +638,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         Vector(3.0, 4.0)
         """
         tx, ty = _pair(target, "target")
-        d = _component(max_distance, "max_distance")
+        d = component(max_distance, "max_distance")
         cls = type(self)
         if d == 0.0:
             return _new(cls, (self[0], self[1]))
@@ -706,7 +708,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         >>> Vector(1, 0).rotate(90)
         Vector(-0.0, 1.0)
         """
-        return self._rotated_by(_component(degrees, "degrees") * math.pi / 180.0)
+        return self._rotated_by(component(degrees, "degrees") * math.pi / 180.0)
 
     def rotate_rad(self: _V, radians: float) -> _V:
         """This vector turned counter-clockwise by ``radians`` (pygame's rotate_rad, radians).
@@ -714,7 +716,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         >>> Vector(1, 0).rotate_rad(math.pi)
         Vector(-1.0, -0.0)
         """
-        return self._rotated_by(_component(radians, "radians"))
+        return self._rotated_by(component(radians, "radians"))
 
     def rotated(self: _V, radians: float) -> _V:
         """This vector turned counter-clockwise by ``radians`` (pymunk's rotated, radians).
@@ -725,7 +727,7 @@ class Vector(tuple):  # type: ignore[type-arg]
         >>> Vector(2, 0).rotated(math.pi / 3).angle == math.pi / 3
         True
         """
-        a = _component(radians, "radians")
+        a = component(radians, "radians")
         c, s = math.cos(a), math.sin(a)
         x, y = self[0], self[1]
         return _new(type(self), (x * c - y * s, x * s + y * c))

@@ -8,9 +8,8 @@ from collections.abc import Callable
 from numbers import Real
 from typing import Any
 
-from .vector import Vector, as_pair
-from .vector import new_unchecked as _new
-from .vector_checks import is_scalar as _is_scalar
+from .vector import Vector, as_pair, new_unchecked
+from .vector_checks import is_scalar
 
 __all__ = ["arithmetic_returning", "Elementwise"]
 
@@ -26,7 +25,7 @@ def arithmetic_returning(cls: type[Vector]) -> dict[str, Callable[..., Any]]:
         pair = other if type(other) is Vector else as_pair(other)
         if pair is None:
             return NotImplemented
-        return _new(cls, (self[0] + pair[0], self[1] + pair[1]))
+        return new_unchecked(cls, (self[0] + pair[0], self[1] + pair[1]))
 
     def __radd__(self: Vector, other: Any) -> Any:
         if as_pair(other) is None:
@@ -37,27 +36,27 @@ def arithmetic_returning(cls: type[Vector]) -> dict[str, Callable[..., Any]]:
         pair = other if type(other) is Vector else as_pair(other)
         if pair is None:
             return NotImplemented
-        return _new(cls, (self[0] - pair[0], self[1] - pair[1]))
+        return new_unchecked(cls, (self[0] - pair[0], self[1] - pair[1]))
 
     def __rsub__(self: Vector, other: Any) -> Any:
         pair = as_pair(other)
         if pair is None:
             return NotImplemented
-        return _new(cls, (pair[0] - self[0], pair[1] - self[1]))
+        return new_unchecked(cls, (pair[0] - self[0], pair[1] - self[1]))
 
     def __neg__(self: Vector) -> Any:
-        return _new(cls, (-self[0], -self[1]))
+        return new_unchecked(cls, (-self[0], -self[1]))
 
     def __pos__(self: Vector) -> Any:
-        return _new(cls, (self[0], self[1]))
+        return new_unchecked(cls, (self[0], self[1]))
 
     def __mul__(self: Vector, other: Any) -> Any:
         result = Vector.__mul__(self, other)  # the checks and the messages are Vector's
-        return result if result is NotImplemented else _new(cls, result)
+        return result if result is NotImplemented else new_unchecked(cls, result)
 
     def __truediv__(self: Vector, other: Any) -> Any:
         result = Vector.__truediv__(self, other)
-        return result if result is NotImplemented else _new(cls, result)
+        return result if result is NotImplemented else new_unchecked(cls, result)
 
     methods: dict[str, Callable[..., Any]] = {
         "__add__": __add__,
@@ -75,10 +74,15 @@ def arithmetic_returning(cls: type[Vector]) -> dict[str, Callable[..., Any]]:
     return methods
 
 
-def _elementwise_pair(other: Any) -> tuple[float, float] | None:
+def _operand(other: Any) -> tuple[float, float] | None:
+    """The other side of an Elementwise operator as a pair: another proxy's vector, a pair,
+    or a number for both components; None: not an operand."""
     if type(other) is Elementwise:
         return other.vector
-    return as_pair(other)
+    pair = as_pair(other)
+    if pair is None and is_scalar(other):
+        return float(other), float(other)
+    return pair
 
 
 def _binary(
@@ -88,20 +92,17 @@ def _binary(
 
     def method(self: Elementwise, other: Any) -> Any:
         v = self.vector
-        pair = _elementwise_pair(other)
-        if pair is not None:
-            a, b = pair
-        elif _is_scalar(other):
-            a = b = float(other)
-        else:
+        pair = _operand(other)
+        if pair is None:
             return NotImplemented
+        a, b = pair
         if reflected:
             x, y = op(a, v[0]), op(b, v[1])
         else:
             x, y = op(v[0], a), op(v[1], b)
         if not (isinstance(x, Real) and isinstance(y, Real)):  # (-1) ** 0.5 is complex
             raise ValueError("negative number cannot be raised to a fractional power")
-        return _new(type(v), (float(x), float(y)))
+        return new_unchecked(type(v), (float(x), float(y)))
 
     return method
 
@@ -111,13 +112,10 @@ def _compare(op: Callable[[float, float], bool]) -> Callable[[Elementwise, Any],
 
     def method(self: Elementwise, other: Any) -> Any:
         v = self.vector
-        pair = _elementwise_pair(other)
-        if pair is not None:
-            a, b = pair
-        elif _is_scalar(other):
-            a = b = float(other)
-        else:
+        pair = _operand(other)
+        if pair is None:
             return NotImplemented
+        a, b = pair
         return op(v[0], a) and op(v[1], b)
 
     return method
@@ -159,7 +157,7 @@ class Elementwise:
 
     def __abs__(self) -> Vector:
         v = self.vector
-        return _new(type(v), (abs(v[0]), abs(v[1])))
+        return new_unchecked(type(v), (abs(v[0]), abs(v[1])))
 
     def __neg__(self) -> Vector:
         return -self.vector
