@@ -27,11 +27,21 @@ import math
 from numbers import Real
 from typing import TYPE_CHECKING, Any, cast
 
-from . import checks
 from .body_habits import install as install_habits
+from .body_values import (
+    State,
+    coerce_mass,
+    coerce_state,
+    dim_of,
+    finite,
+    material,
+    pair,
+    real_number,
+    refuse_change,
+)
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter
-from .vector import Vector, as_pair, new_unchecked
+from .vector import Vector, new_unchecked
 
 if TYPE_CHECKING:
     from .store import BodyStore
@@ -47,60 +57,6 @@ _isfinite = math.isfinite
 #: False gives the earlier version's boxes, which keep their angle. Read as a body is made or
 #: added: set it before.
 CORNERS_TURN = True
-
-#: A state value: a float for a 1D body, a Vector for a 2D body.
-State = float | Vector
-
-
-def _dim_of(value: Any) -> int | None:
-    """1 for a real number, 2 for a Vector or pair of numbers, None for anything else."""
-    if isinstance(value, Real) and not isinstance(value, bool):
-        return 1
-    if as_pair(value) is not None:
-        return 2
-    return None
-
-
-def coerce_state(value: Any, dim: int, name: str) -> State:
-    """Return ``value`` as a finite state of dimension ``dim`` (float or Vector), else raise.
-
-    TypeError for the wrong kind (naming ``name`` and what would be valid), ValueError for
-    nan or inf.
-    """
-    t = type(value)
-    if (t is Vector and dim == 2 and _isfinite(value[0]) and _isfinite(value[1])) or (
-        t is float and dim == 1 and _isfinite(value)
-    ):
-        return value  # the common case, already exactly right
-    got = _dim_of(value)
-    if got != dim:
-        want = "a real number (1D)" if dim == 1 else "a Vector or pair of numbers (2D)"
-        what = {1: "a number (1D)", 2: "a Vector (2D)"}.get(got or 0, type(value).__name__)
-        raise TypeError(f"{name} must be {want}, got {what}: {value!r}")
-    try:
-        state: State = float(value) if dim == 1 else Vector.coerce(value, name)
-    except OverflowError:  # an int beyond the float range
-        raise ValueError(f"{name} must be finite (within the float range), got {value!r}") from None
-    finite = math.isfinite(state) if isinstance(state, float) else state.is_finite()
-    if not finite:
-        raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
-    return state
-
-
-def coerce_mass(mass: Any) -> float:
-    """Return ``mass`` as a positive finite float (kilograms, or the scene's mass unit)."""
-    return checks.mass(mass)
-
-
-def _material(radius: Any, restitution: Any, friction: Any) -> tuple[float, float, float]:
-    """(radius >= 0, restitution in [0, 1], friction >= 0), checked, each error naming its name."""
-    r = checks.real(radius, "radius", nonneg=True)
-    e = checks.real(restitution, "restitution")
-    if not 0.0 <= e <= 1.0:
-        raise ValueError(
-            f"restitution must be in [0, 1] (0: no bounce, 1: elastic), got {restitution!r}"
-        )
-    return r, e, checks.real(friction, "friction", nonneg=True)
 
 
 class Body:
@@ -170,11 +126,11 @@ class Body:
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
-            zero: Any = {1: 0.0, 2: Vector(0.0, 0.0)}.get(_dim_of(position) or 0, 0.0)
+            zero: Any = {1: 0.0, 2: Vector(0.0, 0.0)}.get(dim_of(position) or 0, 0.0)
             velocity = zero if velocity is None else velocity
             acceleration = zero if acceleration is None else acceleration
         given = {"position": position, "velocity": velocity, "acceleration": acceleration}
-        dims = {name: _dim_of(value) for name, value in given.items()}
+        dims = {name: dim_of(value) for name, value in given.items()}
         for name, d in dims.items():
             if d is None:
                 value = given[name]
@@ -195,7 +151,7 @@ class Body:
         self._store_vel(coerce_state(velocity, dim, "velocity"))
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
         self._mass: float = coerce_mass(mass)
-        self._radius, self._e, self._mu = _material(radius, restitution, friction)
+        self._radius, self._e, self._mu = material(radius, restitution, friction)
         self._shape: Any = None
         if shape is not None:
             self._radius = self._take_shape(shape, dim)
@@ -226,16 +182,16 @@ class Body:
         self._fixed = fixed
         self._moment: float | None = None
         if moment is not None:
-            m = _real(moment, "moment")
+            m = real_number(moment, "moment")
             if not m > 0.0:
                 raise ValueError(
                     f"moment must be a moment of inertia > 0 in kg m^2 (math.inf: the body "
                     f"never turns), or None to take it from the shape and mass, got {moment!r}"
                 )
             self._moment = m
-        self._angle = _finite(angle, "angle")
-        self._omega = _finite(omega, "angular_velocity")
-        self._torque = _finite(torque, "torque")
+        self._angle = finite(angle, "angle")
+        self._omega = finite(omega, "angular_velocity")
+        self._torque = finite(torque, "torque")
         if (self._angle or self._omega or self._torque) and not self.turns:
             raise ValueError(self._why_not("angle", self._angle, self._omega, self._torque))
 
@@ -485,7 +441,7 @@ class Body:
 
     @radius.setter
     def radius(self, value: Any) -> None:
-        _fixed("radius", value)
+        refuse_change("radius", value)
 
     @property
     def shape(self) -> Any:
@@ -496,7 +452,7 @@ class Body:
 
     @shape.setter
     def shape(self, value: Any) -> None:
-        _fixed("shape", value)
+        refuse_change("shape", value)
 
     @property
     def restitution(self) -> float:
@@ -505,7 +461,7 @@ class Body:
 
     @restitution.setter
     def restitution(self, value: Any) -> None:
-        _fixed("restitution", value)
+        refuse_change("restitution", value)
 
     @property
     def friction(self) -> float:
@@ -514,7 +470,7 @@ class Body:
 
     @friction.setter
     def friction(self, value: Any) -> None:
-        _fixed("friction", value)
+        refuse_change("friction", value)
 
     @property
     def filter(self) -> Filter:
@@ -523,7 +479,7 @@ class Body:
 
     @filter.setter
     def filter(self, value: Any) -> None:
-        _fixed("filter", value)
+        refuse_change("filter", value)
 
     @property
     def kinematic(self) -> bool:
@@ -536,7 +492,7 @@ class Body:
 
     @kinematic.setter
     def kinematic(self, value: Any) -> None:
-        _fixed("kinematic", value)
+        refuse_change("kinematic", value)
 
     # -- rotation (engine.rotation) ----------------------------------------------------------
     @property
@@ -552,7 +508,7 @@ class Body:
 
     @fixed_rotation.setter
     def fixed_rotation(self, value: Any) -> None:
-        _fixed("fixed_rotation", value)
+        refuse_change("fixed_rotation", value)
 
     @property
     def moment(self) -> float:
@@ -565,7 +521,7 @@ class Body:
 
     @moment.setter
     def moment(self, value: Any) -> None:
-        m = _real(value, "moment")
+        m = real_number(value, "moment")
         if not m > 0.0:
             raise ValueError(f"moment must be > 0 in kg m^2 (math.inf: never turns), got {value!r}")
         if not self.turns and math.isfinite(m):
@@ -584,7 +540,7 @@ class Body:
 
     @angle.setter
     def angle(self, value: Any) -> None:
-        a = _finite(value, "angle")
+        a = finite(value, "angle")
         if a and not self.turns:
             raise ValueError(self._why_not("angle", a))
         if self._store is not None:
@@ -602,7 +558,7 @@ class Body:
 
     @angular_velocity.setter
     def angular_velocity(self, value: Any) -> None:
-        w = _finite(value, "angular_velocity")
+        w = finite(value, "angular_velocity")
         if w and not self.turns:
             raise ValueError(self._why_not("angular_velocity", 0.0, w))
         if self._store is not None:
@@ -621,7 +577,7 @@ class Body:
 
     @torque.setter
     def torque(self, value: Any) -> None:
-        tau = _finite(value, "torque")
+        tau = finite(value, "torque")
         if tau and not self.turns:
             raise ValueError(self._why_not("torque", 0.0, 0.0, tau))
         if self._store is not None:
@@ -639,9 +595,9 @@ class Body:
             raise ValueError(
                 "a kinematic body is moved by the game and takes no impulse: set its vel"
             )
-        jx, jy = _pair(impulse, "impulse")
+        jx, jy = pair(impulse, "impulse")
         pos = self.pos
-        px, py = (pos.x, pos.y) if at is None else _pair(at, "at")
+        px, py = (pos.x, pos.y) if at is None else pair(at, "at")
         m = self.mass
         vel = self.vel
         self.vel = Vector(vel.x + jx / m, vel.y + jy / m)
@@ -656,7 +612,7 @@ class Body:
         theirs). A body that turns takes the torque (at - pos) x F too."""
         if self._dim != 2:
             raise TypeError("apply_force takes a 2D body; for a 1D body set body.own_acc")
-        fx, fy = _pair(force, "force")
+        fx, fy = pair(force, "force")
         store = self._store
         if store is None:
             raise ValueError(
@@ -666,7 +622,7 @@ class Body:
         if self._kinematic:
             raise ValueError("a kinematic body is moved by the game and takes no force")
         pos = self.pos
-        px, py = (pos.x, pos.y) if at is None else _pair(at, "at")
+        px, py = (pos.x, pos.y) if at is None else pair(at, "at")
         torque = (px - pos.x) * fy - (py - pos.y) * fx if self.turns else 0.0
         m = self.mass
         store.push(self._slot, (fx / m, fy / m), torque)
@@ -674,14 +630,14 @@ class Body:
     def local_to_world(self, point: Any) -> Vector:
         """A point given in the body's own frame (length units), in world coordinates:
         pos + R(angle) point."""
-        x, y = _pair(point, "point")
+        x, y = pair(point, "point")
         c, s = math.cos(self.angle), math.sin(self.angle)
         pos = self.pos
         return Vector(pos.x + c * x - s * y, pos.y + s * x + c * y)
 
     def world_to_local(self, point: Any) -> Vector:
         """A world point (length units) in the body's own frame: R(-angle) (point - pos)."""
-        x, y = _pair(point, "point")
+        x, y = pair(point, "point")
         c, s = math.cos(self.angle), math.sin(self.angle)
         pos = self.pos
         dx, dy = x - pos.x, y - pos.y
@@ -749,49 +705,6 @@ class Body:
             f"Body(position={self.pos!r}, velocity={self.vel!r}, "
             f"acceleration={self.own_acc!r}, mass={self.mass!r}{size}{kin})"
         )
-
-
-def _real(value: Any, name: str) -> float:
-    """A real number (not a bool) as a float; TypeError / ValueError naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
-    try:
-        number = float(value)
-    except OverflowError:  # an int or a fraction beyond the float range
-        number = math.inf if value > 0 else -math.inf  # type: ignore[operator]
-    if math.isnan(number):
-        raise ValueError(f"{name} must be a number, got nan")
-    return number
-
-
-def _finite(value: Any, name: str) -> float:
-    """A finite real number as a float; TypeError / ValueError naming ``name``."""
-    number = _real(value, name)
-    if not math.isfinite(number):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return number
-
-
-def _pair(value: Any, name: str) -> tuple[float, float]:
-    """A finite 2D point or vector (a Vector or a pair of numbers), naming ``name``."""
-    pair = as_pair(value)
-    if pair is None:
-        raise TypeError(
-            f"{name} must be a Vector or a pair of numbers, got {type(value).__name__} {value!r}"
-        )
-    x, y = float(pair[0]), float(pair[1])
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return x, y
-
-
-def _fixed(name: str, value: Any) -> None:
-    """Refuse a change of what a Body is made with, saying how to get it."""
-    raise AttributeError(
-        f"a Body's {name} is fixed when it is made (the World keeps it in its arrays), so "
-        f"body.{name} = {value!r} cannot change it: make a new Body(..., {name}={value!r}) "
-        f"instead (world.remove(body), then world.add(new))"
-    )
 
 
 # pymunk's Body names the Body lacks, each with what to write instead (engine.body_habits).

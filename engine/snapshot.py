@@ -18,7 +18,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .body import Body, State, coerce_mass, coerce_state
+from .body import Body
+from .body_values import State, coerce_mass, coerce_state
 from .checks import seconds
 from .events import ContactEvent, keys_of, plain_keys
 from .joints import KINDS, apply_settings, check_settings, geometry, rebuild, settings
