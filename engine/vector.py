@@ -59,9 +59,8 @@ VectorLike = Union["Vector", tuple[float, float]]
 
 _V = TypeVar("_V", bound="Vector")
 
-# Vector is a tuple underneath: immutable for free, made at C speed, compared and hashed
-# like the pair it holds (so Vector(1, 2) == (1.0, 2.0) and their hashes agree), and
-# turned into numpy arrays directly.
+# Vector is a tuple underneath: immutable for free, made at C speed, compared and hashed like
+# the pair it holds (Vector(1, 2) == (1.0, 2.0), equal hashes), turned into arrays directly.
 #: ``new_unchecked(Vector, (x, y))``: a Vector of two floats (length units) made at C speed,
 #: without the checks of ``Vector(x, y)``; only where x and y are already floats (the
 #: results of float arithmetic).
