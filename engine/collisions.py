@@ -380,6 +380,10 @@ class Collisions:
         bodies it meets, even where nothing spins and there are no colliders)."""
         return bool(self._shapes(store).shaped.any())
 
+    def shape_table(self, store: Any) -> ShapeTable:
+        """The bodies' shapes as narrowphase kinds, by World row (engine.shaped)."""
+        return self._shapes(store)
+
     def _shapes(self, store: Any) -> ShapeTable:
         """The bodies' shapes as narrowphase kinds (built again when bodies change)."""
         table = self._table

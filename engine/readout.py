@@ -13,6 +13,9 @@ import numpy as np
 from .body import Body, State
 from .colliders import Collider
 from .collisions import deepest_overlap
+from .pair_grid import grid_pairs
+from .pair_math import norm
+from .shaped import pair_rows
 
 if TYPE_CHECKING:
     from .world_state import WorldState
@@ -39,7 +42,8 @@ def is_sleeping(state: WorldState, body: Body) -> bool:
 
 
 def overlap(state: WorldState) -> float:
-    """The deepest overlap (length units) between two bodies that collide, now."""
+    """The deepest overlap (length units) between two bodies that collide, now: of their
+    shapes (a box's at its angle), not of the circles that hold them."""
     store = state.store
     if store is None or store.dim != 2 or not state.bodies:
         return 0.0
@@ -47,7 +51,39 @@ def overlap(state: WorldState) -> float:
     if len(live) < 2 or state.collisions.one_group:
         return 0.0
     filters = (store.group[live], store.categories[live], store.mask[live])
-    return deepest_overlap(store.x[live], store.radius[live], filters)
+    table = state.collisions.shape_table(store)
+    if not table.shaped[live].any():
+        return deepest_overlap(store.x[live], store.radius[live], filters)
+    # Bodies with shapes: the pairs whose bounding circles meet are measured by the
+    # narrowphase at their angles (engine.shaped); two discs by their centres.
+    a, b = _circle_pairs(store.x[live], store.radius[live])
+    g, c, m = filters
+    ok = ~((g[a] == g[b]) & (g[a] != 0)) & ((c[a] & m[b]) != 0) & ((c[b] & m[a]) != 0)
+    a, b = live[a[ok]], live[b[ok]]
+    kin = store.kinematic
+    a, b = a[~(kin[a] & kin[b])], b[~(kin[a] & kin[b])]  # what the game moves meets no other
+    if not len(a):
+        return 0.0
+    sep = pair_rows(table, a, b, store.x, 0.0, store.angle)[3]
+    return max(-float(sep.min(initial=0.0)), 0.0)
+
+
+def _circle_pairs(x: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs (i < j) of circles at x (N, 2) with radii r (N,) that meet: a grid for the
+    ordinary ones; each body over 4 times the median radius (a tumbler's wall, a long
+    platform), which would make the grid's cells as large as itself, against every body."""
+    big = r > 4.0 * float(np.median(r))
+    small = np.flatnonzero(~big)
+    i, j = grid_pairs(x[small], 2.0 * float(r[small].max()) + 1e-300)
+    i, j = small[i], small[j]
+    far = norm(x[i] - x[j]) > r[i] + r[j]
+    ai, bj = [i[~far]], [j[~far]]
+    for k in np.flatnonzero(big).tolist():
+        near = np.flatnonzero(norm(x - x[k]) <= r + r[k])
+        near = near[(near != k) & (~big[near] | (near > k))]  # each pair of big ones once
+        ai.append(np.minimum(near, k))
+        bj.append(np.maximum(near, k))
+    return np.concatenate(ai), np.concatenate(bj)
 
 
 def resting(state: WorldState, body: Body) -> Collider | None:

@@ -231,7 +231,7 @@ class World:
         return readout.is_sleeping(self._s, body)
 
     def overlap(self) -> float:
-        """The deepest overlap (length units) between two bodies that collide, now."""
+        """The deepest overlap (length units) of two bodies that collide, now (their shapes)."""
         return readout.overlap(self._s)
 
     @property

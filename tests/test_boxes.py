@@ -291,3 +291,24 @@ def test_a_box_bounces_at_a_step_and_slides_to_its_stop_as_the_readme_says() -> 
         f"1/240), and a box sliding at 5 m/s with mu = 0.5 stops {100 * (1 - stop / closed):.2f}%"
     )
     assert said in readme, said
+
+
+def test_world_overlap_measures_shapes_not_their_bounding_circles() -> None:
+    # Two 1 m boxes side by side 0.9 m apart overlap by 0.1 m (their bounding circles, of
+    # radius sqrt(0.5), by 0.51 m); turned by 45 degrees, the corner of one reaches
+    # 0.5 + sqrt(0.5) from its centre, into the other's face at 0.9 - 0.5.
+    w = World()
+    w.add(Body(Vector(0, 0), shape=Polygon.box(1, 1)))
+    b = w.add(Body(Vector(0.9, 0), shape=Polygon.box(1, 1)))
+    w.add(Body(Vector(5, 0), radius=0.5))
+    disc = w.add(Body(Vector(5.8, 0), radius=0.5))
+    assert w.overlap() == pytest.approx(0.2, abs=1e-12)  # the discs, deeper
+    disc.pos = Vector(6.5, 0)
+    assert w.overlap() == pytest.approx(0.1, abs=1e-12)
+    b.angle = math.pi / 4
+    assert w.overlap() == pytest.approx(0.5 + math.sqrt(0.5) - 0.9, abs=1e-12)
+    b.pos = Vector(3, 3)
+    assert w.overlap() == 0.0
+    # A long platform (a body far larger than the rest) is measured against every body.
+    w.add(Body(Vector(0, -0.9), shape=Polygon.box(20, 1), kinematic=True))
+    assert w.overlap() == pytest.approx(0.1, abs=1e-12)  # the first box sits 0.1 into it
