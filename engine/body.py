@@ -192,8 +192,13 @@ class Body:
         self._angle = finite(angle, "angle")
         self._omega = finite(omega, "angular_velocity")
         self._torque = finite(torque, "torque")
-        if (self._angle or self._omega or self._torque) and not self.turns:
+        if (self._angle or self._omega) and not self._steered() or self._torque and not self.turns:
             raise ValueError(self._why_not("angle", self._angle, self._omega, self._torque))
+
+    def _steered(self) -> bool:
+        """Whether the body can be given an angle and an angular velocity: one that turns, or a
+        kinematic body in 2D (the game turns it, as it moves it)."""
+        return self.turns or (self._kinematic and self._dim == 2)
 
     def _why_not(self, name: str, *values: float) -> str:
         """Why this body cannot take a rotation (``name``: the argument given)."""
@@ -208,7 +213,10 @@ class Body:
         if self._dim != 2:
             why = "a 1D body does not turn"
         elif self._kinematic:
-            why = "a kinematic body does not turn in this version (set its vel or pos)"
+            why = (
+                "a kinematic body is turned by the game, not by a torque: set its "
+                "angular_velocity (rad/s) or its angle"
+            )
         elif self._fixed:
             why = "the body was made with fixed_rotation=True"
         elif not self._round() and not CORNERS_TURN:
@@ -487,7 +495,9 @@ class Body:
         contacts take its mass as infinite. In a World, writing its ``vel`` sets how it moves;
         writing its ``pos`` moves it there over the next step, at the velocity that takes
         (what the contacts in that step see), after which its ``vel`` is again the one last
-        written (zero by default): a paddle the game places each frame stops when it does."""
+        written (zero by default): a paddle the game places each frame stops when it does.
+        It turns the same way (2D): ``angular_velocity`` sets how (rad/s: a windmill, a
+        tumbler), and writing ``angle`` turns it there over the next step."""
         return self._kinematic
 
     @kinematic.setter
@@ -532,7 +542,8 @@ class Body:
 
     @property
     def angle(self) -> float:
-        """The angle the body has turned through (rad, counter-clockwise; not wrapped)."""
+        """The angle the body has turned through (rad, counter-clockwise; not wrapped). For a
+        kinematic body in a World, writing it turns the body there over the next step."""
         store = self._store
         if store is not None:
             return float(store.angle[store.row(self._slot)])
@@ -541,7 +552,7 @@ class Body:
     @angle.setter
     def angle(self, value: Any) -> None:
         a = finite(value, "angle")
-        if a and not self.turns:
+        if a and not self._steered():
             raise ValueError(self._why_not("angle", a))
         if self._store is not None:
             self._store.set_spin(self._slot, a, None)
@@ -559,7 +570,7 @@ class Body:
     @angular_velocity.setter
     def angular_velocity(self, value: Any) -> None:
         w = finite(value, "angular_velocity")
-        if w and not self.turns:
+        if w and not self._steered():
             raise ValueError(self._why_not("angular_velocity", 0.0, w))
         if self._store is not None:
             self._store.set_spin(self._slot, None, w)

@@ -109,6 +109,7 @@ def remove(state: WorldState, body: Body) -> None:
     state.events.body_removed(body.slot, state.t)
     del state.bodies[row]
     state.targets.pop(body, None)
+    state.turn_targets.pop(body, None)
     store.remove(body.slot)
     gone = [k for k in state.links if body in k.bodies]
     if gone:

@@ -190,13 +190,14 @@ class Turning(NamedTuple):
 
 
 def turning(spin: Spin, store: Any, U: np.ndarray, can: np.ndarray) -> Turning | None:
-    """The pile's (World rows ``U``) bodies that turn (discs, bodies with corners), of those
-    that ``can`` (they move), or None where none does."""
-    t = spin.turns[U] & can
+    """The pile's (World rows ``U``) bodies that turn (discs, bodies with corners), or None
+    where none does. Those that cannot be moved (``can`` False: kinematic) turn at their own
+    omega, whatever they touch: 1 / I = 0 (and I = 0 in the energy's sums)."""
+    t = spin.turns[U]
     if not t.any():
         return None
-    i = np.where(t, store.inv_moment[U], 0.0)
-    moment = np.where(t, store.moment[U], 0.0)
+    i = np.where(t & can, store.inv_moment[U], 0.0)
+    moment = np.where(t & can, store.moment[U], 0.0)
     return Turning(
         t,
         np.append(i, 0.0),

@@ -60,10 +60,14 @@ class Spin:
         mass: np.ndarray,
         radius: np.ndarray,
         dt: float,
+        kinematic: np.ndarray | None = None,
     ) -> Spin:
         """Every body turned freely for ``dt`` s by the closed form (exact for a constant
-        torque); the bodies that do not turn (1 / I = 0) keep their angle."""
+        torque); the bodies that do not turn (1 / I = 0) keep their angle, but for the
+        ``kinematic`` ones (N,) the game turns, at their own omega (they count as turning)."""
         turns = inv_moment > 0.0
+        if kinematic is not None:
+            turns = turns | (kinematic & (omega0 != 0.0))
         alpha = torque * inv_moment
         angle = angle0 + omega0 * dt + alpha * (0.5 * dt * dt)
         omega = omega0 + alpha * dt

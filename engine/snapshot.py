@@ -57,6 +57,7 @@ class WorldSnapshot:
     #: Each link or joint in force: (what it joins, warned, last impulse, its settings).
     links: tuple[Any, ...] = ()
     moves: tuple[Any, ...] = ()  # (row, target): kinematic bodies' pos written, not yet reached
+    turns: tuple[Any, ...] = ()  # (row, angle): kinematic bodies' angle written, likewise
     events: tuple[Any, ...] | None = None  # the contacts open (engine.events), by row and place
     #: Rotation by row: (angle, angular velocity, moment, torque) arrays (engine.rotation).
     spin: tuple[Any, ...] | None = None
@@ -96,6 +97,7 @@ def take(state: WorldState) -> WorldSnapshot:
             (state.bodies.index(b), tuple(float(c) for c in target))
             for b, target in state.targets.items()
         ),
+        turns=tuple((state.bodies.index(b), float(a)) for b, a in state.turn_targets.items()),
     )
 
 
@@ -113,6 +115,7 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
     masses, own_acc = _check_snapshot(state, snapshot)
     links = _check_links(state, snapshot.links)
     moves = _check_moves(state, snapshot.moves)
+    turns = _check_turns(state, snapshot.turns)
     if state.contacts is not None and snapshot.contacts is not None:
         state.contacts.check_state(snapshot.contacts, len(state.bodies))
     store = state.store
@@ -140,6 +143,7 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
         k.warned, k.impulse = warned, impulse
         apply_settings(k, values)
     state.targets = {state.bodies[row]: target for row, target in moves}
+    state.turn_targets = {state.bodies[row]: angle for row, angle in turns}
     state.changed_structure()
     if snapshot.anchor is not None:
         x0, v0, ta = snapshot.anchor
@@ -237,6 +241,24 @@ def _check_moves(state: WorldState, moves: Any) -> list[tuple[int, tuple[float, 
                 f"snapshot.moves holds (row of a kinematic body, finite point) pairs, got {item!r}"
             )
         out.append((item[0], (float(point[0]), float(point[1]))))
+    return out
+
+
+def _check_turns(state: WorldState, turns: Any) -> list[tuple[int, float]]:
+    """The snapshot's pending kinematic turns, checked: (row of a kinematic body, a finite
+    angle in rad)."""
+    if not isinstance(turns, tuple):
+        raise TypeError("snapshot.turns must be a tuple of (row, angle) from World.snapshot")
+    out = []
+    for item in turns:
+        ok = isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], int)
+        ok = ok and 0 <= item[0] < len(state.bodies) and state.bodies[item[0]].kinematic
+        ok = ok and isinstance(item[1], float) and math.isfinite(item[1])
+        if not ok:
+            raise ValueError(
+                f"snapshot.turns holds (row of a kinematic body, finite angle) pairs, got {item!r}"
+            )
+        out.append((item[0], item[1]))
     return out
 
 

@@ -90,6 +90,7 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
             f"pass the float range (1.8e308 s)"
         )
     after = _apply_targets(state, dt) if state.targets else None
+    turned = _apply_turn_targets(state, dt) if state.turn_targets else None
     store = state.store
     # Bodies that turn, or a force applied for this step only (Body.apply_force), take the
     # general step: the affine kernel knows neither.
@@ -110,6 +111,13 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         assert held is not None
         for body, v in after.items():
             held.v[held.row(body.slot)] = v
+    if turned is not None:
+        # ... and one turned by angle stops turning there, likewise.
+        held = state.store
+        assert held is not None
+        for body, w in turned.items():
+            held.omega[held.row(body.slot)] = w
+        held.spin_written()
     if state.contacts is not None or state.pairs_on or state.events.busy:
         # The step ran from t0 = t_base + (n - 1) dt (the time it started at, summed the
         # same way) to t.
@@ -142,6 +150,30 @@ def _apply_targets(state: WorldState, dt: float) -> dict[Body, np.ndarray]:
         before[body] = store.v[row].copy()
         store.v[row] = moves[row]
     state.targets.clear()
+    state.anchor = None
+    return before
+
+
+def _apply_turn_targets(state: WorldState, dt: float) -> dict[Body, float]:
+    """Each kinematic body with a target angle takes the angular velocity that reaches it in
+    ``dt``; return the angular velocities they had, to be given back after the step."""
+    store = state.store
+    assert store is not None
+    before = {}
+    for body, target in state.turn_targets.items():
+        row = store.row(body.slot)
+        w = (target - float(store.angle[row])) * (1.0 / dt)
+        if not math.isfinite(w):
+            state.turn_targets.clear()
+            raise ValueError(
+                f"angle={target!r} of a kinematic body is too far to reach in one step of "
+                f"dt={dt!r} s (the angular velocity passes the float range): the turn was "
+                f"dropped; give a nearer angle"
+            )
+        before[body] = float(store.omega[row])
+        store.omega[row] = w
+    store.spin_written()
+    state.turn_targets.clear()
     state.anchor = None
     return before
 
@@ -271,7 +303,7 @@ def _step_once(
     # Bodies that turn turn freely by the closed form (engine.rotation); the colliders
     # change the spin of those they touch (without colliders, discs at rest stay so).
     spin = None
-    if store.turns_any and (
+    if (store.turns_any or store.spins()) and (
         state.contacts is not None
         or store.spins()
         or state.jointed
@@ -279,7 +311,7 @@ def _step_once(
     ):
         spin = Spin.free(
             store.angle, store.omega, store.inv_moment, store.torque, store.mass,
-            store.radius, dt,
+            store.radius, dt, store.kinematic,
         )  # fmt: skip
     v_method = v1
     v_free = v1

@@ -43,6 +43,7 @@ class BodyStore:
         on_own_acc: Callable[[int], None] = lambda row: None,
         on_mass: Callable[[], None] = lambda: None,
         on_kinematic: Callable[[int, Any], None] | None = None,
+        on_kinematic_turn: Callable[[int, float | None], bool] | None = None,
         acceleration_at: Callable[[int], Any] | None = None,
     ) -> None:
         self.dim = dim
@@ -54,6 +55,9 @@ class BodyStore:
         # A kinematic body's move (row, target position or None for a velocity written): the
         # owner takes it without waking the World's sleepers (those it touches wake).
         self._on_kinematic = on_kinematic
+        # A kinematic body turned (row, target angle or None for an angular velocity
+        # written): True where the owner took it so (a pinned body is turned by hand).
+        self._on_kinematic_turn = on_kinematic_turn
         self._acceleration_at = acceleration_at
         shape: tuple[int, ...] = (0,) if dim == 1 else (0, 2)
         self.x = np.zeros(shape)  # positions (length units)
@@ -188,18 +192,25 @@ class BodyStore:
     def spin_written(self) -> None:
         """Angular velocities or torques were written (by hand, or by a step): look again
         whether any body spins."""
-        self._spinning = self.turns_any and bool(self.omega.any() or self.torque.any())
+        # (Only bodies that turn, and kinematic bodies, which the game turns, have an omega.)
+        self._spinning = bool(self.omega.any()) or (self.turns_any and bool(self.torque.any()))
 
     def set_spin(self, slot: int, angle: float | None, omega: float | None) -> None:
         """Set one body's angle (rad) and/or angular velocity (rad/s): a state written by
-        hand, as a velocity is (a sleeping body wakes)."""
+        hand, as a velocity is (a sleeping body wakes). A kinematic body's angle is turned to
+        over the next step instead, as its position is moved (engine.stepping)."""
         row = self.row(slot)
-        if angle is not None:
+        turn = self._on_kinematic_turn
+        steered = turn is not None and bool(self.kinematic[row])
+        if steered and turn is not None and not turn(row, angle):
+            steered = False  # a pinned body: turned by hand like any other
+        if angle is not None and not steered:
             self.angle[row] = angle
         if omega is not None:
             self.omega[row] = omega
         self.spin_written()
-        self._on_state(row, False)  # a disc turned in place has not moved
+        if not steered:
+            self._on_state(row, False)  # a disc turned in place has not moved
 
     def push(self, slot: int, acc: tuple[float, float], torque: float) -> None:
         """Add ``acc`` (length units / s^2) to one body's own acceleration and ``torque``

@@ -87,6 +87,7 @@ class WorldState:
         self.contact_dv: np.ndarray | None = None  # velocity change by the static contacts
         # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
         self.targets: dict[Body, Any] = {}
+        self.turn_targets: dict[Body, float] = {}  # kinematic bodies' angles (rad), likewise
         self.links: list[Link] = []  # rods, cables and pins (engine.links)
         self.retired: list[Link] = []  # links taken out (a snapshot may bring one back)
         # The links as arrays (engine.links), or as rows of the joint solver when a joint or
@@ -141,6 +142,7 @@ class WorldState:
                 on_own_acc=self.own_acc_written,
                 on_mass=self.changed_structure,
                 on_kinematic=self.kinematic_moved,
+                on_kinematic_turn=self.kinematic_turned,
                 acceleration_at=self.acceleration_at,
             )
         return self.store
@@ -219,6 +221,7 @@ class WorldState:
         self.jointed = any(k.anchored or isinstance(k, Joint) for k in self.links)
         # A body no longer held goes nowhere it was sent while held.
         self.targets = {b: p for b, p in self.targets.items() if b.kinematic}
+        self.turn_targets = {b: a for b, a in self.turn_targets.items() if b.kinematic}
         self.changed_structure()
 
     def drop_kernel(self) -> None:
@@ -253,6 +256,21 @@ class WorldState:
             self.targets[body] = target
         self.anchor = None
         self.drop_kernel()
+
+    def kinematic_turned(self, row: int, target: float | None) -> bool:
+        """The game turned a kinematic body: to the angle ``target`` (rad) over the next step,
+        or (None) by writing its angular velocity. False for a body held by a pin, not the
+        game (it is turned by hand, as any other)."""
+        body = self.bodies[row]
+        if not body.kinematic:
+            return False
+        if target is None:
+            self.turn_targets.pop(body, None)
+        else:
+            self.turn_targets[body] = target
+        self.anchor = None
+        self.drop_kernel()
+        return True
 
     def state_written(self, row: int | None = None, moved: bool = False) -> None:
         """A position or velocity was set by hand: the closed form and the kernel start anew,

@@ -222,8 +222,8 @@ def test_moments_from_the_shape() -> None:
         ({"radius": 1.0, "torque": math.inf}, "torque must be finite"),
         ({"radius": 1.0, "moment": -1.0}, "moment must be a moment of inertia > 0"),
         ({"radius": 1.0, "fixed_rotation": True, "angular_velocity": 2.0}, "fixed_rotation=True"),
-        ({"shape": Polygon.box(1, 1), "kinematic": True, "angular_velocity": 2.0}, "kinematic"),
-        ({"radius": 1.0, "kinematic": True, "torque": 1.0}, "kinematic"),
+        ({"shape": Polygon.box(1, 1), "kinematic": True, "torque": 2.0}, "turned by the game"),
+        ({"radius": 1.0, "kinematic": True, "torque": 1.0}, "set its angular_velocity"),
     ],
 )
 def test_rotation_errors_name_the_argument(kwargs: dict[str, object], message: str) -> None:

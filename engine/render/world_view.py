@@ -86,7 +86,8 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
             _draw_shape(surface, shape, camera, (x, y), colour, 0, angle)
             _draw_shape(surface, shape, camera, (x, y), INK, 1, angle)
             continue
-        draw_disc(surface, camera, (x, y), body.radius, angle if body.turns else None, colour)
+        turned = body.turns or (body.kinematic and (body.angle or body.angular_velocity))
+        draw_disc(surface, camera, (x, y), body.radius, angle if turned else None, colour)
     size = surface.get_height() / 360
     for link in world.links:
         if isinstance(link, (Joint, Pin)):
@@ -194,8 +195,9 @@ def angle_of(world: Any, body: Any, alpha: float = 1.0) -> float | None:
     body that does not turn. The World keeps no angle from before its last step, so the
     angle is taken back along the angular velocity by (1 - alpha) of that step: exact while
     the spin is steady, otherwise off by less than the step's change of angular velocity
-    times dt (a few hundredths of a degree for a disc spinning up on a slope at 1/120 s)."""
-    if not body.turns:
+    times dt (a few hundredths of a degree for a disc spinning up on a slope at 1/120 s).
+    A kinematic body is drawn at the angle the game turned it to."""
+    if not (body.turns or body.kinematic):
         return None
     dt = getattr(world, "dt", None)
     if dt is None or alpha >= 1.0:
