@@ -35,6 +35,7 @@ TOPICS: dict[str, str] = {
     "pendulum": "demos.bench.pendulum",
     "kernels": "demos.bench.kernels",
     "pinball": "demos.bench.pinball",
+    "stack": "demos.bench.stack",
 }
 
 
