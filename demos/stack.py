@@ -41,6 +41,7 @@ __all__ = [
     "TowerScene",
     "TumblerScene",
     "pyramid",
+    "pyramid_centres",
     "dominoes",
     "tower",
     "tumbler",
@@ -50,7 +51,11 @@ __all__ = [
 ]
 
 DT = 1.0 / 60.0  # s
-FRICTION = 0.6
+G = 9.81  # m/s^2
+FRICTION = 0.6  # the boxes'; combined by product: 0.6 on the floor, 0.36 box on box
+FLOOR_FRICTION = 1.0
+MASS = 1.0  # kg, each box
+SIDE = 1.0  # m, a pyramid's and a tower's boxes
 BASE = 20  # boxes in the pyramid's bottom row
 DOMINOES = 30
 FLICK = 0.3  # N s, at the first domino's top
@@ -59,30 +64,35 @@ TUMBLE = math.pi / 2  # rad/s: the tumbler's walls turn 90 degrees a second
 ROOM = 9.5  # m: half the tumbler's inside width
 
 
-def _world() -> World:
-    """A floor under gravity."""
-    w = World(integrator="auto")
-    w.add_force(Gravity((0.0, -9.81)))
-    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=1.0))
+def _world(kernels: str | None = None) -> World:
+    """A floor under gravity, on the path ``kernels`` (None: the default, engine.kernels)."""
+    w = World(integrator="auto", kernels=kernels)
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=FLOOR_FRICTION))
     return w
 
 
-def _box(w: World, x: float, y: float, width: float = 1.0, height: float = 1.0) -> Body:
+def _box(w: World, x: float, y: float, width: float = SIDE, height: float = SIDE) -> Body:
     return w.add(
-        Body(Vector(x, y), shape=Polygon.box(width, height), mass=1.0, friction=FRICTION,
+        Body(Vector(x, y), shape=Polygon.box(width, height), mass=MASS, friction=FRICTION,
              restitution=0.0)
     )  # fmt: skip
 
 
-def pyramid(base: int = BASE) -> tuple[World, list[Body]]:
-    """A pyramid of 1 m boxes, ``base`` in the bottom row, each row centred on the one below."""
-    w = _world()
-    boxes = [
-        _box(w, k + 0.5 * row - 0.5 * (base - 1), 0.5 + row)
+def pyramid_centres(base: int = BASE) -> list[tuple[float, float]]:
+    """Where a pyramid's boxes (SIDE m) are put (m): ``base`` in the bottom row, centred on
+    x = 0, each row centred on the one below, touching; row by row from the floor up."""
+    return [
+        (SIDE * (k + 0.5 * row - 0.5 * (base - 1)), SIDE * (0.5 + row))
         for row in range(base)
         for k in range(base - row)
     ]
-    return w, boxes
+
+
+def pyramid(base: int = BASE, *, kernels: str | None = None) -> tuple[World, list[Body]]:
+    """A pyramid of boxes (``pyramid_centres``) on a floor, on the path ``kernels``."""
+    w = _world(kernels)
+    return w, [_box(w, x, y) for x, y in pyramid_centres(base)]
 
 
 def dominoes(n: int = DOMINOES) -> tuple[World, list[Body]]:
@@ -106,7 +116,7 @@ def tumbler(n: int = TUMBLED, spin: float = TUMBLE) -> tuple[World, list[Body], 
     1.0) turn at ``spin`` rad/s, as in Box2D's tumbler (``shared/anchors/box2d``): (world,
     boxes, walls). The boxes are all alike (``into_walls`` takes the first one's corners)."""
     w = World(integrator="auto")
-    w.add_force(Gravity((0.0, -9.81)))
+    w.add_force(Gravity((0.0, -G)))
     h = ROOM + 0.5  # the walls' middles
     sides = [(h, 0.0, 0.5, h), (-h, 0.0, 0.5, h), (0.0, h, h, 0.5), (0.0, -h, h, 0.5)]
     walls = w.add_all(

@@ -2,8 +2,8 @@
 
 ``python -m demos.bench`` runs every topic; ``python -m demos.bench core --quick``
 runs one, briefly. Each topic is a module here with ``report(quick) -> str``; a topic that
-draws pictures (``pit``) takes ``out`` too, the folder it writes them into (``out/bench``,
-or ``--out DIR``; files of the same name there are replaced). No test
+draws pictures (``pit``, ``stack``) takes ``out`` too, the folder it writes them into
+(``out/bench``, or ``--out DIR``; files of the same name there are replaced). No test
 asserts a time: machines are shared and noisy, so the numbers that matter are ratios
 of things measured in the same run, round by round, as medians.
 
@@ -35,6 +35,7 @@ TOPICS: dict[str, str] = {
     "pendulum": "demos.bench.pendulum",
     "kernels": "demos.bench.kernels",
     "pinball": "demos.bench.pinball",
+    "stack": "demos.bench.stack",
 }
 
 

@@ -48,6 +48,7 @@ __all__ = [
     "Run",
     "first_seconds",
     "draw_pit",
+    "time_chart_class",
     "ENGINE_COLORS",
     "summary",
     "DT",
@@ -369,7 +370,9 @@ def summary(runs: dict[str, Run], seconds: float = SECONDS) -> list[str]:
 # x axis made linear in seconds. pygame is imported only when a picture is drawn.
 
 
-def _chart_class() -> Any:
+def time_chart_class() -> Any:
+    """The class of a panel with time along x (linear, s) and a value up y (log10): the pit's
+    and the stack's pictures draw on it."""
     import pygame
 
     from engine.render import INK, MUTED, draw_text, marks
@@ -466,7 +469,7 @@ def draw_pit(runs: dict[str, Run], size: tuple[int, int] = (1280, 720)) -> Any:
     from engine.render import MUTED, PAPER, draw_text, init_headless
     from engine.render.chart import decade_range, draw_legend
 
-    TimeChart = _chart_class()  # noqa: N806 - a class
+    TimeChart = time_chart_class()  # noqa: N806 - a class
 
     w = runs["World"]
     n, seconds = w.balls, float(w.t[-1]) if len(w.t) else SECONDS
