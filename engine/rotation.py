@@ -74,10 +74,11 @@ class Spin:
         omega_inf) (1 - e^(-k t)) / k: exact at any dt. The contacts take the spin's
         ``alpha`` as constant over the step (first order in dt for a body they touch): under
         drag it is the torque at the step's start over I, (tau - c omega0) / I, with k held to
-        at most 1 / dt, so that it never carries a spin past omega_inf within a step (an
-        explicit drag would, past k dt = 2). (The mean of the free step, (omega(dt) - omega0)
-        / dt, is stable too, but 13 times further off for a rolling disc, whose spin decays at
-        c / (I + m r^2), not c / I: measured at dt = 1/60.)"""
+        at most 1 / dt, so that the drag never carries a spin past omega_inf within a step by
+        itself (an explicit drag would, past k dt = 2; friction in the same step still may).
+        The mean of the free step, (omega(dt) - omega0) / dt, is stable too, but 13 times
+        further off for a rolling disc, whose spin decays at c / (I + m r^2), not c / I
+        (measured at dt = 1/60)."""
         turns = inv_moment > 0.0
         alpha = torque * inv_moment
         angle = angle0 + omega0 * dt + alpha * (0.5 * dt * dt)

@@ -292,10 +292,11 @@ def _step_once(
             )  # fmt: skip
         else:
             tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
-            spin = Spin.free(
-                store.angle, store.omega, store.inv_moment, tau, store.mass, store.radius, dt,
-                torques.c,
-            )  # fmt: skip
+            with np.errstate(over="ignore", invalid="ignore"):  # (refused just below)
+                spin = Spin.free(
+                    store.angle, store.omega, store.inv_moment, tau, store.mass, store.radius,
+                    dt, torques.c,
+                )  # fmt: skip
             torques.check_finite(spin.angle, spin.omega, name, dt, t0)
     v_method = v1
     v_free = v1

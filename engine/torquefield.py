@@ -19,8 +19,8 @@ folded, once, into per-body arrays (by World row):
 
 The hold's limit: a held torque that slows a spin (``angular_damping`` c, N m s) takes
 omega (1 - c dt / I) a step, which overshoots and grows past c dt / I = 2; the World warns
-before the first such step (``StabilityWarning``), and a spin that turns non-finite raises
-``SimulationDiverged`` before it is kept. A folded drag has no limit.
+before the first such step (``StabilityWarning``), and a spin that turns non-finite (or
+past ``SPIN_BOUND``) raises ``SimulationDiverged`` before it is kept. A folded drag has no limit.
 
 >>> import numpy as np
 >>> from engine.forces import AngularDrag, ConstantTorque
@@ -46,10 +46,12 @@ from .forces import Force
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
 
-__all__ = ["TorqueModel", "HOLD_LIMIT"]
+__all__ = ["TorqueModel", "HOLD_LIMIT", "SPIN_BOUND"]
 
 #: The decay limit c dt / I of a torque held over a step from its start (explicit Euler's).
 HOLD_LIMIT = 2.0
+#: A spin (rad/s) or angle (rad) this large is a blow-up under way, refused before it is kept.
+SPIN_BOUND = 1e150
 
 
 @dataclass
@@ -159,16 +161,22 @@ class TorqueModel:
     def check_finite(
         self, angle: np.ndarray, omega: np.ndarray, name: str, dt: float, t: float
     ) -> None:
-        """SimulationDiverged if a spin turned non-finite in the step from ``t`` (s)."""
-        if math.isfinite(float(np.add.reduce(angle) + np.add.reduce(omega))):
+        """SimulationDiverged if a spin turned non-finite, or past ``SPIN_BOUND`` (a blow-up
+        under way: the held torques are called on it next), in the step from ``t`` (s)."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            total = float(np.add.reduce(np.abs(angle)) + np.add.reduce(np.abs(omega)))
+        if total < SPIN_BOUND:
             return
-        bad = np.flatnonzero(~(np.isfinite(angle) & np.isfinite(omega))).tolist()
+        with np.errstate(invalid="ignore"):
+            bad = np.flatnonzero(~((np.abs(angle) < SPIN_BOUND) & (np.abs(omega) < SPIN_BOUND)))
+        bad = bad.tolist()
         limit = HOLD_LIMIT / float(self.rate.max()) if self.general and self.rate.any() else None
         hint = "" if limit is None else f"; the torques held are stable only for dt < {limit:.4g} s"
         raise SimulationDiverged(
             f"the spin diverged in the step from t={t:g} s with dt={dt:g} s: body "
             f"{', '.join(map(str, bad[:5]))}{' ...' if len(bad) > 5 else ''} would turn "
-            f"non-finite (nan or inf){hint}. The last finite state is kept.",
+            f"non-finite (nan or inf) or past {SPIN_BOUND:g} rad or rad/s{hint}. The last "
+            f"finite state is kept.",
             integrator=name,
             dt=dt,
             t=t,
