@@ -264,15 +264,16 @@ def test_a_world_none_of_whose_bodies_turn_never_calls_a_torque() -> None:
 
 def test_a_body_that_stops_turning_is_no_longer_given_a_torque() -> None:
     w = World()
-    b = w.add(Body(Vector(0, 0), radius=0.5))
+    b, other = w.add_all([Body(Vector(0, 0), radius=0.5), Body(Vector(2, 0), radius=0.5)])
     fn = Counted(1.0)
     w.add_force(CallableTorque(fn))
     run(w, 3, 1 / 60)
     spin = b.angular_velocity
     b.moment = math.inf  # it never turns from now on
     run(w, 3, 1 / 60)
-    assert fn.sizes == [1, 1, 1]
+    assert fn.sizes == [2, 2, 2, 1, 1, 1]
     assert b.angular_velocity == spin
+    assert other.angular_velocity == pytest.approx(6 / 60 / other.moment, rel=1e-12)
 
 
 def test_a_torque_on_some_bodies_only_turns_those() -> None:
