@@ -22,6 +22,19 @@ Each force also says what the World needs to know about it without calling it:
   calling the force every step (``engine.forcefield``: broadcasting a small
   vector every step costs several times more than adding two arrays).
 
+A generator may give a torque too (N m, counter-clockwise), on the bodies it acts on that
+turn (``Body.turns``; a point, a kinematic body or one with ``fixed_rotation`` is never
+asked): ``torque(t, angle, omega, moment)``, the rotational twin of the force's signature,
+with angle (rad), omega (rad/s) and moment (kg m^2) arrays of shape (k,), one entry per body
+that turns. ``Torque`` is the base of generators that give a torque and no force
+(``ConstantTorque``, ``AngularDrag``, ``CallableTorque``), and says what the World needs:
+
+* ``torque_affine()``: (tau0, c) for a torque tau0 - c omega with constants (N m, N m s):
+  folded, and turned by the exact closed form of the step (engine.rotation), at any dt;
+* ``angular_damping`` (N m s): for any other torque, which the World evaluates once at the
+  step's start and holds over the step (first order in dt), the stability limit of that
+  hold: a drag c on a moment I decays at rate c / I and the hold overshoots past c dt / I = 2.
+
 >>> g = Gravity((0, -9.81))
 >>> g(0.0, Vector(0, 0), Vector(0, 0), 2.0)
 Vector(0.0, -19.62)
@@ -48,6 +61,10 @@ __all__ = [
     "Spring",
     "ConstantForce",
     "CallableForce",
+    "Torque",
+    "ConstantTorque",
+    "AngularDrag",
+    "CallableTorque",
     "as_force",
 ]
 
@@ -107,9 +124,27 @@ class Force:
     damping: float = 0.0
     #: 1 or 2 when the force only makes sense in that dimension, None for either.
     dim: int | None = None
+    #: Angular drag (N m s) of a torque held over each step (``torque`` without
+    #: ``torque_affine``), for that hold's stability limit c dt / I < 2; 0 if none.
+    angular_damping: float = 0.0
 
     def __call__(self, t: float, x: Any, v: Any, mass: Any) -> Any:
         raise NotImplementedError
+
+    def torque(self, t: float, angle: Any, omega: Any, moment: Any) -> Any:
+        """Torque (N m, counter-clockwise) at time t (s) on bodies at ``angle`` (rad) turning at
+        ``omega`` (rad/s) with moment ``moment`` (kg m^2): a number, or one per body (arrays of
+        shape (k,)). A generator that gives no torque leaves this undefined (None)."""
+        return None
+
+    @property
+    def gives_torque(self) -> bool:
+        """Whether this generator gives a torque (its class defines ``torque``)."""
+        return type(self).torque is not Force.torque
+
+    def torque_affine(self) -> tuple[float, float] | None:
+        """(tau0 N m, c N m s) when the torque is tau0 - c omega with constants; else None."""
+        return None
 
     def potential(self, x: Any, mass: Any) -> Any:
         """Potential energy (J) at ``x``, per body for arrays; None when the force has none."""
@@ -329,6 +364,98 @@ class CallableForce(Force):
 
     def __repr__(self) -> str:
         return f"CallableForce({self.fn!r})"
+
+
+class Torque(Force):
+    """Base of generators that give a torque and no force: subclass it and define
+    ``torque(t, angle, omega, moment) -> torque`` (N m, counter-clockwise; arrays of shape (k,)
+    for the k bodies it acts on that turn), and ``torque_affine`` / ``angular_damping`` when
+    you know them (see the module's docstring).
+
+    >>> class Motor(Torque):
+    ...     def torque(self, t, angle, omega, moment):
+    ...         return 2.0 * (omega < 10.0)  # 2 N m until it turns at 10 rad/s
+    """
+
+    constant = True  # its force, none, depends on nothing
+    dim = 2  # bodies turn in a 2D World
+
+    def __call__(self, t: float, x: Any, v: Any, mass: Any) -> Any:
+        return x * 0.0  # no force
+
+    def affine(self) -> tuple[Any, Any, float]:
+        return 0.0, 0.0, 0.0
+
+    def torque(self, t: float, angle: Any, omega: Any, moment: Any) -> Any:
+        raise NotImplementedError(
+            f"{type(self).__name__} is a Torque: define torque(t, angle, omega, moment) -> N m"
+        )
+
+
+class ConstantTorque(Torque):
+    """A constant torque ``tau`` (N m, counter-clockwise) on each body it acts on that turns:
+    a motor without a speed limit, a steady twist. Exact at any dt: it adds to the body's own
+    torque (``Body.torque``), so theta = theta0 + omega0 t + (tau / I) t^2 / 2."""
+
+    def __init__(self, tau: float) -> None:
+        self.tau = real(tau, "tau")
+
+    def torque(self, t: float, angle: Any, omega: Any, moment: Any) -> Any:
+        return self.tau + 0.0 * omega
+
+    def torque_affine(self) -> tuple[float, float]:
+        return self.tau, 0.0
+
+    def __repr__(self) -> str:
+        return f"ConstantTorque({self.tau!r})"
+
+
+class AngularDrag(Torque):
+    """Angular drag tau = -c omega (``c`` in N m s): slows a spin toward rest at rate c / I.
+
+    Exact at any dt (no stability limit): a body that turns freely takes the closed form
+    omega(t) = tau0 / c + (omega0 - tau0 / c) e^(-c t / I), with tau0 its other constant
+    torques, and the angle its integral.
+    """
+
+    def __init__(self, c: float) -> None:
+        self.c = real(c, "c", nonneg=True)
+
+    def torque(self, t: float, angle: Any, omega: Any, moment: Any) -> Any:
+        return omega * -self.c
+
+    def torque_affine(self) -> tuple[float, float]:
+        return 0.0, self.c
+
+    def __repr__(self) -> str:
+        return f"AngularDrag(c={self.c!r})"
+
+
+class CallableTorque(Torque):
+    """Wraps a user's function ``fn(t, angle, omega, moment) -> torque`` (N m) as a Torque.
+
+    The World calls it once a step, at the step's start, with arrays of shape (k,) for the k
+    bodies it acts on that turn, and holds its torque over the step: first order in dt. A torque
+    that slows a spin, like -c omega, overshoots past c dt / I = 2: say its ``angular_damping``
+    c (N m s) and the World warns before that (better: ``AngularDrag(c)`` is exact).
+    """
+
+    def __init__(
+        self, fn: Callable[[float, Any, Any, Any], Any], *, angular_damping: float = 0.0
+    ) -> None:
+        if not callable(fn):
+            raise TypeError(
+                f"a torque must be a callable fn(t, angle, omega, moment) -> torque in N m, "
+                f"got {type(fn).__name__} {fn!r}"
+            )
+        self.fn = fn
+        self.angular_damping = real(angular_damping, "angular_damping", nonneg=True)
+
+    def torque(self, t: float, angle: Any, omega: Any, moment: Any) -> Any:
+        return self.fn(t, angle, omega, moment)
+
+    def __repr__(self) -> str:
+        return f"CallableTorque({self.fn!r})"
 
 
 def as_force(force: Any) -> Force:

@@ -131,11 +131,20 @@ def add_force(
 ) -> Force:
     """Add a force (a Force, or a callable ``f(t, x, v, mass) -> force``); return it.
 
-    ``bodies``: the bodies it acts on (all of them, now and later, when None).
+    ``bodies``: the bodies it acts on (all of them, now and later, when None). A generator
+    that gives a torque (``Force.torque``) turns those of them that turn, in a 2D World only.
     """
     f = as_force(force)
-    if f.dim is not None:
-        state.check_dim(f.dim, repr(f))
+    turning = f.gives_torque
+    if turning and state.dim == 1:
+        raise TypeError(
+            f"{f!r} gives a torque, and this World is 1D (floats): a torque turns a body, and "
+            f"bodies turn in a 2D World only (Vectors: a disc, a shape, or a body given a "
+            f"moment); add it to a 2D World, or give the 1D World a force instead"
+        )
+    dim = 2 if turning else f.dim
+    if dim is not None:
+        state.check_dim(dim, repr(f))
     if state.requested == "exact" and not f.constant:
         raise ValueError(
             f"integrator 'exact' moves bodies by the closed form, which needs constant "
@@ -154,8 +163,8 @@ def add_force(
         for b in members:
             if not isinstance(b, Body) or b.world is not state.world:
                 raise ValueError(f"bodies must be bodies already added to this World, got {b!r}")
-    if f.dim is not None:
-        state.ensure_store(f.dim)  # checked above; an empty World takes the force's dim
+    if dim is not None:
+        state.ensure_store(dim)  # checked above; an empty World takes the force's dim
     state.forces.append(AttachedForce(f, members))
     state.changed_structure()
     return f

@@ -71,6 +71,11 @@ def plan(state: WorldState, dt: float, model: ForceModel, name: str) -> Plan:
     )
     made: Plan = (dt, state.version, name, step, model, affine)
     state.fast = made
+    torques = state.torques() if st is not None and st.turns_any else None
+    if torques is not None and st is not None:
+        # The torques held over a step have a limit, said before the first step past it.
+        touches = state.contacts is not None or state.pairs_on or bool(state.links)
+        torques.warn_if_unstable(dt, state.policy.warned, 3, st.inv_moment, touches)
     return made
 
 
@@ -92,9 +97,9 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
     after = _apply_targets(state, dt) if state.targets else None
     turned = _apply_turn_targets(state, dt) if state.turn_targets else None
     store = state.store
-    # Bodies that turn, or a force applied for this step only (Body.apply_force), take the
-    # general step: the affine kernel knows neither.
-    plain = store is None or not (store.spins() or store.pushes)
+    # Bodies that turn, or are turned by a generator, or a force applied for this step only
+    # (Body.apply_force), take the general step: the affine kernel knows none of them.
+    plain = store is None or not (store.spins() or store.pushes or _driven(state, store))
     if state.bodies and affine and after is None and plain:
         if prepare_affine(state, dt, model, name):
             return True
@@ -300,19 +305,31 @@ def _step_once(
     else:
         x1, v1 = step(store.x, store.v, model.accel, t0, dt)
     state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
-    # Bodies that turn turn freely by the closed form (engine.rotation); the colliders
-    # change the spin of those they touch (without colliders, discs at rest stay so).
+    # Bodies that turn turn freely by the closed form (engine.rotation), under their own
+    # torque and the generators' (engine.torquefield); the colliders change the spin of those
+    # they touch (without colliders, discs at rest stay so).
     spin = None
     if (store.turns_any or store.spins()) and (
         state.contacts is not None
         or store.spins()
         or state.jointed
         or (state.pairs_on and state.collisions.has_shapes(store))
+        or _driven(state, store)
     ):
-        spin = Spin.free(
-            store.angle, store.omega, store.inv_moment, store.torque, store.mass,
-            store.radius, dt, store.kinematic,
-        )  # fmt: skip
+        torques = state.torques()
+        if torques is None:
+            spin = Spin.free(
+                store.angle, store.omega, store.inv_moment, store.torque, store.mass,
+                store.radius, dt, None, store.kinematic,
+            )  # fmt: skip
+        else:
+            tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
+            with np.errstate(over="ignore", invalid="ignore"):  # (refused just below)
+                spin = Spin.free(
+                    store.angle, store.omega, store.inv_moment, tau, store.mass, store.radius,
+                    dt, torques.c, store.kinematic,
+                )  # fmt: skip
+            torques.check_finite(spin.angle, spin.omega, name, dt, t0)
     v_method = v1
     v_free = v1
     contacts = state.contacts
@@ -400,6 +417,15 @@ def _step_once(
         store.angle, store.omega = spin.angle, spin.omega
         store.spin_written()
     state.void_budget()
+
+
+def _driven(state: WorldState, store: BodyStore) -> bool:
+    """Whether a generator gives a torque (other than a drag) to a body that turns: then a
+    body at rest may start to turn. A World none of whose bodies turn never asks."""
+    if not store.turns_any:
+        return False
+    torques = state.torques()
+    return torques is not None and torques.drives
 
 
 def _frozen(state: WorldState, store: BodyStore) -> np.ndarray | None:

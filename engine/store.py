@@ -42,6 +42,7 @@ class BodyStore:
         on_state: Callable[[int, bool], None] = lambda row, moved: None,
         on_own_acc: Callable[[int], None] = lambda row: None,
         on_mass: Callable[[], None] = lambda: None,
+        on_moment: Callable[[], None] = lambda: None,
         on_kinematic: Callable[[int, Any], None] | None = None,
         on_kinematic_turn: Callable[[int, float | None], bool] | None = None,
         acceleration_at: Callable[[int], Any] | None = None,
@@ -50,8 +51,10 @@ class BodyStore:
         #: The World these arrays belong to (what ``Body.world`` answers).
         self.owner = owner
         # What the owner must hear of: a position or velocity written by hand (a teleport), one
-        # own acceleration written, a mass written; and how to read one body's acceleration.
+        # own acceleration written, a mass or a moment written; and how to read one body's
+        # acceleration.
         self._on_state, self._on_own_acc, self._on_mass = on_state, on_own_acc, on_mass
+        self._on_moment = on_moment  # a moment of inertia written
         # A kinematic body's move (row, target position or None for a velocity written): the
         # owner takes it without waking the World's sleepers (those it touches wake).
         self._on_kinematic = on_kinematic
@@ -183,6 +186,7 @@ class BodyStore:
             self.inv_moment = np.where(np.isfinite(self.moment), 1.0 / self.moment, 0.0)
         self.turns_any = bool((self.inv_moment > 0.0).any())
         self.spin_written()
+        self._on_moment()
 
     def spins(self) -> bool:
         """Whether any body turns now or is made to (an angular velocity or a torque): kept

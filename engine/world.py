@@ -161,7 +161,8 @@ class World:
     ) -> Force:
         """Add a force (a Force, or a callable ``f(t, x, v, mass) -> force``); return it.
 
-        ``bodies``: the bodies it acts on (all of them, now and later, when None).
+        ``bodies``: the bodies it acts on (all of them, now and later, when None); a torque
+        generator (``ConstantTorque``, ``AngularDrag``, ...) turns those that turn, in 2D.
         """
         return membership.add_force(self._s, force, bodies)
 

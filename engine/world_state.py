@@ -28,6 +28,7 @@ from .links import Link, LinkSolver, Pin
 from .overlaps import push_out
 from .policy import MethodPolicy
 from .store import BodyStore
+from .torquefield import TorqueModel
 
 if TYPE_CHECKING:
     from .affine import AffineKernel
@@ -71,6 +72,10 @@ class WorldState:
         self.count = StepCount()  # the steps of dt since t_base
         self.steps_base = 0  # steps taken before the current run of equal dt
         self.model: ForceModel | None = None
+        # The generators' torques on the bodies that turn (engine.torquefield), once made
+        # (``torques``): None when none gives one to a body that turns.
+        self.torque_model: TorqueModel | None = None
+        self.torques_made = False
         self.evaluations = 0  # force evaluations of models since replaced, and of the kernel
         self.anchor: tuple[Any, Any, float] | None = None  # (x0, v0, t0) for "exact"
         self.version = 0  # bumped whenever bodies, forces or masses change
@@ -141,6 +146,7 @@ class WorldState:
                 on_state=self.state_written,
                 on_own_acc=self.own_acc_written,
                 on_mass=self.changed_structure,
+                on_moment=self.moments_changed,
                 on_kinematic=self.kinematic_moved,
                 on_kinematic_turn=self.kinematic_turned,
                 acceleration_at=self.acceleration_at,
@@ -186,6 +192,7 @@ class WorldState:
             self.evaluations += self.model.evaluations
         self.drop_kernel()
         self.model = None
+        self.torques_made, self.torque_model = False, None
         self.anchor = None
         self.policy.choice = None
         self.version += 1
@@ -209,6 +216,27 @@ class WorldState:
                     joined += [store.row(b.slot) for b in k.bodies]
         self.collisions.apart = np.unique(np.array(keys, dtype=np.int64))
         self.collisions.joined = np.unique(np.array(joined, dtype=np.intp))
+
+    def moments_changed(self) -> None:
+        """A moment of inertia changed (a body may have stopped turning): the generators'
+        torques are folded again, and the next step plans again (its stability check too)."""
+        self.torques_made, self.torque_model = False, None
+        self.fast = None
+        self.drop_kernel()
+
+    def torques(self) -> TorqueModel | None:
+        """The generators' torques on the bodies that turn (engine.torquefield), made when
+        needed; None when no generator gives a torque to a body that turns."""
+        if not self.torques_made:
+            self.torques_made = True
+            store = self.store
+            giving = [a for a in self.forces if a.force.gives_torque]
+            if store is not None and store.turns_any and giving:
+                attached = [
+                    (a.force, None if a.bodies is None else self.rows_of(a.bodies)) for a in giving
+                ]
+                self.torque_model = TorqueModel.compile(store.inv_moment, attached)
+        return self.torque_model
 
     def links_changed(self) -> None:
         """The set of links changed: pinned bodies are held as kinematic ones are."""

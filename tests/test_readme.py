@@ -377,3 +377,13 @@ def test_the_rolling_example_prints_what_the_readme_says(capsys) -> None:
     # (2/3) g sin(30 degrees) t at t = 1 s, and the rim's speed equal to it: rolling.
     speed, rim, _ = printed.split()
     assert float(speed) == float(rim) == round(2 / 3 * 9.81 * 0.5, 6)
+
+
+def test_the_torque_example_prints_what_the_readme_says(capsys) -> None:
+    scope: dict[str, object] = {}
+    exec(block("AngularDrag(0.5)"), scope)  # noqa: S102
+    printed = capsys.readouterr().out.strip()
+    assert f"It prints `{printed}`" in " ".join(README.split())
+    # omega = (tau / c) (1 - e^(-c t / I)) at t = 1 s: tau = 1, c = 0.5, I = 0.25.
+    spun, closed = printed.split()
+    assert float(spun) == float(closed) == round(2 * (1 - math.exp(-2)), 9)
