@@ -49,7 +49,7 @@ from .kernels import choose as kernels_path
 from .links import STATIC, Link, StaticBody
 from .membership import ColliderT, LinkT
 from .overlaps import OverlapWarning
-from .policy import AUTO_ORDER, METHODS, MethodPolicy
+from .policy import METHODS, MethodPolicy
 from .queries import QueryHit
 from .snapshot import WorldSnapshot
 from .stepping import SUBSTEPS_AT_IMPACT as SUBSTEPS_AT_IMPACT  # README: engine.world's
@@ -64,9 +64,6 @@ __all__ = [
     "QueryHit",
     "PYMUNK_NAMES",
 ]
-
-# Kept for code that imported it from here: "auto" tries these, cheapest first.
-_AUTO_ORDER = AUTO_ORDER
 
 
 def check_dt(dt: Any) -> float:

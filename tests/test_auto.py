@@ -11,8 +11,8 @@ from engine import Body, Vector, World
 from engine.forces import ConstantForce, Drag, Gravity, Spring, Wind
 from engine.integrators import INTEGRATORS
 from engine.measure import PROBLEMS, measure
+from engine.policy import AUTO_ORDER
 from engine.stability import is_stable
-from engine.world import _AUTO_ORDER
 
 
 def _world(forces: list, tolerance: float | None = None) -> World:
@@ -41,7 +41,7 @@ def test_auto_never_picks_a_method_past_its_limit(
     for k in range(-12, 4):
         dt = 2.0**k / omega
         name, reason = world.choose_method(dt)
-        anyone = any(is_stable(INTEGRATORS[n], omega, rate, dt) for n in _AUTO_ORDER)
+        anyone = any(is_stable(INTEGRATORS[n], omega, rate, dt) for n in AUTO_ORDER)
         if anyone:
             assert is_stable(INTEGRATORS[name], omega, rate, dt), (dt, name, reason)
         else:
@@ -57,10 +57,10 @@ def test_tolerance_is_met_by_the_cheapest_method_that_meets_it(
     prob = PROBLEMS[problem]
     world, _ = prob.world("auto", tolerance)
     name, reason = world.choose_method(dt)
-    measured = {n: measure(prob, n, dt, repeats=1, min_steps=1).error for n in _AUTO_ORDER}
+    measured = {n: measure(prob, n, dt, repeats=1, min_steps=1).error for n in AUTO_ORDER}
     if "predicted within" in reason:
         assert measured[name] <= tolerance, (name, measured)
-        cheaper = _AUTO_ORDER[: _AUTO_ORDER.index(name)]
+        cheaper = AUTO_ORDER[: AUTO_ORDER.index(name)]
         assert all(measured[n] > tolerance for n in cheaper), measured
     else:
         assert name == "rk4" and all(e > tolerance for e in measured.values()), measured
