@@ -61,6 +61,7 @@ from .joint_contacts import joined_rows
 from .manifold import StaticShapes, static_shapes
 from .pair_math import SLOP, dot, norm, sorted_unique
 from .pile_rows import disc_rows, face_rows, held, lever_arms, shape_arms, turning, warm_start
+from .shape_impacts import retake
 from .shaped import ShapeTable, pair_rows, static_rows
 from .soft import Rows, SoftStep
 
@@ -447,6 +448,11 @@ def step_pile(
         if PUSHOUT:
             contacts.push_out_rows(Xr, Vr, np.where(kin | shapedU, -np.inf, r), U, fast)
     x[U], v[U] = Xr, Vr
+    if len(sa) and m_pairs:
+        # Fast pairs the rows left deep in each other meet at their moment instead.
+        again = retake(table, ia, ib, x0, v0, x, v, spin, P, store, dt)
+        if again is not None:
+            Xr[local[again]] = x[again]
     # The impulses over the whole step, kept by key (sorted) for the next one.
     now_carried = carry_out(
         carried, asleep, n, base, key, rows.lam_n, rows.lam_t, iterations, solver.color, dt, fast

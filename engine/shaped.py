@@ -19,7 +19,9 @@ margin is the farthest any body of the pile moves in the step (its speed at the 
 what the forces add in dt) plus 5% of a radius, so a box thrown at a thin wall, or two
 thrown at each other, are caught whatever their speed (tested to 1,000 m/s). What the rows
 cannot see is a body sent faster within the step by another's push (its new path is not
-swept); the exact impacts in time order are for discs.
+swept), nor a pair that turns far within the step (a row is linear in it): a fast pair left
+deep in each other or through is taken again from its moment of impact
+(engine.shape_impacts); the exact impacts in time order are for discs.
 
 >>> import numpy as np
 >>> from engine.colliders import Polygon

@@ -342,23 +342,25 @@ def test_an_off_centre_elastic_impact_spins_a_box_as_the_closed_form_says(gap: f
     assert energy == pytest.approx(100.0, rel=1e-9)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="not yet: a box that turns, thrown at 100 m/s at a disc 0.1 m off its centre "
-    "line: within the step the contact stops the point, not the centres, and the box turns "
-    "about it (the row's normal and anchors are the step's start's) while the disc goes on "
-    "past its centre; restitution parts them only as the step ends (they leave at the closed "
-    "form's speeds, 78.6 m/s, 430 rad/s). Taking the turned anchors' exact path "
-    "(R(theta) r - r) did not help and left stacks less still. Bodies that do not turn are "
-    "caught at 1,000 m/s (tests/test_boxes.py), and this box at 10 m/s",
-)
-def test_a_box_that_turns_thrown_fast_off_centre_never_passes_a_disc() -> None:
-    speed = 100.0
+@pytest.mark.parametrize("speed", [100.0, 400.0])
+def test_a_box_that_turns_thrown_fast_off_centre_meets_a_disc_at_its_moment(speed: float) -> None:
+    # The scene above at 100 and 400 m/s: the two meet 0.35 / (2 v) s into the first step
+    # and leave at the closed form's speeds (J = 4 v / 2.24; the box turning at 0.1 J / I,
+    # 430 rad/s at 100 m/s: 7 rad in a step). Within that step the pile's rows, linear in
+    # it, stop the point and not the centres, and the disc went past the box's centre; the
+    # step is taken again from the moment they met (engine.shape_impacts), so each step ends
+    # where the exact motion is: at v until t*, then at the parting velocities.
     w = World(integrator="auto")
     box = w.add(Body(Vector(0.0, 0.0), Vector(speed, 0.0), shape=Polygon.box(0.5, 0.5),
                      restitution=1.0, friction=0.0))  # fmt: skip
     disc = w.add(Body(Vector(0.25 + 0.35 + 0.05, 0.1), Vector(-speed, 0.0), radius=0.05,
                       restitution=1.0, friction=0.0))  # fmt: skip
-    for _ in range(10):
+    J = 4.0 * speed / 2.24
+    hit = 0.35 / (2.0 * speed)
+    for k in range(1, 11):
         w.step(DT)
-        assert box.pos.x < disc.pos.x
+        after = k * DT - hit
+        assert box.pos.x == pytest.approx(speed * hit - (J - speed) * after, rel=1e-9)
+        assert disc.pos.x == pytest.approx(0.65 - speed * hit + (J - speed) * after, rel=1e-9)
+        assert box.angle == pytest.approx(0.1 * J * 24.0 * after, rel=1e-9)
+        assert box.pos.y == 0.0 and disc.pos.y == 0.1
