@@ -315,7 +315,9 @@ def step_pile(
     m_pairs = 0
     anchors = [np.zeros((0, 2))] * 3
     if len(sa):
-        ia, ib, sn, ss, slot, anchors[0], anchors[1] = pair_rows(table, sa, sb, x0, margin, angle)
+        ia, ib, sn, ss, slot, anchors[0], anchors[1] = pair_rows(
+            table, sa, sb, x0, margin, angle, fast
+        )
         m_pairs = len(ia)
         rows_a.append(local[ia])
         rows_b.append(local[ib])

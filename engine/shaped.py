@@ -47,6 +47,7 @@ from .manifold import (
     StaticShapes,
     collide,
 )
+from .manifold_polygon import polygon_loop
 
 __all__ = ["ShapeTable", "pair_rows", "static_rows", "DISC", "CAPSULE", "POLYGON"]
 
@@ -120,6 +121,7 @@ def pair_rows(
     x: np.ndarray,
     margin: float,
     angle: np.ndarray | None = None,
+    fast: bool = False,
 ) -> tuple[np.ndarray, ...]:
     """The rows of pairs (World rows a, b) at positions x (N, 2) and angles ``angle`` (N,)
     (rad; None: all 0): (a, b, the unit normal from a to b (R, 2), the separation (R,), the
@@ -129,7 +131,8 @@ def pair_rows(
     one row a point of each pair's manifold (``engine.manifold.collide``), every pair of
     kinds at once a kind pair. ``margin`` (length units) is the farthest one body may move
     in the step, slack included: both bodies of a pair may close on each other, so a pair
-    gets its rows while its gap is within twice that."""
+    gets its rows while its gap is within twice that. ``fast``: pairs of polygons by the loop
+    kernel ``engine.manifold_polygon.polygon_loop``, straight from the table."""
     out: list[list[np.ndarray]] = [[], [], [], [], [], [], []]
     reach = 2.0 * margin
     q = np.zeros(len(x)) if angle is None else angle
@@ -140,7 +143,10 @@ def pair_rows(
             if not len(sel):
                 continue
             ia, ib = a[sel], b[sel]
-            m = collide(table.kinds(ia), x[ia], q[ia], table.kinds(ib), x[ib], q[ib], reach)
+            if fast and code_a == code_b == POLYGON:
+                m = _polygon_pairs(table, ia, ib, x, q, reach)
+            else:
+                m = collide(table.kinds(ia), x[ia], q[ia], table.kinds(ib), x[ib], q[ib], reach)
             pair, slot = _points(m)
             out[0].append(ia[pair])
             out[1].append(ib[pair])
@@ -150,6 +156,21 @@ def pair_rows(
             out[5].append(m.anchor_a[pair, slot])
             out[6].append(m.anchor_b[pair, slot])
     return _joined(out)
+
+
+def _polygon_pairs(
+    table: ShapeTable, ia: np.ndarray, ib: np.ndarray, x: np.ndarray, q: np.ndarray, reach: float
+) -> Manifold:
+    """The manifolds of pairs of polygon bodies (World rows ia, ib), by the loop kernel on the
+    table's own arrays (no ``take`` of the shapes): ``collide_polygons(fast=True)``."""
+    P = table.polygons
+    assert P is not None
+    return Manifold(
+        *polygon_loop(
+            P.vertices, P.normals, P.count, P.radius, table.index[ia], x[ia], q[ia],
+            P.vertices, P.normals, P.count, P.radius, table.index[ib], x[ib], q[ib], reach,
+        )
+    )  # fmt: skip
 
 
 def static_rows(
