@@ -337,7 +337,7 @@ def step_pile(
             allowed = contacts.allowed
             meets = lambda rows, cols: allowed(rows, first[cols])  # noqa: E731
         s_rows, s_col, sn, ss, skey, anchors[2] = static_rows(
-            table, mine, x0, shapes, solid, margin, angle, meets
+            table, mine, x0, shapes, solid, margin, angle, meets, fast
         )
         rows_a.append(np.full(len(s_rows), nU))
         rows_b.append(local[s_rows])

@@ -41,11 +41,13 @@ from .colliders import Circle, Polygon, Segment
 from .manifold import (
     Capsules,
     Circles,
+    HalfPlanes,
     Kind,
     Manifold,
     Polygons,
     StaticShapes,
     collide,
+    half_plane_polygon_loop,
 )
 from .manifold_polygon import polygon_loop
 
@@ -173,6 +175,29 @@ def _polygon_pairs(
     )  # fmt: skip
 
 
+def _on_half_planes(
+    table: ShapeTable,
+    body: np.ndarray,
+    x: np.ndarray,
+    q: np.ndarray,
+    walls: HalfPlanes,
+    c: np.ndarray,
+    margin: float,
+) -> Manifold:
+    """The manifolds of polygon bodies (World rows ``body``) against half planes ``c`` of
+    ``walls`` (the static body: at the origin, angle 0), the body as A, by the loop kernel on
+    the table's own arrays: ``collide(..., fast=True)``."""
+    P = table.polygons
+    assert P is not None
+    zero = np.zeros(len(body))
+    return Manifold(
+        *half_plane_polygon_loop(
+            walls.point, walls.normal, c, np.zeros((len(body), 2)), zero,
+            P.vertices, P.normals, P.count, P.radius, table.index[body], x[body], q[body], margin,
+        )
+    ).flipped()  # fmt: skip
+
+
 def static_rows(
     table: ShapeTable,
     rows: np.ndarray,
@@ -182,6 +207,7 @@ def static_rows(
     margin: float,
     angle: np.ndarray | None = None,
     meets: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    fast: bool = False,
 ) -> tuple[np.ndarray, ...]:
     """The rows of bodies ``rows`` (World rows, with shapes) against the World's colliders
     (``statics``, ``engine.manifold.static_shapes``; ``solid`` (C,) bool: which colliders
@@ -189,7 +215,8 @@ def static_rows(
     to the body (R, 2), the separation (R,), the point's key: 2^16 c + its feature id for the
     c-th static shape of its kind, the point less the body's position (R, 2)), the bodies at their
     ``angle`` (N,) (rad; None: all 0). ``meets(rows, colliders)``: which body-collider pairs
-    their filters let meet (None: all)."""
+    their filters let meet (None: all). ``fast``: each kind pair's loop kernel where it has
+    one (polygons on half planes straight from the table)."""
     out: list[list[np.ndarray]] = [[], [], [], [], [], []]
     q = np.zeros(len(x)) if angle is None else angle
     for code in (DISC, CAPSULE, POLYGON):
@@ -219,7 +246,11 @@ def static_rows(
                 if not len(r_i):
                     continue
             body = mine[r_i]
-            m = collide(shapes.take(r_i), x[body], q[body], kind.take(c_i), (0.0, 0.0), 0.0, margin)
+            if fast and code == POLYGON and isinstance(kind, HalfPlanes):
+                m = _on_half_planes(table, body, x, q, kind, c_i, margin)
+            else:
+                shape, wall = shapes.take(r_i), kind.take(c_i)
+                m = collide(shape, x[body], q[body], wall, (0.0, 0.0), 0.0, margin, fast)
             pair, slot = _points(m)
             out[0].append(mine[r_i[pair]])
             out[1].append(owner[c_i[pair]])

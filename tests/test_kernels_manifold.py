@@ -1,5 +1,5 @@
-"""The narrowphase's loop kernels (engine.manifold_polygon, ``polygon_loop``) against their numpy
-twins.
+"""The narrowphase's loop kernels (engine.manifold_polygon's ``polygon_loop``, engine.manifold's
+``half_plane_polygon_loop``) against their numpy twins.
 
 The kernel walks each pair through its twin's steps (the separating axes, the reference and
 incident edges, the clip, the nearest points of the edges, ``finish``) with the twin's
@@ -20,10 +20,19 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from engine import kernels
-from engine.colliders import Polygon
+from engine.colliders import Box, Collider, Plane, Polygon
 from engine.kernels import LoopKernel
-from engine.manifold import Capsules, Manifold, Polygons, collide, collide_polygons
-from engine.shaped import ShapeTable, pair_rows
+from engine.manifold import (
+    Capsules,
+    HalfPlanes,
+    Manifold,
+    Polygons,
+    collide,
+    collide_half_plane_polygon,
+    collide_polygons,
+    static_shapes,
+)
+from engine.shaped import ShapeTable, pair_rows, static_rows
 
 COMPILED = kernels.available()
 seeds = st.integers(0, 2**32 - 1)
@@ -67,12 +76,15 @@ def agree(got: Manifold, want: Manifold) -> None:
 def random_polygon(
     rng: np.random.Generator, rounded: bool
 ) -> tuple[list[tuple[float, float]], float]:
-    """A box (half the time) or a convex polygon of 3 to 8 vertices on an ellipse (its angles
-    at least a third of an even share apart, so no two vertices weld), and a rounding radius
-    (0 unless ``rounded``; then 0 or up to 0.2 m)."""
+    """A box, a rhombus or (half the time) a convex polygon of 3 to 8 vertices on an ellipse
+    (its angles at least a third of an even share apart, so no two vertices weld), and a
+    rounding radius (0 unless ``rounded``; then 0 or up to 0.2 m)."""
     w, h = rng.uniform(0.05, 1.5, 2)
-    if rng.random() < 0.5:
+    pick = rng.random()
+    if pick < 0.35:
         pts = [(-w, -h), (w, -h), (w, h), (-w, h)]
+    elif pick < 0.5:  # a rhombus: on a plane at its angle, two edges equally against it
+        pts = [(0.0, -h), (w, 0.0), (0.0, h), (-w, 0.0)]
     else:
         k = int(rng.integers(3, 9))
         gaps = rng.uniform(1.0, 3.0, k)
@@ -241,6 +253,72 @@ def test_pair_rows_of_polygons_are_the_twins(seed: int, bodies: int, pairs: int)
     q = rng.uniform(-7, 7, bodies) * (rng.random(bodies) < 0.7)
     want = pair_rows(table, a, b, x, 0.05, q)
     got = pair_rows(table, a, b, x, 0.05, q, fast=True)
+    for w, g in zip(want, got, strict=True):
+        assert w.dtype == g.dtype and w.shape == g.shape
+        if w.dtype.kind in "iu":
+            assert np.array_equal(w, g)
+        else:
+            assert close(g, w)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    seed=seeds,
+    pairs=st.integers(1, 40),
+    rounded=st.booleans(),
+    capsules=st.booleans(),
+    static=st.booleans(),
+    margin=st.sampled_from([0.0, 0.02, 0.1, math.inf]),
+)
+def test_half_plane_kernel_is_its_numpy_twin(
+    seed: int, pairs: int, rounded: bool, capsules: bool, static: bool, margin: float
+) -> None:
+    """``collide_half_plane_polygon(fast=True)`` (``half_plane_polygon_loop``): the twin's
+    manifolds for polygons (and capsules) resting flat, on a corner (a quarter or an eighth
+    turn: two edges equally against the plane), tilted, just off, sunk in, or far; the plane
+    on the static body (one pose for all) or on moving ones."""
+    rng = np.random.default_rng(seed)
+    a, _, _, b, xb, qb = make_pairs(seed, pairs, "free", rounded, capsules)
+    t = rng.choice([0.0, math.pi / 2, rng.uniform(-7, 7)], pairs)
+    walls = HalfPlanes(rng.uniform(-1, 1, (pairs, 2)), np.stack([np.sin(t), np.cos(t)], axis=1))
+    qb = np.where(rng.random(pairs) < 0.6, rng.integers(-8, 9, pairs) * math.pi / 4, qb)
+    # B's lowest vertex (along -n) put at a small gap from the plane, or B anywhere.
+    xa, qa = ((0.0, 0.0), 0.0) if static else (rng.uniform(-2, 2, (pairs, 2)), t * 0.5)
+    m0 = collide_half_plane_polygon(walls, xa, qa, b, xb, qb, math.inf)
+    lift = rng.choice([0.0, 1e-12, -1e-12, 0.01, 0.02, -0.1, 0.5], pairs)
+    xb = xb - ((m0.separation[:, 0] - lift)[:, None] * m0.normal)
+    want = collide_half_plane_polygon(walls, xa, qa, b, xb, qb, margin)
+    agree(collide_half_plane_polygon(walls, xa, qa, b, xb, qb, margin, fast=True), want)
+    # collide routes either order to the kernel: the same as the twin's, flipped.
+    flipped = collide(b, xb, qb, walls, xa, qa, margin, fast=True)
+    agree(flipped, collide(b, xb, qb, walls, xa, qa, margin))
+
+
+@settings(max_examples=30, deadline=None)
+@given(seed=seeds, bodies=st.integers(1, 25), planes=st.integers(1, 6))
+def test_static_rows_on_half_planes_are_the_twins(seed: int, bodies: int, planes: int) -> None:
+    """``static_rows(fast=True)``: the same rows for polygon bodies on the World's planes and
+    rooms (half planes, by the kernel) and its polygons (``polygon_loop`` via ``collide``)."""
+    rng = np.random.default_rng(seed)
+    shapes: list[Polygon | None] = []
+    for _ in range(bodies):
+        pts, radius = random_polygon(rng, True)
+        shapes.append(None if rng.random() < 0.1 else Polygon(pts, radius=radius))
+    table = ShapeTable(shapes, rng.uniform(0.3, 2.0, bodies))
+    colliders: list[Collider] = [Box((-3.0, -3.0), (3.0, 3.0))]
+    for _ in range(planes):
+        t = rng.uniform(0, 2 * math.pi)
+        colliders.append(Plane(tuple(rng.uniform(-2, 2, 2)), (math.sin(t), math.cos(t))))
+    colliders.append(Polygon([(0.0, 0.0), (1.0, 0.0), (0.5, 0.8)]))
+    statics = static_shapes(colliders)
+    solid = rng.random(len(colliders)) < 0.9
+    x = rng.uniform(-3.0, 3.0, (bodies, 2))
+    q = rng.integers(-8, 9, bodies) * math.pi / 4 + rng.uniform(-1, 1, bodies) * (
+        rng.random(bodies) < 0.5
+    )
+    rows = np.arange(bodies)
+    want = static_rows(table, rows, x, statics, solid, 0.05, q)
+    got = static_rows(table, rows, x, statics, solid, 0.05, q, fast=True)
     for w, g in zip(want, got, strict=True):
         assert w.dtype == g.dtype and w.shape == g.shape
         if w.dtype.kind in "iu":
