@@ -138,12 +138,14 @@ def pair_rows(
     out: list[list[np.ndarray]] = [[], [], [], [], [], [], []]
     reach = 2.0 * margin
     q = np.zeros(len(x)) if angle is None else angle
-    ka, kb = table.kind[a], table.kind[b]
+    # The kind pair of each pair as one code 3 ka + kb; only the codes present are visited.
+    code = table.kind[a].astype(np.intp) * 3 + table.kind[b]
+    present = np.bincount(code, minlength=9)
     for code_a in (DISC, CAPSULE, POLYGON):
         for code_b in (DISC, CAPSULE, POLYGON):
-            sel = np.flatnonzero((ka == code_a) & (kb == code_b))
-            if not len(sel):
+            if not present[3 * code_a + code_b]:
                 continue
+            sel = np.flatnonzero(code == 3 * code_a + code_b)
             ia, ib = a[sel], b[sel]
             if fast and code_a == code_b == POLYGON:
                 m = _polygon_pairs(table, ia, ib, x, q, reach)
