@@ -174,6 +174,8 @@ MODULES = (
     "engine.push_out",
     "engine.face_looks",
     "engine.sweep_paths",
+    "engine.manifold_polygon",
+    "engine.manifold",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}

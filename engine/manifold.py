@@ -53,6 +53,7 @@ from typing import Any
 
 import numpy as np
 
+from . import kernels
 from .colliders import Box, Circle, Collider, Plane, Polygon, Segment
 from .manifold_kinds import (
     LINEAR_SLOP,
@@ -89,6 +90,7 @@ __all__ = [
     "static_shapes",
     "collide_static",
     "polygon_distance",
+    "half_plane_polygon_loop",
 ]
 
 Kind = Circles | Capsules | Polygons | HalfPlanes
@@ -365,11 +367,24 @@ def collide_half_plane_polygon(
     xb: Any,
     qb: Any,
     margin: float = SPECULATIVE_DISTANCE,
+    fast: bool = False,
 ) -> Manifold:
     """Half plane A against polygon B: the ends of B's incident edge (its normal most against
-    the plane's), each with separation n.(w - p) - rB; ids are B's vertex indices."""
+    the plane's), each with separation n.(w - p) - rB; ids are B's vertex indices. ``fast``:
+    the loop kernel ``half_plane_polygon_loop``."""
     margin = _margin(margin)
-    f = frames(xa, qa, xb, qb, _pairs(a, b))
+    n_pairs = _pairs(a, b)
+    f = frames(xa, qa, xb, qb, n_pairs)  # validates the poses on both paths
+    if fast:
+        rows, pose = np.arange(n_pairs), np.ascontiguousarray
+        q_a = pose(np.broadcast_to(np.asarray(qa, dtype=float), (n_pairs,)))
+        q_b = pose(np.broadcast_to(np.asarray(qb, dtype=float), (n_pairs,)))
+        return Manifold(
+            *half_plane_polygon_loop(
+                a.point, a.normal, rows, pose(f.xa), q_a,
+                b.vertices, b.normals, b.count, b.radius, rows, pose(f.xb), q_b, margin,
+            )
+        )  # fmt: skip
     W, NB = f.b_points(b.vertices), f.b_vectors(b.normals)
     n, p = a.normal, a.point
     rows = np.arange(len(n))
@@ -407,19 +422,31 @@ _TABLE: dict[tuple[type, type], Any] = {
     (HalfPlanes, Capsules): collide_half_plane_capsule,
     (HalfPlanes, Polygons): collide_half_plane_polygon,
 }
+#: The pairs' functions that have a loop kernel (their ``fast`` argument).
+_FAST = frozenset([collide_polygons, collide_half_plane_polygon])
 
 
 def collide(
-    a: Kind, xa: Any, qa: Any, b: Kind, xb: Any, qb: Any, margin: float = SPECULATIVE_DISTANCE
+    a: Kind,
+    xa: Any,
+    qa: Any,
+    b: Kind,
+    xb: Any,
+    qb: Any,
+    margin: float = SPECULATIVE_DISTANCE,
+    fast: bool = False,
 ) -> Manifold:
     """The manifolds of N pairs of any two kinds, the normal from A to B: the function for
-    the pair, with A and B swapped (and the result ``flipped``) where the table has B first."""
+    the pair, with A and B swapped (and the result ``flipped``) where the table has B first.
+    ``fast``: the pair's loop kernel where it has one (``_FAST``), else its numpy."""
     fn = _TABLE.get((type(a), type(b)))
+    more = {"fast": True} if fast and fn in _FAST else {}
     if fn is not None:
-        return fn(a, xa, qa, b, xb, qb, margin)  # type: ignore[no-any-return]
+        return fn(a, xa, qa, b, xb, qb, margin, **more)  # type: ignore[no-any-return]
     fn = _TABLE.get((type(b), type(a)))
+    more = {"fast": True} if fast and fn in _FAST else {}
     if fn is not None:
-        return fn(b, xb, qb, a, xa, qa, margin).flipped()  # type: ignore[no-any-return]
+        return fn(b, xb, qb, a, xa, qa, margin, **more).flipped()  # type: ignore[no-any-return]
     raise TypeError(
         f"no narrowphase for {type(a).__name__} against {type(b).__name__}: a and b must be "
         f"Circles, Capsules, Polygons or HalfPlanes, and not two HalfPlanes"
@@ -537,3 +564,85 @@ def polygon_distance(polygon: Polygon, points: Any) -> np.ndarray:
         np.inf,
     )
     return m.separation[:, 0]
+
+
+# -- the loop kernel (engine.kernels: the fast path) ------------------------------------------
+
+
+def _sample_half_plane() -> tuple[object, ...]:
+    """The smallest call of ``half_plane_polygon_loop``: a unit box resting on a floor."""
+    v = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
+    nn = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
+    i, q = np.array([0]), np.zeros(1)
+    up, x0 = np.array([[0.0, 1.0]]), np.zeros((1, 2))
+    return x0, up, i, x0, q, v, nn, np.array([4]), np.zeros(1), i, np.array([[0.0, 0.5]]), q, 0.02
+
+
+@kernels.loop(sample=_sample_half_plane)
+def half_plane_polygon_loop(
+    P: np.ndarray,
+    Nh: np.ndarray,
+    ia: np.ndarray,
+    xa: np.ndarray,
+    qa: np.ndarray,
+    V: np.ndarray,
+    N: np.ndarray,
+    cB: np.ndarray,
+    rB: np.ndarray,
+    ib: np.ndarray,
+    xb: np.ndarray,
+    qb: np.ndarray,
+    margin: float,
+) -> tuple[np.ndarray, ...]:
+    """``collide_half_plane_polygon`` as a loop over pairs: pair k is half plane ``ia[k]``
+    (P, Nh: point and unit normal) at pose (xa[k], qa[k]) against polygon ``ib[k]`` of (V, N,
+    cB, rB) at (xb[k], qb[k]) (length units, rad); returns the Manifold's arrays, each step
+    its twin's products in its order."""
+    n = len(ia)
+    normal_w = np.empty((n, 2))
+    count = np.zeros(n, dtype=np.int64)
+    world = np.zeros((n, 2, 2))
+    anchor_a = np.zeros((n, 2, 2))
+    anchor_b = np.zeros((n, 2, 2))
+    sep_out = np.full((n, 2), np.inf)
+    feat_out = np.full((n, 2), -1, dtype=np.int64)
+    for k in range(n):
+        h, b = ia[k], ib[k]
+        # Frames (engine.manifold_kinds.frames): B's pose in A's frame.
+        ca, sn = np.cos(qa[k]), np.sin(qa[k])
+        dx, dy = xb[k, 0] - xa[k, 0], xb[k, 1] - xa[k, 1]
+        px, py = ca * dx + sn * dy, -sn * dx + ca * dy
+        rel = qb[k] - qa[k]
+        c, s = np.cos(rel), np.sin(rel)
+        nx, ny = Nh[h, 0], Nh[h, 1]
+        # The incident edge: B's normal most against n (the first of equals, as argmin).
+        e, best = 0, np.inf
+        for j in range(cB[b]):
+            ux, uy = N[b, j, 0], N[b, j, 1]
+            d = (c * ux - s * uy) * nx + (s * ux + c * uy) * ny
+            if d < best:
+                e, best = j, d
+        i1, i2 = e, (e + 1) % cB[b]
+        r = rB[b]
+        normal_w[k, 0] = ca * nx - sn * ny
+        normal_w[k, 1] = sn * nx + ca * ny
+        slot = 0
+        for i in (i2, i1):  # Box2D's order: the lower end first
+            vx, vy = V[b, i, 0], V[b, i, 1]
+            wx, wy = c * vx - s * vy + px, s * vx + c * vy + py
+            gap = (wx - P[h, 0]) * nx + (wy - P[h, 1]) * ny
+            # Midway: B's surface is r in from w along -n, the plane's is gap in from w.
+            half = 0.5 * (gap + r)
+            sep = gap - r
+            if not sep <= margin:  # finish: dropped, and a lone second moves up
+                continue
+            x_, y_ = wx - half * nx, wy - half * ny
+            ax_, ay_ = ca * x_ - sn * y_, sn * x_ + ca * y_
+            anchor_a[k, slot, 0], anchor_a[k, slot, 1] = ax_, ay_
+            world[k, slot, 0], world[k, slot, 1] = ax_ + xa[k, 0], ay_ + xa[k, 1]
+            anchor_b[k, slot, 0] = ax_ + (xa[k, 0] - xb[k, 0])
+            anchor_b[k, slot, 1] = ay_ + (xa[k, 1] - xb[k, 1])
+            sep_out[k, slot], feat_out[k, slot] = sep, i
+            slot += 1
+        count[k] = slot
+    return normal_w, count, world, anchor_a, anchor_b, sep_out, feat_out

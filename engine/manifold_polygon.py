@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from . import kernels
 from .manifold_kinds import (
     LINEAR_SLOP,
     SPECULATIVE_DISTANCE,
@@ -38,7 +39,7 @@ from .manifold_kinds import (
     frames,
 )
 
-__all__ = ["collide_polygons", "segment_distance"]
+__all__ = ["collide_polygons", "polygon_loop", "segment_distance"]
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -97,17 +98,30 @@ def collide_polygons(
     xb: Any,
     qb: Any,
     margin: float = SPECULATIVE_DISTANCE,
+    fast: bool = False,
 ) -> Manifold:
     """Manifolds of N pairs of (rounded) convex polygons, up to 2 points each (module doc).
 
     ``a``, ``b``: the shapes in their bodies' frames; ``xa``, ``xb`` (N, 2) or (2,) the
     bodies' positions and ``qa``, ``qb`` (N,) or scalars their angles (rad); ``margin`` the
-    speculative distance (length units): pairs farther apart get no point.
+    speculative distance (length units): pairs farther apart get no point. ``fast``: the
+    loop kernel ``polygon_loop``.
     """
     n = len(a)
     if len(b) != n:
         raise ValueError(f"a and b must hold one shape a pair, got {n} and {len(b)}")
-    f = frames(xa, qa, xb, qb, n)
+    f = frames(xa, qa, xb, qb, n)  # validates the poses on both paths
+    if fast:
+        rows = np.arange(n)
+        pose = np.ascontiguousarray
+        q_a = pose(np.broadcast_to(np.asarray(qa, dtype=float), (n,)))
+        q_b = pose(np.broadcast_to(np.asarray(qb, dtype=float), (n,)))
+        return Manifold(
+            *polygon_loop(
+                a.vertices, a.normals, a.count, a.radius, rows, pose(f.xa), q_a,
+                b.vertices, b.normals, b.count, b.radius, rows, pose(f.xb), q_b, float(margin),
+            )
+        )  # fmt: skip
     rows = np.arange(n)
     o = a.vertices[:, 0, :]  # step 1: A's first vertex becomes the origin
     VA = a.vertices - o[:, None, :]
@@ -207,3 +221,223 @@ def collide_polygons(
         live = np.where(vvc, np.array([True, False]), live)
     live &= ~(far | too_far)[:, None]
     return finish(f, normal, point + o[:, None, :], sep, feature, live, margin)
+
+
+# -- the loop kernel (engine.kernels: the fast path) ------------------------------------------
+
+
+def _sample_polygons() -> tuple[object, ...]:
+    """The smallest call of ``polygon_loop``: two unit boxes side by side, touching."""
+    v = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
+    nn = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
+    c, r, i, q = np.array([4]), np.zeros(1), np.array([0]), np.zeros(1)
+    return v, nn, c, r, i, np.zeros((1, 2)), q, v, nn, c, r, i, np.array([[1.0, 0.0]]), q, 0.02
+
+
+@kernels.loop(sample=_sample_polygons)
+def polygon_loop(
+    VA: np.ndarray,
+    NA: np.ndarray,
+    cA: np.ndarray,
+    rA: np.ndarray,
+    ia: np.ndarray,
+    xa: np.ndarray,
+    qa: np.ndarray,
+    VB: np.ndarray,
+    NB: np.ndarray,
+    cB: np.ndarray,
+    rB: np.ndarray,
+    ib: np.ndarray,
+    xb: np.ndarray,
+    qb: np.ndarray,
+    margin: float,
+) -> tuple[np.ndarray, ...]:
+    """``collide_polygons`` as a loop over pairs: pair k is shape ``ia[k]`` of the table
+    (VA, NA, cA, rA) at pose (xa[k], qa[k]) (length units, rad) against shape ``ib[k]`` of
+    (VB, NB, cB, rB) at (xb[k], qb[k]); returns the Manifold's arrays (normal, count, point,
+    anchor_a, anchor_b, separation, feature), each step its twin's products in its order."""
+    n = len(ia)
+    normal_w = np.empty((n, 2))
+    count = np.zeros(n, dtype=np.int64)
+    world = np.zeros((n, 2, 2))
+    anchor_a = np.zeros((n, 2, 2))
+    anchor_b = np.zeros((n, 2, 2))
+    sep_out = np.full((n, 2), np.inf)
+    feat_out = np.full((n, 2), -1, dtype=np.int64)
+    M = VB.shape[1]
+    WB = np.empty((M, 2))  # B's vertices and normals in A's frame, shifted (step 1)
+    UB = np.empty((M, 2))
+    for k in range(n):
+        sa_, sb_ = ia[k], ib[k]
+        na, nb = cA[sa_], cB[sb_]
+        ra, rb = rA[sa_], rB[sb_]
+        R = ra + rb
+        # Frames (engine.manifold_kinds.frames): B's pose in A's frame.
+        ca, sn = np.cos(qa[k]), np.sin(qa[k])
+        dx, dy = xb[k, 0] - xa[k, 0], xb[k, 1] - xa[k, 1]
+        px, py = ca * dx + sn * dy, -sn * dx + ca * dy
+        rel = qb[k] - qa[k]
+        c, s = np.cos(rel), np.sin(rel)
+        ox, oy = VA[sa_, 0, 0], VA[sa_, 0, 1]
+        for j in range(nb):
+            vx, vy = VB[sb_, j, 0], VB[sb_, j, 1]
+            WB[j, 0] = (c * vx - s * vy + px) - ox
+            WB[j, 1] = (s * vx + c * vy + py) - oy
+            wx, wy = NB[sb_, j, 0], NB[sb_, j, 1]
+            UB[j, 0], UB[j, 1] = c * wx - s * wy, s * wx + c * wy
+        # Step 2: the best axis of each; a strict > keeps the first of equals, as argmax.
+        edgeA, sepA = 0, -np.inf
+        for i in range(na):
+            ax, ay = VA[sa_, i, 0] - ox, VA[sa_, i, 1] - oy
+            nx, ny = NA[sa_, i, 0], NA[sa_, i, 1]
+            least = np.inf
+            for j in range(nb):
+                d = nx * (WB[j, 0] - ax) + ny * (WB[j, 1] - ay)
+                if d < least:
+                    least = d
+            if least > sepA or i == 0:
+                edgeA, sepA = i, least
+        edgeB, sepB = 0, -np.inf
+        for j in range(nb):
+            nx, ny = UB[j, 0], UB[j, 1]
+            least = np.inf
+            for i in range(na):
+                d = nx * ((VA[sa_, i, 0] - ox) - WB[j, 0]) + ny * ((VA[sa_, i, 1] - oy) - WB[j, 1])
+                if d < least:
+                    least = d
+            if least > sepB or j == 0:
+                edgeB, sepB = j, least
+        far = sepA > margin + R or sepB > margin + R
+        # Step 3: the reference edge, and the incident edge most anti-parallel to it.
+        flip = sepB > sepA
+        if flip:
+            nx, ny = UB[edgeB, 0], UB[edgeB, 1]
+            best = np.inf
+            for i in range(na):
+                d = nx * NA[sa_, i, 0] + ny * NA[sa_, i, 1]
+                if d < best:
+                    edgeA, best = i, d
+        else:
+            nx, ny = NA[sa_, edgeA, 0], NA[sa_, edgeA, 1]
+            best = np.inf
+            for j in range(nb):
+                d = nx * UB[j, 0] + ny * UB[j, 1]
+                if d < best:
+                    edgeB, best = j, d
+        iA1, iA2 = edgeA, (edgeA + 1) % na
+        iB1, iB2 = edgeB, (edgeB + 1) % nb
+        a1x, a1y = VA[sa_, iA1, 0] - ox, VA[sa_, iA1, 1] - oy
+        a2x, a2y = VA[sa_, iA2, 0] - ox, VA[sa_, iA2, 1] - oy
+        b1x, b1y, b2x, b2y = WB[iB1, 0], WB[iB1, 1], WB[iB2, 0], WB[iB2, 1]
+        if flip:  # reference v11-v12 on B, incident v21-v22 on A
+            x11, y11, x12, y12, x21, y21, x22, y22 = b1x, b1y, b2x, b2y, a1x, a1y, a2x, a2y
+            nx, ny = UB[edgeB, 0], UB[edgeB, 1]
+            r1, r2 = rb, ra
+            i11, i12, i21, i22 = iB1, iB2, iA1, iA2
+        else:
+            x11, y11, x12, y12, x21, y21, x22, y22 = a1x, a1y, a2x, a2y, b1x, b1y, b2x, b2y
+            nx, ny = NA[sa_, edgeA, 0], NA[sa_, edgeA, 1]
+            r1, r2 = ra, rb
+            i11, i12, i21, i22 = iA1, iA2, iB1, iB2
+        # Clip along t = (-n_y, n_x) from v11 (the twin's comment derives it).
+        tx, ty = -ny, nx
+        upper1 = (x12 - x11) * tx + (y12 - y11) * ty
+        upper2 = (x21 - x11) * tx + (y21 - y11) * ty
+        lower2 = (x22 - x11) * tx + (y22 - y11) * ty
+        live = not (upper2 < 0.0 or upper1 < lower2)
+        span = upper2 - lower2
+        safe = span if span > 0.0 else 1.0
+        lx, ly = x22, y22
+        if lower2 < 0.0 and span > 0.0:
+            f = (0.0 - lower2) / safe
+            lx, ly = x22 + f * (x21 - x22), y22 + f * (y21 - y22)
+        ux, uy = x21, y21
+        if upper2 > upper1 and span > 0.0:
+            f = (upper1 - lower2) / safe
+            ux, uy = x22 + f * (x21 - x22), y22 + f * (y21 - y22)
+        sep_lower = (lx - x11) * nx + (ly - y11) * ny
+        sep_upper = (ux - x11) * nx + (uy - y11) * ny
+        h = 0.5 * (r1 - r2 - sep_lower)
+        plx, ply = lx + h * nx, ly + h * ny
+        h = 0.5 * (r1 - r2 - sep_upper)
+        pux, puy = ux + h * nx, uy + h * ny
+        # Seen from A: the points in the order A's vertices meet them.
+        if flip:
+            p0x, p0y, p1x, p1y = pux, puy, plx, ply
+            s0, s1 = sep_upper - R, sep_lower - R
+            f0, f1_ = i21 << 8 | i12, i22 << 8 | i11
+            nx, ny = -nx, -ny
+        else:
+            p0x, p0y, p1x, p1y = plx, ply, pux, puy
+            s0, s1 = sep_lower - R, sep_upper - R
+            f0, f1_ = i11 << 8 | i22, i12 << 8 | i21
+        live0 = live1 = live
+        # Step 4: the nearest points of the two edges (segment_distance, Ericson 5.1.9).
+        apart = sepA > 0.0 or sepB > 0.0
+        d1x, d1y, d2x, d2y = a2x - a1x, a2y - a1y, b2x - b1x, b2y - b1y
+        rx, ry = a1x - b1x, a1y - b1y
+        dd1, dd2 = d1x * d1x + d1y * d1y, d2x * d2x + d2y * d2y
+        rd1, rd2, d12 = rx * d1x + ry * d1y, rx * d2x + ry * d2y, d1x * d2x + d1y * d2y
+        point1, point2 = dd1 <= 1e-24 * dd2, dd2 <= 1e-24 * dd1
+        safe1 = dd1 if dd1 > 0.0 else 1.0
+        safe2 = dd2 if dd2 > 0.0 else 1.0
+        denom = dd1 * dd2 - d12 * d12
+        g1 = 0.0
+        if denom != 0.0:
+            g1 = min(max((d12 * rd2 - rd1 * dd2) / denom, 0.0), 1.0)
+        g2 = (d12 * g1 + rd2) / safe2
+        if g2 < 0.0:
+            g1 = min(max(-rd1 / safe1, 0.0), 1.0)
+        elif g2 > 1.0:
+            g1 = min(max((d12 - rd1) / safe1, 0.0), 1.0)
+        g2 = min(max(g2, 0.0), 1.0)
+        if point2:
+            g1, g2 = min(max(-rd1 / safe1, 0.0), 1.0), 0.0
+        if point1:
+            g2 = 0.0 if point2 else min(max(rd2 / safe2, 0.0), 1.0)
+            g1 = 0.0
+        c1x, c1y = a1x + g1 * d1x, a1y + g1 * d1y
+        c2x, c2y = b1x + g2 * d2x, b1y + g2 * d2y
+        ex, ey = c2x - c1x, c2y - c1y
+        dist = np.sqrt(ex * ex + ey * ey)
+        too_far = apart and dist - R > margin
+        least = min(s0, s1) if live0 else np.inf
+        corner = (g1 == 0.0 or g1 == 1.0) and (g2 == 0.0 or g2 == 1.0)
+        if apart and not too_far and (corner or not live0) and dist - R + 0.1 * LINEAR_SLOP < least:
+            q = dist if dist > 0.0 else 1.0
+            ux, uy = ex / q, ey / q
+            mx = 0.5 * (c1x + ra * ux + c2x - rb * ux)
+            my = 0.5 * (c1y + ra * uy + c2y - rb * uy)
+            nx, ny = ux, uy
+            p0x, p0y, p1x, p1y = mx, my, mx, my
+            s0 = s1 = dist - R
+            f0 = f1_ = (iA1 if g1 == 0.0 else iA2) << 8 | (iB1 if g2 == 0.0 else iB2)
+            live0, live1 = True, False
+        if far or too_far:
+            live0 = live1 = False
+        # finish (engine.manifold_kinds): keep what is within margin, a lone second point
+        # moved to the first slot, and A's frame turned into the world's by R(qa).
+        keep0, keep1 = live0 and s0 <= margin, live1 and s1 <= margin
+        if keep1 and not keep0:
+            p0x, p0y, p1x, p1y = p1x, p1y, p0x, p0y
+            s0, s1, f0, f1_ = s1, s0, f1_, f0
+            keep0, keep1 = True, False
+        normal_w[k, 0] = ca * nx - sn * ny
+        normal_w[k, 1] = sn * nx + ca * ny
+        for slot in range(2):
+            if slot == 0:
+                if not keep0:
+                    continue
+                x_, y_, s_, f_ = p0x + ox, p0y + oy, s0, f0
+            else:
+                if not keep1:
+                    continue
+                x_, y_, s_, f_ = p1x + ox, p1y + oy, s1, f1_
+            ax_, ay_ = ca * x_ - sn * y_, sn * x_ + ca * y_
+            anchor_a[k, slot, 0], anchor_a[k, slot, 1] = ax_, ay_
+            world[k, slot, 0], world[k, slot, 1] = ax_ + xa[k, 0], ay_ + xa[k, 1]
+            anchor_b[k, slot, 0] = ax_ + (xa[k, 0] - xb[k, 0])
+            anchor_b[k, slot, 1] = ay_ + (xa[k, 1] - xb[k, 1])
+            sep_out[k, slot], feat_out[k, slot] = s_, f_
+            count[k] += 1
+    return normal_w, count, world, anchor_a, anchor_b, sep_out, feat_out

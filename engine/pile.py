@@ -316,7 +316,9 @@ def step_pile(
     m_pairs = 0
     anchors = [np.zeros((0, 2))] * 3
     if len(sa):
-        ia, ib, sn, ss, slot, anchors[0], anchors[1] = pair_rows(table, sa, sb, x0, margin, angle)
+        ia, ib, sn, ss, slot, anchors[0], anchors[1] = pair_rows(
+            table, sa, sb, x0, margin, angle, fast
+        )
         m_pairs = len(ia)
         rows_a.append(local[ia])
         rows_b.append(local[ib])
@@ -336,7 +338,7 @@ def step_pile(
             allowed = contacts.allowed
             meets = lambda rows, cols: allowed(rows, first[cols])  # noqa: E731
         s_rows, s_col, sn, ss, skey, anchors[2] = static_rows(
-            table, mine, x0, shapes, solid, margin, angle, meets
+            table, mine, x0, shapes, solid, margin, angle, meets, fast
         )
         rows_a.append(np.full(len(s_rows), nU))
         rows_b.append(local[s_rows])

@@ -43,12 +43,15 @@ from .colliders import Circle, Polygon, Segment
 from .manifold import (
     Capsules,
     Circles,
+    HalfPlanes,
     Kind,
     Manifold,
     Polygons,
     StaticShapes,
     collide,
+    half_plane_polygon_loop,
 )
+from .manifold_polygon import polygon_loop
 
 __all__ = ["ShapeTable", "pair_rows", "static_rows", "DISC", "CAPSULE", "POLYGON"]
 
@@ -122,6 +125,7 @@ def pair_rows(
     x: np.ndarray,
     margin: float,
     angle: np.ndarray | None = None,
+    fast: bool = False,
 ) -> tuple[np.ndarray, ...]:
     """The rows of pairs (World rows a, b) at positions x (N, 2) and angles ``angle`` (N,)
     (rad; None: all 0): (a, b, the unit normal from a to b (R, 2), the separation (R,), the
@@ -131,18 +135,24 @@ def pair_rows(
     one row a point of each pair's manifold (``engine.manifold.collide``), every pair of
     kinds at once a kind pair. ``margin`` (length units) is the farthest one body may move
     in the step, slack included: both bodies of a pair may close on each other, so a pair
-    gets its rows while its gap is within twice that."""
+    gets its rows while its gap is within twice that. ``fast``: pairs of polygons by the loop
+    kernel ``engine.manifold_polygon.polygon_loop``, straight from the table."""
     out: list[list[np.ndarray]] = [[], [], [], [], [], [], []]
     reach = 2.0 * margin
     q = np.zeros(len(x)) if angle is None else angle
-    ka, kb = table.kind[a], table.kind[b]
+    # The kind pair of each pair as one code 3 ka + kb; only the codes present are visited.
+    code = table.kind[a].astype(np.intp) * 3 + table.kind[b]
+    present = np.bincount(code, minlength=9)
     for code_a in (DISC, CAPSULE, POLYGON):
         for code_b in (DISC, CAPSULE, POLYGON):
-            sel = np.flatnonzero((ka == code_a) & (kb == code_b))
-            if not len(sel):
+            if not present[3 * code_a + code_b]:
                 continue
+            sel = np.flatnonzero(code == 3 * code_a + code_b)
             ia, ib = a[sel], b[sel]
-            m = collide(table.kinds(ia), x[ia], q[ia], table.kinds(ib), x[ib], q[ib], reach)
+            if fast and code_a == code_b == POLYGON:
+                m = _polygon_pairs(table, ia, ib, x, q, reach)
+            else:
+                m = collide(table.kinds(ia), x[ia], q[ia], table.kinds(ib), x[ib], q[ib], reach)
             pair, slot = _points(m)
             out[0].append(ia[pair])
             out[1].append(ib[pair])
@@ -154,6 +164,44 @@ def pair_rows(
     return _joined(out)
 
 
+def _polygon_pairs(
+    table: ShapeTable, ia: np.ndarray, ib: np.ndarray, x: np.ndarray, q: np.ndarray, reach: float
+) -> Manifold:
+    """The manifolds of pairs of polygon bodies (World rows ia, ib), by the loop kernel on the
+    table's own arrays (no ``take`` of the shapes): ``collide_polygons(fast=True)``."""
+    P = table.polygons
+    assert P is not None
+    return Manifold(
+        *polygon_loop(
+            P.vertices, P.normals, P.count, P.radius, table.index[ia], x[ia], q[ia],
+            P.vertices, P.normals, P.count, P.radius, table.index[ib], x[ib], q[ib], reach,
+        )
+    )  # fmt: skip
+
+
+def _on_half_planes(
+    table: ShapeTable,
+    body: np.ndarray,
+    x: np.ndarray,
+    q: np.ndarray,
+    walls: HalfPlanes,
+    c: np.ndarray,
+    margin: float,
+) -> Manifold:
+    """The manifolds of polygon bodies (World rows ``body``) against half planes ``c`` of
+    ``walls`` (the static body: at the origin, angle 0), the body as A, by the loop kernel on
+    the table's own arrays: ``collide(..., fast=True)``."""
+    P = table.polygons
+    assert P is not None
+    zero = np.zeros(len(body))
+    return Manifold(
+        *half_plane_polygon_loop(
+            walls.point, walls.normal, c, np.zeros((len(body), 2)), zero,
+            P.vertices, P.normals, P.count, P.radius, table.index[body], x[body], q[body], margin,
+        )
+    ).flipped()  # fmt: skip
+
+
 def static_rows(
     table: ShapeTable,
     rows: np.ndarray,
@@ -163,6 +211,7 @@ def static_rows(
     margin: float,
     angle: np.ndarray | None = None,
     meets: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    fast: bool = False,
 ) -> tuple[np.ndarray, ...]:
     """The rows of bodies ``rows`` (World rows, with shapes) against the World's colliders
     (``statics``, ``engine.manifold.static_shapes``; ``solid`` (C,) bool: which colliders
@@ -170,7 +219,8 @@ def static_rows(
     to the body (R, 2), the separation (R,), the point's key: 2^16 c + its feature id for the
     c-th static shape of its kind, the point less the body's position (R, 2)), the bodies at their
     ``angle`` (N,) (rad; None: all 0). ``meets(rows, colliders)``: which body-collider pairs
-    their filters let meet (None: all)."""
+    their filters let meet (None: all). ``fast``: each kind pair's loop kernel where it has
+    one (polygons on half planes straight from the table)."""
     out: list[list[np.ndarray]] = [[], [], [], [], [], []]
     q = np.zeros(len(x)) if angle is None else angle
     for code in (DISC, CAPSULE, POLYGON):
@@ -200,7 +250,11 @@ def static_rows(
                 if not len(r_i):
                     continue
             body = mine[r_i]
-            m = collide(shapes.take(r_i), x[body], q[body], kind.take(c_i), (0.0, 0.0), 0.0, margin)
+            if fast and code == POLYGON and isinstance(kind, HalfPlanes):
+                m = _on_half_planes(table, body, x, q, kind, c_i, margin)
+            else:
+                shape, wall = shapes.take(r_i), kind.take(c_i)
+                m = collide(shape, x[body], q[body], wall, (0.0, 0.0), 0.0, margin, fast)
             pair, slot = _points(m)
             out[0].append(mine[r_i[pair]])
             out[1].append(owner[c_i[pair]])
