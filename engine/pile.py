@@ -452,7 +452,7 @@ def step_pile(
     x[U], v[U] = Xr, Vr
     if len(sa) and m_pairs:
         # Fast pairs the rows left deep in each other meet at their moment instead.
-        again = retake(table, ia, ib, x0, v0, x, v, spin, P, store, dt)
+        again = retake(table, ia, ib, x0, v0, x, v, spin, P, store, dt, fast)
         if again is not None:
             Xr[local[again]] = x[again]
     # The impulses over the whole step, kept by key (sorted) for the next one.

@@ -64,11 +64,12 @@ def pair_gaps(
     qa: np.ndarray,
     xb: np.ndarray,
     qb: np.ndarray,
+    fast: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The separation (length units, < 0: overlap) of each pair k of bodies a[k], b[k] (World
     rows, for their shapes) placed at xa[k], xb[k] (P, 2) and turned to qa[k], qb[k] (rad):
-    the least of its manifold's points (engine.manifold, any distance apart); and the
-    manifolds' unit normals from a to b (P, 2)."""
+    the least of its manifold's points (engine.manifold, any distance apart; ``fast``: its
+    loop kernels); and the manifolds' unit normals from a to b (P, 2)."""
     out = np.full(len(a), np.inf)
     normal = np.zeros((len(a), 2))
     ka, kb = table.kind[a], table.kind[b]
@@ -78,7 +79,7 @@ def pair_gaps(
             if not len(sel):
                 continue
             m = collide(table.kinds(a[sel]), xa[sel], qa[sel], table.kinds(b[sel]), xb[sel],
-                        qb[sel], np.inf)  # fmt: skip
+                        qb[sel], np.inf, fast)  # fmt: skip
             sep = np.where(np.arange(2) < m.count[:, None], m.separation, np.inf)
             out[sel] = sep.min(axis=1)
             normal[sel] = m.normal
@@ -95,6 +96,7 @@ def late_impacts(
     radius: np.ndarray,
     moves: np.ndarray,
     dt: float,
+    fast: bool = False,
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """The bodies of fast pairs (World rows a, b of the pile's pairs with a shape) that ended
     the step deep in each other, taken again from the moment they met (module text).
@@ -102,27 +104,28 @@ def late_impacts(
     ``start``: (x0 (N, 2), v0, angle0 (N,), omega0) as the step began; ``end``: (x1, v1,
     angle1, omega1) as the soft step left them; ``pull``: (a (N, 2), alpha (N,)) the forces'
     and own torque's accelerations; ``radius`` (N,): bounding radii; ``moves`` (N,): bodies
-    that can be moved (a kinematic body keeps its path). Returns (rows, t*) of the bodies to
-    place again, each at the earliest moment any of its pairs met, or None where none."""
+    that can be moved (a kinematic body keeps its path); ``fast``: the narrowphase's loop
+    kernels. Returns (rows, t*) of the bodies to place again, each at the earliest moment any
+    of its pairs met, or None where none."""
     x0, q0 = start[0], start[2]
     x1, q1 = end[0], end[2]
     r = np.minimum(radius[a], radius[b])
     dxa, dxb = x1[a] - x0[a], x1[b] - x0[b]
     sweep = np.hypot(*(dxb - dxa).T) + np.abs(q1[a] - q0[a]) * radius[a]
     sweep += np.abs(q1[b] - q0[b]) * radius[b]
-    fast = np.flatnonzero(sweep > FAST * r)
-    if not len(fast):
+    swift = np.flatnonzero(sweep > FAST * r)
+    if not len(swift):
         return None
-    a, b, r = a[fast], b[fast], r[fast]
-    gap0, n0 = pair_gaps(table, a, b, x0[a], q0[a], x0[b], q0[b])
+    a, b, r = a[swift], b[swift], r[swift]
+    gap0, n0 = pair_gaps(table, a, b, x0[a], q0[a], x0[b], q0[b], fast)
     # Deep at the end, or through: B's centre past A's along the start's normal.
-    deep = pair_gaps(table, a, b, x1[a], q1[a], x1[b], q1[b])[0] < -DEEP * r
+    deep = pair_gaps(table, a, b, x1[a], q1[a], x1[b], q1[b], fast)[0] < -DEEP * r
     deep |= (_dot(x1[b] - x1[a], n0) < 0.0) & (_dot(x0[b] - x0[a], n0) > 0.0)
     deep &= gap0 > -SLOP * r
     if not deep.any():
         return None
     a, b, r = a[deep], b[deep], r[deep]
-    hit = _time_of_impact(table, a, b, r, start, pull, radius, dt)
+    hit = _time_of_impact(table, a, b, r, start, pull, radius, dt, fast)
     met = np.isfinite(hit)
     if not met.any():
         return None
@@ -145,6 +148,7 @@ def _time_of_impact(
     pull: tuple[np.ndarray, np.ndarray],
     radius: np.ndarray,
     dt: float,
+    fast: bool,
 ) -> np.ndarray:
     """When (s, within [0, dt]) each pair first touches along the start motion, by
     conservative advancement; inf for a pair that does not meet within the step."""
@@ -175,7 +179,7 @@ def _time_of_impact(
             break
         xa, qa = poses(a[k], t[k])
         xb, qb = poses(b[k], t[k])
-        gap = pair_gaps(table, a[k], b[k], xa, qa, xb, qb)[0]
+        gap = pair_gaps(table, a[k], b[k], xa, qa, xb, qb, fast)[0]
         touch = gap <= TOUCH * r[k]
         hit[k[touch]] = t[k[touch]]
         live[k[touch]] = False
@@ -221,6 +225,7 @@ def retake(
     acc: np.ndarray,
     store: Any,
     dt: float,
+    fast: bool = False,
 ) -> np.ndarray | None:
     """``late_impacts`` for the pile's pairs with a shape (World rows a, b: one row a point,
     so a pair may repeat), from the step's start (x0, v0; ``spin``'s angle0 and omega0) to
@@ -238,7 +243,7 @@ def retake(
     else:
         q0, q1, w0, w1, alpha = spin.angle0, spin.angle, spin.omega0, spin.omega, spin.alpha
     start, end, pull = (x0, v0, q0, w0), (x, v, q1, w1), (acc, alpha)
-    got = late_impacts(table, a, b, start, end, pull, store.radius, ~store.kinematic, dt)
+    got = late_impacts(table, a, b, start, end, pull, store.radius, ~store.kinematic, dt, fast)
     if got is None:
         return None
     rows, when = got
