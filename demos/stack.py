@@ -45,6 +45,8 @@ __all__ = [
     "dominoes",
     "tower",
     "tumbler",
+    "tumbler_walls",
+    "tumbler_centres",
     "in_room",
     "into_walls",
     "outside",
@@ -60,6 +62,8 @@ BASE = 20  # boxes in the pyramid's bottom row
 DOMINOES = 30
 FLICK = 0.3  # N s, at the first domino's top
 TUMBLED = 500  # boxes in the tumbler
+TUMBLED_SIDE = 0.25  # m
+TUMBLED_MASS = 0.0625  # kg: Box2D's density 1 on 0.25 x 0.25 m
 TUMBLE = math.pi / 2  # rad/s: the tumbler's walls turn 90 degrees a second
 ROOM = 9.5  # m: half the tumbler's inside width
 
@@ -110,27 +114,41 @@ def tower(n: int = 20) -> tuple[World, list[Body]]:
     return w, [_box(w, 0.0, 0.5 + k) for k in range(n)]
 
 
-def tumbler(n: int = TUMBLED, spin: float = TUMBLE) -> tuple[World, list[Body], list[Body]]:
-    """``n`` boxes of 0.25 m (1/16 kg) in a square grid 0.4 m apart at the middle of a room
-    ``2 ROOM`` m wide, whose four walls (kinematic bodies about its centre, 1 m thick, friction
-    1.0) turn at ``spin`` rad/s, as in Box2D's tumbler (``shared/anchors/box2d``): (world,
-    boxes, walls). The boxes are all alike (``into_walls`` takes the first one's corners)."""
-    w = World(integrator="auto")
-    w.add_force(Gravity((0.0, -G)))
+def tumbler_walls() -> list[tuple[float, float, float, float]]:
+    """The tumbler's four walls in its frame: (centre x, centre y, half width, half height)
+    (m): 1 m thick, their inner faces ``ROOM`` m from the centre."""
     h = ROOM + 0.5  # the walls' middles
-    sides = [(h, 0.0, 0.5, h), (-h, 0.0, 0.5, h), (0.0, h, h, 0.5), (0.0, -h, h, 0.5)]
+    return [(h, 0.0, 0.5, h), (-h, 0.0, 0.5, h), (0.0, h, h, 0.5), (0.0, -h, h, 0.5)]
+
+
+def tumbler_centres(n: int = TUMBLED) -> list[tuple[float, float]]:
+    """Where the tumbler's ``n`` boxes start (m): a square grid 0.4 m apart about the centre,
+    row by row from the lowest (Box2D's sample)."""
+    g = math.ceil(math.sqrt(n))
+    corner = -0.2 * (g - 1)
+    return [(corner + 0.4 * (k % g), corner + 0.4 * (k // g)) for k in range(n)]
+
+
+def tumbler(
+    n: int = TUMBLED, spin: float = TUMBLE, *, kernels: str | None = None
+) -> tuple[World, list[Body], list[Body]]:
+    """``n`` boxes of 0.25 m (1/16 kg) at ``tumbler_centres`` in a room ``2 ROOM`` m wide
+    whose four walls (kinematic bodies about its centre, ``tumbler_walls``, friction 1.0)
+    turn at ``spin`` rad/s, as in Box2D's tumbler (``shared/anchors/box2d``): (world, boxes,
+    walls), on the path ``kernels`` (None: the default). The boxes are all alike
+    (``into_walls`` takes the first one's corners)."""
+    w = World(integrator="auto", kernels=kernels)
+    w.add_force(Gravity((0.0, -G)))
     walls = w.add_all(
         Body(Vector(0.0, 0.0), shape=Polygon([(cx - a, cy - b), (cx + a, cy - b),
              (cx + a, cy + b), (cx - a, cy + b)]), kinematic=True, angular_velocity=spin,
              friction=1.0)
-        for cx, cy, a, b in sides
+        for cx, cy, a, b in tumbler_walls()
     )  # fmt: skip
-    g = math.ceil(math.sqrt(n))
-    corner = -0.2 * (g - 1)
     boxes = w.add_all(
-        Body(Vector(corner + 0.4 * (k % g), corner + 0.4 * (k // g)),
-             shape=Polygon.box(0.25, 0.25), mass=0.0625, friction=FRICTION, restitution=0.0)
-        for k in range(n)
+        Body(Vector(x, y), shape=Polygon.box(TUMBLED_SIDE, TUMBLED_SIDE), mass=TUMBLED_MASS,
+             friction=FRICTION, restitution=0.0)
+        for x, y in tumbler_centres(n)
     )  # fmt: skip
     return w, boxes, walls
 

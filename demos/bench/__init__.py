@@ -36,6 +36,7 @@ TOPICS: dict[str, str] = {
     "kernels": "demos.bench.kernels",
     "pinball": "demos.bench.pinball",
     "stack": "demos.bench.stack",
+    "tumbler": "demos.bench.tumbler",
 }
 
 

@@ -1,0 +1,157 @@
+"""The tumbler, against pymunk: 500 boxes in a room whose walls turn (issue "Bodies that turn").
+
+Run with ``python -m demos.bench tumbler`` (``--quick``: 2 s). The scene is ``demos.stack``'s
+tumbler, Box2D's sample (``shared/anchors/box2d``): 500 boxes of 0.25 m and 1/16 kg, friction
+0.6 (by product, as pymunk: 0.6 on walls of 1.0, 0.36 box on box), restitution 0, in a square
+grid at the middle of a room 19 m wide whose four walls, 1 m thick, are shapes of one
+kinematic body turning at 90 degrees a second (here four kinematic bodies about one point,
+a body having one shape); g = 9.81 m/s^2, dt = 1/60 s, 20 s. pymunk 7 steps the same (one
+kinematic body with four polygons) with its default 10 iterations; neither sleeps (the walls
+keep every box moving).
+
+The engines step side by side, one step each in turn (the order swapped every step). Reported
+per engine: the mean wall-clock time a step over the first 2 s (the drop) and over the 20 s;
+how many boxes ever had their centre past a wall's inner face (the issue: none may end a step
+inside a wall; pymunk 93 at the end as the issue measured, Box2D none at the end but up to 10
+during the run); the deepest any box's corner went past a wall's inner face. This World runs
+on the numpy path ("World") and, where numba is installed, on the fast path ("fast").
+
+Targets (the issues): a step at most 3x pymunk's on the numpy path, 1x on the fast path.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from demos import stack as scene
+from engine import kernels as engine_kernels
+
+__all__ = ["SECONDS", "FIRST", "ITERATIONS", "make_space", "side_by_side", "report"]
+
+DT = scene.DT  # s
+SECONDS = 20.0  # s
+FIRST = 2.0  # s: the drop
+ITERATIONS = 10  # pymunk's default
+
+
+def make_space() -> tuple[Any, Any, list[Any]] | None:
+    """The tumbler in pymunk: (space, the walls' kinematic body, the boxes), or None
+    without pymunk."""
+    try:
+        import pymunk
+    except ImportError:
+        return None
+    space = pymunk.Space()
+    space.gravity = (0.0, -scene.G)
+    space.iterations = ITERATIONS
+    walls = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+    walls.angular_velocity = scene.TUMBLE
+    space.add(walls)
+    for cx, cy, a, b in scene.tumbler_walls():
+        wall = pymunk.Poly(walls, [(cx - a, cy - b), (cx + a, cy - b), (cx + a, cy + b),
+                                   (cx - a, cy + b)])  # fmt: skip
+        wall.friction = 1.0
+        space.add(wall)
+    side = (scene.TUMBLED_SIDE, scene.TUMBLED_SIDE)
+    boxes = []
+    for x, y in scene.tumbler_centres():
+        body = pymunk.Body(scene.TUMBLED_MASS, pymunk.moment_for_box(scene.TUMBLED_MASS, side))
+        body.position = (x, y)
+        box = pymunk.Poly.create_box(body, side, 0.0)
+        box.friction, box.elasticity = scene.FRICTION, 0.0
+        space.add(body, box)
+        boxes.append(body)
+    return space, walls, boxes
+
+
+def _room(pos: np.ndarray, turn: np.ndarray, angle: float) -> tuple[np.ndarray, np.ndarray]:
+    """Boxes at ``pos`` (n, 2) turned ``turn`` (n,) in a room turned ``angle`` (rad, about the
+    origin): (which have their centre past a wall's inner face, how far each one's deepest
+    corner is past one (m))."""
+    c, s = math.cos(angle), math.sin(angle)
+    centre = pos @ np.array([[c, -s], [s, c]])
+    h = 0.5 * scene.TUMBLED_SIDE
+    corners = np.array([(-h, -h), (h, -h), (h, h), (-h, h)])
+    cb, sb = np.cos(turn - angle)[:, None], np.sin(turn - angle)[:, None]
+    x = centre[:, :1] + cb * corners[:, 0] - sb * corners[:, 1]
+    y = centre[:, 1:] + sb * corners[:, 0] + cb * corners[:, 1]
+    deep = np.maximum(np.abs(x), np.abs(y)).max(axis=1) - scene.ROOM
+    return np.abs(centre).max(axis=1) > scene.ROOM, deep
+
+
+def side_by_side(seconds: float = SECONDS, pymunk: bool = True) -> dict[str, dict[str, float]]:
+    """Step each engine's tumbler for ``seconds``, side by side: engine -> {"first", "mean":
+    s a step over the first FIRST s and over all; "lost": boxes whose centre ever passed a
+    wall; "deepest": m the deepest corner went past one}."""
+    engine_kernels.prepare()  # compiled (or loaded from the cache) before the clock starts
+    paths = {"World": "numpy", "fast": "fast"} if engine_kernels.available() else {"World": "numpy"}
+    sims: dict[str, tuple[Any, Any]] = {}
+    for name, path in paths.items():
+        w, boxes, walls = scene.tumbler(kernels=path)
+
+        def look(w: Any = w, boxes: Any = boxes, walls: Any = walls) -> tuple[Any, ...]:
+            return w.positions()[len(walls) :], np.array([b.angle for b in boxes]), walls[0].angle
+
+        sims[name] = (w.step, look)
+    made = make_space() if pymunk else None
+    if made is not None:
+        space, body, bodies = made
+
+        def look_pm(body: Any = body, bodies: Any = bodies) -> tuple[Any, ...]:
+            pos = np.array([tuple(b.position) for b in bodies])
+            return pos, np.array([b.angle for b in bodies]), body.angle
+
+        sims["pymunk"] = (space.step, look_pm)
+    names = list(sims)
+    steps, head = round(seconds / DT), round(min(FIRST, seconds) / DT)
+    times = {name: np.empty(steps) for name in names}
+    lost = {name: np.zeros(len(scene.tumbler_centres()), dtype=bool) for name in names}
+    deepest = dict.fromkeys(names, -math.inf)
+    perf = time.perf_counter
+    for i in range(steps):
+        for name in names if i % 2 == 0 else names[::-1]:
+            t0 = perf()
+            sims[name][0](DT)
+            times[name][i] = perf() - t0
+        for name in names:  # measured between the steps, not timed
+            out, deep = _room(*sims[name][1]())
+            lost[name] |= out
+            deepest[name] = max(deepest[name], float(deep.max()))
+    return {
+        name: {
+            "first": float(times[name][:head].mean()),
+            "mean": float(times[name].mean()),
+            "lost": float(lost[name].sum()),
+            "deepest": deepest[name],
+        }
+        for name in names
+    }
+
+
+def report(quick: bool = False) -> str:
+    """Run the tumbler; return the text."""
+    seconds = 2.0 if quick else SECONDS
+    got = side_by_side(seconds)
+    lines = [
+        f"tumbler: {len(scene.tumbler_centres())} boxes of {scene.TUMBLED_SIDE:g} m, walls "
+        f"turning {math.degrees(scene.TUMBLE):g} degrees/s, {seconds:g} s at dt = 1/60 s; "
+        f"pymunk {ITERATIONS} iterations; side by side (a shared machine: noisy)",
+        f"  {'engine':8} {'first 2 s':>10} {'ratio':>7} {'whole run':>10} {'ratio':>7} "
+        f"{'centres past a wall':>20} {'deepest corner':>15}",
+    ]
+    peer = got.get("pymunk")
+    for name, r in got.items():
+        ratio_first = f"{r['first'] / peer['first']:.2f}x" if peer else "-"
+        ratio_mean = f"{r['mean'] / peer['mean']:.2f}x" if peer else "-"
+        lines.append(
+            f"  {name:8} {1e3 * r['first']:8.3f} ms {ratio_first:>7} {1e3 * r['mean']:8.3f} ms "
+            f"{ratio_mean:>7} {int(r['lost']):>20} {1e3 * r['deepest']:12.0f} mm"
+        )
+    if peer is None:
+        lines.append("  pymunk is not installed (pip install -e '.[bench]'): no comparison")
+    lines.append("  targets: no centre past a wall; a step at most 3x pymunk's (numpy), 1x (fast)")
+    return "\n".join(lines)
