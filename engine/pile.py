@@ -450,9 +450,18 @@ def step_pile(
         if PUSHOUT:
             contacts.push_out_rows(Xr, Vr, np.where(kin | shapedU, -np.inf, r), U, fast)
     x[U], v[U] = Xr, Vr
-    if len(sa) and m_pairs:
-        # Fast pairs the rows left deep in each other meet at their moment instead.
-        again = retake(table, ia, ib, x0, v0, x, v, spin, P, store, dt, fast)
+    if m_pairs or len(s_rows):
+        # Fast shapes the rows left deep in each other or a wall meet at their moment instead.
+        walls = None
+        if len(s_rows):
+
+            def walls_at(rows: np.ndarray, xs: np.ndarray, qs: np.ndarray, reach: float) -> Any:
+                got = static_rows(table, rows, xs, shapes, solid, reach, qs, meets, fast)
+                return got[0], got[1], got[2], got[3]
+
+            walls = (walls_at, s_rows)
+        pairs = (ia, ib) if m_pairs else (s_rows[:0], s_rows[:0])
+        again = retake(table, pairs, walls, (x0, v0), (x, v), spin, P, store, dt, fast)
         if again is not None:
             Xr[local[again]] = x[again]
     # The impulses over the whole step, kept by key (sorted) for the next one.

@@ -23,7 +23,14 @@ the step (its relative sweep, |dx_B - dx_A| + |dtheta_A| R_A + |dtheta_B| R_B wi
 bounding radius, over ``FAST`` of the smaller R), began it apart (separation > -``SLOP`` of
 the smaller R) and ended it deep (separation < -``DEEP`` of the smaller R) or through (B's
 centre past A's along the normal the step began with). A pile pressed together over many
-steps never starts a step apart, so it is left to the soft step.
+steps never starts a step apart, so it is left to the soft step. A body and a static
+collider are taken the same way (``late_wall_impacts``): "through" is then the manifold's
+normal turned round (the body on the collider's other side), and the advancement is against
+the colliders it went into only (a box sliding along a floor into a wall is not stopped by
+the floor). A body met by several is placed by the earliest.
+
+Not handled: a second impact within the step after the first (a box turning so fast that
+its other end meets the wall before the step ends) is not searched for.
 
 t* is found by conservative advancement (Mirtich's, Box2D's time of impact): from a
 separation d at time t, the two cannot meet before t + d / s, where s bounds how fast any
@@ -34,6 +41,7 @@ narrowphase's (engine.manifold) at the bodies' poses along the start motion.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -42,7 +50,24 @@ from .manifold import collide
 from .rotation import Spin
 from .shaped import ShapeTable
 
-__all__ = ["retake", "late_impacts", "place", "pair_gaps", "FAST", "DEEP", "SLOP"]
+#: The static colliders' manifolds for bodies at poses: walls(rows, x, angle, margin) ->
+#: (row, collider, unit normal from the collider to the body, separation), a point a row.
+Walls = Callable[
+    [np.ndarray, np.ndarray, np.ndarray, float],
+    tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+]
+
+__all__ = [
+    "retake",
+    "late_impacts",
+    "late_wall_impacts",
+    "place",
+    "pair_gaps",
+    "Walls",
+    "FAST",
+    "DEEP",
+    "SLOP",
+]
 
 #: A pair's relative sweep in a step, in the smaller bounding radius, past which it is fast.
 FAST = 0.5
@@ -213,41 +238,158 @@ def place(
     return x, q
 
 
+def late_wall_impacts(
+    walls: Walls,
+    rows: np.ndarray,
+    start: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    end: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    pull: tuple[np.ndarray, np.ndarray],
+    radius: np.ndarray,
+    dt: float,
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """``late_impacts`` for bodies (World ``rows``, with shapes, that can be moved) against
+    the static colliders: ``walls(rows, x, angle, margin)`` gives their manifolds' points
+    (row, collider, unit normal from the collider to the body, separation) at poses x (N, 2),
+    ``angle`` (N,), for colliders within ``margin``. A body is taken again when it moved fast,
+    began the step apart from a collider and ended it deep in it or through it (on its other
+    side: the normal turned by more than 120 degrees); returns (rows, t*) or None."""
+    x0, q0 = start[0], start[2]
+    x1, q1 = end[0], end[2]
+    r = radius[rows]
+    sweep = np.hypot(*(x1[rows] - x0[rows]).T) + np.abs(q1[rows] - q0[rows]) * r
+    rows, r, sweep = rows[sweep > FAST * r], r[sweep > FAST * r], sweep[sweep > FAST * r]
+    if not len(rows):
+        return None
+    reach = float((sweep + r).max())
+    b0, c0, n0, s0 = _nearest(*walls(rows, x0, q0, reach))
+    b1, c1, n1, s1 = _nearest(*walls(rows, x1, q1, reach))
+    size = radius[b0]
+    # Each (body, collider) of the start met again at the end (both sorted by key).
+    k0, k1 = b0 * (1 << 32) + c0, b1 * (1 << 32) + c1
+    at = np.searchsorted(k1, k0)
+    found = at < len(k1)
+    found[found] = k1[at[found]] == k0[found]
+    hit = np.zeros(len(k0), dtype=bool)
+    f = np.flatnonzero(found)
+    deep = s1[at[f]] < -DEEP * size[f]
+    through = _dot(n1[at[f]], n0[f]) < -0.5
+    hit[f] = (deep | through) & (s0[f] > -SLOP * size[f])
+    if not hit.any():
+        return None
+    body, col = b0[hit], c0[hit]
+    # Conservative advancement of each such body against the colliders it went into.
+    movers = np.unique(body)
+    when = _time_of_wall_impact(walls, movers, body, col, start, pull, radius, dt, reach)
+    met = np.isfinite(when)
+    return (movers[met], when[met]) if met.any() else None
+
+
+def _nearest(
+    row: np.ndarray, col: np.ndarray, normal: np.ndarray, sep: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per (row, collider), the point of least separation: (row, collider, its normal, its
+    separation), sorted by row then collider."""
+    order = np.lexsort((sep, col, row))
+    row, col, normal, sep = row[order], col[order], normal[order], sep[order]
+    first = np.ones(len(row), dtype=bool)
+    first[1:] = (row[1:] != row[:-1]) | (col[1:] != col[:-1])
+    return row[first].astype(np.int64), col[first].astype(np.int64), normal[first], sep[first]
+
+
+def _time_of_wall_impact(
+    walls: Walls,
+    movers: np.ndarray,
+    body: np.ndarray,
+    col: np.ndarray,
+    start: tuple[np.ndarray, ...],
+    pull: tuple[np.ndarray, np.ndarray],
+    radius: np.ndarray,
+    dt: float,
+    reach: float,
+) -> np.ndarray:
+    """When (s) each of ``movers`` first touches one of the colliders it went into (the
+    pairs ``body``, ``col``) along the start motion, by conservative advancement; inf where
+    it does not within the step."""
+    x0, v0, q0, w0 = start
+    acc, alpha = pull
+    wanted = set(zip(body.tolist(), col.tolist(), strict=True))
+    t = np.zeros(len(movers))
+    hit = np.full(len(movers), np.inf)
+    live = np.ones(len(movers), dtype=bool)
+    for _ in range(ROUNDS):
+        k = np.flatnonzero(live)
+        if not len(k):
+            break
+        m, tk = movers[k], t[k]
+        x, q = x0.copy(), q0.copy()
+        x[m] = x0[m] + v0[m] * tk[:, None] + acc[m] * (0.5 * tk * tk)[:, None]
+        q[m] = q0[m] + w0[m] * tk + alpha[m] * (0.5 * tk * tk)
+        row, c, _, sep = walls(m, x, q, reach)
+        mine = np.array([(a, b) in wanted for a, b in zip(row.tolist(), c.tolist(), strict=True)],
+                        dtype=bool)  # fmt: skip
+        gap = np.full(len(x0), np.inf)
+        np.minimum.at(gap, row[mine], sep[mine])
+        gap = gap[m]
+        touch = gap <= TOUCH * radius[m]
+        hit[k[touch]] = tk[touch]
+        live[k[touch]] = False
+        k, gap, m = k[~touch], gap[~touch], m[~touch]
+        speed = np.zeros(len(k))
+        for s in (t[k], np.full(len(k), dt)):
+            v = v0[m] + acc[m] * s[:, None]
+            speed = np.maximum(speed, np.hypot(*v.T) + np.abs(w0[m] + alpha[m] * s) * radius[m])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t[k] = t[k] + np.where(speed > 0.0, gap / speed, np.inf)
+        live[k[~(t[k] <= dt)]] = False
+    return hit
+
+
 def retake(
     table: ShapeTable,
-    a: np.ndarray,
-    b: np.ndarray,
-    x0: np.ndarray,
-    v0: np.ndarray,
-    x: np.ndarray,
-    v: np.ndarray,
+    pairs: tuple[np.ndarray, np.ndarray],
+    walls: tuple[Walls, np.ndarray] | None,
+    before: tuple[np.ndarray, np.ndarray],
+    after: tuple[np.ndarray, np.ndarray],
     spin: Spin | None,
     acc: np.ndarray,
     store: Any,
     dt: float,
     fast: bool = False,
 ) -> np.ndarray | None:
-    """``late_impacts`` for the pile's pairs with a shape (World rows a, b: one row a point,
-    so a pair may repeat), from the step's start (x0, v0; ``spin``'s angle0 and omega0) to
-    where the soft step left them (x, v; ``spin``'s angle and omega), under the forces' pull
-    ``acc`` (N, 2): the bodies taken again are written in place (x, and ``spin.angle``);
-    returns their World rows, or None."""
-    if not len(a):
-        return None
+    """``late_impacts`` and ``late_wall_impacts`` for a pile: its pairs with a shape (World
+    rows a, b: one row a point, so a pair may repeat) and its bodies with rows on the static
+    colliders (``walls``: the function and those rows, or None), from the step's start
+    (``before``: x0, v0; ``spin``'s angle0 and omega0) to where the soft step left them
+    (``after``: x, v; ``spin``'s angle and omega), under the forces' pull ``acc`` (N, 2).
+    Each body taken again ends where its earliest impact sends it, written in place (x, and
+    ``spin.angle``); returns their World rows, or None."""
+    x0, v0 = before
+    x, v = after
     n = len(x)
-    key = np.unique(a.astype(np.int64) * n + b)
-    a, b = key // n, key % n
     if spin is None:
         zero = np.zeros(n)
         q0 = q1 = w0 = w1 = alpha = zero
     else:
         q0, q1, w0, w1, alpha = spin.angle0, spin.angle, spin.omega0, spin.omega, spin.alpha
     start, end, pull = (x0, v0, q0, w0), (x, v, q1, w1), (acc, alpha)
-    got = late_impacts(table, a, b, start, end, pull, store.radius, ~store.kinematic, dt, fast)
-    if got is None:
+    moves = ~store.kinematic
+    first = np.full(n, np.inf)
+    a, b = pairs
+    if len(a):
+        key = np.unique(a.astype(np.int64) * n + b)
+        got = late_impacts(table, key // n, key % n, start, end, pull, store.radius, moves, dt,
+                           fast)  # fmt: skip
+        if got is not None:
+            np.minimum.at(first, *got)
+    if walls is not None:
+        rows = np.unique(walls[1])
+        got = late_wall_impacts(walls[0], rows[moves[rows]], start, end, pull, store.radius, dt)
+        if got is not None:
+            np.minimum.at(first, *got)
+    rows = np.flatnonzero(np.isfinite(first))
+    if not len(rows):
         return None
-    rows, when = got
-    x[rows], angle = place(rows, when, start, end, pull, dt)
+    x[rows], angle = place(rows, first[rows], start, end, pull, dt)
     if spin is not None:
         spin.angle[rows] = angle
     return rows
