@@ -192,6 +192,21 @@ class Body:
         self._angle = finite(angle, "angle")
         self._omega = finite(omega, "angular_velocity")
         self._torque = finite(torque, "torque")
+        if self._shape is not None and self._moment is None:
+            # A shape so large or small that its moment leaves the float range would turn
+            # with a nan or zero moment: refused, by the name of the argument given.
+            try:
+                inertia = self._own_moment()
+            except ValueError as exc:
+                inertia, why = math.nan, f" ({exc})"
+            else:
+                why = ""
+            if not inertia > 0.0:
+                raise ValueError(
+                    f"shape must have a moment of inertia > 0 and finite for mass "
+                    f"{self._mass!r}, got {inertia!r} kg m^2 for {self._shape!r}{why}; give the "
+                    f"shape in other length units, or moment=... or fixed_rotation=True"
+                )
         if (self._angle or self._omega) and not self._steered() or self._torque and not self.turns:
             raise ValueError(self._why_not("angle", self._angle, self._omega, self._torque))
 

@@ -570,6 +570,13 @@ class Polygon(Collider):
                 f"center, width and height must keep the corners within the float range, got "
                 f"center={center!r}, width={width!r}, height={height!r}"
             )
+        try:  # corners that rounding makes one point, or an area that over- or underflows
+            convex.convex_polygon(corners, "the corners")
+        except ValueError as exc:
+            raise ValueError(
+                f"width, height and center must make 4 distinct corners with a finite area in "
+                f"floats, got width={width!r}, height={height!r}, center={center!r} ({exc})"
+            ) from None
         return cls(
             corners,
             radius,

@@ -118,7 +118,14 @@ def moment_for_segment(mass: float, a: Any, b: Any, radius: float) -> float:
             + length * (length * length + 4.0 * r * r) / 6.0
         )
         per_area = num / den
-    return m * (per_area + mx * mx + my * my)
+    inertia = m * (per_area + mx * mx + my * my)
+    if not math.isfinite(inertia):
+        raise ValueError(
+            f"a and b and radius must keep the moment of inertia within the float range, got "
+            f"{inertia!r} kg m^2 for mass {m!r}, a={a!r}, b={b!r}, radius={radius!r}; give the "
+            f"shape in other length units"
+        )
+    return inertia
 
 
 def moment_for_box(mass: float, size: Any) -> float:
@@ -161,4 +168,11 @@ def moment_for_polygon(
     pts = _vertices(vertices)
     r = checks.real(radius, "radius", nonneg=True)
     # Shifting the shape by the offset is the same as taking the moment about -offset.
-    return m * convex.second_moment(pts, r, about=(-dx, -dy)) / convex.area(pts, r)
+    inertia = m * convex.second_moment(pts, r, about=(-dx, -dy)) / convex.area(pts, r)
+    if not 0.0 < inertia < math.inf:  # the second moment of area over- or underflowed
+        raise ValueError(
+            f"vertices, offset and radius must keep the moment of inertia within the float "
+            f"range (> 0 and finite), got {inertia!r} kg m^2 for mass {m!r}; give the shape in "
+            f"other length units"
+        )
+    return inertia
