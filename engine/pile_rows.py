@@ -156,8 +156,9 @@ def face_rows(
         z = np.zeros(0, dtype=np.intp)
         return z, np.zeros((0, 2)), np.zeros(0), np.zeros(0), z
     if fast:
-        return face_loop(bi, f, X, r, margin, faces.p, faces.n, faces.rho, faces.two,  # type: ignore[no-any-return]
-                         faces.lo, faces.hi, faces.c, faces.r, faces.mu)  # fmt: skip
+        got = face_loop(bi, f, X, r, margin, faces.p, faces.n, faces.rho, faces.two,
+                        faces.lo, faces.hi, faces.c, faces.r, faces.mu)  # fmt: skip
+        return _fronts(faces, X, *got)
     L = len(faces.p)
     x = X[bi]
     nrm, _ = face_normals(faces, f, x)
@@ -176,7 +177,39 @@ def face_rows(
         d = x - faces.c[fd]
         gap = np.where(line, gap, norm(d) - faces.r[fd] - r[bi])
     keep = inside & (gap <= margin[bi])
-    return bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep]
+    return _fronts(faces, X, bi[keep], nrm[keep], gap[keep], faces.mu[f[keep]], f[keep])
+
+
+def _fronts(faces: Any, X: np.ndarray, *rows: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``face_rows``' rows less those of a solid polygon's flat faces that are not its face
+    of greatest separation from the ball's centre: a face is one-sided and a polygon's other
+    faces lie behind it, so a ball above a polygon floor is far behind its bottom face, which
+    is no contact of it (a row there would push the ball out through the floor)."""
+    bi, f = rows[0], rows[4]
+    if not faces.polygons or not len(bi):
+        return rows
+    L = len(faces.p)
+    poly = np.full(L + len(faces.c), -1, dtype=np.intp)
+    for k, cols in enumerate(faces.polygons):
+        poly[cols] = k
+    mine = np.flatnonzero(poly[f] >= 0)
+    if not len(mine):
+        return rows
+    keep = np.ones(len(bi), dtype=bool)
+    x = X[bi[mine]]
+    own = dot(x - faces.p[f[mine]], faces.n[f[mine]])
+    for k in np.unique(poly[f[mine]]).tolist():
+        cols = faces.polygons[k]
+        at = poly[f[mine]] == k
+        xs = x[at]
+        d = (
+            xs[:, :1] * faces.n[cols, 0]
+            + xs[:, 1:] * faces.n[cols, 1]
+            - dot(faces.p[cols], faces.n[cols])
+        )
+        best = d.max(axis=1)
+        keep[mine[at]] = own[at] >= best - 1e-9 * (1.0 + np.abs(best))
+    return tuple(a[keep] for a in rows)
 
 
 class Turning(NamedTuple):

@@ -391,7 +391,7 @@ def scenes(draw: st.DrawFn) -> dict[str, Any]:
     half = (draw(st.floats(3.0, 8.0)), draw(st.floats(3.0, 8.0)))
     spec: dict[str, Any] = {
         "half": half,
-        "walls": draw(st.sampled_from(["room", "planes"])),
+        "walls": draw(st.sampled_from(["room", "planes", "polygons"])),
         "wall_material": (draw(st.floats(0.0, 1.0)), draw(st.floats(0.0, 1.0))),
         "gravity": draw(st.floats(0.0, 20.0)),
         "steps": draw(st.sampled_from([60, 120, 180])),
@@ -473,11 +473,16 @@ def build(spec: dict[str, Any]) -> tuple[World, list[Body], Body | None]:
     e, mu = spec["wall_material"]
     if spec["walls"] == "room":
         w.add_collider(Box((-hx, -hy), (hx, hy), restitution=e, friction=mu))
-    else:  # four half planes whose faces make the room (not 1 m Polygon walls: see
-        # test_a_ball_landing_on_a_box_stays_above_a_polygon_floor, a strict xfail)
+    elif spec["walls"] == "planes":  # four half planes whose faces make the room
         for point, normal in (((0.0, -hy), (0.0, 1.0)), ((0.0, hy), (0.0, -1.0)),
                               ((-hx, 0.0), (1.0, 0.0)), ((hx, 0.0), (-1.0, 0.0))):  # fmt: skip
             w.add_collider(Plane(point, normal, restitution=e, friction=mu))
+    else:  # four solid Polygon walls 1 m thick, overlapping at the corners
+        ox, oy = hx + 1.0, hy + 1.0
+        for x0, y0, x1, y1 in ((-ox, -oy, ox, -hy), (-ox, hy, ox, oy),
+                               (-ox, -oy, -hx, oy), (hx, -oy, ox, oy)):  # fmt: skip
+            w.add_collider(Polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], restitution=e,
+                                   friction=mu))  # fmt: skip
     bat = None
     if spec["kinematic"] is not None:
         kind, length, thick, omega = spec["kinematic"]
@@ -589,24 +594,14 @@ def test_mixed_scenes_stay_finite_in_the_room_and_replay_bit_for_bit(spec: dict[
     note(f"seen: {seen}")
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "engine.push_out takes a Polygon collider's one-sided faces one by one: a disc in a pile "
-        "above a Polygon floor is 'behind' the floor's bottom face (within its span) and is "
-        "pushed out through it, to below the floor"
-    ),
-)
 def test_a_ball_landing_on_a_box_stays_above_a_polygon_floor() -> None:
     # Found by the scene fuzz (with four 1 m Polygon walls): a 1 m box resting on a static
     # Polygon floor 1 m thick (y from -4 to -3), a ball of radius 0.5 let go above it. As the
-    # ball comes within the box's reach it joins the box's pile, and the pile's push-out
-    # (Contacts.push_out_rows -> engine.push_out.face_gaps) measures it against every solid
-    # face: the floor's bottom face (normal (0, -1) at y = -4, one-sided) puts the ball
-    # 2.85 m "behind" it, so inside by 3.35 m, and out_of_corner puts it 0.5 under that face,
-    # at y = -4.5 (step 16 at g = 9.81; both kernel paths; the same with a Plane, a Segment
-    # or a room Box for the floor does not happen). A point is inside a solid polygon only
-    # when behind all of its faces: the push-out should take a polygon's faces together.
+    # ball comes within the box's reach it joins the box's pile, whose rows took every solid
+    # face within reach of it (engine.pile_rows.face_rows): the floor's bottom face (normal
+    # (0, -1) at y = -4, one-sided) put the ball 3.35 m "into" it, and the soft step's
+    # projection moved it out there, to y = -4.5, at step 16. A polygon's faces now give a
+    # ball a row only at its face of greatest separation (``_fronts``).
     w = World(integrator="auto")
     w.add_force(Gravity((0.0, -9.81)))
     w.add_collider(Polygon([(-4.0, -4.0), (4.0, -4.0), (4.0, -3.0), (-4.0, -3.0)]))
