@@ -98,6 +98,9 @@ class Collisions:
         self._shape_over = np.zeros(0)
         self.warned = False  # the World has warned that a pile is past the solver
         self.moved = False  # whether the last step changed any body's state
+        #: The spin (engine.rotation) the last step's impacts made, when the step had none
+        #: and an impact turned a body (two discs at rest that strike each other off centre).
+        self.spun: Spin | None = None
         self.last_rounds = 0  # impact rounds in the last step
         self.last_overlap = 0.0  # deepest overlap left after the last step (length units)
         self._live: np.ndarray | None = None  # rows with radius > 0
@@ -447,10 +450,12 @@ class Collisions:
         Pairs of bodies that are not in a pile meet at their exact moments; the bodies of a
         pile (``plan``) are stepped again from (x0, v0) by the soft step. Bodies that meet
         no other keep (x1, v1) bit for bit. ``spin``: the step's rotation (engine.rotation):
-        the soft step turns a pile's discs that turn (in place on its angle and omega), and
-        a disc that spins is not still (sleep).
+        the exact impacts and the soft step turn the discs that turn (in place on its angle
+        and omega; without one, the impacts make one if they turn a body: ``spun``), and a
+        disc that spins is not still (sleep).
         """
         self.moved = False
+        self.spun = None
         self._began, self._ended = [], []
         self.last_rounds = 0
         self._overlap = np.zeros(0)
@@ -489,7 +494,9 @@ class Collisions:
             # A chain of impacts past HANDOVER_ROUNDS among bodies under load (rows landing
             # on rows, bouncing off the floor into the next) is given to the pile instead.
             loaded = bool((norm(P[a[exact]]) > 0.0).any())
-            got = self._exact(a[exact], b[exact], island, x, v, A, P, dt, store, contacts, loaded)
+            got = self._exact(
+                a[exact], b[exact], island, x, v, A, P, dt, store, contacts, spin, loaded
+            )
             if got is None:
                 handed = np.zeros(n, dtype=bool)
                 handed[self._handed] = True
@@ -502,7 +509,9 @@ class Collisions:
                 exact = ~(island[a] & island[b])
                 got = ([], None)
                 if exact.any():
-                    got = self._exact(a[exact], b[exact], island, x, v, A, P, dt, store, contacts)
+                    got = self._exact(
+                        a[exact], b[exact], island, x, v, A, P, dt, store, contacts, spin
+                    )
                 assert got is not None
             impacts, kick = got
         touching = np.zeros(0, dtype=np.int64)
@@ -566,11 +575,12 @@ class Collisions:
             # Sleepers stay exactly put (nothing above moves a body of infinite mass, but a
             # wall's push-out or rounding must not either).
             x[self.asleep], v[self.asleep] = x0[self.asleep], 0.0
+        turned = spin if spin is not None else self.spun
         self._group = sleep_still(
             v, dt, live, pa, pb, contacts, self.still, self.asleep, self._group,
             self.sleep_time, self._still_speed, self._never_sleep(n),
             self._overlap, self.face_touching[0], self.fast,
-            None if spin is None else np.abs(spin.omega) * store.radius,
+            None if turned is None else np.abs(turned.omega) * store.radius,
         )  # fmt: skip
         return x, v
 
@@ -629,15 +639,20 @@ class Collisions:
         dt: float,
         store: Any,
         contacts: Contacts | None,
+        spin: Spin | None,
         handover: bool = False,
     ) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray | None] | None:
         """``engine.pair_impacts.exact`` (the impacts of pairs not both in a pile, in place on
         (x, v)), counting its rounds and a capped step: the impacts and the pile's kick, or
-        None when a crowd under load was handed over (its World rows in ``_handed``)."""
+        None when a crowd under load was handed over (its World rows in ``_handed``). The
+        impacts turn the discs that turn (in place on ``spin``; one made when there was none
+        and an impact turned a body is kept in ``spun``)."""
         got = exact(
             a, b, island, x, v, A, P, dt, self._t0, store, contacts,
-            self.asleep, self._has_kin, handover, self.fast,
+            self.asleep, self._has_kin, handover, self.fast, spin,
         )  # fmt: skip
+        if spin is None and got.spin is not None:
+            self.spun = got.spin
         if got.rounds:
             self.last_rounds = got.rounds
         self.capped += int(got.capped)

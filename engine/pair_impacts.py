@@ -15,12 +15,14 @@ the closing speed u = -(v_a - v_b).n > 0, the impulse along n is
     J = (1 + e) u / (1/m_a + 1/m_b),        e = e_a e_b (pymunk's product rule),
 
 which conserves momentum exactly and, with e = 1, energy: it is the closed-form 2D collision
-of two discs (``bounce``). Coulomb friction (mu = mu_a mu_b) takes up to mu J of the
-tangential relative momentum, never reversing it. Each velocity changes by dv = J n / m, and
-the position at the end of the step by dv (dt - t): the rest of the step is flown on the new
-path. A body sent off by an impact may meet a wall on its new path within the step
-(``wall_hits``); that impact takes its place in the time order too, and bounces as the static
-contacts do (``wall_bounce``).
+of two discs (``bounce``, engine.pair_bounce). Coulomb friction (mu = mu_a mu_b) takes up to
+mu J of the tangential relative momentum, never reversing it; for discs that turn it acts at
+the point of contact, on the slip there, and turns them (engine.pair_bounce). Each velocity
+changes by dv = P / m, and the position at the end of the step by dv (dt - t): the rest of the
+step is flown on the new path (and turned on the new spin). A body sent off by an impact may
+meet a wall on its new path within the step (``wall_hits``); that impact takes its place in
+the time order too, and bounces as the static contacts do (``wall_bounce``, with their rule
+for a disc that turns).
 
 **Rounds** (``impacts_in_order``). In each, every pair that is the earliest impact of both its
 bodies is resolved (they share no body, so they are independent), then the paths of the
@@ -38,9 +40,10 @@ their plastic impulses at once instead (``plastic``: sequential impulses, which 
 energy). A crowd under load (rows landing on rows, bounced off the floor into the next) that
 runs past ``HANDOVER_ROUNDS`` is given up instead, and its bodies join the pile's soft step.
 
-**Moving walls.** A body of a pile met by one from outside it is a wall to it (w = 1/m = 0 on
-its free path), and takes the impulse in the soft step, from the step's start (``exact``'s
-kick); so are a kinematic body and a sleeper the impact does not wake.
+**Moving walls.** A body of a pile met by one from outside it is a wall to it (w = 1/m = 0 and
+1 / I = 0 on its free path; its free spin still moves its surface), and takes the impulse in
+the soft step, from the step's start (``exact``'s kick: the impulse's push, not its turn); so
+are a kinematic body (whose surface the game turns) and a sleeper the impact does not wake.
 
 **Afterwards** (``separate``). The impacts are found on each body's path as a parabola to its
 end state; a body that bounced off a wall within the step took another path before, and may
@@ -62,7 +65,9 @@ import numpy as np
 
 from . import coloring, kernels
 from .impact import TOUCH, disc_hits, line_hits
-from .pair_math import SLOP, dot, norm, unit
+from .pair_bounce import Turns, bounce, turns_of, wall_bounce
+from .pair_math import SLOP, dot, norm, state_at, unit
+from .rotation import Spin
 
 if TYPE_CHECKING:
     from .contacts import Contacts
@@ -121,6 +126,9 @@ class Exact(NamedTuple):
     capped: bool
     #: When given up: the World rows of the crowd's bodies.
     handed: np.ndarray | None
+    #: The step's spin with what the impacts turned written in (engine.rotation; the one
+    #: given, or one made here when none was and an impact turned a body), or None.
+    spin: Spin | None = None
 
 
 def exact(
@@ -139,6 +147,7 @@ def exact(
     has_kin: bool,
     handover: bool = False,
     fast: bool = False,
+    spin: Spin | None = None,
 ) -> Exact:
     """Impacts of the pairs (World rows a, b) not both in a pile, at their exact moments,
     in place on the end state (x, v): what ``impacts_in_order`` found, for the events, and
@@ -148,7 +157,9 @@ def exact(
     ``t0``: the time at the step's start; ``asleep`` (N,): the sleepers (an awake body that
     meets one without waking it meets a wall); ``has_kin``: some body is kinematic.
     ``handover``: a crowd under load past ``HANDOVER_ROUNDS`` is given up (``Exact``);
-    ``fast``: the times of impact by the loop kernel (``pair_times``: the same bits)."""
+    ``fast``: the times of impact by the loop kernel (``pair_times``: the same bits).
+    ``spin``: the step's rotation (engine.rotation), None if nothing spins: discs that turn
+    turn each other (engine.pair_bounce), and their spins are written into it (``Exact``)."""
     present = np.zeros(len(x), dtype=bool)
     present[a] = present[b] = True
     U = np.flatnonzero(present)
@@ -166,6 +177,9 @@ def exact(
     if asleep.any():
         w[asleep[U]] = 0.0  # a sleeper an awake body did not wake stays put
     r = store.radius[U]
+    # A disc resting on a face turned as the static contacts turned it: its mean spin-up.
+    on = None if contacts is None or len(contacts.rest) != len(x) else contacts.rest[U] >= 0
+    turns = turns_of(spin, store, U, w, dt, on)
     rounds = impacts_in_order(
         la,
         lb,
@@ -183,6 +197,7 @@ def exact(
         U,
         handover,
         fast,
+        turns,
     )
     if rounds.found is None:
         # A crowd under load: nothing written back; the World rows of its bodies.
@@ -214,11 +229,31 @@ def exact(
             np.add.at(kick, U[pb[walls[pb]]], -J[walls[pb]])
         X[walls], V[walls] = x[U[walls]], v[U[walls]]  # the soft step moves those
     x[U], v[U] = X, V
+    if turns is not None and impacts:
+        spin = _write_spin(turns, U, spin, store, dt)
     # Events are given in World rows.
     found: list[tuple[np.ndarray, ...]] = [
         (U[pa], U[pb], pt, nrm, J, t) for pa, pb, pt, nrm, J, t in impacts
     ]
-    return Exact(found, kick, rounds.rounds, rounds.capped, None)
+    return Exact(found, kick, rounds.rounds, rounds.capped, None, spin)
+
+
+def _write_spin(
+    turns: Turns, U: np.ndarray, spin: Spin | None, store: Any, dt: float
+) -> Spin | None:
+    """Write the spins the impacts gave (the bodies an impulse turns) into ``spin``, made
+    first if there was none (every body free, at rest: engine.rotation ``Spin.free``) and
+    some body now turns."""
+    k = np.flatnonzero(turns.inv_moment > 0.0)
+    if spin is None:
+        if not turns.omega[k].any():
+            return None
+        spin = Spin.free(
+            store.angle, store.omega, store.inv_moment, store.torque, store.mass,
+            store.radius, dt, None, store.kinematic,
+        )  # fmt: skip
+    spin.angle[U[k]], spin.omega[U[k]] = turns.angle[k], turns.omega[k]
+    return spin
 
 
 def impacts_in_order(
@@ -238,6 +273,7 @@ def impacts_in_order(
     U: np.ndarray,
     handover: bool = False,
     fast: bool = False,
+    turns: Turns | None = None,
 ) -> Rounds:
     """Resolve the step's impacts in time order, in place on the end state (X, V) of the
     local bodies (World rows U), with inverse masses w (0: a wall), radii r, restitutions e,
@@ -247,7 +283,8 @@ def impacts_in_order(
     ``handover``: past ``HANDOVER_ROUNDS`` rounds, give up instead (``found`` None, with
     the bodies of every impact found or left in ``handed``, local): a crowd under load (rows
     landing on rows) is the pile's, not a chain of exact impacts. ``fast``: the times of
-    impact by the loop kernel (``times_of_impact``)."""
+    impact by the loop kernel (``times_of_impact``). ``turns``: the spin of the bodies that
+    turn (engine.pair_bounce), changed in place by the impacts' friction."""
     nU = len(X)
     R = r[la] + r[lb]
     # Pairs that close at all within the step can meet (``times_of_impact``: when, if ever).
@@ -305,7 +342,7 @@ def impacts_in_order(
         wall = np.flatnonzero(np.isfinite(face_t) & (face_t <= best))
         changed = np.zeros(nU, dtype=bool)
         if len(s):
-            found.append(bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt))
+            found.append(bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt, turns))
             ts[pa[s]] = toi[s]
             ts[pb[s]] = toi[s]
             changed[pa[s]] = changed[pb[s]] = True
@@ -327,6 +364,7 @@ def impacts_in_order(
                 e,
                 mu,
                 dt,
+                turns,
             )
             ts[wall] = face_t[wall]
             changed[wall] = True
@@ -394,15 +432,6 @@ def impacts_in_order(
             # stop there: its pairs take their plastic impacts all at once instead.
             plastic(pa[collapse], pb[collapse], X, V, w, 2.0 * dt * float(norm(P).max()))
     return Rounds(found, rounds, capped, None)
-
-
-def state_at(
-    i: np.ndarray, t: np.ndarray, X: np.ndarray, V: np.ndarray, A: np.ndarray, dt: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """Position and velocity of local bodies i at times t, on the paths ending at (X, V)."""
-    s = (dt - t)[:, None]
-    Ai = A[i]
-    return X[i] - V[i] * s + Ai * (0.5 * s * s), V[i] - Ai * s
 
 
 def times_of_impact(
@@ -575,83 +604,6 @@ def pair_times(
             speed = math.sqrt(vax * vax + vay * vay) + math.sqrt(vbx * vbx + vby * vby)
             if u <= 1e-12 * speed:
                 t[k] = inf
-
-
-def bounce(
-    pa: np.ndarray,
-    pb: np.ndarray,
-    t: np.ndarray,
-    X: np.ndarray,
-    V: np.ndarray,
-    A: np.ndarray,
-    w: np.ndarray,
-    r: np.ndarray,
-    e: np.ndarray,
-    mu: np.ndarray,
-    dt: float,
-) -> tuple[np.ndarray, ...]:
-    """Apply the impulses of impacts (pa, pb) at times t; return them for the events."""
-    xa, va = state_at(pa, t, X, V, A, dt)
-    xb, vb = state_at(pb, t, X, V, A, dt)
-    d = xa - xb
-    # hypot, not sqrt(d.d): centres 1e-200 apart would square to 0; coincident ones
-    # part straight up (engine.pair_math.unit).
-    nrm = unit(d, np.hypot(d[:, 0], d[:, 1]))
-    vr = va - vb
-    vn = dot(vr, nrm)  # < 0: closing
-    # Two bodies that neither moves (a pile's, met as walls, or the game's) take no impulse.
-    wsum = w[pa] + w[pb]
-    wsum = np.where(wsum > 0.0, wsum, math.inf)
-    J = -(1.0 + e[pa] * e[pb]) * vn / wsum
-    # Friction: up to mu J against the tangential relative velocity, never reversing it.
-    tang = vr - nrm * vn[:, None]
-    vt = norm(tang)
-    Jt = np.minimum(mu[pa] * mu[pb] * J, vt / wsum)
-    tdir = tang / np.where(vt > 0.0, vt, 1.0)[:, None]
-    P = nrm * J[:, None] - tdir * Jt[:, None]  # impulse on a; -P on b
-    dva, dvb = P * w[pa, None], -P * w[pb, None]
-    rem = (dt - t)[:, None]
-    V[pa] += dva
-    V[pb] += dvb
-    X[pa] += dva * rem
-    X[pb] += dvb * rem
-    return pa, pb, xb + nrm * r[pb, None], nrm, P, t
-
-
-def wall_bounce(
-    contacts: Contacts,
-    U: np.ndarray,
-    t0: float,
-    i: np.ndarray,
-    t: np.ndarray,
-    f: np.ndarray,
-    nrm: np.ndarray,
-    X: np.ndarray,
-    V: np.ndarray,
-    A: np.ndarray,
-    w: np.ndarray,
-    r: np.ndarray,
-    e: np.ndarray,
-    mu: np.ndarray,
-    dt: float,
-) -> None:
-    """Bounce local bodies i off faces f at times t, as the static contacts do: the normal
-    speed v_n becomes -e v_n and friction takes up to mu (1 + e) |v_n| off the tangential
-    speed, never reversing it (e, mu: the body's times the face's). The contacts record the
-    bounce as an event of World row U[i] at time t0 + t."""
-    faces = contacts.faces
-    x, v = state_at(i, t, X, V, A, dt)
-    vn = np.minimum(dot(v, nrm), 0.0)
-    ee, mm = e[i] * faces.e[f], mu[i] * faces.mu[f]
-    tang = v - nrm * dot(v, nrm)[:, None]
-    speed_t = norm(tang)
-    keep = np.maximum(speed_t + mm * (1.0 + ee) * vn, 0.0)
-    scale = keep / np.where(speed_t > 0.0, speed_t, 1.0)
-    v_new = tang * scale[:, None] - nrm * (ee * vn)[:, None]
-    dv = v_new - v
-    V[i] += dv
-    X[i] += dv * (dt - t)[:, None]
-    contacts.record(U[i], faces.owner[f], x - nrm * r[i, None], nrm, dv, t0 + t)
 
 
 def wall_hits(

@@ -23,7 +23,7 @@ import numpy as np
 
 from .faces import dot
 
-__all__ = ["SLOP", "dot", "isin_sorted", "norm", "sorted_unique", "unit"]
+__all__ = ["SLOP", "dot", "isin_sorted", "norm", "sorted_unique", "state_at", "unit"]
 
 #: Overlap (fraction of the smaller radius) that counts as touching: contacts touch, they do
 #: not chatter.
@@ -43,6 +43,17 @@ def unit(d: np.ndarray, dist: np.ndarray) -> np.ndarray:
     if same.any():
         out[same] = (0.0, 1.0)
     return out
+
+
+def state_at(
+    i: np.ndarray, t: np.ndarray, X: np.ndarray, V: np.ndarray, A: np.ndarray, dt: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Position and velocity of bodies i at times t (s, in the step), on the paths ending at
+    (X, V) after dt with accelerations A: x(t) = X - V s + A s^2 / 2, v(t) = V - A s, s = dt - t
+    (engine.pair_impacts)."""
+    s = (dt - t)[:, None]
+    Ai = A[i]
+    return X[i] - V[i] * s + Ai * (0.5 * s * s), V[i] - Ai * s
 
 
 def sorted_unique(a: np.ndarray) -> np.ndarray:

@@ -12,10 +12,10 @@ torques of the World's generators (engine.forces: ``ConstantTorque``, ``AngularD
 user's ``torque``) add to it (engine.torquefield): an angular drag c (N m s) by its own closed
 form, omega -> tau / c + (omega0 - tau / c) e^(-c t / I), exact too. A body
 that touches a collider turns under its friction too (engine.sweep, engine.resting: rolling,
-slipping, the spin a bounce gives), and the discs of a pile under its rows' friction (the soft
-step's lever arms: engine.soft, ``Arms``; engine.pile); two bodies that meet at an exact impact,
-outside a pile (engine.pair_impacts), do not turn each other yet, and a sleeping body stops
-turning.
+slipping, the spin a bounce gives), the discs of a pile under its rows' friction (the soft
+step's lever arms: engine.soft, ``Arms``; engine.pile), and two discs that meet at an exact
+impact, outside a pile, turn each other by the friction at their point of contact
+(engine.pair_bounce; tests/test_impact_spin.py); a sleeping body stops turning.
 
 Model no more than a scene needs: a point, a body with corners (in this version), a kinematic
 body or one with ``fixed_rotation=True`` has 1 / I = 0, and a World none of whose bodies turn
@@ -35,7 +35,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["Spin", "Rolling", "rolling"]
+__all__ = ["Spin", "Rolling", "grip", "rolling"]
 
 
 @dataclass
@@ -141,3 +141,18 @@ def rolling(spin: Spin | None, rows: np.ndarray, friction: np.ndarray) -> Rollin
     if not rolls.any():
         return None
     return Rolling(spin.angle0[rows], spin.omega0[rows], spin.q[rows], spin.alpha[rows], rolls)
+
+
+def grip(
+    u: np.ndarray, omega: np.ndarray, q: np.ndarray, r: np.ndarray, cap: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Friction at the point of contact of discs bounced off a surface (row by row): the
+    change du of the tangential speed u = v.t and the angular velocity after it. The slip
+    s = u - omega r is taken toward 0 by the tangential impulse per mass du, which changes it
+    by du (1 + q) (the module's text), by at most ``cap`` (mu (1 + e) |v_n|: the friction
+    impulse is at most mu times the normal one), never reversing it; omega becomes
+    omega - du q / r. The angular momentum about the point of contact, I omega + m r u
+    (n x t = 1, the centre at r n from the point), is kept: I (-du q / r) + m r du = 0."""
+    slip = u - omega * r
+    du = -np.copysign(np.minimum(np.abs(slip) / (1.0 + q), cap), slip)
+    return du, omega - du * q / r

@@ -382,11 +382,14 @@ def _step_once(
             if on.any():
                 A = A.copy()
                 A[on] = (v1[on] - store.v[on]) * (1.0 / dt)
-        # The pile's discs that turn are turned by its rows' friction (engine.soft: lever
-        # arms), from the step's start, in place on the spin.
+        # Discs that turn are turned by the impacts' friction (engine.pair_bounce) and the
+        # pile's by its rows' (engine.soft: lever arms), from the step's start, in place on
+        # the spin.
         x1, v1 = pairs.resolve(
             store.x, store.v, x1, v1, A, dt, t0, store, contacts, pull, spin=spin
         )
+        if spin is None:
+            spin = pairs.spun  # the impacts turned discs that stood still (or None)
         if pairs.moved:
             state.anchor = None
         if contacts is not None:

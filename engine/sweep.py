@@ -39,7 +39,7 @@ import numpy as np
 from .faces import Faces, dot, face_normals
 from .impact import disc_hits, line_hits
 from .resting import project, rest_paths
-from .rotation import Rolling, Spin, rolling
+from .rotation import Rolling, Spin, grip, rolling
 
 __all__ = ["MAX_IMPACTS", "Paths", "PushOut", "bounce", "first_hits", "sweep"]
 
@@ -380,11 +380,9 @@ def bounce(
             tang = np.stack([-nk[:, 1], nk[:, 0]], axis=1)
             u = dot(vel[spun], tang)
             q, rk = turn.q[ik], r[ik]
-            slip = u - OMn[k] * rk
             cap = mu[spun] * (1.0 + e[spun]) * -vn_in[spun]  # the most friction takes off u
-            du = -np.copysign(np.minimum(np.abs(slip) / (1.0 + q), cap), slip)
+            du, OMn[k] = grip(u, OMn[k], q, rk, cap)
             new_v[spun] = tang * (u + du)[:, None] + nk * vn_out[spun][:, None]
-            OMn[k] = OMn[k] - du * q / rk
     # A body resting on one face that hits another across it (a floor into a wall) stays
     # resting on the first; anything else that bounces is in flight.
     old = rest[i]
