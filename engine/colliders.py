@@ -529,10 +529,16 @@ class Polygon(Collider):
         self.normals = tuple(Vector(x, y) for x, y in convex.edge_normals(ccw))
         #: The rounding (length units): the solid is every point within it of the polygon.
         self.radius = r
+        centroid, area = convex.centroid(ccw, r), convex.area(ccw, r)
+        if not (math.isfinite(area) and all(map(math.isfinite, centroid))):
+            raise ValueError(
+                f"radius must leave the rounded polygon's area and centroid within the float "
+                f"range (a rounding of at most about 1e100 length units), got {radius!r}"
+            )
         #: The centroid of the solid, rounding included (length units).
-        self.centroid = Vector(*convex.centroid(ccw, r))
+        self.centroid = Vector(*centroid)
         #: The area of the solid, rounding included (length units squared).
-        self.area = convex.area(ccw, r)
+        self.area = area
 
     @classmethod
     def box(

@@ -205,12 +205,15 @@ def _moments(vertices: Sequence[Point], radius: float) -> tuple[float, float, fl
             # The bisector: p turned counter-clockwise by t / 2.
             h = 0.5 * t
             qx, qy = math.cos(h) * px - math.sin(h) * py, math.sin(h) * px + math.cos(h) * py
-            k = (2.0 / 3.0) * r**3 * math.sin(h)
+            # (Products, not powers: near the float range a product overflows to inf, which the
+            # caller refuses by name, where a float power raises OverflowError.)
+            r2 = r * r
+            k = (2.0 / 3.0) * (r2 * r) * math.sin(h)
             a = 0.5 * t * r * r
             A += a
             Sx += a * ax + k * qx
             Sy += a * ay + k * qy
-            J += a * (ax * ax + ay * ay) + 2.0 * k * (ax * qx + ay * qy) + 0.25 * t * r**4
+            J += a * (ax * ax + ay * ay) + 2.0 * k * (ax * qx + ay * qy) + 0.25 * t * r2 * r2
     return A, Sx, Sy, J
 
 

@@ -29,8 +29,10 @@ normal turned round (the body on the collider's other side), and the advancement
 the colliders it went into only (a box sliding along a floor into a wall is not stopped by
 the floor). A body met by several is placed by the earliest.
 
-Not handled: a second impact within the step after the first (a box turning so fast that
-its other end meets the wall before the step ends) is not searched for.
+A second impact within the step after the first (a box turning so fast that it meets the
+wall again before the step ends) is not searched for: where the rest of the step would end
+deep, the body ends it at its moment of impact instead (Box2D's time of impact: the rest of
+the step's motion is lost, and the next step's rows hold it there).
 
 t* is found by conservative advancement (Mirtich's, Box2D's time of impact): from a
 separation d at time t, the two cannot meet before t + d / s, where s bounds how fast any
@@ -389,7 +391,33 @@ def retake(
     rows = np.flatnonzero(np.isfinite(first))
     if not len(rows):
         return None
-    x[rows], angle = place(rows, first[rows], start, end, pull, dt)
+    when = first[rows]
+    x[rows], angle = place(rows, when, start, end, pull, dt)
+    q = q1.copy()
+    q[rows] = angle
+    # Where the rest of the step at the end velocities still ends deep (a body turning so
+    # fast that it meets the wall again within the step: module text), it ends at the
+    # moment of impact instead, losing the rest of the step's motion (Box2D's time of
+    # impact); the next step's rows hold it there.
+    deep = np.zeros(n, dtype=bool)
+    r = store.radius
+    if walls is not None:
+        sep = np.full(n, np.inf)
+        row, _, _, s = walls[0](rows, x, q, float(r[rows].max()))
+        np.minimum.at(sep, row, s)
+        deep |= sep < -DEEP * r
+    if len(a):
+        a, b = key // n, key % n
+        mine = np.isin(a, rows) | np.isin(b, rows)
+        a, b = a[mine], b[mine]
+        gap = pair_gaps(table, a, b, x[a], q[a], x[b], q[b], fast)[0]
+        bad = gap < -DEEP * np.minimum(r[a], r[b])
+        deep[a[bad]] = deep[b[bad]] = True
+    back = deep[rows]
+    if back.any():
+        k, t = rows[back], when[back]
+        x[k] = x0[k] + v0[k] * t[:, None] + acc[k] * (0.5 * t * t)[:, None]
+        angle[back] = q0[k] + w0[k] * t + alpha[k] * (0.5 * t * t)
     if spin is not None:
         spin.angle[rows] = angle
     return rows
