@@ -60,6 +60,7 @@ Walls = Callable[
 ]
 
 __all__ = [
+    "DEEP_WALL",
     "retake",
     "late_impacts",
     "late_wall_impacts",
@@ -75,6 +76,9 @@ __all__ = [
 FAST = 0.5
 #: How deep (in the smaller bounding radius) a fast pair must end the step to be taken again.
 DEEP = 0.25
+#: The same against a static collider, which a body pressed into it over many steps never
+#: starts a step apart from: any depth past the soft step's own give is a missed impact.
+DEEP_WALL = 0.05
 #: How far into each other (in the smaller bounding radius) a pair may start and count as apart.
 SLOP = 0.02
 #: Conservative advancement stops this close (in the smaller bounding radius), or after
@@ -273,7 +277,7 @@ def late_wall_impacts(
     found[found] = k1[at[found]] == k0[found]
     hit = np.zeros(len(k0), dtype=bool)
     f = np.flatnonzero(found)
-    deep = s1[at[f]] < -DEEP * size[f]
+    deep = s1[at[f]] < -DEEP_WALL * size[f]
     through = _dot(n1[at[f]], n0[f]) < -0.5
     hit[f] = (deep | through) & (s0[f] > -SLOP * size[f])
     if not hit.any():
@@ -405,7 +409,7 @@ def retake(
         sep = np.full(n, np.inf)
         row, _, _, s = walls[0](rows, x, q, float(r[rows].max()))
         np.minimum.at(sep, row, s)
-        deep |= sep < -DEEP * r
+        deep |= sep < -DEEP_WALL * r
     if len(a):
         a, b = key // n, key % n
         mine = np.isin(a, rows) | np.isin(b, rows)
