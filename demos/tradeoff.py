@@ -19,8 +19,10 @@ particle arrays, the lesson's Body loop, pymunk and pygame's Vector2, measured i
 
 The contacts chart answers "how many contact iterations do I need?": for a ball pit (the
 deepest overlap left at rest, and the motion left) and Newton's cradle (the speeds after the
-impacts), the error against the cost of an awake step, for this engine at several
-``World.contact_iterations`` and for pymunk at several ``Space.iterations``.
+impacts), and for a tower of 10 boxes and a pyramid of 210 (the drift: the largest
+displacement of any box after 5 s, sleeping off), the error against the cost of an awake step,
+for this engine at several ``World.contact_iterations`` and for pymunk at several
+``Space.iterations``.
 
 The measuring lives in ``engine.measure``, ``demos.bench.throughput`` and
 ``demos.bench.solver``; this module draws.

@@ -1,7 +1,8 @@
 """The contact solver's settings: error against cost per iteration count, this engine and pymunk.
 
 Run with ``python -m demos.bench solver``; ``python -m demos tradeoff`` draws the rows as the
-contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II", dt = 1/60 s:
+contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II" and two of
+"Bodies that turn", dt = 1/60 s:
 
 * ``pit``: 240 balls (r 0.5 m, e 0.5, mu 0.5) dropped in rows into a box 14 m wide
   (``demos.bench.pit`` at that width), settled for 4 s. Error: the deepest overlap of two
@@ -15,6 +16,13 @@ contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II
   (|v_last - v0| + the other balls' speeds) / v0 over t = 0.5 to 1 s (vertical speeds count:
   a ball hopping on the floor is wrong too). Energy: the largest |KE - KE0| / KE0 over the
   same time (the collisions are elastic: kinetic energy must come through unchanged).
+* ``stack``: a tower of 10 boxes (``demos.stack.tower``: 1 m, 1 kg, friction 0.6, put down
+  touching on a floor, sleeping off), run 5 s; ``pyramid``: the pyramid of 210 boxes (a base of
+  20, ``demos.bench.stack.make_world``), the same. Error: the drift, the largest displacement
+  of any box from where it was put after 5 s (m; the issue's targets, 1 mm for the tower's top
+  and 1 cm for the pyramid, are over 60 s). Energy: KE (linear and turning) / PE left at the
+  end. pymunk's twins are ``demos.bench.stack.space_of`` at the same centres. A 5 s window
+  keeps the run short: the pyramid's drift has settled by 2 s, the tower's still creeps.
 
 Solvers, each at several iteration counts:
 
@@ -30,7 +38,9 @@ Solvers, each at several iteration counts:
 Cost: seconds of CPU time per step, timed step by step with every setting of a scene stepping in
 turn (the order rotating from step to step), so that a burst of load on a shared machine hits
 them alike; each step's time is the median over ``rounds`` runs, and the cost is the mean over
-the steps of the timed window. CPU time (``time.process_time``), not wall-clock time: on a
+the steps of the timed window; the stacks' window is their whole 5 s (sleeping off: every step
+awake), after a few untimed steps that let numba compile or load the boxes' kernels.
+CPU time (``time.process_time``), not wall-clock time: on a
 machine with more running programs than cores, a step is paused whenever the scheduler runs
 another program, so wall-clock time charges a 10 ms step for far more of the others' work than
 a 10 us step (measured here: this engine's pit looked 100x pymunk's by the wall clock, 45x by
