@@ -625,8 +625,10 @@ def draw_contacts(
             py = round(float(chart.to_px(1.0, panel.level)[1]))
             for x in range(a.left + 2, a.right - 2, 12):
                 pygame.draw.line(surface, MUTED, (x, py), (min(x + 6, a.right - 2), py), 1)
-            draw_text(surface, panel.level_label, (a.right - 6, py - 2), 16, MUTED, "bottomright")
         taken: list[pygame.Rect] = []
+        if panel.level is not None:  # its label is kept clear of the dots' labels
+            where = (a.right - 6, py - 2)
+            taken.append(draw_text(surface, panel.level_label, where, 16, MUTED, "bottomright"))
         if panel.zero and 0.0 in values:
             where = (a.left + 6, a.bottom - 4)
             taken.append(draw_text(surface, panel.zero, where, 16, INK, "bottomleft"))
