@@ -44,6 +44,7 @@ __all__ = [
     "pyramid_centres",
     "dominoes",
     "tower",
+    "tower_centres",
     "tumbler",
     "tumbler_walls",
     "tumbler_centres",
@@ -107,11 +108,18 @@ def dominoes(n: int = DOMINOES) -> tuple[World, list[Body]]:
     return w, row
 
 
+def tower_centres(n: int = 20) -> list[tuple[float, float]]:
+    """Where a tower's ``n`` boxes (SIDE m) are put (m): a column on x = 0, touching, from the
+    floor up."""
+    return [(0.0, SIDE * (0.5 + k)) for k in range(n)]
+
+
 def tower(n: int = 20) -> tuple[World, list[Body]]:
-    """``n`` 1 m boxes in a column, with sleeping off (every step is solved)."""
+    """``n`` 1 m boxes in a column (``tower_centres``), with sleeping off (every step is
+    solved)."""
     w = _world()
     w.sleep_time = math.inf
-    return w, [_box(w, 0.0, 0.5 + k) for k in range(n)]
+    return w, [_box(w, x, y) for x, y in tower_centres(n)]
 
 
 def tumbler_walls() -> list[tuple[float, float, float, float]]:

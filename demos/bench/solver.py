@@ -1,7 +1,8 @@
 """The contact solver's settings: error against cost per iteration count, this engine and pymunk.
 
 Run with ``python -m demos.bench solver``; ``python -m demos tradeoff`` draws the rows as the
-contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II", dt = 1/60 s:
+contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II" and two of
+"Bodies that turn", dt = 1/60 s:
 
 * ``pit``: 240 balls (r 0.5 m, e 0.5, mu 0.5) dropped in rows into a box 14 m wide
   (``demos.bench.pit`` at that width), settled for 4 s. Error: the deepest overlap of two
@@ -15,6 +16,13 @@ contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II
   (|v_last - v0| + the other balls' speeds) / v0 over t = 0.5 to 1 s (vertical speeds count:
   a ball hopping on the floor is wrong too). Energy: the largest |KE - KE0| / KE0 over the
   same time (the collisions are elastic: kinetic energy must come through unchanged).
+* ``stack``: a tower of 10 boxes (``demos.stack.tower``: 1 m, 1 kg, friction 0.6, put down
+  touching on a floor, sleeping off), run 5 s; ``pyramid``: the pyramid of 210 boxes (a base of
+  20, ``demos.bench.stack.make_world``), the same. Error: the drift, the largest displacement
+  of any box from where it was put after 5 s (m; the issue's targets, 1 mm for the tower's top
+  and 1 cm for the pyramid, are over 60 s). Energy: KE (linear and turning) / PE left at the
+  end. pymunk's twins are ``demos.bench.stack.space_of`` at the same centres. A 5 s window
+  keeps the run short: the pyramid's drift has settled by 2 s, the tower's still creeps.
 
 Solvers, each at several iteration counts:
 
@@ -30,7 +38,9 @@ Solvers, each at several iteration counts:
 Cost: seconds of CPU time per step, timed step by step with every setting of a scene stepping in
 turn (the order rotating from step to step), so that a burst of load on a shared machine hits
 them alike; each step's time is the median over ``rounds`` runs, and the cost is the mean over
-the steps of the timed window. CPU time (``time.process_time``), not wall-clock time: on a
+the steps of the timed window; the stacks' window is their whole 5 s (sleeping off: every step
+awake), after a few untimed steps that let numba compile or load the boxes' kernels.
+CPU time (``time.process_time``), not wall-clock time: on a
 machine with more running programs than cores, a step is paused whenever the scheduler runs
 another program, so wall-clock time charges a 10 ms step for far more of the others' work than
 a 10 us step (measured here: this engine's pit looked 100x pymunk's by the wall clock, 45x by
@@ -55,7 +65,9 @@ from typing import Any
 
 import numpy as np
 
+from demos import stack
 from demos.bench import pit
+from demos.bench import stack as stack_bench
 from engine import Body, Plane, StabilityWarning, Vector, World
 from engine.forces import Gravity
 
@@ -94,7 +106,12 @@ QUICK_ITERATIONS: dict[str, tuple[int, ...]] = {
 _SLOP: dict[str, float | None] = {"pymunk": None, "pymunk 1 mm": 1e-3}
 
 #: Scene name -> title.
-SCENES: dict[str, str] = {"pit": "Ball pit", "cradle": "Newton's cradle"}
+SCENES: dict[str, str] = {
+    "pit": "Ball pit",
+    "cradle": "Newton's cradle",
+    "stack": "Tower of boxes",
+    "pyramid": "Pyramid of boxes",
+}
 
 # The pit: 240 balls, 12 a row, in a box 14 m wide; settled 4 s, timed over the first 2 s.
 PIT_BALLS = 240
@@ -108,17 +125,26 @@ GAP = 0.2  # m
 RADIUS = 0.5  # m
 CRADLE_TIME = 1.0  # s
 JUDGE = 0.5  # s
+# The stacks (demos.stack): a tower of TOWER boxes, a pyramid of base PYRAMID_BASE, sleeping
+# off, run and timed over STACK_TIME.
+TOWER = 10
+PYRAMID_BASE = 20
+PYRAMID_BOXES = PYRAMID_BASE * (PYRAMID_BASE + 1) // 2  # 210
+STACK_TIME = 5.0  # s
+#: The scenes of boxes (their error is a drift in m, their window the whole run).
+_STACKS = ("stack", "pyramid")
 
 
 @dataclass(frozen=True)
 class Row:
     """One setting measured on one scene; a row of the CSV."""
 
-    scene: str  # "pit" or "cradle"
+    scene: str  # one of SCENES
     solver: str  # one of SOLVERS
     iterations: int
-    error: float  # pit: deepest overlap / radius at rest; cradle: speed error / v0
-    energy: float  # pit: KE / PE left at rest; cradle: largest |KE - KE0| / KE0
+    error: float  # pit: deepest overlap / radius at rest; cradle: speed error / v0; stack,
+    # pyramid: the largest displacement of a box from where it was put (m)
+    energy: float  # pit, stack, pyramid: KE / PE left at the end; cradle: max |KE - KE0| / KE0
     cost: float  # CPU s per awake step (median over rounds, mean over the timed window)
     warned: bool  # the World warned (StabilityWarning: too few contact_iterations)
     asleep: int  # bodies asleep at the end (this engine's; pymunk's sleep is off)
@@ -133,16 +159,21 @@ class _Sim:
     state: Callable[[], tuple[np.ndarray, np.ndarray]]
     asleep: Callable[[], int] = lambda: 0
     bodies: int = 0
+    spin: Callable[[], float] = lambda: 0.0  # rotational kinetic energy (J)
     warned: bool = False
     samples: list[float] = field(default_factory=list)
 
 
 def _world_sim(world: World) -> _Sim:
+    def spin() -> float:
+        return sum(0.5 * b.moment * b.angular_velocity**2 for b in world.bodies)
+
     return _Sim(
         partial(world.step, DT),
         lambda: (world.positions(), world.velocities()),
         lambda: world.sleeping,
         len(world.bodies),
+        spin,
     )
 
 
@@ -153,7 +184,10 @@ def _space_sim(space: Any, bodies: Sequence[Any]) -> _Sim:
             np.array([tuple(b.velocity) for b in bodies]),
         )
 
-    return _Sim(partial(space.step, DT), state, bodies=len(bodies))
+    def spin() -> float:
+        return sum(0.5 * b.moment * b.angular_velocity**2 for b in bodies)
+
+    return _Sim(partial(space.step, DT), state, bodies=len(bodies), spin=spin)
 
 
 def _pit(solver: str, iterations: int) -> _Sim:
@@ -161,6 +195,34 @@ def _pit(solver: str, iterations: int) -> _Sim:
         return _world_sim(pit.make_world(PIT_BALLS, iterations, width=PIT_WIDTH))
     space: Any = pit.make_space(PIT_BALLS, iterations, width=PIT_WIDTH, slop=_SLOP[solver])
     return _space_sim(space, [b for b in space.bodies])
+
+
+def _boxes(scene: str, solver: str, iterations: int) -> _Sim:
+    """The tower (``scene`` "stack") or the pyramid of ``demos.stack``, sleeping off."""
+    if solver == "World":
+        if scene == "stack":
+            world, _ = stack.tower(TOWER)
+        else:
+            world, _ = stack_bench.make_world(PYRAMID_BASE, sleep=False)
+        world.contact_iterations = iterations
+        return _world_sim(world)
+    centres = (
+        stack.tower_centres(TOWER) if scene == "stack" else stack.pyramid_centres(PYRAMID_BASE)
+    )
+    made = stack_bench.space_of(centres, iterations, sleep=False, slop=_SLOP[solver])
+    assert made is not None  # pymunk's settings are measured only where it is installed
+    return _space_sim(*made)
+
+
+def stack_energy(x: np.ndarray, v: np.ndarray, spin: float) -> float:
+    """Kinetic energy (linear, of 1 kg boxes, and ``spin``) over the potential energy above
+    the floor, for centres ``x`` and velocities ``v`` (n, 2).
+
+    >>> stack_energy(np.array([[0.0, 0.5]]), np.array([[0.0, 0.0]]), 0.0)
+    0.0
+    """
+    ke = 0.5 * stack.MASS * float((v * v).sum()) + spin
+    return ke / (stack.MASS * G * float(x[:, 1].sum()))
 
 
 def _cradle_x() -> list[float]:
@@ -258,7 +320,12 @@ def _run(
     done: list[int],
     total: int,
 ) -> list[Row]:
-    make = _pit if scene == "pit" else _cradle
+    make: Callable[[str, int], _Sim]
+    if scene in _STACKS:
+        make = partial(_boxes, scene)
+        _warm(make("World", 1))  # numba compiles the boxes' kernels (or loads them) untimed
+    else:
+        make = _pit if scene == "pit" else _cradle
     steps, window = _steps(scene)
     judge = round(JUDGE / DT)
     overhead = _timer_overhead()
@@ -269,6 +336,7 @@ def _run(
     for r in range(rounds):
         last = r == rounds - 1
         sims = {key: make(*key) for key in settings}
+        start = {key: sim.state()[0].copy() for key, sim in sims.items()}
         worst = {key: (0.0, 0.0) for key in settings}
         for i in range(steps if last else window):
             _step_all(sims, i, i < window, overhead)
@@ -294,6 +362,10 @@ def _run(
         if scene == "pit":
             x, v = sim.state()
             error, _, energy = pit.measures(x, v, PIT_WIDTH)
+        elif scene in _STACKS:
+            x, v = sim.state()
+            error = float(np.hypot(*(x - start[key]).T).max())
+            energy = stack_energy(x, v, sim.spin())
         else:
             error, energy = worst[key]
         rows.append(
@@ -302,8 +374,19 @@ def _run(
     return rows
 
 
+def _warm(sim: _Sim, steps: int = 30) -> None:
+    """Step ``sim`` a few times untimed, its warnings dropped."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(steps):
+            sim.step()
+
+
 def _steps(scene: str) -> tuple[int, int]:
     """(steps of a scene's run, steps of its timed window)."""
+    if scene in _STACKS:
+        steps = round(STACK_TIME / DT)
+        return steps, steps
     steps = round((PIT_SETTLE if scene == "pit" else CRADLE_TIME) / DT)
     return steps, round(PIT_WINDOW / DT) if scene == "pit" else steps
 
@@ -322,23 +405,27 @@ def measure(
     rounds: int | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> list[Row]:
-    """Measure every solver setting on both scenes; rows by scene, solver, iterations.
+    """Measure every solver setting on every scene; rows by scene, solver, iterations.
 
     pymunk's rows are left out where pymunk is not installed. ``rounds``: runs whose step
-    times are combined (default 2, quick 1 for the pit; 9, quick 3 for the cradle).
+    times are combined (default 2, quick 1 for the pit and the stacks; 9, quick 3 for the
+    cradle).
     """
     counts = QUICK_ITERATIONS if quick else ITERATIONS
     solvers = [s for s in SOLVERS if s == "World" or _has_pymunk()]
     settings = [(s, k) for s in solvers for k in counts[s]]
     pit_rounds = rounds or (1 if quick else 2)
     cradle_rounds = rounds or (3 if quick else 9)
+    plan = [("pit", pit_rounds), ("cradle", cradle_rounds)]
+    plan += [(scene, pit_rounds) for scene in _STACKS]
     total = 0
-    for scene, n in (("pit", pit_rounds), ("cradle", cradle_rounds)):
+    for scene, n in plan:
         steps, window = _steps(scene)
         total += (n - 1) * window + steps
     done = [0]
-    rows = _run("pit", settings, pit_rounds, progress, done, total)
-    rows += _run("cradle", settings, cradle_rounds, progress, done, total)
+    rows = []
+    for scene, n in plan:
+        rows += _run(scene, settings, n, progress, done, total)
     return rows
 
 
@@ -389,6 +476,13 @@ def table(rows: Sequence[Row]) -> str:
                 f"{title}: {PIT_BALLS} balls in a box {PIT_WIDTH:g} m wide, dt = 1/60 s, error = "
                 f"deepest overlap / r after {PIT_SETTLE:g} s, energy = KE / PE left; cost per "
                 f"awake step over the first {PIT_WINDOW:g} s"
+            )
+        elif scene in _STACKS:
+            what = f"{TOWER} boxes" if scene == "stack" else f"{PYRAMID_BOXES} boxes"
+            head = (
+                f"{title}: {what} of 1 m, 1 kg, mu 0.6, sleeping off, dt = 1/60 s; error = "
+                f"the largest displacement of a box from where it was put after {STACK_TIME:g} s "
+                f"(m), energy = KE / PE left; cost per step over the {STACK_TIME:g} s"
             )
         else:
             head = (

@@ -37,7 +37,7 @@ from __future__ import annotations
 import math
 import statistics
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -61,6 +61,7 @@ __all__ = [
     "Run",
     "make_world",
     "make_space",
+    "space_of",
     "side_by_side",
     "summary",
     "draw_stack",
@@ -104,6 +105,18 @@ def make_space(
     """The same pyramid in pymunk, and its bodies in the World's order (None without pymunk):
     a floor segment of friction 1.0, boxes of ``demos.stack``'s side, mass and friction;
     ``sleep``: its ``sleep_time_threshold`` SLEEP_TIME (else its default, off)."""
+    return space_of(scene.pyramid_centres(base), iterations, sleep=sleep)
+
+
+def space_of(
+    centres: Sequence[tuple[float, float]],
+    iterations: int = ITERATIONS,
+    *,
+    sleep: bool = True,
+    slop: float | None = None,
+) -> tuple[Any, list[Any]] | None:
+    """``demos.stack``'s boxes put at ``centres`` (a pyramid's, a tower's) in pymunk, as
+    ``make_space``; ``slop``: its ``collision_slop`` (m; None keeps its default, 0.1)."""
     try:
         import pymunk
     except ImportError:
@@ -111,6 +124,8 @@ def make_space(
     space = pymunk.Space()
     space.gravity = (0.0, -scene.G)
     space.iterations = iterations
+    if slop is not None:
+        space.collision_slop = slop
     if sleep:
         space.sleep_time_threshold = SLEEP_TIME
     floor = pymunk.Segment(space.static_body, (-FLOOR, 0.0), (FLOOR, 0.0), 0.0)
@@ -118,7 +133,7 @@ def make_space(
     space.add(floor)
     side = (scene.SIDE, scene.SIDE)
     bodies = []
-    for x, y in scene.pyramid_centres(base):
+    for x, y in centres:
         body = pymunk.Body(scene.MASS, pymunk.moment_for_box(scene.MASS, side))
         body.position = (x, y)
         box = pymunk.Poly.create_box(body, side, 0.0)
