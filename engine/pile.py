@@ -450,16 +450,18 @@ def step_pile(
         if PUSHOUT:
             contacts.push_out_rows(Xr, Vr, np.where(kin | shapedU, -np.inf, r), U, fast)
     x[U], v[U] = Xr, Vr
-    if m_pairs or len(s_rows):
-        # Fast shapes the rows left deep in each other or a wall meet at their moment instead.
+    statics_met = n_faces and contacts is not None and (shapedU & ~kin).any()
+    if m_pairs or statics_met:
+        # Fast shapes the rows left deep in each other or a wall meet at their moment instead
+        # (every shape of the pile: one pushed by another may reach a wall it had no row with).
         walls = None
-        if len(s_rows):
+        if statics_met:
 
             def walls_at(rows: np.ndarray, xs: np.ndarray, qs: np.ndarray, reach: float) -> Any:
                 got = static_rows(table, rows, xs, shapes, solid, reach, qs, meets, fast)
                 return got[0], got[1], got[2], got[3]
 
-            walls = (walls_at, s_rows)
+            walls = (walls_at, mine)
         pairs = (ia, ib) if m_pairs else (s_rows[:0], s_rows[:0])
         again = retake(table, pairs, walls, (x0, v0), (x, v), spin, P, store, dt, fast)
         if again is not None:

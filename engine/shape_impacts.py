@@ -24,10 +24,13 @@ bounding radius, over ``FAST`` of the smaller R), began it apart (separation > -
 the smaller R) and ended it deep (separation < -``DEEP`` of the smaller R) or through (B's
 centre past A's along the normal the step began with). A pile pressed together over many
 steps never starts a step apart, so it is left to the soft step. A body and a static
-collider are taken the same way (``late_wall_impacts``): "through" is then the manifold's
-normal turned round (the body on the collider's other side), and the advancement is against
-the colliders it went into only (a box sliding along a floor into a wall is not stopped by
-the floor). A body met by several is placed by the earliest.
+collider are taken the same way (``late_wall_impacts``), fast or not, and from a depth of
+``DEEP_WALL``: "through" is then the manifold's normal turned round (the body on the
+collider's other side), and the advancement is against the colliders it went into only (a
+box sliding along a floor into a wall is not stopped by the floor). A body its own start
+motion does not bring there was pushed by another within the step: it is stopped where its
+straight move from x0 to x1 first touches (motion clamping). A body met by several is placed
+by the earliest.
 
 A second impact within the step after the first (a box turning so fast that it meets the
 wall again before the step ends) is not searched for: where the rest of the step would end
@@ -43,6 +46,7 @@ narrowphase's (engine.manifold) at the bodies' poses along the start motion.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import Any
 
@@ -252,18 +256,23 @@ def late_wall_impacts(
     pull: tuple[np.ndarray, np.ndarray],
     radius: np.ndarray,
     dt: float,
+    clamped: dict[int, tuple[np.ndarray, float]] | None = None,
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """``late_impacts`` for bodies (World ``rows``, with shapes, that can be moved) against
     the static colliders: ``walls(rows, x, angle, margin)`` gives their manifolds' points
     (row, collider, unit normal from the collider to the body, separation) at poses x (N, 2),
     ``angle`` (N,), for colliders within ``margin``. A body is taken again when it moved fast,
     began the step apart from a collider and ended it deep in it or through it (on its other
-    side: the normal turned by more than 120 degrees); returns (rows, t*) or None."""
+    side: the normal turned by more than 120 degrees); returns (rows, t*) or None. A body
+    that went in by another's push, not by its start motion, is written into ``clamped``
+    (row -> its pose (x, angle) where its straight move first touches), if given."""
     x0, q0 = start[0], start[2]
     x1, q1 = end[0], end[2]
     r = radius[rows]
     sweep = np.hypot(*(x1[rows] - x0[rows]).T) + np.abs(q1[rows] - q0[rows]) * r
-    rows, r, sweep = rows[sweep > FAST * r], r[sweep > FAST * r], sweep[sweep > FAST * r]
+    # (Any body that went from apart to DEEP_WALL deep moved at least that: the rest stand.)
+    moving = sweep > DEEP_WALL * r
+    rows, r, sweep = rows[moving], r[moving], sweep[moving]
     if not len(rows):
         return None
     reach = float((sweep + r).max())
@@ -286,6 +295,19 @@ def late_wall_impacts(
     # Conservative advancement of each such body against the colliders it went into.
     movers = np.unique(body)
     when = _time_of_wall_impact(walls, movers, body, col, start, pull, radius, dt, reach)
+    # A body that its own start motion does not bring there was sent by another's push
+    # within the step (engine.shaped): it is stopped where its actual move, taken as straight
+    # (x0 to x1, angle0 to angle1), first touches one of them (motion clamping).
+    pushed = movers[~np.isfinite(when)]
+    if len(pushed) and clamped is not None:
+        v = (x1 - x0) * (1.0 / dt)
+        w = (q1 - q0) * (1.0 / dt)
+        zero = (np.zeros_like(x0), np.zeros_like(q0))
+        stop = _time_of_wall_impact(walls, pushed, body, col, (x0, v, q0, w), zero, radius, dt,
+                                    reach)  # fmt: skip
+        for k, t in zip(pushed.tolist(), stop.tolist(), strict=True):
+            if clamped is not None and math.isfinite(t):
+                clamped[k] = (x0[k] + v[k] * t, float(q0[k] + w[k] * t))
     met = np.isfinite(when)
     return (movers[met], when[met]) if met.any() else None
 
@@ -387,14 +409,21 @@ def retake(
                            fast)  # fmt: skip
         if got is not None:
             np.minimum.at(first, *got)
+    clamped: dict[int, tuple[np.ndarray, float]] = {}
     if walls is not None:
         rows = np.unique(walls[1])
-        got = late_wall_impacts(walls[0], rows[moves[rows]], start, end, pull, store.radius, dt)
+        got = late_wall_impacts(walls[0], rows[moves[rows]], start, end, pull, store.radius, dt,
+                                clamped)  # fmt: skip
         if got is not None:
             np.minimum.at(first, *got)
+    for j, (xj, qj) in clamped.items():
+        if not np.isfinite(first[j]):  # (an impact of its own places it otherwise)
+            x[j] = xj
+            q1[j] = qj
+    stopped = np.array(sorted(j for j in clamped if not np.isfinite(first[j])), dtype=np.intp)
     rows = np.flatnonzero(np.isfinite(first))
     if not len(rows):
-        return None
+        return stopped if len(stopped) else None
     when = first[rows]
     x[rows], angle = place(rows, when, start, end, pull, dt)
     q = q1.copy()
@@ -424,7 +453,7 @@ def retake(
         angle[back] = q0[k] + w0[k] * t + alpha[k] * (0.5 * t * t)
     if spin is not None:
         spin.angle[rows] = angle
-    return rows
+    return np.union1d(rows, stopped)
 
 
 def _dot(p: np.ndarray, q: np.ndarray) -> np.ndarray:
