@@ -49,6 +49,7 @@ __all__ = [
     "tumbler_walls",
     "tumbler_centres",
     "in_room",
+    "room_frame",
     "into_walls",
     "outside",
 ]
@@ -122,11 +123,13 @@ def tower(n: int = 20) -> tuple[World, list[Body]]:
     return w, [_box(w, x, y) for x, y in tower_centres(n)]
 
 
-def tumbler_walls() -> list[tuple[float, float, float, float]]:
-    """The tumbler's four walls in its frame: (centre x, centre y, half width, half height)
-    (m): 1 m thick, their inner faces ``ROOM`` m from the centre."""
+def tumbler_walls() -> list[list[tuple[float, float]]]:
+    """The tumbler's four walls in its frame, each its four corners (m, counter-clockwise):
+    1 m thick, their inner faces ``ROOM`` m from the centre."""
     h = ROOM + 0.5  # the walls' middles
-    return [(h, 0.0, 0.5, h), (-h, 0.0, 0.5, h), (0.0, h, h, 0.5), (0.0, -h, h, 0.5)]
+    sides = [(h, 0.0, 0.5, h), (-h, 0.0, 0.5, h), (0.0, h, h, 0.5), (0.0, -h, h, 0.5)]
+    return [[(cx - a, cy - b), (cx + a, cy - b), (cx + a, cy + b), (cx - a, cy + b)]
+            for cx, cy, a, b in sides]  # fmt: skip
 
 
 def tumbler_centres(n: int = TUMBLED) -> list[tuple[float, float]]:
@@ -144,14 +147,13 @@ def tumbler(
     whose four walls (kinematic bodies about its centre, ``tumbler_walls``, friction 1.0)
     turn at ``spin`` rad/s, as in Box2D's tumbler (``shared/anchors/box2d``): (world, boxes,
     walls), on the path ``kernels`` (None: the default). The boxes are all alike
-    (``into_walls`` takes the first one's corners)."""
+    (``room_frame`` takes their side)."""
     w = World(integrator="auto", kernels=kernels)
     w.add_force(Gravity((0.0, -G)))
     walls = w.add_all(
-        Body(Vector(0.0, 0.0), shape=Polygon([(cx - a, cy - b), (cx + a, cy - b),
-             (cx + a, cy + b), (cx - a, cy + b)]), kinematic=True, angular_velocity=spin,
+        Body(Vector(0.0, 0.0), shape=Polygon(corners), kinematic=True, angular_velocity=spin,
              friction=1.0)
-        for cx, cy, a, b in tumbler_walls()
+        for corners in tumbler_walls()
     )  # fmt: skip
     boxes = w.add_all(
         Body(Vector(x, y), shape=Polygon.box(TUMBLED_SIDE, TUMBLED_SIDE), mass=TUMBLED_MASS,
@@ -166,11 +168,18 @@ def in_room(boxes: list[Body], walls: list[Body]) -> tuple[np.ndarray, np.ndarra
     corner is past the room's inner faces ((n,), m; <= 0 for a box inside)."""
     frame = walls[0]
     pos = np.array([tuple(b.pos) for b in boxes]) - tuple(frame.pos)
-    turn = np.array([b.angle for b in boxes]) - frame.angle
-    c, s = np.cos(frame.angle), np.sin(frame.angle)
+    return room_frame(pos, np.array([b.angle for b in boxes]), frame.angle)
+
+
+def room_frame(pos: np.ndarray, turn: np.ndarray, angle: float) -> tuple[np.ndarray, np.ndarray]:
+    """``in_room`` for boxes of the tumbler's side at ``pos`` (n, 2) from the room's centre,
+    turned ``turn`` (n,) in a room turned ``angle`` (rad): (centres in the room's frame, how
+    far each one's deepest corner is past the inner faces (m)); any engine's bodies."""
+    c, s = np.cos(angle), np.sin(angle)
     centre = pos @ np.array([[c, -s], [s, c]])  # R(-angle) pos, by rows
-    corners = np.array([tuple(v) for v in boxes[0].shape.vertices])  # type: ignore[union-attr]
-    cb, sb = np.cos(turn)[:, None], np.sin(turn)[:, None]
+    h = 0.5 * TUMBLED_SIDE
+    corners = np.array([(-h, -h), (h, -h), (h, h), (-h, h)])
+    cb, sb = np.cos(turn - angle)[:, None], np.sin(turn - angle)[:, None]
     x = centre[:, :1] + cb * corners[:, 0] - sb * corners[:, 1]
     y = centre[:, 1:] + sb * corners[:, 0] + cb * corners[:, 1]
     return centre, np.maximum(np.abs(x), np.abs(y)).max(axis=1) - ROOM

@@ -174,6 +174,21 @@ def late_impacts(
     return (rows, first[rows]) if len(rows) else None
 
 
+def _along(
+    start: tuple[np.ndarray, ...],
+    pull: tuple[np.ndarray, np.ndarray],
+    rows: np.ndarray,
+    t: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Where ``rows`` are at times t (s) along the start motion: (x (k, 2), angle (k,)), by
+    x0 + v0 t + a t^2 / 2 and the same for the angle."""
+    x0, v0, q0, w0 = start
+    acc, alpha = pull
+    half = 0.5 * t * t
+    x = x0[rows] + v0[rows] * t[:, None] + acc[rows] * half[:, None]
+    return x, q0[rows] + w0[rows] * t + alpha[rows] * half
+
+
 def _time_of_impact(
     table: ShapeTable,
     a: np.ndarray,
@@ -189,11 +204,6 @@ def _time_of_impact(
     conservative advancement; inf for a pair that does not meet within the step."""
     x0, v0, q0, w0 = start
     acc, alpha = pull
-
-    def poses(rows: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        tt = t[:, None]
-        x = x0[rows] + v0[rows] * tt + acc[rows] * (0.5 * tt * tt)
-        return x, q0[rows] + w0[rows] * t + alpha[rows] * (0.5 * t * t)
 
     def bound(t: np.ndarray) -> np.ndarray:
         """How fast any point of b can close on a (length units / s) from t to dt."""
@@ -212,8 +222,8 @@ def _time_of_impact(
         k = np.flatnonzero(live)
         if not len(k):
             break
-        xa, qa = poses(a[k], t[k])
-        xb, qb = poses(b[k], t[k])
+        xa, qa = _along(start, pull, a[k], t[k])
+        xb, qb = _along(start, pull, b[k], t[k])
         gap = pair_gaps(table, a[k], b[k], xa, qa, xb, qb, fast)[0]
         touch = gap <= TOUCH * r[k]
         hit[k[touch]] = t[k[touch]]
@@ -237,13 +247,11 @@ def place(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Where ``rows`` end the step when their impact came at ``when`` (s): (x (k, 2), angle
     (k,)) by the start motion to then and the end velocities after (module text)."""
-    x0, v0, q0, w0 = start
     v1, w1 = end[1], end[3]
     acc, alpha = pull
-    t, rest = when, dt - when
-    x = x0[rows] + v0[rows] * t[:, None] + acc[rows] * (0.5 * t * t)[:, None]
+    rest = dt - when
+    x, q = _along(start, pull, rows, when)
     x = x + v1[rows] * rest[:, None] - acc[rows] * (0.5 * rest * rest)[:, None]
-    q = q0[rows] + w0[rows] * t + alpha[rows] * (0.5 * t * t)
     q = q + w1[rows] * rest - alpha[rows] * (0.5 * rest * rest)
     return x, q
 
@@ -350,8 +358,7 @@ def _time_of_wall_impact(
             break
         m, tk = movers[k], t[k]
         x, q = x0.copy(), q0.copy()
-        x[m] = x0[m] + v0[m] * tk[:, None] + acc[m] * (0.5 * tk * tk)[:, None]
-        q[m] = q0[m] + w0[m] * tk + alpha[m] * (0.5 * tk * tk)
+        x[m], q[m] = _along(start, pull, m, tk)
         row, c, _, sep = walls(m, x, q, reach)
         mine = np.array([(a, b) in wanted for a, b in zip(row.tolist(), c.tolist(), strict=True)],
                         dtype=bool)  # fmt: skip
@@ -448,9 +455,8 @@ def retake(
         deep[a[bad]] = deep[b[bad]] = True
     back = deep[rows]
     if back.any():
-        k, t = rows[back], when[back]
-        x[k] = x0[k] + v0[k] * t[:, None] + acc[k] * (0.5 * t * t)[:, None]
-        angle[back] = q0[k] + w0[k] * t + alpha[k] * (0.5 * t * t)
+        k = rows[back]
+        x[k], angle[back] = _along(start, pull, k, when[back])
     if spin is not None:
         spin.angle[rows] = angle
     return np.union1d(rows, stopped)

@@ -61,6 +61,7 @@ __all__ = [
     "Run",
     "make_world",
     "make_space",
+    "add_boxes",
     "space_of",
     "side_by_side",
     "summary",
@@ -131,16 +132,26 @@ def space_of(
     floor = pymunk.Segment(space.static_body, (-FLOOR, 0.0), (FLOOR, 0.0), 0.0)
     floor.friction = scene.FLOOR_FRICTION
     space.add(floor)
-    side = (scene.SIDE, scene.SIDE)
+    return space, add_boxes(space, centres, scene.SIDE, scene.MASS)
+
+
+def add_boxes(
+    space: Any, centres: Sequence[tuple[float, float]], side: float, mass: float
+) -> list[Any]:
+    """pymunk boxes of ``side`` (m) and ``mass`` (kg) at ``centres``, of ``demos.stack``'s
+    friction and no restitution, added to ``space``; their bodies, in order."""
+    import pymunk
+
+    size = (side, side)
     bodies = []
     for x, y in centres:
-        body = pymunk.Body(scene.MASS, pymunk.moment_for_box(scene.MASS, side))
+        body = pymunk.Body(mass, pymunk.moment_for_box(mass, size))
         body.position = (x, y)
-        box = pymunk.Poly.create_box(body, side, 0.0)
+        box = pymunk.Poly.create_box(body, size, 0.0)
         box.friction, box.elasticity = scene.FRICTION, 0.0
         space.add(body, box)
         bodies.append(body)
-    return space, bodies
+    return bodies
 
 
 @dataclass(frozen=True)

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from demos import stack as scene
+from demos.bench.stack import add_boxes
 from engine import kernels as engine_kernels
 
 __all__ = ["SECONDS", "FIRST", "ITERATIONS", "make_space", "side_by_side", "report"]
@@ -51,35 +52,19 @@ def make_space() -> tuple[Any, Any, list[Any]] | None:
     walls = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
     walls.angular_velocity = scene.TUMBLE
     space.add(walls)
-    for cx, cy, a, b in scene.tumbler_walls():
-        wall = pymunk.Poly(walls, [(cx - a, cy - b), (cx + a, cy - b), (cx + a, cy + b),
-                                   (cx - a, cy + b)])  # fmt: skip
+    for corners in scene.tumbler_walls():
+        wall = pymunk.Poly(walls, corners)
         wall.friction = 1.0
         space.add(wall)
-    side = (scene.TUMBLED_SIDE, scene.TUMBLED_SIDE)
-    boxes = []
-    for x, y in scene.tumbler_centres():
-        body = pymunk.Body(scene.TUMBLED_MASS, pymunk.moment_for_box(scene.TUMBLED_MASS, side))
-        body.position = (x, y)
-        box = pymunk.Poly.create_box(body, side, 0.0)
-        box.friction, box.elasticity = scene.FRICTION, 0.0
-        space.add(body, box)
-        boxes.append(body)
+    boxes = add_boxes(space, scene.tumbler_centres(), scene.TUMBLED_SIDE, scene.TUMBLED_MASS)
     return space, walls, boxes
 
 
 def _room(pos: np.ndarray, turn: np.ndarray, angle: float) -> tuple[np.ndarray, np.ndarray]:
     """Boxes at ``pos`` (n, 2) turned ``turn`` (n,) in a room turned ``angle`` (rad, about the
     origin): (which have their centre past a wall's inner face, how far each one's deepest
-    corner is past one (m))."""
-    c, s = math.cos(angle), math.sin(angle)
-    centre = pos @ np.array([[c, -s], [s, c]])
-    h = 0.5 * scene.TUMBLED_SIDE
-    corners = np.array([(-h, -h), (h, -h), (h, h), (-h, h)])
-    cb, sb = np.cos(turn - angle)[:, None], np.sin(turn - angle)[:, None]
-    x = centre[:, :1] + cb * corners[:, 0] - sb * corners[:, 1]
-    y = centre[:, 1:] + sb * corners[:, 0] + cb * corners[:, 1]
-    deep = np.maximum(np.abs(x), np.abs(y)).max(axis=1) - scene.ROOM
+    corner is past one (m)), by ``demos.stack.room_frame``."""
+    centre, deep = scene.room_frame(pos, turn, angle)
     return np.abs(centre).max(axis=1) > scene.ROOM, deep
 
 
