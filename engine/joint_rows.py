@@ -13,20 +13,28 @@ and moves with dp/dtheta_i = perp(r) = (-r_y, r_x). The kinds:
   where the step left the two (a disc against a polygon: its distance from the polygon
   wherever it turns, engine.joint_contacts), and the slip of its points along the tangent
   (speeds only).
+
+On the fast path (engine.kernels) the rows are evaluated by the loop kernel ``rows_loop``, a
+row at a time, beside its numpy twin ``_rows``, a kind at a time; the rows of a disc against a
+polygon that turns are then rewritten by ``_turned`` on both paths. The Newton steps of
+engine.joint_solver evaluate the rows a few times a step, and at a game's few joints numpy's
+fixed cost per call was most of that.
 """
 
 from __future__ import annotations
 
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
 
+from . import kernels
 from .joint_contacts import polygon_distance
 from .manifold_kinds import Polygons
 
 __all__ = [
     "Touch", "Plan", "evaluate", "PX", "PY", "DIST", "ANGLE", "MOTOR", "SOFT_X", "SOFT_Y",
-    "SOFT_ANGLE", "CN", "CT",
+    "SOFT_ANGLE", "CN", "CT", "rows_loop",
 ]  # fmt: skip
 
 # Row kinds.
@@ -79,7 +87,8 @@ class Touch(NamedTuple):
 class Plan:
     """Rows as arrays by row (engine.joint_solver's own): kind, bound, each end's place among
     the joints' bodies (b: -1 for the world), anchors, and a resting disc's normal, point,
-    gap and radius; the kinds' row indices and the columns of J, made once."""
+    gap and radius; the kinds' row indices and the columns of J, made when first asked for
+    (the loop kernel needs none of them)."""
 
     def __init__(
         self,
@@ -103,18 +112,23 @@ class Plan:
         self.turn, self.poly, self.radius = touch[8:]
         self.polygons = polygons
         self.width = width
-        self.has = b >= 0
-        self.bc = np.maximum(b, 0)
-        self.px = np.flatnonzero((kind == PX) | (kind == SOFT_X))
-        self.py = np.flatnonzero((kind == PY) | (kind == SOFT_Y))
-        self.dist = np.flatnonzero(kind == DIST)
-        self.ang = np.flatnonzero((kind == ANGLE) | (kind == SOFT_ANGLE) | (kind == MOTOR))
-        self.cn = np.flatnonzero(kind == CN)
-        self.ct = np.flatnonzero(kind == CT)
-        self.r = np.arange(len(kind))
-        self.a3 = 3 * a
-        self.rb = np.flatnonzero(self.has)
-        self.b3 = 3 * b[self.rb]
+
+    @cached_property
+    def has(self) -> np.ndarray:
+        """The rows with a second body (not the static world)."""
+        return self.b >= 0
+
+    @cached_property
+    def bc(self) -> np.ndarray:
+        """The second body's place, 0 for the world (masked by ``has``)."""
+        return np.maximum(self.b, 0)
+
+    @cached_property
+    def turned(self) -> np.ndarray:
+        """The rows of a disc against a polygon that turns (engine.joint_contacts)."""
+        if self.polygons is None:
+            return np.zeros(0, dtype=np.intp)
+        return np.flatnonzero(self.turn != 0)
 
     def take(self, sel: np.ndarray) -> Plan:
         """The rows ``sel`` alone."""
@@ -124,31 +138,51 @@ class Plan:
         )  # fmt: skip
 
 
-def evaluate(X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.ndarray]:
+def evaluate(
+    X: np.ndarray, TH: np.ndarray, P: Plan, fast: bool = False
+) -> tuple[np.ndarray, np.ndarray]:
     """Each row's value c and gradient J (rows, 3 m) at the joints' bodies' positions X
-    (m, 2) and angles TH (m,)."""
+    (m, 2) and angles TH (m,). ``fast``: the loop kernel ``rows_loop`` for every row as it
+    stands, in place of its numpy twin ``_rows``; the rows of a disc against a polygon that
+    turns are then rewritten by ``_turned`` on both paths."""
+    if fast:
+        c, J = rows_loop(
+            X, TH, P.kind, P.bound, P.a, P.b, P.aa, P.ab, P.n, P.rbod, P.roth, P.refb, P.refo,
+            P.thb, P.tho, P.gap, P.width,
+        )  # fmt: skip
+    else:
+        c, J = _rows(X, TH, P)
+    if len(P.turned):
+        _turned(X, TH, P, c, J)
+    return c, J
+
+
+def _rows(X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.ndarray]:
+    """``evaluate``'s rows in numpy, a contact's linear about where the step left the two."""
+    has, bc = P.has, P.bc
+    kind = P.kind
     ta = TH[P.a]
     ca, sa = np.cos(ta), np.sin(ta)
     ax, ay = P.aa[:, 0], P.aa[:, 1]
     rax, ray = ca * ax - sa * ay, sa * ax + ca * ay
-    tb = np.where(P.has, TH[P.bc], 0.0)
+    tb = np.where(has, TH[bc], 0.0)
     cb, sb = np.cos(tb), np.sin(tb)
     bx, by = P.ab[:, 0], P.ab[:, 1]
-    rbx = np.where(P.has, cb * bx - sb * by, 0.0)
-    rby = np.where(P.has, sb * bx + cb * by, 0.0)
-    Xa, Xb = X[P.a], X[P.bc]
-    dx = Xa[:, 0] + rax - np.where(P.has, Xb[:, 0] + rbx, bx)
-    dy = Xa[:, 1] + ray - np.where(P.has, Xb[:, 1] + rby, by)
-    R = len(P.kind)
+    rbx = np.where(has, cb * bx - sb * by, 0.0)
+    rby = np.where(has, sb * bx + cb * by, 0.0)
+    Xa, Xb = X[P.a], X[bc]
+    dx = Xa[:, 0] + rax - np.where(has, Xb[:, 0] + rbx, bx)
+    dy = Xa[:, 1] + ray - np.where(has, Xb[:, 1] + rby, by)
+    R = len(kind)
     c = np.zeros(R)
     g = np.zeros((6, R))  # the gradient: (x, y, theta) on body_a, then on body_b
-    q = P.px
+    q = np.flatnonzero((kind == PX) | (kind == SOFT_X))
     c[q] = dx[q]
     g[0, q], g[2, q], g[3, q], g[5, q] = 1.0, -ray[q], -1.0, rby[q]
-    q = P.py
+    q = np.flatnonzero((kind == PY) | (kind == SOFT_Y))
     c[q] = dy[q]
     g[1, q], g[2, q], g[4, q], g[5, q] = 1.0, rax[q], -1.0, -rbx[q]
-    q = P.dist
+    q = np.flatnonzero(kind == DIST)
     if len(q):
         length = np.hypot(dx[q], dy[q])
         safe = np.where(length > 0.0, length, 1.0)
@@ -156,99 +190,191 @@ def evaluate(X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.nda
         c[q] = length - P.bound[q]
         g[0, q], g[1, q], g[2, q] = nx, ny, rax[q] * ny - ray[q] * nx
         g[3, q], g[4, q], g[5, q] = -nx, -ny, rby[q] * nx - rbx[q] * ny
-    q = P.ang
+    q = np.flatnonzero((kind == ANGLE) | (kind == SOFT_ANGLE) | (kind == MOTOR))
     if len(q):
         c[q] = ta[q] - tb[q] - P.bound[q]
         g[2, q], g[5, q] = 1.0, -1.0
-    q = np.concatenate([P.cn, P.ct])
-    if len(q):
-        _contacts(q, X, TH, Xa, Xb, tb, P, c, g)
+    cn = np.flatnonzero(kind == CN)
+    if len(cn):
+        # A row linear about where the step left the two (the body, a; the other, b): its
+        # gap along the normal, which the correction may not close.
+        nx, ny = P.n[cn, 0], P.n[cn, 1]
+        kb = P.rbod[cn, 0] * ny - P.rbod[cn, 1] * nx  # r x n, the body's lever
+        ko = P.roth[cn, 0] * ny - P.roth[cn, 1] * nx
+        c[cn] = (
+            P.gap[cn]
+            + (Xa[cn, 0] - P.refb[cn, 0]) * nx + (Xa[cn, 1] - P.refb[cn, 1]) * ny
+            + kb * (ta[cn] - P.thb[cn])
+            - np.where(has[cn], (Xb[cn, 0] - P.refo[cn, 0]) * nx
+                       + (Xb[cn, 1] - P.refo[cn, 1]) * ny + ko * (tb[cn] - P.tho[cn]), 0.0)
+        )  # fmt: skip
+        g[0, cn], g[1, cn], g[2, cn] = nx, ny, kb
+        g[3, cn], g[4, cn], g[5, cn] = -nx, -ny, -ko
+    ct = np.flatnonzero(kind == CT)
+    if len(ct):
+        # The slip of its points along t = (-n_y, n_x) (velocity only).
+        tx, ty = -P.n[ct, 1], P.n[ct, 0]
+        g[0, ct], g[1, ct] = tx, ty
+        g[2, ct] = P.rbod[ct, 0] * ty - P.rbod[ct, 1] * tx
+        g[3, ct], g[4, ct] = -tx, -ty
+        g[5, ct] = -(P.roth[ct, 0] * ty - P.roth[ct, 1] * tx)
     J = np.zeros((R, P.width))
-    r = P.r
-    J[r, P.a3], J[r, P.a3 + 1], J[r, P.a3 + 2] = g[0], g[1], g[2]
-    rb, b3 = P.rb, P.b3
+    r = np.arange(R)
+    a3 = 3 * P.a
+    J[r, a3], J[r, a3 + 1], J[r, a3 + 2] = g[0], g[1], g[2]
+    rb = np.flatnonzero(has)
+    b3 = 3 * P.b[rb]
     J[rb, b3], J[rb, b3 + 1], J[rb, b3 + 2] = g[3, rb], g[4, rb], g[5, rb]
     return c, J
 
 
-# -- the step ------------------------------------------------------------------------
+def _sample_rows() -> tuple[object, ...]:
+    """The smallest call of ``rows_loop``: a hinge's two rows to the world, a contact's two
+    rows between its two bodies."""
+    f2, f1 = np.zeros((4, 2)), np.zeros(4)
+    i = np.array([0, 0, 1, 1], dtype=np.intp)
+    return (np.zeros((2, 2)), np.zeros(2), np.array([PX, PY, CN, CT], dtype=np.intp), f1,
+            i, np.array([-1, -1, 0, 0], dtype=np.intp), f2, f2, f2, f2, f2, f2, f2, f1, f1, f1,
+            6)  # fmt: skip
 
 
-def _contacts(
-    q: np.ndarray,
+@kernels.loop(sample=_sample_rows)
+def rows_loop(
     X: np.ndarray,
     TH: np.ndarray,
-    Xa: np.ndarray,
-    Xb: np.ndarray,
-    tb: np.ndarray,
-    P: Plan,
-    c: np.ndarray,
-    g: np.ndarray,
-) -> None:
-    """The contact rows ``q`` (P.cn then P.ct) of ``evaluate``: values into c, gradients
-    into g."""
-    k = len(P.cn)
-    cn, ct = q[:k], q[k:]
-    nx, ny = P.n[q, 0], P.n[q, 1]  # (indexed by an array: copies, written below)
-    rbx, rby = P.rbod[q, 0], P.rbod[q, 1]
-    rox, roy = P.roth[q, 0], P.roth[q, 1]
-    # A row linear about where the step left the two (the body, a; the other, b): its gap
-    # along the normal, which the correction may not close.
-    kb = rbx[:k] * ny[:k] - rby[:k] * nx[:k]  # r x n, the body's lever
-    ko = rox[:k] * ny[:k] - roy[:k] * nx[:k]
-    on = P.has[cn]
-    c[cn] = (
-        P.gap[cn]
-        + (Xa[cn, 0] - P.refb[cn, 0]) * nx[:k] + (Xa[cn, 1] - P.refb[cn, 1]) * ny[:k]
-        + kb * (TH[P.a[cn]] - P.thb[cn])
-        - np.where(on, (Xb[cn, 0] - P.refo[cn, 0]) * nx[:k]
-                   + (Xb[cn, 1] - P.refo[cn, 1]) * ny[:k] + ko * (tb[cn] - P.tho[cn]), 0.0)
-    )  # fmt: skip
-    g[0, cn], g[1, cn], g[2, cn] = nx[:k], ny[:k], kb
-    g[3, cn], g[4, cn], g[5, cn] = -nx[:k], -ny[:k], -ko
-    shaped = np.flatnonzero(P.turn[q] != 0)
-    if len(shaped) and P.polygons is not None:
-        # A disc against a polygon (engine.joint_contacts): the disc's centre's distance from
-        # the polygon where it is now, less where the step began, plus the gap there. With
-        # d = x_disc - x_poly and the feature's outward normal m = R(theta) m_local:
-        #   a face, dist = m . d - m_local . v: d dist / d theta = m x d;
-        #   a corner v, e = d - R(theta) v, dist = |e|, m = e / |e|: d dist / d theta =
-        #   -(R(theta) v) x m.
-        # The row's normal (from the other to the body) is m, or -m when the body is the
-        # polygon; its contact point is the disc's centre less its radius along m.
-        rows = q[shaped]
-        mine = P.turn[rows] > 0  # the body is the polygon
-        Xp = np.where(mine[:, None], Xa[rows], Xb[rows])
-        Xd = np.where(mine[:, None], Xb[rows], Xa[rows])
-        tp = np.where(mine, TH[P.a[rows]], tb[rows])
-        Rp = np.where(mine[:, None], P.refb[rows], P.refo[rows])
-        Rd = np.where(mine[:, None], P.refo[rows], P.refb[rows])
-        rp = np.where(mine, P.thb[rows], P.tho[rows])
-        start = _local(Rd - Rp, rp)
-        dist, mx, my, dth, dx, dy = _polygon(P, rows, Xd - Xp, tp, start)
-        dist0 = _polygon(P, rows, Rd - Rp, rp, start)[0]
-        sg = np.where(mine, -1.0, 1.0)
-        nx[shaped], ny[shaped] = sg * mx, sg * my
-        rd = P.radius[rows]
-        pdx, pdy = -rd * mx, -rd * my  # the contact point less the disc's centre
-        ppx, ppy = dx + pdx, dy + pdy  # ... less the polygon's centre
-        rbx[shaped] = np.where(mine, ppx, pdx)
-        rby[shaped] = np.where(mine, ppy, pdy)
-        rox[shaped] = np.where(mine, pdx, ppx)
-        roy[shaped] = np.where(mine, pdy, ppy)
-        normal = shaped < k
-        r_n = rows[normal]
-        c[r_n] = (P.gap[rows] + dist - dist0)[normal]
-        g[0, r_n], g[1, r_n] = nx[shaped][normal], ny[shaped][normal]
-        g[3, r_n], g[4, r_n] = -nx[shaped][normal], -ny[shaped][normal]
-        g[2, r_n] = np.where(mine, dth, 0.0)[normal]
-        g[5, r_n] = np.where(mine, 0.0, dth)[normal]
-    # The slip of its points along t = (-n_y, n_x) (velocity only).
-    tx, ty = -ny[k:], nx[k:]
-    g[0, ct], g[1, ct] = tx, ty
-    g[2, ct] = rbx[k:] * ty - rby[k:] * tx
-    g[3, ct], g[4, ct] = -tx, -ty
-    g[5, ct] = -(rox[k:] * ty - roy[k:] * tx)
+    kind: np.ndarray,
+    bound: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    aa: np.ndarray,
+    ab: np.ndarray,
+    n: np.ndarray,
+    rbod: np.ndarray,
+    roth: np.ndarray,
+    refb: np.ndarray,
+    refo: np.ndarray,
+    thb: np.ndarray,
+    tho: np.ndarray,
+    gap: np.ndarray,
+    width: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """``_rows`` as a loop over the rows (the Plan's arrays by name): each row's value and
+    its six entries of J, with the twin's products in the twin's order."""
+    R = len(kind)
+    c = np.zeros(R)
+    J = np.zeros((R, width))
+    for r in range(R):
+        i = a[r]
+        has = b[r] >= 0
+        j = b[r] if has else 0
+        ta = TH[i]
+        ca, sa = np.cos(ta), np.sin(ta)
+        ax, ay = aa[r, 0], aa[r, 1]
+        rax, ray = ca * ax - sa * ay, sa * ax + ca * ay
+        tb = TH[j] if has else 0.0
+        cb, sb = np.cos(tb), np.sin(tb)
+        bx, by = ab[r, 0], ab[r, 1]
+        rbx = cb * bx - sb * by if has else 0.0
+        rby = sb * bx + cb * by if has else 0.0
+        dx = X[i, 0] + rax - (X[j, 0] + rbx if has else bx)
+        dy = X[i, 1] + ray - (X[j, 1] + rby if has else by)
+        k = kind[r]
+        g0 = g1 = g2 = g3 = g4 = g5 = 0.0
+        if k == PX or k == SOFT_X:
+            c[r] = dx
+            g0, g2, g3, g5 = 1.0, -ray, -1.0, rby
+        elif k == PY or k == SOFT_Y:
+            c[r] = dy
+            g1, g2, g4, g5 = 1.0, rax, -1.0, -rbx
+        elif k == DIST:
+            length = np.hypot(dx, dy)
+            safe = length if length > 0.0 else 1.0
+            nx, ny = dx / safe, dy / safe
+            c[r] = length - bound[r]
+            g0, g1, g2 = nx, ny, rax * ny - ray * nx
+            g3, g4, g5 = -nx, -ny, rby * nx - rbx * ny
+        elif k == ANGLE or k == SOFT_ANGLE or k == MOTOR:
+            c[r] = ta - tb - bound[r]
+            g2, g5 = 1.0, -1.0
+        elif k == CN:
+            nx, ny = n[r, 0], n[r, 1]
+            kb = rbod[r, 0] * ny - rbod[r, 1] * nx
+            ko = roth[r, 0] * ny - roth[r, 1] * nx
+            other = 0.0
+            if has:
+                other = (
+                    (X[j, 0] - refo[r, 0]) * nx + (X[j, 1] - refo[r, 1]) * ny + ko * (tb - tho[r])
+                )
+            c[r] = (
+                gap[r] + (X[i, 0] - refb[r, 0]) * nx + (X[i, 1] - refb[r, 1]) * ny
+                + kb * (ta - thb[r]) - other
+            )  # fmt: skip
+            g0, g1, g2 = nx, ny, kb
+            g3, g4, g5 = -nx, -ny, -ko
+        elif k == CT:
+            tx, ty = -n[r, 1], n[r, 0]
+            g0, g1 = tx, ty
+            g2 = rbod[r, 0] * ty - rbod[r, 1] * tx
+            g3, g4 = -tx, -ty
+            g5 = -(roth[r, 0] * ty - roth[r, 1] * tx)
+        J[r, 3 * i], J[r, 3 * i + 1], J[r, 3 * i + 2] = g0, g1, g2
+        if has:
+            J[r, 3 * j], J[r, 3 * j + 1], J[r, 3 * j + 2] = g3, g4, g5
+    return c, J
+
+
+def _turned(X: np.ndarray, TH: np.ndarray, P: Plan, c: np.ndarray, J: np.ndarray) -> None:
+    """The rows of a disc against a polygon that turns (``P.turned``, engine.joint_contacts),
+    rewritten in place in c and J: the disc's centre's distance from the polygon where it is
+    now, less where the step began, plus the gap there. With d = x_disc - x_poly and the
+    feature's outward normal m = R(theta) m_local:
+
+    * a face, dist = m . d - m_local . v: d dist / d theta = m x d;
+    * a corner v, e = d - R(theta) v, dist = |e|, m = e / |e|: d dist / d theta =
+      -(R(theta) v) x m.
+
+    The row's normal (from the other to the body) is m, or -m when the body is the polygon;
+    its contact point is the disc's centre less its radius along m, which the slip row
+    (along t = (-n_y, n_x)) turns about."""
+    rows = P.turned
+    has = P.has[rows]
+    Xa, Xb = X[P.a[rows]], X[P.bc[rows]]
+    ta = TH[P.a[rows]]
+    tb = np.where(has, TH[P.bc[rows]], 0.0)
+    mine = P.turn[rows] > 0  # the body is the polygon
+    Xp = np.where(mine[:, None], Xa, Xb)
+    Xd = np.where(mine[:, None], Xb, Xa)
+    tp = np.where(mine, ta, tb)
+    Rp = np.where(mine[:, None], P.refb[rows], P.refo[rows])
+    Rd = np.where(mine[:, None], P.refo[rows], P.refb[rows])
+    rp = np.where(mine, P.thb[rows], P.tho[rows])
+    start = _local(Rd - Rp, rp)
+    dist, mx, my, dth, dx, dy = _polygon(P, rows, Xd - Xp, tp, start)
+    dist0 = _polygon(P, rows, Rd - Rp, rp, start)[0]
+    sg = np.where(mine, -1.0, 1.0)
+    nx, ny = sg * mx, sg * my
+    rd = P.radius[rows]
+    pdx, pdy = -rd * mx, -rd * my  # the contact point less the disc's centre
+    ppx, ppy = dx + pdx, dy + pdy  # ... less the polygon's centre
+    rbx, rby = np.where(mine, ppx, pdx), np.where(mine, ppy, pdy)
+    rox, roy = np.where(mine, pdx, ppx), np.where(mine, pdy, ppy)
+    normal = P.kind[rows] == CN
+    g = np.zeros((6, len(rows)))
+    c[rows[normal]] = (P.gap[rows] + dist - dist0)[normal]
+    g[0], g[1], g[3], g[4] = nx, ny, -nx, -ny
+    g[2] = np.where(mine, dth, 0.0)
+    g[5] = np.where(mine, 0.0, dth)
+    slip = ~normal
+    tx, ty = -ny[slip], nx[slip]
+    g[0, slip], g[1, slip] = tx, ty
+    g[2, slip] = rbx[slip] * ty - rby[slip] * tx
+    g[3, slip], g[4, slip] = -tx, -ty
+    g[5, slip] = -(rox[slip] * ty - roy[slip] * tx)
+    a3 = 3 * P.a[rows]
+    J[rows, a3], J[rows, a3 + 1], J[rows, a3 + 2] = g[0], g[1], g[2]
+    on = np.flatnonzero(has)
+    b3 = 3 * P.b[rows[on]]
+    J[rows[on], b3], J[rows[on], b3 + 1], J[rows[on], b3 + 2] = g[3, on], g[4, on], g[5, on]
 
 
 def _local(d: np.ndarray, theta: np.ndarray) -> np.ndarray:

@@ -79,8 +79,10 @@ MAX_ITERATIONS = 25
 class JointSolver:
     """The World's links and joints as rows, and the correction of a step for them."""
 
-    def __init__(self, links: list[Link], row_of: Any) -> None:
+    def __init__(self, links: list[Link], row_of: Any, fast: bool = False) -> None:
         self.links = links
+        #: The rows' values and gradients by the loop kernel (engine.joint_rows.rows_loop).
+        self.fast = fast
         self.pins = [k for k in links if isinstance(k, Pin) and k.holds]
         self.pin_rows = np.array([row_of(p.body) for p in self.pins], dtype=np.intp)
         self.pin_points = np.array([tuple(p.point) for p in self.pins], dtype=float).reshape(-1, 2)
@@ -230,7 +232,7 @@ class JointSolver:
 
     def _eval(self, X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.ndarray]:
         """Each row's value c and gradient J (engine.joint_rows)."""
-        return evaluate(X, TH, P)
+        return evaluate(X, TH, P, self.fast)
 
     def resolve(
         self,

@@ -176,6 +176,7 @@ MODULES = (
     "engine.sweep_paths",
     "engine.manifold_polygon",
     "engine.manifold",
+    "engine.joint_rows",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}

@@ -525,8 +525,12 @@ def _solve_links(
     past what a step can hold."""
     solver = state.link_solver
     if solver is None:
-        kind = JointSolver if state.jointed else LinkSolver
-        solver = state.link_solver = kind(state.links, lambda b: store.row(b.slot))
+        row_of = lambda b: store.row(b.slot)  # noqa: E731
+        solver = state.link_solver = (
+            JointSolver(state.links, row_of, state.kernels == "fast")
+            if state.jointed
+            else LinkSolver(state.links, row_of)
+        )
     w = np.where(store.kinematic, 0.0, 1.0 / store.mass)
     if isinstance(solver, JointSolver):
         touch = _touch(state, store, solver, x1)

@@ -1,0 +1,153 @@
+"""The joint solver's loop kernel (engine.joint_rows' ``rows_loop``) against its numpy twin.
+
+Each row's value c and its gradient's row of J come from the same products in the same order,
+so the two agree to 1e-12 relative on random rows of every kind (a point two bodies share, a
+distance, an angle, a motor, a soft weld's, a contact's normal and slip), to a body or to the
+world, at random positions and angles; and a whole step of jointed scenes (a chain of hinges,
+a car on its motor, the pinball's flipper knocked by a ball) reads the same on both paths.
+Without numba the kernel runs as the plain Python it is written in (``LoopKernel.py``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import demos.pinball as pb
+from engine import Body, Polygon, Vector, World, kernels
+from engine.forces import Gravity
+from engine.joint_rows import CT, Plan, _rows, evaluate, rows_loop
+from engine.joints import Hinge
+from engine.kernels import LoopKernel
+
+COMPILED = kernels.available()
+seeds = st.integers(0, 2**32 - 1)
+
+
+@pytest.fixture(autouse=True)
+def _kernels_run(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without numba, a kernel's call runs its plain Python (the same loop, uncompiled)."""
+    if not COMPILED:
+        monkeypatch.setattr(LoopKernel, "fast", property(lambda self: self.py))
+
+
+def close(x: np.ndarray, y: np.ndarray, rel: float = 1e-12) -> bool:
+    """Equal to ``rel`` relative, against the largest magnitude of either."""
+    scale = max(1.0, float(np.abs(x).max(initial=0.0)), float(np.abs(y).max(initial=0.0)))
+    return bool(np.all(np.abs(np.asarray(x) - np.asarray(y)) <= rel * scale))
+
+
+def random_plan(seed: int) -> tuple[np.ndarray, np.ndarray, Plan]:
+    """Positions (m, 2) and angles (m,) of m joined bodies, and R rows of every kind among
+    them: each to another body or (a fifth of them) to the world, anchors and bounds, and a
+    contact's normal, lever arms, reference places and gap."""
+    rng = np.random.default_rng(seed)
+    m = int(rng.integers(1, 6))
+    R = int(rng.integers(1, 24))
+    X = rng.uniform(-50.0, 50.0, (m, 2))
+    TH = rng.uniform(-7.0, 7.0, m)
+    kind = rng.integers(0, CT + 1, R).astype(np.intp)
+    a = rng.integers(0, m, R).astype(np.intp)
+    b = rng.integers(0, m, R).astype(np.intp)
+    world = (rng.random(R) < 0.2) | (a == b)
+    b[world] = -1
+    angle = rng.uniform(0.0, 2.0 * math.pi, R)
+    normal = np.stack([np.cos(angle), np.sin(angle)], 1)
+    touch = (
+        normal,
+        rng.uniform(-2.0, 2.0, (R, 2)),  # the contact point less the body's centre
+        rng.uniform(-2.0, 2.0, (R, 2)),  # ... less the other's
+        X[a] + rng.uniform(-0.1, 0.1, (R, 2)),  # where the body was
+        np.where(world[:, None], 0.0, X[np.maximum(b, 0)] + rng.uniform(-0.1, 0.1, (R, 2))),
+        TH[a] + rng.uniform(-0.2, 0.2, R),
+        np.where(world, 0.0, TH[np.maximum(b, 0)] + rng.uniform(-0.2, 0.2, R)),
+        rng.uniform(-0.05, 0.05, R),  # the gap
+        np.zeros(R, dtype=np.int8),
+        np.full(R, -1, dtype=np.intp),
+        np.zeros(R),
+    )
+    # A distance row whose two anchors meet (length 0) takes the twin's guard too.
+    aa = rng.uniform(-3.0, 3.0, (R, 2))
+    ab = rng.uniform(-3.0, 3.0, (R, 2))
+    bound = rng.uniform(0.0, 4.0, R)
+    return X, TH, Plan(kind, bound, a, b, aa, ab, touch, 3 * m)
+
+
+@settings(max_examples=60, deadline=None)
+@given(seeds)
+def test_rows_loop_is_its_twin(seed: int) -> None:
+    X, TH, P = random_plan(seed)
+    want_c, want_J = _rows(X, TH, P)
+    got_c, got_J = rows_loop.fast(
+        X, TH, P.kind, P.bound, P.a, P.b, P.aa, P.ab, P.n, P.rbod, P.roth, P.refb, P.refo,
+        P.thb, P.tho, P.gap, P.width,
+    )  # fmt: skip
+    assert close(got_c, want_c)
+    assert close(got_J, want_J)
+    # Each row touches the columns of its own bodies only.
+    assert np.array_equal(got_J != 0.0, want_J != 0.0)
+
+
+def test_a_distance_of_zero_takes_the_guard() -> None:
+    """Two anchors at one point: the distance row's gradient is 0 (not nan) on both paths."""
+    X, TH = np.array([[0.0, 0.0], [1.0, 0.0]]), np.zeros(2)
+    z2, z1 = np.zeros((1, 2)), np.zeros(1)
+    touch = (z2, z2, z2, z2, z2, z1, z1, z1, np.zeros(1, np.int8), np.full(1, -1), z1)
+    P = Plan(np.array([2]), np.array([0.5]), np.array([0]), np.array([1]),
+             np.array([[0.5, 0.0]]), np.array([[-0.5, 0.0]]), touch, 6)  # fmt: skip
+    for fast in (False, True):
+        c, J = evaluate(X, TH, P, fast)
+        assert c[0] == -0.5
+        assert np.isfinite(J).all() and not J[0, :2].any()
+
+
+def chain(path: str) -> World:
+    """Five planks of 1 m hinged end to end from the world at the origin, a motor with limits
+    at the top, dropped from horizontal."""
+    world = World(kernels=path)
+    world.add_force(Gravity((0.0, -9.81)))
+    last = world.static_body
+    for k in range(5):
+        plank = Body(Vector(0.5 + k, 0.0), Vector(0.0, 0.0), Vector(0.0, 0.0), mass=1.0,
+                     shape=Polygon.box(1.0, 0.1))  # fmt: skip
+        world.add(plank)
+        if k == 0:
+            world.add_link(Hinge(plank, last, (0.0, 0.0), limits=(-1.0, 0.2), motor_speed=2.0,
+                                 max_torque=3.0))  # fmt: skip
+        else:
+            world.add_link(Hinge(plank, last, (float(k), 0.0)))
+        last = plank
+    return world
+
+
+def flipper(path: str) -> World:
+    """The pinball's left flipper and a ball thrown onto it as the key is pressed."""
+    world = World(integrator="auto", kernels=path)
+    world.add_force(Gravity((0.0, -pb.GRAVITY)))
+    _, hinge = pb.add_flipper(world, -1)
+    pb.drive(hinge, -1, True)
+    pivot = Vector(*pb.LEFT_PIVOT)
+    ball = pb.add_ball(world, (pivot.x + 0.6 * pb.FLIPPER_LENGTH, pivot.y + 20.0))
+    ball.vel = Vector(0.0, -300.0)
+    return world
+
+
+@pytest.mark.parametrize("scene", [chain, flipper])
+def test_jointed_scenes_read_the_same_on_both_paths(scene: Any) -> None:
+    """Steps of a falling chain on a motor at its limit, and of a ball meeting a flipper as it
+    swings: every body's place, speed, angle and spin agree on both paths (to 1e-9 of the
+    scene: a few steps, each a function of its inputs), and the joints hold on both."""
+    worlds = [scene("numpy"), scene("fast")]
+    assert [w.kernels for w in worlds] == ["numpy", "fast"]
+    for _ in range(12):
+        for w in worlds:
+            w.step(1 / 120)
+        a, b = (w.bodies for w in worlds)
+        for p, q in zip(a, b, strict=True):
+            assert close(np.array([*p.pos, *p.vel, p.angle, p.angular_velocity]),
+                         np.array([*q.pos, *q.vel, q.angle, q.angular_velocity]), 1e-9)  # fmt: skip
