@@ -467,6 +467,29 @@ def _counts(group: list[tuple[float, float, int]], measured: Sequence[int]) -> s
     return ", ".join(map(str, ks))
 
 
+def _level_spot(
+    text: str, area: pygame.Rect, py: int, series: list[list[tuple[float, float, int]]]
+) -> tuple[str, str, tuple[int, int]]:
+    """A target's label and where it goes (the text, a draw_text anchor and point): beside its
+    dashed line at ``py``, above it and then below, as far right as no series' line or dot
+    (``series``: their dots in px, in order) crosses it; if the whole label fits nowhere, its
+    part before the colon ("1 cm") the same way; else at the right end, above."""
+    dots = [pygame.Rect(round(x) - 6, round(y) - 6, 12, 12) for m in series for x, y, _ in m]
+    lines = [(p[:2], q[:2]) for m in series for p, q in zip(m[:-1], m[1:], strict=True)]
+    texts = [text] + ([text.split(":")[0] + " target"] if ":" in text else [])
+    for label in texts:
+        width = font(16).size(label)[0]
+        for anchor, y in (("bottomright", py - 2), ("topright", py + 3)):
+            for x in range(area.right - 6, area.left + 6 + width - 1, -4):
+                rect = font(16).render(label, True, MUTED).get_rect(**{anchor: (x, y)})
+                rect = rect.inflate(4, 2)
+                if not area.contains(rect) or rect.collidelist(dots) >= 0:
+                    continue
+                if not any(rect.clipline(p, q) for p, q in lines):
+                    return label, anchor, (x, y)
+    return text, "bottomright", (area.right - 6, py - 2)
+
+
 def _label_dots(
     surface: pygame.Surface,
     area: pygame.Rect,
@@ -625,13 +648,6 @@ def draw_contacts(
             py = round(float(chart.to_px(1.0, panel.level)[1]))
             for x in range(a.left + 2, a.right - 2, 12):
                 pygame.draw.line(surface, MUTED, (x, py), (min(x + 6, a.right - 2), py), 1)
-        taken: list[pygame.Rect] = []
-        if panel.level is not None:  # its label is kept clear of the dots' labels
-            where = (a.right - 6, py - 2)
-            taken.append(draw_text(surface, panel.level_label, where, 16, MUTED, "bottomright"))
-        if panel.zero and 0.0 in values:
-            where = (a.left + 6, a.bottom - 4)
-            taken.append(draw_text(surface, panel.zero, where, 16, INK, "bottomleft"))
         labelled: list[tuple[Color, list[tuple[float, float, int]]]] = []
         for name in solvers:
             series = sorted((r for r in mine if r.solver == name), key=lambda r: r.iterations)
@@ -648,6 +664,13 @@ def draw_contacts(
                 for x, y, r in zip(dot_x, dot_y, series, strict=True)
             ]
             labelled.append((SOLVER_COLORS[name], marks))
+        taken: list[pygame.Rect] = []
+        if panel.level is not None:  # its label is kept clear of the lines and dots' labels
+            label, anchor, where = _level_spot(panel.level_label, a, py, [m for _, m in labelled])
+            taken.append(draw_text(surface, label, where, 16, MUTED, anchor))
+        if panel.zero and 0.0 in values:
+            where = (a.left + 6, a.bottom - 4)
+            taken.append(draw_text(surface, panel.zero, where, 16, INK, "bottomleft"))
         _label_dots(surface, a, labelled, taken)
         cap_y = top + panel_h + 6
         for row, line in enumerate(captions[i]):

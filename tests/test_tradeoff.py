@@ -20,6 +20,7 @@ from demos.tradeoff import (
     SOLVER_COLORS,
     TAKES,
     _hidden_under,
+    _level_spot,
     draw_contacts,
     draw_work_precision,
 )
@@ -383,6 +384,32 @@ def test_contacts_chart_labels_each_dot_with_its_iterations() -> None:
     # In the series' colour: the changed pixels are blue, drawn on white.
     changed = tens[:, 66:bottom][inside].astype(float)
     assert changed[:, 2].mean() > changed[:, 0].mean() + 40
+
+
+def test_a_targets_label_keeps_clear_of_the_lines_that_cross_it() -> None:
+    """The dashed target's label sits beside its line where no series' line or dot crosses
+    it: at the right end when nothing is there; left of a line that crosses the line near
+    the right end; shortened to "1 cm target" where the whole label fits nowhere."""
+    from engine.render import font, init_headless
+
+    init_headless()
+    area, py = pygame.Rect(0, 0, 300, 300), 150
+    text = "1 cm: the issue's, by 60 s"
+
+    def rect(label: str, anchor: str, where: tuple[int, int]) -> pygame.Rect:
+        return font(16).render(label, True, (0, 0, 0)).get_rect(**{anchor: where})
+
+    assert _level_spot(text, area, py, []) == (text, "bottomright", (294, 148))
+    crossing = [[(270.0, 250.0, 1), (270.0, 50.0, 4)]]  # a line through the target's, right
+    label, anchor, where = _level_spot(text, area, py, crossing)
+    assert label == text and not rect(label, anchor, where).clipline((270, 250), (270, 50))
+    assert rect(label, anchor, where).right < 270
+    # Lines at a third and two thirds across: no 135 px gap, but a 90 px one for the short.
+    two = [[(100.0, 250.0, 1), (100.0, 50.0, 4)], [(200.0, 250.0, 1), (200.0, 50.0, 4)]]
+    label, anchor, where = _level_spot(text, area, py, two)
+    assert label == "1 cm target"
+    box = rect(label, anchor, where)
+    assert not box.clipline((100, 250), (100, 50)) and not box.clipline((200, 250), (200, 50))
 
 
 # -- the pendulum panel: energy over many periods against cost, per method --------------------
