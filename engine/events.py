@@ -34,6 +34,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from . import kernels
 from .impact import TOUCH
 from .vector import Vector
 
@@ -122,11 +123,102 @@ def _isin(a: np.ndarray, sorted_b: np.ndarray) -> np.ndarray:
     return sorted_b[pos] == a
 
 
+def _merge(
+    prev: np.ndarray,
+    touched: np.ndarray,
+    opened: np.ndarray,
+    resting: np.ndarray,
+    sensing: np.ndarray,
+    exact: np.ndarray,
+) -> tuple[np.ndarray, ...]:
+    """The keys a step's ledger looks at (sorted, once each: the contacts open before it
+    ``prev``, those its reports ``touched``, those held at rest ``resting`` and inside sensors
+    ``sensing``; all sorted but ``touched``), and of each: open after the reports (``opened``
+    for one touched, else open before), a sensor's (in ``exact``), held now (resting or
+    sensing), inside a sensor now."""
+    cand = _unique(np.concatenate([prev, touched, resting, sensing]))
+    after = _isin(cand, prev)
+    if len(touched):
+        after[np.searchsorted(cand, touched)] = opened
+    sensed = _isin(cand, sensing)
+    return cand, after, _isin(cand, exact), _isin(cand, resting) | sensed, sensed
+
+
+def _sample_merge() -> tuple[object, ...]:
+    """The smallest call of ``merge_loop``: one contact open, one reported, one resting."""
+    k = np.array([5], dtype=np.int64)
+    return k, np.array([7], dtype=np.int64), np.array([True]), k, k[:0], k[:0]
+
+
+@kernels.loop(sample=_sample_merge)
+def merge_loop(
+    prev: np.ndarray,
+    touched: np.ndarray,
+    opened: np.ndarray,
+    resting: np.ndarray,
+    sensing: np.ndarray,
+    exact: np.ndarray,
+) -> tuple[np.ndarray, ...]:
+    """``_merge`` as one walk over the five sorted lists at once (``touched`` sorted here,
+    with its flags): each key once, in order, with its flags as it passes."""
+    order = np.argsort(touched, kind="mergesort")
+    t_keys, t_open = touched[order], opened[order]
+    np_, nt, nr, ns = len(prev), len(t_keys), len(resting), len(sensing)
+    total = np_ + nt + nr + ns
+    cand = np.empty(total, dtype=np.int64)
+    after = np.zeros(total, dtype=np.bool_)
+    is_exact = np.zeros(total, dtype=np.bool_)
+    final = np.zeros(total, dtype=np.bool_)
+    sensed = np.zeros(total, dtype=np.bool_)
+    i = j = k = m = e = 0
+    count = 0
+    while i < np_ or j < nt or k < nr or m < ns:
+        # The least key at the head of any list not yet spent.
+        key = np.int64(0)
+        first = True
+        if i < np_:
+            key, first = prev[i], False
+        if j < nt and (first or t_keys[j] < key):
+            key, first = t_keys[j], False
+        if k < nr and (first or resting[k] < key):
+            key, first = resting[k], False
+        if m < ns and (first or sensing[m] < key):
+            key = sensing[m]
+        was = False
+        while i < np_ and prev[i] == key:
+            was = True
+            i += 1
+        # A key reported: open or not after the reports (each once: ``state`` is a dict).
+        while j < nt and t_keys[j] == key:
+            was = t_open[j]
+            j += 1
+        held = False
+        while k < nr and resting[k] == key:
+            held = True
+            k += 1
+        inside = False
+        while m < ns and sensing[m] == key:
+            inside = True
+            m += 1
+        while e < len(exact) and exact[e] < key:
+            e += 1
+        cand[count] = key
+        after[count] = was
+        is_exact[count] = e < len(exact) and exact[e] == key
+        final[count] = held or inside
+        sensed[count] = inside
+        count += 1
+    return cand[:count], after[:count], is_exact[:count], final[:count], sensed[:count]
+
+
 class ContactLedger:
     """The contacts open after the last step, and the events that opened and closed them.
 
     ``settle`` takes a step's raw reports and what the solvers hold at rest now; the World
     hands it ``gaps``, a function from keys to their gaps now and the slack each may keep.
+    The keys it looks at are merged by ``_merge`` (numpy) or, on the fast path, by the loop
+    kernel ``merge_loop``: a pile keeps thousands open, and the twin's sorts and searches of
+    them were most of the ledger's array calls.
     """
 
     def __init__(self) -> None:
@@ -139,6 +231,8 @@ class ContactLedger:
         # Ends the solvers reported for contacts still within their slack: if the contact
         # then parts with nothing else in between, this end, with its moment, is the one.
         self.held: dict[int, Spec] = {}
+        #: Merge the keys by the loop kernel ``merge_loop`` (the fast path, engine.kernels).
+        self.fast = False
 
     def state(self) -> tuple[Any, ...]:
         """A copy of the open contacts and the ends held for them (what a snapshot holds)."""
@@ -187,7 +281,7 @@ class ContactLedger:
             return
         resting = _unique(resting)
         sensing = _unique(sensing)
-        exact = _unique(np.concatenate([self.exact, sensing]))
+        exact = _unique(np.concatenate([self.exact, sensing])) if len(sensing) else self.exact
         state: dict[int, bool] = {}
         if raw:
             # Time order (stable: a bounce begins, then ends), within the step (a time the
@@ -223,13 +317,15 @@ class ContactLedger:
                 elif s:
                     held[k] = spec  # still within the slack: held, in case it parts
         touched = np.array(list(state), dtype=np.int64)
-        cand = _unique(np.concatenate([prev, touched, resting, sensing]))
-        after = _isin(cand, prev)
-        if state:
-            where = np.searchsorted(cand, touched)
-            after[where] = np.array(list(state.values()), dtype=bool)
-        is_exact = _isin(cand, exact)
-        final = _isin(cand, resting) | _isin(cand, sensing)
+        opened = np.array(list(state.values()), dtype=bool)
+        if self.fast:
+            cand, after, is_exact, final, sensed = merge_loop(
+                prev, touched, opened, resting, sensing, exact
+            )
+        else:
+            cand, after, is_exact, final, sensed = _merge(
+                prev, touched, opened, resting, sensing, exact
+            )
         need = after & ~final & ~is_exact
         if need.any():
             gap, slack = gaps(cand[need])
@@ -242,7 +338,7 @@ class ContactLedger:
             self.ended.append(held.pop(k) if k in held else (t_end, k, False, None))
         self.ended.sort(key=lambda s: s[0])
         self.keys = cand[final]
-        self.exact = self.keys[_isin(self.keys, sensing)]
+        self.exact = cand[final & sensed]
         if held:
             # Held ends are void for contacts the solvers hold at rest again, or gone.
             keys = np.array(list(held), dtype=np.int64)

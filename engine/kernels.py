@@ -177,6 +177,7 @@ MODULES = (
     "engine.manifold_polygon",
     "engine.manifold",
     "engine.joint_rows",
+    "engine.events",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}

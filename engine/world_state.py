@@ -89,6 +89,7 @@ class WorldState:
         # on_contact handlers: (target, begin, end, post_solve).
         self.handlers: list[tuple[Any, Any, Any, Any]] = []
         self.events = WorldEvents()  # the contacts kept open, and each step's events
+        self.events.ledger.fast = kernels == "fast"
         self.contact_dv: np.ndarray | None = None  # velocity change by the static contacts
         # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
         self.targets: dict[Body, Any] = {}
