@@ -102,14 +102,37 @@ class Plan:
         width: int,
         polygons: Polygons | None = None,
     ) -> None:
-        self.kind, self.bound, self.a, self.b = kind, bound, a, b
-        self.aa, self.ab = aa, ab
         # A contact row's normal, contact points less the centres, where the body and the
         # other were (position, angle) as the step ended (began, for a disc and a polygon),
         # its gap, and a disc and a polygon's (Touch.turn, poly, radius).
-        self.touch = touch
-        self.n, self.rbod, self.roth, self.refb, self.refo, self.thb, self.tho, self.gap = touch[:8]
-        self.turn, self.poly, self.radius = touch[8:]
+        n, rbod, roth, refb, refo, thb, tho, gap, turn, poly, radius = touch
+        ints = np.stack([kind, a, b, turn, poly], 1).astype(np.int64)
+        floats = np.column_stack([bound, aa, ab, n, rbod, roth, refb, refo, thb, tho, gap, radius])
+        self._set(ints, floats, width, polygons)
+
+    @classmethod
+    def packed(
+        cls, ints: np.ndarray, floats: np.ndarray, width: int, polygons: Polygons | None
+    ) -> Plan:
+        """A plan of the rows' packed arrays: ``ints`` (rows, 5: kind, a, b, turn, poly) and
+        ``floats`` (rows, 19: bound, aa, ab, n, rbod, roth, refb, refo, thb, tho, gap,
+        radius; the pairs as two columns), as ``Plan`` packs them."""
+        plan = cls.__new__(cls)
+        plan._set(ints, floats, width, polygons)
+        return plan
+
+    def _set(
+        self, ints: np.ndarray, floats: np.ndarray, width: int, polygons: Polygons | None
+    ) -> None:
+        """Hold the packed arrays (what the loop kernel takes: two arguments, not sixteen,
+        whose unboxing cost more than its loop) and each field as a view of its columns."""
+        self.ints, self.floats = ints, floats
+        self.kind, self.a, self.b, self.turn, self.poly = (ints[:, k] for k in range(5))
+        f = floats
+        self.bound, self.aa, self.ab = f[:, 0], f[:, 1:3], f[:, 3:5]
+        self.n, self.rbod, self.roth = f[:, 5:7], f[:, 7:9], f[:, 9:11]
+        self.refb, self.refo = f[:, 11:13], f[:, 13:15]
+        self.thb, self.tho, self.gap, self.radius = f[:, 15], f[:, 16], f[:, 17], f[:, 18]
         self.polygons = polygons
         self.width = width
 
@@ -132,10 +155,7 @@ class Plan:
 
     def take(self, sel: np.ndarray) -> Plan:
         """The rows ``sel`` alone."""
-        return Plan(
-            self.kind[sel], self.bound[sel], self.a[sel], self.b[sel], self.aa[sel],
-            self.ab[sel], tuple(t[sel] for t in self.touch), self.width, self.polygons,
-        )  # fmt: skip
+        return Plan.packed(self.ints[sel], self.floats[sel], self.width, self.polygons)
 
 
 def evaluate(
@@ -146,10 +166,7 @@ def evaluate(
     stands, in place of its numpy twin ``_rows``; the rows of a disc against a polygon that
     turns are then rewritten by ``_turned`` on both paths."""
     if fast:
-        c, J = rows_loop(
-            X, TH, P.kind, P.bound, P.a, P.b, P.aa, P.ab, P.n, P.rbod, P.roth, P.refb, P.refo,
-            P.thb, P.tho, P.gap, P.width,
-        )  # fmt: skip
+        c, J = rows_loop(X, TH, P.ints, P.floats, P.width)
     else:
         c, J = _rows(X, TH, P)
     if len(P.turned):
@@ -231,54 +248,35 @@ def _rows(X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.ndarra
 def _sample_rows() -> tuple[object, ...]:
     """The smallest call of ``rows_loop``: a hinge's two rows to the world, a contact's two
     rows between its two bodies."""
-    f2, f1 = np.zeros((4, 2)), np.zeros(4)
-    i = np.array([0, 0, 1, 1], dtype=np.intp)
-    return (np.zeros((2, 2)), np.zeros(2), np.array([PX, PY, CN, CT], dtype=np.intp), f1,
-            i, np.array([-1, -1, 0, 0], dtype=np.intp), f2, f2, f2, f2, f2, f2, f2, f1, f1, f1,
-            6)  # fmt: skip
+    ints = np.array([[PX, 0, -1, 0, -1], [PY, 0, -1, 0, -1], [CN, 1, 0, 0, -1], [CT, 1, 0, 0, -1]])
+    return np.zeros((2, 2)), np.zeros(2), ints.astype(np.int64), np.zeros((4, 19)), 6
 
 
 @kernels.loop(sample=_sample_rows)
 def rows_loop(
-    X: np.ndarray,
-    TH: np.ndarray,
-    kind: np.ndarray,
-    bound: np.ndarray,
-    a: np.ndarray,
-    b: np.ndarray,
-    aa: np.ndarray,
-    ab: np.ndarray,
-    n: np.ndarray,
-    rbod: np.ndarray,
-    roth: np.ndarray,
-    refb: np.ndarray,
-    refo: np.ndarray,
-    thb: np.ndarray,
-    tho: np.ndarray,
-    gap: np.ndarray,
-    width: int,
+    X: np.ndarray, TH: np.ndarray, ints: np.ndarray, floats: np.ndarray, width: int
 ) -> tuple[np.ndarray, np.ndarray]:
-    """``_rows`` as a loop over the rows (the Plan's arrays by name): each row's value and
-    its six entries of J, with the twin's products in the twin's order."""
-    R = len(kind)
+    """``_rows`` as a loop over the rows of the Plan's packed arrays (``Plan.packed``): each
+    row's value and its six entries of J, with the twin's products in the twin's order."""
+    R = len(ints)
     c = np.zeros(R)
     J = np.zeros((R, width))
     for r in range(R):
-        i = a[r]
-        has = b[r] >= 0
-        j = b[r] if has else 0
+        k, i = ints[r, 0], ints[r, 1]
+        has = ints[r, 2] >= 0
+        j = ints[r, 2] if has else 0
+        f = floats[r]
         ta = TH[i]
         ca, sa = np.cos(ta), np.sin(ta)
-        ax, ay = aa[r, 0], aa[r, 1]
+        ax, ay = f[1], f[2]
         rax, ray = ca * ax - sa * ay, sa * ax + ca * ay
         tb = TH[j] if has else 0.0
         cb, sb = np.cos(tb), np.sin(tb)
-        bx, by = ab[r, 0], ab[r, 1]
+        bx, by = f[3], f[4]
         rbx = cb * bx - sb * by if has else 0.0
         rby = sb * bx + cb * by if has else 0.0
         dx = X[i, 0] + rax - (X[j, 0] + rbx if has else bx)
         dy = X[i, 1] + ray - (X[j, 1] + rby if has else by)
-        k = kind[r]
         g0 = g1 = g2 = g3 = g4 = g5 = 0.0
         if k == PX or k == SOFT_X:
             c[r] = dx
@@ -290,33 +288,33 @@ def rows_loop(
             length = np.hypot(dx, dy)
             safe = length if length > 0.0 else 1.0
             nx, ny = dx / safe, dy / safe
-            c[r] = length - bound[r]
+            c[r] = length - f[0]
             g0, g1, g2 = nx, ny, rax * ny - ray * nx
             g3, g4, g5 = -nx, -ny, rby * nx - rbx * ny
         elif k == ANGLE or k == SOFT_ANGLE or k == MOTOR:
-            c[r] = ta - tb - bound[r]
+            c[r] = ta - tb - f[0]
             g2, g5 = 1.0, -1.0
         elif k == CN:
-            nx, ny = n[r, 0], n[r, 1]
-            kb = rbod[r, 0] * ny - rbod[r, 1] * nx
-            ko = roth[r, 0] * ny - roth[r, 1] * nx
+            # (f: bound 0, aa 1-2, ab 3-4, n 5-6, rbod 7-8, roth 9-10, refb 11-12, refo 13-14,
+            # thb 15, tho 16, gap 17, radius 18)
+            nx, ny = f[5], f[6]
+            kb = f[7] * ny - f[8] * nx
+            ko = f[9] * ny - f[10] * nx
             other = 0.0
             if has:
-                other = (
-                    (X[j, 0] - refo[r, 0]) * nx + (X[j, 1] - refo[r, 1]) * ny + ko * (tb - tho[r])
-                )
+                other = (X[j, 0] - f[13]) * nx + (X[j, 1] - f[14]) * ny + ko * (tb - f[16])
             c[r] = (
-                gap[r] + (X[i, 0] - refb[r, 0]) * nx + (X[i, 1] - refb[r, 1]) * ny
-                + kb * (ta - thb[r]) - other
+                f[17] + (X[i, 0] - f[11]) * nx + (X[i, 1] - f[12]) * ny + kb * (ta - f[15])
+                - other
             )  # fmt: skip
             g0, g1, g2 = nx, ny, kb
             g3, g4, g5 = -nx, -ny, -ko
         elif k == CT:
-            tx, ty = -n[r, 1], n[r, 0]
+            tx, ty = -f[6], f[5]
             g0, g1 = tx, ty
-            g2 = rbod[r, 0] * ty - rbod[r, 1] * tx
+            g2 = f[7] * ty - f[8] * tx
             g3, g4 = -tx, -ty
-            g5 = -(roth[r, 0] * ty - roth[r, 1] * tx)
+            g5 = -(f[9] * ty - f[10] * tx)
         J[r, 3 * i], J[r, 3 * i + 1], J[r, 3 * i + 2] = g0, g1, g2
         if has:
             J[r, 3 * j], J[r, 3 * j + 1], J[r, 3 * j + 2] = g3, g4, g5

@@ -223,12 +223,23 @@ class JointSolver:
         )
 
     def _plan(self, link: np.ndarray, kind: np.ndarray, bound: np.ndarray) -> Plan:
-        """The rows as arrays by row, bodies by their place among the joints' bodies."""
-        i, j = self._ca[link], self._cb[link]
-        return Plan(
-            kind, bound, i, j, self._aa[link], self._ab[link],
-            tuple(t[link] for t in self._contact), 3 * len(self._bodies), self._polygons,
-        )  # fmt: skip
+        """The rows as arrays by row, bodies by their place among the joints' bodies: the
+        links' packed fields (``_pack``) taken by row, beside each row's kind and bound."""
+        li, lf = self._pack()
+        ints = np.column_stack([kind, li[link]])
+        floats = np.column_stack([bound, lf[link]])
+        return Plan.packed(ints, floats, 3 * len(self._bodies), self._polygons)
+
+    def _pack(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each link's (and contact's) fields as Plan.packed holds them, less a row's kind and
+        bound: (a, b, turn, poly) and (aa, ab, n, rbod, roth, refb, refo, thb, tho, gap,
+        radius)."""
+        n, rbod, roth, refb, refo, thb, tho, gap, turn, poly, radius = self._contact
+        ints = np.stack([self._ca, self._cb, turn, poly], 1).astype(np.int64)
+        floats = np.column_stack(
+            [self._aa, self._ab, n, rbod, roth, refb, refo, thb, tho, gap, radius]
+        )
+        return ints, floats
 
     def _eval(self, X: np.ndarray, TH: np.ndarray, P: Plan) -> tuple[np.ndarray, np.ndarray]:
         """Each row's value c and gradient J (engine.joint_rows)."""

@@ -83,10 +83,7 @@ def random_plan(seed: int) -> tuple[np.ndarray, np.ndarray, Plan]:
 def test_rows_loop_is_its_twin(seed: int) -> None:
     X, TH, P = random_plan(seed)
     want_c, want_J = _rows(X, TH, P)
-    got_c, got_J = rows_loop.fast(
-        X, TH, P.kind, P.bound, P.a, P.b, P.aa, P.ab, P.n, P.rbod, P.roth, P.refb, P.refo,
-        P.thb, P.tho, P.gap, P.width,
-    )  # fmt: skip
+    got_c, got_J = rows_loop.fast(X, TH, P.ints, P.floats, P.width)
     assert close(got_c, want_c)
     assert close(got_J, want_J)
     # Each row touches the columns of its own bodies only.
