@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import argparse
 import time
-import warnings
 from collections import deque
 from collections.abc import Sequence
 from typing import Any, NamedTuple
@@ -42,10 +41,10 @@ import numpy as np
 import pygame
 
 from demos.cli import Demo
+from demos.warned import step_noting
 from engine import Body, Box, Vector, World
 from engine.forces import Gravity
 from engine.render import EULER, INK, MUTED, PAPER, Camera, Plot, Scene, draw_text
-from engine.stability import StabilityWarning
 
 __all__ = [
     "BALLS",
@@ -226,16 +225,9 @@ class Pit:
         return warned if warned is not None and warned[0] <= self.world.t else None
 
     def step(self, dt: float) -> None:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", StabilityWarning)
-            start = time.perf_counter()
-            self.world.step(dt)
-            self.step_ms.append(1000.0 * (time.perf_counter() - start))
-        for w in caught:
-            if not issubclass(w.category, StabilityWarning):
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-            elif self._warned is None or self.world.t < self._warned[0]:
-                self._warned = (self.world.t, str(w.message))
+        start = time.perf_counter()
+        self._warned = step_noting(self.world, dt, self._warned)
+        self.step_ms.append(1000.0 * (time.perf_counter() - start))
         self.history.append(readout(self.world))
 
     def snapshot(self) -> tuple[Any, ...]:

@@ -42,7 +42,7 @@ from typing import Any, TextIO
 __all__ = ["SHARED", "Demo", "discover", "main", "number_option", "parse_size"]
 
 #: Modules in the demos package that are not demos.
-_NOT_DEMOS = frozenset({"cli", "games"})
+_NOT_DEMOS = frozenset({"cli", "games", "warned"})
 
 #: The options every demo's command line has (its own come after them).
 SHARED = (

@@ -61,7 +61,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -71,7 +70,8 @@ import pygame
 from numpy.typing import ArrayLike
 
 from demos.cli import Demo, number_option
-from engine import Body, Circle, Segment, StabilityWarning, Vector, World
+from demos.warned import step_noting
+from engine import Body, Circle, Segment, Vector, World
 from engine.forces import Gravity
 from engine.render import GRID, INK, MUTED, PAPER, Camera, Scene, draw_text
 from engine.world import WorldSnapshot
@@ -463,14 +463,8 @@ class Galton:
             self.poured += 1
         if due:
             self.balls.extend(self.world.add_all(due))
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", StabilityWarning)
-            self.world.step(dt)
-        for w in caught:  # the World's warning goes on the frame, not to stderr
-            if not issubclass(w.category, StabilityWarning):
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-            elif self.warning is None:
-                self.warning = (self.world.t, str(w.message))
+        # The World's warning goes on the frame, not to stderr.
+        self.warning = step_noting(self.world, dt, self.warning)
         if len(self.balls) > 1:
             depth = self.world.overlap()
             if depth > self.deepest()[1]:

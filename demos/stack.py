@@ -24,11 +24,13 @@ Everything is drawn by ``engine.render.draw_world``: awake boxes blue, asleep gr
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pygame
 
 from demos.cli import Demo
+from demos.warned import Warned, headline, step_noting
 from engine import Body, Plane, Polygon, Vector, World
 from engine.forces import Gravity
 from engine.render import INK, MUTED, PAPER, Camera, Scene, draw_text
@@ -222,11 +224,27 @@ class _StackScene(Scene):
             scale, ((w - scale * (x1 - x0)) / 2 - scale * x0, (h - m) + scale * y0)
         )
         self.asleep_at: float | None = None
+        #: The World's StabilityWarning, (time s, its text): on the frame from then on. The
+        #: World warns once in its life, and a restore does not undo that: the warning is kept
+        #: across restores, so a rerun from before it shows it at its moment again.
+        self.warning: Warned | None = None
 
     def step(self, dt: float) -> None:
-        self.world.step(dt)
+        self.warning = step_noting(self.world, dt, self.warning)
         if self.asleep_at is None and self.world.sleeping == len(self.boxes):
             self.asleep_at = self.world.t
+
+    #: The scene's own read-outs (beside its World) that a snapshot keeps.
+    kept: tuple[str, ...] = ("asleep_at",)
+
+    def snapshot(self) -> tuple[Any, ...]:
+        return self.world.snapshot(), tuple(getattr(self, name) for name in self.kept)
+
+    def restore(self, snapshot: tuple[Any, ...]) -> None:
+        world, kept = snapshot
+        self.world.restore(world)
+        for name, value in zip(self.kept, kept, strict=True):
+            setattr(self, name, value)
 
     def moved(self) -> np.ndarray:
         """How far each box is from where it was put (m)."""
@@ -244,7 +262,12 @@ class _StackScene(Scene):
         draw_text(surface, self.title, (x, 4 * s), round(22 * s))
         t = self.time(alpha)
         draw_text(surface, f"t = {t:4.2f} s", (w - x, 4 * s), round(22 * s), INK, "topright")
-        for k, line in enumerate(self.lines()):
+        lines = self.lines()
+        if self.warning is not None and self.warning[0] <= t + 1e-9:
+            # The World's warning takes the place of the scene's second line (what it is
+            # made of), where a teacher's frames show it.
+            lines[1:2] = [headline(self.warning)]
+        for k, line in enumerate(lines):
             draw_text(surface, line, (x, (32 + 18 * k) * s), round(15 * s), MUTED)
 
 
@@ -324,6 +347,7 @@ class TumblerScene(_StackScene):
     title = "A tumbler: 500 boxes, the walls turning 90 degrees a second"
     view = (-14.9, -14.9, 14.9, 14.9)  # the room turned 45 degrees fits
     walls: list[Body]
+    kept = (*_StackScene.kept, "deepest", "overlap")
 
     def make(self) -> tuple[World, list[Body]]:
         w, boxes, self.walls = tumbler()

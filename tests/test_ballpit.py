@@ -18,6 +18,7 @@ import pytest
 
 import demos.ballpit as ballpit
 from demos.cli import main
+from engine import StabilityWarning
 from engine.render import init_headless, iter_frames
 
 #: Balls in the tests' pit: ten rows and a bit.
@@ -190,7 +191,7 @@ def test_the_worlds_one_warning_shows_at_its_moment_in_a_rerun_from_a_snapshot(
         step(dt)
         if pit.world.steps == 5 and not told:
             told.append(True)
-            warnings.warn("past the solver", ballpit.StabilityWarning, stacklevel=2)
+            warnings.warn("past the solver", StabilityWarning, stacklevel=2)
 
     monkeypatch.setattr(pit.world, "step", once)
     snap = pit.snapshot()

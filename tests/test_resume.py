@@ -30,6 +30,7 @@ from demos import (
     galton,
     hinges,
     stability,
+    stack,
 )
 from engine import FixedStep, Vector, VirtualClock
 from engine.render import Scene, init_headless
@@ -56,6 +57,7 @@ SCENES: dict[str, Callable[[], Scene]] = {
     "ballpit": small_ballpit,
     **{f"galton/{name}": make for name, make in galton.DEMO.scenes.items()},
     **{f"hinges/{name}": make for name, make in hinges.DEMO.scenes.items()},
+    "stack/dominoes": stack.DominoScene,  # (the other stacks' boxes cost more, alike)
 }
 #: Scenes that do not resume yet, and why.
 

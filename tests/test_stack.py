@@ -73,3 +73,38 @@ def test_the_pyramid_frame_draws_sleeping_boxes_in_grey(pyramid: PyramidScene) -
     for box in pyramid.boxes[::20]:
         x, y = pyramid.camera.point((box.pos.x + 0.25, box.pos.y + 0.25))
         assert tuple(surface.get_at((round(x), round(y))))[:3] == ASLEEP
+
+
+def test_the_worlds_warning_is_on_the_frame_not_on_stderr() -> None:
+    """A tower on one contact iteration a step is past what the solver holds: the World's
+    StabilityWarning is drawn on the frame, from the moment it came, in place of the scene's
+    second line, and none reaches stderr; restored to a snapshot taken before it, the scene
+    draws it again from its moment (the World warns once in its life; the scene keeps it)."""
+    import warnings
+
+    from engine.render import marks
+
+    s = TowerScene()
+    s.build((640, 360))
+    s.world.contact_iterations = 1
+    saved = s.snapshot()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a warning printed would fail here
+        for _ in range(round(2.0 / s.dt)):
+            s.step(s.dt)
+    assert s.warning is not None and 0.0 < s.warning[0] <= 2.0
+
+    def texts() -> list[str]:
+        surface = pygame.Surface((640, 360))
+        s.draw(surface, 1.0)
+        return [m.text for m in marks.marks(surface)]
+
+    shown = texts()
+    line = f"the World warned at {s.warning[0]:.2f} s: this pile is past what 1 contact iterations"
+    assert any(t.startswith(line) for t in shown), shown
+    assert not any(t.startswith("(the issue asks") for t in shown)
+    s.restore(saved)
+    assert s.world.t == 0.0 and not any(t.startswith("the World warned") for t in texts())
+    while s.world.t < s.warning[0] - 1e-9:
+        s.step(s.dt)
+    assert any(t.startswith(line) for t in texts())
