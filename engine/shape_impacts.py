@@ -435,6 +435,18 @@ def retake(
     x[rows], angle = place(rows, when, start, end, pull, dt)
     q = q1.copy()
     q[rows] = angle
+    if walls is not None:
+        # A body placed by its impact with another may have passed a wall on the way there:
+        # its start motion brought it to the wall before the two met (a box knocked on
+        # against a wall it was turning into). Where the placed pose is deep in a collider
+        # it began the step apart from, the wall's moment along the start motion is the
+        # earlier impact, and places it.
+        got = late_wall_impacts(walls[0], rows, start, (x, v, q, w1), pull, store.radius, dt)
+        if got is not None:
+            np.minimum.at(first, *got)
+            when = first[rows]
+            x[rows], angle = place(rows, when, start, end, pull, dt)
+            q[rows] = angle
     # Where the rest of the step at the end velocities still ends deep (a body turning so
     # fast that it meets the wall again within the step: module text), it ends at the
     # moment of impact instead, losing the rest of the step's motion (Box2D's time of

@@ -706,3 +706,81 @@ def test_a_box_pushed_into_the_ceiling_by_another_stays_in_the_room() -> None:
         ],
     }
     run(spec)
+
+
+def test_a_polygon_knocked_on_into_a_wall_it_was_turning_into_stays_out_of_it() -> None:
+    # Found by the long scene fuzz (FUZZ_LONG=1): at step 6 the thin polygon (body 2, 9 kg,
+    # 6 mm from the right wall, turning at -77 rad/s toward it) is struck by the spinning
+    # 8.4 kg polygon behind it. The pair's impact was retaken at its moment (0.0094 s) on the
+    # start motions, and the polygon placed there 0.136 m into the wall: its own start motion
+    # reached the wall before the two met. The wall's moment, the earlier, now places it
+    # (engine.shape_impacts, ``retake``): it ends the step touching the wall.
+    spec = {
+        "half": (4.546275801218975, 4.115578676986017),
+        "walls": "room",
+        "wall_material": (0.777778317812019, 0.0),
+        "gravity": 0.0,
+        "steps": 60,
+        "snap": 0,
+        "kinematic": None,
+        "bodies": [
+            {
+                "kind": "capsule",
+                "geometry": (0.5916442123757829, 0.1),
+                "mass": 1.8334745924213043,
+                "restitution": 0.8505595029203568,
+                "friction": 0.6444984101954271,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 49.73973292451122,
+                "heading": -1.542756739296369,
+                "fixed": True,
+                "at": (1.9035221101630713, 2.3342192343960297),
+            },
+            {
+                "kind": "polygon",
+                "geometry": (
+                    [0.78125, 0.75, 0.34375, 0.8993278345358483, 0.6514455216901592, 1.0],
+                    0.5,
+                    0.1,
+                    0.0,
+                ),
+                "mass": 8.421710106135983,
+                "restitution": 0.8521328216097326,
+                "friction": 0.9399090108438946,
+                "angle": -2.435168987991175,
+                "spin": 0.0,
+                "speed": 54.56915472618115,
+                "heading": 0.0,
+                "fixed": False,
+                "at": (-0.9630547393400608, -0.5323576151071023),
+            },
+            {
+                "kind": "polygon",
+                "geometry": ([0.90625, 0.25, 0.5, 0.5], 0.2, 0.421875, 0.0),
+                "mass": 9.0,
+                "restitution": 0.00390625,
+                "friction": 0.015625,
+                "angle": 0.25,
+                "spin": 60.0,
+                "speed": 93.25,
+                "heading": 0.46875,
+                "fixed": False,
+                "at": (-2.3963431640916264, -3.398934464610234),
+            },
+            {
+                "kind": "box",
+                "geometry": (0.5, 1.0, 0.0),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-3.8296315888431924, 0.9009308096444633),
+            },
+        ],
+    }
+    run(spec)
