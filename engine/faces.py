@@ -28,6 +28,8 @@ from .impact import Pair
 from .manifold import polygon_distance
 
 __all__ = [
+    "behind_solid",
+    "solid_index",
     "Faces",
     "allowed_pairs",
     "compile_faces",
@@ -179,6 +181,58 @@ def compile_faces(colliders: list[Collider], indices: list[int]) -> Faces:
         filters,
         polygons,
     )
+
+
+def solid_index(faces: Faces) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The solid polygons' flat faces as arrays: each flat face's polygon (-1: none), and
+    each polygon's faces as a flat list with its start (P + 1,); made once per Faces."""
+    cached = faces.__dict__.get("_solid")
+    if cached is not None:
+        return cached  # type: ignore[no-any-return]
+    L = len(faces.p)
+    poly = np.full(L, -1, dtype=np.intp)
+    sizes = [len(cols) for cols in faces.polygons]
+    start = np.zeros(len(sizes) + 1, dtype=np.intp)
+    start[1:] = np.cumsum(sizes)
+    for k, cols in enumerate(faces.polygons):
+        poly[cols] = k
+    flat = (
+        np.concatenate(faces.polygons).astype(np.intp)
+        if faces.polygons
+        else np.zeros(0, dtype=np.intp)
+    )
+    faces.__dict__["_solid"] = out = (poly, start, flat)
+    return out
+
+
+def behind_solid(faces: Faces, X: np.ndarray, bi: np.ndarray, fj: np.ndarray) -> np.ndarray:
+    """Which (body, face) pairs are a solid polygon's flat face with the body's centre X[bi]
+    behind it but not behind it least of its polygon's faces: no contact of it. A face is
+    one-sided and a convex polygon's other faces lie behind it, so a ball beside (or below)
+    a polygon is behind its far faces, which it never meets: only its face of greatest
+    separation holds a centre that is inside (engine.pile_rows' ``_fronts`` for the rows;
+    this for the impacts, whose contact branch meets a face at once when the ball's centre is
+    behind it and the pull holds it there)."""
+    out = np.zeros(len(bi), dtype=bool)
+    if not faces.polygons or not len(bi):
+        return out
+    poly, start, flat = solid_index(faces)
+    L = len(faces.p)
+    line = np.flatnonzero(fj < L)
+    if not len(line):
+        return out
+    mine = line[poly[fj[line]] >= 0]
+    if not len(mine):
+        return out
+    x, f = X[bi[mine]], fj[mine]
+    d0 = dot(x - faces.p[f], faces.n[f])
+    back = np.flatnonzero(d0 < 0.0)
+    for q in back.tolist():
+        k = poly[f[q]]
+        cols = flat[start[k] : start[k + 1]]
+        best = float(dot(x[q] - faces.p[cols], faces.n[cols]).max())
+        out[mine[q]] = bool(d0[q] < best - 1e-9 * (1.0 + abs(best)))
+    return out
 
 
 def face_normals(faces: Faces, f: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from .faces import Faces, dot, face_normals
+from .faces import Faces, behind_solid, dot, face_normals
 from .impact import disc_hits, line_hits
 from .resting import project, rest_paths
 from .rotation import Rolling, Spin, grip, rolling
@@ -291,6 +291,9 @@ def first_hits(
     if len(disc):
         db, df = bi[disc], fj[disc] - L
         t[disc] = disc_hits(X[db], V[db], B[db], faces.c[df], faces.r[df] + r[db], T[db])
+    # A solid polygon's face a ball is behind, and not least behind of its polygon's, is
+    # none of its contacts (engine.faces.behind_solid).
+    t[behind_solid(faces, X, bi, fj)] = np.inf
     # The earliest impact of each body (ties: the last pair listed, deterministically).
     np.minimum.at(best, bi, t)
     win = np.flatnonzero((t == best[bi]) & (t < np.inf))

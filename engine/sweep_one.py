@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .faces import Faces
+from .faces import Faces, solid_index
 from .impact import Pair, disc_hit_one, line_hit_one
 from .rotation import Rolling, Spin, rolling
 from .sweep import MAX_IMPACTS, WEDGE_SIN, Paths, PushOut
@@ -225,8 +225,10 @@ def _paths_fast(
     velocities of those that turn under friction (``spins``, by place among the rows)."""
     none = np.zeros(1)
     th, om, q, al, rolls = (none, none, none, none, none == 1.0) if spins is None else spins
+    spoly, sstart, sflat = solid_index(faces)
     return paths_loop(  # type: ignore[no-any-return]
-        faces.p, faces.n, faces.rho, faces.two, faces.lo, faces.hi, faces.c, faces.r,
+        faces.p, faces.n, faces.rho, faces.two, faces.lo, faces.hi, spoly, sstart, sflat,
+        faces.c, faces.r,
         faces.e, faces.mu, rows, paths.x0, paths.v0, paths.B, paths.W, paths.radius,
         paths.restitution, paths.friction, paths.mass, resting, pb, pf, paths.dt, paths.t0,
         spins is not None, th, om, q, al, rolls,
@@ -260,6 +262,7 @@ def _path_one(
     and angular velocity at the end, else None)."""
     line_list, disc_list = faces.line_list, faces.disc_list
     L = len(line_list)
+    solid = solid_index(faces) if faces.polygons else None
     rest_before = rest
     touched = capped = False
     left = dt
@@ -295,6 +298,8 @@ def _path_one(
             if f == rest:
                 continue
             if f < L:
+                if solid is not None and _behind_solid_one(faces, solid, f, x):
+                    continue  # (engine.faces.behind_solid: no contact of it)
                 p, n, rho, two, lo, hi = line_list[f]
                 t, nrm = line_hit_one(x, vp, bp, p, n, rho + r, two, lo, hi, dur)
             else:
@@ -352,6 +357,26 @@ def _path_one(
         x, v = (float(Xt[0, 0]), float(Xt[0, 1])), (float(Vt[0, 0]), float(Vt[0, 1]))
     turned = None if turn is None else (th, om)
     return x, v, touched or rest >= 0 or rest_before >= 0, rest, capped, turned
+
+
+def _behind_solid_one(
+    faces: Faces, solid: tuple[np.ndarray, np.ndarray, np.ndarray], f: int, x: Pair
+) -> bool:
+    """``engine.faces.behind_solid`` for one body at x and one flat face f (the same
+    operations): a solid polygon's face it is behind, not least behind of its polygon's."""
+    poly, start, flat = solid
+    k = int(poly[f])
+    if k < 0:
+        return False
+    P, N = faces.p, faces.n
+    d0 = (x[0] - P[f, 0]) * N[f, 0] + (x[1] - P[f, 1]) * N[f, 1]
+    if not d0 < 0.0:
+        return False
+    best = -math.inf
+    for g in flat[start[k] : start[k + 1]].tolist():
+        d = (x[0] - P[g, 0]) * N[g, 0] + (x[1] - P[g, 1]) * N[g, 1]
+        best = d if d > best else best
+    return bool(d0 < best - 1e-9 * (1.0 + abs(best)))
 
 
 def _normal_one(faces: Faces, f: int, x: Pair) -> tuple[float, float, float]:

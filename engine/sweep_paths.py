@@ -29,7 +29,7 @@ def _sample_paths() -> tuple[object, ...]:
     one = np.ones(1)
     pair = np.array([[0.0, 0.0]])
     i = np.zeros(1, dtype=np.intp)
-    line = (pair, np.array([[0.0, 1.0]]), 0.0 * one, i == 0, -one, one)
+    line = (pair, np.array([[0.0, 1.0]]), 0.0 * one, i == 0, -one, one, i - 1, i[:1] * 0, i[:0])
     return (
         *line, np.zeros((0, 2)), np.zeros(0), one, one, i, np.array([[0.0, 0.1]]), pair,
         np.array([[0.0, -9.81]]), np.array([[0.0, -9.81]]), 0.1 * one, one, one, one, i - 1,
@@ -45,6 +45,9 @@ def paths_loop(
     ltwo: np.ndarray,
     llo: np.ndarray,
     lhi: np.ndarray,
+    spoly: np.ndarray,
+    sstart: np.ndarray,
+    sflat: np.ndarray,
     dc: np.ndarray,
     dr: np.ndarray,
     fe: np.ndarray,
@@ -80,7 +83,8 @@ def paths_loop(
     ``sqm``, ``sal``) and whether it turns under friction (``srolls``): ``_path_one``'s
     ``turn``.
 
-    The faces as ``Faces`` holds them (lines p, n, rho, two, lo, hi; discs c, r; e, mu), the
+    The faces as ``Faces`` holds them (lines p, n, rho, two, lo, hi; the solid polygons'
+    faces as ``engine.faces.solid_index`` gives them; discs c, r; e, mu), the
     World ``rows`` solved, the bodies' arrays by World row (x, v, B, W, radius, restitution,
     friction, mass, resting face), and the pairs (place in rows ``pb``, face ``pf``). A
     body that rests or comes to rest, meets a round face's quartic (its eigenvalues are
@@ -136,6 +140,19 @@ def paths_loop(
             for q in range(start[j], start[j + 1]):
                 f = flat[q]
                 snx, sny = 0.0, 0.0
+                if f < L and spoly[f] >= 0:
+                    # _behind_solid_one: a solid polygon's face it is behind, not least
+                    # behind of its polygon's, is none of its contacts.
+                    d0 = (x - lp[f, 0]) * ln[f, 0] + (y - lp[f, 1]) * ln[f, 1]
+                    if d0 < 0.0:
+                        kp = spoly[f]
+                        best = -inf
+                        for qs in range(sstart[kp], sstart[kp + 1]):
+                            g = sflat[qs]
+                            dg = (x - lp[g, 0]) * ln[g, 0] + (y - lp[g, 1]) * ln[g, 1]
+                            best = dg if dg > best else best
+                        if d0 < best - 1e-9 * (1.0 + abs(best)):
+                            continue
                 if f < L:
                     # line_hit_one(x, v, b, p, n, rho + r, two, lo, hi, dur)
                     px, py = lp[f, 0], lp[f, 1]

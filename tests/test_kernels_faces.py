@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine import Body, Box, Circle, Filter, Segment, Vector, World, kernels
+from engine import Body, Box, Circle, Filter, Polygon, Segment, Vector, World, kernels
 from engine.contacts import Contacts
 from engine.face_grid import FaceGrid
 from engine.face_looks import first_looks, grid_args, looks_loop, looks_ready, narrow, near
@@ -290,6 +290,20 @@ def solve_both(
         c = rng.uniform((2.0, 2.0), (18.0, 13.0))
         contacts.add(Circle(tuple(c), float(rng.uniform(0.2, 1.0)), restitution=0.8))
         points.append(c)
+    if kind == "polygons":
+        # Solid slabs, thin and thick, some turned (their far faces are behind a ball beside
+        # them: engine.faces.behind_solid), some rounded.
+        for _ in range(int(rng.integers(1, 4))):
+            c = rng.uniform((2.0, 2.0), (18.0, 13.0))
+            size = (float(rng.uniform(1.0, 6.0)), float(rng.choice([0.1, 0.5, 1.5])))
+            q = float(rng.uniform(0.0, np.pi))
+            u, w = (
+                np.array([np.cos(q), np.sin(q)]) * size[0] / 2,
+                np.array([-np.sin(q), np.cos(q)]) * size[1] / 2,
+            )
+            corners = [tuple(c + s * u + t * w) for s, t in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+            contacts.add(Polygon(corners, radius=float(rng.choice([0.0, 0.05])), friction=0.3))
+            points.append(c)
     faces = contacts.faces
     F = len(faces.owner)
     x0, v0, B, W, radius, rest, _, _ = bodies(rng, n, np.array(points), speed, F, inside=True)
@@ -337,7 +351,7 @@ def rng_spin(seed: int, n: int) -> tuple[np.ndarray, ...]:
 @given(
     seed=st.integers(0, 2**32 - 1),
     n=st.integers(1, 30),
-    kind=st.sampled_from(["box", "open"]),
+    kind=st.sampled_from(["box", "open", "polygons"]),
     speed=st.sampled_from([0.5, 5.0, 50.0]),
     dt=st.sampled_from([1 / 120, 1 / 30]),
     resting_share=st.sampled_from([0.0, 0.3]),
