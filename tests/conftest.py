@@ -16,3 +16,25 @@ os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
 settings.register_profile("dev", deadline=None)
 settings.register_profile("ci", deadline=None, derandomize=True, print_blob=True)
 settings.load_profile("ci" if os.environ.get("CI") else "dev")
+
+
+# Hypothesis draws its examples partly from the constants of the project's modules loaded so
+# far (hypothesis.internal.conjecture.providers: "local constants"), so a derandomized fuzz
+# test drew other examples after other tests had imported more of the project: its verdict
+# depended on which tests ran before it in its worker (pytest-xdist shares them out by
+# timing). Every module of the engine and the demos is imported here, before any test, so the
+# examples are the same whatever runs first.
+def _import_everything() -> None:
+    import importlib
+    import pkgutil
+
+    import demos
+    import engine
+
+    for package in (engine, demos):
+        for info in pkgutil.walk_packages(package.__path__, package.__name__ + "."):
+            if not info.name.endswith("__main__"):
+                importlib.import_module(info.name)
+
+
+_import_everything()
