@@ -74,6 +74,18 @@ def kinetic(bodies: list[Body]) -> float:
     return sum(0.5 * b.mass * (b.vel.x**2 + b.vel.y**2) for b in bodies)
 
 
+def momentum(bodies: list[Body]) -> np.ndarray:
+    """Total momentum (N s)."""
+    return sum((b.mass * vec(b.vel) for b in bodies), np.zeros(2))
+
+
+def walls_gave(world: World) -> np.ndarray:
+    """The momentum (N s) the colliders gave in the last step, as its events report it (the
+    impulses between bodies cancel in pairs)."""
+    hits = [e for e in world.began if not isinstance(e.collider, Body)]
+    return sum((vec(e.impulse) for e in hits), np.zeros(2))
+
+
 @pytest.mark.parametrize("path", PATHS)
 def test_a_ball_bounced_off_a_wall_meets_the_ball_behind_it(path: str) -> None:
     """The reported case: a, at x = 1.5 moving at 4 m/s toward a wall at x = 2, meets it when
@@ -142,8 +154,9 @@ def test_a_ball_bounced_off_a_slanted_wall_strikes_a_ball_off_centre(path: str) 
     w.add_collider(Segment(p - 6.0 * along, p + 6.0 * along, restitution=1.0))
     a, b = ball(xa0, va0, r, ma), ball(xb0, (0.0, 0.0), r, mb)
     w.add_all([a, b])
-    k0 = kinetic([a, b])
+    k0, p0 = kinetic([a, b]), momentum([a, b])
     w.step(dt)
+    assert np.allclose(momentum([a, b]) - p0, walls_gave(w), rtol=0.0, atol=TOL * 10)
     assert close(a.pos, want_a) and close(a.vel, va2)
     assert close(b.pos, want_b) and close(b.vel, vb2)
     assert abs(kinetic([a, b]) - k0) <= TOL * k0
@@ -183,9 +196,16 @@ def test_a_ball_dropped_on_a_floor_bounces_up_into_a_ball_above_within_a_step(pa
     w.add_collider(Segment((-5.0, 0.0), (5.0, 0.0), restitution=1.0))
     a, b = ball((0.0, ya0), (0.0, va0), r), ball((0.0, yb0), (0.0, 0.0), r)
     w.add_all([a, b])
+
+    def energy() -> float:
+        """Kinetic plus potential energy (J): e = 1 everywhere keeps it."""
+        return kinetic([a, b]) + g * (a.mass * a.pos.y + b.mass * b.pos.y)
+
+    e0 = energy()
     w.step(dt)
     assert close(a.pos, np.array([0.0, want_a[0]])) and close(a.vel, np.array([0.0, want_a[1]]))
     assert close(b.pos, np.array([0.0, want_b[0]])) and close(b.vel, np.array([0.0, want_b[1]]))
+    assert abs(energy() - e0) <= TOL * e0
     hit = [e for e in w.began if e.collider is b]
     assert len(hit) == 1 and abs(hit[0].time - t2) <= TOL
 
@@ -213,8 +233,11 @@ def test_two_balls_each_bounced_off_its_wall_meet_in_between(path: str) -> None:
         w.add_collider(Segment((x, -5.0), (x, 5.0), restitution=1.0))
     a, b = ball((-1.5, 0.0), (-4.0, 0.0), r, ma), ball((1.4, 0.0), (3.0, 0.0), r, mb)
     w.add_all([a, b])
-    k0 = kinetic([a, b])
+    k0, p0 = kinetic([a, b]), momentum([a, b])
     w.step(dt)
+    # The walls gave m_a 8 and -m_b 6 (N s); the impact's impulses cancel.
+    assert np.allclose(walls_gave(w), [8.0 - 18.0, 0.0], rtol=0.0, atol=TOL * 20)
+    assert np.allclose(momentum([a, b]) - p0, walls_gave(w), rtol=0.0, atol=TOL * 20)
     assert close(a.pos, np.array([want_a, 0.0])) and close(a.vel, np.array([ua, 0.0]))
     assert close(b.pos, np.array([want_b, 0.0])) and close(b.vel, np.array([ub, 0.0]))
     assert abs(kinetic([a, b]) - k0) <= TOL * k0
@@ -324,16 +347,13 @@ def test_balls_in_a_box_meet_as_the_exact_events_say(path: str, scene: Any) -> N
         w.add_collider(Segment((s, -long), (s, long), restitution=1.0))
     bodies = [ball(x[i], v[i], r[i], m[i]) for i in range(len(x))]
     w.add_all(bodies)
-    k0 = kinetic(bodies)
-    p0 = sum(b.mass * vec(b.vel) for b in bodies)
+    k0, p0 = kinetic(bodies), momentum(bodies)
     w.step(dt)
     for i, body in enumerate(bodies):
         assert np.allclose(vec(body.pos), wx[i], rtol=0.0, atol=1e-9), (i, body.pos, wx[i])
         assert np.allclose(vec(body.vel), wv[i], rtol=0.0, atol=1e-9), (i, body.vel, wv[i])
     assert abs(kinetic(bodies) - k0) <= TOL * k0
-    walls = [e for e in w.began if not isinstance(e.collider, Body)]
-    reported = sum((vec(e.impulse) for e in walls), np.zeros(2))
-    p1 = sum(b.mass * vec(b.vel) for b in bodies)
+    reported = walls_gave(w)
     scale = 1.0 + float(np.abs(wall_impulse).sum())
-    assert np.allclose(p1 - p0, reported, rtol=0.0, atol=TOL * scale)
+    assert np.allclose(momentum(bodies) - p0, reported, rtol=0.0, atol=TOL * scale)
     assert np.allclose(reported, wall_impulse, rtol=0.0, atol=1e-9 * scale)
