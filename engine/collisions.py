@@ -19,7 +19,9 @@ each stage in a module of its own:
 3. **The plan** (``plan``, here): one rule gives each pair to one of two solvers, as the step
    begins (below).
 4. **Impacts** (engine.pair_impacts): the pairs that are no pile's meet at their exact moments,
-   in time order, in rounds; a pile's bodies are moving walls to them.
+   in time order, in rounds; a pile's bodies are moving walls to them. A body the static
+   contacts bounced off a collider within the step is taken along its bent path, piece by
+   piece, with the pairs that path may bring within touch (engine.bent_paths).
 5. **Piles** (engine.pile): the bodies that rest on one another are stepped again from the
    step's start by Box2D v3's soft step (engine.soft), warm started from the last step's
    impulses.
@@ -56,6 +58,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .bent_paths import Bends, bends_of, bent_rows, new_pairs
 from .colliders import Circle
 from .joint_contacts import shapes_of
 from .manifold_kinds import Polygons
@@ -141,6 +144,7 @@ class Collisions:
         self.rmin = 0.0  # the smallest radius of a body that collides
         self._overlap = np.zeros(0)  # (N,) each body's deepest overlap / its radius
         self._still_speed = 0.0
+        self._reports = (0, 0)  # the static contacts' batches of reports in the step
 
     # -- bodies --------------------------------------------------------------------------------
     def changed(self, n: int) -> None:
@@ -485,6 +489,9 @@ class Collisions:
         self.rest_speed = 2.0 * dt * float(norm(P[live]).max())
         self._dt, self._t0 = dt, t0
         x_free = x1.copy()  # where each body's own path ends: what the pairs were found on
+        # A body that bounced off a collider took a bent path (engine.bent_paths): the
+        # impacts take it piece by piece, with the pairs its later pieces may meet.
+        bends, a, b = self._bent(a, b, island, x0, v0, x1, v1, A, dt, t0, store, contacts)
         x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
         self.moved = True
         impacts: list[tuple[np.ndarray, ...]] = []
@@ -495,7 +502,7 @@ class Collisions:
             # on rows, bouncing off the floor into the next) is given to the pile instead.
             loaded = bool((norm(P[a[exact]]) > 0.0).any())
             got = self._exact(
-                a[exact], b[exact], island, x, v, A, P, dt, store, contacts, spin, loaded
+                a[exact], b[exact], island, x, v, A, P, dt, store, contacts, spin, loaded, bends
             )
             if got is None:
                 handed = np.zeros(n, dtype=bool)
@@ -510,8 +517,9 @@ class Collisions:
                 got = ([], None)
                 if exact.any():
                     got = self._exact(
-                        a[exact], b[exact], island, x, v, A, P, dt, store, contacts, spin
-                    )
+                        a[exact], b[exact], island, x, v, A, P, dt, store, contacts, spin,
+                        bends=bends,
+                    )  # fmt: skip
                 assert got is not None
             impacts, kick = got
         touching = np.zeros(0, dtype=np.int64)
@@ -641,15 +649,18 @@ class Collisions:
         contacts: Contacts | None,
         spin: Spin | None,
         handover: bool = False,
+        bends: Bends | None = None,
     ) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray | None] | None:
         """``engine.pair_impacts.exact`` (the impacts of pairs not both in a pile, in place on
         (x, v)), counting its rounds and a capped step: the impacts and the pile's kick, or
         None when a crowd under load was handed over (its World rows in ``_handed``). The
         impacts turn the discs that turn (in place on ``spin``; one made when there was none
-        and an impact turned a body is kept in ``spun``)."""
+        and an impact turned a body is kept in ``spun``). ``bends``: the paths the static
+        contacts bent (engine.bent_paths); the contacts' reports of the bounces an impact
+        sent a body off before are dropped."""
         got = exact(
             a, b, island, x, v, A, P, dt, self._t0, store, contacts,
-            self.asleep, self._has_kin, handover, self.fast, spin,
+            self.asleep, self._has_kin, handover, self.fast, spin, bends,
         )  # fmt: skip
         if spin is None and got.spin is not None:
             self.spun = got.spin
@@ -660,7 +671,51 @@ class Collisions:
             assert got.handed is not None
             self._handed = got.handed
             return None
+        if got.cut is not None and contacts is not None:
+            contacts.forget(got.cut[0], self._t0 + got.cut[1], self._reports)
         return got.impacts, got.kick
+
+    def _bent(
+        self,
+        a: np.ndarray,
+        b: np.ndarray,
+        island: np.ndarray,
+        x0: np.ndarray,
+        v0: np.ndarray,
+        x1: np.ndarray,
+        v1: np.ndarray,
+        A: np.ndarray,
+        dt: float,
+        t0: float,
+        store: Any,
+        contacts: Contacts | None,
+    ) -> tuple[Bends | None, np.ndarray, np.ndarray]:
+        """The paths the static contacts bent in the step (engine.bent_paths; None if none),
+        and the pairs (a, b) with those appended that a bent path may bring within touch
+        (World rows, a < b), less those never to collide, with a shape (the soft step's), or
+        of two sleepers."""
+        search = self._search
+        if contacts is None or not contacts.began_arrays or search is None:
+            return None, a, b
+        bends = bends_of(
+            contacts.began_arrays, contacts.ended_arrays, x0, v0, x1, v1, A, store.radius,
+            store.mass, contacts.rest, dt, t0,
+        )  # fmt: skip
+        if bends is None:
+            return None, a, b
+        # The sweep's reports, before any the impacts add (``Contacts.record``).
+        self._reports = (len(contacts.began_arrays), len(contacts.ended_arrays))
+        na, nb = bent_rows(bends, search, A, dt, store, island, self._has_kin, self._plain)
+        n = len(x0)
+        keep = new_pairs(a, b, na, nb, n)
+        if len(self.apart):
+            keep &= ~np.isin(na.astype(np.int64) * n + nb, self.apart)
+        shaped = self._shapes(store).shaped
+        if shaped.any():
+            keep &= ~(shaped[na] | shaped[nb])
+        if self.asleep.any():
+            keep &= ~(self.asleep[na] & self.asleep[nb])
+        return bends, np.concatenate([a, na[keep]]), np.concatenate([b, nb[keep]])
 
     def _carried(self) -> Carried:
         """The impulses the last step's contacts carry (engine.pile), from this object's."""

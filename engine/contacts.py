@@ -362,10 +362,27 @@ class Contacts:
     ) -> None:
         """Report bounces found elsewhere (engine.collisions: a body sent into a wall by
         another): each begins and ends in the step, as a bounce here does. ``impulses``: the
-        bodies' changes of velocity, made changes of momentum here by their masses."""
+        bodies' changes of momentum (N s)."""
         if len(rows):
             self._began.append((rows, colliders, points, normals, impulses, times))
             self._ended.append((rows, colliders, points, normals, impulses, times))
+
+    def forget(
+        self, rows: np.ndarray, after: np.ndarray, upto: tuple[int, int] | None = None
+    ) -> None:
+        """Drop the reports of the bodies in ``rows`` (World rows) later than the World times
+        ``after`` (s): bounces they never reached, another body having sent them off their
+        paths first (engine.bent_paths). ``upto``: only among the first batches of
+        ``began`` and of ``ended``, as many as given (the sweep's, not those ``record``ed
+        since)."""
+        cutoff = np.full(len(self.rest), np.inf)
+        cutoff[rows] = after
+        upto = upto or (len(self._began), len(self._ended))
+        for events, count in zip((self._began, self._ended), upto, strict=True):
+            for k, batch in enumerate(events[:count]):
+                late = np.asarray(batch[5], dtype=float) > cutoff[np.asarray(batch[0])]
+                if late.any():
+                    events[k] = tuple(np.asarray(col)[~late] for col in batch)
 
     def quiet(self) -> None:
         """A step passed in which no body moved (all asleep): no events."""

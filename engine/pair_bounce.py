@@ -262,4 +262,8 @@ def wall_bounce(
     dv = v_new - v
     V[i] += dv
     X[i] += dv * (dt - t)[:, None]
-    contacts.record(U[i], faces.owner[f], x - nrm * r[i, None], nrm, dv, t0 + t)
+    # The event's impulse is the change of momentum, dv m = dv / w (none for a body no
+    # impulse moves, w = 0: a pile's, met as a moving wall, whose path the soft step takes).
+    wi = w[i]
+    impulse = dv / np.where(wi > 0.0, wi, np.inf)[:, None]
+    contacts.record(U[i], faces.owner[f], x - nrm * r[i, None], nrm, impulse, t0 + t)

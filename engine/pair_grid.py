@@ -10,6 +10,9 @@ at most max(|v0|, |v1|) + |A| dt (a bounce off a wall within the step never spee
 centre is then never farther from its end position than its ``reach``, that speed times dt,
 plus a margin (5% of its radius) for resting contacts about to close; two bodies can touch
 within the step only if their end positions are at most r_a + r_b + reach_a + reach_b apart.
+(That is the free path, which the pairs are found on before the static contacts; a body
+they bounce off a collider may reach farther on its bent path, and is searched again after
+them: engine.bent_paths.)
 
 **The grid** (``grid_pairs``). With cells of side h >= 2 (r_max + reach_max), two bodies
 that can touch lie in the same or neighbouring cells. A cell (c_x, c_y) is keyed by one

@@ -25,8 +25,10 @@ the time order too, and bounces as the static contacts do (``wall_bounce``, with
 for a disc that turns).
 
 **Rounds** (``impacts_in_order``). In each, every pair that is the earliest impact of both its
-bodies is resolved (they share no body, so they are independent), then the paths of the
-bodies that changed are searched again. Newton's cradle is the test: the first ball stops, the
+bodies is resolved (they share no body), then the paths of the bodies that changed are
+searched again; a wall's bounce waits for everything before it among the bodies linked to
+its body by pairs, and no pair after it there goes first (engine.pair_order says which
+moments a round takes). Newton's cradle is the test: the first ball stops, the
 second takes its speed at the same instant and meets the third, and so on down the row; a
 solver that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
 ``MAX_ROUNDS`` (a light ball squeezed between heavy ones bounces about pi sqrt(M/m) times);
@@ -45,10 +47,17 @@ runs past ``HANDOVER_ROUNDS`` is given up instead, and its bodies join the pile'
 the soft step, from the step's start (``exact``'s kick: the impulse's push, not its turn); so
 are a kinematic body (whose surface the game turns) and a sleeper the impact does not wake.
 
-**Afterwards** (``separate``). The impacts are found on each body's path as a parabola to its
-end state; a body that bounced off a wall within the step took another path before, and may
-end inside a ball that path never met: such pairs, rare (two balls meeting on a Galton
-board's peg), are moved apart at the end, their closing stopped, and out of the walls again.
+**Bent paths** (engine.bent_paths). A body that bounced off a collider in the static contacts,
+before the impacts, took a path of pieces within the step, not one parabola: the impacts take
+it on its first piece, and put it on the next at each bounce's moment, in time order (a round
+that resolves no impact), so that it meets, on each piece, what that piece meets; an impact
+before a bounce sends it off, and that bounce's report is dropped.
+
+**Afterwards** (``separate``). A pair can still be left overlapping (a ball struck against a
+wall in the step it lands there is put back out of the wall, into the ball that struck it;
+two impacts of a crowd taken in one round, a sooner one having changed what the later one
+meets): such pairs, rare, are moved apart at the end, their closing stopped, and out of the
+walls again.
 
 **Two paths** (engine.kernels). The times of impact, searched again for every pair of a body
 an impact sent off, round after round, are found on the fast path by the loop kernel
@@ -64,9 +73,11 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from . import coloring, kernels
+from .bent_paths import Bends, Replay
 from .impact import TOUCH, disc_hits, line_hits
 from .pair_bounce import Turns, bounce, turns_of, wall_bounce
 from .pair_math import SLOP, dot, norm, state_at, unit
+from .pair_order import Order
 from .rotation import Spin
 
 if TYPE_CHECKING:
@@ -129,6 +140,9 @@ class Exact(NamedTuple):
     #: The step's spin with what the impacts turned written in (engine.rotation; the one
     #: given, or one made here when none was and an impact turned a body), or None.
     spin: Spin | None = None
+    #: (World rows, times in the step (s)) of the bodies an impact sent off a path the
+    #: static contacts bent, before its later bounces (engine.bent_paths), or None.
+    cut: tuple[np.ndarray, np.ndarray] | None = None
 
 
 def exact(
@@ -148,6 +162,7 @@ def exact(
     handover: bool = False,
     fast: bool = False,
     spin: Spin | None = None,
+    bends: Bends | None = None,
 ) -> Exact:
     """Impacts of the pairs (World rows a, b) not both in a pile, at their exact moments,
     in place on the end state (x, v): what ``impacts_in_order`` found, for the events, and
@@ -159,7 +174,9 @@ def exact(
     ``handover``: a crowd under load past ``HANDOVER_ROUNDS`` is given up (``Exact``);
     ``fast``: the times of impact by the loop kernel (``pair_times``: the same bits).
     ``spin``: the step's rotation (engine.rotation), None if nothing spins: discs that turn
-    turn each other (engine.pair_bounce), and their spins are written into it (``Exact``)."""
+    turn each other (engine.pair_bounce), and their spins are written into it (``Exact``).
+    ``bends``: the paths the static contacts bent (engine.bent_paths), taken piece by
+    piece."""
     present = np.zeros(len(x), dtype=bool)
     present[a] = present[b] = True
     U = np.flatnonzero(present)
@@ -180,6 +197,9 @@ def exact(
     # A disc resting on a face turned as the static contacts turned it: its mean spin-up.
     on = None if contacts is None or len(contacts.rest) != len(x) else contacts.rest[U] >= 0
     turns = turns_of(spin, store, U, w, dt, on)
+    replay = None if bends is None else Replay(bends, U)
+    if replay is not None and not replay.bent.any():
+        replay = None
     rounds = impacts_in_order(
         la,
         lb,
@@ -198,6 +218,7 @@ def exact(
         handover,
         fast,
         turns,
+        replay,
     )
     if rounds.found is None:
         # A crowd under load: nothing written back; the World rows of its bodies.
@@ -211,12 +232,10 @@ def exact(
         # (A kinematic body is no wall's business: its radius is taken as -inf there.)
         walled.push_out_rows(X, V, r_wall, U)
     for _ in range(3):
-        # The impacts are found on each body's path as a parabola to its end state: a
-        # body that bounced off a wall in the step took another path before the bounce,
-        # and may end inside a ball that path never met; a ball struck against a wall
-        # in the step it lands there is put back out of the wall, into the ball that
-        # struck it. Such pairs are moved apart (positions), their closing stopped
-        # (plastic impulses), and out of the walls again, a few times.
+        # A pair left overlapping (module text, "Afterwards": a ball struck against a wall
+        # in the step it lands there is put back out of the wall, into the ball that struck
+        # it) is moved apart (positions), its closing stopped (plastic impulses), and out
+        # of the walls again, a few times.
         if not separate(la, lb, X, V, w, r):
             break
         if walled is not None:
@@ -235,7 +254,10 @@ def exact(
     found: list[tuple[np.ndarray, ...]] = [
         (U[pa], U[pb], pt, nrm, J, t) for pa, pb, pt, nrm, J, t in impacts
     ]
-    return Exact(found, kick, rounds.rounds, rounds.capped, None, spin)
+    cut = None
+    if replay is not None and len(replay.cuts[0]):
+        cut = (U[replay.cuts[0]], replay.cuts[1])
+    return Exact(found, kick, rounds.rounds, rounds.capped, None, spin, cut)
 
 
 def _write_spin(
@@ -274,6 +296,7 @@ def impacts_in_order(
     handover: bool = False,
     fast: bool = False,
     turns: Turns | None = None,
+    replay: Replay | None = None,
 ) -> Rounds:
     """Resolve the step's impacts in time order, in place on the end state (X, V) of the
     local bodies (World rows U), with inverse masses w (0: a wall), radii r, restitutions e,
@@ -284,7 +307,10 @@ def impacts_in_order(
     the bodies of every impact found or left in ``handed``, local): a crowd under load (rows
     landing on rows) is the pile's, not a chain of exact impacts. ``fast``: the times of
     impact by the loop kernel (``times_of_impact``). ``turns``: the spin of the bodies that
-    turn (engine.pair_bounce), changed in place by the impacts' friction."""
+    turn (engine.pair_bounce), changed in place by the impacts' friction. ``replay``: the
+    bodies whose paths the static contacts bent (engine.bent_paths), each put on its next
+    piece at each bounce's moment, in the time order of the impacts (a round that resolves
+    no impact: it counts toward no limit)."""
     nU = len(X)
     R = r[la] + r[lb]
     # Pairs that close at all within the step can meet (``times_of_impact``: when, if ever).
@@ -294,14 +320,19 @@ def impacts_in_order(
     Ar = A[la] - A[lb]
     # (Two bodies that no impulse moves, a sleeper and a pile's body, cannot bounce.)
     can = ((norm(Vr) + norm(Ar) * dt) > 0.0) & (w[la] + w[lb] > 0.0)
+    if replay is not None:
+        # A bent path's pieces move at other speeds than its end state's.
+        can |= (replay.bent[la] | replay.bent[lb]) & (w[la] + w[lb] > 0.0)
     if not can.any():
         return Rounds([], rounds, False, None)
+    if replay is not None:
+        replay.begin(X, V)
     pa, pb, pR = la, lb, R
     ts = np.zeros(nU)  # when each body's current path starts
     toi = np.full(len(pa), np.inf)
     todo = can  # the others are searched once a body of theirs changes path
     found: list[tuple[np.ndarray, ...]] = []
-    pid = np.arange(len(pa))
+    order = Order(pa, pb, nU)  # which moments each round resolves (engine.pair_order)
     # A body sent off by an impact may meet a wall on its new path within the step: those
     # impacts (face_t: when, face_f: which face) take their place in the time order too.
     walls = contacts is not None and len(contacts.faces.owner) > 0
@@ -309,43 +340,39 @@ def impacts_in_order(
     face_f = np.zeros(nU, dtype=np.intp)
     face_n = np.zeros((nU, 2))
     changed = np.zeros(nU, dtype=bool)
+    replayed = np.zeros(nU, dtype=bool)  # put on their next piece (walls: the contacts')
     capped = False
-    for k in range(HANDOVER_ROUNDS if handover else MAX_ROUNDS):
+    while rounds < (HANDOVER_ROUNDS if handover else MAX_ROUNDS):
         idx = np.flatnonzero(todo)
         if len(idx):
             toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, fast)
             todo[idx] = False
         if walls and changed.any():
             assert contacts is not None
-            moved = np.flatnonzero(changed)
+            moved = np.flatnonzero(changed & ~replayed)
             face_t[moved], face_f[moved], face_n[moved] = wall_hits(
                 contacts, moved, X, V, A, r, ts, dt, pull[moved], U
             )
-        hit = np.isfinite(toi)
-        if not hit.any() and not np.isfinite(face_t).any():
-            break
-        rounds = k + 1
-        # The pairs that come first for both their bodies (ties: the lower pair index),
-        # and before either body meets a wall.
-        h = np.flatnonzero(hit)
-        best = face_t.copy()
-        np.minimum.at(best, pa[h], toi[h])
-        np.minimum.at(best, pb[h], toi[h])
-        first = np.full(nU, len(pa))
-        ca = h[toi[h] == best[pa[h]]]
-        cb = h[toi[h] == best[pb[h]]]
-        np.minimum.at(first, pa[ca], pid[ca])
-        np.minimum.at(first, pb[cb], pid[cb])
-        s = h[(first[pa[h]] == pid[h]) & (first[pb[h]] == pid[h])]
-        s = s[(toi[s] < face_t[pa[s]]) & (toi[s] < face_t[pb[s]])]
-        # A body whose wall comes before any pair of its own.
-        wall = np.flatnonzero(np.isfinite(face_t) & (face_t <= best))
+        # Each body's next moment other than its pairs': a wall, or a bounce of a bent path
+        # (a body never has both: an impact ends the bent path, and the replayed pieces'
+        # walls were the contacts').
+        bend = None if replay is None else replay.t
+        if not np.isfinite(toi).any() and not np.isfinite(face_t).any():
+            if bend is None or not np.isfinite(bend).any():
+                break
+        # The pairs that come first for both their bodies, the walls and the bounces that
+        # come before any pair of their own, in time order among linked bodies.
+        s, wall, knot = order.choose(toi, face_t, bend)
         changed = np.zeros(nU, dtype=bool)
+        replayed = np.zeros(nU, dtype=bool)
         if len(s):
             found.append(bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt, turns))
             ts[pa[s]] = toi[s]
             ts[pb[s]] = toi[s]
             changed[pa[s]] = changed[pb[s]] = True
+            if replay is not None:
+                replay.cut(pa[s], toi[s], w)
+                replay.cut(pb[s], toi[s], w)
         if len(wall):
             assert contacts is not None
             wall_bounce(
@@ -368,6 +395,14 @@ def impacts_in_order(
             )
             ts[wall] = face_t[wall]
             changed[wall] = True
+        if len(s) or len(wall):
+            rounds += 1
+        if len(knot):
+            # A bent body goes on its next piece (from that moment; the bounce itself is
+            # the contacts' report).
+            assert replay is not None
+            ts[knot] = replay.advance(knot, X, V)
+            changed[knot] = replayed[knot] = True
         # Every pair of a body whose path changed is searched again, and its walls.
         face_t[changed] = np.inf
         again = changed[pa] | changed[pb]
@@ -399,6 +434,12 @@ def impacts_in_order(
         # the forces gave them over the whole step, so momentum changes by exactly the
         # forces' impulse, as in every other step.
         capped = True
+        if replay is not None:
+            # Bent bodies with bounces left go on their last pieces, as the contacts left
+            # them (their pairs searched there).
+            moved = np.zeros(nU, dtype=bool)
+            moved[replay.finish(X, V, ts)] = True
+            todo |= moved[pa] | moved[pb]
         idx = np.flatnonzero(todo)
         if len(idx):
             toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, fast)
