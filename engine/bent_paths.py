@@ -56,7 +56,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .pair_grid import Search, rows_of
+from .pair_grid import Search, impact_gain, rows_of
 from .pair_math import isin_sorted, norm, sorted_unique
 
 __all__ = ["Bends", "Replay", "bends_of", "bent_pairs", "bent_rows", "box_pairs", "new_pairs"]
@@ -216,11 +216,7 @@ def bent_pairs(
     done = np.zeros(len(P), dtype=bool)
     for _ in range(3):
         rel = top[ia] + top[ib] + got[ia] + got[ib]
-        tot = w[ia] + w[ib]
-        close = (1.0 + e[ia] * e[ib]) * rel / np.where(tot > 0.0, tot, 1.0)
-        gain = np.zeros(len(P))
-        np.maximum.at(gain, ia, close * w[ia])
-        np.maximum.at(gain, ib, close * w[ib])
+        gain = impact_gain(ia, ib, rel, w, e, len(P))
         grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done & free)
         if not len(grown):
             break

@@ -295,6 +295,20 @@ def rows_of(
     return a, b
 
 
+def impact_gain(
+    ia: np.ndarray, ib: np.ndarray, rel: np.ndarray, w: np.ndarray, e: np.ndarray, n: int
+) -> np.ndarray:
+    """What an impact may add to the speed of each of ``n`` bodies (length units/s): for a
+    pair (ia, ib) closing at up to ``rel``, (1 + e_a e_b) w_a / (w_a + w_b) rel for body a
+    (w = 1 / m, 0 for what the game moves), the most over its pairs."""
+    tot = w[ia] + w[ib]
+    close = (1.0 + e[ia] * e[ib]) * rel / np.where(tot > 0.0, tot, 1.0)
+    gain = np.zeros(n)
+    np.maximum.at(gain, ia, close * w[ia])
+    np.maximum.at(gain, ib, close * w[ib])
+    return gain
+
+
 def struck_pairs(
     ia: np.ndarray,
     ib: np.ndarray,
@@ -332,11 +346,7 @@ def struck_pairs(
     for _ in range(3):
         rel = np.maximum(norm(v0[ia] - v0[ib]), norm(v1[ia] - v1[ib]))
         rel += norm(A[ia] - A[ib]) * dt + got[ia] + got[ib]
-        tot = w[ia] + w[ib]
-        close = (1.0 + e[ia] * e[ib]) * rel / np.where(tot > 0.0, tot, 1.0)
-        gain = np.zeros(len(P))
-        np.maximum.at(gain, ia, close * w[ia])
-        np.maximum.at(gain, ib, close * w[ib])
+        gain = impact_gain(ia, ib, rel, w, e, len(P))
         grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done & free)
         if not len(grown):
             break
