@@ -41,7 +41,9 @@ t* is found by conservative advancement (Mirtich's, Box2D's time of impact): fro
 separation d at time t, the two cannot meet before t + d / s, where s bounds how fast any
 point of one closes on the other, |v_B - v_A| + |omega_A| R_A + |omega_B| R_B taken at the
 larger of its values at t and at dt (the speeds change linearly). The separation is the
-narrowphase's (engine.manifold) at the bodies' poses along the start motion.
+narrowphase's (engine.manifold) at the bodies' poses along the start motion. Where the
+advancement has not touched within ``ROUNDS`` (a corner grazing a face creeps on by a hair a
+round), t* is where it got to, still apart (Box2D's when its iterations run out).
 """
 
 from __future__ import annotations
@@ -234,7 +236,7 @@ def _time_of_impact(
             t[k] = t[k] + np.where(speed > 0.0, gap / speed, np.inf)
         gone = t[k] > dt
         live[k[gone]] = False
-    return hit
+    return _stalled(hit, live, t)
 
 
 def place(
@@ -376,6 +378,16 @@ def _time_of_wall_impact(
         with np.errstate(divide="ignore", invalid="ignore"):
             t[k] = t[k] + np.where(speed > 0.0, gap / speed, np.inf)
         live[k[~(t[k] <= dt)]] = False
+    return _stalled(hit, live, t)
+
+
+def _stalled(hit: np.ndarray, live: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """``hit`` with the advancements still going after ``ROUNDS`` taken at where they got to
+    (Box2D's time of impact when its iterations run out): a corner that grazes a face within
+    a hair before it goes in creeps on by a hair a round, and counting it as no impact let
+    the body end the step deep in the face. Where it got to, it is still apart."""
+    stuck = np.flatnonzero(live)
+    hit[stuck] = t[stuck]
     return hit
 
 
@@ -438,12 +450,17 @@ def retake(
     if walls is not None:
         # A body placed by its impact with another may have passed a wall on the way there:
         # its start motion brought it to the wall before the two met (a box knocked on
-        # against a wall it was turning into). Where the placed pose is deep in a collider
-        # it began the step apart from, the wall's moment along the start motion is the
-        # earlier impact, and places it.
-        got = late_wall_impacts(walls[0], rows, start, (x, v, q, w1), pull, store.radius, dt)
-        if got is not None:
-            np.minimum.at(first, *got)
+        # against a wall it was turning into, a capsule rising into a ceiling as a box meets
+        # it). Where its pose at the moment of impact, or the pose placed from there, is
+        # deep in a collider it began the step apart from, the wall's moment along the start
+        # motion is the earlier impact, and places it.
+        xs, qs = x.copy(), q.copy()
+        xs[rows], qs[rows] = _along(start, pull, rows, when)
+        for pose in ((xs, v, qs, w1), (x, v, q, w1)):
+            got = late_wall_impacts(walls[0], rows, start, pose, pull, store.radius, dt)
+            if got is not None:
+                np.minimum.at(first, *got)
+        if not np.array_equal(first[rows], when):
             when = first[rows]
             x[rows], angle = place(rows, when, start, end, pull, dt)
             q[rows] = angle
