@@ -134,6 +134,7 @@ def flipper(path: str) -> World:
     return world
 
 
+@pytest.mark.skipif(not COMPILED, reason="a World on the fast path needs numba (the fast extra)")
 @pytest.mark.parametrize("scene", [chain, flipper])
 def test_jointed_scenes_read_the_same_on_both_paths(scene: Any) -> None:
     """Steps of a falling chain on a motor at its limit, and of a ball meeting a flipper as it
