@@ -43,7 +43,9 @@ point of one closes on the other, |v_B - v_A| + |omega_A| R_A + |omega_B| R_B ta
 larger of its values at t and at dt (the speeds change linearly). The separation is the
 narrowphase's (engine.manifold) at the bodies' poses along the start motion. Where the
 advancement has not touched within ``ROUNDS`` (a corner grazing a face creeps on by a hair a
-round), t* is where it got to, still apart (Box2D's when its iterations run out).
+round) it counts as no impact: taking t* where it got to (Box2D's, when its iterations run
+out) let a thin body out of a room in another scene, not yet understood (tests/
+test_fuzz_shapes.py, the grazing 8-gon, a strict xfail).
 """
 
 from __future__ import annotations
@@ -236,7 +238,7 @@ def _time_of_impact(
             t[k] = t[k] + np.where(speed > 0.0, gap / speed, np.inf)
         gone = t[k] > dt
         live[k[gone]] = False
-    return _stalled(hit, live, t)
+    return hit
 
 
 def place(
@@ -378,16 +380,6 @@ def _time_of_wall_impact(
         with np.errstate(divide="ignore", invalid="ignore"):
             t[k] = t[k] + np.where(speed > 0.0, gap / speed, np.inf)
         live[k[~(t[k] <= dt)]] = False
-    return _stalled(hit, live, t)
-
-
-def _stalled(hit: np.ndarray, live: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """``hit`` with the advancements still going after ``ROUNDS`` taken at where they got to
-    (Box2D's time of impact when its iterations run out): a corner that grazes a face within
-    a hair before it goes in creeps on by a hair a round, and counting it as no impact let
-    the body end the step deep in the face. Where it got to, it is still apart."""
-    stuck = np.flatnonzero(live)
-    hit[stuck] = t[stuck]
     return hit
 
 

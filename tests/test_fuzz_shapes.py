@@ -786,12 +786,17 @@ def test_a_polygon_knocked_on_into_a_wall_it_was_turning_into_stays_out_of_it() 
     run(spec)
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="conservative advancement runs out of rounds at the graze and counts no impact; "
+    "taking the moment where it got to (Box2D's) fixed this scene but let a thin polygon out "
+    "of a room in another the long fuzz found (step 147, gravity 19.8), not yet understood",
+)
 def test_a_spinning_polygon_that_grazes_the_floor_before_it_goes_in_stays_out() -> None:
     # Found by the long scene fuzz (FUZZ_LONG=1): at step 4 a thin 8-gon (body 2) turning at
     # -47 rad/s passes a corner within 27 um of the floor and then goes in; the conservative
     # advancement for its moment crept on by a hair a round at the graze, ran out of rounds
-    # and counted no impact, and it ended the step 0.143 m in the floor. Where the rounds run
-    # out, the moment is where it got to, still apart (Box2D's): it ends touching.
+    # and counted no impact, and it ended the step 0.143 m in the floor.
     spec = {
         "half": (7.238069437585297, 4.5),
         "walls": "room",
@@ -956,6 +961,197 @@ def test_a_capsule_rising_into_the_ceiling_as_a_box_meets_it_stays_below() -> No
                 "heading": 0.0,
                 "fixed": True,
                 "at": (-3.8296315888431924, -0.5323576151071023),
+            },
+        ],
+    }
+    run(spec)
+
+
+def test_a_thin_polygon_stays_in_the_room_over_three_seconds_of_a_crowded_drop() -> None:
+    # Found by the long scene fuzz (FUZZ_LONG=1, numpy) against a fix for the grazing 8-gon
+    # above (taking an advancement that ran out of rounds where it got to): a body then left
+    # the room at step 147. It stays in without that fix; this keeps the next attempt honest.
+    spec = {
+        "half": (4.6, 4.432030261347735),
+        "walls": "room",
+        "wall_material": (0.752615701296111, 1.192092896e-07),
+        "gravity": 19.845106339584536,
+        "steps": 180,
+        "snap": 82,
+        "kinematic": None,
+        "bodies": [
+            {
+                "kind": "polygon",
+                "geometry": (
+                    [
+                        0.3333333333333333,
+                        0.987903848193274,
+                        0.4887992893801666,
+                        0.3,
+                        0.6034303398690813,
+                    ],
+                    1.0,
+                    0.11972900045383415,
+                    0.05,
+                ),
+                "mass": 4.48747889862088,
+                "restitution": 0.20991284750815847,
+                "friction": 0.4383190389239643,
+                "angle": 1.9419769407121734,
+                "spin": 3.0945613150407607e-108,
+                "speed": 37.77310429964954,
+                "heading": -1.0343126127529598,
+                "fixed": False,
+                "at": (-3.5219911269402253, -1.1980036421684117),
+            },
+            {
+                "kind": "polygon",
+                "geometry": (
+                    [
+                        0.3109525330158197,
+                        0.3198205254503988,
+                        0.3501176017687645,
+                        0.6515943190747494,
+                        0.25040100412828564,
+                        0.8250664004330064,
+                        0.30558755202477844,
+                        0.48842536298411904,
+                    ],
+                    1.0,
+                    0.6912949683603132,
+                    0.0,
+                ),
+                "mass": 8.843684376972645,
+                "restitution": 7.769214373918728e-174,
+                "friction": 0.6854276077949887,
+                "angle": 0.52,
+                "spin": 99.0,
+                "speed": 44.17486997164962,
+                "heading": 0.34,
+                "fixed": False,
+                "at": (-3.5219911269402253, -3.3540213882879604),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.18627549820504946,),
+                "mass": 0.745,
+                "restitution": 0.7488657292256268,
+                "friction": 0.8910896616772048,
+                "angle": 2.442989749176735e-213,
+                "spin": 93.75064297016462,
+                "speed": 17.0,
+                "heading": 1.3128754206150663,
+                "fixed": False,
+                "at": (-3.5219911269402253, 0.958014103951137),
+            },
+            {
+                "kind": "polygon",
+                "geometry": (
+                    [0.35470968985062157, 0.858420049393309, 0.6425116468471912],
+                    0.2,
+                    0.5437466780469272,
+                    0.0,
+                ),
+                "mass": 1.5234811913388637,
+                "restitution": 6.829454988769013e-222,
+                "friction": 0.9779674775095419,
+                "angle": -0.5313420109271458,
+                "spin": 14.792578289226626,
+                "speed": 80.55699139155044,
+                "heading": 1.25,
+                "fixed": False,
+                "at": (-3.5219911269402253, 3.1140318500706856),
+            },
+            {
+                "kind": "box",
+                "geometry": (0.35035033605546806, 1.1, 0.0),
+                "mass": 9.750937907986438,
+                "restitution": 0.822138371944741,
+                "friction": 1.175494351e-38,
+                "angle": -3.1297681226081275,
+                "spin": 1.727827783551512e-301,
+                "speed": 94.84928579620673,
+                "heading": 2.469568455651091,
+                "fixed": True,
+                "at": (-1.3659733808206767, -3.3540213882879604),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.47,),
+                "mass": 0.99999,
+                "restitution": 0.6529041042375773,
+                "friction": 2.225073858507e-311,
+                "angle": -0.8442816431959699,
+                "spin": 1.1541838210774625e-64,
+                "speed": 70.41349155485347,
+                "heading": 1.50236803166609,
+                "fixed": True,
+                "at": (-1.3659733808206767, -1.1980036421684117),
+            },
+            {
+                "kind": "box",
+                "geometry": (0.7385864821855644, 0.8091769503430349, 0.0),
+                "mass": 0.98,
+                "restitution": 0.8526528936721243,
+                "friction": 0.6633606959789752,
+                "angle": 0.155,
+                "spin": 6.681807107889554,
+                "speed": 10.354627863036272,
+                "heading": 9.626771771403385e-31,
+                "fixed": False,
+                "at": (-1.3659733808206767, 0.958014103951137),
+            },
+            {
+                "kind": "capsule",
+                "geometry": (0.7999348726251763, 0.25307400043459816),
+                "mass": 6.751107371074613,
+                "restitution": 0.6226312207353525,
+                "friction": 0.0724703408386418,
+                "angle": -0.8933334158180548,
+                "spin": -2.2013307619659784e-301,
+                "speed": 2.2250738585072014e-308,
+                "heading": -2.4151942881251887,
+                "fixed": False,
+                "at": (-1.3659733808206767, 3.1140318500706856),
+            },
+            {
+                "kind": "box",
+                "geometry": (0.1, 0.44620868325892515, 0.0),
+                "mass": 0.9999999999999999,
+                "restitution": 1.0,
+                "friction": 0.7710627979498552,
+                "angle": 0.5906426723762145,
+                "spin": 0.46032598553199755,
+                "speed": 0.52,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (0.790044365298872, -3.3540213882879604),
+            },
+            {
+                "kind": "capsule",
+                "geometry": (0.1, 0.03),
+                "mass": 0.1,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": -1.4151796842779196,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (0.790044365298872, -1.1980036421684117),
+            },
+            {
+                "kind": "box",
+                "geometry": (0.5355972293283774, 0.2723672847107648, 0.0),
+                "mass": 0.1,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.05,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.24719714346121938,
+                "fixed": True,
+                "at": (2.9460621114184207, 0.958014103951137),
             },
         ],
     }
