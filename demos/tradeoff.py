@@ -478,11 +478,10 @@ def _level_spot(
     lines = [(p[:2], q[:2]) for m in series for p, q in zip(m[:-1], m[1:], strict=True)]
     texts = [text] + ([text.split(":")[0] + " target"] if ":" in text else [])
     for label in texts:
-        width = font(16).size(label)[0]
+        image = font(16).render(label, True, MUTED)
         for anchor, y in (("bottomright", py - 2), ("topright", py + 3)):
-            for x in range(area.right - 6, area.left + 6 + width - 1, -4):
-                rect = font(16).render(label, True, MUTED).get_rect(**{anchor: (x, y)})
-                rect = rect.inflate(4, 2)
+            for x in range(area.right - 6, area.left + 6 + image.get_width() - 1, -4):
+                rect = image.get_rect(**{anchor: (x, y)}).inflate(4, 2)
                 if not area.contains(rect) or rect.collidelist(dots) >= 0:
                     continue
                 if not any(rect.clipline(p, q) for p, q in lines):

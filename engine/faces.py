@@ -17,7 +17,7 @@ afresh, in a few array operations (a game adding a peg pays for the peg, not for
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -29,7 +29,6 @@ from .manifold import polygon_distance
 
 __all__ = [
     "behind_solid",
-    "solid_index",
     "Faces",
     "allowed_pairs",
     "compile_faces",
@@ -103,6 +102,12 @@ class Faces:
     # The solid polygons' flat faces, one index array each (a body is inside a polygon only
     # when inside every face of it, not behind one: ``engine.push_out``).
     polygons: tuple[np.ndarray, ...] = ()
+    #: ``polygons`` as arrays, made with the faces: each flat face's polygon (-1: none), and
+    #: each polygon's faces as one flat list with its start (P + 1,) (``behind_solid``).
+    solid: tuple[np.ndarray, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        self.solid = _solid(len(self.p), self.polygons)
 
 
 def compile_faces(colliders: list[Collider], indices: list[int]) -> Faces:
@@ -183,26 +188,16 @@ def compile_faces(colliders: list[Collider], indices: list[int]) -> Faces:
     )
 
 
-def solid_index(faces: Faces) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The solid polygons' flat faces as arrays: each flat face's polygon (-1: none), and
-    each polygon's faces as a flat list with its start (P + 1,); made once per Faces."""
-    cached = faces.__dict__.get("_solid")
-    if cached is not None:
-        return cached  # type: ignore[no-any-return]
-    L = len(faces.p)
-    poly = np.full(L, -1, dtype=np.intp)
-    sizes = [len(cols) for cols in faces.polygons]
+def _solid(lines: int, polygons: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
+    """``Faces.solid`` for ``lines`` flat faces and the solid polygons' face lists."""
+    poly = np.full(lines, -1, dtype=np.intp)
+    sizes = [len(cols) for cols in polygons]
     start = np.zeros(len(sizes) + 1, dtype=np.intp)
     start[1:] = np.cumsum(sizes)
-    for k, cols in enumerate(faces.polygons):
+    for k, cols in enumerate(polygons):
         poly[cols] = k
-    flat = (
-        np.concatenate(faces.polygons).astype(np.intp)
-        if faces.polygons
-        else np.zeros(0, dtype=np.intp)
-    )
-    faces.__dict__["_solid"] = out = (poly, start, flat)
-    return out
+    flat = np.concatenate(polygons).astype(np.intp) if polygons else np.zeros(0, dtype=np.intp)
+    return poly, start, flat
 
 
 def behind_solid(faces: Faces, X: np.ndarray, bi: np.ndarray, fj: np.ndarray) -> np.ndarray:
@@ -216,7 +211,7 @@ def behind_solid(faces: Faces, X: np.ndarray, bi: np.ndarray, fj: np.ndarray) ->
     out = np.zeros(len(bi), dtype=bool)
     if not faces.polygons or not len(bi):
         return out
-    poly, start, flat = solid_index(faces)
+    poly, start, flat = faces.solid
     L = len(faces.p)
     line = np.flatnonzero(fj < L)
     if not len(line):

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from .faces import Faces, solid_index
+from .faces import Faces
 from .impact import Pair, disc_hit_one, line_hit_one
 from .rotation import Rolling, Spin, rolling
 from .sweep import MAX_IMPACTS, WEDGE_SIN, Paths, PushOut
@@ -225,7 +225,7 @@ def _paths_fast(
     velocities of those that turn under friction (``spins``, by place among the rows)."""
     none = np.zeros(1)
     th, om, q, al, rolls = (none, none, none, none, none == 1.0) if spins is None else spins
-    spoly, sstart, sflat = solid_index(faces)
+    spoly, sstart, sflat = faces.solid
     return paths_loop(  # type: ignore[no-any-return]
         faces.p, faces.n, faces.rho, faces.two, faces.lo, faces.hi, spoly, sstart, sflat,
         faces.c, faces.r,
@@ -262,7 +262,7 @@ def _path_one(
     and angular velocity at the end, else None)."""
     line_list, disc_list = faces.line_list, faces.disc_list
     L = len(line_list)
-    solid = solid_index(faces) if faces.polygons else None
+    solid = faces.solid if faces.polygons else None
     rest_before = rest
     touched = capped = False
     left = dt
@@ -359,9 +359,7 @@ def _path_one(
     return x, v, touched or rest >= 0 or rest_before >= 0, rest, capped, turned
 
 
-def _behind_solid_one(
-    faces: Faces, solid: tuple[np.ndarray, np.ndarray, np.ndarray], f: int, x: Pair
-) -> bool:
+def _behind_solid_one(faces: Faces, solid: tuple[np.ndarray, ...], f: int, x: Pair) -> bool:
     """``engine.faces.behind_solid`` for one body at x and one flat face f (the same
     operations): a solid polygon's face it is behind, not least behind of its polygon's."""
     poly, start, flat = solid

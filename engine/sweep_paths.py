@@ -84,7 +84,7 @@ def paths_loop(
     ``turn``.
 
     The faces as ``Faces`` holds them (lines p, n, rho, two, lo, hi; the solid polygons'
-    faces as ``engine.faces.solid_index`` gives them; discs c, r; e, mu), the
+    faces as ``Faces.solid`` holds them; discs c, r; e, mu), the
     World ``rows`` solved, the bodies' arrays by World row (x, v, B, W, radius, restitution,
     friction, mass, resting face), and the pairs (place in rows ``pb``, face ``pf``). A
     body that rests or comes to rest, meets a round face's quartic (its eigenvalues are

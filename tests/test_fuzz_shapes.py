@@ -636,6 +636,18 @@ def test_a_huge_rounding_is_refused_by_name() -> None:
     assert Polygon.box(1.0, 1.0, radius=1e100).area == pytest.approx(math.pi * 1e200)
 
 
+#: The room of the long fuzz's scenes below, as hypothesis shrank them (no gravity, 60 steps).
+_SHRUNK_ROOM: dict[str, Any] = {
+    "half": (4.546275801218975, 4.115578676986017),
+    "walls": "room",
+    "wall_material": (0.777778317812019, 0.0),
+    "gravity": 0.0,
+    "steps": 60,
+    "snap": 0,
+    "kinematic": None,
+}
+
+
 def test_a_box_pushed_into_the_ceiling_by_another_stays_in_the_room() -> None:
     # Found by the long scene fuzz (FUZZ_LONG=1, fast path): at step 25 the 0.94 x 0.1 m box
     # (body 2) ended with its centre 0.028 m past the ceiling, pushed from behind by the
@@ -643,13 +655,7 @@ def test_a_box_pushed_into_the_ceiling_by_another_stays_in_the_room() -> None:
     # row with it (its own speed covers 0.31 m), and no impact on its start motion. It is now
     # stopped where its straight move first touches the ceiling (engine.shape_impacts).
     spec = {
-        "half": (4.546275801218975, 4.115578676986017),
-        "walls": "room",
-        "wall_material": (0.777778317812019, 0.0),
-        "gravity": 0.0,
-        "steps": 60,
-        "snap": 0,
-        "kinematic": None,
+        **_SHRUNK_ROOM,
         "bodies": [
             {
                 "kind": "capsule",
@@ -716,13 +722,7 @@ def test_a_polygon_knocked_on_into_a_wall_it_was_turning_into_stays_out_of_it() 
     # reached the wall before the two met. The wall's moment, the earlier, now places it
     # (engine.shape_impacts, ``retake``): it ends the step touching the wall.
     spec = {
-        "half": (4.546275801218975, 4.115578676986017),
-        "walls": "room",
-        "wall_material": (0.777778317812019, 0.0),
-        "gravity": 0.0,
-        "steps": 60,
-        "snap": 0,
-        "kinematic": None,
+        **_SHRUNK_ROOM,
         "bodies": [
             {
                 "kind": "capsule",
@@ -885,13 +885,7 @@ def test_a_capsule_rising_into_the_ceiling_as_a_box_meets_it_stays_below() -> No
     # the capsule 0.103 m into the ceiling, its centre past it. The ceiling's moment on the
     # start motion, the earlier, now places it.
     spec = {
-        "half": (4.546275801218975, 4.115578676986017),
-        "walls": "room",
-        "wall_material": (0.777778317812019, 0.0),
-        "gravity": 0.0,
-        "steps": 60,
-        "snap": 0,
-        "kinematic": None,
+        **_SHRUNK_ROOM,
         "bodies": [
             {
                 "kind": "capsule",
