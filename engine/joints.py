@@ -23,7 +23,7 @@ from typing import Any
 
 from . import checks
 from .body import Body
-from .links import STATIC, Link, fixed_point, plane_body
+from .links import STATIC, Link, fixed_point, plane_body, refuse_immobile
 from .vector import Vector
 
 __all__ = [
@@ -64,6 +64,7 @@ class Joint(Link):
                 "body_b must be another Body or world.static_body, got body_a itself: a body "
                 "joined to itself holds nothing"
             )
+        refuse_immobile(self._body, other, type(self).__name__)
         p = fixed_point(point, "point")
         self._anchor_a = self._body.world_to_local(p)
         if other is None:

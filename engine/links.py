@@ -120,6 +120,19 @@ def plane_body(value: Any, name: str) -> Body:
     return value
 
 
+def refuse_immobile(body: Body, other: Body | None, what: str) -> None:
+    """Refuse a link or joint none of whose ends the solver can move: ``body`` kinematic and
+    ``other`` kinematic or the world (None). The game moves both ends, so the solver could
+    only break it silently (pymunk refuses such a constraint too)."""
+    if body.kinematic and (other is None or other.kinematic):
+        second = "world.static_body or a fixed point" if other is None else "a kinematic body"
+        raise ValueError(
+            f"a {what} between a kinematic body and {second} cannot hold: the game moves both "
+            f"ends, so nothing is left for it to pull; make one of the two bodies dynamic "
+            f"(kinematic=False), or move the kinematic body along the path you want"
+        )
+
+
 class Link:
     """A link from ``body`` to ``other`` (a Body, or a fixed point): see the module's text."""
 
@@ -163,6 +176,7 @@ class Link:
                     f"({other!r}) has none: give the point itself, got anchor_b={anchor_b!r}"
                 )
             self._other, self._point = None, fixed_point(other, "other")
+        refuse_immobile(self._body, self._other, type(self).__name__)
         if length is None:
             length = (self.end_a() - self.end_b()).length()
             if not length > 0.0:

@@ -492,3 +492,40 @@ def test_a_ball_bounces_off_a_bat_held_at_its_stop_with_its_restitution() -> Non
     assert ball.vel.dot(n) == pytest.approx(5.0 * math.cos(0.5), abs=1e-9)
     # And the contact's events: it began once and ended once.
     assert len(began) == 1 and len(ended) == 1
+
+
+def _kinematic(x: float) -> Body:
+    return Body(Vector(x, 0.0), Vector(1.0, 0.0), kinematic=True, shape=Polygon.box(1.0, 0.2))
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda a, b, s: Hinge(a, b, (0.5, 0.0)),
+        lambda a, b, s: Hinge(a, s, (0.5, 0.0)),
+        lambda a, b, s: Weld(a, b, (0.5, 0.0)),
+        lambda a, b, s: Weld(a, s, (0.5, 0.0)),
+        lambda a, b, s: Rod(a, b, None),
+        lambda a, b, s: Cable(a, (3.0, 0.0), 4.0),
+    ],
+    ids=["hinge", "hinge-to-world", "weld", "weld-to-world", "rod", "cable-to-point"],
+)
+def test_a_joint_no_end_of_which_can_move_is_refused_when_made(make) -> None:  # type: ignore[no-untyped-def]
+    # Both ends moved by the game (kinematic, or the world): nothing is left for the joint to
+    # pull, and it would be silently broken at once (a hinge point 1 m apart after 1 s).
+    world = World()
+    a, b = _kinematic(0.0), _kinematic(1.0)
+    with pytest.raises(ValueError, match="kinematic body and .*dynamic"):
+        make(a, b, world.static_body)
+
+
+def test_a_hinge_from_a_kinematic_body_to_a_dynamic_one_holds_the_dynamic_one() -> None:
+    # The allowed case: the game moves one end, the joint carries the other with it.
+    world = World()
+    lift = world.add(_kinematic(0.0))
+    load = world.add(plank(1.0, 0.0))
+    hinge = world.add_link(Hinge(lift, load, (0.5, 0.0)))
+    for _ in range(60):
+        world.step(1 / 60)
+    assert (hinge.end_a() - hinge.end_b()).length() < 1e-9
+    assert lift.pos.x == pytest.approx(1.0, abs=1e-12)
