@@ -37,6 +37,7 @@ TOPICS: dict[str, str] = {
     "pinball": "demos.bench.pinball",
     "stack": "demos.bench.stack",
     "tumbler": "demos.bench.tumbler",
+    "platformer": "demos.bench.platformer",
 }
 
 
