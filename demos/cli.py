@@ -18,7 +18,8 @@ Every demo is given the same shared options (``SHARED``); one it cannot honour i
 the same way for every demo: a usage error naming the option and saying why (exit 2). A demo
 with a ``run`` hook says which it honours (``Demo.takes``); a demo made of scenes honours them
 all, except ``--strobe`` for a scene with no motion diagram, and the options that mean nothing
-beside another (``--out`` in a window, ``--fps`` for a still).
+beside another (``--out`` in a window, ``--fps`` for a still). A demo's ``--help`` lists only
+the shared options it honours (``offered``); the others are parsed still, to be refused.
 
 Exit codes: 0 done, 1 the run failed (a frame or clip could not be written, the output folder
 already holds frames or the clip's file exists, no display for ``--window``, the simulation
@@ -39,7 +40,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
-__all__ = ["SHARED", "Demo", "discover", "main", "number_option", "parse_size"]
+__all__ = ["SHARED", "Demo", "discover", "main", "number_option", "offered", "parse_size"]
 
 #: Modules in the demos package that are not demos.
 _NOT_DEMOS = frozenset({"cli", "games", "warned"})
@@ -215,19 +216,47 @@ def _clip(kind: str) -> Callable[[str], Path]:
     return parse
 
 
+def offered(demo: Demo) -> frozenset[str]:
+    """The shared options ``demo``'s ``--help`` lists: those it honours (``Demo.takes``),
+    without ``--strobe`` for a demo of scenes none of which draws a motion diagram."""
+    if demo.scenes and not any(_has_strobe(f) for f in demo.scenes.values()):
+        return demo.takes - {"--strobe"}
+    return demo.takes
+
+
+def _about(demo: Demo | None) -> str:
+    """The description at the top of the help: what a run makes, from what the demo takes."""
+    if demo is None:
+        return "Run a demo: headless to PNG frames (default), in a window, or as stills."
+    if demo.scenes:
+        modes = "in a window, or as stills" if "--strobe" in offered(demo) else "or in a window"
+        return f"{demo.name}: {demo.summary}. Run headless to PNG frames (default), {modes}."
+    if "--window" in demo.takes:
+        return f"{demo.name}: {demo.summary}. Run headless to PNG frames (default), or in a window."
+    return f"{demo.name}: {demo.summary}."
+
+
 def _parser(
     demos: Mapping[str, Demo | _Broken], demo: Demo | None, typed: bool = True
 ) -> argparse.ArgumentParser:
     """The parser for ``demo`` (None: the top level). ``typed=False`` leaves every value a
-    string: the first pass, which only finds the demo, then checks no value."""
+    string: the first pass, which only finds the demo, then checks no value.
+
+    Every shared option is parsed, but a demo's help shows only those it honours
+    (:func:`offered`): one it does not is refused after parsing, saying why, as before."""
 
     def kind(convert: Callable[[str], Any]) -> Callable[[str], Any]:
         return convert if typed else str
 
-    about = "Run a demo: headless to PNG frames (default), in a window, or as stills."
+    shown = frozenset(SHARED) if demo is None else offered(demo)
+
+    def said(option: str, text: str) -> str:
+        return text if option in shown else argparse.SUPPRESS
+
+    scenes = demo is None or bool(demo.scenes)  # run hooks write what they write, not frames
     parser = argparse.ArgumentParser(
         prog="python -m demos" if demo is None else f"python -m demos {demo.name}",
-        description=about if demo is None else f"{demo.name}: {demo.summary}. {about}",
+        description=_about(demo),
         epilog="Run without a demo name to list the demos.",
     )
     parser.add_argument(
@@ -241,54 +270,83 @@ def _parser(
     parser.add_argument(
         "--scene",
         choices=list(demo.scenes) if demo is not None and demo.scenes else None,
-        help="the scene to run (default: every scene in turn)",
+        help=said("--scene", "the scene to run (default: every scene in turn)"),
     )
     parser.add_argument(
-        "--fps", type=kind(_fps), help="frames per second (default 30; 60 in a window)"
+        "--fps",
+        type=kind(_fps),
+        help=said("--fps", "frames per second (default 30; 60 in a window)"),
     )
     parser.add_argument(
         "--seconds",
         type=kind(_seconds),
-        help="simulated seconds to show (default: the scene's own)",
+        help=said("--seconds", "simulated seconds to show (default: the scene's own)"),
     )
     size = demo.size if demo is not None else (640, 360)
     parser.add_argument(
-        "--size", type=kind(parse_size), help=f"WIDTHxHEIGHT in pixels ({size[0]}x{size[1]})"
+        "--size",
+        type=kind(parse_size),
+        help=said("--size", f"WIDTHxHEIGHT in pixels ({size[0]}x{size[1]})"),
     )
     parser.add_argument(
         "--out",
         type=kind(_out),
-        help="output folder for the PNG frames (default: out/<demo>/<scene>/; with --video or "
-        "--gif, frames are written only if --out is given)",
+        help=said(
+            "--out",
+            "output folder for the PNG frames (default: out/<demo>/<scene>/; with --video or "
+            "--gif, frames are written only if --out is given)"
+            if scenes
+            else f"output folder (default: out/{demo.name if demo else '<demo>'}/)",
+        ),
     )
     parser.add_argument(
         "--video",
         type=kind(_clip("mp4")),
         metavar="PATH.mp4",
-        help="also write an H.264 MP4 clip, streamed as the frames are drawn (several scenes: "
-        'PATH-<scene>.mp4); needs pip install -e ".[video]"',
+        help=said(
+            "--video",
+            "also write an H.264 MP4 clip, streamed as the frames are drawn (several scenes: "
+            'PATH-<scene>.mp4); needs pip install -e ".[video]"',
+        ),
     )
     parser.add_argument(
         "--gif",
         type=kind(_clip("gif")),
         metavar="PATH.gif",
-        help="also write a looping GIF with its own palette (several scenes: PATH-<scene>.gif); "
-        'needs pip install -e ".[video]"',
+        help=said(
+            "--gif",
+            "also write a looping GIF with its own palette (several scenes: PATH-<scene>.gif); "
+            'needs pip install -e ".[video]"',
+        ),
     )
     parser.add_argument(
         "--overwrite",
         action="store_true",
-        help="replace frames already in the output folder and clips already at --video/--gif",
+        help=said(
+            "--overwrite",
+            "replace frames already in the output folder and clips already at --video/--gif"
+            if scenes
+            else "replace what the output folder already holds",
+        ),
     )
-    mode = parser.add_mutually_exclusive_group()
-    mode.add_argument("--window", action="store_true", help="play in a real-time window")
+    # argparse cannot format the usage of a group with a hidden member (an AssertionError in
+    # Python 3.11): the two are exclusive in the parser only where both are shown (where one is
+    # hidden, giving it is refused anyway), and not in the first pass, so that the demo's own
+    # parser is the one to say what is wrong.
+    both = typed and {"--window", "--strobe"} <= shown
+    mode = parser.add_mutually_exclusive_group() if both else parser
     mode.add_argument(
-        "--strobe", action="store_true", help="one still motion diagram per scene (strobe.png)"
+        "--window", action="store_true", help=said("--window", "play in a real-time window")
+    )
+    mode.add_argument(
+        "--strobe",
+        action="store_true",
+        help=said("--strobe", "one still motion diagram per scene (strobe.png)"),
     )
     parser.add_argument(
         "--seed",
         type=kind(_seed),
-        help="random seed, for demos with randomness (default: the scene's)",
+        help=said("--seed", "random seed, for demos with randomness (default: the scene's)"),
     )
     if demo is not None and demo.add_arguments is not None:
         demo.add_arguments(parser)

@@ -3,6 +3,7 @@
 import errno
 import io
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -256,3 +257,143 @@ def test_a_refusal_to_overwrite_names_the_option_not_the_python_argument(capsys,
         code, _, err = run(argv, capsys)
         assert code == 1
         assert "add --overwrite to replace" in err and "overwrite=True" not in err, err
+
+
+# -- a demo's --help lists only what it takes, and every option it lists is taken -------------
+
+#: A value for each option that takes one and has neither choices nor a default to try.
+_VALUES = {"--fps": "10", "--seconds": "1", "--seed": "1", "--kinds": "peony"}
+
+
+def _listed(name: str, capsys: pytest.CaptureFixture[str]) -> list[str]:
+    """The options ``python -m demos NAME --help`` lists (argparse prints help to stdout)."""
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main([name, "--help"], out=io.StringIO())
+    assert exit_info.value.code == 0
+    text = capsys.readouterr().out
+    assert f"usage: python -m demos {name}" in text
+    return [o for o in re.findall(r"^  (?:-h, )?(--[\w-]+)", text, re.M) if o != "--help"]
+
+
+def _argv(name: str, demo: cli.Demo, option: str, tmp_path: Path) -> list[str]:
+    """``name option [value]``: a valid value for each option, from its parser where it can."""
+    action = cli._parser(cli.discover(), demo)._option_string_actions[option]
+    if action.nargs == 0:  # a flag
+        return [name, option]
+    if option == "--size":
+        value = "x".join(map(str, demo.size))
+    elif option in ("--out", "--video", "--gif"):
+        value = str(tmp_path / {"--out": "frames", "--video": "c.mp4", "--gif": "c.gif"}[option])
+    elif action.choices:
+        value = str(next(iter(action.choices)))
+    elif option in _VALUES:
+        value = _VALUES[option]
+    else:
+        assert action.default is not None, f"give {option} of {name} a value in _VALUES"
+        value = str(action.default)
+    return [name, option, value]
+
+
+def _demo_names() -> list[str]:
+    return sorted(n for n, d in cli.discover().items() if isinstance(d, cli.Demo))
+
+
+@pytest.mark.parametrize("name", _demo_names())
+def test_every_option_a_demos_help_lists_is_accepted(name, capsys, tmp_path, monkeypatch):
+    # breakout, crumb, pinball and tradeoff listed --scene, --strobe, --window, --video, --gif,
+    # --fps, --seconds and --seed, and then refused them. Each option listed is now parsed and
+    # honoured (what would run is a stand-in: only the parsing and the refusals are real).
+    import dataclasses
+
+    import engine.render
+    import engine.render.clips
+
+    found = cli.discover()
+    demo = found[name]
+    assert isinstance(demo, cli.Demo)
+    ran: list[str] = []
+    if demo.run is not None:
+        found = dict(found, **{name: dataclasses.replace(demo, run=lambda args: ran.append("run"))})
+    monkeypatch.setattr(cli, "discover", lambda: found)
+    monkeypatch.setattr(engine.render, "record", lambda *a, **k: ran.append("record") or _rec())
+    monkeypatch.setattr(engine.render, "strobe", lambda *a, **k: ran.append("strobe") or Path())
+    monkeypatch.setattr(engine.render, "play", lambda *a, **k: ran.append("play"))
+    monkeypatch.setattr(engine.render.clips, "ffmpeg_exe", lambda: "ffmpeg")
+    listed = _listed(name, capsys)
+    assert "--size" in listed and "--out" in listed  # every demo takes these
+    for option in listed:
+        argv = _argv(name, demo, option, tmp_path)
+        ran.clear()
+        try:
+            code = cli.main(argv, out=io.StringIO())
+        except SystemExit as exc:  # a usage error
+            code = exc.code
+        err = capsys.readouterr().err
+        assert code == 0 and ran, (argv, err)
+        assert "cannot honour" not in err and "error" not in err, (argv, err)
+
+
+def _rec() -> object:
+    from engine.render import Recording
+
+    return Recording(Path("out"), 1, 30, 1.0, (640, 360))
+
+
+def test_the_games_and_the_charts_help_lists_only_what_they_take(capsys) -> None:
+    assert _listed("tradeoff", capsys) == ["--size", "--out", "--overwrite", "--quick"]
+    for name in ("breakout", "crumb", "pinball"):
+        assert _listed(name, capsys) == [
+            "--fps",
+            "--seconds",
+            "--size",
+            "--out",
+            "--overwrite",
+            "--window",
+            "--seed",
+        ], name
+    assert "--strobe" not in _listed("car", capsys)  # none of its scenes has a motion diagram
+    assert "--strobe" in _listed("bounce", capsys)  # two of its three scenes have one
+
+
+# -- --window where there is no display: the project's message alone -------------------------
+
+
+@pytest.mark.parametrize("argv", [["alfred", "--scene", "lazy"], ["breakout"]])
+def test_window_without_a_display_says_so_without_sdls_runtime_dir_line(argv):
+    # With no display and no XDG_RUNTIME_DIR, SDL's Wayland driver printed "error:
+    # XDG_RUNTIME_DIR is invalid or not set in the environment." before the project's message.
+    env = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("SDL_VIDEODRIVER", "DISPLAY", "WAYLAND_DISPLAY", "XDG_RUNTIME_DIR")
+    }
+    result = subprocess.run(
+        [sys.executable, "-m", "demos", *argv, "--window"],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode == 1, result.stderr
+    assert "XDG_RUNTIME_DIR" not in result.stderr
+    assert result.stderr.startswith("error: no window can open"), result.stderr
+    assert "drop --window" in result.stderr
+
+
+def test_sdl_gets_a_private_runtime_dir_only_where_there_is_none(monkeypatch):
+    from engine.render import headless
+
+    monkeypatch.delenv("XDG_RUNTIME_DIR", raising=False)
+    with headless._runtime_dir():
+        folder = Path(os.environ["XDG_RUNTIME_DIR"])
+        assert folder.is_absolute() and folder.is_dir() and not list(folder.iterdir())
+        assert folder.stat().st_mode & 0o077 == 0  # private: the user's alone
+    assert "XDG_RUNTIME_DIR" not in os.environ and not folder.exists()
+    monkeypatch.setenv("XDG_RUNTIME_DIR", "relative")  # invalid: not an absolute path
+    with headless._runtime_dir():
+        assert Path(os.environ["XDG_RUNTIME_DIR"]).is_absolute()
+    assert os.environ["XDG_RUNTIME_DIR"] == "relative"
+    monkeypatch.setenv("XDG_RUNTIME_DIR", "/run/user/1000")  # a session's own: left alone
+    with headless._runtime_dir():
+        assert os.environ["XDG_RUNTIME_DIR"] == "/run/user/1000"

@@ -9,6 +9,10 @@ errors on a machine without sound.
 from __future__ import annotations
 
 import os
+import sys
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
 
@@ -41,7 +45,8 @@ def init_window() -> None:
         )
     try:
         if not pygame.display.get_init():
-            pygame.display.init()
+            with _runtime_dir():
+                pygame.display.init()
     except pygame.error as exc:
         raise DisplayUnavailableError(
             f"no window can open: SDL found no display ({exc}); "
@@ -54,3 +59,29 @@ def init_window() -> None:
         )
     if not pygame.font.get_init():
         pygame.font.init()
+
+
+@contextmanager
+def _runtime_dir() -> Iterator[None]:
+    """While SDL starts its video: an empty private XDG_RUNTIME_DIR where it is unset or not
+    an absolute path (Linux and the BSDs), removed afterwards.
+
+    SDL tries Wayland among its drivers, and the Wayland client library prints
+    "error: XDG_RUNTIME_DIR is invalid or not set in the environment." on stderr where that
+    variable is missing (a container, ssh, a CI job), before any message of ours; with an empty
+    folder it finds no Wayland socket there and says nothing. A session with a display sets the
+    variable itself, and is left alone.
+    """
+    current = os.environ.get("XDG_RUNTIME_DIR", "")
+    if sys.platform in ("win32", "darwin") or current.startswith("/"):
+        yield
+        return
+    with tempfile.TemporaryDirectory(prefix="engine-runtime-") as folder:
+        os.environ["XDG_RUNTIME_DIR"] = folder
+        try:
+            yield
+        finally:
+            if current:
+                os.environ["XDG_RUNTIME_DIR"] = current
+            else:
+                del os.environ["XDG_RUNTIME_DIR"]
