@@ -2,7 +2,7 @@
 
     python -m demos tradeoff            # out/tradeoff/work_precision.png + .csv, throughput.*,
                                         # contacts.*
-    python -m demos tradeoff --quick    # a coarser sweep in a few seconds
+    python -m demos tradeoff --quick    # a coarser sweep (QUICK), in 10 to 20 seconds
 
 The work-precision chart answers "which integrator should I use?": for three problems with
 exact answers (a thrown ball, a spring, wind with drag) each method runs for 1 s at steps dt
@@ -11,8 +11,9 @@ m) against the cost (run time per simulated second). The lowest line at a given 
 best method for that budget. "auto" is the World choosing for itself, given a tolerance.
 A fourth panel holds a pendulum on a rod (``demos.bench.pendulum``): each method's largest
 energy error over 100 periods (``--quick``: 4) at dt = 1/30 to 1/240 s against its CPU time
-per simulated second (its cost per step, which is the same for every method there, times the
-steps a second); the rows go to ``out/tradeoff/pendulum.csv``.
+per simulated second (its cost per step times the steps a second); the rows go to
+``out/tradeoff/pendulum.csv``. Verlet, RK4 and the closed form give the same error at each dt
+there, so their lines run parallel, apart by their costs alone.
 
 The throughput chart: cost per body-step against the number of bodies, for the World, the
 particle arrays, the lesson's Body loop, pymunk and pygame's Vector2, measured in one run.
@@ -58,6 +59,7 @@ from engine.render import (
 from engine.render.chart import LogLogChart, decade_range, draw_legend
 
 __all__ = [
+    "AUTO_TARGET",
     "COLORS",
     "LABELS",
     "draw_work_precision",
@@ -65,6 +67,9 @@ __all__ = [
     "draw_contacts",
     "SOLVER_COLORS",
     "SOLVER_LABELS",
+    "FULL",
+    "QUICK",
+    "Sweep",
     "run",
     "DEMO",
 ]
@@ -193,14 +198,20 @@ def _wrap(text: str, width: int, size: int = 16) -> list[str]:
     return lines
 
 
-#: The pendulum panel's methods, drawn widest first so that lines lying on one another show
-#: as nested bands: (method as measured, colour key, line width, dot radius).
+#: The pendulum panel's methods, drawn widest first so that lines lying on one another (the
+#: three with one error, where their costs come out alike) show as nested bands: (method as
+#: measured, colour key, line width, dot radius).
 _PENDULUM_STYLE = (
     ("semi_implicit_euler", "semi_implicit_euler", 2, 4),
     ("velocity_verlet", "velocity_verlet", 12, 8),
     ("rk4", "rk4", 7, 6),
     ("auto", "exact", 2, 4),
 )
+
+
+#: The pendulum panel's note: what its three parallel lines are (the same energy error at each
+#: dt, each method at its own cost, so the lines lie side by side, not on one another).
+PENDULUM_NOTE = ("Verlet, RK4, closed form: same errors,", "their own costs: three parallel lines")
 
 
 def _pendulum_captions(rows: Sequence[pendulum.Row]) -> list[str]:
@@ -215,8 +226,8 @@ def _pendulum_captions(rows: Sequence[pendulum.Row]) -> list[str]:
     if {"velocity_verlet", "rk4", "auto", "semi_implicit_euler"} <= at.keys():
         same = at["auto"].energy
         text.append(
-            f"At dt = 1/{round(1 / dt)} s: Verlet, RK4, closed form (auto) {same:.1e}, "
-            f"one line; semi-implicit Euler {at['semi_implicit_euler'].energy:.1e}."
+            f"At dt = 1/{round(1 / dt)} s: Verlet, RK4 and closed form (auto) all {same:.1e}; "
+            f"semi-implicit Euler {at['semi_implicit_euler'].energy:.1e}."
         )
     return text
 
@@ -247,7 +258,7 @@ def _pendulum_panel(
                 radius=radius,
             )
     a = chart.area
-    for row, line in enumerate(("Verlet, RK4 and closed form", "lie on one line: nested")):
+    for row, line in enumerate(PENDULUM_NOTE):
         draw_text(surface, line, (a.right - 6, a.top + 4 + 17 * row), 16, INK, "topright")
 
 
@@ -390,7 +401,7 @@ class _Panel:
     scene: str
     measure: str  # a Row attribute: "error" or "energy"
     title: str
-    y_label: str
+    y_label: str  # "{seconds}" in it: the scene's run, from its rows (--quick's stacks are short)
     zero: str  # what a value of 0 (drawn on the bottom line) means
     floor: int | None = None  # the bottom decade, if fixed
     level: float | None = None  # a target drawn as a dashed line, with its label
@@ -426,7 +437,7 @@ _CONTACT_PANELS = (
         "stack",
         "error",
         f"A tower of {solver.TOWER} boxes: drift",
-        f"largest displacement of a box after {solver.STACK_TIME:g} s (m)",
+        "largest displacement of a box after {seconds} s (m)",
         "",
         level=1e-3,
         level_label="1 mm: the issue's, by 60 s",
@@ -435,7 +446,7 @@ _CONTACT_PANELS = (
         "pyramid",
         "error",
         f"A pyramid of {solver.PYRAMID_BOXES} boxes: drift",
-        f"largest displacement of a box after {solver.STACK_TIME:g} s (m)",
+        "largest displacement of a box after {seconds} s (m)",
         "",
         level=1e-2,
         level_label="1 cm: the issue's, by 60 s",
@@ -602,6 +613,13 @@ def _contacts_caption(rows: Sequence[solver.Row], panel: _Panel) -> list[str]:
     return [head + parts[0] + ",", ", ".join(parts[1:]) + "."]
 
 
+def _stack_seconds(rows: Sequence[solver.Row]) -> float:
+    """The stacks' run (s) in ``rows``: every step of it timed (sleeping off); STACK_TIME when
+    there are none (--quick runs them for QUICK_STACK_TIME)."""
+    steps = [r.steps for r in rows if r.scene in ("stack", "pyramid")]
+    return max(steps) * solver.DT if steps else solver.STACK_TIME
+
+
 def draw_contacts(
     rows: Sequence[solver.Row], size: tuple[int, int] = (1280, 720)
 ) -> pygame.Surface:
@@ -638,7 +656,7 @@ def draw_contacts(
             (lo, hi),
             panel.title,
             "cost: seconds per awake step",
-            panel.y_label,
+            panel.y_label.replace("{seconds}", f"{_stack_seconds(rows):g}"),
             y_label_every=2 if span > 8 else 1,
         )
         chart.draw_frame(surface)
@@ -687,8 +705,9 @@ def draw_contacts(
     draw_text(
         surface,
         f"over the pit's first {solver.PIT_WINDOW:g} s (the balls fall and pile up), the "
-        f"cradle's {solver.CRADLE_TIME:g} s and the boxes' {solver.STACK_TIME:g} s (sleeping off), "
-        "each step's time the median of several runs.",
+        f"cradle's {solver.CRADLE_TIME:g} s and the boxes' {_stack_seconds(rows):g} s (sleeping "
+        "off), each step's time the median of its runs (the cradle's 9, the others' 2; "
+        "--quick: 1).",
         (margin, height - 26),
         17,
         MUTED,
@@ -703,21 +722,48 @@ def _write(path: Path, lines: Sequence[str]) -> None:
     tmp.replace(path)
 
 
+#: auto's target against the fastest method that reaches its tolerance: at most this many times
+#: its work and its run time.
+AUTO_TARGET = 1.2
+
+
+def over_target(ratio: float | None) -> bool:
+    """Whether ``ratio`` (auto's over the best's) misses AUTO_TARGET, as printed (2 decimals:
+    a row that reads 1.20x is within it, one that reads 1.21x is not)."""
+    return ratio is not None and math.isfinite(ratio) and round(ratio, 2) > AUTO_TARGET
+
+
 def summary(points: Sequence[Point], timed: dict[int, float] | None = None) -> str:
-    """Slopes on the spring and auto against the best method at each tolerance, as text."""
+    """Slopes on the spring and auto against the best method at each tolerance, as text.
+
+    ``timed``: auto's run time over the best's, by the row's index, measured side by side. A
+    row whose work or time misses AUTO_TARGET ends in "OVER 1.2x" and says which, and a line
+    after the table counts them."""
     lines = ["spring: slope of log error against log dt (asymptotic range; expected 1, 1, 2, 4)"]
     for method in ("explicit_euler", "semi_implicit_euler", "velocity_verlet", "rk4"):
         s = measure.slope(points, "spring", method)
         lines.append(f"  {LABELS[method]:<22} {'-' if s is None else f'{s:.3f}'}")
-    lines.append("auto against the fastest method reaching its tolerance (target <= 1.2x):")
-    for i, r in enumerate(measure.auto_ratios(points)):
+    target = f"{AUTO_TARGET:g}x"
+    lines.append(f"auto against the fastest method reaching its tolerance (target <= {target}):")
+    ratios = measure.auto_ratios(points)
+    over = 0
+    for i, r in enumerate(ratios):
         best = "none" if r.best is None else f"{LABELS[r.best.method]} dt={r.best.dt:g}"
         t = timed.get(i) if timed else None
         time_txt = "" if t is None else f", time {t:.2f}x"
+        missed = [name for name, x in (("work", r.work_ratio), ("time", t)) if over_target(x)]
+        over += bool(missed)
+        flag = f"  OVER {target} ({', '.join(missed)})" if missed else ""
         lines.append(
             f"  {r.problem:<8} tol {r.tolerance:<7.0e} auto: {LABELS[r.auto.chosen]} "
             f"dt={r.auto.dt:g} error {r.auto.error:.2g} m{'' if r.met else ' (NOT MET)'}; "
-            f"best: {best}; work {r.work_ratio:.2f}x{time_txt}"
+            f"best: {best}; work {r.work_ratio:.2f}x{time_txt}{flag}"
+        )
+    if ratios:
+        lines.append(
+            f"  {over} of {len(ratios)} rows over the {target} target (marked OVER)"
+            if over
+            else f"  every row within the {target} target"
         )
     return "\n".join(lines)
 
@@ -732,9 +778,31 @@ OUTPUTS = (
     "contacts.png",
     "contacts.csv",
 )
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """What the work-precision part of a run measures (the full run's, or --quick's)."""
+
+    dts: tuple[float, ...]  # s: each method's steps, halved from one to the next
+    tolerances: tuple[float, ...]  # m: the error levels "auto" is given
+    repeats: int  # timed repetitions of each point (their median counts)
+    min_steps: int  # steps a repetition takes at least (fresh Worlds until then)
+    rounds: int  # rounds of auto's side-by-side timing against its best rival
+
+
+#: The full run's sweep: dt = 1/4 to 1/8192 s, tolerances 1e-1 to 1e-10 m.
+FULL = Sweep(tuple(measure.sweep_dts()), tuple(measure.auto_tolerances()), 5, 2000, 9)
+#: --quick's: dt = 1/4 to 1/256 s (three steps in the spring's asymptotic range, enough for its
+#: slopes), tolerances 1e-1 to 1e-7 m (the finest that RK4 meets at 1/256 s on the spring),
+#: short timings. Its other parts are quick too (each bench's ``quick``): the pendulum over 4
+#: periods at 2 steps, the throughput to 10^3 bodies, the contacts at 2 iteration counts a
+#: solver, the stacks for 2 s. All in 10 to 20 s here (TAKES); most of it is the contacts.
+QUICK = Sweep(tuple(2.0**-k for k in range(2, 9)), tuple(10.0**-k for k in range(1, 8)), 2, 50, 3)
+
 #: How long a whole run takes, measured on the 2-core machine the project is built on
 #: (`python -m demos tradeoff`: 132 s alone on 2026-11-25, about 170 s beside another job;
-#: --quick: 11 s): said before it starts, and on its progress lines.
+#: --quick: see the README): said before it starts, and on its progress lines.
 TAKES = {False: "about 2 to 3 minutes", True: "about 10 to 20 seconds"}
 
 
@@ -763,13 +831,14 @@ def run(args: argparse.Namespace) -> int:
 
     bar = bar_for(1, "integrators")
     print(f"tradeoff: measuring {'(quick) ' if quick else ''}the work-precision sweep ...")
+    plan = QUICK if quick else FULL
     points = measure.sweep(
         PROBLEMS.values(),
-        dts=measure.sweep_dts(quick),
-        repeats=3 if quick else 5,
-        tolerances=measure.auto_tolerances(quick),
+        dts=plan.dts,
+        repeats=plan.repeats,
+        tolerances=plan.tolerances,
         progress=lambda done, total, label: bar(done, total),
-        min_steps=300 if quick else 2000,
+        min_steps=plan.min_steps,
     )
     bar.done()
     print("tradeoff: measuring the pendulum on a rod (energy over many periods) ...")
@@ -786,15 +855,28 @@ def run(args: argparse.Namespace) -> int:
         f"tradeoff: wrote {png_path}, {csv_path} and {out / 'pendulum.csv'} ({len(points)} points)"
     )
     # auto against its best rival, timed side by side (interleaved rounds: fair on a busy box).
-    ratios = measure.auto_ratios(points)
-    pairs = [(i, r) for i, r in enumerate(ratios) if r.best is not None]
+    # A rival that is the best at several tolerances is one run, timed once.
     runs: list[tuple[measure.Problem, str, float, float | None]] = []
-    for _, r in pairs:
-        assert r.best is not None
-        runs.append((PROBLEMS[r.problem], "auto", r.auto.dt, r.tolerance))
-        runs.append((PROBLEMS[r.problem], r.best.method, r.best.dt, None))
-    times = measure.side_by_side(runs, rounds=5 if quick else 9, min_steps=300 if quick else 2000)
-    timed = {i: times[2 * k] / times[2 * k + 1] for k, (i, _) in enumerate(pairs)}
+    where: dict[tuple[str, str, float, float | None], int] = {}
+
+    def slot(problem: str, method: str, dt: float, tolerance: float | None) -> int:
+        key = (problem, method, dt, tolerance)
+        if key not in where:
+            where[key] = len(runs)
+            runs.append((PROBLEMS[problem], method, dt, tolerance))
+        return where[key]
+
+    pairs = [
+        (
+            i,
+            slot(r.problem, "auto", r.auto.dt, r.tolerance),
+            slot(r.problem, r.best.method, r.best.dt, None),
+        )
+        for i, r in enumerate(measure.auto_ratios(points))
+        if r.best is not None
+    ]
+    times = measure.side_by_side(runs, rounds=plan.rounds, min_steps=plan.min_steps)
+    timed = {i: times[a] / times[b] for i, a, b in pairs}
     print(summary(points, timed))
     print(f"tradeoff: measuring throughput (3/4; {takes} in all) ...")
     rows = throughput.measure(quick)
@@ -826,7 +908,7 @@ def _add_arguments(parser: argparse.ArgumentParser) -> None:
 
 DEMO = Demo(
     name="tradeoff",
-    summary="Work-precision chart (error vs cost per integrator) and throughput chart",
+    summary="Work-precision chart (error vs cost per integrator), throughput and contacts charts",
     add_arguments=_add_arguments,
     run=run,
     takes=frozenset({"--size", "--out", "--overwrite"}),

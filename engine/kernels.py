@@ -7,8 +7,7 @@ colour, a cell size or a round, and at the sizes of a game numpy's fixed cost pe
 microseconds) is most of their time. With the ``fast`` extra installed
 (``pip install -e ".[fast]"``: numba), each such stage also has a **loop kernel**: the same
 algorithm written as the loop it is, in plain Python beside its numpy twin in the stage's own
-module, which numba compiles to machine code the first time it is used (``cache=True``: later
-runs load it from disk).
+module, which numba compiles to machine code.
 
 **The path** is chosen once, when a World is made (``World(kernels=...)``; ``world.kernels``
 says which it runs):
@@ -17,10 +16,22 @@ says which it runs):
 * ``"numpy"``: the numpy twins; the default without numba, and forced by
   ``ENGINE_KERNELS=numpy`` in the environment or ``World(kernels="numpy")``.
 
-``import engine`` does not import numba: a kernel is compiled on its first call on the fast
-path. Both paths give the same numbers to rounding (tests/test_kernels.py checks each kernel
-against its twin to 1e-12 relative), so every exactness test holds on both. Validation stays
-before the kernels, so an error reads the same on either path.
+**No compile in play.** numba compiles a function once for each set of argument types it
+meets (int32 or int64, a C-contiguous or strided or read-only array, a float or an int), each
+new one when it is met. So every kernel has a sample call (``@loop(sample=...)``) with the
+types its callers pass, and the callers pass those types (C-contiguous, writable, int64
+arrays; Python floats). ``prepare`` compiles every kernel for its sample, or loads it from
+numba's cache (about 0.2 s for all): the first World on the fast path calls it when it is
+made, before any step, and ``python -m engine.warmup`` (the install line's last command) does
+the first run's compile, about 20 s, once. The cache lives in the user's cache folder
+(``cache_dir()``), not beside the sources, unless ``NUMBA_CACHE_DIR`` says otherwise.
+tests/test_compile_before_play.py checks that stepping the demos' scenes after ``prepare``
+adds no specialisation to any kernel.
+
+``import engine`` does not import numba; a World on the fast path does. Both paths give the
+same numbers to rounding (tests/test_kernels.py checks each kernel against its twin to 1e-12
+relative), so every exactness test holds on both. Validation stays before the kernels, so an
+error reads the same on either path.
 
 >>> choose("numpy")
 'numpy'
@@ -34,15 +45,18 @@ from __future__ import annotations
 
 import importlib.util
 import os
+import sys
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any, Generic, TypeVar
 
 __all__ = [
     "PATHS",
     "LoopKernel",
     "available",
+    "cache_dir",
     "choose",
     "default",
     "kernels",
@@ -54,6 +68,8 @@ __all__ = [
 PATHS = ("numpy", "fast")
 #: The environment variable that picks the default path (``numpy`` or ``fast``).
 ENV = "ENGINE_KERNELS"
+#: numba's own variable for its cache's folder; set to ``cache_dir()`` where it is unset.
+CACHE_ENV = "NUMBA_CACHE_DIR"
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -73,15 +89,23 @@ def default() -> str:
                 f"the environment variable {ENV} must be 'numpy' or 'fast' (or unset), "
                 f"got {wanted!r}"
             )
-        return choose(wanted)
+        return _path(wanted)
     return "fast" if available() else "numpy"
 
 
 def choose(kernels: str | None) -> str:
     """The path for a World's ``kernels`` argument (None: ``default()``); ValueError for a
-    name that is not a path, or for ``"fast"`` without numba installed."""
-    if kernels is None:
-        return default()
+    name that is not a path, or for ``"fast"`` without numba installed. On the fast path
+    every kernel is compiled or loaded now (``prepare``): the World is made before its first
+    step, so no step waits on numba."""
+    path = default() if kernels is None else _path(kernels)
+    if path == "fast":
+        prepare()
+    return path
+
+
+def _path(kernels: str) -> str:
+    """``kernels`` if it names a path that can run here, else ValueError (``choose``)."""
     if kernels not in PATHS:
         raise ValueError(
             f"kernels must be 'numpy' or 'fast' (or None: the default, fast where numba is "
@@ -95,23 +119,53 @@ def choose(kernels: str | None) -> str:
     return kernels
 
 
+def cache_dir() -> Path:
+    """The folder numba caches the compiled kernels in: ``NUMBA_CACHE_DIR`` where it is set,
+    else the user's cache folder (``%LOCALAPPDATA%`` on Windows, ``XDG_CACHE_HOME`` or
+    ``~/.cache`` elsewhere) + ``alfred-engine/numba``, never beside the engine's sources."""
+    chosen = os.environ.get(CACHE_ENV, "")
+    if chosen:
+        return Path(chosen)
+    if sys.platform == "win32":
+        base = os.environ.get("LOCALAPPDATA", "") or str(Path.home() / "AppData" / "Local")
+    else:
+        base = os.environ.get("XDG_CACHE_HOME", "")
+        if not os.path.isabs(base):  # unset, or relative: the spec says ignore it
+            base = str(Path.home() / ".cache")
+    return Path(base) / "alfred-engine" / "numba"
+
+
+def _numba() -> Any:
+    """numba, imported with its cache in ``cache_dir()`` (``NUMBA_CACHE_DIR`` set first, if
+    unset, since numba reads it when imported and when it compiles)."""
+    if not os.environ.get(CACHE_ENV):
+        os.environ[CACHE_ENV] = str(cache_dir())
+    import numba  # only here: import engine does not import numba
+
+    if not getattr(numba.config, "CACHE_DIR", ""):  # numba was imported before it was set
+        numba.core.config.reload_config()
+    return numba
+
+
 class LoopKernel(Generic[F]):
     """A stage's loop, in plain Python (``py``: runs anywhere, slowly) and compiled by numba
-    on first use (``fast``). Made by the ``@loop`` decorator."""
+    (``fast``), for the argument types of its sample call, by ``prepare``. Made by the
+    ``@loop`` decorator."""
 
     def __init__(self, fn: F) -> None:
         self.py: F = fn
         self.name = f"{fn.__module__}.{fn.__qualname__}"
         self._compiled: Any = None
+        #: Whether ``prepare`` has compiled (or loaded) it for its sample's argument types.
+        self.ready = False
         _ALL.append(self)
 
     @property
     def fast(self) -> F:
-        """The compiled kernel (numba.njit, cached on disk); compiled on the first call."""
+        """The compiled kernel (numba.njit, cached on disk in ``cache_dir()``); it compiles
+        (or loads) a specialisation at its first call with each new set of argument types."""
         if self._compiled is None:
-            import numba  # only here: import engine does not import numba
-
-            self._compiled = numba.njit(cache=True, nogil=True)(self.py)
+            self._compiled = _numba().njit(cache=True, nogil=True)(self.py)
         return self._compiled  # type: ignore[no-any-return]
 
     def __call__(self, *args: Any) -> Any:
@@ -122,44 +176,23 @@ class LoopKernel(Generic[F]):
         return f(*args)
 
     def _first(self, args: tuple[Any, ...]) -> Any:
-        """The first call: compile (or load from the cache) and run, telling ``waiting``
-        if that takes long enough to be a compile."""
-        fast = self.fast  # numba imported and the kernel made: not yet compiled or loaded
-        timer = _timer()
-        try:
-            return fast(*args)
-        finally:
-            if timer is not None:
-                timer.cancel()
+        """A first call before any ``prepare`` (a World on the fast path prepares when it is
+        made): every kernel is compiled or loaded now, this one with them."""
+        prepare()
+        return self.fast(*args)
 
     def __repr__(self) -> str:
         return f"LoopKernel({self.name})"
 
 
 _ALL: list[LoopKernel[Any]] = []
-#: Told "compiling (first run only)" when a kernel's first call waits on numba's compiler
-#: (a demo's progress line sets it); None: nobody is told.
+_LOCK = threading.RLock()
+#: Told how the first run's compile goes ("compiling the engine's kernels (first run only):
+#: 5/22"), and of a kernel compiled again for argument types its sample did not have (a
+#: demo's progress line sets it); None: those lines go to stderr.
 waiting: Callable[[str], None] | None = None
-#: Seconds a first call may take before it counts as a compile (a cache load takes less).
-COMPILE_AFTER = 0.3
-_told = False
-
-
-def _tell() -> None:
-    global _told
-    if waiting is not None and not _told:
-        _told = True
-        waiting("compiling (first run only)")
-
-
-def _timer() -> threading.Timer | None:
-    """A timer that tells ``waiting`` after COMPILE_AFTER s (None: nobody to tell)."""
-    if waiting is None or _told:
-        return None
-    timer = threading.Timer(COMPILE_AFTER, _tell)
-    timer.daemon = True
-    timer.start()
-    return timer
+#: Seconds between two lines of the compile's progress, at least (the first and last always).
+PROGRESS_EVERY = 2.0
 
 
 #: The modules that hold loop kernels (``prepare`` imports them all).
@@ -201,23 +234,110 @@ def kernels() -> list[LoopKernel[Any]]:
     return list(_ALL)
 
 
-def prepare() -> float:
-    """Compile every loop kernel of the engine now (or load them from numba's cache), telling
-    ``waiting`` if it takes long, and return the seconds it took (0 without numba)."""
+def prepare(only: Sequence[LoopKernel[Any]] | None = None) -> float:
+    """Compile every loop kernel of the engine now, for its sample's argument types (or load
+    it from numba's cache), and return the seconds it took (0 without numba). A World on the
+    fast path calls it when it is made, and ``python -m engine.warmup`` at install time, so no
+    step waits on the compiler. The kernels already prepared are skipped, so a second call
+    costs nothing. While kernels compile (not while they load) it says so as it goes, through
+    ``waiting`` or on stderr: "compiling the engine's kernels (first run only): 5/22".
+    ``only``: these kernels, not the engine's (the tests')."""
     if not available():
         return 0.0
-    for name in MODULES:
-        importlib.import_module(name)
-    timer = _timer()
-    t0 = time.perf_counter()
-    try:
-        for k in _ALL:
-            sample = _SAMPLES.get(k.name)
-            if sample is None:
-                k.fast  # noqa: B018  (numba compiles it at its first real call)
-            else:
+    with _LOCK:
+        if only is None:
+            for name in MODULES:
+                importlib.import_module(name)
+        todo = [k for k in (_ALL if only is None else only) if not k.ready]
+        if not todo:
+            return 0.0
+        t0 = time.perf_counter()
+        progress = _Progress(len(todo), t0)
+        ev = _numba().core.event
+        watch = _watcher(ev, progress.compiling)
+        ev.register("numba:compile", watch)
+        try:
+            for done, k in enumerate(todo):
+                progress.done = done
+                sample = _SAMPLES.get(k.name)
+                if sample is None:
+                    raise RuntimeError(
+                        f"loop kernel {k.name} has no sample (@loop(sample=...)): it would "
+                        f"compile at its first call, during play"
+                    )
                 k.fast(*sample())
-    finally:
-        if timer is not None:
-            timer.cancel()
-    return time.perf_counter() - t0
+                k.ready = True
+                progress.step(done + 1)
+        finally:
+            ev.unregister("numba:compile", watch)
+        _watch_play(ev)
+        return time.perf_counter() - t0
+
+
+class _Progress:
+    """The lines of a compile's progress: the first when numba starts compiling, then one at
+    least every PROGRESS_EVERY s as kernels finish, and the last when all are ready."""
+
+    def __init__(self, total: int, t0: float) -> None:
+        self.total, self.t0 = total, t0
+        self.done = 0
+        self.said: float | None = None  # when the last line was said (None: not compiling)
+
+    def compiling(self, _dispatcher: Any) -> None:
+        if self.said is None:
+            self._say()
+
+    def step(self, done: int) -> None:
+        self.done = done
+        if self.said is None:
+            return  # loaded from the cache: nothing to say
+        now = time.perf_counter()
+        if done == self.total or now - self.said >= PROGRESS_EVERY:
+            self._say(f", {now - self.t0:.1f} s" if done == self.total else "")
+
+    def _say(self, tail: str = "") -> None:
+        self.said = time.perf_counter()
+        tell(f"compiling the engine's kernels (first run only): {self.done}/{self.total}{tail}")
+
+
+def tell(message: str) -> None:
+    """Say ``message`` through ``waiting``, or on stderr where nobody listens."""
+    if waiting is not None:
+        waiting(message)
+    else:
+        print(f"engine: {message}", file=sys.stderr, flush=True)
+
+
+def _watcher(ev: Any, on_start: Callable[[Any], None]) -> Any:
+    """A listener of numba's "numba:compile" events (a compile, not a load from the cache)
+    that calls ``on_start(dispatcher)`` as one starts."""
+
+    class Watch(ev.Listener):  # type: ignore[misc,name-defined]
+        def on_start(self, event: Any) -> None:
+            on_start(event.data["dispatcher"])
+
+        def on_end(self, event: Any) -> None:
+            pass
+
+    return Watch()
+
+
+_late: list[Any] = []  # the listener of compiles during play, once registered
+
+
+def _watch_play(ev: Any) -> None:
+    """From the first ``prepare`` on, a kernel compiled again (for argument types its sample
+    did not have: a stall in play) is told by name, so it can be found and fixed."""
+    if _late:
+        return
+
+    def late(dispatcher: Any) -> None:
+        for k in _ALL:
+            if k.ready and k._compiled is dispatcher:
+                tell(
+                    f"compiling {k.name} again during play, for argument types its sample "
+                    f"did not have (engine.kernels)"
+                )
+
+    _late.append(_watcher(ev, late))
+    ev.register("numba:compile", _late[0])

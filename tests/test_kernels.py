@@ -292,12 +292,27 @@ def test_fast_without_numba_says_how_to_install_it() -> None:
 
 
 def test_import_engine_does_not_import_numba() -> None:
-    code = "import sys, engine; from engine import World; World(); print('numba' in sys.modules)"
+    """Nor does a World on the numpy path: only the fast path needs it."""
+    code = (
+        "import sys, engine; from engine import World; World(kernels='numpy'); "
+        "print('numba' in sys.modules)"
+    )
     env = {**os.environ, "ENGINE_KERNELS": ""}
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
     )
     assert out.stdout.strip() == "False"
+
+
+@pytest.mark.skipif(not COMPILED, reason="numba is not installed: nothing compiles")
+def test_a_world_on_the_fast_path_is_made_with_every_kernel_ready() -> None:
+    """Its first step waits on no compile: ``kernels.prepare`` ran when it was made."""
+    World(kernels="fast")
+    engine_kernels = [k for k in kernels.kernels() if k.name.startswith("engine.")]
+    assert len(engine_kernels) >= 22
+    assert [k.name for k in engine_kernels if not k.ready] == []
+    assert all(len(k.fast.signatures) >= 1 for k in engine_kernels)
+    assert kernels.prepare() == 0.0  # a second call has nothing to do
 
 
 def test_a_pile_lands_the_same_on_both_paths() -> None:
@@ -324,22 +339,3 @@ def test_a_pile_lands_the_same_on_both_paths() -> None:
     assert y.min() > 0.4  # the balls rest on the floor, not through it
     if len(worlds) == 2:
         assert np.abs(worlds[0].positions() - worlds[1].positions()).max() < 1e-9
-
-
-def _twice(x: float) -> float:
-    return 2.0 * x
-
-
-@pytest.mark.skipif(not COMPILED, reason="numba is not installed: nothing compiles")
-def test_a_first_compile_is_announced_once(monkeypatch: pytest.MonkeyPatch) -> None:
-    """A demo's progress line is told "compiling (first run only)" when a first call waits
-    on numba's compiler, once."""
-    told: list[str] = []
-    monkeypatch.setattr(kernels, "waiting", told.append)
-    monkeypatch.setattr(kernels, "COMPILE_AFTER", 0.0)
-    monkeypatch.setattr(kernels, "_told", False)
-    k = LoopKernel(_twice)
-    kernels._ALL.remove(k)  # not one of the engine's kernels
-    assert k(1.5) == 3.0
-    assert k(2.0) == 4.0
-    assert told == ["compiling (first run only)"]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -15,14 +16,20 @@ import pytest
 from demos import cli
 from demos.bench import pendulum, solver
 from demos.tradeoff import (
+    AUTO_TARGET,
     COLORS,
+    FULL,
     OUTPUTS,
+    PENDULUM_NOTE,
+    QUICK,
     SOLVER_COLORS,
     TAKES,
     _hidden_under,
     _level_spot,
+    _pendulum_captions,
     draw_contacts,
     draw_work_precision,
+    summary,
 )
 from engine import World
 from engine.measure import PROBLEMS, Point, measure
@@ -218,9 +225,9 @@ def test_a_second_run_gives_the_same_errors_and_choices(
     # The contacts chart's errors too (both engines are deterministic).
     contacts, contacts_again = _contact_rows(quick_run[0]), _contact_rows(tmp_path)
     assert contacts.keys() == contacts_again.keys()
-    for key, row in contacts.items():
-        del row["cost_s_per_step"], contacts_again[key]["cost_s_per_step"]
-        assert row == contacts_again[key], key
+    for setting, row in contacts.items():
+        del row["cost_s_per_step"], contacts_again[setting]["cost_s_per_step"]
+        assert row == contacts_again[setting], setting
 
 
 # -- the contacts chart: solver iterations against cost, this engine and pymunk ----------------
@@ -255,10 +262,11 @@ def test_quick_run_writes_the_contacts_chart_with_both_engines(
     assert "Newton's cradle" in text and "Ball pit" in text  # the table is printed too
     for row in rows.values():
         # Every setting is timed over its whole window, awake: the pit's first 2 s, the
-        # cradle's 1 s, the stacks' 5 s (a sleeping World's steps would not count).
+        # cradle's 1 s, the stacks' 2 s with --quick (5 s in a full run; a sleeping World's
+        # steps would not count).
         cost, steps = float(row["cost_s_per_step"]), int(row["timed_steps"])
         assert 0.0 < cost < 1.0 and math.isfinite(cost), row
-        assert steps == {"pit": 120, "cradle": 60, "stack": 300, "pyramid": 300}[row["scene"]]
+        assert steps == {"pit": 120, "cradle": 60, "stack": 120, "pyramid": 120}[row["scene"]]
         assert math.isfinite(float(row["error"])) and math.isfinite(float(row["energy"])), row
 
 
@@ -289,17 +297,18 @@ def test_one_iteration_leaves_the_pit_deeper(
 def test_the_stacks_drift_less_with_more_iterations_and_the_pyramid_within_1_cm(
     quick_run: tuple[Path, list[dict[str, str]], str],
 ) -> None:
-    # The tower of 10 and the pyramid of 210 boxes, sleeping off, after 5 s. Measured (the
-    # physics is deterministic): one substep lets the tower walk 0.86 m and the pyramid 0.11 m
-    # (the World warns); the default 4 holds them to 9.6 mm and 6.9 mm. The full sweep's 1, 2,
-    # 4, 8, 16 never drifted more with more substeps (tower 858, 31, 9.6, 6.2, 6.2 mm).
+    # The tower of 10 and the pyramid of 210 boxes, sleeping off, after 2 s (--quick's window;
+    # a full run's is 5 s). Measured (the physics is deterministic): one substep lets the tower
+    # walk 0.28 m and the pyramid 70 mm (the World warns); the default 4 holds them to 10.3 mm
+    # and 7.1 mm (after 5 s: 0.86 m and 0.11 m, 9.6 mm and 6.9 mm). The full sweep's 1, 2, 4,
+    # 8, 16 never drifted more with more substeps (tower 858, 31, 9.6, 6.2, 6.2 mm at 5 s).
     rows = _contact_rows(quick_run[0])
     default = World().contact_iterations
     for scene, bound in (("stack", 0.02), ("pyramid", 0.01)):
         one, four = rows[(scene, "World", 1)], rows[(scene, "World", default)]
         assert float(four["error"]) < float(one["error"]) / 5, scene
         assert one["warned"] == "1" and four["warned"] == "0", scene
-        # A bound with margin: 9.6 mm measured for the tower, 6.9 mm for the pyramid (the
+        # A bound with margin: 10.3 mm measured for the tower, 7.1 mm for the pyramid (the
         # issue's 1 cm, there by 60 s); a box does not stand still to the micrometre either.
         assert 1e-4 < float(four["error"]) < bound, (scene, four["error"])
         assert int(four["asleep"]) == 0  # sleeping off: every step solved
@@ -310,8 +319,9 @@ def test_the_stacks_drift_less_with_more_iterations_and_the_pyramid_within_1_cm(
 def test_pymunks_pyramid_drifts_further_at_its_default_iterations(
     quick_run: tuple[Path, list[dict[str, str]], str],
 ) -> None:
-    # Measured: pymunk's 210 boxes at its default 10 iterations move 48 mm in 5 s (32 mm with
-    # a 1 mm slop), this engine's 6.9 mm at its default; one iteration lets pymunk's tower fall.
+    # Measured: pymunk's 210 boxes at its default 10 iterations move 46 mm in --quick's 2 s
+    # (33 mm with a 1 mm slop; 48 and 32 mm in 5 s), this engine's 7.1 mm at its default; one
+    # iteration lets pymunk's tower fall (a box 1.15 m from its place by 2 s, 19 m by 5 s).
     rows = _contact_rows(quick_run[0])
     world = float(rows[("pyramid", "World", World().contact_iterations)]["error"])
     for name in ("pymunk", "pymunk 1 mm"):
@@ -504,3 +514,79 @@ def test_charts_already_in_the_folder_are_refused_without_overwrite(
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before  # nothing measured, kept
     # Before it starts, a run says how long it takes (the whole run, and --quick).
     assert f"tradeoff: four measurements, {TAKES[True]} in all" in text
+
+
+# -- --quick is quick: it measures less, and leaves out no panel ------------------------------
+
+
+def test_quick_measures_a_small_sweep_and_every_panel(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    # --quick took about a minute where the README and its first line say 10 to 20 s: it now
+    # measures fewer steps, tolerances, repetitions, sizes and seconds, and every panel still.
+    out, rows, _ = quick_run
+    assert QUICK.dts == tuple(2.0**-k for k in range(2, 9))  # 1/4 to 1/256 s: 7 steps
+    assert len(QUICK.tolerances) == 7 and len(FULL.dts) == 12 and len(FULL.tolerances) == 10
+    assert QUICK.repeats * QUICK.min_steps <= 100 and QUICK.rounds <= 3
+    assert {float(r["dt_s"]) for r in rows if r["method"] != "auto"} == set(QUICK.dts)
+    autos = [r for r in rows if r["method"] == "auto"]
+    assert len(autos) == 3 * len(QUICK.tolerances)
+    assert len(rows) == (5 + 4 + 4) * len(QUICK.dts) + len(autos)  # gravity has the closed form
+    with open(out / "throughput.csv", newline="") as handle:
+        sizes = {int(r["bodies"]) for r in csv.DictReader(handle)}
+    assert sizes == {10, 100, 1000}
+    contacts = _contact_rows(out)
+    assert {k[0] for k in contacts} == set(solver.SCENES)  # every contacts panel
+    assert solver.QUICK_STACK_TIME == 2.0 and solver.STACK_TIME == 5.0
+    assert all(len(solver.QUICK_ITERATIONS[s]) == 2 for s in solver.SOLVERS)
+    assert pendulum.QUICK_PERIODS == 4 and len(pendulum.QUICK_DTS) == 2
+
+
+# -- auto against the fastest method: the rows over the 1.2x target say so --------------------
+
+
+def _auto_point(tolerance: float, evaluations: int) -> Point:
+    return Point(
+        "spring", "auto", "rk4", 1 / 32, 32, 6e-5, True, False, 1e-3, 0.0, evaluations, 0,
+        tolerance,
+    )  # fmt: skip
+
+
+def test_a_row_over_the_1_2x_target_is_flagged_and_one_under_is_not() -> None:
+    # Two rows came out at 1.23x and 1.47x the best method's time, unflagged.
+    rival = _point("rk4", 1 / 32, 6e-5)  # 32 steps, 1 evaluation: work 33
+    rows = [rival, _auto_point(1e-3, 1), _auto_point(1e-4, 1), _auto_point(2e-4, 1)]
+    rows.append(_auto_point(1e-2, 17))  # work 49: 1.48x the rival's
+    text = summary(rows, {0: 1.23, 1: 1.19, 2: 1.2004, 3: 1.0})
+    lines = [line for line in text.splitlines() if " tol " in line]
+    assert len(lines) == 4
+    assert lines[0].endswith("time 1.23x  OVER 1.2x (time)"), lines[0]
+    assert lines[1].endswith("time 1.19x") and "OVER" not in lines[1]
+    assert lines[2].endswith("time 1.20x") and "OVER" not in lines[2]  # as printed: within
+    assert lines[3].endswith("work 1.48x, time 1.00x  OVER 1.2x (work)"), lines[3]
+    assert "  2 of 4 rows over the 1.2x target (marked OVER)" in text.splitlines()
+    assert "every row within" in summary(rows[:2], {0: 1.0})
+    assert AUTO_TARGET == 1.2
+
+
+def test_the_quick_runs_table_flags_exactly_its_rows_over_the_target(
+    quick_run: tuple[Path, list[dict[str, str]], str],
+) -> None:
+    rows = [line for line in quick_run[2].splitlines() if " tol " in line and "auto:" in line]
+    assert len(rows) == 3 * len(QUICK.tolerances)
+    for line in rows:
+        ratios = [float(x) for x in re.findall(r"(?:work|time) (\d+\.\d+)x", line)]
+        assert len(ratios) == 2, line
+        assert ("OVER 1.2x" in line) == any(x > AUTO_TARGET for x in ratios), line
+
+
+# -- the pendulum panel says what it draws -----------------------------------------------------
+
+
+def test_the_pendulum_panel_calls_its_three_lines_parallel_not_one() -> None:
+    # It said the three methods "lie on one line" where it draws three parallel lines: the
+    # same error at each dt, each at its own cost.
+    note = " ".join(PENDULUM_NOTE)
+    assert "parallel" in note and "one line" not in note
+    captions = " ".join(_pendulum_captions(_fake_rows()))
+    assert "one line" not in captions and "Verlet, RK4 and closed form (auto) all" in captions
