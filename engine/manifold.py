@@ -376,7 +376,13 @@ def collide_half_plane_polygon(
     n_pairs = _pairs(a, b)
     f = frames(xa, qa, xb, qb, n_pairs)  # validates the poses on both paths
     if fast:
-        rows, pose = np.arange(n_pairs), np.ascontiguousarray
+        rows = np.arange(n_pairs)
+
+        def pose(v: np.ndarray) -> np.ndarray:
+            # C-contiguous and writable, never a read-only broadcast view: the kernel's one
+            # specialisation (engine.kernels: no compile in play).
+            return np.require(v, float, ["C", "W"])
+
         q_a = pose(np.broadcast_to(np.asarray(qa, dtype=float), (n_pairs,)))
         q_b = pose(np.broadcast_to(np.asarray(qb, dtype=float), (n_pairs,)))
         return Manifold(

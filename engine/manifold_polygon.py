@@ -113,7 +113,12 @@ def collide_polygons(
     f = frames(xa, qa, xb, qb, n)  # validates the poses on both paths
     if fast:
         rows = np.arange(n)
-        pose = np.ascontiguousarray
+
+        def pose(v: np.ndarray) -> np.ndarray:
+            # C-contiguous and writable, never a read-only broadcast view: the kernel's one
+            # specialisation (engine.kernels: no compile in play).
+            return np.require(v, float, ["C", "W"])
+
         q_a = pose(np.broadcast_to(np.asarray(qa, dtype=float), (n,)))
         q_b = pose(np.broadcast_to(np.asarray(qb, dtype=float), (n,)))
         return Manifold(

@@ -230,7 +230,9 @@ def _paths_fast(
         faces.p, faces.n, faces.rho, faces.two, faces.lo, faces.hi, spoly, sstart, sflat,
         faces.c, faces.r,
         faces.e, faces.mu, rows, paths.x0, paths.v0, paths.B, paths.W, paths.radius,
-        paths.restitution, paths.friction, paths.mass, resting, pb, pf, paths.dt, paths.t0,
+        paths.restitution, paths.friction, paths.mass, resting,
+        # C arrays (np.nonzero's are strided views): the kernel's one specialisation.
+        np.ascontiguousarray(pb), np.ascontiguousarray(pf), paths.dt, paths.t0,
         spins is not None, th, om, q, al, rolls,
     )  # fmt: skip
 

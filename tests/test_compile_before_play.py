@@ -1,0 +1,206 @@
+"""The fast path compiles before play, never during it (engine.kernels: "No compile in play").
+
+numba compiles a kernel once for each set of argument types it meets, each new one when it is
+met: a game stalled for seconds mid-play where a caller passed a strided or read-only array
+its kernel's sample did not have. So every kernel has a sample, ``prepare`` compiles them all
+(a World on the fast path calls it when it is made), and stepping the demos' scenes after it
+adds no specialisation to any kernel. The compile says how it goes, and numba's cache lives in
+the user's cache folder, not beside the engine's sources.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from engine import kernels
+from engine.kernels import LoopKernel
+
+ROOT = Path(__file__).resolve().parent.parent
+COMPILED = kernels.available()
+needs_numba = pytest.mark.skipif(not COMPILED, reason="numba is not installed: nothing compiles")
+
+
+def test_every_kernel_has_a_sample_and_its_module_is_prepared() -> None:
+    """Each ``@kernels.loop`` of the engine is in a module of ``kernels.MODULES`` (so
+    ``prepare`` imports it) and has a sample call (so ``prepare`` compiles it)."""
+    decorated = set()
+    for path in (ROOT / "engine").rglob("*.py"):
+        if "@kernels.loop" in path.read_text():
+            decorated.add(".".join(path.relative_to(ROOT).with_suffix("").parts))
+    assert decorated, "no kernel found: the search is wrong"
+    assert decorated <= set(kernels.MODULES), decorated - set(kernels.MODULES)
+    for name in kernels.MODULES:
+        __import__(name)
+    mine = [k for k in kernels.kernels() if k.name.startswith("engine.")]
+    assert {k.name.rsplit(".", 1)[0] for k in mine} == decorated
+    assert [k.name for k in mine if k.name not in kernels._SAMPLES] == []
+
+
+def test_the_cache_folder_is_the_users_unless_numba_cache_dir_says(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "mine"))
+    assert kernels.cache_dir() == tmp_path / "mine"
+    monkeypatch.delenv("NUMBA_CACHE_DIR")
+    monkeypatch.setattr(sys, "platform", "linux")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    assert kernels.cache_dir() == tmp_path / "xdg" / "alfred-engine" / "numba"
+    monkeypatch.setenv("XDG_CACHE_HOME", "relative/is/ignored")
+    assert kernels.cache_dir() == Path.home() / ".cache" / "alfred-engine" / "numba"
+    monkeypatch.setattr(sys, "platform", "win32")
+    monkeypatch.setenv("LOCALAPPDATA", str(tmp_path / "local"))
+    assert kernels.cache_dir() == tmp_path / "local" / "alfred-engine" / "numba"
+
+
+# Two small kernels of the engine, prepared in a fresh process; then (with WAITING) one is
+# called with int32 arrays, which its sample (int64) does not have: a compile in play.
+_PROBE = """
+import os, sys
+import numpy as np
+from engine import kernels
+from engine.pile import carry_keys, label_rows
+if os.environ.get("WAITING"):
+    kernels.waiting = lambda message: print("told:", message)
+kernels.prepare([label_rows, carry_keys])
+print("cache:", kernels.cache_dir())
+if os.environ.get("WAITING"):
+    label_rows(2, np.array([0, 1], dtype=np.int32), np.array([1, 2], dtype=np.int32))
+"""
+
+
+def _numba_files(root: Path) -> dict[Path, int]:
+    return {p: p.stat().st_mtime_ns for p in root.rglob("*.nb[ic]")}
+
+
+@needs_numba
+def test_the_cache_goes_to_the_users_cache_folder_and_a_compile_says_so(tmp_path: Path) -> None:
+    """With NUMBA_CACHE_DIR unset, the kernels are cached under the user's cache folder
+    (XDG_CACHE_HOME here) and nothing is written beside the engine's sources; a cold
+    compile says its progress on stderr, a warm load says nothing, and a kernel compiled again
+    in play (new argument types) is told by name."""
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    env.update(
+        XDG_CACHE_HOME=str(tmp_path / "xdg"), HOME=str(tmp_path / "home"),
+        LOCALAPPDATA=str(tmp_path / "local"), PYTHONPATH=str(ROOT),
+    )  # fmt: skip
+    beside = _numba_files(ROOT / "engine")
+
+    def run(**more: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [sys.executable, "-c", _PROBE], env={**env, **more}, cwd=tmp_path,
+            capture_output=True, text=True, check=True,
+        )  # fmt: skip
+
+    cold = run()
+    where = Path(re.findall(r"cache: (.*)", cold.stdout)[0])
+    expected = tmp_path / ("local" if sys.platform == "win32" else "xdg") / "alfred-engine"
+    assert where == expected / "numba"
+    made = sorted(p.name for p in where.rglob("*.nb[ic]"))
+    assert any(n.startswith("pile.label_rows-") and n.endswith(".nbi") for n in made), made
+    assert any(n.startswith("pile.carry_keys-") and n.endswith(".nbc") for n in made), made
+    assert _numba_files(ROOT / "engine") == beside  # nothing new or rewritten beside sources
+    lines = re.findall(
+        r"engine: compiling the engine's kernels \(first run only\): (.*)", cold.stderr
+    )
+    assert lines[0] == "0/2" and lines[-1].startswith("2/2, "), cold.stderr
+
+    warm = run(WAITING="1")
+    told = re.findall(r"told: (.*)", warm.stdout)
+    assert told == [
+        "compiling engine.pile.label_rows again during play, for argument types its sample "
+        "did not have (engine.kernels)"
+    ], warm.stdout + warm.stderr
+    assert "compiling" not in warm.stderr
+
+
+# -- no specialisation added in play ------------------------------------------------------------
+
+
+def _signatures() -> dict[str, int]:
+    return {k.name: len(k.fast.signatures) for k in kernels.kernels()}
+
+
+def _added(
+    before: dict[str, int], among: list[LoopKernel[Any]] | None = None
+) -> dict[str, list[str]]:
+    """The specialisations each kernel (the engine's, or ``among``) gained since ``before``,
+    by name; none: {}."""
+    out = {}
+    for k in kernels.kernels() if among is None else among:
+        new = k.fast.signatures[before.get(k.name, 0) :]
+        if new:
+            out[k.name] = [str(s) for s in new]
+    return out
+
+
+def _scenes() -> Iterator[tuple[str, Callable[[], Any], float, int]]:
+    """The demos' scenes, small: (name, made, dt, steps). Between them they call every
+    kernel (the test checks), with the types a game's steps give them."""
+    from demos import ballpit, galton, hinges, pinball, stack
+
+    def scene(cls: type) -> Callable[[], Any]:
+        def made() -> Any:
+            s = cls()
+            s.build((320, 240))
+            return s
+
+        return made
+
+    yield "pinball", scene(pinball.PinballScene), pinball.DT, 480
+    yield "ballpit", lambda: ballpit.pit_world(200)[0], 1 / 60, 150
+    yield "stack tumbler", lambda: stack.tumbler(60)[0], 1 / 60, 90  # meets at 1.1 s
+    yield "stack tower", lambda: stack.tower(6)[0], 1 / 60, 60
+    yield "hinges chain", scene(hinges.ChainScene), hinges.ChainScene.dt, 240
+    yield "hinges car", scene(hinges.CarScene), hinges.CarScene.dt, 240
+    yield "galton", scene(galton.GaltonScene), galton.GaltonScene.dt, 240
+
+
+@needs_numba
+@pytest.mark.filterwarnings("ignore::engine.StabilityWarning")  # the pile's, not this test's
+def test_stepping_the_demos_scenes_adds_no_specialisation(monkeypatch: pytest.MonkeyPatch) -> None:
+    """After ``prepare`` (here: the first World on the fast path), stepping the demos' scenes
+    on the fast path compiles nothing: no kernel gains a signature, and every kernel ran."""
+    monkeypatch.setenv("ENGINE_KERNELS", "fast")
+    kernels.prepare()
+    before = _signatures()
+    called: set[str] = set()
+    call = LoopKernel.__call__
+
+    def counted(self: LoopKernel[Any], *args: Any) -> Any:
+        called.add(self.name)
+        return call(self, *args)
+
+    monkeypatch.setattr(LoopKernel, "__call__", counted)
+    for name, made, dt, steps in _scenes():
+        world = made()
+        for _ in range(steps):
+            world.step(dt)
+        assert _added(before) == {}, f"{name} compiled in play"
+    assert sorted(set(before) - called) == []  # the scenes reach every kernel
+
+
+@needs_numba
+def test_a_specialisation_added_in_play_is_seen() -> None:
+    """The check can fail: a kernel called with types its sample lacks (an int where the
+    sample had a float) gains a signature, and ``_added`` names it."""
+
+    def double(x: float) -> float:
+        return 2.0 * x
+
+    k = kernels.loop(sample=lambda: (1.5,))(double)
+    kernels._ALL.remove(k)  # not one of the engine's kernels
+    kernels.prepare([k])
+    before = {k.name: len(k.fast.signatures)}
+    assert k(2.5) == 5.0
+    assert _added(before, [k]) == {}
+    assert k(np.int64(2)) == 4.0
+    assert _added(before, [k]) == {k.name: ["(int64,)"]}
