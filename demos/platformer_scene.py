@@ -290,8 +290,15 @@ class Platformer:
         return self.ground_hit() is not None
 
     def step(self, dt: float = DT) -> None:
-        """One fixed step of the game: input, ground test, the player's speed and jump, the
-        platform, the World's step, the coins."""
+        """One fixed step of the game: ``control`` (input, ground test, the player's speed and
+        jump, the platform), the World's step, ``collect`` (the coins)."""
+        self.control(dt)
+        self.physics(dt)
+        self.collect()
+
+    def control(self, dt: float = DT) -> None:
+        """The game's input before the World's step: the platform's velocity, the ground test,
+        the player's horizontal velocity and a jump impulse."""
         t = self.world.t
         run, jump = script(t)
         self.platform.vel = Vector(platform_velocity(t), 0.0)
@@ -311,7 +318,14 @@ class Platformer:
             self.jumps.append(t)
             self._was_grounded = False
         self._held = jump
+
+    def physics(self, dt: float = DT) -> None:
+        """The World's step."""
         self.world.step(dt)
+
+    def collect(self) -> None:
+        """After the World's step: each coin whose sensor reported the player is counted (once)
+        and taken out of the World."""
         touched, self._touched = self._touched, []
         for index in touched:
             if index not in self.collected:

@@ -11,19 +11,21 @@ sleeping after 0.5 s still as this World's bodies do, and a collision slop of 1 
 default 10 cm made for pixels) with the same script and rules (``demos.platformer_scene``'s
 ``script``, ``toward``, jump impulse and ground test).
 
-**The game's step** is timed: the script's input, the ground test (one
-``segment_query_first`` below the player's feet), the player's speed and jump, the World's
-step and the coins, one engine after another in turn (the order rotated every step, so a
-burst of load on a shared machine hits them alike), by two clocks: the thread's CPU time (the
-engine's own work, steady whatever else the machine runs) and the wall clock (what a player
-sees: a frame is late by the wall clock). The engines: this World on the numpy path ("World
-(numpy)"), on the fast path where numba is installed ("World (fast)"), and pymunk. Reported
-per engine and clock: the time to build the game and its first step, apart (on the fast path
-they include loading or compiling numba's kernels, when the World is made or at its first
-step, as the engine does it: the report says what numba did, from its own cache
-statistics); over the other steps the median, the 99th percentile and the worst (by CPU
-time, each as a ratio to pymunk's median), and the share of steps longer than a 60 fps frame
-(16.7 ms); the coins each engine's player collected; any warning the World gave.
+**Each step** is timed in two parts: the engine's own step (``World.step``, pymunk's
+``Space.step``: what the issue measured) and the game's whole step around it (the script's
+input, the ground test, one ``segment_query_first`` below the player's feet, the player's
+speed and jump, the engine's step, the coins). The engines step one after another in turn
+(the order rotated every step, so a burst of load on a shared machine hits them alike), each
+by two clocks: the thread's CPU time (the engine's own work, steady whatever else the machine
+runs) and the wall clock (what a player sees: a frame is late by the wall clock). The
+engines: this World on the numpy path ("World (numpy)"), on the fast path where numba is
+installed ("World (fast)"), and pymunk. Reported per engine: the time to build the game and
+its first step, apart (on the fast path they include loading or compiling numba's kernels,
+when the World is made or at its first step, as the engine does it: the report says what
+numba did, from its own cache statistics); over the other steps the median, the 99th
+percentile and the worst, each as a ratio to pymunk's median, and the share of steps longer
+than a 60 fps frame (16.7 ms); the coins each engine's player collected; any warning the
+World gave.
 
 **The hinge's cost**: the same scene without the seesaw's hinge (its plank falls flat and
 lies on the ground, so the run differs from then on), stepped in the same rounds; the ratio of
@@ -67,6 +69,8 @@ __all__ = [
     "make_space",
     "CPU",
     "WALL",
+    "PHYSICS",
+    "GAME",
     "Run",
     "side_by_side",
     "query_times",
@@ -197,6 +201,12 @@ class PymunkPlatformer:
 
     def step(self, dt: float = DT) -> None:
         """One fixed step of the game, as ``scene.Platformer.step``."""
+        self.control(dt)
+        self.physics(dt)
+        self.collect()
+
+    def control(self, dt: float = DT) -> None:
+        """The game's input before the Space's step, as ``scene.Platformer.control``."""
         t = self.t
         run, jump = scene.script(t)
         self.platform.velocity = (scene.platform_velocity(t), 0.0)
@@ -216,9 +226,15 @@ class PymunkPlatformer:
             self.jumps.append(t)
             self._was_grounded = False
         self._held = jump
+
+    def physics(self, dt: float = DT) -> None:
+        """The Space's step."""
         self.space.step(dt)
         self.steps += 1
         self.t = self.steps * dt
+
+    def collect(self) -> None:
+        """The coins, as ``scene.Platformer.collect``."""
         touched, self._touched = self._touched, []
         for index in touched:
             if index not in self.collected:
@@ -254,38 +270,47 @@ def cache_counts() -> tuple[int, int]:
 #: The clocks each step is timed by: the thread's CPU time (the engine's own work, whatever
 #: else the machine runs) and the wall clock (what a player sees).
 CPU, WALL = 0, 1
+#: The parts of a step timed: the engine's own step (``World.step``, ``Space.step``) and the
+#: game's whole step (input and ground test, the engine's step, the coins).
+PHYSICS, GAME = "physics", "game"
 
 
 @dataclass
 class Run:
     """One engine's scripted run, each time as (CPU, wall clock) seconds: ``made`` to build
-    the game (World or Space, bodies, shapes), ``first`` its first step, ``steps`` (n, 2) every
-    later step; the coins collected; the World's warnings (message -> count); on the fast path
+    the game (World or Space, bodies, shapes), ``first`` its first (whole) step, and for every
+    later step ``physics`` (n, 2), the engine's own step, and ``game`` (n, 2), the whole game
+    step; the coins collected; the World's warnings (message -> count); on the fast path
     numba's cache counts over the build and the first step, ``loaded`` and ``compiled``
     (kernels), and ``later`` (kernels loaded or compiled after the first step, in play)."""
 
     engine: str
     made: tuple[float, float]
     first: tuple[float, float]
-    steps: np.ndarray
+    physics: np.ndarray
+    game: np.ndarray
     coins: list[int]
     warned: Counter[str] = field(default_factory=Counter)
     loaded: int = 0
     compiled: int = 0
     later: int = 0
 
-    def median(self, clock: int = CPU) -> float:
-        return float(np.median(self.steps[:, clock]))
+    def times(self, part: str = PHYSICS, clock: int = CPU) -> np.ndarray:
+        """Seconds of each step after the first: ``part`` PHYSICS or GAME, by ``clock``."""
+        return (self.physics if part == PHYSICS else self.game)[:, clock]
 
-    def p99(self, clock: int = CPU) -> float:
-        return float(np.percentile(self.steps[:, clock], 99))
+    def median(self, part: str = PHYSICS, clock: int = CPU) -> float:
+        return float(np.median(self.times(part, clock)))
 
-    def worst(self, clock: int = CPU) -> float:
-        return float(self.steps[:, clock].max())
+    def p99(self, part: str = PHYSICS, clock: int = CPU) -> float:
+        return float(np.percentile(self.times(part, clock), 99))
 
-    def over_frame(self, clock: int = CPU) -> float:
+    def worst(self, part: str = PHYSICS, clock: int = CPU) -> float:
+        return float(self.times(part, clock).max())
+
+    def over_frame(self, part: str = PHYSICS, clock: int = CPU) -> float:
         """The share of steps (after the first) longer than a 60 fps frame."""
-        return float((self.steps[:, clock] > FRAME).mean())
+        return float((self.times(part, clock) > FRAME).mean())
 
 
 def _builders(hinge: bool, fast: bool, pymunk: bool) -> dict[str, Callable[[], Any]]:
@@ -309,16 +334,20 @@ def _since(start: tuple[float, float]) -> tuple[float, float]:
     return cpu - start[CPU], wall - start[WALL]
 
 
-def _step_noting(game: Any, warned: Counter[str]) -> tuple[float, float]:
-    """Step ``game`` once; the (CPU, wall) seconds it took (the warnings it gave counted in
-    ``warned``, outside the clocks)."""
+def _step_noting(game: Any, warned: Counter[str]) -> tuple[tuple[float, float], ...]:
+    """Step ``game`` once; the (CPU, wall) seconds its engine's step took and the whole step
+    took (the warnings it gave counted in ``warned``, outside the clocks)."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         start = _clocks()
-        game.step(DT)
-        spent = _since(start)
+        game.control(DT)
+        before = _clocks()
+        game.physics(DT)
+        physics = _since(before)
+        game.collect()
+        whole = _since(start)
     warned.update(str(w.message).split(":")[0] for w in caught)
-    return spent
+    return physics, whole
 
 
 def side_by_side(
@@ -346,20 +375,21 @@ def side_by_side(
         start = _clocks()
         games[name] = builders[name]()
         made[name] = _since(start)
-        firsts[name] = _step_noting(games[name], warned[name])
+        firsts[name] = _step_noting(games[name], warned[name])[1]
         after = cache_counts()
         numba_did[name] = (after[0] - before[0], after[1] - before[1])
     settled = cache_counts()
     steps = round(seconds / DT)
-    times = {name: np.empty((steps - 1, 2)) for name in names}
+    times = {name: np.empty((2, steps - 1, 2)) for name in names}
     for i in range(steps - 1):
         k = i % len(names)
         for name in names[k:] + names[:k]:
-            times[name][i] = _step_noting(games[name], warned[name])
+            times[name][:, i] = _step_noting(games[name], warned[name])
     later = sum(cache_counts()) - sum(settled)
     return {
-        name: Run(name, made[name], firsts[name], times[name], list(games[name].collected),
-                  warned[name], *numba_did[name], later if "fast" in name else 0)
+        name: Run(name, made[name], firsts[name], times[name][0], times[name][1],
+                  list(games[name].collected), warned[name], *numba_did[name],
+                  later if "fast" in name else 0)
         for name in names
     }  # fmt: skip
 
@@ -398,70 +428,77 @@ def _x(value: float, peer: float | None) -> str:
     return f"{value / peer:.0f}x" if peer else "-"
 
 
+def _rows(runs: dict[str, Run], part: str, clock: int, firsts: bool, coins: bool) -> list[str]:
+    """One section of the table: each engine's steps' ``part`` by ``clock`` (the build and
+    first step too if ``firsts``; the coins if ``coins``), against pymunk's median."""
+    peer_run = runs.get("pymunk")
+    peer = peer_run.median(part, clock) if peer_run is not None else None
+    first = f" {'build':>9} {'1st step':>9}" if firsts else ""
+    lines = [
+        f"  {'engine':14}{first} {'median':>9} {'p99':>9} {'worst':>9} "
+        f"{'x pymunk median: median/p99/worst':>34} {'over 16.7 ms':>12}"
+        + (f" {'coins':>7}" if coins else "")
+    ]
+    for name, r in runs.items():
+        if "no hinge" in name:
+            continue
+        first = f" {_ms(r.made[clock]):>9} {_ms(r.first[clock]):>9}" if firsts else ""
+        m, p, w = r.median(part, clock), r.p99(part, clock), r.worst(part, clock)
+        ratios = f"{_x(m, peer)} / {_x(p, peer)} / {_x(w, peer)}"
+        lines.append(
+            f"  {name:14}{first} {_ms(m):>9} {_ms(p):>9} {_ms(w):>9} {ratios:>34} "
+            f"{100 * r.over_frame(part, clock):11.1f}%"
+            + (f" {len(r.coins):>2} of {len(scene.COINS)}" if coins else "")
+        )
+    return lines
+
+
 def table(runs: dict[str, Run], seconds: float, query: dict[str, float]) -> list[str]:
     """The report's lines for ``runs`` (``side_by_side``) over ``seconds`` of the script and
     the ground test's ``query`` times (``query_times``)."""
-    peer_run = runs.get("pymunk")
-    rows = [(name, r) for name, r in runs.items() if "no hinge" not in name]
-    head = f"  {'engine':14} {'build':>9} {'1st step':>9} {'median':>9} {'p99':>9} {'worst':>9}"
     lines = [
         f"platformer: the issue's small game (demos.platformer_scene: {len(scene.CRATES)} "
         f"crates, a seesaw on a hinge, a moving platform, a ball, {len(scene.COINS)} coin "
-        f"sensors), its script's first {seconds:g} s ({round(seconds / DT)} steps of 1/60 s); "
-        f"the game's step timed (input, ground test, World step, coins), the engines in turn; "
-        f"pymunk {ITERATIONS} iterations",
-        "  CPU time (the engine's own work, whatever else the machine runs):",
-        f"{head} {'x pymunk median: median/p99/worst':>34} {'over 16.7 ms':>12} {'coins':>7}",
+        f"sensors), its script's first {seconds:g} s ({round(seconds / DT)} steps of 1/60 s), "
+        f"the engines one step each in turn; pymunk {ITERATIONS} iterations",
+        "  the engine's step (World.step, Space.step), CPU time (the engine's own work, "
+        "whatever else the machine runs); build and 1st step: the game's, apart",
+        *_rows(runs, PHYSICS, CPU, firsts=True, coins=True),
+        "  the game's whole step (input and ground test, the engine's step, the coins), CPU time",
+        *_rows(runs, GAME, CPU, firsts=False, coins=False),
+        "  the game's whole step by the wall clock (what a player of this machine saw, with its "
+        "other work)",
+        *_rows(runs, GAME, WALL, firsts=True, coins=False),
     ]
-    for clock in (CPU, WALL):
-        if clock == WALL:
-            lines += [
-                "  wall clock (what a player of this machine saw, with its other work):",
-                f"{head} {'x pymunk median':>16} {'over 16.7 ms':>12}",
-            ]
-        peer = peer_run.median(clock) if peer_run is not None else None
-        for name, r in rows:
-            cells = (
-                f"  {name:14} {_ms(r.made[clock]):>9} {_ms(r.first[clock]):>9} "
-                f"{_ms(r.median(clock)):>9} {_ms(r.p99(clock)):>9} {_ms(r.worst(clock)):>9}"
-            )
-            if clock == CPU:
-                ratios = f"{_x(r.median(), peer)} / {_x(r.p99(), peer)} / {_x(r.worst(), peer)}"
-                lines.append(
-                    f"{cells} {ratios:>34} {100 * r.over_frame():11.1f}% "
-                    f"{len(r.coins):>2} of {len(scene.COINS)}"
-                )
-            else:
-                lines.append(
-                    f"{cells} {_x(r.median(WALL), peer):>16} {100 * r.over_frame(WALL):11.1f}%"
-                )
     fast = runs.get("World (fast)")
     if fast is None:
         lines.append("  World (fast): numba is not installed (pip install -e '.[fast]'): skipped")
     else:
         if fast.compiled:
-            cache = f"numba's cache was cold: it compiled {fast.compiled} kernels"
+            cache = (
+                f"numba's cache was cold: it compiled {fast.compiled} kernel(s) and loaded "
+                f"{fast.loaded} from the cache"
+            )
         elif fast.loaded:
-            cache = f"numba's cache was warm: it loaded {fast.loaded} kernels"
+            cache = f"numba's cache was warm: it loaded all {fast.loaded} kernels from it"
         else:
             cache = "the kernels were in memory already (loaded earlier in this process)"
         lines.append(
-            f"  the fast path's build and first step: {cache} "
-            f"({fast.loaded} loaded from the cache, {fast.compiled} compiled); "
-            f"{fast.later} more loaded or compiled later, in play"
+            f"  the fast path's build and first step: {cache}; later, in play, "
+            f"{fast.later} more loaded or compiled"
         )
-    if peer_run is None:
+    if "pymunk" not in runs:
         lines.append("  pymunk is not installed (pip install -e '.[bench]'): no comparison")
     lines.append(f"  as measured by the issue: numpy {ISSUE['numpy']}; fast {ISSUE['fast']}")
     hinged = [
-        (name, runs[name].median() / runs[f"{name}, no hinge"].median())
+        (name, runs[name].median() / runs[f"{name}, no hinge"].median())  # the engine's, CPU
         for name in runs
         if f"{name}, no hinge" in runs
     ]
     if hinged:
         lines.append(
-            "  the seesaw's hinge, the median step (CPU) with it over without it (without, "
-            "the plank falls and lies on the ground): "
+            "  the seesaw's hinge, the engine's median step (CPU) with it over without it "
+            "(without, the plank falls and lies on the ground): "
             + ", ".join(f"{n} {x:.2f}x" for n, x in hinged)
         )
     for name, r in runs.items():
