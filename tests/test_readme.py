@@ -1,11 +1,18 @@
-"""The README's code runs and says what it does: the examples a newcomer copies first."""
+"""The README's code runs and says what it does: the examples a newcomer copies first.
+
+The README is the ten-minute tour; the guide beside the code (``engine/guide/*.md``) takes each
+part in depth. Both hold Python blocks, and the tests run every one of them.
+"""
 
 from __future__ import annotations
 
+import importlib
+import inspect
 import math
 import re
 import subprocess
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import pygame
@@ -16,15 +23,53 @@ from engine.integrators import semi_implicit_euler
 
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / "README.md").read_text(encoding="utf-8")
-PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)
+#: The guide's pages by file name, in a fixed order.
+GUIDE = {
+    path.name: path.read_text(encoding="utf-8")
+    for path in sorted((ROOT / "engine" / "guide").glob("*.md"))
+}
+#: Every page the tests read, by its path from the project's root: the README first.
+DOCS = {"README.md": README, **{f"engine/guide/{name}": text for name, text in GUIDE.items()}}
+#: All of it as one line of words, for sentences that may wrap anywhere.
+ALL_TEXT = " ".join(" ".join(DOCS.values()).split())
 #: The first line of a block that goes on from the one before it, in the same namespace.
 CONTINUES = "# continues the block above"
 
 
+@dataclass(frozen=True)
+class Block:
+    """A ```python block of a page, and what the page says it prints (None: it does not say).
+
+    The convention: the block, a blank line, "It prints:", a blank line, then the output in a
+    ```text block. A stated line that ends in "..." is the start of the line printed.
+    """
+
+    page: str
+    source: str
+    prints: str | None
+
+
+def _blocks(page: str, text: str) -> list[Block]:
+    stated = r"(?:\nIt prints:\n\n```text\n(.*?)```\n)?"
+    found = re.finditer(r"```python\n(.*?)```\n" + stated, text, flags=re.S)
+    return [Block(page, m.group(1), m.group(2)) for m in found]
+
+
+BLOCKS = [b for page, text in DOCS.items() for b in _blocks(page, text)]
+PYTHON_BLOCKS = [b.source for b in BLOCKS]
+
+
 def block(needle: str) -> str:
-    """The README's Python block holding ``needle``."""
+    """The Python block holding ``needle``, in the README or the guide."""
     (found,) = [b for b in PYTHON_BLOCKS if needle in b]
     return found
+
+
+def stated(source: str) -> str:
+    """What its page says the block ``source`` prints (the block must say)."""
+    (found,) = [b.prints for b in BLOCKS if b.source == source]
+    assert found is not None, "the page does not say what this block prints"
+    return found.rstrip("\n")
 
 
 def test_the_ten_line_example_moves_the_ball_as_semi_implicit_euler_does(capsys) -> None:
@@ -143,7 +188,7 @@ def test_the_vector_names_table_says_where_each_name_comes_from() -> None:
     pymunk = pytest.importorskip("pymunk")  # the bench extra
     Vec2d = pymunk.Vec2d
 
-    section = README.split("### Vector names", 1)[1].split("\n## ", 1)[0]
+    section = GUIDE["vectors.md"]
     rows = [r for r in section.splitlines() if r.startswith("| `")]
     assert len(rows) > 25
     origins = {"pygame": Vector2, "pymunk": Vec2d}
@@ -157,11 +202,11 @@ def test_the_vector_names_table_says_where_each_name_comes_from() -> None:
             attr = word.group(1)
             if attr in ("v", "s", "round", "x", "y"):
                 continue
-            assert hasattr(Vector, attr), f"the README lists {name}, which Vector lacks"
+            assert hasattr(Vector, attr), f"the guide lists {name}, which Vector lacks"
             for source, cls in origins.items():
                 if source in origin:
-                    assert hasattr(cls, attr), f"the README says {name} is {source}'s"
-    # pygame's own test class: the counts the README gives.
+                    assert hasattr(cls, attr), f"the guide says {name} is {source}'s"
+    # pygame's own test class: the counts the guide gives.
     if NAMES:
         assert f"{len(NAMES) - len(DELIBERATE)} of its {len(NAMES)} tests pass" in " ".join(
             section.split()
@@ -206,18 +251,22 @@ def test_the_breakout_core_is_the_breakout_games_and_scores_by_its_events() -> N
 
 
 def _chains() -> list[list[int]]:
-    """The blocks in runs: a block that continues the one above joins its run."""
+    """The blocks in runs: a block that continues the one above (on its page) joins its run."""
     runs: list[list[int]] = []
-    for i, source in enumerate(PYTHON_BLOCKS):
-        if source.startswith(CONTINUES):
-            assert runs, "the first block cannot continue another"
+    for i, b in enumerate(BLOCKS):
+        if b.source.startswith(CONTINUES):
+            assert runs and BLOCKS[runs[-1][-1]].page == b.page, "nothing above it to continue"
             runs[-1].append(i)
         else:
             runs.append([i])
     return runs
 
 
-@pytest.mark.parametrize("run", _chains(), ids=lambda run: "+".join(map(str, run)))
+def _run_id(run: list[int]) -> str:
+    return BLOCKS[run[0]].page.rsplit("/", 1)[-1] + "-" + "+".join(map(str, run))
+
+
+@pytest.mark.parametrize("run", _chains(), ids=_run_id)
 def test_every_python_block_runs_as_written(run, monkeypatch, tmp_path) -> None:
     # The filter example failed on its own (NameError: world): it goes on from the contacts
     # block, and now says so on its first line and runs after it.
@@ -253,7 +302,7 @@ def test_the_contacts_example_meets_the_peg_the_ramp_and_the_floor(capsys) -> No
     # The peg first, when the ball's centre is 0.75 m from the peg's: a free fall from 8 m.
     drop = 8 - 5 - math.sqrt(0.75**2 - 0.3**2)
     assert lines[0] == f"peg {math.sqrt(2 * drop / 9.81):.3f} s"
-    assert f"It prints the peg at {math.sqrt(2 * drop / 9.81):.3f} s" in " ".join(README.split())
+    assert f"That is the peg at {math.sqrt(2 * drop / 9.81):.3f} s" in ALL_TEXT
     world, ball, floor = scope["world"], scope["ball"], scope["floor"]
     assert world.resting(ball) is floor  # type: ignore[attr-defined]
     hit = world.segment_query_first((ball.pos.x, 5), (ball.pos.x, -5))  # type: ignore[attr-defined]
@@ -269,7 +318,7 @@ def test_the_shapes_example_stacks_its_crates_and_carries_its_rider(capsys) -> N
     scope: dict[str, object] = {}
     exec(block("shape=Polygon.box(1, 1)"), scope)  # noqa: S102
     printed = capsys.readouterr().out.strip()
-    assert f"It prints `{printed}`" in " ".join(README.split())
+    assert stated(block("shape=Polygon.box(1, 1)")) == printed
     world, crates = scope["world"], scope["crates"]
     heights = [c.pos.y for c in crates]  # type: ignore[attr-defined]
     # Stacked: each crate 1 m above the one below, within 1% of a crate's height, asleep.
@@ -306,7 +355,7 @@ def test_the_pendulum_periods_the_readme_states_are_the_codes() -> None:
     import demos.pendulum as pendulum
     from demos.bench.pendulum import period
 
-    text = " ".join(README.split())
+    text = ALL_TEXT  # the pendulum's numbers are in the guide's links.md
     errors = []
     for degrees in (5.0, 90.0, 170.0):
         th = math.radians(degrees)
@@ -339,7 +388,7 @@ def test_the_hung_cradles_energy_and_passes_the_readme_states_are_the_codes() ->
                     leaders.append(end)  # this end ball alone moves: the blow has reached it
     passes = len(leaders) - 1  # from ball 1's first swing, each arrival at the other end
     words = {1: "once", 2: "twice", 3: "three times", 4: "four times"}[passes]
-    text = " ".join(README.split())
+    text = ALL_TEXT  # the README's table says the passes; the guide's demos.md, the energy too
     assert f"the blow passes back and forth, {words} in {HungScene.duration:g} s" in text
     assert worst < 7e-5 and f"(under 7e-5 J of {e0:.2f} J)" in text
 
@@ -347,8 +396,9 @@ def test_the_hung_cradles_energy_and_passes_the_readme_states_are_the_codes() ->
 def test_the_contacts_rows_say_how_and_when_they_were_measured() -> None:
     # The rows were stale (1 iteration: 0.66% and asleep, where a run gives 1.33% and awake)
     # and stated as facts; the pile solver is being reworked, so they are a dated measurement.
-    section = README.split("**Choosing `contact_iterations`: the contacts chart.**")[1]
-    section = section.split("### Links, and bodies the game moves")[0]
+    chart = "**Choosing `contact_iterations`: the contacts chart.**"
+    section = GUIDE["contacts.md"].split(chart)[1]
+    section = section.split("\n#")[0]  # to the page's end, or its next heading
     head, table = section.split("| setting |")
     assert re.search(r"Measured with `python -m demos tradeoff` on \d{4}-\d\d-\d\d", head)
     rows = [r for r in table.splitlines() if r.startswith("| World")]
@@ -373,7 +423,7 @@ def test_the_rolling_example_prints_what_the_readme_says(capsys) -> None:
     scope: dict[str, object] = {}
     exec(block("slope = math.radians(30)"), scope)  # noqa: S102
     printed = capsys.readouterr().out.strip()
-    assert f"It prints `{printed}`" in " ".join(README.split())
+    assert stated(block("slope = math.radians(30)")) == printed
     # (2/3) g sin(30 degrees) t at t = 1 s, and the rim's speed equal to it: rolling.
     speed, rim, _ = printed.split()
     assert float(speed) == float(rim) == round(2 / 3 * 9.81 * 0.5, 6)
@@ -383,7 +433,197 @@ def test_the_torque_example_prints_what_the_readme_says(capsys) -> None:
     scope: dict[str, object] = {}
     exec(block("AngularDrag(0.5)"), scope)  # noqa: S102
     printed = capsys.readouterr().out.strip()
-    assert f"It prints `{printed}`" in " ".join(README.split())
+    assert stated(block("AngularDrag(0.5)")) == printed
     # omega = (tau / c) (1 - e^(-c t / I)) at t = 1 s: tau = 1, c = 0.5, I = 0.25.
     spun, closed = printed.split()
     assert float(spun) == float(closed) == round(2 * (1 - math.exp(-2)), 9)
+
+
+# -- what a block prints, where its page says ---------------------------------------------------
+
+
+def _stating() -> list[list[int]]:
+    """For each block whose page says what it prints: its run, up to and including it."""
+    runs = []
+    for run in _chains():
+        for k, i in enumerate(run):
+            if BLOCKS[i].prints is not None:
+                runs.append(run[: k + 1])
+    return runs
+
+
+@pytest.mark.parametrize("run", _stating(), ids=_run_id)
+def test_each_block_prints_what_its_page_says(run, capsys, monkeypatch, tmp_path) -> None:
+    # The pinball's core printed `200 37` where the README said `100 106`, and nothing checked.
+    monkeypatch.chdir(tmp_path)
+    scope: dict[str, object] = {}
+    for i in run:
+        capsys.readouterr()  # only the stating block's own output counts
+        exec(PYTHON_BLOCKS[i], scope)  # noqa: S102 - the page's own example, whole
+    printed = capsys.readouterr().out.rstrip("\n").splitlines()
+    said = (BLOCKS[run[-1]].prints or "").rstrip("\n").splitlines()
+    assert said, "an empty statement of output"
+    assert len(printed) == len(said), (printed, said)
+    for line, claim in zip(printed, said, strict=True):
+        if claim.endswith("..."):  # the start of a long line, as the page shortens it
+            assert line.startswith(claim[:-3]), (line, claim)
+        else:
+            assert line.rstrip() == claim.rstrip(), (line, claim)
+
+
+def test_it_prints_always_introduces_the_output_in_a_text_block() -> None:
+    # One convention, so a page cannot state an output the test above does not read.
+    for page, text in DOCS.items():
+        stating = [b for b in _blocks(page, text) if b.prints is not None]
+        assert text.count("It prints") == len(stating), page
+    pages = {b.page for b in BLOCKS if b.prints is not None}
+    assert "README.md" in pages and len([b for b in BLOCKS if b.prints is not None]) >= 5
+    assert stated(block("score, hits, top = 0, [], 0.0")) == "200 37"  # the pinball's core
+
+
+# -- the README's shape and words -----------------------------------------------------------------
+
+#: Words of the project's own history, which mean nothing to a reader: a number is dated by the
+#: command that makes it and its date instead.
+DEVELOPMENT_WORDS = re.compile(
+    r"\b(?:stop|issue) \d|\b(?:this|last|next) stop\b|\bthe issues?\b|\bissue'?s\b", re.I
+)
+
+
+def test_the_readme_is_a_ten_minute_read() -> None:
+    assert len(README.splitlines()) <= 600
+
+
+def test_no_page_and_no_benchmark_speaks_of_the_projects_history() -> None:
+    files = {**DOCS}
+    for path in sorted((ROOT / "demos" / "bench").glob("*.py")):
+        files[f"demos/bench/{path.name}"] = path.read_text(encoding="utf-8")
+    assert len(files) > len(DOCS) > 10
+    found = [
+        f"{name}:{n}: {line.strip()}"
+        for name, text in files.items()
+        for n, line in enumerate(text.splitlines(), 1)
+        if DEVELOPMENT_WORDS.search(line)
+    ]
+    assert found == []
+
+
+def test_the_words_test_catches_what_it_is_for() -> None:
+    for said in ("at stop 34", "since Stop 35", "issue 27's target", "this stop", "the issue's"):
+        assert DEVELOPMENT_WORDS.search(said), said
+    for said in ("stops 0.41% short", "the frames stop at 6 s", "a bus stop", "tissue 3"):
+        assert not DEVELOPMENT_WORDS.search(said), said
+
+
+# -- links: the README leads to every page of the guide, and no link is broken -----------------
+
+
+def _slug(heading: str) -> str:
+    """A heading's anchor, as GitHub makes it."""
+    return re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+
+
+def _anchors(text: str) -> set[str]:
+    prose = re.sub(r"```.*?```", "", text, flags=re.S)
+    return {_slug(h) for h in re.findall(r"^#{1,6} (.+)$", prose, flags=re.M)}
+
+
+def test_every_link_in_the_readme_and_the_guide_leads_somewhere() -> None:
+    checked = 0
+    for page, text in DOCS.items():
+        folder = (ROOT / page).parent
+        prose = re.sub(r"```.*?```", "", text, flags=re.S)
+        for target in re.findall(r"\]\(([^)\s]+)\)", prose):
+            if re.match(r"[a-z]+:", target):
+                continue  # a web address
+            path, _, anchor = target.partition("#")
+            file = (folder / path).resolve() if path else ROOT / page
+            assert file.exists(), f"{page}: {target}"
+            if anchor:
+                assert anchor in _anchors(file.read_text(encoding="utf-8")), f"{page}: {target}"
+            checked += 1
+    assert checked > 40
+
+
+def test_the_readme_links_every_page_of_the_guide() -> None:
+    assert len(GUIDE) >= 10 and "README.md" in GUIDE
+    assert [name for name in GUIDE if f"(engine/guide/{name}" not in README] == []
+
+
+# -- the pymunk user's table: every name on both sides is real -----------------------------------
+
+
+def _pymunk_table() -> list[tuple[str, str]]:
+    section = README.split("## Coming from pymunk: its names and ours", 1)[1].split("\n## ")[0]
+    rows = [r for r in section.splitlines() if r.startswith("| `") or r.startswith("| static")]
+    return [(r.split(" | ")[0][2:], r.split(" | ")[1]) for r in rows]
+
+
+def _names(cell: str) -> list[tuple[str, list[str]]]:
+    """Each code span's leading dotted name and the keywords it passes (``name=``)."""
+    spans = re.findall(r"`([^`]+)`", cell)
+    assert spans, cell
+    found = []
+    for span in spans:
+        lead = re.match(r"[A-Za-z_][\w.]*", span)
+        assert lead is not None, span
+        found.append((lead.group(0), re.findall(r"(\w+)=", span)))
+        inside = span[lead.end() :]  # the classes it is handed: `World.add(Body(...))`
+        found += [(inner, []) for inner in re.findall(r"\b([A-Z]\w*)\(", inside)]
+    return found
+
+
+def _resolve(name: str, roots: dict[str, object], modules: list[object]) -> object:
+    head, *rest = name.split(".")
+    if head in roots:
+        obj = roots[head]
+    elif head in ("engine", "pymunk"):
+        obj = importlib.import_module(".".join([head, rest.pop(0)]))
+    else:
+        having = [m for m in modules if hasattr(m, head)]
+        assert having, f"no {head}"
+        obj = getattr(having[0], head)
+    for attr in rest:
+        assert hasattr(obj, attr), f"no {name}"
+        obj = getattr(obj, attr)
+    return obj
+
+
+def test_the_pymunk_table_names_what_exists_on_both_sides() -> None:
+    import engine
+    import engine.forces
+    import engine.render
+    from engine import Body, Hinge, Polygon, World
+
+    table = _pymunk_table()
+    assert len(table) > 25
+    world = World()
+    body = world.add(Body(Vector(0, 0), radius=0.5))
+    bat = world.add(Body(Vector(1, 0), shape=Polygon.box(1, 0.1)))
+    hinge = world.add_link(Hinge(bat, world.static_body, (0.5, 0)))
+    ours = {"World": world, "Body": body, "Hinge": hinge}  # `World.step`: a World's step
+    classes = {"World": World, "Body": Body, "Hinge": Hinge}
+    for _, cell in table:
+        for name, keywords in _names(cell):
+            # `Body(..., kinematic=True)`: the class takes the keyword; `Body.pos`: a body has it
+            roots = classes if keywords and "." not in name else ours
+            obj = _resolve(name, roots, [engine, engine.forces, engine.render])
+            if keywords:
+                params = inspect.signature(obj).parameters  # type: ignore[arg-type]
+                assert set(keywords) <= set(params), (name, keywords)
+    pymunk = pytest.importorskip("pymunk")  # the bench extra
+    if int(pymunk.version.split(".")[0]) < 7:
+        pytest.skip("the table names pymunk 7's API (Space.on_collision)")
+    pygame_util = importlib.import_module("pymunk.pygame_util")
+    theirs = {
+        "Space": pymunk.Space(),
+        "Body": pymunk.Body(1, 1),
+        "Shape": pymunk.Circle(None, 1),
+        "Constraint": pymunk.PinJoint(pymunk.Body(1, 1), pymunk.Body(1, 1)),
+        "pygame_util": pygame_util,
+    }
+    for cell, _ in table:
+        for name, keywords in _names(cell):
+            assert not keywords, name
+            roots = theirs if "." in name else {}
+            _resolve(name, roots, [pymunk])

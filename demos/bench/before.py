@@ -2,7 +2,7 @@
 
 Run with ``python -m demos.bench before``. The soft step for piles (commit dc40160) added work
 to every step of a World with bodies; a World with no colliders, whose bodies do not collide
-with each other, should not pay for it (target, issue 24: as fast as before, within 5%).
+with each other, should not pay for it (target: as fast as before, within 5%).
 This topic times the same scene on the engine of this checkout and on the engine of the
 commit before the rework (``a097264``, taken out with ``git archive`` into a temporary
 folder), each in a fresh Python process, the two alternating round by round so that a burst

@@ -8,7 +8,7 @@ the funnel, bouncing down through the pegs. Two measurements, each side by side 
 
 * the small board (82 pegs and 6 segments): a step against the same World's step with no
   colliders at all (the ball falling freely), over the first 2 s of play, the ball among the
-  pegs. Target (issue 24): at most 5x.
+  pegs. Target: at most 5x.
 * a change: on a board of 48 colliders (42 pegs) and of 1,000 (994 pegs), adding one collider
   (a peg) or one body (a ball), and taking it out again, each followed by a step, against a
   plain step of the same World. Target: the change and the step after it cost no more than

@@ -58,7 +58,7 @@ def make_world(
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a ball dropped onto a segment is pushed off it
         world.add_all(
-            # One group: the balls do not collide with each other (as in the issue's scene).
+            # One group: the balls do not collide with each other (the targets' scene).
             Body(Vector(*p), Vector(*v), Vector(0, 0), radius=radius, restitution=0.9, filter=ONE)
             for p, v in zip(pos.tolist(), vel.tolist(), strict=True)
         )
@@ -102,7 +102,7 @@ def report(quick: bool = False) -> str:
     sizes = [(1_000, 1.0)] if quick else [(1_000, 1.0), (10_000, 0.25)]
     lines = [f"contacts: balls in a box with {SEGMENTS} segments, dt = 1/120 s"]
     lines.append(f"  (medians of {rounds} interleaved rounds, after 1 s of settling)")
-    fast_targets = {1_000: 0.5, 10_000: 0.1}  # issue 27's, on the fast path
+    fast_targets = {1_000: 0.5, 10_000: 0.1}  # the fast path's targets
     kernels.prepare()  # compiled (or loaded from the cache) before the clock starts
     for n, target in sizes:
         worlds = {"World": make_world(n, kernels="numpy")}

@@ -15,7 +15,7 @@ timed): the deepest overlap of two balls as a fraction of the radius (the deepes
 and the kinetic energy; at 5 s, how many of this engine's balls sleep (pymunk's sleep is off
 by default) and how many balls left the box.
 
-Targets (issue 24): the 1,000-ball pit's first 5 s at most 3x pymunk's, the deepest overlap
+Targets: the 1,000-ball pit's first 5 s at most 3x pymunk's, the deepest overlap
 while rows land at most 10% of r, at 5 s at most 1% and asleep; the 10,000-ball pit's first
 5 s at most 3x pymunk's, its deepest overlap at most 20% of r and no two centres ever closer
 than r. The report writes ``pit_1000.png`` and ``pit_10000.png`` (overlap and kinetic energy
@@ -65,7 +65,7 @@ G = 9.81  # m/s^2
 SECONDS = 5.0  # s: the window timed, from the drop
 E, MU = 0.5, 0.5
 
-#: Issue 24's targets per pit size: (time / pymunk's, deepest overlap / r over the window,
+#: The targets per pit size: (time / pymunk's, deepest overlap / r over the window,
 #: overlap / r at its end or None, asleep at its end, no centres closer than r).
 TARGETS: dict[int, tuple[float, float, float | None, bool, bool]] = {
     1_000: (3.0, 0.10, 0.01, True, False),
@@ -349,7 +349,7 @@ def summary(runs: dict[str, Run], seconds: float = SECONDS) -> list[str]:
     fast_wall, fast_cpu = ratio(runs, engine="fast"), ratio(runs, "cpu", engine="fast")
     if fast_wall is not None and fast_cpu is not None:
         lines.append(
-            f"    fast / pymunk: {fast_wall:.2f}x wall, {fast_cpu:.2f}x CPU (issue 27's target "
+            f"    fast / pymunk: {fast_wall:.2f}x wall, {fast_cpu:.2f}x CPU (target "
             f"<= 0.5x: {_met(fast_wall <= 0.5)}); fast / World {runs['fast'].wall / w.wall:.2f}x"
         )
     if target is not None:

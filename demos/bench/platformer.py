@@ -1,4 +1,4 @@
-"""The small platformer of the issue "Games at C speed", against pymunk: what a game's step costs.
+"""A small platformer game, against pymunk: what a game's step costs.
 
 Run with ``python -m demos.bench platformer`` (``--quick``: the script's first 5 s, fewer
 query rounds). The scene is ``demos.platformer_scene``: ground, walls and ledges as segments
@@ -12,7 +12,7 @@ default 10 cm made for pixels) with the same script and rules (``demos.platforme
 ``script``, ``toward``, jump impulse and ground test).
 
 **Each step** is timed in two parts: the engine's own step (``World.step``, pymunk's
-``Space.step``: what the issue measured) and the game's whole step around it (the script's
+``Space.step``: what was measured first) and the game's whole step around it (the script's
 input, the ground test, one ``segment_query_first`` below the player's feet, the player's
 speed and jump, the engine's step, the coins). The engines step one after another in turn
 (the order rotated every step, so a burst of load on a shared machine hits them alike), each
@@ -86,7 +86,7 @@ SLEEP_TIME = 0.5  # s still before a pymunk body sleeps: this World's default
 #: m: pymunk's collision slop, the overlap it allows at rest: its default, 0.1, is for pixels
 #: (the player would stand 10 cm deep in the ground, past the ground test's reach)
 SLOP = 0.01
-#: What the issue measured (ms a step: median, worst; pymunk's median in us; the share of steps
+#: What was measured first (ms a step: median, worst; pymunk's median in us; the share of steps
 #: over a frame), before this scene was in the repository.
 ISSUE = {
     "numpy": "18.4 ms median (689x pymunk's 27 us), 68% of steps over a frame, worst 381 ms",
@@ -457,7 +457,7 @@ def table(runs: dict[str, Run], seconds: float, query: dict[str, float]) -> list
     """The report's lines for ``runs`` (``side_by_side``) over ``seconds`` of the script and
     the ground test's ``query`` times (``query_times``)."""
     lines = [
-        f"platformer: the issue's small game (demos.platformer_scene: {len(scene.CRATES)} "
+        f"platformer: the small game (demos.platformer_scene: {len(scene.CRATES)} "
         f"crates, a seesaw on a hinge, a moving platform, a ball, {len(scene.COINS)} coin "
         f"sensors), its script's first {seconds:g} s ({round(seconds / DT)} steps of 1/60 s), "
         f"the engines one step each in turn; pymunk {ITERATIONS} iterations",
@@ -489,7 +489,7 @@ def table(runs: dict[str, Run], seconds: float, query: dict[str, float]) -> list
         )
     if "pymunk" not in runs:
         lines.append("  pymunk is not installed (pip install -e '.[bench]'): no comparison")
-    lines.append(f"  as measured by the issue: numpy {ISSUE['numpy']}; fast {ISSUE['fast']}")
+    lines.append(f"  as measured first: numpy {ISSUE['numpy']}; fast {ISSUE['fast']}")
     hinged = [
         (name, runs[name].median() / runs[f"{name}, no hinge"].median())  # the engine's, CPU
         for name in runs

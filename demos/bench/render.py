@@ -4,11 +4,11 @@ Run with ``python -m demos.bench render``. Both sides drive the same scene throu
 fixed-step loop and draw the same picture at 640x360 (a ruler, three plot panels, a moving body
 with its arrows, labels); the baseline saves each frame with ``pygame.image.save``, the recorder
 hands it to :class:`engine.render.FrameWriter` (pixels copied out, PNG encoded on worker
-threads). Target (issue 3): recording at least 3x the baseline's frames per second, with the
+threads). Target: recording at least 3x the baseline's frames per second, with the
 same pixels in the files, which the report checks frame by frame.
 
 With the ``video`` extra installed, the same frames are also streamed to an MP4 and to a GIF
-(:class:`engine.render.ClipWriter`, ffmpeg in its own process). Target (issue 12): writing
+(:class:`engine.render.ClipWriter`, ffmpeg in its own process). Target: writing
 the MP4 costs at most what writing the PNG frames costs, i.e. at least their frames per second.
 """
 

@@ -19,7 +19,7 @@ contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II
 * ``stack``: a tower of 10 boxes (``demos.stack.tower``: 1 m, 1 kg, friction 0.6, put down
   touching on a floor, sleeping off), run 5 s; ``pyramid``: the pyramid of 210 boxes (a base of
   20, ``demos.bench.stack.make_world``), the same. Error: the drift, the largest displacement
-  of any box from where it was put after 5 s (m; the issue's targets, 1 mm for the tower's top
+  of any box from where it was put after 5 s (m; the targets, 1 mm for the tower's top
   and 1 cm for the pyramid, are over 60 s). Energy: KE (linear and turning) / PE left at the
   end. pymunk's twins are ``demos.bench.stack.space_of`` at the same centres. A 5 s window
   keeps the run short: the pyramid's drift has settled by 2 s, the tower's still creeps.

@@ -1,4 +1,4 @@
-"""Pyramids of boxes that turn, against pymunk: the stacks of the issue "Bodies that turn".
+"""Pyramids of boxes that turn, against pymunk: the stacks set as targets for bodies that turn.
 
 Run with ``python -m demos.bench stack`` (``--quick``: the 210-box pyramid for 10 s, one
 round). The scene is ``demos.stack``'s pyramid (``pyramid_centres``): boxes of 1 m and 1 kg,
@@ -11,9 +11,9 @@ Each pyramid runs twice, side by side in one run, one step each in turn (the ord
 every step, so a burst of load on a shared machine hits the engines alike):
 
 * **sleeping on**, what a game sees: this World's default (a body still for 0.5 s sleeps),
-  pymunk with ``sleep_time_threshold`` 0.5 s (its default is off; the issue's "pymunk asleep at
-  1.5 s" needs it on);
-* **sleeping off**, every step solved, as the issue measured the peers' drift and step time
+  pymunk with ``sleep_time_threshold`` 0.5 s (its default is off; "pymunk asleep at 1.5 s",
+  as the peers were measured, needs it on);
+* **sleeping off**, every step solved, as the peers' drift and step time were measured
   (Box2D's in ``anchors/box2d``: ``enableSleep`` false).
 
 Each step is timed by the wall clock. Reported per engine: the mean time a step over the first
@@ -25,9 +25,9 @@ window's end (60 s), and which box it is (its row from the floor, dx, dy, angle:
 path ("World") and, where numba is installed, on the fast path too ("fast"), each named in
 the table whatever ``ENGINE_KERNELS`` says.
 
-Targets (the issue): the 210-box pyramid moves at most 0.01 m by 60 s and sleeps within 2 s;
+Targets: the 210-box pyramid moves at most 0.01 m by 60 s and sleeps within 2 s;
 the 820-box pyramid moves at most 0.02 m; a step on the numpy path at most 3x pymunk's, on
-the fast path at most 1x (issue 27). The report writes ``stack_210.png`` and ``stack_820.png``
+the fast path at most 1x. The report writes ``stack_210.png`` and ``stack_820.png``
 (the displacement against time, both engines, sleeping on and off) into its output folder
 (``out/bench``; ``--out DIR``).
 """
@@ -76,13 +76,13 @@ ITERATIONS = 10  # pymunk's, its default
 SLEEP_TIME = 0.5  # s still before a body sleeps: this World's default, given to pymunk too
 FLOOR = 1000.0  # m: half the length of pymunk's floor segment (this World's is a plane)
 
-#: The issue's targets per base: (the most any box may move by the window's end (m), all
+#: The targets per base: (the most any box may move by the window's end (m), all
 #: asleep within (s) or None).
 TARGETS: dict[int, tuple[float, float | None]] = {20: (0.01, 2.0), 40: (0.02, None)}
-#: The issue's speed targets: a step over the first seconds against pymunk's, per path.
+#: The speed targets: a step over the first seconds against pymunk's, per path.
 SPEED_TARGETS: dict[str, float] = {"World": 3.0, "fast": 1.0}
-#: The peers as the issue measured them (sleeping off; not measured here): base -> engine ->
-#: (ms a step, the largest displacement by 60 s (m)).
+#: The peers as they were measured before this bench (sleeping off; not measured here):
+#: base -> engine -> (ms a step, the largest displacement by 60 s (m)).
 PEERS: dict[int, dict[str, tuple[float, float]]] = {
     20: {"pymunk (10 iterations)": (0.331, 0.047), "Box2D v3 (4 substeps)": (0.118, 0.029)},
     40: {"pymunk (10 iterations)": (1.56, 0.26), "Box2D v3 (4 substeps)": (0.46, 0.116)},
@@ -373,7 +373,7 @@ def summary(on: dict[str, Run], off: dict[str, Run]) -> list[str]:
         f"{SLEEP_TIME:g} s), wall time a step:"
     )
     lines += _table(on)
-    lines.append("   sleeping off (every step solved; as the issue measured the peers):")
+    lines.append("   sleeping off (every step solved; as the peers were measured):")
     lines += _table(off)
     target = TARGETS.get(base)
     checks = []
@@ -397,9 +397,7 @@ def summary(on: dict[str, Run], off: dict[str, Run]) -> list[str]:
     peers = PEERS.get(base)
     if peers:
         told = "; ".join(f"{p} {ms:g} ms, {_mm(m)}" for p, (ms, m) in peers.items())
-        lines.append(
-            f"    the issue's peers (sleeping off, a step, moved by 60 s; not run here): {told}"
-        )
+        lines.append(f"    the peers (sleeping off, a step, moved by 60 s; not run here): {told}")
     return lines
 
 

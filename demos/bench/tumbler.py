@@ -11,12 +11,12 @@ keep every box moving).
 
 The engines step side by side, one step each in turn (the order swapped every step). Reported
 per engine: the mean wall-clock time a step over the first 2 s (the drop) and over the 20 s;
-how many boxes ever had their centre past a wall's inner face (the issue: none may end a step
-inside a wall; pymunk 93 at the end as the issue measured, Box2D none at the end but up to 10
+how many boxes ever had their centre past a wall's inner face (the target: none may end a step
+inside a wall; pymunk 93 at the end as first measured, Box2D none at the end but up to 10
 during the run); the deepest any box's corner went past a wall's inner face. This World runs
 on the numpy path ("World") and, where numba is installed, on the fast path ("fast").
 
-Targets (the issues): a step at most 3x pymunk's on the numpy path, 1x on the fast path.
+Targets: a step at most 3x pymunk's on the numpy path, 1x on the fast path.
 """
 
 from __future__ import annotations
