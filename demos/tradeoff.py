@@ -70,6 +70,8 @@ __all__ = [
     "FULL",
     "QUICK",
     "Sweep",
+    "over_target",
+    "summary",
     "run",
     "DEMO",
 ]
@@ -904,7 +906,9 @@ def run(args: argparse.Namespace) -> int:
 
 def _add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
-        "--quick", action="store_true", help="a coarser sweep in a few seconds (for CI and tries)"
+        "--quick",
+        action="store_true",
+        help=f"a coarser sweep, {TAKES[True]} (for CI and tries)",
     )
 
 
