@@ -370,22 +370,27 @@ def side_by_side(
     firsts: dict[str, tuple[float, float]] = {}
     warned: dict[str, Counter[str]] = {name: Counter() for name in names}
     numba_did: dict[str, tuple[int, int]] = {}
+    counting = fast and engine_kernels.available()
+
+    def counts() -> tuple[int, int]:
+        return cache_counts() if counting else (0, 0)
+
     for name in names:  # built and stepped once, apart: the fast path's kernels load here
-        before = cache_counts()
+        before = counts()
         start = _clocks()
         games[name] = builders[name]()
         made[name] = _since(start)
         firsts[name] = _step_noting(games[name], warned[name])[1]
-        after = cache_counts()
+        after = counts()
         numba_did[name] = (after[0] - before[0], after[1] - before[1])
-    settled = cache_counts()
+    settled = counts()
     steps = round(seconds / DT)
     times = {name: np.empty((2, steps - 1, 2)) for name in names}
     for i in range(steps - 1):
         k = i % len(names)
         for name in names[k:] + names[:k]:
             times[name][:, i] = _step_noting(games[name], warned[name])
-    later = sum(cache_counts()) - sum(settled)
+    later = sum(counts()) - sum(settled)
     return {
         name: Run(name, made[name], firsts[name], times[name][0], times[name][1],
                   list(games[name].collected), warned[name], *numba_did[name],
