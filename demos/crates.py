@@ -7,12 +7,17 @@ the left column and shoves it along the floor; a platform the game moves (a kine
 lifts a small crate and stops. The crates turn (the issue "Bodies that turn"): they land,
 stack and are shoved at their angles. The read-outs: how many of the bodies sleep, and the
 deepest overlap of two crates (or a crate and the floor) as a fraction of a crate's
-height, measured from the positions. Everything is drawn by ``engine.render.draw_world``.
+height, measured from the positions, now and the worst so far. They are of the state the frame
+shows, at the time its clock says: the frame drawn between two steps (``alpha`` < 1: at 30
+frames a second and dt = 1/60 s, exactly on the earlier one) reads the earlier state, so the
+frame at t = 0 reads the crates where they were put. Everything is drawn by
+``engine.render.draw_world``.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pygame
@@ -127,15 +132,34 @@ class CratesScene(Scene):
         self.camera = Camera(
             scale, ((w - scale * (x1 - x0)) / 2 - scale * x0, (h - m) + scale * y0)
         )
-        self.deepest = 0.0
+        #: The deepest overlap (m) now and the worst of every state stepped through, and both
+        #: as they were before the last step (what a frame between the last two states reads).
+        crates = self.bodies["crates"] + self.bodies["rider"]
+        self.now = self.deepest = self.now_before = self.deepest_before = deepest_crate_overlap(
+            crates
+        )
+
+    #: The read-outs (beside the World) that a snapshot keeps.
+    kept = ("now", "deepest", "now_before", "deepest_before")
+
+    def snapshot(self) -> tuple[Any, ...]:
+        return self.world.snapshot(), tuple(getattr(self, name) for name in self.kept)
+
+    def restore(self, snapshot: tuple[Any, ...]) -> None:
+        world, kept = snapshot
+        self.world.restore(world)
+        for name, value in zip(self.kept, kept, strict=True):
+            setattr(self, name, value)
 
     def step(self, dt: float) -> None:
+        self.now_before, self.deepest_before = self.now, self.deepest
         self.world.step(dt)
         lift = self.bodies["lift"][0]
         if self.world.t >= LIFT_STOP - 1e-9 and lift.vel.y != 0.0:
             lift.vel = Vector(0.0, 0.0)  # the game stops its platform
         crates = self.bodies["crates"] + self.bodies["rider"]
-        self.deepest = max(self.deepest, deepest_crate_overlap(crates))
+        self.now = deepest_crate_overlap(crates)
+        self.deepest = max(self.deepest, self.now)
 
     def draw(self, surface: pygame.Surface, alpha: float) -> None:
         surface.fill(PAPER)
@@ -145,14 +169,16 @@ class CratesScene(Scene):
         t = self.time(alpha)
         everything = self.world.bodies
         asleep = sum(self.world.is_sleeping(b) for b in everything)
-        crates = self.bodies["crates"] + self.bodies["rider"]
-        now = deepest_crate_overlap(crates) / CRATE
+        # The state the frame shows: the World's now only at alpha = 1, else the one before.
+        now, worst = (
+            (self.now, self.deepest) if alpha >= 1.0 else (self.now_before, self.deepest_before)
+        )
         draw_text(surface, "Crates: bodies with shapes", (x, 4 * s), round(22 * s))
         draw_text(surface, f"t = {t:4.2f} s", (w - x, 4 * s), round(22 * s), INK, "topright")
         draw_text(
             surface,
             f"asleep {asleep} of {len(everything)}   deepest overlap of crates "
-            f"{100 * now:.2f}% of a crate (worst so far {100 * self.deepest / CRATE:.2f}%)",
+            f"{100 * now / CRATE:.2f}% of a crate (worst so far {100 * worst / CRATE:.2f}%)",
             (x, 32 * s),
             round(15 * s),
             MUTED,

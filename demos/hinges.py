@@ -515,7 +515,7 @@ class RodScene(HingeScene):
         size = max(12, round(13 * s))
         captions = [
             f"dashed: the rod's exact period, T = 4 sqrt(L_eq/g) K(sin 45\u00b0) = "
-            f"{self.exact:.5f} s,  L_eq = 2L/3 + w\u00b2/6L",
+            f"{self.exact:.5f} s,  L_eq = 2L/3 + w\u00b2/(6L)",
             f"dashed: the rod's exact period, T = {self.exact:.5f} s",
             f"dashed: T = {self.exact:.5f} s",
         ]
@@ -610,12 +610,13 @@ class ChainScene(HingeScene):
         force, weight = samples[-1].force, PLANKS * PLANK_MASS * G
         lines = [
             f"widest hinge gap so far {worst:.1e} m;  top hinge {force:.1f} N "
-            f"(weight {weight:.1f})",
+            f"(weight {weight:.1f} N)",
             f"widest hinge gap so far {worst:.1e} m;  top hinge {force:.1f} N",
             f"widest gap {worst:.1e} m",
         ]
-        room = self.plot_left - round(8 * s) - font(round(14 * s)).size("t = 10.00 s   ")[0]
-        self.header(surface, t, fitting(lines, round(14 * s), room), self.plot_left)
+        size = max(12, round(14 * s))  # as the header writes it (demos.bounce.draw_text)
+        room = self.plot_left - round(8 * s) - font(size).size("t = 10.00 s   ")[0]
+        self.header(surface, t, fitting(lines, size, room), self.plot_left)
         self.pivot(surface, (0.0, 0.0))
         draw_world(surface, c.world, self.camera, alpha)
         shown = _every(samples)

@@ -64,7 +64,7 @@ from demos.cli import Demo
 from demos.games import run_game
 from engine import Body, Circle, ContactEvent, Filter, Hinge, Polygon, Segment, Vector, World
 from engine.forces import Gravity
-from engine.render import Camera, Scene, draw_disc, draw_text
+from engine.render import Camera, Scene, draw_disc, draw_text, font
 from engine.world import WorldSnapshot
 
 #: The tilt of the table (degrees) and the pull of gravity down it (cm/s^2).
@@ -481,8 +481,11 @@ class PinballGame:
             pygame.draw.line(surface, colour, camera.point(sling.a), camera.point(sling.b), thick)
         for k, bumper in enumerate(self.table.bumpers):
             colour = LIT_COLOUR if self._lit(k) else BUMPER_COLOUR
+            # By the renderer's draw_disc, so the layout test (tests/test_marks.py) sees a
+            # label written on a bumper.
+            centre = (bumper.center.x, bumper.center.y)
+            draw_disc(surface, camera, centre, bumper.radius, None, colour, colour)
             at = camera.point(bumper.center)
-            pygame.draw.circle(surface, colour, at, camera.length(bumper.radius))
             pygame.draw.circle(surface, INK, at, camera.length(bumper.radius) * 0.45)
         # The plunger: a spring under the ball in the shooter lane, shorter as it is pulled.
         pull = self.pulled / PULL_TIME if self.on_plunger else 0.0
@@ -508,8 +511,24 @@ class PinballGame:
         draw_text(surface, f"score {s.points}", (12, 8), size=24, color=INK)
         draw_text(surface, f"balls {s.balls}", (surface.get_width() - 12, 8), 24, INK, "topright")
         if s.over:
-            centre = (surface.get_width() / 2, surface.get_height() / 2)
-            draw_text(surface, "GAME OVER", centre, 40, INK, "center", background=BACKGROUND)
+            self.draw_verdict(surface, camera)
+
+    def draw_verdict(self, surface: pygame.Surface, camera: Camera) -> pygame.Rect:
+        """Write "GAME OVER" where nothing of the table is drawn: across the open band
+        between the lowest bumper and the slingshots' tops, within the side walls, at 40 px or
+        as large as fits there. Returns its box (px)."""
+        table = self.table
+        low = min(b.center.y - b.radius for b in table.bumpers)
+        high = max(max(s.a.y, s.b.y) + s.radius for s in table.slings)
+        left, top = camera.point((WALL_RADIUS, low))
+        right, bottom = camera.point((WIDTH - WALL_RADIUS, high))
+        band = pygame.Rect(left, top, right - left, bottom - top).inflate(-8, -8)
+        size = 40
+        while size > 10 and not _fits(font(size).size("GAME OVER"), band.size):
+            size -= 1
+        return draw_text(
+            surface, "GAME OVER", band.center, size, INK, "center", background=BACKGROUND
+        )
 
     def _lit(self, k: int) -> bool:
         return k in self.lit and self.t - self.lit[k] < LIT
@@ -520,6 +539,10 @@ class PinballGame:
 #: before it may flip again; it misses (does not flip when it could) a MISS share of the
 #: times, as a person does, so that its games end.
 HOLD, REARM, MISS = 0.18, 0.12, 0.3
+
+
+def _fits(size: tuple[int, int], room: tuple[int, int]) -> bool:
+    return size[0] <= room[0] and size[1] <= room[1]
 
 
 def near_flipper(game: PinballGame, side: int) -> bool:

@@ -16,9 +16,14 @@ Run with ``python -m demos stack``. Boxes of 1 kg with friction 0.6 on a floor, 
   walls, kinematic bodies with ``angular_velocity = pi / 2``, turn at 90 degrees a second: the
   read-out counts the boxes whose centre is past a wall (none; pymunk loses 93 here) and the
   deepest a corner went into a wall and two boxes into each other (the soft step's limit as
-  the pile lands and avalanches: several centimetres).
+  the pile lands and avalanches: several centimetres). The walls turn a quarter of a turn a
+  second and look alike, so a frame says the room's angle ("the walls at 135 degrees") and a
+  dot marks one wall: frames a whole second apart show the room turned, not still.
 
-Everything is drawn by ``engine.render.draw_world``: awake boxes blue, asleep grey.
+Everything is drawn by ``engine.render.draw_world``: awake boxes blue, asleep grey. The
+read-outs measure what the frame draws: the boxes where ``draw_world`` blends them for the
+frame's time (the clock's), so the frame at t = 0 shows the boxes where they were put and
+reads 0; a worst-so-far counts the states the World has stepped through up to that time.
 """
 
 from __future__ import annotations
@@ -34,10 +39,11 @@ from demos.warned import Warned, headline, step_noting
 from engine import Body, Plane, Polygon, Vector, World
 from engine.forces import Gravity
 from engine.render import INK, MUTED, PAPER, Camera, Scene, draw_text
-from engine.render.world_view import draw_world
+from engine.render.world_view import angle_of, draw_world
 
 __all__ = [
     "DEMO",
+    "MARK",
     "PyramidScene",
     "DominoScene",
     "TowerScene",
@@ -70,6 +76,9 @@ TUMBLED_SIDE = 0.25  # m
 TUMBLED_MASS = 0.0625  # kg: Box2D's density 1 on 0.25 x 0.25 m
 TUMBLE = math.pi / 2  # rad/s: the tumbler's walls turn 90 degrees a second
 ROOM = 9.5  # m: half the tumbler's inside width
+#: The dot that marks one of the tumbler's walls (its first, at +x when the room is at 0): a
+#: colour no other part of the frame uses, so a test finds it.
+MARK = (240, 228, 66)
 
 
 def _world(kernels: str | None = None) -> World:
@@ -214,6 +223,9 @@ class _StackScene(Scene):
     def build(self, size: tuple[int, int]) -> None:
         self.world, self.boxes = self.make()
         self.start = np.array([tuple(b.pos) for b in self.boxes])
+        rows = {id(b): k for k, b in enumerate(self.world.bodies)}
+        #: Each box's row in the World's arrays (``positions``).
+        self.rows = np.array([rows[id(b)] for b in self.boxes], dtype=int)
         w, h = size
         s = self.s = h / 360
         header = round(72 * s)
@@ -246,13 +258,26 @@ class _StackScene(Scene):
         for name, value in zip(self.kept, kept, strict=True):
             setattr(self, name, value)
 
-    def moved(self) -> np.ndarray:
-        """How far each box is from where it was put (m)."""
-        now = np.array([tuple(b.pos) for b in self.boxes])
-        return np.hypot(*(now - self.start).T)
+    def drawn(self, alpha: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+        """Where the frame at ``alpha`` draws each box and at what angle: positions (n, 2) (m)
+        and angles (n,) (rad), blended as ``draw_world`` blends them (1.0: the World's
+        state now). The read-outs measure these, so they describe the state the frame shows
+        at the time its clock shows."""
+        xy = self.world.positions(alpha)[self.rows]
+        turned = [angle_of(self.world, b, alpha) for b in self.boxes]
+        angles = [b.angle if a is None else a for a, b in zip(turned, self.boxes, strict=True)]
+        return xy, np.array(angles, dtype=float)
 
-    def lines(self) -> list[str]:
+    def moved(self, alpha: float = 1.0) -> np.ndarray:
+        """How far each box is from where it was put (m), as drawn at ``alpha``."""
+        return np.hypot(*(self.drawn(alpha)[0] - self.start).T)
+
+    def lines(self, alpha: float) -> list[str]:
+        """The read-outs of the state drawn at ``alpha``, one a line."""
         raise NotImplementedError
+
+    def draw_more(self, surface: pygame.Surface, alpha: float) -> None:
+        """What a scene draws over the World (nothing by default)."""
 
     def draw(self, surface: pygame.Surface, alpha: float) -> None:
         surface.fill(PAPER)
@@ -262,7 +287,8 @@ class _StackScene(Scene):
         draw_text(surface, self.title, (x, 4 * s), round(22 * s))
         t = self.time(alpha)
         draw_text(surface, f"t = {t:4.2f} s", (w - x, 4 * s), round(22 * s), INK, "topright")
-        lines = self.lines()
+        self.draw_more(surface, alpha)
+        lines = self.lines(alpha)
         if self.warning is not None and self.warning[0] <= t + 1e-9:
             # The World's warning takes the place of the scene's second line (what it is
             # made of), where a teacher's frames show it.
@@ -283,12 +309,14 @@ class PyramidScene(_StackScene):
     def make(self) -> tuple[World, list[Body]]:
         return pyramid()
 
-    def lines(self) -> list[str]:
+    def lines(self, alpha: float) -> list[str]:
         asleep = self.world.sleeping
-        when = "" if self.asleep_at is None else f", all since {self.asleep_at:.2f} s"
+        when = ""
+        if self.asleep_at is not None and self.asleep_at <= self.time(alpha) + 1e-9:
+            when = f", all since {self.asleep_at:.2f} s"
         return [
             f"asleep {asleep} of {len(self.boxes)}{when}   the most any box moved "
-            f"{1000 * float(self.moved().max()):.1f} mm",
+            f"{1000 * float(self.moved(alpha).max()):.1f} mm",
             "boxes that turn, mu 0.6, dt 1/60 s; blue: awake, grey: asleep",
         ]
 
@@ -305,13 +333,13 @@ class DominoScene(_StackScene):
     def make(self) -> tuple[World, list[Body]]:
         return dominoes()
 
-    def fallen(self) -> int:
-        """Dominoes tipped past 0.3 rad."""
-        return sum(abs(b.angle) > 0.3 for b in self.boxes)
+    def fallen(self, alpha: float = 1.0) -> int:
+        """Dominoes tipped past 0.3 rad, as drawn at ``alpha``."""
+        return int((np.abs(self.drawn(alpha)[1]) > 0.3).sum())
 
-    def lines(self) -> list[str]:
+    def lines(self, alpha: float) -> list[str]:
         return [
-            f"fallen {self.fallen()} of {len(self.boxes)}   asleep {self.world.sleeping}",
+            f"fallen {self.fallen(alpha)} of {len(self.boxes)}   asleep {self.world.sleeping}",
             f"0.1 x 1 m, 0.5 m apart; the first flicked with {FLICK} N s at its top",
         ]
 
@@ -328,10 +356,10 @@ class TowerScene(_StackScene):
     def make(self) -> tuple[World, list[Body]]:
         return tower()
 
-    def lines(self) -> list[str]:
-        top = self.boxes[-1]
-        drift = abs(top.pos.x - self.start[-1, 0])
-        sag = self.start[-1, 1] - top.pos.y
+    def lines(self, alpha: float) -> list[str]:
+        x, y = self.drawn(alpha)[0][-1]  # the top box
+        drift = abs(x - self.start[-1, 0])
+        sag = self.start[-1, 1] - y
         return [
             f"the top box: {1000 * drift:.1f} mm sideways, {1000 * sag:.1f} mm lower than put",
             "(the issue asks 1 mm and 5 mm over 60 s; pymunk's tower falls at 1.7 s)",
@@ -347,24 +375,55 @@ class TumblerScene(_StackScene):
     title = "A tumbler: 500 boxes, the walls turning 90 degrees a second"
     view = (-14.9, -14.9, 14.9, 14.9)  # the room turned 45 degrees fits
     walls: list[Body]
-    kept = (*_StackScene.kept, "deepest", "overlap")
+    #: How many boxes the room holds (a test of the room alone may take fewer).
+    count = TUMBLED
+    #: The worst so far, of every state stepped through (``deepest``: a corner into a wall,
+    #: ``overlap``: two boxes into each other, m), and of those before the last step (the
+    #: ``_before`` pair: what a frame between the last two states has seen so far).
+    kept = (*_StackScene.kept, "deepest", "overlap", "deepest_before", "overlap_before")
 
     def make(self) -> tuple[World, list[Body]]:
-        w, boxes, self.walls = tumbler()
-        self.deepest = self.overlap = 0.0
+        w, boxes, self.walls = tumbler(self.count)
+        self.deepest = self.overlap = self.deepest_before = self.overlap_before = 0.0
         return w, boxes
 
     def step(self, dt: float) -> None:
+        self.deepest_before, self.overlap_before = self.deepest, self.overlap
         super().step(dt)
         self.deepest = max(self.deepest, into_walls(self.boxes, self.walls))
         self.overlap = max(self.overlap, self.world.overlap())
 
-    def lines(self) -> list[str]:
+    def room_angle(self, alpha: float = 1.0) -> float:
+        """The angle (rad) the room is drawn at, at ``alpha`` (its walls turn together)."""
+        angle = angle_of(self.world, self.walls[0], alpha)
+        return float(self.walls[0].angle if angle is None else angle)
+
+    def draw_more(self, surface: pygame.Surface, alpha: float) -> None:
+        """A dot on the first wall's middle, and the room's angle left of the room: the four
+        walls look alike a quarter turn apart, and they turn a quarter turn a second."""
+        angle = self.room_angle(alpha)
+        r = ROOM + 0.5  # the wall's middle line
+        at = self.camera.point((r * math.cos(angle), r * math.sin(angle)))
+        radius = max(3, round(self.camera.length(0.45)))  # within the wall's 1 m
+        pygame.draw.circle(surface, MARK, at, radius)
+        pygame.draw.circle(surface, INK, at, radius, 1)
+        s = self.s
+        y = self.camera.point((0.0, 0.0))[1]
+        degrees = round(math.degrees(angle)) % 360
+        draw_text(surface, f"the walls at {degrees} degrees", (8 * s, y - 18 * s), round(15 * s))
+        draw_text(surface, "(the dot marks one)", (8 * s, y), round(15 * s), MUTED)
+
+    def lines(self, alpha: float) -> list[str]:
+        xy, turn = self.drawn(alpha)
+        centre = room_frame(xy, turn, self.room_angle(alpha))[0]  # the room turns about 0
+        out = int((np.abs(centre).max(axis=1) > ROOM).sum())
+        now = alpha >= 1.0  # the frame shows the World's state now, else one before it
+        deepest = self.deepest if now else self.deepest_before
+        overlap = self.overlap if now else self.overlap_before
         return [
-            f"outside the room: {int(outside(self.boxes, self.walls).sum())} of "
-            f"{len(self.boxes)}   the deepest any corner "
-            f"went into a wall: {1000 * self.deepest:.0f} mm, two boxes into each other: "
-            f"{1000 * self.overlap:.0f} mm",
+            f"outside the room: {out} of {len(self.boxes)}   the deepest any corner "
+            f"went into a wall: {1000 * deepest:.0f} mm, two boxes into each other: "
+            f"{1000 * overlap:.0f} mm",
             "the walls: kinematic bodies, angular_velocity = pi / 2; mu 0.6, dt 1/60 s",
         ]
 

@@ -6,6 +6,7 @@ import pygame
 import pytest
 
 from demos.crates import CRATE, LIFT_STOP, CratesScene, deepest_crate_overlap
+from engine.render import iter_frames, marks
 from engine.render.world_view import ASLEEP
 
 
@@ -48,3 +49,42 @@ def test_the_frame_draws_the_sleeping_crates_in_grey(scene: CratesScene) -> None
     for crate in scene.bodies["crates"]:
         x, y = scene.camera.point((crate.pos.x, crate.pos.y))
         assert tuple(surface.get_at((round(x), round(y))))[:3] == ASLEEP
+
+
+@pytest.mark.parametrize("t", [0.0, 0.5])
+def test_the_read_out_is_of_the_time_on_the_clock(t: float) -> None:
+    """At t = 0 the frame read an overlap of 0.01%: the crates after a step, under a clock
+    that said 0. A frame's read-out is now the one of a scene stepped to the clock's time
+    (none at 0: the crates where they were put, apart)."""
+    stepped = CratesScene()
+    stepped.build((640, 360))
+    for _ in range(round(t / stepped.dt)):
+        stepped.step(stepped.dt)
+    crates = stepped.bodies["crates"] + stepped.bodies["rider"]
+    now, worst = deepest_crate_overlap(crates), stepped.deepest
+    if t == 0.0:
+        assert now == worst == 0.0
+    else:
+        assert worst > 1e-4 * CRATE  # they have landed by then: the check can tell
+    k = round(30 * t)
+    for _, _, surface in iter_frames(CratesScene(), 30, t + 0.1, (640, 360), only={k}):
+        said = [m.text for m in marks.marks(surface)]
+    assert f"t = {t:4.2f} s" in said
+    line = next(text for text in said if "deepest overlap of crates" in text)
+    now, worst = 100 * now / CRATE, 100 * worst / CRATE
+    assert line.endswith(f"crates {now:.2f}% of a crate (worst so far {worst:.2f}%)"), line
+
+
+def test_a_restored_scene_reads_out_its_own_moment() -> None:
+    # The worst overlap so far was not in the snapshot: restored to 0.5 s after running to
+    # 1 s, the frame read 1 s's worst under a clock at 0.5 s.
+    s = CratesScene()
+    s.build((640, 360))
+    for _ in range(round(0.5 / s.dt)):
+        s.step(s.dt)
+    saved, before = s.snapshot(), (s.now, s.deepest, s.now_before, s.deepest_before)
+    for _ in range(round(0.5 / s.dt)):
+        s.step(s.dt)
+    assert s.deepest > before[1]  # the worst grew after the snapshot: the check can tell
+    s.restore(saved)
+    assert (s.now, s.deepest, s.now_before, s.deepest_before) == before

@@ -323,3 +323,20 @@ def test_the_command_line_writes_the_frames_the_scenes_draw(
 def test_the_demo_lists_its_scenes() -> None:
     assert list(hinges.DEMO.scenes) == ["rod", "chain", "car"]
     assert isinstance(hinges.Pendulums().bob.pos, Vector)
+
+
+def test_the_headers_write_their_formula_and_units_as_meant() -> None:
+    # The rod's caption wrote "w^2/6L" for w^2 / (6 L), and the chain's "(weight 19.6)" had
+    # no unit. At 480x270 the chain's header has room for the force alone (it is written at
+    # 12 px, and it was measured at 10 px: it ran into the force plot once it said "N").
+    weight = hinges.PLANKS * hinges.PLANK_MASS * hinges.G
+    for size, weighed in (((640, 360), True), ((480, 270), False)):
+        said = []
+        for scene in (hinges.RodScene(), hinges.ChainScene()):
+            for _, _, surface in iter_frames(scene, fps=30, seconds=0.1, size=size, only={0}):
+                said += [m.text for m in marks.marks(surface)]
+                assert marks.problems(surface) == [], size
+        caption = next(text for text in said if text.startswith("dashed:"))
+        assert caption.endswith("L_eq = 2L/3 + w\u00b2/(6L)"), caption
+        header = next(text for text in said if "top hinge" in text)
+        assert header.endswith(f"N (weight {weight:.1f} N)" if weighed else " N"), header

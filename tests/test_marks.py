@@ -1,27 +1,35 @@
 """Every demo and scene, run briefly, checked by what its frames hold (engine.render.marks):
 no label on another label or on a marker, no label or arrowhead cut at the frame's edge or
-leaving its panel. The next demo cannot regress unseen.
+leaving its panel; and by what its drawing helpers drew (tests/pixels.py: ``watching``): no
+label written over a drawn body or sprite (``draw_world``, ``draw_disc``, ``draw_sprite``;
+a body drawn over a label, as a moving one crosses an axis's numbers, is motion), no arrow
+hidden under a sprite or body drawn after it. A body a demo draws with pygame itself is not
+seen: draw it with those helpers. The next demo cannot regress unseen.
 
 Each scene is stepped through (up to ``LONGEST`` s of its time) and drawn at a few frames, at
 the default 640x360 and at 480x270 (the README's size for a GIF): the first three, some spread
-over the run, the last; its motion diagram too, if it has one. The tradeoff demo's charts are
-drawn from made-up rows of every kind (measuring takes minutes).
+over the run, the last; its motion diagram too, if it has one; and each game's end screen,
+its verdict over the table. The tradeoff demo's charts are drawn from made-up rows of every
+kind (measuring takes minutes).
 
 The allow-list, where overlap is the point: empty. A label that overlaps in a new demo is
-added here only with the reason beside it.
+added here only with the reason beside it. ``KNOWN`` lists a fault found in a demo and not
+yet fixed, with what it is: it must still be found, so that its fix shows.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 import pygame
 import pytest
+from pixels import Drawn, Layers, hidden_arrows, labels_on_bodies, watching
 
 import demos.breakout as breakout
 import demos.crumb as crumb
+import demos.pinball as pinball
 from demos.bench import pendulum, solver, throughput
 from demos.cli import Demo, discover
 from demos.tradeoff import draw_contacts, draw_throughput, draw_work_precision
@@ -39,6 +47,16 @@ SPREAD = 6
 SHORTER: dict[tuple[str, str], float] = {("stack", "tumbler"): 4.0}
 #: (demo, scene) -> words that may overlap in it, and why. Where overlap is the point only.
 ALLOWED: dict[tuple[str, str], tuple[str, ...]] = {}
+#: (demo, scene) -> a fault the checks of the drawn bodies found in a demo this test's change
+#: did not own, and what it is: its problems must still be found (so a fix shows, and its
+#: entry goes), and are then set aside. Other problems of the scene fail as ever.
+KNOWN: dict[tuple[str, str], tuple[str, str]] = {
+    ("crumb", "game"): (
+        "hidden under sprite",
+        "Alfred's velocity arrow starts at his middle and is shorter than he is when he walks "
+        "slowly: drawn under his sprite (the paper's fault, issue 40 item 8a, in the crumb)",
+    ),
+}
 
 
 def _scenes() -> list[tuple[str, str, Callable[[], Any]]]:
@@ -64,8 +82,20 @@ def _pygame() -> None:
     init_headless()
 
 
-def _check(surface: pygame.Surface, where: str, allowed: tuple[str, ...]) -> list[str]:
-    return [f"{where}: {p}" for p in marks.problems(surface, overlap_ok=allowed)]
+@pytest.fixture
+def layers() -> Iterator[Layers]:
+    """What the drawing helpers draw during the test (tests/pixels.py)."""
+    with watching() as watched:
+        yield watched
+
+
+def _check(
+    surface: pygame.Surface, where: str, allowed: tuple[str, ...], drawn: Sequence[Drawn] = ()
+) -> list[str]:
+    found = marks.problems(surface, overlap_ok=allowed)
+    found += labels_on_bodies(marks.marks(surface), drawn, allowed)
+    found += hidden_arrows(drawn)
+    return [f"{where}: {p}" for p in found]
 
 
 #: The canvases checked: the default, and the README's size for a GIF in a slide.
@@ -75,7 +105,7 @@ SIZES = [(640, 360), (480, 270)]
 @pytest.mark.parametrize("size", SIZES, ids=lambda s: f"{s[0]}x{s[1]}")
 @pytest.mark.parametrize("case", SCENES, ids=_ids)
 def test_no_label_overlaps_or_is_cut_in_any_scene(
-    case: tuple[str, str, Any], size: tuple[int, int]
+    case: tuple[str, str, Any], size: tuple[int, int], layers: Layers
 ) -> None:
     demo, name, factory = case
     scene = factory()
@@ -90,15 +120,19 @@ def test_no_label_overlaps_or_is_cut_in_any_scene(
     for k, _, surface in iter_frames(scene, 30, seconds, size, only=chosen):
         drawn += 1
         assert marks.marks(surface), f"frame {k} noted nothing: is its text drawn by draw_text?"
-        found += _check(surface, f"frame {k}", allowed)
+        found += _check(surface, f"frame {k}", allowed, layers.take(surface))
     assert drawn == len(chosen)
+    if (demo, name) in KNOWN:
+        words, why = KNOWN[demo, name]
+        assert any(words in p for p in found), f"fixed? then drop KNOWN's entry: {why}"
+        found = [p for p in found if words not in p]
     assert found == [], "\n".join(found)
 
 
 @pytest.mark.parametrize("size", SIZES, ids=lambda s: f"{s[0]}x{s[1]}")
 @pytest.mark.parametrize("case", [c for c in SCENES if c[2]().has_strobe], ids=_ids)
 def test_no_label_overlaps_or_is_cut_in_any_motion_diagram(
-    case: tuple[str, str, Any], size: tuple[int, int]
+    case: tuple[str, str, Any], size: tuple[int, int], layers: Layers
 ) -> None:
     demo, name, factory = case
     scene = factory()
@@ -109,7 +143,41 @@ def test_no_label_overlaps_or_is_cut_in_any_motion_diagram(
     scene.build(size)
     draw_strobe(scene, surface)
     assert marks.marks(surface)
-    found = _check(surface, "strobe", ALLOWED.get((demo, name), ()))
+    found = _check(surface, "strobe", ALLOWED.get((demo, name), ()), layers.take(surface))
+    assert found == [], "\n".join(found)
+
+
+#: The games' end screens, each made by its rule: no balls left (the pinball), no lives (the
+#: breakout). Their verdict ("GAME OVER") is written over the table.
+ENDED: dict[str, Callable[[], Any]] = {
+    "pinball": lambda: _ended(pinball.PinballScene(), "balls"),
+    "breakout": lambda: _ended(breakout.BreakoutScene(), "lives"),
+}
+
+
+def _ended(scene: Any, left: str) -> Any:
+    build = scene.build
+
+    def build_ended(size: tuple[int, int]) -> None:
+        build(size)
+        setattr(scene.world.score, left, 0)
+        assert scene.world.score.over
+
+    scene.build = build_ended
+    return scene
+
+
+@pytest.mark.parametrize("size", [*SIZES, pinball.SIZE], ids=lambda s: f"{s[0]}x{s[1]}")
+@pytest.mark.parametrize("game", list(ENDED))
+def test_no_label_overlaps_or_is_cut_on_a_games_end_screen(
+    game: str, size: tuple[int, int], layers: Layers
+) -> None:
+    scene = ENDED[game]()
+    size = (max(size[0], scene.min_size[0]), max(size[1], scene.min_size[1]))
+    found = []
+    for k, _, surface in iter_frames(scene, 30, 0.5, size, only={0, 15}):
+        assert "GAME OVER" in [m.text for m in marks.marks(surface)]
+        found += _check(surface, f"frame {k}", (), layers.take(surface))
     assert found == [], "\n".join(found)
 
 

@@ -263,3 +263,32 @@ def test_command_line_runs_headless(tmp_path, capsys) -> None:
     image = pygame.image.load(str(frames[-1]))
     assert image.get_size() == pb.SIZE
     assert "points" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("size", [pb.SIZE, (640, 360), pb.PinballScene.min_size], ids=str)
+def test_game_over_is_written_where_nothing_of_the_table_is_drawn(
+    played: Played, size: tuple[int, int]
+) -> None:
+    """The words "GAME OVER" were written at the canvas's middle, over the lowest bumper. Now
+    their box (the words and their background) covers none of the table's pixels: drawn on a
+    table with no ball in play, every pixel under that box is the table's background."""
+    from engine.render import marks
+
+    init_headless()
+    scene = pb.PinballScene()
+    scene.build(size)
+    surface = pygame.Surface(size)
+    scene.game = scene.world = played.game  # the game the autopilot played to its end
+    assert played.game.score.over
+    scene.draw(surface, 1.0)
+    boxes = [m.rect for m in marks.marks(surface) if m.text == "GAME OVER"]
+    assert len(boxes) == 1
+    box = boxes[0]
+    assert surface.get_rect().contains(box)
+    assert box.w >= 40 and box.h >= 10  # legible
+    table = pb.PinballScene()
+    table.build(size)  # a new game: the ball on the plunger, in the shooter lane, no trail
+    table.game.trail.clear()
+    table.draw(surface, 1.0)
+    under = pygame.surfarray.array3d(surface)[box.left : box.right, box.top : box.bottom]
+    assert np.all(under == pb.BACKGROUND), "the table is drawn under GAME OVER"

@@ -9,7 +9,8 @@ import numpy as np
 import pygame
 import pytest
 
-from demos.stack import DominoScene, PyramidScene, TowerScene
+from demos.stack import MARK, DominoScene, PyramidScene, TowerScene, TumblerScene
+from engine.render import iter_frames, marks
 from engine.render.world_view import ASLEEP
 
 
@@ -108,3 +109,57 @@ def test_the_worlds_warning_is_on_the_frame_not_on_stderr() -> None:
     while s.world.t < s.warning[0] - 1e-9:
         s.step(s.dt)
     assert any(t.startswith(line) for t in texts())
+
+
+# -- the read-outs describe the state the frame shows, at the time its clock shows ---------------
+
+
+def _said(scene: object, t: float) -> list[str]:
+    """The words of the frame at ``t`` s (30 frames a second) of a recording of ``scene``."""
+    k = round(30 * t)
+    for _, _, surface in iter_frames(scene, 30, t + 0.1, (640, 360), only={k}):  # type: ignore[arg-type]
+        return [m.text for m in marks.marks(surface)]
+    raise AssertionError(f"no frame at {t} s")
+
+
+@pytest.mark.parametrize("t", [0.0, 0.5])
+def test_the_pyramids_and_the_towers_read_outs_are_of_the_time_on_the_clock(t: float) -> None:
+    """At t = 0 the frame read 'moved 1.7 mm' and '1.7 mm lower than put': the boxes after a
+    step, under a clock that said 0. A frame's read-out is now the one of a scene stepped to
+    the clock's time (none at 0: the boxes where they were put, 0 mm)."""
+    pyramid, tower = run(PyramidScene, t), run(TowerScene, t)
+    moved = 1000 * float(pyramid.moved().max())  # type: ignore[attr-defined]
+    top = tower.boxes[-1]  # type: ignore[attr-defined]
+    drift, sag = 1000 * abs(top.pos.x), 1000 * (19.5 - top.pos.y)
+    if t == 0.0:
+        assert moved == drift == sag == 0.0
+    else:
+        assert moved > 1.0 and sag > 1.0  # they have moved by then: the check can tell
+    said = _said(PyramidScene(), t)
+    assert f"t = {t:4.2f} s" in said
+    assert any(text.endswith(f"the most any box moved {moved:.1f} mm") for text in said), said
+    said = _said(TowerScene(), t)
+    assert f"t = {t:4.2f} s" in said
+    line = f"the top box: {drift:.1f} mm sideways, {sag:.1f} mm lower than put"
+    assert line in said, said
+
+
+def test_frames_a_second_apart_show_the_tumbler_turned() -> None:
+    """The walls turn 90 degrees a second and look alike a quarter turn apart: at 1 s and 2 s
+    the room was drawn the same, as if still. A dot marks one wall and the frame says the
+    room's angle: the dot is where the angle puts it, a quarter turn on each second."""
+    scene = TumblerScene()
+    scene.count = 20  # the room turns the same with fewer boxes in it
+    seen = {}
+    for k, t, surface in iter_frames(scene, 30, 2.0, (640, 360), only={0, 30, 45, 60}):
+        mark = np.all(pygame.surfarray.array3d(surface) == MARK, axis=2)
+        assert mark.sum() > 10, k
+        xs, ys = np.nonzero(mark)
+        cx, cy = scene.camera.point((0.0, 0.0))
+        # The dot's direction from the room's centre, in the world's sense (pixel y down).
+        angle = math.degrees(math.atan2(-(ys.mean() - cy), xs.mean() - cx)) % 360
+        said = [m.text for m in marks.marks(surface)]
+        seen[t] = (xs.mean(), ys.mean())
+        assert abs((angle - 90 * t + 180) % 360 - 180) < 2.0, (t, angle)
+        assert f"the walls at {round(90 * t) % 360} degrees" in said, said
+    assert math.dist(seen[1.0], seen[2.0]) > 100  # a whole room's width apart

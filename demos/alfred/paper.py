@@ -157,24 +157,41 @@ class Paper(Scene):
             pygame.draw.lines(
                 surface, POSITION, False, list(zip(px.tolist(), py.tolist(), strict=True)), 2
             )
-        # Position vector from the origin, velocity arrow along the path.
+        # Seen from above, he stands centred on his position.
+        anchor = self.camera.to_px(pos.x, pos.y)
+        image = self.facing(t, vel)
+        rect = draw_sprite(surface, image, anchor, "center")
+        body = (rect, pygame.mask.from_surface(image))
+        # Position vector from the origin up to him, velocity arrow from him along the path:
+        # each starts or ends where his body does along it, so that neither lies under him
+        # (0.25 s of travel is shorter than he is at walking speeds). His middle, where both
+        # meet, is the dot.
+        origin = self.camera.to_px(0.0, 0.0)
+        toward = (anchor[0] - origin[0], anchor[1] - origin[1])
+        short = _reach(body, anchor, (-toward[0], -toward[1])) + 2
+        length = math.hypot(*toward)
         with panel(self.paper_rect):
-            draw_arrow(
-                surface, self.camera.to_px(0.0, 0.0), self.camera.to_px(pos.x, pos.y), POSITION, 3
-            )
+            if length > short:
+                k = 1.0 - short / length
+                end = (origin[0] + k * toward[0], origin[1] + k * toward[1])
+                draw_arrow(surface, origin, end, POSITION, 3)
+            # His heading in pixels (vx, -vy), from his nose on: it lies on the tangent.
+            ahead = _reach(body, anchor, (vel.x, -vel.y)) + 2
+            speed = vel.magnitude() * self.camera.scale
+            nose = anchor
+            if speed > 0:
+                nose = (anchor[0] + ahead * vel.x * self.camera.scale / speed,
+                        anchor[1] - ahead * vel.y * self.camera.scale / speed)  # fmt: skip
             draw_vector(
                 surface,
                 self.camera,
-                pos,
+                self.camera.to_world(*nose),
                 vel,
                 self.arrow_seconds,
                 VELOCITY,
                 label="v",
                 label_side=-1,
             )
-        # Seen from above, he stands centred on his position.
-        anchor = self.camera.to_px(pos.x, pos.y)
-        draw_sprite(surface, self.facing(t, vel), anchor, "center")
         draw_dot(surface, anchor, 3, INK)
         self.draw_numbers(surface, t, pos, vel)
 
@@ -223,15 +240,34 @@ class Paper(Scene):
         for i, t in enumerate(times):
             pos, vel = self.exact(t)
             states.append((1.0 - i / max(1, n - 1), self.camera.to_px(pos.x, pos.y), vel))
-        for age, anchor, _ in states:  # every arrow first, under all the ants
-            draw_arrow(surface, self.camera.to_px(0.0, 0.0), anchor, _fade(POSITION, age), 2, 8)
+        images = [self.facing(t, vel) for t, (_, _, vel) in zip(times, states, strict=True)]
         # Where each image's pixels are (a rotated image is mostly empty corners).
         drawn: list[tuple[pygame.Rect, pygame.mask.Mask]] = []
-        for t, (age, anchor, vel) in zip(times, states, strict=True):
-            image = self.facing(t, vel)
-            rect = draw_sprite(surface, image, anchor, "center", alpha=round(255 - 175 * age))
-            draw_dot(surface, anchor, 3, INK)
+        for image, (_, anchor, _) in zip(images, states, strict=True):
+            rect = image.get_rect(center=tuple(math.floor(c + 0.5) for c in anchor))
             drawn.append((rect, pygame.mask.from_surface(image)))
+        origin = self.camera.to_px(0.0, 0.0)
+        # An Alfred standing on the origin (at t = 0 he starts there) covers it.
+        start = [body for body, (_, at, _) in zip(drawn, states, strict=True)
+                 if math.dist(at, origin) < 1.0]  # fmt: skip
+        # Every arrow first, under all the ants, each from where the one on the origin ends
+        # to where its own ant's body begins: its head shows (the dot is his middle). One
+        # with no room between the two is left out.
+        for body, (age, anchor, _) in zip(drawn, states, strict=True):
+            toward = (anchor[0] - origin[0], anchor[1] - origin[1])
+            length = math.hypot(*toward)
+            if length < 1.0:
+                continue  # he is on the origin: no position vector to draw
+            out = max((_reach(b, origin, toward) + 2 for b in start), default=0.0)
+            short = _reach(body, anchor, (-toward[0], -toward[1])) + 2
+            if length > out + short:
+                a, b = out / length, 1.0 - short / length
+                tail = (origin[0] + a * toward[0], origin[1] + a * toward[1])
+                end = (origin[0] + b * toward[0], origin[1] + b * toward[1])
+                draw_arrow(surface, tail, end, _fade(POSITION, age), 2, 8)
+        for image, (age, anchor, _) in zip(images, states, strict=True):
+            draw_sprite(surface, image, anchor, "center", alpha=round(255 - 175 * age))
+            draw_dot(surface, anchor, 3, INK)
         # Each label goes beside its image, where it covers no ant, no position arrow and no
         # other words (the grid's numbers, the labels placed before it): the nearest such place
         # around him, trying across his heading first (the outside of the bend, away from a,
@@ -240,7 +276,6 @@ class Paper(Scene):
         size = font_size(self.size, 16)
         reach = self.sprite.get_height() / 2  # his legs' reach either side of his axis (px)
         ax, ay = self.a.x, -self.a.y  # a as a pixel direction (pixel y points down)
-        origin = self.camera.to_px(0.0, 0.0)
         arrows = [(origin, anchor) for _, anchor, _ in states]
         inside = self.paper_rect
         arrows += [((inside.left, origin[1]), (inside.right, origin[1]))]  # the axes
@@ -301,6 +336,28 @@ def _faults(
         + any(box.clipline(a, b) for a, b in lines)
         + any(math.dist(box.center, other) < mine for other in anchors)
     )
+
+
+def _reach(
+    image: tuple[pygame.Rect, pygame.mask.Mask],
+    centre: tuple[float, float],
+    direction: tuple[float, float],
+) -> float:
+    """How far (px) from ``centre`` the visible pixels of ``image`` (its box on the frame and
+    its mask) reach along ``direction`` (pixel axes): the furthest one on that ray."""
+    rect, mask = image
+    norm = math.hypot(*direction)
+    if norm == 0.0:
+        return 0.0
+    dx, dy = direction[0] / norm, direction[1] / norm
+    w, h = mask.get_size()
+    furthest = 0.0
+    for r in range(math.ceil(math.hypot(w, h)) + 1):
+        x = math.floor(centre[0] + r * dx) - rect.x
+        y = math.floor(centre[1] + r * dy) - rect.y
+        if 0 <= x < w and 0 <= y < h and mask.get_at((x, y)):
+            furthest = float(r)
+    return furthest
 
 
 def _covers(box: pygame.Rect, images: Sequence[tuple[pygame.Rect, pygame.mask.Mask]]) -> bool:
