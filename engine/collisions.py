@@ -226,6 +226,22 @@ class Collisions:
         self.asleep = np.zeros(n, dtype=bool)
         self._group = np.zeros(n, dtype=np.intp)
 
+    def wake_body(self, row: int, n: int) -> None:
+        """Body ``row`` was written by hand (its position, velocity or own acceleration): it
+        is no longer still, and if it slept, its sleeping group wakes with it. The other
+        groups sleep on: a body sent into one of them wakes it when it meets it (wake_met),
+        as a kinematic body does, so a game that sets its player's velocity every step does
+        not keep a sleeping pile across the level awake."""
+        if len(self.still) != n:
+            self.wake(n)
+            return
+        self.still[row] = 0.0
+        if self.asleep[row]:
+            group = self.asleep & (self._group == self._group[row])
+            self.asleep[group] = False
+            self.still[group] = 0.0
+            self._group[group] = 0
+
     def _prepare(
         self, radius: np.ndarray, group: np.ndarray, cat: np.ndarray, mask: np.ndarray
     ) -> np.ndarray:

@@ -302,12 +302,17 @@ class WorldState:
         return True
 
     def state_written(self, row: int | None = None, moved: bool = False) -> None:
-        """A position or velocity was set by hand: the closed form and the kernel start anew,
-        and every sleeping body wakes. A body moved by hand (``row``, ``moved``) is no longer
-        at rest where it was, and is pushed out of any solid collider it was put into."""
+        """A position or velocity was set by hand: the closed form and the kernel start anew.
+        The body written (``row``) wakes with its sleeping group, if it slept; with no row
+        (the World changed by hand as a whole) every sleeping body wakes. A body moved by hand
+        (``row``, ``moved``) is no longer at rest where it was, and is pushed out of any solid
+        collider it was put into."""
         self.anchor = None
         self.void_budget()
-        self.collisions.wake(len(self.bodies))
+        if row is None:
+            self.collisions.wake(len(self.bodies))
+        else:
+            self.collisions.wake_body(row, len(self.bodies))
         if moved and row is not None and self.contacts is not None:
             self.contacts.rest[row] = -1
             push_out(self, [row], "was put", stacklevel=5)
@@ -319,7 +324,7 @@ class WorldState:
             self.model.set_own_acc(row, self.store.own[row])
         self.anchor = None
         self.drop_kernel()
-        self.collisions.wake(len(self.bodies))
+        self.collisions.wake_body(row, len(self.bodies))
 
     def ready(self) -> ForceModel:
         """The forces compiled into per-body arrays (engine.forcefield), made when needed."""
