@@ -804,9 +804,9 @@ QUICK = Sweep(tuple(2.0**-k for k in range(2, 9)), tuple(10.0**-k for k in range
 
 #: How long a whole run takes, measured on the 2-core machine the project is built on
 #: (`python -m demos tradeoff`: 132 s alone on 2026-11-25, about 170 s beside another job;
-#: --quick: 16.7 s of CPU time on 2026-12-02, 50 s by the clock beside jobs at a load of 7; it
-#: took 51 s of CPU before QUICK was cut down): said before it starts, and on its progress
-#: lines. Its kernels' first compile (once per install, 20 to 80 s) is not counted.
+#: --quick: 15.3 s on 2026-12-02, 14.8 s of it CPU time, beside one other job, where its
+#: measurements before QUICK was cut down took 45.8 s the same way): said before it starts, and
+#: on its progress lines. The kernels' first compile (once per install, 20 to 80 s) is not in it.
 TAKES = {False: "about 2 to 3 minutes", True: "about 10 to 20 seconds"}
 
 
