@@ -51,6 +51,7 @@ from .faces import (
 )
 from .resting import asleep
 from .rotation import Spin
+from .shaped import ShapeTable
 from .sweep import MAX_IMPACTS, Paths, sweep
 from .sweep_one import asleep_few, solve_few
 
@@ -508,12 +509,21 @@ class Contacts:
         return push_out.push_out_rows(faces, self.colliders, X, V, r, meets, fast)
 
     # -- sensors ----------------------------------------------------------------------------
-    def sense(self, x1: np.ndarray, dt: float, t0: float, radius: np.ndarray) -> None:
+    def sense(
+        self,
+        x1: np.ndarray,
+        dt: float,
+        t0: float,
+        radius: np.ndarray,
+        shapes: ShapeTable | None = None,
+        angle: np.ndarray | None = None,
+    ) -> None:
         """Report bodies that began or ended overlapping each sensor this step (x1: where the
-        bodies ended it; engine.sensors)."""
+        bodies ended it; ``shapes`` and ``angle``: the bodies' shapes by row and their angles
+        there, for those with a shape other than a disc; engine.sensors)."""
         sensors.sense(
             self.colliders, self._sensors, self.inside, self.body_filters, x1, dt, t0, radius,
-            self._began, self._ended,
+            self._began, self._ended, shapes, angle,
         )  # fmt: skip
 
 

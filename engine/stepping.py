@@ -393,7 +393,10 @@ def _step_once(
         if pairs.moved:
             state.anchor = None
         if contacts is not None:
-            contacts.sense(x1, dt, t0, store.radius)  # where every body ended
+            # Where every body ended, turned as it ended (shapes meet sensors by their shape).
+            shaped = pairs.shape_table(store) if pairs.has_shapes(store) else None
+            turned = store.angle if spin is None else spin.angle
+            contacts.sense(x1, dt, t0, store.radius, shaped, turned)
         if pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned:
             # The resting solver's limit: a pile too deep for its iterations sinks into
             # itself (README: "Limits of the contact solver").
