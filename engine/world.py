@@ -51,6 +51,7 @@ from .membership import ColliderT, LinkT
 from .overlaps import OverlapWarning
 from .policy import METHODS, MethodPolicy
 from .queries import QueryHit
+from .query_grid import QueryIndex
 from .snapshot import WorldSnapshot
 from .stepping import SUBSTEPS_AT_IMPACT as SUBSTEPS_AT_IMPACT  # README: engine.world's
 from .world_state import WorldState
@@ -101,6 +102,7 @@ class World:
     ) -> None:
         self._s = WorldState(self, MethodPolicy(integrator, tolerance), kernels_path(kernels))
         self._s.events.view = event_dispatch.EventView(self._s)
+        self._queries = QueryIndex()  # colliders and bodies by cell, for queries
 
     # The parts that tests read: the compiled forces and the static contacts (the World's
     # own modules read its state, self._s, by public names).
@@ -295,7 +297,7 @@ class World:
         the order met: a QueryHit each with ``fraction`` (0 at start, 1 at end), the point
         where the swept centre first touches and the normal there. ``radius`` > 0 sweeps a
         disc; ``filter`` (an engine.Filter) sees only the shapes it collides with."""
-        return queries.segment_query(self._s, start, end, radius, filter)
+        return queries.segment_query(self._s, start, end, radius, filter, self._queries)
 
     def segment_query_first(
         self,
@@ -306,7 +308,7 @@ class World:
     ) -> QueryHit | None:
         """The first body or collider (sensors too; a filter can leave them out) a segment
         from ``start`` to ``end`` meets, as ``segment_query``; None when nothing is met."""
-        hits = queries.segment_query(self._s, start, end, radius, filter)
+        hits = queries.segment_query(self._s, start, end, radius, filter, self._queries, True)
         return hits[0] if hits else None
 
     def point_query(
@@ -320,7 +322,7 @@ class World:
         Nearest first; ``distance`` is from the shape's surface (< 0 inside), ``point`` the
         nearest point of that surface. A mouse pick is ``world.point_query(mouse, 0.1)``.
         """
-        return queries.point_query(self._s, point, max_distance, filter)
+        return queries.point_query(self._s, point, max_distance, filter, self._queries)
 
     def point_query_nearest(
         self,
@@ -330,17 +332,17 @@ class World:
     ) -> QueryHit | None:
         """The nearest shape within ``max_distance`` of ``point`` (``point_query``'s first),
         or None."""
-        hits = queries.point_query(self._s, point, max_distance, filter)
+        hits = queries.point_query(self._s, point, max_distance, filter, self._queries)
         return hits[0] if hits else None
 
     def bb_query(self, bb: Any, filter: Filter | None = None) -> list[Any]:  # noqa: A002
         """The bodies and colliders that overlap the box ``bb`` = (left, bottom, right, top)."""
-        return queries.bb_query(self._s, bb, filter)
+        return queries.bb_query(self._s, bb, filter, self._queries)
 
     def shape_query(self, shape: Any, filter: Filter | None = None) -> list[QueryHit]:  # noqa: A002
         """The bodies and colliders a ``Circle`` or ``Segment`` (placed where asked, not
         added) overlaps, deepest first; ``distance`` < 0 is the depth of each overlap."""
-        return queries.shape_query(self._s, shape, filter)
+        return queries.shape_query(self._s, shape, filter, self._queries)
 
     # -- choosing the method ------------------------------------------------------------------
     @property

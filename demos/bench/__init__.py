@@ -38,6 +38,7 @@ TOPICS: dict[str, str] = {
     "stack": "demos.bench.stack",
     "tumbler": "demos.bench.tumbler",
     "platformer": "demos.bench.platformer",
+    "queries": "demos.bench.queries",
 }
 
 
