@@ -20,6 +20,28 @@ settings.register_profile("explore", deadline=None, print_blob=True)
 settings.load_profile("replay")
 
 
+# Hypothesis also draws, now and then, a constant it found in any local module imported so far
+# (hypothesis.internal.conjecture.providers: "local constants"), so a new number anywhere in
+# the engine, the demos or the tests changed the fixed set the replay profile draws: a commit
+# that touched no fuzzed code could meet new examples. Replaying, the set depends on the tests'
+# own strategies alone; exploring keeps the constants (they find edge cases).
+def _stable_constants() -> None:
+    from hypothesis.internal.conjecture import providers
+
+    found = getattr(providers, "_get_local_constants", None)
+    if found is None or getattr(found, "stable", False):
+        return  # (a hypothesis without them, or set already)
+
+    def local_constants():  # type: ignore[no-untyped-def]
+        return providers.Constants() if settings.default.derandomize else found()
+
+    local_constants.stable = True  # type: ignore[attr-defined]
+    providers._get_local_constants = local_constants
+
+
+_stable_constants()
+
+
 # Hypothesis draws its examples partly from the constants of the project's modules loaded so
 # far (hypothesis.internal.conjecture.providers: "local constants"), so a derandomized fuzz
 # test drew other examples after other tests had imported more of the project: its verdict

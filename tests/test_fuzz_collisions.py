@@ -900,6 +900,35 @@ def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
     check_as_if_alone(scene)
 
 
+#: Found replaying on 2026-12-02 (its shrunk example): two worlds filtered apart, where a ball
+#: of the second (5) falls onto another (6) across the place where a ball of the first (0)
+#: rests.
+THROUGH_A_RESTING_STRANGER: Scene = {
+    "balls": [
+        (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
+        (0.3763241468392342, 0.1881620734196171, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
+        (0.7526482936784684, 0.3763241468392342, 0.0, 0.0, 0.2, 1.0, 0.0, 1.0, 5),
+        (1.1289724405177026, 0.5644862202588513, 0.0, -9.408103670980854, 0.2, 1.0, 0.0, 1.0, 5),
+        (1.5052965873569368, 0.7526482936784684, -4.704051835490427, 0.0, 0.2, 1.0, 0.0, 1.0, 7),
+        (0.0, 0.7056077753235641, 0.0, -14.11215550647128, 0.2, 1.0, 0.0, 1.0, 7),
+        (0.0, -0.8232090712108248, 0.0, 16.464181424216495, 0.2, 1.0, 0.0, 0.0, 7),
+    ],
+    "colliders": [],
+    "gravity": False,
+    "method": "auto",
+    "steps": 60,
+}
+
+
+@xfail(
+    "the second world's three balls leave the path they take alone at step 15 (by 1.5e-6 m, "
+    "growing to 3.8e-5 m by step 19) under the exact method: something in the impacts' "
+    "search or order counts the filtered pairs with the first world's resting balls"
+)
+def test_a_world_filtered_apart_moves_alone_where_its_balls_meet_over_a_stranger() -> None:
+    check_as_if_alone(THROUGH_A_RESTING_STRANGER)
+
+
 @fuzz(80)
 @given(scene=scenes(filters=(4, 5, 5, 6, 7, 7, 8), gravity=False, colliders=False))
 def test_filtered_apart_worlds_never_exchange_momentum(scene: Scene) -> None:
