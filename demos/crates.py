@@ -17,12 +17,12 @@ frame at t = 0 reads the crates where they were put. Everything is drawn by
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 import pygame
 
 from demos.cli import Demo
+from demos.kept import KeptReadouts
 from engine import Body, Plane, Polygon, Segment, Vector, World
 from engine.forces import Gravity
 from engine.render import INK, MUTED, PAPER, Camera, Scene, draw_text
@@ -110,7 +110,7 @@ def deepest_crate_overlap(crates: list[Body]) -> float:
     return deepest
 
 
-class CratesScene(Scene):
+class CratesScene(KeptReadouts, Scene):
     """Crates, a plank, a ball and a platform: bodies with shapes in one World."""
 
     name = "stack"
@@ -141,15 +141,6 @@ class CratesScene(Scene):
 
     #: The read-outs (beside the World) that a snapshot keeps.
     kept = ("now", "deepest", "now_before", "deepest_before")
-
-    def snapshot(self) -> tuple[Any, ...]:
-        return self.world.snapshot(), tuple(getattr(self, name) for name in self.kept)
-
-    def restore(self, snapshot: tuple[Any, ...]) -> None:
-        world, kept = snapshot
-        self.world.restore(world)
-        for name, value in zip(self.kept, kept, strict=True):
-            setattr(self, name, value)
 
     def step(self, dt: float) -> None:
         self.now_before, self.deepest_before = self.now, self.deepest

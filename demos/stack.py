@@ -29,12 +29,12 @@ reads 0; a worst-so-far counts the states the World has stepped through up to th
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 import pygame
 
 from demos.cli import Demo
+from demos.kept import KeptReadouts
 from demos.warned import Warned, headline, step_noting
 from engine import Body, Plane, Polygon, Vector, World
 from engine.forces import Gravity
@@ -206,7 +206,7 @@ def outside(boxes: list[Body], walls: list[Body]) -> np.ndarray:
     return np.abs(in_room(boxes, walls)[0]).max(axis=1) > ROOM
 
 
-class _StackScene(Scene):
+class _StackScene(KeptReadouts, Scene):
     """What the three scenes share: a World of boxes, a camera on ``view``, a title."""
 
     dt = DT
@@ -248,15 +248,6 @@ class _StackScene(Scene):
 
     #: The scene's own read-outs (beside its World) that a snapshot keeps.
     kept: tuple[str, ...] = ("asleep_at",)
-
-    def snapshot(self) -> tuple[Any, ...]:
-        return self.world.snapshot(), tuple(getattr(self, name) for name in self.kept)
-
-    def restore(self, snapshot: tuple[Any, ...]) -> None:
-        world, kept = snapshot
-        self.world.restore(world)
-        for name, value in zip(self.kept, kept, strict=True):
-            setattr(self, name, value)
 
     def drawn(self, alpha: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
         """Where the frame at ``alpha`` draws each box and at what angle: positions (n, 2) (m)
