@@ -60,7 +60,16 @@ from . import kernels
 from .joint_contacts import joined_rows
 from .manifold import StaticShapes, static_shapes
 from .pair_math import SLOP, dot, norm, sorted_unique
-from .pile_rows import disc_rows, face_rows, held, lever_arms, shape_arms, turning, warm_start
+from .pile_rows import (
+    Carried,
+    disc_rows,
+    face_rows,
+    held,
+    lever_arms,
+    shape_arms,
+    turning,
+    warm_start,
+)
 from .shape_impacts import retake
 from .shaped import ShapeTable, pair_rows, static_rows
 from .soft import Rows, SoftStep
@@ -92,22 +101,6 @@ PUSH = 6.0
 THRESH = 3.0
 #: Whether the discs of a pile are pushed out of the walls after the soft step.
 PUSHOUT = True
-
-
-class Carried(NamedTuple):
-    """The impulses a pile's contacts carry from one step to the next (the warm start)."""
-
-    #: Each row's key (sorted): a * base + b for a pair, a * base + n + f for a face.
-    keys: np.ndarray
-    #: (normal, tangent) impulse of each row over the whole step, shape (rows, 2).
-    lam: np.ndarray
-    #: The step they were taken over (s).
-    lam_dt: float
-    #: The base of the keys: bodies and faces then.
-    base: int
-    #: Keys of the rows whose colours are kept (sorted), and the colours.
-    color_keys: np.ndarray
-    colors: np.ndarray
 
 
 class Pile(NamedTuple):

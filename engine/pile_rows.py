@@ -10,7 +10,7 @@ compiled by numba), the same algorithm giving the same numbers bit for bit:
 * ``face_rows``: each solid face within reach of a disc: its normal toward the disc, the gap
   from the face grown by the radius, the face's friction;
 * ``warm_start``: each row's impulses and colour of the last step, found by its key in the
-  sorted keys carried (a binary search, as searchsorted);
+  sorted keys carried (``Carried``; a binary search, as searchsorted);
 * ``held``: after the step, which pairs touch or pressed, which are near enough for sleep to
   join, and every row's gap now;
 * ``turning`` and ``lever_arms``: the discs of the pile that turn, and the rows' lever arms
@@ -34,10 +34,10 @@ from .soft import Arms
 
 if TYPE_CHECKING:
     from .contacts import Contacts
-    from .pile import Carried
     from .rotation import Spin
 
 __all__ = [
+    "Carried",
     "Turning",
     "disc_rows",
     "face_rows",
@@ -47,6 +47,22 @@ __all__ = [
     "turning",
     "warm_start",
 ]
+
+
+class Carried(NamedTuple):
+    """The impulses a pile's contacts carry from one step to the next (the warm start)."""
+
+    #: Each row's key (sorted): a * base + b for a pair, a * base + n + f for a face.
+    keys: np.ndarray
+    #: (normal, tangent) impulse of each row over the whole step, shape (rows, 2).
+    lam: np.ndarray
+    #: The step they were taken over (s).
+    lam_dt: float
+    #: The base of the keys: bodies and faces then.
+    base: int
+    #: Keys of the rows whose colours are kept (sorted), and the colours.
+    color_keys: np.ndarray
+    colors: np.ndarray
 
 
 def disc_rows(
