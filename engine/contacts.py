@@ -36,8 +36,8 @@ import numpy as np
 from . import push_out, sensors
 from .colliders import Collider
 from .events import ContactEvent
-from .face_grid import FaceGrid, narrow, near
-from .face_looks import first_looks, looks_ready
+from .face_grid import FaceGrid
+from .face_looks import first_looks, looks_ready, narrow, near
 from .faces import (
     Faces,
     allowed_pairs,
@@ -442,7 +442,7 @@ class Contacts:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, np.ndarray, float]:
         """(rows whose path this step may come within reach of a solid face or that move on
         one, rows that rest and stay put, the first rows' grid cells or None, their reach,
-        a bound on every body's |B| and |W|): ``face_grid.near``, with the resting bodies."""
+        a bound on every body's |B| and |W|): ``face_looks.near``, with the resting bodies."""
         need, cell, reach, a_bound = near(self.grid, x0, v0, B, W, dt, radius)
         resting, asleep = self._staying(x0, v0, W, friction)
         if len(resting):

@@ -35,7 +35,7 @@ safe cell.
 
 The tables and their in-place edits when colliders are added or taken out are their own
 modules (engine.cell_table, engine.face_grid_edits); a step's first looks, which use the
-grid, are engine.face_looks (``near``, ``narrow``, ``reach``: importable from here too).
+grid, are engine.face_looks (``near``, ``narrow``, ``reach``), above this one.
 """
 
 from __future__ import annotations
@@ -46,10 +46,9 @@ import numpy as np
 
 from .cell_table import as_table
 from .face_grid_edits import FaceGridEdits, length2
-from .face_looks import narrow, near, reach
 from .faces import Faces, dot
 
-__all__ = ["FaceGrid", "narrow", "near", "reach"]
+__all__ = ["FaceGrid"]
 
 
 class FaceGrid(FaceGridEdits):

@@ -89,7 +89,7 @@ def sweep(
 
     (pb, pf) are the (body, face) pairs to test, the body by its place in ``rows``: every
     face it could meet this step (whatever it bounces off, its path stays within
-    ``engine.face_grid.reach`` of where it started). ``resting``: the face each body rests
+    ``engine.face_looks.reach`` of where it started). ``resting``: the face each body rests
     on or -1, by World row, updated here for ``rows``. Contacts that begin and end are
     reported in ``began`` and ``ended`` (arrays of rows, colliders, points, normals,
     impulses, times). Returns the rows that met anything (struck, rested, slid or lifted

@@ -1,8 +1,8 @@
 """The contacts' first looks skip only bodies that cannot meet anything.
 
-``engine.face_grid.near`` compares each body's reach with a lower bound on its distance to
+``engine.face_looks.near`` compares each body's reach with a lower bound on its distance to
 every face (``FaceGrid.gap``: the grid's bounds, which hold the endless faces too), and
-``engine.face_grid.narrow`` takes each body's faces from its cell's list, by the quick way
+``engine.face_looks.narrow`` takes each body's faces from its cell's list, by the quick way
 (``FaceGrid.listed_fast``: endless faces listed as capsules, for bodies in cells clear of
 their backs) or the other (endless faces against every body). Here: the bound never exceeds
 the true distance, the quick lists hold every face a body can reach, the two ways give the
