@@ -40,42 +40,16 @@ ValueError: a and b must differ ... use Circle((1.0, 1.0), radius) for a round p
 from __future__ import annotations
 
 import math
-from numbers import Real
 from typing import Any
 
 from . import checks, convex
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter
-from .vector import Vector, as_pair
+from .mass import moment_for_polygon, moment_for_segment
+from .points import point_of
+from .vector import Vector
 
 __all__ = ["Collider", "Plane", "Segment", "Circle", "Box", "Polygon", "point_of"]
-
-
-def point_of(value: Any, name: str) -> tuple[float, float]:
-    """A finite 2D point (a Vector or a pair of numbers); TypeError / ValueError naming ``name``."""
-    pair = as_pair(value)
-    if pair is None and not isinstance(value, (str, bytes)):
-        try:  # any other 2-sequence of real numbers: a numpy row, a pygame Vector2
-            if len(value) == 2 and all(
-                isinstance(c, Real) and not isinstance(c, bool) for c in value
-            ):
-                pair = (float(value[0]), float(value[1]))
-        except TypeError:
-            pair = None
-        except OverflowError:  # an int or a Fraction beyond the float range
-            pair = (math.inf, math.inf)
-    if pair is None:
-        raise TypeError(
-            f"{name} must be a 2D point, a Vector or a pair of numbers such as (1.0, 2.0), "
-            f"got {type(value).__name__} {value!r}"
-        )
-    try:
-        x, y = float(pair[0]), float(pair[1])
-    except OverflowError:  # an int or a Fraction beyond the float range
-        x = y = math.inf
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise ValueError(f"{name} must be finite (no nan or inf), got {value!r}")
-    return x, y
 
 
 def _fixed(collider: Collider, name: str) -> str:
@@ -343,8 +317,6 @@ class Segment(Collider):
     def moment(self, mass: float) -> float:
         """The moment of inertia (kg m^2) of a body of ``mass`` with this capsule for its
         shape, about the body's position (``engine.mass.moment_for_segment``)."""
-        from .mass import moment_for_segment  # engine.mass takes point_of from here
-
         return moment_for_segment(mass, self.a, self.b, self.radius)
 
     def lines(self) -> list[Line]:
@@ -600,8 +572,6 @@ class Polygon(Collider):
         """The moment of inertia (kg m^2) of a body of ``mass`` with this polygon (rounded by
         its radius) for its shape, about the body's position, the parallel axes' term
         included (``engine.mass.moment_for_polygon``)."""
-        from .mass import moment_for_polygon  # engine.mass takes point_of from here
-
         return moment_for_polygon(mass, self.vertices, radius=self.radius)
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:

@@ -27,7 +27,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from . import checks, convex
-from .colliders import point_of
+from .points import point_of
 
 __all__ = [
     "moment_for_circle",
