@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 from numbers import Real
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any, Protocol, cast
 
 from .body_habits import install as install_habits
 from .body_values import (
@@ -45,9 +45,8 @@ from .vector import Vector, new_unchecked
 
 if TYPE_CHECKING:
     from .store import BodyStore
-    from .world import World
 
-__all__ = ["Body", "State"]
+__all__ = ["Body", "State", "WorldLike"]
 
 _isfinite = math.isfinite
 
@@ -57,6 +56,35 @@ _isfinite = math.isfinite
 #: False gives the earlier version's boxes, which keep their angle. Read as a body is made or
 #: added: set it before.
 CORNERS_TURN = True
+
+
+class WorldLike(Protocol):
+    """``body.world``: the World that holds the body, by what a game asks of it through one."""
+
+    # engine.world imports this module, so a Body names its World by these members (which
+    # engine.world.World has), not by its class.
+
+    @property
+    def t(self) -> float:
+        """Simulated time (s) since the world began."""
+        ...
+
+    @property
+    def bodies(self) -> tuple[Body, ...]:
+        """The bodies in the world, in the order they were added."""
+        ...
+
+    def step(self, dt: float) -> None:
+        """Advance every body by ``dt`` seconds."""
+        ...
+
+    def remove(self, body: Body) -> None:
+        """Take ``body`` out of the world."""
+        ...
+
+    def position_of(self, body: Body, alpha: float = 1.0) -> State:
+        """One body's position (length units), blended from the previous step by ``alpha``."""
+        ...
 
 
 class Body:
@@ -311,7 +339,7 @@ class Body:
         return self._dim
 
     @property
-    def world(self) -> World | None:
+    def world(self) -> WorldLike | None:
         """The World this body is in, or None."""
         return None if self._store is None else self._store.owner
 
