@@ -10,24 +10,62 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 from .body import Body
 
 if TYPE_CHECKING:
-    from .world_state import WorldState
+    from .contacts import Contacts
+    from .links import Link
+    from .store import BodyStore
 
-__all__ = ["OverlapWarning", "push_out", "freed"]
+__all__ = ["OverlapWarning", "PushState", "push_out", "freed"]
 
 
 class OverlapWarning(UserWarning):
     """A body started inside a collider and was pushed out to its surface."""
 
 
+class PushState(Protocol):
+    """What pushing bodies out reads and writes of a World's state (``WorldState``)."""
+
+    # engine.world_state imports this module (a body put inside a collider is pushed out as
+    # it is written), so the state is named by these members of it, not by its class.
+
+    @property
+    def store(self) -> BodyStore | None:
+        """The body arrays (engine.store), or None before the first body."""
+        ...
+
+    @property
+    def contacts(self) -> Contacts | None:
+        """The static contacts (engine.contacts), or None before the first collider."""
+        ...
+
+    @property
+    def bodies(self) -> list[Body]:
+        """The bodies, in the order of the arrays' rows."""
+        ...
+
+    @property
+    def links(self) -> list[Link]:
+        """The links and joints held."""
+        ...
+
+    @property
+    def world(self) -> Any:
+        """The World this is the state of (what ``Body.world`` answers)."""
+        ...
+
+    def state_written(self, row: int | None = None, moved: bool = False) -> None:
+        """A position or velocity was set by hand (of ``row``, or of the World as a whole)."""
+        ...
+
+
 def push_out(
-    state: WorldState, rows: Iterable[int], how: str = "started", stacklevel: int = 3
+    state: PushState, rows: Iterable[int], how: str = "started", stacklevel: int = 3
 ) -> None:
     """Push the bodies in ``rows`` out of every solid collider, to the nearest place
     outside all of them, warning for each (``how`` it got inside: "started", "was put").
@@ -59,7 +97,7 @@ def push_out(
         )
 
 
-def freed(state: WorldState, bodies: list[Body], stacklevel: int = 4) -> None:
+def freed(state: PushState, bodies: list[Body], stacklevel: int = 4) -> None:
     """Bodies whose links were taken out: one no longer linked to anything that a link
     held inside a collider (links act after the contacts; a pin holds a body where a
     collider is added) is pushed out, as a teleport is."""
