@@ -9,24 +9,22 @@ positions.
 
 No finiteness check is needed: the kernel gets a budget of steps proved not to overflow
 (``safe_steps``), and is rebuilt, or the checked general step taken, when it is spent or
-anything is written by hand.
+anything is written by hand. The World's state makes it and gives it its budget
+(engine.world_state, ``WorldState.prepare_affine``).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from .forcefield import ForceModel
 from .store import BodyStore
 
-if TYPE_CHECKING:
-    from .world_state import StepCount, WorldState
-
-__all__ = ["EULERS", "SAFE", "AffineKernel", "prepare_affine", "safe_steps"]
+__all__ = ["EULERS", "SAFE", "AffineKernel", "StepCount", "safe_steps"]
 
 _mul, _add = np.multiply, np.add
 
@@ -56,6 +54,16 @@ def safe_steps(x_max: float, v_max: float, d: float, b: float, dt: float) -> int
         best = m
         m *= 2
     return best
+
+
+class StepCount:
+    """A World's count of steps since its time base (n in t = t_base + n dt), written by
+    every step (the affine kernel adds to it without a call)."""
+
+    __slots__ = ("n",)
+
+    def __init__(self) -> None:
+        self.n = 0
 
 
 @dataclass(slots=True)
@@ -99,36 +107,3 @@ class AffineKernel:
         store.prev_x, store.x = x, x_new
         count.n += 1
         return True
-
-
-def prepare_affine(state: WorldState, dt: float, model: ForceModel, name: str) -> bool:
-    """Ready the affine Euler kernel for ``dt`` (s); False if its next step might overflow."""
-    store = state.store
-    assert store is not None
-    k = state.kernel
-    if k is None or k.dt != dt or k.model is not model or k.store is not store:
-        state.drop_kernel()
-        damp = None if model.c is None else 1.0 - model.c * dt
-        kick = model.a0 * dt
-        damp_max = 1.0 if damp is None else float(np.abs(damp).max())
-        k = state.kernel = AffineKernel(
-            dt,
-            model,
-            store,
-            name == "explicit_euler",
-            damp,
-            kick,
-            damp_max,
-            float(np.abs(kick).max()),
-            state.count,
-        )
-        state.anchor = None
-    if store.prev_x is store.x:
-        store.prev_x = store.x.copy()
-    x_max, v_max = float(np.abs(store.x).max()), float(np.abs(store.v).max())
-    budget = safe_steps(x_max, v_max, k.damp_max, k.kick_max, dt)
-    # ... and the time t_base + (n + 1) dt must stay a finite float too.
-    budget = min(budget, int(min((1e308 - state.t_base) / dt, 2.0**62)) - state.n)
-    state.void_budget()
-    k.n_from, k.n_stop = state.n, state.n + max(budget, 0)
-    return budget > 0

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .affine import EULERS, prepare_affine
+from .affine import EULERS
 from .body import Body
 from .event_dispatch import report, settle
 from .forcefield import ForceModel
@@ -101,7 +101,7 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
     # (Body.apply_force), take the general step: the affine kernel knows none of them.
     plain = store is None or not (store.spins() or store.pushes or _driven(state, store))
     if state.bodies and affine and after is None and plain:
-        if prepare_affine(state, dt, model, name):
+        if state.prepare_affine(dt, model, name):
             return True
     if state.bodies:
         _step_general(state, dt, name, step, model)

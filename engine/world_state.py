@@ -12,10 +12,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from numbers import Real
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
+from .affine import AffineKernel, StepCount, safe_steps
 from .body import Body
 from .collisions import Collisions
 from .contacts import Contacts
@@ -30,9 +31,6 @@ from .policy import MethodPolicy
 from .store import BodyStore
 from .torquefield import TorqueModel
 
-if TYPE_CHECKING:
-    from .affine import AffineKernel
-
 __all__ = ["AttachedForce", "StepCount", "WorldState"]
 
 
@@ -42,16 +40,6 @@ class AttachedForce:
 
     force: Force
     bodies: list[Body] | None  # None: every body in the world
-
-
-class StepCount:
-    """A World's count of steps since its time base (n in t = t_base + n dt), written by
-    every step (the affine kernel adds to it without a call)."""
-
-    __slots__ = ("n",)
-
-    def __init__(self) -> None:
-        self.n = 0
 
 
 class WorldState:
@@ -268,6 +256,38 @@ class WorldState:
             n = self.count.n
             k.taken += max(0, min(n, k.n_stop) - k.n_from)
             k.n_stop = k.n_from = n
+
+    def prepare_affine(self, dt: float, model: ForceModel, name: str) -> bool:
+        """Ready the affine Euler kernel for ``dt`` (s); False if its next step might overflow."""
+        store = self.store
+        assert store is not None
+        k = self.kernel
+        if k is None or k.dt != dt or k.model is not model or k.store is not store:
+            self.drop_kernel()
+            damp = None if model.c is None else 1.0 - model.c * dt
+            kick = model.a0 * dt
+            damp_max = 1.0 if damp is None else float(np.abs(damp).max())
+            k = self.kernel = AffineKernel(
+                dt,
+                model,
+                store,
+                name == "explicit_euler",
+                damp,
+                kick,
+                damp_max,
+                float(np.abs(kick).max()),
+                self.count,
+            )
+            self.anchor = None
+        if store.prev_x is store.x:
+            store.prev_x = store.x.copy()
+        x_max, v_max = float(np.abs(store.x).max()), float(np.abs(store.v).max())
+        budget = safe_steps(x_max, v_max, k.damp_max, k.kick_max, dt)
+        # ... and the time t_base + (n + 1) dt must stay a finite float too.
+        budget = min(budget, int(min((1e308 - self.t_base) / dt, 2.0**62)) - self.n)
+        self.void_budget()
+        k.n_from, k.n_stop = self.n, self.n + max(budget, 0)
+        return budget > 0
 
     def kinematic_moved(self, row: int, target: Any) -> None:
         """The game moved a kinematic body: to ``target`` over the next step, or (None) by
