@@ -14,6 +14,7 @@ import importlib
 import pkgutil
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -28,17 +29,17 @@ def module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def imported_names(source: str, module: str, is_package: bool = False) -> set[str]:
-    """Every module ``source`` (the text of ``module``) imports, relative imports resolved.
-
-    Counts ``import a.b``, ``from a import b`` (as ``a`` and ``a.b``), imports inside
-    functions, and ``importlib.import_module("a.b")`` with a literal name.
-    """
+def import_statements(
+    source: str, module: str, is_package: bool = False
+) -> Iterator[tuple[str, tuple[str, ...]]]:
+    """Each import statement in ``source`` (the text of ``module``), inside functions too: the
+    module it names, relative imports resolved, and the names it takes from it (none for
+    ``import a.b``)."""
     package = module if is_package else module.rpartition(".")[0]
-    found: set[str] = set()
     for node in ast.walk(ast.parse(source)):
         if isinstance(node, ast.Import):
-            found.update(alias.name for alias in node.names)
+            for alias in node.names:
+                yield alias.name, ()
         elif isinstance(node, ast.ImportFrom):
             if node.level:
                 base = package.split(".")
@@ -46,9 +47,21 @@ def imported_names(source: str, module: str, is_package: bool = False) -> set[st
                 origin = ".".join(base + ([node.module] if node.module else []))
             else:
                 origin = node.module or ""
-            found.add(origin)
-            found.update(f"{origin}.{alias.name}" for alias in node.names)
-        elif (
+            yield origin, tuple(alias.name for alias in node.names)
+
+
+def imported_names(source: str, module: str, is_package: bool = False) -> set[str]:
+    """Every module ``source`` (the text of ``module``) imports, relative imports resolved.
+
+    Counts ``import a.b``, ``from a import b`` (as ``a`` and ``a.b``), imports inside
+    functions, and ``importlib.import_module("a.b")`` with a literal name.
+    """
+    found: set[str] = set()
+    for origin, names in import_statements(source, module, is_package):
+        found.add(origin)
+        found.update(f"{origin}.{name}" for name in names)
+    for node in ast.walk(ast.parse(source)):
+        if (
             isinstance(node, ast.Call)
             and isinstance(node.func, ast.Attribute)
             and node.func.attr == "import_module"
