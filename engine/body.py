@@ -105,6 +105,11 @@ class Body:
     ``position`` is ``pos``, ``velocity`` is ``vel`` and ``acceleration`` is ``acc``; a pymunk
     name with no counterpart here (``force``, ``space``, ``body_type``, ...) raises an
     AttributeError that says what to use instead.
+
+    ``data`` (None by default; ``Body(..., data=brick)``, or set it later) holds the game's own
+    things: a Body takes no other new attribute. The engine never reads it, and it is not part
+    of the physics' state: ``World.restore`` leaves each body's ``data`` as it is, and a body
+    taken out of a World keeps it.
     """
 
     # Position and velocity are kept as plain floats (y parts unused in 1D): a lone body's
@@ -131,6 +136,7 @@ class Body:
         "_moment",
         "_fixed",
         "_torque",
+        "data",
     )
 
     def __init__(
@@ -151,6 +157,7 @@ class Body:
         moment: float | None = None,
         fixed_rotation: bool = False,
         torque: float = 0.0,
+        data: Any = None,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -199,6 +206,9 @@ class Body:
         self._store: BodyStore | None = None  # set by the World that holds this body
         self._slot: int = -1
         self._take_rotation(angle, angular_velocity, moment, fixed_rotation, torque)
+        #: The game's own (a sprite, a score, a name; pymunk users set attributes on a Body):
+        #: the engine never reads it; a World's snapshot does not keep it.
+        self.data: Any = data
 
     def _take_rotation(self, angle: Any, omega: Any, moment: Any, fixed: Any, torque: Any) -> None:
         """Check and keep the rotation arguments (engine.rotation says what they mean)."""
@@ -696,6 +706,35 @@ class Body:
         pos = self.pos
         dx, dy = x - pos.x, y - pos.y
         return Vector(c * dx + s * dy, -s * dx + c * dy)
+
+    def velocity_at_world_point(self, point: Any) -> Vector:
+        """The velocity (length units / s) of the body's point at the world point ``point``:
+        v + omega x (point - pos), pymunk's name; v for a body that does not turn."""
+        x, y = self._plane_point(point, "velocity_at_world_point")
+        pos = self.pos
+        return self._velocity_at(x - pos.x, y - pos.y)
+
+    def velocity_at_local_point(self, point: Any) -> Vector:
+        """The velocity (length units / s, world frame) of the point ``point`` given in the
+        body's own frame: v + omega x R(angle) point, pymunk's name."""
+        x, y = self._plane_point(point, "velocity_at_local_point")
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        return self._velocity_at(c * x - s * y, s * x + c * y)
+
+    def _plane_point(self, point: Any, name: str) -> tuple[float, float]:
+        """``point`` as two floats, for ``name``, which takes a 2D body."""
+        if self._dim != 2:
+            raise TypeError(
+                f"{name} takes a 2D body, got point={point!r} for a 1D body: every point of a "
+                f"body on a line moves at body.vel"
+            )
+        return pair(point, "point")
+
+    def _velocity_at(self, rx: float, ry: float) -> Vector:
+        """v + omega x r (length units / s) for the offset r = (rx, ry) from the position."""
+        vel, w = self.vel, self.angular_velocity
+        # omega x r in the plane: (-omega r_y, omega r_x).
+        return Vector(vel.x - w * ry, vel.y + w * rx)
 
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:

@@ -181,3 +181,21 @@ def test_a_removed_body_keeps_its_last_state() -> None:
     assert (b.pos, b.vel) == (2.0, 1.0)
     b.acc = 3.0  # out of a world again, acc is a plain value
     assert b.acc == 3.0
+
+
+def test_data_holds_the_games_own_things_and_no_other_attribute_is_taken() -> None:
+    brick = {"points": 50}
+    b = Body(Vector(0, 5), radius=0.2, data=brick)
+    assert b.data is brick and Body(Vector(0, 0)).data is None
+    world = World()
+    world.add(b)
+    assert b.data is brick  # a handle in a World keeps it
+    saved = world.snapshot()
+    b.data = "hit"
+    world.step(0.1)
+    world.restore(saved)  # the physics come back; the game's own data is not part of them
+    assert b.data == "hit" and b.pos == Vector(0, 5)
+    world.remove(b)
+    assert b.data == "hit"
+    with pytest.raises(AttributeError, match="hp"):
+        b.hp = 3  # type: ignore[attr-defined]  # no other new attribute: data is the place

@@ -206,6 +206,52 @@ def test_local_and_world_points_turn_with_the_body() -> None:
     assert q.x == pytest.approx(1.0) and q.y == pytest.approx(0.0, abs=1e-15)
 
 
+def test_a_points_velocity_is_v_plus_omega_cross_r() -> None:
+    # r = (0.5, 0) and (0, 0.25) from (1, 2), omega = 2 rad/s: omega x r = (-omega r_y, omega r_x).
+    b = Body(Vector(1, 2), Vector(3, -1), radius=0.5, angular_velocity=2.0)
+    assert b.velocity_at_world_point((1.5, 2)) == Vector(3.0, 0.0)
+    assert b.velocity_at_world_point(Vector(1, 2.25)) == Vector(2.5, -1.0)
+    assert b.velocity_at_world_point((1, 2)) == b.vel  # the centre moves at v
+    b.angle = math.pi / 6  # the local point (0.5, 0) is 0.5 (cos 30, sin 30) from the centre
+    r = Vector(0.5 * math.cos(math.pi / 6), 0.5 * math.sin(math.pi / 6))
+    turned = b.velocity_at_local_point((0.5, 0))
+    assert turned.distance_to(Vector(3.0 - 2.0 * r.y, -1.0 + 2.0 * r.x)) < 1e-15
+    assert turned.distance_to(b.velocity_at_world_point(b.local_to_world((0.5, 0)))) < 1e-15
+    # A body that does not turn moves every point at v, exactly.
+    point = Body(Vector(1, 2), Vector(3, -1))
+    crate = Body(Vector(1, 2), Vector(3, -1), shape=Polygon.box(1, 1), fixed_rotation=True)
+    for still in (point, crate):
+        assert still.velocity_at_world_point((7, -5)) == still.velocity_at_local_point((7, -5))
+        assert still.velocity_at_world_point((7, -5)) == Vector(3, -1)
+    # pymunk's own test (test_body.testVelocityAtPoint), the same numbers.
+    pm = Body(Vector(1, 2), radius=1.0, angular_velocity=1.2)
+    assert pm.velocity_at_world_point((1, 1)) == Vector(1.2, 0)
+    assert pm.velocity_at_local_point((1, 1)) == Vector(-1.2, 1.2)
+    with pytest.raises(TypeError, match=r"velocity_at_world_point takes a 2D body.*body\.vel"):
+        Body(0.0, 1.0).velocity_at_world_point((1, 0))
+    with pytest.raises(TypeError, match=r"point must be a Vector or a pair"):
+        b.velocity_at_local_point("corner")
+
+
+def test_a_points_velocity_is_the_rate_its_world_position_changes() -> None:
+    # A box turning at omega in free flight; the central difference of a corner's world
+    # position over two steps of h misses the derivative by |r| omega^3 h^2 / 6 (a uniform
+    # turn), far above rounding at this h.
+    w, h, omega = World(), 1e-5, 3.0
+    box = Polygon.box(1.0, 0.5)
+    b = w.add(Body(Vector(1, 2), Vector(3, -1), shape=box, angular_velocity=omega, angle=0.4))
+    corner = Vector(0.5, 0.25)
+    before = b.local_to_world(corner)
+    w.step(h)
+    at_mid = b.velocity_at_local_point(corner)
+    assert b.velocity_at_world_point(b.local_to_world(corner)).distance_to(at_mid) < 1e-14
+    # It is not the centre's velocity: the corner adds omega |r| across its arm.
+    assert at_mid.distance_to(b.vel) == pytest.approx(omega * corner.length(), rel=1e-12)
+    w.step(h)
+    moved = (b.local_to_world(corner) - before) / (2 * h)
+    assert moved.distance_to(at_mid) < corner.length() * omega**3 * h**2 / 6 + 1e-10
+
+
 def test_moments_from_the_shape() -> None:
     assert Body(Vector(0, 0), radius=2.0, mass=3.0).moment == 6.0  # m r^2 / 2
     assert Body(Vector(0, 0), radius=2.0, mass=3.0, moment=12.0).moment == 12.0  # a hoop
