@@ -86,6 +86,10 @@ class WorldLike(Protocol):
         """One body's position (length units), blended from the previous step by ``alpha``."""
         ...
 
+    def is_sleeping(self, body: Body) -> bool:
+        """Whether ``body`` sleeps (it stays exactly put until an awake body meets its group)."""
+        ...
+
 
 class Body:
     """A particle: position (m), velocity (m/s), acceleration (m/s^2) and mass (kg).
@@ -735,6 +739,33 @@ class Body:
         vel, w = self.vel, self.angular_velocity
         # omega x r in the plane: (-omega r_y, omega r_x).
         return Vector(vel.x - w * ry, vel.y + w * rx)
+
+    # -- sleep (engine.sleep: a World's bodies at rest cost nothing) ---------------------------
+    @property
+    def is_sleeping(self) -> bool:
+        """Whether the body sleeps in its World (pymunk's name; ``world.is_sleeping(body)``);
+        False out of a World."""
+        world = self.world
+        return False if world is None else world.is_sleeping(self)
+
+    def sleep(self) -> None:
+        """Put the body to sleep now, with the awake bodies touching it, one through another
+        (its group; pymunk's name): they stay exactly put, at rest, until an awake body meets
+        one of them, a state of one is written, or ``activate()`` wakes them."""
+        store = self._store
+        if store is None:
+            raise ValueError(
+                "body.sleep() puts a body to sleep in its World, and this body is in none: add "
+                f"it first (world.add(body)), then call body.sleep(): {self!r}"
+            )
+        store.set_asleep(self._slot, True)
+
+    def activate(self) -> None:
+        """Wake the body and its sleeping group now (pymunk's name); a body awake, or in no
+        World (where nothing sleeps), is left as it is."""
+        store = self._store
+        if store is not None:
+            store.set_asleep(self._slot, False)
 
     # -- moving a lone body ------------------------------------------------------------------
     def step(self, dt: float, acceleration: Any = None) -> None:

@@ -49,7 +49,8 @@ PYMUNK_NAMES: dict[str, str] = {
     "space": "body.world is the World it is in",
     "body_type": "Body(..., kinematic=True) makes a body the game moves; static geometry is a "
     "collider (world.add_collider(Segment(...)))",
-    "is_sleeping": "ask the World: world.is_sleeping(body)",
+    "sleep_with_group": "body.sleep() puts the body to sleep with the awake bodies touching "
+    "it, one group",
     "shapes": "a Body has one shape: Body(..., radius=r) for a disc, or Body(..., "
     "shape=Polygon.box(width, height)) (or a Polygon, a Segment); its material is the Body's "
     "(restitution=..., friction=...)",

@@ -67,7 +67,7 @@ from .pair_grid import Search, deepest_overlap, find_pairs, grid_pairs, struck
 from .pair_impacts import MAX_ROUNDS, exact
 from .pair_math import SLOP, isin_sorted, norm, sorted_unique
 from .pair_plan import grow, join_masks, plan_pairs, rest_seeds
-from .pile import PUSH, Carried, Statics, keep_asleep, step_pile
+from .pile import PUSH, Carried, Statics, components, keep_asleep, step_pile
 from .shaped import ShapeTable
 from .sleep import sleep_still, wake_met
 
@@ -241,6 +241,24 @@ class Collisions:
             self.asleep[group] = False
             self.still[group] = 0.0
             self._group[group] = 0
+
+    def sleep_group(self, row: int, n: int, never: np.ndarray) -> np.ndarray:
+        """Put body ``row`` to sleep now with the awake bodies touching it, one through another
+        (the pairs touching after the last step), as one sleeping group; none of ``never``
+        (N,) bool, the bodies that never sleep, which pass no sleep on. The rows put to sleep
+        (none when ``row`` slept already): each stays put until woken (``wake_met``)."""
+        if len(self.still) != n:
+            self.wake(n)
+        if self.asleep[row]:
+            return np.zeros(0, dtype=np.intp)
+        a, b = np.divmod(self._touching, n)
+        off = never | self.asleep
+        keep = ~(off[a] | off[b])
+        label = components(n, a[keep], b[keep], self.fast)
+        rows = np.flatnonzero(label == label[row])
+        self.asleep[rows] = True
+        self._group[rows] = label[row]  # the group's least row, as sleep_still labels
+        return rows
 
     def _prepare(
         self, radius: np.ndarray, group: np.ndarray, cat: np.ndarray, mask: np.ndarray

@@ -46,6 +46,7 @@ class BodyStore:
         on_kinematic: Callable[[int, Any], None] | None = None,
         on_kinematic_turn: Callable[[int, float | None], bool] | None = None,
         acceleration_at: Callable[[int], Any] | None = None,
+        on_sleep: Callable[[int, bool], None] = lambda row, asleep: None,
     ) -> None:
         self.dim = dim
         #: The World these arrays belong to (what ``Body.world`` answers).
@@ -62,6 +63,8 @@ class BodyStore:
         # written): True where the owner took it so (a pinned body is turned by hand).
         self._on_kinematic_turn = on_kinematic_turn
         self._acceleration_at = acceleration_at
+        # A body put to sleep (row, True) or woken (row, False) by the game (the owner's sleep).
+        self._on_sleep = on_sleep
         shape: tuple[int, ...] = (0,) if dim == 1 else (0, 2)
         self.x = np.zeros(shape)  # positions (length units)
         self.v = np.zeros(shape)  # velocities (length units / s)
@@ -302,6 +305,11 @@ class BodyStore:
         row = self.row(slot)
         self.own[row] = self._entry(value)
         self._on_own_acc(row)
+
+    def set_asleep(self, slot: int, asleep: bool) -> None:
+        """Put one body to sleep now with its group (True), or wake it with its group (False):
+        the owner's sleep does it (Body.sleep, Body.activate)."""
+        self._on_sleep(self.row(slot), asleep)
 
     def set_mass(self, slot: int, value: float) -> None:
         """Set one body's mass (the forces' folded parts depend on it: the owner recompiles)."""

@@ -139,6 +139,7 @@ class WorldState:
                 on_kinematic=self.kinematic_moved,
                 on_kinematic_turn=self.kinematic_turned,
                 acceleration_at=self.acceleration_at,
+                on_sleep=self.set_asleep,
             )
         return self.store
 
@@ -166,6 +167,46 @@ class WorldState:
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"contact_iterations must be an int >= 1, got {value!r}")
         self.collisions.iterations = value
+
+    def set_asleep(self, row: int, asleep: bool) -> None:
+        """Put body ``row`` to sleep now with the awake bodies touching it (Body.sleep), or wake
+        it with its sleeping group (Body.activate); ValueError, naming why, where it cannot
+        sleep."""
+        collisions, store, n = self.collisions, self.store, len(self.bodies)
+        if not asleep:
+            collisions.wake_body(row, n)
+            return
+        assert store is not None
+        never = store.kinematic.copy()  # moved by the game or held by a Pin
+        never[collisions.joined] = True
+        why = None
+        if never[row]:
+            why = (
+                "a body the game moves (kinematic), pinned, or held by a joint never sleeps: "
+                "a sleeper stays put, and what moves it would pull it"
+            )
+        elif store.dim != 2 or not collisions.active(
+            store.radius, store.group, store.categories, store.mask, store.shapes
+        ):
+            why = (
+                "bodies sleep where they rest on one another, and no two bodies of this World "
+                "can meet (bodies meet in a 2D World, with a radius or a shape, where their "
+                "filters let them)"
+            )
+        elif not math.isfinite(collisions.sleep_time):
+            why = (
+                "sleep is off in this World (world.sleep_time is math.inf): set "
+                "world.sleep_time to a number of seconds (0.5 is the default) first"
+            )
+        if why is not None:
+            body = self.bodies[row]
+            raise ValueError(f"body.sleep() cannot put this body to sleep: {why}: {body!r}")
+        rows = collisions.sleep_group(row, n, never)
+        if len(rows):
+            store.v[rows] = 0.0  # at rest, as sleep_still leaves a group
+            store.omega[rows] = 0.0
+            store.spin_written()
+            self.anchor = None  # the closed form starts anew from the state now
 
     @property
     def colliders(self) -> tuple[Any, ...]:

@@ -80,7 +80,7 @@ def test_pymunks_names_read_and_write_the_lessons() -> None:
         ("apply_impulse_at_world_point", "body.apply_impulse"),
         ("space", "body.world"),
         ("body_type", "kinematic=True"),
-        ("is_sleeping", "world.is_sleeping"),
+        ("sleep_with_group", r"body\.sleep\(\)"),
         ("elasticity", "restitution"),
     ],
 )
