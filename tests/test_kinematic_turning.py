@@ -128,11 +128,17 @@ def test_snapshot_keeps_a_kinematic_turn_in_progress() -> None:
     assert (paddle.angle, paddle.angular_velocity) == after  # the bad one changed nothing
 
 
+#: Seconds the tumbler turns (s): two whole turns, eight times the pile slides from one wall to
+#: the next (the scene repeats a quarter turn apart; 20 s took over four minutes on numpy).
+TUMBLED_FOR = 8.0
+
+
 @pytest.fixture(scope="module")
 def tumbled() -> tuple[World, list[Body], list[Body], float, int]:
     """Box2D's tumbler (shared/anchors/box2d): 500 boxes of 0.25 m in a 19 m room whose
-    walls turn at 90 degrees a second, 20 s: (world, boxes, walls, the deepest any box's
-    corner went past a wall's inner face (m), boxes whose centre ever went past one)."""
+    walls turn at 90 degrees a second, for TUMBLED_FOR s: (world, boxes, walls, the deepest
+    any box's corner went past a wall's inner face (m), boxes whose centre ever went past
+    one)."""
     w, boxes, walls = tumbler()
     deepest, out = -math.inf, np.zeros(len(boxes), dtype=bool)
     with warnings.catch_warnings():
@@ -140,7 +146,7 @@ def tumbled() -> tuple[World, list[Body], list[Body], float, int]:
         # level (5% of the smallest radius): the soft step's limit, shown by the stack
         # demo's read-out; what this scene checks is that none is lost through a wall.
         warnings.simplefilter("ignore", StabilityWarning)
-        for _ in range(round(20.0 / DT)):
+        for _ in range(round(TUMBLED_FOR / DT)):
             w.step(DT)
             deepest = max(deepest, into_walls(boxes, walls))
             out |= outside(boxes, walls)
@@ -150,11 +156,13 @@ def tumbled() -> tuple[World, list[Body], list[Body], float, int]:
 def test_the_tumbler_loses_no_box_into_its_turning_walls(
     tumbled: tuple[World, list[Body], list[Body], float, int],
 ) -> None:
-    # The issue "Bodies that turn": no box ever ends a step inside a wall over 20 s. pymunk
-    # 7.3.1 on this scene: 93 boxes at the end. Box2D v3 (617d32ab, 4 substeps; measured with
-    # shared/anchors/box2d): none at the end, but up to 10 centres past a wall's inner face
-    # during the run, a corner 293 mm into a wall and two boxes 266 mm into each other. Here
-    # no centre ever passes a wall's inner face and no corner goes 0.1 m past it (69 mm).
+    # The issue "Bodies that turn": no box ever ends a step inside a wall. pymunk 7.3.1 on
+    # this scene (demos.bench.tumbler's twin): 104 boxes' centres past a wall in 8 s, 94 out
+    # at 8 s (136 and 97 in 20 s). Box2D v3 (617d32ab, 4 substeps; measured with
+    # shared/anchors/box2d, 20 s): none at the end, but up to 10 centres past a wall's inner
+    # face during the run, a corner 293 mm into a wall and two boxes 266 mm into each other.
+    # Here no centre ever passes a wall's inner face and no corner goes 0.1 m past it (59 mm
+    # in 8 s; 69 mm in 20 s).
     w, boxes, walls, deepest, lost = tumbled
     assert lost == 0
     assert deepest < 0.1
