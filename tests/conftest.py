@@ -2,7 +2,10 @@
 choose how hypothesis draws its examples (a fixed set by default; ``explore`` on request)."""
 
 import os
+from collections.abc import Iterator
+from typing import Any
 
+import pytest
 from hypothesis import settings
 
 os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
@@ -62,3 +65,124 @@ def _import_everything() -> None:
 
 
 _import_everything()
+
+
+# -- the fast path's run: the files that never reach a kernel ------------------------------------
+#
+# CI runs the suite twice: the README's test command on numpy (the reference), then again with
+# the fast extra and ENGINE_KERNELS=fast. A test that never calls one of the engine's loop
+# kernels (engine.kernels.LoopKernel) takes the same code on both paths, so its second run
+# proves nothing new: `--skip-path-free` leaves out the files below, every test of which called
+# no kernel on the fast path (measured on 2026-12-02: 72 of 136 files, a quarter of the fast
+# run's time). A file stays listed only while that holds: whenever the suite runs on the fast
+# path without that option (a developer with the fast extra installed, whose default path is
+# fast), each test of a listed file is watched, and one that calls a kernel fails, naming the
+# file to take out of this list. A new file is not listed, so it runs on both paths.
+PATH_FREE = frozenset(
+    """
+engine/__init__.py engine/accuracy.py engine/body.py engine/checks.py engine/colliders.py
+engine/coloring.py engine/convex.py engine/filters.py engine/forcefield.py engine/forces.py
+engine/impact.py engine/integrators.py engine/kernels.py engine/kinematics.py engine/loop.py
+engine/manifold.py engine/mass.py engine/pair_grid.py engine/particles.py engine/points.py
+engine/queries.py engine/render/camera.py engine/render/clips.py engine/render/recorder.py
+engine/shaped.py engine/stability.py engine/store.py engine/torquefield.py engine/vector.py
+engine/world.py
+tests/test_alfred.py tests/test_auto.py tests/test_bench_platformer.py tests/test_body.py
+tests/test_car.py tests/test_clips.py tests/test_determinism.py tests/test_fireworks.py
+tests/test_forces.py tests/test_frames.py tests/test_fuzz_cli.py tests/test_fuzz_core.py
+tests/test_fuzz_particles.py tests/test_fuzz_render.py tests/test_fuzz_world.py
+tests/test_import_layers.py tests/test_integrators.py tests/test_interruptions.py
+tests/test_joint_contacts.py tests/test_kernels_ledger.py tests/test_kinematics.py
+tests/test_layers.py tests/test_limits.py tests/test_long_runs.py tests/test_loop.py
+tests/test_manifold.py tests/test_module_table.py tests/test_packaging.py tests/test_particles.py
+tests/test_pendulum.py tests/test_render_camera.py tests/test_render_recorder.py
+tests/test_shape_queries.py tests/test_stability.py tests/test_stability_demo.py
+tests/test_steppable.py tests/test_vector.py tests/test_vector_names.py
+tests/test_vector_pygame.py tests/test_world.py tests/test_world_parts.py
+tests/test_world_view_spin.py
+""".split()
+)
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addoption(
+        "--skip-path-free",
+        action="store_true",
+        help="leave out the files that call none of the engine's kernels (tests/conftest.py: "
+        "PATH_FREE): for a second run on the fast path, after one on numpy",
+    )
+
+
+def _file(item: pytest.Item) -> str:
+    """The item's file, relative to the project, with / between folders."""
+    return item.nodeid.split("::", 1)[0]
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    if not config.getoption("--skip-path-free"):
+        return
+    from engine import kernels
+
+    if kernels.default() != "fast":
+        raise pytest.UsageError(
+            "--skip-path-free is for a run on the fast path (ENGINE_KERNELS=fast, numba "
+            f"installed), after the same suite on numpy; this run's path is {kernels.default()!r}"
+        )
+    kept = [item for item in items if _file(item) not in PATH_FREE]
+    config.hook.pytest_deselected(items=[item for item in items if _file(item) in PATH_FREE])
+    items[:] = kept
+
+
+_kernel_calls = [0]
+
+
+def _count_kernel_calls() -> None:
+    """Count every call of a loop kernel (engine.kernels.LoopKernel) in ``_kernel_calls``."""
+    from engine import kernels
+
+    call = kernels.LoopKernel.__call__
+    if getattr(call, "counted", False):
+        return
+
+    def counted(self: Any, *args: Any) -> Any:
+        _kernel_calls[0] += 1
+        return call(self, *args)
+
+    counted.counted = True  # type: ignore[attr-defined]
+    kernels.LoopKernel.__call__ = counted  # type: ignore[method-assign]
+
+
+_START = pytest.StashKey[int]()
+
+
+def _watched(item: pytest.Item) -> bool:
+    """Whether ``item`` is of a PATH_FREE file and runs on the fast path."""
+    from engine import kernels
+
+    return _file(item) in PATH_FREE and kernels.default() == "fast"
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_setup(item: pytest.Item) -> Iterator[None]:
+    # The count starts before the test's fixtures are made (a module's shared scene too).
+    if _watched(item):
+        _count_kernel_calls()
+        item.stash[_START] = _kernel_calls[0]
+    yield
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> Iterator[None]:
+    # A test of a PATH_FREE file that called a kernel fails at its teardown (the list's rule).
+    outcome = yield
+    report = outcome.get_result()  # type: ignore[attr-defined]
+    if call.when != "teardown" or _START not in item.stash or not report.passed:
+        return
+    calls = _kernel_calls[0] - item.stash[_START]
+    if calls:
+        report.outcome = "failed"
+        report.longrepr = (
+            f"{_file(item)} called the engine's loop kernels on the fast path ({calls} calls "
+            "in this test): take it out of PATH_FREE in tests/conftest.py, so that CI's run on "
+            "the fast path runs it"
+        )
