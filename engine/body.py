@@ -28,6 +28,7 @@ from numbers import Real
 from typing import TYPE_CHECKING, Any, Protocol, cast
 
 from .body_habits import install as install_habits
+from .body_habits import mass_and_moment
 from .body_values import (
     State,
     coerce_mass,
@@ -186,8 +187,14 @@ class Body:
         dim = dims["position"]
         assert dim is not None
         self._dim: int = dim
-        self._store_pos(coerce_state(position, dim, "position"))
-        self._store_vel(coerce_state(velocity, dim, "velocity"))
+        try:
+            self._store_pos(coerce_state(position, dim, "position"))
+            self._store_vel(coerce_state(velocity, dim, "velocity"))
+        except ValueError as exc:
+            if dim != 1:
+                raise
+            # pymunk's Body(mass, math.inf) lands here: say what it is, and what to write.
+            raise ValueError(f"{exc}: {mass_and_moment(position, velocity)}") from None
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
         self._mass: float = coerce_mass(mass)
         self._radius, self._e, self._mu = material(radius, restitution, friction)
@@ -397,7 +404,10 @@ class Body:
 
     @pos.setter
     def pos(self, value: Any) -> None:
-        state = coerce_state(value, self._dim, "pos")
+        try:
+            state = coerce_state(value, self._dim, "pos")
+        except TypeError as exc:
+            raise self._on_a_line(exc, value) from None
         if self._store is not None:
             self._store.set_position(self._slot, state)
         else:
@@ -413,11 +423,21 @@ class Body:
 
     @vel.setter
     def vel(self, value: Any) -> None:
-        state = coerce_state(value, self._dim, "vel")
+        try:
+            state = coerce_state(value, self._dim, "vel")
+        except TypeError as exc:
+            raise self._on_a_line(exc, value) from None
         if self._store is not None:
             self._store.set_velocity(self._slot, state)
         else:
             self._store_vel(state)
+
+    def _on_a_line(self, exc: TypeError, value: Any) -> TypeError:
+        """``exc``, for a 2D ``value`` written to a 1D body, with what pymunk's Body(mass,
+        moment), which made such a body, is written as here."""
+        if self._dim == 1 and dim_of(value) == 2:
+            return TypeError(f"{exc}: this body is 1D, made of numbers; {mass_and_moment()}")
+        return exc
 
     @property
     def acc(self) -> Any:

@@ -3,13 +3,16 @@
 ``body.force = ...`` or ``body.apply_impulse_at_world_point(...)`` is pymunk's habit;
 ``install`` puts a descriptor on the Body class for each such name, so that reading or writing
 one raises an AttributeError that says what to use (engine.habits does the same for a World).
+pymunk's ``Body(mass, moment)`` reads here as a body on a line (position, velocity): the errors
+it leads to end with ``mass_and_moment``'s line, which says what to write.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
-__all__ = ["PYMUNK_NAMES", "Advice", "install"]
+__all__ = ["PYMUNK_NAMES", "Advice", "install", "mass_and_moment"]
 
 
 class Advice:
@@ -60,6 +63,29 @@ PYMUNK_NAMES: dict[str, str] = {
     "kinetic_energy": "world.energy() is the World's total; m v^2 / 2 is "
     "0.5 * body.mass * body.vel.length_squared()",
 }
+
+
+def mass_and_moment(mass: Any = None, moment: Any = None) -> str:
+    """Body's order of arguments, what ``Body(mass, moment)`` is in it (when given), and
+    pymunk's ``Body(mass, moment)`` (kg, kg m^2) as written here: the end of an error it led to."""
+    given = ""
+    m, i = "m", "I"
+    if mass is not None:
+        m, i = _code(mass), _code(moment)
+        given = f"Body({m}, {i}) is a body on a line (1D) at position {m} moving at {i}; "
+    never = "" if i == "math.inf" else " (moment=math.inf: a body that never turns)"
+    return (
+        f"Body's arguments are (position, velocity=None, acceleration=None, mass=1.0, *, ..., "
+        f"moment=None): {given}pymunk's Body(mass, moment) is written here "
+        f"Body(Vector(x, y), mass={m}, moment={i}){never}"
+    )
+
+
+def _code(value: Any) -> str:
+    """``value`` as Python source: math.inf or math.nan for such a float."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return "math.nan" if math.isnan(value) else "math.inf" if value > 0 else "-math.inf"
+    return repr(value)
 
 
 def install(cls: type) -> None:

@@ -4,7 +4,8 @@
 it would fail silently. ``install`` puts a descriptor on the World class for every name of
 ``PYMUNK_NAMES`` the class does not have, so that reading or writing one raises an
 AttributeError that says what to use; ``World.__setattr__`` refuses every other unknown name
-with ``unknown``'s message, which lists what can be set.
+with ``unknown``'s message, which lists what can be set. pymunk's ``space.add(body, shape)``
+hands several things at once: ``several`` says what World.add and World.remove take instead.
 
 A class attribute costs nothing on the names the World has: no ``__getattr__`` (it would slow
 every attribute read).
@@ -14,7 +15,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["PYMUNK_NAMES", "Advice", "unknown", "install"]
+__all__ = ["PYMUNK_NAMES", "Advice", "unknown", "several", "install"]
 
 #: pymunk Space names, and what to write here instead.
 PYMUNK_NAMES: dict[str, str] = {
@@ -61,6 +62,27 @@ def unknown(cls: type, name: str, how: str) -> str:
         f"a World has no attribute {name!r} to {how}; what can be set on it is "
         f"{', '.join(settable)} (and it is changed through add, add_force, add_collider, "
         f"add_link and step)"
+    )
+
+
+def several(verb: str, things: tuple[Any, ...]) -> str:
+    """The message for World.add or World.remove (``verb``) handed ``things``, several, as
+    pymunk's ``space.add(body, shape)`` and ``space.remove(body, shape)`` take them."""
+    given = ", ".join(repr(thing) for thing in things)
+    if verb == "add":
+        what = (
+            "a Body carries its shape (Body(..., radius=r), or Body(..., shape=Polygon.box(w, "
+            "h))), so write world.add(body); many bodies go by world.add_all([...]), colliders "
+            "by world.add_collider(...), links by world.add_link(...)"
+        )
+    else:
+        what = (
+            "a body's shape goes out with it, so write world.remove(body); colliders go by "
+            "world.remove_collider(...), links by world.remove_link(...)"
+        )
+    return (
+        f"World.{verb} takes one Body, got {len(things)} things ({given}): pymunk's "
+        f"space.{verb}(body, shape) takes several at once; here {what}"
     )
 
 

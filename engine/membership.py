@@ -48,7 +48,7 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
     batch = list(bodies)
     for b in batch:
         if not isinstance(b, Body):
-            raise TypeError(f"World.add takes a Body, got {type(b).__name__} {b!r}")
+            raise _not_a_body("add", b)
         if b.world is not None:
             which = "this" if b.world is state.world else "another"
             raise ValueError(f"that body is already in {which} World; remove it first")
@@ -59,7 +59,7 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
     # An empty World takes the dimension of the first body; every body must share it.
     dim = state.dim if state.dim is not None else batch[0].dim
     for b in batch:
-        state.check_dim(b.dim, "the body", dim)
+        state.check_dim(b.dim, "the body", dim, bodies=True)
     store = state.ensure_store(dim)
     slots = store.append(
         np.array([b.pos for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
@@ -95,9 +95,22 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
     return batch
 
 
+def _not_a_body(verb: str, thing: Any) -> TypeError:
+    """World.add or World.remove (``verb``) given ``thing``, not a Body: which method takes it."""
+    if isinstance(thing, Collider):
+        instead = f"a collider goes by world.{verb}_collider(collider)"
+    elif isinstance(thing, Link):
+        instead = f"a link or joint goes by world.{verb}_link(link)"
+    else:
+        instead = f"a collider goes by world.{verb}_collider(...), a link by world.{verb}_link(...)"
+    return TypeError(f"World.{verb} takes a Body, got {type(thing).__name__} {thing!r}: {instead}")
+
+
 def remove(state: WorldState, body: Body) -> None:
     """Take ``body`` out of the world; it keeps its last position, velocity and mass."""
-    if not isinstance(body, Body) or body.world is not state.world:
+    if not isinstance(body, Body):
+        raise _not_a_body("remove", body)
+    if body.world is not state.world:
         raise ValueError(f"that body is not in this World: {body!r}")
     store = state.store
     assert store is not None
@@ -235,7 +248,7 @@ def add_collider(state: WorldState, collider: ColliderT) -> ColliderT:
             f"add_collider takes a collider from engine.colliders (Plane, Segment, Circle, "
             f"Box), got {type(collider).__name__} {collider!r}"
         )
-    state.check_dim(2, f"the collider {collider!r}")
+    state.check_dim(2, f"the collider {collider!r}", bodies=True)
     if collider in state.colliders:
         raise ValueError(f"that collider is already in this World: {collider!r}")
     store = state.ensure_store(2)

@@ -30,7 +30,7 @@ Vector(3.0, -1.0)
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from typing import Any
+from typing import Any, NoReturn
 
 import numpy as np
 
@@ -140,8 +140,14 @@ class World:
         """The method asked for: a name from METHODS, or the custom function's name."""
         return self._s.requested
 
-    def add(self, body: Body) -> Body:
-        """Add ``body`` and return it; from now on its pos/vel are the world's live state."""
+    def add(self, body: Body, *more: NoReturn) -> Body:
+        """Add ``body`` and return it; from now on its pos/vel are the world's live state.
+
+        One Body (``more``, typed so that a type checker refuses any, is pymunk's
+        ``space.add(body, shape)``: refused, saying what to write).
+        """
+        if more:
+            raise TypeError(habits.several("add", (body, *more)))
         return self.add_all([body])[0]
 
     def add_all(self, bodies: Iterable[Body]) -> list[Body]:
@@ -151,8 +157,14 @@ class World:
         """
         return membership.add_all(self._s, bodies)
 
-    def remove(self, body: Body) -> None:
-        """Take ``body`` out of the world; it keeps its last position, velocity and mass."""
+    def remove(self, body: Body, *more: NoReturn) -> None:
+        """Take ``body`` out of the world; it keeps its last position, velocity and mass.
+
+        One Body (``more``, as in ``add``, is pymunk's ``space.remove(body, shape)``: refused,
+        saying what to write; a collider goes by ``remove_collider``).
+        """
+        if more:
+            raise TypeError(habits.several("remove", (body, *more)))
         membership.remove(self._s, body)
 
     def add_force(

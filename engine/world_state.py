@@ -18,6 +18,7 @@ import numpy as np
 
 from .affine import AffineKernel, StepCount, safe_steps
 from .body import Body
+from .body_habits import mass_and_moment
 from .collisions import Collisions
 from .contacts import Contacts
 from .events import WorldEvents
@@ -117,13 +118,18 @@ class WorldState:
         """1 (floats), 2 (Vectors), or None while the world has neither bodies nor shaped forces."""
         return None if self.store is None else self.store.dim
 
-    def check_dim(self, dim: int, what: str, world_dim: int | None = None) -> None:
-        """TypeError unless ``what``, of dimension ``dim``, fits this World (or ``world_dim``)."""
+    def check_dim(
+        self, dim: int, what: str, world_dim: int | None = None, bodies: bool = False
+    ) -> None:
+        """TypeError unless ``what``, of dimension ``dim``, fits this World (or ``world_dim``);
+        ``bodies``: it is a body or a collider, which pymunk's Body(mass, moment) may have put
+        on a line (the error then says what to write)."""
         expected = self.dim if world_dim is None else world_dim
         if expected is not None and dim != expected:
+            habit = f"; {mass_and_moment()}" if bodies else ""
             raise TypeError(
                 f"{what} is {dim}D but this World is {expected}D: a World holds bodies "
-                f"of one dimension (1D: floats, 2D: Vectors)"
+                f"of one dimension (1D: floats, 2D: Vectors){habit}"
             )
 
     def ensure_store(self, dim: int) -> BodyStore:

@@ -12,7 +12,7 @@ import math
 
 import pytest
 
-from engine import Body, Box, Circle, Plane, Segment, Vector, World
+from engine import Body, Box, Circle, Plane, Rod, Segment, Vector, World
 from engine.forces import Gravity
 
 G = (0.0, -9.81)
@@ -92,6 +92,33 @@ def test_a_pymunk_body_name_says_what_to_use(name: str, says: str) -> None:
         setattr(body, name, 1.0)
 
 
+def test_pymunks_body_mass_moment_order_says_what_to_write() -> None:
+    # pymunk's Body(mass, moment) fills Body's position and velocity: a body on a line.
+    with pytest.raises(ValueError, match="velocity must be finite") as refused:
+        Body(70, math.inf)  # pymunk's body that never turns
+    said = str(refused.value)
+    assert "Body's arguments are (position, velocity=None, acceleration=None, mass=1.0" in said
+    assert "Body(70, math.inf) is a body on a line (1D) at position 70" in said
+    assert "Body(Vector(x, y), mass=70, moment=math.inf)" in said
+    written = Body(Vector(0, 0), mass=70, moment=math.inf)  # what it says works
+    assert (written.mass, written.moment, written.turns) == (70.0, math.inf, False)
+    # Finite numbers make a 1D body; a 2D position written to it says why it is 1D.
+    on_a_line = Body(1, 100)
+    for name in ("position", "pos", "velocity", "vel"):
+        with pytest.raises(TypeError, match=r"this body is 1D, made of numbers.*"
+                           r"Body\(Vector\(x, y\), mass=m, moment=I\)"):  # fmt: skip
+            setattr(on_a_line, name, (50, 100))
+    assert (on_a_line.pos, on_a_line.vel) == (1.0, 100.0)
+    plane = World()
+    plane.add(Body(Vector(0, 0)))
+    with pytest.raises(TypeError, match=r"1D but this World is 2D.*pymunk's Body\(mass, moment\)"):
+        plane.add(Body(1, 100))
+    line = World()
+    line.add(Body(1, 100))
+    with pytest.raises(TypeError, match=r"2D but this World is 1D.*pymunk's Body\(mass, moment\)"):
+        line.add_collider(Segment((0, 0), (10, 0)))
+
+
 @pytest.mark.parametrize("name", ["radius", "restitution", "friction", "kinematic"])
 def test_what_a_body_is_made_with_is_refused_with_the_way_to_change_it(name: str) -> None:
     world = World()
@@ -134,6 +161,43 @@ def test_a_pymunk_space_name_says_what_to_use(name: str, says: str) -> None:
         setattr(world, name, 1)
     with pytest.raises(AttributeError, match=says):
         getattr(world, name)
+
+
+def test_space_add_of_a_body_and_its_shape_says_a_body_carries_its_shape() -> None:
+    world = World()
+    ball = Body(Vector(0, 5), radius=0.5)
+    with pytest.raises(TypeError, match="World.add takes one Body, got 2 things") as refused:
+        world.add(ball, Circle((0, 0), 0.5))  # type: ignore[arg-type]  # pymunk's space.add
+    said = str(refused.value)
+    assert "Circle((0.0, 0.0), 0.5)" in said and "space.add(body, shape)" in said
+    assert "a Body carries its shape (Body(..., radius=r)" in said and "world.add_all" in said
+    assert world.bodies == ()  # nothing added
+    world.add(ball)  # what it says works
+    with pytest.raises(TypeError, match=r"World.remove takes one Body.*goes out with it"):
+        world.remove(ball, Circle((0, 0), 0.5))  # type: ignore[arg-type]
+    assert world.bodies == (ball,)
+
+
+def test_a_collider_or_a_link_handed_to_add_or_remove_names_its_method() -> None:
+    world = World()
+    floor = world.add_collider(Segment((0, 0), (10, 0)))
+    lamp = world.add(Body(Vector(0, 5), radius=0.5))
+    rod = world.add_link(Rod(lamp, (0, 8)))
+    with pytest.raises(TypeError, match=r"World\.remove takes a Body, got Segment Segment\(.*"
+                       r"world\.remove_collider\(collider\)"):  # fmt: skip
+        world.remove(floor)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"got Rod .*world\.remove_link\(link\)"):
+        world.remove(rod)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"World\.add takes a Body, got Circle .*add_collider"):
+        world.add(Circle((3, 3), 1))  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"got Rod .*world\.add_link\(link\)"):
+        world.add(Rod(lamp, (0, 9)))  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"got int 3: a collider goes by world\.remove_collider"):
+        world.remove(3)  # type: ignore[arg-type]
+    assert (world.colliders, world.links, world.bodies) == ((floor,), (rod,), (lamp,))
+    world.remove_collider(floor)  # what they say works
+    world.remove_link(rod)
+    assert world.colliders == () and world.links == ()
 
 
 def test_an_unknown_name_is_refused_and_the_settable_ones_are_listed() -> None:
