@@ -21,10 +21,12 @@ meets (int32 or int64, a C-contiguous or strided or read-only array, a float or 
 new one when it is met. So every kernel has a sample call (``@loop(sample=...)``) with the
 types its callers pass, and the callers pass those types (C-contiguous, writable, int64
 arrays; Python floats). ``prepare`` compiles every kernel for its sample, or loads it from
-numba's cache (about 0.2 s for all): the first World on the fast path calls it when it is
+numba's cache (under a second for all): the first World on the fast path calls it when it is
 made, before any step, and ``python -m engine.warmup`` (the install line's last command) does
-the first run's compile, about 20 s, once. The cache lives in the user's cache folder
-(``cache_dir()``), not beside the sources, unless ``NUMBA_CACHE_DIR`` says otherwise.
+the first run's compile once: about 35 s on two cores, where a second process compiles from
+the other end of the list (``_Helper``), about a minute on one. The cache lives in the user's
+cache folder (``cache_dir()``), not beside the sources, unless ``NUMBA_CACHE_DIR`` says
+otherwise.
 tests/test_compile_before_play.py checks that stepping the demos' scenes after ``prepare``
 adds no specialisation to any kernel.
 
@@ -240,8 +242,10 @@ def prepare(only: Sequence[LoopKernel[Any]] | None = None) -> float:
     fast path calls it when it is made, and ``python -m engine.warmup`` at install time, so no
     step waits on the compiler. The kernels already prepared are skipped, so a second call
     costs nothing. While kernels compile (not while they load) it says so as it goes, through
-    ``waiting`` or on stderr: "compiling the engine's kernels (first run only): 5/22".
-    ``only``: these kernels, not the engine's (the tests')."""
+    ``waiting`` or on stderr: "compiling the engine's kernels (first run only): 5/22". On a
+    cold cache, with a second core, a second process compiles them too, from the other end of
+    the list (``_Helper``), and what it compiled is loaded from the cache it fills.
+    ``only``: these kernels, not the engine's (the tests'), in this process alone."""
     if not available():
         return 0.0
     with _LOCK:
@@ -257,21 +261,115 @@ def prepare(only: Sequence[LoopKernel[Any]] | None = None) -> float:
         watch = _watcher(ev, progress.compiling)
         ev.register("numba:compile", watch)
         try:
-            for done, k in enumerate(todo):
-                progress.done = done
-                sample = _SAMPLES.get(k.name)
-                if sample is None:
-                    raise RuntimeError(
-                        f"loop kernel {k.name} has no sample (@loop(sample=...)): it would "
-                        f"compile at its first call, during play"
-                    )
-                k.fast(*sample())
-                k.ready = True
-                progress.step(done + 1)
+            queue = list(todo)
+            helpers: list[_Helper] = []
+            if only is None:
+                # As numba starts the first compile (the cache is cold), a second process
+                # starts on the kernels left, from the back, each one that neither has
+                # claimed yet, as this one goes on from the front.
+                progress.cold = lambda: helpers.extend(filter(None, [_Helper.start(queue)]))
+            done = 0
+            while queue:
+                k = queue.pop(0)
+                if helpers and not helpers[0].claim(k):
+                    # The helper took the rest, from the back: it has compiled them (or
+                    # stopped) when it exits, and they load from the cache it filled.
+                    helpers.pop().wait()
+                    for left in [k, *queue]:
+                        _compile(left)  # (compiled here where the helper failed)
+                        done += 1
+                        progress.step(done)
+                    break
+                _compile(k)
+                done += 1
+                progress.step(done)
+            for helper in helpers:
+                helper.wait()  # (it claimed nothing this one did not leave it)
         finally:
             ev.unregister("numba:compile", watch)
         _watch_play(ev)
         return time.perf_counter() - t0
+
+
+def _compile(k: LoopKernel[Any]) -> None:
+    """Compile ``k`` for its sample's argument types (or load it from numba's cache)."""
+    sample = _SAMPLES.get(k.name)
+    if sample is None:
+        raise RuntimeError(
+            f"loop kernel {k.name} has no sample (@loop(sample=...)): it would "
+            f"compile at its first call, during play"
+        )
+    k.fast(*sample())
+    k.ready = True
+
+
+#: The fewest kernels left to compile for which a second process is worth its start (about
+#: a second: Python, numba and the engine imported).
+HELPED_FROM = 4
+#: Seconds a compile's helper process may take before this one compiles its kernels itself.
+HELPER_TIMEOUT = 600.0
+
+
+class _Helper:
+    """A second process compiling kernels into the same cache (``python -m engine.warmup
+    --claims DIR NAME ...``): it takes them from the back of the list and this process from
+    the front, each compiling a kernel only if it claimed it first (a file made in ``DIR``
+    with O_EXCL, which one of the two makes), so the halves balance whatever each costs."""
+
+    def __init__(self, process: Any, claims: Path) -> None:
+        self.process, self.claims = process, claims
+
+    @staticmethod
+    def start(queue: Sequence[LoopKernel[Any]]) -> _Helper | None:
+        """A helper for the kernels of ``queue``, or None (too few, one core, or no process
+        can be started here: this one compiles them all)."""
+        if len(queue) < HELPED_FROM or (os.cpu_count() or 1) < 2:
+            return None
+        import subprocess
+        import tempfile
+
+        claims = Path(tempfile.mkdtemp(prefix="engine-kernels-"))
+        env = dict(os.environ)
+        env[CACHE_ENV] = str(cache_dir())  # the same cache, wherever this process found it
+        root = str(Path(__file__).resolve().parent.parent)  # the engine's package, first
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH", "")) if p)
+        names = [k.name for k in queue]
+        try:
+            process = subprocess.Popen(
+                [sys.executable, "-m", "engine.warmup", "--claims", str(claims), *names],
+                env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )  # fmt: skip
+        except OSError:
+            return None
+        return _Helper(process, claims)
+
+    def claim(self, k: LoopKernel[Any]) -> bool:
+        """Whether this process claimed ``k`` first (then it compiles it)."""
+        return claim(self.claims, k.name)
+
+    def wait(self) -> None:
+        """Wait for the helper, at most HELPER_TIMEOUT s (then stop it: what it has not
+        cached, this process compiles); its claims are removed."""
+        import shutil
+        import subprocess
+
+        try:
+            self.process.wait(timeout=HELPER_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+        shutil.rmtree(self.claims, ignore_errors=True)
+
+
+def claim(claims: Path, name: str) -> bool:
+    """Whether this process is the first to claim the kernel ``name`` in the folder ``claims``
+    (a compile shared by two processes, ``_Helper``)."""
+    try:
+        os.close(os.open(claims / name, os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+    except FileExistsError:
+        return False
+    return True
 
 
 class _Progress:
@@ -282,10 +380,14 @@ class _Progress:
         self.total, self.t0 = total, t0
         self.done = 0
         self.said: float | None = None  # when the last line was said (None: not compiling)
+        #: Called once, as numba starts the first compile (the cache was cold).
+        self.cold: Callable[[], None] | None = None
 
     def compiling(self, _dispatcher: Any) -> None:
         if self.said is None:
             self._say()
+            if self.cold is not None:
+                self.cold()
 
     def step(self, done: int) -> None:
         self.done = done

@@ -122,6 +122,57 @@ def test_the_cache_goes_to_the_users_cache_folder_and_a_compile_says_so(tmp_path
     assert "compiling" not in warm.stderr
 
 
+@needs_numba
+def test_a_compiles_helper_takes_kernels_from_the_back_until_it_meets_a_claimed_one(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A cold compile is shared with a second process (engine.kernels._Helper): each kernel is
+    compiled by the one of the two that claims it first, this one from the front of the list and
+    the helper (``python -m engine.warmup --claims DIR NAME ...``) from the back; the helper
+    stops at the first kernel already claimed, so none is compiled twice."""
+    from engine import warmup
+
+    kernels.prepare()  # (loaded from the cache, or compiled: what the helper takes then loads)
+    names = [k.name for k in kernels.kernels()]
+    assert kernels.claim(tmp_path, names[0]) and not kernels.claim(tmp_path, names[0])
+    for name in names[1:-2]:  # this process has reached all but the last two
+        assert kernels.claim(tmp_path, name)
+    assert warmup.main(["--claims", str(tmp_path), *names]) == 0
+    assert "engine.warmup: 2 loop kernels ready" in capsys.readouterr().out
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names)
+    assert warmup.main(["--claims", str(tmp_path), "engine.nothing"]) == 2
+    assert "no loop kernel is named engine.nothing" in capsys.readouterr().err
+    assert warmup.main(["--fast"]) == 2
+    assert "takes no arguments" in capsys.readouterr().err
+
+
+@needs_numba
+def test_a_cold_compile_is_shared_with_a_helper_process(tmp_path: Path) -> None:
+    """On an empty cache the World's compile starts a helper as numba starts compiling, and
+    both fill one cache: a later process loads every kernel from it, compiling none."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": str(ROOT)}
+    probe = (
+        "import time\n"
+        "from engine import kernels\n"
+        "kernels.prepare()\n"
+        "print('compiled', sum(len(k.fast.stats.cache_misses) for k in kernels.kernels()))\n"
+        "print('loaded', sum(len(k.fast.stats.cache_hits) for k in kernels.kernels()))\n"
+    )
+
+    def run() -> tuple[int, int]:
+        out = subprocess.run(
+            [sys.executable, "-c", probe], env=env, cwd=tmp_path, capture_output=True,
+            text=True, check=True,
+        ).stdout  # fmt: skip
+        return int(re.findall(r"compiled (\d+)", out)[0]), int(re.findall(r"loaded (\d+)", out)[0])
+
+    compiled, loaded = run()
+    count = len(kernels.kernels())
+    # Cold: this process compiled some, and loaded the helper's (both at least one).
+    assert compiled + loaded == count and compiled >= 1 and loaded >= 1, (compiled, loaded)
+    assert run() == (0, count)  # warm: every kernel loaded, none compiled
+
+
 # -- no specialisation added in play ------------------------------------------------------------
 
 
