@@ -198,12 +198,8 @@ def test_no_label_overlaps_or_is_cut_in_any_motion_diagram(
     case: tuple[str, str, Any], size: tuple[int, int], layers: Layers
 ) -> None:
     demo, name, factory = case
-    scene = factory()
-    if demo == "ballpit":
-        scene.balls = 400
-    size = (max(size[0], scene.min_size[0]), max(size[1], scene.min_size[1]))
+    scene, size = _made(demo, factory, size)
     surface = pygame.Surface(size)
-    scene.build(size)
     draw_strobe(scene, surface)
     assert marks.marks(surface)
     found = _check(surface, "strobe", ALLOWED.get((demo, name), ()), layers.take(surface))
