@@ -32,6 +32,7 @@ from .filters import Filter
 from .joints import Hinge, Weld
 from .links import Cable, Link, Pin, Rod
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
+from .springs import DampedRotarySpring, DampedSpring
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
 from .world import OverlapWarning, QueryHit, World
@@ -54,6 +55,8 @@ __all__ = [
     "Link",
     "Hinge",
     "Weld",
+    "DampedSpring",
+    "DampedRotarySpring",
     "QueryHit",
     "OverlapWarning",
     "FixedStep",

@@ -56,7 +56,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["HORIZON", "step_matrix", "exact_matrix", "error_rows", "predicted_error"]
+__all__ = ["HORIZON", "step_matrix", "exact_matrix", "expm", "error_rows", "predicted_error"]
 
 #: Seconds of simulated time over which a tolerance is promised (s).
 HORIZON = 1.0
@@ -90,13 +90,18 @@ def step_matrix(integrator: Callable[..., Any], omega: float, rate: float, dt: f
 
 def exact_matrix(omega: float, rate: float, dt: float) -> np.ndarray:
     """expm(A dt) for the model problem: the exact one-step map of (x, v, b)."""
-    a = np.array([[0.0, 1.0, 0.0], [-omega * omega, -rate, 1.0], [0.0, 0.0, 0.0]]) * dt
+    return expm(np.array([[0.0, 1.0, 0.0], [-omega * omega, -rate, 1.0], [0.0, 0.0, 0.0]]) * dt)
+
+
+def expm(a: np.ndarray) -> np.ndarray:
+    """The matrix exponential of a square matrix ``a`` (no unit): the exact flow of z' = A z
+    over one step is expm(A dt)."""
     # Scaling and squaring: expm(A) = expm(A / 2^s)^(2^s), with ||A / 2^s|| <= 1/2 so that 20
     # Taylor terms are far below round-off (0.5^20 / 20! ~ 4e-25).
     norm = float(np.abs(a).sum(axis=0).max())
     s = max(0, math.ceil(math.log2(norm / 0.5))) if norm > 0.5 else 0
     a = a / 2.0**s
-    term, total = np.eye(3), np.eye(3)
+    term = total = np.eye(len(a))
     for k in range(1, 21):
         term = term @ a / k
         total = total + term

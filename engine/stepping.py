@@ -67,6 +67,7 @@ def plan(state: WorldState, dt: float, model: ForceModel, name: str) -> Plan:
         and state.contacts is None
         and not state.pairs_on
         and not state.links
+        and not state.springs
         and not state.events.busy
     )
     made: Plan = (dt, state.version, name, step, model, affine)
@@ -288,48 +289,69 @@ def _step_once(
         if state.contacts is not None:
             state.contacts.quiet()
         return
+    springs = state.springs
+    kicks = bool(springs) and step is not None  # (the closed form holds them itself)
+    v0, omega0 = store.v, store.omega
+    if kicks:
+        # The springs' kicks have their limit, said before the first step past it (and again
+        # when a spring's stiffness changes; stacklevel: the line that called World.step).
+        springs.warn_if_unstable(store, dt, state.version, state.policy.warned, 6)
+        # The springs' first half kick, from the positions at the step's start
+        # (engine.spring_step: velocity Verlet on them, whatever the method).
+        v0, omega0 = springs.kick(store, store.x, store.angle, v0, omega0, 0.5 * dt, True)
     if step is None:
         if state.anchor is None:
             state.anchor = (store.x.copy(), store.v.copy(), t0)
-        x0, v0, ta = state.anchor
+        x0, va, ta = state.anchor
         # Closed form from the anchor: s = s0 + v0 T + a T^2 / 2, v = v0 + a T.
         elapsed = t1 - ta
         a = model.a0
-        x1 = x0 + v0 * elapsed + a * (0.5 * elapsed * elapsed)
-        v1 = v0 + a * elapsed
+        x1 = x0 + va * elapsed + a * (0.5 * elapsed * elapsed)
+        v1 = va + a * elapsed
+        if springs:
+            x1, v1 = _closed_springs(state, store, model, dt, x1, v1)
     elif state.huge:
         # Near overflow (a blow-up under way): numpy's own overflow warnings would
         # only come before our clear SimulationDiverged, so silence them.
         with np.errstate(over="ignore", invalid="ignore"):
-            x1, v1 = step(store.x, store.v, model.accel, t0, dt)
+            x1, v1 = step(store.x, v0, model.accel, t0, dt)
     else:
-        x1, v1 = step(store.x, store.v, model.accel, t0, dt)
+        x1, v1 = step(store.x, v0, model.accel, t0, dt)
     state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
     # Bodies that turn turn freely by the closed form (engine.rotation), under their own
     # torque and the generators' (engine.torquefield); the colliders change the spin of those
     # they touch (without colliders, discs at rest stay so).
     spin = None
+    levered = kicks and store.turns_any and springs.turn(store)  # (a lever, a rotary spring)
     if (store.turns_any or store.spins()) and (
         state.contacts is not None
         or store.spins()
         or state.jointed
         or (state.pairs_on and state.collisions.has_shapes(store))
         or _driven(state, store)
+        or levered
     ):
         torques = state.torques()
         if torques is None:
             spin = Spin.free(
-                store.angle, store.omega, store.inv_moment, store.torque, store.mass,
+                store.angle, omega0, store.inv_moment, store.torque, store.mass,
                 store.radius, dt, None, store.kinematic,
             )  # fmt: skip
         else:
-            tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
+            tau = torques.at(t0, store.torque, store.angle, omega0, store.moment)
             with np.errstate(over="ignore", invalid="ignore"):  # (refused just below)
                 spin = Spin.free(
-                    store.angle, store.omega, store.inv_moment, tau, store.mass, store.radius,
+                    store.angle, omega0, store.inv_moment, tau, store.mass, store.radius,
                     dt, torques.c, store.kinematic,
                 )  # fmt: skip
             torques.check_finite(spin.angle, spin.omega, name, dt, t0)
+    if kicks:
+        # The second half kick, from where the method's step ends.
+        if spin is None:
+            v1, _ = springs.kick(store, x1, store.angle, v1, omega0, 0.5 * dt, False)
+        else:
+            v1, spin.omega = springs.kick(store, x1, spin.angle, v1, spin.omega, 0.5 * dt, False)
+        state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
     v_method = v1
     v_free = v1
     contacts = state.contacts
@@ -423,6 +445,43 @@ def _step_once(
         store.angle, store.omega = spin.angle, spin.omega
         store.spin_written()
     state.void_budget()
+
+
+def _closed_springs(
+    state: WorldState,
+    store: BodyStore,
+    model: ForceModel,
+    dt: float,
+    x1: np.ndarray,
+    v1: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The step's end for the bodies on springs by the closed form (engine.spring_step);
+    where the springs stopped being linear (a damped one's ends left its line), this step
+    takes the kicks around the closed form of the constant forces, and the next is planned
+    again (``"auto"`` then picks an integrator; ``"exact"`` refuses)."""
+    springs = state.springs
+    why = state.springs_closed()
+    if why is None:
+        rows, xs, vs = springs.exact(store, model.a0, state.version, dt)
+        x1, v1 = x1.copy(), v1.copy()
+        x1[rows], v1[rows] = xs, vs
+        return x1, v1
+    if state.policy.requested == "exact":
+        raise ValueError(
+            f"integrator 'exact' moves bodies by the closed form, which holds springs only "
+            f"where they are linear, and {why}; use integrator='auto' or an integrator such "
+            f"as 'velocity_verlet'"
+        )
+    # Leave the closed form: the model is compiled again (not all constant now) and the
+    # method chosen again at the next step.
+    state.evaluations += model.evaluations
+    state.model, state.policy.choice, state.fast, state.anchor = None, None, None, None
+    h = 0.5 * dt
+    a = model.a0
+    v, _ = springs.kick(store, store.x, store.angle, store.v, store.omega, h, True)
+    x1 = store.x + v * dt + a * (0.5 * dt * dt)
+    v1, _ = springs.kick(store, x1, store.angle, v + a * dt, store.omega, h, False)
+    return x1, v1
 
 
 def _driven(state: WorldState, store: BodyStore) -> bool:

@@ -30,7 +30,7 @@ Vector(3.0, -1.0)
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from typing import Any, NoReturn
+from typing import Any, NoReturn, TypeVar, overload
 
 import numpy as np
 
@@ -53,8 +53,12 @@ from .policy import METHODS, MethodPolicy
 from .queries import QueryHit
 from .query_grid import QueryIndex
 from .snapshot import WorldSnapshot
+from .springs import BodySpring
 from .stepping import SUBSTEPS_AT_IMPACT as SUBSTEPS_AT_IMPACT  # README: engine.world's
 from .world_state import WorldState
+
+#: What add_link hands back for a spring: the very spring given.
+SpringT = TypeVar("SpringT", bound=BodySpring)
 
 __all__ = [
     "World",
@@ -166,6 +170,9 @@ class World:
         if more:
             raise TypeError(habits.several("remove", (body, *more)))
         membership.remove(self._s, body)
+        if self._s.springs:
+            self._s.springs.body_removed(body)  # its springs go with it
+            self._s.changed_structure()
 
     def add_force(
         self, force: Force | Callable[..., Any], bodies: Iterable[Body] | None = None
@@ -188,12 +195,30 @@ class World:
         """The world as a body that never moves: a joint's body_b that holds to a point."""
         return STATIC
 
-    def add_link(self, link: LinkT) -> LinkT:
-        """Add a link or joint (engine.links, engine.joints) and return it (membership)."""
+    @property
+    def springs(self) -> tuple[BodySpring, ...]:
+        """The springs between bodies (DampedSpring, DampedRotarySpring), in the order added."""
+        return tuple(self._s.springs.items)
+
+    @overload
+    def add_link(self, link: LinkT) -> LinkT: ...
+    @overload
+    def add_link(self, link: SpringT) -> SpringT: ...
+    def add_link(self, link: Any) -> Any:
+        """Add a link or joint (engine.links, engine.joints; membership) or a spring
+        (engine.springs) and return it."""
+        if isinstance(link, BodySpring):
+            self._s.springs.add(link, self)
+            self._s.changed_structure()
+            return link
         return membership.add_link(self._s, link)
 
-    def remove_link(self, link: Link) -> None:
-        """Take a link out of the world (a pinned body is free again)."""
+    def remove_link(self, link: Link | BodySpring) -> None:
+        """Take a link or spring out of the world (a pinned body is free again)."""
+        if isinstance(link, BodySpring):
+            self._s.springs.remove(link)
+            self._s.changed_structure()
+            return
         membership.remove_link(self._s, link)
 
     # -- colliders and contacts ---------------------------------------------------------------

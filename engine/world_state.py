@@ -29,6 +29,7 @@ from .joints import Joint
 from .links import Link, LinkSolver, Pin
 from .overlaps import push_out
 from .policy import MethodPolicy
+from .spring_step import Springs
 from .store import BodyStore
 from .torquefield import TorqueModel
 
@@ -90,6 +91,7 @@ class WorldState:
         self.link_solver: LinkSolver | JointSolver | None = None
         self.jointed = False  # whether the joint solver takes the links
         self.substeps = False  # taking a step again in parts (engine.stepping)
+        self.springs = Springs()  # springs between bodies (engine.springs, engine.spring_step)
 
     # -- time ----------------------------------------------------------------------------------
     @property
@@ -411,7 +413,21 @@ class WorldState:
                         (f, free if rows is None else rows[~kin[rows]]) for f, rows in attached
                     ]
                 self.model = ForceModel.compile(store.mass, store.own, attached)
+                if self.springs and self.model.all_constant:
+                    # The closed form holds the springs too only where they are linear.
+                    self.model.all_constant = self.springs_closed() is None
         return self.model
+
+    def springs_closed(self) -> str | None:
+        """None when the springs may take the closed form now (engine.spring_step), else
+        why not: the World's contacts and links take the kicks' steps."""
+        st = self.store
+        assert st is not None
+        if self.contacts is not None or self.links:
+            return "the World holds colliders or links"
+        if self.collisions.active(st.radius, st.group, st.categories, st.mask, st.shapes):
+            return "bodies of the World may collide"
+        return self.springs.linear(st, None if self.model is None else self.model.a0)
 
     def state_now(self) -> tuple[Any, Any, Any] | None:
         """(x, v, a) of every body now, for the method policy's predictions; None if empty."""

@@ -33,6 +33,7 @@ from engine.render.draw import (
     Color,
     draw_disc,
 )
+from engine.springs import DampedSpring
 
 __all__ = [
     "draw_world",
@@ -78,6 +79,9 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
         if not isinstance(link, (Joint, Pin)):
             a, b = _ends(link, poses)
             pygame.draw.line(surface, JOINT, camera.point(a), camera.point(b), 2)
+    for spring in getattr(world, "springs", ()):
+        if isinstance(spring, DampedSpring):
+            _draw_spring(surface, spring, camera, poses)
     for body in world.bodies:
         colour = KINEMATIC if body.kinematic else ASLEEP if world.is_sleeping(body) else BODY
         shape = body.shape
@@ -92,6 +96,32 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
     for link in world.links:
         if isinstance(link, (Joint, Pin)):
             _draw_joint(surface, link, camera, poses, size)
+
+
+#: A spring is drawn as a zigzag of this many teeth, this wide (px on a canvas 360 px tall).
+TEETH, TOOTH = 8, 4
+
+
+def _draw_spring(surface: pygame.Surface, spring: DampedSpring, camera: Camera, poses: Any) -> None:
+    """A DampedSpring as a zigzag from anchor to anchor (a line where its ends meet)."""
+    a = _at(poses[id(spring.a)], spring.anchor_a)
+    b_body = spring.second
+    anchor = spring.anchor_b
+    b = (anchor.x, anchor.y) if b_body is None else _at(poses[id(b_body)], anchor)
+    pa, pb = camera.point(a), camera.point(b)
+    dx, dy = pb[0] - pa[0], pb[1] - pa[1]
+    length = math.hypot(dx, dy)
+    if length < 1.0:
+        return
+    # Across the spring, alternately either side of its line, TOOTH px out.
+    half = TOOTH * surface.get_height() / 360
+    nx, ny = -dy / length * half, dx / length * half
+    points: list[tuple[float, float]] = [pa]
+    for k in range(1, 2 * TEETH):
+        f, side = k / (2 * TEETH), 1 if k % 2 else -1
+        points.append((pa[0] + f * dx + side * nx, pa[1] + f * dy + side * ny))
+    points.append(pb)
+    pygame.draw.lines(surface, JOINT, False, points, 1)
 
 
 def pose_of(world: Any, body: Any, alpha: float = 1.0) -> tuple[float, float, float]:

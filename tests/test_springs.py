@@ -1,0 +1,406 @@
+"""Springs between bodies (engine.springs, engine.spring_step): pymunk's DampedSpring and
+DampedRotarySpring.
+
+Checked against closed forms and theorems: a damped oscillator's x(t) on the closed form, to
+1e-9 (one body to the world, and two bodies, whose relative motion is an oscillator of the
+reduced mass); momentum kept by the kicks; energy within a bound that shrinks as dt^2; the
+periods 2 pi sqrt(mu / k) and 2 pi sqrt(I / k); and against pymunk's own step on the same
+scenes. pymunk's test_constraint.py tests of the two springs' settings are ported at the end,
+each named for the one it ports.
+"""
+
+from __future__ import annotations
+
+import math
+import pickle
+import warnings
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+
+from engine import (
+    Body,
+    DampedRotarySpring,
+    DampedSpring,
+    SimulationDiverged,
+    StabilityWarning,
+    Vector,
+    World,
+)
+from engine.forces import Gravity
+
+
+def point(x: float, y: float, vx: float = 0.0, vy: float = 0.0, mass: float = 1.0) -> Body:
+    return Body(Vector(x, y), Vector(vx, vy), mass=mass)
+
+
+def damped(t: float, x0: float, v0: float, w0: float, gamma: float) -> float:
+    """x(t) of x'' = -w0^2 x - 2 gamma x' (under-damped), from x0 (m) and v0 (m/s)."""
+    wd = math.sqrt(w0 * w0 - gamma * gamma)
+    return math.exp(-gamma * t) * (
+        x0 * math.cos(wd * t) + (v0 + gamma * x0) / wd * math.sin(wd * t)
+    )
+
+
+def period(world: World, dt: float, steps: int, read: Callable[[], float]) -> float:
+    """The mean time (s) between upward crossings of 0 by ``read()`` over ``steps`` steps."""
+    times, values = [], []
+    for _ in range(steps):
+        world.step(dt)
+        times.append(world.t)
+        values.append(read())
+    ups = crossings(times, values)
+    return (ups[-1] - ups[0]) / (len(ups) - 1)
+
+
+def crossings(times: list[float], values: list[float]) -> list[float]:
+    """The times (s) at which ``values`` cross 0 upward, by linear interpolation."""
+    out = []
+    for k in range(1, len(values)):
+        if values[k - 1] < 0.0 <= values[k]:
+            f = values[k - 1] / (values[k - 1] - values[k])
+            out.append(times[k - 1] + f * (times[k] - times[k - 1]))
+    return out
+
+
+# -- the closed form ---------------------------------------------------------------------------
+@pytest.mark.parametrize("integrator", ["auto", "exact"])
+def test_a_mass_on_a_damped_spring_follows_the_damped_oscillator_to_1e_9(integrator: str) -> None:
+    m, k, c = 2.0, 50.0, 1.5
+    world = World(integrator=integrator)
+    world.add_force(Gravity((-3.0, 0.0)))  # along the spring's line: its rest point moves
+    body = world.add(point(1.0, 0.5, 0.5, 0.0, mass=m))
+    world.add_link(DampedSpring(body, world.static_body, (0, 0), (0.0, 0.5), 0.0, k, c))
+    dt = 1.0 / 60.0
+    world.step(dt)
+    assert world.method == "exact"
+    rest = -3.0 * m / k  # where gravity and the spring balance
+    worst = 0.0
+    for _ in range(1200):  # 20 s, 22 periods
+        world.step(dt)
+        x = damped(world.t, 1.0 - rest, 0.5, math.sqrt(k / m), c / (2 * m)) + rest
+        worst = max(worst, abs(body.pos.x - x), abs(body.pos.y - 0.5))
+    assert worst < 1e-9
+
+
+def test_two_bodies_on_an_undamped_spring_oscillate_with_the_reduced_mass_exactly() -> None:
+    m1, m2, k = 1.0, 3.0, 40.0
+    world = World(integrator="auto")
+    a = world.add(point(0.0, 0.0, 0.3, 0.2, mass=m1))
+    b = world.add(point(1.0, 0.5, -0.1, 0.4, mass=m2))
+    world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 0.0, k, 0.0))
+    mu = m1 * m2 / (m1 + m2)
+    w = math.sqrt(k / mu)
+    d0, u0 = np.array([1.0, 0.5]), np.array([-0.4, 0.2])  # b - a
+    p0 = m1 * np.array([0.3, 0.2]) + m2 * np.array([-0.1, 0.4])
+    worst = 0.0
+    for _ in range(600):
+        world.step(1.0 / 30.0)  # omega dt = 0.24: no integrator's step, the closed form's
+        t = world.t
+        d = d0 * math.cos(w * t) + u0 / w * math.sin(w * t)
+        worst = max(worst, float(np.abs(np.array(b.pos - a.pos) - d).max()))
+        p = m1 * np.array(a.vel) + m2 * np.array(b.vel)
+        worst = max(worst, float(np.abs(p - p0).max()))
+    assert world.method == "exact"
+    assert worst < 1e-9
+
+
+def test_exact_refuses_a_spring_that_is_not_linear_and_auto_leaves_the_closed_form() -> None:
+    world = World(integrator="exact")
+    body = world.add(point(1.0, 0.0))
+    world.add_link(DampedSpring(body, world.static_body, (0, 0), (0, 0), 0.5, 10.0, 0.0))
+    with pytest.raises(ValueError, match="rest length.*integrator='auto'"):
+        world.step(0.01)
+    auto = World(integrator="auto")
+    body = auto.add(point(1.0, 0.0, 0.0, 1.0))  # moving off the spring's line
+    spring = auto.add_link(DampedSpring(body, auto.static_body, (0, 0), (0, 0), 0.0, 10.0, 1.0))
+    auto.step(0.01)
+    assert auto.method != "exact"  # a damped spring whose ends leave its line is not linear
+    spring.damping = 0.0
+    assert spring.revision == 1
+
+
+# -- the kicks: theorems -----------------------------------------------------------------------
+def pair(dt: float, damping: float = 0.0, integrator: str = "velocity_verlet") -> World:
+    world = World(integrator=integrator)
+    a = world.add(point(0.0, 0.0, 0.2, 0.1, mass=1.0))
+    b = world.add(point(1.5, 0.2, -0.3, 0.0, mass=3.0))
+    world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 1.0, 100.0, damping))
+    return world
+
+
+def energy(world: World) -> float:
+    a, b = world.bodies
+    kinetic = 0.5 * (a.mass * a.vel.length() ** 2 + b.mass * b.vel.length() ** 2)
+    return kinetic + sum(s.energy() for s in world.springs)  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("integrator", ["semi_implicit_euler", "rk4"])
+def test_two_bodies_on_a_spring_keep_their_momentum(integrator: str) -> None:
+    world = pair(1.0 / 120.0, damping=2.0, integrator=integrator)
+    a, b = world.bodies
+    p0 = a.vel * a.mass + b.vel * b.mass
+    for _ in range(600):
+        world.step(1.0 / 120.0)
+    p = a.vel * a.mass + b.vel * b.mass
+    assert (p - p0).length() < 1e-13
+    assert world.springs[0].impulse != 0.0
+
+
+def test_undamped_energy_stays_within_a_bound_that_shrinks_as_dt_squared() -> None:
+    spreads = []
+    for dt in (1.0 / 100.0, 1.0 / 200.0):
+        world = pair(dt)
+        e0, worst = energy(world), 0.0
+        for _ in range(round(2.0 / dt)):
+            world.step(dt)
+            worst = max(worst, abs(energy(world) - e0))
+        spreads.append(worst / e0)
+    assert spreads[0] < 5e-3
+    assert spreads[0] / spreads[1] == pytest.approx(4.0, rel=0.02)
+
+
+def test_the_period_of_two_masses_is_2_pi_sqrt_mu_over_k() -> None:
+    m1, m2, k, dt = 1.0, 3.0, 100.0, 1.0 / 1000.0
+    world = World(integrator="semi_implicit_euler")
+    a = world.add(point(0.0, 0.0, mass=m1))
+    b = world.add(point(1.2, 0.0, mass=m2))
+    world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 1.0, k, 0.0))  # a rest length: kicks
+    measured = period(world, dt, 3000, lambda: b.pos.x - a.pos.x - 1.0)
+    expected = 2 * math.pi * math.sqrt(m1 * m2 / (m1 + m2) / k)
+    # Velocity Verlet's period is 2 pi / w' with sin(w' dt / 2) = w dt / 2: 1 + (w dt)^2 / 24.
+    assert measured == pytest.approx(expected, rel=1e-4)
+
+
+def test_a_wheel_on_a_rotary_spring_turns_with_the_period_2_pi_sqrt_i_over_k() -> None:
+    world = World()
+    wheel = world.add(Body(Vector(0, 0), mass=2.0, radius=0.5))
+    inertia = 2.0 * 0.5**2 / 2
+    k, dt = 3.0, 1.0 / 1000.0
+    world.add_link(DampedRotarySpring(wheel, world.static_body, 0.0, k, 0.0))
+    wheel.angular_velocity = 1.0
+    measured = period(world, dt, 4000, lambda: wheel.angle)
+    assert measured == pytest.approx(2 * math.pi * math.sqrt(inertia / k), rel=1e-4)
+    assert wheel.pos.length() == 0.0  # a torque moves no centre
+
+
+def test_a_damped_rotary_spring_decays_as_its_damping_says() -> None:
+    world = World()
+    wheel = world.add(Body(Vector(0, 0), mass=2.0, radius=0.5))
+    spring = world.add_link(DampedRotarySpring(wheel, world.static_body, 0.0, 0.0, 0.1))
+    wheel.angular_velocity = 2.0
+    for _ in range(60):
+        world.step(1.0 / 60.0)
+    # Implicit damping: omega e^(-c dt / I) a step, exactly.
+    assert wheel.angular_velocity == pytest.approx(2.0 * math.exp(-0.1 / 0.25), rel=1e-12)
+    assert spring.impulse < 0.0
+
+
+def test_a_too_stiff_spring_is_warned_about_before_it_blows_up() -> None:
+    world = World(integrator="rk4")
+    a = world.add(point(0.0, 0.0))
+    b = world.add(point(1.1, 0.0))
+    world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 1.0, 1e4, 0.0))
+    with pytest.warns(StabilityWarning, match=r"omega\*dt=2.357.*limit 2.*dt < 0.01414"):
+        world.step(1.0 / 60.0)  # omega = sqrt(2e4) = 141 rad/s
+    with pytest.raises(SimulationDiverged):
+        for _ in range(2000):
+            world.step(1.0 / 60.0)
+    calm = World()
+    a, b = calm.add(point(0.0, 0.0)), calm.add(point(1.1, 0.0))
+    calm.add_link(DampedSpring(a, b, (0, 0), (0, 0), 1.0, 1e4, 0.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", StabilityWarning)
+        for _ in range(100):
+            calm.step(1.0 / 100.0)  # omega dt = 1.41
+
+
+# -- against pymunk ----------------------------------------------------------------------------
+pymunk = pytest.importorskip("pymunk")
+
+
+def test_a_turning_box_on_a_spring_moves_as_pymunks_to_round_off() -> None:
+    """Undamped, the kicks' positions are pymunk's (a kick, then a move: the same recursion)
+    once pymunk starts with the first half kick's velocities, v0 + F(x0) dt / (2 m)."""
+    dt, k, m, inertia = 1.0 / 60.0, 20.0, 2.0, 0.4
+    anchor, point_b = (0.3, 0.1), (1.0, -1.0)
+    world = World()
+    box = world.add(Body(Vector(0, 0), Vector(0.5, 0), mass=m, moment=inertia))
+    world.add_link(DampedSpring(box, world.static_body, anchor, point_b, 0.5, k, 0.0))
+    # The first half kick, by hand: F = -k (|d| - L) n on the box's anchor, at r = anchor.
+    d = np.subtract(point_b, anchor)
+    f = k * (np.hypot(*d) - 0.5) * d / np.hypot(*d)
+    tau = anchor[0] * f[1] - anchor[1] * f[0]
+    space = pymunk.Space()
+    body = pymunk.Body(m, inertia)
+    body.velocity = (0.5 + f[0] * dt / (2 * m), f[1] * dt / (2 * m))
+    body.angular_velocity = tau * dt / (2 * inertia)
+    space.add(body, pymunk.DampedSpring(body, space.static_body, anchor, point_b, 0.5, k, 0.0))
+    worst = 0.0
+    for _ in range(300):
+        world.step(dt)
+        space.step(dt)
+        worst = max(worst, abs(box.pos.x - body.position.x), abs(box.pos.y - body.position.y))
+        worst = max(worst, abs(box.angle - body.angle))
+    assert worst < 1e-11
+
+
+def test_damped_springs_stay_within_a_stated_tolerance_of_pymunks() -> None:
+    """With damping, ours splits it in two half kicks a step and pymunk gives it once after
+    the spring's kick: first order apart, at most 2 omega dt of the motion's size here."""
+    dt, n = 1.0 / 240.0, 480
+    world = pair(dt, damping=2.0)
+    a, b = world.bodies
+    space = pymunk.Space()
+    pa, pb = pymunk.Body(1.0, math.inf), pymunk.Body(3.0, math.inf)
+    pa.position, pa.velocity = (0, 0), (0.2, 0.1)
+    pb.position, pb.velocity = (1.5, 0.2), (-0.3, 0.0)
+    space.add(pa, pb, pymunk.DampedSpring(pa, pb, (0, 0), (0, 0), 1.0, 100.0, 2.0))
+    worst = 0.0
+    for _ in range(n):
+        world.step(dt)
+        space.step(dt)
+        ours, theirs = b.pos - a.pos, pb.position - pa.position
+        worst = max(worst, abs(ours.x - theirs.x), abs(ours.y - theirs.y))
+    omega = math.sqrt(100.0 / 0.75)
+    assert worst < 2 * omega * dt * 0.5  # (0.5 m: the stretch it starts with)
+
+
+# -- pymunk's test_constraint.py, ported -------------------------------------------------------
+def bodies() -> tuple[Body, Body]:
+    return Body(Vector(0, 0), mass=10, moment=10), Body(Vector(0, 0), mass=20, moment=20)
+
+
+def test_constraint_UnitTestDampedSpring_testAnchor() -> None:
+    a, b = bodies()
+    j = DampedSpring(a, b, (1, 2), (3, 4), 0, 0, 0)
+    assert (j.anchor_a, j.anchor_b) == ((1, 2), (3, 4))
+    j.anchor_a, j.anchor_b = (5, 6), (7, 8)
+    assert (j.anchor_a, j.anchor_b) == ((5, 6), (7, 8))
+
+
+@pytest.mark.parametrize("name", ["rest_length", "stiffness", "damping"])
+def test_constraint_UnitTestDampedSpring_testRestLength_testStiffness_testDamping(
+    name: str,
+) -> None:
+    a, b = bodies()
+    j = DampedSpring(a, b, (0, 0), (0, 0), 1, 1, 1)
+    assert getattr(j, name) == 1
+    setattr(j, name, 2)
+    assert getattr(j, name) == 2
+    with pytest.raises(ValueError, match=f"{name} must be a finite number >= 0"):
+        setattr(j, name, -1)
+
+
+def test_constraint_UnitTestDampedSpring_testPickle() -> None:
+    a, b = bodies()
+    j2 = pickle.loads(pickle.dumps(DampedSpring(a, b, (1, 2), (3, 4), 5, 6, 7)))
+    assert (j2.anchor_a, j2.anchor_b, j2.rest_length) == ((1, 2), (3, 4), 5)
+    assert (j2.stiffness, j2.damping, j2.a.mass, j2.second.mass) == (6, 7, 10, 20)  # type: ignore[union-attr]
+
+
+@pytest.mark.parametrize("name", ["rest_angle", "stiffness", "damping"])
+def test_constraint_UnitTestDampedRotarySpring_testRestAngle_testStiffness_testDamping(
+    name: str,
+) -> None:
+    a, b = bodies()
+    j = DampedRotarySpring(a, b, 1, 1, 1)
+    assert getattr(j, name) == 1
+    setattr(j, name, 2)
+    assert getattr(j, name) == 2
+
+
+def test_constraint_UnitTestDampedRotarySpring_testPickle() -> None:
+    a, b = bodies()
+    j2 = pickle.loads(pickle.dumps(DampedRotarySpring(a, b, 1, 2, 3)))
+    assert (j2.rest_angle, j2.stiffness, j2.damping, j2.a.mass) == (1, 2, 3, 10)
+
+
+def test_a_spring_goes_with_its_body_and_is_refused_twice_or_between_other_worlds() -> None:
+    world, other = World(), World()
+    a, b = world.add(point(0, 0)), world.add(point(1, 0))
+    spring = world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 0, 1, 0))
+    assert world.springs == (spring,) and world.links == ()
+    with pytest.raises(ValueError, match="already in this World"):
+        world.add_link(spring)
+    with pytest.raises(ValueError, match="in this World first"):
+        other.add_link(DampedSpring(a, b, (0, 0), (0, 0), 0, 1, 0))
+    with pytest.raises(TypeError, match="b must be a Body or world.static_body"):
+        DampedSpring(a, (1, 2), (0, 0), (0, 0), 0, 1, 0)
+    world.remove(b)
+    assert world.springs == ()
+    world.step(0.01)
+
+
+# -- with joints and contacts, on both paths ---------------------------------------------------
+def hinged(kernels: str) -> tuple[World, Body, Body]:
+    """A plank on a hinge at its centre, twisted back by a rotary spring, and a ball hung from
+    its end by a damped spring, falling onto a floor."""
+    from engine import Hinge, Plane, Polygon
+
+    world = World(kernels=kernels)
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Plane((0.0, 0.0), (0.0, 1.0), restitution=0.0))
+    plank = world.add(Body(Vector(0, 2), mass=4.0, shape=Polygon.box(2.0, 0.2)))
+    world.add_link(Hinge(plank, world.static_body, (0, 2)))
+    world.add_link(DampedRotarySpring(plank, world.static_body, 0.0, 30.0, 0.5))
+    ball = world.add(Body(Vector(1.0, 1.2), mass=1.0, radius=0.2, restitution=0.0))
+    world.add_link(DampedSpring(plank, ball, (1.0, 0.0), (0, 0), 0.8, 15.0, 1.0))
+    return world, plank, ball
+
+
+def test_springs_with_a_hinge_and_contacts_end_alike_on_both_paths() -> None:
+    ends = []
+    for kernels in ("numpy", "fast"):
+        try:
+            world, plank, ball = hinged(kernels)
+        except (ImportError, RuntimeError):
+            pytest.skip("the fast path needs numba (the fast extra)")
+        low = math.inf
+        for _ in range(120):
+            world.step(1.0 / 60.0)
+            low = min(low, ball.pos.y)
+        assert (plank.pos - Vector(0, 2)).length() < 1e-9  # the hinge holds
+        assert 0.2 - 1e-3 < low < 0.2 + 1e-3  # the ball came down onto the floor, held there
+        ends.append((*plank.pos, plank.angle, *ball.pos, *ball.vel))
+    assert np.allclose(ends[0], ends[1], rtol=0, atol=1e-9)
+
+
+def test_a_hinged_plank_on_a_rotary_spring_turns_with_the_period_2_pi_sqrt_i_over_k() -> None:
+    from engine import Hinge, Polygon
+
+    world = World()
+    plank = world.add(Body(Vector(0, 0), mass=4.0, shape=Polygon.box(2.0, 0.2)))
+    world.add_link(Hinge(plank, world.static_body, (0, 0)))
+    k, dt = 30.0, 1.0 / 60.0  # (the joint solver's step is costly: few steps)
+    world.add_link(DampedRotarySpring(plank, world.static_body, 0.0, k, 0.0))
+    plank.angular_velocity = 0.5
+    measured = period(world, dt, 300, lambda: plank.angle)
+    # Velocity Verlet's period, longer by (omega dt)^2 / 24 = 2.5e-4 here.
+    assert measured == pytest.approx(2 * math.pi * math.sqrt(plank.moment / k), rel=5e-4)
+
+
+# -- drawn -------------------------------------------------------------------------------------
+def test_a_spring_is_drawn_as_a_zigzag_and_a_zero_length_one_draws_nothing() -> None:
+    """Also pymunk's test_space.testDebugDrawZeroLengthSpring (skipped in pymunk itself): a
+    spring of length 0 to the static body is drawn without error."""
+    pygame = pytest.importorskip("pygame")
+    from engine.render import PAPER, Camera, draw_world, init_headless
+    from engine.render.world_view import JOINT, TOOTH
+
+    init_headless()
+    camera = Camera(60.0, (180.0, 180.0))  # 60 px a metre, the origin in the middle
+    world = World()
+    a, b = world.add(point(-2.0, 0.0)), world.add(point(2.0, 0.0))
+    world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 4.0, 1.0, 0.0))
+    world.add_link(DampedSpring(a, world.static_body, (0, 0), (-2.0, 0.0), 0.0, 10.0, 1.0))
+    surface = pygame.Surface((360, 360))
+    surface.fill(PAPER)
+    draw_world(surface, world, camera)
+    # A column at x = 0.3 m: the zigzag crosses it within TOOTH px of the line y = 0, not on it
+    # only; far from it, nothing.
+    column = [tuple(surface.get_at((198, y)))[:3] for y in range(170, 191)]
+    hit = [180 - (170 + k) for k, c in enumerate(column) if c == JOINT]
+    assert hit and all(abs(h) <= TOOTH + 1 for h in hit)
+    assert tuple(surface.get_at((198, 100)))[:3] == PAPER
