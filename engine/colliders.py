@@ -454,8 +454,9 @@ class Box(Collider):
 class Polygon(Collider):
     """A solid convex polygon, rounded by ``radius`` (length units) when it is > 0.
 
-    ``vertices`` are 3 to 8 points (``engine.convex.MAX_VERTICES``), in either order round the
-    polygon: clockwise input is reversed, so ``vertices`` always runs counter-clockwise.
+    ``vertices`` are 3 to 256 points (``engine.convex.MAX_VERTICES``, which says why 256), in
+    either order round the polygon: clockwise input is reversed, so ``vertices`` always runs
+    counter-clockwise.
     A polygon that is not convex is refused (split it into convex ones), as are repeated
     points, a vertex on the line between its neighbours, and points that enclose no area.
     A rounded polygon is every point within ``radius`` of the polygon (Box2D's rounded box):

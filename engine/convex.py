@@ -35,14 +35,25 @@ __all__ = [
     "second_moment",
 ]
 
-#: The most vertices a polygon shape may have (Box2D's B2_MAX_POLYGON_VERTICES): the
-#: narrowphase pads every polygon of a batch to the batch's largest count, so this bounds it.
-MAX_VERTICES = 8
+#: The most vertices a polygon may have. Not Box2D's 8 (B2_MAX_POLYGON_VERTICES, a fixed-size
+#: array in its b2Polygon): our polygons are padded only to the largest count of a batch of
+#: pairs (``engine.manifold_kinds.Polygons.take``), so boxes cost what they did beside a
+#: 32-gon. What bounds it is a contact point's feature id, which names the vertex of each
+#: shape that makes it in 8 bits each (256 a + b, ``engine.manifold``), so that a contact's key
+#: fits the 16 bits the soft step's warm start keeps for it (``engine.shaped``,
+#: ``engine.pile``): vertex indices 0 to 255.
+MAX_VERTICES = 256
 
 #: Neighbouring vertices nearer than this fraction of the polygon's size are one point.
 TOO_CLOSE = 1e-9
 
 Point = tuple[float, float]
+
+
+def _sag(n: int) -> float:
+    """How far (a fraction of the radius) a regular n-gon's edge midpoints fall inside the
+    circle through its vertices: 1 - cos(pi / n)."""
+    return 1.0 - math.cos(math.pi / n)
 
 
 def _cross(ax: float, ay: float, bx: float, by: float) -> float:
@@ -70,8 +81,10 @@ def convex_polygon(
         )
     if max_count is not None and count > max_count:
         raise ValueError(
-            f"{name} must have at most {max_count} points (as Box2D), got {count}; "
-            f"split the shape into several polygons"
+            f"{name} must have at most {max_count} points (a contact names each shape's "
+            f"vertex in 8 bits: engine.convex.MAX_VERTICES), got {count}; use fewer "
+            f"points (a regular {max_count}-gon strays from its circle by {_sag(max_count):.1e} "
+            f"of the radius) or split the shape into several polygons"
         )
     xs, ys = [p[0] for p in pts], [p[1] for p in pts]
     size = max(max(xs) - min(xs), max(ys) - min(ys))

@@ -3,7 +3,7 @@
 Box2D v3's definitions (``src/manifold.c``), in numpy: one call a pair of kinds a step, never
 a Python loop over pairs. The kinds (``engine.manifold_kinds``, re-exported here) hold the
 shapes in their bodies' frames: ``Circles``, ``Capsules`` (a segment with a radius),
-``Polygons`` (convex, up to 8 vertices, padded, with a rounding radius) and ``HalfPlanes``
+``Polygons`` (convex, up to 256 vertices, padded, with a rounding radius) and ``HalfPlanes``
 (a ``Plane``, or a wall of a room ``Box``). Each function takes shape A's kind and its bodies'
 positions (N, 2) and angles (N,) (rad), then B's, then ``margin``, the speculative distance
 (length units, Box2D's 0.02 m by default): a pair farther apart than it gets no point, and

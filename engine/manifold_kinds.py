@@ -11,7 +11,11 @@ holds N shapes of one kind in their bodies' frames (length units), one row a pai
   rounding. **Padding**: a row with fewer than M vertices repeats its last vertex and its
   last normal up to M (``Polygons.of`` does it). Every step that reads them is a max or a
   min over vertices or normals, or indexes (i + 1) % count, so a repeat changes nothing;
-  an argmax over repeats returns the first, the real one.
+  an argmax over repeats returns the first, the real one. M is the largest count of the
+  rows at hand, not a fixed size: a table pads to its largest polygon, and ``take`` trims a
+  batch to its own largest, so the numpy path's work for a pair (M^2, every vertex against
+  every edge) stays a box's for boxes in a scene that holds a 64-gon; the loop kernels go
+  only to each row's ``count``.
 * ``HalfPlanes(point, normal)``: the solid is behind the line through ``point`` (a ``Plane``,
   or one wall of a room ``Box``).
 
@@ -215,15 +219,23 @@ class Polygons:
         return len(self.radius)
 
     def take(self, rows: Any) -> Polygons:
-        """The shapes of ``rows``."""
+        """The shapes of ``rows``, padded only to the largest count among them: the numpy
+        narrowphase's work a pair grows as M^2, so boxes taken from a table that holds a
+        32-gon cost what boxes do (C-contiguous, as the loop kernels take them)."""
+        count = self.count[rows]
+        m = max(int(count.max()), 2) if len(count) else self.vertices.shape[1]
         return Polygons(
-            self.vertices[rows], self.normals[rows], self.count[rows], self.radius[rows]
+            np.ascontiguousarray(self.vertices[rows, :m]),
+            np.ascontiguousarray(self.normals[rows, :m]),
+            count,
+            self.radius[rows],
         )
 
     @classmethod
     def of(cls, polygons: Sequence[Sequence[Any]], radius: Any = 0.0) -> Polygons:
-        """Polygons from lists of (x, y) vertices (3 to 8, either winding, convex: checked,
-        as ``engine.Polygon``'s), padded to the longest; ``radius`` one for all or one each."""
+        """Polygons from lists of (x, y) vertices (3 to ``engine.convex.MAX_VERTICES``, either
+        winding, convex: checked, as ``engine.Polygon``'s), padded to the longest; ``radius``
+        one for all or one each."""
         rows = [
             convex.convex_polygon(
                 [(float(x), float(y)) for x, y in p], f"polygons[{k}]", convex.MAX_VERTICES

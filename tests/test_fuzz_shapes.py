@@ -157,7 +157,8 @@ KINDS = [
     "nan",
     "inf",
     "two",
-    "nine",
+    "many",
+    "too_many",
     "line",
 ]
 
@@ -166,7 +167,9 @@ KINDS = [
 def point_sets(draw: st.DrawFn) -> tuple[str, list[tuple[float, float]], bool | None]:
     """(kind, points, whether they must build: True, False, or None for either)."""
     kind = draw(st.sampled_from(KINDS))
-    n = {"two": 2, "nine": 9}.get(kind, draw(st.integers(3 if kind != "dent" else 4, 8)))
+    # 3 to 8 points mostly; "many" 9 to 64 (a polygon takes up to engine.convex.MAX_VERTICES)
+    least = 4 if kind == "dent" else 9 if kind == "many" else 3
+    n = {"two": 2, "too_many": 257}.get(kind, draw(st.integers(least, 64 if kind == "many" else 8)))
     gaps = draw(st.lists(st.floats(0.25, 1.0), min_size=n, max_size=n))
     squash = draw(st.sampled_from([1.0, 0.3, 1e-3, 1e-6, 1e-9, 1e-13]))
     size = draw(st.sampled_from(SIZES))
@@ -178,9 +181,9 @@ def point_sets(draw: st.DrawFn) -> tuple[str, list[tuple[float, float]], bool | 
     # Rounding cannot spoil the polygon when its flattest turn stays far above the rounding of
     # its coordinates: then a convex set must build and a clockwise one too.
     sound = squash >= 1e-6 and size * squash >= 1e-8 * (far + size)
-    if kind == "two" or kind == "nine":
+    if kind == "two" or kind == "too_many":
         return kind, pts, False
-    if kind == "convex":
+    if kind in ("convex", "many"):
         return kind, pts, True if sound else None
     if kind == "clockwise":
         return kind, pts[:1] + pts[:0:-1], True if sound else None
