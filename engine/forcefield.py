@@ -60,6 +60,8 @@ class ForceModel:
     folded: Any  # the part of a0 the forces give (a0 minus the bodies' own accelerations)
     #: How many times ``accel`` has run: the supported way to count force evaluations.
     evaluations: int = 0
+    #: Springs between bodies that the closed form holds too (engine.spring_step), if any.
+    springs: bool = False
 
     @classmethod
     def compile(

@@ -138,6 +138,11 @@ class MethodPolicy:
         """(method, reason) when the choice does not depend on dt, else None."""
         if self.requested != "auto":
             return self.requested, f"integrator={self.requested!r} was asked for"
+        if model.all_constant and model.springs:
+            return "exact", (
+                "every force is constant and every spring linear (rest length 0, on bodies "
+                "that do not turn it), so the closed form is exact at any dt"
+            )
         if model.all_constant:
             return "exact", "every force is constant, so the closed form is exact at any dt"
         return None

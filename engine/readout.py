@@ -142,7 +142,7 @@ def velocities(state: WorldState) -> np.ndarray:
 
 def energy(state: WorldState) -> float:
     """Total mechanical energy (J): kinetic (m v^2 / 2, and I omega^2 / 2 for a body that
-    turns) plus the potential of the forces that have one.
+    turns) plus the potential of the forces that have one and the springs' energy.
 
     A body's own constant acceleration a counts like gravity, with potential -m a . x.
     Kinematic and pinned bodies are left out: the game (or the pin) moves them, and no
@@ -179,4 +179,5 @@ def energy(state: WorldState) -> float:
             u = attached.force.potential(x[idx], model.mass[idx]) if len(idx) else 0.0
         if u is not None:
             total += float(np.sum(u))
-    return total
+    # And what the springs between bodies store (engine.springs).
+    return total + sum(s.energy() for s in state.springs.items)

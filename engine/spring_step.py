@@ -275,6 +275,12 @@ class Springs:
                 stacklevel=level,
             )
 
+    def max_stable_dt(self, store: BodyStore) -> float:
+        """The largest dt (s) at which every spring's kicks are stable (inf without springs
+        that pull on anything)."""
+        omegas = [self.omega(s, store) for s in self.items]
+        return min((LIMIT / w for w in omegas if w > 0.0), default=math.inf)
+
     @staticmethod
     def omega(s: BodySpring, store: BodyStore) -> float:
         """The spring's angular frequency (rad/s) on its bodies, at most: sqrt(k / m_eff), with

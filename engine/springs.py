@@ -111,6 +111,10 @@ class BodySpring:
         """The bodies the spring joins (one for a spring to the world)."""
         return (self._a,) if self._b is None else (self._a, self._b)
 
+    def energy(self) -> float:
+        """The energy the spring stores now (J)."""
+        raise NotImplementedError
+
     @property
     def stiffness(self) -> float:
         """The spring constant (N/m, or N m/rad for the rotary spring)."""

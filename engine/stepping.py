@@ -523,6 +523,9 @@ def _check_finite(state: WorldState, x: Any, v: Any, name: str, dt: float, t: fl
         if not (np.isfinite(x[i]).all() and np.isfinite(v[i]).all())
     ]
     limit = state.policy.max_stable_dt(name, state.ready()) if name != "exact" else None
+    if state.springs and state.store is not None and name != "exact":
+        # The springs' kicks have their own limit, whatever the method.
+        limit = min(math.inf if limit is None else limit, state.springs.max_stable_dt(state.store))
     hint = ""
     if limit is not None and limit < math.inf:
         hint = (

@@ -496,7 +496,8 @@ class World:
         return readout.velocities(self._s)
 
     def energy(self) -> float:
-        """Total mechanical energy (J): kinetic plus the potential of the forces that have one.
+        """Total mechanical energy (J): kinetic plus the potential of the forces that have one,
+        and what the springs between bodies store.
 
         A body's own constant acceleration a counts like gravity, with potential -m a . x.
         Kinematic and pinned bodies are left out: the game (or the pin) moves them, and no
