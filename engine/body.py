@@ -40,8 +40,9 @@ from .body_values import (
     real_number,
     refuse_change,
 )
+from .colours import Colour, as_colour
 from .filters import DEFAULT as DEFAULT_FILTER
-from .filters import Filter
+from .filters import Filter, as_filter
 from .vector import Vector, new_unchecked
 
 if TYPE_CHECKING:
@@ -98,7 +99,8 @@ class Body:
     Units are the scene's own: inches and seconds for Alfred, metres and seconds for the car.
     ``radius`` (length units, 0 for a point) gives it a size for contacts; ``restitution``
     (0: no bounce, 1: elastic) and ``friction`` (Coulomb's mu, >= 0) are its material, combined
-    with a collider's by product (pymunk's rule). A disc or a body with corners turns
+    with a collider's by product (pymunk's rule); they and its ``filter`` can be set at any
+    time, and the World's next step takes them. A disc or a body with corners turns
     (``angle``, ``angular_velocity``, ``moment``, ``torque``; engine.rotation): friction makes
     a disc roll and a box tip; a point or a body made with ``fixed_rotation=True`` does not.
     Bodies with a radius collide with each other unless their ``filter`` (engine.Filter: a
@@ -110,6 +112,9 @@ class Body:
     ``position`` is ``pos``, ``velocity`` is ``vel`` and ``acceleration`` is ``acc``; a pymunk
     name with no counterpart here (``force``, ``space``, ``body_type``, ...) raises an
     AttributeError that says what to use instead.
+
+    ``colour`` (None by default; ``Body(..., colour="red")`` or ``body.colour = (255, 0, 0)``)
+    is how ``draw_world`` fills it (engine.colours).
 
     ``data`` (None by default; ``Body(..., data=brick)``, or set it later) holds the game's own
     things: a Body takes no other new attribute. The engine never reads it, and it is not part
@@ -141,6 +146,7 @@ class Body:
         "_moment",
         "_fixed",
         "_torque",
+        "_colour",
         "data",
     )
 
@@ -163,6 +169,7 @@ class Body:
         fixed_rotation: bool = False,
         torque: float = 0.0,
         data: Any = None,
+        colour: Any = None,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -202,12 +209,7 @@ class Body:
         if shape is not None:
             self._radius = self._take_shape(shape, dim)
             self._shape = shape
-        if not isinstance(filter, Filter):
-            raise TypeError(
-                f"filter must be an engine.Filter (group, categories, mask), got "
-                f"{type(filter).__name__} {filter!r}"
-            )
-        self._filter = filter
+        self._filter = as_filter(filter)
         if not isinstance(kinematic, bool):
             raise TypeError(
                 f"kinematic must be True (moved by the game) or False, got "
@@ -220,6 +222,7 @@ class Body:
         #: The game's own (a sprite, a score, a name; pymunk users set attributes on a Body):
         #: the engine never reads it; a World's snapshot does not keep it.
         self.data: Any = data
+        self._colour = as_colour(colour)
 
     def _take_rotation(self, angle: Any, omega: Any, moment: Any, fixed: Any, torque: Any) -> None:
         """Check and keep the rotation arguments (engine.rotation says what they mean)."""
@@ -541,30 +544,54 @@ class Body:
 
     @property
     def restitution(self) -> float:
-        """Restitution e in [0, 1]: the fraction of the normal speed kept by a bounce."""
+        """Restitution e in [0, 1]: the fraction of the normal speed kept by a bounce. Set it
+        any time (``body.restitution = 0.9``): the next step bounces with it."""
         return self._e
 
     @restitution.setter
     def restitution(self, value: Any) -> None:
-        refuse_change("restitution", value)
+        e = material(self._radius, value, self._mu)[1]  # refused: the old value stays
+        self._e = e
+        if self._store is not None:
+            self._store.set_material(self._slot, e, self._mu, None)
 
     @property
     def friction(self) -> float:
-        """Coulomb friction coefficient mu >= 0."""
+        """Coulomb friction coefficient mu >= 0. Set it any time (``body.friction = 0.2``):
+        the next step slides or holds with it."""
         return self._mu
 
     @friction.setter
     def friction(self, value: Any) -> None:
-        refuse_change("friction", value)
+        mu = material(self._radius, self._e, value)[2]  # refused: the old value stays
+        self._mu = mu
+        if self._store is not None:
+            self._store.set_material(self._slot, self._e, mu, None)
 
     @property
     def filter(self) -> Filter:
-        """Which other bodies this one collides with (engine.Filter; bodies of radius 0 never)."""
+        """Which other bodies and colliders this one collides with (engine.Filter; bodies of
+        radius 0 never). Set it any time: from the next step, pairs it turns off pass through
+        each other."""
         return self._filter
 
     @filter.setter
     def filter(self, value: Any) -> None:
-        refuse_change("filter", value)
+        self._filter = as_filter(value)
+        if self._store is not None:
+            self._store.set_material(self._slot, self._e, self._mu, self._filter)
+
+    @property
+    def colour(self) -> Colour:
+        """How ``draw_world`` fills the body (engine.colours: an (r, g, b) tuple, a pygame
+        colour name such as ``"red"`` or a hex string; None, the default: blue, grey asleep,
+        vermillion when the game moves it). Set it any time; the physics never reads it, and
+        a snapshot does not keep it."""
+        return self._colour
+
+    @colour.setter
+    def colour(self, value: Any) -> None:
+        self._colour = as_colour(value)
 
     @property
     def kinematic(self) -> bool:

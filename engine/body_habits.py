@@ -12,6 +12,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from .colours import COLOR_ADVICE
+
 __all__ = ["PYMUNK_NAMES", "Advice", "install", "mass_and_moment"]
 
 
@@ -57,7 +59,8 @@ PYMUNK_NAMES: dict[str, str] = {
     "shapes": "a Body has one shape: Body(..., radius=r) for a disc, or Body(..., "
     "shape=Polygon.box(width, height)) (or a Polygon, a Segment); its material is the Body's "
     "(restitution=..., friction=...)",
-    "elasticity": "its bounce is Body(..., restitution=e), 0 to 1",
+    "elasticity": "its bounce is body.restitution = e (0 to 1; or Body(..., restitution=e))",
+    "color": COLOR_ADVICE,
     "velocity_func": "forces act through the World: world.add_force(...) (engine.forces)",
     "position_func": "a body the game moves is Body(..., kinematic=True): write its pos or vel",
     "kinetic_energy": "world.energy() is the World's total; m v^2 / 2 is "

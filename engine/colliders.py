@@ -1,6 +1,7 @@
 """Static colliders: the world's walls, floors, pegs and rooms, which bodies with a size meet.
 
-Five shapes, each with a material (``restitution``, ``friction``) and a ``sensor`` flag:
+Five shapes, each with a material (``restitution``, ``friction``), a ``sensor`` flag and a
+``colour`` for drawing (engine.colours; None: ``draw_world``'s ink):
 
 * ``Plane(point, normal)``: an infinite floor or wall; the solid side is behind ``normal``.
 * ``Segment(a, b, radius=0.0)``: a thin wall from a to b, or a capsule when ``radius`` > 0
@@ -21,8 +22,15 @@ the body's own material in force.
 A sensor is not solid: bodies pass through it, and the World reports when they begin and end
 overlapping it (``World.began`` / ``World.ended``). The crumb in the crumb game is one.
 
-A collider is fixed once made: the World builds its contact tables from it, so writing
-``peg.center = ...`` (or any of its attributes) raises an AttributeError that says what to do
+Its material can change at any time, in or out of a World (pymunk's habit): writing
+``peg.restitution``, ``peg.friction``, ``peg.filter`` or ``peg.sensor`` takes effect at the
+World's next step (each World holding it is told: ``WorldState.collider_changed``); a value
+refused leaves the old one. A solid collider made a sensor lets bodies through and reports
+those it overlaps, from the next step; a sensor made solid pushes out the bodies inside it, as
+``add_collider`` does.
+
+Its geometry is fixed once made: the World builds its contact tables from it, so writing
+``peg.center = ...`` (or any other attribute) raises an AttributeError that says what to do
 instead: take it out and add a new one (``world.remove_collider(peg)``,
 ``world.add_collider(Circle(...))``), or, for an obstacle that moves every frame, use a
 kinematic body (``Body(..., radius=r, kinematic=True)``, moved by writing its ``pos``).
@@ -40,11 +48,13 @@ ValueError: a and b must differ ... use Circle((1.0, 1.0), radius) for a round p
 from __future__ import annotations
 
 import math
+import weakref
 from typing import Any
 
 from . import checks, convex
+from .colours import COLOR_ADVICE, as_colour
 from .filters import DEFAULT as DEFAULT_FILTER
-from .filters import Filter
+from .filters import Filter, as_filter
 from .mass import moment_for_polygon, moment_for_segment
 from .points import point_of
 from .vector import Vector
@@ -52,28 +62,26 @@ from .vector import Vector
 __all__ = ["Collider", "Plane", "Segment", "Circle", "Box", "Polygon", "point_of"]
 
 
+#: What a collider's material is: set any time (``Collider.__setattr__``).
+MATERIAL = ("restitution", "friction", "sensor", "filter")
+
+
 def _fixed(collider: Collider, name: str) -> str:
     """Why ``collider.name`` cannot change, and what to do instead."""
     kind = type(collider).__name__
-    what = (
-        "material"
-        if name in ("restitution", "friction", "sensor")
-        else "geometry"
-        if name in collider.__slots__
-        else None
-    )
-    if what is None:
+    if name in MATERIAL:  # (only deleting it is refused)
+        return (
+            f"a {kind}'s {name} can be set ({kind.lower()}.{name} = ...) but not deleted; to "
+            f"take the {kind} out of a World, world.remove_collider({kind.lower()})"
+        )
+    if name not in collider.__slots__:
         return f"a {kind} has no attribute {name!r} to set"
-    moving = (
-        "; for an obstacle that moves, use a kinematic body, Body(position, radius=r, "
-        "kinematic=True), and write its pos each frame"
-        if what == "geometry"
-        else ""
-    )
     return (
         f"a {kind}'s {name} cannot change once it is made (the World built its contacts from "
-        f"its {what}): take it out and add a new one, world.remove_collider(old) then "
-        f"world.add_collider({kind}(..., {name}=...)){moving}"
+        f"its geometry): take it out and add a new one, world.remove_collider(old) then "
+        f"world.add_collider({kind}(..., {name}=...)); for an obstacle that moves, use a "
+        f"kinematic body, Body(position, radius=r, kinematic=True), and write its pos each "
+        f"frame (its material, {', '.join(MATERIAL)}, can be set any time)"
     )
 
 
@@ -85,15 +93,6 @@ def _unit(x: float, y: float) -> tuple[float, float] | None:
     x, y = x / m, y / m  # now the larger is 1: hypot neither underflows nor overflows
     length = math.hypot(x, y)
     return x / length, y / length
-
-
-def _filter(value: Any) -> Filter:
-    if not isinstance(value, Filter):
-        raise TypeError(
-            f"filter must be an engine.Filter (group, categories, mask), got "
-            f"{type(value).__name__} {value!r}"
-        )
-    return value
 
 
 def _material(restitution: Any, friction: Any, sensor: Any) -> tuple[float, float, bool]:
@@ -121,7 +120,7 @@ Disc = tuple[tuple[float, float], float]
 class Collider:
     """A static shape bodies meet; its subclasses are the shapes. Materials as in the module doc."""
 
-    __slots__ = ("restitution", "friction", "sensor", "filter")
+    __slots__ = ("restitution", "friction", "sensor", "filter", "colour", "_worlds")
 
     def __init__(
         self,
@@ -129,19 +128,69 @@ class Collider:
         friction: float,
         sensor: bool,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002
+        colour: Any = None,
     ) -> None:
+        # The Worlds that hold it (weak references to their states), told of a material set.
+        self._worlds: tuple[weakref.ref[Any], ...] = ()
         self.restitution, self.friction, self.sensor = _material(restitution, friction, sensor)
         #: Which bodies meet it (engine.Filter, as a body's): a body whose filter and this one
         #: do not collide passes through it, is not sensed by it, and queries filter it alike.
-        self.filter = _filter(filter)
+        self.filter = as_filter(filter)
+        #: How ``draw_world`` fills it (engine.colours: a pygame colour, None for its own
+        #: ink); set it any time, the World never reads it.
+        self.colour = as_colour(colour)
 
     def __setattr__(self, name: str, value: Any) -> None:
-        # Each public attribute is set once, when the collider is made; after that it is
-        # refused (the World built its contact tables from it, so a change would be ignored).
-        # Private ones (a leading _) are the engine's own business.
+        # Each public attribute is set once, when the collider is made. After that its material
+        # can be set (checked, and the Worlds that hold it told); its geometry is refused (the
+        # World built its contact tables from it, so a change would be ignored). Private ones
+        # (a leading _) are the engine's own business.
+        if name == "color":
+            raise AttributeError(f"a {type(self).__name__} has no color: {COLOR_ADVICE}")
+        if name == "colour" and hasattr(self, name):
+            object.__setattr__(self, name, as_colour(value))
+            return
         if name[0] != "_" and hasattr(self, name):
-            raise AttributeError(_fixed(self, name))
+            if name not in MATERIAL:
+                raise AttributeError(_fixed(self, name))
+            self._set_material(name, value)
+            return
         object.__setattr__(self, name, value)
+
+    def _set_material(self, name: str, value: Any) -> None:
+        """Set ``name`` (one of MATERIAL) to ``value``, checked as when made (a value refused
+        leaves the old one), and tell each World that holds this collider."""
+        if name == "filter":
+            new: Any = as_filter(value)
+        else:
+            given = {"restitution": self.restitution, "friction": self.friction}
+            given["sensor"] = self.sensor
+            given[name] = value
+            checked = _material(given["restitution"], given["friction"], given["sensor"])
+            new = checked[MATERIAL.index(name)]
+        if new == getattr(self, name) and type(new) is type(getattr(self, name)):
+            return
+        object.__setattr__(self, name, new)
+        for ref in self._worlds:
+            world = ref()
+            if world is not None:
+                world.collider_changed(self, name)
+
+    def held_by(self, world: Any, held: bool) -> None:
+        """A World (its state, which has ``collider_changed(collider, name)``) took this
+        collider (``held``) or let it go: it is told of each material set while it holds it."""
+        live = tuple(r for r in self._worlds if r() is not None and r() is not world)
+        self._worlds = (*live, weakref.ref(world)) if held else live
+
+    def __getstate__(self) -> tuple[None, dict[str, Any]]:
+        # A copy (copy, pickle) is held by no World: the Worlds' weak references stay behind.
+        names = [n for cls in type(self).__mro__ for n in getattr(cls, "__slots__", ())]
+        return None, {n: getattr(self, n) for n in names if n != "_worlds" and hasattr(self, n)}
+
+    def __setstate__(self, state: tuple[None, dict[str, Any]]) -> None:
+        object.__setattr__(self, "_worlds", ())
+        for name, value in state[1].items():
+            object.__setattr__(self, name, value)
 
     def __delattr__(self, name: str) -> None:
         if name[0] == "_":
@@ -208,6 +257,8 @@ class Collider:
             parts.append("sensor=True")
         if self.filter != DEFAULT_FILTER:
             parts.append(f"filter={self.filter!r}")
+        if self.colour is not None:
+            parts.append(f"colour={self.colour!r}")
         return "".join(", " + p for p in parts)
 
 
@@ -225,6 +276,7 @@ class Plane(Collider):
         friction: float = 1.0,
         sensor: bool = False,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+        colour: Any = None,
     ) -> None:
         p = point_of(point, "point")
         unit = _unit(*point_of(normal, "normal"))
@@ -232,7 +284,7 @@ class Plane(Collider):
             raise ValueError(
                 f"normal must be a nonzero direction such as (0, 1) (up), got {normal!r}"
             )
-        super().__init__(restitution, friction, sensor, filter)
+        super().__init__(restitution, friction, sensor, filter, colour)
         self.point = Vector(*p)
         self.normal = Vector(*unit)
 
@@ -274,6 +326,7 @@ class Segment(Collider):
         friction: float = 1.0,
         sensor: bool = False,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+        colour: Any = None,
     ) -> None:
         pa, pb = point_of(a, "a"), point_of(b, "b")
         r = checks.real(radius, "radius", nonneg=True)
@@ -288,7 +341,7 @@ class Segment(Collider):
                 f"length to give it a direction; "
                 f"use Circle({pa}, radius) for a round peg"
             )
-        super().__init__(restitution, friction, sensor, filter)
+        super().__init__(restitution, friction, sensor, filter, colour)
         self.a, self.b, self.radius = Vector(*pa), Vector(*pb), r
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
@@ -348,10 +401,11 @@ class Circle(Collider):
         friction: float = 1.0,
         sensor: bool = False,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+        colour: Any = None,
     ) -> None:
         c = point_of(center, "center")
         r = checks.real(radius, "radius", positive=True)
-        super().__init__(restitution, friction, sensor, filter)
+        super().__init__(restitution, friction, sensor, filter, colour)
         self.center, self.radius = Vector(*c), r
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
@@ -401,6 +455,7 @@ class Box(Collider):
         friction: float = 1.0,
         sensor: bool = False,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+        colour: Any = None,
     ) -> None:
         x0, y0 = point_of(lower_left, "lower_left")
         x1, y1 = point_of(upper_right, "upper_right")
@@ -409,7 +464,7 @@ class Box(Collider):
                 f"upper_right must lie above and right of lower_left (x1 > x0 and y1 > y0), got "
                 f"lower_left={lower_left!r}, upper_right={upper_right!r}"
             )
-        super().__init__(restitution, friction, sensor, filter)
+        super().__init__(restitution, friction, sensor, filter, colour)
         self.lower_left, self.upper_right = Vector(x0, y0), Vector(x1, y1)
 
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
@@ -486,6 +541,7 @@ class Polygon(Collider):
         friction: float = 1.0,
         sensor: bool = False,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+        colour: Any = None,
     ) -> None:
         if isinstance(vertices, (str, bytes)) or not hasattr(vertices, "__iter__"):
             raise TypeError(
@@ -495,7 +551,7 @@ class Polygon(Collider):
         pts = [point_of(v, f"vertices[{i}]") for i, v in enumerate(vertices)]
         ccw = convex.convex_polygon(pts, "vertices", max_count=convex.MAX_VERTICES)
         r = checks.real(radius, "radius", nonneg=True)
-        super().__init__(restitution, friction, sensor, filter)
+        super().__init__(restitution, friction, sensor, filter, colour)
         #: The corners (length units), counter-clockwise, in the world's frame.
         self.vertices = tuple(Vector(x, y) for x, y in ccw)
         #: The outward unit normal of each edge, from vertices[i] to vertices[i + 1].
@@ -525,6 +581,7 @@ class Polygon(Collider):
         friction: float = 1.0,
         sensor: bool = False,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
+        colour: Any = None,
     ) -> Polygon:
         """A solid box ``width`` by ``height`` (length units, full sizes) around ``center``.
 
@@ -563,6 +620,7 @@ class Polygon(Collider):
             friction=friction,
             sensor=sensor,
             filter=filter,
+            colour=colour,
         )
 
     def as_body_shape(self) -> float:

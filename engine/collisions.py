@@ -157,6 +157,10 @@ class Collisions:
         self._touching = np.zeros(0, dtype=np.int64)
         self.wake(n)
 
+    def filters_changed(self) -> None:
+        """A body's filter was set: which bodies collide is found again (``live``)."""
+        self._live = None
+
     def grew(self, n: int) -> None:
         """Bodies were added at the end (now n): the rows before them keep their sleep and
         the last step's impulses (warm start), the new ones start awake. A new body that

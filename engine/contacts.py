@@ -46,7 +46,9 @@ from .faces import (
     face_meets,
     face_normals,
     faces_added,
+    faces_rematerialled,
     faces_removed,
+    same_faces,
     signed_distance,
 )
 from .resting import asleep
@@ -166,6 +168,46 @@ class Contacts:
             gone = np.flatnonzero(index < 0)
             if not self._grid.removed(faces, index, gone):
                 self._grid = None
+
+    def material_changed(self, collider: Collider, name: str) -> None:
+        """``collider``'s ``name`` (restitution, friction, filter or sensor) was set: the
+        faces take it (a new Faces, the same arrays as compiling afresh; a new layout for the
+        caches keyed on it). A sensor set takes the collider's faces out (bodies resting on
+        them fall) and gives it a column of ``inside`` (every body outside it: one overlapping
+        it begins to at the next step); unset, the reverse, and the grid is laid again when
+        next needed."""
+        old = self._faces
+        if name != "sensor":
+            if old is not None:
+                self._faces = faces_rematerialled(old, self.colliders)
+            return
+        k = next(i for i, c in enumerate(self.colliders) if c is collider)
+        j = sum(s < k for s in self._sensors)  # its column among the sensors'
+        if collider.sensor:
+            self._sensors.insert(j, k)
+            self.inside = np.insert(self.inside, j, False, axis=1)
+        else:
+            del self._sensors[j]
+            self.inside = np.delete(self.inside, j, axis=1)
+        if old is None:
+            return
+        new = self._faces = compile_faces(
+            self.colliders, [i for i, c in enumerate(self.colliders) if not c.sensor]
+        )
+        rest = self.rest
+        on = rest >= 0
+        if on.any():
+            rest[on] = same_faces(old, new, rest[on])  # -1 on a sensor's faces: they fall
+        self._grid = None
+
+    def filters_changed(self, group: np.ndarray, categories: np.ndarray, mask: np.ndarray) -> None:
+        """A body's or a collider's filter was set (the bodies' filters now, by row): a body
+        resting on a face it no longer meets is in flight again."""
+        self.set_body_filters(group, categories, mask)
+        rest = self.rest
+        rows = np.flatnonzero(rest >= 0)
+        if len(rows):
+            rest[rows[~self.allowed(rows, rest[rows])]] = -1
 
     def _rebuild(self) -> None:
         solid = [k for k, c in enumerate(self.colliders) if not c.sensor]

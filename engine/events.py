@@ -421,15 +421,25 @@ class WorldEvents:
 
     def collider_removed(self, collider: Any, t: float) -> None:
         """A collider leaves: its open contacts end (reported with the next step)."""
+        serial = self._serial[collider]
+        self._collider_ends(serial, t, removal=True)
+        del self._serial[collider], self._collider[serial]
+
+    def collider_changed(self, collider: Any, t: float) -> None:
+        """A collider became a sensor or solid again: its open contacts end (reported with
+        the next step, ``removal`` False), and what it touches then begins afresh."""
+        self._collider_ends(self._serial[collider], t, removal=False)
+
+    def _collider_ends(self, serial: int, t: float, removal: bool) -> None:
+        """The open contacts of the collider numbered ``serial`` end, reported with the next
+        step."""
         self.settle_reading()
-        serial = self._serial.pop(collider)
 
         def involved(keys: np.ndarray) -> np.ndarray:
             is_c, other = other_of(keys)
             return is_c & (other == serial)
 
-        self._removal_ends(self.ledger.drop(involved), t)
-        del self._collider[serial]
+        self._removal_ends(self.ledger.drop(involved), t, removal)
 
     def body_removed(self, slot: int, t: float) -> None:
         """A body leaves (still readable at its row): its open contacts end."""
@@ -441,10 +451,10 @@ class WorldEvents:
 
         self._removal_ends(self.ledger.drop(involved), t)
 
-    def _removal_ends(self, keys: np.ndarray, t: float) -> None:
+    def _removal_ends(self, keys: np.ndarray, t: float, removal: bool = True) -> None:
         for k in keys.tolist():
             ev = self._event((t, k, False, None))
-            self.ledger.pending.append(ev._replace(impulse=Vector(0.0, 0.0), removal=True))
+            self.ledger.pending.append(ev._replace(impulse=Vector(0.0, 0.0), removal=removal))
 
     # -- the step ----------------------------------------------------------------------------
     def settle_reading(self) -> None:

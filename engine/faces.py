@@ -33,7 +33,9 @@ __all__ = [
     "allowed_pairs",
     "compile_faces",
     "faces_added",
+    "faces_rematerialled",
     "faces_removed",
+    "same_faces",
     "dot",
     "face_meets",
     "face_normals",
@@ -135,8 +137,7 @@ def compile_faces(colliders: list[Collider], indices: list[int]) -> Faces:
     centres = np.array([d[0] for d in discs], float).reshape(len(discs), 2)
     r = np.array([d[1] for d in discs], float)
     owner = np.array(lown + down, dtype=np.intp)
-    e = np.array([colliders[k].restitution for k in owner], float)
-    mu = np.array([colliders[k].friction for k in owner], float)
+    e, mu, filters = _owners_material(colliders, owner.tolist())
     infinite = np.isinf(lo) & np.isinf(hi)
     boxed = all(isinstance(colliders[k], Box) for k in owner[: len(lo)][infinite].tolist())
     line_list = [
@@ -152,14 +153,6 @@ def compile_faces(colliders: list[Collider], indices: list[int]) -> Faces:
         )
     ]
     disc_list = [((cx, cy), rd) for (cx, cy), rd in zip(centres.tolist(), r.tolist(), strict=True)]
-    filters = None
-    if any(colliders[k].filter != DEFAULT_FILTER for k in indices):
-        fs = [colliders[k].filter for k in owner.tolist()]
-        filters = (
-            np.array([f.group for f in fs], dtype=np.int64),
-            np.array([f.categories for f in fs], dtype=np.int64),
-            np.array([f.mask for f in fs], dtype=np.int64),
-        )
     lines_of = np.array(lown, dtype=np.intp)
     polygons = tuple(
         np.flatnonzero(lines_of == k) for k in indices if isinstance(colliders[k], Polygon)
@@ -186,6 +179,57 @@ def compile_faces(colliders: list[Collider], indices: list[int]) -> Faces:
         filters,
         polygons,
     )
+
+
+def _owners_material(
+    colliders: list[Collider], owner: list[int]
+) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray] | None]:
+    """Each face's owner's restitution, friction and filter (group, categories, mask; None
+    when every owner has the default filter), by face."""
+    e = np.array([colliders[k].restitution for k in owner], float)
+    mu = np.array([colliders[k].friction for k in owner], float)
+    fs = [colliders[k].filter for k in owner]
+    filters = None
+    if any(f != DEFAULT_FILTER for f in fs):
+        filters = (
+            np.array([f.group for f in fs], dtype=np.int64),
+            np.array([f.categories for f in fs], dtype=np.int64),
+            np.array([f.mask for f in fs], dtype=np.int64),
+        )
+    return e, mu, filters
+
+
+def faces_rematerialled(faces: Faces, colliders: list[Collider]) -> Faces:
+    """The same faces with their owners' restitution, friction and filter read again (one
+    was set), as a new Faces (what is kept keyed on the old one is made again); the same
+    arrays as compiling afresh."""
+    e, mu, filters = _owners_material(colliders, faces.owner_list)
+    return replace(faces, e=e, mu=mu, e_list=e.tolist(), mu_list=mu.tolist(), filters=filters)
+
+
+def same_faces(old: Faces, new: Faces, f: np.ndarray) -> np.ndarray:
+    """Where each of ``old``'s faces ``f`` is in ``new`` (-1: not there): the face of the same
+    owner, kind (flat or round) and place among that owner's faces of its kind, which
+    ``compile_faces`` lays out as one run."""
+    out = np.full(len(f), -1, dtype=np.intp)
+    L0, L1 = len(old.p), len(new.p)
+    for q, face in enumerate(f.tolist()):
+        flat = face < L0
+        k = int(old.owner[face])
+        run0 = (
+            np.flatnonzero(old.owner[:L0] == k)
+            if flat
+            else L0 + np.flatnonzero(old.owner[L0:] == k)
+        )
+        run1 = (
+            np.flatnonzero(new.owner[:L1] == k)
+            if flat
+            else L1 + np.flatnonzero(new.owner[L1:] == k)
+        )
+        place = face - int(run0[0])
+        if place < len(run1):
+            out[q] = run1[place]
+    return out
 
 
 def _solid(lines: int, polygons: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:

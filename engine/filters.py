@@ -22,7 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["Filter", "ALL_CATEGORIES", "ALL_MASKS"]
+__all__ = ["Filter", "ALL_CATEGORIES", "ALL_MASKS", "as_filter"]
 
 #: Every category bit (pymunk's ``ShapeFilter.ALL_CATEGORIES()``, 32 bits).
 ALL_CATEGORIES = 0xFFFFFFFF
@@ -66,3 +66,13 @@ class Filter:
 
 #: The filter of a body given none: no group, every category, meets every category.
 DEFAULT = Filter()
+
+
+def as_filter(value: Any) -> Filter:
+    """``value`` if it is a Filter; else a TypeError that says what a ``filter`` must be."""
+    if not isinstance(value, Filter):
+        raise TypeError(
+            f"filter must be an engine.Filter (group, categories, mask), got "
+            f"{type(value).__name__} {value!r}"
+        )
+    return value

@@ -258,6 +258,7 @@ def add_collider(state: WorldState, collider: ColliderT) -> ColliderT:
         state.contacts.bodies_added(len(store))
     state.events.settle_reading()
     state.contacts.add(collider)
+    collider.held_by(state, True)
     state.events.collider_added(collider)
     state.collisions.wake(len(state.bodies))
     push_out(state, range(len(state.bodies)), stacklevel=4)
@@ -274,5 +275,6 @@ def remove_collider(state: WorldState, collider: Collider) -> None:
     # (reported with the next step).
     state.events.collider_removed(collider, state.t)
     state.contacts.remove(collider)
+    collider.held_by(state, False)
     state.collisions.wake(len(state.bodies))
     state.changed_structure()

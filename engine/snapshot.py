@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from . import snapshot_materials
 from .body import Body
 from .body_values import State, coerce_mass, coerce_state
 from .checks import seconds
@@ -61,6 +62,11 @@ class WorldSnapshot:
     events: tuple[Any, ...] | None = None  # the contacts open (engine.events), by row and place
     #: Rotation by row: (angle, angular velocity, moment, torque) arrays (engine.rotation).
     spin: tuple[Any, ...] | None = None
+    #: Each body's (restitution, friction, filter); None: left as they are
+    #: (engine.snapshot_materials).
+    materials: tuple[Any, ...] | None = None
+    #: Each collider's (restitution, friction, sensor, filter); None: left as they are.
+    collider_materials: tuple[Any, ...] | None = None
 
 
 def take(state: WorldState) -> WorldSnapshot:
@@ -98,6 +104,8 @@ def take(state: WorldState) -> WorldSnapshot:
             for b, target in state.targets.items()
         ),
         turns=tuple((state.bodies.index(b), float(a)) for b, a in state.turn_targets.items()),
+        materials=snapshot_materials.take_bodies(state),
+        collider_materials=snapshot_materials.take_colliders(state),
     )
 
 
@@ -116,8 +124,22 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
     links = _check_links(state, snapshot.links)
     moves = _check_moves(state, snapshot.moves)
     turns = _check_turns(state, snapshot.turns)
+    materials, collider_materials = snapshot_materials.check(
+        state, snapshot.materials, snapshot.collider_materials
+    )
+    # The colliders' materials first: which are sensors says what contact state fits.
+    undo = None
+    if collider_materials is not None:
+        undo = snapshot_materials.set_colliders(state, collider_materials)
     if state.contacts is not None and snapshot.contacts is not None:
-        state.contacts.check_state(snapshot.contacts, len(state.bodies))
+        try:
+            state.contacts.check_state(snapshot.contacts, len(state.bodies))
+        except ValueError:
+            if undo is not None:
+                snapshot_materials.set_colliders(state, undo)
+            raise
+    if materials is not None:
+        snapshot_materials.set_bodies(state, materials)
     store = state.store
     if store is not None and state.bodies:
         store.x, store.v, store.prev_x = (

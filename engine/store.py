@@ -47,6 +47,7 @@ class BodyStore:
         on_kinematic_turn: Callable[[int, float | None], bool] | None = None,
         acceleration_at: Callable[[int], Any] | None = None,
         on_sleep: Callable[[int, bool], None] = lambda row, asleep: None,
+        on_material: Callable[[int, bool], None] = lambda row, filtered: None,
     ) -> None:
         self.dim = dim
         #: The World these arrays belong to (what ``Body.world`` answers).
@@ -65,13 +66,15 @@ class BodyStore:
         self._acceleration_at = acceleration_at
         # A body put to sleep (row, True) or woken (row, False) by the game (the owner's sleep).
         self._on_sleep = on_sleep
+        # A body's restitution, friction or filter set (row, whether its filter changed).
+        self._on_material = on_material
         shape: tuple[int, ...] = (0,) if dim == 1 else (0, 2)
         self.x = np.zeros(shape)  # positions (length units)
         self.v = np.zeros(shape)  # velocities (length units / s)
         self.prev_x = np.zeros(shape)  # positions before the last step
         self.mass = np.zeros(0)  # (N,) masses (kg)
         self.own = np.zeros(shape)  # own constant accelerations (length units / s^2)
-        # Size and material, for contacts (fixed once a body is made).
+        # Size (fixed once a body is made) and material (``set_material``), for contacts.
         self.radius = np.zeros(0)  # (N,) radii (length units, 0 for a point)
         self.restitution = np.zeros(0)  # (N,) e in [0, 1]
         self.friction = np.zeros(0)  # (N,) Coulomb mu >= 0
@@ -310,6 +313,24 @@ class BodyStore:
         """Put one body to sleep now with its group (True), or wake it with its group (False):
         the owner's sleep does it (Body.sleep, Body.activate)."""
         self._on_sleep(self.row(slot), asleep)
+
+    def set_material(self, slot: int, e: float, mu: float, filter: Any) -> None:  # noqa: A002
+        """Set one body's restitution ``e``, friction ``mu`` and, unless None, its filter
+        (engine.Filter), for the next step. A new filter makes new group, categories and mask
+        arrays: what is kept from them (by identity) is made again."""
+        row = self.row(slot)
+        self.restitution[row] = e
+        self.friction[row] = mu
+        if filter is not None:
+            self.group, self.categories, self.mask = (
+                self.group.copy(),
+                self.categories.copy(),
+                self.mask.copy(),
+            )
+            self.group[row] = filter.group
+            self.categories[row] = filter.categories
+            self.mask[row] = filter.mask
+        self._on_material(row, filter is not None)
 
     def set_mass(self, slot: int, value: float) -> None:
         """Set one body's mass (the forces' folded parts depend on it: the owner recompiles)."""

@@ -148,6 +148,7 @@ class WorldState:
                 on_kinematic_turn=self.kinematic_turned,
                 acceleration_at=self.acceleration_at,
                 on_sleep=self.set_asleep,
+                on_material=self.material_written,
             )
         return self.store
 
@@ -386,6 +387,42 @@ class WorldState:
             self.contacts.rest[row] = -1
             push_out(self, [row], "was put", stacklevel=5)
 
+    def material_written(self, row: int, filtered: bool) -> None:
+        """One body's restitution, friction or filter was set (``filtered``: its filter): the
+        next step meets with it. The body wakes with its sleeping group, if it slept (a crate
+        whose friction falls may slide now); a filter changes which pairs may meet, so the
+        bodies that collide and the step's plan are found again."""
+        self.collisions.wake_body(row, len(self.bodies))
+        if filtered:
+            self.collisions.filters_changed()
+            self.fast = None
+            store = self.store
+            if self.contacts is not None and store is not None:
+                self.contacts.filters_changed(store.group, store.categories, store.mask)
+
+    def collider_changed(self, collider: Any, name: str) -> None:
+        """A collider of this World had its ``name`` (restitution, friction, filter or sensor)
+        set: its faces take it for the next step (``Contacts.material_changed``), and every
+        body wakes (a crate asleep on a floor made slippery slides). A sensor set or unset
+        changes the faces as adding or removing a collider does (the contacts' warm start,
+        keyed by face, starts afresh); a sensor made solid pushes out the bodies inside it,
+        with an OverlapWarning, as ``add_collider`` does."""
+        contacts = self.contacts
+        assert contacts is not None
+        self.events.settle_reading()
+        contacts.material_changed(collider, name)
+        self.collisions.wake(len(self.bodies))
+        if name != "sensor":
+            self.fast = None
+            store = self.store
+            if name == "filter" and store is not None:
+                contacts.filters_changed(store.group, store.categories, store.mask)
+            return
+        self.events.collider_changed(collider, self.t)
+        if not collider.sensor and self.bodies:
+            push_out(self, range(len(self.bodies)), "was (a sensor made solid)", stacklevel=5)
+        self.changed_structure()
+
     def own_acc_written(self, row: int) -> None:
         """One body's own acceleration changed: one entry of a0, no recompiling."""
         if self.model is not None:
@@ -415,7 +452,7 @@ class WorldState:
                 self.model = ForceModel.compile(store.mass, store.own, attached)
                 if self.springs and self.model.all_constant:
                     # The closed form holds the springs too only where they are linear.
-                    self.model.all_constant = self.model.springs = self.springs_closed() is None
+                    self.model.all_constant = self.springs_closed() is None
         return self.model
 
     def springs_closed(self) -> str | None:

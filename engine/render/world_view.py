@@ -11,6 +11,12 @@ hinge's point (and a pin's) is a small ring, a hinge's limits an arc about that 
 lower limit to the upper, and a weld a small square at the point it holds. ``alpha`` blends
 the last two steps as ``World.positions(alpha)`` does, for a fixed-step loop: positions and
 angles both, so an anchor is drawn where the blended body holds it.
+
+A body or a collider given a ``colour`` (engine.colours: a pygame tuple, name or hex string)
+is filled with it instead (a shaped body keeps its ink outline, a sensor stays an outline);
+pymunk's ``DrawOptions`` flags are ``draw_world``'s keywords: ``shapes``, ``joints``,
+``contacts`` and ``bounds`` (the last two drawn by engine.render.world_overlays). With the
+defaults, and no colour given, a frame is what it was before colours and switches came.
 """
 
 from __future__ import annotations
@@ -33,10 +39,12 @@ from engine.render.draw import (
     Color,
     draw_disc,
 )
+from engine.render.world_overlays import draw_bounds, draw_contacts
 from engine.springs import DampedSpring
 
 __all__ = [
     "draw_world",
+    "paint",
     "angle_of",
     "pose_of",
     "limit_arc",
@@ -64,27 +72,66 @@ LIMIT: Color = EULER  #: a hinge's limits: the arc its angle may sweep
 RING, ARC, SQUARE = 3, 20, 9
 
 
-def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float = 1.0) -> None:
-    """Draw every collider, link and body of ``world`` on ``surface`` through ``camera``."""
-    for collider in world.colliders:
-        _draw_collider(surface, collider, camera)
-    if not world.bodies or world.dim != 2:
-        return
+def draw_world(
+    surface: pygame.Surface,
+    world: Any,
+    camera: Camera,
+    alpha: float = 1.0,
+    *,
+    shapes: bool = True,
+    joints: bool = True,
+    contacts: bool = False,
+    bounds: bool = False,
+) -> None:
+    """Draw every collider, link and body of ``world`` on ``surface`` through ``camera``.
+
+    The switches are pymunk's ``DrawOptions`` flags: ``shapes`` the colliders and bodies
+    (each in its ``colour`` where it has one), ``joints`` the links, springs and joints,
+    ``contacts`` a mark at each contact open after the last step (its point, and its normal
+    as a short tick; ``world.touching``), ``bounds`` each body's and each bounded collider's
+    axis-aligned bounding box (engine.render.world_overlays). The defaults draw what pymunk's
+    ``debug_draw`` does less its contact points."""
+    if shapes:
+        for collider in world.colliders:
+            _draw_collider(surface, collider, camera)
+    if world.bodies and world.dim == 2:
+        _draw_bodies(surface, world, camera, alpha, shapes, joints, bounds)
+    elif bounds:
+        draw_bounds(surface, world, camera, {})
+    if contacts:
+        draw_contacts(surface, world, camera)
+
+
+def _draw_bodies(
+    surface: pygame.Surface,
+    world: Any,
+    camera: Camera,
+    alpha: float,
+    shapes: bool,
+    joints: bool,
+    bounds: bool,
+) -> None:
+    """The links, springs, bodies and joints of a 2D World with bodies, as ``draw_world``
+    switches them, and the bounding boxes over them."""
     xy = world.positions(alpha)
     poses = {
         id(b): (float(xy[k, 0]), float(xy[k, 1]), _drawn_angle(world, b, alpha))
         for k, b in enumerate(world.bodies)
     }
-    for link in world.links:
+    for link in world.links if joints else ():
         if not isinstance(link, (Joint, Pin)):
             a, b = _ends(link, poses)
             pygame.draw.line(surface, JOINT, camera.point(a), camera.point(b), 2)
-    for spring in getattr(world, "springs", ()):
+    for spring in getattr(world, "springs", ()) if joints else ():
         if isinstance(spring, DampedSpring):
             _draw_spring(surface, spring, camera, poses)
-    for body in world.bodies:
-        colour = KINEMATIC if body.kinematic else ASLEEP if world.is_sleeping(body) else BODY
+    for body in world.bodies if shapes else ():
         shape = body.shape
+        own = body.colour if body.colour is not None else getattr(shape, "colour", None)
+        if own is not None:
+            colour = paint(own, body)
+        else:
+            colour = KINEMATIC if body.kinematic else ASLEEP if world.is_sleeping(body) else BODY
         x, y, angle = poses[id(body)]
         if shape is not None and type(shape).__name__ in ("Polygon", "Segment"):
             _draw_shape(surface, shape, camera, (x, y), colour, 0, angle)
@@ -93,9 +140,26 @@ def draw_world(surface: pygame.Surface, world: Any, camera: Camera, alpha: float
         turned = body.turns or (body.kinematic and (body.angle or body.angular_velocity))
         draw_disc(surface, camera, (x, y), body.radius, angle if turned else None, colour)
     size = surface.get_height() / 360
-    for link in world.links:
+    for link in world.links if joints else ():
         if isinstance(link, (Joint, Pin)):
             _draw_joint(surface, link, camera, poses, size)
+    if bounds:
+        draw_bounds(surface, world, camera, poses)
+
+
+def paint(colour: Any, thing: Any) -> Color:
+    """A body's or collider's ``colour`` (engine.colours) as pygame draws it; a ValueError
+    naming ``thing`` for a name pygame does not know."""
+    if not isinstance(colour, str):
+        return colour  # type: ignore[no-any-return]
+    try:
+        return pygame.Color(colour)  # type: ignore[return-value]
+    except ValueError:
+        raise ValueError(
+            f"colour {colour!r} of {thing!r} is not a colour pygame knows: give a name such "
+            f"as 'red' (pygame.color.THECOLORS lists them), a hex string such as '#ff8800', "
+            f"or an (r, g, b) tuple of ints 0 to 255"
+        ) from None
 
 
 #: A spring is drawn as a zigzag of this many teeth, this wide (px on a canvas 360 px tall).
@@ -237,7 +301,7 @@ def angle_of(world: Any, body: Any, alpha: float = 1.0) -> float | None:
 
 def _draw_collider(surface: pygame.Surface, c: Any, camera: Camera) -> None:
     kind = type(c).__name__
-    colour = SENSOR if c.sensor else SOLID
+    colour = paint(c.colour, c) if c.colour is not None else SENSOR if c.sensor else SOLID
     width = 2 if c.sensor else 0
     scale = camera.scale
     if kind == "Circle":
