@@ -452,7 +452,7 @@ class WorldState:
                 self.model = ForceModel.compile(store.mass, store.own, attached)
                 if self.springs and self.model.all_constant:
                     # The closed form holds the springs too only where they are linear.
-                    self.model.all_constant = self.springs_closed() is None
+                    self.model.all_constant = self.model.springs = self.springs_closed() is None
         return self.model
 
     def springs_closed(self) -> str | None:
