@@ -1,7 +1,8 @@
 """Snapshots: every bit of a World's state at one moment, and bringing it back.
 
 ``World.snapshot()`` copies the state (positions, velocities, time, the closed form's anchor,
-the contacts' and links' state, the open contact events) into a WorldSnapshot;
+the contacts' and links' state, the open contact events, and the bodies' and colliders'
+materials, which can be set at any time: engine.snapshot_materials) into a WorldSnapshot;
 ``World.restore(snapshot)`` puts it back, bit for bit, into the World it was taken from or
 one built afresh with the same bodies, colliders and links in the same order. A snapshot is a
 plain dataclass, so one can be built or altered by hand: restore checks every field first and
