@@ -77,6 +77,8 @@ if TYPE_CHECKING:
 
 __all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "PUSH", "deepest_overlap"]
 
+_NONE = np.zeros(0, dtype=np.intp)  # no rows
+
 
 class Collisions:
     """The contacts of a World's bodies with one another (see the module's docstring)."""
@@ -115,6 +117,9 @@ class Collisions:
         #: Bodies held by joints (World rows): they never sleep, nor what they touch (a
         #: sleeper stays put, and a joint would pull it).
         self.joined = np.zeros(0, dtype=np.intp)
+        #: Pairs of bodies tied by springs (World rows, (k,) each; engine.spring_step): they
+        #: sleep as one group, so a spring never pulls on a sleeper beside a body awake.
+        self.tied: tuple[np.ndarray, np.ndarray] = (_NONE, _NONE)
         #: The last step's pile contacts of those bodies (engine.pile, ``Pile.joined``).
         self.joint_rows: tuple[np.ndarray, ...] | None = None
         #: The World's polygons and capsules, which those rows index (engine.joint_contacts;
@@ -622,6 +627,9 @@ class Collisions:
             # wall's push-out or rounding must not either).
             x[self.asleep], v[self.asleep] = x0[self.asleep], 0.0
         turned = spin if spin is not None else self.spun
+        ta, tb = self.tied
+        if len(ta):
+            pa, pb = np.concatenate([pa, ta]), np.concatenate([pb, tb])
         self._group = sleep_still(
             v, dt, live, pa, pb, contacts, self.still, self.asleep, self._group,
             self.sleep_time, self._still_speed, self._never_sleep(n),

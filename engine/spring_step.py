@@ -94,6 +94,16 @@ class Springs:
         """A body left the World: its springs go with it."""
         self.items = [s for s in self.items if body not in s.bodies]
 
+    def ties(self, store: BodyStore) -> tuple[np.ndarray, np.ndarray]:
+        """The pairs of bodies the springs tie (World rows), which sleep as one group."""
+        pairs = [
+            (store.row(s.a.slot), store.row(b.slot))
+            for s in self.items
+            if (b := s.second) is not None
+        ]
+        rows = np.array(pairs, dtype=np.intp).reshape(-1, 2)
+        return rows[:, 0].copy(), rows[:, 1].copy()
+
     def revisions(self) -> tuple[int, ...]:
         return tuple(s.revision for s in self.items)
 

@@ -359,6 +359,8 @@ def _step_once(
     pull = model.a0 if step is None else (v_method - store.v) * (1.0 / dt)
     frozen = _frozen(state, store)
     if state.pairs_on:
+        # Bodies tied by springs sleep as one group (engine.spring_step).
+        pairs.tied = springs.ties(store)
         # Which bodies are in a pile (engine.collisions): the soft step takes them, from
         # the start of the step; the static contacts leave them to it.
         held = None if contacts is None else contacts.rest >= 0

@@ -409,3 +409,29 @@ def test_a_spring_is_drawn_as_a_zigzag_and_a_zero_length_one_draws_nothing() -> 
     hit = [180 - (170 + k) for k, c in enumerate(column) if c == JOINT]
     assert hit and all(abs(h) <= TOOTH + 1 for h in hit)
     assert tuple(surface.get_at((198, 100)))[:3] == PAPER
+
+
+def test_bodies_tied_by_a_spring_sleep_and_wake_as_one_group() -> None:
+    """A crate asleep on a floor, tied by a spring to one pushed away, is pulled after it:
+    the spring joins their sleeping group (as a constraint joins pymunk's islands)."""
+    from engine import Plane, Polygon
+
+    world = World()
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Plane((0, 0), (0, 1), restitution=0.0, friction=0.5))
+    crates = [
+        world.add(
+            Body(Vector(x, 0.5), mass=1.0, shape=Polygon.box(1, 1), restitution=0, friction=0.5)
+        )
+        for x in (0.0, 3.0)
+    ]
+    world.add_link(DampedSpring(crates[0], crates[1], (0, 0), (0, 0), 3.0, 50.0, 1.0))
+    for _ in range(120):
+        world.step(1.0 / 60.0)
+    assert world.is_sleeping(crates[0]) and world.is_sleeping(crates[1])
+    crates[1].vel = Vector(6.0, 0.0)  # wakes its group: both
+    for _ in range(60):
+        world.step(1.0 / 60.0)
+        # Never one asleep while the other moves: friction (4.9 N) yields to the pull.
+        assert world.is_sleeping(crates[0]) == world.is_sleeping(crates[1])
+    assert crates[0].pos.x > 1.0
