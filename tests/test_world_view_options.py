@@ -65,6 +65,7 @@ def _resting() -> tuple[World, Body, Body, Plane]:
 def test_a_body_and_a_collider_are_drawn_in_their_own_colour() -> None:
     w, ball, box, _ = _resting()
     peg, rail = w.colliders[1], w.colliders[2]
+    before = pixels(drawn(w))
     assert w.is_sleeping(ball) and at(drawn(w), (-1.0, 0.5)) == ASLEEP
     ball.colour = RED  # asleep or not: a colour given is the body's
     box.colour = "gold"  # a pygame name
@@ -78,7 +79,6 @@ def test_a_body_and_a_collider_are_drawn_in_their_own_colour() -> None:
     # The outline of a shaped body stays in ink; the floor, given no colour, in ink too.
     assert at(surface, (1.0, 0.0)) == SOLID and at(surface, (1.5, 0.5)) == INK
     # Back to None: the World's own colours again, the frame as before any colour was set.
-    before = pixels(drawn(_resting()[0]))
     ball.colour = box.colour = peg.colour = rail.colour = None
     assert np.array_equal(pixels(drawn(w)), before)
 
