@@ -435,3 +435,44 @@ def test_bodies_tied_by_a_spring_sleep_and_wake_as_one_group() -> None:
         # Never one asleep while the other moves: friction (4.9 N) yields to the pull.
         assert world.is_sleeping(crates[0]) == world.is_sleeping(crates[1])
     assert crates[0].pos.x > 1.0
+
+
+def test_many_springs_in_arrays_move_as_few_in_floats(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Past FEW springs the kicks go in arrays, the dampers a colour at a time: a free chain
+    of 20 damped springs keeps its momentum and ends where the one-by-one kicks leave it."""
+    import engine.spring_step as spring_step
+
+    rng = np.random.default_rng(7)
+    speeds = rng.normal(size=(21, 2))
+
+    def chain() -> tuple[World, list[Body]]:
+        world = World()
+        beads = [world.add(point(0.5 * i, 0.0, *speeds[i], mass=1.0 + i % 3)) for i in range(21)]
+        for a, b in zip(beads, beads[1:], strict=False):
+            world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 0.4, 200.0, 0.5))
+        return world, beads
+
+    ends = []
+    for few in (spring_step.FEW, 100):
+        monkeypatch.setattr(spring_step, "FEW", few)
+        world, beads = chain()
+        p0 = sum((b.vel * b.mass for b in beads), Vector(0, 0))
+        for _ in range(200):
+            world.step(1.0 / 240.0)
+        p = sum((b.vel * b.mass for b in beads), Vector(0, 0))
+        assert (p - p0).length() < 1e-12
+        ends.append([c for b in beads for c in (*b.pos, *b.vel)])
+    assert np.allclose(ends[0], ends[1], rtol=0, atol=1e-9)
+
+
+def test_a_spring_keeps_its_bodies_when_another_body_leaves_the_world() -> None:
+    world = World()
+    gone = world.add(point(-5.0, 0.0))
+    a, b = world.add(point(0.0, 0.0)), world.add(point(2.0, 0.0))
+    spring = world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 1.0, 10.0, 0.0))
+    world.step(0.01)
+    world.remove(gone)  # the rows of a and b shift down
+    world.step(0.01)
+    # Pulled toward each other, by equal and opposite impulses: not toward the old rows.
+    assert a.vel.x > 0.0 and b.vel.x == pytest.approx(-a.vel.x, rel=1e-12)
+    assert spring.impulse > 0.0
