@@ -300,3 +300,17 @@ def test_a_snapshot_keeps_the_materials_and_a_restore_sets_them_back() -> None:
         w.step(DT)
         assert np.array_equal(w.positions(), want[k][0]), k
         assert np.array_equal(w.velocities(), want[k][1]), k
+
+
+def test_the_queries_see_a_filter_set_on_a_body_or_a_collider() -> None:
+    w = World()
+    ball = w.add(Body(Vector(0.0, 0.0), radius=0.5, filter=Filter(categories=0b01)))
+    peg = w.add_collider(Circle((3.0, 0.0), 0.5, filter=Filter(categories=0b01)))
+    seen = Filter(mask=0b10)  # a query that sees category 2 only
+    for _ in range(2):  # (the second time from the tables the first query made)
+        assert w.point_query((0.0, 0.0), 0.0, filter=seen) == []
+        assert w.point_query((3.0, 0.0), 0.0, filter=seen) == []
+    ball.filter = Filter(categories=0b10)
+    peg.filter = Filter(categories=0b11)
+    assert [hit.shape for hit in w.point_query((0.0, 0.0), 0.0, filter=seen)] == [ball]
+    assert [hit.shape for hit in w.point_query((3.0, 0.0), 0.0, filter=seen)] == [peg]
