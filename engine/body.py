@@ -40,6 +40,7 @@ from .body_values import (
     real_number,
     refuse_change,
 )
+from .collision_types import as_collision_type
 from .colours import Colour, as_colour
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter, as_filter
@@ -147,6 +148,7 @@ class Body:
         "_fixed",
         "_torque",
         "_colour",
+        "_ctype",
         "data",
     )
 
@@ -170,6 +172,7 @@ class Body:
         torque: float = 0.0,
         data: Any = None,
         colour: Any = None,
+        collision_type: int = 0,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -223,6 +226,7 @@ class Body:
         #: the engine never reads it; a World's snapshot does not keep it.
         self.data: Any = data
         self._colour = as_colour(colour)
+        self._ctype = as_collision_type(collision_type)
 
     def _take_rotation(self, angle: Any, omega: Any, moment: Any, fixed: Any, torque: Any) -> None:
         """Check and keep the rotation arguments (engine.rotation says what they mean)."""
@@ -580,6 +584,16 @@ class Body:
         self._filter = as_filter(value)
         if self._store is not None:
             self._store.set_material(self._slot, self._e, self._mu, self._filter)
+
+    @property
+    def collision_type(self) -> int:
+        """Which handlers of ``World.on_collision`` take this body's contacts (pymunk's
+        ``shape.collision_type``: an int >= 0, 0 by default); set it any time."""
+        return self._ctype
+
+    @collision_type.setter
+    def collision_type(self, value: Any) -> None:
+        self._ctype = as_collision_type(value)
 
     @property
     def colour(self) -> Colour:

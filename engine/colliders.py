@@ -52,6 +52,7 @@ import weakref
 from typing import Any
 
 from . import checks, convex
+from .collision_types import as_collision_type
 from .colours import COLOR_ADVICE, as_colour
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter, as_filter
@@ -120,7 +121,15 @@ Disc = tuple[tuple[float, float], float]
 class Collider:
     """A static shape bodies meet; its subclasses are the shapes. Materials as in the module doc."""
 
-    __slots__ = ("restitution", "friction", "sensor", "filter", "colour", "_worlds")
+    __slots__ = (
+        "restitution",
+        "friction",
+        "sensor",
+        "filter",
+        "colour",
+        "collision_type",
+        "_worlds",
+    )
 
     def __init__(
         self,
@@ -139,6 +148,9 @@ class Collider:
         #: How ``draw_world`` fills it (engine.colours: a pygame colour, None for its own
         #: ink); set it any time, the World never reads it.
         self.colour = as_colour(colour)
+        #: Which handlers of ``World.on_collision`` take its contacts (pymunk's
+        #: ``shape.collision_type``: an int >= 0, 0 by default); set it any time.
+        self.collision_type = 0
 
     def __setattr__(self, name: str, value: Any) -> None:
         # Each public attribute is set once, when the collider is made. After that its material
@@ -149,6 +161,9 @@ class Collider:
             raise AttributeError(f"a {type(self).__name__} has no color: {COLOR_ADVICE}")
         if name == "colour" and hasattr(self, name):
             object.__setattr__(self, name, as_colour(value))
+            return
+        if name == "collision_type":
+            object.__setattr__(self, name, as_collision_type(value))
             return
         if name[0] != "_" and hasattr(self, name):
             if name not in MATERIAL:
@@ -233,8 +248,9 @@ class Collider:
         """Refuse a body shape that carries a material, filter or sensor of its own."""
         if self.material_given():
             raise ValueError(
-                f"{self!r} as a body's shape: a body's restitution, friction and filter are "
-                f"the Body's, e.g. Body(..., shape={type(self).__name__}(...), friction=0.2); "
+                f"{self!r} as a body's shape: a body's restitution, friction, filter and "
+                f"collision_type are the Body's, e.g. Body(..., "
+                f"shape={type(self).__name__}(...), friction=0.2, collision_type=1); "
                 f"give the shape its geometry only (a sensor on a body is not supported yet)"
             )
 
@@ -245,6 +261,7 @@ class Collider:
             or self.friction != 1.0
             or self.sensor
             or self.filter != DEFAULT_FILTER
+            or self.collision_type != 0
         )
 
     def _material_repr(self) -> str:

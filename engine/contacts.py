@@ -92,6 +92,9 @@ class Contacts:
         self.body_filters: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         # The bodies' mask array and the faces last looked through for such bodies.
         self._ghosts_seen: tuple[np.ndarray, Faces] | None = None
+        #: Pairs a pre_solve ignores for the step under way (engine.collision_handlers):
+        #: sorted keys row << 32 | collider place; empty between such steps.
+        self.ignored = np.zeros(0, dtype=np.int64)
 
     def set_body_filters(self, group: np.ndarray, categories: np.ndarray, mask: np.ndarray) -> None:
         """The World's bodies' filters, by row. The faces carry no filters while every
@@ -272,10 +275,36 @@ class Contacts:
         rest, inside, capped = state
         self.rest, self.inside, self.capped = rest.copy(), inside.copy(), int(capped)
 
+    @property
+    def filtering(self) -> bool:
+        """Whether some body may not meet some face this step (``allowed`` is not all True):
+        a collider has a filter, or a pre_solve ignores a pair."""
+        return self.faces.filters is not None or len(self.ignored) > 0
+
+    def set_ignored(self, pairs: np.ndarray) -> None:
+        """Ignore ``pairs`` (K, 2) of (body row, collider place) for the next step, as if
+        their filters did not collide (a pre_solve that returned False); a body resting on
+        such a collider is in flight again. An empty ``pairs`` ends the last step's."""
+        if not len(pairs) and not len(self.ignored):
+            return
+        self.ignored = np.sort((pairs[:, 0].astype(np.int64) << 32) | pairs[:, 1])
+        if len(pairs):
+            rest = self.rest
+            rows = np.flatnonzero(rest >= 0)
+            if len(rows):
+                rest[rows[~self.allowed(rows, rest[rows])]] = -1
+
     def allowed(self, rows: np.ndarray, faces: np.ndarray) -> np.ndarray:
         """Whether each body (World row) meets each face (pairs of equal length): their
-        filters collide (engine.filters), as for two bodies. All True without filters."""
-        return allowed_pairs(self.faces, self.body_filters, rows, faces)
+        filters collide (engine.filters), as for two bodies, and no pre_solve ignores the
+        pair this step. All True without filters."""
+        ok = allowed_pairs(self.faces, self.body_filters, rows, faces)
+        ignored = self.ignored
+        if len(ignored) and len(rows):
+            keys = (np.asarray(rows, dtype=np.int64) << 32) | self.faces.owner[faces]
+            pos = np.minimum(np.searchsorted(ignored, keys), len(ignored) - 1)
+            ok = ok & (ignored[pos] != keys)
+        return ok
 
     # -- pushing bodies out -----------------------------------------------------------------
     def push_out(
@@ -340,7 +369,7 @@ class Contacts:
                 idle = (spin.omega0 == 0.0) & (spin.alpha == 0.0)
                 look_friction = np.where(rolls, np.where(idle, 0.0, np.nan), friction)
         if len(faces.owner):
-            allowed = self.allowed if faces.filters is not None else None
+            allowed = self.allowed if self.filtering else None
             if self.fast and looks_ready(self.grid):
                 # The fast path: both looks and the resting bodies' staying put in one
                 # compiled loop over the bodies, the same rows and pairs as below
@@ -548,6 +577,10 @@ class Contacts:
         ``fast``: the loop kernel (engine.kernels)."""
         faces = self.faces
         meets = None if rows is None else face_meets(faces, self.body_filters, rows)
+        if rows is not None and len(self.ignored) and len(rows):
+            n_f = len(faces.owner)
+            every = self.allowed(np.repeat(rows, n_f), np.tile(np.arange(n_f), len(rows)))
+            meets = every.reshape(len(rows), n_f)
         return push_out.push_out_rows(faces, self.colliders, X, V, r, meets, fast)
 
     # -- sensors ----------------------------------------------------------------------------

@@ -676,7 +676,7 @@ def wall_hits(
     v = V[i] - Ai * s
     reach = r[i] + norm(v) * T + norm(Ai) * (0.5 * T * T) + TOUCH
     bi, f = contacts.grid.pairs(x, reach)
-    if len(bi) and U is not None and contacts.faces.filters is not None:
+    if len(bi) and U is not None and contacts.filtering:
         ok = contacts.allowed(U[i[bi]], f)  # faces a body's filter does not meet
         bi, f = bi[ok], f[ok]
     if not len(bi):

@@ -281,7 +281,7 @@ def step_pile(
         # Faces within reach of a body this step: the static world is B, the slot nU.
         fa, fn, fg, fmu, fk = face_rows(contacts, x0U, r, 0.05 * r + speed * dt, fast)
         ok = ~kin[fa] & ~shapedU[fa]  # walls do not hold what the game moves
-        if contacts.faces.filters is not None:
+        if contacts.filtering:
             ok &= contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
         fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
         rows_a.append(np.full(len(fa), nU))
@@ -326,7 +326,7 @@ def step_pile(
         shapes, solid, first = statics.of(contacts)
         mine = U[shapedU & ~kin]
         meets = None
-        if contacts.faces.filters is not None:
+        if contacts.filtering:
             # Pairs a body's filter does not meet are left out before the narrowphase.
             allowed = contacts.allowed
             meets = lambda rows, cols: allowed(rows, first[cols])  # noqa: E731

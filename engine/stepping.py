@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from . import collision_handlers
 from .affine import EULERS
 from .body import Body
 from .event_dispatch import report, settle
@@ -104,10 +105,19 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
     if state.bodies and affine and after is None and plain:
         if state.prepare_affine(dt, model, name):
             return True
+    presolved = bool(state.collision_handlers) and state.contacts is not None
+    if presolved and state.bodies:
+        # The pre_solve callbacks, before anything moves: the pairs they ignore are filtered
+        # for this step (engine.collision_handlers).
+        assert state.contacts is not None
+        state.contacts.set_ignored(collision_handlers.ignored_pairs(state, dt))
     if state.bodies:
         _step_general(state, dt, name, step, model)
     else:
         _quiet(state)  # nothing moved: no solver reports anything
+    if presolved:
+        assert state.contacts is not None
+        state.contacts.set_ignored(np.zeros((0, 2), dtype=np.int64))
     count.n += 1
     if store is not None and store.pushes:
         store.release_pushes()  # Body.apply_force lasts one step, as pymunk's force does
@@ -129,6 +139,7 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         # same way) to t.
         settle(state, state.t_base + (state.n - 1) * dt, state.t)
         report(state)
+        collision_handlers.report(state)
     return False
 
 

@@ -34,7 +34,16 @@ from typing import Any, NoReturn, TypeVar, overload
 
 import numpy as np
 
-from . import checks, event_dispatch, habits, membership, queries, readout, stepping
+from . import (
+    checks,
+    collision_handlers,
+    event_dispatch,
+    habits,
+    membership,
+    queries,
+    readout,
+    stepping,
+)
 from . import snapshot as snapshots
 from .body import Body, State
 from .colliders import Collider
@@ -257,6 +266,30 @@ class World:
         ``event.collider``). Returns a function that takes the handler off again.
         """
         return event_dispatch.add_handler(self._s, target, begin, end, post_solve)
+
+    def on_collision(
+        self,
+        type_a: int | None = None,
+        type_b: int | None = None,
+        *,
+        begin: Callable[[ContactEvent], Any] | None = None,
+        pre_solve: Callable[[ContactEvent], Any] | None = None,
+        post_solve: Callable[[ContactEvent], Any] | None = None,
+        separate: Callable[[ContactEvent], Any] | None = None,
+    ) -> Callable[[], None]:
+        """Call these for the contacts between a body or collider of ``collision_type``
+        ``type_a`` and one of ``type_b`` (None: any type), pymunk's ``Space.on_collision``.
+
+        ``begin``, ``separate`` and ``post_solve`` come after each step with the contacts that
+        began, ended, or are open after it; ``pre_solve`` before each step for each body
+        within reach of a collider of the pair's types, and a False from it ignores that
+        contact for the step (a one-way platform). engine.collision_handlers says which way
+        round each event comes. Returns a function that takes the handler off again.
+        """
+        handler = collision_handlers.CollisionHandler(
+            type_a, type_b, begin, pre_solve, post_solve, separate
+        )
+        return collision_handlers.add(self._s, handler)
 
     @property
     def sleeping(self) -> int:

@@ -78,6 +78,8 @@ class WorldState:
         self.pairs_on = False  # whether any two bodies may collide
         # on_contact handlers: (target, begin, end, post_solve).
         self.handlers: list[tuple[Any, Any, Any, Any]] = []
+        # on_collision handlers by collision type (engine.collision_handlers).
+        self.collision_handlers: list[Any] = []
         self.events = WorldEvents()  # the contacts kept open, and each step's events
         self.events.ledger.fast = kernels == "fast"
         self.contact_dv: np.ndarray | None = None  # velocity change by the static contacts

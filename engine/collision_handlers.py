@@ -1,0 +1,172 @@
+"""Collision types and per-pair callbacks: pymunk's ``collision_type`` and ``on_collision``.
+
+A Body and a collider each carry a ``collision_type`` (an int >= 0, 0 by default).
+``World.on_collision(type_a, type_b, begin=..., pre_solve=..., post_solve=..., separate=...)``
+holds four callbacks for the contacts between a thing of type ``type_a`` and one of type
+``type_b`` (None for either: any type, pymunk's wildcard). Each callback takes one
+``ContactEvent`` (engine.events) seen from the ``type_a`` side where it can be: for two
+bodies, ``event.body`` is of ``type_a``; a contact between a body and a collider always has
+the Body as ``event.body``. A handler whose types match the pair either way is called once.
+
+* ``begin`` and ``separate`` come after the step in which the contact began or ended, and
+  ``post_solve`` after each step for every contact open then (``World.began``,
+  ``World.ended`` and ``World.touching`` list the same events).
+* ``pre_solve`` comes before each step, for each body and collider of the matching types
+  that may touch in it: the body's bounding circle within its reach of the collider's
+  surface (``reach``: what it moves in the step, |v| dt + |g| dt^2, and one radius more).
+  Its event has the point on the collider nearest the body, the normal there toward the
+  body, no impulse and the time the step begins. It returns False to ignore the contact
+  for that step (pymunk 6's return value; pymunk 7 sets ``arbiter.process_collision``):
+  the pair is then filtered for the step, as a Filter would, so the body passes through
+  the collider in the exact impacts and in the pile's rows alike, on both paths. A one-way
+  platform is a ``pre_solve`` that lets a body through unless it is above and coming down.
+  Pairs of bodies do not take ``pre_solve`` (yet): a handler with one for them is called
+  only for bodies and colliders.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .body import Body
+from .collision_types import as_collision_type
+from .events import ContactEvent
+from .faces import signed_distance
+from .vector import Vector
+
+if TYPE_CHECKING:
+    from .world_state import WorldState
+
+__all__ = ["CollisionHandler", "add", "ignored_pairs", "report"]
+
+Callback = Callable[[ContactEvent], Any]
+
+
+class CollisionHandler:
+    """The callbacks for the contacts between types ``a`` and ``b`` (None: any type)."""
+
+    __slots__ = ("a", "b", "begin", "pre_solve", "post_solve", "separate")
+
+    def __init__(
+        self,
+        a: int | None,
+        b: int | None,
+        begin: Callback | None,
+        pre_solve: Callback | None,
+        post_solve: Callback | None,
+        separate: Callback | None,
+    ) -> None:
+        self.a = None if a is None else as_collision_type(a)
+        self.b = None if b is None else as_collision_type(b)
+        for name, fn in (
+            ("begin", begin),
+            ("pre_solve", pre_solve),
+            ("post_solve", post_solve),
+            ("separate", separate),
+        ):
+            if fn is not None and not callable(fn):
+                raise TypeError(f"{name} must be a function of one ContactEvent, got {fn!r}")
+        self.begin, self.pre_solve = begin, pre_solve
+        self.post_solve, self.separate = post_solve, separate
+
+    def side(self, first: int, second: int) -> int:
+        """1 if a thing of type ``first`` and one of ``second`` match (a, b) in that order,
+        -1 if only the other way round, 0 if neither."""
+        if (self.a is None or self.a == first) and (self.b is None or self.b == second):
+            return 1
+        if (self.a is None or self.a == second) and (self.b is None or self.b == first):
+            return -1
+        return 0
+
+
+def add(state: WorldState, handler: CollisionHandler) -> Callable[[], None]:
+    """Hold ``handler``; return the function that takes it off again."""
+    state.collision_handlers.append(handler)
+
+    def remove() -> None:
+        """Take this handler off (again: nothing happens)."""
+        state.collision_handlers = [h for h in state.collision_handlers if h is not handler]
+
+    return remove
+
+
+def _type_of(thing: Any) -> int:
+    return int(thing.collision_type)
+
+
+def report(state: WorldState) -> None:
+    """Call the handlers' begin, separate and post_solve with the last step's events."""
+    handlers = state.collision_handlers
+    if not handlers:
+        return
+    events = state.events
+    for name in ("begin", "separate", "post_solve"):
+        mine = [h for h in handlers if getattr(h, name) is not None]
+        if not mine:
+            continue
+        listed = events.began if name == "begin" else events.ended
+        if name == "post_solve":
+            listed = events.touching
+        for ev in listed:
+            ta, tb = _type_of(ev.body), _type_of(ev.collider)
+            for h in mine:
+                side = h.side(ta, tb)
+                if side == 0:
+                    continue
+                flip = side < 0 and isinstance(ev.collider, Body)
+                getattr(h, name)(ev.flipped() if flip else ev)
+
+
+def ignored_pairs(state: WorldState, dt: float) -> np.ndarray:
+    """Call the pre_solve callbacks for the step of ``dt`` (s) about to be taken; return the
+    pairs whose callback returned False, (K, 2) of (body row, collider place), to be
+    filtered for the step."""
+    handlers = [h for h in state.collision_handlers if h.pre_solve is not None]
+    store, contacts = state.store, state.contacts
+    none = np.zeros((0, 2), dtype=np.int64)
+    if not handlers or store is None or contacts is None or store.dim != 2:
+        return none
+    colliders = contacts.colliders
+    bodies = state.bodies
+    types = np.array([b.collision_type for b in bodies], dtype=np.int64)
+    x, v, r = store.x, store.v, store.radius
+    # What a body may move in the step, with a margin: |v| dt + |a| dt^2 (twice the
+    # parabola's a dt^2 / 2, for the forces the constant part a0 of the model leaves out),
+    # and its radius again (a shape turning within its bounding circle).
+    model = state.model
+    a0 = None if model is None else np.asarray(model.a0, dtype=float)
+    accel = np.hypot(a0[:, 0], a0[:, 1]) if a0 is not None and a0.shape == x.shape else 0.0
+    speed = np.hypot(v[:, 0], v[:, 1])
+    reach = speed * dt + accel * dt * dt + r + 1e-9
+    out: list[tuple[int, int]] = []
+    t = state.t
+    for k, c in enumerate(colliders):
+        if c.sensor:
+            continue
+        ct = c.collision_type
+        for h in handlers:
+            rows = np.array(
+                [i for i, bt in enumerate(types.tolist()) if h.side(bt, ct) != 0], dtype=np.intp
+            )
+            if not len(rows):
+                continue
+            gap = signed_distance(c, x[rows]) - r[rows]
+            for i in rows[gap <= reach[rows]].tolist():
+                point, normal, _ = c.closest((float(x[i, 0]), float(x[i, 1])))
+                ev = ContactEvent(
+                    bodies[i],
+                    c,
+                    Vector(float(point[0]), float(point[1])),
+                    Vector(float(normal[0]), float(normal[1])),
+                    Vector(0.0, 0.0),
+                    t,
+                )
+                assert h.pre_solve is not None
+                if h.pre_solve(ev) is False:
+                    out.append((i, k))
+    if not out:
+        return none
+    return np.unique(np.array(out, dtype=np.int64), axis=0)
