@@ -32,6 +32,7 @@ from .filters import Filter
 from .joints import Hinge, Weld
 from .links import Cable, Link, Pin, Rod
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
+from .mouse_joint import MouseJoint
 from .springs import DampedRotarySpring, DampedSpring
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
@@ -57,6 +58,7 @@ __all__ = [
     "Weld",
     "DampedSpring",
     "DampedRotarySpring",
+    "MouseJoint",
     "QueryHit",
     "OverlapWarning",
     "FixedStep",

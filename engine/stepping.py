@@ -69,6 +69,7 @@ def plan(state: WorldState, dt: float, model: ForceModel, name: str) -> Plan:
         and not state.pairs_on
         and not state.links
         and not state.springs
+        and not state.drags
         and not state.events.busy
     )
     made: Plan = (dt, state.version, name, step, model, affine)
@@ -293,6 +294,11 @@ def _step_once(
     """One step of ``dt`` from time t0 to t1 (what _step_general takes, once or in parts)."""
     store = state.store
     assert store is not None
+    drags = state.drags
+    if drags and state.pairs_on:
+        # A dragged body never sleeps: the game moves its target (engine.mouse_joint).
+        for row in drags.rows(store):
+            state.collisions.wake_body(row, len(store))
     if state.pairs_on and state.collisions.all_asleep(len(store)):
         # Every body sleeps: nothing moves until something wakes them.
         store.prev_x = store.x
@@ -334,6 +340,7 @@ def _step_once(
     # they touch (without colliders, discs at rest stay so).
     spin = None
     levered = kicks and store.turns_any and springs.turn(store)  # (a lever, a rotary spring)
+    levered = levered or (bool(drags) and store.turns_any and drags.turn(store))
     if (store.turns_any or store.spins()) and (
         state.contacts is not None
         or store.spins()
@@ -363,6 +370,11 @@ def _step_once(
         else:
             v1, spin.omega = springs.kick(store, x1, spin.angle, v1, spin.omega, 0.5 * dt, False)
         state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
+    if drags:
+        # The mouse joints pull their anchors toward their targets, before the contacts, as
+        # any force does (engine.mouse_joint).
+        x1, v1 = drags.pull(store, x1, v1, spin, dt)
+        state.anchor = None  # (the closed form starts anew from where they leave the bodies)
     v_method = v1
     v_free = v1
     contacts = state.contacts

@@ -57,6 +57,7 @@ from .integrators import Integrator
 from .kernels import choose as kernels_path
 from .links import STATIC, Link, StaticBody
 from .membership import ColliderT, LinkT
+from .mouse_joint import MouseJoint
 from .overlaps import OverlapWarning
 from .policy import METHODS, MethodPolicy
 from .queries import QueryHit
@@ -182,6 +183,9 @@ class World:
         if self._s.springs:
             self._s.springs.body_removed(body)  # its springs go with it
             self._s.changed_structure()
+        if self._s.drags:
+            self._s.drags.body_removed(body)  # its mouse joints go with it
+            self._s.replan()
 
     def add_force(
         self, force: Force | Callable[..., Any], bodies: Iterable[Body] | None = None
@@ -213,22 +217,43 @@ class World:
     def add_link(self, link: LinkT) -> LinkT: ...
     @overload
     def add_link(self, link: SpringT) -> SpringT: ...
+    @overload
+    def add_link(self, link: MouseJoint) -> MouseJoint: ...
     def add_link(self, link: Any) -> Any:
-        """Add a link or joint (engine.links, engine.joints; membership) or a spring
-        (engine.springs) and return it."""
+        """Add a link or joint (engine.links, engine.joints; membership), a spring
+        (engine.springs) or a mouse joint (engine.mouse_joint) and return it."""
         if isinstance(link, BodySpring):
             self._s.springs.add(link, self)
             self._s.changed_structure()
             return link
+        if isinstance(link, MouseJoint):
+            if self._s.requested == "exact":
+                raise ValueError(
+                    "integrator 'exact' moves bodies by the closed form, which holds no mouse "
+                    "joint; use integrator='auto' (it takes an integrator while a mouse joint "
+                    "pulls) or an integrator such as 'velocity_verlet'"
+                )
+            self._s.drags.add(link, self)
+            self._s.replan()
+            return link
         return membership.add_link(self._s, link)
 
-    def remove_link(self, link: Link | BodySpring) -> None:
-        """Take a link or spring out of the world (a pinned body is free again)."""
+    def remove_link(self, link: Link | BodySpring | MouseJoint) -> None:
+        """Take a link, spring or mouse joint out of the world (a pinned body is free again)."""
         if isinstance(link, BodySpring):
             self._s.springs.remove(link)
             self._s.changed_structure()
             return
+        if isinstance(link, MouseJoint):
+            self._s.drags.remove(link)
+            self._s.replan()
+            return
         membership.remove_link(self._s, link)
+
+    @property
+    def mouse_joints(self) -> tuple[MouseJoint, ...]:
+        """The mouse joints (engine.mouse_joint), in the order added."""
+        return tuple(self._s.drags.items)
 
     # -- colliders and contacts ---------------------------------------------------------------
     @property

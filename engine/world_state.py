@@ -27,6 +27,7 @@ from .forces import Force
 from .joint_solver import JointSolver
 from .joints import Joint
 from .links import Link, LinkSolver, Pin
+from .mouse_joint import MouseJoints
 from .overlaps import push_out
 from .policy import MethodPolicy
 from .spring_step import Springs
@@ -94,6 +95,7 @@ class WorldState:
         self.jointed = False  # whether the joint solver takes the links
         self.substeps = False  # taking a step again in parts (engine.stepping)
         self.springs = Springs()  # springs between bodies (engine.springs, engine.spring_step)
+        self.drags = MouseJoints()  # mouse joints (engine.mouse_joint)
 
     # -- time ----------------------------------------------------------------------------------
     @property
@@ -225,6 +227,18 @@ class WorldState:
         return () if self.contacts is None else tuple(self.contacts.colliders)
 
     # -- derived state ----------------------------------------------------------------------
+    def replan(self) -> None:
+        """A mouse joint came or went: choose the method and plan the next step again (the
+        closed form and the affine kernel hold none), keeping the sleep and the contacts'
+        warm start."""
+        if self.model is not None:
+            self.evaluations += self.model.evaluations
+        self.drop_kernel()
+        self.model = None
+        self.policy.choice = None
+        self.fast = None
+        self.anchor = None
+
     def changed_structure(self, appended: bool = False) -> None:
         """Bodies, forces or masses changed: rebuild the force model and the choice.
         ``appended``: only bodies were added, at the end (the others keep their sleep and
@@ -455,6 +469,9 @@ class WorldState:
                 if self.springs and self.model.all_constant:
                     # The closed form holds the springs too only where they are linear.
                     self.model.all_constant = self.model.springs = self.springs_closed() is None
+                if self.drags:
+                    # Nor does it hold a mouse joint: "auto" takes an integrator while one pulls.
+                    self.model.all_constant = False
         return self.model
 
     def springs_closed(self) -> str | None:

@@ -28,6 +28,7 @@ from engine.render.clips import (
 )
 from engine.render.frames import FrameWriter, save_png
 from engine.render.headless import init_headless, init_window
+from engine.render.mouse_drag import MouseDrag
 from engine.render.progress import Progress
 from engine.render.scene import Scene
 
@@ -317,8 +318,9 @@ def play(
 ) -> None:
     """Show ``scene`` in a real-time window until it is closed (Esc or q), using the real clock.
 
-    Space pauses, r restarts. The motion stops at ``seconds`` (default: the scene's duration)
-    and the last frame stays up. Raises
+    Space pauses, r restarts, and the left mouse button drags a body (engine.render.mouse_drag:
+    a MouseJoint to the pointer while the button is held). The motion stops at ``seconds``
+    (default: the scene's duration) and the last frame stays up. Raises
     :class:`~engine.render.headless.DisplayUnavailableError` where there is no display.
     """
     fps = _check_fps(fps)
@@ -327,9 +329,13 @@ def play(
     init_window()
     try:
         screen = pygame.display.set_mode(size)
-        pygame.display.set_caption(f"{scene.name}: {scene.summary}  (space: pause, r: restart)")
+        pygame.display.set_caption(
+            f"{scene.name}: {scene.summary}  (space: pause, r: restart, mouse: drag a body)"
+        )
         limiter = pygame.time.Clock()
+        drag = MouseDrag()
         while True:
+            drag.release()
             scene.build(size)
             scene.step(scene.dt)
             loop = FixedStep(scene.dt, max_frame=max(0.25, 2 * scene.dt))
@@ -347,6 +353,7 @@ def play(
                             paused = not paused
                         elif event.key == pygame.K_r:
                             restart = True
+                    drag.handle(event, scene)
                 elapsed = clock.tick()
                 # Stop the motion at the end of the scene: hold the last state on screen.
                 remaining = seconds - (loop.t + loop.alpha * loop.dt)
@@ -355,6 +362,7 @@ def play(
                     scene.step(scene.dt)
                 marks.clear(screen)
                 scene.draw(screen, loop.alpha)
+                drag.draw(screen, scene)
                 pygame.display.flip()
                 limiter.tick(fps)
     finally:
