@@ -1,5 +1,5 @@
 """Joints drawn by ``draw_world``, checked by their pixels: a link from anchor to anchor at the
-blended pose, a hinge's ring, the arc of its limits, a weld's square."""
+blended pose, a hinge's ring, the arc of its limits, a weld's square, a mouse joint's line."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import math
 import pygame
 import pytest
 
-from engine import Body, Cable, Hinge, Polygon, Rod, Vector, Weld, World
+from engine import Body, Cable, Hinge, MouseJoint, Polygon, Rod, Vector, Weld, World
 from engine.render import PAPER, Camera, draw_world, init_headless
 from engine.render.world_view import ARC, JOINT, LIMIT, RING, SQUARE, limit_arc
 
@@ -162,3 +162,16 @@ def test_a_weld_is_a_small_square_at_body_as_centre() -> None:
     for dx, dy in ((-half, 0), (half, 0), (0, -half), (0, half), (-half, -half), (half, half)):
         assert pixel(surface, cx + dx, cy + dy) == JOINT, (dx, dy)
     assert pixel(surface, cx + half + 3, cy) == PAPER
+
+
+def test_a_mouse_joint_is_drawn_from_its_held_point_to_its_target() -> None:
+    world = World()
+    box = world.add(plank(0.0, 0.0))
+    world.add_link(MouseJoint(box, (0.0, -2.0), anchor=(1.0, 0.0)))  # from (1, 0) to (0, -2)
+    surface = canvas()
+    draw_world(surface, world, CAMERA)
+    for f in (0.2, 0.5, 0.8):  # along the line from the held point to the target
+        assert pixel(surface, *CAMERA.to_px(1.0 - f, -2.0 * f)) == JOINT, f
+    surface = canvas()
+    draw_world(surface, world, CAMERA, joints=False)
+    assert pixel(surface, *CAMERA.to_px(0.5, -1.0)) == PAPER

@@ -86,9 +86,10 @@ def draw_world(
     """Draw every collider, link and body of ``world`` on ``surface`` through ``camera``.
 
     The switches are pymunk's ``DrawOptions`` flags: ``shapes`` the colliders and bodies
-    (each in its ``colour`` where it has one), ``joints`` the links, springs and joints,
-    ``contacts`` a mark at each contact open after the last step (its point, and its normal
-    as a short tick; ``world.touching``), ``bounds`` each body's and each bounded collider's
+    (each in its ``colour`` where it has one), ``joints`` the links, springs and joints (a
+    mouse joint: a line from its held point to its target), ``contacts`` a mark at each
+    contact open after the last step (its point, and its normal as a short tick;
+    ``world.touching``), ``bounds`` each body's and each bounded collider's
     axis-aligned bounding box (engine.render.world_overlays). The defaults draw what pymunk's
     ``debug_draw`` does less its contact points."""
     if shapes:
@@ -125,6 +126,10 @@ def _draw_bodies(
     for spring in getattr(world, "springs", ()) if joints else ():
         if isinstance(spring, DampedSpring):
             _draw_spring(surface, spring, camera, poses)
+    for drag in getattr(world, "mouse_joints", ()) if joints else ():
+        # A mouse joint: a line from the held point to its target.
+        held = _at(poses[id(drag.body)], drag.anchor)
+        pygame.draw.line(surface, JOINT, camera.point(held), camera.point(drag.target), 2)
     for body in world.bodies if shapes else ():
         shape = body.shape
         own = body.colour if body.colour is not None else getattr(shape, "colour", None)
