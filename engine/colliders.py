@@ -128,6 +128,7 @@ class Collider:
         "filter",
         "colour",
         "collision_type",
+        "surface_velocity",
         "_worlds",
     )
 
@@ -151,6 +152,10 @@ class Collider:
         #: Which handlers of ``World.on_collision`` take its contacts (pymunk's
         #: ``shape.collision_type``: an int >= 0, 0 by default); set it any time.
         self.collision_type = 0
+        #: How fast its surface moves along itself (length units/s, a Vector; pymunk's
+        #: ``shape.surface_velocity``): friction carries what rests on it (a conveyor belt).
+        #: Only its part along the surface counts; set it any time.
+        self.surface_velocity = Vector(0.0, 0.0)
 
     def __setattr__(self, name: str, value: Any) -> None:
         # Each public attribute is set once, when the collider is made. After that its material
@@ -164,6 +169,9 @@ class Collider:
             return
         if name == "collision_type":
             object.__setattr__(self, name, as_collision_type(value))
+            return
+        if name == "surface_velocity":
+            self._set_surface_velocity(value)
             return
         if name[0] != "_" and hasattr(self, name):
             if name not in MATERIAL:
@@ -190,6 +198,20 @@ class Collider:
             world = ref()
             if world is not None:
                 world.collider_changed(self, name)
+
+    def _set_surface_velocity(self, value: Any) -> None:
+        """Set ``surface_velocity`` (a finite Vector or pair), and tell each World that holds
+        this collider as for a material."""
+        x, y = point_of(value, "surface_velocity")
+        new = Vector(x, y)
+        old = getattr(self, "surface_velocity", None)
+        object.__setattr__(self, "surface_velocity", new)
+        if old is None or old == new:
+            return
+        for ref in self._worlds:
+            world = ref()
+            if world is not None:
+                world.collider_changed(self, "surface_velocity")
 
     def held_by(self, world: Any, held: bool) -> None:
         """A World (its state, which has ``collider_changed(collider, name)``) took this
@@ -262,6 +284,7 @@ class Collider:
             or self.sensor
             or self.filter != DEFAULT_FILTER
             or self.collision_type != 0
+            or self.surface_velocity != Vector(0.0, 0.0)
         )
 
     def _material_repr(self) -> str:

@@ -95,6 +95,9 @@ class Contacts:
         #: Pairs a pre_solve ignores for the step under way (engine.collision_handlers):
         #: sorted keys row << 32 | collider place; empty between such steps.
         self.ignored = np.zeros(0, dtype=np.int64)
+        # The colliders' surface velocities (``surface_velocities``) and the faces they were
+        # read for (a material set, a collider added or taken out makes new faces).
+        self._surface: tuple[Faces | None, np.ndarray | None] = (None, None)
 
     def set_body_filters(self, group: np.ndarray, categories: np.ndarray, mask: np.ndarray) -> None:
         """The World's bodies' filters, by row. The faces carry no filters while every
@@ -274,6 +277,15 @@ class Contacts:
         self.check_state(state, n)
         rest, inside, capped = state
         self.rest, self.inside, self.capped = rest.copy(), inside.copy(), int(capped)
+
+    def surface_velocities(self) -> np.ndarray | None:
+        """The colliders' ``surface_velocity`` (C, 2; length units/s), by place, or None when
+        every one is at rest (read again when the faces change)."""
+        faces = self.faces
+        if self._surface[0] is not faces:
+            u = np.array([tuple(c.surface_velocity) for c in self.colliders], dtype=float)
+            self._surface = (faces, u.reshape(-1, 2) if u.any() else None)
+        return self._surface[1]
 
     @property
     def filtering(self) -> bool:

@@ -270,6 +270,9 @@ def step_pile(
         pa, pb, la, lb, x0U, r, mu, e, base, fast
     )
     rows_a, rows_b = [la], [lb]
+    # Each row's collider (its place among the World's colliders), -1 between bodies: for the
+    # colliders' surface velocities.
+    owners = [np.full(len(la), -1, dtype=np.intp)]
     normals, seps = [nrm], [sep]
     fric, rest = [pair_mu], [pair_e]
     slops = [pair_slop]
@@ -285,6 +288,7 @@ def step_pile(
             ok &= contacts.allowed(U[fa], fk)  # faces a body's filter does not meet
         fa, fn, fg, fmu, fk = fa[ok], fn[ok], fg[ok], fmu[ok], fk[ok]
         rows_a.append(np.full(len(fa), nU))
+        owners.append(contacts.faces.owner[fk])
         rows_b.append(fa)
         normals.append(fn)
         seps.append(fg)
@@ -314,6 +318,7 @@ def step_pile(
         )
         m_pairs = len(ia)
         rows_a.append(local[ia])
+        owners.append(np.full(len(ia), -1, dtype=np.intp))
         rows_b.append(local[ib])
         normals.append(sn)
         seps.append(ss)
@@ -334,6 +339,7 @@ def step_pile(
             table, mine, x0, shapes, solid, margin, angle, meets, fast
         )
         rows_a.append(np.full(len(s_rows), nU))
+        owners.append(np.asarray(s_col, dtype=np.intp))
         rows_b.append(local[s_rows])
         normals.append(sn)
         seps.append(ss)
@@ -375,6 +381,8 @@ def step_pile(
         static,
     )
     slop_rows = np.concatenate(slops)
+    surface = None if contacts is None else contacts.surface_velocities()
+    slip = None if surface is None else surface_slip(surface, np.concatenate(owners), nv)
     acc = np.append(P[U, 0] + 1j * P[U, 1], 0.0)
     acc[:-1][~moves[:-1]] = 0.0
     turn = None
@@ -398,6 +406,7 @@ def step_pile(
         prior=prior,
         fast=fast,
         arms=arms,
+        slip=slip,
     )
     X, V = solver.run(
         np.append(x0U[:, 0] + 1j * x0U[:, 1], 0.0),
@@ -413,6 +422,7 @@ def step_pile(
     if not kin.any():
         # Each pile on its own: the bodies of one never change another's motion.
         group = components(nU, ra, rb, fast)
+        solved = (Vr, W)
         if turn is None:
             Vr = dissipative(Vr, v0U + P[U] * dt, store.mass[U], group, fast)
         else:
@@ -421,6 +431,14 @@ def step_pile(
             Vr, W = dissipative(
                 Vr, v0U + P[U] * dt, store.mass[U], group, fast, (W, W0, turn.moment)
             )
+        if slip is not None:
+            # A pile on a moving surface (a conveyor) gains the energy the surface gives it:
+            # its velocities stay as solved.
+            carried_on = np.zeros(nU, dtype=bool)
+            carried_on[group[rb[slip != 0.0]]] = True
+            on = carried_on[group]
+            Vr, W = Vr.copy(), W.copy()
+            Vr[on], W[on] = solved[0][on], solved[1][on]
     # A body of the pile that no row reaches (a box in flight: shapes always come here)
     # meets nothing in the step: it keeps the method's step and its free spin, bit for bit
     # (exact under the closed form, and RATTLE's for a body on joints).
@@ -508,6 +526,16 @@ def step_pile(
         out = joined_rows(joined, U, ra, rb, nv, now, sep_all, r, fr, rows.restitution,
                           solver.total, m, m_disc, m_pairs, anchors, table)  # fmt: skip
     return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried, out)
+
+
+def surface_slip(surface: np.ndarray, owners: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """Each row's surfaces' own motion (u_A - u_B).t (engine.soft, SoftStep's ``slip``; length
+    units/s) for rows whose A is the static world on collider ``owners`` (-1: a pair of
+    bodies, 0) with surface velocities ``surface`` (C, 2), and normals (R, 2) from A to B:
+    t = (-n_y, n_x), so u.t = u_y n_x - u_x n_y."""
+    u = surface[np.maximum(owners, 0)]
+    slip = u[:, 1] * normal[:, 0] - u[:, 0] * normal[:, 1]
+    return np.where(owners >= 0, slip, 0.0)
 
 
 def components(n: int, a: np.ndarray, b: np.ndarray, fast: bool = False) -> np.ndarray:

@@ -16,7 +16,8 @@ start of the step in ``substeps`` parts of h = dt / substeps, each part
    over-damped by ``damping``, the push capped at ``push_speed``), so a pile does not jitter;
 4. integrating positions: x += v h;
 5. relaxing: the same solve without the spring's push, so the push moves positions only and
-   leaves no speed behind (it adds no energy), and friction (Coulomb: |lam_t| <= mu lam_n);
+   leaves no speed behind (it adds no energy), and friction (Coulomb: |lam_t| <= mu lam_n),
+   against the slip less what the surfaces move along themselves (``slip``: a conveyor);
 
 then, once, restitution for contacts that closed faster than ``threshold``: the normal speed
 they part at is e times the one they met at. The impulses are kept for the next step.
@@ -184,6 +185,7 @@ class SoftStep:
         prior: np.ndarray | None = None,
         fast: bool = False,
         arms: Arms | None = None,
+        slip: np.ndarray | None = None,
     ) -> None:
         self.rows = rows
         self.fast = fast  # run the loop kernel (``run_rows``, compiled), not the numpy twin
@@ -205,6 +207,10 @@ class SoftStep:
         # The push out of an overlap is capped per row (length units/s).
         self.push = -np.broadcast_to(np.asarray(push_speed, dtype=float), rows.a.shape)[order]
         self.mu = rows.friction[order]
+        # (R,) the surfaces' own motion (u_A - u_B).t (length units/s): a conveyor's surface
+        # velocity u (pymunk's ``surface_velocity``) moves its side of the contact, so the
+        # slip at the contact is vt - su, which friction drives to 0 (``slip`` None: 0).
+        self.su = np.zeros(len(order)) if slip is None else slip[order]
         self.e = rows.restitution[order]
         self.wa, self.wb = w[self.a], w[self.b]
         k = self.wa + self.wb
@@ -292,7 +298,7 @@ class SoftStep:
                 self.lam, self.lam_t, self.total, h, self.substeps, self.threshold,
                 self.sep if slop is None else slop, 0 if slop is None else PROJECT_SWEEPS,
                 om, th, spin_step, self.la, self.lb, self.ka, self.kb, self.mt,
-                self.na, self.nb, self.kna, self.knb, self.mp, self.rest_sweeps,
+                self.na, self.nb, self.kna, self.knb, self.mp, self.rest_sweeps, self.su,
             )  # fmt: skip
             return self._finish(x0, dp, v)
         # Each contact's relative normal speed as the step began, for restitution.
@@ -417,10 +423,10 @@ class SoftStep:
             lt = lam_t_all[k]
             cap = self.mu[k] * new
             if om is None:
-                newt = np.minimum(np.maximum(lt - m * _across(dv, n), -cap), cap)
+                newt = np.minimum(np.maximum(lt - m * (_across(dv, n) - self.su[k]), -cap), cap)
             else:
                 # vt = (v_B - v_A).t - omega_B l_B - omega_A l_A (module text).
-                vt = _across(dv, n) - om[b] * self.lb[k] - om[a] * self.la[k]
+                vt = _across(dv, n) - om[b] * self.lb[k] - om[a] * self.la[k] - self.su[k]
                 newt = np.minimum(np.maximum(lt - self.mt[k] * vt, -cap), cap)
                 dlt = newt - lt
                 om[a] -= self.ka[k] * dlt
@@ -493,7 +499,7 @@ def _sample_rows() -> tuple[object, ...]:
     one, w = np.ones(2), np.zeros(3)
     return (c, c.copy(), c.copy(), i, np.array([0, 1]), one + 0j, f, f, f, f, f, one, one,
             f, f, f, f, f, f, f, 0.01, 1, 0.0, f, 1, w, w.copy(), w.copy(), f, f, f, f,
-            one, f, f, f, f, one, 1)  # fmt: skip
+            one, f, f, f, f, one, 1, f)  # fmt: skip
 
 
 @kernels.loop(sample=_sample_rows)
@@ -537,13 +543,14 @@ def run_rows(
     knb: np.ndarray,
     mp: np.ndarray,
     rest_sweeps: int,
+    su: np.ndarray,
 ) -> None:
     """SoftStep.run's parts, restitution and projection, in place on v, dp (complex, the
     static slot last), lam, lam_t and total, over rows in the solving order; and on the
     spins om and angles turned th (rad/s, rad; all 0 for bodies that do not turn: their
     lever arms la, lb, na, nb and ka = la i_A, kb = lb i_B, kna = na i_A, knb = nb i_B are
     0, and mt is then m). m is the normal rows' mass (with na, nb), mp the bodies' alone
-    (the projection's)."""
+    (the projection's); su the surfaces' own slip (0 at rest)."""
     rows, bodies = len(a), len(v)
     last = bodies - 1
     inv_h = 1.0 / h
@@ -625,8 +632,9 @@ def run_rows(
             om[b[k]] += knb[k] * d
             lt = lam_t[k]
             cap = mu[k] * new
-            # The slip at the contact point: vt = (v_B - v_A).t - omega_B l_B - omega_A l_A.
-            vt = (dv.imag * nr - dv.real * ni) - om[b[k]] * lb[k] - om[a[k]] * la[k]
+            # The slip at the contact point: vt = (v_B - v_A).t - omega_B l_B - omega_A l_A,
+            # less the surfaces' own (a conveyor's).
+            vt = (dv.imag * nr - dv.real * ni) - om[b[k]] * lb[k] - om[a[k]] * la[k] - su[k]
             newt = min(max(lt - mt[k] * vt, -cap), cap)
             dt_ = newt - lt
             om[a[k]] -= ka[k] * dt_

@@ -586,6 +586,25 @@ def test_shape_testSensor() -> None:
     assert Circle((0, 0), 1, sensor=True).sensor
 
 
+def test_shape_testSurfaceVelocity() -> None:
+    c = Circle((0, 0), 1)
+    assert c.surface_velocity == (0, 0)
+    c.surface_velocity = (1, 2)
+    assert c.surface_velocity == (1, 2)
+
+
+def test_shape_testCollisionType() -> None:
+    c = Circle((0, 0), 1)
+    assert c.collision_type == 0
+    c.collision_type = 1
+    assert c.collision_type == 1
+    # A body's shape takes none of its own: the Body carries it.
+    b = Body(Vector(0, 0), radius=1)
+    assert b.collision_type == 0
+    b.collision_type = 1
+    assert b.collision_type == 1
+
+
 @pytest.mark.xfail(
     strict=True,
     reason="a collider's restitution and friction default to 1.0, so that by the product "
@@ -970,15 +989,18 @@ MISSING: dict[str, str] = {
     "test_space.testReindexStatic": "as testReindexShapesForBody: no static body to move",
     "test_space.testReindexStaticCollision": "colliders are fixed values; a segment's ends "
     "are not changed in place (remove it and add the new one)",
-    "test_space.testCollisionHandlerPreSolve": "no pre_solve: impacts are solved at their "
-    "exact moment inside the step, with no point to call Python at; a Filter turns pairs off "
-    "and materials set e and mu",
+    "test_space.testCollisionHandlerPreSolve": "its pre_solve is between two bodies, which "
+    "take none yet: World.on_collision asks a pre_solve for a body and a collider, before "
+    "the step (impacts are solved at their exact moment inside it, with no point to call "
+    "Python at), and a False ignores the pair for that step",
     "test_space.testCollisionHandlerRemoveAfterSeparate": "it checks pymunk's order of "
     "callbacks inside a step; ours are all called after the step: begin, end, post_solve",
-    "test_space.testCollisionHandlerOrder": "no collision types: a handler is given for one "
-    "body or collider (World.on_contact), or reads World.began for all",
-    "test_space.testSameTypeCollisionHandler": "no collision types (as testCollisionHandlerOrder)",
-    "test_space.testWildcardCollisionHandler": "no collision types (as testCollisionHandlerOrder)",
+    "test_space.testCollisionHandlerOrder": "it checks the order of pymunk's callbacks within "
+    "its step, with pre_solve between two bodies: World.on_collision calls begin, separate "
+    "and post_solve after the step, and two bodies take no pre_solve yet",
+    "test_space.testSameTypeCollisionHandler": "as testCollisionHandlerOrder",
+    "test_space.testWildcardCollisionHandler": "its pre_solve is between two bodies (as "
+    "testCollisionHandlerPreSolve); on_collision(None, 1) is taken here, as (1, None)",
     "test_space.testPicklePymunkVersionCheck": "a pickled World or snapshot carries no version "
     "to check",
     "test_space.test_each_phase_keeps_its_data": "handlers take no data argument: a handler is "
@@ -998,9 +1020,6 @@ MISSING: dict[str, str] = {
     "test_shape.testNoBody": "a collider belongs to no body: it is a static shape of the World",
     "test_shape.testRemoveBody": "as testNoBody",
     "test_shape.testSwitchBody": "as testNoBody",
-    "test_shape.testSurfaceVelocity": "no surface velocity (a conveyor belt): move a kinematic "
-    "body instead",
-    "test_shape.testCollisionType": "no collision types (as test_space.testCollisionHandlerOrder)",
     "test_shape.testSpace": "a collider does not know its World (it may be in several)",
     "test_shape.testShapesCollide": "World.shape_query measures a shape's overlaps",
     "test_circle.testCircleNoBody": "no transforms: a collider is placed where it is made",
@@ -1014,13 +1033,17 @@ MISSING: dict[str, str] = {
     "body's shape: writing its vertices or radius raises an AttributeError that says to take "
     "it out and add a new one (as test_circle.testOffsetUnsafe)",
     "test_poly.testRadiusUnsafe": "as testVerticesUnsafe",
-    "test_arbiter.testSurfaceVelocity": "as test_shape.testSurfaceVelocity",
-    "test_arbiter.testContactPointSet": "no pre_solve to read or change a contact's points in; "
-    "its normal is checked by test_arbiter_contact_normal_of_testContactPointSet",
+    "test_arbiter.testSurfaceVelocity": "it reads an arbiter's surface velocity between two "
+    "bodies in a pre_solve: bodies have none here (a collider's surface_velocity carries what "
+    "rests on it: tests/test_surface_velocity.py)",
+    "test_arbiter.testContactPointSet": "no contact points to change in a pre_solve (it sees "
+    "the nearest point and normal before the step); the normal is checked by "
+    "test_arbiter_contact_normal_of_testContactPointSet",
     "test_arbiter.testTotalKE": "no kinetic energy lost per contact; World.energy() gives the "
     "whole",
-    "test_arbiter.testProcessCollision": "no pre_solve (as "
-    "test_space.testCollisionHandlerPreSolve)",
+    "test_arbiter.testProcessCollision": "it cancels in begin and pre_solve between two "
+    "bodies, within pymunk's step: here begin comes after the step and a pre_solve's False "
+    "ignores a body and a collider for one step (tests/test_collision_handlers.py)",
 }
 
 
