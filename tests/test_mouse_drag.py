@@ -3,15 +3,16 @@ engine.render.play): synthetic pygame events on the dummy video driver, a virtua
 
 from __future__ import annotations
 
+from types import SimpleNamespace
 from typing import Any
 
 import pygame
 import pytest
 
 from demos.crates import CratesScene
-from engine import Vector
+from engine import Body, Vector, World
 from engine.loop import VirtualClock
-from engine.render import init_headless, recorder
+from engine.render import Camera, init_headless, recorder
 from engine.render.mouse_drag import MouseDrag
 
 
@@ -78,3 +79,14 @@ def test_a_drag_ends_with_the_world_it_was_in_and_ignores_kinematic_bodies() -> 
     move = pygame.event.Event(pygame.MOUSEMOTION, pos=(10, 10))
     assert not drag.handle(move, scene) and drag.joint is None
     assert old.mouse_joints != () and scene.world.mouse_joints == ()
+
+
+def test_a_press_in_a_world_on_the_closed_form_drags_nothing() -> None:
+    """integrator="exact" takes no mouse joint: the press picks nothing, and nothing fails."""
+    init_headless()
+    world = World(integrator="exact")
+    ball = world.add(Body(Vector(1.0, 1.0), radius=0.5))
+    scene = SimpleNamespace(world=world, camera=Camera(50.0, (100.0, 200.0)))
+    press = pygame.event.Event(pygame.MOUSEBUTTONDOWN, pos=scene.camera.to_px(*ball.pos), button=1)
+    drag = MouseDrag()
+    assert not drag.handle(press, scene) and drag.joint is None and world.mouse_joints == ()

@@ -6,8 +6,9 @@ body's point under the pointer by a MouseJoint of ``hertz`` and ``damping_ratio`
 at most ``strength`` times the body's mass (N; Box2D's samples take 1000 m), its spin damped by
 ``angular_damping`` (1/s; 2: halved in 0.35 s, so a body held by a corner soon hangs still);
 moving the mouse moves the joint's target; letting go takes the joint out. Kinematic bodies,
-colliders and scenes whose ``world`` is not an engine World (or a wrapper with one as its
-``world``) are left alone. :func:`engine.render.play` hands every event to one of these.
+colliders, scenes whose ``world`` is not an engine World (or a wrapper with one as its
+``world``) and Worlds that take no mouse joint (``integrator="exact"``) are left alone.
+:func:`engine.render.play` hands every event to one of these.
 """
 
 from __future__ import annotations
@@ -89,16 +90,18 @@ class MouseDrag:
         for hit in world.point_query(point, reach):
             body = hit.shape
             if isinstance(body, Body) and not body.kinematic:
-                self.joint = world.add_link(
-                    MouseJoint(
-                        body,
-                        point,
-                        hertz=self.hertz,
-                        damping_ratio=self.damping_ratio,
-                        max_force=self.strength * body.mass,
-                        angular_damping=self.angular_damping,
-                    )
+                joint = MouseJoint(
+                    body,
+                    point,
+                    hertz=self.hertz,
+                    damping_ratio=self.damping_ratio,
+                    max_force=self.strength * body.mass,
+                    angular_damping=self.angular_damping,
                 )
+                try:
+                    self.joint = world.add_link(joint)
+                except ValueError:
+                    return False  # a World that takes none (integrator="exact"): no drag
                 self._world = world
                 return True
         return False
