@@ -120,18 +120,17 @@ def report(state: WorldState) -> None:
                 getattr(h, name)(ev.flipped() if flip else ev)
 
 
-def ignored_pairs(state: WorldState, dt: float) -> np.ndarray:
+def ignored_pairs(state: WorldState, dt: float) -> tuple[np.ndarray, np.ndarray]:
     """Call the pre_solve callbacks for the step of ``dt`` (s) about to be taken; return the
-    pairs whose callback returned False, (K, 2) of (body row, collider place), to be
-    filtered for the step."""
+    pairs whose callback returned False, to be filtered for the step: (K, 2) of (body row,
+    collider place), and the pairs of bodies as sorted keys a * n + b (World rows a < b, n
+    bodies; as ``Collisions.apart``)."""
     handlers = [h for h in state.collision_handlers if h.pre_solve is not None]
-    store, contacts = state.store, state.contacts
+    store = state.store
     none = np.zeros((0, 2), dtype=np.int64)
-    if not handlers or store is None or contacts is None or store.dim != 2:
-        return none
-    colliders = contacts.colliders
-    bodies = state.bodies
-    types = np.array([b.collision_type for b in bodies], dtype=np.int64)
+    keys = np.zeros(0, dtype=np.int64)
+    if not handlers or store is None or store.dim != 2 or not len(state.bodies):
+        return none, keys
     x, v, r = store.x, store.v, store.radius
     # What a body may move in the step, with a margin: |v| dt + |a| dt^2 (twice the
     # parabola's a dt^2 / 2, for the forces the constant part a0 of the model leaves out),
@@ -141,32 +140,87 @@ def ignored_pairs(state: WorldState, dt: float) -> np.ndarray:
     accel = np.hypot(a0[:, 0], a0[:, 1]) if a0 is not None and a0.shape == x.shape else 0.0
     speed = np.hypot(v[:, 0], v[:, 1])
     reach = speed * dt + accel * dt * dt + r + 1e-9
+    types = [b.collision_type for b in state.bodies]
+    faces = _with_colliders(state, handlers, types, reach)
+    if state.pairs_on:
+        keys = _between_bodies(state, handlers, types, reach)
+    return faces, keys
+
+
+def _event(body: Any, other: Any, point: Any, normal: Any, t: float) -> ContactEvent:
+    """A pre_solve's event: no impulse yet, at the step's start."""
+    return ContactEvent(
+        body,
+        other,
+        Vector(float(point[0]), float(point[1])),
+        Vector(float(normal[0]), float(normal[1])),
+        Vector(0.0, 0.0),
+        t,
+    )
+
+
+def _with_colliders(
+    state: WorldState, handlers: list[CollisionHandler], types: list[int], reach: np.ndarray
+) -> np.ndarray:
+    """The (body row, collider place) pairs a pre_solve refuses (``ignored_pairs``)."""
+    store, contacts = state.store, state.contacts
     out: list[tuple[int, int]] = []
-    t = state.t
-    for k, c in enumerate(colliders):
+    if contacts is None or store is None:
+        return np.zeros((0, 2), dtype=np.int64)
+    x, r, bodies, t = store.x, store.radius, state.bodies, state.t
+    for k, c in enumerate(contacts.colliders):
         if c.sensor:
             continue
         ct = c.collision_type
         for h in handlers:
-            rows = np.array(
-                [i for i, bt in enumerate(types.tolist()) if h.side(bt, ct) != 0], dtype=np.intp
-            )
+            rows = np.array([i for i, bt in enumerate(types) if h.side(bt, ct)], dtype=np.intp)
             if not len(rows):
                 continue
             gap = signed_distance(c, x[rows]) - r[rows]
             for i in rows[gap <= reach[rows]].tolist():
                 point, normal, _ = c.closest((float(x[i, 0]), float(x[i, 1])))
-                ev = ContactEvent(
-                    bodies[i],
-                    c,
-                    Vector(float(point[0]), float(point[1])),
-                    Vector(float(normal[0]), float(normal[1])),
-                    Vector(0.0, 0.0),
-                    t,
-                )
                 assert h.pre_solve is not None
-                if h.pre_solve(ev) is False:
+                if h.pre_solve(_event(bodies[i], c, point, normal, t)) is False:
                     out.append((i, k))
     if not out:
-        return none
+        return np.zeros((0, 2), dtype=np.int64)
     return np.unique(np.array(out, dtype=np.int64), axis=0)
+
+
+def _between_bodies(
+    state: WorldState, handlers: list[CollisionHandler], types: list[int], reach: np.ndarray
+) -> np.ndarray:
+    """The pairs of bodies a pre_solve refuses, as keys a * n + b (``ignored_pairs``): pairs
+    of the handler's types whose bounding circles are within their reaches of each other,
+    each asked once a handler, from the ``type_a`` side; the point is on the other body's
+    bounding circle, the normal from its centre toward the body's."""
+    store = state.store
+    assert store is not None
+    x, r, bodies, t = store.x, store.radius, state.bodies, state.t
+    n = len(bodies)
+    out: list[int] = []
+    typed = np.array(types, dtype=np.int64)
+    solid = r > 0.0  # (points never collide)
+    for h in handlers:
+        first = solid & (typed == h.a) if h.a is not None else solid
+        second = solid & (typed == h.b) if h.b is not None else solid
+        ia, ib = np.flatnonzero(first), np.flatnonzero(second)
+        if not len(ia) or not len(ib):
+            continue
+        d = x[ia][:, None, :] - x[ib][None, :, :]
+        gap = np.hypot(d[..., 0], d[..., 1]) - r[ia][:, None] - r[ib][None, :]
+        near = (gap <= reach[ia][:, None] + reach[ib][None, :]) & (ia[:, None] != ib[None, :])
+        seen: set[tuple[int, int]] = set()
+        for p, q in zip(*np.nonzero(near), strict=True):
+            i, j = int(ia[p]), int(ib[q])  # i of type a, j of type b
+            if (min(i, j), max(i, j)) in seen:
+                continue  # both of both types: asked once
+            seen.add((min(i, j), max(i, j)))
+            dx, dy = float(x[i, 0] - x[j, 0]), float(x[i, 1] - x[j, 1])
+            dist = float(np.hypot(dx, dy))
+            nx, ny = (dx / dist, dy / dist) if dist > 0.0 else (0.0, 1.0)
+            point = (float(x[j, 0]) + nx * float(r[j]), float(x[j, 1]) + ny * float(r[j]))
+            assert h.pre_solve is not None
+            if h.pre_solve(_event(bodies[i], bodies[j], point, (nx, ny), t)) is False:
+                out.append(min(i, j) * n + max(i, j))
+    return np.unique(np.array(out, dtype=np.int64))

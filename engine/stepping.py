@@ -106,19 +106,25 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
     if state.bodies and affine and after is None and plain:
         if state.prepare_affine(dt, model, name):
             return True
-    presolved = bool(state.collision_handlers) and state.contacts is not None
-    if presolved and state.bodies:
+    apart = None
+    if state.collision_handlers and state.bodies:
         # The pre_solve callbacks, before anything moves: the pairs they ignore are filtered
-        # for this step (engine.collision_handlers).
-        assert state.contacts is not None
-        state.contacts.set_ignored(collision_handlers.ignored_pairs(state, dt))
+        # for this step (engine.collision_handlers): with colliders by the contacts, pairs of
+        # bodies as a joint's are (Collisions.apart).
+        faces, pairs = collision_handlers.ignored_pairs(state, dt)
+        if state.contacts is not None:
+            state.contacts.set_ignored(faces)
+        if len(pairs):
+            apart = state.collisions.apart
+            state.collisions.apart = np.union1d(apart, pairs)
     if state.bodies:
         _step_general(state, dt, name, step, model)
     else:
         _quiet(state)  # nothing moved: no solver reports anything
-    if presolved:
-        assert state.contacts is not None
+    if state.collision_handlers and state.contacts is not None:
         state.contacts.set_ignored(np.zeros((0, 2), dtype=np.int64))
+    if apart is not None:
+        state.collisions.apart = apart
     count.n += 1
     if store is not None and store.pushes:
         store.release_pushes()  # Body.apply_force lasts one step, as pymunk's force does

@@ -306,10 +306,10 @@ class World:
         ``type_a`` and one of ``type_b`` (None: any type), pymunk's ``Space.on_collision``.
 
         ``begin``, ``separate`` and ``post_solve`` come after each step with the contacts that
-        began, ended, or are open after it; ``pre_solve`` before each step for each body
-        within reach of a collider of the pair's types, and a False from it ignores that
-        contact for the step (a one-way platform). engine.collision_handlers says which way
-        round each event comes. Returns a function that takes the handler off again.
+        began, ended, or are open after it; ``pre_solve`` before each step for each pair of
+        the types within reach of each other, and a False from it ignores that contact for
+        the step (a one-way platform). engine.collision_handlers says which way round each
+        event comes. Returns a function that takes the handler off again.
         """
         handler = collision_handlers.CollisionHandler(
             type_a, type_b, begin, pre_solve, post_solve, separate

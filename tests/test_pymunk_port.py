@@ -322,6 +322,19 @@ def test_space_testCollisionHandlerBegin() -> None:
     assert len(hits) == 1 and hits[0].collider is b2
 
 
+def test_space_testCollisionHandlerPreSolve() -> None:
+    # pymunk's handler (0, 1) sees the type-0 shape first: here, the type-0 body as
+    # event.body; it is asked before the step, at its start.
+    w = World()
+    b1 = w.add(Body(Vector(0, 0), radius=10, collision_type=1))
+    b2 = w.add(Body(Vector(19, 0), radius=10))
+    seen: list[ContactEvent] = []
+    w.on_collision(0, 1, pre_solve=seen.append)
+    w.step(0.1)
+    assert len(seen) == 1 and seen[0].body is b2 and seen[0].collider is b1
+    assert seen[0].time == 0.0
+
+
 def test_space_testCollisionHandlerPostSolve() -> None:
     w, b1, b2 = set_up()
     seen: list[ContactEvent] = []
@@ -989,18 +1002,15 @@ MISSING: dict[str, str] = {
     "test_space.testReindexStatic": "as testReindexShapesForBody: no static body to move",
     "test_space.testReindexStaticCollision": "colliders are fixed values; a segment's ends "
     "are not changed in place (remove it and add the new one)",
-    "test_space.testCollisionHandlerPreSolve": "its pre_solve is between two bodies, which "
-    "take none yet: World.on_collision asks a pre_solve for a body and a collider, before "
-    "the step (impacts are solved at their exact moment inside it, with no point to call "
-    "Python at), and a False ignores the pair for that step",
     "test_space.testCollisionHandlerRemoveAfterSeparate": "it checks pymunk's order of "
     "callbacks inside a step; ours are all called after the step: begin, end, post_solve",
     "test_space.testCollisionHandlerOrder": "it checks the order of pymunk's callbacks within "
-    "its step, with pre_solve between two bodies: World.on_collision calls begin, separate "
-    "and post_solve after the step, and two bodies take no pre_solve yet",
+    "its step: World.on_collision asks pre_solve before the step (impacts are solved at "
+    "their exact moment inside it, with no point to call Python at) and calls begin, "
+    "separate and post_solve after it",
     "test_space.testSameTypeCollisionHandler": "as testCollisionHandlerOrder",
-    "test_space.testWildcardCollisionHandler": "its pre_solve is between two bodies (as "
-    "testCollisionHandlerPreSolve); on_collision(None, 1) is taken here, as (1, None)",
+    "test_space.testWildcardCollisionHandler": "pymunk refuses on_collision(None, 1) (an "
+    "AssertionError); here it is taken, as (1, None)",
     "test_space.testPicklePymunkVersionCheck": "a pickled World or snapshot carries no version "
     "to check",
     "test_space.test_each_phase_keeps_its_data": "handlers take no data argument: a handler is "
@@ -1041,9 +1051,9 @@ MISSING: dict[str, str] = {
     "test_arbiter_contact_normal_of_testContactPointSet",
     "test_arbiter.testTotalKE": "no kinetic energy lost per contact; World.energy() gives the "
     "whole",
-    "test_arbiter.testProcessCollision": "it cancels in begin and pre_solve between two "
-    "bodies, within pymunk's step: here begin comes after the step and a pre_solve's False "
-    "ignores a body and a collider for one step (tests/test_collision_handlers.py)",
+    "test_arbiter.testProcessCollision": "it cancels in begin and in pre_solve, in pymunk's "
+    "order of calls within its step: here begin comes after the step, and a pre_solve's "
+    "False ignores the pair for one step (tests/test_collision_handlers.py)",
 }
 
 
