@@ -94,6 +94,20 @@ class WorldLike(Protocol):
         ...
 
 
+#: A sensor body's filter for the contacts: in no category, meeting none (engine.filters).
+NO_CONTACT = Filter(categories=0, mask=0)
+
+
+def _sensor_flag(value: Any) -> bool:
+    """``value`` if it is True or False; else a TypeError that says what ``sensor`` is."""
+    if not isinstance(value, bool):
+        raise TypeError(
+            f"sensor must be True (the body pushes nothing; its overlaps are reported) or "
+            f"False, got {type(value).__name__} {value!r}"
+        )
+    return value
+
+
 class Body:
     """A particle: position (m), velocity (m/s), acceleration (m/s^2) and mass (kg).
 
@@ -149,6 +163,7 @@ class Body:
         "_torque",
         "_colour",
         "_ctype",
+        "_sensor",
         "data",
     )
 
@@ -173,6 +188,7 @@ class Body:
         data: Any = None,
         colour: Any = None,
         collision_type: int = 0,
+        sensor: bool = False,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -227,6 +243,7 @@ class Body:
         self.data: Any = data
         self._colour = as_colour(colour)
         self._ctype = as_collision_type(collision_type)
+        self._sensor = _sensor_flag(sensor)
 
     def _take_rotation(self, angle: Any, omega: Any, moment: Any, fixed: Any, torque: Any) -> None:
         """Check and keep the rotation arguments (engine.rotation says what they mean)."""
@@ -583,7 +600,28 @@ class Body:
     def filter(self, value: Any) -> None:
         self._filter = as_filter(value)
         if self._store is not None:
-            self._store.set_material(self._slot, self._e, self._mu, self._filter)
+            self._store.set_material(self._slot, self._e, self._mu, self.solid_filter)
+
+    @property
+    def sensor(self) -> bool:
+        """A sensor body pushes nothing and nothing pushes it (pymunk's ``shape.sensor``): the
+        World reports the bodies and colliders it overlaps, by its shape, at the end of each
+        step (``World.began``, ``World.on_contact``; its filter says which it senses). A
+        player's feet sensor is a kinematic sensor body the game moves with the player. Set
+        it any time: the next step takes it."""
+        return self._sensor
+
+    @sensor.setter
+    def sensor(self, value: Any) -> None:
+        self._sensor = _sensor_flag(value)
+        if self._store is not None:
+            self._store.set_material(self._slot, self._e, self._mu, self.solid_filter)
+
+    @property
+    def solid_filter(self) -> Filter:
+        """The filter the contacts use: ``filter``, or for a sensor one that meets nothing
+        (categories and mask 0), so that it passes through everything."""
+        return NO_CONTACT if self._sensor else self._filter
 
     @property
     def collision_type(self) -> int:

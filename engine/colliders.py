@@ -273,7 +273,7 @@ class Collider:
                 f"{self!r} as a body's shape: a body's restitution, friction, filter and "
                 f"collision_type are the Body's, e.g. Body(..., "
                 f"shape={type(self).__name__}(...), friction=0.2, collision_type=1); "
-                f"give the shape its geometry only (a sensor on a body is not supported yet)"
+                f"give the shape its geometry only (a sensor body: Body(..., sensor=True))"
             )
 
     def material_given(self) -> bool:

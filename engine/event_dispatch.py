@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .body import Body
+from .body_sensors import sensed
 from .colliders import Collider
 from .contacts import signed_distance
 from .events import (
@@ -110,6 +111,13 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
             resting = np.concatenate(
                 [resting, pair_keys(slots[touching // n], slots[touching % n])]
             )
+    # What the sensor bodies overlap now (engine.body_sensors), kept open as a sensor's is.
+    named = None
+    if contacts is not None:
+        named = np.array([events.serial(c) for c in contacts.colliders], dtype=np.int64)
+    felt = sensed(state, slots, named)
+    if len(felt):
+        sensing = np.concatenate([sensing, felt])
     events.ledger.settle(t0, t_end, raw, resting, sensing, partial(gaps, state))
 
 

@@ -72,9 +72,9 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
             np.array([b.friction for b in batch], dtype=float),
         ),
         (
-            np.array([b.filter.group for b in batch], dtype=np.int64),
-            np.array([b.filter.categories for b in batch], dtype=np.int64),
-            np.array([b.filter.mask for b in batch], dtype=np.int64),
+            np.array([b.solid_filter.group for b in batch], dtype=np.int64),
+            np.array([b.solid_filter.categories for b in batch], dtype=np.int64),
+            np.array([b.solid_filter.mask for b in batch], dtype=np.int64),
         ),
         np.array([b.kinematic for b in batch], dtype=bool),
         [b.shape for b in batch],

@@ -23,7 +23,7 @@ from .faces import signed_distance
 from .manifold import Kind, collide, static_shapes
 from .shaped import ShapeTable
 
-__all__ = ["sense"]
+__all__ = ["sense", "shape_overlaps"]
 
 
 def sense(
@@ -62,7 +62,7 @@ def sense(
         if shapes is not None and not isinstance(c, Box):
             for i in np.flatnonzero(now & shapes.shaped).tolist():
                 q = 0.0 if angle is None else float(angle[i])
-                now[i] = _overlaps(shapes.kinds(np.array([i])), x1[i], q, c)
+                now[i] = shape_overlaps(shapes.kinds(np.array([i])), x1[i], q, c)
         was = inside[:, s]
         for where, rows in (
             (began, np.flatnonzero(now & ~was)),
@@ -87,7 +87,7 @@ def sense(
         inside[:, s] = now
 
 
-def _overlaps(body: Kind, x: np.ndarray, angle: float, sensor: Collider) -> bool:
+def shape_overlaps(body: Kind, x: np.ndarray, angle: float, sensor: Collider) -> bool:
     """Whether a body's shape (``body``, one row) at ``x`` turned by ``angle`` (rad) overlaps
     ``sensor`` (not a Box): some point of their manifold, made with no margin, has a negative
     separation."""

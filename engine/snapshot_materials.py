@@ -104,6 +104,8 @@ def set_bodies(state: WorldState, values: list[BodyMaterial]) -> None:
         return
     store.restitution = np.array([e for e, _, _ in values], dtype=float)
     store.friction = np.array([mu for _, mu, _ in values], dtype=float)
-    store.group = np.array([f.group for _, _, f in values], dtype=np.int64)
-    store.categories = np.array([f.categories for _, _, f in values], dtype=np.int64)
-    store.mask = np.array([f.mask for _, _, f in values], dtype=np.int64)
+    # (A sensor body's contacts meet nothing, whatever its filter: Body.solid_filter.)
+    solid = [b.solid_filter for b in state.bodies]
+    store.group = np.array([f.group for f in solid], dtype=np.int64)
+    store.categories = np.array([f.categories for f in solid], dtype=np.int64)
+    store.mask = np.array([f.mask for f in solid], dtype=np.int64)

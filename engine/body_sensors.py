@@ -1,0 +1,98 @@
+"""Sensor bodies: what each overlaps at the end of a step (a player's feet sensor).
+
+A Body made with ``sensor=True`` meets nothing in the contacts (its contacts' filter is one
+that meets nothing: ``Body.solid_filter``), so it passes through everything and pushes
+nothing. At the end of each step the World finds what it overlaps, as a sensor collider's
+overlaps are found (engine.sensors), and the contact events keep each overlap open exactly
+while it lasts (engine.events: the ``sensing`` keys), so ``World.began``, ``World.ended``,
+``World.on_contact`` and ``World.on_collision`` report them:
+
+* another body (not a sensor, radius > 0) whose filter and the sensor's collide
+  (``Filter.collides``), overlapping it: the distance of their centres less than the sum of
+  their radii, and where either has a shape other than a disc, a point of their manifold
+  made with no margin of negative separation (engine.manifold), each turned by its angle;
+* a solid collider whose filter and the sensor's collide, overlapping it: the gap of the
+  sensor's centre from the collider's surface less than its radius, and for a sensor with a
+  shape, by its shape (engine.sensors, ``shape_overlaps``; a Box room by the bounding
+  circle).
+
+It costs a pass over the sensor bodies (few: a player's feet) against every body's bounding
+circle and every collider, in numpy.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .colliders import Box
+from .events import collider_keys, pair_keys
+from .faces import signed_distance
+from .manifold import collide
+from .sensors import shape_overlaps
+
+if TYPE_CHECKING:
+    from .world_state import WorldState
+
+__all__ = ["sensed"]
+
+
+def sensed(state: WorldState, slots: np.ndarray, serials: np.ndarray | None) -> np.ndarray:
+    """The contact keys (engine.events) of what each sensor body overlaps now: with other
+    bodies (``pair_keys``) and with colliders (``collider_keys``, by ``serials``, the
+    colliders' serial numbers in the World's order; None: no colliders). ``slots``: the
+    bodies' slots by row."""
+    store = state.store
+    none = np.zeros(0, dtype=np.int64)
+    if store is None or store.dim != 2:
+        return none
+    # A sensor's contacts meet nothing: categories and mask 0 (few bodies have both).
+    maybe = np.flatnonzero((store.categories == 0) & (store.mask == 0))
+    bodies = state.bodies
+    rows = [int(i) for i in maybe if bodies[i].sensor]
+    if not rows:
+        return none
+    x, r = store.x, store.radius
+    angle = store.angle
+    table = state.collisions.shape_table(store)
+    found: list[np.ndarray] = []
+    others = np.array([not b.sensor for b in bodies]) & (r > 0.0)
+    contacts = state.contacts
+    for s in rows:
+        mine = bodies[s].filter
+        d = x - x[s]
+        near = others & (np.hypot(d[:, 0], d[:, 1]) < r + r[s])
+        near[s] = False
+        hits = []
+        for j in np.flatnonzero(near).tolist():
+            if not mine.collides(bodies[j].filter):
+                continue
+            if table.shaped[s] or table.shaped[j]:
+                m = collide(
+                    table.kinds(np.array([s])),
+                    x[s : s + 1],
+                    angle[s : s + 1],
+                    table.kinds(np.array([j])),
+                    x[j : j + 1],
+                    angle[j : j + 1],
+                    0.0,
+                )
+                n = int(m.count[0])
+                if not (n and float(m.separation[0, :n].min()) < 0.0):
+                    continue
+            hits.append(j)
+        if hits:
+            found.append(pair_keys(np.full(len(hits), slots[s]), slots[np.array(hits)]))
+        if contacts is None or serials is None:
+            continue
+        for k, c in enumerate(contacts.colliders):
+            if c.sensor or not mine.collides(c.filter):
+                continue
+            if float(signed_distance(c, x[s : s + 1])[0]) >= r[s]:
+                continue
+            if table.shaped[s] and not isinstance(c, Box):
+                if not shape_overlaps(table.kinds(np.array([s])), x[s], float(angle[s]), c):
+                    continue
+            found.append(collider_keys(np.array([slots[s]]), serials[[k]]))
+    return np.concatenate(found) if found else none
