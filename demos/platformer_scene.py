@@ -323,11 +323,16 @@ class Platformer:
         """The World's step."""
         self.world.step(dt)
 
+    def take_touched(self) -> list[int]:
+        """The coins (indices into ``COINS``) whose sensors reported the player since the last
+        call, in order (a coin touched twice is listed twice); the list is emptied."""
+        touched, self._touched = self._touched, []
+        return touched
+
     def collect(self) -> None:
         """After the World's step: each coin whose sensor reported the player is counted (once)
         and taken out of the World."""
-        touched, self._touched = self._touched, []
-        for index in touched:
+        for index in self.take_touched():
             if index not in self.collected:
                 self.collected.append(index)
                 self.world.remove_collider(self.coins[index])

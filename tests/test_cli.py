@@ -341,16 +341,10 @@ def _rec() -> object:
 
 def test_the_games_and_the_charts_help_lists_only_what_they_take(capsys) -> None:
     assert _listed("tradeoff", capsys) == ["--size", "--out", "--overwrite", "--quick"]
+    game = ["--fps", "--seconds", "--size", "--out", "--overwrite", "--window"]
     for name in ("breakout", "crumb", "pinball"):
-        assert _listed(name, capsys) == [
-            "--fps",
-            "--seconds",
-            "--size",
-            "--out",
-            "--overwrite",
-            "--window",
-            "--seed",
-        ], name
+        assert _listed(name, capsys) == [*game, "--seed"], name
+    assert _listed("platformer", capsys) == game  # no dice: no --seed
     assert "--strobe" not in _listed("car", capsys)  # none of its scenes has a motion diagram
     assert "--strobe" in _listed("bounce", capsys)  # two of its three scenes have one
 
