@@ -353,19 +353,21 @@ class Collisions:
         dt: float,
         store: Any,
         held: np.ndarray | None = None,
+        carried: np.ndarray | None = None,
     ) -> np.ndarray | None:
         """Find the step's pairs and which bodies the pile's soft step takes (module text):
         their mask (N,), or None. Called before the static contacts, which leave those
         bodies to the soft step (it steps them again from the step's start). ``held`` (N,):
         bodies resting on a collider at the start (it bears their weight: a ball landing on
-        one resting on a peg presses it into the peg, as into a pile)."""
+        one resting on a peg presses it into the peg, as into a pile); ``carried`` (N,) or
+        None: bodies the soft step takes whatever they touch (near a moving surface)."""
         self._plan = None
         n = len(x1)
         if len(self.still) != n:
             self.wake(n)
         live = self._prepare(store.radius, store.group, store.categories, store.mask)
         shaped = self._shapes(store).shaped
-        if (len(live) < 2 or self._one_group) and not shaped.any():
+        if (len(live) < 2 or self._one_group) and not shaped.any() and carried is None:
             return None
         if self.asleep.any():
             x1, v1 = x1.copy(), v1.copy()
@@ -412,6 +414,8 @@ class Collisions:
                 seed = rest_seeds(a, b, x0, v0, A, Ah, r, dt, loaded)
                 island[a[seed]] = island[b[seed]] = True
                 island = self._grow(island, a, b, x0, v0, A, dt, store)
+        if carried is not None:
+            island |= carried
         island &= ~self.asleep  # (a sleeper beside a pile was woken above, or stays put)
         a, b = struck(a, b, island, dt, store, self._search, self._has_kin, self._plain, self.fast)
         self._plan = (a, b, island)

@@ -287,6 +287,24 @@ class Contacts:
             self._surface = (faces, u.reshape(-1, 2) if u.any() else None)
         return self._surface[1]
 
+    def near_moving(self, store: Any, pull: np.ndarray, dt: float) -> np.ndarray | None:
+        """(N,) bool: the bodies (radius > 0, not kinematic) within reach this step of a
+        collider whose surface moves (``surface_velocities``), as the pile's faces are
+        reached (0.05 r + |v| dt + |a| dt^2); None when no surface moves or none is near."""
+        surface = self.surface_velocities()
+        if surface is None or not len(store.radius):
+            return None
+        x, r = store.x, store.radius
+        speed = np.hypot(store.v[:, 0], store.v[:, 1]) + np.hypot(pull[:, 0], pull[:, 1]) * dt
+        reach = 0.05 * r + speed * dt
+        near = np.zeros(len(r), dtype=bool)
+        for k in np.flatnonzero(surface.any(axis=1)).tolist():
+            c = self.colliders[k]
+            if not c.sensor:
+                near |= signed_distance(c, x) - r <= reach
+        near &= (r > 0.0) & ~store.kinematic
+        return near if near.any() else None
+
     @property
     def filtering(self) -> bool:
         """Whether some body may not meet some face this step (``allowed`` is not all True):

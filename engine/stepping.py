@@ -59,7 +59,10 @@ def plan(state: WorldState, dt: float, model: ForceModel, name: str) -> Plan:
     state.pairs_on = (
         st is not None
         and st.dim == 2
-        and state.collisions.active(st.radius, st.group, st.categories, st.mask, st.shapes)
+        and (
+            state.collisions.active(st.radius, st.group, st.categories, st.mask, st.shapes)
+            or (state.contacts is not None and state.contacts.surface_velocities() is not None)
+        )
     )
     affine = (
         name in EULERS
@@ -393,7 +396,10 @@ def _step_once(
         # Which bodies are in a pile (engine.collisions): the soft step takes them, from
         # the start of the step; the static contacts leave them to it.
         held = None if contacts is None else contacts.rest >= 0
-        pile = pairs.plan(store.x, store.v, x1, v1, pull, dt, store, held)
+        # Bodies within reach of a moving surface (a conveyor) are the soft step's too: its
+        # rows carry the surface's velocity (engine.soft, ``slip``).
+        carried = None if contacts is None else contacts.near_moving(store, pull, dt)
+        pile = pairs.plan(store.x, store.v, x1, v1, pull, dt, store, held, carried)
         if pile is not None:
             frozen = pile if frozen is None else frozen | pile
             if contacts is not None:

@@ -95,3 +95,24 @@ def test_a_box_that_tips_on_a_conveyor_moves_alike_on_both_paths() -> None:
         ends.append((box.pos, box.vel, box.angle, box.angular_velocity))
     assert ends[0] == ends[1]
     assert ends[0][2] != 0.0 and ends[0][1].x > 0  # it turned, and the belt carries it
+
+
+@pytest.mark.parametrize("kernels", ["numpy", "fast"])
+def test_a_ball_on_a_conveyor_rolls_at_a_third_of_its_speed(kernels: str) -> None:
+    # A disc (I = m r^2 / 2) set on the belt: friction mu m g pushes it along, v = mu g t,
+    # and spins it up, omega r = 2 mu g t, so the slip at its foot v + omega r - u closes at
+    # 3 mu g and ends at t = u / (3 mu g) = 0.136 s; then it rolls with the belt's surface:
+    # v = u / 3, omega = 2 u / (3 r) (a disc near a moving surface is the soft step's).
+    w = World(kernels=kernels)
+    w.add_force(Gravity((0, -G)))
+    belt = w.add_collider(Segment((-50, 0), (50, 0), restitution=0.0, friction=1.0))
+    belt.surface_velocity = (U, 0)
+    ball = w.add(Body(Vector(0, 0.5), radius=0.5, restitution=0.0, friction=MU))
+    speeds = []
+    for _ in range(30):
+        w.step(DT)
+        speeds.append(ball.vel.x)
+    for k, vx in enumerate(speeds, start=1):
+        assert vx == pytest.approx(min(U / 3, MU * G * k * DT), abs=1e-9), k
+    assert ball.angular_velocity == pytest.approx(2 * U / (3 * 0.5), abs=1e-9)
+    assert ball.pos.y == pytest.approx(0.5, abs=1e-6)
