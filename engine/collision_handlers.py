@@ -162,20 +162,38 @@ def _event(body: Any, other: Any, point: Any, normal: Any, t: float) -> ContactE
 def _with_colliders(
     state: WorldState, handlers: list[CollisionHandler], types: list[int], reach: np.ndarray
 ) -> np.ndarray:
-    """The (body row, collider place) pairs a pre_solve refuses (``ignored_pairs``)."""
+    """The (body row, collider place) pairs a pre_solve refuses (``ignored_pairs``): pairs
+    of the handler's types whose boxes (the collider's bounds, the body's centre +- its
+    reach) overlap are measured, and those within reach asked."""
     store, contacts = state.store, state.contacts
     out: list[tuple[int, int]] = []
-    if contacts is None or store is None:
+    if contacts is None or store is None or not contacts.colliders:
         return np.zeros((0, 2), dtype=np.int64)
     x, r, bodies, t = store.x, store.radius, state.bodies, state.t
-    for k, c in enumerate(contacts.colliders):
-        if c.sensor:
-            continue
-        ct = c.collision_type
-        for h in handlers:
-            rows = np.array([i for i, bt in enumerate(types) if h.side(bt, ct)], dtype=np.intp)
-            if not len(rows):
-                continue
+    colliders = contacts.colliders
+    bounds = contacts.collider_bounds()
+    typed = np.array(types, dtype=np.int64)
+    kinds = np.array([c.collision_type for c in colliders], dtype=np.int64)
+    solid = ~np.array([c.sensor for c in colliders], dtype=bool)
+    # Boxes that overlap: the collider's bounds against the body's centre +- its reach.
+    near = (
+        (bounds[:, None, 0] <= x[None, :, 0] + reach[None, :])
+        & (bounds[:, None, 2] >= x[None, :, 0] - reach[None, :])
+        & (bounds[:, None, 1] <= x[None, :, 1] + reach[None, :])
+        & (bounds[:, None, 3] >= x[None, :, 1] - reach[None, :])
+        & solid[:, None]
+    )
+    for h in handlers:
+        # The body of type a and the collider of type b, or the other way round.
+        body_a = np.ones(len(typed), dtype=bool) if h.a is None else typed == h.a
+        body_b = np.ones(len(typed), dtype=bool) if h.b is None else typed == h.b
+        coll_a = np.ones(len(kinds), dtype=bool) if h.a is None else kinds == h.a
+        coll_b = np.ones(len(kinds), dtype=bool) if h.b is None else kinds == h.b
+        match = (coll_b[:, None] & body_a[None, :]) | (coll_a[:, None] & body_b[None, :])
+        cand = near & match
+        for k in np.flatnonzero(cand.any(axis=1)).tolist():
+            c = colliders[k]
+            rows = np.flatnonzero(cand[k])
             gap = signed_distance(c, x[rows]) - r[rows]
             for i in rows[gap <= reach[rows]].tolist():
                 point, normal, _ = c.closest((float(x[i, 0]), float(x[i, 1])))

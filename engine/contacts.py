@@ -98,6 +98,7 @@ class Contacts:
         # The colliders' surface velocities (``surface_velocities``) and the faces they were
         # read for (a material set, a collider added or taken out makes new faces).
         self._surface: tuple[Faces | None, np.ndarray | None] = (None, None)
+        self._bounds: tuple[Faces | None, np.ndarray | None] = (None, None)  # likewise
 
     def set_body_filters(self, group: np.ndarray, categories: np.ndarray, mask: np.ndarray) -> None:
         """The World's bodies' filters, by row. The faces carry no filters while every
@@ -286,6 +287,17 @@ class Contacts:
             u = np.array([tuple(c.surface_velocity) for c in self.colliders], dtype=float)
             self._surface = (faces, u.reshape(-1, 2) if u.any() else None)
         return self._surface[1]
+
+    def collider_bounds(self) -> np.ndarray:
+        """(C, 4) each collider's (xmin, ymin, xmax, ymax) (length units, inf for what has no
+        end), by place (read again when the faces change)."""
+        faces = self.faces
+        if self._bounds[0] is not faces:
+            b = np.array([c.bounds() for c in self.colliders], dtype=float).reshape(-1, 4)
+            self._bounds = (faces, b)
+        bounds = self._bounds[1]
+        assert bounds is not None
+        return bounds
 
     def near_moving(self, store: Any, pull: np.ndarray, dt: float) -> np.ndarray | None:
         """(N,) bool: the bodies (radius > 0, not kinematic) within reach this step of a
