@@ -63,8 +63,9 @@ K = 1.2
 REACH = 0.35
 #: Alfred's size (in): the walls keep his centre this far inside the paper's edge.
 RADIUS = 0.2
-#: The paper's edge as a wall: how much of his speed into it he keeps (times his own 0.8),
-#: and its friction (times his own 0.5).
+#: Alfred's own restitution and friction, and the paper's edge as a wall: materials multiply,
+#: so he keeps 0.5 x 0.5 = 0.25 of his speed into an edge, and slides along it at mu 0.1.
+RESTITUTION, FRICTION = 0.5, 0.5
 EDGE_RESTITUTION, EDGE_FRICTION = 0.5, 0.2
 #: A contact with the edge counts as a bump when it changes his velocity by this much (in/s):
 #: pressed into a corner, the engine reports many contacts of no impulse every step.
@@ -114,7 +115,9 @@ class CrumbGame:
     def __init__(self, seed: int = 1, player: Player | None = None) -> None:
         self.rng = np.random.default_rng(seed)
         self.world = World(integrator="semi_implicit_euler")
-        self.alfred = self.world.add(Body(self.start, Vector(0, 0), Vector(0, 0), radius=RADIUS))
+        self.alfred = self.world.add(
+            Body(self.start, radius=RADIUS, restitution=RESTITUTION, friction=FRICTION)
+        )
         self.world.add_force(Wind(air_velocity=gust, k=K))  # Alfred's mass is 1
         #: The paper's edges: a room he stays inside.
         self.edge = self.world.add_collider(

@@ -30,6 +30,8 @@ from typing import TYPE_CHECKING, Any, Protocol, cast
 from .body_habits import install as install_habits
 from .body_habits import mass_and_moment
 from .body_values import (
+    FRICTION,
+    RESTITUTION,
     State,
     coerce_mass,
     coerce_state,
@@ -113,7 +115,8 @@ class Body:
 
     Units are the scene's own: inches and seconds for Alfred, metres and seconds for the car.
     ``radius`` (length units, 0 for a point) gives it a size for contacts; ``restitution``
-    (0: no bounce, 1: elastic) and ``friction`` (Coulomb's mu, >= 0) are its material, combined
+    (0: no bounce, 1: elastic; 0 unless given) and ``friction`` (Coulomb's mu, >= 0; 0.6 unless
+    given: Box2D's defaults, so nothing bounces unless asked to) are its material, combined
     with a collider's by product (pymunk's rule); they and its ``filter`` can be set at any
     time, and the World's next step takes them. A disc or a body with corners turns
     (``angle``, ``angular_velocity``, ``moment``, ``torque``; engine.rotation): friction makes
@@ -175,8 +178,8 @@ class Body:
         mass: float = 1.0,
         *,
         radius: float = 0.0,
-        restitution: float = 0.5,
-        friction: float = 0.5,
+        restitution: float = RESTITUTION,
+        friction: float = FRICTION,
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
         kinematic: bool = False,
         shape: Any = None,

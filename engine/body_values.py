@@ -15,6 +15,8 @@ from . import checks
 from .vector import Vector, as_pair
 
 __all__ = [
+    "RESTITUTION",
+    "FRICTION",
     "State",
     "coerce_state",
     "coerce_mass",
@@ -24,6 +26,13 @@ __all__ = [
     "pair",
     "refuse_change",
 ]
+
+#: A body's restitution when none is given: 0, no bounce unless asked for (Box2D's default;
+#: pymunk's too). Materials multiply (engine.colliders), and a collider's own default is 1.
+RESTITUTION = 0.0
+#: A body's friction coefficient when none is given: 0.6, Box2D's default (pymunk's is 0, so
+#: that everything slides unless told). On a collider of the default 1, mu = 0.6.
+FRICTION = 0.6
 
 _isfinite = math.isfinite
 

@@ -17,7 +17,7 @@ is at distance r from the collider's surface.
 
 Materials combine by product, as in pymunk: a bounce off a wall uses e = e_body * e_wall and
 mu = mu_body * mu_wall. A collider's defaults (restitution 1.0, friction 1.0) therefore leave
-the body's own material in force.
+the body's own material in force (a body's defaults: restitution 0, friction 0.6, Box2D's).
 
 A sensor is not solid: bodies pass through it, and the World reports when they begin and end
 overlapping it (``World.began`` / ``World.ended``). The crumb in the crumb game is one.

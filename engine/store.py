@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from .body_values import FRICTION, RESTITUTION
 from .colliders import Circle
 from .vector import Vector
 
@@ -129,16 +130,16 @@ class BodyStore:
     ) -> list[int]:
         """Add rows for new bodies; return their slots (one array copy for the whole batch).
 
-        ``material``: (radius, restitution, friction) arrays; points of restitution 0.5 and
-        friction 0.5 (Body's defaults) when None. ``filters``: (group, categories, mask)
-        integer arrays; engine.filters' default (no group, every bit) when None.
+        ``material``: (radius, restitution, friction) arrays; points of Body's default
+        restitution and friction (engine.body_values) when None. ``filters``: (group,
+        categories, mask) integer arrays; engine.filters' default (no group, every bit) when None.
         ``kinematic``: (k,) bools, all False when None. ``shapes``: each body's shape (None:
         a disc or a point), all None when None. ``rotation``: (angle, angular velocity,
         moment, torque) arrays; at rest, not turning (moment inf) when None.
         """
         n0, k = len(self), len(mass)
         if material is None:
-            material = (np.zeros(k), np.full(k, 0.5), np.full(k, 0.5))
+            material = (np.zeros(k), np.full(k, RESTITUTION), np.full(k, FRICTION))
         self.radius = np.concatenate([self.radius, material[0]])
         self.restitution = np.concatenate([self.restitution, material[1]])
         self.friction = np.concatenate([self.friction, material[2]])

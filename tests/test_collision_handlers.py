@@ -47,8 +47,10 @@ def test_a_pair_of_bodies_comes_from_the_first_types_side_and_wildcards_match_an
     # Two balls meet; the handler (2, 1) sees the type-2 ball as event.body, (None, 2) the
     # type-2 ball as event.collider.
     w = World()
-    a = w.add(Body(Vector(0, 0), Vector(1, 0), mass=1, radius=0.5, collision_type=1))
-    b = w.add(Body(Vector(2, 0), Vector(-1, 0), mass=1, radius=0.5, collision_type=2))
+    a = w.add(Body(Vector(0, 0), Vector(1, 0), mass=1, radius=0.5, collision_type=1,
+                   restitution=0.5))  # fmt: skip
+    b = w.add(Body(Vector(2, 0), Vector(-1, 0), mass=1, radius=0.5, collision_type=2,
+                   restitution=0.5))  # fmt: skip
     seen: list[ContactEvent] = []
     anything: list[ContactEvent] = []
     w.on_collision(2, 1, begin=seen.append)

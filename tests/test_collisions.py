@@ -118,8 +118,11 @@ def test_points_never_collide_and_a_filter_turns_pairs_off() -> None:
     g2 = disc(w, (1.5, 5.0), (-1.0, 0.0), radius=0.5, filter=Filter(group=3))
     m1 = disc(w, (0.0, 10.0), (1.0, 0.0), radius=0.5, filter=Filter(categories=1, mask=1))
     m2 = disc(w, (1.5, 10.0), (-1.0, 0.0), radius=0.5, filter=Filter(categories=2, mask=2))
-    c1 = disc(w, (0.0, 15.0), (1.0, 0.0), radius=0.5, filter=Filter(categories=1, mask=2))
-    c2 = disc(w, (1.5, 15.0), (-1.0, 0.0), radius=0.5, filter=Filter(categories=2, mask=1))
+    # (restitution 1: they bounce apart, so that a collision shows in their velocities)
+    c1 = disc(w, (0.0, 15.0), (1.0, 0.0), radius=0.5, filter=Filter(categories=1, mask=2),
+              restitution=1.0)  # fmt: skip
+    c2 = disc(w, (1.5, 15.0), (-1.0, 0.0), radius=0.5, filter=Filter(categories=2, mask=1),
+              restitution=1.0)  # fmt: skip
     for _ in range(90):
         w.step(1 / 60)
     for body, vx in ((p, 1.0), (q, -1.0), (g1, 1.0), (g2, -1.0), (m1, 1.0), (m2, -1.0)):

@@ -196,8 +196,15 @@ def test_a_fast_ball_from_far_away_bounces_off_a_thin_segment() -> None:
 def test_a_velocity_set_by_hand_is_caught_the_next_step() -> None:
     world = box_world(gravity=False)  # the ball floats, far from everything
     ball = world.add(
-        Body(Vector(20.0, 15.0), Vector(0.0, 0.0), Vector(0, 0), radius=0.1, filter=APART)
-    )
+        Body(
+            Vector(20.0, 15.0),
+            Vector(0.0, 0.0),
+            Vector(0, 0),
+            radius=0.1,
+            filter=APART,
+            restitution=0.5,
+        )  # fmt: skip
+    )  # (it bounces, so that each impact shows in its velocity)
     for _ in range(30):
         world.step(1.0 / 120.0)
     assert ball.pos == Vector(20.0, 15.0)

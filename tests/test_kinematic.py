@@ -34,7 +34,7 @@ def test_no_force_acts_on_a_kinematic_body() -> None:
 
 def test_writing_pos_moves_it_there_over_the_next_step() -> None:
     world = World()
-    paddle = world.add(disc(0.0, 0.0, radius=0.5, kinematic=True))
+    paddle = world.add(disc(0.0, 0.0, radius=0.5, kinematic=True, restitution=0.5))
     paddle.pos = Vector(0.3, -0.1)
     assert paddle.pos == Vector(0.0, 0.0)  # not a teleport: it gets there by moving
     world.step(DT)
@@ -128,7 +128,7 @@ def test_kinematic_must_be_a_bool_and_shows_in_repr() -> None:
 
 def test_a_snapshot_keeps_a_move_written_but_not_yet_taken() -> None:
     world = World()
-    paddle = world.add(disc(0.0, 0.0, radius=0.5, kinematic=True))
+    paddle = world.add(disc(0.0, 0.0, radius=0.5, kinematic=True, restitution=0.5))
     paddle.pos = Vector(1.0, 0.0)
     snap = world.snapshot()
     world.step(DT)

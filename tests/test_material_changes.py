@@ -139,8 +139,8 @@ def test_a_box_on_a_slope_holds_or_slides_by_the_friction_set(on: str) -> None:
 
 def test_two_balls_set_apart_by_their_filter_pass_through_each_other() -> None:
     w = World(integrator="auto")
-    a = w.add(Body(Vector(-1.0, 0.0), Vector(2.0, 0.0), radius=0.25))
-    b = w.add(Body(Vector(1.0, 0.0), Vector(-2.0, 0.0), radius=0.25))
+    a = w.add(Body(Vector(-1.0, 0.0), Vector(2.0, 0.0), radius=0.25, restitution=1.0))
+    b = w.add(Body(Vector(1.0, 0.0), Vector(-2.0, 0.0), radius=0.25, restitution=1.0))
     w.step(DT)
     a.filter = Filter(group=3)
     b.filter = Filter(group=3)

@@ -149,6 +149,7 @@ def test_the_game_loop_is_the_crumb_games_core(monkeypatch) -> None:
     assert repr(edge) == repr(game.edge)
     assert sensor.sensor and sensor.radius == pytest.approx(game.sensor.radius)  # type: ignore[union-attr]
     assert alfred.radius == crumb.RADIUS  # type: ignore[attr-defined]
+    assert (alfred.restitution, alfred.friction) == (crumb.RESTITUTION, crumb.FRICTION)  # type: ignore[attr-defined]
     for t in (0.0, 1.0, 4.0):
         assert wind.air(t).x == pytest.approx(2.5 * math.sin(0.45 * t))
         assert crumb.gust(t).x - 1.0 * math.sin(1.7 * t) == pytest.approx(wind.air(t).x)
@@ -478,7 +479,7 @@ def test_it_prints_always_introduces_the_output_in_a_text_block() -> None:
         assert text.count("It prints") == len(stating), page
     pages = {b.page for b in BLOCKS if b.prints is not None}
     assert "README.md" in pages and len([b for b in BLOCKS if b.prints is not None]) >= 5
-    assert stated(block("score, hits, top = 0, [], 0.0")) == "200 37"  # the pinball's core
+    assert stated(block("score, hits, top = 0, [], 0.0")) == "200 36"  # the pinball's core
 
 
 # -- the README's shape and words -----------------------------------------------------------------

@@ -59,7 +59,7 @@ def make_world(
         warnings.simplefilter("ignore")  # a ball dropped onto a segment is pushed off it
         world.add_all(
             # One group: the balls do not collide with each other (the targets' scene).
-            Body(Vector(*p), Vector(*v), Vector(0, 0), radius=radius, restitution=0.9, filter=ONE)
+            Body(Vector(*p), Vector(*v), radius=radius, restitution=0.9, friction=0.5, filter=ONE)
             for p, v in zip(pos.tolist(), vel.tolist(), strict=True)
         )
     return world
