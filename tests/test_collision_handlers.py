@@ -8,14 +8,15 @@ import math
 from typing import Any
 
 import pytest
+from paths import PATHS
 
 from engine import Body, Plane, Polygon, Segment, Vector, World
 from engine.events import ContactEvent
 from engine.forces import Gravity
+from engine.kernels import available as kernels_available
 
 G = 9.81
 DT = 1 / 60
-PATHS = ["numpy", "fast"]
 
 
 def test_begin_comes_at_the_exact_moment_of_impact_and_separate_when_thrown_off() -> None:
@@ -165,9 +166,11 @@ def test_a_one_way_platform_body_lets_a_ball_up_through_and_holds_it_alike_on_bo
 
     ends = [
         thrown_through(kernels, handled, platform, 180, radius=0.25)
-        for kernels, handled in (("numpy", True), ("fast", True), ("numpy", False))
+        for kernels, handled in (("numpy", True), ("numpy", False))
     ]
-    (top, y, vy), fast, blocked = ends
+    (top, y, vy), blocked = ends
     assert top > 3.4 and abs(y - 2.35) < 0.002 * 0.25 and vy == pytest.approx(0, abs=1e-9)
-    assert fast == pytest.approx(ends[0], abs=1e-12)
     assert blocked[0] < 1.9 - 0.25 + 1e-6  # without the handler it stops below
+    if kernels_available():  # (the README's test command has no fast path: CI's second run)
+        fast = thrown_through("fast", True, platform, 180, radius=0.25)
+        assert fast == pytest.approx(ends[0], abs=1e-12)

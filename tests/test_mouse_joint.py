@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 import pytest
+from paths import FAST
 
 from engine import Body, MouseJoint, Plane, Polygon, Vector, World
 from engine.forces import Gravity
@@ -136,13 +137,11 @@ def dragged_from_a_pile(kernels: str) -> tuple[World, list[Body]]:
     return world, crates
 
 
+@FAST
 def test_a_crate_dragged_out_of_a_pile_rests_at_the_target_and_ends_alike_on_both_paths() -> None:
     ends = []
     for kernels in ("numpy", "fast"):
-        try:
-            world, crates = dragged_from_a_pile(kernels)
-        except (ImportError, RuntimeError):
-            pytest.skip("the fast path needs numba (the fast extra)")
+        world, crates = dragged_from_a_pile(kernels)
         (drag,) = world.mouse_joints
         assert (drag.world_anchor() - drag.target).length() < 1e-6
         for crate in crates[:2]:  # the two left below rest on the floor

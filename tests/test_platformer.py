@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pygame
 import pytest
+from paths import FAST, PATHS
 
 import demos.platformer as pf
 from demos import platformer_scene as ps
@@ -61,7 +62,7 @@ def _play(kernels: str) -> Run:
     return run
 
 
-@pytest.fixture(scope="module", params=["numpy", "fast"])
+@pytest.fixture(scope="module", params=PATHS)
 def played(request: pytest.FixtureRequest) -> Run:
     """The autopilot's run on one path, to every coin and 2 s on the platform."""
     return _play(request.param)
@@ -102,6 +103,7 @@ def _state(game: pf.PlatformerGame) -> np.ndarray:
     return np.array([[b.pos.x, b.pos.y, b.angle] for b in bodies])
 
 
+@FAST
 def test_the_run_ends_alike_on_both_paths() -> None:
     numpy, fast = _play("numpy"), _play("fast")
     assert numpy.game.t == fast.game.t

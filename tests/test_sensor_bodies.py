@@ -5,6 +5,7 @@ shape, as a sensor collider's overlaps are reported: a player's feet sensor, on 
 from __future__ import annotations
 
 import pytest
+from paths import PATHS
 
 from engine import Body, ContactEvent, Filter, Plane, Polygon, Segment, Vector, World
 from engine.forces import Gravity
@@ -51,7 +52,7 @@ def platform_world(kernels: str, feet: bool) -> tuple[World, Body, Body | None, 
     return w, player, sensor, log
 
 
-@pytest.mark.parametrize("kernels", ["numpy", "fast"])
+@pytest.mark.parametrize("kernels", PATHS)
 def test_a_feet_sensor_says_when_the_player_stands_and_changes_nothing(kernels: str) -> None:
     paths = []
     for feet in (True, False):
@@ -77,7 +78,7 @@ def test_a_feet_sensor_says_when_the_player_stands_and_changes_nothing(kernels: 
     assert with_feet == without  # the sensor pushed nothing, bit for bit
 
 
-@pytest.mark.parametrize("kernels", ["numpy", "fast"])
+@pytest.mark.parametrize("kernels", PATHS)
 def test_a_sensor_ball_falls_through_a_floor_and_a_ball_reporting_each_overlap(
     kernels: str,
 ) -> None:

@@ -15,9 +15,11 @@ import math
 import pickle
 import warnings
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
+from paths import FAST
 
 from engine import (
     Body,
@@ -223,10 +225,14 @@ def test_a_too_stiff_spring_is_warned_about_before_it_blows_up() -> None:
 
 
 # -- against pymunk ----------------------------------------------------------------------------
-pymunk = pytest.importorskip("pymunk")
+@pytest.fixture
+def pymunk() -> Any:
+    """pymunk (the bench extra), or the test that asks for it is skipped: a module-level
+    importorskip here skipped every test of the file where pymunk is not installed (CI)."""
+    return pytest.importorskip("pymunk")
 
 
-def test_a_turning_box_on_a_spring_moves_as_pymunks_to_round_off() -> None:
+def test_a_turning_box_on_a_spring_moves_as_pymunks_to_round_off(pymunk: Any) -> None:
     """Undamped, the kicks' positions are pymunk's (a kick, then a move: the same recursion)
     once pymunk starts with the first half kick's velocities, v0 + F(x0) dt / (2 m)."""
     dt, k, m, inertia = 1.0 / 60.0, 20.0, 2.0, 0.4
@@ -252,7 +258,7 @@ def test_a_turning_box_on_a_spring_moves_as_pymunks_to_round_off() -> None:
     assert worst < 1e-11
 
 
-def test_damped_springs_stay_within_a_stated_tolerance_of_pymunks() -> None:
+def test_damped_springs_stay_within_a_stated_tolerance_of_pymunks(pymunk: Any) -> None:
     """With damping, ours splits it in two half kicks a step and pymunk gives it once after
     the spring's kick: first order apart, at most 2 omega dt of the motion's size here."""
     dt, n = 1.0 / 240.0, 480
@@ -356,13 +362,11 @@ def hinged(kernels: str) -> tuple[World, Body, Body]:
     return world, plank, ball
 
 
+@FAST
 def test_springs_with_a_hinge_and_contacts_end_alike_on_both_paths() -> None:
     ends = []
     for kernels in ("numpy", "fast"):
-        try:
-            world, plank, ball = hinged(kernels)
-        except (ImportError, RuntimeError):
-            pytest.skip("the fast path needs numba (the fast extra)")
+        world, plank, ball = hinged(kernels)
         low = math.inf
         for _ in range(120):
             world.step(1.0 / 60.0)
@@ -479,7 +483,7 @@ def test_a_spring_keeps_its_bodies_when_another_body_leaves_the_world() -> None:
     assert spring.impulse > 0.0
 
 
-def test_a_kinematic_hand_drags_a_box_by_a_corner_as_pymunks_does() -> None:
+def test_a_kinematic_hand_drags_a_box_by_a_corner_as_pymunks_does(pymunk: Any) -> None:
     """A spring from a body the game moves (a mouse's hand) to a box's corner: the box is
     dragged and turned; damped, first order apart from pymunk's (measured 0.017 m, 0.004 rad
     after 5 s), held under 0.05."""

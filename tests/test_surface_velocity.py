@@ -4,6 +4,7 @@ itself, and friction carries what rests on it (engine.soft, ``Rows.slip``), on b
 from __future__ import annotations
 
 import pytest
+from paths import FAST, PATHS
 
 from engine import Body, Polygon, Segment, Vector, World
 from engine.forces import Gravity
@@ -34,7 +35,7 @@ def belt_world(
     return w, box
 
 
-@pytest.mark.parametrize("kernels", ["numpy", "fast"])
+@pytest.mark.parametrize("kernels", PATHS)
 def test_a_box_on_a_conveyor_is_carried_up_to_its_speed_in_u_over_mu_g(kernels: str) -> None:
     # Kinetic friction accelerates it at mu g until it moves with the belt, at
     # T = u / (mu g) = 0.408 s; then static friction holds it at u, exactly.
@@ -83,6 +84,7 @@ def test_only_the_part_along_the_surface_counts_and_it_can_be_set_while_running(
         belt.surface_velocity = 3.0
 
 
+@FAST
 def test_a_box_that_tips_on_a_conveyor_moves_alike_on_both_paths() -> None:
     # A box free to turn, thrown onto a fast belt: friction at its corners turns it (the
     # soft step's lever arms); the compiled rows are their numpy twin's, bit for bit.
@@ -97,7 +99,7 @@ def test_a_box_that_tips_on_a_conveyor_moves_alike_on_both_paths() -> None:
     assert ends[0][2] != 0.0 and ends[0][1].x > 0  # it turned, and the belt carries it
 
 
-@pytest.mark.parametrize("kernels", ["numpy", "fast"])
+@pytest.mark.parametrize("kernels", PATHS)
 def test_a_ball_on_a_conveyor_rolls_at_a_third_of_its_speed(kernels: str) -> None:
     # A disc (I = m r^2 / 2) set on the belt: friction mu m g pushes it along, v = mu g t,
     # and spins it up, omega r = 2 mu g t, so the slip at its foot v + omega r - u closes at
