@@ -94,7 +94,7 @@ class StaticBody:
 STATIC = StaticBody()
 
 
-def _anchor(value: Any, name: str) -> Vector:
+def local_anchor(value: Any, name: str) -> Vector:
     """A finite anchor in a body's own frame (length units), or an error naming ``name``."""
     if value is None:
         return Vector(0.0, 0.0)
@@ -156,8 +156,8 @@ class Link:
         from .body import Body
 
         self._body = plane_body(body, "body")
-        self._anchor_a = _anchor(anchor_a, "anchor_a")
-        self._anchor_b = _anchor(anchor_b, "anchor_b")
+        self._anchor_a = local_anchor(anchor_a, "anchor_a")
+        self._anchor_b = local_anchor(anchor_b, "anchor_b")
         if other is STATIC:
             # To the world: anchor_b is then the fixed point, in world coordinates.
             other, self._anchor_b = self._anchor_b, Vector(0.0, 0.0)
@@ -306,7 +306,7 @@ class Pin(Link):
 
     def __init__(self, body: Any, point: Any, anchor_a: Any = None) -> None:
         self._body = plane_body(body, "body")
-        self._anchor_a = _anchor(anchor_a, "anchor_a")
+        self._anchor_a = local_anchor(anchor_a, "anchor_a")
         self._anchor_b = Vector(0.0, 0.0)
         from .body import Body
 

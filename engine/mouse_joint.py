@@ -56,7 +56,7 @@ import numpy as np
 
 from . import checks
 from .accuracy import expm
-from .links import _anchor, fixed_point, plane_body
+from .links import fixed_point, local_anchor, plane_body
 from .vector import Vector
 
 if TYPE_CHECKING:
@@ -108,7 +108,7 @@ class MouseJoint:
         if anchor is None:
             self._anchor = self._body.world_to_local(self._target)
         else:
-            self._anchor = _anchor(anchor, "anchor")
+            self._anchor = local_anchor(anchor, "anchor")
         self._hertz = _nonneg(hertz, "hertz", "Hz", positive=True)
         self._zeta = _nonneg(damping_ratio, "damping_ratio", "no unit; 1: critical")
         self._max = _nonneg(max_force, "max_force", "N")
@@ -143,7 +143,7 @@ class MouseJoint:
 
     @anchor.setter
     def anchor(self, value: Any) -> None:
-        self._anchor = _anchor(value, "anchor")
+        self._anchor = local_anchor(value, "anchor")
 
     @property
     def hertz(self) -> float:

@@ -35,7 +35,7 @@ from typing import Any
 
 from . import checks
 from .body import Body
-from .links import STATIC, StaticBody, _anchor, fixed_point, plane_body
+from .links import STATIC, StaticBody, fixed_point, local_anchor, plane_body
 from .vector import Vector
 
 __all__ = ["DampedSpring", "DampedRotarySpring", "BodySpring"]
@@ -156,14 +156,14 @@ class DampedSpring(BodySpring):
         damping: float,
     ) -> None:
         super().__init__(a, b, stiffness, damping, "(N/m)")
-        self._anchor_a = _anchor(anchor_a, "anchor_a")
+        self._anchor_a = local_anchor(anchor_a, "anchor_a")
         self._anchor_b = self._point_b(anchor_b)
         self._rest = _nonneg(rest_length, "rest_length", "(m)")
 
     def _point_b(self, value: Any) -> Vector:
         if self._b is None:
             return fixed_point(value, "anchor_b (a point in world coordinates, b being the world)")
-        return _anchor(value, "anchor_b")
+        return local_anchor(value, "anchor_b")
 
     @property
     def anchor_a(self) -> Vector:
@@ -172,7 +172,7 @@ class DampedSpring(BodySpring):
 
     @anchor_a.setter
     def anchor_a(self, value: Any) -> None:
-        self._anchor_a = _anchor(value, "anchor_a")
+        self._anchor_a = local_anchor(value, "anchor_a")
         self._changed()
 
     @property
