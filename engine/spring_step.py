@@ -66,6 +66,10 @@ def _offset(angle: float, local: Any) -> tuple[float, float]:
     return c * local.x - s * local.y, s * local.x + c * local.y
 
 
+#: No pairs: what ``Springs.ties`` gives while there are no springs (World rows, (0,) each).
+_UNTIED = (np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
+
+
 class Springs:
     """A World's springs, in the order added, and what it keeps of them between steps."""
 
@@ -105,6 +109,8 @@ class Springs:
 
     def ties(self, store: BodyStore) -> tuple[np.ndarray, np.ndarray]:
         """The pairs of bodies the springs tie (World rows), which sleep as one group."""
+        if not self.items:
+            return _UNTIED  # (every step of a World without springs asks)
         pairs = [
             (store.row(s.a.slot), store.row(b.slot))
             for s in self.items
