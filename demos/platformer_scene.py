@@ -338,11 +338,12 @@ class Platformer:
                 self.world.remove_collider(self.coins[index])
 
 
-def build(kernels: str | None = None, *, hinge: bool = True) -> Platformer:
-    """The scene in a new World on the path ``kernels`` (None: the default; "numpy", "fast").
+def build(kernels: str | None = None, *, hinge: bool = True, solver: str = "exact") -> Platformer:
+    """The scene in a new World on the path ``kernels`` (None: the default; "numpy", "fast")
+    with the ``solver`` ("exact" or "soft": ``World``'s).
     ``hinge=False``: the same scene without the seesaw's hinge (its plank falls and lies on
     the ground), to measure what the hinge costs."""
-    world = World(integrator="auto", kernels=kernels)
+    world = World(integrator="auto", kernels=kernels, solver=solver)
     world.add_force(Gravity((0.0, -G)))
     ground = [world.add_collider(Segment(a, b, r)) for a, b, r in STATIC]
     w, h = PLAYER_SIZE

@@ -81,6 +81,9 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
         events.ledger.quiet()
         return
     slots = store.slots()
+    if state.game is not None:
+        _settle_soft(state, slots, t0, t_end)
+        return
     raw = []
     resting = sensing = np.zeros(0, dtype=np.int64)
     if contacts is not None:
@@ -121,6 +124,49 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
     events.ledger.settle(t0, t_end, raw, resting, sensing, partial(gaps, state))
 
 
+def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) -> None:
+    """The events of a step of the soft solver (engine.game_step): a contact begins when it
+    first touches and ends when it no longer does; each is open exactly while it touches (as
+    a sensor's), so no gap is measured."""
+    game = state.game
+    assert game is not None
+    events = state.events
+    now, last = game.report, game.last
+    # Begins: touching now, not before (with the point, normal and impulse); ends: the other
+    # way round (where it last touched, with no impulse).
+    raw = _changes(now, set(last.keys.tolist()), t_end, True)
+    raw += _changes(last, set(now.keys.tolist()), t_end, False)
+    named = None
+    contacts = state.contacts
+    if contacts is not None:
+        named = np.array([events.serial(c) for c in contacts.colliders], dtype=np.int64)
+    sensing = np.concatenate([now.keys, now.sensing, sensed(state, slots, named)])
+    events.ledger.settle(
+        t0,
+        t_end,
+        raw,
+        np.zeros(0, dtype=np.int64),
+        sensing,
+        partial(gaps, state),
+    )
+
+
+def _changes(report: Any, other: set[int], t: float, began: bool) -> list[Any]:
+    """The specs (engine.events) of the contacts of ``report`` (engine.game_step) not in
+    ``other``: begins with their impulses, or ends with none."""
+    out: list[Any] = []
+    for k, p, nrm, j in zip(
+        report.keys.tolist(),
+        report.points.tolist(),
+        report.normals.tolist(),
+        report.impulses.tolist(),
+        strict=True,
+    ):
+        if k not in other:
+            out.append((t, k, began, (p, nrm, j if began else (0.0, 0.0))))
+    return out
+
+
 def gaps(state: WorldState, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Each contact key's gap now (length units, < 0 overlapping) and the slack a contact
     at rest keeps (engine.events.CONTACT_SLACK of the smaller radius)."""
@@ -153,6 +199,13 @@ def impulses(state: WorldState, keys: np.ndarray) -> dict[int, tuple[float, floa
     store, contacts = state.store, state.contacts
     out: dict[int, tuple[float, float]] = {}
     if store is None or not len(keys):
+        return out
+    if state.game is not None:
+        report = state.game.report
+        asked = set(np.asarray(keys).tolist())
+        for k, j in zip(report.keys.tolist(), report.impulses.tolist(), strict=True):
+            if k in asked:
+                out[k] = (j[0], j[1])
         return out
     row_of = store.row_of
     a = row_of[slot_of(keys)]

@@ -204,6 +204,7 @@ MODULES = (
     "engine.pair_impacts",
     "engine.coloring",
     "engine.soft",
+    "engine.solver",
     "engine.pile",
     "engine.pile_rows",
     "engine.push_out",

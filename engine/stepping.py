@@ -26,6 +26,7 @@ from .affine import EULERS
 from .body import Body
 from .event_dispatch import report, settle
 from .forcefield import ForceModel
+from .game_step import unsupported
 from .integrators import Integrator
 from .joint_rows import Touch
 from .joint_solver import JointSolver
@@ -89,6 +90,13 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
     """Take one step of ``dt`` (s) by the plan; True: the affine kernel is ready to take it
     instead (nothing has moved yet)."""
     _, _, name, step, model, affine = made
+    if state.game is not None:
+        why = unsupported(state)
+        if why is not None:
+            raise ValueError(
+                f"World(solver='soft') does not take {why} yet: make this World with "
+                f"solver='exact' (nothing was stepped)"
+            )
     count = state.count
     if dt != state.dt:
         # Fold the time so far into the base before counting steps of a new dt.
@@ -110,17 +118,21 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         if state.prepare_affine(dt, model, name):
             return True
     apart = None
+    ignored = (np.zeros((0, 2), dtype=np.int64), np.zeros(0, dtype=np.int64))
     if state.collision_handlers and state.bodies:
         # The pre_solve callbacks, before anything moves: the pairs they ignore are filtered
         # for this step (engine.collision_handlers): with colliders by the contacts, pairs of
         # bodies as a joint's are (Collisions.apart).
         faces, pairs = collision_handlers.ignored_pairs(state, dt)
+        ignored = (faces, pairs)
         if state.contacts is not None:
             state.contacts.set_ignored(faces)
         if len(pairs):
             apart = state.collisions.apart
             state.collisions.apart = np.union1d(apart, pairs)
-    if state.bodies:
+    if state.bodies and state.game is not None:
+        _step_soft(state, dt, name, model, ignored)
+    elif state.bodies:
         _step_general(state, dt, name, step, model)
     else:
         _quiet(state)  # nothing moved: no solver reports anything
@@ -151,6 +163,41 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         report(state)
         collision_handlers.report(state)
     return False
+
+
+def _step_soft(
+    state: WorldState,
+    dt: float,
+    name: str,
+    model: ForceModel,
+    ignored: tuple[np.ndarray, np.ndarray],
+) -> None:
+    """One step by the soft-step solver (engine.game_step), every entry checked after it."""
+    store = state.store
+    game = state.game
+    assert store is not None and game is not None
+    t0 = state.t
+    accel = np.asarray(model.accel(t0, store.x, store.v), dtype=float).reshape(store.x.shape)
+    torques = state.torques() if store.turns_any else None
+    tau = None
+    if torques is not None:
+        tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
+    x, v, angle, omega = game.step(state, dt, accel, ignored[0], ignored[1], tau)
+    state.huge = _check_finite(state, x, v, name, dt, t0) > 1e100
+    if not (np.isfinite(angle).all() and np.isfinite(omega).all()):
+        raise SimulationDiverged(
+            f"a body's angle or angular velocity is not finite after the step from t={t0!r} s "
+            f"(dt={dt!r} s, solver 'soft'): the World keeps the state before it; take a "
+            f"smaller dt",
+            integrator=name,
+            dt=dt,
+            t=t0,
+            max_stable_dt=None,
+        )
+    state.anchor = None
+    store.prev_x = store.x
+    store.x, store.v, store.angle, store.omega = x, v, angle, omega
+    store.spin_written()
 
 
 def _apply_targets(state: WorldState, dt: float) -> dict[Body, np.ndarray]:

@@ -52,6 +52,7 @@ from .events import ContactEvent
 from .filters import Filter
 from .forcefield import ForceModel
 from .forces import Force
+from .game_step import GameStep
 from .habits import PYMUNK_NAMES
 from .integrators import Integrator
 from .kernels import choose as kernels_path
@@ -106,6 +107,14 @@ class World:
     compiled loops, the ``fast`` extra), ``"numpy"`` (the reference), or None, the default:
     ``ENGINE_KERNELS`` if set, else fast where numba is installed. ``world.kernels`` says
     which this World runs; both give the same numbers to rounding.
+
+    ``solver``: how contacts and joints are solved. ``"exact"`` (the default): the lesson's
+    models, each impact at its exact moment, joints held to rounding (a ball's bounce heights
+    h e^(2n), the cradle, a pendulum's period). ``"soft"``: a game's, Box2D v3's soft step
+    (``engine.game_step``, ``engine.solver``): every contact and joint solved together in
+    substeps, fast and steady for piles, platformers and pinball tables, with the errors a
+    game accepts (a box rests 0.07 mm into the floor; a hinge gives under load by what its
+    60 Hz spring allows). ``world.solver`` says which this World runs.
     """
 
     def __init__(
@@ -113,8 +122,17 @@ class World:
         integrator: str | Integrator = "semi_implicit_euler",
         tolerance: float | None = None,
         kernels: str | None = None,
+        solver: str = "exact",
     ) -> None:
+        if solver not in ("exact", "soft"):
+            raise ValueError(
+                f"solver must be 'exact' (a lesson's exact models) or 'soft' (a game's soft "
+                f"step), got {solver!r}"
+            )
         self._s = WorldState(self, MethodPolicy(integrator, tolerance), kernels_path(kernels))
+        self._s.solver = solver
+        if solver == "soft":
+            self._s.game = GameStep(self._s.kernels == "fast")
         self._s.events.view = event_dispatch.EventView(self._s)
         self._queries = QueryIndex()  # colliders and bodies by cell, for queries
 
@@ -504,6 +522,11 @@ class World:
     def steps(self) -> int:
         """How many steps have been taken."""
         return self._s.steps
+
+    @property
+    def solver(self) -> str:
+        """How this World solves contacts and joints: ``"exact"`` or ``"soft"`` (class doc)."""
+        return self._s.solver
 
     @property
     def kernels(self) -> str:

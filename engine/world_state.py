@@ -24,6 +24,7 @@ from .contacts import Contacts
 from .events import WorldEvents
 from .forcefield import ForceModel
 from .forces import Force
+from .game_step import GameStep
 from .joint_solver import JointSolver
 from .joints import Joint
 from .links import Link, LinkSolver, Pin
@@ -96,6 +97,10 @@ class WorldState:
         self.substeps = False  # taking a step again in parts (engine.stepping)
         self.springs = Springs()  # springs between bodies (engine.springs, engine.spring_step)
         self.drags = MouseJoints()  # mouse joints (engine.mouse_joint)
+        # The solver of contacts and joints: "exact" (the lesson's models: engine.stepping)
+        # or "soft" (a game's: engine.game_step, whose state this is then).
+        self.solver = "exact"
+        self.game: GameStep | None = None
 
     # -- time ----------------------------------------------------------------------------------
     @property

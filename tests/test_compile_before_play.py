@@ -196,7 +196,7 @@ def _added(
 def _scenes() -> Iterator[tuple[str, Callable[[], Any], float, int]]:
     """The demos' scenes, small: (name, made, dt, steps). Between them they call every
     kernel (the test checks), with the types a game's steps give them."""
-    from demos import ballpit, galton, hinges, pinball, stack
+    from demos import ballpit, galton, hinges, pinball, platformer_scene, stack
 
     def scene(cls: type) -> Callable[[], Any]:
         def made() -> Any:
@@ -213,6 +213,7 @@ def _scenes() -> Iterator[tuple[str, Callable[[], Any], float, int]]:
     yield "hinges chain", scene(hinges.ChainScene), hinges.ChainScene.dt, 240
     yield "hinges car", scene(hinges.CarScene), hinges.CarScene.dt, 240
     yield "galton", scene(galton.GaltonScene), galton.GaltonScene.dt, 240
+    yield "platformer (soft)", lambda: platformer_scene.build(solver="soft").world, 1 / 60, 120
 
 
 @needs_numba

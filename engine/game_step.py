@@ -1,0 +1,615 @@
+"""A game scene's step, top to bottom: Box2D v3's stages on a World's bodies, colliders and joints.
+
+``World(solver="soft")`` takes each step here instead of the exact models' pipeline
+(engine.stepping): one soft-step solver (engine.solver) for every contact and joint, as a
+game wants it (a pile, a platformer, a pinball table), where the exact models are for a
+lesson's scene (a ball that bounces at its exact moment, the cradle, a hinge held to 1e-9 m).
+The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
+
+1. ``_bodies``: the solver's bodies: the World's rows, then one static body (the colliders'
+   frame: position 0, angle 0, no mass); a kinematic body moves at its velocity and nothing
+   pushes it (zero inverse mass); the forces' accelerations at the step's start, held over
+   the step (gravity is exact so; a drag is taken at the start's speed).
+2. ``_pairs`` (the broadphase): the pairs of bodies, and of bodies and colliders' shapes,
+   whose bounding circles (the colliders' boxes) come within what the two can move in the
+   step, with the filters, sensors, joints that keep their bodies apart and pre_solve
+   callbacks applied.
+3. ``_collide`` (the narrowphase): a manifold for each pair (engine.manifold: Box2D's, up to
+   two points with anchors, separations and feature keys), with a speculative margin of what
+   the pair can close in the step: a box falling fast onto a floor is stopped on it.
+4. ``_rows``: each manifold a contact of the solver, its points warm started from the last
+   step's impulses by key (the pair and the features that make the point), its friction
+   mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor).
+5. ``_joints``: the hinges and welds as the solver's joints, warm started from their last
+   impulses.
+6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
+   relax), restitution, the impulses kept (engine.solver).
+7. ``_events``: which contacts touch after the step (a point that pushed, or one within
+   ``LINEAR_SLOP``) and which sensors overlap, as the World's events read them
+   (engine.event_dispatch).
+
+What this step does not do yet, and says so (``World.solver``'s error): rods, cables, pins,
+springs, mouse joints and 1D worlds are the exact pipeline's; bodies do not sleep; a body
+faster than its speculative margin can catch (what it and the other can move in the step,
+so any speed against a wall) is not swept for its moment of impact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from . import solver
+from .colliders import Collider
+from .events import collider_keys, pair_keys
+from .joints import Hinge, Joint, Weld
+from .manifold import StaticShapes, collide, static_shapes
+from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Manifold
+from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
+from .vector import Vector
+
+#: The World's state (engine.world_state.WorldState, which holds a GameStep: named here by what
+#: is read of it, not imported, as a lower module must not import a higher one).
+WorldState = Any
+
+__all__ = ["GameStep", "Touches", "unsupported"]
+
+# Warm-start keys: (the pair's code << 16) | the point's feature id (16 bits); a pair's code
+# is (slot_a << 21) | slot_b, or | (1 << 20) | the static shape's place among the colliders'.
+_FEATURE = 16
+_OTHER = 21
+_STATIC = 1 << 20
+
+
+def unsupported(state: WorldState) -> str | None:
+    """What in the World the soft step cannot take yet (a phrase), or None."""
+    store = state.store
+    if store is not None and store.dim != 2:
+        return "a 1D world"
+    for link in state.links:
+        if not isinstance(link, (Hinge, Weld)):
+            return f"a {type(link).__name__} link"
+    if state.springs:
+        return "springs"
+    if state.drags:
+        return "mouse joints"
+    return None
+
+
+class Touches(NamedTuple):
+    """The narrowphase's manifolds with a point, and whose: ``a`` body A's row, ``b`` body B's
+    (n: the static body), ``place`` the static shape's place among the colliders' (-1 for a
+    pair of bodies)."""
+
+    m: Manifold
+    a: np.ndarray
+    b: np.ndarray
+    place: np.ndarray
+
+    def take(self, rows: np.ndarray) -> Touches:
+        """The manifolds of ``rows``."""
+        return Touches(self.m.take(rows), self.a[rows], self.b[rows], self.place[rows])
+
+
+@dataclass
+class _Report:
+    """What the last step's contacts did, for the events: the touching contacts' event keys,
+    each with a point, the normal toward the key's first body and the impulse (N s) on it."""
+
+    keys: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    normals: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    impulses: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    sensing: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+
+
+class GameStep:
+    """A World's soft step (module doc): what it keeps from step to step (the contacts'
+    impulses by key, the shapes, the colliders' shapes) and the stages that use it."""
+
+    def __init__(self, fast: bool) -> None:
+        self.fast = fast  # the compiled solver (engine.kernels) or its plain-Python twin
+        self.substeps = solver.SUBSTEPS
+        self.keys = np.zeros(0, dtype=np.int64)  # the last step's points, sorted
+        self.lam = np.zeros((0, 2))  # their (normal, tangent) impulses, N s a substep
+        self.joint_impulses: dict[int, tuple[float, ...]] = {}  # by id(joint)
+        self.report = _Report()
+        self.last = _Report()  # the step before's, for begin and end
+        self._table: tuple[int, list[Any], ShapeTable] | None = None
+        self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray] | None = None
+
+    # -- the step -------------------------------------------------------------------------
+    def step(
+        self,
+        state: WorldState,
+        dt: float,
+        accel: np.ndarray,
+        ignored_faces: np.ndarray,
+        ignored_pairs: np.ndarray,
+        torque: np.ndarray | None = None,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """One step of ``dt`` (s) of the World's bodies, ``accel`` (N, 2) the forces'
+        accelerations at its start (m/s^2), ``torque`` (N,) the torques then (N m; None: the
+        bodies' own); the pairs pre_solve ignored left out (``ignored_faces`` (K, 2) of (body
+        row, collider place), ``ignored_pairs`` keys a * n + b of rows a < b). Returns the
+        bodies' positions, velocities, angles and angular velocities after it, for the caller
+        to check and keep (the World keeps the last finite state)."""
+        store = state.store
+        assert store is not None
+        n = len(store)
+        b = _bodies(store, accel, store.torque if torque is None else torque)
+        table = self._shapes(store)
+        colliders = [] if state.contacts is None else state.contacts.colliders
+        statics, owner, bounds = self._static(colliders)
+        sensors = np.array([bd.sensor for bd in state.bodies], dtype=bool)
+        margin = _reach(store, accel, dt)
+        pairs = _pairs(store, state, sensors, margin, ignored_pairs)
+        faces = _faces(store, colliders, owner, bounds, sensors, margin, ignored_faces)
+        touches = _collide(table, store, statics, pairs, faces, margin, self.fast)
+        m, ia, other = touches.m, touches.a, touches.place
+        # A sensor collider's manifolds are events only: no row pushes its body.
+        sensor = np.zeros(len(m), dtype=bool)
+        stat = np.flatnonzero(touches.b >= n)
+        if len(stat):
+            flags = np.array([c.sensor for c in colliders], dtype=bool)
+            sensor[stat] = flags[owner[other[stat]]]
+        solid = touches.take(np.flatnonzero(~sensor))
+        rows = self._rows(store, colliders, owner, solid, n)
+        joints = self._joints(state, store, n)
+        args = [*b, *rows[:17], *joints[0]]
+        params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
+        params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
+        out: list[Any]
+        if self.fast:
+            kernel: Any = solver.solve
+            kernel(*args, *params)
+            out = list(args)
+        else:
+            # Plain Python on lists: at a game's size faster than numpy's calls a colour.
+            out = [a.tolist() for a in args]
+            solver.solve.py(*out, *params)
+        x = np.stack([np.asarray(out[0][:n]), np.asarray(out[1][:n])], axis=1)
+        v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
+        angle = np.asarray(out[2][:n], dtype=float)
+        omega = np.asarray(out[5][:n], dtype=float)
+        self._keep(rows, out, n)
+        self._keep_joints(joints[1], out)
+        self._events(state, store, colliders, owner, solid, out)
+        # What each sensor collider holds: a body whose shape overlaps it.
+        over = sensor & (m.separation < 0.0).any(axis=1)
+        if over.any():
+            serials = np.array([state.events.serial(c) for c in colliders], dtype=np.int64)
+            places = owner[other[over]]
+            self.report.sensing = collider_keys(store.slots()[ia[over]], serials[places])
+        return x, v, angle, omega
+
+    # -- what is kept -----------------------------------------------------------------------
+    def _shapes(self, store: Any) -> ShapeTable:
+        """The bodies' shapes as narrowphase kinds (made again when bodies come or go)."""
+        shapes = store.shapes
+        kept = self._table
+        if kept is None or kept[0] != len(shapes) or kept[1] != shapes:
+            kept = (len(shapes), list(shapes), ShapeTable(shapes, store.radius))
+            self._table = kept
+        return kept[2]
+
+    def _static(self, colliders: list[Collider]) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
+        """The colliders as shapes in the world's frame, each static shape's collider place
+        and bounding box (xmin, ymin, xmax, ymax; a half plane's infinite), made again when
+        colliders come or go."""
+        key = tuple(id(c) for c in colliders)
+        kept = self._statics
+        if kept is None or kept[0] != key:
+            shapes = static_shapes(colliders)
+            owner, bounds = _static_bounds(shapes)
+            kept = (key, shapes, np.stack([owner, *bounds.T], axis=1))
+            self._statics = kept
+        return kept[1], kept[2][:, 0].astype(np.intp), kept[2][:, 1:]
+
+    # -- stage 4: contacts as rows ------------------------------------------------------------
+    def _rows(
+        self,
+        store: Any,
+        colliders: list[Collider],
+        owner: np.ndarray,
+        touches: Touches,
+        n: int,
+    ) -> list[np.ndarray]:
+        """The manifolds as the solver's contact arrays (solver.solve's order), warm started;
+        and last, each point's key."""
+        m, ia, ib, other = touches
+        k = len(m)
+        count = m.count.astype(np.int64)
+        slots = store.slots()
+        # The pair's code: body B's slot, or a static shape's place.
+        code_b = np.where(ib < n, slots[np.minimum(ib, n - 1)], _STATIC + other)
+        code = (slots[ia].astype(np.int64) << _OTHER) | code_b.astype(np.int64)
+        feature = np.where(m.feature >= 0, m.feature, 0).astype(np.int64)
+        keys = (code[:, None] << _FEATURE) | feature  # (k, 2)
+        lam = np.zeros((k, 2, 2))
+        if len(self.keys) and k:
+            flat = keys.ravel()
+            at = np.minimum(np.searchsorted(self.keys, flat), len(self.keys) - 1)
+            hit = (self.keys[at] == flat) & (np.arange(2 * k) % 2 < np.repeat(count, 2))
+            lam.reshape(-1, 2)[hit] = self.lam[at[hit]]
+        # Materials: a body's, or a collider's; friction mu_a mu_b, restitution e_a e_b.
+        e_b = np.ones(k)
+        mu_b = np.ones(k)
+        speed = np.zeros(k)
+        pair = ib < n
+        e_b[pair] = store.restitution[ib[pair]]
+        mu_b[pair] = store.friction[ib[pair]]
+        stat = np.flatnonzero(~pair)
+        if len(stat):
+            places = owner[other[stat]]
+            e_b[stat] = [colliders[p].restitution for p in places.tolist()]
+            mu_b[stat] = [colliders[p].friction for p in places.tolist()]
+            # A conveyor: the collider's surface moves at u; the slip is the relative
+            # velocity less u's part along the tangent t = (-n_y, n_x).
+            u = np.array(
+                [tuple(colliders[p].surface_velocity) for p in places.tolist()], dtype=float
+            ).reshape(-1, 2)
+            t = np.stack([-m.normal[stat, 1], m.normal[stat, 0]], axis=1)
+            speed[stat] = -(u[:, 0] * t[:, 0] + u[:, 1] * t[:, 1])
+        sep = np.where(np.isfinite(m.separation), m.separation, 0.0)
+        c = np.ascontiguousarray
+        return [
+            c(ia, dtype=np.int64),
+            c(ib, dtype=np.int64),
+            c(m.normal[:, 0]),
+            c(m.normal[:, 1]),
+            count,
+            c(m.anchor_a[:, :, 0].ravel()),
+            c(m.anchor_a[:, :, 1].ravel()),
+            c(m.anchor_b[:, :, 0].ravel()),
+            c(m.anchor_b[:, :, 1].ravel()),
+            c(sep.ravel()),
+            store.friction[ia] * mu_b,
+            store.restitution[ia] * e_b,
+            speed,
+            c(lam[:, :, 0].ravel()),
+            c(lam[:, :, 1].ravel()),
+            np.zeros(2 * k),
+            np.zeros(2 * k),
+            keys.ravel(),
+        ]
+
+    def _keep(self, rows: list[np.ndarray], out: list[Any], n: int) -> None:
+        """Keep this step's impulses by key, for the next step's warm start."""
+        count = rows[4]
+        keys = rows[17]
+        real = np.arange(len(keys)) % 2 < np.repeat(count, 2)
+        base = 11  # the bodies' arrays come first
+        lam_n = np.asarray(out[base + 13], dtype=float)
+        lam_t = np.asarray(out[base + 14], dtype=float)
+        keys = keys[real]
+        order = np.argsort(keys, kind="stable")
+        self.keys = keys[order]
+        self.lam = np.stack([lam_n[real], lam_t[real]], axis=1)[order]
+        self._totals = (np.asarray(out[base + 15], dtype=float), lam_t)
+
+    # -- stage 5: joints ----------------------------------------------------------------------
+    def _joints(self, state: WorldState, store: Any, n: int) -> tuple[list[np.ndarray], list[Any]]:
+        """The hinges and welds as the solver's joint arrays (solver.solve's order): the
+        solver's body A is the joint's body_b (or the static body), its B the joint's body_a,
+        so that the solver's angle_B - angle_A is the joint's angle."""
+        joints = [j for j in state.links if isinstance(j, (Hinge, Weld))]
+        cols: list[list[float]] = [[] for _ in range(22)]
+        for j in joints:
+            a = store.row(j.body_a.slot)
+            other = j._other
+            b = n if other is None else store.row(other.slot)
+            anchor_b = j.anchor_b if other is not None else j._point
+            assert anchor_b is not None
+            kept = self.joint_impulses.get(id(j), (0.0,) * 6)
+            hertz = j.hertz if isinstance(j, Weld) and j.hertz is not None else 0.0
+            zeta = j.damping_ratio if isinstance(j, Weld) else 0.0
+            lim = j.limits if isinstance(j, Hinge) else None
+            speed = j.motor_speed if isinstance(j, Hinge) else None
+            most = j.max_torque if isinstance(j, Hinge) else 0.0
+            row = [
+                solver.WELD if isinstance(j, Weld) else solver.HINGE,
+                b,
+                a,
+                anchor_b.x,
+                anchor_b.y,
+                j.anchor_a.x,
+                j.anchor_a.y,
+                j.reference_angle,
+                hertz,
+                zeta,
+                0 if lim is None else 1,
+                0.0 if lim is None else lim[0],
+                0.0 if lim is None else lim[1],
+                0 if speed is None else 1,
+                0.0 if speed is None else speed,
+                min(most, 1e300),
+                *kept,
+            ]
+            for col, value in zip(cols, row, strict=True):
+                col.append(value)
+        ints = {0, 1, 2, 10, 13}
+        arrays = [
+            np.array(col, dtype=np.int64 if i in ints else float) for i, col in enumerate(cols)
+        ]
+        return arrays, joints
+
+    def _keep_joints(self, joints: list[Any], out: list[Any]) -> None:
+        """Each joint's impulses kept (warm start) and reported on it: over the step, on
+        body_a (N s, N m s)."""
+        base = 11 + 17 + 16  # bodies, contacts, then the joints' inputs
+        k = self.substeps
+        kept: dict[int, tuple[float, ...]] = {}
+        for i, j in enumerate(joints):
+            px, py, pa, lo, hi, mi = (float(out[base + c][i]) for c in range(6))
+            kept[id(j)] = (px, py, pa, lo, hi, mi)
+            j.linear_impulse = Vector(px * k, py * k)
+            j.angular_impulse = (pa + mi + lo - hi) * k
+            if isinstance(j, Hinge):
+                j.motor_impulse = mi * k
+        self.joint_impulses = kept
+
+    # -- stage 7: events ----------------------------------------------------------------------
+    def _events(
+        self,
+        state: WorldState,
+        store: Any,
+        colliders: list[Collider],
+        owner: np.ndarray,
+        touches: Touches,
+        out: list[Any],
+    ) -> None:
+        """Which contacts touch after the step (a point that pushed in it, or one nearer
+        than LINEAR_SLOP at its start)."""
+        m, ia, ib, other = touches
+        n = len(store)
+        slots = store.slots()
+        total, lam_t = self._totals
+        count = m.count
+        real = np.arange(2 * len(m)) % 2 < np.repeat(count, 2)
+        pushed = (total > 0.0) & real
+        near = (m.separation.ravel() < LINEAR_SLOP) & real
+        touch = (pushed | near).reshape(-1, 2).any(axis=1)
+        stat = ib >= n
+        serial = state.events.serial
+        serials = np.array([serial(c) for c in colliders], dtype=np.int64)
+        keys = np.zeros(len(m), dtype=np.int64)
+        pair = ~stat
+        if pair.any():
+            keys[pair] = pair_keys(slots[ia[pair]], slots[ib[pair]])
+        if stat.any():
+            keys[stat] = collider_keys(slots[ia[stat]], serials[owner[other[stat]]])
+        # The impulse on the key's first body: -(lam_n n + lam_t t) on A, the whole step's.
+        tn = total.reshape(-1, 2).sum(axis=1) if len(m) else np.zeros(0)
+        tt = np.asarray(lam_t, dtype=float).reshape(-1, 2).sum(axis=1) * self.substeps
+        nrm = m.normal
+        j = -(tn[:, None] * nrm + tt[:, None] * np.stack([-nrm[:, 1], nrm[:, 0]], axis=1))
+        first_a = np.ones(len(m), dtype=bool)
+        first_a[pair] = slots[ia[pair]] <= slots[np.minimum(ib[pair], n - 1)]
+        sign = np.where(first_a, 1.0, -1.0)[:, None]
+        self.last = self.report
+        self.report = _Report(
+            keys[touch],
+            m.point[touch, 0],
+            (-nrm * sign)[touch],
+            (j * sign)[touch],
+        )
+
+
+def _bodies(store: Any, accel: np.ndarray, torque: np.ndarray) -> list[np.ndarray]:
+    """The solver's body arrays (solver.solve's order): the World's rows, then the static
+    body."""
+    n = len(store)
+    moving = ~store.kinematic & np.isfinite(store.mass)
+    im = np.zeros(n + 1)
+    with np.errstate(divide="ignore"):
+        im[:n] = np.where(moving, 1.0 / store.mass, 0.0)
+    ii = np.zeros(n + 1)
+    ii[:n] = np.where(moving, store.inv_moment, 0.0)
+    a = np.zeros((n + 1, 2))
+    a[:n][moving] = accel[moving]
+    alpha = np.zeros(n + 1)
+    alpha[:n] = np.where(moving, torque * store.inv_moment, 0.0)
+
+    def col(values: np.ndarray) -> np.ndarray:
+        out = np.zeros(n + 1)
+        out[:n] = values
+        return out
+
+    return [
+        col(store.x[:, 0]),
+        col(store.x[:, 1]),
+        col(store.angle),
+        col(store.v[:, 0]),
+        col(store.v[:, 1]),
+        col(store.omega),
+        im,
+        ii,
+        np.ascontiguousarray(a[:, 0]),
+        np.ascontiguousarray(a[:, 1]),
+        alpha,
+    ]
+
+
+def _reach(store: Any, accel: np.ndarray, dt: float) -> np.ndarray:
+    """How far each body's shape can move in the step (m): |v| dt + |a| dt^2 + |omega| dt r
+    (its bounding radius r swept by the turn)."""
+    v, r = store.v, store.radius
+    speed = np.hypot(v[:, 0], v[:, 1])
+    acc = np.hypot(accel[:, 0], accel[:, 1])
+    return speed * dt + acc * dt * dt + np.abs(store.omega) * dt * r
+
+
+def _static_bounds(shapes: StaticShapes) -> tuple[np.ndarray, np.ndarray]:
+    """Each static shape's collider place and bounding box (K, 4), in the order
+    ``_collide`` takes them (half planes, circles, capsules, polygons)."""
+    owners, boxes = [], []
+    for _kind, own in shapes.kinds():
+        if own is shapes.half_plane_owner:
+            box = np.tile([-np.inf, -np.inf, np.inf, np.inf], (len(own), 1))
+        elif own is shapes.circle_owner:
+            c, r = shapes.circles.center, shapes.circles.radius[:, None]
+            box = np.concatenate([c - r, c + r], axis=1)
+        elif own is shapes.capsule_owner:
+            cap = shapes.capsules
+            r = cap.radius[:, None]
+            box = np.concatenate([np.minimum(cap.a, cap.b) - r, np.maximum(cap.a, cap.b) + r], 1)
+        else:
+            p = shapes.polygons
+            r = p.radius[:, None]
+            box = np.concatenate([p.vertices.min(axis=1) - r, p.vertices.max(axis=1) + r], 1)
+        owners.append(own)
+        boxes.append(box)
+    if not owners:
+        return np.zeros(0, dtype=np.intp), np.zeros((0, 4))
+    return np.concatenate(owners), np.concatenate(boxes)
+
+
+def _pairs(
+    store: Any, state: WorldState, sensors: np.ndarray, margin: np.ndarray, ignored: np.ndarray
+) -> np.ndarray:
+    """The pairs of bodies (rows a < b, (K, 2)) that may touch in the step: bounding circles
+    within both bodies' reach and the speculative distance, the filters passed, one of them
+    pushed by contacts, neither a sensor, not kept apart by a joint or a pre_solve."""
+    n = len(store)
+    if n < 2:
+        return np.zeros((0, 2), dtype=np.intp)
+    x, r = store.x, store.radius
+    a, b = np.triu_indices(n, 1)
+    d = x[b] - x[a]
+    reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
+    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
+    a, b = a[near], b[near]
+    moving = ~store.kinematic & np.isfinite(store.mass)
+    keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
+    g = store.group
+    keep &= (g[a] == 0) | (g[a] != g[b])
+    keep &= ((store.categories[a] & store.mask[b]) != 0) & (
+        (store.categories[b] & store.mask[a]) != 0
+    )
+    apart = [ignored]
+    for j in state.links:
+        if isinstance(j, Joint) and not j.collide and j._other is not None:
+            ra, rb = store.row(j.body_a.slot), store.row(j._other.slot)
+            apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
+    gone = np.concatenate(apart)
+    if len(gone):
+        keep &= ~np.isin(a.astype(np.int64) * n + b, gone)
+    return np.stack([a[keep], b[keep]], axis=1)
+
+
+def _faces(
+    store: Any,
+    colliders: list[Collider],
+    owner: np.ndarray,
+    bounds: np.ndarray,
+    sensors: np.ndarray,
+    margin: np.ndarray,
+    ignored: np.ndarray,
+) -> np.ndarray:
+    """The pairs of a body and a static shape ((K, 2): row, the shape's place) whose boxes
+    overlap within the body's reach: filters passed, no sensor body, a moving body, not
+    ignored by a pre_solve (a sensor collider is kept: its overlaps are events)."""
+    n = len(store)
+    if not n or not len(owner):
+        return np.zeros((0, 2), dtype=np.intp)
+    x = store.x
+    grow = store.radius + margin + SPECULATIVE_DISTANCE
+    lo = x - grow[:, None]
+    hi = x + grow[:, None]
+    hit = (
+        (lo[:, None, 0] <= bounds[None, :, 2])
+        & (hi[:, None, 0] >= bounds[None, :, 0])
+        & (lo[:, None, 1] <= bounds[None, :, 3])
+        & (hi[:, None, 1] >= bounds[None, :, 1])
+    )
+    rows, shapes = np.nonzero(hit)
+    moving = ~store.kinematic & np.isfinite(store.mass)
+    places = owner[shapes]
+    filt = [c.filter for c in colliders]
+    group = np.array([f.group for f in filt], dtype=np.int64)
+    cats = np.array([f.categories for f in filt], dtype=np.int64)
+    mask = np.array([f.mask for f in filt], dtype=np.int64)
+    sensor = np.array([c.sensor for c in colliders], dtype=bool)
+    keep = (moving[rows] | sensor[places]) & ~sensors[rows]
+    g = store.group[rows]
+    keep &= (g == 0) | (g != group[places])
+    keep &= ((store.categories[rows] & mask[places]) != 0) & (
+        (cats[places] & store.mask[rows]) != 0
+    )
+    if len(ignored):
+        keep &= ~np.isin(rows.astype(np.int64) * (len(colliders) + 1) + places,
+                         ignored[:, 0] * (len(colliders) + 1) + ignored[:, 1])  # fmt: skip
+    return np.stack([rows[keep], shapes[keep]], axis=1)
+
+
+def _collide(
+    table: ShapeTable,
+    store: Any,
+    statics: StaticShapes,
+    pairs: np.ndarray,
+    faces: np.ndarray,
+    margin: np.ndarray,
+    fast: bool,
+) -> Touches:
+    """The manifolds of the pairs and faces with a point."""
+    n = len(store)
+    x, q = store.x, store.angle
+    parts: list[Manifold] = []
+    ia: list[np.ndarray] = []
+    ib: list[np.ndarray] = []
+    other: list[np.ndarray] = []
+    kind = table.kind
+    a, b = pairs[:, 0], pairs[:, 1]
+    for ka in (DISC, CAPSULE, POLYGON):
+        for kb in (DISC, CAPSULE, POLYGON):
+            sel = np.flatnonzero((kind[a] == ka) & (kind[b] == kb))
+            if not len(sel):
+                continue
+            ra, rb = a[sel], b[sel]
+            reach = float((margin[ra] + margin[rb]).max()) + SPECULATIVE_DISTANCE
+            m = collide(table.kinds(ra), x[ra], q[ra], table.kinds(rb), x[rb], q[rb], reach, fast)
+            hit = m.count > 0
+            parts.append(m.take(hit))
+            ia.append(ra[hit])
+            ib.append(rb[hit])
+            other.append(np.full(int(hit.sum()), -1, dtype=np.intp))
+    rows, places = faces[:, 0], faces[:, 1]
+    start = 0
+    for skind, own in statics.kinds():
+        stop = start + len(own)
+        in_kind = (places >= start) & (places < stop)
+        for ka in (DISC, CAPSULE, POLYGON):
+            sel = np.flatnonzero(in_kind & (kind[rows] == ka))
+            if not len(sel):
+                continue
+            r, s = rows[sel], places[sel]
+            reach = float(margin[r].max()) + SPECULATIVE_DISTANCE
+            m = collide(table.kinds(r), x[r], q[r], skind.take(s - start), np.zeros((len(r), 2)),
+                        np.zeros(len(r)), reach, fast)  # fmt: skip
+            hit = m.count > 0
+            parts.append(m.take(hit))
+            ia.append(r[hit])
+            ib.append(np.full(int(hit.sum()), n, dtype=np.intp))
+            other.append(s[hit])
+        start = stop
+    if not parts:
+        empty = np.zeros(0, dtype=np.intp)
+        none = Manifold(
+            np.zeros((0, 2)),
+            np.zeros(0, dtype=np.intp),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2)),
+            np.zeros((0, 2), dtype=np.int64),
+        )
+        return Touches(none, empty, empty, empty)
+    return Touches(
+        Manifold.concat(parts),
+        np.concatenate(ia),
+        np.concatenate(ib),
+        np.concatenate(other),
+    )

@@ -1,0 +1,598 @@
+"""The soft step's solver: bodies, contacts and joints solved together in substeps, Box2D v3's way.
+
+A game's scene (a pile of crates, a platformer, a pinball table) holds many contacts that lean
+on one another, and joints that hold bodies together. Box2D v3 (Catto, "Solver2D", 2024;
+``solver.c``, ``contact_solver.c``, ``revolute_joint.c``, ``weld_joint.c``) solves them all
+in one loop: the step of dt is taken in ``substeps`` parts of h = dt / substeps, each part
+
+1. integrating velocities: v += a h, omega += alpha h (the forces' accelerations, held over
+   the step);
+2. warm starting: every row's impulse of the part before (the last step's, at first) is
+   applied again, so a settled pile starts solved;
+3. solving with bias: each row pushes its bodies by an impulse so that their relative
+   velocity along it meets a target: a contact still open (gap s > 0) may close by s in this
+   part, no more (a speculative contact: a box falling on a floor stops on it, whatever its
+   speed); one overlapping is pushed apart by a soft spring (below), at most ``PUSH_SPEED``;
+4. integrating positions: x += v h, angle += omega h;
+5. relaxing: the same solve without the spring's push, so that the push moves positions and
+   leaves no speed behind; and friction (Coulomb: |lam_t| <= mu lam_n), against the slip less
+   the surfaces' own speed along themselves (a conveyor);
+
+then, once, restitution for the contact points that closed faster than ``THRESHOLD``: the
+normal speed they part at is e times the one they met at.
+
+**Rows.** A contact point has anchors r_A, r_B (the point less each body's position) and a
+normal n from A to B. Its separation as the bodies move in the step is, to first order in
+nothing (Box2D's "s = s0 + dot(cB + rB - cA - rA, n)", the normal held fixed):
+
+    s = s_base + n.(dp_B - dp_A + R(dq_B) r_B - R(dq_A) r_A),   s_base = s0 - n.(r_B - r_A),
+
+dp and dq the moves of position and angle since the step began. The relative normal speed at
+the point is vn = n.(v_B + omega_B x r_B - v_A - omega_A x r_A) (in 2D, omega x r =
+omega (-r_y, r_x)), and an impulse lam along n changes it by lam / m_n with
+
+    1 / m_n = w_A + w_B + i_A (r_A x n)^2 + i_B (r_B x n)^2        (w = 1/m, i = 1/I).
+
+**Soft constraints** (Box2D's b2MakeSoft): a spring of frequency f and damping ratio zeta on
+the error C, with omega = 2 pi f, a1 = 2 zeta + h omega, a2 = h omega a1, a3 = 1 / (1 + a2),
+gives the impulse
+
+    d = -m_n (s_m (vn + bias_rate C)) - s_i lam,   bias_rate = omega / a1,
+    s_m = a2 a3 (mass scale),   s_i = a3 (impulse scale),
+
+an implicit (backward Euler) step of the damped spring that stays stable at any stiffness.
+Contacts use ``CONTACT_HERTZ`` (at most an eighth of the substep rate; twice as stiff against
+what does not move: the floor does not give) and a damping ratio of 10; joints 60 Hz (at most
+a quarter of the substep rate) and 2.
+
+**A hinge** (Box2D's revolute joint) holds the anchors together: C = (c_B + r_B) - (c_A + r_A),
+a 2 x 2 system K lam = -(Cdot + bias C) with
+
+    K = [[w_A + w_B + i_A r_Ay^2 + i_B r_By^2,  -i_A r_Ax r_Ay - i_B r_Bx r_By],
+         [-i_A r_Ax r_Ay - i_B r_Bx r_By,        w_A + w_B + i_A r_Ax^2 + i_B r_Bx^2]],
+
+solved by Cramer's rule; its angle (angle_B - angle_A less the reference) takes a motor row
+(|lam| <= max torque h) and two limit rows (speculative, as contacts). **A weld** adds an
+angular row (the angle held) to the hinge's point rows, soft with its own frequency if given.
+
+**One loop, two paths.** ``solve`` is written as the loop it is, over flat arrays. On the fast
+path numba compiles it (engine.kernels); on the numpy path it runs as plain Python on lists,
+which at a game's size (tens of rows) is faster than numpy's calls a colour; the two give the
+same numbers to the last bit (the same operations in the same order on IEEE doubles).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from . import kernels
+
+__all__ = [
+    "SUBSTEPS",
+    "CONTACT_HERTZ",
+    "CONTACT_DAMPING",
+    "JOINT_HERTZ",
+    "JOINT_DAMPING",
+    "PUSH_SPEED",
+    "THRESHOLD",
+    "HINGE",
+    "WELD",
+    "solve",
+]
+
+#: Parts a step is taken in (Box2D v3's default: 4).
+SUBSTEPS = 4
+#: The contacts' stiffness (Hz), at most an eighth of the substep rate (Box2D v3: 30).
+CONTACT_HERTZ = 30.0
+#: The contacts' damping ratio (Box2D v3: 10, heavily over-damped: no bounce from the push).
+CONTACT_DAMPING = 10.0
+#: The joints' stiffness (Hz), at most a quarter of the substep rate (Box2D v3: 60).
+JOINT_HERTZ = 60.0
+#: The joints' damping ratio (Box2D v3: 2).
+JOINT_DAMPING = 2.0
+#: The fastest an overlap is pushed apart (m/s; Box2D v3's contactSpeed: 3).
+PUSH_SPEED = 3.0
+#: Contacts closing slower than this (m/s) do not bounce (Box2D v3: 1).
+THRESHOLD = 1.0
+#: Joint kinds, by code.
+HINGE, WELD = 0, 1
+
+
+def _sample() -> tuple[Any, ...]:
+    """The smallest call of ``solve``: a unit box resting on the static body, held to the
+    world by a hinge at its corner."""
+    f = np.zeros
+    body = [np.array([0.0, 0.0]), np.array([0.5, 0.0]), f(2)]  # x, y, angle
+    vel = [f(2), f(2), f(2)]
+    mass = [np.array([1.0, 0.0]), np.array([6.0, 0.0])]
+    acc = [np.array([0.0, 0.0]), np.array([-9.81, 0.0]), f(2)]
+    i1 = np.zeros(1, dtype=np.int64)
+    contacts = [
+        i1 + 1, i1.copy(), np.array([0.0]), np.array([1.0]), i1 + 2,
+        f(2), np.array([-0.5, -0.5]), np.array([0.5, -0.5]), np.array([0.0, 0.0]), f(2),
+        np.array([0.6]), f(1), f(1), f(2), f(2), f(2), f(2),
+    ]  # fmt: skip
+    joints = [
+        i1.copy(), i1 + 1, i1.copy(), np.array([0.5]), np.array([0.5]), np.array([0.5]),
+        np.array([0.5]), f(1), f(1), f(1), i1.copy(), f(1), f(1), i1.copy(), f(1), f(1),
+        f(1), f(1), f(1), f(1), f(1), f(1),
+    ]  # fmt: skip
+    return (*body, *vel, *mass, *acc, *contacts, *joints, 1.0 / 60.0, 4, 30.0, 10.0, 60.0,
+            2.0, 3.0, 1.0)  # fmt: skip
+
+
+@kernels.loop(sample=_sample)
+def solve(
+    bx: Any, by: Any, bq: Any,
+    bvx: Any, bvy: Any, bw: Any,
+    bim: Any, bii: Any,
+    bax: Any, bay: Any, balpha: Any,
+    ca: Any, cb: Any, cnx: Any, cny: Any, ccount: Any,
+    crax: Any, cray: Any, crbx: Any, crby: Any, csep: Any,
+    cfric: Any, crest: Any, cspeed: Any,
+    cln: Any, clt: Any, ctotal: Any, cmax: Any,
+    jkind: Any, ja: Any, jb: Any, jlax: Any, jlay: Any, jlbx: Any, jlby: Any, jref: Any,
+    jhertz: Any, jdamp: Any,
+    jlimit: Any, jlower: Any, jupper: Any,
+    jmotor: Any, jspeed: Any, jmaxtorque: Any,
+    jpx: Any, jpy: Any, jpa: Any, jlo: Any, jhi: Any, jmi: Any,
+    dt: float, substeps: int, contact_hertz: float, contact_damping: float,
+    joint_hertz: float, joint_damping: float, push: float, threshold: float,
+) -> None:  # fmt: skip
+    """One step of ``dt`` (s) of every body, contact and joint (module doc), in place.
+
+    Bodies (nb each; the last one is the static body, of zero inverse mass at the origin):
+    ``bx``, ``by``, ``bq`` position (m) and angle (rad), at the step's start in and its end
+    out; ``bvx``, ``bvy``, ``bw`` velocity (m/s, rad/s), likewise; ``bim``, ``bii`` inverse
+    mass (1/kg) and inverse moment (1/(kg m^2)), 0 for what does not move or turn; ``bax``,
+    ``bay``, ``balpha`` the acceleration held over the step (m/s^2, rad/s^2).
+
+    Contacts (nc manifolds of 1 or 2 points; a point's arrays are 2 nc long, point j of
+    manifold k at 2 k + j): bodies ``ca``, ``cb``, the unit normal ``cnx``, ``cny`` from A to
+    B, ``ccount`` points, anchors ``crax``, ``cray``, ``crbx``, ``crby`` (m, the point less
+    each body's position at the step's start), ``csep`` the separation then (m, < 0
+    overlapping); friction ``cfric``, restitution ``crest``, ``cspeed`` the speed (m/s) the
+    surfaces move along the tangent (-n_y, n_x) of themselves, B's less A's (a conveyor);
+    ``cln``, ``clt`` the normal and tangent impulses (N s a substep): the last step's in
+    (warm start), this step's out; ``ctotal`` out: the normal impulse over the whole step;
+    ``cmax`` out: the largest a substep applied.
+
+    Joints (nj): ``jkind`` HINGE or WELD, bodies ``ja``, ``jb`` and their local anchors
+    (m, in each body's frame about its position; the static body's in world coordinates),
+    ``jref`` angle_B - angle_A at rest (rad); a weld's ``jhertz`` and ``jdamp`` (0 Hz: rigid);
+    a hinge's limits (``jlimit`` 1 on, ``jlower``, ``jupper`` rad on angle_B - angle_A -
+    jref) and motor (``jmotor`` 1 on, ``jspeed`` rad/s, ``jmaxtorque`` N m); impulses (N s,
+    N m s a substep) in and out: ``jpx``, ``jpy`` the point's, ``jpa`` a weld's angle's,
+    ``jlo``, ``jhi`` the limits', ``jmi`` the motor's.
+    """
+    nb = len(bx)
+    nc = len(ca)
+    nj = len(ja)
+
+    def relative(
+        a: int, b: int, rax: float, ray: float, rbx: float, rby: float
+    ) -> tuple[float, float]:
+        """B's point's velocity less A's, v + omega x r = (v_x - omega r_y, v_y + omega r_x)."""
+        return (bvx[b] - bw[b] * rby) - (bvx[a] - bw[a] * ray), (bvy[b] + bw[b] * rbx) - (
+            bvy[a] + bw[a] * rax
+        )
+
+    def apply(
+        a: int, b: int, ma: float, ia: float, mb: float, ib: float, px: float, py: float,
+        rax: float, ray: float, rbx: float, rby: float,
+    ) -> None:  # fmt: skip
+        """The impulse (px, py) at the anchors: -P on A at r_A, +P on B at r_B."""
+        bvx[a] -= ma * px
+        bvy[a] -= ma * py
+        bw[a] -= ia * (rax * py - ray * px)
+        bvx[b] += mb * px
+        bvy[b] += mb * py
+        bw[b] += ib * (rbx * py - rby * px)
+
+    h = dt / substeps
+    inv_h = 1.0 / h
+    # Box2D's softness: contacts at most an eighth of the substep rate, joints a quarter.
+    # (b2MakeSoft written out: numba compiles this one function.)
+    hz = min(contact_hertz, 0.125 * inv_h)
+    omega = 2.0 * math.pi * hz
+    a1 = 2.0 * contact_damping + h * omega
+    a2 = h * omega * a1
+    c_rate, c_mass, c_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+    omega = 2.0 * math.pi * 2.0 * hz
+    a1 = 2.0 * contact_damping + h * omega
+    a2 = h * omega * a1
+    s_rate, s_mass, s_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+    omega = 2.0 * math.pi * min(joint_hertz, 0.25 * inv_h)
+    a1 = 2.0 * joint_damping + h * omega
+    a2 = h * omega * a1
+    j_rate, j_mass, j_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+
+    def press(
+        p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
+        nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float,
+    ) -> None:  # fmt: skip
+        """Point p's normal impulse grown by d, kept >= 0 (a contact only pushes), applied."""
+        new = max(cln[p] + d, 0.0)
+        d = new - cln[p]
+        cln[p] = new
+        ctotal[p] += d
+        if new > cmax[p]:
+            cmax[p] = new
+        apply(a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
+
+    # The start of the step: positions and angles kept, the moves counted from them.
+    x0 = [0.0] * nb
+    y0 = [0.0] * nb
+    q0 = [0.0] * nb
+    dx = [0.0] * nb
+    dy = [0.0] * nb
+    dq = [0.0] * nb
+    cq = [1.0] * nb  # cos and sin of each body's turn since the start (dq)
+    sq = [0.0] * nb
+    for i in range(nb):
+        x0[i] = bx[i]
+        y0[i] = by[i]
+        q0[i] = bq[i]
+
+    # -- prepare the contacts: masses along the normal and tangent, the base separation, the
+    # relative normal speed at the start (for restitution).
+    nmass = [0.0] * (2 * nc)
+    tmass = [0.0] * (2 * nc)
+    base = [0.0] * (2 * nc)
+    rel = [0.0] * (2 * nc)
+    # A two-point manifold's normal rows as one 2 x 2 system, K = J M^-1 J^T:
+    # k_ij = w_A + w_B + i_A (r_Ai x n)(r_Aj x n) + i_B (r_Bi x n)(r_Bj x n), solved as a block
+    # where it is well conditioned (k11^2 < 1000 det K, Box2D v2.4's bound; kblock 1).
+    kn1 = [0.0] * nc
+    kn12 = [0.0] * nc
+    kn2 = [0.0] * nc
+    kblock = [0.0] * nc
+    for k in range(nc):
+        a = ca[k]
+        b = cb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        nx, ny = cnx[k], cny[k]
+        if ccount[k] == 2:
+            p = 2 * k
+            a1 = crax[p] * ny - cray[p] * nx
+            a2 = crax[p + 1] * ny - cray[p + 1] * nx
+            b1 = crbx[p] * ny - crby[p] * nx
+            b2 = crbx[p + 1] * ny - crby[p + 1] * nx
+            k11 = ma + mb + ia * a1 * a1 + ib * b1 * b1
+            k22 = ma + mb + ia * a2 * a2 + ib * b2 * b2
+            k12 = ma + mb + ia * a1 * a2 + ib * b1 * b2
+            if k11 > 0.0 and k22 > 0.0 and k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12):
+                kn1[k], kn12[k], kn2[k], kblock[k] = k11, k12, k22, 1.0
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+            base[p] = csep[p] - (nx * (rbx - rax) + ny * (rby - ray))
+            rna = rax * ny - ray * nx
+            rnb = rbx * ny - rby * nx
+            kn = ma + mb + ia * rna * rna + ib * rnb * rnb
+            nmass[p] = 1.0 / kn if kn > 0.0 else 0.0
+            # The tangent t = (-n_y, n_x): r x t = r_x n_x + r_y n_y.
+            rta = rax * nx + ray * ny
+            rtb = rbx * nx + rby * ny
+            kt = ma + mb + ia * rta * rta + ib * rtb * rtb
+            tmass[p] = 1.0 / kt if kt > 0.0 else 0.0
+            # v + omega x r = (v_x - omega r_y, v_y + omega r_x).
+            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            rel[p] = dvx * nx + dvy * ny
+            ctotal[p] = 0.0
+            cmax[p] = 0.0
+
+    # -- prepare the joints: each anchor turned into the world's axes at the start, the
+    # bodies' offset then, and the axial mass.
+    fax = [0.0] * nj
+    fay = [0.0] * nj
+    fbx = [0.0] * nj
+    fby = [0.0] * nj
+    cx0 = [0.0] * nj
+    cy0 = [0.0] * nj
+    amass = [0.0] * nj
+    # A soft weld's own spring (its hertz and damping ratio), for each joint.
+    w_rate = [0.0] * nj
+    w_mass = [1.0] * nj
+    w_imp = [0.0] * nj
+    for k in range(nj):
+        a = ja[k]
+        b = jb[k]
+        c, s = math.cos(q0[a]), math.sin(q0[a])
+        fax[k] = c * jlax[k] - s * jlay[k]
+        fay[k] = s * jlax[k] + c * jlay[k]
+        c, s = math.cos(q0[b]), math.sin(q0[b])
+        fbx[k] = c * jlbx[k] - s * jlby[k]
+        fby[k] = s * jlbx[k] + c * jlby[k]
+        cx0[k] = x0[b] - x0[a]
+        cy0[k] = y0[b] - y0[a]
+        ki = bii[a] + bii[b]
+        amass[k] = 1.0 / ki if ki > 0.0 else 0.0
+        if jhertz[k] > 0.0:
+            omega = 2.0 * math.pi * jhertz[k]
+            a1 = 2.0 * jdamp[k] + h * omega
+            a2 = h * omega * a1
+            w_rate[k], w_mass[k], w_imp[k] = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+
+    for _ in range(substeps):
+        # -- integrate velocities (only what moves: the static body and kinematic bodies
+        # have no acceleration).
+        for i in range(nb):
+            bvx[i] += bax[i] * h
+            bvy[i] += bay[i] * h
+            bw[i] += balpha[i] * h
+
+        # -- warm start: joints, then contacts.
+        for k in range(nj):
+            a = ja[k]
+            b = jb[k]
+            ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+            rax = cq[a] * fax[k] - sq[a] * fay[k]
+            ray = sq[a] * fax[k] + cq[a] * fay[k]
+            rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+            rby = sq[b] * fbx[k] + cq[b] * fby[k]
+            px, py = jpx[k], jpy[k]
+            axial = jpa[k] + jmi[k] + jlo[k] - jhi[k]
+            bvx[a] -= ma * px
+            bvy[a] -= ma * py
+            bw[a] -= ia * (rax * py - ray * px + axial)
+            bvx[b] += mb * px
+            bvy[b] += mb * py
+            bw[b] += ib * (rbx * py - rby * px + axial)
+        for k in range(nc):
+            a = ca[k]
+            b = cb[k]
+            ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+            nx, ny = cnx[k], cny[k]
+            for j in range(ccount[k]):
+                p = 2 * k + j
+                px = cln[p] * nx - clt[p] * ny
+                py = cln[p] * ny + clt[p] * nx
+                ctotal[p] += cln[p]
+                apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
+
+        # -- solve with the soft push, integrate positions, relax without it.
+        for stage in range(2):
+            bias = stage == 0
+            for k in range(nj):
+                a = ja[k]
+                b = jb[k]
+                ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+                fixed = ia + ib == 0.0
+                if jkind[k] == WELD:
+                    # The angle held: C = angle_B - angle_A - ref.
+                    rate, mscale, iscale = 0.0, 1.0, 0.0
+                    if jhertz[k] > 0.0:
+                        rate, mscale, iscale = w_rate[k], w_mass[k], w_imp[k]
+                    elif bias:
+                        rate, mscale, iscale = j_rate, j_mass, j_imp
+                    if not fixed:
+                        err = (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
+                        cdot = bw[b] - bw[a]
+                        d = -amass[k] * mscale * (cdot + rate * err) - iscale * jpa[k]
+                        jpa[k] += d
+                        bw[a] -= ia * d
+                        bw[b] += ib * d
+                else:
+                    if jmotor[k] != 0 and not fixed:
+                        cdot = bw[b] - bw[a] - jspeed[k]
+                        d = -amass[k] * cdot
+                        old = jmi[k]
+                        most = h * jmaxtorque[k]
+                        jmi[k] = min(max(old + d, -most), most)
+                        d = jmi[k] - old
+                        bw[a] -= ia * d
+                        bw[b] += ib * d
+                    if jlimit[k] != 0 and not fixed:
+                        angle = (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
+                        # Lower: C = angle - lower >= 0; upper: C = upper - angle >= 0.
+                        for side in range(2):
+                            if side == 0:
+                                err = angle - jlower[k]
+                                cdot = bw[b] - bw[a]
+                                old = jlo[k]
+                            else:
+                                err = jupper[k] - angle
+                                cdot = bw[a] - bw[b]
+                                old = jhi[k]
+                            rate, mscale, iscale = 0.0, 1.0, 0.0
+                            if err > 0.0:
+                                rate = inv_h  # speculative: may close by err in the substep
+                            elif bias:
+                                rate, mscale, iscale = j_rate, j_mass, j_imp
+                            d = -mscale * amass[k] * (cdot + rate * err) - iscale * old
+                            new = max(old + d, 0.0)
+                            d = new - old
+                            if side == 0:
+                                jlo[k] = new
+                                bw[a] -= ia * d
+                                bw[b] += ib * d
+                            else:
+                                jhi[k] = new
+                                bw[a] += ia * d
+                                bw[b] -= ib * d
+                # The point: C = (c_B + r_B) - (c_A + r_A), both anchors turned as their
+                # bodies have since the start.
+                rax = cq[a] * fax[k] - sq[a] * fay[k]
+                ray = sq[a] * fax[k] + cq[a] * fay[k]
+                rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+                rby = sq[b] * fbx[k] + cq[b] * fby[k]
+                cdx = (bvx[b] - bw[b] * rby) - (bvx[a] - bw[a] * ray)
+                cdy = (bvy[b] + bw[b] * rbx) - (bvy[a] + bw[a] * rax)
+                rate, mscale, iscale = 0.0, 1.0, 0.0
+                if jkind[k] == WELD and jhertz[k] > 0.0:
+                    rate, mscale, iscale = w_rate[k], w_mass[k], w_imp[k]
+                elif bias:
+                    rate, mscale, iscale = j_rate, j_mass, j_imp
+                if rate != 0.0:
+                    ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+                    ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+                    cdx += rate * ex
+                    cdy += rate * ey
+                k11 = ma + mb + ray * ray * ia + rby * rby * ib
+                k12 = -ray * rax * ia - rby * rbx * ib
+                k22 = ma + mb + rax * rax * ia + rbx * rbx * ib
+                det = k11 * k22 - k12 * k12
+                if det != 0.0:
+                    det = 1.0 / det
+                sx = det * (k22 * cdx - k12 * cdy)
+                sy = det * (k11 * cdy - k12 * cdx)
+                px = -mscale * sx - iscale * jpx[k]
+                py = -mscale * sy - iscale * jpy[k]
+                jpx[k] += px
+                jpy[k] += py
+                apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+
+            for k in range(nc):
+                a = ca[k]
+                b = cb[k]
+                ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+                nx, ny = cnx[k], cny[k]
+                # Stiffer against what does not move (Box2D: the floor does not give).
+                rigid = (ma == 0.0 and ia == 0.0) or (mb == 0.0 and ib == 0.0)
+                if rigid:
+                    rate, mscale, iscale = s_rate, s_mass, s_imp
+                else:
+                    rate, mscale, iscale = c_rate, c_mass, c_imp
+                mx = dx[b] - dx[a]
+                my = dy[b] - dy[a]
+                if ccount[k] == 2 and kblock[k] != 0.0:
+                    # Both points at once (the block solve below): a box that lands flat
+                    # stays flat, where one point after the other would tip it.
+                    p = 2 * k
+                    r1 = 0.0
+                    r2 = 0.0
+                    l1 = 0.0
+                    l2 = 0.0
+                    for j in range(2):
+                        q = p + j
+                        rax, ray, rbx, rby = crax[q], cray[q], crbx[q], crby[q]
+                        ex = mx + (cq[b] * rbx - sq[b] * rby) - (cq[a] * rax - sq[a] * ray)
+                        ey = my + (sq[b] * rbx + cq[b] * rby) - (sq[a] * rax + cq[a] * ray)
+                        sep = base[q] + ex * nx + ey * ny
+                        vbias, ms, im = 0.0, 1.0, 0.0
+                        if sep > 0.0:
+                            vbias = sep * inv_h
+                        elif bias:
+                            vbias = max(mscale * rate * sep, -push)
+                            ms, im = mscale, iscale
+                        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                        if j == 0:
+                            r1 = ms * (dvx * nx + dvy * ny) + vbias
+                            l1 = (1.0 - im) * cln[q]
+                        else:
+                            r2 = ms * (dvx * nx + dvy * ny) + vbias
+                            l2 = (1.0 - im) * cln[q]
+                    # The new impulses x >= 0 with w = K (x - l) + r >= 0 and x w = 0 (a
+                    # linear complementarity problem of two rows, Box2D v2.4's block
+                    # solver): both pushing, the first alone, the second alone, or neither.
+                    k11, k12, k22 = kn1[k], kn12[k], kn2[k]
+                    det = 1.0 / (k11 * k22 - k12 * k12)
+                    x1 = l1 - det * (k22 * r1 - k12 * r2)
+                    x2 = l2 - det * (k11 * r2 - k12 * r1)
+                    if not (x1 >= 0.0 and x2 >= 0.0):
+                        x1 = l1 - (r1 - k12 * l2) / k11
+                        x2 = 0.0
+                        w2 = k12 * (x1 - l1) - k22 * l2 + r2
+                        if not (x1 >= 0.0 and w2 >= 0.0):
+                            x1 = 0.0
+                            x2 = l2 - (r2 - k12 * l1) / k22
+                            w1 = -k11 * l1 + k12 * (x2 - l2) + r1
+                            if not (x2 >= 0.0 and w1 >= 0.0):
+                                x1 = 0.0
+                                x2 = 0.0
+                    d1 = x1 - cln[p]
+                    d2 = x2 - cln[p + 1]
+                    cln[p] = x1
+                    cln[p + 1] = x2
+                    ctotal[p] += d1
+                    ctotal[p + 1] += d2
+                    if x1 > cmax[p]:
+                        cmax[p] = x1
+                    if x2 > cmax[p + 1]:
+                        cmax[p + 1] = x2
+                    px, py = (d1 + d2) * nx, (d1 + d2) * ny
+                    bvx[a] -= ma * px
+                    bvy[a] -= ma * py
+                    bw[a] -= ia * (
+                        (crax[p] * ny - cray[p] * nx) * d1
+                        + (crax[p + 1] * ny - cray[p + 1] * nx) * d2
+                    )
+                    bvx[b] += mb * px
+                    bvy[b] += mb * py
+                    bw[b] += ib * (
+                        (crbx[p] * ny - crby[p] * nx) * d1
+                        + (crbx[p + 1] * ny - crby[p + 1] * nx) * d2
+                    )
+                for j in range(ccount[k] if kblock[k] == 0.0 else 0):
+                    p = 2 * k + j
+                    rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+                    # The separation now: the anchors turned as their bodies have.
+                    ex = mx + (cq[b] * rbx - sq[b] * rby) - (cq[a] * rax - sq[a] * ray)
+                    ey = my + (sq[b] * rbx + cq[b] * rby) - (sq[a] * rax + cq[a] * ray)
+                    sep = base[p] + ex * nx + ey * ny
+                    vbias, ms, im = 0.0, 1.0, 0.0
+                    if sep > 0.0:
+                        vbias = sep * inv_h  # speculative: may close by sep, no more
+                    elif bias:
+                        vbias = max(mscale * rate * sep, -push)
+                        ms, im = mscale, iscale
+                    dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                    vn = dvx * nx + dvy * ny
+                    d = -nmass[p] * (ms * vn + vbias) - im * cln[p]
+                    press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+                if not bias:
+                    # Friction, in the relax only (Box2D v3), against the slip less the
+                    # surfaces' own speed: vt = (v_B - v_A).t - speed, t = (-n_y, n_x).
+                    tx, ty = -ny, nx
+                    for j in range(ccount[k]):
+                        p = 2 * k + j
+                        rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+                        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                        vt = dvx * tx + dvy * ty - cspeed[k]
+                        d = -tmass[p] * vt
+                        most = cfric[k] * cln[p]
+                        new = min(max(clt[p] + d, -most), most)
+                        d = new - clt[p]
+                        clt[p] = new
+                        px, py = d * tx, d * ty
+                        apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+
+            if bias:
+                # -- integrate positions (the moves since the start, and their rotations).
+                for i in range(nb):
+                    dx[i] += bvx[i] * h
+                    dy[i] += bvy[i] * h
+                    if bw[i] != 0.0:
+                        dq[i] += bw[i] * h
+                        cq[i] = math.cos(dq[i])
+                        sq[i] = math.sin(dq[i])
+
+    # -- restitution: a point that met faster than the threshold, and pushed in the step,
+    # parts at e times the speed it met at.
+    for k in range(nc):
+        e = crest[k]
+        if e == 0.0:
+            continue
+        a = ca[k]
+        b = cb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        nx, ny = cnx[k], cny[k]
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            if rel[p] > -threshold or cmax[p] == 0.0:
+                continue
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            vn = dvx * nx + dvy * ny
+            d = -nmass[p] * (vn + e * rel[p])
+            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+
+    # -- the step's end: positions and angles from the moves.
+    for i in range(nb - 1):
+        bx[i] = x0[i] + dx[i]
+        by[i] = y0[i] + dy[i]
+        bq[i] = q0[i] + dq[i]

@@ -1,0 +1,313 @@
+"""World(solver="soft"): Box2D v3's soft step for a game's scene (engine.game_step,
+engine.solver), checked against Box2D's own HelloWorld, closed forms and conservation laws,
+on both paths."""
+
+import math
+
+import numpy as np
+import pytest
+
+from engine import Body, Circle, Polygon, Segment, Vector, World
+from engine.forces import Gravity
+from engine.joints import Hinge, Weld
+from engine.links import Rod
+from tests.paths import FAST, PATHS
+
+DT = 1.0 / 60.0
+
+
+def floor_world(kernels: str, g: float = 10.0, friction: float = 0.6) -> World:
+    """A soft World with gravity g down and a 100 m floor whose top is y = 0."""
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -g)))
+    world.add_collider(Polygon([(-50, -10), (50, -10), (50, 0), (-50, 0)], friction=friction))
+    return world
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_box2d_hello_world_box_lands_flat_and_stays(kernels: str) -> None:
+    # Box2D v3's test/test_world.c: a 2 x 2 box of mass 4 dropped from y = 4 onto a static
+    # box whose top is y = 0, 90 steps of 1/60 s; Box2D asks |x|, |y - 1|, |angle| < 0.01.
+    world = floor_world(kernels)
+    box = world.add(Body((0, 4), mass=4.0, shape=Polygon.box(2, 2), friction=0.3))
+    highest_after_landing = -math.inf
+    landed = False
+    for _ in range(90):
+        world.step(DT)
+        landed = landed or box.pos.y < 1.0
+        if landed:
+            highest_after_landing = max(highest_after_landing, box.pos.y)
+    assert abs(box.pos.x) < 0.01
+    assert abs(box.pos.y - 1.0) < 0.01
+    assert abs(box.angle) < 0.01
+    # Restitution 0: it does not bounce (Box2D's linear slop, 5 mm, is the most it may rise).
+    assert landed and highest_after_landing < 1.0 + 0.005
+    assert abs(box.vel.y) < 1e-3
+
+
+@FAST
+def test_both_paths_give_the_same_platformer() -> None:
+    # The solver's one loop, compiled or run as plain Python: the same numbers.
+    from demos import platformer_scene as ps
+
+    games = [ps.build(k, solver="soft") for k in ("numpy", "fast")]
+    for _ in range(240):
+        for game in games:
+            game.step()
+    a, b = (np.array([[*bd.pos, bd.angle, *bd.vel] for bd in g.world.bodies]) for g in games)
+    assert np.allclose(a, b, rtol=0.0, atol=1e-9), np.abs(a - b).max()
+
+
+def slope_run(kernels: str, degrees: float, mu: float) -> tuple[float, float]:
+    """A unit box on a slope of ``degrees`` with friction mu (the slope's 1): the distance it
+    moves in 1 s after settling 10 steps, and g (sin - mu cos) t^2 / 2 + v0 t, the closed form."""
+    g = 9.81
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -g)))
+    th = math.radians(degrees)
+    c, s = math.cos(th), math.sin(th)
+    L = 20.0
+    world.add_collider(
+        Polygon([(-L * c, -L * s - 5), (L * c, L * s - 5), (L * c, L * s), (-L * c, -L * s)],
+                friction=1.0)
+    )  # fmt: skip
+    box = world.add(
+        Body(Vector(-s, c) * 0.5, mass=1.0, shape=Polygon.box(1, 1), friction=mu, angle=th)
+    )
+    for _ in range(10):
+        world.step(DT)
+    p0, v0 = box.pos, box.vel
+    for _ in range(60):
+        world.step(DT)
+    down = Vector(-c, -s)
+    a = g * (s - mu * c)
+    return (box.pos - p0).length(), max(v0.dot(down) + 0.5 * a, 0.0) if a > 0 else 0.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_box_holds_on_a_gentle_slope_and_slides_on_a_steep_one(kernels: str) -> None:
+    held, _ = slope_run(kernels, 20.0, 0.5)  # tan 20 = 0.36 < 0.5: static friction holds
+    assert held < 1e-4
+    slid, exact = slope_run(kernels, 40.0, 0.5)  # a = g (sin 40 - 0.5 cos 40)
+    assert slid == pytest.approx(exact, rel=0.01)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_sliding_box_stops_at_v0_squared_over_2_mu_g(kernels: str) -> None:
+    g, mu, v0 = 9.81, 0.5, 5.0
+    world = floor_world(kernels, g, friction=1.0)
+    box = world.add(Body((0, 0.5), mass=1.0, shape=Polygon.box(1, 1), friction=mu))
+    for _ in range(30):
+        world.step(DT)
+    x0 = box.pos.x
+    box.vel = Vector(v0, 0.0)
+    for _ in range(120):
+        world.step(DT)
+    assert box.pos.x - x0 == pytest.approx(v0 * v0 / (2 * mu * g), rel=0.01)
+    assert abs(box.vel.x) < 1e-9
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_boxes_colliding_in_space_keep_momentum_and_angular_momentum(kernels: str) -> None:
+    world = World(kernels=kernels, solver="soft")
+    a = world.add(
+        Body((0, 0), (3.0, 0.5), mass=2.0, shape=Polygon.box(1, 0.6), angular_velocity=1.0)
+    )
+    b = world.add(Body((2.5, 0.3), (-1.0, 0.0), mass=1.0, shape=Polygon.box(0.8, 0.8),
+                       restitution=0.5, angle=0.3))  # fmt: skip
+
+    def momenta() -> tuple[Vector, float]:
+        p = a.vel * a.mass + b.vel * b.mass
+        L = sum(
+            (bd.mass * (bd.pos.x * bd.vel.y - bd.pos.y * bd.vel.x) + bd.moment * bd.angular_velocity
+             for bd in (a, b)),
+            0.0,
+        )  # fmt: skip
+        return p, L
+
+    p0, L0 = momenta()
+    touched = False
+    for _ in range(120):
+        world.step(DT)
+        touched = touched or bool(world.began)
+    p1, L1 = momenta()
+    assert touched
+    # Every impulse acts on both bodies, equal and opposite: momentum is kept to rounding.
+    assert (p1 - p0).length() < 1e-12 * p0.length()
+    # Angular momentum to within what the fixed anchors allow (Box2D's): a substep's impulse
+    # acts at the point where the bodies met as the step began, not where they have moved.
+    assert abs(L1 - L0) < 0.03 * abs(L0)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_tower_of_twenty_boxes_stands(kernels: str) -> None:
+    # Box2D v3 on the same tower: 16 mm aside and 133 mm lower after 60 s; the exact
+    # pipeline's walks 169 mm. Ten seconds here (the sag settles within two).
+    world = floor_world(kernels)
+    boxes = [world.add(Body((0, 0.5 + i), mass=1.0, shape=Polygon.box(1, 1))) for i in range(20)]
+    for _ in range(600):
+        world.step(DT)
+    top = boxes[-1]
+    assert abs(top.pos.x) < 0.016
+    assert 0.0 < 19.5 - top.pos.y < 0.133
+    assert all(abs(bd.angle) < 1e-3 for bd in boxes)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_disc_bounces_at_e_times_its_speed(kernels: str) -> None:
+    g = 9.81
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -g)))
+    world.add_collider(Segment((-10, 0), (10, 0), 0.0, restitution=1.0))
+    ball = world.add(Body((0, 2), mass=1.0, radius=0.25, restitution=0.5))
+    before = after = None
+    for _ in range(120):
+        v = ball.vel.y
+        world.step(DT)
+        if v < -1.0 and ball.vel.y > 0.0:
+            before, after = v, ball.vel.y
+            break
+    assert before is not None and after is not None
+    # The speed it met at is taken as the step began: at most g dt off the speed at contact.
+    assert after == pytest.approx(-0.5 * before, abs=0.5 * g * DT)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_hinge_pendulum_holds_its_point_and_loses_no_energy_it_should_not_gain(
+    kernels: str,
+) -> None:
+    g = 9.81
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -g)))
+    bar = world.add(Body((1.0, 0.0), mass=1.0, shape=Polygon.box(2.0, 0.1)))
+    hinge = world.add_link(Hinge(bar, world.static_body, (0.0, 0.0)))
+
+    def energy() -> float:
+        return (
+            0.5 * bar.mass * bar.vel.length_squared()
+            + 0.5 * bar.moment * bar.angular_velocity**2
+            + (bar.mass * g * bar.pos.y)
+        )
+
+    e0 = energy()
+    worst = 0.0
+    energies = []
+    for _ in range(600):
+        world.step(DT)
+        worst = max(worst, hinge.point.length())
+        energies.append(energy())
+    # Substeps of semi-implicit Euler: the energy swings by O(g v h) within a swing (2% of
+    # m g L at most here) and does not grow from swing to swing.
+    assert max(energies) < e0 + 0.02 * bar.mass * g * 1.0
+    assert max(energies[-120:]) <= max(energies[:120]) + 1e-9
+    assert worst < 2e-3  # the 60 Hz joint spring gives by millimetres under the swing's pull
+    assert bar.pos.length() == pytest.approx(1.0, abs=2e-3)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_hinge_motor_turns_at_its_speed_and_limits_stop_it(kernels: str) -> None:
+    world = World(kernels=kernels, solver="soft")
+    wheel = world.add(Body((0, 0), mass=1.0, shape=Polygon.box(1, 1)))
+    world.add_link(Hinge(wheel, world.static_body, (0.0, 0.0), motor_speed=2.0))
+    for _ in range(60):
+        world.step(DT)
+    assert wheel.angular_velocity == pytest.approx(2.0, abs=1e-9)
+    assert wheel.angle == pytest.approx(2.0 * 1.0, abs=2.0 * DT)
+
+    world = World(kernels=kernels, solver="soft")
+    arm = world.add(Body((0, 0), mass=1.0, shape=Polygon.box(1, 1)))
+    world.add_link(Hinge(arm, world.static_body, (0.0, 0.0), limits=(-0.5, 0.5), motor_speed=3.0,
+                         max_torque=5.0))  # fmt: skip
+    for _ in range(120):
+        world.step(DT)
+    assert arm.angle == pytest.approx(0.5, abs=0.01)
+    assert abs(arm.angular_velocity) < 0.05
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_weld_holds_two_boxes_as_one(kernels: str) -> None:
+    world = floor_world(kernels)
+    a = world.add(Body((0, 2), mass=1.0, shape=Polygon.box(1, 1)))
+    b = world.add(Body((1.0, 2.2), mass=1.0, shape=Polygon.box(1, 1)))
+    world.add_link(Weld(a, b))
+    d0 = b.pos - a.pos
+    worst = 0.0
+    for _ in range(180):
+        world.step(DT)
+        worst = max(worst, (b.pos - a.pos - d0.rotated(a.angle)).length())
+    # The weld is a 60 Hz spring (Box2D's): it gives by centimetres as they land at 5 m/s,
+    # and holds them as they were once at rest.
+    assert worst < 0.03
+    # At rest a soft joint sags under its load, as Box2D's: a millimetre here.
+    assert (b.pos - a.pos - d0.rotated(a.angle)).length() < 2e-3
+    assert abs(b.angle - a.angle) < 2e-3
+    assert a.pos.y < 1.0  # they fell and tipped over together
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_landing_begins_one_contact_that_carries_the_weight(kernels: str) -> None:
+    g, m = 10.0, 2.0
+    world = floor_world(kernels, g)
+    box = world.add(Body((0, 1.5), mass=m, shape=Polygon.box(1, 1)))
+    began = []
+    for _ in range(90):
+        world.step(DT)
+        began += world.began
+    assert len(began) == 1
+    event = began[0]
+    assert event.body is box
+    assert event.normal.y == pytest.approx(1.0)  # out of the floor, toward the box
+    touching = world.touching
+    assert len(touching) == 1
+    # At rest the floor's impulse over a step is the weight's: m g dt, straight up.
+    assert touching[0].impulse.y == pytest.approx(m * g * DT, rel=1e-6)
+    assert abs(touching[0].impulse.x) < 1e-9
+    box.pos = Vector(0.0, 3.0)  # lifted off: the contact ends
+    world.step(DT)
+    assert len(world.ended) == 1 and not world.touching
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_sensor_reports_a_body_it_does_not_push(kernels: str) -> None:
+    world = World(kernels=kernels, solver="soft")
+    coin = world.add_collider(Circle((2.0, 0.0), 0.3, sensor=True))
+    box = world.add(Body((0, 0), (3.0, 0.0), mass=1.0, shape=Polygon.box(0.5, 0.5)))
+    seen = []
+    for _ in range(60):
+        world.step(DT)
+        seen += [e.collider for e in world.began]
+        assert box.vel == Vector(3.0, 0.0)
+    assert seen == [coin]
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_kinematic_platform_carries_a_box(kernels: str) -> None:
+    g = 9.81
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -g)))
+    platform = world.add(
+        Body((0, 0), (1.0, 0.0), shape=Polygon.box(4.0, 0.4), kinematic=True, friction=0.8)
+    )
+    box = world.add(Body((0, 0.7), mass=1.0, shape=Polygon.box(1.0, 1.0), friction=0.8))
+    for _ in range(120):
+        world.step(DT)
+    assert platform.pos.x == pytest.approx(2.0, abs=1e-12)
+    # Put on at rest, it slips until friction (mu = 0.8 x 0.8) brings it to the platform's
+    # speed u: by u^2 / (2 mu g) behind; then it rides, resting 0.7 m over the platform.
+    mu = 0.8 * 0.8
+    assert box.vel.x == pytest.approx(1.0, abs=1e-3)
+    assert platform.pos.x - box.pos.x == pytest.approx(1.0 / (2 * mu * g), rel=0.05)
+    assert box.pos.y == pytest.approx(0.7, abs=2e-3)
+
+
+def test_solver_is_checked_and_what_it_cannot_take_is_said() -> None:
+    with pytest.raises(ValueError, match="solver must be 'exact'.*got 'fast'"):
+        World(solver="fast")
+    world = World(solver="soft")
+    assert world.solver == "soft" and World().solver == "exact"
+    a = world.add(Body((0, 0), mass=1.0, radius=0.1))
+    b = world.add(Body((1, 0), mass=1.0, radius=0.1))
+    world.add_link(Rod(a, b))
+    with pytest.raises(ValueError, match="does not take a Rod link"):
+        world.step(DT)
+    assert a.pos == Vector(0.0, 0.0) and world.t == 0.0
