@@ -46,7 +46,8 @@ from .colliders import Collider
 from .events import collider_keys, pair_keys
 from .joints import Hinge, Joint, Weld
 from .manifold import StaticShapes, collide, static_shapes
-from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Manifold
+from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
+from .narrowphase import Tables, collide_polygon_pairs, collide_round_pairs
 from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
 from .vector import Vector
 
@@ -119,6 +120,7 @@ class GameStep:
         self.last = _Report()  # the step before's, for begin and end
         self._table: tuple[int, list[Any], ShapeTable] | None = None
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray] | None = None
+        self._places: tuple[ShapeTable, StaticShapes, _Places] | None = None
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -147,7 +149,10 @@ class GameStep:
         margin = _reach(store, accel, dt)
         pairs = _pairs(store, state, sensors, margin, ignored_pairs)
         faces = _faces(store, colliders, owner, bounds, sensors, margin, ignored_faces)
-        touches = _collide(table, store, statics, pairs, faces, margin, self.fast)
+        kept = self._places
+        if kept is None or kept[0] is not table or kept[1] is not statics:
+            kept = self._places = (table, statics, _places(table, statics))
+        touches = _collide(kept[2], table, store, statics, pairs, faces, margin, self.fast)
         m, ia, other = touches.m, touches.a, touches.place
         # A sensor collider's manifolds are events only: no row pushes its body.
         sensor = np.zeros(len(m), dtype=bool)
@@ -545,7 +550,88 @@ def _faces(
     return np.stack([rows[keep], shapes[keep]], axis=1)
 
 
+def _padded(p: Polygons, m: int) -> Polygons:
+    """``p`` padded to ``m`` vertices (the last vertex and normal repeated, as
+    engine.manifold_kinds pads)."""
+    k = p.vertices.shape[1]
+    if k == m:
+        return p
+    v = np.concatenate([p.vertices, np.repeat(p.vertices[:, -1:], m - k, axis=1)], axis=1)
+    nn = np.concatenate([p.normals, np.repeat(p.normals[:, -1:], m - k, axis=1)], axis=1)
+    return Polygons(v, nn, p.count, p.radius)
+
+
+class _Places(NamedTuple):
+    """The two tables of a scene's shapes (engine.narrowphase) and where each shape is in
+    them: by body row and by static shape's place, whether it is a circle and its index
+    (-1: a half plane, which the tables do not hold)."""
+
+    tables: Tables
+    body_circle: np.ndarray
+    body_index: np.ndarray
+    static_circle: np.ndarray
+    static_index: np.ndarray
+
+
+def _places(table: ShapeTable, statics: StaticShapes) -> _Places:
+    """The tables of the bodies' shapes and the colliders' (engine.narrowphase)."""
+    n = len(table)
+    parts = [p for p in (table.polygons,) if p is not None]
+    body_caps = Polygons.from_capsules(table.capsules) if len(table.capsules) else None
+    static_polys = statics.polygons if len(statics.polygon_owner) else None
+    static_caps = Polygons.from_capsules(statics.capsules) if len(statics.capsule_owner) else None
+    parts += [p for p in (body_caps, static_polys, static_caps) if p is not None]
+    polygons = None
+    if parts:
+        m = max(p.vertices.shape[1] for p in parts)
+        padded = [_padded(p, m) for p in parts]
+        polygons = Polygons(
+            np.concatenate([p.vertices for p in padded]),
+            np.concatenate([p.normals for p in padded]),
+            np.concatenate([p.count for p in padded]),
+            np.concatenate([p.radius for p in padded]),
+        )
+    circles = Circles(
+        np.concatenate([table.circles.center, statics.circles.center]),
+        np.concatenate([table.circles.radius, statics.circles.radius]),
+    )
+    n_poly = 0 if table.polygons is None else len(table.polygons)
+    n_cap = len(table.capsules)
+    body_circle = table.kind == DISC
+    body_index = np.where(
+        body_circle, np.arange(n), np.where(table.kind == CAPSULE, n_poly, 0) + table.index
+    )
+    # The static shapes in the order of statics.kinds(): half planes, circles, capsules,
+    # polygons (those present).
+    circle_parts, index_parts = [], []
+    base_poly = n_poly + n_cap
+    n_static_poly = len(statics.polygon_owner)
+    for _kind, own in statics.kinds():
+        k = len(own)
+        if own is statics.half_plane_owner:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(np.full(k, -1, dtype=np.intp))
+        elif own is statics.circle_owner:
+            circle_parts.append(np.ones(k, dtype=bool))
+            index_parts.append(n + np.arange(k))
+        elif own is statics.capsule_owner:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(base_poly + n_static_poly + np.arange(k))
+        else:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(base_poly + np.arange(k))
+    static_circle = np.concatenate(circle_parts) if circle_parts else np.zeros(0, dtype=bool)
+    static_index = (
+        np.concatenate(index_parts) if index_parts else np.zeros(0, dtype=np.intp)
+    ).astype(np.int64)
+    return _Places(
+        Tables(polygons, circles), body_circle, body_index.astype(np.int64), static_circle,
+        static_index,
+    )  # fmt: skip
+
+
 def _collide(
+    places: _Places,
     table: ShapeTable,
     store: Any,
     statics: StaticShapes,
@@ -554,47 +640,80 @@ def _collide(
     margin: np.ndarray,
     fast: bool,
 ) -> Touches:
-    """The manifolds of the pairs and faces with a point."""
+    """The manifolds of the pairs and faces with a point: polygon against polygon in one
+    call, the round pairs in another (engine.narrowphase), half planes by kind."""
     n = len(store)
     x, q = store.x, store.angle
+    # Every pair as (A's row, B's row or n, the static place or -1), A a body.
+    rows, spots = faces[:, 0], faces[:, 1]
+    half = places.static_index[spots] < 0 if len(spots) else np.zeros(0, dtype=bool)
+    a = np.concatenate([pairs[:, 0], rows[~half]]).astype(np.intp)
+    b = np.concatenate([pairs[:, 1], np.full(int((~half).sum()), n)]).astype(np.intp)
+    place = np.concatenate([np.full(len(pairs), -1), spots[~half]]).astype(np.intp)
+    is_static = place >= 0
+    # (A body pair's place is -1: it picks the one entry appended past the statics.)
+    static_circle = np.append(places.static_circle, False)[place]
+    static_index = np.append(places.static_index, -1)[place]
+    other = np.minimum(b, n - 1)
+    circ_a = places.body_circle[a]
+    circ_b = np.where(is_static, static_circle, places.body_circle[other])
+    idx_a = places.body_index[a]
+    idx_b = np.where(is_static, static_index, places.body_index[other])
+    zero2 = np.zeros((len(a), 2))
+    xb = np.where(is_static[:, None], zero2, x[other])
+    qb = np.where(is_static, 0.0, q[other])
+    xa, qa = x[a], q[a]
+    reach = margin[a] + np.where(is_static, 0.0, margin[other])
+    reach = reach + SPECULATIVE_DISTANCE
+    t = places.tables
     parts: list[Manifold] = []
-    ia: list[np.ndarray] = []
-    ib: list[np.ndarray] = []
-    other: list[np.ndarray] = []
+    order: list[np.ndarray] = []
+    c = np.ascontiguousarray
+    sel = np.flatnonzero(~circ_a & ~circ_b)
+    if len(sel):
+        parts.append(collide_polygon_pairs(
+            t, c(idx_a[sel]), c(xa[sel]), c(qa[sel]), c(idx_b[sel]), c(xb[sel]), c(qb[sel]),
+            float(reach[sel].max()), fast,
+        ))  # fmt: skip
+        order.append(sel)
+    # The round pairs: B a circle; where only A is one, the pair is taken the other way
+    # round (the polygon as A) and its manifold flipped back.
+    sel = np.flatnonzero(circ_a | circ_b)
+    if len(sel):
+        swap = circ_a[sel] & ~circ_b[sel]
+        ia = np.where(swap, idx_b[sel], idx_a[sel])
+        ib = np.where(swap, idx_a[sel], idx_b[sel])
+        pa = np.where(swap[:, None], xb[sel], xa[sel])
+        pb = np.where(swap[:, None], xa[sel], xb[sel])
+        wa = np.where(swap, qb[sel], qa[sel])
+        wb = np.where(swap, qa[sel], qb[sel])
+        flag = np.where(swap, False, circ_a[sel])
+        m = collide_round_pairs(
+            t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), fast
+        )
+        if swap.any():
+            flipped = m.take(swap).flipped()
+            keep = m.take(~swap)
+            m = Manifold.concat([keep, flipped])
+            sel = np.concatenate([sel[~swap], sel[swap]])
+        parts.append(m)
+        order.append(sel)
+    # Half planes (a Plane, a room's walls), by the kind of the body's shape.
+    hp_rows, hp_spots = rows[half], spots[half]
     kind = table.kind
-    a, b = pairs[:, 0], pairs[:, 1]
+    extra_a, extra_place = [], []
     for ka in (DISC, CAPSULE, POLYGON):
-        for kb in (DISC, CAPSULE, POLYGON):
-            sel = np.flatnonzero((kind[a] == ka) & (kind[b] == kb))
-            if not len(sel):
-                continue
-            ra, rb = a[sel], b[sel]
-            reach = float((margin[ra] + margin[rb]).max()) + SPECULATIVE_DISTANCE
-            m = collide(table.kinds(ra), x[ra], q[ra], table.kinds(rb), x[rb], q[rb], reach, fast)
-            hit = m.count > 0
-            parts.append(m.take(hit))
-            ia.append(ra[hit])
-            ib.append(rb[hit])
-            other.append(np.full(int(hit.sum()), -1, dtype=np.intp))
-    rows, places = faces[:, 0], faces[:, 1]
-    start = 0
-    for skind, own in statics.kinds():
-        stop = start + len(own)
-        in_kind = (places >= start) & (places < stop)
-        for ka in (DISC, CAPSULE, POLYGON):
-            sel = np.flatnonzero(in_kind & (kind[rows] == ka))
-            if not len(sel):
-                continue
-            r, s = rows[sel], places[sel]
-            reach = float(margin[r].max()) + SPECULATIVE_DISTANCE
-            m = collide(table.kinds(r), x[r], q[r], skind.take(s - start), np.zeros((len(r), 2)),
-                        np.zeros(len(r)), reach, fast)  # fmt: skip
-            hit = m.count > 0
-            parts.append(m.take(hit))
-            ia.append(r[hit])
-            ib.append(np.full(int(hit.sum()), n, dtype=np.intp))
-            other.append(s[hit])
-        start = stop
+        pick = np.flatnonzero(kind[hp_rows] == ka)
+        if not len(pick):
+            continue
+        r, sp = hp_rows[pick], hp_spots[pick]
+        m = collide(
+            table.kinds(r), x[r], q[r], statics.half_planes.take(sp), np.zeros((len(r), 2)),
+            np.zeros(len(r)), float(margin[r].max()) + SPECULATIVE_DISTANCE, fast,
+        )  # fmt: skip
+        parts.append(m)
+        extra_a.append(r)
+        extra_place.append(sp)
     if not parts:
         empty = np.zeros(0, dtype=np.intp)
         none = Manifold(
@@ -607,9 +726,10 @@ def _collide(
             np.zeros((0, 2), dtype=np.int64),
         )
         return Touches(none, empty, empty, empty)
-    return Touches(
-        Manifold.concat(parts),
-        np.concatenate(ia),
-        np.concatenate(ib),
-        np.concatenate(other),
-    )
+    m = Manifold.concat(parts)
+    idx = np.concatenate(order) if order else np.zeros(0, dtype=np.intp)
+    all_a = np.concatenate([a[idx], *extra_a]).astype(np.intp)
+    all_b = np.concatenate([b[idx], *[np.full(len(r), n) for r in extra_a]]).astype(np.intp)
+    all_place = np.concatenate([place[idx], *extra_place]).astype(np.intp)
+    hit = m.count > 0
+    return Touches(m.take(hit), all_a[hit], all_b[hit], all_place[hit])

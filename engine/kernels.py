@@ -212,6 +212,7 @@ MODULES = (
     "engine.sweep_paths",
     "engine.manifold_polygon",
     "engine.manifold",
+    "engine.narrowphase",
     "engine.joint_rows",
     "engine.events",
 )

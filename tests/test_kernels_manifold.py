@@ -24,6 +24,7 @@ from engine.colliders import Box, Collider, Plane, Polygon
 from engine.kernels import LoopKernel
 from engine.manifold import (
     Capsules,
+    Circles,
     HalfPlanes,
     Manifold,
     Polygons,
@@ -325,3 +326,30 @@ def test_static_rows_on_half_planes_are_the_twins(seed: int, bodies: int, planes
             assert np.array_equal(w, g)
         else:
             assert close(g, w)
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=seeds, pairs=st.integers(1, 40), margin=st.sampled_from([0.0, 0.02, math.inf]))
+def test_round_kernel_is_its_numpy_twin(seed: int, pairs: int, margin: float) -> None:
+    """``round_loop`` (engine.narrowphase, the soft step's round pairs): the manifolds of
+    ``collide_polygon_circle`` and ``collide_circles`` for polygons and circles against
+    circles, apart, touching, inside and on a corner, with the circle's centre off its body's
+    position, on both paths."""
+    from engine.narrowphase import Tables, collide_round_pairs
+
+    rng = np.random.default_rng(seed)
+    a, xa, qa, _, _, _ = make_pairs(seed, pairs, "free", True, False)
+    centers = rng.uniform(-0.3, 0.3, (pairs + 3, 2))
+    radii = rng.uniform(0.0, 0.6, pairs + 3)
+    circles = Circles(centers, radii)
+    t = Tables(a, circles)
+    circle_a = rng.random(pairs) < 0.4
+    ia = np.where(circle_a, rng.integers(0, pairs + 3, pairs), np.arange(pairs)).astype(np.int64)
+    ib = rng.integers(0, pairs + 3, pairs).astype(np.int64)
+    # B's centre anywhere from deep inside A to beyond the margin, and on a corner of A's.
+    xb = xa + rng.uniform(-1.5, 1.5, (pairs, 2))
+    corner = rng.random(pairs) < 0.2
+    xb[corner] = xa[corner] + a.vertices[corner, 0] - centers[ib[corner]]
+    qb = rng.uniform(-math.pi, math.pi, pairs)
+    want = collide_round_pairs(t, circle_a, ia, xa, qa, ib, xb, qb, margin, False)
+    agree(collide_round_pairs(t, circle_a, ia, xa, qa, ib, xb, qb, margin, True), want)

@@ -1,0 +1,215 @@
+"""Every pair's manifold in a few calls: the soft step's narrowphase (engine.game_step).
+
+The manifold functions of ``engine.manifold`` take N pairs of one kind against one kind, and
+each call pays numpy's (or the wrapper's) fixed cost once. A game's scene mixes kinds (boxes,
+capsules, discs, the level's segments and coins), so the soft step puts every shape, the
+bodies' and the colliders', into two tables:
+
+* ``polygons``: every polygon and every capsule (a capsule as Box2D's two-vertex polygon,
+  ``Polygons.from_capsules``), padded to the largest;
+* ``circles``: every disc and every circle collider (a centre in its body's frame, a radius);
+
+and sorts the pairs into three groups, each one call: polygon against polygon
+(``engine.manifold_polygon``: Box2D's b2CollidePolygons), polygon against circle and circle
+against circle (the round pairs: b2CollidePolygonAndCircle and b2CollideCircles). On the fast
+path the calls are the loop kernels (``polygon_loop``, ``round_loop`` here), straight on the
+tables; on the numpy path the numpy functions on the pairs' rows. ``round_loop`` is
+``collide_polygon_circle`` and ``collide_circles`` written as one loop, each product in its
+twin's order, so both paths give the same bits.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from . import kernels
+from .manifold import collide_circles, collide_polygon_circle
+from .manifold_kinds import Circles, Manifold, Polygons
+from .manifold_polygon import collide_polygons, polygon_loop
+
+__all__ = ["Tables", "collide_polygon_pairs", "collide_round_pairs", "round_loop"]
+
+
+class Tables:
+    """The shapes of a scene in two tables (module doc): ``polygons`` (a ``Polygons``, or
+    None without any) and ``circles`` (a ``Circles``)."""
+
+    def __init__(self, polygons: Polygons | None, circles: Circles) -> None:
+        self.polygons = polygons
+        self.circles = circles
+        if polygons is not None:
+            # The loop kernels' own copies: C-contiguous, int64 counts.
+            self.vertices = np.ascontiguousarray(polygons.vertices)
+            self.normals = np.ascontiguousarray(polygons.normals)
+            self.count = np.ascontiguousarray(polygons.count, dtype=np.int64)
+            self.radius = np.ascontiguousarray(polygons.radius)
+        self.center = np.ascontiguousarray(circles.center)
+        self.round = np.ascontiguousarray(circles.radius)
+
+
+def _manifold(parts: tuple[np.ndarray, ...]) -> Manifold:
+    return Manifold(*parts)
+
+
+def collide_polygon_pairs(
+    t: Tables, ia: np.ndarray, xa: np.ndarray, qa: np.ndarray,
+    ib: np.ndarray, xb: np.ndarray, qb: np.ndarray, margin: float, fast: bool,
+) -> Manifold:  # fmt: skip
+    """Polygon ``ia[k]`` of the table at (xa[k], qa[k]) against polygon ``ib[k]`` at
+    (xb[k], qb[k]) (m, rad): their manifolds, the normal from A to B."""
+    assert t.polygons is not None
+    if fast:
+        kernel: Any = polygon_loop
+        return _manifold(
+            kernel(t.vertices, t.normals, t.count, t.radius, ia, xa, qa,
+                   t.vertices, t.normals, t.count, t.radius, ib, xb, qb, margin)
+        )  # fmt: skip
+    p = t.polygons
+    return collide_polygons(p.take(ia), xa, qa, p.take(ib), xb, qb, margin)
+
+
+def collide_round_pairs(
+    t: Tables, circle_a: np.ndarray, ia: np.ndarray, xa: np.ndarray, qa: np.ndarray,
+    ib: np.ndarray, xb: np.ndarray, qb: np.ndarray, margin: float, fast: bool,
+) -> Manifold:  # fmt: skip
+    """Shape ``ia[k]`` (a circle of the table where ``circle_a[k]``, else a polygon) at
+    (xa[k], qa[k]) against circle ``ib[k]`` at (xb[k], qb[k]): their manifolds (A to B)."""
+    if fast:
+        vertices = t.vertices if t.polygons is not None else np.zeros((1, 2, 2))
+        normals = t.normals if t.polygons is not None else np.zeros((1, 2, 2))
+        count = t.count if t.polygons is not None else np.zeros(1, dtype=np.int64)
+        radius = t.radius if t.polygons is not None else np.zeros(1)
+        kernel: Any = round_loop
+        return _manifold(
+            kernel(vertices, normals, count, radius, t.center, t.round, circle_a, ia, xa, qa,
+                   ib, xb, qb, margin)
+        )  # fmt: skip
+    out = []
+    order = []
+    for circles in (False, True):
+        sel = np.flatnonzero(circle_a == circles)
+        if not len(sel):
+            continue
+        b = t.circles.take(ib[sel])
+        if circles:
+            a_c = t.circles.take(ia[sel])
+            m = collide_circles(a_c, xa[sel], qa[sel], b, xb[sel], qb[sel], margin)
+        else:
+            assert t.polygons is not None
+            a_p = t.polygons.take(ia[sel])
+            m = collide_polygon_circle(a_p, xa[sel], qa[sel], b, xb[sel], qb[sel], margin)
+        out.append(m)
+        order.append(sel)
+    if len(out) == 1:
+        return out[0]
+    joined = Manifold.concat(out)
+    back = np.empty(len(ia), dtype=np.intp)
+    back[np.concatenate(order)] = np.arange(len(ia))
+    return joined.take(back)
+
+
+def _sample_round() -> tuple[object, ...]:
+    """The smallest call of ``round_loop``: a unit box and a disc beside it, and two discs."""
+    v = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
+    nn = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
+    c, r = np.array([4]), np.zeros(1)
+    centers, radii = np.zeros((2, 2)), np.array([0.25, 0.5])
+    flag = np.array([False, True])
+    i, x, q = np.array([0, 1]), np.zeros((2, 2)), np.zeros(2)
+    xb = np.array([[0.7, 0.0], [0.0, 0.7]])
+    return v, nn, c, r, centers, radii, flag, i, x, q, np.array([0, 0]), xb, q, 0.02
+
+
+@kernels.loop(sample=_sample_round)
+def round_loop(
+    VA: np.ndarray, NA: np.ndarray, cA: np.ndarray, rA: np.ndarray,
+    C: np.ndarray, rC: np.ndarray, circle_a: np.ndarray,
+    ia: np.ndarray, xa: np.ndarray, qa: np.ndarray,
+    ib: np.ndarray, xb: np.ndarray, qb: np.ndarray, margin: float,
+) -> tuple[np.ndarray, ...]:  # fmt: skip
+    """``collide_polygon_circle`` and ``collide_circles`` as one loop over pairs: pair k is
+    polygon ``ia[k]`` of (VA, NA, cA, rA), or circle ``ia[k]`` of (C, rC) where
+    ``circle_a[k]``, at (xa[k], qa[k]), against circle ``ib[k]`` of (C, rC) at (xb[k],
+    qb[k]); returns the Manifold's arrays, each product its twins' in their order."""
+    n = len(ia)
+    normal_w = np.empty((n, 2))
+    count = np.zeros(n, dtype=np.int64)
+    world = np.zeros((n, 2, 2))
+    anchor_a = np.zeros((n, 2, 2))
+    anchor_b = np.zeros((n, 2, 2))
+    sep_out = np.full((n, 2), np.inf)
+    feat_out = np.full((n, 2), -1, dtype=np.int64)
+    for k in range(n):
+        # Frames (engine.manifold_kinds.frames): B's centre in A's frame.
+        ca, sn = np.cos(qa[k]), np.sin(qa[k])
+        dx, dy = xb[k, 0] - xa[k, 0], xb[k, 1] - xa[k, 1]
+        px, py = ca * dx + sn * dy, -sn * dx + ca * dy
+        rel = qb[k] - qa[k]
+        c, s = np.cos(rel), np.sin(rel)
+        j = ib[k]
+        vx, vy = C[j, 0], C[j, 1]
+        cx, cy = c * vx - s * vy + px, s * vx + c * vy + py
+        rb = rC[j]
+        i = ia[k]
+        if circle_a[k]:
+            # collide_circles: the normal along the centres (A's up where they coincide).
+            pax, pay = C[i, 0], C[i, 1]
+            ra = rC[i]
+            ux, uy = cx - pax, cy - pay
+            dist = np.hypot(ux, uy)
+            if dist > 0.0:
+                nx, ny = ux / dist, uy / dist
+            else:
+                nx, ny = 0.0, 1.0
+            ax_, ay_ = pax + ra * nx, pay + ra * ny
+            gap = dist - ra - rb
+        else:
+            # collide_polygon_circle: the face of largest separation, or a vertex past it.
+            ra = rA[i]
+            m = cA[i]
+            best = 0
+            sep = -np.inf
+            for e in range(m):
+                d = NA[i, e, 0] * (cx - VA[i, e, 0]) + NA[i, e, 1] * (cy - VA[i, e, 1])
+                if d > sep or e == 0:
+                    best, sep = e, d
+            v1x, v1y = VA[i, best, 0], VA[i, best, 1]
+            e2 = (best + 1) % m
+            v2x, v2y = VA[i, e2, 0], VA[i, e2, 1]
+            u1 = (cx - v1x) * (v2x - v1x) + (cy - v1y) * (v2y - v1y)
+            u2 = (cx - v2x) * (v1x - v2x) + (cy - v2y) * (v1y - v2y)
+            fx, fy = NA[i, best, 0], NA[i, best, 1]
+            outside = sep > 0.0
+            near1 = outside and u1 < 0.0
+            near2 = outside and u2 < 0.0 and not near1
+            if near1 or near2:
+                wx, wy = (v1x, v1y) if near1 else (v2x, v2y)
+                ux, uy = cx - wx, cy - wy
+                dist = np.hypot(ux, uy)
+                if dist > 0.0:
+                    nx, ny = ux / dist, uy / dist
+                else:
+                    nx, ny = fx, fy
+                ax_, ay_ = wx + ra * nx, wy + ra * ny
+                gap = dist - ra - rb
+            else:
+                nx, ny = fx, fy
+                h = ra - ((cx - v1x) * fx + (cy - v1y) * fy)
+                ax_, ay_ = cx + h * fx, cy + h * fy
+                gap = sep - ra - rb
+        bx_, by_ = cx - rb * nx, cy - rb * ny
+        # _one_point and finish: the point midway, kept within margin, into the world's frame.
+        normal_w[k, 0] = ca * nx - sn * ny
+        normal_w[k, 1] = sn * nx + ca * ny
+        if gap <= margin:
+            mx, my = 0.5 * (ax_ + bx_), 0.5 * (ay_ + by_)
+            wx_, wy_ = ca * mx - sn * my, sn * mx + ca * my
+            anchor_a[k, 0, 0], anchor_a[k, 0, 1] = wx_, wy_
+            world[k, 0, 0], world[k, 0, 1] = wx_ + xa[k, 0], wy_ + xa[k, 1]
+            anchor_b[k, 0, 0] = wx_ + (xa[k, 0] - xb[k, 0])
+            anchor_b[k, 0, 1] = wy_ + (xa[k, 1] - xb[k, 1])
+            sep_out[k, 0], feat_out[k, 0] = gap, 0
+            count[k] = 1
+    return normal_w, count, world, anchor_a, anchor_b, sep_out, feat_out
