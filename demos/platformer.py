@@ -128,7 +128,7 @@ class PlatformerGame:
     """
 
     def __init__(self, kernels: str | None = None, player: Player | None = None) -> None:
-        self.level = ps.build(kernels)
+        self.level = ps.build(kernels, solver="soft")
         self.world = self.level.world
         self.player: Player = autopilot if player is None else player
         world, hero = self.world, self.level.player

@@ -29,9 +29,11 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    (engine.event_dispatch).
 
 What this step does not do yet, and says so (``World.solver``'s error): rods, cables, pins,
-springs, mouse joints and 1D worlds are the exact pipeline's; bodies do not sleep; a body
-faster than its speculative margin can catch (what it and the other can move in the step,
-so any speed against a wall) is not swept for its moment of impact.
+springs and 1D worlds are the exact pipeline's. A mouse joint is Box2D's here: a soft spring
+that sags by g / omega^2 under a body's weight (the exact pipeline's holds it at the target).
+Bodies do not sleep. A body faster than its speculative margin can catch (what it and the
+other can move in the step, so any speed against a wall) is not swept for its moment of
+impact.
 """
 
 from __future__ import annotations
@@ -47,6 +49,7 @@ from .events import collider_keys, pair_keys
 from .joints import Hinge, Joint, Weld
 from .manifold import StaticShapes, collide, static_shapes
 from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
+from .mouse_joint import MouseJoint
 from .narrowphase import Tables, collide_polygon_pairs, collide_round_pairs
 from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
 from .vector import Vector
@@ -74,8 +77,6 @@ def unsupported(state: WorldState) -> str | None:
             return f"a {type(link).__name__} link"
     if state.springs:
         return "springs"
-    if state.drags:
-        return "mouse joints"
     return None
 
 
@@ -190,6 +191,32 @@ class GameStep:
             self.report.sensing = collider_keys(store.slots()[ia[over]], serials[places])
         return x, v, angle, omega
 
+    # -- snapshots ------------------------------------------------------------------------
+    def state(self, links: list[Any], plain: Any) -> tuple[Any, ...]:
+        """What a snapshot keeps of the soft step (engine.snapshot): the contacts' impulses by
+        key, each joint's in the order of ``links``, and the last two steps' touching contacts
+        (their event keys made plain by ``plain``, engine.events.plain_keys)."""
+        joints = tuple(self.joint_impulses.get(id(j)) for j in links)
+
+        def report(r: _Report) -> tuple[Any, ...]:
+            return (plain(r.keys), r.points.copy(), r.normals.copy(), r.impulses.copy(),
+                    plain(r.sensing))  # fmt: skip
+
+        return (self.keys.copy(), self.lam.copy(), joints, report(self.report), report(self.last))
+
+    def set_state(self, saved: tuple[Any, ...], links: list[Any], back: Any) -> None:
+        """Bring back ``state()`` (``back`` turns plain keys into this World's)."""
+        keys, lam, joints, now, last = saved
+        self.keys, self.lam = keys.copy(), lam.copy()
+        self.joint_impulses = {
+            id(j): v for j, v in zip(links, joints, strict=True) if v is not None
+        }
+
+        def report(r: tuple[Any, ...]) -> _Report:
+            return _Report(back(r[0]), r[1].copy(), r[2].copy(), r[3].copy(), back(r[4]))
+
+        self.report, self.last = report(now), report(last)
+
     # -- what is kept -----------------------------------------------------------------------
     def _shapes(self, store: Any) -> ShapeTable:
         """The bodies' shapes as narrowphase kinds (made again when bodies come or go)."""
@@ -302,6 +329,17 @@ class GameStep:
         so that the solver's angle_B - angle_A is the joint's angle."""
         joints = [j for j in state.links if isinstance(j, (Hinge, Weld))]
         cols: list[list[float]] = [[] for _ in range(22)]
+        for drag in state.drags.items:
+            # A mouse joint: the static body's anchor is the target (world coordinates).
+            kept = self.joint_impulses.get(id(drag), (0.0,) * 6)
+            target, anchor = drag.target, drag.anchor
+            row = [
+                solver.MOUSE, n, store.row(drag.body.slot), target.x, target.y, anchor.x,
+                anchor.y, 0.0, drag.hertz, drag.damping_ratio, 0, 0.0, 0.0, 0,
+                drag.angular_damping, min(drag.max_force, 1e300), *kept,
+            ]  # fmt: skip
+            for col, value in zip(cols, row, strict=True):
+                col.append(value)
         for j in joints:
             a = store.row(j.body_a.slot)
             other = j._other
@@ -339,7 +377,7 @@ class GameStep:
         arrays = [
             np.array(col, dtype=np.int64 if i in ints else float) for i, col in enumerate(cols)
         ]
-        return arrays, joints
+        return arrays, [*state.drags.items, *joints]
 
     def _keep_joints(self, joints: list[Any], out: list[Any]) -> None:
         """Each joint's impulses kept (warm start) and reported on it: over the step, on
@@ -350,6 +388,9 @@ class GameStep:
         for i, j in enumerate(joints):
             px, py, pa, lo, hi, mi = (float(out[base + c][i]) for c in range(6))
             kept[id(j)] = (px, py, pa, lo, hi, mi)
+            if isinstance(j, MouseJoint):
+                j.impulse = Vector(px * k, py * k)  # on the body, over the step
+                continue
             j.linear_impulse = Vector(px * k, py * k)
             j.angular_impulse = (pa + mi + lo - hi) * k
             if isinstance(j, Hinge):

@@ -68,6 +68,8 @@ class WorldSnapshot:
     materials: tuple[Any, ...] | None = None
     #: Each collider's (restitution, friction, sensor, filter); None: left as they are.
     collider_materials: tuple[Any, ...] | None = None
+    #: The soft step's warm starts and last contacts (engine.game_step); None: not soft.
+    game: tuple[Any, ...] | None = None
 
 
 def take(state: WorldState) -> WorldSnapshot:
@@ -107,7 +109,22 @@ def take(state: WorldState) -> WorldSnapshot:
         turns=tuple((state.bodies.index(b), float(a)) for b, a in state.turn_targets.items()),
         materials=snapshot_materials.take_bodies(state),
         collider_materials=snapshot_materials.take_colliders(state),
+        game=_game_state(state),
     )
+
+
+def _game_state(state: WorldState) -> tuple[Any, ...] | None:
+    """The soft step's state (engine.game_step), its event keys plain (by row and place)."""
+    store = state.store
+    if state.game is None or store is None:
+        return None
+    index_of = {state.events.serial(c): k for k, c in enumerate(state.colliders)}
+    row_of = store.row_of
+
+    def plain(keys: np.ndarray) -> np.ndarray:
+        return plain_keys(keys, row_of, index_of)
+
+    return state.game.state(state.links, plain)
 
 
 def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
@@ -181,6 +198,15 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
     if snapshot.pairs is not None:
         state.collisions.set_state(snapshot.pairs)
     _set_events_state(state, snapshot.events)
+    store = state.store
+    if state.game is not None and snapshot.game is not None and store is not None:
+        slots = store.slots()
+        serials = np.array([state.events.serial(c) for c in state.colliders], np.int64)
+
+        def back(plain: np.ndarray) -> np.ndarray:
+            return keys_of(plain, slots, serials.reshape(-1))
+
+        state.game.set_state(snapshot.game, state.links, back)
 
 
 def _events_state(state: WorldState) -> tuple[Any, ...] | None:

@@ -80,6 +80,7 @@ __all__ = [
     "THRESHOLD",
     "HINGE",
     "WELD",
+    "MOUSE",
     "solve",
 ]
 
@@ -97,8 +98,9 @@ JOINT_DAMPING = 2.0
 PUSH_SPEED = 3.0
 #: Contacts closing slower than this (m/s) do not bounce (Box2D v3: 1).
 THRESHOLD = 1.0
-#: Joint kinds, by code.
-HINGE, WELD = 0, 1
+#: Joint kinds, by code: a hinge, a weld, a mouse joint (a point pulled to a target by a
+#: spring of its own frequency and damping, its force bounded).
+HINGE, WELD, MOUSE = 0, 1, 2
 
 
 def _sample() -> tuple[Any, ...]:
@@ -160,13 +162,15 @@ def solve(
     (warm start), this step's out; ``ctotal`` out: the normal impulse over the whole step;
     ``cmax`` out: the largest a substep applied.
 
-    Joints (nj): ``jkind`` HINGE or WELD, bodies ``ja``, ``jb`` and their local anchors
-    (m, in each body's frame about its position; the static body's in world coordinates),
-    ``jref`` angle_B - angle_A at rest (rad); a weld's ``jhertz`` and ``jdamp`` (0 Hz: rigid);
-    a hinge's limits (``jlimit`` 1 on, ``jlower``, ``jupper`` rad on angle_B - angle_A -
-    jref) and motor (``jmotor`` 1 on, ``jspeed`` rad/s, ``jmaxtorque`` N m); impulses (N s,
-    N m s a substep) in and out: ``jpx``, ``jpy`` the point's, ``jpa`` a weld's angle's,
-    ``jlo``, ``jhi`` the limits', ``jmi`` the motor's.
+    Joints (nj): ``jkind`` HINGE, WELD or MOUSE, bodies ``ja``, ``jb`` and their local
+    anchors (m, in each body's frame about its position; the static body's in world
+    coordinates: a mouse joint's target), ``jref`` angle_B - angle_A at rest (rad); a weld's
+    or mouse joint's ``jhertz`` and ``jdamp`` (a weld's 0 Hz: rigid); a hinge's limits
+    (``jlimit`` 1 on, ``jlower``, ``jupper`` rad on angle_B - angle_A - jref) and motor
+    (``jmotor`` 1 on, ``jspeed`` rad/s, ``jmaxtorque`` N m); a mouse joint's angular damping
+    (``jspeed``, 1/s) and largest force (``jmaxtorque``, N); impulses (N s, N m s a substep)
+    in and out: ``jpx``, ``jpy`` the point's, ``jpa`` a weld's angle's, ``jlo``, ``jhi`` the
+    limits', ``jmi`` the motor's.
     """
     nb = len(bx)
     nc = len(ca)
@@ -376,6 +380,11 @@ def solve(
                         jpa[k] += d
                         bw[a] -= ia * d
                         bw[b] += ib * d
+                elif jkind[k] == MOUSE:
+                    # The grip calms the body's spin: omega / (1 + k h) a substep (the
+                    # implicit step of omega' = -k omega; jspeed holds k, 1/s).
+                    if bias and jspeed[k] > 0.0 and ib > 0.0:
+                        bw[b] = bw[b] / (1.0 + jspeed[k] * h)
                 else:
                     if jmotor[k] != 0 and not fixed:
                         cdot = bw[b] - bw[a] - jspeed[k]
@@ -423,7 +432,7 @@ def solve(
                 cdx = (bvx[b] - bw[b] * rby) - (bvx[a] - bw[a] * ray)
                 cdy = (bvy[b] + bw[b] * rbx) - (bvy[a] + bw[a] * rax)
                 rate, mscale, iscale = 0.0, 1.0, 0.0
-                if jkind[k] == WELD and jhertz[k] > 0.0:
+                if (jkind[k] == WELD and jhertz[k] > 0.0) or jkind[k] == MOUSE:
                     rate, mscale, iscale = w_rate[k], w_mass[k], w_imp[k]
                 elif bias:
                     rate, mscale, iscale = j_rate, j_mass, j_imp
@@ -442,6 +451,14 @@ def solve(
                 sy = det * (k11 * cdy - k12 * cdx)
                 px = -mscale * sx - iscale * jpx[k]
                 py = -mscale * sy - iscale * jpy[k]
+                if jkind[k] == MOUSE:
+                    # A mouse joint's force is at most jmaxtorque (N): its impulse in a
+                    # substep at most that times h, the push scaled back to it.
+                    tx, ty = jpx[k] + px, jpy[k] + py
+                    most = h * jmaxtorque[k]
+                    if tx * tx + ty * ty > most * most:
+                        scale = most / math.sqrt(tx * tx + ty * ty)
+                        px, py = tx * scale - jpx[k], ty * scale - jpy[k]
                 jpx[k] += px
                 jpy[k] += py
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)

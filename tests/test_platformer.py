@@ -130,7 +130,9 @@ def test_the_player_jumps_up_through_the_one_way_ledge_and_lands_on_it() -> None
     low = hero.pos.y
     for _ in range(90):
         game.step(pf.DT)
-    assert hero.pos.y == pytest.approx(y0 + r + h / 2, abs=1e-6)  # resting on its top
+    # Resting on its top: the game's soft contacts give by hundredths of a millimetre under
+    # the player's weight (Box2D's may by its linear slop, 5 mm).
+    assert hero.pos.y == pytest.approx(y0 + r + h / 2, abs=1e-4)
     assert hero.pos.y > low + 1.0 and hero.vel.length() < 1e-6
     assert game.ground() is not None and game.ground().shape is game.ledge  # type: ignore[union-attr]
 

@@ -311,3 +311,29 @@ def test_solver_is_checked_and_what_it_cannot_take_is_said() -> None:
     with pytest.raises(ValueError, match="does not take a Rod link"):
         world.step(DT)
     assert a.pos == Vector(0.0, 0.0) and world.t == 0.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_mouse_joint_drags_a_box_to_its_target_by_a_bounded_force(kernels: str) -> None:
+    from engine.mouse_joint import MouseJoint
+
+    world = World(kernels=kernels, solver="soft")
+    box = world.add(Body((0, 0), mass=2.0, shape=Polygon.box(1, 1)))
+    drag = world.add_link(MouseJoint(box, (0.0, 0.0), hertz=5.0, damping_ratio=0.7))
+    drag.target = Vector(1.0, 0.0)
+    for _ in range(180):
+        world.step(DT)
+    assert (box.pos - Vector(1.0, 0.0)).length() < 1e-3
+    # Held under gravity, Box2D's soft grip sags by g / omega^2 (omega = 2 pi 5 Hz).
+    world.add_force(Gravity((0.0, -9.81)))
+    for _ in range(300):
+        world.step(DT)
+    assert 1.0 - box.pos.x == pytest.approx(0.0, abs=1e-6)
+    assert -box.pos.y == pytest.approx(9.81 / (2 * math.pi * 5.0) ** 2, rel=0.02)
+    # A weak grip: its mean force over a step never passes max_force, so the box sinks.
+    world.remove_link(drag)
+    weak = world.add_link(MouseJoint(box, box.pos, max_force=10.0))
+    for _ in range(60):
+        world.step(DT)
+        assert weak.impulse.length() / DT <= 10.0 * (1 + 1e-9)
+    assert box.vel.y < -1.0
