@@ -19,7 +19,8 @@ speed and jump, the engine's step, the coins). The engines step one after anothe
 by two clocks: the thread's CPU time (the engine's own work, steady whatever else the machine
 runs) and the wall clock (what a player sees: a frame is late by the wall clock). The
 engines: this World on the numpy path ("World (numpy)"), on the fast path where numba is
-installed ("World (fast)"), and pymunk. Reported per engine: the time to build the game and
+installed ("World (fast)"), the same with the soft step (``World(solver="soft")``: "soft
+(numpy)", "soft (fast)"), and pymunk. Reported per engine: the time to build the game and
 its first step, apart (on the fast path they include loading or compiling numba's kernels,
 when the World is made or at its first step, as the engine does it: the report says what
 numba did, from its own cache statistics); over the other steps the median, the 99th
@@ -320,6 +321,10 @@ def _builders(hinge: bool, fast: bool, pymunk: bool) -> dict[str, Callable[[], A
     out: dict[str, Callable[[], Any]] = {"World (numpy)": lambda: scene.build("numpy", hinge=hinge)}
     if fast and engine_kernels.available():
         out["World (fast)"] = lambda: scene.build("fast", hinge=hinge)
+    # The same World with the soft step (World(solver="soft"): a game's solver).
+    out["soft (numpy)"] = lambda: scene.build("numpy", hinge=hinge, solver="soft")
+    if fast and engine_kernels.available():
+        out["soft (fast)"] = lambda: scene.build("fast", hinge=hinge, solver="soft")
     if pymunk and make_space() is not None:
         out["pymunk"] = lambda: PymunkPlatformer(hinge)
     return out
