@@ -45,7 +45,7 @@ import numpy as np
 
 from . import solver
 from .colliders import Collider
-from .events import collider_keys, pair_keys
+from .events import COLLIDER, collider_keys, pair_keys
 from .joints import Hinge, Joint, Weld
 from .manifold import StaticShapes, collide, static_shapes
 from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
@@ -190,6 +190,20 @@ class GameStep:
             places = owner[other[over]]
             self.report.sensing = collider_keys(store.slots()[ia[over]], serials[places])
         return x, v, angle, omega
+
+    def resting(self, slot: int) -> int | None:
+        """The serial of the collider that pushed the body in ``slot`` hardest in the last
+        step, among its touching contacts (engine.events' keys), or None."""
+        r = self.report
+        mine = (r.keys >> 32) == slot
+        mine &= (r.keys & COLLIDER) != 0
+        if not mine.any():
+            return None
+        push = np.hypot(r.impulses[:, 0], r.impulses[:, 1])
+        best = int(np.argmax(np.where(mine, push, -1.0)))
+        if push[best] <= 0.0:
+            return None
+        return int(r.keys[best] & (COLLIDER - 1))
 
     # -- snapshots ------------------------------------------------------------------------
     def state(self, links: list[Any], plain: Any) -> tuple[Any, ...]:

@@ -93,6 +93,11 @@ def resting(state: WorldState, body: Body) -> Collider | None:
     contacts, store = state.contacts, state.store
     if contacts is None or store is None:
         return None
+    if state.game is not None:
+        # The soft step's: the collider of the body's touching contacts that pushed it
+        # hardest in the last step (none pushed: in flight).
+        serial = state.game.resting(body.slot)
+        return None if serial is None else state.events.collider_of(serial)
     f = int(contacts.rest[store.row(body.slot)])
     return None if f < 0 else contacts.colliders[int(contacts.faces.owner[f])]
 

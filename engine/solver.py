@@ -289,6 +289,51 @@ def solve(
             ctotal[p] = 0.0
             cmax[p] = 0.0
 
+    def press2(
+        k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,
+        ia: float, mb: float, ib: float, nx: float, ny: float,
+    ) -> None:  # fmt: skip
+        """Manifold k's two normal impulses at once: the new x >= 0 with w = K (x - l) + r >= 0
+        and x w = 0 (a linear complementarity problem of two rows, Box2D v2.4's block solver:
+        both pushing, the first alone, the second alone, or neither), applied."""
+        p = 2 * k
+        k11, k12, k22 = kn1[k], kn12[k], kn2[k]
+        det = 1.0 / (k11 * k22 - k12 * k12)
+        x1 = l1 - det * (k22 * r1 - k12 * r2)
+        x2 = l2 - det * (k11 * r2 - k12 * r1)
+        if not (x1 >= 0.0 and x2 >= 0.0):
+            x1 = l1 - (r1 - k12 * l2) / k11
+            x2 = 0.0
+            w2 = k12 * (x1 - l1) - k22 * l2 + r2
+            if not (x1 >= 0.0 and w2 >= 0.0):
+                x1 = 0.0
+                x2 = l2 - (r2 - k12 * l1) / k22
+                w1 = -k11 * l1 + k12 * (x2 - l2) + r1
+                if not (x2 >= 0.0 and w1 >= 0.0):
+                    x1 = 0.0
+                    x2 = 0.0
+        d1 = x1 - cln[p]
+        d2 = x2 - cln[p + 1]
+        cln[p] = x1
+        cln[p + 1] = x2
+        ctotal[p] += d1
+        ctotal[p + 1] += d2
+        if x1 > cmax[p]:
+            cmax[p] = x1
+        if x2 > cmax[p + 1]:
+            cmax[p + 1] = x2
+        px, py = (d1 + d2) * nx, (d1 + d2) * ny
+        bvx[a] -= ma * px
+        bvy[a] -= ma * py
+        bw[a] -= ia * (
+            (crax[p] * ny - cray[p] * nx) * d1 + (crax[p + 1] * ny - cray[p + 1] * nx) * d2
+        )
+        bvx[b] += mb * px
+        bvy[b] += mb * py
+        bw[b] += ib * (
+            (crbx[p] * ny - crby[p] * nx) * d1 + (crbx[p + 1] * ny - crby[p + 1] * nx) * d2
+        )
+
     # -- prepare the joints: each anchor turned into the world's axes at the start, the
     # bodies' offset then, and the axial mass.
     fax = [0.0] * nj
@@ -503,47 +548,7 @@ def solve(
                         else:
                             r2 = ms * (dvx * nx + dvy * ny) + vbias
                             l2 = (1.0 - im) * cln[q]
-                    # The new impulses x >= 0 with w = K (x - l) + r >= 0 and x w = 0 (a
-                    # linear complementarity problem of two rows, Box2D v2.4's block
-                    # solver): both pushing, the first alone, the second alone, or neither.
-                    k11, k12, k22 = kn1[k], kn12[k], kn2[k]
-                    det = 1.0 / (k11 * k22 - k12 * k12)
-                    x1 = l1 - det * (k22 * r1 - k12 * r2)
-                    x2 = l2 - det * (k11 * r2 - k12 * r1)
-                    if not (x1 >= 0.0 and x2 >= 0.0):
-                        x1 = l1 - (r1 - k12 * l2) / k11
-                        x2 = 0.0
-                        w2 = k12 * (x1 - l1) - k22 * l2 + r2
-                        if not (x1 >= 0.0 and w2 >= 0.0):
-                            x1 = 0.0
-                            x2 = l2 - (r2 - k12 * l1) / k22
-                            w1 = -k11 * l1 + k12 * (x2 - l2) + r1
-                            if not (x2 >= 0.0 and w1 >= 0.0):
-                                x1 = 0.0
-                                x2 = 0.0
-                    d1 = x1 - cln[p]
-                    d2 = x2 - cln[p + 1]
-                    cln[p] = x1
-                    cln[p + 1] = x2
-                    ctotal[p] += d1
-                    ctotal[p + 1] += d2
-                    if x1 > cmax[p]:
-                        cmax[p] = x1
-                    if x2 > cmax[p + 1]:
-                        cmax[p + 1] = x2
-                    px, py = (d1 + d2) * nx, (d1 + d2) * ny
-                    bvx[a] -= ma * px
-                    bvy[a] -= ma * py
-                    bw[a] -= ia * (
-                        (crax[p] * ny - cray[p] * nx) * d1
-                        + (crax[p + 1] * ny - cray[p + 1] * nx) * d2
-                    )
-                    bvx[b] += mb * px
-                    bvy[b] += mb * py
-                    bw[b] += ib * (
-                        (crbx[p] * ny - crby[p] * nx) * d1
-                        + (crbx[p + 1] * ny - crby[p + 1] * nx) * d2
-                    )
+                    press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny)
                 for j in range(ccount[k] if kblock[k] == 0.0 else 0):
                     p = 2 * k + j
                     rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
@@ -598,6 +603,18 @@ def solve(
         b = cb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
         nx, ny = cnx[k], cny[k]
+        p = 2 * k
+        both = ccount[k] == 2 and kblock[k] != 0.0
+        both = both and rel[p] <= -threshold and cmax[p] != 0.0
+        if both and rel[p + 1] <= -threshold and cmax[p + 1] != 0.0:
+            # Both points bounce: as one block, so a box that lands flat leaves flat (one
+            # point after the other would set it turning). Targets vn_i = -e rel_i.
+            rs = [0.0, 0.0]
+            for j in range(2):
+                dvx, dvy = relative(a, b, crax[p + j], cray[p + j], crbx[p + j], crby[p + j])
+                rs[j] = dvx * nx + dvy * ny + e * rel[p + j]
+            press2(k, rs[0], rs[1], cln[p], cln[p + 1], a, b, ma, ia, mb, ib, nx, ny)
+            continue
         for j in range(ccount[k]):
             p = 2 * k + j
             if rel[p] > -threshold or cmax[p] == 0.0:

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from engine import Body, Circle, Polygon, Segment, Vector, World
+from engine import Body, Circle, Plane, Polygon, Segment, Vector, World
 from engine.forces import Gravity
 from engine.joints import Hinge, Weld
 from engine.links import Rod
@@ -337,3 +337,39 @@ def test_mouse_joint_drags_a_box_to_its_target_by_a_bounded_force(kernels: str) 
         world.step(DT)
         assert weak.impulse.length() / DT <= 10.0 * (1 + 1e-9)
     assert box.vel.y < -1.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_flat_box_bounces_level_at_e_times_the_speed_it_met_at(kernels: str) -> None:
+    # Both points of its manifold bounce as one block: it leaves the floor flat, in place,
+    # at e times the speed it closed at as the step began (Box2D's restitution).
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Plane((0.0, 0.0), (0.0, 1.0), restitution=1.0))
+    box = world.add(Body((0, 2.5), mass=1.0, shape=Polygon.box(1, 1), restitution=0.5))
+    bounces = 0
+    for _ in range(240):
+        before = box.vel.y
+        world.step(DT)
+        if before < -1.0 and box.vel.y > 0.0:
+            bounces += 1
+            assert box.vel.y == pytest.approx(-0.5 * before, rel=1e-12)
+        assert box.angle == 0.0 and box.pos.x == 0.0
+    assert bounces >= 2
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_box_at_rest_rests_on_the_floor_and_reports_its_weight(kernels: str) -> None:
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -9.81)))
+    floor = world.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    box = world.add(Body((0, 0.6), mass=2.0, shape=Polygon.box(1, 1)))
+    posts = []
+    world.on_contact(box, post_solve=posts.append)
+    assert world.resting(box) is None
+    for _ in range(60):
+        world.step(DT)
+    assert world.resting(box) is floor
+    (touch,) = world.touching
+    assert touch.impulse.y == pytest.approx(2.0 * 9.81 * DT, rel=1e-9)
+    assert posts[-1].impulse.y == pytest.approx(2.0 * 9.81 * DT, rel=1e-9)
