@@ -134,8 +134,8 @@ def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) 
     now, last = game.report, game.last
     # Begins: touching now, not before (with the point, normal and impulse); ends: the other
     # way round (where it last touched, with no impulse).
-    raw = _changes(now, set(last.keys.tolist()), t_end, True)
-    raw += _changes(last, set(now.keys.tolist()), t_end, False)
+    raw = _changes(now, last.keys, t_end, True)
+    raw += _changes(last, now.keys, t_end, False)
     named = None
     contacts = state.contacts
     if contacts is not None:
@@ -151,19 +151,21 @@ def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) 
     )
 
 
-def _changes(report: Any, other: set[int], t: float, began: bool) -> list[Any]:
-    """The specs (engine.events) of the contacts of ``report`` (engine.game_step) not in
-    ``other``: begins with their impulses, or ends with none."""
+def _changes(report: Any, other: np.ndarray, t: float, began: bool) -> list[Any]:
+    """The specs (engine.events) of the contacts of ``report`` (engine.game_step) whose keys
+    are not among ``other``: begins with their impulses, or ends with none."""
+    new = np.flatnonzero(~np.isin(report.keys, other))
+    if not len(new):
+        return []
     out: list[Any] = []
     for k, p, nrm, j in zip(
-        report.keys.tolist(),
-        report.points.tolist(),
-        report.normals.tolist(),
-        report.impulses.tolist(),
+        report.keys[new].tolist(),
+        report.points[new].tolist(),
+        report.normals[new].tolist(),
+        report.impulses[new].tolist(),
         strict=True,
     ):
-        if k not in other:
-            out.append((t, k, began, (p, nrm, j if began else (0.0, 0.0))))
+        out.append((t, k, began, (p, nrm, j if began else (0.0, 0.0))))
     return out
 
 

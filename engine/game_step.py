@@ -51,6 +51,7 @@ from .manifold import StaticShapes, collide, static_shapes
 from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
 from .mouse_joint import MouseJoint
 from .narrowphase import Tables, collide_polygon_pairs, collide_round_pairs
+from .pair_grid import grid_pairs
 from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
 from .vector import Vector
 
@@ -65,6 +66,8 @@ __all__ = ["GameStep", "Touches", "unsupported"]
 _FEATURE = 16
 _OTHER = 21
 _STATIC = 1 << 20
+#: Up to this many bodies the broadphase tests every pair (fewer array calls than a grid).
+_FEW = 32
 
 
 def unsupported(state: WorldState) -> str | None:
@@ -537,7 +540,14 @@ def _pairs(
     if n < 2:
         return np.zeros((0, 2), dtype=np.intp)
     x, r = store.x, store.radius
-    a, b = np.triu_indices(n, 1)
+    if n <= _FEW:
+        a, b = np.triu_indices(n, 1)
+    else:
+        # A grid of cells as wide as the farthest two bodies can reach each other: the pairs
+        # in the same or neighbouring cells (engine.pair_grid), no Python loop over bodies.
+        h = 2.0 * float((r + margin).max()) + SPECULATIVE_DISTANCE
+        a, b = grid_pairs(x, h, state.kernels == "fast")
+        a, b = np.minimum(a, b), np.maximum(a, b)  # rows a < b, as every pair's test gives
     d = x[b] - x[a]
     reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
     near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach

@@ -373,3 +373,31 @@ def test_a_box_at_rest_rests_on_the_floor_and_reports_its_weight(kernels: str) -
     (touch,) = world.touching
     assert touch.impulse.y == pytest.approx(2.0 * 9.81 * DT, rel=1e-9)
     assert posts[-1].impulse.y == pytest.approx(2.0 * 9.81 * DT, rel=1e-9)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_the_grid_finds_the_pairs_that_every_pair_test_finds(
+    kernels: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Past a few bodies the soft step's broadphase is a grid (engine.pair_grid): the same
+    # pairs as testing every pair, for a crowd of boxes and discs, some moving fast.
+    from engine import game_step
+
+    rng = np.random.default_rng(5)
+    world = World(kernels=kernels, solver="soft")
+    for k in range(60):
+        at = tuple(rng.uniform(-6, 6, 2))
+        v = tuple(rng.normal(0, 2 if k % 7 else 40, 2))
+        shape = {"shape": Polygon.box(0.6, 0.4)} if k % 2 else {"radius": 0.3}
+        world.add(Body(at, v, mass=1.0, **shape))
+    state = world._s
+    assert state.store is not None
+    sensors = np.zeros(60, dtype=bool)
+    accel = np.zeros((60, 2))
+    margin = game_step._reach(state.store, accel, DT)
+    none = np.zeros(0, dtype=np.int64)
+    grid = game_step._pairs(state.store, state, sensors, margin, none)
+    monkeypatch.setattr(game_step, "_FEW", 1000)
+    every = game_step._pairs(state.store, state, sensors, margin, none)
+    assert len(every) > 20
+    assert {tuple(p) for p in grid.tolist()} == {tuple(p) for p in every.tolist()}
