@@ -23,7 +23,9 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
 5. ``_joints``: the hinges and welds as the solver's joints, warm started from their last
    impulses.
 6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
-   relax), restitution, the impulses kept (engine.solver).
+   relax), restitution, the impulses kept (engine.solver). The bodies move by its substeps of
+   semi-implicit Euler whatever the World's integrator, which moves them only in a World
+   with nothing to solve (no collider, no pair that may touch, no joint).
 7. ``_events``: which contacts touch after the step (a point that pushed, or one within
    ``LINEAR_SLOP``) and which sensors overlap, as the World's events read them
    (engine.event_dispatch).
@@ -554,6 +556,7 @@ def _pairs(
     a, b = a[near], b[near]
     moving = ~store.kinematic & np.isfinite(store.mass)
     keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
+    keep &= r[a] + r[b] > 0.0  # two points (no radius, no shape) pass, as on the exact step
     g = store.group
     keep &= (g[a] == 0) | (g[a] != g[b])
     keep &= ((store.categories[a] & store.mask[b]) != 0) & (
