@@ -184,7 +184,12 @@ def test_the_table_gives_each_engine_against_pymunks_median() -> None:
 
 def test_a_short_side_by_side_run_times_every_step_of_every_engine() -> None:
     runs = bench.side_by_side(3 * scene.DT, fast=False, pymunk=False)
-    assert list(runs) == ["World (numpy)", "World (numpy), no hinge"]
+    assert list(runs) == [
+        "World (numpy)",
+        "soft (numpy)",
+        "World (numpy), no hinge",
+        "soft (numpy), no hinge",
+    ]
     for r in runs.values():
         assert r.physics.shape == r.game.shape == (2, 2) and (r.physics > 0).all()
         assert (r.game >= r.physics).all()  # the whole step holds the engine's
