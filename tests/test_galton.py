@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -41,6 +42,30 @@ def poured() -> tuple[galton.Galton, float]:
         board.run()
     assert [str(w.message) for w in caught] == []
     return board, time.perf_counter() - start
+
+
+@dataclass
+class Recorded:
+    """The demo's default scene recorded at 30 fps to its end (60 s): the frames at 14 s and
+    at 60 s, each as it was yielded (t, pixels, the words on it, its marks' problems)."""
+
+    scene: galton.GaltonScene
+    frames: dict[int, tuple[float, np.ndarray, list[str], list[str]]]
+    warned: list[str]  # the warnings raised while it ran
+
+
+@pytest.fixture(scope="module")
+def recorded() -> Recorded:
+    """One recording serves the frame checked at 14 s and the run's end (frame k of a 30 fps
+    recording is the picture of a 1 fps one's frame k / 30: the same steps, the same pixels)."""
+    scene = galton.GaltonScene()
+    frames = {}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for k, t, surface in iter_frames(scene, 30, None, (640, 360), only={420, 1800}):
+            texts = [m.text for m in marks.marks(surface)]
+            frames[k] = (t, pygame.surfarray.array3d(surface), texts, marks.problems(surface))
+    return Recorded(scene, frames, [str(w.message) for w in caught])
 
 
 def test_a_thousand_poured_balls_fit_the_binomial_distribution(poured) -> None:
@@ -168,11 +193,10 @@ def test_the_demo_runs_headless_and_draws_its_strobe(tmp_path, capsys) -> None:
         assert np.all(pixels == colour, axis=2).any()
 
 
-def test_a_frame_shows_the_pegs_the_balls_and_the_histogram() -> None:
-    size = (640, 360)
-    scene = galton.GaltonScene()
-    *_, (_, t, surface) = iter_frames(scene, 1, 14.0, size)  # the last frame
-    pixels = pygame.surfarray.array3d(surface)  # [x, y, rgb]
+def test_a_frame_shows_the_pegs_the_balls_and_the_histogram(recorded: Recorded) -> None:
+    scene = recorded.scene
+    t, pixels, _, _ = recorded.frames[420]  # the frame at 14 s; pixels [x, y, rgb]
+    assert t == 14.0
     assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 8  # not one flat colour
 
     def found(colour, region=np.s_[:, :]) -> int:
@@ -221,22 +245,19 @@ def test_reruns_are_bit_for_bit_the_same() -> None:
     assert a == b and len(set(a)) > 20  # the same pixels, and the balls moved
 
 
-def test_the_default_run_keeps_meetings_shallow_as_the_module_says() -> None:
+def test_the_default_run_keeps_meetings_shallow_as_the_module_says(recorded: Recorded) -> None:
     # Two balls that meet on a peg sank up to 21% of r into each other before the contacts
     # moved such pairs apart (engine.pair_impacts.separate); the module says how deep now.
-    scene = galton.GaltonScene()
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        (_, t, surface), *rest = iter_frames(scene, 30, None, (640, 360), only={1800})
-        texts = [m.text for m in marks.marks(surface)]
-    assert t == 60.0 and not rest and [str(w.message) for w in caught] == []
+    scene = recorded.scene
+    t, _, texts, problems = recorded.frames[1800]  # the last frame
+    assert t == 60.0 and sorted(recorded.frames) == [420, 1800] and recorded.warned == []
     when, depth = scene.galton.deepest()
     share = depth / galton.BOARD.ball_radius
     assert 0.0 < share <= 0.05 and scene.galton.warning is None
     assert "two balls met on a peg:" not in texts  # the panel shows only past 5%
     doc = " ".join(galton.__doc__.split())
     assert f"the deepest is {share:.1%} of a radius, at {when:.1f} s" in doc
-    assert marks.problems(surface) == []
+    assert problems == []
 
 
 def test_the_worlds_warning_is_on_the_frame_not_on_stderr() -> None:
