@@ -67,6 +67,25 @@ def _import_everything() -> None:
 _import_everything()
 
 
+# -- the fast path's kernels, compiled once for all of xdist's workers ---------------------------
+#
+# On a cold numba cache (a fresh machine: CI's run on the fast path) each of `-n 2`'s workers
+# met it at its first World and compiled every kernel itself, each with its helper process
+# (engine.kernels.prepare: the helpers share out one process's list, not another's): the whole
+# compile twice over, 64 s of one core each, with the tests of both workers waiting on it. The
+# controller, which runs no test, now prepares them before it starts the workers, who load
+# them from the cache it filled. A run without workers keeps its own first compile, as a
+# developer's does, and the tests of the compile (test_compile_before_play) use caches of
+# their own.
+def pytest_configure(config: pytest.Config) -> None:
+    if hasattr(config, "workerinput") or not getattr(config.option, "numprocesses", None):
+        return  # an xdist worker, or a run without workers
+    from engine import kernels
+
+    if kernels.default() == "fast":
+        kernels.prepare()
+
+
 # -- the fast path's run: the files that never reach a kernel ------------------------------------
 #
 # CI runs the suite twice: the README's test command on numpy (the reference), then again with

@@ -71,10 +71,18 @@ def play_to_the_end(seed: int, player: bo.Player | None = None) -> tuple[bo.Brea
     return game, drained
 
 
-def test_the_autopilot_plays_whole_games_by_the_rules() -> None:
+@pytest.fixture(scope="module")
+def short_game() -> tuple[bo.BreakoutGame, int]:
+    """Seed 4's whole game by the autopilot (a short one), its rules checked at every step."""
+    return play_to_the_end(4)
+
+
+def test_the_autopilot_plays_whole_games_by_the_rules(
+    short_game: tuple[bo.BreakoutGame, int],
+) -> None:
     # Seed 1 is the demo's default; seed 4 a short game. Between them the autopilot both
     # clears a wall and loses balls, so both ends and the drain are played through.
-    results = [play_to_the_end(seed) for seed in (1, 4)]
+    results = [play_to_the_end(1), short_game]
     assert any(not game.bricks for game, _ in results)  # a cleared wall
     assert sum(drained for _, drained in results) > 0
     # Left alone, the paddle loses every ball: 3 lives, each a drain event, game over.
@@ -165,7 +173,9 @@ def test_a_game_saved_mid_run_resumes_exactly() -> None:
     assert run() == first and len(game.bricks) == after
 
 
-def test_headless_runs_are_byte_identical_and_end_with_the_game(tmp_path) -> None:
+def test_headless_runs_are_byte_identical_and_end_with_the_game(
+    tmp_path, short_game: tuple[bo.BreakoutGame, int]
+) -> None:
     runs = []
     for name in ("a", "b"):
         out = tmp_path / name
@@ -175,7 +185,7 @@ def test_headless_runs_are_byte_identical_and_end_with_the_game(tmp_path) -> Non
     assert score_a.over and score_a == score_b
     assert frames_a == frames_b
     # Without --seconds the recording stops AFTER_END s after the game ends.
-    game, _ = play_to_the_end(4)
+    game, _ = short_game
     assert len(frames_a) == math.ceil((game.t + bo.AFTER_END) * 5 - 1e-9)
 
 
