@@ -32,6 +32,11 @@ def _whole_frames(folder: Path) -> list[Path]:
     return paths
 
 
+def _default_sigint() -> None:
+    """In the child, before it runs Python: SIGINT's default, whatever the parent ignored."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @pytest.mark.parametrize(
     ("signum", "word"), [(signal.SIGINT, "interrupted"), (signal.SIGTERM, "terminated")]
 )
@@ -56,10 +61,19 @@ def test_a_signal_mid_recording_leaves_whole_frames_and_says_how_many(
         "--out",
         str(out),
     ]
-    # A fresh interpreter with the default SIGINT handling (a shell's background job would
-    # have SIGINT ignored); stderr to a file so a full pipe can never stall the child.
+    # A fresh interpreter with the default SIGINT handling: a shell's background job runs
+    # with SIGINT ignored, and an ignored signal is inherited across exec (a suite started
+    # that way hung here for 60 s), so the child sets it back to the default before it
+    # starts; stderr to a file so a full pipe can never stall the child.
     with open(tmp_path / "stderr.txt", "w") as err:
-        child = subprocess.Popen(command, cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=err)
+        child = subprocess.Popen(
+            command,
+            cwd=ROOT,
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=err,
+            preexec_fn=_default_sigint,
+        )
         deadline = time.monotonic() + 60
         while not (out.is_dir() and len(os.listdir(out)) >= 20):
             assert child.poll() is None, "the recording ended before it could be stopped"
