@@ -100,6 +100,38 @@ class Touches(NamedTuple):
         return Touches(self.m.take(rows), self.a[rows], self.b[rows], self.place[rows])
 
 
+class _Colliders(NamedTuple):
+    """What the stages read of the World's colliders, each an array by collider place, read
+    once a step (materials, filters and sensors may change between steps)."""
+
+    sensor: np.ndarray
+    serial: np.ndarray
+    restitution: np.ndarray
+    friction: np.ndarray
+    surface: np.ndarray  # (K, 2) surface velocity (m/s)
+    group: np.ndarray
+    categories: np.ndarray
+    mask: np.ndarray
+
+
+def _collider_arrays(colliders: list[Collider], serial: Any) -> _Colliders:
+    """The colliders' arrays (``serial``: the World's serial number of a collider)."""
+
+    def col(values: list[Any], dtype: Any) -> np.ndarray:
+        return np.array(values, dtype=dtype)
+
+    return _Colliders(
+        col([c.sensor for c in colliders], bool),
+        col([serial(c) for c in colliders], np.int64),
+        col([c.restitution for c in colliders], float),
+        col([c.friction for c in colliders], float),
+        col([tuple(c.surface_velocity) for c in colliders], float).reshape(-1, 2),
+        col([c.filter.group for c in colliders], np.int64),
+        col([c.filter.categories for c in colliders], np.int64),
+        col([c.filter.mask for c in colliders], np.int64),
+    )
+
+
 @dataclass
 class _Report:
     """What the last step's contacts did, for the events: the touching contacts' event keys,
@@ -125,7 +157,7 @@ class GameStep:
         self.report = _Report()
         self.last = _Report()  # the step before's, for begin and end
         self._table: tuple[int, list[Any], ShapeTable] | None = None
-        self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray] | None = None
+        self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
         self._places: tuple[ShapeTable, StaticShapes, _Places] | None = None
 
     # -- the step -------------------------------------------------------------------------
@@ -150,11 +182,12 @@ class GameStep:
         b = _bodies(store, accel, store.torque if torque is None else torque)
         table = self._shapes(store)
         colliders = [] if state.contacts is None else state.contacts.colliders
+        cs = _collider_arrays(colliders, state.events.serial)
         statics, owner, bounds = self._static(colliders)
         sensors = np.array([bd.sensor for bd in state.bodies], dtype=bool)
         margin = _reach(store, accel, dt)
         pairs = _pairs(store, state, sensors, margin, ignored_pairs)
-        faces = _faces(store, colliders, owner, bounds, sensors, margin, ignored_faces)
+        faces = _faces(store, cs, owner, bounds, sensors, margin, ignored_faces)
         kept = self._places
         if kept is None or kept[0] is not table or kept[1] is not statics:
             kept = self._places = (table, statics, _places(table, statics))
@@ -164,10 +197,9 @@ class GameStep:
         sensor = np.zeros(len(m), dtype=bool)
         stat = np.flatnonzero(touches.b >= n)
         if len(stat):
-            flags = np.array([c.sensor for c in colliders], dtype=bool)
-            sensor[stat] = flags[owner[other[stat]]]
+            sensor[stat] = cs.sensor[owner[other[stat]]]
         solid = touches.take(np.flatnonzero(~sensor))
-        rows = self._rows(store, colliders, owner, solid, n)
+        rows = self._rows(store, cs, owner, solid, n)
         joints = self._joints(state, store, n)
         args = [*b, *rows[:17], *joints[0]]
         params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
@@ -187,13 +219,12 @@ class GameStep:
         omega = np.asarray(out[5][:n], dtype=float)
         self._keep(rows, out, n)
         self._keep_joints(joints[1], out)
-        self._events(state, store, colliders, owner, solid, out)
+        self._events(store, cs, owner, solid, out)
         # What each sensor collider holds: a body whose shape overlaps it.
         over = sensor & (m.separation < 0.0).any(axis=1)
         if over.any():
-            serials = np.array([state.events.serial(c) for c in colliders], dtype=np.int64)
             places = owner[other[over]]
-            self.report.sensing = collider_keys(store.slots()[ia[over]], serials[places])
+            self.report.sensing = collider_keys(store.slots()[ia[over]], cs.serial[places])
         return x, v, angle, omega
 
     def resting(self, slot: int) -> int | None:
@@ -254,16 +285,15 @@ class GameStep:
         kept = self._statics
         if kept is None or kept[0] != key:
             shapes = static_shapes(colliders)
-            owner, bounds = _static_bounds(shapes)
-            kept = (key, shapes, np.stack([owner, *bounds.T], axis=1))
+            kept = (key, shapes, *_static_bounds(shapes))
             self._statics = kept
-        return kept[1], kept[2][:, 0].astype(np.intp), kept[2][:, 1:]
+        return kept[1], kept[2], kept[3]
 
     # -- stage 4: contacts as rows ------------------------------------------------------------
     def _rows(
         self,
         store: Any,
-        colliders: list[Collider],
+        cs: _Colliders,
         owner: np.ndarray,
         touches: Touches,
         n: int,
@@ -295,13 +325,11 @@ class GameStep:
         stat = np.flatnonzero(~pair)
         if len(stat):
             places = owner[other[stat]]
-            e_b[stat] = [colliders[p].restitution for p in places.tolist()]
-            mu_b[stat] = [colliders[p].friction for p in places.tolist()]
+            e_b[stat] = cs.restitution[places]
+            mu_b[stat] = cs.friction[places]
             # A conveyor: the collider's surface moves at u; the slip is the relative
             # velocity less u's part along the tangent t = (-n_y, n_x).
-            u = np.array(
-                [tuple(colliders[p].surface_velocity) for p in places.tolist()], dtype=float
-            ).reshape(-1, 2)
+            u = cs.surface[places]
             t = np.stack([-m.normal[stat, 1], m.normal[stat, 0]], axis=1)
             speed[stat] = -(u[:, 0] * t[:, 0] + u[:, 1] * t[:, 1])
         sep = np.where(np.isfinite(m.separation), m.separation, 0.0)
@@ -419,9 +447,8 @@ class GameStep:
     # -- stage 7: events ----------------------------------------------------------------------
     def _events(
         self,
-        state: WorldState,
         store: Any,
-        colliders: list[Collider],
+        cs: _Colliders,
         owner: np.ndarray,
         touches: Touches,
         out: list[Any],
@@ -438,14 +465,12 @@ class GameStep:
         near = (m.separation.ravel() < LINEAR_SLOP) & real
         touch = (pushed | near).reshape(-1, 2).any(axis=1)
         stat = ib >= n
-        serial = state.events.serial
-        serials = np.array([serial(c) for c in colliders], dtype=np.int64)
         keys = np.zeros(len(m), dtype=np.int64)
         pair = ~stat
         if pair.any():
             keys[pair] = pair_keys(slots[ia[pair]], slots[ib[pair]])
         if stat.any():
-            keys[stat] = collider_keys(slots[ia[stat]], serials[owner[other[stat]]])
+            keys[stat] = collider_keys(slots[ia[stat]], cs.serial[owner[other[stat]]])
         # The impulse on the key's first body: -(lam_n n + lam_t t) on A, the whole step's.
         tn = total.reshape(-1, 2).sum(axis=1) if len(m) else np.zeros(0)
         tt = np.asarray(lam_t, dtype=float).reshape(-1, 2).sum(axis=1) * self.substeps
@@ -575,7 +600,7 @@ def _pairs(
 
 def _faces(
     store: Any,
-    colliders: list[Collider],
+    cs: _Colliders,
     owner: np.ndarray,
     bounds: np.ndarray,
     sensors: np.ndarray,
@@ -601,20 +626,15 @@ def _faces(
     rows, shapes = np.nonzero(hit)
     moving = ~store.kinematic & np.isfinite(store.mass)
     places = owner[shapes]
-    filt = [c.filter for c in colliders]
-    group = np.array([f.group for f in filt], dtype=np.int64)
-    cats = np.array([f.categories for f in filt], dtype=np.int64)
-    mask = np.array([f.mask for f in filt], dtype=np.int64)
-    sensor = np.array([c.sensor for c in colliders], dtype=bool)
-    keep = (moving[rows] | sensor[places]) & ~sensors[rows]
+    keep = (moving[rows] | cs.sensor[places]) & ~sensors[rows]
     g = store.group[rows]
-    keep &= (g == 0) | (g != group[places])
-    keep &= ((store.categories[rows] & mask[places]) != 0) & (
-        (cats[places] & store.mask[rows]) != 0
+    keep &= (g == 0) | (g != cs.group[places])
+    keep &= ((store.categories[rows] & cs.mask[places]) != 0) & (
+        (cs.categories[places] & store.mask[rows]) != 0
     )
     if len(ignored):
-        keep &= ~np.isin(rows.astype(np.int64) * (len(colliders) + 1) + places,
-                         ignored[:, 0] * (len(colliders) + 1) + ignored[:, 1])  # fmt: skip
+        k = len(cs.sensor) + 1
+        keep &= ~np.isin(rows.astype(np.int64) * k + places, ignored[:, 0] * k + ignored[:, 1])
     return np.stack([rows[keep], shapes[keep]], axis=1)
 
 
