@@ -48,6 +48,7 @@ import numpy as np
 from . import solver
 from .colliders import Collider
 from .events import COLLIDER, collider_keys, pair_keys
+from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop
 from .joints import Hinge, Joint, Weld
 from .manifold import StaticShapes, collide, static_shapes
 from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
@@ -63,11 +64,8 @@ WorldState = Any
 
 __all__ = ["GameStep", "Touches", "unsupported"]
 
-# Warm-start keys: (the pair's code << 16) | the point's feature id (16 bits); a pair's code
-# is (slot_a << 21) | slot_b, or | (1 << 20) | the static shape's place among the colliders'.
-_FEATURE = 16
-_OTHER = 21
-_STATIC = 1 << 20
+# Warm-start keys (engine.game_contacts): (the pair's code << FEATURE) | the point's feature
+# id; a pair's code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
 #: Up to this many bodies the broadphase tests every pair (fewer array calls than a grid).
 _FEW = 32
 
@@ -98,6 +96,32 @@ class Touches(NamedTuple):
     def take(self, rows: np.ndarray) -> Touches:
         """The manifolds of ``rows``."""
         return Touches(self.m.take(rows), self.a[rows], self.b[rows], self.place[rows])
+
+
+class _Found(NamedTuple):
+    """The step's contacts as the solver takes them: ``rows``, solver.solve's contact arrays
+    ca ... clt (warm started); ``keys``, each point's (2 a row); ``place``, each row's static
+    shape (-1: a pair of bodies); ``point`` (k, 2), each row's first point (m); the sensor
+    colliders' overlaps: ``sense_row`` the body's row, ``sense_place`` the collider's place."""
+
+    rows: list[np.ndarray]
+    keys: np.ndarray
+    place: np.ndarray
+    point: np.ndarray
+    sense_row: np.ndarray
+    sense_place: np.ndarray
+
+    def join(self, more: _Found) -> _Found:
+        """These contacts, then ``more``'s."""
+        cat = np.concatenate
+        return _Found(
+            [cat([a, b]) for a, b in zip(self.rows, more.rows, strict=True)],
+            cat([self.keys, more.keys]),
+            cat([self.place, more.place]),
+            cat([self.point, more.point]),
+            cat([self.sense_row, more.sense_row]),
+            cat([self.sense_place, more.sense_place]),
+        )
 
 
 class _Colliders(NamedTuple):
@@ -159,6 +183,7 @@ class GameStep:
         self._table: tuple[int, list[Any], ShapeTable] | None = None
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
         self._places: tuple[ShapeTable, StaticShapes, _Places] | None = None
+        self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -186,22 +211,26 @@ class GameStep:
         statics, owner, bounds = self._static(colliders)
         sensors = np.array([bd.sensor for bd in state.bodies], dtype=bool)
         margin = _reach(store, accel, dt)
-        pairs = _pairs(store, state, sensors, margin, ignored_pairs)
-        faces = _faces(store, cs, owner, bounds, sensors, margin, ignored_faces)
         kept = self._places
         if kept is None or kept[0] is not table or kept[1] is not statics:
             kept = self._places = (table, statics, _places(table, statics))
-        touches = _collide(kept[2], table, store, statics, pairs, faces, margin, self.fast)
-        m, ia, other = touches.m, touches.a, touches.place
-        # A sensor collider's manifolds are events only: no row pushes its body.
-        sensor = np.zeros(len(m), dtype=bool)
-        stat = np.flatnonzero(touches.b >= n)
-        if len(stat):
-            sensor[stat] = cs.sensor[owner[other[stat]]]
-        solid = touches.take(np.flatnonzero(~sensor))
-        rows = self._rows(store, cs, owner, solid, n)
+        places = kept[2]
+        apart = _apart(store, state, ignored_pairs)
+        candidates = self._candidates(store, margin)
+        ignored = _ignored_keys(ignored_faces, len(colliders))
+        if self.fast:
+            found = self._found_fast(
+                places, table, store, statics, cs, owner, bounds, sensors, margin, candidates,
+                apart, ignored,
+            )  # fmt: skip
+        else:
+            pairs = _pairs(store, sensors, margin, candidates, apart)
+            faces = _faces(store, cs, owner, bounds, sensors, margin, ignored)
+            touches = _collide(places, table, store, statics, pairs, faces, margin, False)
+            found = self._found(store, cs, owner, touches)
         joints = self._joints(state, store, n)
-        args = [*b, *rows[:17], *joints[0]]
+        k = len(found.place)
+        args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
         params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
         params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
         out: list[Any]
@@ -217,14 +246,14 @@ class GameStep:
         v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
         angle = np.asarray(out[2][:n], dtype=float)
         omega = np.asarray(out[5][:n], dtype=float)
-        self._keep(rows, out, n)
+        self._keep(found, out)
         self._keep_joints(joints[1], out)
-        self._events(store, cs, owner, solid, out)
+        self._events(store, cs, owner, found, out)
         # What each sensor collider holds: a body whose shape overlaps it.
-        over = sensor & (m.separation < 0.0).any(axis=1)
-        if over.any():
-            places = owner[other[over]]
-            self.report.sensing = collider_keys(store.slots()[ia[over]], cs.serial[places])
+        if len(found.sense_row):
+            self.report.sensing = collider_keys(
+                store.slots()[found.sense_row], cs.serial[found.sense_place]
+            )
         return x, v, angle, omega
 
     def resting(self, slot: int) -> int | None:
@@ -289,26 +318,82 @@ class GameStep:
             self._statics = kept
         return kept[1], kept[2], kept[3]
 
-    # -- stage 4: contacts as rows ------------------------------------------------------------
-    def _rows(
-        self,
-        store: Any,
-        cs: _Colliders,
-        owner: np.ndarray,
-        touches: Touches,
-        n: int,
-    ) -> list[np.ndarray]:
-        """The manifolds as the solver's contact arrays (solver.solve's order), warm started;
-        and last, each point's key."""
-        m, ia, ib, other = touches
+    # -- stages 2 to 4: contacts, as rows -----------------------------------------------------
+    def _candidates(self, store: Any, margin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The pairs of bodies the broadphase tests (rows a < b): every pair up to ``_FEW``
+        bodies, past that those in the same or neighbouring cells of a grid as wide as the
+        farthest two bodies can reach each other (engine.pair_grid, no Python loop)."""
+        n = len(store)
+        if n < 2:
+            none = np.zeros(0, dtype=np.int64)
+            return none, none
+        if n <= _FEW:
+            every = self._every.get(n)
+            if every is None:
+                a, b = np.triu_indices(n, 1)
+                every = self._every[n] = (a.astype(np.int64), b.astype(np.int64))
+            return every
+        h = 2.0 * float((store.radius + margin).max()) + SPECULATIVE_DISTANCE
+        a, b = grid_pairs(store.x, h, self.fast)
+        lo = np.minimum(a, b).astype(np.int64)  # rows a < b, as every pair's test gives
+        return lo, np.maximum(a, b).astype(np.int64)
+
+    def _found_fast(
+        self, places: _Places, table: ShapeTable, store: Any, statics: StaticShapes,
+        cs: _Colliders, owner: np.ndarray, bounds: np.ndarray, sensors: np.ndarray,
+        margin: np.ndarray, candidates: tuple[np.ndarray, np.ndarray], apart: np.ndarray,
+        ignored: np.ndarray,
+    ) -> _Found:  # fmt: skip
+        """Stages 2 to 4 in one compiled call (engine.game_contacts), the same contacts as
+        ``_pairs``, ``_faces``, ``_collide`` and ``_found`` give; a half plane's by those."""
+        t = places.tables
+        c = np.ascontiguousarray
+        i64, f64 = np.int64, np.float64
+        if t.polygons is not None:
+            polygons = (t.vertices, t.normals, t.count, t.radius)
+        else:
+            polygons = (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, i64), np.zeros(1))
+        moving = ~store.kinematic & np.isfinite(store.mass)
+        kernel: Any = contacts_loop
+        out = kernel(
+            c(store.x, f64), c(store.angle, f64), c(store.radius, f64), c(margin, f64),
+            c(moving), c(sensors), c(store.group, i64), c(store.categories, i64),
+            c(store.mask, i64), c(store.slots(), i64), c(store.friction, f64),
+            c(store.restitution, f64), places.body_circle, places.body_index, *candidates,
+            c(owner, i64), c(bounds, f64), places.static_circle, places.static_index,
+            cs.sensor, cs.friction, cs.restitution, c(cs.surface), cs.group, cs.categories,
+            cs.mask, *polygons, t.center, t.round, apart, ignored, self.keys, self.lam,
+        )  # fmt: skip
+        point = np.stack([out[17], out[18]], axis=1)
+        found = _Found(list(out[:15]), out[15], out[16], point, out[19], out[20])
+        if len(out[21]):
+            faces = np.stack([out[21], out[22]], axis=1)
+            none = np.zeros((0, 2), dtype=np.intp)
+            touches = _collide(places, table, store, statics, none, faces, margin, True)
+            found = found.join(self._found(store, cs, owner, touches))
+        return found
+
+    def _found(self, store: Any, cs: _Colliders, owner: np.ndarray, touches: Touches) -> _Found:
+        """The manifolds as the solver's contact rows (solver.solve's order), warm started by
+        key; a sensor collider's manifolds as its overlaps (events only: no row pushes its
+        body)."""
+        n = len(store)
+        sensor = np.zeros(len(touches.m), dtype=bool)
+        stat = np.flatnonzero(touches.b >= n)
+        if len(stat):
+            sensor[stat] = cs.sensor[owner[touches.place[stat]]]
+        over = sensor & (touches.m.separation < 0.0).any(axis=1)
+        sense_row = touches.a[over].astype(np.int64)
+        sense_place = owner[touches.place[over]].astype(np.int64)
+        m, ia, ib, other = touches.take(np.flatnonzero(~sensor))
         k = len(m)
         count = m.count.astype(np.int64)
         slots = store.slots()
         # The pair's code: body B's slot, or a static shape's place.
-        code_b = np.where(ib < n, slots[np.minimum(ib, n - 1)], _STATIC + other)
-        code = (slots[ia].astype(np.int64) << _OTHER) | code_b.astype(np.int64)
+        code_b = np.where(ib < n, slots[np.minimum(ib, n - 1)], STATIC + other)
+        code = (slots[ia].astype(np.int64) << OTHER) | code_b.astype(np.int64)
         feature = np.where(m.feature >= 0, m.feature, 0).astype(np.int64)
-        keys = (code[:, None] << _FEATURE) | feature  # (k, 2)
+        keys = (code[:, None] << FEATURE) | feature  # (k, 2)
         lam = np.zeros((k, 2, 2))
         if len(self.keys) and k:
             flat = keys.ravel()
@@ -334,7 +419,7 @@ class GameStep:
             speed[stat] = -(u[:, 0] * t[:, 0] + u[:, 1] * t[:, 1])
         sep = np.where(np.isfinite(m.separation), m.separation, 0.0)
         c = np.ascontiguousarray
-        return [
+        rows = [
             c(ia, dtype=np.int64),
             c(ib, dtype=np.int64),
             c(m.normal[:, 0]),
@@ -350,15 +435,14 @@ class GameStep:
             speed,
             c(lam[:, :, 0].ravel()),
             c(lam[:, :, 1].ravel()),
-            np.zeros(2 * k),
-            np.zeros(2 * k),
-            keys.ravel(),
         ]
+        point = c(m.point[:, 0])
+        return _Found(rows, keys.ravel(), other.astype(np.int64), point, sense_row, sense_place)
 
-    def _keep(self, rows: list[np.ndarray], out: list[Any], n: int) -> None:
+    def _keep(self, found: _Found, out: list[Any]) -> None:
         """Keep this step's impulses by key, for the next step's warm start."""
-        count = rows[4]
-        keys = rows[17]
+        count = found.rows[4]
+        keys = found.keys
         real = np.arange(len(keys)) % 2 < np.repeat(count, 2)
         base = 11  # the bodies' arrays come first
         lam_n = np.asarray(out[base + 13], dtype=float)
@@ -450,39 +534,40 @@ class GameStep:
         store: Any,
         cs: _Colliders,
         owner: np.ndarray,
-        touches: Touches,
+        found: _Found,
         out: list[Any],
     ) -> None:
         """Which contacts touch after the step (a point that pushed in it, or one nearer
         than LINEAR_SLOP at its start)."""
-        m, ia, ib, other = touches
+        rows = found.rows
+        ia, ib, count, sep = rows[0], rows[1], rows[4], rows[9]
+        other = found.place
         n = len(store)
         slots = store.slots()
         total, lam_t = self._totals
-        count = m.count
-        real = np.arange(2 * len(m)) % 2 < np.repeat(count, 2)
+        real = np.arange(2 * len(ia)) % 2 < np.repeat(count, 2)
         pushed = (total > 0.0) & real
-        near = (m.separation.ravel() < LINEAR_SLOP) & real
+        near = (sep < LINEAR_SLOP) & real
         touch = (pushed | near).reshape(-1, 2).any(axis=1)
         stat = ib >= n
-        keys = np.zeros(len(m), dtype=np.int64)
+        keys = np.zeros(len(ia), dtype=np.int64)
         pair = ~stat
         if pair.any():
             keys[pair] = pair_keys(slots[ia[pair]], slots[ib[pair]])
         if stat.any():
             keys[stat] = collider_keys(slots[ia[stat]], cs.serial[owner[other[stat]]])
         # The impulse on the key's first body: -(lam_n n + lam_t t) on A, the whole step's.
-        tn = total.reshape(-1, 2).sum(axis=1) if len(m) else np.zeros(0)
+        tn = total.reshape(-1, 2).sum(axis=1) if len(ia) else np.zeros(0)
         tt = np.asarray(lam_t, dtype=float).reshape(-1, 2).sum(axis=1) * self.substeps
-        nrm = m.normal
+        nrm = np.stack([rows[2], rows[3]], axis=1)
         j = -(tn[:, None] * nrm + tt[:, None] * np.stack([-nrm[:, 1], nrm[:, 0]], axis=1))
-        first_a = np.ones(len(m), dtype=bool)
+        first_a = np.ones(len(ia), dtype=bool)
         first_a[pair] = slots[ia[pair]] <= slots[np.minimum(ib[pair], n - 1)]
         sign = np.where(first_a, 1.0, -1.0)[:, None]
         self.last = self.report
         self.report = _Report(
             keys[touch],
-            m.point[touch, 0],
+            found.point[touch],
             (-nrm * sign)[touch],
             (j * sign)[touch],
         )
@@ -557,24 +642,38 @@ def _static_bounds(shapes: StaticShapes) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(owners), np.concatenate(boxes)
 
 
-def _pairs(
-    store: Any, state: WorldState, sensors: np.ndarray, margin: np.ndarray, ignored: np.ndarray
-) -> np.ndarray:
-    """The pairs of bodies (rows a < b, (K, 2)) that may touch in the step: bounding circles
-    within both bodies' reach and the speculative distance, the filters passed, one of them
-    pushed by contacts, neither a sensor, not kept apart by a joint or a pre_solve."""
+def _apart(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray:
+    """The pairs of bodies kept apart, as sorted keys a n + b of rows a < b: by a pre_solve
+    (``ignored``, such keys) or by a joint that does not let its bodies collide."""
     n = len(store)
-    if n < 2:
-        return np.zeros((0, 2), dtype=np.intp)
+    apart = [np.asarray(ignored, dtype=np.int64)]
+    for j in state.links:
+        if isinstance(j, Joint) and not j.collide and j._other is not None:
+            ra, rb = store.row(j.body_a.slot), store.row(j._other.slot)
+            apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
+    return np.unique(np.concatenate(apart))
+
+
+def _ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
+    """The faces pre_solve ignored ((K, 2) of body row, collider place) as sorted keys
+    row (colliders + 1) + place."""
+    k = colliders + 1
+    return np.unique(np.asarray(ignored[:, 0], dtype=np.int64) * k + ignored[:, 1])
+
+
+def _pairs(
+    store: Any,
+    sensors: np.ndarray,
+    margin: np.ndarray,
+    candidates: tuple[np.ndarray, np.ndarray],
+    apart: np.ndarray,
+) -> np.ndarray:
+    """The pairs of bodies (rows a < b, (K, 2)) among ``candidates`` that may touch in the
+    step: bounding circles within both bodies' reach and the speculative distance, the
+    filters passed, one of them pushed by contacts, neither a sensor, not ``apart``."""
+    n = len(store)
+    a, b = candidates
     x, r = store.x, store.radius
-    if n <= _FEW:
-        a, b = np.triu_indices(n, 1)
-    else:
-        # A grid of cells as wide as the farthest two bodies can reach each other: the pairs
-        # in the same or neighbouring cells (engine.pair_grid), no Python loop over bodies.
-        h = 2.0 * float((r + margin).max()) + SPECULATIVE_DISTANCE
-        a, b = grid_pairs(x, h, state.kernels == "fast")
-        a, b = np.minimum(a, b), np.maximum(a, b)  # rows a < b, as every pair's test gives
     d = x[b] - x[a]
     reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
     near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
@@ -587,14 +686,8 @@ def _pairs(
     keep &= ((store.categories[a] & store.mask[b]) != 0) & (
         (store.categories[b] & store.mask[a]) != 0
     )
-    apart = [ignored]
-    for j in state.links:
-        if isinstance(j, Joint) and not j.collide and j._other is not None:
-            ra, rb = store.row(j.body_a.slot), store.row(j._other.slot)
-            apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
-    gone = np.concatenate(apart)
-    if len(gone):
-        keep &= ~np.isin(a.astype(np.int64) * n + b, gone)
+    if len(apart):
+        keep &= ~np.isin(a * n + b, apart)
     return np.stack([a[keep], b[keep]], axis=1)
 
 
@@ -609,7 +702,8 @@ def _faces(
 ) -> np.ndarray:
     """The pairs of a body and a static shape ((K, 2): row, the shape's place) whose boxes
     overlap within the body's reach: filters passed, no sensor body, a moving body, not
-    ignored by a pre_solve (a sensor collider is kept: its overlaps are events)."""
+    ignored by a pre_solve (``ignored``: ``_ignored_keys``) (a sensor collider is kept: its
+    overlaps are events)."""
     n = len(store)
     if not n or not len(owner):
         return np.zeros((0, 2), dtype=np.intp)
@@ -633,8 +727,7 @@ def _faces(
         (cs.categories[places] & store.mask[rows]) != 0
     )
     if len(ignored):
-        k = len(cs.sensor) + 1
-        keep &= ~np.isin(rows.astype(np.int64) * k + places, ignored[:, 0] * k + ignored[:, 1])
+        keep &= ~np.isin(rows.astype(np.int64) * (len(cs.sensor) + 1) + places, ignored)
     return np.stack([rows[keep], shapes[keep]], axis=1)
 
 
@@ -729,7 +822,8 @@ def _collide(
     fast: bool,
 ) -> Touches:
     """The manifolds of the pairs and faces with a point: polygon against polygon in one
-    call, the round pairs in another (engine.narrowphase), half planes by kind."""
+    call, the round pairs in another (engine.narrowphase), put back in the broadphase's
+    order (the pairs, then the faces), then half planes by kind."""
     n = len(store)
     x, q = store.x, store.angle
     # Every pair as (A's row, B's row or n, the static place or -1), A a body.
@@ -786,6 +880,12 @@ def _collide(
             sel = np.concatenate([sel[~swap], sel[swap]])
         parts.append(m)
         order.append(sel)
+    if parts:
+        # Back in the broadphase's order (so the solver meets the rows as the fast path's).
+        idx = np.concatenate(order)
+        back = np.empty(len(idx), dtype=np.intp)
+        back[idx] = np.arange(len(idx))
+        parts = [Manifold.concat(parts).take(back)]
     # Half planes (a Plane, a room's walls), by the kind of the body's shape.
     hp_rows, hp_spots = rows[half], spots[half]
     kind = table.kind
@@ -815,9 +915,8 @@ def _collide(
         )
         return Touches(none, empty, empty, empty)
     m = Manifold.concat(parts)
-    idx = np.concatenate(order) if order else np.zeros(0, dtype=np.intp)
-    all_a = np.concatenate([a[idx], *extra_a]).astype(np.intp)
-    all_b = np.concatenate([b[idx], *[np.full(len(r), n) for r in extra_a]]).astype(np.intp)
-    all_place = np.concatenate([place[idx], *extra_place]).astype(np.intp)
+    all_a = np.concatenate([a, *extra_a]).astype(np.intp)
+    all_b = np.concatenate([b, *[np.full(len(r), n) for r in extra_a]]).astype(np.intp)
+    all_place = np.concatenate([place, *extra_place]).astype(np.intp)
     hit = m.count > 0
     return Touches(m.take(hit), all_a[hit], all_b[hit], all_place[hit])

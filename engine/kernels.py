@@ -50,6 +50,7 @@ import os
 import sys
 import threading
 import time
+import types
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, Generic, TypeVar
@@ -160,14 +161,23 @@ class LoopKernel(Generic[F]):
         self._compiled: Any = None
         #: Whether ``prepare`` has compiled (or loaded) it for its sample's argument types.
         self.ready = False
+        #: The names of the kernels it calls (known once it is compiled: ``fast``).
+        self.calls: list[str] = []
         _ALL.append(self)
 
     @property
     def fast(self) -> F:
         """The compiled kernel (numba.njit, cached on disk in ``cache_dir()``); it compiles
-        (or loads) a specialisation at its first call with each new set of argument types."""
+        (or loads) a specialisation at its first call with each new set of argument types.
+        A kernel may call another (a step's kernel calls the manifolds' and the solver's):
+        compiled, it calls the other's compiled code, and numba's cache entry for it is kept
+        only while the other's source file is as it was (numba's own check looks at the
+        caller's file alone)."""
         if self._compiled is None:
-            self._compiled = _numba().njit(cache=True, nogil=True)(self.py)
+            fn, called = _calling_compiled(self.py)
+            self._compiled = _numba().njit(cache=True, nogil=True)(fn)
+            _stamp_with(self._compiled, sorted({k.py.__code__.co_filename for k in called}))
+            self.calls = [k.name for k in called]
         return self._compiled  # type: ignore[no-any-return]
 
     def __call__(self, *args: Any) -> Any:
@@ -185,6 +195,48 @@ class LoopKernel(Generic[F]):
 
     def __repr__(self) -> str:
         return f"LoopKernel({self.name})"
+
+
+def _names(code: Any) -> set[str]:
+    """The global names a function's code (and the functions made inside it) reads."""
+    names = set(code.co_names)
+    for const in code.co_consts:
+        if hasattr(const, "co_names"):
+            names |= _names(const)
+    return names
+
+
+def _calling_compiled(
+    fn: Callable[..., Any],
+) -> tuple[Callable[..., Any], list[LoopKernel[Any]]]:
+    """``fn``, with each loop kernel among the globals it reads replaced by that kernel's
+    compiled dispatcher (numba compiles a call to a dispatcher, not to a LoopKernel), and
+    those kernels."""
+    glob = fn.__globals__
+    called = {n: glob[n] for n in _names(fn.__code__) if isinstance(glob.get(n), LoopKernel)}
+    if not called:
+        return fn, []
+    new_globals = dict(glob)
+    for name, k in called.items():
+        new_globals[name] = k.fast
+    out = types.FunctionType(fn.__code__, new_globals, fn.__name__, fn.__defaults__, fn.__closure__)
+    out.__qualname__, out.__module__ = fn.__qualname__, fn.__module__
+    return out, list(called.values())
+
+
+def _stamp_with(dispatcher: Any, files: list[str]) -> None:
+    """Make numba's cache entry of ``dispatcher`` stale when any of ``files`` changes: its
+    source stamp (the caller's file's time and size) gets theirs beside it. (numba keeps
+    the stamp on the cache's index file object; where a numba release moves it, the entry
+    goes stale only with the caller's file, as before.)"""
+    index = getattr(getattr(dispatcher, "_cache", None), "_cache_file", None)
+    if not files or index is None or not hasattr(index, "_source_stamp"):
+        return
+    stamps = []
+    for f in files:
+        st = os.stat(f)
+        stamps.append((st.st_mtime, st.st_size))
+    index._source_stamp = (index._source_stamp, *stamps)
 
 
 _ALL: list[LoopKernel[Any]] = []
@@ -213,6 +265,7 @@ MODULES = (
     "engine.manifold_polygon",
     "engine.manifold",
     "engine.narrowphase",
+    "engine.game_contacts",
     "engine.joint_rows",
     "engine.events",
 )

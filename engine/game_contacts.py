@@ -1,0 +1,341 @@
+"""A game step's contacts in one compiled call: broadphase, narrowphase and rows, on the fast path.
+
+The soft step (engine.game_step) finds its contacts in three stages: the pairs that may touch
+(the broadphase: bodies' bounding circles, and bodies' circles against the static shapes'
+boxes, each within what the two can move in the step), a manifold for each (the
+narrowphase: engine.narrowphase's two tables), and the solver's rows (materials, the
+conveyor's speed, the warm start by key). On the numpy path each stage is a handful of array
+calls, and at a game's size (twenty bodies, a dozen segments) numpy's fixed cost per call is
+nearly all of their time: about 0.25 ms a step for work that takes microseconds.
+``contacts_loop`` is the three stages as one loop kernel, over the same arrays, in the same
+order, with the same products, so the fast path's contacts are the numpy path's to the bit
+(tests/test_soft_solver.py checks whole games against each other):
+
+1. the body pairs given (every pair of a small scene, or the grid's: engine.pair_grid), kept
+   when their circles come within reach, one of them moves, neither is a sensor, the filters
+   pass and no joint or pre_solve keeps them apart;
+2. every body against every static shape whose box its reach overlaps, kept likewise (a
+   sensor collider is kept: its overlaps are events); half planes are returned to the caller,
+   which takes them by kind (few scenes have one; a game's level is segments);
+3. the manifolds: polygon against polygon in one call of ``polygon_loop``, the round pairs in
+   one of ``round_loop`` (a polygon against a circle taken with the polygon as A, then flipped
+   back), each group with the largest reach among its pairs as its speculative margin, put
+   back in the broadphase's order;
+4. each manifold with a point a contact row, but a sensor collider's, which is an overlap
+   (the body's row, the collider's place) where a point is inside.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from . import kernels
+from .manifold_kinds import SPECULATIVE_DISTANCE
+from .manifold_polygon import polygon_loop
+from .narrowphase import round_loop
+
+__all__ = ["STATIC", "contacts_loop"]
+
+#: Warm-start keys: (the pair's code << FEATURE) | the point's feature id (16 bits); a pair's
+#: code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
+FEATURE = 16
+OTHER = 21
+STATIC = 1 << 20
+
+
+def _sample() -> tuple[Any, ...]:
+    """The smallest call: a unit box resting on a segment's capsule, a disc beside it, both
+    warm started."""
+    f = np.zeros
+    x = np.array([[0.0, 0.5], [1.2, 0.5]])
+    q = f(2)
+    radius = np.array([0.71, 0.5])
+    reach = np.array([0.01, 0.01])
+    yes = np.ones(2, dtype=bool)
+    no = np.zeros(2, dtype=bool)
+    i2 = f(2, dtype=np.int64)
+    cats = np.ones(2, dtype=np.int64)
+    mask = np.full(2, -1, dtype=np.int64)
+    slots = np.array([0, 1], dtype=np.int64)
+    mat = np.array([0.6, 0.6])
+    v = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]],
+                  [[-2.0, 0.0], [2.0, 0.0], [2.0, 0.0], [2.0, 0.0]]])  # fmt: skip
+    nn = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]],
+                   [[0.0, -1.0], [0.0, 1.0], [0.0, 1.0], [0.0, 1.0]]])  # fmt: skip
+    count = np.array([4, 2], dtype=np.int64)
+    rad = np.array([0.0, 0.02])
+    center = f((1, 2))
+    rnd = np.array([0.5])
+    pa, pb = np.array([0], dtype=np.int64), np.array([1], dtype=np.int64)
+    owner = np.array([0], dtype=np.int64)
+    bounds = np.array([[-2.02, -0.02, 2.02, 0.02]])
+    s_circle = np.zeros(1, dtype=bool)
+    s_index = np.array([1], dtype=np.int64)
+    c_mat = np.array([0.5])
+    surface = f((1, 2))
+    c_i = f(1, dtype=np.int64)
+    none = f(0, dtype=np.int64)
+    keys = np.array([0], dtype=np.int64)
+    lam = f((1, 2))
+    return (x, q, radius, reach, yes, no, i2, cats, mask, slots, mat, mat, np.array([False, True]),
+            np.array([0, 0], dtype=np.int64), pa, pb, owner, bounds, s_circle, s_index,
+            np.zeros(1, dtype=bool), c_mat, c_mat, surface, c_i, c_i + 1, c_i - 1, v, nn, count,
+            rad, center, rnd, none, none, keys, lam)  # fmt: skip
+
+
+@kernels.loop(sample=_sample)
+def contacts_loop(
+    x: Any, q: Any, radius: Any, reach: Any, moving: Any, sensor: Any,
+    group: Any, cats: Any, mask: Any, slots: Any, friction: Any, restitution: Any,
+    body_circle: Any, body_index: Any,
+    pa: Any, pb: Any,
+    owner: Any, bounds: Any, static_circle: Any, static_index: Any,
+    c_sensor: Any, c_friction: Any, c_restitution: Any, c_surface: Any,
+    c_group: Any, c_cats: Any, c_mask: Any,
+    V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any,
+    apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any,
+) -> tuple[Any, ...]:  # fmt: skip
+    """The step's contacts (module doc). Bodies (n rows): pose ``x`` (n, 2) m and ``q`` rad,
+    bounding ``radius`` m, ``reach`` (how far each can move in the step, m), ``moving``
+    (pushed by contacts), ``sensor``, the filter's ``group``, ``cats``, ``mask``, ``slots``,
+    ``friction``, ``restitution``, where the shape is in the tables (``body_circle``: the
+    circles', else the polygons'; ``body_index``). ``pa``, ``pb``: the pairs to test, rows.
+    Static shapes (K): the collider ``owner``, ``bounds`` (K, 4) xmin, ymin, xmax, ymax,
+    ``static_circle``, ``static_index`` (-1: a half plane). Colliders (C, by place): sensor,
+    friction, restitution, surface velocity (C, 2) m/s, filter. The tables (engine.
+    narrowphase: polygons ``V``, ``Nrm``, ``cnt``, ``rad``; circles ``center``, ``rnd``).
+    ``apart``: sorted keys a n + b of pairs kept apart; ``ignored``: sorted keys row (C + 1)
+    + place of faces pre_solve ignored; ``warm_keys`` sorted, ``warm_lam`` (k, 2): the last
+    step's points and their impulses (N s a substep).
+
+    Returns the solver's contact arrays (engine.solver.solve's ca ... clt, 15 of them), each
+    point's key (2 per row), each row's static place (-1 for a body pair) and first point
+    (x, y, m); the sensors' overlaps (rows, places); the half-plane faces left (rows,
+    shapes)."""
+    n = len(radius)
+    k_shapes = len(owner)
+    n_col = len(c_sensor)
+    # -- 1. the body pairs -----------------------------------------------------------------
+    cand_a = np.empty(len(pa) + n * k_shapes, dtype=np.int64)
+    cand_b = np.empty(len(cand_a), dtype=np.int64)  # B's row, or n for a static shape
+    cand_p = np.empty(len(cand_a), dtype=np.int64)  # the static shape, or -1
+    m = 0
+    for i in range(len(pa)):
+        a, b = pa[i], pb[i]
+        dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
+        r = radius[a] + radius[b] + reach[a] + reach[b] + SPECULATIVE_DISTANCE
+        if dx * dx + dy * dy > r * r:
+            continue
+        if not (moving[a] or moving[b]) or sensor[a] or sensor[b]:
+            continue
+        if not radius[a] + radius[b] > 0.0:
+            continue
+        if group[a] != 0 and group[a] == group[b]:
+            continue
+        if (cats[a] & mask[b]) == 0 or (cats[b] & mask[a]) == 0:
+            continue
+        if len(apart):
+            key = a * n + b
+            at = np.searchsorted(apart, key)
+            if at < len(apart) and apart[at] == key:
+                continue
+        cand_a[m], cand_b[m], cand_p[m] = a, b, -1
+        m += 1
+    # -- 2. the static shapes ----------------------------------------------------------------
+    half_row = np.empty(n * k_shapes, dtype=np.int64)
+    half_spot = np.empty(n * k_shapes, dtype=np.int64)
+    h = 0
+    for a in range(n):
+        grow = radius[a] + reach[a] + SPECULATIVE_DISTANCE
+        lox, loy = x[a, 0] - grow, x[a, 1] - grow
+        hix, hiy = x[a, 0] + grow, x[a, 1] + grow
+        for s in range(k_shapes):
+            if not (lox <= bounds[s, 2] and hix >= bounds[s, 0]):
+                continue
+            if not (loy <= bounds[s, 3] and hiy >= bounds[s, 1]):
+                continue
+            c = owner[s]
+            if not (moving[a] or c_sensor[c]) or sensor[a]:
+                continue
+            if group[a] != 0 and group[a] == c_group[c]:
+                continue
+            if (cats[a] & c_mask[c]) == 0 or (c_cats[c] & mask[a]) == 0:
+                continue
+            if len(ignored):
+                key = a * (n_col + 1) + c
+                at = np.searchsorted(ignored, key)
+                if at < len(ignored) and ignored[at] == key:
+                    continue
+            if static_index[s] < 0:
+                half_row[h], half_spot[h] = a, s
+                h += 1
+                continue
+            cand_a[m], cand_b[m], cand_p[m] = a, n, s
+            m += 1
+    # -- 3. the manifolds, by group --------------------------------------------------------
+    is_round = np.empty(m, dtype=np.bool_)
+    swap = np.zeros(m, dtype=np.bool_)
+    n_poly = 0
+    poly_margin = -np.inf
+    round_margin = -np.inf
+    for i in range(m):
+        a, b, s = cand_a[i], cand_b[i], cand_p[i]
+        ca = body_circle[a]
+        cb = static_circle[s] if s >= 0 else body_circle[b]
+        r = reach[a] + (0.0 if s >= 0 else reach[b])
+        r = r + SPECULATIVE_DISTANCE
+        is_round[i] = ca or cb
+        if ca or cb:
+            swap[i] = ca and not cb
+            round_margin = max(round_margin, r)
+        else:
+            n_poly += 1
+            poly_margin = max(poly_margin, r)
+    n_round = m - n_poly
+    # Each group's pairs: A's shape and pose, B's (a static shape at the origin, unturned).
+    gi_a = np.empty(m, dtype=np.int64)
+    gi_b = np.empty(m, dtype=np.int64)
+    gx_a = np.zeros((m, 2))
+    gx_b = np.zeros((m, 2))
+    gq_a = np.zeros(m)
+    gq_b = np.zeros(m)
+    flag = np.zeros(n_round, dtype=np.bool_)
+    where = np.empty(m, dtype=np.int64)  # each candidate's place in its group's call
+    k_poly = 0
+    k_round = n_poly
+    for i in range(m):
+        a, b, s = cand_a[i], cand_b[i], cand_p[i]
+        ia, ib = body_index[a], static_index[s] if s >= 0 else body_index[b]
+        xbx, xby, qb = 0.0, 0.0, 0.0
+        if s < 0:
+            xbx, xby, qb = x[b, 0], x[b, 1], q[b]
+        if is_round[i]:
+            j = k_round
+            k_round += 1
+            flag[j - n_poly] = body_circle[a] and not swap[i]
+        else:
+            j = k_poly
+            k_poly += 1
+        where[i] = j
+        if swap[i]:  # the polygon as A
+            gi_a[j], gi_b[j] = ib, ia
+            gx_a[j, 0], gx_a[j, 1], gq_a[j] = xbx, xby, qb
+            gx_b[j, 0], gx_b[j, 1], gq_b[j] = x[a, 0], x[a, 1], q[a]
+        else:
+            gi_a[j], gi_b[j] = ia, ib
+            gx_a[j, 0], gx_a[j, 1], gq_a[j] = x[a, 0], x[a, 1], q[a]
+            gx_b[j, 0], gx_b[j, 1], gq_b[j] = xbx, xby, qb
+    normal = np.empty((m, 2))
+    count = np.zeros(m, dtype=np.int64)
+    point = np.zeros((m, 2, 2))
+    anchor_a = np.zeros((m, 2, 2))
+    anchor_b = np.zeros((m, 2, 2))
+    separation = np.full((m, 2), np.inf)
+    feature = np.full((m, 2), -1, dtype=np.int64)
+    # (Each group's arrays copied out whole: the kernels' sample types, C-contiguous.)
+    if n_poly:
+        po = polygon_loop(
+            V, Nrm, cnt, rad, gi_a[:n_poly].copy(), gx_a[:n_poly].copy(), gq_a[:n_poly].copy(),
+            V, Nrm, cnt, rad, gi_b[:n_poly].copy(), gx_b[:n_poly].copy(), gq_b[:n_poly].copy(),
+            poly_margin,
+        )  # fmt: skip
+        normal[:n_poly], count[:n_poly], point[:n_poly] = po[0], po[1], po[2]
+        anchor_a[:n_poly], anchor_b[:n_poly] = po[3], po[4]
+        separation[:n_poly], feature[:n_poly] = po[5], po[6]
+    if n_round:
+        ro = round_loop(
+            V, Nrm, cnt, rad, center, rnd, flag, gi_a[n_poly:].copy(), gx_a[n_poly:].copy(),
+            gq_a[n_poly:].copy(), gi_b[n_poly:].copy(), gx_b[n_poly:].copy(),
+            gq_b[n_poly:].copy(), round_margin,
+        )  # fmt: skip
+        normal[n_poly:], count[n_poly:], point[n_poly:] = ro[0], ro[1], ro[2]
+        anchor_a[n_poly:], anchor_b[n_poly:] = ro[3], ro[4]
+        separation[n_poly:], feature[n_poly:] = ro[5], ro[6]
+    # -- 4. the rows, in the broadphase's order ------------------------------------------------
+    rows = 0
+    sensing = 0
+    for i in range(m):
+        j = where[i]
+        if count[j] == 0:
+            continue
+        s = cand_p[i]
+        if s >= 0 and c_sensor[owner[s]]:
+            sensing += 1
+        else:
+            rows += 1
+    ca_ = np.empty(rows, dtype=np.int64)
+    cb_ = np.empty(rows, dtype=np.int64)
+    nx_ = np.empty(rows)
+    ny_ = np.empty(rows)
+    count_ = np.empty(rows, dtype=np.int64)
+    rax = np.empty(2 * rows)
+    ray = np.empty(2 * rows)
+    rbx = np.empty(2 * rows)
+    rby = np.empty(2 * rows)
+    sep = np.empty(2 * rows)
+    fric = np.empty(rows)
+    rest = np.empty(rows)
+    speed = np.zeros(rows)
+    ln = np.zeros(2 * rows)
+    lt = np.zeros(2 * rows)
+    keys = np.empty(2 * rows, dtype=np.int64)
+    place = np.empty(rows, dtype=np.int64)
+    px = np.empty(rows)
+    py = np.empty(rows)
+    sense_row = np.empty(sensing, dtype=np.int64)
+    sense_place = np.empty(sensing, dtype=np.int64)
+    k = 0
+    z = 0
+    for i in range(m):
+        j = where[i]
+        if count[j] == 0:
+            continue
+        a, b, s = cand_a[i], cand_b[i], cand_p[i]
+        flip = swap[i]
+        if s >= 0 and c_sensor[owner[s]]:
+            if separation[j, 0] < 0.0 or separation[j, 1] < 0.0:
+                sense_row[z], sense_place[z] = a, owner[s]
+                z += 1
+            continue
+        sign = -1.0 if flip else 1.0
+        nx, ny = sign * normal[j, 0], sign * normal[j, 1]
+        ca_[k], cb_[k], nx_[k], ny_[k], count_[k] = a, b, nx, ny, count[j]
+        place[k] = s
+        px[k], py[k] = point[j, 0, 0], point[j, 0, 1]
+        code_b = slots[b] if s < 0 else STATIC + s
+        code = (slots[a] << OTHER) | code_b
+        for p in range(2):
+            t = 2 * k + p
+            if flip:
+                rax[t], ray[t] = anchor_b[j, p, 0], anchor_b[j, p, 1]
+                rbx[t], rby[t] = anchor_a[j, p, 0], anchor_a[j, p, 1]
+            else:
+                rax[t], ray[t] = anchor_a[j, p, 0], anchor_a[j, p, 1]
+                rbx[t], rby[t] = anchor_b[j, p, 0], anchor_b[j, p, 1]
+            g = separation[j, p]
+            sep[t] = g if np.isfinite(g) else 0.0
+            f = feature[j, p]
+            if flip and f >= 0:
+                f = (f & 255) << 8 | (f >> 8)
+            key = (code << FEATURE) | (f if f >= 0 else 0)
+            keys[t] = key
+            if p < count[j] and len(warm_keys):
+                at = min(np.searchsorted(warm_keys, key), len(warm_keys) - 1)
+                if warm_keys[at] == key:
+                    ln[t], lt[t] = warm_lam[at, 0], warm_lam[at, 1]
+        # Materials: friction mu_a mu_b, restitution e_a e_b; a conveyor's surface speed.
+        if s < 0:
+            mu_b, e_b = friction[b], restitution[b]
+        else:
+            c = owner[s]
+            mu_b, e_b = c_friction[c], c_restitution[c]
+            tx, ty = -ny, nx
+            speed[k] = -(c_surface[c, 0] * tx + c_surface[c, 1] * ty)
+        fric[k] = friction[a] * mu_b
+        rest[k] = restitution[a] * e_b
+        k += 1
+    return (ca_, cb_, nx_, ny_, count_, rax, ray, rbx, rby, sep, fric, rest, speed, ln, lt,
+            keys, place, px, py, sense_row[:z], sense_place[:z], half_row[:h],
+            half_spot[:h])  # fmt: skip
