@@ -32,11 +32,12 @@ from typing import Any
 import numpy as np
 
 from . import kernels
+from .events import COLLIDER
 from .manifold_kinds import SPECULATIVE_DISTANCE
 from .manifold_polygon import polygon_loop
 from .narrowphase import round_loop
 
-__all__ = ["STATIC", "contacts_loop"]
+__all__ = ["STATIC", "contacts_loop", "report_loop"]
 
 #: Warm-start keys: (the pair's code << FEATURE) | the point's feature id (16 bits); a pair's
 #: code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
@@ -339,3 +340,92 @@ def contacts_loop(
     return (ca_, cb_, nx_, ny_, count_, rax, ray, rbx, rby, sep, fric, rest, speed, ln, lt,
             keys, place, px, py, sense_row[:z], sense_place[:z], half_row[:h],
             half_spot[:h])  # fmt: skip
+
+
+def _sample_report() -> tuple[Any, ...]:
+    """The smallest call of ``report_loop``: a box resting on a segment by two points, and
+    a disc against the box by one."""
+    i = np.array([0, 1], dtype=np.int64)
+    b = np.array([2, 0], dtype=np.int64)
+    normal = np.array([0.0, 1.0])
+    count = np.array([2, 1], dtype=np.int64)
+    sep = np.array([0.0, 0.001, 0.002, 0.0])
+    keys = np.array([1, 2, 3, 0], dtype=np.int64)
+    place = np.array([0, -1], dtype=np.int64)
+    point = np.zeros(2)
+    lam = np.array([0.1, 0.1, 0.0, 0.0])
+    slots = np.array([0, 1], dtype=np.int64)
+    owner = np.zeros(1, dtype=np.int64)
+    return (i, b, normal, normal, count, sep, keys, place, point, point, lam, lam, lam, slots,
+            owner, owner + 1, 4, 0.005)  # fmt: skip
+
+
+@kernels.loop(sample=_sample_report)
+def report_loop(
+    ca: Any, cb: Any, nx: Any, ny: Any, count: Any, sep: Any, keys: Any, place: Any,
+    px: Any, py: Any, ln: Any, lt: Any, total: Any, slots: Any, owner: Any, serial: Any,
+    substeps: int, slop: float,
+) -> tuple[Any, ...]:  # fmt: skip
+    """What the solved contacts leave (engine.game_step's ``_keep`` and ``_events`` as one
+    loop, their products in their order): each point's impulses by key, sorted, for the next
+    step's warm start; and the contacts that touch (a point that pushed in the step, or one
+    nearer than ``slop`` at its start), each with its event key (engine.events: the bodies'
+    slots, or the slot and the collider's ``serial`` by place), first point (m), the normal
+    toward the key's first body and the impulse on it over the step (N s).
+
+    ``ca`` ... ``sep``, ``keys``, ``place``, ``px``, ``py``: the contacts as
+    ``contacts_loop`` gave them; ``ln``, ``lt``, ``total``: the solver's impulses (a
+    substep's normal and tangent, the step's normal); ``slots`` by row, ``owner`` each static
+    shape's collider place. Returns the kept keys and impulses ((k, 2)), then the touching
+    contacts' keys, points, normals and impulses ((t, 2) each)."""
+    n = len(slots)
+    k = len(ca)
+    real = 0
+    for i in range(k):
+        real += count[i]
+    kept = np.empty(real, dtype=np.int64)
+    lam = np.empty((real, 2))
+    r = 0
+    for i in range(k):
+        for p in range(count[i]):
+            kept[r] = keys[2 * i + p]
+            lam[r, 0], lam[r, 1] = ln[2 * i + p], lt[2 * i + p]
+            r += 1
+    order = np.argsort(kept, kind="mergesort")  # stable, as numpy's
+    touch = np.zeros(k, dtype=np.bool_)
+    t = 0
+    for i in range(k):
+        for p in range(count[i]):
+            if total[2 * i + p] > 0.0 or sep[2 * i + p] < slop:
+                touch[i] = True
+        if touch[i]:
+            t += 1
+    event = np.empty(t, dtype=np.int64)
+    point = np.empty((t, 2))
+    normal = np.empty((t, 2))
+    impulse = np.empty((t, 2))
+    e = 0
+    for i in range(k):
+        if not touch[i]:
+            continue
+        a, b = ca[i], cb[i]
+        first = 1.0
+        if b < n:
+            lo, hi = min(slots[a], slots[b]), max(slots[a], slots[b])
+            event[e] = (lo << 32) | hi
+            if slots[a] > slots[b]:
+                first = -1.0
+        else:
+            event[e] = (slots[a] << 32) | (serial[owner[place[i]]] | COLLIDER)
+        # The impulse on A, -(lam_n n + lam_t t), t = (-n_y, n_x), over the whole step.
+        # (Summed as numpy's sum of two: the first, plus 0.0 + the second; -0.0 + -0.0 is
+        # +0.0 so, and the events' zeros keep numpy's signs.)
+        tn = total[2 * i] + (0.0 + total[2 * i + 1])
+        tt = (lt[2 * i] + (0.0 + lt[2 * i + 1])) * substeps
+        jx = -(tn * nx[i] + tt * -ny[i])
+        jy = -(tn * ny[i] + tt * nx[i])
+        point[e, 0], point[e, 1] = px[i], py[i]
+        normal[e, 0], normal[e, 1] = -nx[i] * first, -ny[i] * first
+        impulse[e, 0], impulse[e, 1] = jx * first, jy * first
+        e += 1
+    return kept[order], lam[order], event, point, normal, impulse

@@ -48,7 +48,7 @@ import numpy as np
 from . import solver
 from .colliders import Collider
 from .events import COLLIDER, collider_keys, pair_keys
-from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop
+from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop, report_loop
 from .joints import Hinge, Joint, Weld
 from .manifold import StaticShapes, collide, static_shapes
 from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
@@ -184,6 +184,7 @@ class GameStep:
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
         self._places: tuple[ShapeTable, StaticShapes, _Places] | None = None
         self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
+        self.serials = np.zeros(0, dtype=np.int64)
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -208,6 +209,7 @@ class GameStep:
         table = self._shapes(store)
         colliders = [] if state.contacts is None else state.contacts.colliders
         cs = _collider_arrays(colliders, state.events.serial)
+        self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
         statics, owner, bounds = self._static(colliders)
         sensors = np.array([bd.sensor for bd in state.bodies], dtype=bool)
         margin = _reach(store, accel, dt)
@@ -246,9 +248,12 @@ class GameStep:
         v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
         angle = np.asarray(out[2][:n], dtype=float)
         omega = np.asarray(out[5][:n], dtype=float)
-        self._keep(found, out)
+        if self.fast:
+            self._report_fast(store, cs, owner, found, out)
+        else:
+            self._keep(found, out)
+            self._events(store, cs, owner, found, out)
         self._keep_joints(joints[1], out)
-        self._events(store, cs, owner, found, out)
         # What each sensor collider holds: a body whose shape overlaps it.
         if len(found.sense_row):
             self.report.sensing = collider_keys(
@@ -527,6 +532,25 @@ class GameStep:
             if isinstance(j, Hinge):
                 j.motor_impulse = mi * k
         self.joint_impulses = kept
+
+    def _report_fast(
+        self, store: Any, cs: _Colliders, owner: np.ndarray, found: _Found, out: list[Any]
+    ) -> None:
+        """``_keep`` and ``_events`` in one compiled call (engine.game_contacts.report_loop),
+        the same keys, impulses and touching contacts."""
+        r = found.rows
+        base = 11  # the bodies' arrays come first
+        c = np.ascontiguousarray
+        kernel: Any = report_loop
+        kept, lam, keys, point, normal, impulse = kernel(
+            r[0], r[1], r[2], r[3], r[4], r[9], found.keys, found.place, c(found.point[:, 0]),
+            c(found.point[:, 1]), out[base + 13], out[base + 14], out[base + 15],
+            c(store.slots(), dtype=np.int64), c(owner, dtype=np.int64), cs.serial,
+            self.substeps, LINEAR_SLOP,
+        )  # fmt: skip
+        self.keys, self.lam = kept, lam
+        self.last = self.report
+        self.report = _Report(keys, point, normal, impulse)
 
     # -- stage 7: events ----------------------------------------------------------------------
     def _events(
