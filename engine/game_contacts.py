@@ -15,12 +15,12 @@ order, with the same products, so the fast path's contacts are the numpy path's 
    when their circles come within reach, one of them moves, neither is a sensor, the filters
    pass and no joint or pre_solve keeps them apart;
 2. every body against every static shape whose box its reach overlaps, kept likewise (a
-   sensor collider is kept: its overlaps are events); half planes are returned to the caller,
-   which takes them by kind (few scenes have one; a game's level is segments);
+   sensor collider is kept: its overlaps are events);
 3. the manifolds: polygon against polygon in one call of ``polygon_loop``, the round pairs in
    one of ``round_loop`` (a polygon against a circle taken with the polygon as A, then flipped
-   back), each group with the largest reach among its pairs as its speculative margin, put
-   back in the broadphase's order;
+   back), a half plane against a capsule or a polygon in one of ``half_plane_polygon_loop``
+   each and against a disc here (the half plane as A, flipped back), each group with the
+   largest reach among its pairs as its speculative margin, met in the broadphase's order;
 4. each manifold with a point a contact row, but a sensor collider's, which is an overlap
    (the body's row, the collider's place) where a point is inside.
 """
@@ -33,6 +33,7 @@ import numpy as np
 
 from . import kernels
 from .events import COLLIDER
+from .manifold import half_plane_polygon_loop
 from .manifold_kinds import SPECULATIVE_DISTANCE
 from .manifold_polygon import polygon_loop
 from .narrowphase import round_loop
@@ -80,41 +81,44 @@ def _sample() -> tuple[Any, ...]:
     none = f(0, dtype=np.int64)
     keys = np.array([0], dtype=np.int64)
     lam = f((1, 2))
+    kind = np.array([2, 0], dtype=np.int64)
+    up = np.array([[0.0, 1.0]])
     return (x, q, radius, reach, yes, no, i2, cats, mask, slots, mat, mat, np.array([False, True]),
-            np.array([0, 0], dtype=np.int64), pa, pb, owner, bounds, s_circle, s_index,
+            np.array([0, 0], dtype=np.int64), kind, pa, pb, owner, bounds, s_circle, s_index,
             np.zeros(1, dtype=bool), c_mat, c_mat, surface, c_i, c_i + 1, c_i - 1, v, nn, count,
-            rad, center, rnd, none, none, keys, lam)  # fmt: skip
+            rad, center, rnd, f((1, 2)), up, none, none, keys, lam)  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
 def contacts_loop(
     x: Any, q: Any, radius: Any, reach: Any, moving: Any, sensor: Any,
     group: Any, cats: Any, mask: Any, slots: Any, friction: Any, restitution: Any,
-    body_circle: Any, body_index: Any,
+    body_circle: Any, body_index: Any, kind: Any,
     pa: Any, pb: Any,
     owner: Any, bounds: Any, static_circle: Any, static_index: Any,
     c_sensor: Any, c_friction: Any, c_restitution: Any, c_surface: Any,
     c_group: Any, c_cats: Any, c_mask: Any,
-    V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any,
+    V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any, hp: Any, hn: Any,
     apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any,
 ) -> tuple[Any, ...]:  # fmt: skip
     """The step's contacts (module doc). Bodies (n rows): pose ``x`` (n, 2) m and ``q`` rad,
     bounding ``radius`` m, ``reach`` (how far each can move in the step, m), ``moving``
     (pushed by contacts), ``sensor``, the filter's ``group``, ``cats``, ``mask``, ``slots``,
     ``friction``, ``restitution``, where the shape is in the tables (``body_circle``: the
-    circles', else the polygons'; ``body_index``). ``pa``, ``pb``: the pairs to test, rows.
-    Static shapes (K): the collider ``owner``, ``bounds`` (K, 4) xmin, ymin, xmax, ymax,
-    ``static_circle``, ``static_index`` (-1: a half plane). Colliders (C, by place): sensor,
-    friction, restitution, surface velocity (C, 2) m/s, filter. The tables (engine.
-    narrowphase: polygons ``V``, ``Nrm``, ``cnt``, ``rad``; circles ``center``, ``rnd``).
+    circles', else the polygons'; ``body_index``), its ``kind`` (engine.shaped: DISC,
+    CAPSULE, POLYGON). ``pa``, ``pb``: the pairs to test, rows. Static shapes (K): the
+    collider ``owner``, ``bounds`` (K, 4) xmin, ymin, xmax, ymax, ``static_circle``,
+    ``static_index`` (a half plane h: -1 - h). Colliders (C, by place): sensor, friction,
+    restitution, surface velocity (C, 2) m/s, filter. The tables (engine.narrowphase:
+    polygons ``V``, ``Nrm``, ``cnt``, ``rad``; circles ``center``, ``rnd``), the half planes'
+    points ``hp`` and unit normals ``hn`` (H, 2).
     ``apart``: sorted keys a n + b of pairs kept apart; ``ignored``: sorted keys row (C + 1)
     + place of faces pre_solve ignored; ``warm_keys`` sorted, ``warm_lam`` (k, 2): the last
     step's points and their impulses (N s a substep).
 
     Returns the solver's contact arrays (engine.solver.solve's ca ... clt, 15 of them), each
     point's key (2 per row), each row's static place (-1 for a body pair) and first point
-    (x, y, m); the sensors' overlaps (rows, places); the half-plane faces left (rows,
-    shapes)."""
+    (x, y, m); the sensors' overlaps (rows, collider places)."""
     n = len(radius)
     k_shapes = len(owner)
     n_col = len(c_sensor)
@@ -145,9 +149,6 @@ def contacts_loop(
         cand_a[m], cand_b[m], cand_p[m] = a, b, -1
         m += 1
     # -- 2. the static shapes ----------------------------------------------------------------
-    half_row = np.empty(n * k_shapes, dtype=np.int64)
-    half_spot = np.empty(n * k_shapes, dtype=np.int64)
-    h = 0
     for a in range(n):
         grow = radius[a] + reach[a] + SPECULATIVE_DISTANCE
         lox, loy = x[a, 0] - grow, x[a, 1] - grow
@@ -169,57 +170,61 @@ def contacts_loop(
                 at = np.searchsorted(ignored, key)
                 if at < len(ignored) and ignored[at] == key:
                     continue
-            if static_index[s] < 0:
-                half_row[h], half_spot[h] = a, s
-                h += 1
-                continue
             cand_a[m], cand_b[m], cand_p[m] = a, n, s
             m += 1
     # -- 3. the manifolds, by group --------------------------------------------------------
-    is_round = np.empty(m, dtype=np.bool_)
+    # Groups: 0 polygon against polygon, 1 the round pairs, 2 to 4 a half plane against a
+    # disc, a capsule, a polygon (the half plane as A). ``swap``: the manifold is B's to A's,
+    # flipped back in the rows.
+    group_of = np.empty(m, dtype=np.int64)
     swap = np.zeros(m, dtype=np.bool_)
-    n_poly = 0
-    poly_margin = -np.inf
-    round_margin = -np.inf
+    size = np.zeros(5, dtype=np.int64)
+    margins = np.full(5, -np.inf)
     for i in range(m):
         a, b, s = cand_a[i], cand_b[i], cand_p[i]
-        ca = body_circle[a]
-        cb = static_circle[s] if s >= 0 else body_circle[b]
         r = reach[a] + (0.0 if s >= 0 else reach[b])
         r = r + SPECULATIVE_DISTANCE
-        is_round[i] = ca or cb
-        if ca or cb:
-            swap[i] = ca and not cb
-            round_margin = max(round_margin, r)
+        if s >= 0 and static_index[s] < 0:
+            g = 2 + kind[a]  # DISC, CAPSULE, POLYGON: 0, 1, 2
+            swap[i] = True
         else:
-            n_poly += 1
-            poly_margin = max(poly_margin, r)
-    n_round = m - n_poly
-    # Each group's pairs: A's shape and pose, B's (a static shape at the origin, unturned).
+            ca = body_circle[a]
+            cb = static_circle[s] if s >= 0 else body_circle[b]
+            g = 1 if ca or cb else 0
+            swap[i] = ca and not cb
+        group_of[i] = g
+        size[g] += 1
+        margins[g] = max(margins[g], r)
+    start = np.zeros(6, dtype=np.int64)
+    for g in range(5):
+        start[g + 1] = start[g] + size[g]
+    # Each group's pairs, gathered: A's shape and pose, B's (a static shape at the origin,
+    # unturned).
     gi_a = np.empty(m, dtype=np.int64)
     gi_b = np.empty(m, dtype=np.int64)
     gx_a = np.zeros((m, 2))
     gx_b = np.zeros((m, 2))
     gq_a = np.zeros(m)
     gq_b = np.zeros(m)
-    flag = np.zeros(n_round, dtype=np.bool_)
-    where = np.empty(m, dtype=np.int64)  # each candidate's place in its group's call
-    k_poly = 0
-    k_round = n_poly
+    flag = np.zeros(m, dtype=np.bool_)  # the round pairs': A is a circle
+    where = np.empty(m, dtype=np.int64)  # each candidate's place among the gathered
+    fill = start[:5].copy()
     for i in range(m):
         a, b, s = cand_a[i], cand_b[i], cand_p[i]
-        ia, ib = body_index[a], static_index[s] if s >= 0 else body_index[b]
+        g = group_of[i]
+        j = fill[g]
+        fill[g] += 1
+        where[i] = j
+        ia = body_index[a]
+        if g >= 2:  # the half plane -1 - index as A, at the origin; the body as B
+            gi_a[j], gi_b[j] = -1 - static_index[s], ia
+            gx_b[j, 0], gx_b[j, 1], gq_b[j] = x[a, 0], x[a, 1], q[a]
+            continue
+        ib = static_index[s] if s >= 0 else body_index[b]
         xbx, xby, qb = 0.0, 0.0, 0.0
         if s < 0:
             xbx, xby, qb = x[b, 0], x[b, 1], q[b]
-        if is_round[i]:
-            j = k_round
-            k_round += 1
-            flag[j - n_poly] = body_circle[a] and not swap[i]
-        else:
-            j = k_poly
-            k_poly += 1
-        where[i] = j
+        flag[j] = body_circle[a] and not swap[i]
         if swap[i]:  # the polygon as A
             gi_a[j], gi_b[j] = ib, ia
             gx_a[j, 0], gx_a[j, 1], gq_a[j] = xbx, xby, qb
@@ -236,24 +241,57 @@ def contacts_loop(
     separation = np.full((m, 2), np.inf)
     feature = np.full((m, 2), -1, dtype=np.int64)
     # (Each group's arrays copied out whole: the kernels' sample types, C-contiguous.)
-    if n_poly:
-        po = polygon_loop(
-            V, Nrm, cnt, rad, gi_a[:n_poly].copy(), gx_a[:n_poly].copy(), gq_a[:n_poly].copy(),
-            V, Nrm, cnt, rad, gi_b[:n_poly].copy(), gx_b[:n_poly].copy(), gq_b[:n_poly].copy(),
-            poly_margin,
-        )  # fmt: skip
-        normal[:n_poly], count[:n_poly], point[:n_poly] = po[0], po[1], po[2]
-        anchor_a[:n_poly], anchor_b[:n_poly] = po[3], po[4]
-        separation[:n_poly], feature[:n_poly] = po[5], po[6]
-    if n_round:
-        ro = round_loop(
-            V, Nrm, cnt, rad, center, rnd, flag, gi_a[n_poly:].copy(), gx_a[n_poly:].copy(),
-            gq_a[n_poly:].copy(), gi_b[n_poly:].copy(), gx_b[n_poly:].copy(),
-            gq_b[n_poly:].copy(), round_margin,
-        )  # fmt: skip
-        normal[n_poly:], count[n_poly:], point[n_poly:] = ro[0], ro[1], ro[2]
-        anchor_a[n_poly:], anchor_b[n_poly:] = ro[3], ro[4]
-        separation[n_poly:], feature[n_poly:] = ro[5], ro[6]
+    for g in (0, 1, 3, 4):
+        lo, hi = start[g], start[g + 1]
+        if lo == hi:
+            continue
+        if g == 0:
+            out = polygon_loop(
+                V, Nrm, cnt, rad, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(),
+                V, Nrm, cnt, rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(),
+                margins[g],
+            )  # fmt: skip
+        elif g == 1:
+            out = round_loop(
+                V, Nrm, cnt, rad, center, rnd, flag[lo:hi].copy(), gi_a[lo:hi].copy(),
+                gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), gi_b[lo:hi].copy(), gx_b[lo:hi].copy(),
+                gq_b[lo:hi].copy(), margins[g],
+            )  # fmt: skip
+        else:  # a capsule is the tables' two-vertex polygon
+            out = half_plane_polygon_loop(
+                hp, hn, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), V, Nrm, cnt,
+                rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(), margins[g],
+            )  # fmt: skip
+        normal[lo:hi], count[lo:hi], point[lo:hi] = out[0], out[1], out[2]
+        anchor_a[lo:hi], anchor_b[lo:hi] = out[3], out[4]
+        separation[lo:hi], feature[lo:hi] = out[5], out[6]
+    # A half plane against a disc (engine.manifold.collide_half_plane_circle, its products
+    # in its order): the plane at the origin, unturned, so A's frame is the world's.
+    for j in range(start[2], start[3]):
+        h, b = gi_a[j], gi_b[j]
+        co, si = np.cos(0.0), np.sin(0.0)
+        dx, dy = gx_b[j, 0] - 0.0, gx_b[j, 1] - 0.0
+        ox, oy = co * dx + si * dy, -si * dx + co * dy
+        rel = gq_b[j] - 0.0
+        cr, sr = np.cos(rel), np.sin(rel)
+        vx, vy = center[b, 0], center[b, 1]
+        cx, cy = cr * vx - sr * vy + ox, sr * vx + cr * vy + oy
+        nx, ny = hn[h, 0], hn[h, 1]
+        d = (cx - hp[h, 0]) * nx + (cy - hp[h, 1]) * ny
+        rb = rnd[b]
+        ax_, ay_ = cx - d * nx, cy - d * ny
+        bx_, by_ = cx - rb * nx, cy - rb * ny
+        gap = d - rb
+        normal[j, 0], normal[j, 1] = co * nx - si * ny, si * nx + co * ny
+        if gap <= margins[2]:
+            mx, my = 0.5 * (ax_ + bx_), 0.5 * (ay_ + by_)
+            wx, wy = co * mx - si * my, si * mx + co * my
+            anchor_a[j, 0, 0], anchor_a[j, 0, 1] = wx, wy
+            point[j, 0, 0], point[j, 0, 1] = wx + 0.0, wy + 0.0
+            anchor_b[j, 0, 0] = wx + (0.0 - gx_b[j, 0])
+            anchor_b[j, 0, 1] = wy + (0.0 - gx_b[j, 1])
+            separation[j, 0], feature[j, 0] = gap, 0
+            count[j] = 1
     # -- 4. the rows, in the broadphase's order ------------------------------------------------
     rows = 0
     sensing = 0
@@ -315,8 +353,8 @@ def contacts_loop(
             else:
                 rax[t], ray[t] = anchor_a[j, p, 0], anchor_a[j, p, 1]
                 rbx[t], rby[t] = anchor_b[j, p, 0], anchor_b[j, p, 1]
-            g = separation[j, p]
-            sep[t] = g if np.isfinite(g) else 0.0
+            gap = separation[j, p]
+            sep[t] = gap if np.isfinite(gap) else 0.0
             f = feature[j, p]
             if flip and f >= 0:
                 f = (f & 255) << 8 | (f >> 8)
@@ -338,8 +376,7 @@ def contacts_loop(
         rest[k] = restitution[a] * e_b
         k += 1
     return (ca_, cb_, nx_, ny_, count_, rax, ray, rbx, rby, sep, fric, rest, speed, ln, lt,
-            keys, place, px, py, sense_row[:z], sense_place[:z], half_row[:h],
-            half_spot[:h])  # fmt: skip
+            keys, place, px, py, sense_row[:z], sense_place[:z])  # fmt: skip
 
 
 def _sample_report() -> tuple[Any, ...]:

@@ -350,7 +350,7 @@ class GameStep:
         ignored: np.ndarray,
     ) -> _Found:  # fmt: skip
         """Stages 2 to 4 in one compiled call (engine.game_contacts), the same contacts as
-        ``_pairs``, ``_faces``, ``_collide`` and ``_found`` give; a half plane's by those."""
+        ``_pairs``, ``_faces``, ``_collide`` and ``_found`` give."""
         t = places.tables
         c = np.ascontiguousarray
         i64, f64 = np.int64, np.float64
@@ -364,19 +364,15 @@ class GameStep:
             c(store.x, f64), c(store.angle, f64), c(store.radius, f64), c(margin, f64),
             c(moving), c(sensors), c(store.group, i64), c(store.categories, i64),
             c(store.mask, i64), c(store.slots(), i64), c(store.friction, f64),
-            c(store.restitution, f64), places.body_circle, places.body_index, *candidates,
-            c(owner, i64), c(bounds, f64), places.static_circle, places.static_index,
-            cs.sensor, cs.friction, cs.restitution, c(cs.surface), cs.group, cs.categories,
-            cs.mask, *polygons, t.center, t.round, apart, ignored, self.keys, self.lam,
+            c(store.restitution, f64), places.body_circle, places.body_index,
+            c(table.kind, i64), *candidates, c(owner, i64), c(bounds, f64),
+            places.static_circle, places.static_index, cs.sensor, cs.friction, cs.restitution,
+            c(cs.surface), cs.group, cs.categories, cs.mask, *polygons, t.center, t.round,
+            c(statics.half_planes.point, f64), c(statics.half_planes.normal, f64), apart,
+            ignored, self.keys, self.lam,
         )  # fmt: skip
         point = np.stack([out[17], out[18]], axis=1)
-        found = _Found(list(out[:15]), out[15], out[16], point, out[19], out[20])
-        if len(out[21]):
-            faces = np.stack([out[21], out[22]], axis=1)
-            none = np.zeros((0, 2), dtype=np.intp)
-            touches = _collide(places, table, store, statics, none, faces, margin, True)
-            found = found.join(self._found(store, cs, owner, touches))
-        return found
+        return _Found(list(out[:15]), out[15], out[16], point, out[19], out[20])
 
     def _found(self, store: Any, cs: _Colliders, owner: np.ndarray, touches: Touches) -> _Found:
         """The manifolds as the solver's contact rows (solver.solve's order), warm started by
@@ -769,7 +765,7 @@ def _padded(p: Polygons, m: int) -> Polygons:
 class _Places(NamedTuple):
     """The two tables of a scene's shapes (engine.narrowphase) and where each shape is in
     them: by body row and by static shape's place, whether it is a circle and its index
-    (-1: a half plane, which the tables do not hold)."""
+    (a half plane, which the tables do not hold, as -1 - its index among the half planes)."""
 
     tables: Tables
     body_circle: np.ndarray
@@ -815,7 +811,7 @@ def _places(table: ShapeTable, statics: StaticShapes) -> _Places:
         k = len(own)
         if own is statics.half_plane_owner:
             circle_parts.append(np.zeros(k, dtype=bool))
-            index_parts.append(np.full(k, -1, dtype=np.intp))
+            index_parts.append(-1 - np.arange(k))  # half plane h as -1 - h
         elif own is statics.circle_owner:
             circle_parts.append(np.ones(k, dtype=bool))
             index_parts.append(n + np.arange(k))
@@ -845,21 +841,23 @@ def _collide(
     margin: np.ndarray,
     fast: bool,
 ) -> Touches:
-    """The manifolds of the pairs and faces with a point: polygon against polygon in one
-    call, the round pairs in another (engine.narrowphase), put back in the broadphase's
-    order (the pairs, then the faces), then half planes by kind."""
+    """The manifolds of the pairs and faces with a point, in the broadphase's order (the
+    pairs, then the faces): polygon against polygon in one call, the round pairs in another
+    (engine.narrowphase), a half plane against each kind of body shape in one each (the half
+    plane as A, flipped back); each call's speculative margin the largest reach among its
+    pairs."""
     n = len(store)
     x, q = store.x, store.angle
     # Every pair as (A's row, B's row or n, the static place or -1), A a body.
     rows, spots = faces[:, 0], faces[:, 1]
-    half = places.static_index[spots] < 0 if len(spots) else np.zeros(0, dtype=bool)
-    a = np.concatenate([pairs[:, 0], rows[~half]]).astype(np.intp)
-    b = np.concatenate([pairs[:, 1], np.full(int((~half).sum()), n)]).astype(np.intp)
-    place = np.concatenate([np.full(len(pairs), -1), spots[~half]]).astype(np.intp)
+    a = np.concatenate([pairs[:, 0], rows]).astype(np.intp)
+    b = np.concatenate([pairs[:, 1], np.full(len(rows), n)]).astype(np.intp)
+    place = np.concatenate([np.full(len(pairs), -1), spots]).astype(np.intp)
     is_static = place >= 0
     # (A body pair's place is -1: it picks the one entry appended past the statics.)
     static_circle = np.append(places.static_circle, False)[place]
-    static_index = np.append(places.static_index, -1)[place]
+    static_index = np.append(places.static_index, 0)[place]
+    half = is_static & (static_index < 0)
     other = np.minimum(b, n - 1)
     circ_a = places.body_circle[a]
     circ_b = np.where(is_static, static_circle, places.body_circle[other])
@@ -875,7 +873,7 @@ def _collide(
     parts: list[Manifold] = []
     order: list[np.ndarray] = []
     c = np.ascontiguousarray
-    sel = np.flatnonzero(~circ_a & ~circ_b)
+    sel = np.flatnonzero(~circ_a & ~circ_b & ~half)
     if len(sel):
         parts.append(collide_polygon_pairs(
             t, c(idx_a[sel]), c(xa[sel]), c(qa[sel]), c(idx_b[sel]), c(xb[sel]), c(qb[sel]),
@@ -884,7 +882,7 @@ def _collide(
         order.append(sel)
     # The round pairs: B a circle; where only A is one, the pair is taken the other way
     # round (the polygon as A) and its manifold flipped back.
-    sel = np.flatnonzero(circ_a | circ_b)
+    sel = np.flatnonzero((circ_a | circ_b) & ~half)
     if len(sel):
         swap = circ_a[sel] & ~circ_b[sel]
         ia = np.where(swap, idx_b[sel], idx_a[sel])
@@ -904,28 +902,19 @@ def _collide(
             sel = np.concatenate([sel[~swap], sel[swap]])
         parts.append(m)
         order.append(sel)
-    if parts:
-        # Back in the broadphase's order (so the solver meets the rows as the fast path's).
-        idx = np.concatenate(order)
-        back = np.empty(len(idx), dtype=np.intp)
-        back[idx] = np.arange(len(idx))
-        parts = [Manifold.concat(parts).take(back)]
     # Half planes (a Plane, a room's walls), by the kind of the body's shape.
-    hp_rows, hp_spots = rows[half], spots[half]
     kind = table.kind
-    extra_a, extra_place = [], []
     for ka in (DISC, CAPSULE, POLYGON):
-        pick = np.flatnonzero(kind[hp_rows] == ka)
-        if not len(pick):
+        sel = np.flatnonzero(half & (kind[a] == ka))
+        if not len(sel):
             continue
-        r, sp = hp_rows[pick], hp_spots[pick]
+        r, h = a[sel], -1 - static_index[sel]
         m = collide(
-            table.kinds(r), x[r], q[r], statics.half_planes.take(sp), np.zeros((len(r), 2)),
-            np.zeros(len(r)), float(margin[r].max()) + SPECULATIVE_DISTANCE, fast,
+            table.kinds(r), x[r], q[r], statics.half_planes.take(h), np.zeros((len(r), 2)),
+            np.zeros(len(r)), float(reach[sel].max()), fast,
         )  # fmt: skip
         parts.append(m)
-        extra_a.append(r)
-        extra_place.append(sp)
+        order.append(sel)
     if not parts:
         empty = np.zeros(0, dtype=np.intp)
         none = Manifold(
@@ -938,9 +927,10 @@ def _collide(
             np.zeros((0, 2), dtype=np.int64),
         )
         return Touches(none, empty, empty, empty)
-    m = Manifold.concat(parts)
-    all_a = np.concatenate([a, *extra_a]).astype(np.intp)
-    all_b = np.concatenate([b, *[np.full(len(r), n) for r in extra_a]]).astype(np.intp)
-    all_place = np.concatenate([place, *extra_place]).astype(np.intp)
+    # Back in the broadphase's order (so the solver meets the rows as the fast path's).
+    idx = np.concatenate(order)
+    back = np.empty(len(idx), dtype=np.intp)
+    back[idx] = np.arange(len(idx))
+    m = Manifold.concat(parts).take(back)
     hit = m.count > 0
-    return Touches(m.take(hit), all_a[hit], all_b[hit], all_place[hit])
+    return Touches(m.take(hit), a[hit], b[hit], place[hit])
