@@ -211,7 +211,10 @@ class GameStep:
         cs = _collider_arrays(colliders, state.events.serial)
         self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
         statics, owner, bounds = self._static(colliders)
-        sensors = np.array([bd.sensor for bd in state.bodies], dtype=bool)
+        # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked).
+        sensors = np.zeros(n, dtype=bool)
+        for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
+            sensors[row] = state.bodies[row].sensor
         margin = _reach(store, accel, dt)
         kept = self._places
         if kept is None or kept[0] is not table or kept[1] is not statics:

@@ -69,6 +69,7 @@ from typing import Any
 import numpy as np
 
 from . import kernels
+from .kernels import floats
 
 __all__ = [
     "SUBSTEPS",
@@ -228,14 +229,14 @@ def solve(
         apply(a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
 
     # The start of the step: positions and angles kept, the moves counted from them.
-    x0 = [0.0] * nb
-    y0 = [0.0] * nb
-    q0 = [0.0] * nb
-    dx = [0.0] * nb
-    dy = [0.0] * nb
-    dq = [0.0] * nb
-    cq = [1.0] * nb  # cos and sin of each body's turn since the start (dq)
-    sq = [0.0] * nb
+    x0 = floats(nb, 0.0)
+    y0 = floats(nb, 0.0)
+    q0 = floats(nb, 0.0)
+    dx = floats(nb, 0.0)
+    dy = floats(nb, 0.0)
+    dq = floats(nb, 0.0)
+    cq = floats(nb, 1.0)  # cos and sin of each body's turn since the start (dq)
+    sq = floats(nb, 0.0)
     for i in range(nb):
         x0[i] = bx[i]
         y0[i] = by[i]
@@ -243,17 +244,17 @@ def solve(
 
     # -- prepare the contacts: masses along the normal and tangent, the base separation, the
     # relative normal speed at the start (for restitution).
-    nmass = [0.0] * (2 * nc)
-    tmass = [0.0] * (2 * nc)
-    base = [0.0] * (2 * nc)
-    rel = [0.0] * (2 * nc)
+    nmass = floats(2 * nc, 0.0)
+    tmass = floats(2 * nc, 0.0)
+    base = floats(2 * nc, 0.0)
+    rel = floats(2 * nc, 0.0)
     # A two-point manifold's normal rows as one 2 x 2 system, K = J M^-1 J^T:
     # k_ij = w_A + w_B + i_A (r_Ai x n)(r_Aj x n) + i_B (r_Bi x n)(r_Bj x n), solved as a block
     # where it is well conditioned (k11^2 < 1000 det K, Box2D v2.4's bound; kblock 1).
-    kn1 = [0.0] * nc
-    kn12 = [0.0] * nc
-    kn2 = [0.0] * nc
-    kblock = [0.0] * nc
+    kn1 = floats(nc, 0.0)
+    kn12 = floats(nc, 0.0)
+    kn2 = floats(nc, 0.0)
+    kblock = floats(nc, 0.0)
     for k in range(nc):
         a = ca[k]
         b = cb[k]
@@ -336,17 +337,17 @@ def solve(
 
     # -- prepare the joints: each anchor turned into the world's axes at the start, the
     # bodies' offset then, and the axial mass.
-    fax = [0.0] * nj
-    fay = [0.0] * nj
-    fbx = [0.0] * nj
-    fby = [0.0] * nj
-    cx0 = [0.0] * nj
-    cy0 = [0.0] * nj
-    amass = [0.0] * nj
+    fax = floats(nj, 0.0)
+    fay = floats(nj, 0.0)
+    fbx = floats(nj, 0.0)
+    fby = floats(nj, 0.0)
+    cx0 = floats(nj, 0.0)
+    cy0 = floats(nj, 0.0)
+    amass = floats(nj, 0.0)
     # A soft weld's own spring (its hertz and damping ratio), for each joint.
-    w_rate = [0.0] * nj
-    w_mass = [1.0] * nj
-    w_imp = [0.0] * nj
+    w_rate = floats(nj, 0.0)
+    w_mass = floats(nj, 1.0)
+    w_imp = floats(nj, 0.0)
     for k in range(nj):
         a = ja[k]
         b = jb[k]
