@@ -185,6 +185,7 @@ class GameStep:
         self._places: tuple[ShapeTable, StaticShapes, _Places] | None = None
         self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
         self.serials = np.zeros(0, dtype=np.int64)
+        self._cs: tuple[tuple[int, ...], _Colliders] | None = None
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -208,7 +209,7 @@ class GameStep:
         b = _bodies(store, accel, store.torque if torque is None else torque)
         table = self._shapes(store)
         colliders = [] if state.contacts is None else state.contacts.colliders
-        cs = _collider_arrays(colliders, state.events.serial)
+        cs = self._colliders(colliders, state.events.serial)
         self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
         statics, owner, bounds = self._static(colliders)
         # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked).
@@ -313,6 +314,20 @@ class GameStep:
             kept = (len(shapes), list(shapes), ShapeTable(shapes, store.radius))
             self._table = kept
         return kept[2]
+
+    def _colliders(self, colliders: list[Collider], serial: Any) -> _Colliders:
+        """The colliders' arrays (``_collider_arrays``), made again when colliders come or go
+        or a material is set (``materials_changed``)."""
+        key = tuple(id(c) for c in colliders)
+        kept = self._cs
+        if kept is None or kept[0] != key:
+            kept = self._cs = (key, _collider_arrays(colliders, serial))
+        return kept[1]
+
+    def materials_changed(self) -> None:
+        """A collider's material was set (engine.world_state.collider_changed): its arrays
+        are read again at the next step."""
+        self._cs = None
 
     def _static(self, colliders: list[Collider]) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
         """The colliders as shapes in the world's frame, each static shape's collider place
@@ -463,7 +478,7 @@ class GameStep:
         solver's body A is the joint's body_b (or the static body), its B the joint's body_a,
         so that the solver's angle_B - angle_A is the joint's angle."""
         joints = [j for j in state.links if isinstance(j, (Hinge, Weld))]
-        cols: list[list[float]] = [[] for _ in range(22)]
+        rows: list[list[Any]] = []
         for drag in state.drags.items:
             # A mouse joint: the static body's anchor is the target (world coordinates).
             kept = self.joint_impulses.get(id(drag), (0.0,) * 6)
@@ -473,8 +488,7 @@ class GameStep:
                 anchor.y, 0.0, drag.hertz, drag.damping_ratio, 0, 0.0, 0.0, 0,
                 drag.angular_damping, min(drag.max_force, 1e300), *kept,
             ]  # fmt: skip
-            for col, value in zip(cols, row, strict=True):
-                col.append(value)
+            rows.append(row)
         for j in joints:
             a = store.row(j.body_a.slot)
             other = j._other
@@ -506,12 +520,11 @@ class GameStep:
                 min(most, 1e300),
                 *kept,
             ]
-            for col, value in zip(cols, row, strict=True):
-                col.append(value)
+            rows.append(row)
+        # One array, its rows the columns (each C-contiguous, as the kernel takes them).
+        table = np.array(rows, dtype=float).reshape(-1, 22).T.copy()
         ints = {0, 1, 2, 10, 13}
-        arrays = [
-            np.array(col, dtype=np.int64 if i in ints else float) for i, col in enumerate(cols)
-        ]
+        arrays = [table[i].astype(np.int64) if i in ints else table[i] for i in range(22)]
         return arrays, [*state.drags.items, *joints]
 
     def _keep_joints(self, joints: list[Any], out: list[Any]) -> None:
@@ -598,37 +611,20 @@ class GameStep:
 
 def _bodies(store: Any, accel: np.ndarray, torque: np.ndarray) -> list[np.ndarray]:
     """The solver's body arrays (solver.solve's order): the World's rows, then the static
-    body."""
+    body; rows of one array (each C-contiguous), so a few array calls make them all."""
     n = len(store)
     moving = ~store.kinematic & np.isfinite(store.mass)
-    im = np.zeros(n + 1)
+    out = np.zeros((11, n + 1))
+    out[0:2, :n] = store.x.T
+    out[2, :n] = store.angle
+    out[3:5, :n] = store.v.T
+    out[5, :n] = store.omega
     with np.errstate(divide="ignore"):
-        im[:n] = np.where(moving, 1.0 / store.mass, 0.0)
-    ii = np.zeros(n + 1)
-    ii[:n] = np.where(moving, store.inv_moment, 0.0)
-    a = np.zeros((n + 1, 2))
-    a[:n][moving] = accel[moving]
-    alpha = np.zeros(n + 1)
-    alpha[:n] = np.where(moving, torque * store.inv_moment, 0.0)
-
-    def col(values: np.ndarray) -> np.ndarray:
-        out = np.zeros(n + 1)
-        out[:n] = values
-        return out
-
-    return [
-        col(store.x[:, 0]),
-        col(store.x[:, 1]),
-        col(store.angle),
-        col(store.v[:, 0]),
-        col(store.v[:, 1]),
-        col(store.omega),
-        im,
-        ii,
-        np.ascontiguousarray(a[:, 0]),
-        np.ascontiguousarray(a[:, 1]),
-        alpha,
-    ]
+        out[6, :n] = np.where(moving, 1.0 / store.mass, 0.0)
+    out[7, :n] = np.where(moving, store.inv_moment, 0.0)
+    out[8:10, :n] = np.where(moving, accel.T, 0.0)
+    out[10, :n] = np.where(moving, torque * store.inv_moment, 0.0)
+    return list(out)
 
 
 def _reach(store: Any, accel: np.ndarray, dt: float) -> np.ndarray:

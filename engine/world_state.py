@@ -432,6 +432,8 @@ class WorldState:
         assert contacts is not None
         self.events.settle_reading()
         contacts.material_changed(collider, name)
+        if self.game is not None:
+            self.game.materials_changed()
         self.collisions.wake(len(self.bodies))
         if name != "sensor":
             self.fast = None

@@ -466,3 +466,26 @@ def test_the_grid_finds_the_pairs_that_every_pair_test_finds(
     )
     assert len(every) > 20
     assert {tuple(p) for p in grid.tolist()} == {tuple(p) for p in every.tolist()}
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_colliders_material_set_between_steps_is_taken_at_the_next(kernels: str) -> None:
+    # The soft step reads the colliders' materials once and keeps them until one is set: a
+    # floor made a conveyor carries the crate resting on it at the belt's speed; made
+    # frictionless, it carries it no more (the crate slides on at the speed it had).
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -9.81)))
+    floor = world.add_collider(Polygon([(-50, -1), (50, -1), (50, 0), (-50, 0)], friction=1.0))
+    box = world.add(Body((0, 0.5), mass=1.0, shape=Polygon.box(1, 1), friction=1.0))
+    for _ in range(30):
+        world.step(DT)
+    assert abs(box.vel.x) < 1e-9
+    floor.surface_velocity = Vector(1.5, 0.0)
+    for _ in range(60):
+        world.step(DT)
+    assert box.vel.x == pytest.approx(1.5, abs=1e-3)
+    floor.friction = 0.0
+    floor.surface_velocity = Vector(-3.0, 0.0)
+    for _ in range(60):
+        world.step(DT)
+    assert box.vel.x == pytest.approx(1.5, abs=1e-3)
