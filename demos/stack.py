@@ -81,9 +81,10 @@ ROOM = 9.5  # m: half the tumbler's inside width
 MARK = (240, 228, 66)
 
 
-def _world(kernels: str | None = None) -> World:
-    """A floor under gravity, on the path ``kernels`` (None: the default, engine.kernels)."""
-    w = World(integrator="auto", kernels=kernels)
+def _world(kernels: str | None = None, solver: str = "exact") -> World:
+    """A floor under gravity, on the path ``kernels`` (None: the default, engine.kernels),
+    with ``solver`` (World's)."""
+    w = World(integrator="auto", kernels=kernels, solver=solver)
     w.add_force(Gravity((0.0, -G)))
     w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=FLOOR_FRICTION))
     return w
@@ -106,9 +107,12 @@ def pyramid_centres(base: int = BASE) -> list[tuple[float, float]]:
     ]
 
 
-def pyramid(base: int = BASE, *, kernels: str | None = None) -> tuple[World, list[Body]]:
-    """A pyramid of boxes (``pyramid_centres``) on a floor, on the path ``kernels``."""
-    w = _world(kernels)
+def pyramid(
+    base: int = BASE, *, kernels: str | None = None, solver: str = "exact"
+) -> tuple[World, list[Body]]:
+    """A pyramid of boxes (``pyramid_centres``) on a floor, on the path ``kernels``, with
+    ``solver``."""
+    w = _world(kernels, solver)
     return w, [_box(w, x, y) for x, y in pyramid_centres(base)]
 
 
@@ -152,14 +156,14 @@ def tumbler_centres(n: int = TUMBLED) -> list[tuple[float, float]]:
 
 
 def tumbler(
-    n: int = TUMBLED, spin: float = TUMBLE, *, kernels: str | None = None
+    n: int = TUMBLED, spin: float = TUMBLE, *, kernels: str | None = None, solver: str = "exact"
 ) -> tuple[World, list[Body], list[Body]]:
     """``n`` boxes of 0.25 m (1/16 kg) at ``tumbler_centres`` in a room ``2 ROOM`` m wide
     whose four walls (kinematic bodies about its centre, ``tumbler_walls``, friction 1.0)
     turn at ``spin`` rad/s, as in Box2D's tumbler (``shared/anchors/box2d``): (world, boxes,
-    walls), on the path ``kernels`` (None: the default). The boxes are all alike
-    (``room_frame`` takes their side)."""
-    w = World(integrator="auto", kernels=kernels)
+    walls), on the path ``kernels`` (None: the default), with ``solver``. The boxes are all
+    alike (``room_frame`` takes their side)."""
+    w = World(integrator="auto", kernels=kernels, solver=solver)
     w.add_force(Gravity((0.0, -G)))
     walls = w.add_all(
         Body(Vector(0.0, 0.0), shape=Polygon(corners), kinematic=True, angular_velocity=spin,

@@ -345,7 +345,8 @@ class GameStep:
     def _candidates(self, store: Any, margin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The pairs of bodies the broadphase tests (rows a < b): every pair up to ``_FEW``
         bodies, past that those in the same or neighbouring cells of a grid as wide as the
-        farthest two bodies can reach each other (engine.pair_grid, no Python loop)."""
+        farthest two ordinary bodies can reach each other (engine.pair_grid, no Python loop),
+        and each big body with every other."""
         n = len(store)
         if n < 2:
             none = np.zeros(0, dtype=np.int64)
@@ -356,8 +357,26 @@ class GameStep:
                 a, b = np.triu_indices(n, 1)
                 every = self._every[n] = (a.astype(np.int64), b.astype(np.int64))
             return every
-        h = 2.0 * float((store.radius + margin).max()) + SPECULATIVE_DISTANCE
-        a, b = grid_pairs(store.x, h, self.fast)
+        if (store.group[0] != 0) & (store.group == store.group[0]).all():
+            none = np.zeros(0, dtype=np.int64)
+            return none, none  # one group: no two bodies meet (balls that pass each other)
+        # The cells as wide as the farthest two ordinary bodies can reach each other; a big
+        # body (a tumbler's wall, a level's long platform: past four times the median reach)
+        # is paired with every body instead, so that it does not make one cell of the world.
+        r = store.radius + margin
+        big = r > 4.0 * float(np.median(r)) + SPECULATIVE_DISTANCE
+        rows = np.flatnonzero(~big)
+        h = 2.0 * float(r[rows].max()) + SPECULATIVE_DISTANCE
+        a, b = grid_pairs(store.x[rows], h, self.fast)
+        a, b = rows[a], rows[b]
+        if big.any():
+            # Each big body with every other body, a pair of big bodies once.
+            ends = np.flatnonzero(big)
+            ba = np.repeat(ends, n)
+            bb = np.tile(np.arange(n), len(ends))
+            keep = (bb != ba) & ~(big[bb] & (bb < ba))
+            a = np.concatenate([a, ba[keep]])
+            b = np.concatenate([b, bb[keep]])
         lo = np.minimum(a, b).astype(np.int64)  # rows a < b, as every pair's test gives
         return lo, np.maximum(a, b).astype(np.int64)
 

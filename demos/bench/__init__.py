@@ -39,6 +39,7 @@ TOPICS: dict[str, str] = {
     "tumbler": "demos.bench.tumbler",
     "platformer": "demos.bench.platformer",
     "queries": "demos.bench.queries",
+    "soft": "demos.bench.soft",
 }
 
 

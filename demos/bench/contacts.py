@@ -43,13 +43,18 @@ def scene(n: int, seed: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def make_world(
-    n: int, *, colliders: bool = True, radius: float = RADIUS, kernels: str | None = None
+    n: int,
+    *,
+    colliders: bool = True,
+    radius: float = RADIUS,
+    kernels: str | None = None,
+    solver: str = "exact",
 ) -> World:
     """The scene as a World ("auto": the closed form under gravity) on the path ``kernels``
     (None: the default, engine.kernels); ``radius`` 0 makes the balls points, which never
-    collide: a World with no contact machinery at all."""
+    collide: a World with no contact machinery at all; ``solver``: the World's."""
     segs, pos, vel = scene(n)
-    world = World(integrator="auto", kernels=kernels)
+    world = World(integrator="auto", kernels=kernels, solver=solver)
     world.add_force(Gravity((0.0, -9.81)))
     if colliders:
         world.add_collider(Box((0.0, 0.0), SIZE))

@@ -94,11 +94,13 @@ def make_world(
     seed: int = 1,
     kernels: str | None = None,
     fixed_rotation: bool = True,
+    solver: str = "exact",
 ) -> World:
     """The pit as a World ("auto": the closed form under gravity), ``width`` m wide, on the
     path ``kernels`` (None: the default, engine.kernels); ``fixed_rotation=False``: balls
-    that turn (the pile's friction turns them: engine.soft, lever arms)."""
-    world = World(integrator="auto", kernels=kernels)
+    that turn (the pile's friction turns them: engine.soft, lever arms); ``solver``: the
+    World's."""
+    world = World(integrator="auto", kernels=kernels, solver=solver)
     if iterations is not None:
         world.contact_iterations = iterations
     world.add_force(Gravity((0.0, -G)))
