@@ -134,8 +134,10 @@ def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) 
     now, last = game.report, game.last
     # Begins: touching now, not before (with the point, normal and impulse); ends: the other
     # way round (where it last touched, with no impulse).
-    raw = _changes(now, last.keys, t_end, True)
-    raw += _changes(last, now.keys, t_end, False)
+    raw = []
+    if now is not last:  # (the same report: a step in which everything slept)
+        raw = _changes(now, last.keys, t_end, True)
+        raw += _changes(last, now.keys, t_end, False)
     named = game.serials if state.contacts is not None else None  # this step's colliders'
     sensing = np.concatenate([now.keys, now.sensing, sensed(state, slots, named)])
     events.ledger.settle(

@@ -6,36 +6,41 @@ game wants it (a pile, a platformer, a pinball table), where the exact models ar
 lesson's scene (a ball that bounces at its exact moment, the cradle, a hinge held to 1e-9 m).
 The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
 
+0. ``_wake`` (sleep, engine.game_sleep): a sleeping island an awake body comes near wakes;
+   if everything sleeps and nothing moves, the step ends here, changing nothing.
 1. ``_bodies``: the solver's bodies: the World's rows, then one static body (the colliders'
    frame: position 0, angle 0, no mass); a kinematic body moves at its velocity and nothing
-   pushes it (zero inverse mass); the forces' accelerations at the step's start, held over
-   the step (gravity is exact so; a drag is taken at the start's speed).
-2. ``_pairs`` (the broadphase): the pairs of bodies, and of bodies and colliders' shapes,
-   whose bounding circles (the colliders' boxes) come within what the two can move in the
-   step, with the filters, sensors, joints that keep their bodies apart and pre_solve
-   callbacks applied.
+   pushes it (zero inverse mass), nor a sleeper; the forces' accelerations at the step's
+   start, held over the step (gravity is exact so; a drag is taken at the start's speed).
+2. ``_candidates``, ``_pairs`` (the broadphase): the pairs of bodies, and of bodies and
+   colliders' shapes, whose bounding circles (the colliders' boxes) come within what the two
+   can move in the step, with the filters, sensors, joints that keep their bodies apart and
+   pre_solve callbacks applied, one of the two awake.
 3. ``_collide`` (the narrowphase): a manifold for each pair (engine.manifold: Box2D's, up to
    two points with anchors, separations and feature keys), with a speculative margin of what
    the pair can close in the step: a box falling fast onto a floor is stopped on it.
-4. ``_rows``: each manifold a contact of the solver, its points warm started from the last
+4. ``_found``: each manifold a contact of the solver, its points warm started from the last
    step's impulses by key (the pair and the features that make the point), its friction
-   mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor).
-5. ``_joints``: the hinges and welds as the solver's joints, warm started from their last
-   impulses.
+   mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor). On the
+   fast path stages 2 to 4 are one compiled call (engine.game_contacts.contacts_loop), the
+   same bits.
+5. ``_joints``: the hinges, welds and mouse joints as the solver's joints, warm started from
+   their last impulses.
 6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
    relax), restitution, the impulses kept (engine.solver). The bodies move by its substeps of
    semi-implicit Euler whatever the World's integrator, which moves them only in a World
    with nothing to solve (no collider, no pair that may touch, no joint).
-7. ``_events``: which contacts touch after the step (a point that pushed, or one within
-   ``LINEAR_SLOP``) and which sensors overlap, as the World's events read them
-   (engine.event_dispatch).
+7. ``_keep``, ``_events``: the impulses kept by key, and which contacts touch after the step
+   (a point that pushed, or one within ``LINEAR_SLOP``) and which sensors overlap, as the
+   World's events read them (engine.event_dispatch); one compiled call on the fast path
+   (engine.game_contacts.report_loop).
+8. ``_sleep``: still islands fall asleep (engine.game_sleep); a sleeper's contacts stay open.
 
 What this step does not do yet, and says so (``World.solver``'s error): rods, cables, pins,
 springs and 1D worlds are the exact pipeline's. A mouse joint is Box2D's here: a soft spring
 that sags by g / omega^2 under a body's weight (the exact pipeline's holds it at the target).
-Bodies do not sleep. A body faster than its speculative margin can catch (what it and the
-other can move in the step, so any speed against a wall) is not swept for its moment of
-impact.
+A body faster than its speculative margin can catch (what it and the other can move in the
+step, so any speed against a wall) is not swept for its moment of impact.
 """
 
 from __future__ import annotations
@@ -45,7 +50,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from . import solver
+from . import game_sleep, solver
 from .colliders import Collider
 from .events import COLLIDER, collider_keys, pair_keys
 from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop, report_loop
@@ -206,7 +211,16 @@ class GameStep:
         store = state.store
         assert store is not None
         n = len(store)
-        b = _bodies(store, accel, store.torque if torque is None else torque)
+        c = state.collisions
+        if len(c.asleep) == n and c.asleep.any() and not self._stirring(store, c.asleep):
+            # Everything sleeps, and nothing moves to wake it: the step changes nothing, and
+            # every contact stays as it was.
+            self.last = self.report
+            return store.x.copy(), store.v.copy(), store.angle.copy(), store.omega.copy()
+        margin = _reach(store, accel, dt)
+        candidates = self._candidates(store, margin)
+        awake = self._wake(state, store, margin, candidates)
+        b = _bodies(store, accel, store.torque if torque is None else torque, awake)
         table = self._shapes(store)
         colliders = [] if state.contacts is None else state.contacts.colliders
         cs = self._colliders(colliders, state.events.serial)
@@ -216,22 +230,20 @@ class GameStep:
         sensors = np.zeros(n, dtype=bool)
         for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
             sensors[row] = state.bodies[row].sensor
-        margin = _reach(store, accel, dt)
         kept = self._places
         if kept is None or kept[0] is not table or kept[1] is not statics:
             kept = self._places = (table, statics, _places(table, statics))
         places = kept[2]
         apart = _apart(store, state, ignored_pairs)
-        candidates = self._candidates(store, margin)
         ignored = _ignored_keys(ignored_faces, len(colliders))
         if self.fast:
             found = self._found_fast(
-                places, table, store, statics, cs, owner, bounds, sensors, margin, candidates,
-                apart, ignored,
+                places, table, store, statics, cs, owner, bounds, sensors, awake, margin,
+                candidates, apart, ignored,
             )  # fmt: skip
         else:
-            pairs = _pairs(store, sensors, margin, candidates, apart)
-            faces = _faces(store, cs, owner, bounds, sensors, margin, ignored)
+            pairs = _pairs(store, sensors, awake, margin, candidates, apart)
+            faces = _faces(store, cs, owner, bounds, sensors, awake, margin, ignored)
             touches = _collide(places, table, store, statics, pairs, faces, margin, False)
             found = self._found(store, cs, owner, touches)
         joints = self._joints(state, store, n)
@@ -258,6 +270,7 @@ class GameStep:
             self._keep(found, out)
             self._events(store, cs, owner, found, out)
         self._keep_joints(joints[1], out)
+        self._sleep(state, store, dt, awake, v, omega, found, joints[0])
         # What each sensor collider holds: a body whose shape overlaps it.
         if len(found.sense_row):
             self.report.sensing = collider_keys(
@@ -380,11 +393,103 @@ class GameStep:
         lo = np.minimum(a, b).astype(np.int64)  # rows a < b, as every pair's test gives
         return lo, np.maximum(a, b).astype(np.int64)
 
+    # -- sleep (engine.game_sleep) ------------------------------------------------------------
+    def _wake(
+        self, state: WorldState, store: Any, margin: np.ndarray, candidates: tuple[Any, Any]
+    ) -> np.ndarray:
+        """The bodies the step moves (dynamic and awake), the sleepers an awake body meets
+        woken first with their islands."""
+        n = len(store)
+        dynamic = ~store.kinematic & np.isfinite(store.mass)
+        c = state.collisions
+        if len(c.asleep) != n or len(c.still) != n or len(c._group) != n:
+            c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
+        if not c.asleep.any():
+            return dynamic
+        asleep = c.asleep
+        spins = (store.v != 0.0).any(axis=1) | (store.omega != 0.0)
+        active = (dynamic & ~asleep) | (store.kinematic & spins)
+        wake = game_sleep.woken(
+            asleep, c._group, active, *candidates, store.x, store.radius + margin
+        )
+        if wake.any():
+            asleep[wake] = False
+            c.still[wake] = 0.0
+        return dynamic & ~asleep
+
+    @staticmethod
+    def _stirring(store: Any, asleep: np.ndarray) -> bool:
+        """Whether a body the step would move is awake: a dynamic one not asleep, or a
+        kinematic one with a velocity."""
+        dynamic = ~store.kinematic & np.isfinite(store.mass)
+        if (dynamic & ~asleep).any():
+            return True
+        kin = store.kinematic
+        return bool((store.v[kin] != 0.0).any() or (store.omega[kin] != 0.0).any())
+
+    def _sleep(
+        self,
+        state: WorldState,
+        store: Any,
+        dt: float,
+        awake: np.ndarray,
+        v: np.ndarray,
+        omega: np.ndarray,
+        found: _Found,
+        joints: list[np.ndarray],
+    ) -> None:
+        """After the solve: still times counted, still islands put to sleep (their ``v`` and
+        ``omega`` zeroed, in place), the contacts of sleepers held open."""
+        c = state.collisions
+        n = len(store)
+        rows = found.rows
+        pair = rows[1] < n
+        a = np.concatenate([rows[0][pair], joints[2][joints[1] < n]])
+        b = np.concatenate([rows[1][pair], joints[1][joints[1] < n]])
+        a, b = np.minimum(a, b), np.maximum(a, b)
+        c._touching = a.astype(np.int64) * n + b  # for Body.sleep's island
+        before = c.asleep.copy()
+        never = store.kinematic.copy()
+        mouse = joints[0] == solver.MOUSE
+        never[joints[2][mouse]] = True
+        game_sleep.fall_asleep(
+            c.still, c.asleep, c._group, awake, never, v, omega, a, b, dt, c.sleep_time,
+            self.fast,
+        )  # fmt: skip
+        now = c.asleep & ~before
+        if now.any():
+            v[now] = 0.0
+            omega[now] = 0.0
+        if c.asleep.any():
+            self._hold(store, c.asleep)
+
+    def _hold(self, store: Any, asleep: np.ndarray) -> None:
+        """The last step's touching contacts whose bodies all sleep now (a sleeper and a
+        collider, or two sleepers) stay open: their rows are not solved, nothing ends."""
+        last, now = self.last, self.report
+        if not len(last.keys):
+            return
+        row_of = store.row_of
+        a = row_of[last.keys >> 32]
+        other = last.keys & (COLLIDER - 1)
+        collider = (last.keys & COLLIDER) != 0
+        b = row_of[np.where(collider, 0, other)]
+        keep = asleep[a] & (collider | asleep[b])
+        keep &= ~np.isin(last.keys, now.keys)
+        if keep.any():
+            self.report = _Report(
+                np.concatenate([now.keys, last.keys[keep]]),
+                np.concatenate([now.points, last.points[keep]]),
+                np.concatenate([now.normals, last.normals[keep]]),
+                np.concatenate([now.impulses, last.impulses[keep]]),
+                now.sensing,
+            )
+
     def _found_fast(
         self, places: _Places, table: ShapeTable, store: Any, statics: StaticShapes,
         cs: _Colliders, owner: np.ndarray, bounds: np.ndarray, sensors: np.ndarray,
-        margin: np.ndarray, candidates: tuple[np.ndarray, np.ndarray], apart: np.ndarray,
-        ignored: np.ndarray,
+        moving: np.ndarray, margin: np.ndarray, candidates: tuple[np.ndarray, np.ndarray],
+        apart: np.ndarray, ignored: np.ndarray,
     ) -> _Found:  # fmt: skip
         """Stages 2 to 4 in one compiled call (engine.game_contacts), the same contacts as
         ``_pairs``, ``_faces``, ``_collide`` and ``_found`` give."""
@@ -395,7 +500,6 @@ class GameStep:
             polygons = (t.vertices, t.normals, t.count, t.radius)
         else:
             polygons = (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, i64), np.zeros(1))
-        moving = ~store.kinematic & np.isfinite(store.mass)
         kernel: Any = contacts_loop
         out = kernel(
             c(store.x, f64), c(store.angle, f64), c(store.radius, f64), c(margin, f64),
@@ -628,11 +732,13 @@ class GameStep:
         )
 
 
-def _bodies(store: Any, accel: np.ndarray, torque: np.ndarray) -> list[np.ndarray]:
+def _bodies(
+    store: Any, accel: np.ndarray, torque: np.ndarray, moving: np.ndarray
+) -> list[np.ndarray]:
     """The solver's body arrays (solver.solve's order): the World's rows, then the static
-    body; rows of one array (each C-contiguous), so a few array calls make them all."""
+    body; rows of one array (each C-contiguous), so a few array calls make them all. Only
+    ``moving`` bodies (dynamic and awake) have mass to push and forces to move them."""
     n = len(store)
-    moving = ~store.kinematic & np.isfinite(store.mass)
     out = np.zeros((11, n + 1))
     out[0:2, :n] = store.x.T
     out[2, :n] = store.angle
@@ -702,13 +808,15 @@ def _ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
 def _pairs(
     store: Any,
     sensors: np.ndarray,
+    moving: np.ndarray,
     margin: np.ndarray,
     candidates: tuple[np.ndarray, np.ndarray],
     apart: np.ndarray,
 ) -> np.ndarray:
     """The pairs of bodies (rows a < b, (K, 2)) among ``candidates`` that may touch in the
     step: bounding circles within both bodies' reach and the speculative distance, the
-    filters passed, one of them pushed by contacts, neither a sensor, not ``apart``."""
+    filters passed, one of them ``moving`` (pushed by contacts: dynamic and awake), neither a
+    sensor, not ``apart``."""
     n = len(store)
     a, b = candidates
     x, r = store.x, store.radius
@@ -716,7 +824,6 @@ def _pairs(
     reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
     near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
     a, b = a[near], b[near]
-    moving = ~store.kinematic & np.isfinite(store.mass)
     keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
     keep &= r[a] + r[b] > 0.0  # two points (no radius, no shape) pass, as on the exact step
     g = store.group
@@ -735,11 +842,12 @@ def _faces(
     owner: np.ndarray,
     bounds: np.ndarray,
     sensors: np.ndarray,
+    moving: np.ndarray,
     margin: np.ndarray,
     ignored: np.ndarray,
 ) -> np.ndarray:
     """The pairs of a body and a static shape ((K, 2): row, the shape's place) whose boxes
-    overlap within the body's reach: filters passed, no sensor body, a moving body, not
+    overlap within the body's reach: filters passed, no sensor body, a ``moving`` body, not
     ignored by a pre_solve (``ignored``: ``_ignored_keys``) (a sensor collider is kept: its
     overlaps are events)."""
     n = len(store)
@@ -756,7 +864,6 @@ def _faces(
         & (hi[:, None, 1] >= bounds[None, :, 1])
     )
     rows, shapes = np.nonzero(hit)
-    moving = ~store.kinematic & np.isfinite(store.mass)
     places = owner[shapes]
     keep = (moving[rows] | cs.sensor[places]) & ~sensors[rows]
     g = store.group[rows]

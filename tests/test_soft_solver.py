@@ -457,13 +457,11 @@ def test_the_grid_finds_the_pairs_that_every_pair_test_finds(
     margin = game_step._reach(state.store, accel, DT)
     none = np.zeros(0, dtype=np.int64)
     step = game_step.GameStep(kernels == "fast")
-    grid = game_step._pairs(
-        state.store, sensors, margin, step._candidates(state.store, margin), none
-    )
+    moving = np.ones(60, dtype=bool)
+    store = state.store
+    grid = game_step._pairs(store, sensors, moving, margin, step._candidates(store, margin), none)
     monkeypatch.setattr(game_step, "_FEW", 1000)
-    every = game_step._pairs(
-        state.store, sensors, margin, step._candidates(state.store, margin), none
-    )
+    every = game_step._pairs(store, sensors, moving, margin, step._candidates(store, margin), none)
     assert len(every) > 20
     assert {tuple(p) for p in grid.tolist()} == {tuple(p) for p in every.tolist()}
 

@@ -1,0 +1,95 @@
+"""Sleep in the soft step: islands that stay still stop costing anything until something comes.
+
+The soft step (engine.game_step) lets bodies sleep as Box2D v3 does (``b2_linearSleepTolerance``,
+``b2_angularSleepTolerance``, ``b2_timeToSleep``), on the World's own sleep state (``World.
+sleeping``, ``World.is_sleeping``, ``Body.sleep``, ``Body.activate``, ``World.sleep_time``):
+
+* A body is **still** while its speed stays under ``LINEAR`` (m/s) and its spin under
+  ``ANGULAR`` (rad/s); its still time counts up by dt each such step and back to 0 otherwise
+  (and when the game writes its position or velocity).
+* **Islands**: the bodies joined by a touching contact between two of them, or by a hinge or a
+  weld, one through another (a floor or a wall joins nothing). An island falls asleep whole once
+  every body in it has been still for ``World.sleep_time`` seconds (0.5 s by default), and none
+  of it may never sleep (a kinematic body, one a mouse joint drags).
+* A sleeping body is static to the step: it does not move, nothing is solved for it, and two
+  sleepers' pair is not even tested. Its contacts stay open (no end is reported while it sleeps;
+  engine.game_step keeps them).
+* **Waking**: before the contacts are found, a sleeper whose bounding circle comes within reach
+  of an awake body that moves (a dynamic body, or a kinematic one with a velocity) wakes with
+  its whole island; the World wakes a body (and its island) whose state is written by hand.
+
+``fall_asleep`` and ``woken`` are numpy on the bodies' and pairs' arrays: the same on both
+paths, so the two paths stay the same bits.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .manifold_kinds import SPECULATIVE_DISTANCE
+from .pile import components
+
+__all__ = ["ANGULAR", "LINEAR", "fall_asleep", "woken"]
+
+#: Box2D's sleep tolerances: a body slower than these (m/s, rad/s) is still.
+LINEAR = 0.05
+ANGULAR = 2.0 * np.pi / 180.0
+
+
+def woken(
+    asleep: np.ndarray,
+    group: np.ndarray,
+    active: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    x: np.ndarray,
+    r: np.ndarray,
+) -> np.ndarray:
+    """The sleepers (bool (N,)) that wake before this step: the islands (``group``: each
+    sleeper's island label) of those whose bounding circle (centre ``x``, radius ``r`` with
+    what the body can move in the step) comes within the speculative distance of an
+    ``active`` body's, among the broadphase's candidate pairs (rows ``a``, ``b``)."""
+    meets = (asleep[a] & active[b]) | (asleep[b] & active[a])
+    if not meets.any():
+        return np.zeros(len(asleep), dtype=bool)
+    a, b = a[meets], b[meets]
+    d = x[b] - x[a]
+    reach = r[a] + r[b] + SPECULATIVE_DISTANCE
+    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
+    sleepers = np.concatenate([a[near], b[near]])
+    sleepers = sleepers[asleep[sleepers]]
+    return asleep & np.isin(group, group[sleepers])
+
+
+def fall_asleep(
+    still: np.ndarray,
+    asleep: np.ndarray,
+    group: np.ndarray,
+    awake: np.ndarray,
+    never: np.ndarray,
+    v: np.ndarray,
+    omega: np.ndarray,
+    a: np.ndarray,
+    b: np.ndarray,
+    dt: float,
+    sleep_time: float,
+    fast: bool,
+) -> None:
+    """After a step: each ``awake`` body's still time (s) counted on (``v`` (N, 2) m/s, ``omega``
+    rad/s), and the islands of awake bodies joined by rows (``a``, ``b``: touching contacts
+    and joints between two bodies) put to sleep (``asleep``, ``group`` their label) where every
+    body has been still ``sleep_time`` s and none is ``never``. In place."""
+    n = len(still)
+    slow = (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] < LINEAR * LINEAR) & (np.abs(omega) < ANGULAR)
+    still[:] = np.where(awake & slow, still + dt, 0.0)
+    if not np.isfinite(sleep_time) or not (still >= sleep_time).any():
+        return
+    inner = awake[a] & awake[b]
+    label = components(n, a[inner].astype(np.int64), b[inner].astype(np.int64), fast)
+    # An island sleeps when its stillest-but-one is still enough: its least still time does.
+    least = np.full(n, np.inf)
+    np.minimum.at(least, label, np.where(awake & ~never, still, -np.inf))
+    ready = awake & (least[label] >= sleep_time)
+    if ready.any():
+        asleep[ready] = True
+        group[ready] = label[ready]

@@ -1,0 +1,115 @@
+"""Sleep in the soft step (engine.game_sleep): still islands sleep, exactly still, with their
+contacts open; an awake body that comes, a hand that writes, or a platform that moves wakes
+them; on both paths."""
+
+import math
+
+import numpy as np
+import pytest
+
+from demos import stack
+from engine import Body, Polygon, World
+from engine.forces import Gravity
+from tests.paths import PATHS
+
+DT = 1.0 / 60.0
+
+
+def pile(kernels: str, base: int = 5) -> tuple[World, list[Body]]:
+    """A soft pyramid of ``base`` boxes at the bottom (demos.stack's)."""
+    return stack.pyramid(base, kernels=kernels, solver="soft")
+
+
+def contacts(world: World, but: Body) -> list[tuple[int, int, tuple[float, ...]]]:
+    """The open contacts but ``but``'s: whose, where, along what, with what impulse (N s)."""
+    return sorted(
+        (id(e.body), id(e.collider), (*e.point, *e.normal, *e.impulse))
+        for e in world.touching
+        if but not in (e.body, e.collider)
+    )
+
+
+def settle(world: World, seconds: float) -> None:
+    for _ in range(round(seconds / DT)):
+        world.step(DT)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_still_pile_sleeps_exactly_still_with_its_contacts_open(kernels: str) -> None:
+    world, boxes = pile(kernels)
+    # A puck sliding on far away, frictionless: the World stays awake around the pile.
+    puck = world.add(Body((40.0, 0.25), (2.0, 0.0), mass=1.0, radius=0.25, friction=0.0))
+    ended = 0
+    for _ in range(120):
+        world.step(DT)
+        ended += len(world.ended)
+    assert world.sleeping == len(boxes) and not world.is_sleeping(puck)
+    x, touching = world.positions()[: len(boxes)].copy(), contacts(world, puck)
+    for _ in range(60):
+        world.step(DT)
+        ended += len(world.ended)
+    assert np.array_equal(world.positions()[: len(boxes)], x)  # not a hair
+    assert all(b.vel.x == b.vel.y == b.angular_velocity == 0.0 for b in boxes)
+    # Nothing ended as it fell asleep, nor while it sleeps.
+    assert ended == 0 and contacts(world, puck) == touching
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_nothing_sleeps_with_sleep_off(kernels: str) -> None:
+    world, boxes = pile(kernels)
+    world.sleep_time = math.inf
+    settle(world, 2.0)
+    assert world.sleeping == 0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_ball_thrown_at_a_sleeping_pile_wakes_it_and_knocks_it(kernels: str) -> None:
+    world, boxes = pile(kernels)
+    settle(world, 2.0)
+    assert world.sleeping == len(boxes)
+    top = boxes[-1]
+    before = top.pos
+    ball = world.add(Body((-6.0, 4.6), (12.0, 0.0), mass=20.0, radius=0.4))
+    settle(world, 1.0)
+    assert world.sleeping < len(boxes)
+    assert (top.pos - before).length() > 0.5  # the top box was knocked off
+    assert ball.pos.x < 6.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_box_written_by_hand_wakes_its_island(kernels: str) -> None:
+    world, boxes = pile(kernels)
+    settle(world, 2.0)
+    boxes[0].vel = (0.0, 0.1)  # the game nudges a bottom box
+    world.step(DT)
+    assert world.sleeping == 0  # the pile is one island: it all woke
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_platform_that_starts_to_move_wakes_the_crate_on_it(kernels: str) -> None:
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -9.81)))
+    lift = world.add(Body((0, 0), shape=Polygon.box(4, 0.5), kinematic=True))
+    crate = world.add(Body((0, 0.75), mass=1.0, shape=Polygon.box(1, 1), friction=0.8))
+    settle(world, 1.5)
+    assert world.is_sleeping(crate)
+    lift.vel = (1.0, 0.0)
+    settle(world, 1.0)
+    assert not world.is_sleeping(crate)
+    # Carried, not left behind: it slips while friction (0.8 g) brings it to the lift's
+    # speed, a tenth of a metre, then rides at it.
+    assert crate.vel.x == pytest.approx(1.0, abs=1e-3)
+    assert crate.pos.x > 0.8
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_body_sleep_puts_its_touching_island_to_sleep(kernels: str) -> None:
+    world, boxes = pile(kernels)
+    world.sleep_time = 60.0  # not on its own in this test
+    settle(world, 0.5)
+    assert world.sleeping == 0
+    boxes[0].sleep()
+    assert world.sleeping == len(boxes)  # every box touches another: one island
+    x = world.positions().copy()
+    world.step(DT)
+    assert np.array_equal(world.positions(), x)
