@@ -260,3 +260,56 @@ def test_a_specialisation_added_in_play_is_seen() -> None:
     assert _added(before, [k]) == {}
     assert k(np.int64(2)) == 4.0
     assert _added(before, [k]) == {k.name: ["(int64,)"]}
+
+
+# A kernel that calls another, in a package of the test's own: compiled into numba's cache in
+# one process, then the callee's source changed and the caller loaded in a second.
+_CALLEE = """
+from engine import kernels
+
+@kernels.loop(sample=lambda: (2.0,))
+def scaled(x):
+    return x * {factor}
+"""
+_CALLER = """
+from engine import kernels
+from .callee import scaled
+
+@kernels.loop(sample=lambda: (2.0,))
+def twice(x):
+    return scaled(x) + scaled(x)
+"""
+_RUN = """
+from engine import kernels
+from probe.callee import scaled
+from probe.caller import twice
+kernels.prepare([scaled, twice])
+print("got:", twice(2.0))
+"""
+
+
+@needs_numba
+def test_a_kernel_that_calls_another_is_compiled_again_when_the_other_changes(
+    tmp_path: Path,
+) -> None:
+    """numba's cache checks only the caller's file; engine.kernels stamps a caller's entry with
+    its callees' files too, so an edited callee is never run as its old compiled self."""
+    package = tmp_path / "probe"
+    package.mkdir()
+    (package / "__init__.py").write_text("")
+    (package / "caller.py").write_text(_CALLER)
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    env["PYTHONPATH"] = f"{ROOT}{os.pathsep}{tmp_path}"
+
+    def run(factor: int) -> str:
+        (package / "callee.py").write_text(_CALLEE.format(factor=factor))
+        # (A new size as well as a new time: file systems with coarse times still see it.)
+        out = subprocess.run(
+            [sys.executable, "-c", _RUN], env=env, cwd=tmp_path, capture_output=True,
+            text=True, check=True,
+        )  # fmt: skip
+        return re.findall(r"got: (.*)", out.stdout)[0]
+
+    assert run(3) == "12.0"
+    assert run(3) == "12.0"  # from the cache
+    assert run(50) == "200.0"  # the callee changed: not the cached 12.0
