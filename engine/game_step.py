@@ -448,7 +448,7 @@ class GameStep:
         b = np.concatenate([rows[1][pair], joints[1][joints[1] < n]])
         a, b = np.minimum(a, b), np.maximum(a, b)
         c._touching = a.astype(np.int64) * n + b  # for Body.sleep's island
-        before = c.asleep.copy()
+        before = c.asleep.copy()  # (those asleep through the step: ~awake, but kinematic)
         never = store.kinematic.copy()
         mouse = joints[0] == solver.MOUSE
         never[joints[2][mouse]] = True
@@ -460,12 +460,14 @@ class GameStep:
         if now.any():
             v[now] = 0.0
             omega[now] = 0.0
-        if c.asleep.any():
-            self._hold(store, c.asleep)
+        if before.any():
+            self._hold(store, before)
 
     def _hold(self, store: Any, asleep: np.ndarray) -> None:
-        """The last step's touching contacts whose bodies all sleep now (a sleeper and a
-        collider, or two sleepers) stay open: their rows are not solved, nothing ends."""
+        """The last step's touching contacts whose bodies slept through this one (``asleep``:
+        a sleeper and a collider, or two sleepers) stay open: their rows were not found, nor
+        solved, and nothing ends. (A body asleep through the step has no contact in it: an
+        awake body near it would have woken it.)"""
         last, now = self.last, self.report
         if not len(last.keys):
             return
@@ -475,7 +477,6 @@ class GameStep:
         collider = (last.keys & COLLIDER) != 0
         b = row_of[np.where(collider, 0, other)]
         keep = asleep[a] & (collider | asleep[b])
-        keep &= ~np.isin(last.keys, now.keys)
         if keep.any():
             self.report = _Report(
                 np.concatenate([now.keys, last.keys[keep]]),
