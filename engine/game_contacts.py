@@ -12,7 +12,8 @@ order, with the same products, so the fast path's contacts are the numpy path's 
 (tests/test_soft_solver.py checks whole games against each other):
 
 1. the body pairs given (every pair of a small scene, or the grid's: engine.pair_grid), kept
-   when their circles come within reach, one of them moves, neither is a sensor, the filters
+   when their circles and their boxes come within reach (a long plank's box is far tighter
+   than its circle), one of them moves, neither is a sensor, the filters
    pass and no joint or pre_solve keeps them apart;
 2. every body against every static shape whose box its reach overlaps, kept likewise (a
    sensor collider is kept: its overlaps are events);
@@ -123,6 +124,31 @@ def contacts_loop(
     k_shapes = len(owner)
     n_col = len(c_sensor)
     # -- 1. the body pairs -----------------------------------------------------------------
+    # Each body's box (xmin, ymin, xmax, ymax): a disc's centre +- its radius, a polygon's
+    # (a capsule's) corners turned and moved, +- its radius (``boxes``, the same products).
+    box = np.empty((n, 4))
+    for a in range(n):
+        r = radius[a]
+        box[a, 0], box[a, 1] = x[a, 0] - r, x[a, 1] - r
+        box[a, 2], box[a, 3] = x[a, 0] + r, x[a, 1] + r
+        if not body_circle[a]:
+            j = body_index[a]
+            co, si = np.cos(q[a]), np.sin(q[a])
+            for v in range(V.shape[1]):
+                wx = co * V[j, v, 0] - si * V[j, v, 1] + x[a, 0]
+                wy = si * V[j, v, 0] + co * V[j, v, 1] + x[a, 1]
+                if v == 0 or wx < box[a, 0]:
+                    box[a, 0] = wx
+                if v == 0 or wy < box[a, 1]:
+                    box[a, 1] = wy
+                if v == 0 or wx > box[a, 2]:
+                    box[a, 2] = wx
+                if v == 0 or wy > box[a, 3]:
+                    box[a, 3] = wy
+            box[a, 0] -= rad[j]
+            box[a, 1] -= rad[j]
+            box[a, 2] += rad[j]
+            box[a, 3] += rad[j]
     cand_a = np.empty(len(pa) + n * k_shapes, dtype=np.int64)
     cand_b = np.empty(len(cand_a), dtype=np.int64)  # B's row, or n for a static shape
     cand_p = np.empty(len(cand_a), dtype=np.int64)  # the static shape, or -1
@@ -132,6 +158,11 @@ def contacts_loop(
         dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
         r = radius[a] + radius[b] + reach[a] + reach[b] + SPECULATIVE_DISTANCE
         if dx * dx + dy * dy > r * r:
+            continue
+        r = reach[a] + reach[b] + SPECULATIVE_DISTANCE
+        if box[b, 0] - box[a, 2] > r or box[a, 0] - box[b, 2] > r:
+            continue
+        if box[b, 1] - box[a, 3] > r or box[a, 1] - box[b, 3] > r:
             continue
         if not (moving[a] or moving[b]) or sensor[a] or sensor[b]:
             continue

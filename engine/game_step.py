@@ -242,7 +242,7 @@ class GameStep:
                 candidates, apart, ignored,
             )  # fmt: skip
         else:
-            pairs = _pairs(store, sensors, awake, margin, candidates, apart)
+            pairs = _pairs(store, sensors, awake, margin, candidates, apart, _boxes(places, store))
             faces = _faces(store, cs, owner, bounds, sensors, awake, margin, ignored)
             touches = _collide(places, table, store, statics, pairs, faces, margin, False)
             found = self._found(store, cs, owner, touches)
@@ -813,9 +813,11 @@ def _pairs(
     margin: np.ndarray,
     candidates: tuple[np.ndarray, np.ndarray],
     apart: np.ndarray,
+    boxes: np.ndarray | None = None,
 ) -> np.ndarray:
     """The pairs of bodies (rows a < b, (K, 2)) among ``candidates`` that may touch in the
-    step: bounding circles within both bodies' reach and the speculative distance, the
+    step: bounding circles, and ``boxes`` (``_boxes``; None: not tested), within both bodies'
+    reach and the speculative distance, the
     filters passed, one of them ``moving`` (pushed by contacts: dynamic and awake), neither a
     sensor, not ``apart``."""
     n = len(store)
@@ -825,6 +827,12 @@ def _pairs(
     reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
     near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
     a, b = a[near], b[near]
+    if boxes is not None:
+        gap = margin[a] + margin[b] + SPECULATIVE_DISTANCE
+        ba, bb = boxes[a], boxes[b]
+        near = (bb[:, 0] - ba[:, 2] <= gap) & (ba[:, 0] - bb[:, 2] <= gap)
+        near &= (bb[:, 1] - ba[:, 3] <= gap) & (ba[:, 1] - bb[:, 3] <= gap)
+        a, b = a[near], b[near]
     keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
     keep &= r[a] + r[b] > 0.0  # two points (no radius, no shape) pass, as on the exact step
     g = store.group
@@ -835,6 +843,28 @@ def _pairs(
     if len(apart):
         keep &= ~np.isin(a * n + b, apart)
     return np.stack([a[keep], b[keep]], axis=1)
+
+
+def _boxes(places: _Places, store: Any) -> np.ndarray:
+    """Each body's box (N, 4: xmin, ymin, xmax, ymax): a disc's centre +- its radius, a
+    polygon's (a capsule's) corners turned and moved +- its radius; the products of
+    engine.game_contacts' own, in its order."""
+    x, q, r = store.x, store.angle, store.radius
+    box = np.concatenate([x - r[:, None], x + r[:, None]], axis=1)
+    rows = np.flatnonzero(~places.body_circle)
+    if len(rows):
+        t = places.tables
+        j = places.body_index[rows]
+        v = t.vertices[j]  # (k, M, 2), padded by repeating the last corner
+        c, s = np.cos(q[rows])[:, None], np.sin(q[rows])[:, None]
+        wx = c * v[:, :, 0] - s * v[:, :, 1] + x[rows, 0][:, None]
+        wy = s * v[:, :, 0] + c * v[:, :, 1] + x[rows, 1][:, None]
+        grow = t.radius[j]
+        box[rows, 0] = wx.min(axis=1) - grow
+        box[rows, 1] = wy.min(axis=1) - grow
+        box[rows, 2] = wx.max(axis=1) + grow
+        box[rows, 3] = wy.max(axis=1) + grow
+    return box
 
 
 def _faces(
