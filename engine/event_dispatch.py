@@ -162,10 +162,9 @@ def _changes(report: Any, other: np.ndarray, t: float, began: bool) -> list[Any]
         known = set(other.tolist())  # a game's few keys: a set, in microseconds
         new: Any = [i for i, k in enumerate(keys.tolist()) if k not in known]
     elif len(other):
-        # A pile's thousands: one sort and one binary search each.
-        s = np.sort(other)
-        at = np.minimum(np.searchsorted(s, keys), len(s) - 1)
-        new = np.flatnonzero(s[at] != keys)
+        # A pile's thousands: a binary search each (the reports are sorted by key).
+        at = np.minimum(np.searchsorted(other, keys), len(other) - 1)
+        new = np.flatnonzero(other[at] != keys)
     else:
         new = np.arange(len(keys))
     if not len(new):

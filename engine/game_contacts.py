@@ -439,7 +439,7 @@ def report_loop(
     step's warm start; and the contacts that touch (a point that pushed in the step, or one
     nearer than ``slop`` at its start), each with its event key (engine.events: the bodies'
     slots, or the slot and the collider's ``serial`` by place), first point (m), the normal
-    toward the key's first body and the impulse on it over the step (N s).
+    toward the key's first body and the impulse on it over the step (N s), sorted by key.
 
     ``ca`` ... ``sep``, ``keys``, ``place``, ``px``, ``py``: the contacts as
     ``contacts_loop`` gave them; ``ln``, ``lt``, ``total``: the solver's impulses (a
@@ -473,18 +473,25 @@ def report_loop(
     normal = np.empty((t, 2))
     impulse = np.empty((t, 2))
     e = 0
+    for i in range(k):  # the event keys first, to sort the touching contacts by them
+        if not touch[i]:
+            continue
+        a, b = ca[i], cb[i]
+        if b < n:
+            lo, hi = min(slots[a], slots[b]), max(slots[a], slots[b])
+            event[e] = (lo << 32) | hi
+        else:
+            event[e] = (slots[a] << 32) | (serial[owner[place[i]]] | COLLIDER)
+        e += 1
+    by_key = np.argsort(event, kind="mergesort")  # stable, as numpy's
+    e = 0
     for i in range(k):
         if not touch[i]:
             continue
         a, b = ca[i], cb[i]
         first = 1.0
-        if b < n:
-            lo, hi = min(slots[a], slots[b]), max(slots[a], slots[b])
-            event[e] = (lo << 32) | hi
-            if slots[a] > slots[b]:
-                first = -1.0
-        else:
-            event[e] = (slots[a] << 32) | (serial[owner[place[i]]] | COLLIDER)
+        if b < n and slots[a] > slots[b]:
+            first = -1.0
         # The impulse on A, -(lam_n n + lam_t t), t = (-n_y, n_x), over the whole step.
         # (Summed as numpy's sum of two: the first, plus 0.0 + the second; -0.0 + -0.0 is
         # +0.0 so, and the events' zeros keep numpy's signs.)
@@ -496,4 +503,4 @@ def report_loop(
         normal[e, 0], normal[e, 1] = -nx[i] * first, -ny[i] * first
         impulse[e, 0], impulse[e, 1] = jx * first, jy * first
         e += 1
-    return kept[order], lam[order], event, point, normal, impulse
+    return kept[order], lam[order], event[by_key], point[by_key], normal[by_key], impulse[by_key]
