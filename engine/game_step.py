@@ -735,13 +735,13 @@ class GameStep:
         sign = np.where(first_a, 1.0, -1.0)[:, None]
         self.last = self.report
         # Sorted by key (stably), as the fast path's report: the events' searches need no sort.
-        touch = np.flatnonzero(touch)
-        touch = touch[np.argsort(keys[touch], kind="stable")]
+        picked = np.flatnonzero(touch)
+        picked = picked[np.argsort(keys[picked], kind="stable")]
         self.report = _Report(
-            keys[touch],
-            found.point[touch],
-            (-nrm * sign)[touch],
-            (j * sign)[touch],
+            keys[picked],
+            found.point[picked],
+            (-nrm * sign)[picked],
+            (j * sign)[picked],
         )
 
 
