@@ -12,13 +12,13 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    frame: position 0, angle 0, no mass); a kinematic body moves at its velocity and nothing
    pushes it (zero inverse mass), nor a sleeper; the forces' accelerations at the step's
    start, held over the step (gravity is exact so; a drag is taken at the start's speed).
-2. ``_candidates``, ``_pairs`` (the broadphase): the pairs of bodies, and of bodies and
-   colliders' shapes, whose bounding circles (the colliders' boxes) come within what the two
-   can move in the step, with the filters, sensors, joints that keep their bodies apart and
-   pre_solve callbacks applied, one of the two awake.
-3. ``_collide`` (the narrowphase): a manifold for each pair (engine.manifold: Box2D's, up to
-   two points with anchors, separations and feature keys), with a speculative margin of what
-   the pair can close in the step: a box falling fast onto a floor is stopped on it.
+2. ``_candidates`` and engine.game_broadphase (``pairs``, ``faces``): the pairs of bodies,
+   and of bodies and colliders' shapes, whose bounding circles and boxes come within what the
+   two can move in the step, with the filters, sensors, joints that keep their bodies apart
+   and pre_solve callbacks applied, one of the two awake.
+3. engine.narrowphase (``collide_pairs``): a manifold for each pair (engine.manifold: Box2D's,
+   up to two points with anchors, separations and feature keys), with a speculative margin of
+   what the pair can close in the step: a box falling fast onto a floor is stopped on it.
 4. ``_found``: each manifold a contact of the solver, its points warm started from the last
    step's impulses by key (the pair and the features that make the point), its friction
    mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor). On the
@@ -50,24 +50,24 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from . import game_sleep, solver
+from . import game_broadphase as broad
+from . import game_sleep, narrowphase, solver
 from .colliders import Collider
 from .events import COLLIDER, collider_keys, pair_keys
 from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop, report_loop
-from .joints import Hinge, Joint, Weld
-from .manifold import StaticShapes, collide, static_shapes
-from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
+from .joints import Hinge, Weld
+from .manifold import StaticShapes, static_shapes
+from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from .mouse_joint import MouseJoint
-from .narrowphase import Tables, collide_polygon_pairs, collide_round_pairs
 from .pair_grid import grid_pairs
-from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
+from .shaped import ShapeTable
 from .vector import Vector
 
 #: The World's state (engine.world_state.WorldState, which holds a GameStep: named here by what
 #: is read of it, not imported, as a lower module must not import a higher one).
 WorldState = Any
 
-__all__ = ["GameStep", "Touches", "unsupported"]
+__all__ = ["GameStep", "unsupported"]
 
 # Warm-start keys (engine.game_contacts): (the pair's code << FEATURE) | the point's feature
 # id; a pair's code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
@@ -86,21 +86,6 @@ def unsupported(state: WorldState) -> str | None:
     if state.springs:
         return "springs"
     return None
-
-
-class Touches(NamedTuple):
-    """The narrowphase's manifolds with a point, and whose: ``a`` body A's row, ``b`` body B's
-    (n: the static body), ``place`` the static shape's place among the colliders' (-1 for a
-    pair of bodies)."""
-
-    m: Manifold
-    a: np.ndarray
-    b: np.ndarray
-    place: np.ndarray
-
-    def take(self, rows: np.ndarray) -> Touches:
-        """The manifolds of ``rows``."""
-        return Touches(self.m.take(rows), self.a[rows], self.b[rows], self.place[rows])
 
 
 class _Found(NamedTuple):
@@ -127,38 +112,6 @@ class _Found(NamedTuple):
             cat([self.sense_row, more.sense_row]),
             cat([self.sense_place, more.sense_place]),
         )
-
-
-class _Colliders(NamedTuple):
-    """What the stages read of the World's colliders, each an array by collider place, read
-    once a step (materials, filters and sensors may change between steps)."""
-
-    sensor: np.ndarray
-    serial: np.ndarray
-    restitution: np.ndarray
-    friction: np.ndarray
-    surface: np.ndarray  # (K, 2) surface velocity (m/s)
-    group: np.ndarray
-    categories: np.ndarray
-    mask: np.ndarray
-
-
-def _collider_arrays(colliders: list[Collider], serial: Any) -> _Colliders:
-    """The colliders' arrays (``serial``: the World's serial number of a collider)."""
-
-    def col(values: list[Any], dtype: Any) -> np.ndarray:
-        return np.array(values, dtype=dtype)
-
-    return _Colliders(
-        col([c.sensor for c in colliders], bool),
-        col([serial(c) for c in colliders], np.int64),
-        col([c.restitution for c in colliders], float),
-        col([c.friction for c in colliders], float),
-        col([tuple(c.surface_velocity) for c in colliders], float).reshape(-1, 2),
-        col([c.filter.group for c in colliders], np.int64),
-        col([c.filter.categories for c in colliders], np.int64),
-        col([c.filter.mask for c in colliders], np.int64),
-    )
 
 
 @dataclass
@@ -188,11 +141,11 @@ class GameStep:
         self.last = _Report()  # the step before's, for begin and end
         self._table: tuple[int, list[Any], ShapeTable] | None = None
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
-        self._places: tuple[ShapeTable, StaticShapes, _Places] | None = None
+        self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
         self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
         self._median: dict[int, tuple[np.ndarray, float]] = {}  # the bodies' median radius
         self.serials = np.zeros(0, dtype=np.int64)
-        self._cs: tuple[tuple[int, ...], _Colliders] | None = None
+        self._cs: tuple[tuple[int, ...], broad.Colliders] | None = None
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -234,19 +187,23 @@ class GameStep:
             sensors[row] = state.bodies[row].sensor
         kept = self._places
         if kept is None or kept[0] is not table or kept[1] is not statics:
-            kept = self._places = (table, statics, _places(table, statics))
+            kept = self._places = (table, statics, narrowphase.places_of(table, statics))
         places = kept[2]
-        apart = _apart(store, state, ignored_pairs)
-        ignored = _ignored_keys(ignored_faces, len(colliders))
+        apart = broad.apart_keys(store, state, ignored_pairs)
+        ignored = broad.ignored_keys(ignored_faces, len(colliders))
         if self.fast:
             found = self._found_fast(
                 places, table, store, statics, cs, owner, bounds, sensors, awake, margin,
                 candidates, apart, ignored,
             )  # fmt: skip
         else:
-            pairs = _pairs(store, sensors, awake, margin, candidates, apart, _boxes(places, store))
-            faces = _faces(store, cs, owner, bounds, sensors, awake, margin, ignored)
-            touches = _collide(places, table, store, statics, pairs, faces, margin, False)
+            pairs = broad.pairs(
+                store, sensors, awake, margin, candidates, apart, broad.boxes(places, store)
+            )
+            faces = broad.faces(store, cs, owner, bounds, sensors, awake, margin, ignored)
+            touches = narrowphase.collide_pairs(
+                places, table, store, statics, pairs, faces, margin, False
+            )
             found = self._found(store, cs, owner, touches)
         joints = self._joints(state, store, n)
         k = len(found.place)
@@ -330,13 +287,13 @@ class GameStep:
             self._table = kept
         return kept[2]
 
-    def _colliders(self, colliders: list[Collider], serial: Any) -> _Colliders:
-        """The colliders' arrays (``_collider_arrays``), made again when colliders come or go
-        or a material is set (``materials_changed``)."""
+    def _colliders(self, colliders: list[Collider], serial: Any) -> broad.Colliders:
+        """The colliders' arrays (engine.game_broadphase.collider_arrays), made again when
+        colliders come or go or a material is set (``materials_changed``)."""
         key = tuple(id(c) for c in colliders)
         kept = self._cs
         if kept is None or kept[0] != key:
-            kept = self._cs = (key, _collider_arrays(colliders, serial))
+            kept = self._cs = (key, broad.collider_arrays(colliders, serial))
         return kept[1]
 
     def materials_changed(self) -> None:
@@ -352,7 +309,7 @@ class GameStep:
         kept = self._statics
         if kept is None or kept[0] != key:
             shapes = static_shapes(colliders)
-            kept = (key, shapes, *_static_bounds(shapes))
+            kept = (key, shapes, *broad.static_bounds(shapes))
             self._statics = kept
         return kept[1], kept[2], kept[3]
 
@@ -496,13 +453,14 @@ class GameStep:
             )
 
     def _found_fast(
-        self, places: _Places, table: ShapeTable, store: Any, statics: StaticShapes,
-        cs: _Colliders, owner: np.ndarray, bounds: np.ndarray, sensors: np.ndarray,
+        self, places: narrowphase.Places, table: ShapeTable, store: Any, statics: StaticShapes,
+        cs: broad.Colliders, owner: np.ndarray, bounds: np.ndarray, sensors: np.ndarray,
         moving: np.ndarray, margin: np.ndarray, candidates: tuple[np.ndarray, np.ndarray],
         apart: np.ndarray, ignored: np.ndarray,
     ) -> _Found:  # fmt: skip
         """Stages 2 to 4 in one compiled call (engine.game_contacts), the same contacts as
-        ``_pairs``, ``_faces``, ``_collide`` and ``_found`` give."""
+        engine.game_broadphase's ``pairs`` and ``faces``, ``narrowphase.collide_pairs`` and
+        ``_found`` give."""
         t = places.tables
         c = np.ascontiguousarray
         i64, f64 = np.int64, np.float64
@@ -525,7 +483,9 @@ class GameStep:
         point = np.stack([out[17], out[18]], axis=1)
         return _Found(list(out[:15]), out[15], out[16], point, out[19], out[20])
 
-    def _found(self, store: Any, cs: _Colliders, owner: np.ndarray, touches: Touches) -> _Found:
+    def _found(
+        self, store: Any, cs: broad.Colliders, owner: np.ndarray, touches: narrowphase.Touches
+    ) -> _Found:
         """The manifolds as the solver's contact rows (solver.solve's order), warm started by
         key; a sensor collider's manifolds as its overlaps (events only: no row pushes its
         body)."""
@@ -679,7 +639,7 @@ class GameStep:
         self.joint_impulses = kept
 
     def _report_fast(
-        self, store: Any, cs: _Colliders, owner: np.ndarray, found: _Found, out: list[Any]
+        self, store: Any, cs: broad.Colliders, owner: np.ndarray, found: _Found, out: list[Any]
     ) -> None:
         """``_keep`` and ``_events`` in one compiled call (engine.game_contacts.report_loop),
         the same keys, impulses and touching contacts."""
@@ -701,7 +661,7 @@ class GameStep:
     def _events(
         self,
         store: Any,
-        cs: _Colliders,
+        cs: broad.Colliders,
         owner: np.ndarray,
         found: _Found,
         out: list[Any],
@@ -772,333 +732,3 @@ def _reach(store: Any, accel: np.ndarray, dt: float) -> np.ndarray:
     speed = np.hypot(v[:, 0], v[:, 1])
     acc = np.hypot(accel[:, 0], accel[:, 1])
     return speed * dt + acc * dt * dt + np.abs(store.omega) * dt * r
-
-
-def _static_bounds(shapes: StaticShapes) -> tuple[np.ndarray, np.ndarray]:
-    """Each static shape's collider place and bounding box (K, 4), in the order
-    ``_collide`` takes them (half planes, circles, capsules, polygons)."""
-    owners, boxes = [], []
-    for _kind, own in shapes.kinds():
-        if own is shapes.half_plane_owner:
-            box = np.tile([-np.inf, -np.inf, np.inf, np.inf], (len(own), 1))
-        elif own is shapes.circle_owner:
-            c, r = shapes.circles.center, shapes.circles.radius[:, None]
-            box = np.concatenate([c - r, c + r], axis=1)
-        elif own is shapes.capsule_owner:
-            cap = shapes.capsules
-            r = cap.radius[:, None]
-            box = np.concatenate([np.minimum(cap.a, cap.b) - r, np.maximum(cap.a, cap.b) + r], 1)
-        else:
-            p = shapes.polygons
-            r = p.radius[:, None]
-            box = np.concatenate([p.vertices.min(axis=1) - r, p.vertices.max(axis=1) + r], 1)
-        owners.append(own)
-        boxes.append(box)
-    if not owners:
-        return np.zeros(0, dtype=np.intp), np.zeros((0, 4))
-    return np.concatenate(owners), np.concatenate(boxes)
-
-
-def _apart(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray:
-    """The pairs of bodies kept apart, as sorted keys a n + b of rows a < b: by a pre_solve
-    (``ignored``, such keys) or by a joint that does not let its bodies collide."""
-    n = len(store)
-    apart = [np.asarray(ignored, dtype=np.int64)]
-    for j in state.links:
-        if isinstance(j, Joint) and not j.collide and j._other is not None:
-            ra, rb = store.row(j.body_a.slot), store.row(j._other.slot)
-            apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
-    return np.unique(np.concatenate(apart))
-
-
-def _ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
-    """The faces pre_solve ignored ((K, 2) of body row, collider place) as sorted keys
-    row (colliders + 1) + place."""
-    k = colliders + 1
-    return np.unique(np.asarray(ignored[:, 0], dtype=np.int64) * k + ignored[:, 1])
-
-
-def _pairs(
-    store: Any,
-    sensors: np.ndarray,
-    moving: np.ndarray,
-    margin: np.ndarray,
-    candidates: tuple[np.ndarray, np.ndarray],
-    apart: np.ndarray,
-    boxes: np.ndarray | None = None,
-) -> np.ndarray:
-    """The pairs of bodies (rows a < b, (K, 2)) among ``candidates`` that may touch in the
-    step: bounding circles, and ``boxes`` (``_boxes``; None: not tested), within both bodies'
-    reach and the speculative distance, the
-    filters passed, one of them ``moving`` (pushed by contacts: dynamic and awake), neither a
-    sensor, not ``apart``."""
-    n = len(store)
-    a, b = candidates
-    x, r = store.x, store.radius
-    d = x[b] - x[a]
-    reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
-    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
-    a, b = a[near], b[near]
-    if boxes is not None:
-        gap = margin[a] + margin[b] + SPECULATIVE_DISTANCE
-        ba, bb = boxes[a], boxes[b]
-        near = (bb[:, 0] - ba[:, 2] <= gap) & (ba[:, 0] - bb[:, 2] <= gap)
-        near &= (bb[:, 1] - ba[:, 3] <= gap) & (ba[:, 1] - bb[:, 3] <= gap)
-        a, b = a[near], b[near]
-    keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
-    keep &= r[a] + r[b] > 0.0  # two points (no radius, no shape) pass, as on the exact step
-    g = store.group
-    keep &= (g[a] == 0) | (g[a] != g[b])
-    keep &= ((store.categories[a] & store.mask[b]) != 0) & (
-        (store.categories[b] & store.mask[a]) != 0
-    )
-    if len(apart):
-        keep &= ~np.isin(a * n + b, apart)
-    return np.stack([a[keep], b[keep]], axis=1)
-
-
-def _boxes(places: _Places, store: Any) -> np.ndarray:
-    """Each body's box (N, 4: xmin, ymin, xmax, ymax): a disc's centre +- its radius, a
-    polygon's (a capsule's) corners turned and moved +- its radius; the products of
-    engine.game_contacts' own, in its order."""
-    x, q, r = store.x, store.angle, store.radius
-    box = np.concatenate([x - r[:, None], x + r[:, None]], axis=1)
-    rows = np.flatnonzero(~places.body_circle)
-    if len(rows):
-        t = places.tables
-        j = places.body_index[rows]
-        v = t.vertices[j]  # (k, M, 2), padded by repeating the last corner
-        c, s = np.cos(q[rows])[:, None], np.sin(q[rows])[:, None]
-        wx = c * v[:, :, 0] - s * v[:, :, 1] + x[rows, 0][:, None]
-        wy = s * v[:, :, 0] + c * v[:, :, 1] + x[rows, 1][:, None]
-        grow = t.radius[j]
-        box[rows, 0] = wx.min(axis=1) - grow
-        box[rows, 1] = wy.min(axis=1) - grow
-        box[rows, 2] = wx.max(axis=1) + grow
-        box[rows, 3] = wy.max(axis=1) + grow
-    return box
-
-
-def _faces(
-    store: Any,
-    cs: _Colliders,
-    owner: np.ndarray,
-    bounds: np.ndarray,
-    sensors: np.ndarray,
-    moving: np.ndarray,
-    margin: np.ndarray,
-    ignored: np.ndarray,
-) -> np.ndarray:
-    """The pairs of a body and a static shape ((K, 2): row, the shape's place) whose boxes
-    overlap within the body's reach: filters passed, no sensor body, a ``moving`` body, not
-    ignored by a pre_solve (``ignored``: ``_ignored_keys``) (a sensor collider is kept: its
-    overlaps are events)."""
-    n = len(store)
-    if not n or not len(owner):
-        return np.zeros((0, 2), dtype=np.intp)
-    x = store.x
-    grow = store.radius + margin + SPECULATIVE_DISTANCE
-    lo = x - grow[:, None]
-    hi = x + grow[:, None]
-    hit = (
-        (lo[:, None, 0] <= bounds[None, :, 2])
-        & (hi[:, None, 0] >= bounds[None, :, 0])
-        & (lo[:, None, 1] <= bounds[None, :, 3])
-        & (hi[:, None, 1] >= bounds[None, :, 1])
-    )
-    rows, shapes = np.nonzero(hit)
-    places = owner[shapes]
-    keep = (moving[rows] | cs.sensor[places]) & ~sensors[rows]
-    g = store.group[rows]
-    keep &= (g == 0) | (g != cs.group[places])
-    keep &= ((store.categories[rows] & cs.mask[places]) != 0) & (
-        (cs.categories[places] & store.mask[rows]) != 0
-    )
-    if len(ignored):
-        keep &= ~np.isin(rows.astype(np.int64) * (len(cs.sensor) + 1) + places, ignored)
-    return np.stack([rows[keep], shapes[keep]], axis=1)
-
-
-def _padded(p: Polygons, m: int) -> Polygons:
-    """``p`` padded to ``m`` vertices (the last vertex and normal repeated, as
-    engine.manifold_kinds pads)."""
-    k = p.vertices.shape[1]
-    if k == m:
-        return p
-    v = np.concatenate([p.vertices, np.repeat(p.vertices[:, -1:], m - k, axis=1)], axis=1)
-    nn = np.concatenate([p.normals, np.repeat(p.normals[:, -1:], m - k, axis=1)], axis=1)
-    return Polygons(v, nn, p.count, p.radius)
-
-
-class _Places(NamedTuple):
-    """The two tables of a scene's shapes (engine.narrowphase) and where each shape is in
-    them: by body row and by static shape's place, whether it is a circle and its index
-    (a half plane, which the tables do not hold, as -1 - its index among the half planes)."""
-
-    tables: Tables
-    body_circle: np.ndarray
-    body_index: np.ndarray
-    static_circle: np.ndarray
-    static_index: np.ndarray
-
-
-def _places(table: ShapeTable, statics: StaticShapes) -> _Places:
-    """The tables of the bodies' shapes and the colliders' (engine.narrowphase)."""
-    n = len(table)
-    parts = [p for p in (table.polygons,) if p is not None]
-    body_caps = Polygons.from_capsules(table.capsules) if len(table.capsules) else None
-    static_polys = statics.polygons if len(statics.polygon_owner) else None
-    static_caps = Polygons.from_capsules(statics.capsules) if len(statics.capsule_owner) else None
-    parts += [p for p in (body_caps, static_polys, static_caps) if p is not None]
-    polygons = None
-    if parts:
-        m = max(p.vertices.shape[1] for p in parts)
-        padded = [_padded(p, m) for p in parts]
-        polygons = Polygons(
-            np.concatenate([p.vertices for p in padded]),
-            np.concatenate([p.normals for p in padded]),
-            np.concatenate([p.count for p in padded]),
-            np.concatenate([p.radius for p in padded]),
-        )
-    circles = Circles(
-        np.concatenate([table.circles.center, statics.circles.center]),
-        np.concatenate([table.circles.radius, statics.circles.radius]),
-    )
-    n_poly = 0 if table.polygons is None else len(table.polygons)
-    n_cap = len(table.capsules)
-    body_circle = table.kind == DISC
-    body_index = np.where(
-        body_circle, np.arange(n), np.where(table.kind == CAPSULE, n_poly, 0) + table.index
-    )
-    # The static shapes in the order of statics.kinds(): half planes, circles, capsules,
-    # polygons (those present).
-    circle_parts, index_parts = [], []
-    base_poly = n_poly + n_cap
-    n_static_poly = len(statics.polygon_owner)
-    for _kind, own in statics.kinds():
-        k = len(own)
-        if own is statics.half_plane_owner:
-            circle_parts.append(np.zeros(k, dtype=bool))
-            index_parts.append(-1 - np.arange(k))  # half plane h as -1 - h
-        elif own is statics.circle_owner:
-            circle_parts.append(np.ones(k, dtype=bool))
-            index_parts.append(n + np.arange(k))
-        elif own is statics.capsule_owner:
-            circle_parts.append(np.zeros(k, dtype=bool))
-            index_parts.append(base_poly + n_static_poly + np.arange(k))
-        else:
-            circle_parts.append(np.zeros(k, dtype=bool))
-            index_parts.append(base_poly + np.arange(k))
-    static_circle = np.concatenate(circle_parts) if circle_parts else np.zeros(0, dtype=bool)
-    static_index = (
-        np.concatenate(index_parts) if index_parts else np.zeros(0, dtype=np.intp)
-    ).astype(np.int64)
-    return _Places(
-        Tables(polygons, circles), body_circle, body_index.astype(np.int64), static_circle,
-        static_index,
-    )  # fmt: skip
-
-
-def _collide(
-    places: _Places,
-    table: ShapeTable,
-    store: Any,
-    statics: StaticShapes,
-    pairs: np.ndarray,
-    faces: np.ndarray,
-    margin: np.ndarray,
-    fast: bool,
-) -> Touches:
-    """The manifolds of the pairs and faces with a point, in the broadphase's order (the
-    pairs, then the faces): polygon against polygon in one call, the round pairs in another
-    (engine.narrowphase), a half plane against each kind of body shape in one each (the half
-    plane as A, flipped back); each call's speculative margin the largest reach among its
-    pairs."""
-    n = len(store)
-    x, q = store.x, store.angle
-    # Every pair as (A's row, B's row or n, the static place or -1), A a body.
-    rows, spots = faces[:, 0], faces[:, 1]
-    a = np.concatenate([pairs[:, 0], rows]).astype(np.intp)
-    b = np.concatenate([pairs[:, 1], np.full(len(rows), n)]).astype(np.intp)
-    place = np.concatenate([np.full(len(pairs), -1), spots]).astype(np.intp)
-    is_static = place >= 0
-    # (A body pair's place is -1: it picks the one entry appended past the statics.)
-    static_circle = np.append(places.static_circle, False)[place]
-    static_index = np.append(places.static_index, 0)[place]
-    half = is_static & (static_index < 0)
-    other = np.minimum(b, n - 1)
-    circ_a = places.body_circle[a]
-    circ_b = np.where(is_static, static_circle, places.body_circle[other])
-    idx_a = places.body_index[a]
-    idx_b = np.where(is_static, static_index, places.body_index[other])
-    zero2 = np.zeros((len(a), 2))
-    xb = np.where(is_static[:, None], zero2, x[other])
-    qb = np.where(is_static, 0.0, q[other])
-    xa, qa = x[a], q[a]
-    reach = margin[a] + np.where(is_static, 0.0, margin[other])
-    reach = reach + SPECULATIVE_DISTANCE
-    t = places.tables
-    parts: list[Manifold] = []
-    order: list[np.ndarray] = []
-    c = np.ascontiguousarray
-    sel = np.flatnonzero(~circ_a & ~circ_b & ~half)
-    if len(sel):
-        parts.append(collide_polygon_pairs(
-            t, c(idx_a[sel]), c(xa[sel]), c(qa[sel]), c(idx_b[sel]), c(xb[sel]), c(qb[sel]),
-            float(reach[sel].max()), fast,
-        ))  # fmt: skip
-        order.append(sel)
-    # The round pairs: B a circle; where only A is one, the pair is taken the other way
-    # round (the polygon as A) and its manifold flipped back.
-    sel = np.flatnonzero((circ_a | circ_b) & ~half)
-    if len(sel):
-        swap = circ_a[sel] & ~circ_b[sel]
-        ia = np.where(swap, idx_b[sel], idx_a[sel])
-        ib = np.where(swap, idx_a[sel], idx_b[sel])
-        pa = np.where(swap[:, None], xb[sel], xa[sel])
-        pb = np.where(swap[:, None], xa[sel], xb[sel])
-        wa = np.where(swap, qb[sel], qa[sel])
-        wb = np.where(swap, qa[sel], qb[sel])
-        flag = np.where(swap, False, circ_a[sel])
-        m = collide_round_pairs(
-            t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), fast
-        )
-        if swap.any():
-            flipped = m.take(swap).flipped()
-            keep = m.take(~swap)
-            m = Manifold.concat([keep, flipped])
-            sel = np.concatenate([sel[~swap], sel[swap]])
-        parts.append(m)
-        order.append(sel)
-    # Half planes (a Plane, a room's walls), by the kind of the body's shape.
-    kind = table.kind
-    for ka in (DISC, CAPSULE, POLYGON):
-        sel = np.flatnonzero(half & (kind[a] == ka))
-        if not len(sel):
-            continue
-        r, h = a[sel], -1 - static_index[sel]
-        m = collide(
-            table.kinds(r), x[r], q[r], statics.half_planes.take(h), np.zeros((len(r), 2)),
-            np.zeros(len(r)), float(reach[sel].max()), fast,
-        )  # fmt: skip
-        parts.append(m)
-        order.append(sel)
-    if not parts:
-        empty = np.zeros(0, dtype=np.intp)
-        none = Manifold(
-            np.zeros((0, 2)),
-            np.zeros(0, dtype=np.intp),
-            np.zeros((0, 2, 2)),
-            np.zeros((0, 2, 2)),
-            np.zeros((0, 2, 2)),
-            np.zeros((0, 2)),
-            np.zeros((0, 2), dtype=np.int64),
-        )
-        return Touches(none, empty, empty, empty)
-    # Back in the broadphase's order (so the solver meets the rows as the fast path's).
-    idx = np.concatenate(order)
-    back = np.empty(len(idx), dtype=np.intp)
-    back[idx] = np.arange(len(idx))
-    m = Manifold.concat(parts).take(back)
-    hit = m.count > 0
-    return Touches(m.take(hit), a[hit], b[hit], place[hit])

@@ -20,16 +20,26 @@ twin's order, so both paths give the same bits.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from . import kernels
-from .manifold import collide_circles, collide_polygon_circle
-from .manifold_kinds import Circles, Manifold, Polygons
+from .manifold import StaticShapes, collide, collide_circles, collide_polygon_circle
+from .manifold_kinds import SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
 from .manifold_polygon import collide_polygons, polygon_loop
+from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
 
-__all__ = ["Tables", "collide_polygon_pairs", "collide_round_pairs", "round_loop"]
+__all__ = [
+    "Places",
+    "Tables",
+    "Touches",
+    "collide_pairs",
+    "collide_polygon_pairs",
+    "collide_round_pairs",
+    "places_of",
+    "round_loop",
+]
 
 
 class Tables:
@@ -213,3 +223,203 @@ def round_loop(
             sep_out[k, 0], feat_out[k, 0] = gap, 0
             count[k] = 1
     return normal_w, count, world, anchor_a, anchor_b, sep_out, feat_out
+
+
+class Touches(NamedTuple):
+    """The narrowphase's manifolds with a point, and whose: ``a`` body A's row, ``b`` body B's
+    (n: the static body), ``place`` the static shape's place among the colliders' (-1 for a
+    pair of bodies)."""
+
+    m: Manifold
+    a: np.ndarray
+    b: np.ndarray
+    place: np.ndarray
+
+    def take(self, rows: np.ndarray) -> Touches:
+        """The manifolds of ``rows``."""
+        return Touches(self.m.take(rows), self.a[rows], self.b[rows], self.place[rows])
+
+
+def _padded(p: Polygons, m: int) -> Polygons:
+    """``p`` padded to ``m`` vertices (the last vertex and normal repeated, as
+    engine.manifold_kinds pads)."""
+    k = p.vertices.shape[1]
+    if k == m:
+        return p
+    v = np.concatenate([p.vertices, np.repeat(p.vertices[:, -1:], m - k, axis=1)], axis=1)
+    nn = np.concatenate([p.normals, np.repeat(p.normals[:, -1:], m - k, axis=1)], axis=1)
+    return Polygons(v, nn, p.count, p.radius)
+
+
+class Places(NamedTuple):
+    """The two tables of a scene's shapes (engine.narrowphase) and where each shape is in
+    them: by body row and by static shape's place, whether it is a circle and its index
+    (a half plane, which the tables do not hold, as -1 - its index among the half planes)."""
+
+    tables: Tables
+    body_circle: np.ndarray
+    body_index: np.ndarray
+    static_circle: np.ndarray
+    static_index: np.ndarray
+
+
+def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
+    """The tables of the bodies' shapes and the colliders' (engine.narrowphase)."""
+    n = len(table)
+    parts = [p for p in (table.polygons,) if p is not None]
+    body_caps = Polygons.from_capsules(table.capsules) if len(table.capsules) else None
+    static_polys = statics.polygons if len(statics.polygon_owner) else None
+    static_caps = Polygons.from_capsules(statics.capsules) if len(statics.capsule_owner) else None
+    parts += [p for p in (body_caps, static_polys, static_caps) if p is not None]
+    polygons = None
+    if parts:
+        m = max(p.vertices.shape[1] for p in parts)
+        padded = [_padded(p, m) for p in parts]
+        polygons = Polygons(
+            np.concatenate([p.vertices for p in padded]),
+            np.concatenate([p.normals for p in padded]),
+            np.concatenate([p.count for p in padded]),
+            np.concatenate([p.radius for p in padded]),
+        )
+    circles = Circles(
+        np.concatenate([table.circles.center, statics.circles.center]),
+        np.concatenate([table.circles.radius, statics.circles.radius]),
+    )
+    n_poly = 0 if table.polygons is None else len(table.polygons)
+    n_cap = len(table.capsules)
+    body_circle = table.kind == DISC
+    body_index = np.where(
+        body_circle, np.arange(n), np.where(table.kind == CAPSULE, n_poly, 0) + table.index
+    )
+    # The static shapes in the order of statics.kinds(): half planes, circles, capsules,
+    # polygons (those present).
+    circle_parts, index_parts = [], []
+    base_poly = n_poly + n_cap
+    n_static_poly = len(statics.polygon_owner)
+    for _kind, own in statics.kinds():
+        k = len(own)
+        if own is statics.half_plane_owner:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(-1 - np.arange(k))  # half plane h as -1 - h
+        elif own is statics.circle_owner:
+            circle_parts.append(np.ones(k, dtype=bool))
+            index_parts.append(n + np.arange(k))
+        elif own is statics.capsule_owner:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(base_poly + n_static_poly + np.arange(k))
+        else:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(base_poly + np.arange(k))
+    static_circle = np.concatenate(circle_parts) if circle_parts else np.zeros(0, dtype=bool)
+    static_index = (
+        np.concatenate(index_parts) if index_parts else np.zeros(0, dtype=np.intp)
+    ).astype(np.int64)
+    return Places(
+        Tables(polygons, circles), body_circle, body_index.astype(np.int64), static_circle,
+        static_index,
+    )  # fmt: skip
+
+
+def collide_pairs(
+    places: Places,
+    table: ShapeTable,
+    store: Any,
+    statics: StaticShapes,
+    pairs: np.ndarray,
+    faces: np.ndarray,
+    margin: np.ndarray,
+    fast: bool,
+) -> Touches:
+    """The manifolds of the pairs and faces with a point, in the broadphase's order (the
+    pairs, then the faces): polygon against polygon in one call, the round pairs in another
+    (engine.narrowphase), a half plane against each kind of body shape in one each (the half
+    plane as A, flipped back); each call's speculative margin the largest reach among its
+    pairs."""
+    n = len(store)
+    x, q = store.x, store.angle
+    # Every pair as (A's row, B's row or n, the static place or -1), A a body.
+    rows, spots = faces[:, 0], faces[:, 1]
+    a = np.concatenate([pairs[:, 0], rows]).astype(np.intp)
+    b = np.concatenate([pairs[:, 1], np.full(len(rows), n)]).astype(np.intp)
+    place = np.concatenate([np.full(len(pairs), -1), spots]).astype(np.intp)
+    is_static = place >= 0
+    # (A body pair's place is -1: it picks the one entry appended past the statics.)
+    static_circle = np.append(places.static_circle, False)[place]
+    static_index = np.append(places.static_index, 0)[place]
+    half = is_static & (static_index < 0)
+    other = np.minimum(b, n - 1)
+    circ_a = places.body_circle[a]
+    circ_b = np.where(is_static, static_circle, places.body_circle[other])
+    idx_a = places.body_index[a]
+    idx_b = np.where(is_static, static_index, places.body_index[other])
+    zero2 = np.zeros((len(a), 2))
+    xb = np.where(is_static[:, None], zero2, x[other])
+    qb = np.where(is_static, 0.0, q[other])
+    xa, qa = x[a], q[a]
+    reach = margin[a] + np.where(is_static, 0.0, margin[other])
+    reach = reach + SPECULATIVE_DISTANCE
+    t = places.tables
+    parts: list[Manifold] = []
+    order: list[np.ndarray] = []
+    c = np.ascontiguousarray
+    sel = np.flatnonzero(~circ_a & ~circ_b & ~half)
+    if len(sel):
+        parts.append(collide_polygon_pairs(
+            t, c(idx_a[sel]), c(xa[sel]), c(qa[sel]), c(idx_b[sel]), c(xb[sel]), c(qb[sel]),
+            float(reach[sel].max()), fast,
+        ))  # fmt: skip
+        order.append(sel)
+    # The round pairs: B a circle; where only A is one, the pair is taken the other way
+    # round (the polygon as A) and its manifold flipped back.
+    sel = np.flatnonzero((circ_a | circ_b) & ~half)
+    if len(sel):
+        swap = circ_a[sel] & ~circ_b[sel]
+        ia = np.where(swap, idx_b[sel], idx_a[sel])
+        ib = np.where(swap, idx_a[sel], idx_b[sel])
+        pa = np.where(swap[:, None], xb[sel], xa[sel])
+        pb = np.where(swap[:, None], xa[sel], xb[sel])
+        wa = np.where(swap, qb[sel], qa[sel])
+        wb = np.where(swap, qa[sel], qb[sel])
+        flag = np.where(swap, False, circ_a[sel])
+        m = collide_round_pairs(
+            t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), fast
+        )
+        if swap.any():
+            flipped = m.take(swap).flipped()
+            keep = m.take(~swap)
+            m = Manifold.concat([keep, flipped])
+            sel = np.concatenate([sel[~swap], sel[swap]])
+        parts.append(m)
+        order.append(sel)
+    # Half planes (a Plane, a room's walls), by the kind of the body's shape.
+    kind = table.kind
+    for ka in (DISC, CAPSULE, POLYGON):
+        sel = np.flatnonzero(half & (kind[a] == ka))
+        if not len(sel):
+            continue
+        r, h = a[sel], -1 - static_index[sel]
+        m = collide(
+            table.kinds(r), x[r], q[r], statics.half_planes.take(h), np.zeros((len(r), 2)),
+            np.zeros(len(r)), float(reach[sel].max()), fast,
+        )  # fmt: skip
+        parts.append(m)
+        order.append(sel)
+    if not parts:
+        empty = np.zeros(0, dtype=np.intp)
+        none = Manifold(
+            np.zeros((0, 2)),
+            np.zeros(0, dtype=np.intp),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2)),
+            np.zeros((0, 2), dtype=np.int64),
+        )
+        return Touches(none, empty, empty, empty)
+    # Back in the broadphase's order (so the solver meets the rows as the fast path's).
+    idx = np.concatenate(order)
+    back = np.empty(len(idx), dtype=np.intp)
+    back[idx] = np.arange(len(idx))
+    m = Manifold.concat(parts).take(back)
+    hit = m.count > 0
+    return Touches(m.take(hit), a[hit], b[hit], place[hit])

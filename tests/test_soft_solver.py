@@ -441,7 +441,7 @@ def test_the_grid_finds_the_pairs_that_every_pair_test_finds(
 ) -> None:
     # Past a few bodies the soft step's broadphase is a grid (engine.pair_grid): the same
     # pairs as testing every pair, for a crowd of boxes and discs, some moving fast.
-    from engine import game_step
+    from engine import game_broadphase, game_step
 
     rng = np.random.default_rng(5)
     world = World(kernels=kernels, solver="soft")
@@ -459,9 +459,13 @@ def test_the_grid_finds_the_pairs_that_every_pair_test_finds(
     step = game_step.GameStep(kernels == "fast")
     moving = np.ones(60, dtype=bool)
     store = state.store
-    grid = game_step._pairs(store, sensors, moving, margin, step._candidates(store, margin), none)
+    grid = game_broadphase.pairs(
+        store, sensors, moving, margin, step._candidates(store, margin), none
+    )
     monkeypatch.setattr(game_step, "_FEW", 1000)
-    every = game_step._pairs(store, sensors, moving, margin, step._candidates(store, margin), none)
+    every = game_broadphase.pairs(
+        store, sensors, moving, margin, step._candidates(store, margin), none
+    )
     assert len(every) > 20
     assert {tuple(p) for p in grid.tolist()} == {tuple(p) for p in every.tolist()}
 
