@@ -150,19 +150,12 @@ def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) 
     )
 
 
-#: Up to this many keys (now and before) a step's begins and ends are found with a set.
-_FEW_KEYS = 128
-
-
 def _changes(report: Any, other: np.ndarray, t: float, began: bool) -> list[Any]:
     """The specs (engine.events) of the contacts of ``report`` (engine.game_step) whose keys
     are not among ``other``: begins with their impulses, or ends with none."""
     keys = report.keys
-    if len(keys) + len(other) < _FEW_KEYS:
-        known = set(other.tolist())  # a game's few keys: a set, in microseconds
-        new: Any = [i for i, k in enumerate(keys.tolist()) if k not in known]
-    elif len(other):
-        # A pile's thousands: a binary search each (the reports are sorted by key).
+    if len(other):
+        # A binary search each: the reports are sorted by key.
         at = np.minimum(np.searchsorted(other, keys), len(other) - 1)
         new = np.flatnonzero(other[at] != keys)
     else:

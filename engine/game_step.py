@@ -101,18 +101,6 @@ class _Found(NamedTuple):
     sense_row: np.ndarray
     sense_place: np.ndarray
 
-    def join(self, more: _Found) -> _Found:
-        """These contacts, then ``more``'s."""
-        cat = np.concatenate
-        return _Found(
-            [cat([a, b]) for a, b in zip(self.rows, more.rows, strict=True)],
-            cat([self.keys, more.keys]),
-            cat([self.place, more.place]),
-            cat([self.point, more.point]),
-            cat([self.sense_row, more.sense_row]),
-            cat([self.sense_place, more.sense_place]),
-        )
-
 
 @dataclass
 class _Report:
@@ -143,7 +131,8 @@ class GameStep:
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
         self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
         self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
-        self._median: dict[int, tuple[np.ndarray, float]] = {}  # the bodies' median radius
+        # The bodies' radii and their median (the radii are a new array when bodies come or go).
+        self._median: tuple[np.ndarray, float] | None = None
         self.serials = np.zeros(0, dtype=np.int64)
         self._cs: tuple[tuple[int, ...], broad.Colliders] | None = None
 
@@ -201,9 +190,7 @@ class GameStep:
                 store, sensors, awake, margin, candidates, apart, broad.boxes(places, store)
             )
             faces = broad.faces(store, cs, owner, bounds, sensors, awake, margin, ignored)
-            touches = narrowphase.collide_pairs(
-                places, table, store, statics, pairs, faces, margin, False
-            )
+            touches = narrowphase.collide_pairs(places, table, store, statics, pairs, faces, margin)
             found = self._found(store, cs, owner, touches)
         joints = self._joints(state, store, n)
         k = len(found.place)
@@ -337,11 +324,9 @@ class GameStep:
         # the median radius) is paired with every body instead, so that it does not make one
         # cell of the world.
         r = store.radius + margin
-        typical = self._median.get(id(store.radius))
-        if typical is None or typical[0] is not store.radius:
-            typical = (store.radius, float(np.median(store.radius)))
-            self._median = {id(store.radius): typical}
-        big = r > 4.0 * typical[1] + SPECULATIVE_DISTANCE
+        if self._median is None or self._median[0] is not store.radius:
+            self._median = (store.radius, float(np.median(store.radius)))
+        big = r > 4.0 * self._median[1] + SPECULATIVE_DISTANCE
         rows = np.flatnonzero(~big)
         h = 2.0 * float(r[rows].max()) + SPECULATIVE_DISTANCE
         a, b = grid_pairs(store.x[rows], h, self.fast)

@@ -11,11 +11,14 @@ bodies' and the colliders', into two tables:
 
 and sorts the pairs into three groups, each one call: polygon against polygon
 (``engine.manifold_polygon``: Box2D's b2CollidePolygons), polygon against circle and circle
-against circle (the round pairs: b2CollidePolygonAndCircle and b2CollideCircles). On the fast
-path the calls are the loop kernels (``polygon_loop``, ``round_loop`` here), straight on the
-tables; on the numpy path the numpy functions on the pairs' rows. ``round_loop`` is
-``collide_polygon_circle`` and ``collide_circles`` written as one loop, each product in its
-twin's order, so both paths give the same bits.
+against circle (the round pairs: b2CollidePolygonAndCircle and b2CollideCircles), and a half
+plane against each kind of body shape (``collide_pairs``, the numpy path's stage, which puts
+the manifolds back in the broadphase's order). On the fast path the soft step calls the loop
+kernels (``polygon_loop``, ``round_loop`` here) from its own compiled contacts stage
+(engine.game_contacts), straight on the tables; ``collide_polygon_pairs`` and
+``collide_round_pairs`` take either. ``round_loop`` is ``collide_polygon_circle`` and
+``collide_circles`` written as one loop, each product in its twin's order, so both paths
+give the same bits.
 """
 
 from __future__ import annotations
@@ -328,13 +331,12 @@ def collide_pairs(
     pairs: np.ndarray,
     faces: np.ndarray,
     margin: np.ndarray,
-    fast: bool,
 ) -> Touches:
     """The manifolds of the pairs and faces with a point, in the broadphase's order (the
     pairs, then the faces): polygon against polygon in one call, the round pairs in another
     (engine.narrowphase), a half plane against each kind of body shape in one each (the half
     plane as A, flipped back); each call's speculative margin the largest reach among its
-    pairs."""
+    pairs. The numpy path's stage (the fast path's is engine.game_contacts.contacts_loop)."""
     n = len(store)
     x, q = store.x, store.angle
     # Every pair as (A's row, B's row or n, the static place or -1), A a body.
@@ -366,7 +368,7 @@ def collide_pairs(
     if len(sel):
         parts.append(collide_polygon_pairs(
             t, c(idx_a[sel]), c(xa[sel]), c(qa[sel]), c(idx_b[sel]), c(xb[sel]), c(qb[sel]),
-            float(reach[sel].max()), fast,
+            float(reach[sel].max()), False,
         ))  # fmt: skip
         order.append(sel)
     # The round pairs: B a circle; where only A is one, the pair is taken the other way
@@ -382,7 +384,7 @@ def collide_pairs(
         wb = np.where(swap, qa[sel], qb[sel])
         flag = np.where(swap, False, circ_a[sel])
         m = collide_round_pairs(
-            t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), fast
+            t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), False
         )
         if swap.any():
             flipped = m.take(swap).flipped()
@@ -400,7 +402,7 @@ def collide_pairs(
         r, h = a[sel], -1 - static_index[sel]
         m = collide(
             table.kinds(r), x[r], q[r], statics.half_planes.take(h), np.zeros((len(r), 2)),
-            np.zeros(len(r)), float(reach[sel].max()), fast,
+            np.zeros(len(r)), float(reach[sel].max()), False,
         )  # fmt: skip
         parts.append(m)
         order.append(sel)
