@@ -1,7 +1,9 @@
 """The rigid-body scenes of the issue "Rigid bodies as Box2D's own tests expect", shared.
 
 Each scene is built by one function and measured by another, which returns plain numbers:
-tests/test_rigid_scenes.py asserts the issue's bounds on them, on each path (numpy, fast),
+tests/test_rigid_scenes.py asserts the issue's bounds on them, on each path (numpy, fast)
+and with each solver (``path`` is ``"numpy"`` or ``"fast"`` for the exact solver, the World's
+default, and ``"soft-numpy"`` or ``"soft-fast"`` for the game's soft step, ``solver="soft"``),
 and a benchmark or a demo can run the same scene and print the same numbers.
 
 Materials combine by product here (pymunk's rule, ``engine.colliders``), not as Box2D mixes
@@ -32,8 +34,11 @@ INTEGRATOR = "auto"
 
 
 def world(kernels: str, gravity: float = G) -> World:
-    """A World on the path ``kernels`` with gravity ``gravity`` (m/s^2) down (none at 0)."""
-    w = World(integrator=INTEGRATOR, kernels=kernels)
+    """A World on the path ``kernels`` with gravity ``gravity`` (m/s^2) down (none at 0):
+    ``"numpy"`` or ``"fast"`` with the exact solver, ``"soft-numpy"`` or ``"soft-fast"`` with
+    the soft step (``solver="soft"``) on that path's kernels."""
+    solver, _, path = kernels.rpartition("-")
+    w = World(integrator=INTEGRATOR, kernels=path, solver=solver or "exact")
     if gravity:
         w.add_force(Gravity((0.0, -gravity)))
     return w
