@@ -45,6 +45,7 @@ step, so any speed against a wall) is not swept for its moment of impact.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
@@ -55,7 +56,8 @@ from . import game_sleep, narrowphase, solver
 from .colliders import Collider
 from .events import COLLIDER, collider_keys, pair_keys
 from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop, report_loop
-from .joints import Hinge, Weld
+from .joints import Hinge, Joint, Weld
+from .links import Link, Pin
 from .manifold import StaticShapes, static_shapes
 from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from .mouse_joint import MouseJoint
@@ -80,9 +82,6 @@ def unsupported(state: WorldState) -> str | None:
     store = state.store
     if store is not None and store.dim != 2:
         return "a 1D world"
-    for link in state.links:
-        if not isinstance(link, (Hinge, Weld)):
-            return f"a {type(link).__name__} link"
     if state.springs:
         return "springs"
     return None
@@ -555,7 +554,9 @@ class GameStep:
         """The hinges and welds as the solver's joint arrays (solver.solve's order): the
         solver's body A is the joint's body_b (or the static body), its B the joint's body_a,
         so that the solver's angle_B - angle_A is the joint's angle."""
-        joints = [j for j in state.links if isinstance(j, (Hinge, Weld))]
+        # A Pin that holds its body still makes it kinematic (WorldState.links_changed): the
+        # solver's static body in all but name. Every other link is a row.
+        joints = [j for j in state.links if not (isinstance(j, Pin) and j.holds)]
         rows: list[list[Any]] = []
         for drag in state.drags.items:
             # A mouse joint: the static body's anchor is the target (world coordinates).
@@ -568,12 +569,10 @@ class GameStep:
             ]  # fmt: skip
             rows.append(row)
         for j in joints:
-            a = store.row(j.body_a.slot)
-            other = j._other
-            b = n if other is None else store.row(other.slot)
-            anchor_b = j.anchor_b if other is not None else j._point
-            assert anchor_b is not None
-            kept = self.joint_impulses.get(id(j), (0.0,) * 6)
+            if not isinstance(j, Joint):
+                rows.append(self._link_row(j, store, n))
+                continue
+            b, a, anchor_b, kept = self._ends(j, store, n)
             hertz = j.hertz if isinstance(j, Weld) and j.hertz is not None else 0.0
             zeta = j.damping_ratio if isinstance(j, Weld) else 0.0
             lim = j.limits if isinstance(j, Hinge) else None
@@ -605,6 +604,30 @@ class GameStep:
         arrays = [table[i].astype(np.int64) if i in ints else table[i] for i in range(22)]
         return arrays, [*state.drags.items, *joints]
 
+    def _ends(self, link: Link, store: Any, n: int) -> tuple[int, int, Vector, tuple[Any, ...]]:
+        """A link's or joint's ends as the solver takes them: its body A's row (the link's
+        other end, or the static body ``n`` for a fixed point), B's (the link's own body),
+        A's anchor (in its own frame; a fixed point's in world coordinates), and the
+        impulses kept from the last step (warm start)."""
+        other = link._other
+        a = n if other is None else store.row(other.slot)
+        anchor = link.anchor_b if other is not None else link._point
+        assert anchor is not None
+        kept = self.joint_impulses.get(id(link), (0.0,) * 6)
+        return a, store.row(link.body.slot), anchor, kept
+
+    def _link_row(self, link: Link, store: Any, n: int) -> list[Any]:
+        """A rod's or cable's distance row, or a pin's hinge to the world at its point (the
+        solver's body A the other end, B the link's body: ``_ends``)."""
+        a, b, anchor_b, kept = self._ends(link, store, n)
+        ax, ay = link.anchor_a.x, link.anchor_a.y
+        if isinstance(link, Pin):
+            return [solver.HINGE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 0, 0.0,
+                    0.0, 0, 0.0, 0.0, *kept]  # fmt: skip
+        least = link.length if link.rigid else 0.0
+        return [solver.DISTANCE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 0, least,
+                link.length, 0, link.restitution, 0.0, *kept]  # fmt: skip
+
     def _keep_joints(self, joints: list[Any], out: list[Any]) -> None:
         """Each joint's impulses kept (warm start) and reported on it: over the step, on
         body_a (N s, N m s)."""
@@ -616,6 +639,10 @@ class GameStep:
             kept[id(j)] = (px, py, pa, lo, hi, mi)
             if isinstance(j, MouseJoint):
                 j.impulse = Vector(px * k, py * k)  # on the body, over the step
+                continue
+            if not isinstance(j, Joint):
+                # A link's impulse along it, > 0 pulling its ends together (a pin's: |P|).
+                j.impulse = (hi - lo - pa) * k if not isinstance(j, Pin) else math.hypot(px, py) * k
                 continue
             j.linear_impulse = Vector(px * k, py * k)
             j.angular_impulse = (pa + mi + lo - hi) * k

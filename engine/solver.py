@@ -54,6 +54,13 @@ a 2 x 2 system K lam = -(Cdot + bias C) with
 solved by Cramer's rule; its angle (angle_B - angle_A less the reference) takes a motor row
 (|lam| <= max torque h) and two limit rows (speculative, as contacts). **A weld** adds an
 angular row (the angle held) to the hinge's point rows, soft with its own frequency if given.
+**A distance** (Box2D's distance joint: a rod, a cable) holds the anchors' distance
+L = |d|, d = (c_B + r_B) - (c_A + r_A), along the axis u = d / L taken again at every solve:
+a rod's row C = L - length (either sign, soft as a joint), a cable's C = length - L >= 0 (it
+only pulls; speculative while slack, as a contact), with the axial mass
+1 / (w_A + w_B + i_A (r_A x u)^2 + i_B (r_B x u)^2). A cable that snapped taut faster than
+``THRESHOLD`` parts its ends again at its restitution times the speed it met them at, in the
+restitution pass, as a contact does.
 
 **One loop, two paths.** ``solve`` is written as the loop it is, over flat arrays. On the fast
 path numba compiles it (engine.kernels); on the numpy path it runs as plain Python on lists,
@@ -82,6 +89,7 @@ __all__ = [
     "HINGE",
     "WELD",
     "MOUSE",
+    "DISTANCE",
     "solve",
 ]
 
@@ -100,8 +108,9 @@ PUSH_SPEED = 3.0
 #: Contacts closing slower than this (m/s) do not bounce (Box2D v3: 1).
 THRESHOLD = 1.0
 #: Joint kinds, by code: a hinge, a weld, a mouse joint (a point pulled to a target by a
-#: spring of its own frequency and damping, its force bounded).
-HINGE, WELD, MOUSE = 0, 1, 2
+#: spring of its own frequency and damping, its force bounded), a distance between two anchors
+#: (a Rod held at its length, a Cable at most its length).
+HINGE, WELD, MOUSE, DISTANCE = 0, 1, 2, 3
 
 
 def _sample() -> tuple[Any, ...]:
@@ -163,15 +172,17 @@ def solve(
     (warm start), this step's out; ``ctotal`` out: the normal impulse over the whole step;
     ``cmax`` out: the largest a substep applied.
 
-    Joints (nj): ``jkind`` HINGE, WELD or MOUSE, bodies ``ja``, ``jb`` and their local
+    Joints (nj): ``jkind`` HINGE, WELD, MOUSE or DISTANCE, bodies ``ja``, ``jb`` and their local
     anchors (m, in each body's frame about its position; the static body's in world
     coordinates: a mouse joint's target), ``jref`` angle_B - angle_A at rest (rad); a weld's
     or mouse joint's ``jhertz`` and ``jdamp`` (a weld's 0 Hz: rigid); a hinge's limits
     (``jlimit`` 1 on, ``jlower``, ``jupper`` rad on angle_B - angle_A - jref) and motor
     (``jmotor`` 1 on, ``jspeed`` rad/s, ``jmaxtorque`` N m); a mouse joint's angular damping
-    (``jspeed``, 1/s) and largest force (``jmaxtorque``, N); impulses (N s, N m s a substep)
-    in and out: ``jpx``, ``jpy`` the point's, ``jpa`` a weld's angle's, ``jlo``, ``jhi`` the
-    limits', ``jmi`` the motor's.
+    (``jspeed``, 1/s) and largest force (``jmaxtorque``, N); a distance's lengths (``jlower``,
+    ``jupper`` m: equal for a rod, 0 and the length for a cable) and a cable's restitution
+    (``jspeed``); impulses (N s, N m s a substep) in and out: ``jpx``, ``jpy`` the point's,
+    ``jpa`` a weld's angle's (a rod's, along u), ``jlo``, ``jhi`` the limits' (a cable's,
+    pulling, in ``jhi``), ``jmi`` the motor's.
     """
     nb = len(bx)
     nc = len(ca)
@@ -348,6 +359,80 @@ def solve(
     w_rate = floats(nj, 0.0)
     w_mass = floats(nj, 1.0)
     w_imp = floats(nj, 0.0)
+    # A distance's parting speed at the start (m/s), and whether its cable pulled in the step.
+    drel = floats(nj, 0.0)
+    dhit = floats(nj, 0.0)
+
+    def axis(
+        k: int, a: int, b: int, rax: float, ray: float, rbx: float, rby: float
+    ) -> tuple[float, float, float]:
+        """Distance k's unit axis u from A's anchor to B's, and its length L (m), now: the
+        bodies moved by (dx, dy) since the start, the anchors turned to (rax ... rby)."""
+        ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+        ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+        length = math.sqrt(ex * ex + ey * ey)
+        if length > 0.0:
+            return ex / length, ey / length, length
+        return 0.0, 0.0, 0.0
+
+    def axial_mass(
+        a: int, b: int, ux: float, uy: float, rax: float, ray: float, rbx: float, rby: float
+    ) -> float:
+        """1 / (w_A + w_B + i_A (r_A x u)^2 + i_B (r_B x u)^2), 0 where nothing can move."""
+        ca_ = rax * uy - ray * ux
+        cb_ = rbx * uy - rby * ux
+        kk = bim[a] + bim[b] + bii[a] * ca_ * ca_ + bii[b] * cb_ * cb_
+        return 1.0 / kk if kk > 0.0 else 0.0
+
+    def distance(k: int, bias: bool, rax: float, ray: float, rbx: float, rby: float) -> None:
+        """Distance k's rows (module doc) solved once: a rod's length, else a cable's most
+        (and a least, where ``jlimit`` asks), each a soft row, speculative while open."""
+        a = ja[k]
+        b = jb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        ux, uy, length = axis(k, a, b, rax, ray, rbx, rby)
+        mass = axial_mass(a, b, ux, uy, rax, ray, rbx, rby)
+        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+        cdot = dvx * ux + dvy * uy  # > 0: the anchors part
+        if jlower[k] == jupper[k]:
+            # A rod: C = L - length, pushed (lam > 0) or pulled along u.
+            rate, mscale, iscale = 0.0, 1.0, 0.0
+            if bias:
+                rate, mscale, iscale = j_rate, j_mass, j_imp
+            d = -mscale * mass * (cdot + rate * (length - jupper[k])) - iscale * jpa[k]
+            jpa[k] += d
+            apply(a, b, ma, ia, mb, ib, d * ux, d * uy, rax, ray, rbx, rby)
+            return
+        for side in range(2):
+            if side == 0:
+                if jlimit[k] == 0:
+                    continue
+                err = length - jlower[k]  # >= 0: the anchors at least jlower apart
+                rel_ = cdot
+                old = jlo[k]
+            else:
+                err = jupper[k] - length  # >= 0: at most jupper apart
+                rel_ = -cdot
+                old = jhi[k]
+            rate, mscale, iscale = 0.0, 1.0, 0.0
+            if err > 0.0:
+                rate = inv_h  # speculative: may close by err in the substep, no more
+            elif bias:
+                rate, mscale, iscale = j_rate, j_mass, j_imp
+            d = -mscale * mass * (rel_ + rate * err) - iscale * old
+            new = max(old + d, 0.0)
+            d = new - old
+            if side == 0:
+                jlo[k] = new
+            else:
+                jhi[k] = new
+                d = -d  # the cable pulls: along -u
+                if new > 0.0:
+                    dhit[k] = 1.0
+            apply(a, b, ma, ia, mb, ib, d * ux, d * uy, rax, ray, rbx, rby)
+            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            cdot = dvx * ux + dvy * uy
+
     for k in range(nj):
         a = ja[k]
         b = jb[k]
@@ -366,6 +451,11 @@ def solve(
             a1 = 2.0 * jdamp[k] + h * omega
             a2 = h * omega * a1
             w_rate[k], w_mass[k], w_imp[k] = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+        if jkind[k] == DISTANCE:
+            # The anchors' parting speed along the link at the start (for a cable's bounce).
+            ux, uy, _ = axis(k, a, b, fax[k], fay[k], fbx[k], fby[k])
+            dvx, dvy = relative(a, b, fax[k], fay[k], fbx[k], fby[k])
+            drel[k] = dvx * ux + dvy * uy
 
     for _ in range(substeps):
         # -- integrate velocities (only what moves: the static body and kinematic bodies
@@ -386,6 +476,10 @@ def solve(
             rby = sq[b] * fbx[k] + cq[b] * fby[k]
             px, py = jpx[k], jpy[k]
             axial = jpa[k] + jmi[k] + jlo[k] - jhi[k]
+            if jkind[k] == DISTANCE:
+                # Along the axis now: lam u, lam = the rod's or least's push less the pull.
+                ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
+                px, py, axial = axial * ux, axial * uy, 0.0
             bvx[a] -= ma * px
             bvy[a] -= ma * py
             bw[a] -= ia * (rax * py - ray * px + axial)
@@ -410,6 +504,13 @@ def solve(
             for k in range(nj):
                 a = ja[k]
                 b = jb[k]
+                if jkind[k] == DISTANCE:
+                    distance(
+                        k, bias,
+                        cq[a] * fax[k] - sq[a] * fay[k], sq[a] * fax[k] + cq[a] * fay[k],
+                        cq[b] * fbx[k] - sq[b] * fby[k], sq[b] * fbx[k] + cq[b] * fby[k],
+                    )  # fmt: skip
+                    continue
                 ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
                 fixed = ia + ib == 0.0
                 if jkind[k] == WELD:
@@ -625,6 +726,28 @@ def solve(
             vn = dvx * nx + dvy * ny
             d = -nmass[p] * (vn + e * rel[p])
             press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+
+    # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
+    # its ends back together at e times the speed they parted at (jspeed holds e).
+    for k in range(nj):
+        e = jspeed[k]
+        if jkind[k] != DISTANCE or e == 0.0 or dhit[k] == 0.0 or drel[k] < threshold:
+            continue
+        a = ja[k]
+        b = jb[k]
+        rax = cq[a] * fax[k] - sq[a] * fay[k]
+        ray = sq[a] * fax[k] + cq[a] * fay[k]
+        rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+        rby = sq[b] * fbx[k] + cq[b] * fby[k]
+        ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
+        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+        # Target: the anchors close at e drel, cdot = -e drel; a pull lam changes cdot by
+        # -lam / m (the axial mass m).
+        lam = axial_mass(a, b, ux, uy, rax, ray, rbx, rby) * (dvx * ux + dvy * uy + e * drel[k])
+        new = max(jhi[k] + lam, 0.0)
+        d = -(new - jhi[k])
+        jhi[k] = new
+        apply(a, b, bim[a], bii[a], bim[b], bii[b], d * ux, d * uy, rax, ray, rbx, rby)
 
     # -- the step's end: positions and angles from the moves.
     for i in range(nb - 1):
