@@ -124,6 +124,13 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
     events.ledger.settle(t0, t_end, raw, resting, sensing, partial(gaps, state))
 
 
+def quiet(state: WorldState) -> None:
+    """A step in which every body slept: the open contacts stay open, none begins or ends
+    (the ends of things taken out before it are reported)."""
+    state.events.forget()
+    state.events.ledger.quiet()
+
+
 def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) -> None:
     """The events of a step of the soft solver (engine.game_step): a contact begins when it
     first touches and ends when it no longer does; each is open exactly while it touches (as

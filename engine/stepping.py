@@ -24,7 +24,7 @@ import numpy as np
 from . import collision_handlers
 from .affine import EULERS
 from .body import Body
-from .event_dispatch import report, settle
+from .event_dispatch import quiet, report, settle
 from .forcefield import ForceModel
 from .game_step import unsupported
 from .integrators import Integrator
@@ -108,6 +108,7 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
             f"dt must keep the time finite: a step of dt={dt!r} s from t={state.t!r} s would "
             f"pass the float range (1.8e308 s)"
         )
+    state.slept = None  # (True: every body slept through every part of the step)
     after = _apply_targets(state, dt) if state.targets else None
     turned = _apply_turn_targets(state, dt) if state.turn_targets else None
     store = state.store
@@ -156,7 +157,13 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         for body, w in turned.items():
             held.omega[held.row(body.slot)] = w
         held.spin_written()
-    if state.contacts is not None or state.pairs_on or state.events.busy:
+    if state.slept:
+        # Every body slept through the step: nothing moved, so every contact open before it
+        # is open after it, and none began or ended (the ledger's gaps are what they were).
+        quiet(state)
+        report(state)
+        collision_handlers.report(state)
+    elif state.contacts is not None or state.pairs_on or state.events.busy:
         # The step ran from t0 = t_base + (n - 1) dt (the time it started at, summed the
         # same way) to t.
         settle(state, state.t_base + (state.n - 1) * dt, state.t)
@@ -361,7 +368,10 @@ def _step_once(
         state.collisions.quiet()
         if state.contacts is not None:
             state.contacts.quiet()
+        if state.slept is None:
+            state.slept = True
         return
+    state.slept = False
     springs = state.springs
     kicks = bool(springs) and step is not None  # (the closed form holds them itself)
     v0, omega0 = store.v, store.omega

@@ -74,6 +74,9 @@ class WorldState:
         self.fast: tuple[Any, ...] | None = None  # (dt, version, method, step, model, affine)
         self.kernel: AffineKernel | None = None
         self.huge = False  # the state is near overflow: step with numpy's warnings off
+        # Whether every body slept through the last step (engine.stepping): None before a
+        # step is taken, or where no part of it asked.
+        self.slept: bool | None = None
         self.contacts: Contacts | None = None  # made by the first add_collider
         self.collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
         self.collisions.fast = kernels == "fast"

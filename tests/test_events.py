@@ -9,8 +9,20 @@ import warnings
 
 import pytest
 
-from engine import Body, Box, Circle, ContactEvent, OverlapWarning, Plane, Segment, Vector, World
+from engine import (
+    Body,
+    Box,
+    Circle,
+    ContactEvent,
+    OverlapWarning,
+    Plane,
+    Segment,
+    StabilityWarning,
+    Vector,
+    World,
+)
 from engine.forces import Gravity
+from tests.paths import FAST
 
 G = 9.81
 
@@ -275,3 +287,45 @@ def test_a_held_end_goes_with_its_collider_and_snapshots_still_work() -> None:
     w.restore(saved)
     w.step(1 / 60)
     assert [(e.collider, e.removal) for e in w.ended] == [(peg, True)]
+
+
+@pytest.mark.parametrize("kernels", ["numpy", pytest.param("fast", marks=FAST)])
+def test_a_pile_asleep_keeps_its_contacts_open_with_no_events_until_woken(kernels: str) -> None:
+    # 60 balls dropped in a pit with a sensor by the floor: once every body sleeps a step
+    # moves nothing, so the contacts open as they fell asleep stay open, impulses and the
+    # sensor's included, and none begins or ends (the step skips the ledger's measures then:
+    # engine.event_dispatch.quiet); a ball dropped on the pile wakes it and events come again.
+    w = World(integrator="auto", kernels=kernels)
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Box((0.0, 0.0), (12.0, 1000.0)))
+    sensor = w.add_collider(Circle((1.0, 0.5), 0.2, sensor=True))
+    for k in range(60):
+        ball(w, 1.0 + (k % 10) + 0.5 * ((k // 10) % 2), 1.0 + 1.1 * (k // 10), restitution=0.5)
+
+    def touching() -> list[tuple[int, int, float, float]]:
+        rows = {id(b): i for i, b in enumerate(w.bodies)}
+        return sorted(
+            (rows[id(e.body)], rows.get(id(e.collider), -1 - id(e.collider) % 997),
+             e.impulse.x, e.impulse.y)
+            for e in w.touching
+        )  # fmt: skip
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", StabilityWarning)
+        for _ in range(600):
+            w.step(1 / 60)
+            if w.sleeping == 60:
+                break
+        assert w.sleeping == 60
+        asleep = touching()
+        assert any(e.collider is sensor for e in w.touching)  # the sensor holds a ball
+        for _ in range(200):
+            w.step(1 / 60)
+            assert not w.began and not w.ended
+            assert touching() == asleep
+        ball(w, 5.0, 20.0, vy=-5.0)
+        woke = False
+        for _ in range(120):
+            w.step(1 / 60)
+            woke = woke or bool(w.began)
+    assert woke and w.sleeping < 60
