@@ -10,8 +10,11 @@ numbers where the concepts map:
   ``Body(..., kinematic=True)``; a ``ShapeFilter`` is a ``Filter``;
 * a ``Poly`` is a ``Polygon`` (``Poly.create_box`` is ``Polygon.box``): a collider, or a
   body's shape (``Body(..., shape=Polygon(...))``) given in the body's frame, about its
-  position, as pymunk's with the identity transform (bodies do not turn yet); a ``Segment``
-  on a body is ``Body(..., shape=Segment(a, b, r))``;
+  position (pymunk's with the identity transform, while the body's angle is 0); a
+  ``Segment`` on a body is ``Body(..., shape=Segment(a, b, r))``;
+* a shape has no mass or density of its own: a Body's ``mass`` is given and its ``moment``
+  follows from its shape, and ``engine.mass`` (pymunk's ``moment_for_*`` and ``area_for_*``)
+  gives a shape's area and moment;
 * a collision handler's ``begin`` / ``separate`` / ``post_solve`` are ``world.on_contact``'s
   ``begin`` / ``end`` / ``post_solve``, called after the step for one body or collider (not
   for a pair of collision types), and ``arbiter.is_removal`` is ``event.removal``;
@@ -22,7 +25,8 @@ Each ported test is named ``test_<file>_<pymunk's name>``. A difference kept on 
 strict xfail that asserts pymunk's number and gives the reason; a pymunk feature this engine
 does not have is listed in ``MISSING`` with the reason, and ``test_every_pymunk_test_is_ported
 _or_listed`` checks (where pymunk is installed: the ``bench`` extra) that no pymunk test is
-left out unsaid.
+left out unsaid. pymunk's ``test_body.py`` and ``test_constraint.py`` are ported the same
+way in ``test_pymunk_port_body.py`` and ``test_pymunk_port_constraint.py``.
 """
 
 from __future__ import annotations
@@ -55,6 +59,7 @@ from engine import (
 )
 from engine.filters import ALL_CATEGORIES, ALL_MASKS
 from engine.forces import Gravity
+from engine.mass import area_for_circle, moment_for_circle
 from engine.render import Camera, draw_world, init_headless
 from engine.render.world_view import BODY
 
@@ -591,6 +596,31 @@ def test_shape_testSegmentQuery_point_with_a_radius() -> None:
     assert info is not None and info.point == (0, -5)
 
 
+def test_shape_testMoment() -> None:
+    # A shape has no mass or density (MISSING testMass, testDensity): its moment is
+    # engine.mass's for a mass, and a Body's with that shape and mass.
+    area = area_for_circle(0, 5)
+    assert moment_for_circle(2 * area, 0, 5) == pytest.approx(1963.4954084936207, rel=1e-15)
+    assert moment_for_circle(2, 0, 5) == 25
+    assert Body(Vector(0, 0), mass=2, shape=Circle((0, 0), 5)).moment == 25
+    assert Body(Vector(0, 0), mass=2, radius=5).moment == 25
+    assert Body(Vector(0, 0), mass=2 * area, radius=5).moment == pytest.approx(
+        1963.4954084936207, rel=1e-15
+    )
+
+
+def test_shape_testArea() -> None:
+    assert area_for_circle(0, 5) == 78.53981633974483
+
+
+def test_shape_testCenterOfGravity() -> None:
+    # A uniform disc's centre of gravity is its centre (a Polygon's is its centroid).
+    assert Circle((0, 0), 5).center == (0, 0)
+    c = Circle((10, 5), 5)
+    assert c.center.x == 10 and c.center.y == 5
+    assert Polygon.box(2, 2, center=(10, 5)).centroid == (10, 5)
+
+
 def test_shape_testSensor() -> None:
     c = Circle((0, 0), 1)
     assert not c.sensor
@@ -1021,12 +1051,11 @@ MISSING: dict[str, str] = {
     "test_each_phase_keeps_its_data)",
     "test_space.testDeleteSpaceWithObjects": "a Body in a World keeps it alive (body.world); "
     "take the body out to let the World go",
-    "test_shape.testMass": "a body's mass is its own (Body(mass=...)); shapes with a density "
-    "come with the rigid bodies",
-    "test_shape.testDensity": "as testMass",
-    "test_shape.testMoment": "bodies do not turn yet: moments come with the rigid bodies",
-    "test_shape.testArea": "as testMoment",
-    "test_shape.testCenterOfGravity": "as testMoment",
+    "test_shape.testMass": "a shape has no mass: the Body's mass is given (Body(mass=...)), "
+    "one mass for its one shape, and its moment follows from the shape "
+    "(test_shape_testMoment)",
+    "test_shape.testDensity": "a shape has no density: for a mass by density, give "
+    "Body(mass=density * engine.mass.area_for_circle(0, r)) (test_shape_testMoment)",
     "test_shape.testNoBody": "a collider belongs to no body: it is a static shape of the World",
     "test_shape.testRemoveBody": "as testNoBody",
     "test_shape.testSwitchBody": "as testNoBody",
