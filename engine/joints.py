@@ -50,12 +50,10 @@ class Joint(Link):
     """What a Hinge and a Weld share: two bodies (or a body and the world), the angle of
     body_a relative to body_b when made, and the impulses of the last step."""
 
-    __slots__ = ("_ref", "linear_impulse", "angular_impulse", "collide")
+    __slots__ = ("_ref", "linear_impulse", "angular_impulse", "_collide")
 
     def _setup(self, body_a: Any, body_b: Any, point: Any, collide: Any = False) -> None:
-        if not isinstance(collide, bool):
-            raise TypeError(f"collide must be True or False, got {collide!r}")
-        #: Whether the two bodies still collide with each other (False: Box2D's default).
+        self.revision = 0
         self.collide = collide
         self._body = plane_body(body_a, "body_a")
         other = _second(body_b)
@@ -80,6 +78,19 @@ class Joint(Link):
         #: last step, about its centre (body_b took minus it).
         self.angular_impulse = 0.0
         self.impulse, self.warned = 0.0, False
+
+    @property
+    def collide(self) -> bool:
+        """Whether the two bodies still collide with each other (False: Box2D's default); it
+        may be set at any time (the next step takes it)."""
+        return self._collide
+
+    @collide.setter
+    def collide(self, value: Any) -> None:
+        if not isinstance(value, bool):
+            raise TypeError(f"collide must be True or False, got {value!r}")
+        self._collide = value
+        self.revision += 1
 
     @property
     def body_a(self) -> Any:
@@ -254,7 +265,8 @@ KINDS = ("Rod", "Cable", "Pin", "Hinge", "Weld")
 
 def geometry(link: Link) -> tuple[Any, ...]:
     """What a link was made with, beyond its bodies: (anchor_a x, y, anchor_b x, y, reference
-    angle (rad), hertz (None: rigid), damping ratio, collide)."""
+    angle (rad), hertz (None: rigid), damping ratio, collide). (A rod's or cable's anchors and
+    a joint's collide may be set since: ``settings`` holds them as they are.)"""
     a, b = link.anchor_a, link.anchor_b
     if isinstance(link, Joint):
         hz = link.hertz if isinstance(link, Weld) else None
@@ -264,16 +276,20 @@ def geometry(link: Link) -> tuple[Any, ...]:
 
 
 def settings(link: Link) -> tuple[Any, ...]:
-    """What a game may change on a joint, and its last impulses: for a Hinge (limits, motor
-    speed, max torque, (impulse x, y), angular impulse, motor impulse); for a Weld ((impulse x,
-    y), angular impulse); () for a link."""
+    """What a game may change on a link or joint, and a joint's last impulses: for a Hinge
+    (limits, motor speed, max torque, (impulse x, y), angular impulse, motor impulse, collide);
+    for a Weld ((impulse x, y), angular impulse, collide); for a rod or cable (length, (anchor_a
+    x, y), (anchor_b x, y)); () for a pin."""
     if isinstance(link, Hinge):
         p = link.linear_impulse
         return (link.limits, link.motor_speed, link.max_torque, (p.x, p.y),
-                link.angular_impulse, link.motor_impulse)  # fmt: skip
+                link.angular_impulse, link.motor_impulse, link.collide)  # fmt: skip
     if isinstance(link, Joint):
         p = link.linear_impulse
-        return ((p.x, p.y), link.angular_impulse)
+        return ((p.x, p.y), link.angular_impulse, link.collide)
+    if link.length > 0.0:
+        a, b = link.anchor_a, link.anchor_b
+        return (link.length, (a.x, a.y), (b.x, b.y))
     return ()
 
 
@@ -290,9 +306,9 @@ def check_settings(kind: str, values: Any) -> bool:
         return isinstance(v, tuple) and len(v) == 2 and all(real(c) for c in v)
 
     if kind == "Hinge":
-        if len(values) != 6:
+        if len(values) != 7 or not isinstance(values[6], bool):
             return False
-        limits, speed, torque, p, ang, motor = values
+        limits, speed, torque, p, ang, motor, _ = values
         ok = limits is None or (
             isinstance(limits, tuple) and len(limits) == 2 and all(real(c) for c in limits)
             and limits[0] <= limits[1]
@@ -301,18 +317,35 @@ def check_settings(kind: str, values: Any) -> bool:
         ok = ok and isinstance(torque, float) and torque >= 0.0
         return ok and impulse(p) and real(ang) and real(motor)
     if kind == "Weld":
-        return len(values) == 2 and impulse(values[0]) and real(values[1])
+        return (
+            len(values) == 3 and impulse(values[0]) and real(values[1])
+            and isinstance(values[2], bool)
+        )  # fmt: skip
+    if kind in ("Rod", "Cable"):
+        return (
+            len(values) == 3 and real(values[0]) and values[0] > 0.0 and impulse(values[1])
+            and impulse(values[2])
+        )  # fmt: skip
     return values == ()
 
 
 def apply_settings(link: Link, values: tuple[Any, ...]) -> None:
     """Put back what ``settings`` read (checked by ``check_settings`` first)."""
     if isinstance(link, Hinge):
-        limits, speed, torque, p, ang, motor = values
+        limits, speed, torque, p, ang, motor, collide = values
         link.limits, link.motor_speed, link.max_torque = limits, speed, torque
         link.linear_impulse, link.angular_impulse, link.motor_impulse = Vector(*p), ang, motor
+        if link.collide != collide:
+            link.collide = collide
     elif isinstance(link, Joint):
         link.linear_impulse, link.angular_impulse = Vector(*values[0]), values[1]
+        if link.collide != values[2]:
+            link.collide = values[2]
+    elif values:
+        length, a, b = values
+        if (length, a, b) != settings(link):
+            link._length, link._anchor_a, link._anchor_b = length, Vector(*a), Vector(*b)
+            link.revision += 1
 
 
 def rebuild(

@@ -138,7 +138,7 @@ class Link:
 
     __slots__ = (
         "_body", "_other", "_point", "_length", "_e", "_anchor_a", "_anchor_b", "impulse",
-        "warned",
+        "warned", "revision",
     )  # fmt: skip
 
     #: Whether the link holds the distance both ways (a rod) or only at most (a cable).
@@ -197,6 +197,9 @@ class Link:
         self.impulse = 0.0
         #: Whether the World has warned that this link was stretched past what a step holds.
         self.warned = False
+        #: How many times its length, anchors or (a joint's) collide were set since it was
+        #: made: the World's solvers take a link again when it changes.
+        self.revision = 0
 
     def end_a(self) -> Vector:
         """Where the link holds ``body`` now: its anchor_a, in world coordinates."""
@@ -210,13 +213,41 @@ class Link:
 
     @property
     def anchor_a(self) -> Vector:
-        """Where the link holds ``body``, in its own frame (length units; (0, 0): the centre)."""
+        """Where the link holds ``body``, in its own frame (length units; (0, 0): the centre).
+        A rod's or cable's may be set at any time (the next step holds the new one)."""
         return self._anchor_a
+
+    @anchor_a.setter
+    def anchor_a(self, value: Any) -> None:
+        self._settable("anchor_a")
+        self._anchor_a = local_anchor(value, "anchor_a")
+        self.revision += 1
 
     @property
     def anchor_b(self) -> Vector:
-        """Where the link holds ``other``, in its own frame ((0, 0) for a fixed point)."""
+        """Where the link holds ``other``, in its own frame ((0, 0) for a fixed point). A
+        rod's or cable's between two bodies may be set at any time."""
         return self._anchor_b
+
+    @anchor_b.setter
+    def anchor_b(self, value: Any) -> None:
+        self._settable("anchor_b")
+        if self._other is None:
+            raise ValueError(
+                f"anchor_b is the anchor on a second body; this link holds its body to the fixed "
+                f"point {self._point!r}, which has none: remove the link and add one to the new "
+                f"point (got anchor_b={value!r})"
+            )
+        self._anchor_b = local_anchor(value, "anchor_b")
+        self.revision += 1
+
+    def _settable(self, name: str) -> None:
+        """Refuse to set ``name`` on what holds no distance (a pin, a joint: fixed once made)."""
+        if not self._length > 0.0:
+            raise AttributeError(
+                f"a {type(self).__name__}'s {name} is fixed once it is made (a rod's or "
+                f"cable's length and anchors can be set): remove it and add a new one"
+            )
 
     @property
     def anchored(self) -> bool:
@@ -237,8 +268,16 @@ class Link:
 
     @property
     def length(self) -> float:
-        """The distance the link holds (length units)."""
+        """The distance the link holds (length units): a rod's exactly, a cable's at most.
+        It may be set at any time, as a winch does: the next step holds the new length (the
+        exact solver's in one step, the ends given the speed that closes the change)."""
         return self._length
+
+    @length.setter
+    def length(self, value: Any) -> None:
+        self._settable("length")
+        self._length = checks.real(value, "length", positive=True)
+        self.revision += 1
 
     @property
     def restitution(self) -> float:
@@ -317,7 +356,7 @@ class Pin(Link):
             )
         self._other, self._point = None, fixed_point(point, "point")
         self._length, self._e = 0.0, 0.0
-        self.impulse, self.warned = 0.0, False
+        self.impulse, self.warned, self.revision = 0.0, False, 0
 
     @property
     def point(self) -> Vector:

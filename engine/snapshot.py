@@ -329,16 +329,27 @@ def _describe(state: WorldState, link: Link) -> tuple[Any, ...]:
     )
 
 
+def _identity(description: tuple[Any, ...]) -> tuple[Any, ...]:
+    """A link's description less what a game may set on it since it was made (a rod's or
+    cable's length and anchors, a joint's collide: the snapshot's settings put them back), so
+    that a link set since is still the one the snapshot saved."""
+    kind, row, other_row, point, length, e, shape = description
+    if kind in ("Rod", "Cable"):
+        return (kind, row, other_row, point, e)
+    return (kind, row, other_row, point, length, e, shape[:-1])
+
+
 def _links_of(state: WorldState, descriptions: list[tuple[Any, ...]]) -> list[Link]:
     """Links matching ``descriptions``: this World's own where one matches (in force now,
     or taken out since), else new ones."""
     known = state.links + [
         k for k in state.retired if all(b.world is state.world for b in k.bodies)
     ]
-    mine = [(_describe(state, k), k) for k in known]
+    mine = [(_identity(_describe(state, k)), k) for k in known]
     out: list[Link] = []
     for d in descriptions:
-        match = next((k for dk, k in mine if dk == d and all(k is not o for o in out)), None)
+        key = _identity(d)
+        match = next((k for dk, k in mine if dk == key and all(k is not o for o in out)), None)
         if match is None:
             kind, row, other_row, point, length, e, shape = d
             other: Any = state.bodies[other_row] if other_row >= 0 else point

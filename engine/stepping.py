@@ -109,6 +109,8 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
             f"pass the float range (1.8e308 s)"
         )
     state.slept = None  # (True: every body slept through every part of the step)
+    if state.links:
+        state.note_link_edits()
     after = _apply_targets(state, dt) if state.targets else None
     turned = _apply_turn_targets(state, dt) if state.turn_targets else None
     store = state.store

@@ -92,6 +92,7 @@ class WorldState:
         self.targets: dict[Body, Any] = {}
         self.turn_targets: dict[Body, float] = {}  # kinematic bodies' angles (rad), likewise
         self.links: list[Link] = []  # rods, cables and pins (engine.links)
+        self.link_revisions: tuple[int, ...] = ()  # each link's revision as last taken
         self.retired: list[Link] = []  # links taken out (a snapshot may bring one back)
         # The links as arrays (engine.links), or as rows of the joint solver when a joint or
         # an anchor away from a centre is among them (engine.joint_solver); made when needed.
@@ -310,10 +311,30 @@ class WorldState:
                 if isinstance(k, Pin) and k.holds:
                     store.kinematic[store.row(k.body.slot)] = True
         self.jointed = any(k.anchored or isinstance(k, Joint) for k in self.links)
+        self.link_revisions = tuple(k.revision for k in self.links)
         # A body no longer held goes nowhere it was sent while held.
         self.targets = {b: p for b, p in self.targets.items() if b.kinematic}
         self.turn_targets = {b: a for b, a in self.turn_targets.items() if b.kinematic}
         self.changed_structure()
+
+    def note_link_edits(self) -> None:
+        """Before a step: a link's length or anchors, or a joint's collide, set since the last
+        (Link.revision) are taken: the exact solvers are made again, the pairs a joint keeps
+        apart found again, and the edited links' bodies woken (a winch pulls a sleeping
+        crate)."""
+        revisions = tuple(k.revision for k in self.links)
+        if revisions == self.link_revisions:
+            return
+        store = self.store
+        if store is not None and len(revisions) == len(self.link_revisions):
+            for k, now, before in zip(self.links, revisions, self.link_revisions, strict=True):
+                if now != before:
+                    for body in k.bodies:
+                        self.collisions.wake_body(store.row(body.slot), len(store))
+        self.link_revisions = revisions
+        self.jointed = any(k.anchored or isinstance(k, Joint) for k in self.links)
+        self.link_solver = None
+        self._apart()
 
     def drop_kernel(self) -> None:
         """Forget the affine kernel, counting the steps it took."""
