@@ -63,6 +63,7 @@ from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from .mouse_joint import MouseJoint
 from .pair_grid import grid_pairs
 from .shaped import ShapeTable
+from .springs import BodySpring, DampedRotarySpring, DampedSpring
 from .vector import Vector
 
 #: The World's state (engine.world_state.WorldState, which holds a GameStep: named here by what
@@ -82,8 +83,6 @@ def unsupported(state: WorldState) -> str | None:
     store = state.store
     if store is not None and store.dim != 2:
         return "a 1D world"
-    if state.springs:
-        return "springs"
     return None
 
 
@@ -598,11 +597,14 @@ class GameStep:
                 *kept,
             ]
             rows.append(row)
+        springs = list(state.springs.items)
+        for sp in springs:
+            rows.append(_spring_row(sp, store, n))
         # One array, its rows the columns (each C-contiguous, as the kernel takes them).
         table = np.array(rows, dtype=float).reshape(-1, 22).T.copy()
         ints = {0, 1, 2, 10, 13}
         arrays = [table[i].astype(np.int64) if i in ints else table[i] for i in range(22)]
-        return arrays, [*state.drags.items, *joints]
+        return arrays, [*state.drags.items, *joints, *springs]
 
     def _ends(self, link: Link, store: Any, n: int) -> tuple[int, int, Vector, tuple[Any, ...]]:
         """A link's or joint's ends as the solver takes them: its body A's row (the link's
@@ -639,6 +641,12 @@ class GameStep:
             kept[id(j)] = (px, py, pa, lo, hi, mi)
             if isinstance(j, MouseJoint):
                 j.impulse = Vector(px * k, py * k)  # on the body, over the step
+                continue
+            if isinstance(j, DampedSpring):
+                j.impulse = -pa  # over the step (not a substep's), > 0 pulling
+                continue
+            if isinstance(j, DampedRotarySpring):
+                j.impulse = pa  # the angular impulse on a over the step
                 continue
             if not isinstance(j, Joint):
                 # A link's impulse along it, > 0 pulling its ends together (a pin's: |P|).
@@ -715,6 +723,23 @@ class GameStep:
             (-nrm * sign)[picked],
             (j * sign)[picked],
         )
+
+
+def _spring_row(spring: BodySpring, store: Any, n: int) -> list[Any]:
+    """A spring's row (solver.SPRING or ROTARY_SPRING): the solver's body A its ``b`` (the
+    static body for the world, its anchor then in world coordinates), B its ``a``, so that
+    angle_B - angle_A is its twist's angle; rest, stiffness and damping in the row."""
+    a = n if spring.second is None else store.row(spring.second.slot)
+    b = store.row(spring.a.slot)
+    if isinstance(spring, DampedSpring):
+        kind, rest = solver.SPRING, spring.rest_length
+        pa, pb = spring.anchor_b, spring.anchor_a
+    else:
+        assert isinstance(spring, DampedRotarySpring)
+        kind, rest = solver.ROTARY_SPRING, spring.rest_angle
+        pa = pb = Vector(0.0, 0.0)
+    return [kind, a, b, pa.x, pa.y, pb.x, pb.y, 0.0, spring.stiffness, spring.damping, 0, rest,
+            0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]  # fmt: skip
 
 
 def _bodies(

@@ -365,13 +365,18 @@ def test_solver_is_checked_and_what_it_cannot_take_is_said() -> None:
         World(solver="fast")
     world = World(solver="soft")
     assert world.solver == "soft" and World().solver == "exact"
+    line = World(solver="soft")
+    bead = line.add(Body(0.0, 1.0, 0.0))  # a body on a line: a 1D World
+    with pytest.raises(ValueError, match="does not take a 1D world"):
+        line.step(DT)
+    assert bead.pos == 0.0 and line.t == 0.0
+    # Links and springs are its rows (tests/test_soft_links.py).
     a = world.add(Body((0, 0), mass=1.0, radius=0.1))
     b = world.add(Body((1, 0), mass=1.0, radius=0.1))
-    world.add_link(Rod(a, b))  # taken: a distance row (tests/test_soft_links.py)
+    world.add_link(Rod(a, b))
     world.add_link(DampedSpring(a, b, (0, 0), (0, 0), 1.0, 10.0, 0.1))
-    with pytest.raises(ValueError, match="does not take springs yet"):
-        world.step(DT)
-    assert a.pos == Vector(0.0, 0.0) and world.t == 0.0
+    world.step(DT)
+    assert world.t == DT
 
 
 @pytest.mark.parametrize("kernels", PATHS)
