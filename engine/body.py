@@ -291,15 +291,16 @@ class Body:
         kinematic body in 2D (the game turns it, as it moves it)."""
         return self.turns or (self._kinematic and self._dim == 2)
 
-    def _why_not(self, name: str, *values: float) -> str:
-        """Why this body cannot take a rotation (``name``: the argument given)."""
-        given = (
+    def _why_not(self, name: str, *values: float, given: float | None = None) -> str:
+        """Why this body cannot take a rotation (``name``: the argument given; ``values``: the
+        angle, angular velocity and torque given, or ``given``: the value of ``name``)."""
+        said = (
             ", ".join(
                 f"{n}={v!r}"
                 for n, v in zip(("angle", "angular_velocity", "torque"), values, strict=False)
                 if v
             )
-            or f"{name}=..."
+            or f"{name}={'...' if given is None else repr(given)}"
         )
         if self._dim != 2:
             why = "a 1D body does not turn"
@@ -321,8 +322,8 @@ class Body:
                 "moment=... (kg m^2)"
             )
         else:
-            why = f"its moment is {self.moment!r}"
-        return f"this body cannot turn ({given}): {why}"
+            why = f"its moment is {self.moment!r}: set body.moment = ... (kg m^2) to turn it"
+        return f"this body cannot turn ({said}): {why}"
 
     def _round(self) -> bool:
         shape = self._shape
@@ -330,12 +331,20 @@ class Body:
 
     def _own_moment(self) -> float:
         """The moment of inertia (kg m^2) the body turns with; inf for one that does not."""
+        return self._moment_with(self._moment)
+
+    def _moment_with(self, given: float | None) -> float:
+        """The moment of inertia (kg m^2) the body would turn with were its ``moment`` the
+        ``given`` one (None: from its shape and mass); inf for one that would not turn."""
+        # What the body is made as (1D, kinematic, fixed_rotation, corners in a version where
+        # they do not turn) decides first; a moment given, finite or inf, then wins over the
+        # shape's.
         if self._dim != 2 or self._kinematic or self._fixed:
             return math.inf
         if not CORNERS_TURN and not self._round():
             return math.inf
-        if self._moment is not None:
-            return self._moment
+        if given is not None:
+            return given
         if self._radius == 0.0:
             return math.inf  # a point: nothing can make it turn
         mass = self.mass
@@ -682,7 +691,10 @@ class Body:
     @property
     def moment(self) -> float:
         """Moment of inertia about the body's position (kg m^2): the one given, else from the
-        shape and mass (m r^2 / 2 for a disc); inf for a body that does not turn."""
+        shape and mass (m r^2 / 2 for a disc); inf for a body that does not turn. Set it any
+        time (> 0): math.inf stops the body turning, and a finite one makes it turn (again),
+        from the angular velocity it has; a 1D, kinematic or fixed_rotation body refuses a
+        finite one."""
         store = self._store
         if store is not None:
             return float(store.moment[store.row(self._slot)])
@@ -693,8 +705,11 @@ class Body:
         m = real_number(value, "moment")
         if not m > 0.0:
             raise ValueError(f"moment must be > 0 in kg m^2 (math.inf: never turns), got {value!r}")
-        if not self.turns and math.isfinite(m):
-            raise ValueError(self._why_not("moment"))
+        # Whether the body can turn with the new moment, not with the one it has: a body
+        # whose moment was inf (pymunk's Body(mass, math.inf)) turns again when given a
+        # finite one, from the angular velocity it has (0 unless set).
+        if math.isfinite(m) and not math.isfinite(self._moment_with(m)):
+            raise ValueError(self._why_not("moment", given=m))
         self._moment = m
         if self._store is not None:
             self._store.set_moment(self._slot, self._own_moment())
@@ -916,6 +931,37 @@ class Body:
                 f"(nan or inf); the state is kept: use a smaller dt or acceleration"
             )
         self._vx, self._vy, self._px, self._py = vx, vy, px, py
+
+    # -- copies -----------------------------------------------------------------------------
+    def __copy__(self) -> Body:
+        """``copy.copy(body)``: a new Body in no World, with this one's state now.
+
+        As pymunk's body copy, it leaves the World, links and forces behind: a body in a World
+        is copied out of it (not a second handle onto its row, which stepping or removing one
+        would leave pointing elsewhere); add the copy to a World to step it. It has the
+        position (length units), velocity (length units / s), own acceleration (length units
+        / s^2), mass (kg), moment (kg m^2), angle (rad), angular velocity (rad/s) and torque
+        (N m) the body has now, its shape, material, filter, colour, collision type, sensor
+        flag and ``data`` (the same object, not a copy). A force given by ``apply_force`` is
+        for the World's next step only, so the copy does not keep it. ``copy.deepcopy(body)``
+        and pickle copy the World the body is in with it (the copy is that World copy's
+        body); ``world.copy()`` copies a whole World.
+        """
+        cls = type(self)
+        new = cls.__new__(cls)
+        for name in Body.__slots__:
+            object.__setattr__(new, name, getattr(self, name))
+        if hasattr(self, "__dict__"):  # a subclass's own attributes
+            new.__dict__.update(self.__dict__)
+        store = self._store
+        if store is not None:
+            own, torque = self.own_acc, self.torque
+            pushed = store.pushes.get(self._slot)
+            if pushed is not None:  # (2D only) the own acceleration and torque without the push
+                own, torque = Vector(*pushed[0]), pushed[1]
+            spin = (self.angle, self.angular_velocity, torque)
+            new.detach(self.pos, self.vel, self.mass, own, spin)
+        return new
 
     # -- text -------------------------------------------------------------------------------
     def __str__(self) -> str:

@@ -14,7 +14,9 @@ with W the inverse masses (0 for a kinematic body), K and C the springs' stiffne
 offsets and of points in the world. The step is z(t + dt) = expm(A dt) z(t): a damped
 oscillator's x(t) to round-off at any dt (``tests/test_springs.py``: 1e-9 over many periods).
 ``integrator="auto"`` takes it when every force is constant and every spring is linear, as it
-takes the closed form for constant forces; ``"exact"`` refuses a spring that is not.
+takes the closed form for constant forces; ``"exact"`` refuses a spring that is not. Each
+spring's ``impulse`` is measured from it too (``Springs._measure``): the integral of its
+tension over the step, from int_0^dt expm(A s) ds z(t), the positions' integral.
 
 The kicks. Any other spring (a rest length, lever arms on bodies that turn, a rotary spring,
 damping off its line, contacts or links in the World) is a pair of half kicks around the
@@ -77,6 +79,8 @@ class Springs:
         self.items: list[BodySpring] = []
         self._key: Any = None  # (dt, version, revisions) of the cached map
         self._map: np.ndarray | None = None  # expm(A dt) for the rows in _rows
+        # int_0^dt expm(A s) ds, its rows of x only: the positions' integral over the step
+        self._area: np.ndarray | None = None
         self._rows: np.ndarray = np.zeros(0, dtype=np.intp)
         self._checked: Any = None  # (dt, version, revisions) of the last stability check
         self._tabled: tuple[Any, _Table] | None = None  # the DampedSprings as arrays, keyed
@@ -186,22 +190,66 @@ class Springs:
         (the module's text); call only when ``linear`` says so."""
         key = (dt, version, self.revisions())
         if self._key != key:
-            self._rows, self._map = self._matrix(store, dt)
+            self._rows, self._map, self._area = self._matrix(store, dt)
             self._key = key
-        rows, m = self._rows, self._map
-        assert m is not None
+        rows, m, area = self._rows, self._map, self._area
+        assert m is not None and area is not None
         n = len(rows)
         w = np.where(store.kinematic[rows], 0.0, 1.0 / store.mass[rows])
         z = np.empty((3 * n, 2))
         z[:n], z[n : 2 * n] = store.x[rows], store.v[rows]
         z[2 * n :] = a0[rows] + w[:, None] * self._pulls(store, rows)
         z1 = m @ z
-        for s in self.items:
-            s.impulse = 0.0  # (not measured on the closed form)
+        self._measure(store, rows, z[:n], z1[:n], area @ z, dt)
         return rows, z1[:n], z1[n : 2 * n]
 
-    def _matrix(self, store: BodyStore, dt: float) -> tuple[np.ndarray, np.ndarray]:
-        """The rows on springs, and expm(A dt) for them (the module's text)."""
+    def _measure(
+        self,
+        store: BodyStore,
+        rows: np.ndarray,
+        x0: np.ndarray,
+        x1: np.ndarray,
+        swept: np.ndarray,
+        dt: float,
+    ) -> None:
+        """Set each spring's ``impulse`` (N s, > 0 pulling) over a step of the closed form,
+        from the positions of ``rows`` at its start (``x0``, m), at its end (``x1``) and their
+        integral over it (``swept``, m s)."""
+        # Along the spring, with d = p_b - p_a and n = d / |d|, the tension is
+        # T = k |d| + c (v_b - v_a) . n (rest length 0 on the closed form), and
+        # (v_b - v_a) . n = d|d|/dt, so the impulse over the step is
+        #     J = int T dt = k int |d| dt + c (|d(t + dt)| - |d(t)|).
+        # The damper's part is exact. For the spring's, the closed form gives int d dt (the
+        # flow's integral, ``_area``), and int |d| dt = |int d dt| exactly while d keeps its
+        # direction through the step: its ends move along one line (as a damped spring's must
+        # here) and do not pass each other. Where d turns by an angle theta within the step
+        # (an undamped spring whose ends circle), |int d dt| falls short of int |d| dt by
+        # about theta^2 / 24 of it; where the ends pass each other once, by twice the lesser
+        # of the parts of int |d| dt before and after they meet.
+        index = {int(r): k for k, r in enumerate(rows)}
+        at = (x0.tolist(), x1.tolist(), swept.tolist())  # per row: (x, y), in Python floats
+        angles = store.angle[rows].tolist()
+        weights = (1.0, 1.0, dt)  # an offset's share of each: at the start, the end, integrated
+        for s in self.items:
+            assert isinstance(s, DampedSpring)
+            i = index[store.row(s.a.slot)]
+            oax, oay = _offset(angles[i], s.anchor_a)
+            b = s.second
+            j = -1 if b is None else index[store.row(b.slot)]
+            obx, oby = (s.anchor_b.x, s.anchor_b.y) if j < 0 else _offset(angles[j], s.anchor_b)
+            sizes = []
+            for xs, wt in zip(at, weights, strict=True):
+                bx, by = (0.0, 0.0) if j < 0 else xs[j]  # (a point in the world: its offset)
+                ax, ay = xs[i]
+                sizes.append(
+                    math.hypot(bx + obx * wt - ax - oax * wt, by + oby * wt - ay - oay * wt)
+                )
+            d0, d1, swept_d = sizes
+            s.impulse = s.stiffness * swept_d + s.damping * (d1 - d0)
+
+    def _matrix(self, store: BodyStore, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The rows on springs, expm(A dt) for them (the module's text), and the rows of x of
+        int_0^dt expm(A s) ds (``_measure``)."""
         rows = self._spring_rows(store)
         n = len(rows)
         index = {int(r): k for k, r in enumerate(rows)}
@@ -222,7 +270,7 @@ class Springs:
         a[n : 2 * n, :n] = -w[:, None] * stiff
         a[n : 2 * n, n : 2 * n] = -w[:, None] * damp
         a[n : 2 * n, 2 * n :] = eye
-        return rows, expm(a * dt)
+        return rows, expm(a * dt), _swept(a, dt)[:n]
 
     def _spring_rows(self, store: BodyStore) -> np.ndarray:
         rows = {store.row(b.slot) for s in self.items for b in s.bodies}
@@ -390,6 +438,30 @@ class _Table:
             np.array([s.damping for s in springs], dtype=float),
             [np.flatnonzero(colours == c) for c in range(int(colours.max(initial=-1)) + 1)],
         )
+
+
+def _swept(a: np.ndarray, dt: float) -> np.ndarray:
+    """int_0^dt expm(A s) ds for the square matrix ``a`` and ``dt`` (s): the integral over a
+    step of the flow of z' = A z, so that int z dt = (this) z(t)."""
+    # As engine.accuracy.expm, by scaling and squaring: with h = dt / 2^s, ||A h|| <= 1/2,
+    #     E(h) = sum_k (A h)^k / k!,   S(h) = int_0^h expm(A u) du = h sum_k (A h)^k / (k + 1)!
+    # (20 terms, far below round-off), and each doubling S(2h) = S(h) + E(h) S(h) (the second
+    # half of the interval is the first, moved on by E(h)), E(2h) = E(h)^2.
+    norm = float(np.abs(a).sum(axis=0).max()) * dt
+    s = max(0, math.ceil(math.log2(norm / 0.5))) if norm > 0.5 else 0
+    h = dt / 2.0**s
+    ah = a * h
+    term = flow = np.eye(len(a))
+    swept = term.copy()
+    for k in range(1, 21):
+        term = term @ ah / k  # (A h)^k / k!
+        flow = flow + term
+        swept = swept + term / (k + 1)
+    swept = swept * h
+    for _ in range(s):
+        swept = swept + flow @ swept
+        flow = flow @ flow
+    return swept
 
 
 def _turned(angle: np.ndarray, local: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -139,8 +139,16 @@ class BodySpring:
 class DampedSpring(BodySpring):
     """A spring and damper between anchors of two bodies (see the module's text).
 
-    ``impulse`` (N s): the impulse it gave along it in the last step, > 0 pulling the ends
-    together, as a rod's (pymunk's ``impulse`` has the other sign).
+    ``impulse`` (N s): the impulse it gave along it in the last step, the integral over the
+    step of its tension stiffness (|d| - rest_length) + damping d|d|/dt, > 0 pulling the ends
+    together, as a rod's (pymunk's ``impulse`` has the other sign). By kicks it is what the
+    step's two half kicks gave (velocity Verlet's: half the pull where the step starts, half
+    where it ends, and the damper's). On the closed form (engine.spring_step: rest length 0,
+    a linear scene) it is measured from the closed-form solution, exactly (to round-off)
+    while the spring keeps its direction through the step: its ends move along one line (a
+    damped spring's must there) and do not pass each other. Where it turns by an angle theta
+    within the step (an undamped spring whose ends circle), it falls short by about
+    theta^2 / 24 of itself; in a step where the ends pass each other, by more.
     """
 
     __slots__ = ("_anchor_a", "_anchor_b", "_rest")
@@ -224,7 +232,12 @@ class DampedSpring(BodySpring):
 class DampedRotarySpring(BodySpring):
     """A torsion spring and damper between the angles of two bodies (see the module's text).
 
-    ``impulse`` (N m s): the angular impulse it gave a in the last step (pymunk's sign).
+    ``impulse`` (N m s): the angular impulse it gave body a in the last step, counter-clockwise
+    > 0 (b was given the opposite): > 0 when it turns a counter-clockwise, as when twist < 0.
+    It is what the step's two half kicks gave (velocity Verlet's: half the torque where the
+    step starts, half where it ends, and the damper's). pymunk's ``impulse`` has the other
+    sign: its spring's part is the angular impulse on b (pymunk's testTorqueFunc scene gives
+    +13.25 here, -21.5 in pymunk, whose step takes the torque where it ends).
     """
 
     __slots__ = ("_rest",)

@@ -30,6 +30,7 @@ Vector(3.0, -1.0)
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from copy import deepcopy
 from typing import Any, NoReturn, TypeVar, overload
 
 import numpy as np
@@ -594,6 +595,26 @@ class World:
     def restore(self, snapshot: WorldSnapshot) -> None:
         """Bring back the state saved by ``snapshot()`` (same bodies, in the same order)."""
         snapshots.restore(self._s, snapshot)
+
+    # -- copies ---------------------------------------------------------------------------
+    def copy(self) -> World:
+        """An independent copy of this World, as pymunk's ``space.copy()`` (a deep copy).
+
+        The copy has copies of everything: bodies (``copy.bodies``, in the same order, at the
+        same state), forces, colliders, links, springs, mouse joints, the contacts in progress,
+        time, settings and contact handlers (a plain function is the same function, called
+        with the copy's events, which name the copy's bodies; a bound method's object is
+        copied with it, as ``copy.deepcopy`` copies it). Stepping one leaves the other as it
+        is; each steps as the other would. ``copy.copy(world)`` and ``copy.deepcopy(world)``
+        give the same. To come back to this moment in this same World, ``snapshot()`` is
+        cheaper.
+        """
+        return deepcopy(self)
+
+    def __copy__(self) -> World:
+        """``copy.copy(world)``: ``world.copy()``, an independent World (a shallow copy would
+        share this World's state, and stepping it would move this World's bodies)."""
+        return self.copy()
 
     # -- names the World does not have ----------------------------------------------------
     def __setattr__(self, name: str, value: Any) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 
 import pytest
@@ -199,3 +200,31 @@ def test_data_holds_the_games_own_things_and_no_other_attribute_is_taken() -> No
     assert b.data == "hit"
     with pytest.raises(AttributeError, match="hp"):
         b.hp = 3  # type: ignore[attr-defined]  # no other new attribute: data is the place
+
+
+def test_copy_of_a_body_in_a_world_is_a_body_in_no_world_with_its_state() -> None:
+    # It once shared the body's row: the copy moved with the World's steps, and once the body
+    # was removed it read another body's row. As pymunk's body copy, it leaves the World.
+    world = World()
+    other = world.add(Body(Vector(9, 9)))
+    b = world.add(
+        Body(Vector(1, 2), Vector(3, 0), Vector(0, -1), mass=2.0, moment=0.5, data=["hit"])
+    )
+    b.angular_velocity = 4.0
+    world.step(0.5)
+    b.apply_force((8, 0), at=b.pos + Vector(0, 1))  # for the World's next step only
+    twin = copy.copy(b)
+    assert twin.world is None and twin.slot == -1 and twin is not b
+    assert (twin.pos, twin.vel, twin.own_acc) == (b.pos, b.vel, Vector(0, -1))
+    assert (twin.mass, twin.moment, twin.angle, twin.angular_velocity) == (2.0, 0.5, 2.0, 4.0)
+    assert twin.torque == 0.0 and twin.data is b.data  # the push stays with b; data is shared
+    pos = twin.pos
+    world.step(0.5)
+    world.remove(other)
+    assert twin.pos == pos != b.pos
+    # A body of its own: it steps alone, or in a World, the same one or another.
+    world.add(twin)
+    assert world.bodies == (b, twin)
+    lone = copy.copy(Body(0.0, 1.0, 2.0))
+    lone.step(1.0)
+    assert (lone.pos, lone.vel, lone.world) == (3.0, 3.0, None)

@@ -515,7 +515,8 @@ def test_space_testDebugDrawZeroLengthSpring() -> None:
 
 
 def test_space_testCopyMethods() -> None:
-    # A World copies (deepcopy, pickle) whole; its snapshot is the cheap way to save one.
+    # A World copies (pickle, deepcopy, pymunk's world.copy(); copy.copy too) whole; its
+    # snapshot is the cheap way to save one.
     w = World(integrator="auto")
     w.contact_iterations = 2
     w.sleep_time = 7
@@ -524,16 +525,19 @@ def test_space_testCopyMethods() -> None:
     w.add_collider(Circle((0, -20), 10))
     w.add_link(Rod(b1, b2))
     w.add_link(Cable(b3, (0, 40), 12.0))
-    for clone in (copy.deepcopy(w), pickle.loads(pickle.dumps(w))):
+    clones = [pickle.loads(pickle.dumps(w)), copy.deepcopy(w), w.copy(), copy.copy(w)]
+    for clone in clones:
         assert clone.contact_iterations == 2 and clone.sleep_time == 7
         assert [b.radius for b in clone.bodies] == [7, 9, 0.0]
         assert [b.mass for b in clone.bodies] == [1, 3, 5]
         assert [type(k).__name__ for k in clone.links] == ["Rod", "Cable"]
         for _ in range(30):
             clone.step(1 / 60)
+    assert w.t == 0 and [b.pos for b in w.bodies] == [(0, 0), (20, 0), (0, 30)]
     for _ in range(30):
         w.step(1 / 60)
-    assert [tuple(b.pos) for b in clone.bodies] == [tuple(b.pos) for b in w.bodies]
+    for clone in clones:
+        assert [tuple(b.pos) for b in clone.bodies] == [tuple(b.pos) for b in w.bodies]
 
 
 def test_space_testPickleCachedArbiters() -> None:

@@ -287,6 +287,52 @@ def test_a_body_that_cannot_turn_refuses_a_spin_and_keeps_its_state() -> None:
         Body(Vector(0, 0), radius=1.0, fixed_rotation=1)  # type: ignore[arg-type]
 
 
+def test_a_body_whose_moment_was_inf_turns_again_when_given_a_finite_one() -> None:
+    # pymunk's body.moment = inf, then a finite one: the body turns again. (The setter once
+    # asked whether the body turns with the inf it had just stored, and refused.)
+    alone = Body(Vector(0, 0), mass=2, moment=3)
+    alone.moment = math.inf
+    assert not alone.turns
+    alone.moment = 3
+    assert alone.moment == 3 and alone.turns and alone.angular_velocity == 0.0
+    alone.angular_velocity = 1.5  # taken now that it turns
+    # A point made with moment=math.inf (pymunk's Body(mass, math.inf)) too.
+    point = Body(Vector(0, 0), mass=2, moment=math.inf)
+    point.moment = 5
+    assert point.turns and point.moment == 5
+    # What cannot turn whatever its moment still refuses one, naming it and the value.
+    fixed = Body(Vector(0, 0), radius=1.0, fixed_rotation=True)
+    with pytest.raises(ValueError, match=r"moment=3.0\): the body was made with fixed_rot"):
+        fixed.moment = 3
+    with pytest.raises(ValueError, match=r"moment=3.0\): a 1D body does not turn"):
+        Body(0.0).moment = 3
+    assert fixed.moment == math.inf
+
+
+@pytest.mark.parametrize("kernels", ["fast", "numpy"])
+def test_in_a_world_a_body_given_a_finite_moment_after_inf_turns_at_tau_over_i(
+    kernels: str,
+) -> None:
+    w = World(integrator="auto", kernels=kernels)
+    b = w.add(Body(Vector(0, 0), mass=2, moment=3))
+    w.step(0.1)
+    b.moment = math.inf
+    w.step(0.1)
+    assert w.turning == ()
+    b.moment = 4
+    # The World's arrays hold the new moment (the steps read 1 / I from them).
+    store = w._s.store
+    assert store is not None
+    assert store.moment.tolist() == [4.0] and store.inv_moment.tolist() == [0.25]
+    assert w.turning == (b,) and b.moment == 4
+    # From rest, a constant torque tau: omega = (tau / I) t, angle = (tau / I) t^2 / 2.
+    b.torque = 2.0
+    for _ in range(10):
+        w.step(0.1)
+    assert b.angular_velocity == pytest.approx(2.0 / 4 * 1.0, rel=1e-12)
+    assert b.angle == pytest.approx(2.0 / 4 * 1.0**2 / 2, rel=1e-12)
+
+
 def test_snapshot_restore_and_removal_keep_the_spin() -> None:
     theta = math.radians(30)
     w, b, _, _ = slope_world(theta, 0.5)

@@ -110,6 +110,53 @@ def test_two_bodies_on_an_undamped_spring_oscillate_with_the_reduced_mass_exactl
     assert worst < 1e-9
 
 
+def test_the_closed_form_measures_a_springs_impulse_as_the_momentum_it_gave() -> None:
+    # Two bodies on a damped spring along the line u (anchors off their centres, along u;
+    # points do not turn), their own accelerations along it too, pulling them apart (so that
+    # the ends, 0.9 m apart at rest, never meet): the closed form. Over each step the spring
+    # gave a the impulse m_a (v_a' - v_a) - m_a g_a dt, all along n = (p_b - p_a) / |p_b -
+    # p_a|; its size along n is ``impulse`` (> 0 pulling). It was once 0, "not measured on
+    # the closed form".
+    u = Vector(0.6, 0.8)
+    world = World(integrator="auto")
+    a = world.add(Body(u * 0.0, u * 0.2, u * -2.0, mass=2.0))
+    b = world.add(Body(u * 1.8, u * -0.1, u * 1.0, mass=3.0))
+    spring = world.add_link(DampedSpring(a, b, u * 0.1, u * -0.2, 0.0, 4.0, 1.5))
+    dt = 1.0 / 30.0
+    pulls = []
+    for _ in range(90):  # 3 s, more than a period
+        va = a.vel
+        world.step(dt)
+        assert world.method == "exact"
+        given = (a.vel - va) * a.mass - a.own_acc * (a.mass * dt)
+        n = (spring.end_b() - spring.end_a()).normalized()
+        assert spring.impulse == pytest.approx(given.dot(n), rel=1e-12)
+        assert abs(given.cross(n)) < 1e-14  # all along the spring
+        pulls.append(spring.impulse)
+    assert min(pulls) > 0.0 and max(pulls) > 1.5 * min(pulls)
+
+
+def test_the_closed_form_impulse_of_a_spring_that_turns_is_short_by_theta_squared_over_24() -> None:
+    # Two bodies circling on an undamped spring: the closed form gives k |int d dt|, which
+    # falls short of k int |d| dt (the sum of the impulses of many short steps) by about
+    # theta^2 / 24 of it, theta the angle the spring turns within the step.
+    def run(dt: float, steps: int) -> tuple[float, float]:
+        world = World(integrator="auto")
+        a = world.add(point(0.0, 0.0, 0.0, 0.3))
+        b = world.add(point(1.0, 0.0, 0.0, 2.0))
+        spring = world.add_link(DampedSpring(a, b, (0.1, 0), (0, 0.2), 0.0, 4.0, 0.0))
+        before = spring.end_b() - spring.end_a()
+        total = 0.0
+        for _ in range(steps):
+            world.step(dt / steps)
+            total += spring.impulse
+        after = spring.end_b() - spring.end_a()
+        return total, abs(math.atan2(before.cross(after), before.dot(after)))
+
+    (one, theta), (many, _) = run(0.05, 1), run(0.05, 1000)
+    assert 0.0 < many - one == pytest.approx(many * theta**2 / 24, rel=0.2)
+
+
 def test_exact_refuses_a_spring_that_is_not_linear_and_auto_leaves_the_closed_form() -> None:
     world = World(integrator="exact")
     body = world.add(point(1.0, 0.0))
@@ -202,6 +249,24 @@ def test_a_damped_rotary_spring_decays_as_its_damping_says() -> None:
     # Implicit damping: omega e^(-c dt / I) a step, exactly.
     assert wheel.angular_velocity == pytest.approx(2.0 * math.exp(-0.1 / 0.25), rel=1e-12)
     assert spring.impulse < 0.0
+
+
+def test_a_rotary_springs_impulse_is_the_angular_impulse_on_a_as_its_docstring_says() -> None:
+    # Two wheels twisted apart, spring and damper: a's change of angular momentum over the
+    # step is ``impulse``, b's the opposite. The docstring said "(pymunk's sign)", which is
+    # the other (pymunk's testTorqueFunc: +13.25 here, -21.5 there).
+    world = World()
+    a = world.add(Body(Vector(0, 0), mass=10, moment=10, angular_velocity=-0.1))
+    b = world.add(Body(Vector(0, 0), mass=20, moment=20, angle=2, angular_velocity=0.05))
+    spring = world.add_link(DampedRotarySpring(a, b, 0, 10, 0.5))
+    wa, wb = a.angular_velocity, b.angular_velocity
+    world.step(0.1)
+    assert spring.impulse > 0.0  # twist < 0: a turned counter-clockwise, back toward b
+    assert a.moment * (a.angular_velocity - wa) == pytest.approx(spring.impulse, rel=1e-12)
+    assert b.moment * (b.angular_velocity - wb) == pytest.approx(-spring.impulse, rel=1e-12)
+    doc = DampedRotarySpring.__doc__ or ""
+    assert "the angular impulse it gave body a" in " ".join(doc.split())
+    assert "(pymunk's sign)" not in doc
 
 
 def test_a_too_stiff_spring_is_warned_about_before_it_blows_up() -> None:

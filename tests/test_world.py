@@ -2,15 +2,25 @@
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import math
 import warnings
+from collections.abc import Callable
 from fractions import Fraction
 
 import numpy as np
 import pytest
 
-from engine import Body, SimulationDiverged, StabilityWarning, Vector, World
+from engine import (
+    Body,
+    DampedSpring,
+    Rod,
+    SimulationDiverged,
+    StabilityWarning,
+    Vector,
+    World,
+)
 from engine.forces import ConstantForce, Drag, Gravity, Spring, Wind
 
 # Theory, independent of engine.stability (see test_stability.py for the derivations).
@@ -426,6 +436,55 @@ def test_restore_refuses_a_snapshot_of_a_different_body_count() -> None:
         world.restore(snap)
     with pytest.raises(TypeError, match="restore takes a WorldSnapshot"):
         world.restore({"x": 1})  # type: ignore[arg-type]
+
+
+# -- copies ------------------------------------------------------------------------------------
+
+
+def linked_world() -> World:
+    """Two bodies on a rod, one hung from the world by a damped spring, a third on its own
+    under a force of its own (a plain callable), gravity; stepped 0.5 s."""
+    world = World(integrator="auto")
+    world.add_force(Gravity((0, -9.81)))
+    a = world.add(Body(Vector(0, 3), mass=1.0))
+    b = world.add(Body(Vector(2, 3), Vector(0, 1), mass=2.0))
+    c = world.add(Body(Vector(5, 0), Vector(1, 0), mass=1.5))
+    world.add_link(Rod(a, b))
+    world.add_link(DampedSpring(a, world.static_body, (0, 0), (0, 5), 1.0, 20.0, 0.5))
+    world.add_force(lambda t, x, v, m: -x * m, bodies=[c])
+    for _ in range(30):
+        world.step(1 / 60)
+    return world
+
+
+@pytest.mark.parametrize("how", ["copy.copy", "world.copy", "copy.deepcopy"])
+def test_a_copied_world_is_independent_and_steps_as_the_original(how: str) -> None:
+    # pymunk's space.copy() is a deep copy; a copy.copy(world) that shared the World's state
+    # moved the original's bodies when the copy was stepped.
+    world = linked_world()
+    copiers: dict[str, Callable[[World], World]] = {
+        "copy.copy": copy.copy,
+        "world.copy": lambda w: w.copy(),  # pymunk's name
+        "copy.deepcopy": copy.deepcopy,
+    }
+    clone = copiers[how](world)
+    assert type(clone) is World and clone is not world
+    before = (world.positions().tolist(), world.velocities().tolist(), world.t, world.steps)
+    assert (clone.positions().tolist(), clone.velocities().tolist(), clone.t, clone.steps) == (
+        before
+    )
+    assert not {id(b) for b in clone.bodies} & {id(b) for b in world.bodies}
+    assert [type(k).__name__ for k in (*clone.links, *clone.springs)] == ["Rod", "DampedSpring"]
+    assert len(clone.forces) == 2
+    for _ in range(60):
+        clone.step(1 / 60)
+    after = (world.positions().tolist(), world.velocities().tolist(), world.t, world.steps)
+    assert after == before  # the original has not moved
+    for _ in range(60):
+        world.step(1 / 60)
+    # Each steps as the other would, bit for bit.
+    assert clone.positions().tolist() == world.positions().tolist()
+    assert clone.velocities().tolist() == world.velocities().tolist()
 
 
 # -- drawing between steps ---------------------------------------------------------------------
