@@ -337,26 +337,39 @@ class Springs:
 
     # -- stability -------------------------------------------------------------------------------
     def warn_if_unstable(
-        self, store: BodyStore, dt: float, version: int, warned: set[Any], level: int
+        self,
+        store: BodyStore,
+        dt: float,
+        version: int,
+        warned: set[Any],
+        level: int,
+        substeps: int = 1,
     ) -> None:
         """Warn (StabilityWarning), once per spring, dt and settings, when a spring's kicks are
-        past their limit omega dt < 2 (the module's text); looked at again only when dt, the
-        World (``version``) or a spring's settings change."""
-        checked = (dt, version, self.revisions())
+        past their limit omega h < 2, h = dt / ``substeps`` (the module's text; the soft
+        step kicks once a substep: engine.solver); looked at again only when dt, the World
+        (``version``) or a spring's settings change."""
+        checked = (dt, version, self.revisions(), substeps)
         if checked == self._checked:
             return
         self._checked = checked
+        h = dt / substeps
+        how = (
+            "a spring's kicks are velocity Verlet's whatever the method"
+            if substeps == 1
+            else f"the soft step kicks each spring once a substep, h = dt / {substeps}"
+        )
         for s in self.items:
             w = self.omega(s, store)
-            key = ("spring", id(s), dt, s.revision)
-            if w * dt < LIMIT or key in warned:
+            key = ("spring", id(s), dt, s.revision, substeps)
+            if w * h < LIMIT or key in warned:
                 continue
             warned.add(key)
             warnings.warn(
-                f"{s!r} is unstable at dt={dt:g} s (omega={w:.4g} rad/s, omega*dt={w * dt:.4g}, "
-                f"limit {LIMIT:g}: a spring's kicks are velocity Verlet's whatever the method); "
-                f"the run continues and will blow up: use dt < {LIMIT / w:.4g} s or a softer "
-                f"spring (stiffness < {s.stiffness * (LIMIT / (w * dt)) ** 2:.4g})",
+                f"{s!r} is unstable at dt={dt:g} s (omega={w:.4g} rad/s, omega*h={w * h:.4g}, "
+                f"limit {LIMIT:g}: {how}); the run continues and will blow up: use "
+                f"dt < {substeps * LIMIT / w:.4g} s or a softer spring (stiffness < "
+                f"{s.stiffness * (LIMIT / (w * h)) ** 2:.4g})",
                 StabilityWarning,
                 stacklevel=level,
             )

@@ -186,6 +186,12 @@ def _step_soft(
     game = state.game
     assert store is not None and game is not None
     t0 = state.t
+    if state.springs:
+        # Kicked once a substep (engine.solver): their limit, said before the first step past
+        # it (stacklevel: the line that called World.step).
+        state.springs.warn_if_unstable(
+            store, dt, state.version, state.policy.warned, 5, game.substeps
+        )
     accel = np.asarray(model.accel(t0, store.x, store.v), dtype=float).reshape(store.x.shape)
     torques = state.torques() if store.turns_any else None
     tau = None

@@ -189,6 +189,8 @@ class WorldState:
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValueError(f"contact_iterations must be an int >= 1, got {value!r}")
         self.collisions.iterations = value
+        if self.game is not None:
+            self.game.substeps = value  # the soft step's substeps (engine.game_step)
 
     def set_asleep(self, row: int, asleep: bool) -> None:
         """Put body ``row`` to sleep now with the awake bodies touching it (Body.sleep), or wake

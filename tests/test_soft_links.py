@@ -4,6 +4,7 @@ its body makes it static), checked against statics, closed forms and the exact s
 paths."""
 
 import math
+import warnings
 
 import pytest
 
@@ -16,6 +17,7 @@ from engine import (
     Plane,
     Polygon,
     Rod,
+    StabilityWarning,
     Vector,
     World,
 )
@@ -294,3 +296,30 @@ def test_both_paths_give_the_same_springs() -> None:
             world.step(DT)
         ends.append([(x.pos.x, x.pos.y, x.angle, x.vel.x, x.vel.y) for x in world.bodies])
     assert ends[0] == ends[1]
+
+
+def test_a_spring_too_stiff_for_the_substeps_is_said_before_it_blows_up() -> None:
+    # Kicked once a substep, a spring holds while omega h < 2 (h = dt / 4 by default): at
+    # k = 1e6 N/m on 1 kg, omega = 1000 rad/s, omega h = 4.17. The warning names the dt and
+    # the stiffness that would hold; at 10 substeps it holds.
+    world = World(solver="soft")
+    bob = world.add(Body(Vector(1.1, 0.0), mass=1.0, radius=0.1))
+    world.add_link(DampedSpring(bob, world.static_body, (0, 0), (0, 0), 1.0, 1e5, 0.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        world.step(DT)  # omega = 316 rad/s, omega h = 1.3: stable, no warning
+    stiff = World(solver="soft")
+    bob = stiff.add(Body(Vector(1.1, 0.0), mass=1.0, radius=0.1))
+    stiff.add_link(DampedSpring(bob, stiff.static_body, (0, 0), (0, 0), 1.0, 1e6, 0.0))
+    with pytest.warns(StabilityWarning, match=r"omega\*h=4\.167.*dt < 0\.008 s") as got:
+        stiff.step(DT)
+    assert got[0].filename == __file__  # said at the game's own call
+    stiff = World(solver="soft")
+    stiff.contact_iterations = 10  # h = dt / 10: omega h = 1.67
+    bob = stiff.add(Body(Vector(1.1, 0.0), mass=1.0, radius=0.1))
+    stiff.add_link(DampedSpring(bob, stiff.static_body, (0, 0), (0, 0), 1.0, 1e6, 0.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for _ in range(60):
+            stiff.step(DT)
+    assert abs(bob.pos.x - 1.0) <= 0.1 + 1e-9  # held: it swings within its amplitude
