@@ -354,6 +354,7 @@ class Springs:
             return
         self._checked = checked
         h = dt / substeps
+        step = "omega*dt" if substeps == 1 else "omega*h"
         how = (
             "a spring's kicks are velocity Verlet's whatever the method"
             if substeps == 1
@@ -366,7 +367,7 @@ class Springs:
                 continue
             warned.add(key)
             warnings.warn(
-                f"{s!r} is unstable at dt={dt:g} s (omega={w:.4g} rad/s, omega*h={w * h:.4g}, "
+                f"{s!r} is unstable at dt={dt:g} s (omega={w:.4g} rad/s, {step}={w * h:.4g}, "
                 f"limit {LIMIT:g}: {how}); the run continues and will blow up: use "
                 f"dt < {substeps * LIMIT / w:.4g} s or a softer spring (stiffness < "
                 f"{s.stiffness * (LIMIT / (w * h)) ** 2:.4g})",
