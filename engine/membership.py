@@ -18,6 +18,7 @@ from .contacts import Contacts
 from .forces import Force, as_force
 from .links import Link, Pin
 from .overlaps import freed, push_out
+from .vector import Vector
 from .world_state import AttachedForce
 
 if TYPE_CHECKING:
@@ -116,6 +117,11 @@ def remove(state: WorldState, body: Body) -> None:
     assert store is not None
     pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
     spin = (body.angle, body.angular_velocity, body.torque)
+    pushed = store.pushes.get(body.slot)
+    if pushed is not None:
+        # A push of apply_force was for this World's next step only: the body leaves with
+        # its own acceleration and torque as they were before it.
+        own, spin = Vector(*pushed[0]), (spin[0], spin[1], pushed[1])
     row = store.row(body.slot)
     # The last step's events are named now, before the rows shift, and the body's open
     # contacts end (reported with the next step).

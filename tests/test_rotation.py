@@ -390,3 +390,17 @@ def test_a_point_given_a_moment_turns_freely_past_colliders() -> None:
         world.step(1 / 60)
     assert point.angle == pytest.approx(4.0, abs=1e-12)
     assert point.angular_velocity == 2.0
+
+
+def test_a_push_for_the_next_step_does_not_leave_with_a_body_taken_out() -> None:
+    # apply_force lasts the World's next step; a body taken out before it keeps nothing of it
+    # (else, added to a World again, it would carry the push for ever).
+    w = World()
+    b = w.add(Body(Vector(0, 0), radius=0.5, mass=2.0, acceleration=Vector(0.0, -1.0)))
+    b.apply_force(Vector(4.0, 0.0), at=(0.0, 0.5))
+    w.remove(b)
+    assert (b.own_acc.x, b.own_acc.y, b.torque) == (0.0, -1.0, 0.0)
+    again = World()
+    again.add(b)
+    again.step(0.1)
+    assert b.vel.x == 0.0 and b.angular_velocity == 0.0
