@@ -11,6 +11,7 @@ import pytest
 
 from engine import Body, Plane, Polygon, Segment, Vector, World
 from engine.forces import Gravity
+from tests.paths import PATHS
 
 G = 9.81
 R = 0.5
@@ -309,7 +310,7 @@ def test_a_body_whose_moment_was_inf_turns_again_when_given_a_finite_one() -> No
     assert fixed.moment == math.inf
 
 
-@pytest.mark.parametrize("kernels", ["fast", "numpy"])
+@pytest.mark.parametrize("kernels", PATHS)
 def test_in_a_world_a_body_given_a_finite_moment_after_inf_turns_at_tau_over_i(
     kernels: str,
 ) -> None:
