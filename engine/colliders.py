@@ -56,7 +56,13 @@ from .collision_types import as_collision_type
 from .colours import COLOR_ADVICE, as_colour
 from .filters import DEFAULT as DEFAULT_FILTER
 from .filters import Filter, as_filter
-from .mass import moment_for_polygon, moment_for_segment
+from .mass import (
+    area_for_circle,
+    area_for_segment,
+    moment_for_circle,
+    moment_for_polygon,
+    moment_for_segment,
+)
 from .points import point_of
 from .vector import Vector
 
@@ -412,6 +418,17 @@ class Segment(Collider):
         shape, about the body's position (``engine.mass.moment_for_segment``)."""
         return moment_for_segment(mass, self.a, self.b, self.radius)
 
+    @property
+    def area(self) -> float:
+        """The capsule's area (length units squared): r (pi r + 2 |b - a|), 0 for a bare
+        segment (``engine.mass.area_for_segment``)."""
+        return area_for_segment(self.a, self.b, self.radius)
+
+    @property
+    def centroid(self) -> Vector:
+        """The capsule's centre of area: the segment's midpoint (length units)."""
+        return (self.a + self.b) * 0.5
+
     def lines(self) -> list[Line]:
         a, b = self.a, self.b
         length = math.hypot(b.x - a.x, b.y - a.y)
@@ -463,13 +480,30 @@ class Circle(Collider):
     def discs(self) -> list[Disc]:
         return [((self.center.x, self.center.y), self.radius)]
 
+    @property
+    def area(self) -> float:
+        """The disc's area (length units squared): pi r^2."""
+        return area_for_circle(0.0, self.radius)
+
+    @property
+    def centroid(self) -> Vector:
+        """The disc's centre of area: its centre (length units)."""
+        return self.center
+
+    def moment(self, mass: float) -> float:
+        """The moment of inertia (kg m^2) of a body of ``mass`` with this disc for its shape,
+        about the body's position: m r^2 / 2, and m |center|^2 more for a centre off it
+        (``engine.mass.moment_for_circle``)."""
+        return moment_for_circle(mass, 0.0, self.radius, self.center)
+
     def as_body_shape(self) -> float:
         self._body_material()
         if self.center.x != 0.0 or self.center.y != 0.0:
             raise ValueError(
                 f"a round body's shape is centred on its position: Circle((0, 0), "
                 f"{self.radius!r}) (or Body(..., radius={self.radius!r})), got centre "
-                f"{tuple(self.center)!r} (an offset shape needs bodies that turn)"
+                f"{tuple(self.center)!r} (a body's position is its centre of mass, and a disc's "
+                f"is its centre: move the body by the offset instead)"
             )
         return self.radius
 

@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from engine import Body, Box, OverlapWarning, Plane, Segment, Vector, World, convex
+from engine import Body, Box, Circle, OverlapWarning, Plane, Segment, Vector, World, convex
 from engine.colliders import Polygon
 from engine.forces import Gravity
 from engine.mass import (
@@ -385,6 +385,23 @@ def test_moments_are_the_closed_forms() -> None:
     assert area_for_segment((0.0, 0.0), (3.0, 4.0), 0.5) == 0.5 * (math.pi * 0.5 + 10.0)
     assert area_for_polygon(square, 0.5) == pytest.approx(10.0 + 0.5 * 14.0 + math.pi * 0.25)
     assert area_for_polygon(list(reversed(square))) == pytest.approx(10.0)  # either winding
+
+
+def test_every_shape_gives_its_area_centroid_and_moment_by_the_same_names() -> None:
+    # pymunk's shape.area, shape.center_of_gravity and a moment for a mass, on each shape:
+    # the closed forms, and the Polygon's own (its fine-polygon test is below).
+    m = 3.0
+    disc = Circle((1.0, 2.0), 0.5)
+    assert disc.area == math.pi * 0.25 and disc.centroid == Vector(1.0, 2.0)
+    assert disc.moment(m) == m * (0.5**2 / 2 + 5.0)  # m r^2 / 2, and m |c|^2 off the origin
+    capsule = Segment((1.0, 1.0), (4.0, 5.0), 0.5)
+    assert capsule.area == 0.5 * (math.pi * 0.5 + 10.0)  # r (pi r + 2 L), L = 5
+    assert capsule.centroid == Vector(2.5, 3.0)
+    assert capsule.moment(m) == moment_for_segment(m, (1.0, 1.0), (4.0, 5.0), 0.5)
+    assert Segment((0.0, 0.0), (3.0, 4.0)).area == 0.0  # a bare segment: a line
+    box = Polygon.box(2.0, 5.0, center=(3.0, -4.0))
+    assert box.area == pytest.approx(10.0) and box.centroid == pytest.approx(Vector(3.0, -4.0))
+    assert box.moment(m) == pytest.approx(m * 29.0 / 12 + m * 25.0, rel=1e-14)
 
 
 def test_a_capsule_and_a_rounded_polygon_match_fine_polygons() -> None:

@@ -615,14 +615,17 @@ def test_shape_testMoment() -> None:
 
 def test_shape_testArea() -> None:
     assert area_for_circle(0, 5) == 78.53981633974483
+    assert Circle((0, 0), 5).area == 78.53981633974483  # pymunk's shape.area
 
 
 def test_shape_testCenterOfGravity() -> None:
-    # A uniform disc's centre of gravity is its centre (a Polygon's is its centroid).
-    assert Circle((0, 0), 5).center == (0, 0)
+    # A uniform disc's centre of gravity is its centre: pymunk's center_of_gravity is each
+    # shape's centroid here.
+    assert Circle((0, 0), 5).centroid == (0, 0)
     c = Circle((10, 5), 5)
-    assert c.center.x == 10 and c.center.y == 5
+    assert c.centroid.x == 10 and c.centroid.y == 5
     assert Polygon.box(2, 2, center=(10, 5)).centroid == (10, 5)
+    assert Segment((0, 0), (10, 10), 1).centroid == (5, 5)
 
 
 def test_shape_testSensor() -> None:
