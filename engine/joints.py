@@ -23,7 +23,7 @@ from typing import Any
 
 from . import checks
 from .body import Body
-from .links import STATIC, Link, fixed_point, plane_body, refuse_immobile
+from .links import STATIC, Link, fixed_point, local_anchor, plane_body, refuse_immobile
 from .vector import Vector
 
 __all__ = [
@@ -132,7 +132,12 @@ class Hinge(Joint):
     when made) and turn freely about it; ``limits=(lower, upper)`` (rad) bound the joint's
     angle, and a motor turns body_a relative to body_b at ``motor_speed`` (rad/s) with at
     most ``max_torque`` (N m; inf: as hard as it takes). The two bodies do not collide with
-    each other unless ``collide=True``."""
+    each other unless ``collide=True``.
+
+    Instead of ``point``, ``anchor_a`` and ``anchor_b`` (pymunk's PivotJoint by anchors) give
+    the point in each body's own frame (anchor_b in world coordinates for the static body);
+    they must be one point in the world when the hinge is made (to 1e-9 of the bodies'
+    reach), as a ValueError naming the gap says otherwise."""
 
     __slots__ = ("_limits", "_speed", "_max_torque", "motor_impulse")
 
@@ -140,13 +145,38 @@ class Hinge(Joint):
         self,
         body_a: Any,
         body_b: Any,
-        point: Any,
+        point: Any = None,
         limits: Any = None,
         motor_speed: float | None = None,
         max_torque: float = math.inf,
         collide: bool = False,
+        *,
+        anchor_a: Any = None,
+        anchor_b: Any = None,
     ) -> None:
-        self._setup(body_a, body_b, point, collide)
+        if anchor_a is not None or anchor_b is not None:
+            if point is not None:
+                raise TypeError(
+                    "give the hinge's point (world coordinates) or its anchor_a and anchor_b "
+                    f"(each body's own frame), not both: got point={point!r}, "
+                    f"anchor_a={anchor_a!r}, anchor_b={anchor_b!r}"
+                )
+            point = _meeting(body_a, body_b, anchor_a, anchor_b)
+            self._setup(body_a, body_b, point, collide)
+            # The anchors as given (the point's frames again would round them).
+            self._anchor_a = local_anchor(anchor_a, "anchor_a")
+            if self._other is None:
+                self._point = point
+            else:
+                self._anchor_b = local_anchor(anchor_b, "anchor_b")
+        elif point is None:
+            raise TypeError(
+                "a Hinge needs its point (world coordinates), or anchor_a and anchor_b (each "
+                "body's own frame): Hinge(body_a, body_b, point) or Hinge(body_a, body_b, "
+                "anchor_a=..., anchor_b=...)"
+            )
+        else:
+            self._setup(body_a, body_b, point, collide)
         #: The motor's part of angular_impulse (N m s) in the last step.
         self.motor_impulse = 0.0
         self._limits: tuple[float, float] | None = None
@@ -218,6 +248,26 @@ class Hinge(Joint):
         if self._speed is not None:
             extra += f", motor_speed={self._speed!r}, max_torque={self._max_torque!r}"
         return f"Hinge({self._body!r}, {self.body_b!r}{extra})"
+
+
+def _meeting(body_a: Any, body_b: Any, anchor_a: Any, anchor_b: Any) -> Vector:
+    """The world point where a hinge's anchors meet (anchor_a in body_a's frame, anchor_b in
+    body_b's, or in world coordinates for the static body), or a ValueError naming the gap."""
+    a = plane_body(body_a, "body_a")
+    other = _second(body_b)
+    pa = a.local_to_world(local_anchor(anchor_a, "anchor_a"))
+    if other is None:
+        pb = fixed_point(anchor_b if anchor_b is not None else (0.0, 0.0), "anchor_b")
+    else:
+        pb = other.local_to_world(local_anchor(anchor_b, "anchor_b"))
+    gap = abs(pa - pb)
+    if not gap <= 1e-9 * max(1.0, abs(pa), abs(pb)):
+        raise ValueError(
+            f"a hinge's anchors must be one point in the world when it is made: anchor_a is at "
+            f"{tuple(pa)!r} and anchor_b at {tuple(pb)!r}, {gap:.6g} m apart; move a body by "
+            f"({pb.x - pa.x:.6g}, {pb.y - pa.y:.6g}) first, or give the hinge its point"
+        )
+    return pb if other is None else pa
 
 
 class Weld(Joint):

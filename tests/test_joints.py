@@ -529,3 +529,44 @@ def test_a_hinge_from_a_kinematic_body_to_a_dynamic_one_holds_the_dynamic_one() 
         world.step(1 / 60)
     assert (hinge.end_a() - hinge.end_b()).length() < 1e-9
     assert lift.pos.x == pytest.approx(1.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("solver", ["exact", "soft"])
+def test_a_hinge_made_by_two_anchors_is_the_hinge_made_by_their_point(solver: str) -> None:
+    # pymunk's PivotJoint(a, b, anchor_a, anchor_b): each body's own frame. A plank turned by
+    # 0.3 rad hangs from a wheel by its end; both ways of making the hinge hold the same
+    # anchors and swing the same.
+    runs = []
+    for by_anchors in (False, True):
+        w = World(solver=solver)
+        w.add_force(Gravity((0.0, -9.81)))
+        wheel = w.add(Body(Vector(0.0, 0.0), mass=2.0, shape=Polygon.box(0.4, 0.4)))
+        w.add_link(Pin(wheel, (0.0, 0.0)))
+        plank = w.add(Body(Vector(0.0, 0.0), mass=1.0, shape=Polygon.box(2.0, 0.1), angle=0.3))
+        end = plank.local_to_world(Vector(-1.0, 0.0))
+        plank.pos = plank.pos - end + Vector(0.2, 0.0)  # its end at the wheel's right side
+        if by_anchors:
+            hinge = w.add_link(Hinge(plank, wheel, anchor_a=(-1.0, 0.0), anchor_b=(0.2, 0.0)))
+            assert hinge.anchor_a == Vector(-1.0, 0.0) and hinge.anchor_b == Vector(0.2, 0.0)
+        else:
+            hinge = w.add_link(Hinge(plank, wheel, (0.2, 0.0)))
+            assert abs(hinge.anchor_a - Vector(-1.0, 0.0)) < 1e-15
+        for _ in range(60):
+            w.step(1 / 60)
+        runs.append([*plank.pos, plank.angle, *plank.vel, plank.angular_velocity])
+    # (The point's anchors are the given ones to rounding: the runs agree to rounding.)
+    assert runs[0] == pytest.approx(runs[1], abs=1e-9)
+
+
+def test_a_hinge_by_anchors_to_the_world_and_what_it_refuses() -> None:
+    w = World()
+    box = w.add(Body(Vector(3.0, 2.0), mass=1.0, shape=Polygon.box(1.0, 1.0)))
+    hinge = Hinge(box, w.static_body, anchor_a=(-0.5, 0.5), anchor_b=(2.5, 2.5))
+    assert hinge.point == Vector(2.5, 2.5) and hinge.anchor_a == Vector(-0.5, 0.5)
+    other = w.add(Body(Vector(0.0, 0.0), mass=1.0, radius=0.2))
+    with pytest.raises(ValueError, match=r"0\.3 m apart; move a body by \(0\.3, 0\) first"):
+        Hinge(box, other, anchor_a=(-0.5, 0.0), anchor_b=(2.8, 2.0))
+    with pytest.raises(TypeError, match="not both"):
+        Hinge(box, other, (2.5, 2.0), anchor_a=(-0.5, 0.0), anchor_b=(2.5, 2.0))
+    with pytest.raises(TypeError, match="needs its point"):
+        Hinge(box, other)
