@@ -30,13 +30,12 @@ from __future__ import annotations
 
 import math
 import pickle
-import re
-from pathlib import Path
 
 import pytest
 
 from engine import Body, Circle, ContactEvent, Hinge, Rod, Vector, World
 from engine.forces import Gravity
+from tests.pymunk_tests import check_ported, their_tests
 
 pytestmark = pytest.mark.filterwarnings("ignore::engine.OverlapWarning")
 
@@ -406,20 +405,5 @@ def _ported() -> set[str]:
 
 
 def test_every_pymunk_body_test_is_ported_or_listed() -> None:
-    pymunk = pytest.importorskip("pymunk", reason="pymunk (the bench extra) holds the tests")
-    source = (Path(pymunk.__file__).parent / "tests" / "test_body.py").read_text()
-    theirs, inside = set(), False
-    for line in source.splitlines():
-        m = re.match(r"class (\w+)\(", line)
-        if m:
-            inside = m.group(1) == "UnitTestBody"
-        m = re.match(r"    def (test\w*)\(", line)
-        if m and inside:
-            theirs.add(f"test_body.{m.group(1)}")
-    assert len(theirs) > 20, "pymunk's test_body.py was not read"
-    ported = _ported()
-    unsaid = theirs - ported - set(MISSING)
-    assert not unsaid, f"pymunk tests neither ported nor listed in MISSING: {sorted(unsaid)}"
-    stale = (set(MISSING) | ported) - theirs
-    assert not stale, f"ported or MISSING names tests pymunk does not have: {sorted(stale)}"
-    assert not (ported & set(MISSING)), "a test both ported and listed as missing"
+    theirs = their_tests("test_body.py", lambda cls: "test_body" if cls == "UnitTestBody" else None)
+    check_ported(theirs, _ported(), set(MISSING), least=20)

@@ -33,7 +33,6 @@ import gc
 import math
 import pickle
 import re
-from pathlib import Path
 from typing import Any
 
 import pytest
@@ -48,6 +47,7 @@ from engine import (
     Vector,
     World,
 )
+from tests.pymunk_tests import check_ported, their_tests
 
 pytestmark = pytest.mark.filterwarnings("ignore::engine.OverlapWarning")
 
@@ -630,20 +630,7 @@ def _ported() -> set[str]:
 
 
 def test_every_pymunk_constraint_test_is_ported_or_listed() -> None:
-    pymunk = pytest.importorskip("pymunk", reason="pymunk (the bench extra) holds the tests")
-    source = (Path(pymunk.__file__).parent / "tests" / "test_constraint.py").read_text()
-    theirs, cls = set(), None
-    for line in source.splitlines():
-        m = re.match(r"class (\w+)\(", line)
-        if m:
-            cls = m.group(1).removeprefix("UnitTest")
-        m = re.match(r"    def (test\w*)\(", line)
-        if m and cls:
-            theirs.add(f"test_constraint.{cls}.{m.group(1)}")
-    assert len(theirs) > 40, "pymunk's test_constraint.py was not read"
-    ported = _ported()
-    unsaid = theirs - ported - set(MISSING)
-    assert not unsaid, f"pymunk tests neither ported nor listed in MISSING: {sorted(unsaid)}"
-    stale = (set(MISSING) | ported) - theirs
-    assert not stale, f"ported or MISSING names tests pymunk does not have: {sorted(stale)}"
-    assert not (ported & set(MISSING)), "a test both ported and listed as missing"
+    theirs = their_tests(
+        "test_constraint.py", lambda cls: "test_constraint." + cls.removeprefix("UnitTest")
+    )
+    check_ported(theirs, _ported(), set(MISSING), least=40)
