@@ -33,6 +33,7 @@ from .joints import Hinge, Weld
 from .links import Cable, Link, Pin, Rod
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
 from .mouse_joint import MouseJoint
+from .solver_choice import SolverWarning
 from .springs import DampedRotarySpring, DampedSpring
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
@@ -65,6 +66,7 @@ __all__ = [
     "VirtualClock",
     "RealClock",
     "Steppable",
+    "SolverWarning",
     "StabilityWarning",
     "SimulationDiverged",
     "colliders",

@@ -43,6 +43,7 @@ from . import (
     membership,
     queries,
     readout,
+    solver_choice,
     stepping,
 )
 from . import snapshot as snapshots
@@ -65,6 +66,7 @@ from .policy import METHODS, MethodPolicy
 from .queries import QueryHit
 from .query_grid import QueryIndex
 from .snapshot import WorldSnapshot
+from .solver_choice import SOLVERS
 from .springs import BodySpring
 from .stepping import SUBSTEPS_AT_IMPACT as SUBSTEPS_AT_IMPACT  # README: engine.world's
 from .world_state import WorldState
@@ -115,7 +117,11 @@ class World:
     (``engine.game_step``, ``engine.solver``): every contact and joint solved together in
     substeps, fast and steady for piles, platformers and pinball tables, with the errors a
     game accepts (a box rests 0.07 mm into the floor; a hinge gives under load by what its
-    60 Hz spring allows). ``world.solver`` says which this World runs.
+    60 Hz spring allows). ``"auto"``: the World chooses by the scene as it is at its first
+    step (engine.solver_choice): the soft step where a body with corners is pushed by its
+    contacts or a joint only the soft step solves is held, the exact models otherwise (discs
+    and points, a 1D world). ``world.solver`` says which this World runs, and
+    ``world.solver_reason`` why.
     """
 
     def __init__(
@@ -125,13 +131,13 @@ class World:
         kernels: str | None = None,
         solver: str = "exact",
     ) -> None:
-        if solver not in ("exact", "soft"):
+        if not isinstance(solver, str) or solver not in SOLVERS:
             raise ValueError(
-                f"solver must be 'exact' (a lesson's exact models) or 'soft' (a game's soft "
-                f"step), got {solver!r}"
+                f"solver must be 'exact' (a lesson's exact models), 'soft' (a game's soft "
+                f"step) or 'auto' (chosen by the scene), got {solver!r}"
             )
         self._s = WorldState(self, MethodPolicy(integrator, tolerance), kernels_path(kernels))
-        self._s.solver = solver
+        self._s.solver = self._s.solver_asked = solver
         if solver == "soft":
             self._s.game = GameStep(self._s.kernels == "fast")
         self._s.events.view = event_dispatch.EventView(self._s)
@@ -526,8 +532,24 @@ class World:
 
     @property
     def solver(self) -> str:
-        """How this World solves contacts and joints: ``"exact"`` or ``"soft"`` (class doc)."""
-        return self._s.solver
+        """How this World solves contacts and joints: ``"exact"`` or ``"soft"`` (class doc);
+        with ``solver="auto"``, what it chose at its first step, or would choose now before
+        it."""
+        s = self._s
+        if s.solver == "auto":
+            return solver_choice.choose(s.bodies, s.links, s.dim)[0]
+        return s.solver
+
+    @property
+    def solver_reason(self) -> str:
+        """One line saying why ``solver`` is the solver in use."""
+        s = self._s
+        if s.solver_asked != "auto":
+            return f"asked for: World(solver={s.solver_asked!r})"
+        if s.solver == "auto":
+            why = solver_choice.choose(s.bodies, s.links, s.dim)[1]
+            return f"auto, before the first step: {why}"
+        return f"auto, chosen at the first step: {s.solver_reason}"
 
     @property
     def kernels(self) -> str:
@@ -551,6 +573,8 @@ class World:
             # A new dt, or something changed since the last step. (The method is chosen here,
             # so that the policy's StabilityWarning points at the line that called step.)
             dt = check_dt(dt)
+            if s.solver_asked == "auto" and s.bodies:
+                s.settle_solver()
             model = s.ready()
             name = s.policy.method_for(dt, s.version, model, s.state_now)
             plan = stepping.plan(s, dt, model, name)

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from . import solver_choice
 from .affine import AffineKernel, StepCount, safe_steps
 from .body import Body
 from .body_habits import mass_and_moment
@@ -103,7 +104,11 @@ class WorldState:
         self.drags = MouseJoints()  # mouse joints (engine.mouse_joint)
         # The solver of contacts and joints: "exact" (the lesson's models: engine.stepping)
         # or "soft" (a game's: engine.game_step, whose state this is then).
-        self.solver = "exact"
+        # solver_asked: what World(solver=...) was given; solver: the one in force ("auto"
+        # until the first step chooses: engine.solver_choice), and why.
+        self.solver = self.solver_asked = "exact"
+        self.solver_reason = ""
+        self.solver_warned: set[str] = set()
         self.game: GameStep | None = None
 
     # -- time ----------------------------------------------------------------------------------
@@ -191,6 +196,20 @@ class WorldState:
         self.collisions.iterations = value
         if self.game is not None:
             self.game.substeps = value  # the soft step's substeps (engine.game_step)
+
+    def settle_solver(self) -> None:
+        """Under ``solver="auto"``: choose the solver from the scene now, once (the first
+        step), and after it warn once if the scene has outgrown the exact models
+        (engine.solver_choice)."""
+        if self.solver == "auto":
+            self.solver, self.solver_reason = solver_choice.choose(
+                self.bodies, self.links, self.dim
+            )
+            if self.solver == "soft":
+                self.game = GameStep(self.kernels == "fast")
+                self.game.substeps = self.collisions.iterations
+        elif self.solver == "exact" and "outgrown" not in self.solver_warned:
+            solver_choice.warn_if_outgrown(self.bodies, self.links, self.solver_warned)
 
     def set_asleep(self, row: int, asleep: bool) -> None:
         """Put body ``row`` to sleep now with the awake bodies touching it (Body.sleep), or wake
