@@ -27,6 +27,14 @@ from . import (
 )
 from .body import Body
 from .colliders import Box, Circle, Collider, Plane, Polygon, Segment
+from .constraints import (
+    GearJoint,
+    GrooveJoint,
+    RatchetJoint,
+    RotaryLimitJoint,
+    SimpleMotor,
+    SlideJoint,
+)
 from .events import ContactEvent
 from .filters import Filter
 from .joints import Hinge, Weld
@@ -57,6 +65,12 @@ __all__ = [
     "Link",
     "Hinge",
     "Weld",
+    "SlideJoint",
+    "GrooveJoint",
+    "GearJoint",
+    "RatchetJoint",
+    "RotaryLimitJoint",
+    "SimpleMotor",
     "DampedSpring",
     "DampedRotarySpring",
     "MouseJoint",

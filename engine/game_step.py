@@ -24,8 +24,8 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor). On the
    fast path stages 2 to 4 are one compiled call (engine.game_contacts.contacts_loop), the
    same bits.
-5. ``_joints``: the hinges, welds and mouse joints as the solver's joints, warm started from
-   their last impulses.
+5. ``_joints``: the hinges, welds, mouse joints, links, springs and pymunk's constraints
+   (engine.constraints) as the solver's joints, warm started from their last impulses.
 6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
    relax), restitution, the impulses kept (engine.solver). The bodies move by its substeps of
    semi-implicit Euler whatever the World's integrator, which moves them only in a World
@@ -36,8 +36,8 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    (engine.game_contacts.report_loop).
 8. ``_sleep``: still islands fall asleep (engine.game_sleep); a sleeper's contacts stay open.
 
-What this step does not do yet, and says so (``World.solver``'s error): rods, cables, pins,
-springs and 1D worlds are the exact pipeline's. A mouse joint is Box2D's here: a soft spring
+What this step does not do yet, and says so (``World.solver``'s error): 1D worlds are the
+exact pipeline's. A mouse joint is Box2D's here: a soft spring
 that sags by g / omega^2 under a body's weight (the exact pipeline's holds it at the target).
 A body faster than its speculative margin can catch (what it and the other can move in the
 step, so any speed against a wall) is not swept for its moment of impact.
@@ -54,6 +54,15 @@ import numpy as np
 from . import game_broadphase as broad
 from . import game_sleep, narrowphase, solver
 from .colliders import Collider
+from .constraints import (
+    GearJoint,
+    GrooveJoint,
+    RatchetJoint,
+    RotaryLimitJoint,
+    SimpleMotor,
+    SlideJoint,
+    SoftJoint,
+)
 from .events import COLLIDER, collider_keys, pair_keys
 from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop, report_loop
 from .joints import Hinge, Joint, Weld
@@ -391,8 +400,10 @@ class GameStep:
         n = len(store)
         rows = found.rows
         pair = rows[1] < n
-        a = np.concatenate([rows[0][pair], joints[2][joints[1] < n]])
-        b = np.concatenate([rows[1][pair], joints[1][joints[1] < n]])
+        # A joint joins an island where both its ends are bodies (either may be the world).
+        both = (joints[1] < n) & (joints[2] < n)
+        a = np.concatenate([rows[0][pair], joints[2][both]])
+        b = np.concatenate([rows[1][pair], joints[1][both]])
         a, b = np.minimum(a, b), np.maximum(a, b)
         c._touching = a.astype(np.int64) * n + b  # for Body.sleep's island
         before = c.asleep.copy()  # (those asleep through the step: ~awake, but kinematic)
@@ -568,6 +579,10 @@ class GameStep:
             ]  # fmt: skip
             rows.append(row)
         for j in joints:
+            if isinstance(j, SoftJoint):
+                kept = self.joint_impulses.get(id(j), (0.0,) * 6)
+                rows.append(_constraint_row(j, store, n, kept))
+                continue
             if not isinstance(j, Joint):
                 rows.append(self._link_row(j, store, n))
                 continue
@@ -588,7 +603,7 @@ class GameStep:
                 j.reference_angle,
                 hertz,
                 zeta,
-                0 if lim is None else 1,
+                0 if lim is None else 3,  # both limits
                 0.0 if lim is None else lim[0],
                 0.0 if lim is None else lim[1],
                 0 if speed is None else 1,
@@ -626,8 +641,9 @@ class GameStep:
         if isinstance(link, Pin):
             return [solver.HINGE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 0, 0.0,
                     0.0, 0, 0.0, 0.0, *kept]  # fmt: skip
+        # A rod holds its length both ways (least = most); a cable at most (the upper limit).
         least = link.length if link.rigid else 0.0
-        return [solver.DISTANCE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 0, least,
+        return [solver.DISTANCE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 2, least,
                 link.length, 0, link.restitution, 0.0, *kept]  # fmt: skip
 
     def _keep_joints(self, joints: list[Any], out: list[Any]) -> None:
@@ -639,6 +655,10 @@ class GameStep:
         for i, j in enumerate(joints):
             px, py, pa, lo, hi, mi = (float(out[base + c][i]) for c in range(6))
             kept[id(j)] = (px, py, pa, lo, hi, mi)
+            if isinstance(j, SoftJoint):
+                ends = (int(out[base - 15][i]), int(out[base - 14][i]))  # (ja, jb)
+                _report_constraint(j, ends, (px, py, pa, lo, hi, mi), k, out)
+                continue
             if isinstance(j, MouseJoint):
                 j.impulse = Vector(px * k, py * k)  # on the body, over the step
                 continue
@@ -740,6 +760,87 @@ def _spring_row(spring: BodySpring, store: Any, n: int) -> list[Any]:
         pa = pb = Vector(0.0, 0.0)
     return [kind, a, b, pa.x, pa.y, pb.x, pb.y, 0.0, spring.stiffness, spring.damping, 0, rest,
             0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]  # fmt: skip
+
+
+def _constraint_row(j: SoftJoint, store: Any, n: int, kept: tuple[float, ...]) -> list[Any]:
+    """A pymunk constraint's row (engine.constraints; engine.solver's kinds): the solver's A
+    its body_a, B its body_b (the static body ``n`` for the world, its anchors then in world
+    coordinates), so that angle_B - angle_A is pymunk's b.angle - a.angle."""
+    a = n if j._a is None else store.row(j._a.slot)
+    b = n if j._b is None else store.row(j._b.slot)
+    kind, ref, lower, upper, speed, most = solver.ROTARY, 0.0, 0.0, 0.0, 0.0, 0.0
+    limit, motor = 0, 0
+    pa, pb = j.anchor_a, j.anchor_b
+    if isinstance(j, SlideJoint):
+        # A distance: at most max apart, at least min (the least's row on where min > 0).
+        kind, lower, upper, limit = solver.DISTANCE, j.min, j.max, 3 if j.min > 0.0 else 2
+    elif isinstance(j, GrooveJoint):
+        # A's anchor the groove's start, its direction the axis, its length the upper limit.
+        kind, limit = solver.GROOVE, 3
+        ref, upper = j.axis
+    elif isinstance(j, GearJoint):
+        kind, ref, speed = solver.GEAR, j.phase, j.ratio
+    elif isinstance(j, RotaryLimitJoint):
+        limit, lower, upper = 3, j.min, j.max
+    elif isinstance(j, RatchetJoint):
+        # One limit at the notch, moved on from the angles the step starts at: the lower for
+        # a ratchet that turns up freely, the upper for one that turns down.
+        delta = (0.0 if j._b is None else float(store.angle[b])) - (
+            0.0 if j._a is None else float(store.angle[a])
+        )
+        lower = upper = j._advance(delta)
+        limit = 1 if j.ratchet > 0.0 else 2
+    else:
+        assert isinstance(j, SimpleMotor)
+        # The hinge's motor row drives omega_B - omega_A: pymunk's rate is omega_a - omega_b.
+        motor, speed, most = 1, -j.rate, min(j.max_torque, 1e300)
+    return [kind, a, b, pa.x, pa.y, pb.x, pb.y, ref, 0.0, 0.0, limit, lower, upper, motor, speed,
+            most, *kept]  # fmt: skip
+
+
+def _report_constraint(
+    j: SoftJoint, rows: tuple[int, int], impulses: tuple[float, ...], k: int, out: list[Any]
+) -> None:
+    """A pymunk constraint's impulses over the step, given body_a (engine.constraints), from
+    the solver's last substep's (``impulses``: jpx, jpy, jpa, jlo, jhi, jmi) times its ``k``
+    substeps; ``rows`` its ends' rows in ``out``, the solver's arrays after the step."""
+    _, _, pa, lo, hi, mi = impulses
+    j.linear_impulse, j.angular_impulse = Vector(0.0, 0.0), 0.0
+    a, b = rows
+    n = len(out[0]) - 1  # (the static body's row)
+    if isinstance(j, SlideJoint):
+        # Along the joint as it is at the step's end, > 0 pulling, as a rod's.
+        j.impulse = (hi - lo - pa) * k
+        d = _at_end(out, b, n, j.anchor_b) - _at_end(out, a, n, j.anchor_a)
+        length = d.length()
+        j.linear_impulse = d * (j.impulse / length) if length > 0.0 else Vector(0.0, 0.0)
+        return
+    if isinstance(j, GrooveJoint):
+        # Along the groove and across it, as it is at the step's end.
+        angle, _ = j.axis
+        turn = 0.0 if a == n else float(out[2][a])
+        u = Vector(math.cos(angle + turn), math.sin(angle + turn))
+        # On body_b: the ends' push along u, the point's across (n = (-u_y, u_x)).
+        on_b = u * ((lo - hi) * k) + Vector(-u.y, u.x) * (pa * k)
+        j.linear_impulse = -on_b
+        j.impulse = on_b.length()
+        return
+    if isinstance(j, GearJoint):
+        j.angular_impulse = -pa * k  # body_b took ratio times its opposite
+    else:
+        j.angular_impulse = -(mi + lo - hi) * k
+    j.impulse = abs(j.angular_impulse)
+
+
+def _at_end(out: list[Any], row: int, n: int, local: Vector) -> Vector:
+    """The point ``local`` of the body in ``row`` (its own frame; the static body's, world
+    coordinates) where the solver's step left it (``out``: its x, y and angle arrays first)."""
+    if row == n:
+        return local
+    q = float(out[2][row])
+    c, s = math.cos(q), math.sin(q)
+    x, y = float(out[0][row]), float(out[1][row])
+    return Vector(x + c * local.x - s * local.y, y + s * local.x + c * local.y)
 
 
 def _bodies(

@@ -46,7 +46,7 @@ The error after a step: every rod's length, and every taut cable's, equals its l
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -143,6 +143,9 @@ class Link:
 
     #: Whether the link holds the distance both ways (a rod) or only at most (a cable).
     rigid = True
+    #: Whether only the soft step's solver holds it (engine.constraints' joints); the exact
+    #: models hold every other link.
+    needs_soft: ClassVar[bool] = False
 
     def __init__(
         self,

@@ -190,18 +190,33 @@ def add_force(
 
 
 def add_link(state: WorldState, link: LinkT) -> LinkT:
-    """Add a link (``engine.links``: Rod, Cable, Pin; ``engine.joints``: Hinge, Weld)
-    between bodies of this World, or a body and a fixed point, and return it. A pinned body
-    is moved to its pin at once (its anchor onto the point)."""
+    """Add a link (``engine.links``: Rod, Cable, Pin; ``engine.joints``: Hinge, Weld;
+    ``engine.constraints``: pymunk's, the soft step's alone) between bodies of this World, or a
+    body and a fixed point, and return it. A pinned body is moved to its pin at once (its
+    anchor onto the point)."""
     if not isinstance(link, Link):
         raise TypeError(
-            f"add_link takes a link from engine.links (Rod, Cable, Pin) or a joint from "
-            f"engine.joints (Hinge, Weld), got "
+            f"add_link takes a link from engine.links (Rod, Cable, Pin), a joint from "
+            f"engine.joints (Hinge, Weld) or engine.constraints (SlideJoint, GrooveJoint, "
+            f"GearJoint, RatchetJoint, RotaryLimitJoint, SimpleMotor), got "
             f"{type(link).__name__} {link!r}"
         )
     if any(k is link for k in state.links):
         raise ValueError(
             f"that link is already in this World (a link is added only once): {link!r}"
+        )
+    if link.needs_soft and state.solver == "exact":
+        name = type(link).__name__
+        why = (
+            "solver='auto' chose them at its first step, and keeps them once the World moves"
+            if state.solver_asked == "auto"
+            else "solver='exact'"
+        )
+        raise ValueError(
+            f"a {name} is a row of the soft step's solver alone, and this World runs the exact "
+            f"models ({why}), which do not hold it: make the World with "
+            f"World(solver='soft'), or World(solver='auto'), which chooses the soft step when "
+            f"the scene holds a {name} at its first step"
         )
     for b in link.bodies:
         if b.world is not state.world:

@@ -61,6 +61,29 @@ only pulls; speculative while slack, as a contact), with the axial mass
 1 / (w_A + w_B + i_A (r_A x u)^2 + i_B (r_B x u)^2). A cable that snapped taut faster than
 ``THRESHOLD`` parts its ends again at its restitution times the speed it met them at, in the
 restitution pass, as a contact does.
+**Limits** (Box2D's joint limits) are one-sided rows C >= 0: speculative while open (C > 0:
+the row may close by C in the substep, bias C / h, no more, as a contact), soft (the joints'
+spring) once closed, in the solve with bias, and rigid in the relax; the impulse summed over
+the substep is kept >= 0 (``limit``). A hinge's angle limits, a cable's most length and a
+slide joint's least, a groove's ends and a ratchet's notch are such rows.
+**A groove** (pymunk's GrooveJoint; Box2D's prismatic joint without its angular row, spring
+and motor) keeps B's anchor on A's segment from A's anchor along the unit axis u (turned as A
+turns) for ``jupper`` m. With d = (c_B + r_B) - (c_A + r_A) the translation is t = u.d and
+the error across C = n.d, n = (-u_y, u_x). As u turns with A (du/dt = omega_A x u),
+
+    dt/dt = u.(v_B - v_A) + (r_B x u) omega_B - ((d + r_A) x u) omega_A,
+
+the relative velocity of B's anchor and the point of A under it, along u: each row acts on A
+at the lever d + r_A (B's anchor) and on B at r_B, its mass 1 / (w_A + w_B + i_A ((d + r_A) x
+u)^2 + i_B (r_B x u)^2) (n for u across). The ends are limits, t >= 0 and jupper - t >= 0;
+across, a soft equality row C = n.d = 0. B turns freely (pymunk's; Box2D's holds the angle).
+**A gear** (pymunk's GearJoint) holds C = r angle_B - angle_A - phase (r the ratio): the
+Jacobian (-1, r) on (omega_A, omega_B), the mass 1 / (i_A + r^2 i_B), an impulse lam turning
+A by -i_A lam and B by r i_B lam; a soft equality row (Chipmunk's jAcc is r lam).
+**An angle's rows alone** (ROTARY: pymunk's RotaryLimitJoint, RatchetJoint, SimpleMotor) are
+the hinge's motor and limit rows without its point: a rotary limit both limits on angle_B -
+angle_A, a ratchet one of them at its notch (moved on notch by notch before each step,
+Chipmunk's way: engine.constraints), a motor the motor row.
 **A spring** (pymunk's DampedSpring, k the stiffness, c the damping) is a force, not a row to
 meet: once a substep, before the rows, it gives the impulse -k (L - rest) h along u (explicit,
 from the length at the substep's start, as pymunk's), then its damper takes the speed along u
@@ -97,6 +120,9 @@ __all__ = [
     "WELD",
     "MOUSE",
     "DISTANCE",
+    "GROOVE",
+    "GEAR",
+    "ROTARY",
     "SPRING",
     "ROTARY_SPRING",
     "solve",
@@ -118,9 +144,12 @@ PUSH_SPEED = 3.0
 THRESHOLD = 1.0
 #: Joint kinds, by code: a hinge, a weld, a mouse joint (a point pulled to a target by a
 #: spring of its own frequency and damping, its force bounded), a distance between two anchors
-#: (a Rod held at its length, a Cable at most its length), a spring between two anchors
-#: (pymunk's DampedSpring) and one between two angles (DampedRotarySpring).
-HINGE, WELD, MOUSE, DISTANCE, SPRING, ROTARY_SPRING = 0, 1, 2, 3, 4, 5
+#: (a Rod held at its length, a Cable at most its length, a SlideJoint between the two), a
+#: groove (pymunk's GrooveJoint), a gear (GearJoint), an angle's limits and motor alone
+#: (RotaryLimitJoint, RatchetJoint, SimpleMotor), a spring between two anchors (pymunk's
+#: DampedSpring) and one between two angles (DampedRotarySpring). The springs come last: a
+#: kind >= SPRING is a force, not a row.
+HINGE, WELD, MOUSE, DISTANCE, GROOVE, GEAR, ROTARY, SPRING, ROTARY_SPRING = range(9)
 
 
 def _sample() -> tuple[Any, ...]:
@@ -182,20 +211,22 @@ def solve(
     (warm start), this step's out; ``ctotal`` out: the normal impulse over the whole step;
     ``cmax`` out: the largest a substep applied.
 
-    Joints (nj): ``jkind`` HINGE, WELD, MOUSE or DISTANCE, bodies ``ja``, ``jb`` and their local
+    Joints (nj): ``jkind`` (HINGE ... ROTARY_SPRING), bodies ``ja``, ``jb`` and their local
     anchors (m, in each body's frame about its position; the static body's in world
     coordinates: a mouse joint's target), ``jref`` angle_B - angle_A at rest (rad); a weld's
-    or mouse joint's ``jhertz`` and ``jdamp`` (a weld's 0 Hz: rigid); a hinge's limits
-    (``jlimit`` 1 on, ``jlower``, ``jupper`` rad on angle_B - angle_A - jref) and motor
-    (``jmotor`` 1 on, ``jspeed`` rad/s, ``jmaxtorque`` N m); a mouse joint's angular damping
-    (``jspeed``, 1/s) and largest force (``jmaxtorque``, N); a distance's lengths (``jlower``,
-    ``jupper`` m: equal for a rod, 0 and the length for a cable) and a cable's restitution
-    (``jspeed``); impulses (N s, N m s a substep) in and out: ``jpx``, ``jpy`` the point's,
-    ``jpa`` a weld's angle's (a rod's, along u), ``jlo``, ``jhi`` the limits' (a cable's,
-    pulling, in ``jhi``), ``jmi`` the motor's. A spring's rest length or angle is ``jlower``
-    (m, rad), its stiffness ``jhertz`` (N/m, N m/rad), its damping ``jdamp`` (N s/m, N m s/rad);
-    its ``jpa`` out is the impulse it gave over the whole step (along u, or on B's angle), and
-    is not warm started.
+    or mouse joint's ``jhertz`` and ``jdamp`` (a weld's 0 Hz: rigid); which limits are on
+    (``jlimit``: 1 the lower, 2 the upper, 3 both) and where (``jlower``, ``jupper``): a
+    hinge's or ROTARY's on angle_B - angle_A - jref (rad), a distance's on its length (m:
+    equal, a rod, held both ways), a groove's on B's anchor along it (m: 0 and its length; A's
+    anchor its start, ``jref`` its direction in A's frame, rad); a motor (``jmotor`` 1 on,
+    ``jspeed`` rad/s, ``jmaxtorque`` N m); a mouse joint's angular damping (``jspeed``, 1/s)
+    and largest force (``jmaxtorque``, N); a cable's restitution (``jspeed``); a gear's phase
+    (``jref``, rad) and ratio (``jspeed``); impulses (N s, N m s a substep) in and out:
+    ``jpx``, ``jpy`` the point's, ``jpa`` a weld's angle's (a rod's along u, a groove's across
+    it, a gear's), ``jlo``, ``jhi`` the limits' (a cable's, pulling, in ``jhi``), ``jmi`` the
+    motor's. A spring's rest length or angle is ``jlower`` (m, rad), its stiffness
+    ``jhertz`` (N/m, N m/rad), its damping ``jdamp`` (N s/m, N m s/rad); its ``jpa`` out is the
+    impulse it gave over the whole step (along u, or on B's angle), and is not warm started.
     """
     nb = len(bx)
     nc = len(ca)
@@ -238,6 +269,24 @@ def solve(
     a1 = 2.0 * joint_damping + h * omega
     a2 = h * omega * a1
     j_rate, j_mass, j_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+
+    def soft(bias: bool) -> tuple[float, float, float]:
+        """An equality row's (bias rate, mass scale, impulse scale): the joints' spring in the
+        solve with bias, rigid with no push in the relax."""
+        if bias:
+            return j_rate, j_mass, j_imp
+        return 0.0, 1.0, 0.0
+
+    def limit(err: float, cdot: float, mass: float, old: float, bias: bool) -> float:
+        """A limit's row (module doc) solved once: C = err >= 0, dC/dt = cdot, of ``mass``; its
+        impulse of the substep so far ``old`` made new (>= 0: a limit only pushes)."""
+        rate, mscale, iscale = 0.0, 1.0, 0.0
+        if err > 0.0:
+            rate = inv_h  # speculative: may close by err in the substep, no more
+        elif bias:
+            rate, mscale, iscale = j_rate, j_mass, j_imp
+        d = -mscale * mass * (cdot + rate * err) - iscale * old
+        return max(old + d, 0.0)
 
     def press(
         p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
@@ -375,6 +424,9 @@ def solve(
     # A distance's parting speed at the start (m/s), and whether its cable pulled in the step.
     drel = floats(nj, 0.0)
     dhit = floats(nj, 0.0)
+    # A groove's unit axis at the start, in the world's axes.
+    gux = floats(nj, 0.0)
+    guy = floats(nj, 0.0)
 
     def axis(
         k: int, a: int, b: int, rax: float, ray: float, rbx: float, rby: float
@@ -397,54 +449,52 @@ def solve(
         kk = bim[a] + bim[b] + bii[a] * ca_ * ca_ + bii[b] * cb_ * cb_
         return 1.0 / kk if kk > 0.0 else 0.0
 
-    def distance(k: int, bias: bool, rax: float, ray: float, rbx: float, rby: float) -> None:
-        """Distance k's rows (module doc) solved once: a rod's length, else a cable's most
-        (and a least, where ``jlimit`` asks), each a soft row, speculative while open."""
+    def slide(
+        k: int, bias: bool, ux: float, uy: float, t: float, lax: float, lay: float, rbx: float,
+        rby: float, across: float,
+    ) -> None:  # fmt: skip
+        """Joint k's rows along the unit axis u (a distance's or a groove's: module doc) solved
+        once, each acting on A at the lever (lax, lay) and on B at r_B, t the translation along
+        u: a rod's length (C = t - jupper, either sign), else t's limits (t >= jlower where
+        ``jlimit``'s bit 1 asks, t <= jupper where its bit 2 does), then a groove's point
+        across u (C = ``across`` = n.d, n = (-u_y, u_x))."""
         a = ja[k]
         b = jb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
-        ux, uy, length = axis(k, a, b, rax, ray, rbx, rby)
-        mass = axial_mass(a, b, ux, uy, rax, ray, rbx, rby)
-        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-        cdot = dvx * ux + dvy * uy  # > 0: the anchors part
-        if jlower[k] == jupper[k]:
-            # A rod: C = L - length, pushed (lam > 0) or pulled along u.
-            rate, mscale, iscale = 0.0, 1.0, 0.0
-            if bias:
-                rate, mscale, iscale = j_rate, j_mass, j_imp
-            d = -mscale * mass * (cdot + rate * (length - jupper[k])) - iscale * jpa[k]
-            jpa[k] += d
-            apply(a, b, ma, ia, mb, ib, d * ux, d * uy, rax, ray, rbx, rby)
-            return
-        for side in range(2):
-            if side == 0:
-                if jlimit[k] == 0:
-                    continue
-                err = length - jlower[k]  # >= 0: the anchors at least jlower apart
-                rel_ = cdot
-                old = jlo[k]
+        rod = jkind[k] == DISTANCE and jlower[k] == jupper[k]
+        for row in range(3):
+            nx, ny = ux, uy
+            if row == 2:
+                if not rod and jkind[k] != GROOVE:
+                    break
+                if not rod:
+                    nx, ny = -uy, ux
+            elif rod or ((jlimit[k] >> row) & 1) == 0:
+                continue
+            mass = axial_mass(a, b, nx, ny, lax, lay, rbx, rby)
+            dvx, dvy = relative(a, b, lax, lay, rbx, rby)
+            cdot = dvx * nx + dvy * ny  # (along u: > 0, the anchors part)
+            if row < 2:
+                # The least: C = t - jlower >= 0, pushing B along u; the most: C = jupper - t
+                # >= 0, pulling B back along -u (a cable's pull).
+                sign = 1.0 if row == 0 else -1.0
+                old = jlo[k] if row == 0 else jhi[k]
+                err = t - jlower[k] if row == 0 else jupper[k] - t
+                new = limit(err, sign * cdot, mass, old, bias)
+                d = sign * (new - old)
+                if row == 0:
+                    jlo[k] = new
+                else:
+                    jhi[k] = new
+                    if new > 0.0:
+                        dhit[k] = 1.0
             else:
-                err = jupper[k] - length  # >= 0: at most jupper apart
-                rel_ = -cdot
-                old = jhi[k]
-            rate, mscale, iscale = 0.0, 1.0, 0.0
-            if err > 0.0:
-                rate = inv_h  # speculative: may close by err in the substep, no more
-            elif bias:
-                rate, mscale, iscale = j_rate, j_mass, j_imp
-            d = -mscale * mass * (rel_ + rate * err) - iscale * old
-            new = max(old + d, 0.0)
-            d = new - old
-            if side == 0:
-                jlo[k] = new
-            else:
-                jhi[k] = new
-                d = -d  # the cable pulls: along -u
-                if new > 0.0:
-                    dhit[k] = 1.0
-            apply(a, b, ma, ia, mb, ib, d * ux, d * uy, rax, ray, rbx, rby)
-            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-            cdot = dvx * ux + dvy * uy
+                # A rod's length, or a groove's point across: a soft equality row.
+                rate, mscale, iscale = soft(bias)
+                err = t - jupper[k] if rod else across
+                d = -mscale * mass * (cdot + rate * err) - iscale * jpa[k]
+                jpa[k] += d
+            apply(a, b, ma, ia, mb, ib, d * nx, d * ny, lax, lay, rbx, rby)
 
     def spring(k: int, rax: float, ray: float, rbx: float, rby: float) -> None:
         """Spring k's impulses over a substep (module doc): its stiffness', explicit, then its
@@ -486,7 +536,14 @@ def solve(
         cx0[k] = x0[b] - x0[a]
         cy0[k] = y0[b] - y0[a]
         ki = bii[a] + bii[b]
+        if jkind[k] == GEAR:
+            ki = bii[a] + jspeed[k] * jspeed[k] * bii[b]  # J = (-1, r): i_A + r^2 i_B
         amass[k] = 1.0 / ki if ki > 0.0 else 0.0
+        if jkind[k] == GROOVE:
+            c, s = math.cos(q0[a]), math.sin(q0[a])
+            gx, gy = math.cos(jref[k]), math.sin(jref[k])
+            gux[k] = c * gx - s * gy
+            guy[k] = s * gx + c * gy
         if jkind[k] >= SPRING:
             jpa[k] = 0.0  # (a force: what it gives is summed over the step, not carried)
         elif jhertz[k] > 0.0:
@@ -525,6 +582,20 @@ def solve(
                 # Along the axis now: lam u, lam = the rod's or least's push less the pull.
                 ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
                 px, py, axial = axial * ux, axial * uy, 0.0
+            elif jkind[k] == GROOVE:
+                # The ends' push along the axis now and the point's across it (jpa), at B's
+                # anchor (on A at d + r_A).
+                ux = cq[a] * gux[k] - sq[a] * guy[k]
+                uy = sq[a] * gux[k] + cq[a] * guy[k]
+                rax += (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+                ray += (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+                along = jlo[k] - jhi[k]
+                px, py = along * ux - jpa[k] * uy, along * uy + jpa[k] * ux
+                axial = 0.0
+            elif jkind[k] == GEAR:
+                bw[a] -= ia * axial
+                bw[b] += jspeed[k] * ib * axial
+                continue
             bvx[a] -= ma * px
             bvy[a] -= ma * py
             bw[a] -= ia * (rax * py - ray * px + axial)
@@ -557,15 +628,40 @@ def solve(
                             cq[b] * fbx[k] - sq[b] * fby[k], sq[b] * fbx[k] + cq[b] * fby[k],
                         )  # fmt: skip
                     continue
-                if jkind[k] == DISTANCE:
-                    distance(
-                        k, bias,
-                        cq[a] * fax[k] - sq[a] * fay[k], sq[a] * fax[k] + cq[a] * fay[k],
-                        cq[b] * fbx[k] - sq[b] * fby[k], sq[b] * fbx[k] + cq[b] * fby[k],
-                    )  # fmt: skip
+                if jkind[k] == DISTANCE or jkind[k] == GROOVE:
+                    rax = cq[a] * fax[k] - sq[a] * fay[k]
+                    ray = sq[a] * fax[k] + cq[a] * fay[k]
+                    rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+                    rby = sq[b] * fbx[k] + cq[b] * fby[k]
+                    if jkind[k] == DISTANCE:
+                        # Along the anchors' line: t its length, the levers the anchors.
+                        ux, uy, t = axis(k, a, b, rax, ray, rbx, rby)
+                        lax, lay, across = rax, ray, 0.0
+                    else:
+                        # A groove: the axis turned as A has since the start, d from A's
+                        # anchor to B's; on A the rows act at B's anchor, d + r_A.
+                        ux = cq[a] * gux[k] - sq[a] * guy[k]
+                        uy = sq[a] * gux[k] + cq[a] * guy[k]
+                        ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+                        ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+                        t = ux * ex + uy * ey
+                        lax, lay, across = ex + rax, ey + ray, ux * ey - uy * ex
+                    slide(k, bias, ux, uy, t, lax, lay, rbx, rby, across)
                     continue
                 ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
                 fixed = ia + ib == 0.0
+                if jkind[k] == GEAR:
+                    # C = r angle_B - angle_A - phase (r = jspeed, phase = jref).
+                    if amass[k] != 0.0:
+                        r = jspeed[k]
+                        rate, mscale, iscale = soft(bias)
+                        err = r * (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
+                        cdot = r * bw[b] - bw[a]
+                        d = -amass[k] * mscale * (cdot + rate * err) - iscale * jpa[k]
+                        jpa[k] += d
+                        bw[a] -= ia * d
+                        bw[b] += r * ib * d
+                    continue
                 if jkind[k] == WELD:
                     # The angle held: C = angle_B - angle_A - ref.
                     rate, mscale, iscale = 0.0, 1.0, 0.0
@@ -597,32 +693,25 @@ def solve(
                         bw[b] += ib * d
                     if jlimit[k] != 0 and not fixed:
                         angle = (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
-                        # Lower: C = angle - lower >= 0; upper: C = upper - angle >= 0.
+                        mass = amass[k]
                         for side in range(2):
-                            if side == 0:
-                                err = angle - jlower[k]
-                                cdot = bw[b] - bw[a]
-                                old = jlo[k]
-                            else:
-                                err = jupper[k] - angle
-                                cdot = bw[a] - bw[b]
-                                old = jhi[k]
-                            rate, mscale, iscale = 0.0, 1.0, 0.0
-                            if err > 0.0:
-                                rate = inv_h  # speculative: may close by err in the substep
-                            elif bias:
-                                rate, mscale, iscale = j_rate, j_mass, j_imp
-                            d = -mscale * amass[k] * (cdot + rate * err) - iscale * old
-                            new = max(old + d, 0.0)
-                            d = new - old
+                            if ((jlimit[k] >> side) & 1) == 0:
+                                continue
+                            # Lower: C = angle - lower >= 0, turning B up; upper: C = upper -
+                            # angle >= 0, turning B down.
+                            sign = 1.0 if side == 0 else -1.0
+                            old = jlo[k] if side == 0 else jhi[k]
+                            err = angle - jlower[k] if side == 0 else jupper[k] - angle
+                            new = limit(err, sign * (bw[b] - bw[a]), mass, old, bias)
+                            d = sign * (new - old)
                             if side == 0:
                                 jlo[k] = new
-                                bw[a] -= ia * d
-                                bw[b] += ib * d
                             else:
                                 jhi[k] = new
-                                bw[a] += ia * d
-                                bw[b] -= ib * d
+                            bw[a] -= ia * d
+                            bw[b] += ib * d
+                    if jkind[k] == ROTARY:
+                        continue  # (the angle's rows alone)
                 # The point: C = (c_B + r_B) - (c_A + r_A), both anchors turned as their
                 # bodies have since the start.
                 rax = cq[a] * fax[k] - sq[a] * fay[k]

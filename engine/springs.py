@@ -31,7 +31,7 @@ linear (a damped harmonic oscillator, exact at any dt), else pymunk's scheme mad
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, ClassVar
 
 from . import checks
 from .body import Body
@@ -75,6 +75,9 @@ class BodySpring:
     """What both springs share: the two bodies, the settings' revision, the last impulse."""
 
     __slots__ = ("_a", "_b", "_stiffness", "_damping", "revision", "impulse", "warned")
+
+    #: Both solvers hold a spring (engine.constraints' joints are the soft step's alone).
+    needs_soft: ClassVar[bool] = False
 
     def __init__(self, a: Any, b: Any, stiffness: Any, damping: Any, unit: str) -> None:
         self._b = _second(b, "b")

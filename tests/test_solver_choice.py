@@ -134,3 +134,19 @@ def test_a_copy_and_a_snapshot_keep_the_choice_and_the_motion() -> None:
     for _ in range(30):
         w.step(1 / 60)
     assert np.array_equal(_state(w), end)
+
+
+def test_a_soft_only_joint_chooses_the_soft_step_and_one_added_later_is_refused_saying_why() -> None:
+    from engine import GearJoint
+
+    w = World(solver="auto")
+    a = w.add(Body(Vector(0.0, 0.0), radius=0.5))
+    b = w.add(Body(Vector(2.0, 0.0), radius=0.5))
+    gear = w.add_link(GearJoint(a, b, 0.0, 2.0))
+    assert w.solver == "soft" and "GearJoint" in w.solver_reason
+    w.remove_link(gear)
+    w.step(1 / 60)
+    assert w.solver == "exact"
+    with pytest.raises(ValueError, match=r"solver='auto' chose them at its first step"):
+        w.add_link(GearJoint(a, b, 0.0, 2.0))
+    assert w.links == ()

@@ -5,12 +5,14 @@ draws the World with ``draw_world(surface, world, camera)``: colliders in ink (s
 outlines only), bodies as discs of their radius (points as dots) with a radius line at the
 angle of a disc that turns (``Body.turns``), so a roll is seen, or as their shape (a box,
 a polygon, a capsule: ``Body(..., shape=...)``), in blue, asleep in grey,
-moved by the game in vermillion. A link (a rod, a cable) is a line from anchor to anchor, the
-points where it holds its bodies (``end_a()``, ``end_b()``), under the bodies; over them, a
-hinge's point (and a pin's) is a small ring, a hinge's limits an arc about that point from the
-lower limit to the upper, and a weld a small square at the point it holds. ``alpha`` blends
-the last two steps as ``World.positions(alpha)`` does, for a fixed-step loop: positions and
-angles both, so an anchor is drawn where the blended body holds it.
+moved by the game in vermillion. A link (a rod, a cable, a SlideJoint) is a line from anchor
+to anchor, the points where it holds its bodies (``end_a()``, ``end_b()``), and a GrooveJoint
+its groove, under the bodies; over them, a hinge's point (and a pin's, and a groove's anchor)
+is a small ring, a hinge's limits an arc about that point from the lower limit to the upper,
+and a weld a small square at the point it holds. pymunk's constraints between angles (a gear,
+a ratchet, a rotary limit, a motor) are not drawn, as pymunk's ``debug_draw`` draws none.
+``alpha`` blends the last two steps as ``World.positions(alpha)`` does, for a fixed-step loop:
+positions and angles both, so an anchor is drawn where the blended body holds it.
 
 A body or a collider given a ``colour`` (engine.colours: a pygame tuple, name or hex string)
 is filled with it instead (a shaped body keeps its ink outline, a sensor stays an outline);
@@ -26,6 +28,7 @@ from typing import Any
 
 import pygame
 
+from engine.constraints import GrooveJoint, SlideJoint, SoftJoint
 from engine.joints import Hinge, Joint, Weld
 from engine.links import Pin
 from engine.render.camera import Camera
@@ -120,7 +123,9 @@ def _draw_bodies(
         for k, b in enumerate(world.bodies)
     }
     for link in world.links if joints else ():
-        if not isinstance(link, (Joint, Pin)):
+        if isinstance(link, SoftJoint):
+            _draw_constraint(surface, link, camera, poses, 0.0)
+        elif not isinstance(link, (Joint, Pin)):
             a, b = _ends(link, poses)
             pygame.draw.line(surface, JOINT, camera.point(a), camera.point(b), 2)
     for spring in getattr(world, "springs", ()) if joints else ():
@@ -146,7 +151,9 @@ def _draw_bodies(
         draw_disc(surface, camera, (x, y), body.radius, angle if turned else None, colour)
     size = surface.get_height() / 360
     for link in world.links if joints else ():
-        if isinstance(link, (Joint, Pin)):
+        if isinstance(link, SoftJoint):
+            _draw_constraint(surface, link, camera, poses, size)
+        elif isinstance(link, (Joint, Pin)):
             _draw_joint(surface, link, camera, poses, size)
     if bounds:
         draw_bounds(surface, world, camera, poses)
@@ -220,6 +227,29 @@ def _ends(link: Any, poses: dict[int, tuple[float, float, float]]) -> tuple[Any,
     if isinstance(other, tuple) or not hasattr(other, "pos"):
         return a, (float(other[0]), float(other[1]))  # a fixed point, in world coordinates
     return a, _at(poses[id(other)], link.anchor_b)
+
+
+def _draw_constraint(
+    surface: pygame.Surface, link: Any, camera: Camera, poses: Any, size: float
+) -> None:
+    """pymunk's constraints (engine.constraints) as its ``debug_draw`` shows them: a slide
+    joint a line from anchor to anchor, a groove its segment (``size`` 0: under the bodies),
+    then a ring at the anchor held in it (over them); nothing for the others."""
+
+    def held(body: Any, local: Any) -> tuple[float, float]:
+        # A body's point at its drawn pose, or the world's (its anchors: world coordinates).
+        return _at(poses[id(body)], local) if id(body) in poses else (local.x, local.y)
+
+    if isinstance(link, SlideJoint) and not size:
+        a, b = held(link.body_a, link.anchor_a), held(link.body_b, link.anchor_b)
+        pygame.draw.line(surface, JOINT, camera.point(a), camera.point(b), 2)
+    elif isinstance(link, GrooveJoint) and not size:
+        a, b = held(link.body_a, link.groove_a), held(link.body_a, link.groove_b)
+        pygame.draw.line(surface, JOINT, camera.point(a), camera.point(b), 2)
+    elif isinstance(link, GrooveJoint):
+        cx, cy = camera.to_px(*held(link.body_b, link.anchor_b))
+        centre = (math.floor(cx + 0.5), math.floor(cy + 0.5))
+        pygame.draw.circle(surface, JOINT, centre, max(2, round(RING * size)), max(1, round(size)))
 
 
 def limit_arc(link: Any, poses: Any = None) -> tuple[float, float] | None:
