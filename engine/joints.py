@@ -198,7 +198,7 @@ class Hinge(Joint):
     @limits.setter
     def limits(self, value: Any) -> None:
         if value is None:
-            self._limits = None
+            self._set("_limits", None)
             return
         try:
             lower, upper = value
@@ -212,7 +212,7 @@ class Hinge(Joint):
             raise ValueError(
                 f"limits must be in order, lower <= upper (rad), got lower={lo!r} upper={hi!r}"
             )
-        self._limits = (lo, hi)
+        self._set("_limits", (lo, hi))
 
     @property
     def motor_speed(self) -> float | None:
@@ -221,10 +221,7 @@ class Hinge(Joint):
 
     @motor_speed.setter
     def motor_speed(self, value: Any) -> None:
-        if value is None:
-            self._speed = None
-            return
-        self._speed = checks.real(value, "motor_speed")
+        self._set("_speed", None if value is None else checks.real(value, "motor_speed"))
 
     @property
     def max_torque(self) -> float:
@@ -234,12 +231,22 @@ class Hinge(Joint):
     @max_torque.setter
     def max_torque(self, value: Any) -> None:
         if isinstance(value, float) and value == math.inf:
-            self._max_torque = math.inf
+            self._set("_max_torque", math.inf)
             return
         t = checks.real(value, "max_torque")
         if not t >= 0.0:
             raise ValueError(f"max_torque must be >= 0 in N m (inf: no bound), got {value!r}")
-        self._max_torque = t
+        self._set("_max_torque", t)
+
+    def _set(self, name: str, value: Any) -> None:
+        """Set the motor's or limits' setting ``name``; a change wakes the bodies (a motor
+        started on a machine asleep turns it, as pymunk's wakes them): read at every step,
+        it needs nothing made again."""
+        if getattr(self, name, None) != value:
+            setattr(self, name, value)
+            for body in (self._body, self._other):
+                if body is not None:
+                    body.activate()
 
     def __repr__(self) -> str:
         extra = ""

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from demos import stack
-from engine import Body, Polygon, World
+from engine import Body, Hinge, Polygon, World
 from engine.forces import Gravity
 from tests.paths import PATHS
 
@@ -113,3 +113,30 @@ def test_body_sleep_puts_its_touching_island_to_sleep(kernels: str) -> None:
     x = world.positions().copy()
     world.step(DT)
     assert np.array_equal(world.positions(), x)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_motor_started_on_a_hinge_asleep_wakes_it_and_turns_it(kernels: str) -> None:
+    """A wheel on a hinge whose motor stands at 0 falls asleep; a motor speed (or torque, or
+    limits) set then wakes it, as pymunk's wakes the bodies, and the motor turns it."""
+    w = World(solver="soft", kernels=kernels)
+    wheel = w.add(Body((0.0, 0.0), mass=1.0, shape=Polygon.box(1.0, 1.0)))
+    hinge = w.add_link(Hinge(wheel, w.static_body, (0.0, 0.0), motor_speed=0.0, max_torque=5.0))
+    for _ in range(60):
+        w.step(DT)
+    assert w.is_sleeping(wheel)
+    hinge.motor_speed = 0.0  # no change: it sleeps on
+    assert w.is_sleeping(wheel)
+    hinge.motor_speed = 2.0
+    assert not w.is_sleeping(wheel)
+    for _ in range(30):
+        w.step(DT)
+    # I = 1/6 kg m^2, 5 N m: at the speed within 0.07 s, and held there.
+    assert wheel.angular_velocity == pytest.approx(2.0, abs=1e-9)
+    for setting, value in (("max_torque", 4.0), ("limits", (-1.0, 100.0))):
+        hinge.motor_speed = 0.0
+        for _ in range(60):
+            w.step(DT)
+        assert w.is_sleeping(wheel)
+        setattr(hinge, setting, value)
+        assert not w.is_sleeping(wheel), setting
