@@ -673,6 +673,7 @@ class GameStep:
                 j.impulse = (hi - lo - pa) * k if not isinstance(j, Pin) else math.hypot(px, py) * k
                 continue
             j.linear_impulse = Vector(px * k, py * k)
+            j.impulse = j.linear_impulse.length()  # its size, as the exact solver's
             j.angular_impulse = (pa + mi + lo - hi) * k
             if isinstance(j, Hinge):
                 j.motor_impulse = mi * k

@@ -16,6 +16,7 @@ import pytest
 
 from engine import Body, Cable, Hinge, Pin, Polygon, Rod, Segment, Vector, Weld, World
 from engine.forces import Gravity
+from tests.paths import PATHS
 
 G = 9.81
 
@@ -192,6 +193,19 @@ def test_a_hanging_body_feels_m_g_at_its_hinge() -> None:
     assert force.x == pytest.approx(0.0, abs=1e-9)
     assert force.y == pytest.approx(3.0 * G, rel=1e-9)
     assert hinge.impulse == pytest.approx(3.0 * G * dt, rel=1e-9)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_hanging_body_feels_m_g_at_its_hinge_on_the_soft_step_too(kernels: str) -> None:
+    world = World(integrator="auto", kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -G)))
+    dt = 1.0 / 60.0
+    box = world.add(plank(0.0, -0.5, 0.1, 1.0, mass=3.0))
+    hinge = world.add_link(Hinge(box, world.static_body, (0.0, 0.0)))
+    for _ in range(60):
+        world.step(dt)
+    assert hinge.force(dt).y == pytest.approx(3.0 * G, rel=1e-6)
+    assert hinge.impulse == pytest.approx(3.0 * G * dt, rel=1e-6)  # its size, as on exact
 
 
 def test_a_pin_at_an_anchor_is_a_hinge_to_the_world() -> None:
