@@ -136,7 +136,7 @@ def test_a_copy_and_a_snapshot_keep_the_choice_and_the_motion() -> None:
     assert np.array_equal(_state(w), end)
 
 
-def test_a_soft_only_joint_chooses_the_soft_step_and_one_added_later_is_refused_saying_why() -> None:
+def test_a_soft_only_joint_chooses_the_soft_step_and_one_added_later_is_refused() -> None:
     from engine import GearJoint
 
     w = World(solver="auto")
