@@ -78,17 +78,18 @@ def choose(bodies: Any, links: Any, dim: int | None) -> tuple[str, str]:
     )
 
 
-def warn_if_outgrown(bodies: Any, links: Any, warned: set[str]) -> None:
-    """Warn once (SolverWarning) if an ``"auto"`` World that chose the exact models now holds
-    what would have chosen the soft step; ``warned`` keeps what was said."""
+def warn_if_outgrown(bodies: Any, links: Any) -> bool:
+    """Warn (SolverWarning) if an ``"auto"`` World that chose the exact models now holds
+    what would have chosen the soft step; True: it warned (once is enough)."""
     solver, why = choose(bodies, links, 2)
-    if solver == "soft" and "outgrown" not in warned:
-        warned.add("outgrown")
-        warnings.warn(
-            f"World(solver='auto') chose the exact models at its first step, and now holds "
-            f"what the soft step solves ({why.removeprefix('the soft step: ')}); a World keeps "
-            f"its solver once it moves: make it with World(solver='soft') to have the soft "
-            f"step from the start",
-            SolverWarning,
-            stacklevel=4,
-        )
+    if solver != "soft":
+        return False
+    warnings.warn(
+        f"World(solver='auto') chose the exact models at its first step, and now holds "
+        f"what the soft step solves ({why.removeprefix('the soft step: ')}); a World keeps "
+        f"its solver once it moves: make it with World(solver='soft') to have the soft "
+        f"step from the start",
+        SolverWarning,
+        stacklevel=4,
+    )
+    return True

@@ -108,7 +108,7 @@ class WorldState:
         # until the first step chooses: engine.solver_choice), and why.
         self.solver = self.solver_asked = "exact"
         self.solver_reason = ""
-        self.solver_warned: set[str] = set()
+        self.solver_warned = False  # (the exact models outgrown: said once)
         self.game: GameStep | None = None
 
     # -- time ----------------------------------------------------------------------------------
@@ -208,8 +208,8 @@ class WorldState:
             if self.solver == "soft":
                 self.game = GameStep(self.kernels == "fast")
                 self.game.substeps = self.collisions.iterations
-        elif self.solver == "exact" and "outgrown" not in self.solver_warned:
-            solver_choice.warn_if_outgrown(self.bodies, self.links, self.solver_warned)
+        elif self.solver == "exact" and not self.solver_warned:
+            self.solver_warned = solver_choice.warn_if_outgrown(self.bodies, self.links)
 
     def set_asleep(self, row: int, asleep: bool) -> None:
         """Put body ``row`` to sleep now with the awake bodies touching it (Body.sleep), or wake
