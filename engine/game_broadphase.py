@@ -102,17 +102,21 @@ def apart_keys(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray
     """The pairs of bodies kept apart, as sorted keys a n + b of rows a < b: by a pre_solve
     (``ignored``, such keys) or by a joint that does not let its bodies collide."""
     n = len(store)
-    apart = [np.asarray(ignored, dtype=np.int64)]
+    apart = [np.asarray(ignored, dtype=np.int64)] if len(ignored) else []
     for j in state.links:
         if isinstance(j, Joint) and not j.collide and j._other is not None:
             ra, rb = store.row(j.body_a.slot), store.row(j._other.slot)
             apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
+    if not apart:
+        return np.zeros(0, dtype=np.int64)  # (a game's usual step: nothing kept apart)
     return np.unique(np.concatenate(apart))
 
 
 def ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
     """The faces pre_solve ignored ((K, 2) of body row, collider place) as sorted keys
     row (colliders + 1) + place."""
+    if not len(ignored):
+        return np.zeros(0, dtype=np.int64)
     k = colliders + 1
     return np.unique(np.asarray(ignored[:, 0], dtype=np.int64) * k + ignored[:, 1])
 

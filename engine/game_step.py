@@ -21,9 +21,8 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    what the pair can close in the step: a box falling fast onto a floor is stopped on it.
 4. ``_found``: each manifold a contact of the solver, its points warm started from the last
    step's impulses by key (the pair and the features that make the point), its friction
-   mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor). On the
-   fast path stages 2 to 4 are one compiled call (engine.game_contacts.contacts_loop), the
-   same bits.
+   mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor); on the
+   fast path, engine.game_contacts.contacts_loop.
 5. ``_joints``: the hinges, welds, mouse joints, links, springs and pymunk's constraints
    (engine.constraints) as the solver's joints, warm started from their last impulses.
 6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
@@ -32,9 +31,13 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    with nothing to solve (no collider, no pair that may touch, no joint).
 7. ``_keep``, ``_events``: the impulses kept by key, and which contacts touch after the step
    (a point that pushed, or one within ``LINEAR_SLOP``) and which sensors overlap, as the
-   World's events read them (engine.event_dispatch); one compiled call on the fast path
-   (engine.game_contacts.report_loop).
+   World's events read them (engine.event_dispatch); on the fast path,
+   engine.game_contacts.report_loop.
 8. ``_sleep``: still islands fall asleep (engine.game_sleep); a sleeper's contacts stay open.
+
+On the fast path stages 0 (once the World's structure is read) to 8 are one compiled call,
+engine.game_loop's ``step_loop`` (``_step_fast``): the numpy path's products in its order,
+so both paths give the same bits (tests/test_game_loop.py compares them step by step).
 
 What this step does not do yet, and says so (``World.solver``'s error): 1D worlds are the
 exact pipeline's. A mouse joint is Box2D's here: a soft spring
@@ -64,7 +67,8 @@ from .constraints import (
     SoftJoint,
 )
 from .events import COLLIDER, collider_keys, pair_keys
-from .game_contacts import FEATURE, OTHER, STATIC, contacts_loop, report_loop
+from .game_contacts import FEATURE, OTHER, STATIC
+from .game_loop import step_loop
 from .joints import Hinge, Joint, Weld
 from .links import Link, Pin
 from .manifold import StaticShapes, static_shapes
@@ -107,6 +111,24 @@ class _Found(NamedTuple):
     point: np.ndarray
     sense_row: np.ndarray
     sense_place: np.ndarray
+
+
+class _Scene(NamedTuple):
+    """What a step reads of the World but its bodies' motion: the bodies' shapes (``table``)
+    and their places with the static shapes' (``places``, engine.narrowphase), the colliders'
+    arrays (``cs``), the static shapes with each one's collider place (``owner``) and box
+    (``bounds``), which bodies are sensors, and the pairs kept apart and faces ignored (sorted
+    keys: engine.game_broadphase's ``apart_keys``, ``ignored_keys``)."""
+
+    table: ShapeTable
+    places: narrowphase.Places
+    cs: broad.Colliders
+    statics: StaticShapes
+    owner: np.ndarray
+    bounds: np.ndarray
+    sensors: np.ndarray
+    apart: np.ndarray
+    ignored: np.ndarray
 
 
 @dataclass
@@ -170,65 +192,105 @@ class GameStep:
             return store.x.copy(), store.v.copy(), store.angle.copy(), store.omega.copy()
         margin = _reach(store, accel, dt)
         candidates = self._candidates(store, margin)
+        if self.fast:
+            return self._step_fast(
+                state, store, dt, accel, store.torque if torque is None else torque, margin,
+                candidates, ignored_faces, ignored_pairs,
+            )  # fmt: skip
         awake = self._wake(state, store, margin, candidates)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
-        table = self._shapes(store)
-        colliders = [] if state.contacts is None else state.contacts.colliders
-        cs = self._colliders(colliders, state.events.serial)
-        self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
-        statics, owner, bounds = self._static(colliders)
-        # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked).
-        sensors = np.zeros(n, dtype=bool)
-        for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
-            sensors[row] = state.bodies[row].sensor
-        kept = self._places
-        if kept is None or kept[0] is not table or kept[1] is not statics:
-            kept = self._places = (table, statics, narrowphase.places_of(table, statics))
-        places = kept[2]
-        apart = broad.apart_keys(store, state, ignored_pairs)
-        ignored = broad.ignored_keys(ignored_faces, len(colliders))
-        if self.fast:
-            found = self._found_fast(
-                places, table, store, statics, cs, owner, bounds, sensors, awake, margin,
-                candidates, apart, ignored,
-            )  # fmt: skip
-        else:
-            pairs = broad.pairs(
-                store, sensors, awake, margin, candidates, apart, broad.boxes(places, store)
-            )
-            faces = broad.faces(store, cs, owner, bounds, sensors, awake, margin, ignored)
-            touches = narrowphase.collide_pairs(places, table, store, statics, pairs, faces, margin)
-            found = self._found(store, cs, owner, touches)
+        sc = self._scene(state, store, ignored_faces, ignored_pairs)
+        pairs = broad.pairs(
+            store, sc.sensors, awake, margin, candidates, sc.apart, broad.boxes(sc.places, store)
+        )
+        faces = broad.faces(
+            store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, margin, sc.ignored
+        )
+        touches = narrowphase.collide_pairs(
+            sc.places, sc.table, store, sc.statics, pairs, faces, margin
+        )
+        found = self._found(store, sc.cs, sc.owner, touches)
         joints = self._joints(state, store, n)
         k = len(found.place)
         args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
         params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
         params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
-        out: list[Any]
-        if self.fast:
-            kernel: Any = solver.solve
-            kernel(*args, *params)
-            out = list(args)
-        else:
-            # Plain Python on lists: at a game's size faster than numpy's calls a colour.
-            out = [a.tolist() for a in args]
-            solver.solve.py(*out, *params)
+        # Plain Python on lists: at a game's size faster than numpy's calls a colour.
+        out: list[Any] = [a.tolist() for a in args]
+        solver.solve.py(*out, *params)
         x = np.stack([np.asarray(out[0][:n]), np.asarray(out[1][:n])], axis=1)
         v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
         angle = np.asarray(out[2][:n], dtype=float)
         omega = np.asarray(out[5][:n], dtype=float)
-        if self.fast:
-            self._report_fast(store, cs, owner, found, out)
-        else:
-            self._keep(found, out)
-            self._events(store, cs, owner, found, out)
+        self._keep(found, out)
+        self._events(store, sc.cs, sc.owner, found, out)
         self._keep_joints(joints[1], out)
         self._sleep(state, store, dt, awake, v, omega, found, joints[0])
         # What each sensor collider holds: a body whose shape overlaps it.
         if len(found.sense_row):
             self.report.sensing = collider_keys(
-                store.slots()[found.sense_row], cs.serial[found.sense_place]
+                store.slots()[found.sense_row], sc.cs.serial[found.sense_place]
             )
+        return x, v, angle, omega
+
+    def _step_fast(
+        self, state: WorldState, store: Any, dt: float, accel: np.ndarray, torque: np.ndarray,
+        margin: np.ndarray, candidates: tuple[np.ndarray, np.ndarray],
+        ignored_faces: np.ndarray, ignored_pairs: np.ndarray,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+        """``step`` on the fast path: what changes only with the World made here (the
+        shapes, colliders, joints' rows), stages 0 to 8 in one compiled call
+        (engine.game_loop.step_loop, the numpy path's products in its order), then a
+        sleeper's contacts held open."""
+        n = len(store)
+        c = state.collisions
+        if len(c.asleep) != n or len(c.still) != n or len(c._group) != n:
+            c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
+        sc = self._scene(state, store, ignored_faces, ignored_pairs)
+        table, places, statics, cs = sc.table, sc.places, sc.statics, sc.cs
+        joints = self._joints(state, store, n)
+        t = places.tables
+        f64, i64 = np.float64, np.int64
+        if t.polygons is not None:
+            polygons = (t.vertices, t.normals, t.count, t.radius)
+        else:
+            polygons = (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, i64), np.zeros(1))
+        asc = np.ascontiguousarray
+        if c._group.dtype != i64:
+            c._group = c._group.astype(i64)
+        kernel: Any = step_loop
+        out = kernel(
+            asc(store.x, f64), asc(store.v, f64), asc(store.angle, f64),
+            asc(store.omega, f64), asc(store.mass, f64), asc(store.inv_moment, f64),
+            asc(accel, f64), asc(torque, f64), asc(store.kinematic), asc(store.radius, f64),
+            asc(margin, f64), sc.sensors, asc(store.group, i64), asc(store.categories, i64),
+            asc(store.mask, i64), asc(store.slots(), i64), asc(store.friction, f64),
+            asc(store.restitution, f64), places.body_circle, places.body_index,
+            asc(table.kind, i64), c.asleep, c.still, c._group, float(c.sleep_time), dt,
+            *candidates, asc(sc.owner, i64), asc(sc.bounds, f64), places.static_circle,
+            places.static_index, cs.sensor, cs.friction, cs.restitution, asc(cs.surface),
+            cs.group, cs.categories, cs.mask, *polygons, t.center, t.round,
+            asc(statics.half_planes.point, f64), asc(statics.half_planes.normal, f64), sc.apart,
+            sc.ignored, self.keys, self.lam, *joints[0], cs.serial, self.substeps,
+            solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
+            solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD, LINEAR_SLOP,
+        )  # fmt: skip
+        x, v, angle, omega, before, self.keys, self.lam = out[:7]
+        self.last = self.report
+        self.report = _Report(*out[7:11])
+        if len(out[11]):
+            self.report.sensing = out[11]
+        c._touching = out[12]
+        # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
+        # 11 and the contacts' 17, as _keep_joints reads them).
+        # The bodies' x, y and angle after it (with the static body's) where a pymunk
+        # constraint reports along itself as it is at the step's end.
+        head: list[Any] = [None] * 28
+        if any(isinstance(j, SoftJoint) for j in joints[1]):
+            head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
+        self._keep_joints(joints[1], head + joints[0])
+        if before.any():
+            self._hold(store, before)
         return x, v, angle, omega
 
     def resting(self, slot: int) -> int | None:
@@ -272,6 +334,27 @@ class GameStep:
         self.report, self.last = report(now), report(last)
 
     # -- what is kept -----------------------------------------------------------------------
+    def _scene(
+        self, state: WorldState, store: Any, ignored_faces: np.ndarray, ignored_pairs: np.ndarray
+    ) -> _Scene:
+        """What the step reads of the World but its bodies' motion (``_Scene``): the tables
+        kept from step to step, made again only where the World changed."""
+        table = self._shapes(store)
+        colliders = [] if state.contacts is None else state.contacts.colliders
+        cs = self._colliders(colliders, state.events.serial)
+        self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
+        statics, owner, bounds = self._static(colliders)
+        # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked).
+        sensors = np.zeros(len(store), dtype=bool)
+        for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
+            sensors[row] = state.bodies[row].sensor
+        kept = self._places
+        if kept is None or kept[0] is not table or kept[1] is not statics:
+            kept = self._places = (table, statics, narrowphase.places_of(table, statics))
+        apart = broad.apart_keys(store, state, ignored_pairs)
+        ignored = broad.ignored_keys(ignored_faces, len(colliders))
+        return _Scene(table, kept[2], cs, statics, owner, bounds, sensors, apart, ignored)
+
     def _shapes(self, store: Any) -> ShapeTable:
         """The bodies' shapes as narrowphase kinds (made again when bodies come or go)."""
         shapes = store.shapes
@@ -445,37 +528,6 @@ class GameStep:
                 np.concatenate([now.impulses, last.impulses[keep]])[order],
                 now.sensing,
             )
-
-    def _found_fast(
-        self, places: narrowphase.Places, table: ShapeTable, store: Any, statics: StaticShapes,
-        cs: broad.Colliders, owner: np.ndarray, bounds: np.ndarray, sensors: np.ndarray,
-        moving: np.ndarray, margin: np.ndarray, candidates: tuple[np.ndarray, np.ndarray],
-        apart: np.ndarray, ignored: np.ndarray,
-    ) -> _Found:  # fmt: skip
-        """Stages 2 to 4 in one compiled call (engine.game_contacts), the same contacts as
-        engine.game_broadphase's ``pairs`` and ``faces``, ``narrowphase.collide_pairs`` and
-        ``_found`` give."""
-        t = places.tables
-        c = np.ascontiguousarray
-        i64, f64 = np.int64, np.float64
-        if t.polygons is not None:
-            polygons = (t.vertices, t.normals, t.count, t.radius)
-        else:
-            polygons = (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, i64), np.zeros(1))
-        kernel: Any = contacts_loop
-        out = kernel(
-            c(store.x, f64), c(store.angle, f64), c(store.radius, f64), c(margin, f64),
-            c(moving), c(sensors), c(store.group, i64), c(store.categories, i64),
-            c(store.mask, i64), c(store.slots(), i64), c(store.friction, f64),
-            c(store.restitution, f64), places.body_circle, places.body_index,
-            c(table.kind, i64), *candidates, c(owner, i64), c(bounds, f64),
-            places.static_circle, places.static_index, cs.sensor, cs.friction, cs.restitution,
-            c(cs.surface), cs.group, cs.categories, cs.mask, *polygons, t.center, t.round,
-            c(statics.half_planes.point, f64), c(statics.half_planes.normal, f64), apart,
-            ignored, self.keys, self.lam,
-        )  # fmt: skip
-        point = np.stack([out[17], out[18]], axis=1)
-        return _Found(list(out[:15]), out[15], out[16], point, out[19], out[20])
 
     def _found(
         self, store: Any, cs: broad.Colliders, owner: np.ndarray, touches: narrowphase.Touches
@@ -678,25 +730,6 @@ class GameStep:
             if isinstance(j, Hinge):
                 j.motor_impulse = mi * k
         self.joint_impulses = kept
-
-    def _report_fast(
-        self, store: Any, cs: broad.Colliders, owner: np.ndarray, found: _Found, out: list[Any]
-    ) -> None:
-        """``_keep`` and ``_events`` in one compiled call (engine.game_contacts.report_loop),
-        the same keys, impulses and touching contacts."""
-        r = found.rows
-        base = 11  # the bodies' arrays come first
-        c = np.ascontiguousarray
-        kernel: Any = report_loop
-        kept, lam, keys, point, normal, impulse = kernel(
-            r[0], r[1], r[2], r[3], r[4], r[9], found.keys, found.place, c(found.point[:, 0]),
-            c(found.point[:, 1]), out[base + 13], out[base + 14], out[base + 15],
-            c(store.slots(), dtype=np.int64), c(owner, dtype=np.int64), cs.serial,
-            self.substeps, LINEAR_SLOP,
-        )  # fmt: skip
-        self.keys, self.lam = kept, lam
-        self.last = self.report
-        self.report = _Report(keys, point, normal, impulse)
 
     # -- stage 7: events ----------------------------------------------------------------------
     def _events(
