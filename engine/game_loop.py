@@ -59,11 +59,12 @@ def _sample() -> tuple[Any, ...]:
     no = np.zeros(2, dtype=bool)
     island = np.zeros(2, dtype=np.int64)
     serial = np.array([1], dtype=np.int64)
+    last = (np.array([1], dtype=np.int64), f((1, 2)), f((1, 2)), f((1, 2)))
     return (x, v, q, f(2), mass, np.array([6.0, 2.0]), accel, f(2), no, radius, reach,
             sensor, group, cats, mask, slots, fric, rest, body_circle, body_index, kind,
             no.copy(), f(2), island, 0.5, 1.0 / 60.0, pa, pb, *statics, apart, ignored,
-            warm_keys, warm_lam, *joints, serial, 4, 30.0, 10.0, 60.0, 2.0, 3.0, 1.0,
-            0.005)  # fmt: skip
+            warm_keys, warm_lam, *joints, serial, slots.copy(), *last, 4, 30.0, 10.0, 60.0, 2.0,
+            3.0, 1.0, 0.005)  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
@@ -83,7 +84,8 @@ def step_loop(
     jhertz: Any, jdamp: Any, jlimit: Any, jlower: Any, jupper: Any,
     jmotor: Any, jspeed: Any, jmaxtorque: Any,
     jpx: Any, jpy: Any, jpa: Any, jlo: Any, jhi: Any, jmi: Any,
-    serial: Any, substeps: int, contact_hertz: float, contact_damping: float,
+    serial: Any, row_of: Any, last_keys: Any, last_points: Any, last_normals: Any,
+    last_impulses: Any, substeps: int, contact_hertz: float, contact_damping: float,
     joint_hertz: float, joint_damping: float, push: float, threshold: float, slop: float,
 ) -> tuple[Any, ...]:  # fmt: skip
     """One soft step of ``dt`` (s) from waking to sleep (module doc).
@@ -91,21 +93,33 @@ def step_loop(
     Bodies (n rows): ``x`` (n, 2) m, ``v`` (n, 2) m/s, ``angle`` rad, ``omega`` rad/s at the
     step's start; ``mass`` kg (inf: static), ``inv_moment`` 1/(kg m^2), ``accel`` (n, 2) m/s^2
     and ``torque`` N m held over the step, ``kinematic``, the bounding ``radius`` m and
-    ``margin`` (how far each can move in the step, m), then ``contacts_loop``'s body arrays
+    ``margin`` (how far each can move in the step, m; empty: measured here, as
+    engine.game_step's ``_reach``), then ``contacts_loop``'s body arrays
     from ``sensor`` to ``kind``. Sleep (engine.game_sleep; in place): ``asleep``, ``still``
     (s), ``island`` (each sleeper's island label), ``sleep_time`` (s; inf: never).
     ``pa``, ``pb``: the pairs the broadphase tests (rows a < b). ``owner`` ... ``warm_lam``:
     ``contacts_loop``'s static shapes, colliders, tables, pairs kept apart and warm start.
     ``jkind`` ... ``jmi``: ``solve``'s joints (their impulses out in place). ``serial``: each
-    collider's serial number by place (the events' keys). Then ``solve``'s parameters and
-    the slop within which a contact touches (m).
+    collider's serial number by place (the events' keys); ``row_of`` each body slot's row;
+    ``last_keys`` ... ``last_impulses``: the touching contacts the step before reported
+    (sorted by key). Then ``solve``'s parameters and the slop within which a contact touches
+    (m).
 
-    Returns the bodies' ``x``, ``v``, ``angle``, ``omega`` after the step, those asleep
-    through it (bool (n,)), the kept warm-start keys and impulses ((k, 2) N s a substep), the
-    touching contacts' event keys, points, normals and impulses (``report_loop``'s), the
-    sensor colliders' overlaps as event keys, and the touching pairs of bodies (keys a n + b,
-    a < b: contacts, then joints between two bodies) for ``Body.sleep``'s island."""
+    Returns the bodies' ``x``, ``v``, ``angle``, ``omega`` after the step, the kept
+    warm-start keys and impulses ((k, 2) N s a substep), the touching contacts' event keys,
+    points, normals and impulses (``report_loop``'s, and the last step's of bodies asleep
+    through this one, held open; sorted by key), the sensor colliders' overlaps as event keys,
+    and the touching pairs of bodies (keys a n + b, a < b: contacts, then joints between two
+    bodies) for ``Body.sleep``'s island."""
     n = len(radius)
+    if len(margin) != n:
+        # |v| dt + |a| dt^2 + |omega| dt r: what the shape can move in the step (``_reach``'s
+        # products, in its order).
+        margin = np.empty(n)
+        for i in range(n):
+            speed = np.hypot(v[i, 0], v[i, 1])
+            acc = np.hypot(accel[i, 0], accel[i, 1])
+            margin[i] = speed * dt + acc * dt * dt + np.abs(omega[i]) * dt * radius[i]
     # -- waking (engine.game_step._wake, engine.game_sleep.woken) ---------------------------
     dynamic = np.empty(n, dtype=np.bool_)
     any_asleep = False
@@ -185,6 +199,30 @@ def step_loop(
         ca, cb, nx, ny, count, sep, keys, place, px, py, ln, lt, total, slots, owner, serial,
         substeps, slop,
     )  # fmt: skip
+    # The last step's touching contacts whose bodies slept through this one (a sleeper and
+    # a collider, or two sleepers) stay open: they were not found, nor solved, and nothing
+    # ends (engine.game_step._hold).
+    held = np.zeros(len(last_keys), dtype=np.bool_)
+    extra = 0
+    for i in range(n):
+        if before[i]:
+            for k in range(len(last_keys)):
+                key = last_keys[k]
+                other = key & (COLLIDER - 1)
+                collider = (key & COLLIDER) != 0
+                a = row_of[key >> 32]
+                b = row_of[0 if collider else other]
+                if before[a] and (collider or before[b]):
+                    held[k] = True
+                    extra += 1
+            break
+    if extra:
+        event = np.concatenate((event, last_keys[held]))
+        point = np.concatenate((point, last_points[held]))
+        normal = np.concatenate((normal, last_normals[held]))
+        impulse = np.concatenate((impulse, last_impulses[held]))
+        order = np.argsort(event, kind="mergesort")  # stable, as numpy's: sorted by key
+        event, point, normal, impulse = event[order], point[order], normal[order], impulse[order]
     sensing = np.empty(len(sense_row), dtype=np.int64)
     for i in range(len(sense_row)):
         sensing[i] = (slots[sense_row[i]] << 32) | (serial[sense_place[i]] | COLLIDER)
@@ -249,5 +287,5 @@ def step_loop(
     for i in range(n):
         x_out[i, 0], x_out[i, 1] = bx[i], by[i]
         v_out[i, 0], v_out[i, 1] = bvx[i], bvy[i]
-    return (x_out, v_out, bq[:n].copy(), bw[:n].copy(), before, kept, lam, event, point,
-            normal, impulse, sensing, touching)  # fmt: skip
+    return (x_out, v_out, bq[:n].copy(), bw[:n].copy(), kept, lam, event, point, normal,
+            impulse, sensing, touching)  # fmt: skip

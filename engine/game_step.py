@@ -190,7 +190,8 @@ class GameStep:
             # every contact stays as it was.
             self.last = self.report
             return store.x.copy(), store.v.copy(), store.angle.copy(), store.omega.copy()
-        margin = _reach(store, accel, dt)
+        # (The fast path's kernel measures the reach itself where the pairs need it not.)
+        margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
         candidates = self._candidates(store, margin)
         if self.fast:
             return self._step_fast(
@@ -240,8 +241,7 @@ class GameStep:
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
         """``step`` on the fast path: what changes only with the World made here (the
         shapes, colliders, joints' rows), stages 0 to 8 in one compiled call
-        (engine.game_loop.step_loop, the numpy path's products in its order), then a
-        sleeper's contacts held open."""
+        (engine.game_loop.step_loop, the numpy path's products in its order)."""
         n = len(store)
         c = state.collisions
         if len(c.asleep) != n or len(c.still) != n or len(c._group) != n:
@@ -259,6 +259,7 @@ class GameStep:
         if c._group.dtype != i64:
             c._group = c._group.astype(i64)
         kernel: Any = step_loop
+        last = self.report
         out = kernel(
             asc(store.x, f64), asc(store.v, f64), asc(store.angle, f64),
             asc(store.omega, f64), asc(store.mass, f64), asc(store.inv_moment, f64),
@@ -271,16 +272,18 @@ class GameStep:
             places.static_index, cs.sensor, cs.friction, cs.restitution, asc(cs.surface),
             cs.group, cs.categories, cs.mask, *polygons, t.center, t.round,
             asc(statics.half_planes.point, f64), asc(statics.half_planes.normal, f64), sc.apart,
-            sc.ignored, self.keys, self.lam, *joints[0], cs.serial, self.substeps,
+            sc.ignored, self.keys, self.lam, *joints[0], cs.serial, asc(store.row_of, i64),
+            asc(last.keys, i64), asc(last.points, f64), asc(last.normals, f64),
+            asc(last.impulses, f64), self.substeps,
             solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
             solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD, LINEAR_SLOP,
         )  # fmt: skip
-        x, v, angle, omega, before, self.keys, self.lam = out[:7]
+        x, v, angle, omega, self.keys, self.lam = out[:6]
         self.last = self.report
-        self.report = _Report(*out[7:11])
-        if len(out[11]):
-            self.report.sensing = out[11]
-        c._touching = out[12]
+        self.report = _Report(*out[6:10])
+        if len(out[10]):
+            self.report.sensing = out[10]
+        c._touching = out[11]
         # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
         # 11 and the contacts' 17, as _keep_joints reads them).
         # The bodies' x, y and angle after it (with the static body's) where a pymunk
@@ -289,8 +292,6 @@ class GameStep:
         if any(isinstance(j, SoftJoint) for j in joints[1]):
             head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
         self._keep_joints(joints[1], head + joints[0])
-        if before.any():
-            self._hold(store, before)
         return x, v, angle, omega
 
     def resting(self, slot: int) -> int | None:
