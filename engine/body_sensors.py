@@ -38,21 +38,21 @@ if TYPE_CHECKING:
 __all__ = ["sensed"]
 
 
-def sensed(state: WorldState, slots: np.ndarray, serials: np.ndarray | None) -> np.ndarray:
+def sensed(state: WorldState, slots: np.ndarray | None, serials: np.ndarray | None) -> np.ndarray:
     """The contact keys (engine.events) of what each sensor body overlaps now: with other
     bodies (``pair_keys``) and with colliders (``collider_keys``, by ``serials``, the
     colliders' serial numbers in the World's order; None: no colliders). ``slots``: the
-    bodies' slots by row."""
+    bodies' slots by row (None: the store's, read only where a body is a sensor)."""
     store = state.store
     none = np.zeros(0, dtype=np.int64)
     if store is None or store.dim != 2:
         return none
-    # A sensor's contacts meet nothing: categories and mask 0 (few bodies have both).
-    maybe = np.flatnonzero((store.categories == 0) & (store.mask == 0))
-    bodies = state.bodies
-    rows = [int(i) for i in maybe if bodies[i].sensor]
+    rows = _sensor_rows(state)
     if not rows:
         return none
+    if slots is None:
+        slots = store.slots()
+    bodies = state.bodies
     x, r = store.x, store.radius
     angle = store.angle
     table = state.collisions.shape_table(store)
@@ -96,3 +96,21 @@ def sensed(state: WorldState, slots: np.ndarray, serials: np.ndarray | None) -> 
                     continue
             found.append(collider_keys(np.array([slots[s]]), serials[[k]]))
     return np.concatenate(found) if found else none
+
+
+def _sensor_rows(state: WorldState) -> list[int]:
+    """The rows of the sensor bodies, found again only when the store's categories or mask
+    array is a new one: a body added or taken out, a filter or ``sensor`` set, a snapshot
+    brought back each makes them anew (engine.store, ``BodyStore.set_material``), and a body
+    is a sensor only by ``Body.sensor``, whose setter sets its filter."""
+    store = state.store
+    assert store is not None
+    kept = state.sensor_rows
+    if kept is not None and kept[0] is store.categories and kept[1] is store.mask:
+        return kept[2]
+    # A sensor's contacts meet nothing: categories and mask 0 (few bodies have both).
+    maybe = np.flatnonzero((store.categories == 0) & (store.mask == 0))
+    bodies = state.bodies
+    rows = [int(i) for i in maybe if bodies[i].sensor]
+    state.sensor_rows = (store.categories, store.mask, rows)
+    return rows

@@ -21,6 +21,7 @@ from .events import (
     other_of,
     pair_keys,
     raw_specs,
+    same_keys,
     slack_for,
     slot_of,
 )
@@ -80,10 +81,10 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
     if store is None or store.dim != 2:
         events.ledger.quiet()
         return
-    slots = store.slots()
     if state.game is not None:
-        _settle_soft(state, slots, t0, t_end)
+        _settle_soft(state, t0, t_end)
         return
+    slots = store.slots()
     raw = []
     resting = sensing = np.zeros(0, dtype=np.int64)
     if contacts is not None:
@@ -131,7 +132,7 @@ def quiet(state: WorldState) -> None:
     state.events.ledger.quiet()
 
 
-def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) -> None:
+def _settle_soft(state: WorldState, t0: float, t_end: float) -> None:
     """The events of a step of the soft solver (engine.game_step): a contact begins when it
     first touches and ends when it no longer does; each is open exactly while it touches (as
     a sensor's), so no gap is measured."""
@@ -142,11 +143,16 @@ def _settle_soft(state: WorldState, slots: np.ndarray, t0: float, t_end: float) 
     # Begins: touching now, not before (with the point, normal and impulse); ends: the other
     # way round (where it last touched, with no impulse).
     raw = []
-    if now is not last:  # (the same report: a step in which everything slept)
+    # The same report (a step in which everything slept), or the same keys (most steps: the
+    # same contacts touch as in the step before): none is new either way, nothing to search.
+    if now is not last and not same_keys(now.keys, last.keys):
         raw = _changes(now, last.keys, t_end, True)
         raw += _changes(last, now.keys, t_end, False)
     named = game.serials if state.contacts is not None else None  # this step's colliders'
-    sensing = np.concatenate([now.keys, now.sensing, sensed(state, slots, named)])
+    felt = sensed(state, None, named)
+    sensing = now.keys
+    if len(now.sensing) or len(felt):
+        sensing = np.concatenate([now.keys, now.sensing, felt])
     events.ledger.settle(
         t0,
         t_end,

@@ -88,6 +88,9 @@ class WorldState:
         self.collision_handlers: list[Any] = []
         self.events = WorldEvents()  # the contacts kept open, and each step's events
         self.events.ledger.fast = kernels == "fast"
+        # The sensor bodies' rows, with the store's categories and mask arrays they were found
+        # in (engine.body_sensors: found again when either array is a new one).
+        self.sensor_rows: tuple[np.ndarray, np.ndarray, list[int]] | None = None
         self.contact_dv: np.ndarray | None = None  # velocity change by the static contacts
         # Kinematic bodies whose pos the game wrote: where each is to be after the next step.
         self.targets: dict[Body, Any] = {}

@@ -6,8 +6,13 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Callable
+from typing import Any
 
+import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from engine import (
     Body,
@@ -16,13 +21,17 @@ from engine import (
     ContactEvent,
     OverlapWarning,
     Plane,
+    Polygon,
     Segment,
     StabilityWarning,
     Vector,
     World,
+    body_sensors,
 )
+from engine import kernels as engine_kernels
+from engine.events import COLLIDER, ContactLedger
 from engine.forces import Gravity
-from tests.paths import FAST
+from tests.paths import FAST, PATHS
 
 G = 9.81
 
@@ -329,3 +338,213 @@ def test_a_pile_asleep_keeps_its_contacts_open_with_no_events_until_woken(kernel
             w.step(1 / 60)
             woke = woke or bool(w.began)
     assert woke and w.sleeping < 60
+
+
+# -- quiet steps: the ledger's and the soft settle's short cuts --------------------------------
+# Most steps of a game touch what the step before touched: the soft settle searches no report
+# when the keys are the same (engine.event_dispatch), the ledger returns at once when nothing
+# is reported or held at rest and what is inside sensors now is what is open, all sensors'
+# (ContactLedger.settle), and the sensor bodies are found again only when a filter changes
+# (engine.body_sensors). The tests below take each kind of change in the step after quiet
+# steps, and compare with the same steps through the whole settle (the short cuts off).
+
+A, B, C, D = ((np.int64(s) << 32) | COLLIDER | 7 for s in (1, 2, 3, 4))
+DT = 1 / 60
+
+
+def full_settle(mp: pytest.MonkeyPatch) -> None:
+    """Turn the short cuts off: no keys are ever the same, the sensor bodies found each step."""
+    mp.setattr("engine.events.same_keys", lambda a, b: False)
+    mp.setattr("engine.event_dispatch.same_keys", lambda a, b: False)
+    rows = body_sensors._sensor_rows
+
+    def afresh(state: Any) -> list[int]:
+        state.sensor_rows = None
+        return rows(state)
+
+    mp.setattr(body_sensors, "_sensor_rows", afresh)
+
+
+Gaps = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+def ledger_steps(fast: bool, steps: list[tuple[Any, ...]], gaps: Gaps) -> list[tuple[Any, ...]]:
+    """Each step's (began keys, ended keys, open keys, sensors' keys, held keys) of a new
+    ledger settling ``steps`` of (raw, resting, sensing), step k from k to k + 1 s."""
+    ledger = ContactLedger()
+    ledger.fast = fast
+    out = []
+    for t, (raw, resting, sensing) in enumerate(steps):
+        ledger.settle(
+            float(t),
+            t + 1.0,
+            list(raw),
+            np.array(resting, dtype=np.int64),
+            np.array(sensing, dtype=np.int64),
+            gaps,
+        )
+        out.append(
+            (
+                [(s[0], s[1]) for s in ledger.began],
+                [(s[0], s[1]) for s in ledger.ended],
+                ledger.keys.tolist(),
+                ledger.exact.tolist(),
+                sorted(ledger.held),
+            )
+        )
+    return out
+
+
+def near(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every gap within its slack: a contact not a sensor's stays open unless reported."""
+    return np.zeros(len(keys)), np.ones(len(keys))
+
+
+@pytest.mark.parametrize("fast", [False, pytest.param(True, marks=FAST)])
+def test_the_ledger_takes_each_change_in_the_step_after_a_quiet_one(fast: bool) -> None:
+    a, b, c, d = (int(k) for k in (A, B, C, D))
+    steps = [
+        ((), (), [a, b]),  # 0: both begin
+        ((), (), [a, b]),  # 1: quiet
+        ((), (), [b, a, b]),  # 2: quiet, as it comes unsorted and with a repeat
+        ((), (), [a]),  # 3: b ends
+        ((), (), [a]),  # 4: quiet
+        ((), (), [a, c]),  # 5: c begins while a stays
+        ((), (), [a, c]),  # 6: quiet
+        ((), [b], [a, c]),  # 7: b held at rest begins (not a sensor's)
+        ((), (), [a, b, c]),  # 8: b inside now: nothing begins, b is a sensor's from now
+        ((), (), [a, c]),  # 9: b ends as a sensor's does, within its slack though it is
+        ((), (), [a, c]),  # 10: quiet
+        (((11.3, d, True, None), (11.6, d, False, None)), (), [a, c]),  # 11: a bounce on d
+        ((), (), [a, c]),  # 12: quiet
+        ((), (), []),  # 13: both end
+        ((), (), []),  # 14: nothing open, nothing inside
+    ]
+    got = ledger_steps(fast, steps, near)
+    began = [[k for _, k in g[0]] for g in got]
+    ended = [[k for _, k in g[1]] for g in got]
+    assert began == [[a, b], [], [], [], [], [c], [], [b], [], [], [], [d], [], [], []]
+    assert ended == [[], [], [], [b], [], [], [], [], [], [b], [], [d], [], [a, c], []]
+    assert got[8][2] == got[8][3] == [a, b, c]
+    assert got[11][0] == [(11.3, d)] and got[11][1] == [(11.6, d)]  # at its moments
+    assert [g[2] for g in got] == [
+        [a, b], [a, b], [a, b], [a], [a], [a, c], [a, c], [a, b, c], [a, b, c], [a, c],
+        [a, c], [a, c], [a, c], [], [],
+    ]  # fmt: skip
+    with pytest.MonkeyPatch.context() as mp:
+        full_settle(mp)
+        assert ledger_steps(fast, steps, near) == got
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.booleans())
+def test_the_ledgers_short_cut_changes_nothing_on_any_steps(seed: int, fast: bool) -> None:
+    # Steps drawn from a few keys, most the step before's again (a quiet step, or the same
+    # sensing unsorted, repeated), the others any change: whatever the ledger reports and
+    # keeps is what the whole settle gives.
+    fast = fast and engine_kernels.available()  # (the loop kernel only where numba is)
+    rng = np.random.default_rng(seed)
+    pool = [int(k) for k in (A, B, C, D)] + [(5 << 32) | 6, (6 << 32) | 9]
+
+    def some(p: float) -> list[int]:
+        return [k for k in pool if rng.random() < p]
+
+    steps: list[tuple[Any, ...]] = []
+    step: tuple[Any, ...] = ((), (), some(0.5))
+    for t in range(40):
+        r = rng.random()
+        if r < 0.4 and t:
+            raw, resting, sensing = step
+            if rng.random() < 0.3 and sensing:  # the same keys, unsorted, one repeated
+                sensing = [*rng.permutation(sensing).tolist(), sensing[0]]
+            step = ((), resting if rng.random() < 0.5 else (), sensing)
+        elif r < 0.7:
+            step = ((), (), some(0.5))
+        else:
+            raw = tuple(
+                (t + float(rng.random()), k, bool(rng.random() < 0.5), None) for k in some(0.2)
+            )
+            step = (raw, some(0.2) if rng.random() < 0.5 else (), some(0.4))
+        steps.append(step)
+
+    def gaps(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return (keys % 3).astype(float), np.ones(len(keys))  # within the slack, or past it
+
+    got = ledger_steps(fast, steps, gaps)
+    with pytest.MonkeyPatch.context() as mp:
+        full_settle(mp)
+        assert ledger_steps(fast, steps, gaps) == got
+
+
+def soft_log(kernels: str) -> list[tuple[Any, ...]]:
+    """Each step's began, ended and touching of a soft World: two boxes settle on a floor;
+    a is lifted (its contact ends after quiet steps) and lands while b's stays; a kinematic
+    sensor body (``feet``) is put on b, then b and the feet onto a sensor coin; a is made a
+    sensor (it falls through the floor, overlapping it a while); the feet go; b leaves the
+    coin for a ledge (its floor's contact ends as the ledge's begins). Events as (body,
+    other, point, normal, impulse, time, removal)."""
+    w = World(kernels=kernels, solver="soft")
+    w.add_force(Gravity((0, -G)))
+    floor = w.add_collider(Segment((-10, 0), (10, 0)))
+    coin = w.add_collider(Circle((5, 0.5), 0.3, sensor=True))
+    ledge = w.add_collider(Segment((6, 3), (9, 3)))
+    a = w.add(Body(Vector(-2, 0.6), shape=Polygon.box(1, 1), mass=1.0, restitution=0.0))
+    b = w.add(Body(Vector(2, 0.6), shape=Polygon.box(1, 1), mass=1.0, restitution=0.0))
+    feet = w.add(Body(Vector(0, 5), shape=Polygon.box(0.6, 0.2), kinematic=True, sensor=True))
+    names = {id(floor): "floor", id(coin): "coin", id(ledge): "ledge", id(a): "a", id(b): "b"}
+    names[id(feet)] = "feet"
+
+    def told(evs: list[ContactEvent]) -> list[tuple[Any, ...]]:
+        return [(names[id(e.body)], names[id(e.collider)], *e[2:]) for e in evs]
+
+    log = []
+    for n in range(200):
+        if n == 40:
+            a.pos = Vector(-2, 1.5)
+        if n == 100:
+            feet.pos = Vector(2, 1.05)
+        if n == 130:
+            b.pos = Vector(5, b.pos.y)
+            feet.pos = Vector(5, 1.05)
+        if n == 150:
+            a.sensor = True
+        if n == 170:
+            feet.pos = Vector(0, 5)
+        if n == 185:
+            b.pos = Vector(7, 3 + b.pos.y)  # onto the ledge: one contact for another
+        w.step(DT)
+        log.append((told(w.began), told(w.ended), sorted(told(w.touching))))
+    return log
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_soft_world_reports_each_change_after_quiet_steps(kernels: str) -> None:
+    log = soft_log(kernels)
+    steps = {n: ([e[:2] for e in g], [e[:2] for e in x]) for n, (g, x, _) in enumerate(log)}
+    busy = {n: v for n, v in steps.items() if v != ([], [])}
+    assert list(busy)[0] < 30 and busy.pop(list(busy)[0]) == (
+        [("a", "floor"), ("b", "floor")],
+        [],
+    )
+    landed = [n for n in busy if busy[n] == ([("a", "floor")], [])]
+    fell = [n for n in busy if n > 150 and busy[n] == ([], [("a", "floor")])]
+    assert len(landed) == 1 and 40 < landed[0] < 100 and len(fell) == 1
+    assert busy == {
+        40: ([], [("a", "floor")]),  # lifted, after 30 quiet steps
+        landed[0]: ([("a", "floor")], []),  # lands while b's contact stays
+        100: ([("b", "feet")], []),  # a sensor body put on b
+        130: ([("b", "coin")], []),  # b into the coin, the feet still on it
+        150: ([("a", "floor")], [("a", "floor")]),  # a sensor now: its overlap, afresh
+        170: ([], [("b", "feet")]),
+        fell[0]: ([], [("a", "floor")]),  # a fell through
+        185: ([("b", "ledge")], [("b", "floor"), ("b", "coin")]),
+    }
+    assert ("b", "floor") in [e[:2] for e in log[landed[0]][2]]
+    # A contact the solver found begins with its impulse (engine.event_dispatch._changes),
+    # one it no longer finds ends where it last touched: the floor's under b, the ledge's.
+    (ledge,) = log[185][0]
+    assert ledge[4].y > 0.0 and ledge[3] == Vector(0.0, 1.0)
+    assert 4.5 - 1e-9 <= log[185][1][0][2].x <= 5.5 + 1e-9  # under b by the coin, not now
+    with pytest.MonkeyPatch.context() as mp:
+        full_settle(mp)
+        assert soft_log(kernels) == log
