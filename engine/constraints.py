@@ -32,6 +32,36 @@ what it gave body_a in the step (body_b took minus them; a gear gives b -ratio t
 angular one), and ``impulse``, their size (a slide joint's: along it, > 0 pulling, as a rod's).
 The two bodies of a joint do not collide with each other unless ``collide=True`` (Box2D's
 default, as a Hinge's; pymunk's ``collide_bodies`` is True).
+
+Each has pymunk's three settings of how hard it holds (engine.solver's module doc has the
+rows' terms), set at any time:
+
+- ``max_force`` (N; N m for the gear, ratchet, rotary limit and motor, whose force is a
+  torque; default inf): the most force it gives, at any time: each of its rows' impulse
+  summed over a substep of h is kept within max_force h (a groove's along it and across it
+  as one vector), so over a step of dt it gives at most max_force dt, and a joint pulled
+  harder gives way (a bob that weighs more than a slide joint bears falls at g - max_force
+  / m). A SimpleMotor's ``max_force`` is its ``max_torque``, one setting by either name.
+- ``max_bias`` (m/s; rad/s for the angular ones; default inf): the fastest it corrects an
+  error (a stretched slide joint, a gear off its phase) back; a motor has no error.
+- ``error_bias``: pymunk's share of an error left after 1 s (0 to 1), or None (the default):
+  the soft step's own joint spring (engine.solver: JOINT_HERTZ, 60 Hz at JOINT_DAMPING 2),
+  which leaves far less (e^-70 of it after 1 s at steps of 1/60 s in 4 substeps) than
+  pymunk's default, (1 - 0.1)^60 = 0.0018 (set ``error_bias = (1 - 0.1) ** 60`` for
+  pymunk's slower correction). Set, the joint corrects as pymunk's (Chipmunk's) does: its
+  rows rigid, each substep of h pushing the error back at (1 - error_bias^h) / h times itself
+  (at most max_bias), so an error left to itself is error_bias of itself after 1 s, at any
+  step. It is not mapped onto a stiffness of the spring, though one would correct as slowly
+  (8.6 Hz at damping ratio 2 for pymunk's default, at 1/60 s in 4 substeps): a spring gives
+  under a steady load, by F / (m omega^2) (3.4 mm under a bob's weight at those 8.6 Hz,
+  0.07 mm at 60 Hz), where pymunk's joint holds (its rows are rigid, only their error's
+  correction slow). A set error_bias makes the rows rigid with Chipmunk's bias: the spring's
+  limit as its stiffness and damping grow with its correction rate kept.
+
+A joint's correction moves its bodies but leaves them no speed (Box2D's relax, engine.solver),
+where pymunk's bodies move at the correction's speed: a body that a joint corrects slowly
+(error_bias near 1, a small max_bias) looks still meanwhile, and may fall asleep (after
+``world.sleep_time``) with part of its error left, until something wakes it.
 """
 
 from __future__ import annotations
@@ -90,10 +120,12 @@ class SoftJoint(Joint):
     impulses of the last step, ``collide``; the exact models do not solve them
     (``needs_soft``)."""
 
-    __slots__ = ("_a", "_b")
+    __slots__ = ("_a", "_b", "_max_force", "_max_bias", "_error_bias")
 
     #: Only the soft step's solver holds it (a World with solver="exact" refuses it).
     needs_soft: ClassVar[bool] = True
+    #: What its force is measured in (a rotary joint's is a torque) and its bias speed.
+    _units: ClassVar[tuple[str, str]] = ("N", "m/s")
 
     def _join(self, body_a: Any, body_b: Any, collide: Any) -> None:
         self.revision = 0
@@ -119,6 +151,8 @@ class SoftJoint(Joint):
         self._anchor_a = self._anchor_b = Vector(0.0, 0.0)
         self._length, self._e = 0.0, 0.0
         self._ref = _angle(a) - _angle(b)
+        self._max_force, self._max_bias = math.inf, math.inf
+        self._error_bias: float | None = None
         #: The impulse (N s) the joint gave body_a in the last step (body_b took minus it).
         self.linear_impulse = Vector(0.0, 0.0)
         #: The angular impulse (N m s) the joint's angular rows gave body_a in the last step.
@@ -128,6 +162,42 @@ class SoftJoint(Joint):
     def _changed(self) -> None:
         """A setting changed: the next step takes it, and wakes the bodies (Link.revision)."""
         self.revision += 1
+
+    def _bound(self, name: str, value: Any) -> None:
+        """Set ``name`` (a bound's slot) to ``value``, waking the bodies where it changes."""
+        if getattr(self, name) != value:
+            setattr(self, name, value)
+            self._changed()
+
+    @property
+    def max_force(self) -> float:
+        """The most force the joint gives (N; N m for a rotary joint; inf: as much as it
+        takes), pymunk's: each row's impulse over a substep of h at most max_force h."""
+        return self._max_force
+
+    @max_force.setter
+    def max_force(self, value: Any) -> None:
+        self._bound("_max_force", _most(value, "max_force", self._units[0]))
+
+    @property
+    def max_bias(self) -> float:
+        """The fastest the joint corrects its error (m/s; rad/s for a rotary joint; inf: as
+        fast as its spring or error_bias takes it), pymunk's."""
+        return self._max_bias
+
+    @max_bias.setter
+    def max_bias(self, value: Any) -> None:
+        self._bound("_max_bias", _most(value, "max_bias", self._units[1]))
+
+    @property
+    def error_bias(self) -> float | None:
+        """pymunk's share of an error left after 1 s (0 to 1), or None: the soft step's joint
+        spring (the module's text says how they differ)."""
+        return self._error_bias
+
+    @error_bias.setter
+    def error_bias(self, value: Any) -> None:
+        self._bound("_error_bias", _share(value))
 
     @property
     def body_a(self) -> Any:
@@ -155,7 +225,15 @@ class SoftJoint(Joint):
         return p if self._b is None else self._b.local_to_world(p)
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}({self.body_a!r}, {self.body_b!r}{self._settings()})"
+        bounds = ""
+        if self._max_force != math.inf and not isinstance(self, SimpleMotor):
+            bounds += f", max_force={self._max_force!r}"
+        if self._max_bias != math.inf:
+            bounds += f", max_bias={self._max_bias!r}"
+        if self._error_bias is not None:
+            bounds += f", error_bias={self._error_bias!r}"
+        name = type(self).__name__
+        return f"{name}({self.body_a!r}, {self.body_b!r}{self._settings()}{bounds})"
 
     def _settings(self) -> str:
         return ""
@@ -313,6 +391,7 @@ class GearJoint(SoftJoint):
     toothed wheels in mesh)."""
 
     __slots__ = ("_phase", "_ratio")
+    _units = ("N m", "rad/s")
 
     def __init__(
         self, body_a: Any, body_b: Any, phase: float, ratio: float, collide: bool = False
@@ -353,6 +432,7 @@ class RatchetJoint(SoftJoint):
     k ``ratchet``."""
 
     __slots__ = ("_phase", "_ratchet", "_notch")
+    _units = ("N m", "rad/s")
 
     def __init__(
         self, body_a: Any, body_b: Any, phase: float, ratchet: float, collide: bool = False
@@ -424,6 +504,7 @@ class RotaryLimitJoint(SoftJoint):
     The range may span more than a turn."""
 
     __slots__ = ("_min", "_max")
+    _units = ("N m", "rad/s")
 
     def __init__(
         self, body_a: Any, body_b: Any, min: float, max: float, collide: bool = False
@@ -464,9 +545,11 @@ class RotaryLimitJoint(SoftJoint):
 class SimpleMotor(SoftJoint):
     """omega_a - omega_b driven to rate (rad/s) by at most max_torque (N m): SimpleMotor.
 
-    pymunk's SimpleMotor, its ``max_force`` as ``max_torque`` (inf: as hard as it takes)."""
+    pymunk's SimpleMotor, its ``max_force`` as ``max_torque`` (inf: as hard as it takes): one
+    setting by either name."""
 
-    __slots__ = ("_rate", "_max_torque")
+    __slots__ = ("_rate",)
+    _units = ("N m", "rad/s")
 
     def __init__(
         self,
@@ -478,7 +561,7 @@ class SimpleMotor(SoftJoint):
     ) -> None:
         self._join(body_a, body_b, collide)
         self._rate = checks.real(rate, "rate")
-        self._max_torque = _torque(max_torque)
+        self._max_force = _most(max_torque, "max_torque", "N m")
 
     @property
     def rate(self) -> float:
@@ -492,23 +575,40 @@ class SimpleMotor(SoftJoint):
 
     @property
     def max_torque(self) -> float:
-        """The most torque the motor gives (N m; inf: as much as it takes)."""
-        return self._max_torque
+        """The most torque the motor gives (N m; inf: as much as it takes): its
+        ``max_force``."""
+        return self._max_force
 
     @max_torque.setter
     def max_torque(self, value: Any) -> None:
-        self._max_torque = _torque(value)
-        self._changed()
+        self._bound("_max_force", _most(value, "max_torque", "N m"))
 
     def _settings(self) -> str:
-        return f", rate={self._rate!r}, max_torque={self._max_torque!r}"
+        return f", rate={self._rate!r}, max_torque={self._max_force!r}"
 
 
-def _torque(value: Any) -> float:
+def _most(value: Any, name: str, unit: str) -> float:
+    """A bound (max_force, max_bias, max_torque): a real number >= 0 in ``unit``, or inf."""
     if isinstance(value, float) and value == math.inf:
         return math.inf
     try:
-        t = checks.real(value, "max_torque", nonneg=True)
+        t = checks.real(value, name, nonneg=True)
     except ValueError:
-        raise ValueError(f"max_torque must be >= 0 in N m (inf: no bound), got {value!r}") from None
+        raise ValueError(f"{name} must be >= 0 in {unit} (inf: no bound), got {value!r}") from None
     return t
+
+
+def _share(value: Any) -> float | None:
+    """An error_bias: None, or a real number from 0 to 1."""
+    if value is None:
+        return None
+    try:
+        e = checks.real(value, "error_bias")
+    except ValueError:
+        e = math.nan
+    if not 0.0 <= e <= 1.0:
+        raise ValueError(
+            "error_bias must be the share of an error left after 1 s, from 0 to 1 (pymunk's "
+            f"default: (1 - 0.1) ** 60), or None for the soft step's joint spring; got {value!r}"
+        )
+    return e

@@ -803,7 +803,7 @@ def _constraint_row(j: SoftJoint, store: Any, n: int, kept: tuple[float, ...]) -
     coordinates), so that angle_B - angle_A is pymunk's b.angle - a.angle."""
     a = n if j._a is None else store.row(j._a.slot)
     b = n if j._b is None else store.row(j._b.slot)
-    kind, ref, lower, upper, speed, most = solver.ROTARY, 0.0, 0.0, 0.0, 0.0, 0.0
+    kind, ref, lower, upper, speed = solver.ROTARY, 0.0, 0.0, 0.0, 0.0
     limit, motor = 0, 0
     pa, pb = j.anchor_a, j.anchor_b
     if isinstance(j, SlideJoint):
@@ -828,9 +828,13 @@ def _constraint_row(j: SoftJoint, store: Any, n: int, kept: tuple[float, ...]) -
     else:
         assert isinstance(j, SimpleMotor)
         # The hinge's motor row drives omega_B - omega_A: pymunk's rate is omega_a - omega_b.
-        motor, speed, most = 1, -j.rate, min(j.max_torque, 1e300)
-    return [kind, a, b, pa.x, pa.y, pb.x, pb.y, ref, 0.0, 0.0, limit, lower, upper, motor, speed,
-            most, *kept]  # fmt: skip
+        motor, speed = 1, -j.rate
+    # pymunk's bounds (jmotor's bit 2): the largest force (a motor's torque) in jmaxtorque,
+    # the largest bias speed in jdamp, the error_bias in jhertz (-1: the joints' spring).
+    error = -1.0 if j.error_bias is None else j.error_bias
+    most, fastest = min(j.max_force, 1e300), min(j.max_bias, 1e300)
+    return [kind, a, b, pa.x, pa.y, pb.x, pb.y, ref, error, fastest, limit, lower, upper,
+            motor | 2, speed, most, *kept]  # fmt: skip
 
 
 def _report_constraint(

@@ -92,6 +92,24 @@ any c); a rotary spring the same on the angle angle_B - angle_A (w = i_A + i_B).
 is explicit, so it holds while omega h < 2 (omega^2 = k w; at 4 substeps of 1/60 s, k w up to
 230,000 s^-2).
 
+**pymunk's bounds** (a constraint's rows, engine.constraints: ``jmotor``'s bit 2 set).
+Chipmunk keeps a row's impulse summed over its step within max_force dt; here a row's impulse
+summed over a substep (what it gives in it: the warm start and what each solve adds, the
+``jpa`` ... ``jmi`` carried) is kept within max_force h, so that it gives at most max_force
+(N, N m) at any time and max_force dt over the step; a groove's rows along it and across it
+are bounded as one vector (Chipmunk's ``cpvclamp``), scaled back to max_force h where they
+exceed it. The speed a row corrects its error at, the push s_m bias_rate C above (or beta C
+below), is at most max_bias (m/s, rad/s; a groove's as one vector again); a speculative row's
+"may close by C" is no correction, and is not bounded. Where error_bias (the share of an
+error left after 1 s) is set, a row's push in the solve with bias is Chipmunk's, not the
+joints' spring: rigid (s_m = 1, s_i = 0) with bias_rate beta = (1 - error_bias^h) / h. Each
+substep the push moves the bodies by beta C h and the relax takes its speed away, so an error
+left to itself is error_bias^h of itself after a substep, error_bias after 1 s, whatever the
+step. (The joints' spring leaves 1 - h^2 omega^2 / (1 + 2 zeta h omega + h^2 omega^2) of it a
+substep, so some stiffness would give any error_bias too; but a spring gives under a steady
+load, by F / (m omega^2), where pymunk's rows do not. Beta's row is the spring's limit as its
+stiffness and damping grow with omega / (2 zeta + h omega) = beta held.)
+
 **One loop, two paths.** ``solve`` is written as the loop it is, over flat arrays. On the fast
 path numba compiles it (engine.kernels); on the numpy path it runs as plain Python on lists,
 which at a game's size (tens of rows) is faster than numpy's calls a colour; the two give the
@@ -218,15 +236,19 @@ def solve(
     (``jlimit``: 1 the lower, 2 the upper, 3 both) and where (``jlower``, ``jupper``): a
     hinge's or ROTARY's on angle_B - angle_A - jref (rad), a distance's on its length (m:
     equal, a rod, held both ways), a groove's on B's anchor along it (m: 0 and its length; A's
-    anchor its start, ``jref`` its direction in A's frame, rad); a motor (``jmotor`` 1 on,
-    ``jspeed`` rad/s, ``jmaxtorque`` N m); a mouse joint's angular damping (``jspeed``, 1/s)
-    and largest force (``jmaxtorque``, N); a cable's restitution (``jspeed``); a gear's phase
-    (``jref``, rad) and ratio (``jspeed``); impulses (N s, N m s a substep) in and out:
-    ``jpx``, ``jpy`` the point's, ``jpa`` a weld's angle's (a rod's along u, a groove's across
-    it, a gear's), ``jlo``, ``jhi`` the limits' (a cable's, pulling, in ``jhi``), ``jmi`` the
-    motor's. A spring's rest length or angle is ``jlower`` (m, rad), its stiffness
-    ``jhertz`` (N/m, N m/rad), its damping ``jdamp`` (N s/m, N m s/rad); its ``jpa`` out is the
-    impulse it gave over the whole step (along u, or on B's angle), and is not warm started.
+    anchor its start, ``jref`` its direction in A's frame, rad); a motor (``jmotor``'s bit 1
+    on, ``jspeed`` rad/s, ``jmaxtorque`` N m); pymunk's bounds on a constraint's rows
+    (``jmotor``'s bit 2 on; module doc): its largest force ``jmaxtorque`` (N, N m; a motor's
+    torque is its force), its largest bias speed ``jdamp`` (m/s, rad/s) and its error_bias
+    ``jhertz`` (the share of an error left after 1 s; < 0: the joints' spring); a mouse
+    joint's angular damping (``jspeed``, 1/s) and largest force (``jmaxtorque``, N); a
+    cable's restitution (``jspeed``); a gear's phase (``jref``, rad) and ratio (``jspeed``);
+    impulses (N s, N m s a substep) in and out: ``jpx``, ``jpy`` the point's, ``jpa`` a weld's
+    angle's (a rod's along u, a groove's across it, a gear's), ``jlo``, ``jhi`` the limits' (a
+    cable's, pulling, in ``jhi``), ``jmi`` the motor's. A spring's rest length or angle is
+    ``jlower`` (m, rad), its stiffness ``jhertz`` (N/m, N m/rad), its damping ``jdamp`` (N s/m,
+    N m s/rad); its ``jpa`` out is the impulse it gave over the whole step (along u, or on B's
+    angle), and is not warm started.
     """
     nb = len(bx)
     nc = len(ca)
@@ -269,24 +291,51 @@ def solve(
     a1 = 2.0 * joint_damping + h * omega
     a2 = h * omega * a1
     j_rate, j_mass, j_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+    # pymunk's bounds on each joint's rows (module doc): the most impulse a row's substep may
+    # sum to (max_force h), the fastest it corrects its error (max_bias), its error_bias's
+    # bias rate beta (< 0: the joints' spring); no bound, and the spring, but for a
+    # constraint's rows (jmotor's bit 2).
+    jmost = floats(nj, math.inf)
+    jfast = floats(nj, math.inf)
+    jbeta = floats(nj, -1.0)
 
-    def soft(bias: bool) -> tuple[float, float, float]:
-        """An equality row's (bias rate, mass scale, impulse scale): the joints' spring in the
-        solve with bias, rigid with no push in the relax."""
-        if bias:
-            return j_rate, j_mass, j_imp
-        return 0.0, 1.0, 0.0
+    def soft(k: int, bias: bool) -> tuple[float, float, float]:
+        """Joint k's equality row's (bias rate, mass scale, impulse scale): in the solve with
+        bias the joints' spring, or where its error_bias is set Chipmunk's rigid push (module
+        doc); rigid with no push in the relax."""
+        if not bias:
+            return 0.0, 1.0, 0.0
+        if jbeta[k] >= 0.0:
+            return jbeta[k], 1.0, 0.0
+        return j_rate, j_mass, j_imp
 
-    def limit(err: float, cdot: float, mass: float, old: float, bias: bool) -> float:
-        """A limit's row (module doc) solved once: C = err >= 0, dC/dt = cdot, of ``mass``; its
-        impulse of the substep so far ``old`` made new (>= 0: a limit only pushes)."""
+    def bounded(rate: float, err: float, mscale: float, top: float) -> float:
+        """The bias rate err of a row, kept so that the speed it corrects its error at,
+        mscale rate err, is at most ``top`` (max_bias; inf: as it is)."""
+        v = rate * err
+        most = top / mscale
+        if v > most:
+            return most
+        if v < -most:
+            return -most
+        return v
+
+    def limit(
+        k: int, err: float, cdot: float, mass: float, old: float, bias: bool, top: float,
+        cap: float,
+    ) -> float:  # fmt: skip
+        """Joint k's limit row (module doc) solved once: C = err >= 0, dC/dt = cdot, of
+        ``mass``; its impulse of the substep so far ``old`` made new (>= 0: a limit only
+        pushes; at most ``cap``, max_force h), its correction at most ``top`` fast."""
         rate, mscale, iscale = 0.0, 1.0, 0.0
+        v = 0.0
         if err > 0.0:
-            rate = inv_h  # speculative: may close by err in the substep, no more
+            v = inv_h * err  # speculative: may close by err in the substep, no more
         elif bias:
-            rate, mscale, iscale = j_rate, j_mass, j_imp
-        d = -mscale * mass * (cdot + rate * err) - iscale * old
-        return max(old + d, 0.0)
+            rate, mscale, iscale = soft(k, bias)
+            v = bounded(rate, err, mscale, top)
+        d = -mscale * mass * (cdot + v) - iscale * old
+        return min(max(old + d, 0.0), cap)
 
     def press(
         p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
@@ -462,6 +511,20 @@ def solve(
         b = jb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
         rod = jkind[k] == DISTANCE and jlower[k] == jupper[k]
+        groove = jkind[k] == GROOVE
+        # Each row's largest correction speed: max_bias, a groove's shared by its rows as one
+        # vector's (each row's part of it as its error's part of the error across and past
+        # the ends, so that the correction keeps its direction).
+        tops = (jfast[k], jfast[k], jfast[k])
+        cap = math.inf if groove else jmost[k]  # (a groove's, as a vector, below)
+        if groove and jfast[k] < math.inf:
+            past = min(t - jlower[k], 0.0) + min(jupper[k] - t, 0.0)
+            size = math.sqrt(past * past + across * across)
+            if size > 0.0:
+                f = jfast[k] / size
+                lo_top = f * -min(t - jlower[k], 0.0)
+                hi_top = f * -min(jupper[k] - t, 0.0)
+                tops = (lo_top, hi_top, f * abs(across))
         for row in range(3):
             nx, ny = ux, uy
             if row == 2:
@@ -480,7 +543,7 @@ def solve(
                 sign = 1.0 if row == 0 else -1.0
                 old = jlo[k] if row == 0 else jhi[k]
                 err = t - jlower[k] if row == 0 else jupper[k] - t
-                new = limit(err, sign * cdot, mass, old, bias)
+                new = limit(k, err, sign * cdot, mass, old, bias, tops[row], cap)
                 d = sign * (new - old)
                 if row == 0:
                     jlo[k] = new
@@ -489,12 +552,34 @@ def solve(
                     if new > 0.0:
                         dhit[k] = 1.0
             else:
-                # A rod's length, or a groove's point across: a soft equality row.
-                rate, mscale, iscale = soft(bias)
+                # A rod's length, or a groove's point across: a soft equality row, its
+                # impulse within max_force h (a groove's, with its ends', below).
+                rate, mscale, iscale = soft(k, bias)
                 err = t - jupper[k] if rod else across
-                d = -mscale * mass * (cdot + rate * err) - iscale * jpa[k]
-                jpa[k] += d
+                v = bounded(rate, err, mscale, tops[2])
+                d = -mscale * mass * (cdot + v) - iscale * jpa[k]
+                old = jpa[k]
+                new = old + d
+                if not groove and (new > jmost[k] or new < -jmost[k]):
+                    new = min(max(new, -jmost[k]), jmost[k])
+                    d = new - old
+                jpa[k] = new
             apply(a, b, ma, ia, mb, ib, d * nx, d * ny, lax, lay, rbx, rby)
+        if groove:
+            # The ends' push along u and the point's across it as one impulse on B, at most
+            # max_force h: scaled back to it where it exceeds it (Chipmunk's cpvclamp).
+            along = jlo[k] - jhi[k]
+            size = math.sqrt(along * along + jpa[k] * jpa[k])
+            if size > jmost[k]:
+                f = jmost[k] / size
+                da = (jlo[k] * f - jhi[k] * f) - along
+                dn = jpa[k] * f - jpa[k]
+                jlo[k] *= f
+                jhi[k] *= f
+                jpa[k] *= f
+                apply(
+                    a, b, ma, ia, mb, ib, da * ux - dn * uy, da * uy + dn * ux, lax, lay, rbx, rby
+                )
 
     def spring(k: int, rax: float, ray: float, rbx: float, rby: float) -> None:
         """Spring k's impulses over a substep (module doc): its stiffness', explicit, then its
@@ -546,6 +631,12 @@ def solve(
             guy[k] = s * gx + c * gy
         if jkind[k] >= SPRING:
             jpa[k] = 0.0  # (a force: what it gives is summed over the step, not carried)
+        elif (jmotor[k] & 2) != 0:
+            # A constraint's bounds (module doc): its jhertz an error_bias, not a frequency.
+            jmost[k] = h * jmaxtorque[k]
+            jfast[k] = jdamp[k]
+            if jhertz[k] >= 0.0:
+                jbeta[k] = (1.0 - jhertz[k] ** h) * inv_h
         elif jhertz[k] > 0.0:
             omega = 2.0 * math.pi * jhertz[k]
             a1 = 2.0 * jdamp[k] + h * omega
@@ -654,11 +745,17 @@ def solve(
                     # C = r angle_B - angle_A - phase (r = jspeed, phase = jref).
                     if amass[k] != 0.0:
                         r = jspeed[k]
-                        rate, mscale, iscale = soft(bias)
+                        rate, mscale, iscale = soft(k, bias)
                         err = r * (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
                         cdot = r * bw[b] - bw[a]
-                        d = -amass[k] * mscale * (cdot + rate * err) - iscale * jpa[k]
-                        jpa[k] += d
+                        v = bounded(rate, err, mscale, jfast[k])
+                        d = -amass[k] * mscale * (cdot + v) - iscale * jpa[k]
+                        old = jpa[k]
+                        new = old + d
+                        if new > jmost[k] or new < -jmost[k]:
+                            new = min(max(new, -jmost[k]), jmost[k])
+                            d = new - old
+                        jpa[k] = new
                         bw[a] -= ia * d
                         bw[b] += r * ib * d
                     continue
@@ -682,7 +779,7 @@ def solve(
                     if bias and jspeed[k] > 0.0 and ib > 0.0:
                         bw[b] = bw[b] / (1.0 + jspeed[k] * h)
                 else:
-                    if jmotor[k] != 0 and not fixed:
+                    if (jmotor[k] & 1) != 0 and not fixed:
                         cdot = bw[b] - bw[a] - jspeed[k]
                         d = -amass[k] * cdot
                         old = jmi[k]
@@ -702,7 +799,8 @@ def solve(
                             sign = 1.0 if side == 0 else -1.0
                             old = jlo[k] if side == 0 else jhi[k]
                             err = angle - jlower[k] if side == 0 else jupper[k] - angle
-                            new = limit(err, sign * (bw[b] - bw[a]), mass, old, bias)
+                            turn = sign * (bw[b] - bw[a])
+                            new = limit(k, err, turn, mass, old, bias, jfast[k], jmost[k])
                             d = sign * (new - old)
                             if side == 0:
                                 jlo[k] = new

@@ -6,6 +6,7 @@ both paths, the same bits on each; the exact solver's refusal, and the errors.""
 from __future__ import annotations
 
 import math
+import pickle
 from typing import Any
 
 import pytest
@@ -301,7 +302,7 @@ def test_a_slide_joint_of_min_max_is_a_rod_and_of_min_0_a_cable_bit_for_bit(kern
         lambda a, b: (Cable(b, a, 1.5, 0.0, (0.1, 0.0), (0.0, 0.2)),
                       SlideJoint(a, b, (0.0, 0.2), (0.1, 0.0), 0.0, 1.5)),
     ):  # fmt: skip
-        ends = []
+        ends: list[list[Any]] = []
         for pick in (0, 1):
             world = soft(kernels, gravity=True)
             a = world.add(Body(Vector(0.0, 0.0), mass=2.0, shape=Polygon.box(0.4, 0.4)))
@@ -389,6 +390,299 @@ def test_a_motor_between_two_discs_turns_them_apart_at_its_rate(kernels: str) ->
     assert a.angular_velocity == pytest.approx(2.0 * b.moment / (a.moment + b.moment), rel=1e-12)
 
 
+# -- max_force, max_bias, error_bias (pymunk's bounds) -------------------------------------------
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+@pytest.mark.parametrize("least", [1.0, 0.0, 0.5], ids=["rod", "cable", "slide"])
+def test_a_bob_on_a_slide_joint_bearing_a_quarter_of_its_weight_falls_at_three_quarters_g(
+    kernels: str, least: float
+) -> None:
+    # A 2 kg bob 1 m below a pivot on a slide joint (a rod, a cable, or between) whose
+    # max_force is a quarter of its weight: the joint pulls as hard as it may, max_force h
+    # each substep from the first on (its row asks for more and is kept at that), so the bob
+    # falls as the step's semi-implicit Euler moves a body at a = g - max_force / m = 3/4 g:
+    # after N substeps of h, v = -a N h and y = -1 - a h^2 N (N + 1) / 2. The joint reports
+    # max_force dt a step, pulling; with no bound it would hold the bob.
+    world = soft(kernels, gravity=True)
+    bob = world.add(disc(0.0, -1.0, 2.0, 0.1))
+    ws = world.static_body
+    joint = world.add_link(SlideJoint(ws, bob, (0.0, 0.0), (0.0, 0.0), least, 1.0))
+    assert joint.max_force == math.inf
+    joint.max_force = 0.25 * bob.mass * G  # 4.905 N
+    a = G - joint.max_force / bob.mass
+    h = DT / world.contact_iterations
+    for step in range(1, 61):
+        world.step(DT)
+        n = step * world.contact_iterations
+        assert bob.vel.y == pytest.approx(-a * n * h, rel=1e-12)
+        assert bob.pos.y + 1.0 == pytest.approx(-a * h * h * n * (n + 1) / 2, rel=1e-12)
+        assert joint.impulse == pytest.approx(joint.max_force * DT, rel=1e-12)
+        assert joint.impulse <= joint.max_force * DT * (1.0 + 1e-12)
+        assert joint.linear_impulse.y == pytest.approx(-joint.impulse, rel=1e-12)  # (on the world)
+    assert bob.vel.x == 0.0 and bob.pos.x == 0.0 and bob.angular_velocity == 0.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_motor_with_max_force_spins_a_wheel_up_at_max_force_over_i(kernels: str) -> None:
+    # pymunk bounds its SimpleMotor by max_force (a torque, N m): here one setting with
+    # max_torque, by either name. Below its rate of 5 rad/s a wheel of moment I spins up at
+    # max_force / I (0.8 rad/s^2), each step's angular impulse max_force dt; raised, at the
+    # new bound from the next step on.
+    world = soft(kernels)
+    wheel = world.add(disc(0.0, 0.0, 2.0, 0.5))
+    motor = world.add_link(SimpleMotor(wheel, world.static_body, 5.0))
+    assert motor.max_force == motor.max_torque == math.inf
+    motor.max_force = 0.2
+    assert motor.max_torque == 0.2
+    alpha = 0.2 / wheel.moment
+    for step in range(1, 121):
+        world.step(DT)
+        assert wheel.angular_velocity == pytest.approx(alpha * step * DT, rel=1e-12)
+        assert motor.impulse == pytest.approx(0.2 * DT, rel=1e-12)
+        assert motor.impulse <= 0.2 * DT * (1.0 + 1e-12)
+    motor.max_torque = 0.4
+    assert motor.max_force == 0.4
+    w0 = wheel.angular_velocity
+    world.step(DT)
+    assert wheel.angular_velocity == pytest.approx(w0 + 0.4 / wheel.moment * DT, rel=1e-12)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_gear_bearing_max_force_slips_each_disc_at_max_force_over_its_moment(
+    kernels: str,
+) -> None:
+    # Disc a spun at 3 rad/s, geared 1:1 to b at rest, the gear's max_force 0.1 N m: its teeth
+    # slip, turning a down at 0.1 / I_a (0.8 rad/s^2) and b up at 0.1 / I_b (0.1 rad/s^2)
+    # until they turn alike (3.3 s on), I_a omega_a + I_b omega_b kept; with no bound they
+    # would turn alike at once.
+    world = soft(kernels)
+    a = world.add(disc(0.0, 0.0, 1.0, 0.5, angular_velocity=3.0))
+    b = world.add(disc(3.0, 0.0, 2.0, 1.0))
+    gear = world.add_link(GearJoint(a, b, 0.0, 1.0))
+    gear.max_force = 0.1
+    for step in range(1, 61):
+        world.step(DT)
+        t = step * DT
+        assert a.angular_velocity == pytest.approx(3.0 - 0.1 / a.moment * t, rel=1e-12)
+        assert b.angular_velocity == pytest.approx(0.1 / b.moment * t, rel=1e-12)
+        assert gear.impulse == pytest.approx(0.1 * DT, rel=1e-12)
+        assert gear.impulse <= 0.1 * DT * (1.0 + 1e-12)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_pivot_bearing_max_force_gives_way_along_the_pull(kernels: str) -> None:
+    # A 2 kg bead on a groove of no length to the world (pymunk's PivotJoint) under gravity
+    # slanted to (0.6, -0.8) g: the groove's ends push along its axis and its point across
+    # it, bounded as one vector (Chipmunk's) by max_force 5 N, so the bead gives way straight
+    # down the pull at g - 5 / 2, as semi-implicit Euler moves it (v = a N h after N
+    # substeps). (Bounded row by row it would be held by 5 N each way, 7.1 N, off the line.)
+    world = World(kernels=kernels, solver="soft")
+    world.sleep_time = math.inf
+    down = Vector(0.6, -0.8)
+    world.add_force(Gravity(tuple(down * G)))
+    bead = world.add(disc(0.0, 0.0, 2.0, 0.1))
+    pivot = world.add_link(GrooveJoint(world.static_body, bead, (0.0, 0.0), (0.0, 0.0), (0, 0)))
+    pivot.max_force = 5.0
+    a = G - 5.0 / bead.mass
+    h = DT / world.contact_iterations
+    for step in range(1, 61):
+        world.step(DT)
+        v = down * (a * step * world.contact_iterations * h)
+        assert abs(bead.vel - v) <= 1e-12 * abs(v)
+        assert pivot.impulse == pytest.approx(5.0 * DT, rel=1e-12)
+        assert pivot.impulse <= 5.0 * DT * (1.0 + 1e-12)
+    assert bead.angular_velocity == 0.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_max_bias_bounds_the_speed_a_joint_corrects_its_error_at(kernels: str) -> None:
+    # Left with an error, each joint closes it at max_bias, no faster, from the first step:
+    # a rod of 1 m with its bob 2 m out (max_bias 0.5 m/s), a 2:1 gear 1 rad off its phase
+    # (0.2 rad/s), a pivot (a groove of no length) 0.5 m off its point, slantwise (0.25 m/s,
+    # along the error: its rows' bias bounded as one vector). The relax takes each push's
+    # speed away: the bodies are still after each step. The joints' 60 Hz spring alone
+    # closes 69% of an error in a step (test_error_bias_...).
+    world = soft(kernels)
+    bob = world.add(disc(2.0, 0.0, 1.0, 0.1))
+    ws = world.static_body
+    rod = world.add_link(SlideJoint(ws, bob, (0.0, 0.0), (0.0, 0.0), 1.0, 1.0))
+    a = world.add(disc(0.0, 3.0, 1.0, 0.5))
+    b = world.add(disc(3.0, 3.0, 2.0, 1.0, angle=0.5))
+    gear = world.add_link(GearJoint(a, b, 0.0, 2.0))
+    bead = world.add(disc(10.3, -0.4, 1.0, 0.1))
+    pivot = world.add_link(GrooveJoint(ws, bead, (10.0, 0.0), (10.0, 0.0), (0.0, 0.0)))
+    assert rod.max_bias == gear.max_bias == pivot.max_bias == math.inf
+    rod.max_bias, gear.max_bias, pivot.max_bias = 0.5, 0.2, 0.25
+    for step in range(1, 61):
+        world.step(DT)
+        t = step * DT
+        assert rod.distance == pytest.approx(2.0 - 0.5 * t, abs=1e-12)
+        assert 2.0 * b.angle - a.angle == pytest.approx(1.0 - 0.2 * t, abs=1e-12)
+        off = bead.pos - Vector(10.0, 0.0)
+        assert abs(off) == pytest.approx(0.5 - 0.25 * t, abs=1e-12)
+        assert off.x / off.y == pytest.approx(-0.75, abs=1e-12)
+        for body in (bob, a, b, bead):
+            assert abs(body.vel) < 1e-12 and abs(body.angular_velocity) < 1e-12
+
+
+def _keeps(h: float) -> float:
+    """The share of an error the joints' spring leaves in a substep of h, left to itself
+    (engine.solver: its push s_m bias_rate C moves the bodies for h, the relax takes the
+    speed away): 1 - h^2 w^2 / (1 + 2 zeta h w + h^2 w^2), w = 2 pi min(60 Hz, 1 / (4 h))."""
+    w = 2.0 * math.pi * min(solver.JOINT_HERTZ, 0.25 / h)
+    zeta = solver.JOINT_DAMPING
+    return 1.0 - h * h * w * w / (1.0 + 2.0 * zeta * h * w + h * h * w * w)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+@pytest.mark.parametrize("dt", [1 / 30, 1 / 60, 1 / 120])
+def test_error_bias_leaves_its_share_of_an_error_after_1_s_at_any_step(
+    kernels: str, dt: float
+) -> None:
+    # Two discs geared 2:1, b turned 0.5 rad off (an error of 1 rad). Set to 0.3, error_bias
+    # leaves 0.3^dt of the error a step (Chipmunk's bias, each substep's push taken away by
+    # the relax), 0.3 of it after 1 s whatever the step. Left None, the joints' spring leaves
+    # _keeps(h) a substep: 31% a step at 1/60 s, e^-70 after 1 s, far less than pymunk's
+    # default error_bias, 0.9^60 = 0.0018.
+    errors = []
+    for share in (None, 0.3):
+        world = soft(kernels)
+        a = world.add(disc(0.0, 0.0, 1.0, 0.5))
+        b = world.add(disc(3.0, 0.0, 2.0, 1.0, angle=0.5))
+        gear = world.add_link(GearJoint(a, b, 0.0, 2.0))
+        assert gear.error_bias is None
+        gear.error_bias = share
+        world.step(dt)
+        errors.append(2.0 * b.angle - a.angle)
+        for _ in range(round(1.0 / dt) - 1):
+            world.step(dt)
+        errors.append(2.0 * b.angle - a.angle)
+    keeps = _keeps(dt / solver.SUBSTEPS) ** solver.SUBSTEPS
+    assert errors[0] == pytest.approx(keeps, rel=1e-12)
+    assert abs(errors[1]) < 1e-15  # (rounding: e^-70 of it is left)
+    assert errors[2] == pytest.approx(0.3**dt, rel=1e-12)
+    assert errors[3] == pytest.approx(0.3, rel=1e-12)
+    assert _keeps(DT / 4) ** 240 == pytest.approx(math.exp(-70.0), rel=0.03)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+@pytest.mark.parametrize("share", [None, 0.9**60, 0.5])
+def test_a_set_error_bias_bears_a_load_without_the_springs_give(
+    kernels: str, share: float | None
+) -> None:
+    # A wheel driven at 1 rad/s by a motor of 100 N m against a rotary limit at 1 rad, and a
+    # 2 kg bob hanging on a 1 m rod: the joints' 60 Hz spring gives under the load by its
+    # acceleration over omega^2 (100 / (I omega^2) = 7.0e-5 rad; g / omega^2 = 6.9e-5 m);
+    # with error_bias set (pymunk's default, or another), the rows are rigid, as pymunk's,
+    # and give nothing, bearing the same load (100 N m dt, m g dt a step).
+    world, hanging = soft(kernels), soft(kernels, gravity=True)
+    wheel = world.add(Body(Vector(0.0, 0.0), mass=10.0, moment=10.0))
+    stop = world.add_link(RotaryLimitJoint(world.static_body, wheel, 0.0, 1.0))
+    world.add_link(SimpleMotor(wheel, world.static_body, 1.0, max_torque=100.0))
+    bob = hanging.add(disc(0.0, -1.0, 2.0, 0.1))
+    ws = hanging.static_body
+    rod = hanging.add_link(SlideJoint(ws, bob, (0.0, 0.0), (0.0, 0.0), 1.0, 1.0))
+    stop.error_bias = rod.error_bias = share
+    for _ in range(120):
+        world.step(DT)
+        hanging.step(DT)
+    give = (100.0 / (wheel.moment * OMEGA**2), G / OMEGA**2) if share is None else (0.0, 0.0)
+    assert wheel.angle - 1.0 == pytest.approx(give[0], rel=1e-9, abs=1e-15)
+    assert rod.distance - 1.0 == pytest.approx(give[1], rel=1e-9, abs=1e-15)
+    assert stop.impulse == pytest.approx(100.0 * DT, rel=1e-12)
+    assert rod.impulse == pytest.approx(bob.mass * G * DT, rel=1e-12)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_setting_a_bound_wakes_the_bodies_and_the_next_step_takes_it(kernels: str) -> None:
+    # A bob asleep on a cable: the same bound set again changes nothing and wakes nothing; a
+    # new max_force of a quarter of its weight wakes it, and it falls at 3/4 g from the next
+    # step (the cable's kept impulse, its weight, is taken back to the bound in the first
+    # substep).
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -G)))
+    bob = world.add(disc(0.0, -1.0, 2.0, 0.1))
+    cable = world.add_link(SlideJoint(world.static_body, bob, (0.0, 0.0), (0.0, 0.0), 0.0, 1.0))
+    for _ in range(120):
+        world.step(DT)
+    assert world.is_sleeping(bob)
+    revision = cable.revision
+    cable.max_force, cable.max_bias, cable.error_bias = math.inf, math.inf, None
+    assert cable.revision == revision
+    world.step(DT)
+    assert world.is_sleeping(bob)
+    cable.max_force = 0.25 * bob.mass * G
+    assert cable.revision == revision + 1
+    world.step(DT)
+    assert not world.is_sleeping(bob)
+    assert bob.vel.y == pytest.approx(-0.75 * G * DT, rel=1e-12)
+    assert cable.impulse == pytest.approx(cable.max_force * DT, rel=1e-12)
+
+
+def test_the_bounds_errors_name_the_argument_the_value_and_what_is_valid() -> None:
+    world = World(solver="soft")
+    a, b = world.add(disc(0, 0, 1, 0.1)), world.add(disc(1, 0, 1, 0.1))
+    slide = SlideJoint(a, b, (0, 0), (0, 0), 0.5, 1.0)
+    gear = GearJoint(a, b, 0.0, 1.0)
+    motor = SimpleMotor(a, b, 1.0)
+    share = r"error_bias must be the share of an error left after 1 s, from 0 to 1 \(pymunk's "
+    share += r"default: \(1 - 0\.1\) \*\* 60\), or None for the soft step's joint spring; got "
+    cases: list[tuple[Any, str, Any, type[Exception], str]] = [
+        (slide, "max_force", -1.0, ValueError,
+         r"max_force must be >= 0 in N \(inf: no bound\), got -1\.0"),
+        (gear, "max_force", -1, ValueError,
+         r"max_force must be >= 0 in N m \(inf: no bound\), got -1$"),
+        (motor, "max_force", math.nan, ValueError,
+         r"max_force must be >= 0 in N m \(inf: no bound\), got nan"),
+        (motor, "max_torque", -2.0, ValueError,
+         r"max_torque must be >= 0 in N m \(inf: no bound\), got -2\.0"),
+        (slide, "max_force", "10", TypeError, r"max_force must be a real number, got str '10'"),
+        (slide, "max_bias", math.nan, ValueError,
+         r"max_bias must be >= 0 in m/s \(inf: no bound\), got nan"),
+        (gear, "max_bias", -math.inf, ValueError,
+         r"max_bias must be >= 0 in rad/s \(inf: no bound\), got -inf"),
+        (gear, "error_bias", 1.5, ValueError, share + r"1\.5"),
+        (gear, "error_bias", -0.1, ValueError, share + r"-0\.1"),
+        (slide, "error_bias", math.inf, ValueError, share + r"inf"),
+        (slide, "error_bias", True, TypeError, r"error_bias must be a real number, got bool True"),
+    ]  # fmt: skip
+    for joint, name, value, kind, message in cases:
+        before, revision = getattr(joint, name), joint.revision
+        with pytest.raises(kind, match=message):
+            setattr(joint, name, value)
+        assert getattr(joint, name) == before and joint.revision == revision
+    # The ends of each range are valid: no force (it holds nothing), no correction, no bound;
+    # an error all left, none left, and the spring again.
+    for value in (0, math.inf, 2):
+        slide.max_force = slide.max_bias = value
+        assert slide.max_force == slide.max_bias == value
+        assert type(slide.max_force) is float
+    for share_ in (0, 1, 0.25, None):
+        gear.error_bias = share_
+        assert gear.error_bias == share_
+    assert type(SimpleMotor(a, b, 1.0, max_torque=3).max_force) is float
+
+
+def test_the_bounds_are_kept_by_a_copy_and_shown_by_repr() -> None:
+    a, b = disc(0, 0, 1, 0.1), disc(1, 0, 1, 0.1)
+    slide = SlideJoint(a, b, (0, 0), (0, 0), 0.5, 1.0)
+    slide.max_force, slide.max_bias, slide.error_bias = 3.0, 0.5, 0.25
+    motor = SimpleMotor(a, b, 1.0, max_torque=2.0)
+    motor.max_bias = 1.0
+    for joint in (slide, motor):
+        twin = pickle.loads(pickle.dumps(joint))
+        assert (twin.max_force, twin.max_bias, twin.error_bias) == (
+            joint.max_force,
+            joint.max_bias,
+            joint.error_bias,
+        )
+    assert repr(slide).endswith(", min=0.5, max=1.0, max_force=3.0, max_bias=0.5, error_bias=0.25)")
+    assert repr(motor).endswith(", rate=1.0, max_torque=2.0, max_bias=1.0)")
+    assert "max_force" not in repr(motor)
+    assert "max_" not in repr(GearJoint(a, b, 0.0, 1.0))
+
+
 # -- what every one shares -----------------------------------------------------------------------
 
 
@@ -418,6 +712,30 @@ def test_both_paths_give_the_same_constraints() -> None:
         joints = [world.add_link(j) for j in every_joint(world)]
         for _ in range(120):
             world.step(DT)
+        ends.append(
+            [(x.pos, x.vel, x.angle, x.angular_velocity) for x in world.bodies]
+            + [(j.impulse, j.linear_impulse, j.angular_impulse) for j in joints]
+        )
+    assert ends[0] == ends[1]
+
+
+@FAST
+def test_both_paths_give_the_same_bounded_constraints() -> None:
+    # The same scene with every joint bounded (max_force and max_bias that bind, error_bias
+    # on every other joint): the same bits on both paths (error_bias^h is one pow on each).
+    ends = []
+    for kernels in ("numpy", "fast"):
+        world = soft(kernels, gravity=True)
+        joints = [world.add_link(j) for j in every_joint(world)]
+        for i, joint in enumerate(joints):
+            joint.max_force, joint.max_bias = 1.5, 0.4
+            joint.error_bias = 0.2 if i % 2 == 0 else None
+        bound = 0
+        for _ in range(120):
+            world.step(DT)
+            bound += sum(j.impulse == pytest.approx(1.5 * DT, rel=1e-12) for j in joints)
+            assert all(j.impulse <= 1.5 * DT * (1.0 + 1e-12) for j in joints)
+        assert bound > 100  # (the bound binds)
         ends.append(
             [(x.pos, x.vel, x.angle, x.angular_velocity) for x in world.bodies]
             + [(j.impulse, j.linear_impulse, j.angular_impulse) for j in joints]
@@ -494,7 +812,8 @@ def test_their_errors_name_the_argument_the_value_and_what_is_valid() -> None:
          r"min must be <= max \(rad\): got min=1\.0 with max=0\.5"),
         (lambda: RatchetJoint(a, b, 0.0, 0.0), ValueError, r"ratchet must be != 0 \(rad\)"),
         (lambda: GearJoint(a, b, 0.0, math.nan), ValueError, r"ratio must be finite, got nan"),
-        (lambda: GearJoint(a, b, "0", 1.0), TypeError, r"phase must be a real number"),
+        (lambda: GearJoint(a, b, "0", 1.0), TypeError,  # type: ignore[arg-type]
+         r"phase must be a real number"),
         (lambda: SimpleMotor(a, b, 1.0, max_torque=-1.0), ValueError,
          r"max_torque must be >= 0 in N m \(inf: no bound\), got -1\.0"),
         (lambda: SimpleMotor(ws, ws, 1.0), TypeError,
