@@ -39,7 +39,7 @@ from .manifold_kinds import SPECULATIVE_DISTANCE
 from .manifold_polygon import polygon_loop
 from .narrowphase import round_loop
 
-__all__ = ["STATIC", "contacts_loop", "report_loop"]
+__all__ = ["STATIC", "contacts_loop", "contacts_sample", "report_loop"]
 
 #: Warm-start keys: (the pair's code << FEATURE) | the point's feature id (16 bits); a pair's
 #: code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
@@ -48,7 +48,7 @@ OTHER = 21
 STATIC = 1 << 20
 
 
-def _sample() -> tuple[Any, ...]:
+def contacts_sample() -> tuple[Any, ...]:
     """The smallest call: a unit box resting on a segment's capsule, a disc beside it, both
     warm started."""
     f = np.zeros
@@ -90,7 +90,7 @@ def _sample() -> tuple[Any, ...]:
             rad, center, rnd, f((1, 2)), up, none, none, keys, lam)  # fmt: skip
 
 
-@kernels.loop(sample=_sample)
+@kernels.loop(sample=contacts_sample)
 def contacts_loop(
     x: Any, q: Any, radius: Any, reach: Any, moving: Any, sensor: Any,
     group: Any, cats: Any, mask: Any, slots: Any, friction: Any, restitution: Any,

@@ -25,8 +25,7 @@ import numpy as np
 
 from . import kernels
 from .events import COLLIDER
-from .game_contacts import _sample as _contacts_sample
-from .game_contacts import contacts_loop, report_loop
+from .game_contacts import contacts_loop, contacts_sample, report_loop
 from .game_sleep import ANGULAR, LINEAR
 from .manifold_kinds import SPECULATIVE_DISTANCE
 from .pile import label_rows
@@ -41,7 +40,7 @@ _LINEAR_SQ = LINEAR * LINEAR
 def _sample() -> tuple[Any, ...]:
     """The smallest call: ``contacts_loop``'s sample (a unit box resting on a segment, a disc
     beside it), both bodies awake and falling, the box held to the world by a hinge."""
-    c = _contacts_sample()
+    c = contacts_sample()
     x, q, radius, reach, moving, sensor, group, cats, mask, slots, fric, rest = c[:12]
     body_circle, body_index, kind, pa, pb = c[12:17]
     statics = c[17:36]  # owner ... hn
