@@ -30,9 +30,11 @@ from typing import TYPE_CHECKING, Any, Protocol, cast
 from .body_habits import install as install_habits
 from .body_habits import mass_and_moment
 from .body_values import (
+    DEFAULT_MASS,
     FRICTION,
     RESTITUTION,
     State,
+    coerce_density,
     coerce_mass,
     coerce_state,
     dim_of,
@@ -125,6 +127,10 @@ class Body:
     group, category bits) says not.
     A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``).
 
+    Its mass is ``mass`` (kg; 1.0 when neither is given) or ``density`` (kg/m^2, a 2D density:
+    mass = density * the shape's area, pymunk's ``shape.density`` and Box2D's ``density``), one
+    of the two; either way the moment follows from the shape and mass (``Body.density``).
+
     ``velocity`` and ``acceleration`` default to zero (``Body(Vector(0, 5))`` is at rest at
     (0, 5); ``Body(0.0)`` at rest at 0 on a line). pymunk's names answer beside the lesson's:
     ``position`` is ``pos``, ``velocity`` is ``vel`` and ``acceleration`` is ``acc``; a pymunk
@@ -150,6 +156,7 @@ class Body:
         "_vy",
         "_acc",
         "_mass",
+        "_density",
         "_radius",
         "_shape",
         "_e",
@@ -175,7 +182,7 @@ class Body:
         position: Any,
         velocity: Any = None,
         acceleration: Any = None,
-        mass: float = 1.0,
+        mass: float = DEFAULT_MASS,
         *,
         radius: float = 0.0,
         restitution: float = RESTITUTION,
@@ -183,6 +190,7 @@ class Body:
         filter: Filter = DEFAULT_FILTER,  # noqa: A002 - pymunk's name for it
         kinematic: bool = False,
         shape: Any = None,
+        density: float | None = None,
         angle: float = 0.0,
         angular_velocity: float = 0.0,
         moment: float | None = None,
@@ -225,12 +233,25 @@ class Body:
             # pymunk's Body(mass, math.inf) lands here: say what it is, and what to write.
             raise ValueError(f"{exc}: {mass_and_moment(position, velocity)}") from None
         self._acc: State = coerce_state(acceleration, dim, "acceleration")
+        if density is not None and mass is not DEFAULT_MASS:
+            raise ValueError(
+                f"give a Body mass=... (kg) or density=... (kg/m^2: mass = density * the "
+                f"shape's area), not both: got mass={mass!r} and density={density!r}; write "
+                f"Body(..., mass={mass!r}) or Body(..., density={density!r})"
+            )
+        # With a density, the mass is density * area, known once the shape is taken (below).
         self._mass: float = coerce_mass(mass)
         self._radius, self._e, self._mu = material(radius, restitution, friction)
         self._shape: Any = None
         if shape is not None:
             self._radius = self._take_shape(shape, dim)
             self._shape = shape
+        #: The density given (kg/m^2), or None: what ``density`` reads while the mass is still
+        #: density * area (once a mass set or a snapshot restored makes it another, mass / area).
+        self._density: float | None = None
+        if density is not None:
+            per_area = coerce_density(density)
+            self._mass, self._density = self._mass_of(per_area, made=True), per_area
         self._filter = as_filter(filter)
         if not isinstance(kinematic, bool):
             raise TypeError(
@@ -358,6 +379,55 @@ class Body:
         # A Circle about its centre c in the body's frame: m r^2 / 2 + m |c|^2.
         cx, cy = shape.center
         return mass * (0.5 * shape.radius * shape.radius + cx * cx + cy * cy)
+
+    def _area(self) -> float:
+        """The area (length units squared) of the body's shape: its shape's, pi r^2 for a disc
+        made with ``radius``; 0.0 for a point, a 1D body or a Segment without a radius."""
+        if self._dim != 2:
+            return 0.0
+        shape = self._shape
+        if shape is not None:
+            return float(shape.area)
+        r = self._radius
+        return math.pi * (r * r)  # Circle((0, 0), r).area's bits (engine.mass.area_for_circle)
+
+    def _mass_of(self, density: float, made: bool) -> float:
+        """The mass (kg) ``density`` (kg/m^2, checked) gives this body: density times its
+        shape's area; a ValueError that says why not and what to write instead (``made``: as
+        the body is made, whose shape is then fixed)."""
+        area = self._area()
+        mass = density * area
+        if area > 0.0 and math.isfinite(mass) and mass > 0.0:
+            return mass
+        given = f"density={density!r} kg/m^2 gives the body a mass of density * its shape's area"
+        fix = "give mass=... (kg) instead" if made else "set body.mass = ... (kg) instead"
+        if area > 0.0:
+            raise ValueError(
+                f"{given}, and {density!r} * {area!r} is {mass!r} kg, outside the float range "
+                f"(> 0 and finite): give a density nearer 1.0, the shape in other length units, "
+                f"or {fix}"
+            )
+        shape = self._shape
+        if self._dim != 2:
+            why = "a 1D body (made of numbers) has no shape and no area"
+        elif shape is None:
+            why = "this body is a point (no shape, no radius), with no area"
+            if made:
+                fix = (
+                    f"give it radius=... (a disc) or shape=... (a Polygon, a Circle, a Segment "
+                    f"with a radius), or {fix}"
+                )
+        elif type(shape).__name__ == "Segment" and shape.radius == 0.0:
+            why = f"its shape {shape!r} is a line, with no area"
+            if made:
+                fix = f"give the Segment a radius (Segment(a, b, radius=0.05): a capsule), or {fix}"
+        else:
+            why = f"its shape {shape!r} has an area of {area!r} in floats"
+            if made:
+                fix = f"give the shape in other length units, or {fix}"
+        if not made:
+            fix = f"a Body's shape is fixed when it is made: {fix}"
+        raise ValueError(f"{given}, and {why}: {fix}")
 
     def _take_shape(self, shape: Any, dim: int) -> float:
         """Check ``shape`` for this body; its bounding radius (length units)."""
@@ -553,6 +623,27 @@ class Body:
             self._mass = m
         if self._store is not None and self._moment is None and self.turns:
             self._store.set_moment(self._slot, self._own_moment())  # m r^2 / 2 follows m
+        self._density = None  # ``density`` now reads mass / area
+
+    @property
+    def density(self) -> float | None:
+        """Mass per unit of the shape's area (kg/m^2): the density given while the mass is
+        still density * area, else mass / area; None for a body with no area (a point, a 1D
+        body, a Segment without a radius). Set it (> 0) as ``mass`` is set: the mass becomes
+        density * area, and the moment follows it unless one was given."""
+        area = self._area()
+        if not area > 0.0:
+            return None
+        mass, given = self.mass, self._density
+        if given is not None and given * area == mass:
+            return given
+        return mass / area
+
+    @density.setter
+    def density(self, value: Any) -> None:
+        d = coerce_density(value)
+        self.mass = self._mass_of(d, made=False)  # the moment follows, as for a mass set
+        self._density = d
 
     @property
     def radius(self) -> float:

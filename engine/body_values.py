@@ -17,9 +17,11 @@ from .vector import Vector, as_pair
 __all__ = [
     "RESTITUTION",
     "FRICTION",
+    "DEFAULT_MASS",
     "State",
     "coerce_state",
     "coerce_mass",
+    "coerce_density",
     "material",
     "real_number",
     "finite",
@@ -35,6 +37,17 @@ RESTITUTION = 0.0
 FRICTION = 0.6
 
 _isfinite = math.isfinite
+
+
+class _DefaultMass(float):
+    """A float that is Body's default mass: ``mass is DEFAULT_MASS`` tells "not given" apart
+    from a mass of 1.0 given, which a density given too contradicts."""
+
+    __slots__ = ()
+
+
+#: A body's mass (kg) when given neither ``mass`` nor ``density``: 1.0.
+DEFAULT_MASS: float = _DefaultMass(1.0)
 
 #: A state value: a float for a 1D body, a Vector for a 2D body.
 State = float | Vector
@@ -78,6 +91,26 @@ def coerce_state(value: Any, dim: int, name: str) -> State:
 def coerce_mass(mass: Any) -> float:
     """Return ``mass`` as a positive finite float (kilograms, or the scene's mass unit)."""
     return checks.mass(mass)
+
+
+def coerce_density(density: Any) -> float:
+    """Return ``density`` as a positive finite float (kg per length unit squared: a 2D density,
+    the body's mass per unit of its shape's area)."""
+    if isinstance(density, bool) or not isinstance(density, Real):
+        raise TypeError(
+            f"density must be a real number (kg/m^2: the body's mass per square metre of its "
+            f"shape, e.g. 1.0), got {type(density).__name__} {density!r}"
+        )
+    try:
+        d = float(density)
+    except OverflowError:  # an int beyond the float range
+        d = math.inf
+    if not (math.isfinite(d) and d > 0.0):
+        raise ValueError(
+            f"density must be > 0 and finite (kg/m^2: the body's mass per square metre of its "
+            f"shape, e.g. 1.0, Box2D's default), got {density!r}"
+        )
+    return d
 
 
 def material(radius: Any, restitution: Any, friction: Any) -> tuple[float, float, float]:

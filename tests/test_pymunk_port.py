@@ -12,9 +12,9 @@ numbers where the concepts map:
   body's shape (``Body(..., shape=Polygon(...))``) given in the body's frame, about its
   position (pymunk's with the identity transform, while the body's angle is 0); a
   ``Segment`` on a body is ``Body(..., shape=Segment(a, b, r))``;
-* a shape has no mass or density of its own: a Body's ``mass`` is given and its ``moment``
-  follows from its shape, and ``engine.mass`` (pymunk's ``moment_for_*`` and ``area_for_*``)
-  gives a shape's area and moment;
+* a shape has no mass or density of its own: a Body's ``mass`` or ``density`` (mass = density
+  * the shape's area) is given and its ``moment`` follows from its shape, and ``engine.mass``
+  (pymunk's ``moment_for_*`` and ``area_for_*``) gives a shape's area and moment;
 * a collision handler's ``begin`` / ``separate`` / ``post_solve`` are ``world.on_contact``'s
   ``begin`` / ``end`` / ``post_solve``, called after the step for one body or collider (not
   for a pair of collision types), and ``arbiter.is_removal`` is ``event.removal``;
@@ -600,9 +600,20 @@ def test_shape_testSegmentQuery_point_with_a_radius() -> None:
     assert info is not None and info.point == (0, -5)
 
 
+def test_shape_testDensity() -> None:
+    # pymunk's shape.density is the Body's here (one shape a body): given, read and set.
+    c = Body(Vector(0, 0), shape=Circle((0, 0), 1), density=2)
+    assert c.density == 2 and c.mass == 2 * math.pi
+    c.density = 3
+    assert c.density == 3 and c.mass == 3 * math.pi
+
+
 def test_shape_testMoment() -> None:
-    # A shape has no mass or density (MISSING testMass, testDensity): its moment is
-    # engine.mass's for a mass, and a Body's with that shape and mass.
+    # A shape has no mass (MISSING testMass): its moment is engine.mass's for a mass, and a
+    # Body's with that shape and mass, or with the density (test_density.py).
+    assert Body(Vector(0, 0), shape=Circle((0, 0), 5), density=2).moment == pytest.approx(
+        1963.4954084936207, rel=1e-15
+    )
     area = area_for_circle(0, 5)
     assert moment_for_circle(2 * area, 0, 5) == pytest.approx(1963.4954084936207, rel=1e-15)
     assert moment_for_circle(2, 0, 5) == 25
@@ -1061,8 +1072,6 @@ MISSING: dict[str, str] = {
     "test_shape.testMass": "a shape has no mass: the Body's mass is given (Body(mass=...)), "
     "one mass for its one shape, and its moment follows from the shape "
     "(test_shape_testMoment)",
-    "test_shape.testDensity": "a shape has no density: for a mass by density, give "
-    "Body(mass=density * engine.mass.area_for_circle(0, r)) (test_shape_testMoment)",
     "test_shape.testNoBody": "a collider belongs to no body: it is a static shape of the World",
     "test_shape.testRemoveBody": "as testNoBody",
     "test_shape.testSwitchBody": "as testNoBody",

@@ -272,12 +272,17 @@ def test_body_test_mass() -> None:
     assert b.mass == 2
     w.remove(b)
     # pymunk takes a mass of 0 out of a Space and refuses the step; here it is refused at
-    # once, in a World or not. (Setting a shape's density instead: no densities here.)
+    # once, in a World or not.
     with pytest.raises(ValueError, match="mass must be positive and finite"):
         b.mass = 0
     w.add(b)
     w.step(1)
     assert b.mass == 2
+    # pymunk's fix, a shape's density set: here the Body's (its one shape), a mass of 10 pi.
+    c = w.add(Body(Vector(5, 0), mass=2, shape=Circle((0, 0), 1)))
+    c.density = 10
+    w.step(1)
+    assert c.mass == 10 * math.pi and c.moment == 5 * math.pi and c.density == 10
 
 
 def test_body_test_moment() -> None:
