@@ -247,9 +247,22 @@ def step_loop(
             ea[m], eb[m] = min(jb[i], ja[i]), max(jb[i], ja[i])
             m += 1
     touching = ea * n + eb
+    # A pymunk constraint's bodies (jmotor's bit 2) are still only while the step moved them
+    # by less than LINEAR dt and turned them by less than ANGULAR dt: its correction moves
+    # them with no speed left (engine.game_sleep.drifting's products).
+    held = np.zeros(n + 1, dtype=np.bool_)
+    for i in range(len(jmotor)):
+        if (jmotor[i] & 2) != 0:
+            held[ja[i]] = True
+            held[jb[i]] = True
+    near = _LINEAR_SQ * dt * dt
+    level = ANGULAR * dt
     ripe = False  # a body still for sleep_time
     for i in range(n):
         slow = bvx[i] * bvx[i] + bvy[i] * bvy[i] < _LINEAR_SQ and abs(bw[i]) < ANGULAR
+        if slow and held[i]:
+            dx, dy = bx[i] - x[i, 0], by[i] - x[i, 1]
+            slow = dx * dx + dy * dy < near and abs(bq[i] - angle[i]) < level
         still[i] = still[i] + dt if moving[i] and slow else 0.0
         if still[i] >= sleep_time:
             ripe = True

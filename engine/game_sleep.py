@@ -6,7 +6,12 @@ sleeping``, ``World.is_sleeping``, ``Body.sleep``, ``Body.activate``, ``World.sl
 
 * A body is **still** while its speed stays under ``LINEAR`` (m/s) and its spin under
   ``ANGULAR`` (rad/s); its still time counts up by dt each such step and back to 0 otherwise
-  (and when the game writes its position or velocity).
+  (and when the game writes its position or velocity). A body that one of pymunk's
+  constraints holds (engine.constraints) is still only while the step also moves it by less
+  than ``LINEAR`` dt and turns it by less than ``ANGULAR`` dt (``drifting``): the joint's
+  correction of its error moves it and leaves it no speed (engine.solver's relax), so a body
+  that a slow error_bias or a small max_bias still corrects would look still, and sleep with
+  its error left; pymunk's body moves at the correction's speed, and its sleep sees it.
 * **Islands**: the bodies joined by a touching contact between two of them, or by a hinge or a
   weld, one through another (a floor or a wall joins nothing). An island falls asleep whole once
   every body in it has been still for ``World.sleep_time`` seconds (0.5 s by default), and none
@@ -29,7 +34,7 @@ import numpy as np
 from .manifold_kinds import SPECULATIVE_DISTANCE
 from .pile import components
 
-__all__ = ["ANGULAR", "LINEAR", "fall_asleep", "woken"]
+__all__ = ["ANGULAR", "LINEAR", "drifting", "fall_asleep", "woken"]
 
 #: Box2D's sleep tolerances: a body slower than these (m/s, rad/s) is still.
 LINEAR = 0.05
@@ -61,6 +66,32 @@ def woken(
     return asleep & np.isin(group, group[sleepers])
 
 
+def drifting(
+    x0: np.ndarray,
+    x1: np.ndarray,
+    q0: np.ndarray,
+    q1: np.ndarray,
+    ja: np.ndarray,
+    jb: np.ndarray,
+    dt: float,
+) -> np.ndarray:
+    """The bodies (bool (N,)) that a pymunk constraint holds (its rows' ends ``ja``, ``jb``;
+    row N, the static body, is none) and that the step moved faster than ``LINEAR`` or turned
+    faster than ``ANGULAR``, from ``x0`` (N, 2) m and ``q0`` rad to ``x1`` and ``q1``: what
+    the joint's correction moves them by, which their speed does not show (the module's
+    text). engine.game_loop's ``step_loop`` makes the same products."""
+    n = len(x0)
+    held = np.zeros(n + 1, dtype=bool)
+    held[ja] = True
+    held[jb] = True
+    if not held[:n].any():
+        return held[:n]
+    d = x1 - x0
+    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < LINEAR * LINEAR * dt * dt
+    level = np.abs(q1 - q0) < ANGULAR * dt
+    return held[:n] & ~(near & level)
+
+
 def fall_asleep(
     still: np.ndarray,
     asleep: np.ndarray,
@@ -74,13 +105,17 @@ def fall_asleep(
     dt: float,
     sleep_time: float,
     fast: bool,
+    drift: np.ndarray | None = None,
 ) -> None:
     """After a step: each ``awake`` body's still time (s) counted on (``v`` (N, 2) m/s, ``omega``
-    rad/s), and the islands of awake bodies joined by rows (``a``, ``b``: touching contacts
-    and joints between two bodies) put to sleep (``asleep``, ``group`` their label) where every
-    body has been still ``sleep_time`` s and none is ``never``. In place."""
+    rad/s; not for a body ``drift`` marks, ``drifting``'s), and the islands of awake bodies
+    joined by rows (``a``, ``b``: touching contacts and joints between two bodies) put to sleep
+    (``asleep``, ``group`` their label) where every body has been still ``sleep_time`` s and
+    none is ``never``. In place."""
     n = len(still)
     slow = (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] < LINEAR * LINEAR) & (np.abs(omega) < ANGULAR)
+    if drift is not None:
+        slow &= ~drift
     still[:] = np.where(awake & slow, still + dt, 0.0)
     if not np.isfinite(sleep_time) or not (still >= sleep_time).any():
         return

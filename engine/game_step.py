@@ -226,7 +226,7 @@ class GameStep:
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
         self._keep_joints(joints[1], out)
-        self._sleep(state, store, dt, awake, v, omega, found, joints[0])
+        self._sleep(state, store, dt, awake, v, omega, found, joints[0], x, angle)
         # What each sensor collider holds: a body whose shape overlaps it.
         if len(found.sense_row):
             self.report.sensing = collider_keys(
@@ -477,9 +477,12 @@ class GameStep:
         omega: np.ndarray,
         found: _Found,
         joints: list[np.ndarray],
+        x: np.ndarray,
+        angle: np.ndarray,
     ) -> None:
         """After the solve: still times counted, still islands put to sleep (their ``v`` and
-        ``omega`` zeroed, in place), the contacts of sleepers held open."""
+        ``omega`` zeroed, in place), the contacts of sleepers held open; ``x`` and ``angle``
+        the bodies' after it (a pymunk constraint's bodies: how far it moved them)."""
         c = state.collisions
         n = len(store)
         rows = found.rows
@@ -494,9 +497,13 @@ class GameStep:
         never = store.kinematic.copy()
         mouse = joints[0] == solver.MOUSE
         never[joints[2][mouse]] = True
+        bounded = (joints[13] & 2) != 0  # a pymunk constraint's rows (_constraint_row)
+        drift = game_sleep.drifting(
+            store.x, x, store.angle, angle, joints[1][bounded], joints[2][bounded], dt
+        )
         game_sleep.fall_asleep(
             c.still, c.asleep, c._group, awake, never, v, omega, a, b, dt, c.sleep_time,
-            self.fast,
+            self.fast, drift,
         )  # fmt: skip
         now = c.asleep & ~before
         if now.any():

@@ -30,8 +30,9 @@ DT = 1.0 / 60.0
 
 def scene(kernels: str) -> tuple[World, dict[str, Any], list[tuple[str, str]]]:
     """A floor; a pyramid of six crates that falls asleep; a ball thrown at it at 1.5 s that
-    wakes it; a plank on a hinge; a slide joint, a groove and a gear between bodies; a box
-    dragged by a mouse joint; a kinematic platform; a sensor collider and a sensor body."""
+    wakes it; a plank on a hinge; a slide joint, a groove and a gear between bodies; a bead
+    a pivot corrects slowly; a box dragged by a mouse joint; a kinematic platform; a sensor
+    collider and a sensor body."""
     world = World(kernels=kernels, solver="soft")
     world.add_force(Gravity((0.0, -9.81)))
     world.add_collider(Segment((-20.0, 0.0), (20.0, 0.0), radius=0.05))
@@ -56,6 +57,12 @@ def scene(kernels: str) -> tuple[World, dict[str, Any], list[tuple[str, str]]]:
     world.add_link(Hinge(wheel, world.static_body, (-8.0, 6.0)))
     world.add_link(Hinge(gear_b, world.static_body, (-6.5, 6.0)))
     gear = world.add_link(GearJoint(wheel, gear_b, 0.0, -2.0))
+    # A bead 0.3 m off its pivot (a groove of no length) that error_bias corrects slowly:
+    # moved with no speed left, it stays awake until the move is slow (engine.game_sleep's
+    # drifting), then sleeps (at step 154).
+    bead = world.add(Body((-12.3, 8.0), radius=0.1, mass=1.0))
+    pivot = GrooveJoint(world.static_body, bead, (-12.0, 8.0), (-12.0, 8.0), (0.0, 0.0))
+    world.add_link(pivot).error_bias = 0.5
     dragged = world.add(Body((12.0, 1.0), shape=Polygon.box(0.5, 0.5), mass=1.0))
     drag = world.add_link(MouseJoint(dragged, (12.0, 3.0), max_force=40.0))
     platform = world.add(Body((15.0, 1.5), (0.5, 0.0), shape=Polygon.box(2.0, 0.2), kinematic=True))
@@ -66,7 +73,7 @@ def scene(kernels: str) -> tuple[World, dict[str, Any], list[tuple[str, str]]]:
         separate=lambda e: seen.append(("end", repr(e))),
     )
     things = {"crates": crates, "ball": ball, "slide": slide, "groove": groove, "gear": gear,
-              "drag": drag, "platform": platform, "ghost": ghost}  # fmt: skip
+              "drag": drag, "platform": platform, "ghost": ghost, "bead": bead}  # fmt: skip
     return world, things, seen
 
 
@@ -102,5 +109,6 @@ def test_the_fused_step_is_the_numpy_stages_step_by_step() -> None:
         if slept and not any(wa.is_sleeping(c) for c in ta["crates"]):
             woke = True
     assert slept and woke  # the scene reached the stages it is for
+    assert all(world.is_sleeping(things["bead"]) for world, things, _ in runs)
     (_, _, ea), (_, _, eb) = runs
     assert len(ea) > 10 and ea == eb

@@ -779,6 +779,74 @@ def test_bodies_held_by_them_to_the_world_fall_asleep_and_wake_when_one_is_set(
     assert wheel.angular_velocity != 0.0
 
 
+def _still_steps(dt: float, sleep_time: float) -> int:
+    """The steps a body still from a step on takes to sleep: its still time, dt summed a
+    step, reaches sleep_time (31 of 1/60 s for 0.5 s: 30 sum to just under it)."""
+    t, k = 0.0, 0
+    while t < sleep_time:
+        t, k = t + dt, k + 1
+    return k
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_body_its_constraint_still_corrects_stays_awake_until_the_correction_is_slow(
+    kernels: str,
+) -> None:
+    # The relax takes a correction's speed away (test_max_bias_...): a body a joint corrects
+    # has no speed, though it moves. Sleep on (0.5 s), no gravity: a bead 0.5 m off its pivot
+    # (a groove of no length) with error_bias 0.5, another with max_bias 0.25 m/s, and two
+    # discs geared 2:1 1 rad off their phase with error_bias 0.5. Each is still only once the
+    # step moves it by less than LINEAR dt (0.05 m/s) and turns it by less than ANGULAR dt
+    # (2 degrees/s), and sleeps 0.5 s later. The bead's error, e0 0.5^t, closes by e (1 -
+    # 0.5^dt) a step: under LINEAR dt from the first step that starts under 0.0726 m (the
+    # 169th); it sleeps at step 199 with 0.050 m left. The gear's closes alike, disc a
+    # turning 2/3 of it (i_a / (i_a + 4 i_b) = 8 / 12): under ANGULAR dt from the first step
+    # that starts under 0.076 rad (the 225th); it sleeps at step 255 with 0.053 rad left. The
+    # bounded bead moves at 0.25 m/s for 2 s and sleeps once the spring has closed the rest.
+    # Counted by their speed alone (0), each would sleep at step 31: 0.35 m, 0.37 m and 0.70
+    # rad off, moving at 0.24 m/s, 0.25 m/s and 0.32 rad/s.
+    world = World(kernels=kernels, solver="soft")
+    assert world.sleep_time == 0.5
+    ws = world.static_body
+    slow = world.add(disc(0.5, 0.0, 1.0, 0.1))
+    pivot = world.add_link(GrooveJoint(ws, slow, (0.0, 0.0), (0.0, 0.0), (0.0, 0.0)))
+    pivot.error_bias = 0.5
+    bounded = world.add(disc(10.5, 0.0, 1.0, 0.1))
+    world.add_link(GrooveJoint(ws, bounded, (10.0, 0.0), (10.0, 0.0), (0.0, 0.0))).max_bias = 0.25
+    a = world.add(disc(0.0, 5.0, 1.0, 0.5))
+    b = world.add(disc(3.0, 5.0, 2.0, 1.0, angle=0.5))
+    world.add_link(GearJoint(a, b, 0.0, 2.0)).error_bias = 0.5
+
+    def first_still(e0: float, share: float, limit: float) -> int:
+        """The first step that moves a body by less than limit dt: e0 0.5^t closing."""
+        k = 1
+        while share * e0 * 0.5 ** ((k - 1) * DT) * (1.0 - 0.5**DT) >= limit * DT:
+            k += 1
+        return k
+
+    wait = _still_steps(DT, world.sleep_time)
+    assert wait == 31
+    expected = {
+        id(slow): first_still(0.5, 1.0, 0.05) + wait - 1,
+        id(a): first_still(1.0, 2.0 / 3.0, math.radians(2.0)) + wait - 1,
+    }
+    assert list(expected.values()) == [199, 255]
+    slept: dict[int, tuple[int, float]] = {}
+    for step in range(1, 301):
+        world.step(DT)
+        errors = {id(slow): abs(slow.pos), id(bounded): abs(bounded.pos - Vector(10.0, 0.0)),
+                  id(a): 2.0 * b.angle - a.angle}  # fmt: skip
+        for body in (slow, bounded, a):
+            if id(body) not in slept and world.is_sleeping(body):
+                slept[id(body)] = (step, errors[id(body)])
+        assert world.is_sleeping(a) == world.is_sleeping(b)  # (one island)
+    assert slept[id(slow)][0] == expected[id(slow)]
+    assert slept[id(slow)][1] == pytest.approx(0.5 * 0.5 ** (199 * DT), rel=1e-9)  # 0.050 m
+    assert slept[id(a)][0] == expected[id(a)]
+    assert slept[id(a)][1] == pytest.approx(0.5 ** (255 * DT), rel=1e-9)  # 0.053 rad
+    assert 150 < slept[id(bounded)][0] < 160 and slept[id(bounded)][1] < 1e-15
+
+
 def test_the_exact_solver_refuses_them_naming_the_soft_step() -> None:
     world = World(solver="exact")
     made = every_joint(world)
