@@ -164,6 +164,13 @@ class GameStep:
         self._median: tuple[np.ndarray, float] | None = None
         self.serials = np.zeros(0, dtype=np.int64)
         self._cs: tuple[tuple[int, ...], broad.Colliders] | None = None
+        # The fast path's joint arrays: (each row's inputs, the arrays, the impulses kept
+        # from them after the kernel's step, or None before it): ``_joints``.
+        self._joint_arrays: tuple[list[Any], list[np.ndarray], Any] | None = None
+        # Each joint's row inputs, by id(joint): (joint, _row_token, row), while the World's
+        # bodies are the same (the key: its version, the bodies' count, the store).
+        self._rows: tuple[Any, dict[int, tuple[Any, Any, list[Any]]]] = (None, {})
+        self._apart: tuple[Any, np.ndarray] = (None, np.zeros(0, dtype=np.int64))
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -292,6 +299,8 @@ class GameStep:
         if any(isinstance(j, SoftJoint) for j in joints[1]):
             head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
         self._keep_joints(joints[1], head + joints[0])
+        if self._joint_arrays is not None and self._joint_arrays[1] is joints[0]:
+            self._joint_arrays = (self._joint_arrays[0], joints[0], self.joint_impulses)
         return x, v, angle, omega
 
     def resting(self, slot: int) -> int | None:
@@ -352,7 +361,14 @@ class GameStep:
         kept = self._places
         if kept is None or kept[0] is not table or kept[1] is not statics:
             kept = self._places = (table, statics, narrowphase.places_of(table, statics))
-        apart = broad.apart_keys(store, state, ignored_pairs)
+        # The pairs a joint keeps apart change with the bodies and the links (a joint's
+        # collide bumps its revision); pre_solve's, every step.
+        key = (state.version, len(store), id(store), state.link_revisions)
+        if self._apart[0] != key:
+            self._apart = (key, broad.apart_keys(store, state, np.zeros(0, dtype=np.int64)))
+        apart = self._apart[1]
+        if len(ignored_pairs):
+            apart = np.union1d(apart, np.asarray(ignored_pairs, dtype=np.int64))
         ignored = broad.ignored_keys(ignored_faces, len(colliders))
         return _Scene(table, kept[2], cs, statics, owner, bounds, sensors, apart, ignored)
 
@@ -621,90 +637,120 @@ class GameStep:
 
     # -- stage 5: joints ----------------------------------------------------------------------
     def _joints(self, state: WorldState, store: Any, n: int) -> tuple[list[np.ndarray], list[Any]]:
-        """The hinges and welds as the solver's joint arrays (solver.solve's order): the
-        solver's body A is the joint's body_b (or the static body), its B the joint's body_a,
-        so that the solver's angle_B - angle_A is the joint's angle."""
+        """The joints as the solver's joint arrays (solver.solve's order: each row's 16
+        inputs, then the 6 impulses kept from the last step, the warm start): mouse joints,
+        links and joints, springs."""
         # A Pin that holds its body still makes it kinematic (WorldState.links_changed): the
         # solver's static body in all but name. Every other link is a row.
         joints = [j for j in state.links if not (isinstance(j, Pin) and j.holds)]
-        rows: list[list[Any]] = []
-        for drag in state.drags.items:
-            # A mouse joint: the static body's anchor is the target (world coordinates).
-            kept = self.joint_impulses.get(id(drag), (0.0,) * 6)
-            target, anchor = drag.target, drag.anchor
-            row = [
-                solver.MOUSE, n, store.row(drag.body.slot), target.x, target.y, anchor.x,
-                anchor.y, 0.0, drag.hertz, drag.damping_ratio, 0, 0.0, 0.0, 0,
-                drag.angular_damping, min(drag.max_force, 1e300), *kept,
-            ]  # fmt: skip
-            rows.append(row)
-        for j in joints:
-            if isinstance(j, SoftJoint):
-                kept = self.joint_impulses.get(id(j), (0.0,) * 6)
-                rows.append(_constraint_row(j, store, n, kept))
-                continue
-            if not isinstance(j, Joint):
-                rows.append(self._link_row(j, store, n))
-                continue
-            b, a, anchor_b, kept = self._ends(j, store, n)
-            hertz = j.hertz if isinstance(j, Weld) and j.hertz is not None else 0.0
-            zeta = j.damping_ratio if isinstance(j, Weld) else 0.0
-            lim = j.limits if isinstance(j, Hinge) else None
-            speed = j.motor_speed if isinstance(j, Hinge) else None
-            most = j.max_torque if isinstance(j, Hinge) else 0.0
-            row = [
-                solver.WELD if isinstance(j, Weld) else solver.HINGE,
-                b,
-                a,
-                anchor_b.x,
-                anchor_b.y,
-                j.anchor_a.x,
-                j.anchor_a.y,
-                j.reference_angle,
-                hertz,
-                zeta,
-                0 if lim is None else 3,  # both limits
-                0.0 if lim is None else lim[0],
-                0.0 if lim is None else lim[1],
-                0 if speed is None else 1,
-                0.0 if speed is None else speed,
-                min(most, 1e300),
-                *kept,
-            ]
-            rows.append(row)
         springs = list(state.springs.items)
-        for sp in springs:
-            rows.append(_spring_row(sp, store, n))
+        ends = [*state.drags.items, *joints, *springs]
+        # Each row's inputs change only where the World's bodies or the joint's settings do
+        # (_row_token): kept by joint while the bodies' rows are the same.
+        key = (state.version, n, id(store))
+        if self._rows[0] != key:
+            self._rows = (key, {})
+        made = self._rows[1]
+        inputs: list[list[Any]] = []
+        for j in ends:
+            token = _row_token(j)
+            entry = made.get(id(j))
+            if token is not None and entry is not None and entry[0] is j and entry[1] == token:
+                inputs.append(entry[2])
+                continue
+            row = self._row(j, store, n)
+            if token is not None:
+                made[id(j)] = (j, token, row)
+            inputs.append(row)
+        if self.fast:
+            # The kernel leaves each joint's impulses in place in the last six arrays, which
+            # _keep_joints keeps as ``joint_impulses``: where every row's inputs are the last
+            # step's and those impulses are still the ones kept, the arrays are this step's.
+            kept_arrays = self._joint_arrays
+            if kept_arrays is not None and kept_arrays[2] is self.joint_impulses:
+                if kept_arrays[0] == inputs:
+                    return kept_arrays[1], ends
+        none = (0.0,) * 6
+        impulses = self.joint_impulses
+        rows = [
+            [*row, *(none if isinstance(j, BodySpring) else impulses.get(id(j), none))]
+            for j, row in zip(ends, inputs, strict=True)
+        ]
         # One array, its rows the columns (each C-contiguous, as the kernel takes them).
         table = np.array(rows, dtype=float).reshape(-1, 22).T.copy()
         ints = {0, 1, 2, 10, 13}
         arrays = [table[i].astype(np.int64) if i in ints else table[i] for i in range(22)]
-        return arrays, [*state.drags.items, *joints, *springs]
+        if self.fast:
+            self._joint_arrays = (inputs, arrays, None)
+        return arrays, ends
 
-    def _ends(self, link: Link, store: Any, n: int) -> tuple[int, int, Vector, tuple[Any, ...]]:
+    def _row(self, j: Any, store: Any, n: int) -> list[Any]:
+        """A mouse joint's, link's, joint's or spring's row: its 16 inputs (solver.solve's
+        jkind ... jmaxtorque). A hinge's and a weld's: the solver's body A is the joint's
+        body_b (or the static body), its B the joint's body_a, so that the solver's
+        angle_B - angle_A is the joint's angle."""
+        if isinstance(j, MouseJoint):
+            # A mouse joint: the static body's anchor is the target (world coordinates).
+            target, anchor = j.target, j.anchor
+            return [
+                solver.MOUSE, n, store.row(j.body.slot), target.x, target.y, anchor.x,
+                anchor.y, 0.0, j.hertz, j.damping_ratio, 0, 0.0, 0.0, 0,
+                j.angular_damping, min(j.max_force, 1e300),
+            ]  # fmt: skip
+        if isinstance(j, SoftJoint):
+            return _constraint_row(j, store, n)
+        if isinstance(j, BodySpring):
+            return _spring_row(j, store, n)
+        if not isinstance(j, Joint):
+            return self._link_row(j, store, n)
+        b, a, anchor_b = self._ends(j, store, n)
+        hertz = j.hertz if isinstance(j, Weld) and j.hertz is not None else 0.0
+        zeta = j.damping_ratio if isinstance(j, Weld) else 0.0
+        lim = j.limits if isinstance(j, Hinge) else None
+        speed = j.motor_speed if isinstance(j, Hinge) else None
+        most = j.max_torque if isinstance(j, Hinge) else 0.0
+        return [
+            solver.WELD if isinstance(j, Weld) else solver.HINGE,
+            b,
+            a,
+            anchor_b.x,
+            anchor_b.y,
+            j.anchor_a.x,
+            j.anchor_a.y,
+            j.reference_angle,
+            hertz,
+            zeta,
+            0 if lim is None else 3,  # both limits
+            0.0 if lim is None else lim[0],
+            0.0 if lim is None else lim[1],
+            0 if speed is None else 1,
+            0.0 if speed is None else speed,
+            min(most, 1e300),
+        ]
+
+    @staticmethod
+    def _ends(link: Link, store: Any, n: int) -> tuple[int, int, Vector]:
         """A link's or joint's ends as the solver takes them: its body A's row (the link's
-        other end, or the static body ``n`` for a fixed point), B's (the link's own body),
-        A's anchor (in its own frame; a fixed point's in world coordinates), and the
-        impulses kept from the last step (warm start)."""
+        other end, or the static body ``n`` for a fixed point), B's (the link's own body), and
+        A's anchor (in its own frame; a fixed point's in world coordinates)."""
         other = link._other
         a = n if other is None else store.row(other.slot)
         anchor = link.anchor_b if other is not None else link._point
         assert anchor is not None
-        kept = self.joint_impulses.get(id(link), (0.0,) * 6)
-        return a, store.row(link.body.slot), anchor, kept
+        return a, store.row(link.body.slot), anchor
 
     def _link_row(self, link: Link, store: Any, n: int) -> list[Any]:
         """A rod's or cable's distance row, or a pin's hinge to the world at its point (the
         solver's body A the other end, B the link's body: ``_ends``)."""
-        a, b, anchor_b, kept = self._ends(link, store, n)
+        a, b, anchor_b = self._ends(link, store, n)
         ax, ay = link.anchor_a.x, link.anchor_a.y
         if isinstance(link, Pin):
             return [solver.HINGE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 0, 0.0,
-                    0.0, 0, 0.0, 0.0, *kept]  # fmt: skip
+                    0.0, 0, 0.0, 0.0]  # fmt: skip
         # A rod holds its length both ways (least = most); a cable at most (the upper limit).
         least = link.length if link.rigid else 0.0
         return [solver.DISTANCE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 2, least,
-                link.length, 0, link.restitution, 0.0, *kept]  # fmt: skip
+                link.length, 0, link.restitution, 0.0]  # fmt: skip
 
     def _keep_joints(self, joints: list[Any], out: list[Any]) -> None:
         """Each joint's impulses kept (warm start) and reported on it: over the step, on
@@ -712,9 +758,11 @@ class GameStep:
         base = 11 + 17 + 16  # bodies, contacts, then the joints' inputs
         k = self.substeps
         kept: dict[int, tuple[float, ...]] = {}
-        for i, j in enumerate(joints):
-            px, py, pa, lo, hi, mi = (float(out[base + c][i]) for c in range(6))
-            kept[id(j)] = (px, py, pa, lo, hi, mi)
+        # The six impulse columns as Python floats, a row a joint (one call an array).
+        columns = [np.asarray(out[base + c], dtype=float).tolist() for c in range(6)]
+        for i, (j, impulses) in enumerate(zip(joints, zip(*columns, strict=True), strict=True)):
+            px, py, pa, lo, hi, mi = impulses
+            kept[id(j)] = impulses
             if isinstance(j, SoftJoint):
                 ends = (int(out[base - 15][i]), int(out[base - 14][i]))  # (ja, jb)
                 _report_constraint(j, ends, (px, py, pa, lo, hi, mi), k, out)
@@ -801,10 +849,10 @@ def _spring_row(spring: BodySpring, store: Any, n: int) -> list[Any]:
         kind, rest = solver.ROTARY_SPRING, spring.rest_angle
         pa = pb = Vector(0.0, 0.0)
     return [kind, a, b, pa.x, pa.y, pb.x, pb.y, 0.0, spring.stiffness, spring.damping, 0, rest,
-            0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]  # fmt: skip
+            0.0, 0, 0.0, 0.0]  # fmt: skip
 
 
-def _constraint_row(j: SoftJoint, store: Any, n: int, kept: tuple[float, ...]) -> list[Any]:
+def _constraint_row(j: SoftJoint, store: Any, n: int) -> list[Any]:
     """A pymunk constraint's row (engine.constraints; engine.solver's kinds): the solver's A
     its body_a, B its body_b (the static body ``n`` for the world, its anchors then in world
     coordinates), so that angle_B - angle_A is pymunk's b.angle - a.angle."""
@@ -841,7 +889,19 @@ def _constraint_row(j: SoftJoint, store: Any, n: int, kept: tuple[float, ...]) -
     error = -1.0 if j.error_bias is None else j.error_bias
     most, fastest = min(j.max_force, 1e300), min(j.max_bias, 1e300)
     return [kind, a, b, pa.x, pa.y, pb.x, pb.y, ref, error, fastest, limit, lower, upper,
-            motor | 2, speed, most, *kept]  # fmt: skip
+            motor | 2, speed, most]  # fmt: skip
+
+
+def _row_token(j: Any) -> tuple[Any, ...] | None:
+    """What a joint's row inputs follow besides the bodies' rows: every setting that changes
+    them bumps ``revision`` (a hinge's motor and limits, set without remaking a solver, are
+    read as they are); None where they change every step (a ratchet's notch follows the
+    angles, a mouse joint's target the mouse)."""
+    if isinstance(j, (MouseJoint, RatchetJoint)):
+        return None
+    if isinstance(j, Hinge):
+        return (j.revision, j._limits, j._speed, j._max_torque)
+    return (j.revision,)
 
 
 def _report_constraint(
