@@ -351,9 +351,10 @@ class GameStep:
         kept from step to step, made again only where the World changed."""
         table = self._shapes(store)
         colliders = [] if state.contacts is None else state.contacts.colliders
-        cs = self._colliders(colliders, state.events.serial)
+        ids = tuple(map(id, colliders))
+        cs = self._colliders(colliders, state.events.serial, ids)
         self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
-        statics, owner, bounds = self._static(colliders)
+        statics, owner, bounds = self._static(colliders, ids)
         # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked).
         sensors = np.zeros(len(store), dtype=bool)
         for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
@@ -381,10 +382,12 @@ class GameStep:
             self._table = kept
         return kept[2]
 
-    def _colliders(self, colliders: list[Collider], serial: Any) -> broad.Colliders:
+    def _colliders(
+        self, colliders: list[Collider], serial: Any, key: tuple[int, ...]
+    ) -> broad.Colliders:
         """The colliders' arrays (engine.game_broadphase.collider_arrays), made again when
-        colliders come or go or a material is set (``materials_changed``)."""
-        key = tuple(id(c) for c in colliders)
+        colliders come or go (``key``: their ids) or a material is set
+        (``materials_changed``)."""
         kept = self._cs
         if kept is None or kept[0] != key:
             kept = self._cs = (key, broad.collider_arrays(colliders, serial))
@@ -395,11 +398,12 @@ class GameStep:
         are read again at the next step."""
         self._cs = None
 
-    def _static(self, colliders: list[Collider]) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
+    def _static(
+        self, colliders: list[Collider], key: tuple[int, ...]
+    ) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
         """The colliders as shapes in the world's frame, each static shape's collider place
         and bounding box (xmin, ymin, xmax, ymax; a half plane's infinite), made again when
-        colliders come or go."""
-        key = tuple(id(c) for c in colliders)
+        colliders come or go (``key``: their ids)."""
         kept = self._statics
         if kept is None or kept[0] != key:
             shapes = static_shapes(colliders)

@@ -104,6 +104,8 @@ class BodyStore:
         #: acceleration and torque to go back to after it.
         self.pushes: dict[int, tuple[Any, float]] = {}
         self._row_of = np.zeros(0, dtype=np.intp)  # slot -> row, -1 once removed
+        # ``slots()`` as last made: (the _row_of it was made from, the count of rows then, it).
+        self._slots: tuple[np.ndarray, int, np.ndarray] | None = None
 
     def __len__(self) -> int:
         return len(self.mass)
@@ -266,8 +268,13 @@ class BodyStore:
         return self._row_of
 
     def slots(self) -> np.ndarray:
-        """Each row's slot (rows keep the order of their slots), an index array."""
-        return np.flatnonzero(self._row_of >= 0)
+        """Each row's slot (rows keep the order of their slots), an index array (kept while
+        no body comes or goes: one added makes a new ``_row_of``, one removed a row fewer)."""
+        kept = self._slots
+        rows = self._row_of
+        if kept is None or kept[0] is not rows or kept[1] != len(self.x):
+            kept = self._slots = (rows, len(self.x), np.flatnonzero(rows >= 0))
+        return kept[2]
 
     def row(self, slot: int) -> int:
         """The current row of the body in ``slot``."""
