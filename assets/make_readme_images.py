@@ -47,7 +47,7 @@ STILLS = [
     ("stack", ["stack", "--scene", "dominoes"], 25),
     ("pinball", ["pinball", "--seconds", "5", "--size", "216x384"], 44),  # upright
     ("hinges", ["hinges", "--scene", "rod"], 45),
-    ("platformer", ["platformer", "--seconds", "10"], 95),  # riding the platform
+    ("platformer", ["platformer", "--seconds", "12"], 110),  # riding the platform
 ]
 
 

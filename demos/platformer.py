@@ -1,11 +1,12 @@
-"""The platformer: run, jump, shove crates, ride a moving platform and collect every coin, on
-the engine's public API.
+"""The platformer: run, jump, cross a rope bridge, shove crates, ride a moving platform and
+collect every coin, on the engine's public API.
 
 The level is the benchmark's scene (``demos/platformer_scene.py``: metres, g = 9.81 m/s^2,
-dt = 1/60 s): a player box that never turns, a pyramid of crates to shove, a seesaw on a
-``Hinge``, a kinematic platform moving left and right, a ball rolling down a slanted ledge, and
-five coins (``Circle`` sensors that stop sensing once the player has touched them). The game
-adds two things the benchmark leaves out:
+dt = 1/60 s): a player box that never turns, a rope bridge of six planks joined end to end by
+``Hinge``s that sags under it, a pyramid of crates to shove, a seesaw on a ``Hinge``, a
+kinematic platform moving left and right, a ball rolling down a slanted ledge, and five coins
+(``Circle`` sensors that stop sensing once the player has touched them; the third hangs over
+the bridge). The game adds two things the benchmark leaves out:
 
 * a one-way ledge (``ONE_WAY``): a ``Segment`` with its own collision type, and a ``pre_solve``
   from ``world.on_collision`` that ignores the contact unless the player is above it and not
@@ -25,9 +26,10 @@ the platform, the player moves with it exactly, through its turns too.
     python -m demos platformer            # headless: the autopilot collects every coin,
                                           # frames to out/platformer/
 
-The autopilot plays the scene's script (``platformer_scene.script``) until four coins are
-taken, then goes for the last one on its own: it waits beside the platform, jumps onto it as
-it comes by, steers in the air over its middle and rides it to the coin at its far end.
+The autopilot plays the scene's script (``platformer_scene.script``: onto the first ledge,
+across the bridge, the crates shoved, over them) until four coins are taken, then goes for the
+last one on its own: it waits beside the platform, jumps onto it as it comes by, steers in the
+air over its middle and rides it to the coin at its far end.
 """
 
 from __future__ import annotations
@@ -77,6 +79,7 @@ AFTER_END, MAX_SECONDS = 1.0, 40.0
 SKY, INK = (24, 28, 44), (236, 236, 244)
 PLAYER_COLOUR, CRATE_COLOUR, COIN_COLOUR = (255, 120, 40), (170, 110, 60), (255, 215, 0)
 PLATFORM_COLOUR, SEESAW_COLOUR, BALL_COLOUR = (90, 200, 120), (150, 150, 190), (220, 60, 80)
+PLANK_COLOUR = (215, 170, 100)  # the bridge's: a lighter wood than the crates'
 GROUND_COLOUR, BELT_COLOUR, ONE_WAY_COLOUR = (120, 126, 150), (80, 170, 230), (200, 160, 255)
 
 
@@ -153,6 +156,8 @@ class PlatformerGame:
         level.platform.colour = PLATFORM_COLOUR
         level.seesaw.colour = SEESAW_COLOUR
         level.ball.colour = BALL_COLOUR
+        for plank in level.planks:
+            plank.colour = PLANK_COLOUR
         for segment in level.ground:
             segment.colour = GROUND_COLOUR
         self.belt.colour = BELT_COLOUR
@@ -331,7 +336,7 @@ class PlatformerScene(Scene):
     """The game as a scene: steps a :class:`PlatformerGame` and draws it."""
 
     name = "platformer"
-    summary = "a platformer: run, jump, shove crates, ride the moving platform, take the coins"
+    summary = "a platformer: cross a rope bridge, shove crates, ride the platform, take the coins"
     duration = MAX_SECONDS
     dt = DT
     seed = 1
@@ -396,7 +401,7 @@ def _run(args: argparse.Namespace) -> int:
 
 DEMO = Demo(
     name="platformer",
-    summary="A small game: run, jump, shove crates, ride a moving platform, take every coin",
+    summary="A small game: cross a rope bridge, shove crates, ride a platform, take every coin",
     run=_run,
     # A game, not scenes: no --scene, no motion diagram, no clip; no dice, so no --seed.
     takes=frozenset({"--fps", "--seconds", "--size", "--out", "--overwrite", "--window"}),

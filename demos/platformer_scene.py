@@ -13,6 +13,9 @@ The level (metres, y up, g = 9.81 m/s^2, dt = 1/60 s), 30 m wide between two wal
 * a seesaw: a 4 x 0.2 m plank of 5 kg on a ``Hinge`` to the world at its middle, 0.6 m up;
 * a moving platform: a kinematic 2.5 x 0.3 m box the game moves left and right at 1.5 m/s;
 * a ball (r 0.3 m, 1 kg) that rolls down the slanted ledge and off it;
+* a rope bridge from the first ledge's end, 2.6 m over the floor before the crates: six
+  0.45 x 0.12 m planks of 2 kg joined end to end by ``Hinge``s at the corners of their tops
+  (the outer two to ``world.static_body``), hanging 0.32 m at its middle;
 * five coins: ``Circle`` sensors, each taken out of the World when the player touches it.
 
 The input is a script, ``script(t) -> (run, jump)``: run in [-1, 1] (the stick), jump (the
@@ -23,8 +26,8 @@ most ``RUN_ACCEL`` dt, plus the platform's when standing on it), give a jump imp
 press while on the ground, step the World, then collect the coins whose sensors reported the
 player (``on_contact(coin, begin=...)``).
 
-The geometry is data (``GROUND``, ``WALLS``, ``LEDGES``, ``CRATES``, ``COINS``, ...), so that
-pymunk's twin in ``demos.bench.platformer`` is built from the same numbers.
+The geometry is data (``GROUND``, ``WALLS``, ``LEDGES``, ``CRATES``, ``BRIDGE_ENDS``, ``COINS``,
+...), so that pymunk's twin in ``demos.bench.platformer`` is built from the same numbers.
 """
 
 from __future__ import annotations
@@ -80,6 +83,15 @@ __all__ = [
     "BALL_START",
     "BALL_RADIUS",
     "BALL_MASS",
+    "BRIDGE_ENDS",
+    "BRIDGE_PLANKS",
+    "BRIDGE_PLANK",
+    "BRIDGE_MASS",
+    "BRIDGE_BIT",
+    "BRIDGE_FILTER",
+    "bridge_deck",
+    "bridge_planks",
+    "add_bridge",
     "COINS",
     "COIN_RADIUS",
     "PLAYER_BIT",
@@ -135,12 +147,12 @@ CRATE = 1.0  # m: a crate's side
 CRATE_MASS = 2.0  # kg
 #: The pyramid's crates, bottom row first, each 1 cm from its neighbours.
 CRATES: tuple[tuple[float, float], ...] = (
-    (11.0, 0.5),
-    (12.01, 0.5),
-    (13.02, 0.5),
-    (11.505, 1.5),
-    (12.515, 1.5),
-    (12.01, 2.5),
+    (13.0, 0.5),
+    (14.01, 0.5),
+    (15.02, 0.5),
+    (13.505, 1.5),
+    (14.515, 1.5),
+    (14.01, 2.5),
 )
 CRATE_FRICTION = 0.6
 
@@ -148,23 +160,34 @@ SEESAW_PIVOT = (19.0, 0.6)  # m: the hinge, at the plank's middle
 SEESAW_SIZE = (4.0, 0.2)  # m
 SEESAW_MASS = 5.0  # kg
 
-PLATFORM_START = (25.25, 1.6)  # m: the moving platform's centre at t = 0
+PLATFORM_START = (27.5, 1.6)  # m: the moving platform's centre at t = 0
 PLATFORM_SIZE = (2.5, 0.3)  # m
 PLATFORM_SPEED = 1.5  # m/s
 PLATFORM_PERIOD = 6.0  # s: right for half of it, then left
-#: s: where in its period the platform is at t = 0 (halfway back: at x 25.25 going left; it
-#: turns at x 23 and 27.5)
-PLATFORM_PHASE = 4.5
+#: s: where in its period the platform is at t = 0 (at its right end, x 27.5, turning left;
+#: it turns at x 23 and 27.5)
+PLATFORM_PHASE = 3.0
 
 BALL_START = (25.0, 6.71)  # m: on the slanted ledge's top end
 BALL_RADIUS = 0.3  # m
 BALL_MASS = 1.0  # kg
 
+#: The rope bridge: planks joined end to end by hinges at the corners of their tops (its deck
+#: one unbroken line, bent at the hinges), the outer ones hinged to two points of the world at
+#: one height (m): just past the first ledge's right end, level with its top, and 2.6 m to the
+#: right, over the floor before the crates.
+BRIDGE_ENDS: tuple[tuple[float, float], tuple[float, float]] = ((7.7, 2.1), (10.3, 2.1))
+BRIDGE_PLANKS = 6
+#: m: a plank's length and thickness: 6 x 0.45 = 2.7 m of deck over the 2.6 m span, which
+#: hangs 0.32 m at its middle
+BRIDGE_PLANK = (0.45, 0.12)
+BRIDGE_MASS = 2.0  # kg a plank
+
 #: The coins' centres (m): sensors of radius COIN_RADIUS on the script's path.
 COINS: tuple[tuple[float, float], ...] = (
     (2.0, 1.0),
     (6.0, 3.0),
-    (9.0, 1.0),
+    (8.9, 2.9),
     (18.0, 2.6),
     (27.5, 3.2),
 )
@@ -173,6 +196,9 @@ COIN_RADIUS = 0.3  # m
 #: Filter categories: the player, and the coins (the ground test sees neither).
 PLAYER_BIT = 0b01
 COIN_BIT = 0b10
+#: The bridge's planks: they do not collide with each other (they meet at their hinges).
+BRIDGE_BIT = 0b100
+BRIDGE_FILTER = Filter(categories=BRIDGE_BIT, mask=0xFFFFFFFF & ~BRIDGE_BIT)
 #: What the ground test sees: everything but the player and the coins.
 FEET_FILTER = Filter(categories=0xFFFFFFFF, mask=0xFFFFFFFF & ~(PLAYER_BIT | COIN_BIT))
 
@@ -183,24 +209,22 @@ SCRIPT: tuple[tuple[float, float, bool], ...] = (
     (0.6, 1.0, True),  # jump onto the first ledge (the second coin on the way)
     (1.25, 1.0, False),
     (2.0, 0.0, False),  # land on it
-    (3.4, 0.4, False),  # walk off its end (the third coin as it lands)
-    (5.5, 1.0, False),  # shove the pyramid along the ground
-    (5.6, 0.6, True),  # jump onto the crates
-    (7.0, 0.6, False),  # across them (the fourth coin, over the seesaw)
-    (8.0, 1.0, False),  # down the seesaw to the ground
-    (8.1, 0.0, False),
-    (8.2, 0.3, True),  # jump after the moving platform
-    (8.5, 0.3, False),
-    (9.0, 0.8, False),  # onto it
-    (10.3, 0.0, False),  # ride it right
-    (10.4, 0.0, True),  # jump on it at its far end (the fifth coin)
-    (12.8, 0.0, False),  # ride it back
-    (12.9, -1.0, True),  # jump off it, left
-    (15.6, -1.0, False),  # over the crates, run back left
-    (15.7, -1.0, True),
-    (18.6, -1.0, False),  # to the left wall
-    (19.0, 0.0, False),
-    (19.1, 0.0, True),  # a last jump
+    (5.2, 0.4, False),  # walk off its end onto the bridge, across it (the third coin), off it
+    (7.0, 1.0, False),  # shove the pyramid along the ground
+    (7.1, 0.6, True),  # jump onto the crates
+    (8.5, 0.6, False),  # across them (the fourth coin, over the seesaw)
+    (9.5, 1.0, False),  # down the seesaw to the ground
+    (9.6, 0.0, False),
+    (9.7, 0.3, True),  # jump after the moving platform
+    (10.0, 0.3, False),
+    (10.5, 0.8, False),  # onto it
+    (11.8, 0.0, False),  # ride it right
+    (11.9, 0.0, True),  # jump on it at its far end (the fifth coin)
+    (14.3, 0.0, False),  # ride it back
+    (14.4, -1.0, True),  # jump off it, left
+    (19.4, -1.0, False),  # over the crates, run back left under the bridge to the left wall
+    (19.5, 0.0, False),
+    (19.6, 0.0, True),  # a last jump
     (SECONDS, 0.0, False),
 )
 
@@ -218,6 +242,54 @@ def platform_velocity(t: float) -> float:
     right for the first half of each period, left for the second."""
     phase = math.fmod(t + PLATFORM_PHASE + 1e-9, PLATFORM_PERIOD)
     return PLATFORM_SPEED if phase < PLATFORM_PERIOD / 2 else -PLATFORM_SPEED
+
+
+def bridge_deck() -> list[tuple[float, float]]:
+    """The bridge's deck as built (m): the BRIDGE_PLANKS + 1 hinges, left to right, from one of
+    BRIDGE_ENDS to the other, a plank's length apart.
+
+    It hangs as a chain of planks at rest does: the hinges pull each plank with the same
+    horizontal part H all along, and the vertical part grows by one plank's weight w from one
+    hinge to the next; a plank's moments about its middle balance when its slope is the mean
+    of the vertical pulls at its ends over H (over H + w t / 2l, the hinges being at its top,
+    t / 2 off its middle: l, t its length and thickness), so the slopes grow by one step c
+    from plank to plank: tan(angle_k) = c (k - (n - 1) / 2), with c the one that spans the
+    ends (found by bisection). The exact solver finds the bridge so built at rest (to 0.1 mm);
+    the soft step's hinges give under its pull by millimetres."""
+    (x0, y0), (x1, _) = BRIDGE_ENDS
+    span, n, length = x1 - x0, BRIDGE_PLANKS, BRIDGE_PLANK[0]
+    if n * length <= span:
+        raise ValueError(f"the planks ({n} x {length} m) must be longer than the span {span} m")
+
+    def angles(c: float) -> list[float]:
+        return [math.atan(c * (k - (n - 1) / 2)) for k in range(n)]
+
+    def reach(c: float) -> float:
+        return length * sum(math.cos(a) for a in angles(c))
+
+    low, high = 0.0, 1.0
+    while reach(high) > span:
+        high *= 2.0
+    for _ in range(100):
+        mid = (low + high) / 2
+        low, high = (mid, high) if reach(mid) > span else (low, mid)
+    points = [(x0, y0)]
+    for a in angles((low + high) / 2):
+        x, y = points[-1]
+        points.append((x + length * math.cos(a), y + length * math.sin(a)))
+    return points
+
+
+def bridge_planks() -> list[tuple[float, float, float]]:
+    """The bridge's planks as built: (x, y, angle) of each (m, rad), left to right, the top of
+    each from one hinge of ``bridge_deck`` to the next."""
+    deck, half = bridge_deck(), BRIDGE_PLANK[1] / 2
+    out = []
+    for (xa, ya), (xb, yb) in zip(deck, deck[1:], strict=False):
+        a = math.atan2(yb - ya, xb - xa)
+        # The middle of the top, then half the thickness down, square to the plank.
+        out.append(((xa + xb) / 2 + half * math.sin(a), (ya + yb) / 2 - half * math.cos(a), a))
+    return out
 
 
 def feet_segment(x: float, y: float) -> tuple[Vector, Vector]:
@@ -238,6 +310,7 @@ def toward(vx: float, target: float, dt: float) -> float:
 class Platformer:
     """The scene's World and its bodies, stepped as a game steps: ``step(dt)``.
 
+    ``planks`` and ``bridge_hinges``: the rope bridge's, left to right (``add_bridge``);
     ``collected``: the coins' indices (into ``COINS``) in the order the player took them;
     ``jumps``: the times (s) of the jumps given; ``landings``: the times the ground test
     turned true again after being false.
@@ -252,6 +325,8 @@ class Platformer:
     ball: Body
     coins: list[Circle]
     ground: list[Segment]
+    planks: list[Body]
+    bridge_hinges: list[Hinge]
     collected: list[int] = field(default_factory=list)
     jumps: list[float] = field(default_factory=list)
     landings: list[float] = field(default_factory=list)
@@ -382,4 +457,33 @@ def build(kernels: str | None = None, *, hinge: bool = True, solver: str = "exac
         world.add_collider(Circle(c, COIN_RADIUS, sensor=True, filter=Filter(categories=COIN_BIT)))
         for c in COINS
     ]
-    return Platformer(world, player, crates, seesaw, joint, platform, ball, coins, ground)
+    planks, bridge_hinges = add_bridge(world)
+    return Platformer(
+        world, player, crates, seesaw, joint, platform, ball, coins, ground, planks, bridge_hinges
+    )
+
+
+def add_bridge(world: World) -> tuple[list[Body], list[Hinge]]:
+    """The rope bridge in ``world``: BRIDGE_PLANKS planks (``bridge_planks``) and a ``Hinge`` at
+    each point of ``bridge_deck``: between two planks, or the first or last plank and
+    ``world.static_body``. Returns the planks and the hinges, left to right."""
+    planks = [
+        world.add(
+            Body(
+                Vector(x, y),
+                angle=angle,
+                shape=Polygon.box(*BRIDGE_PLANK),
+                mass=BRIDGE_MASS,
+                restitution=0.0,
+                friction=CRATE_FRICTION,
+                filter=BRIDGE_FILTER,
+            )
+        )
+        for x, y, angle in bridge_planks()
+    ]
+    ends = [world.static_body, *planks, world.static_body]
+    hinges = [
+        world.add_link(Hinge(b, a, point) if a is world.static_body else Hinge(a, b, point))
+        for a, b, point in zip(ends[:-1], ends[1:], bridge_deck(), strict=True)
+    ]
+    return planks, hinges

@@ -111,14 +111,17 @@ def test_the_pymunk_twin_has_the_same_layout() -> None:
     for hinge in (True, False):
         game, twin = scene.build("numpy", hinge=hinge), bench.PymunkPlatformer(hinge)
         world, space = game.world, twin.space
-        assert len(world.bodies) == len(space.bodies) == len(twin.bodies) == 10
+        planks = scene.BRIDGE_PLANKS
+        assert len(world.bodies) == len(space.bodies) == len(twin.bodies) == 10 + planks
         # A body has one shape; the colliders are the static segments and the coins.
-        assert len(world.bodies) + len(world.colliders) == len(space.shapes) == 21
+        assert len(world.bodies) + len(world.colliders) == len(space.shapes) == 21 + planks
         assert sum(c.sensor for c in world.colliders) == sum(s.sensor for s in space.shapes)
         assert sum(s.sensor for s in space.shapes) == len(scene.COINS)
-        assert len(world.links) == len(space.constraints) == int(hinge)
+        # The seesaw's hinge, and the bridge's: one at each end of each plank.
+        assert len(world.links) == len(space.constraints) == int(hinge) + planks + 1
         for ours, theirs in zip(world.bodies, twin.bodies, strict=True):
             assert tuple(ours.pos) == tuple(theirs.position)
+            assert ours.angle == theirs.angle
             assert ours.kinematic == (theirs.body_type == twin.pymunk.Body.KINEMATIC)
             if not ours.kinematic:
                 assert ours.mass == theirs.mass
@@ -131,6 +134,15 @@ def test_the_pymunk_twin_has_the_same_layout() -> None:
         )
         assert statics == sorted(scene.STATIC)
         assert [tuple(c.offset) for c in twin.coins] == list(scene.COINS)
+        # The bridge's joints hold the same points of the same bodies, which do not collide.
+        for ours, theirs in zip(game.bridge_hinges, twin.bridge_hinges, strict=True):
+            assert not ours.collide and not theirs.collide_bodies
+            for end, body, anchor in ((ours.end_a(), theirs.a, theirs.anchor_a),
+                                      (ours.end_b(), theirs.b, theirs.anchor_b)):  # fmt: skip
+                their_end = body.local_to_world(anchor)
+                assert tuple(end) == pytest.approx(tuple(their_end), abs=1e-12)
+        assert all(p.filter == scene.BRIDGE_FILTER for p in game.planks)
+        assert all(s.filter.categories == scene.BRIDGE_BIT for p in twin.planks for s in p.shapes)
         assert game.on_ground() and twin.on_ground()  # both stand on the ground at t = 0
 
 

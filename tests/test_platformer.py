@@ -1,6 +1,7 @@
-"""The platformer game: the autopilot's run takes every coin, the player rides the moving
-platform without slipping, the run ends alike on the numpy and the fast path, the one-way
-ledge and the conveyor, the keys, and the picture by its pixels.
+"""The platformer game: the autopilot's run takes every coin, crosses the rope bridge (which
+holds it and gives under it), rides the moving platform without slipping, the run ends alike
+on the numpy and the fast path, the one-way ledge and the conveyor, the keys, and the picture
+by its pixels.
 
 The scene's step is slow (about 19 ms on numpy): the autopilot's run is played once per path
 (a module-scoped fixture), only as long as it takes to collect every coin and ride the
@@ -9,7 +10,9 @@ platform 2 s."""
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import pygame
@@ -29,6 +32,17 @@ SETTLE, RIDE = 0.3, 2.0
 PATHS_AGREE = 1e-9
 
 
+class OnBridge(NamedTuple):
+    """A step that ended with the player standing on the rope bridge."""
+
+    t: float  # s
+    x: float  # m: the player's centre
+    feet: float  # m: the height of its soles
+    plank: int  # the plank the ground test found under it
+    give: float  # m: the farthest apart the two ends of any of the bridge's hinges were
+    clearance: float  # m: its soles above the highest point of the deck under them
+
+
 @dataclass
 class Run:
     """What the autopilot's run did, read from the World step by step."""
@@ -38,6 +52,40 @@ class Run:
     touches: int = 0  # contacts of the player with a coin that began, all told
     landed: float | None = None  # when the player first stood on the platform
     ride: list[tuple[float, float, bool]] = field(default_factory=list)  # (t, x - xp, on it)
+    bridge: list[OnBridge] = field(default_factory=list)
+
+
+def deck_top(game: pf.PlatformerGame, low: float, high: float) -> float:
+    """The highest point (m) of the bridge's deck, its planks' tops, between x = low and
+    x = high; -inf where no plank is."""
+    length, thickness = ps.BRIDGE_PLANK
+    top = -math.inf
+    for plank in game.level.planks:
+        a = plank.local_to_world(Vector(-length / 2, thickness / 2))
+        b = plank.local_to_world(Vector(length / 2, thickness / 2))
+        lo, hi = max(low, min(a.x, b.x)), min(high, max(a.x, b.x))
+        for x in (lo, hi) if lo <= hi else ():  # a straight edge: highest at an end
+            top = max(top, a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x))
+    return top
+
+
+def hinge_give(game: pf.PlatformerGame) -> float:
+    """The farthest apart (m) the two ends of any of the bridge's hinges are now."""
+    return max(abs(h.end_a() - h.end_b()) for h in game.level.bridge_hinges)
+
+
+def on_bridge(game: pf.PlatformerGame) -> OnBridge | None:
+    """The step's record if the player stands on a plank of the bridge, else None."""
+    hit = game.ground()
+    planks = game.level.planks
+    if hit is None or not any(hit.shape is p for p in planks):
+        return None
+    hero = game.level.player
+    w, h = ps.PLAYER_SIZE
+    feet = hero.pos.y - h / 2
+    plank = next(k for k, p in enumerate(planks) if p is hit.shape)
+    deck = deck_top(game, hero.pos.x - w / 2, hero.pos.x + w / 2)
+    return OnBridge(game.t, hero.pos.x, feet, plank, hinge_give(game), feet - deck)
 
 
 @functools.cache
@@ -52,6 +100,9 @@ def _play(kernels: str) -> Run:
             if event.body is level.player and event.collider in level.coins:
                 run.touches += 1
                 run.taken.setdefault(level.coins.index(event.collider), game.t)
+        crossing = on_bridge(game)
+        if crossing is not None:
+            run.bridge.append(crossing)
         on = game.on_platform()
         if on and run.landed is None:
             run.landed = game.t
@@ -97,9 +148,65 @@ def test_the_player_rides_the_platform_without_slipping(played: Run) -> None:
     assert speeds == {ps.PLATFORM_SPEED, -ps.PLATFORM_SPEED}
 
 
+def test_the_player_crosses_the_rope_bridge_which_holds_it(played: Run) -> None:
+    bridge = played.bridge
+    (x0, ends), (x1, _) = ps.BRIDGE_ENDS
+    half = ps.PLAYER_SIZE[0] / 2
+    # It stepped onto the first plank from the ledge and walked the planks in their order to
+    # the last, from one end of the span to the other.
+    firsts = [min((r.t for r in bridge if r.plank == k), default=math.inf)
+              for k in range(ps.BRIDGE_PLANKS)]  # fmt: skip
+    assert firsts == sorted(firsts) and firsts[-1] < math.inf
+    assert min(r.x for r in bridge) < x0 + half and max(r.x for r in bridge) > x1 - half
+    # The third coin hangs over the bridge, out of reach from the floor under it: the player
+    # took it standing on the planks.
+    x, y = ps.COINS[2]
+    assert x0 < x < x1 and y - ps.COIN_RADIUS > ps.PLAYER_SIZE[1]
+    assert bridge[0].t <= played.taken[2] <= bridge[-1].t
+    # It walked down into the bridge's sag (0.32 m at the middle, as built) and up out of it.
+    assert min(r.feet for r in bridge) < ends - 0.25
+    # The bridge held: every hinge's two ends within 1 cm all the while (the soft step's
+    # joints give; 5.0 mm at most, measured), and no plank came up through the player's
+    # soles by more than its contacts give (7.9 mm measured, walking up a plank at 2 m/s).
+    assert max(r.give for r in bridge) < 0.01
+    assert min(r.clearance for r in bridge) > -0.015
+
+
+def test_the_bridge_gives_under_the_player_standing_at_its_middle() -> None:
+    game = pf.PlatformerGame(player=_still)
+    for _ in range(60):  # the bridge comes to rest from its shape as built
+        game.step(pf.DT)
+    middle = ps.BRIDGE_PLANKS // 2  # the hinge at the middle of the span
+    rest = game.level.bridge_hinges[middle].end_a()
+    hero = game.level.player
+    w, h = ps.PLAYER_SIZE
+    hero.pos = Vector(rest.x, deck_top(game, rest.x - w / 2, rest.x + w / 2) + h / 2 + 0.005)
+    hero.vel = Vector(0.0, 0.0)
+    heights, records = [], []
+    for _ in range(180):
+        game.step(pf.DT)
+        heights.append(game.level.bridge_hinges[middle].end_a().y)
+        records.append(on_bridge(game))
+    assert all(r is not None for r in records)  # it stood on the planks throughout
+    held = [r for r in records if r is not None]
+    # The deck under it went down, into a V: by at most what the deck's length allows, the
+    # V's depth sqrt((L/2)^2 - (S/2)^2) below the ends less the depth it hung at, plus what
+    # the joints give.
+    (x0, ends), (x1, _) = ps.BRIDGE_ENDS
+    length, span = ps.BRIDGE_PLANKS * ps.BRIDGE_PLANK[0], x1 - x0
+    most = math.sqrt((length / 2) ** 2 - (span / 2) ** 2) - (ends - rest.y)
+    drop = rest.y - float(np.mean(heights[-60:]))  # over the last second: it sways
+    assert 0.005 < drop < most + 0.005  # 7.9 mm, measured, of at most 3.9 cm
+    # It held: its hinges within 3 mm (1.8 mm measured), the player on the planks, not in
+    # them (1 mm as it lands from 5 mm up), where it was put.
+    assert max(r.give for r in held) < 0.003
+    assert min(r.clearance for r in held) > -0.002
+    assert abs(hero.pos.x - rest.x) < 0.01
+
+
 def _state(game: pf.PlatformerGame) -> np.ndarray:
     level = game.level
-    bodies = [level.player, *level.crates, level.seesaw, level.platform, level.ball]
+    bodies = [level.player, *level.crates, level.seesaw, level.platform, level.ball, *level.planks]
     return np.array([[b.pos.x, b.pos.y, b.angle] for b in bodies])
 
 
@@ -193,6 +300,9 @@ def test_the_picture_shows_the_player_the_coins_and_the_score() -> None:
         assert pixel(coin) == pf.COIN_COLOUR
     crate = game.level.crates[0].pos
     assert pixel((crate.x - 0.25, crate.y - 0.25)) == pf.CRATE_COLOUR
+    for plank in game.level.planks:  # the bridge, each plank (2.5 px thick, outlined)
+        along = [plank.local_to_world(Vector(d, 0.0)) for d in (-0.1, 0.0, 0.1)]
+        assert any(pixel((p.x, p.y)) == pf.PLANK_COLOUR for p in along)
     top = pygame.surfarray.array3d(surface)[:, :36]
     assert np.all(top == pf.INK, axis=2).any()
     # A coin taken is drawn no more: the sky's colour where it was.

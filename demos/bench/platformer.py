@@ -2,14 +2,15 @@
 
 Run with ``python -m demos.bench platformer`` (``--quick``: the script's first 5 s, fewer
 query rounds). The scene is ``demos.platformer_scene``: ground, walls and ledges as segments
-and capsules, a 0.8 x 1.6 m player box that never turns, six 1 m crates in a pyramid, a seesaw
-(a plank on a hinge), a kinematic moving platform, a ball rolling down a slanted ledge, five
-coin sensors, and a scripted 20 s of running, jumping and shoving at dt = 1/60 s. pymunk 7
-plays the same scene (``PymunkPlatformer``: the same shapes, masses, moments and materials, a
-``PivotJoint`` for the seesaw, a kinematic platform, sensor coins; its default 10 iterations,
-sleeping after 0.5 s still as this World's bodies do, and a collision slop of 1 cm, not its
-default 10 cm made for pixels) with the same script and rules (``demos.platformer_scene``'s
-``script``, ``toward``, jump impulse and ground test).
+and capsules, a 0.8 x 1.6 m player box that never turns, a rope bridge of six planks on seven
+hinges, six 1 m crates in a pyramid, a seesaw (a plank on a hinge), a kinematic moving
+platform, a ball rolling down a slanted ledge, five coin sensors, and a scripted 20 s of
+running, jumping, crossing the bridge and shoving at dt = 1/60 s. pymunk 7 plays the same
+scene (``PymunkPlatformer``: the same shapes, masses, moments and materials, a ``PivotJoint``
+for the seesaw and for each of the bridge's hinges, a kinematic platform, sensor coins; its
+default 10 iterations, sleeping after 0.5 s still as this World's bodies do, and a collision
+slop of 1 cm, not its default 10 cm made for pixels) with the same script and rules
+(``demos.platformer_scene``'s ``script``, ``toward``, jump impulse and ground test).
 
 **Each step** is timed in two parts: the engine's own step (``World.step``, pymunk's
 ``Space.step``: what was measured first) and the game's whole step around it (the script's
@@ -101,8 +102,9 @@ _PLAYER, _COIN = 1, 2
 class PymunkPlatformer:
     """``demos.platformer_scene``'s scene in a pymunk Space, played by the same script and rules.
 
-    ``bodies``: the player, the crates, the seesaw, the platform, the ball (the World's order);
-    ``coins``: the coins' shapes (sensors on the static body), in ``scene.COINS``' order;
+    ``bodies``: the player, the crates, the seesaw, the platform, the ball, the bridge's planks
+    (the World's order); ``coins``: the coins' shapes (sensors on the static body), in
+    ``scene.COINS``' order; ``planks`` and ``bridge_hinges``: the rope bridge, left to right;
     ``collected``, ``jumps``, ``landings`` as ``scene.Platformer``'s.
     """
 
@@ -122,10 +124,11 @@ class PymunkPlatformer:
             space.add(seg)
 
         def box(mass: float, size: tuple[float, float], at: tuple[float, float],
-                friction: float, moment: float | None = None) -> Any:  # fmt: skip
+                friction: float, moment: float | None = None,
+                angle: float = 0.0) -> Any:  # fmt: skip
             body = pymunk.Body(mass, pymunk.moment_for_box(mass, size) if moment is None
                                else moment)  # fmt: skip
-            body.position = at
+            body.position, body.angle = at, angle
             shape = pymunk.Poly.create_box(body, size, 0.0)
             shape.elasticity, shape.friction = 0.0, friction
             space.add(body, shape)
@@ -160,7 +163,6 @@ class PymunkPlatformer:
         ball = pymunk.Circle(self.ball, scene.BALL_RADIUS)
         ball.elasticity, ball.friction = 0.2, scene.CRATE_FRICTION
         space.add(self.ball, ball)
-        self.bodies = [self.player, *self.crates, self.seesaw, self.platform, self.ball]
         self.coins: list[Any] = []
         for c in scene.COINS:
             coin = pymunk.Circle(static, scene.COIN_RADIUS, c)
@@ -169,6 +171,33 @@ class PymunkPlatformer:
             coin.collision_type = _COIN
             space.add(coin)
             self.coins.append(coin)
+        # The rope bridge: the same planks, and a PivotJoint where the scene has a Hinge (at
+        # each point of its deck), the joined bodies not colliding (a Hinge's default).
+        self.planks: list[Any] = []
+        plank_filter = pymunk.ShapeFilter(
+            categories=scene.BRIDGE_BIT, mask=pymunk.ShapeFilter.ALL_MASKS() ^ scene.BRIDGE_BIT
+        )
+        for x, y, angle in scene.bridge_planks():
+            plank, shape = box(
+                scene.BRIDGE_MASS, scene.BRIDGE_PLANK, (x, y), scene.CRATE_FRICTION, angle=angle
+            )
+            shape.filter = plank_filter
+            self.planks.append(plank)
+        ends = [static, *self.planks, static]
+        self.bridge_hinges: list[Any] = []
+        for a, b, point in zip(ends[:-1], ends[1:], scene.bridge_deck(), strict=True):
+            pivot = pymunk.PivotJoint(a, b, point)
+            pivot.collide_bodies = False
+            space.add(pivot)
+            self.bridge_hinges.append(pivot)
+        self.bodies = [
+            self.player,
+            *self.crates,
+            self.seesaw,
+            self.platform,
+            self.ball,
+            *self.planks,
+        ]
         self.feet_filter = pymunk.ShapeFilter(
             mask=pymunk.ShapeFilter.ALL_MASKS() ^ (scene.PLAYER_BIT | scene.COIN_BIT)
         )
@@ -467,9 +496,10 @@ def table(runs: dict[str, Run], seconds: float, query: dict[str, float]) -> list
     """The report's lines for ``runs`` (``side_by_side``) over ``seconds`` of the script and
     the ground test's ``query`` times (``query_times``)."""
     lines = [
-        f"platformer: the small game (demos.platformer_scene: {len(scene.CRATES)} "
-        f"crates, a seesaw on a hinge, a moving platform, a ball, {len(scene.COINS)} coin "
-        f"sensors), its script's first {seconds:g} s ({round(seconds / DT)} steps of 1/60 s), "
+        f"platformer: the small game (demos.platformer_scene: a rope bridge of "
+        f"{scene.BRIDGE_PLANKS} planks on hinges, {len(scene.CRATES)} crates, a seesaw on a "
+        f"hinge, a moving platform, a ball, {len(scene.COINS)} coin sensors), its script's "
+        f"first {seconds:g} s ({round(seconds / DT)} steps of 1/60 s), "
         f"the engines one step each in turn; pymunk {ITERATIONS} iterations",
         "  the engine's step (World.step, Space.step), CPU time (the engine's own work, "
         "whatever else the machine runs); build and 1st step: the game's, apart",
