@@ -171,6 +171,8 @@ class GameStep:
         # bodies are the same (the key: its version, the bodies' count, the store).
         self._rows: tuple[Any, dict[int, tuple[Any, Any, list[Any]]]] = (None, {})
         self._apart: tuple[Any, np.ndarray] = (None, np.zeros(0, dtype=np.int64))
+        # The sensor bodies: (the store's categories and mask arrays they were read from, them).
+        self._sensors: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -355,10 +357,16 @@ class GameStep:
         cs = self._colliders(colliders, state.events.serial, ids)
         self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
         statics, owner, bounds = self._static(colliders, ids)
-        # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked).
-        sensors = np.zeros(len(store), dtype=bool)
-        for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
-            sensors[row] = state.bodies[row].sensor
+        # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked), kept
+        # while the filters' arrays are the same (a filter set, a sensor made or bodies come or
+        # go make new ones: engine.store).
+        made = self._sensors
+        if made is None or made[0] is not store.categories or made[1] is not store.mask:
+            sensors = np.zeros(len(store), dtype=bool)
+            for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
+                sensors[row] = state.bodies[row].sensor
+            made = self._sensors = (store.categories, store.mask, sensors)
+        sensors = made[2]
         kept = self._places
         if kept is None or kept[0] is not table or kept[1] is not statics:
             kept = self._places = (table, statics, narrowphase.places_of(table, statics))

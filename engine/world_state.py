@@ -461,8 +461,15 @@ class WorldState:
         next step meets with it. The body wakes with its sleeping group, if it slept (a crate
         whose friction falls may slide now); a filter changes which pairs may meet, so the
         bodies that collide and the step's plan are found again."""
-        self.collisions.wake_body(row, len(self.bodies))
+        c, n = self.collisions, len(self.bodies)
+        c.wake_body(row, n)
         if filtered:
+            # What it meets changed: the bodies touching it wake too (a crate asleep on a
+            # trapdoor made a sensor falls through it; the pairs touching after the last step).
+            if len(c.still) == n and len(c._touching):
+                a, b = np.divmod(c._touching, n)
+                for other in np.concatenate([b[a == row], a[b == row]]).tolist():
+                    c.wake_body(other, n)
             self.collisions.filters_changed()
             self.fast = None
             store = self.store

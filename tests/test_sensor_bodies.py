@@ -130,3 +130,34 @@ def test_a_sensor_made_solid_lands_and_its_flag_is_checked() -> None:
     assert ball.pos.y == pytest.approx(0.25, abs=1e-9)  # it rests on the floor
     with pytest.raises(TypeError, match="sensor must be True"):
         ball.sensor = 1  # type: ignore[assignment]
+
+
+@pytest.mark.parametrize("solver", ["soft", "exact"])
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_trapdoor_made_a_sensor_in_play_drops_the_crate_asleep_on_it(
+    kernels: str, solver: str
+) -> None:
+    """A kinematic trapdoor made a sensor after a crate came to rest on it (asleep, on the soft
+    step) wakes the crate (its filter changed what it meets: the bodies touching it wake),
+    which falls through, onto the floor below; the door reports the solid contact's end and
+    the overlap's begin the step it is made one, and the overlap's end once the crate has
+    left it."""
+    w = World(kernels=kernels, solver=solver)
+    w.add_force(Gravity((0, -G)))
+    w.add_collider(Segment((-10, -3), (10, -3), restitution=0.0))
+    door = w.add(Body(Vector(0, 0), shape=Polygon.box(2.0, 0.2), kinematic=True))
+    crate = w.add(Body(Vector(0, 0.6), shape=Polygon.box(1.0, 1.0), mass=2, restitution=0.0))
+    log: list[str] = []
+    w.on_contact(door, begin=lambda e: log.append("begin"), end=lambda e: log.append("end"))
+    for _ in range(60):
+        w.step(DT)
+    # (On the exact solver a body resting on a kinematic one stays awake: the door may move.)
+    assert w.is_sleeping(crate) == (solver == "soft")
+    assert abs(crate.pos.y - 0.6) < 0.01 and log == ["begin"]  # on the door (top at 0.1 m)
+    door.sensor = True
+    w.step(DT)
+    assert sorted(log) == ["begin", "begin", "end"]  # the contact ends, the overlap begins
+    for _ in range(60):
+        w.step(DT)
+    assert crate.pos.y < -2.0  # fell through, onto the floor (its centre 0.5 m above it)
+    assert log.count("end") == 2  # and left the door
