@@ -20,7 +20,8 @@ __all__ = ["PYMUNK_NAMES", "Advice", "unknown", "several", "install"]
 #: pymunk Space names, and what to write here instead.
 PYMUNK_NAMES: dict[str, str] = {
     "gravity": "gravity is a force: world.add_force(Gravity((0, -9.81))) "
-    "(from engine.forces import Gravity)",
+    "(from engine.forces import Gravity); to change it in play, world.remove_force(the one "
+    "add_force returned) and add another",
     "damping": "damping is a force: world.add_force(Drag(k)) (F = -k v; pymunk's damping d "
     "is k = -m ln(d)), from engine.forces",
     "iterations": "world.contact_iterations (default 4, the soft step's substeps)",

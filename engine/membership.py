@@ -33,6 +33,7 @@ __all__ = [
     "add_link",
     "remove",
     "remove_collider",
+    "remove_force",
     "remove_link",
 ]
 
@@ -187,6 +188,22 @@ def add_force(
     state.forces.append(AttachedForce(f, members))
     state.changed_structure()
     return f
+
+
+def remove_force(state: WorldState, force: Force) -> None:
+    """Take ``force`` (as ``add_force`` returned it) out of the World: from the next step it
+    acts on nothing, and every body wakes (a game that turns its gravity round moves the
+    piles asleep, as pymunk's ``space.gravity`` set does)."""
+    for k, attached in enumerate(state.forces):
+        if attached.force is force:
+            del state.forces[k]
+            state.changed_structure()
+            return
+    held = ", ".join(repr(a.force) for a in state.forces) or "none"
+    raise ValueError(
+        f"{force!r} is not a force of this World (it holds {held}): give the object "
+        f"world.add_force returned, or one of world.forces"
+    )
 
 
 def add_link(state: WorldState, link: LinkT) -> LinkT:

@@ -222,6 +222,12 @@ class World:
         """
         return membership.add_force(self._s, force, bodies)
 
+    def remove_force(self, force: Force) -> None:
+        """Take ``force`` (what ``add_force`` returned; ``world.forces`` lists them) out: it
+        acts on nothing from the next step, and every body wakes. Gravity changed in play is
+        one removed and another added (pymunk's ``space.gravity = ...``)."""
+        membership.remove_force(self._s, force)
+
     # -- links ------------------------------------------------------------------------------
     @property
     def links(self) -> tuple[Link, ...]:
