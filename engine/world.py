@@ -265,6 +265,7 @@ class World:
                     "pulls) or an integrator such as 'velocity_verlet'"
                 )
             self._s.drags.add(link, self)
+            link.body.activate()  # a body picked up asleep wakes (the joint keeps it awake)
             self._s.replan()
             return link
         return membership.add_link(self._s, link)
