@@ -401,6 +401,13 @@ class GameStep:
             kept = self._cs = (key, broad.collider_arrays(colliders, serial))
         return kept[1]
 
+    def emptied(self) -> None:
+        """A step of a World with no bodies (the last one taken out): nothing touches, so
+        the contacts of the step before end (the events would read the gone bodies' keys as
+        touching still)."""
+        self.last = self.report
+        self.report = _Report()
+
     def materials_changed(self) -> None:
         """A collider's material was set (engine.world_state.collider_changed): its arrays
         are read again at the next step."""

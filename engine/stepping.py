@@ -111,6 +111,8 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
     state.slept = None  # (True: every body slept through every part of the step)
     if state.links:
         state.note_link_edits()
+    if state.springs:
+        state.note_spring_edits()
     after = _apply_targets(state, dt) if state.targets else None
     turned = _apply_turn_targets(state, dt) if state.turn_targets else None
     store = state.store
@@ -139,6 +141,8 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         _step_general(state, dt, name, step, model)
     else:
         _quiet(state)  # nothing moved: no solver reports anything
+        if state.game is not None:
+            state.game.emptied()
     if state.collision_handlers and state.contacts is not None:
         state.contacts.set_ignored(np.zeros((0, 2), dtype=np.int64))
     if apart is not None:

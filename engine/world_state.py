@@ -104,6 +104,7 @@ class WorldState:
         self.jointed = False  # whether the joint solver takes the links
         self.substeps = False  # taking a step again in parts (engine.stepping)
         self.springs = Springs()  # springs between bodies (engine.springs, engine.spring_step)
+        self.spring_revisions: tuple[int, ...] = ()  # each spring's revision as last taken
         self.drags = MouseJoints()  # mouse joints (engine.mouse_joint)
         # The solver of contacts and joints: "exact" (the lesson's models: engine.stepping)
         # or "soft" (a game's: engine.game_step, whose state this is then).
@@ -360,6 +361,24 @@ class WorldState:
         self.link_solver = None
         self._apart()
 
+    def note_spring_edits(self) -> None:
+        """Before a step: the bodies of a spring whose stiffness, damping, rest length or
+        anchors were set since the last (BodySpring.revision) wake (a spring made stiffer
+        lifts the crate asleep on it). A spring added or taken out wakes every body already
+        (changed_structure)."""
+        revisions = self.springs.revisions()
+        if revisions == self.spring_revisions:
+            return
+        store = self.store
+        if store is not None and len(revisions) == len(self.spring_revisions):
+            for k, now, before in zip(
+                self.springs.items, revisions, self.spring_revisions, strict=True
+            ):
+                if now != before:
+                    for body in k.bodies:
+                        self.collisions.wake_body(store.row(body.slot), len(store))
+        self.spring_revisions = revisions
+
     def drop_kernel(self) -> None:
         """Forget the affine kernel, counting the steps it took."""
         self.void_budget()
@@ -460,7 +479,8 @@ class WorldState:
         """One body's restitution, friction or filter was set (``filtered``: its filter): the
         next step meets with it. The body wakes with its sleeping group, if it slept (a crate
         whose friction falls may slide now); a filter changes which pairs may meet, so the
-        bodies that collide and the step's plan are found again."""
+        sleepers touching or overlapping it wake, and the bodies that collide and the step's
+        plan are found again."""
         c, n = self.collisions, len(self.bodies)
         c.wake_body(row, n)
         if filtered:
@@ -469,6 +489,14 @@ class WorldState:
             if len(c.still) == n and len(c._touching):
                 a, b = np.divmod(c._touching, n)
                 for other in np.concatenate([b[a == row], a[b == row]]).tolist():
+                    c.wake_body(other, n)
+            # ... and so do the sleepers it overlaps, which it may meet now (a kinematic sensor
+            # made solid where a crate sleeps in it pushes the crate out, as pymunk's does).
+            store = self.store
+            if len(c.still) == n and c.asleep.any() and store is not None and store.dim == 2:
+                x, r = store.x, store.radius
+                near = np.hypot(*(x - x[row]).T) <= r + r[row]
+                for other in np.flatnonzero(near & c.asleep & (r > 0.0)).tolist():
                     c.wake_body(other, n)
             self.collisions.filters_changed()
             self.fast = None
