@@ -23,10 +23,10 @@ types its callers pass, and the callers pass those types (C-contiguous, writable
 arrays; Python floats). ``prepare`` compiles every kernel for its sample, or loads it from
 numba's cache (under a second for all): the first World on the fast path calls it when it is
 made, before any step, and ``python -m engine.warmup`` (the install line's last command) does
-the first run's compile once, at LLVM's level 2 (``OPT_LEVEL``): about 30 s on two cores,
-where a second process compiles from the other end of the list (``_Helper``), about a minute
-on one. The cache lives in the user's cache folder (``cache_dir()``), not beside the
-sources, unless ``NUMBA_CACHE_DIR`` says otherwise.
+the first run's compile once: about 30 s on two cores, where a second process compiles from
+the other end of the list (``_Helper``), about a minute on one. The cache lives in the user's
+cache folder (``cache_dir()``), not beside the sources, unless ``NUMBA_CACHE_DIR`` says
+otherwise.
 tests/test_compile_before_play.py checks that stepping the demos' scenes after ``prepare``
 adds no specialisation to any kernel.
 
@@ -76,11 +76,6 @@ PATHS = ("numpy", "fast")
 ENV = "ENGINE_KERNELS"
 #: numba's own variable for its cache's folder; set to ``cache_dir()`` where it is unset.
 CACHE_ENV = "NUMBA_CACHE_DIR"
-#: numba's own variable for LLVM's optimisation level, and the level taken where it is unset:
-#: 2 compiles the kernels in about two thirds of level 3's time (numba's default), and they
-#: run as fast (a platformer's step and a pyramid's, measured side by side). Neither level
-#: reorders floating-point arithmetic (no fastmath), so both give the same bits.
-OPT_ENV, OPT_LEVEL = "NUMBA_OPT", "2"
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -147,17 +142,14 @@ def cache_dir() -> Path:
 
 
 def _numba() -> Any:
-    """numba, imported with its cache in ``cache_dir()`` and LLVM at ``OPT_LEVEL``
-    (``NUMBA_CACHE_DIR`` and ``NUMBA_OPT`` set first where unset, since numba reads them when
-    imported)."""
-    before = "numba" in sys.modules  # (a game may import numba itself, before the engine)
-    chosen = {CACHE_ENV: str(cache_dir()), OPT_ENV: OPT_LEVEL}
-    unset = {name: value for name, value in chosen.items() if not os.environ.get(name)}
-    os.environ.update(unset)
+    """numba, imported with its cache in ``cache_dir()`` (``NUMBA_CACHE_DIR`` set first, if
+    unset, since numba reads it when imported and when it compiles)."""
+    if not os.environ.get(CACHE_ENV):
+        os.environ[CACHE_ENV] = str(cache_dir())
     import numba  # only here: import engine does not import numba
 
-    if before and unset:
-        numba.core.config.reload_config()  # numba read the environment before they were set
+    if not getattr(numba.config, "CACHE_DIR", ""):  # numba was imported before it was set
+        numba.core.config.reload_config()
     return numba
 
 

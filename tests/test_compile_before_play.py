@@ -61,33 +61,6 @@ def test_the_cache_folder_is_the_users_unless_numba_cache_dir_says(
     assert kernels.cache_dir() == tmp_path / "local" / "alfred-engine" / "numba"
 
 
-_OPT_PROBE = """
-import numba  # a game that imports numba before the engine
-from engine import kernels
-kernels._numba()
-print(int(numba.core.config.OPT), numba.core.config.CACHE_DIR)
-"""
-
-
-@needs_numba
-@pytest.mark.parametrize(("mine", "level"), [(None, 2), ("3", 3), ("1", 1)])
-def test_the_kernels_compile_at_llvm_level_2_unless_numba_opt_says(
-    tmp_path: Path, mine: str | None, level: int
-) -> None:
-    """The kernels compile at LLVM's level 2 (kernels.OPT_LEVEL: the cold compile's time
-    cut by a third, the same speed), also where numba was imported before the engine; a
-    NUMBA_OPT the user set is kept, and so is a NUMBA_CACHE_DIR."""
-    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_OPT", "NUMBA_CACHE_DIR")}
-    env.update(PYTHONPATH=str(ROOT), NUMBA_CACHE_DIR=str(tmp_path / "mine"))
-    if mine is not None:
-        env["NUMBA_OPT"] = mine
-    done = subprocess.run(
-        [sys.executable, "-c", _OPT_PROBE], env=env, cwd=tmp_path, capture_output=True,
-        text=True, check=True,
-    )  # fmt: skip
-    assert done.stdout.split() == [str(level), str(tmp_path / "mine")]
-
-
 # Two small kernels of the engine, prepared in a fresh process; then (with WAITING) one is
 # called with int32 arrays, which its sample (int64) does not have: a compile in play.
 _PROBE = """
