@@ -33,14 +33,16 @@ second takes its speed at the same instant and meets the third, and so on down t
 solver that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
 ``MAX_ROUNDS`` (a light ball squeezed between heavy ones bounces about pi sqrt(M/m) times);
 then each body with an impact still to come stops where its path is at the earliest one left
-(its velocity the step's end one, so momentum changes by the forces' impulse alone), and so
-does every body that would run into a stopped one, and goes on from there next step: bodies
-never fly through each other for want of rounds, at the cost of the rest of that step's
-motion for those bodies. Pairs still closing there with restitution up to ``COLLAPSE_E`` are an
-inelastic collapse (impacts without end, ever slower: balls in a row with e = 0) and take
-their plastic impulses at once instead (``plastic``: sequential impulses, which never add
-energy). A crowd under load (rows landing on rows, bounced off the floor into the next) that
-runs past ``HANDOVER_ROUNDS`` is given up instead, and its bodies join the pile's soft step.
+among the bodies those impacts link it to (its velocity the step's end one, so momentum
+changes by the forces' impulse alone; bodies that never meet them, a world filtered apart,
+move as if they were not there), and so does every body that would run into a stopped one,
+and goes on from there next step: bodies never fly through each other for want of rounds,
+at the cost of the rest of that step's motion for those bodies. Pairs still closing there
+with restitution up to ``COLLAPSE_E`` are an inelastic collapse (impacts without end, ever
+slower: balls in a row with e = 0) and take their plastic impulses at once instead
+(``plastic``: sequential impulses, which never add energy). A crowd under load (rows landing
+on rows, bounced off the floor into the next) that runs past ``HANDOVER_ROUNDS`` is given up
+instead, and its bodies join the pile's soft step.
 
 **Moving walls.** A body of a pile met by one from outside it is a wall to it (w = 1/m = 0 and
 1 / I = 0 on its free path; its free spin still moves its surface), and takes the impulse in
@@ -447,25 +449,40 @@ def impacts_in_order(
         left = np.zeros(nU, dtype=bool)
         left[pa[hit]] = left[pb[hit]] = True
         left |= np.isfinite(face_t)
-        t_first = min(float(toi[hit].min()) if hit.any() else math.inf, float(face_t.min()))
-        if math.isfinite(t_first):
-            # A body resting against a stopped one (no impact of theirs pending) would
-            # run into it: it stops too, and so on along the contacts.
-            T = np.full(nU, t_first)
-            end = state_at(np.arange(nU), T, X, V, A, dt)[0]
+        if left.any():
+            # Each group of bodies linked by the impacts left stops at its own earliest one
+            # (bodies that never meet it, a world filtered apart, move as if it were not
+            # there). A body that would run into a stopped one (no impact of theirs pending:
+            # resting against it, or following it) stops too, at the earlier of their
+            # moments, and so on along the contacts.
+            T = face_t.copy()
+            ha, hb, ht = pa[hit], pb[hit], toi[hit]
+            np.minimum.at(T, ha, ht)
+            np.minimum.at(T, hb, ht)
             for _ in range(nU):
-                one = left[pa] != left[pb]
+                low = np.minimum(T[ha], T[hb])
+                if (T[ha] == low).all() and (T[hb] == low).all():
+                    break
+                np.minimum.at(T, ha, low)
+                np.minimum.at(T, hb, low)
+            for _ in range(2 * nU):
+                one = (left[pa] | left[pb]) & (T[pa] != T[pb])
                 if not one.any():
                     break
                 ia, ib = pa[one], pb[one]
-                qa = np.where(left[ia, None], end[ia], X[ia])
-                qb = np.where(left[ib, None], end[ib], X[ib])
-                meet = norm(qa - qb) < pR[one]
+                i = np.flatnonzero(left)
+                end = X.copy()
+                end[i] = state_at(i, T[i], X, V, A, dt)[0]
+                meet = norm(end[ia] - end[ib]) < pR[one]
                 if not meet.any():
                     break
-                left[ia[meet]] = left[ib[meet]] = True
+                ia, ib = ia[meet], ib[meet]
+                low = np.minimum(T[ia], T[ib])
+                np.minimum.at(T, ia, low)
+                np.minimum.at(T, ib, low)
+                left[ia] = left[ib] = True
             i = np.flatnonzero(left)
-            X[i] = end[i]
+            X[i] = state_at(i, T[i], X, V, A, dt)[0]
         collapse = hit & (e[pa] * e[pb] <= COLLAPSE_E)
         if collapse.any():
             # An inelastic collapse (impacts without end, closing ever slower: a light

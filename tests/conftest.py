@@ -22,6 +22,14 @@ settings.register_profile("replay", deadline=None, derandomize=True, print_blob=
 settings.register_profile("explore", deadline=None, print_blob=True)
 settings.load_profile("replay")
 
+# A long exploration: `FUZZ_EXAMPLES=3000 python -m pytest --hypothesis-profile=explore` runs
+# every hypothesis test (its own `@settings` or tests.fuzzing.fuzz, the stateful machines
+# too) with at least that many examples; a test that asks for more keeps its count. (A
+# profile cannot do it: a test's own max_examples overrides the profile's.) Unset, every test
+# runs its own count. A strict xfail that runs only its `@example`s (fuzzing.fuzz's
+# known_bug) still runs only them.
+FUZZ_EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES") or 0)
+
 
 # Hypothesis also draws, now and then, a constant it found in any local module imported so far
 # (hypothesis.internal.conjecture.providers: "local constants"), so a new number anywhere in
@@ -157,7 +165,24 @@ def _file(item: pytest.Item) -> str:
     return item.nodeid.split("::", 1)[0]
 
 
+def _raise_examples(items: list[pytest.Item]) -> None:
+    """Give every hypothesis test among ``items`` at least FUZZ_EXAMPLES examples."""
+    for item in items:
+        test = getattr(getattr(item, "obj", None), "__func__", getattr(item, "obj", None))
+        own = getattr(test, "_hypothesis_internal_use_settings", None)
+        if own is None:
+            owner = getattr(item, "cls", None)  # a stateful machine's TestCase
+            own = getattr(owner, "settings", None) if owner is not None else None
+            if isinstance(own, settings) and own.max_examples < FUZZ_EXAMPLES:
+                owner.settings = settings(own, max_examples=FUZZ_EXAMPLES)  # type: ignore[union-attr]
+            continue
+        if own.max_examples < FUZZ_EXAMPLES:
+            test._hypothesis_internal_use_settings = settings(own, max_examples=FUZZ_EXAMPLES)
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    if FUZZ_EXAMPLES:
+        _raise_examples(items)
     if not config.getoption("--skip-path-free"):
         return
     from engine import kernels

@@ -592,6 +592,29 @@ UNSEEN_ON_THE_FLOOR: Scene = {
     "method": "semi_implicit_euler",
     "steps": 60,
 }
+#: Found exploring on the fast path (the same on numpy), no gravity, a rough room: the 7 g ball
+#: 2 of the first world (5), squeezed by ball 3 against the floor, meets the cap of 64 impact
+#: rounds every step from step 6; the second world's (7) pair met at 11 ms of step 10 and,
+#: capped too, stopped at t = 0 with the first's, 6 m/s off its path alone. Each group linked
+#: by the impacts left now stops at its own earliest moment.
+STOPPED_WITH_A_STRANGER: Scene = {
+    "balls": [
+        (0.5111222321992216, 0.0, -10.222444643984433, 0.0, 0.2, 463.29332847080474, 0.0, 0.0,
+         7),
+        (0.0, -0.4296019024750183, 0.0, 8.592038049500365, 0.2, 1.0, 0.0, 0.0, 7),
+        (0.0, -0.868363360379739, 0.0, 7.894212367088537, 0.2, 0.007309934704394241, 0.0,
+         0.7714718205563822, 5),
+        (0.0, 0.5075808255927536, 0.0, -14.959998303014753, 0.2, 1.0, 0.0, 0.0, 5),
+    ],
+    "colliders": [
+        Box((-1.807456968089136, -1.807456968089136), (1.807456968089136, 1.807456968089136),
+            restitution=0.0, friction=1.886180752613483),
+    ],
+    "gravity": False,
+    "method": "auto",
+    "steps": 60,
+}  # fmt: skip
+
 #: Gravity, a room with a floor and a ledge: balls of world 5 fall past a stack of world 4's.
 UNSEEN_UNDER_GRAVITY: Scene = {
     "balls": [
@@ -678,6 +701,36 @@ CREEPING_SLOWLY: Scene = {
     "steps": 240,
 }
 
+#: Found exploring (--hypothesis-profile=explore), no gravity, a room with a rough floor: the
+#: 28.6 m ball 0 comes down at 538 m/s onto the 0.43 m ball 3 sliding on the floor at 776 m/s,
+#: and their pair meets again at t = 0 in every round of every step from step 10 (MAX_ROUNDS).
+#: The capped rounds stopped every body with an impact left at the one earliest moment of all,
+#: so in step 12 balls 1 and 2, meeting at 4.6 ms against the left wall, stopped at t = 0 too,
+#: and what the cap, the plastic collapse and the walls' push out made of that gained 1.7e-5
+#: of the first energy. Now each group of bodies linked by the impacts left stops at its own
+#: earliest moment (engine.pair_impacts.impacts_in_order).
+STOPPED_ON_THE_FLOOR: Scene = {
+    "balls": [
+        (63.82573710929791, 59.57634565602905, -1222.4773916600627, -1220.279204048801,
+         28.649359308671634, 2.5834782892217794, 0.0, 0.816657504541938, 0),
+        (-23.069691923507943, 0.0, 107.28970058378914, -357.1793689139829,
+         2.5108077510779045, 1.0, 0.0, 0.0, 0),
+        (-63.00200724422925, -53.319819614459206, 1429.8765761020663, 1066.396392289184,
+         0.21193242078037972, 0.004832230003884546, 0.09643189263747434, 1.6691569685794465, 0),
+        (-31.588026224617494, 0.0, 1047.753792107613, 0.0, 0.4287956602826071,
+         0.19912835774080767, 0.0, 0.0, 0),
+        (-75.60240869307509, -63.983783537351044, 1260.0401448845848, 1066.396392289184,
+         0.21193242078037972, 0.004832230003884546, 0.09643189263747434, 1.6691569685794465, 0),
+    ],
+    "colliders": [
+        Box((-120.21762534336042, -120.21762534336042), (120.21762534336042, 120.21762534336042),
+            restitution=0.0, friction=1.8010766467778891),
+    ],
+    "gravity": False,
+    "method": "auto",
+    "steps": 60,
+}  # fmt: skip
+
 # -- 1. momentum ------------------------------------------------------------------------------
 
 
@@ -730,6 +783,7 @@ def check_energy_never_increases(scene: Scene) -> None:
 @fuzz(50)
 @given(scene=scenes(gravity=False, pegs=False))
 @example(scene=SQUEEZED_ON_A_WALL)
+@example(scene=STOPPED_ON_THE_FLOOR)
 def test_without_gravity_energy_never_increases(scene: Scene) -> None:
     check_energy_never_increases(scene)
 
@@ -738,6 +792,49 @@ def test_without_gravity_energy_never_increases(scene: Scene) -> None:
 @given(scene=scenes(gravity=False, pegs=False, **MODERATE))
 def test_moderate_scenes_without_gravity_never_gain_energy(scene: Scene) -> None:
     check_energy_never_increases(scene)
+
+
+#: Found exploring (numpy; the same on the fast path) with engine.pair_impacts' capped groups
+#: stopping each at its own moment: two 5 g balls (3 and 5, e = 0.096, side by side at the
+#: same velocity) meet at t = 0 in all 64 rounds of every step from step 11.
+CAPPED_PAIR_GAINS: Scene = {
+    "balls": [
+        (63.82573710929791, 59.57634565602905, -1222.4773916600627, -1220.279204048801,
+         28.649359308671634, 2.5834782892217794, 0.6761994097374279, 0.816657504541938, 0),
+        (14.478309719226397, 1.5758157208003829e-307, 54.46393704571374, 322.17239841882565,
+         6.324555320336759, 343.8851632740583, 0.0, 3.0541482859056625e-96, 4),
+        (-23.069691923507943, 6.556358496760509e-118, 107.28970058378914, -357.1793689139829,
+         2.5108077510779045, 37.28194339223384, 0.0, 0.0, 0),
+        (-63.00200724422925, -53.319819614459206, 1429.8765761020663, 1066.396392289184,
+         0.21193242078037972, 0.004832230003884546, 0.09643189263747434, 1.6691569685794465, 0),
+        (-31.588026224617494, 0.0, 1047.753792107613, 0.0, 0.4287956602826071,
+         0.19912835774080767, 0.0, 0.0, 0),
+        (-75.60240869307509, -63.983783537351044, 1429.8765761020663, 1066.396392289184,
+         0.21193242078037972, 0.004832230003884546, 0.09643189263747434, 1.6691569685794465, 0),
+        (0.0, 0.0, 0.0, 0.0, 6.324555320336759, 1.0, 0.0, 0.0, 4),
+    ],
+    "colliders": [
+        Box((-120.21762534336042, -120.21762534336042), (120.21762534336042, 120.21762534336042),
+            restitution=0.0, friction=1.8010766467778891),
+    ],
+    "gravity": False,
+    "method": "auto",
+    "steps": 14,
+}  # fmt: skip
+
+
+@xfail(
+    "kinetic energy grows by 1.8e-9 of the first in step 12 of CAPPED_PAIR_GAINS (found "
+    "exploring test_without_gravity_energy_never_increases, both paths): the two 5 g balls 3 "
+    "and 5 meet again at t = 0 in every one of the 64 rounds (engine.pair_impacts, MAX_ROUNDS) "
+    "of steps 11 and 12, are stopped there by the cap, and the capped step's plastic collapse "
+    "(``plastic``, which never adds energy) followed by the walls' push out and ``separate`` "
+    "end it with more energy than it began. The cap is not dissipative where a wall takes part; "
+    "a pair met at t = 0 round after round is a resting contact (the pile's, or one plastic "
+    "impulse with the wall among its rows)"
+)
+def test_a_pair_met_at_the_rounds_cap_every_step_gains_no_energy() -> None:
+    check_energy_never_increases(CAPPED_PAIR_GAINS)
 
 
 # -- 3. bodies inside bodies ------------------------------------------------------------------
@@ -911,8 +1008,43 @@ def check_as_if_alone(scene: Scene) -> None:
 @example(scene=GHOST_IN_THE_GRID)
 @example(scene=UNSEEN_NEIGHBOUR)
 @example(scene=UNSEEN_ON_THE_FLOOR)
+@example(scene=STOPPED_WITH_A_STRANGER)
 def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
     check_as_if_alone(scene)
+
+
+#: Found exploring (numpy; the same on the fast path), after the capped groups stopped each at
+#: its own moment: STOPPED_WITH_A_STRANGER with the heavy ball 0 heading down-left too.
+ROUNDS_SHARED_WITH_A_STRANGER: Scene = {
+    "balls": [
+        (0.5111222321992216, 0.28109910327506993, -10.222444643984433, -5.621982065501399, 0.2,
+         463.29332847080474, 0.0, 0.0, 7),
+        (0.0, -0.4296019024750183, 0.0, 8.592038049500365, 0.2, 1.0, 0.0, 0.0, 7),
+        (0.0, -0.868363360379739, 0.0, 7.894212367088537, 0.2, 0.007309934704394241, 0.0,
+         0.7714718205563822, 5),
+        (0.0, 0.5075808255927536, 0.0, -14.959998303014753, 0.2, 1.0, 0.0, 0.0, 5),
+    ],
+    "colliders": [
+        Box((-2.0653664627706587, -2.0653664627706587), (2.0653664627706587, 2.0653664627706587),
+            restitution=0.0, friction=1.886180752613483),
+    ],
+    "gravity": False,
+    "method": "auto",
+    "steps": 20,
+}  # fmt: skip
+
+
+@xfail(
+    "the second world's pair leaves its path alone at step 18 of ROUNDS_SHARED_WITH_A_STRANGER "
+    "(1.4 cm, 0.83 m/s; found exploring test_filtered_apart_worlds_move_as_if_alone, both "
+    "paths): the first world's 7 g ball squeezed against the floor meets its neighbour at t = 0 "
+    "in every round from step 6 on, and the rounds of one step are counted for all bodies "
+    "together (engine.pair_impacts.impacts_in_order, MAX_ROUNDS): in step 18 the two worlds' "
+    "impacts, at t = 0 and at 12.5 ms, take alternate rounds, so the second's pair is capped "
+    "after 32 of its own where alone it has 64. The cap should count each group's rounds"
+)
+def test_a_world_filtered_apart_keeps_its_own_impact_rounds() -> None:
+    check_as_if_alone(ROUNDS_SHARED_WITH_A_STRANGER)
 
 
 #: Found replaying on 2026-12-02 (its shrunk example): two worlds filtered apart, where a ball

@@ -294,6 +294,34 @@ def test_no_ball_ends_a_step_inside_a_flipping_bat(scene) -> None:  # type: igno
 
 @pytest.mark.xfail(
     strict=True,
+    raises=(AssertionError, StabilityWarning),
+    reason="engine bug (found exploring test_no_ball_ends_a_step_inside_a_flipping_bat on numpy, "
+    "300 examples; hypothesis stopped shrinking it after five minutes): a 1 m ball (1 kg) "
+    "1 m above the middle of a 10 m capsule bat (r 0.32 m, 3.6 kg), falling at 1 m/s, no "
+    "gravity, no restitution or friction, as the bat's motor flips to +16 rad/s at the first "
+    "step (it swings up into the ball): the World warns that bodies overlap by 1.77 m (177% "
+    "of the smallest radius). Not diagnosed further; it looks like the bug of "
+    "test_a_ball_on_a_bat_swung_up_by_its_motor_flies_off_and_the_bat_reaches_its_limit (a "
+    "ball met by a bat that its motor swings up within the step ends deep in the bat)",
+)
+def test_a_ball_on_a_capsule_bat_flipped_at_the_first_step_stays_out_of_it() -> None:
+    world = World(integrator="auto")
+    world.add_force(Gravity((0.0, -0.0)))
+    capsule = Segment((0.0, 0.0), (9.993077081392435, 0.0), radius=0.3212416030394271)
+    bat = world.add(Body(Vector(0.0, 0.0), shape=capsule, mass=3.576488370951384,
+                         restitution=0.0, friction=0.0))  # fmt: skip
+    swing, speed, torque = 0.7286793563850764, -15.95475708320602, 51965.92865071327
+    hinge = world.add_link(Hinge(bat, world.static_body, (0.0, 0.0), limits=(0.0, swing),
+                                 motor_speed=speed, max_torque=torque))  # fmt: skip
+    ball = world.add(Body(Vector(4.996538540696218, 2.321241603039427), Vector(0.0, -1.0),
+                          radius=1.0, mass=1.0, restitution=0.0, friction=0.0))  # fmt: skip
+    scene = (world, bat, hinge, [ball], 1 / 60, 0)
+    fuzzed = test_no_ball_ends_a_step_inside_a_flipping_bat.hypothesis  # type: ignore[attr-defined]
+    fuzzed.inner_test(scene)
+
+
+@pytest.mark.xfail(
+    strict=True,
     raises=AssertionError,
     reason="engine bug (found exploring: --hypothesis-profile=explore): once the bat reaches its "
     "motor speed with the ball on it (step 9), the joints' solve returns bat and ball at their "
