@@ -95,22 +95,19 @@ def coerce_mass(mass: Any) -> float:
 
 def coerce_density(density: Any) -> float:
     """Return ``density`` as a positive finite float (kg per length unit squared: a 2D density,
-    the body's mass per unit of its shape's area)."""
-    if isinstance(density, bool) or not isinstance(density, Real):
+    the body's mass per unit of its shape's area): checks.mass's test, in density's words."""
+    try:
+        return checks.mass(density, "density")
+    except TypeError:
         raise TypeError(
             f"density must be a real number (kg/m^2: the body's mass per square metre of its "
             f"shape, e.g. 1.0), got {type(density).__name__} {density!r}"
-        )
-    try:
-        d = float(density)
-    except OverflowError:  # an int beyond the float range
-        d = math.inf
-    if not (math.isfinite(d) and d > 0.0):
+        ) from None
+    except ValueError:
         raise ValueError(
             f"density must be > 0 and finite (kg/m^2: the body's mass per square metre of its "
             f"shape, e.g. 1.0, Box2D's default), got {density!r}"
-        )
-    return d
+        ) from None
 
 
 def material(radius: Any, restitution: Any, friction: Any) -> tuple[float, float, float]:
