@@ -389,12 +389,15 @@ def test_a_box_that_turns_thrown_fast_off_centre_at_a_peg_meets_it_at_its_moment
         assert max(abs(peg.x), abs(peg.y)) > 0.25  # the peg's centre is outside the box
 
 
-def _thrown_at_a_thin_wall(speed: float, phase: float, spin: float, plate: bool) -> bool:
+def _thrown_at_a_thin_wall(
+    speed: float, phase: float, spin: float, plate: bool, solver: str = "exact"
+) -> bool:
     """The issue's thin box (0.1 by 1 m) thrown at ``speed`` at a wall 0.05 m thick and 10 m
     tall, static or a free plate (Box2D's anchor scene, shared/anchors/box2d: ``phase`` of a
-    step's travel set back), turning at ``spin`` rad/s: whether its centre ever crossed the
-    wall's plane within the wall's span (in the plate's frame: it may be knocked round)."""
-    w = World(integrator="auto")
+    step's travel set back), turning at ``spin`` rad/s, on ``solver``: whether its centre
+    ever crossed the wall's plane within the wall's span (in the plate's frame: it may be
+    knocked round)."""
+    w = World(integrator="auto", solver=solver)
     wall = None
     if plate:
         wall = w.add(Body(Vector(0, 0), shape=Polygon.box(0.05, 10.0), mass=0.25,
@@ -431,5 +434,39 @@ def test_a_thin_box_never_passes_a_thin_wall_at_10_to_400_m_s(plate: bool, spin:
         for speed in (10.0, 50.0, 200.0, 400.0)
         for k in range(20)
         if _thrown_at_a_thin_wall(speed, k / 20, spin, plate)
+    ]
+    assert passed == []
+
+
+@pytest.mark.parametrize("plate", [False, True], ids=["static wall", "free plate"])
+@pytest.mark.parametrize(
+    "spin",
+    [
+        0.0,
+        pytest.param(
+            20.0,
+            marks=pytest.mark.xfail(
+                strict=True,
+                raises=AssertionError,
+                reason="the soft step's limit: its speculative contacts are taken along the "
+                "features nearest at the step's start, so a thin box turning a third of a "
+                "radian a step and thrown at 200 to 400 m/s meets the wall with another "
+                "corner, and passes in 2 (static wall) or 3 (free plate) of 80 throws "
+                "(2026-12-03; 100 rad/s: about one in four); the exact solver's impacts, "
+                "taken at their moment, pass none (the test above)",
+            ),
+        ),
+    ],
+)
+def test_on_the_soft_step_a_thin_box_thrown_without_spin_never_passes_a_thin_wall(
+    plate: bool, spin: float
+) -> None:
+    # The soft step's speculative margin (engine.game_step: a contact within the reach of a
+    # step is a row from its start) holds a thin box thrown straight at 10 to 400 m/s.
+    passed = [
+        (speed, k)
+        for speed in (10.0, 50.0, 200.0, 400.0)
+        for k in range(20)
+        if _thrown_at_a_thin_wall(speed, k / 20, spin, plate, solver="soft")
     ]
     assert passed == []
