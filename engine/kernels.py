@@ -333,7 +333,9 @@ def prepare(only: Sequence[LoopKernel[Any]] | None = None) -> float:
     ``waiting`` or on stderr: "compiling the engine's kernels (first run only): 5/22". On a
     cold cache, with a second core, a second process compiles them too, from the other end of
     the list (``_Helper``), and what it compiled is loaded from the cache it fills.
-    ``only``: these kernels, not the engine's (the tests'), in this process alone."""
+    ``only``: these kernels, not all the engine's; a helper shares them too when each is one
+    of the engine's (it finds them by name), and otherwise (the tests' own) this process
+    compiles them alone."""
     if not available():
         return 0.0
     with _LOCK:
@@ -352,7 +354,7 @@ def prepare(only: Sequence[LoopKernel[Any]] | None = None) -> float:
         try:
             queue = list(todo)
             helpers: list[_Helper] = []
-            if only is None:
+            if only is None or all(k.py.__module__ in MODULES for k in todo):
                 # As numba starts the first compile (the cache is cold), a second process
                 # starts on the kernels left, from the back, each one that neither has
                 # claimed yet, as this one goes on from the front.
