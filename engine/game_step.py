@@ -23,8 +23,9 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    step's impulses by key (the pair and the features that make the point), its friction
    mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor); on the
    fast path, engine.game_contacts.contacts_loop.
-5. ``_joints``: the hinges, welds, mouse joints, links, springs and pymunk's constraints
-   (engine.constraints) as the solver's joints, warm started from their last impulses.
+5. engine.game_joints: the hinges, welds, mouse joints, links, springs and pymunk's
+   constraints (engine.constraints) as the solver's joints, warm started from their last
+   impulses, which are reported on each joint after the solve.
 6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
    relax), restitution, the impulses kept (engine.solver). The bodies move by its substeps of
    semi-implicit Euler whatever the World's integrator, which moves them only in a World
@@ -48,7 +49,6 @@ step, so any speed against a wall) is not swept for its moment of impact.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
@@ -57,27 +57,14 @@ import numpy as np
 from . import game_broadphase as broad
 from . import game_sleep, narrowphase, solver
 from .colliders import Collider
-from .constraints import (
-    GearJoint,
-    GrooveJoint,
-    RatchetJoint,
-    RotaryLimitJoint,
-    SimpleMotor,
-    SlideJoint,
-    SoftJoint,
-)
 from .events import COLLIDER, collider_keys, pair_keys
 from .game_contacts import FEATURE, OTHER, STATIC
+from .game_joints import GameJoints
 from .game_loop import step_loop
-from .joints import Hinge, Joint, Weld
-from .links import Link, Pin
 from .manifold import StaticShapes, static_shapes
 from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
-from .mouse_joint import MouseJoint
 from .pair_grid import grid_pairs
 from .shaped import ShapeTable
-from .springs import BodySpring, DampedRotarySpring, DampedSpring
-from .vector import Vector
 
 #: The World's state (engine.world_state.WorldState, which holds a GameStep: named here by what
 #: is read of it, not imported, as a lower module must not import a higher one).
@@ -153,7 +140,7 @@ class GameStep:
         self.substeps = solver.SUBSTEPS
         self.keys = np.zeros(0, dtype=np.int64)  # the last step's points, sorted
         self.lam = np.zeros((0, 2))  # their (normal, tangent) impulses, N s a substep
-        self.joint_impulses: dict[int, tuple[float, ...]] = {}  # by id(joint)
+        self.joints = GameJoints(fast)  # stage 5: their rows, their impulses
         self.report = _Report()
         self.last = _Report()  # the step before's, for begin and end
         self._table: tuple[int, list[Any], ShapeTable] | None = None
@@ -164,12 +151,6 @@ class GameStep:
         self._median: tuple[np.ndarray, float] | None = None
         self.serials = np.zeros(0, dtype=np.int64)
         self._cs: tuple[tuple[int, ...], broad.Colliders] | None = None
-        # The fast path's joint arrays: (each row's inputs, the arrays, the impulses kept
-        # from them after the kernel's step, or None before it): ``_joints``.
-        self._joint_arrays: tuple[list[Any], list[np.ndarray], Any] | None = None
-        # Each joint's row inputs, by id(joint): (joint, _row_token, row), while the World's
-        # bodies are the same (the key: its version, the bodies' count, the store).
-        self._rows: tuple[Any, dict[int, tuple[Any, Any, list[Any]]]] = (None, {})
         self._apart: tuple[Any, np.ndarray] = (None, np.zeros(0, dtype=np.int64))
         # The sensor bodies: (the store's categories and mask arrays they were read from, them).
         self._sensors: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
@@ -220,7 +201,7 @@ class GameStep:
             sc.places, sc.table, store, sc.statics, pairs, faces, margin
         )
         found = self._found(store, sc.cs, sc.owner, touches)
-        joints = self._joints(state, store, n)
+        joints = self.joints.arrays(state, store, n)
         k = len(found.place)
         args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
         params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
@@ -234,7 +215,7 @@ class GameStep:
         omega = np.asarray(out[5][:n], dtype=float)
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
-        self._keep_joints(joints[1], out)
+        self.joints.report(joints[1], out, self.substeps)
         self._sleep(state, store, dt, awake, v, omega, found, joints[0], x, angle)
         # What each sensor collider holds: a body whose shape overlaps it.
         if len(found.sense_row):
@@ -257,7 +238,7 @@ class GameStep:
             c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
         table, places, statics, cs = sc.table, sc.places, sc.statics, sc.cs
-        joints = self._joints(state, store, n)
+        joints = self.joints.arrays(state, store, n)
         t = places.tables
         f64, i64 = np.float64, np.int64
         if t.polygons is not None:
@@ -294,15 +275,13 @@ class GameStep:
             self.report.sensing = out[10]
         c._touching = out[11]
         # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
-        # 11 and the contacts' 17, as _keep_joints reads them).
+        # 11 and the contacts' 17, as the joints' report reads them).
         # The bodies' x, y and angle after it (with the static body's) where a pymunk
         # constraint reports along itself as it is at the step's end.
         head: list[Any] = [None] * 28
-        if any(isinstance(j, SoftJoint) for j in joints[1]):
+        if self.joints.constrained(joints[1]):
             head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
-        self._keep_joints(joints[1], head + joints[0])
-        if self._joint_arrays is not None and self._joint_arrays[1] is joints[0]:
-            self._joint_arrays = (self._joint_arrays[0], joints[0], self.joint_impulses)
+        self.joints.report(joints[1], head + joints[0], self.substeps, joints[0])
         return x, v, angle, omega
 
     def resting(self, slot: int) -> int | None:
@@ -324,7 +303,7 @@ class GameStep:
         """What a snapshot keeps of the soft step (engine.snapshot): the contacts' impulses by
         key, each joint's in the order of ``links``, and the last two steps' touching contacts
         (their event keys made plain by ``plain``, engine.events.plain_keys)."""
-        joints = tuple(self.joint_impulses.get(id(j)) for j in links)
+        joints = tuple(self.joints.impulses.get(id(j)) for j in links)
 
         def report(r: _Report) -> tuple[Any, ...]:
             return (plain(r.keys), r.points.copy(), r.normals.copy(), r.impulses.copy(),
@@ -336,7 +315,7 @@ class GameStep:
         """Bring back ``state()`` (``back`` turns plain keys into this World's)."""
         keys, lam, joints, now, last = saved
         self.keys, self.lam = keys.copy(), lam.copy()
-        self.joint_impulses = {
+        self.joints.impulses = {
             id(j): v for j, v in zip(links, joints, strict=True) if v is not None
         }
 
@@ -655,157 +634,6 @@ class GameStep:
         self._totals = (np.asarray(out[base + 15], dtype=float), lam_t)
 
     # -- stage 5: joints ----------------------------------------------------------------------
-    def _joints(self, state: WorldState, store: Any, n: int) -> tuple[list[np.ndarray], list[Any]]:
-        """The joints as the solver's joint arrays (solver.solve's order: each row's 16
-        inputs, then the 6 impulses kept from the last step, the warm start): mouse joints,
-        links and joints, springs."""
-        # A Pin that holds its body still makes it kinematic (WorldState.links_changed): the
-        # solver's static body in all but name. Every other link is a row.
-        joints = [j for j in state.links if not (isinstance(j, Pin) and j.holds)]
-        springs = list(state.springs.items)
-        ends = [*state.drags.items, *joints, *springs]
-        # Each row's inputs change only where the World's bodies or the joint's settings do
-        # (_row_token): kept by joint while the bodies' rows are the same.
-        key = (state.version, n, id(store))
-        if self._rows[0] != key:
-            self._rows = (key, {})
-        made = self._rows[1]
-        inputs: list[list[Any]] = []
-        for j in ends:
-            token = _row_token(j)
-            entry = made.get(id(j))
-            if token is not None and entry is not None and entry[0] is j and entry[1] == token:
-                inputs.append(entry[2])
-                continue
-            row = self._row(j, store, n)
-            if token is not None:
-                made[id(j)] = (j, token, row)
-            inputs.append(row)
-        if self.fast:
-            # The kernel leaves each joint's impulses in place in the last six arrays, which
-            # _keep_joints keeps as ``joint_impulses``: where every row's inputs are the last
-            # step's and those impulses are still the ones kept, the arrays are this step's.
-            kept_arrays = self._joint_arrays
-            if kept_arrays is not None and kept_arrays[2] is self.joint_impulses:
-                if kept_arrays[0] == inputs:
-                    return kept_arrays[1], ends
-        none = (0.0,) * 6
-        impulses = self.joint_impulses
-        rows = [
-            [*row, *(none if isinstance(j, BodySpring) else impulses.get(id(j), none))]
-            for j, row in zip(ends, inputs, strict=True)
-        ]
-        # One array, its rows the columns (each C-contiguous, as the kernel takes them).
-        table = np.array(rows, dtype=float).reshape(-1, 22).T.copy()
-        ints = {0, 1, 2, 10, 13}
-        arrays = [table[i].astype(np.int64) if i in ints else table[i] for i in range(22)]
-        if self.fast:
-            self._joint_arrays = (inputs, arrays, None)
-        return arrays, ends
-
-    def _row(self, j: Any, store: Any, n: int) -> list[Any]:
-        """A mouse joint's, link's, joint's or spring's row: its 16 inputs (solver.solve's
-        jkind ... jmaxtorque). A hinge's and a weld's: the solver's body A is the joint's
-        body_b (or the static body), its B the joint's body_a, so that the solver's
-        angle_B - angle_A is the joint's angle."""
-        if isinstance(j, MouseJoint):
-            # A mouse joint: the static body's anchor is the target (world coordinates).
-            target, anchor = j.target, j.anchor
-            return [
-                solver.MOUSE, n, store.row(j.body.slot), target.x, target.y, anchor.x,
-                anchor.y, 0.0, j.hertz, j.damping_ratio, 0, 0.0, 0.0, 0,
-                j.angular_damping, min(j.max_force, 1e300),
-            ]  # fmt: skip
-        if isinstance(j, SoftJoint):
-            return _constraint_row(j, store, n)
-        if isinstance(j, BodySpring):
-            return _spring_row(j, store, n)
-        if not isinstance(j, Joint):
-            return self._link_row(j, store, n)
-        b, a, anchor_b = self._ends(j, store, n)
-        hertz = j.hertz if isinstance(j, Weld) and j.hertz is not None else 0.0
-        zeta = j.damping_ratio if isinstance(j, Weld) else 0.0
-        lim = j.limits if isinstance(j, Hinge) else None
-        speed = j.motor_speed if isinstance(j, Hinge) else None
-        most = j.max_torque if isinstance(j, Hinge) else 0.0
-        return [
-            solver.WELD if isinstance(j, Weld) else solver.HINGE,
-            b,
-            a,
-            anchor_b.x,
-            anchor_b.y,
-            j.anchor_a.x,
-            j.anchor_a.y,
-            j.reference_angle,
-            hertz,
-            zeta,
-            0 if lim is None else 3,  # both limits
-            0.0 if lim is None else lim[0],
-            0.0 if lim is None else lim[1],
-            0 if speed is None else 1,
-            0.0 if speed is None else speed,
-            min(most, 1e300),
-        ]
-
-    @staticmethod
-    def _ends(link: Link, store: Any, n: int) -> tuple[int, int, Vector]:
-        """A link's or joint's ends as the solver takes them: its body A's row (the link's
-        other end, or the static body ``n`` for a fixed point), B's (the link's own body), and
-        A's anchor (in its own frame; a fixed point's in world coordinates)."""
-        other = link._other
-        a = n if other is None else store.row(other.slot)
-        anchor = link.anchor_b if other is not None else link._point
-        assert anchor is not None
-        return a, store.row(link.body.slot), anchor
-
-    def _link_row(self, link: Link, store: Any, n: int) -> list[Any]:
-        """A rod's or cable's distance row, or a pin's hinge to the world at its point (the
-        solver's body A the other end, B the link's body: ``_ends``)."""
-        a, b, anchor_b = self._ends(link, store, n)
-        ax, ay = link.anchor_a.x, link.anchor_a.y
-        if isinstance(link, Pin):
-            return [solver.HINGE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 0, 0.0,
-                    0.0, 0, 0.0, 0.0]  # fmt: skip
-        # A rod holds its length both ways (least = most); a cable at most (the upper limit).
-        least = link.length if link.rigid else 0.0
-        return [solver.DISTANCE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 2, least,
-                link.length, 0, link.restitution, 0.0]  # fmt: skip
-
-    def _keep_joints(self, joints: list[Any], out: list[Any]) -> None:
-        """Each joint's impulses kept (warm start) and reported on it: over the step, on
-        body_a (N s, N m s)."""
-        base = 11 + 17 + 16  # bodies, contacts, then the joints' inputs
-        k = self.substeps
-        kept: dict[int, tuple[float, ...]] = {}
-        # The six impulse columns as Python floats, a row a joint (one call an array).
-        columns = [np.asarray(out[base + c], dtype=float).tolist() for c in range(6)]
-        for i, (j, impulses) in enumerate(zip(joints, zip(*columns, strict=True), strict=True)):
-            px, py, pa, lo, hi, mi = impulses
-            kept[id(j)] = impulses
-            if isinstance(j, SoftJoint):
-                ends = (int(out[base - 15][i]), int(out[base - 14][i]))  # (ja, jb)
-                _report_constraint(j, ends, (px, py, pa, lo, hi, mi), k, out)
-                continue
-            if isinstance(j, MouseJoint):
-                j.impulse = Vector(px * k, py * k)  # on the body, over the step
-                continue
-            if isinstance(j, DampedSpring):
-                j.impulse = -pa  # over the step (not a substep's), > 0 pulling
-                continue
-            if isinstance(j, DampedRotarySpring):
-                j.impulse = pa  # the angular impulse on a over the step
-                continue
-            if not isinstance(j, Joint):
-                # A link's impulse along it, > 0 pulling its ends together (a pin's: |P|).
-                j.impulse = (hi - lo - pa) * k if not isinstance(j, Pin) else math.hypot(px, py) * k
-                continue
-            j.linear_impulse = Vector(px * k, py * k)
-            j.impulse = j.linear_impulse.length()  # its size, as the exact solver's
-            j.angular_impulse = (pa + mi + lo - hi) * k
-            if isinstance(j, Hinge):
-                j.motor_impulse = mi * k
-        self.joint_impulses = kept
-
     # -- stage 7: events ----------------------------------------------------------------------
     def _events(
         self,
@@ -852,120 +680,6 @@ class GameStep:
             (-nrm * sign)[picked],
             (j * sign)[picked],
         )
-
-
-def _spring_row(spring: BodySpring, store: Any, n: int) -> list[Any]:
-    """A spring's row (solver.SPRING or ROTARY_SPRING): the solver's body A its ``b`` (the
-    static body for the world, its anchor then in world coordinates), B its ``a``, so that
-    angle_B - angle_A is its twist's angle; rest, stiffness and damping in the row."""
-    a = n if spring.second is None else store.row(spring.second.slot)
-    b = store.row(spring.a.slot)
-    if isinstance(spring, DampedSpring):
-        kind, rest = solver.SPRING, spring.rest_length
-        pa, pb = spring.anchor_b, spring.anchor_a
-    else:
-        assert isinstance(spring, DampedRotarySpring)
-        kind, rest = solver.ROTARY_SPRING, spring.rest_angle
-        pa = pb = Vector(0.0, 0.0)
-    return [kind, a, b, pa.x, pa.y, pb.x, pb.y, 0.0, spring.stiffness, spring.damping, 0, rest,
-            0.0, 0, 0.0, 0.0]  # fmt: skip
-
-
-def _constraint_row(j: SoftJoint, store: Any, n: int) -> list[Any]:
-    """A pymunk constraint's row (engine.constraints; engine.solver's kinds): the solver's A
-    its body_a, B its body_b (the static body ``n`` for the world, its anchors then in world
-    coordinates), so that angle_B - angle_A is pymunk's b.angle - a.angle."""
-    a = n if j._a is None else store.row(j._a.slot)
-    b = n if j._b is None else store.row(j._b.slot)
-    kind, ref, lower, upper, speed = solver.ROTARY, 0.0, 0.0, 0.0, 0.0
-    limit, motor = 0, 0
-    pa, pb = j.anchor_a, j.anchor_b
-    if isinstance(j, SlideJoint):
-        # A distance: at most max apart, at least min (the least's row on where min > 0).
-        kind, lower, upper, limit = solver.DISTANCE, j.min, j.max, 3 if j.min > 0.0 else 2
-    elif isinstance(j, GrooveJoint):
-        # A's anchor the groove's start, its direction the axis, its length the upper limit.
-        kind, limit = solver.GROOVE, 3
-        ref, upper = j.axis
-    elif isinstance(j, GearJoint):
-        kind, ref, speed = solver.GEAR, j.phase, j.ratio
-    elif isinstance(j, RotaryLimitJoint):
-        limit, lower, upper = 3, j.min, j.max
-    elif isinstance(j, RatchetJoint):
-        # One limit at the notch, moved on from the angles the step starts at: the lower for
-        # a ratchet that turns up freely, the upper for one that turns down.
-        delta = (0.0 if j._b is None else float(store.angle[b])) - (
-            0.0 if j._a is None else float(store.angle[a])
-        )
-        lower = upper = j._advance(delta)
-        limit = 1 if j.ratchet > 0.0 else 2
-    else:
-        assert isinstance(j, SimpleMotor)
-        # The hinge's motor row drives omega_B - omega_A: pymunk's rate is omega_a - omega_b.
-        motor, speed = 1, -j.rate
-    # pymunk's bounds (jmotor's bit 2): the largest force (a motor's torque) in jmaxtorque,
-    # the largest bias speed in jdamp, the error_bias in jhertz (-1: the joints' spring).
-    error = -1.0 if j.error_bias is None else j.error_bias
-    most, fastest = min(j.max_force, 1e300), min(j.max_bias, 1e300)
-    return [kind, a, b, pa.x, pa.y, pb.x, pb.y, ref, error, fastest, limit, lower, upper,
-            motor | 2, speed, most]  # fmt: skip
-
-
-def _row_token(j: Any) -> tuple[Any, ...] | None:
-    """What a joint's row inputs follow besides the bodies' rows: every setting that changes
-    them bumps ``revision`` (a hinge's motor and limits, set without remaking a solver, are
-    read as they are); None where they change every step (a ratchet's notch follows the
-    angles, a mouse joint's target the mouse)."""
-    if isinstance(j, (MouseJoint, RatchetJoint)):
-        return None
-    if isinstance(j, Hinge):
-        return (j.revision, j._limits, j._speed, j._max_torque)
-    return (j.revision,)
-
-
-def _report_constraint(
-    j: SoftJoint, rows: tuple[int, int], impulses: tuple[float, ...], k: int, out: list[Any]
-) -> None:
-    """A pymunk constraint's impulses over the step, given body_a (engine.constraints), from
-    the solver's last substep's (``impulses``: jpx, jpy, jpa, jlo, jhi, jmi) times its ``k``
-    substeps; ``rows`` its ends' rows in ``out``, the solver's arrays after the step."""
-    _, _, pa, lo, hi, mi = impulses
-    j.linear_impulse, j.angular_impulse = Vector(0.0, 0.0), 0.0
-    a, b = rows
-    n = len(out[0]) - 1  # (the static body's row)
-    if isinstance(j, SlideJoint):
-        # Along the joint as it is at the step's end, > 0 pulling, as a rod's.
-        j.impulse = (hi - lo - pa) * k
-        d = _at_end(out, b, n, j.anchor_b) - _at_end(out, a, n, j.anchor_a)
-        length = d.length()
-        j.linear_impulse = d * (j.impulse / length) if length > 0.0 else Vector(0.0, 0.0)
-        return
-    if isinstance(j, GrooveJoint):
-        # Along the groove and across it, as it is at the step's end.
-        angle, _ = j.axis
-        turn = 0.0 if a == n else float(out[2][a])
-        u = Vector(math.cos(angle + turn), math.sin(angle + turn))
-        # On body_b: the ends' push along u, the point's across (n = (-u_y, u_x)).
-        on_b = u * ((lo - hi) * k) + Vector(-u.y, u.x) * (pa * k)
-        j.linear_impulse = -on_b
-        j.impulse = on_b.length()
-        return
-    if isinstance(j, GearJoint):
-        j.angular_impulse = -pa * k  # body_b took ratio times its opposite
-    else:
-        j.angular_impulse = -(mi + lo - hi) * k
-    j.impulse = abs(j.angular_impulse)
-
-
-def _at_end(out: list[Any], row: int, n: int, local: Vector) -> Vector:
-    """The point ``local`` of the body in ``row`` (its own frame; the static body's, world
-    coordinates) where the solver's step left it (``out``: its x, y and angle arrays first)."""
-    if row == n:
-        return local
-    q = float(out[2][row])
-    c, s = math.cos(q), math.sin(q)
-    x, y = float(out[0][row]), float(out[1][row])
-    return Vector(x + c * local.x - s * local.y, y + s * local.x + c * local.y)
 
 
 def _bodies(
