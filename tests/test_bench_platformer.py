@@ -194,6 +194,21 @@ def test_the_table_gives_each_engine_against_pymunks_median() -> None:
     assert not any(ln.lstrip().startswith("World (numpy), no hinge") for ln in lines)
 
 
+def test_the_table_gives_each_soft_engine_alone_against_pymunk_alone() -> None:
+    runs = {"pymunk": _run("pymunk", 27e-6, 0.0)}
+    apart = {"soft (numpy)": 2.4e-3, "soft (fast)": 0.14e-3, "pymunk": 5e-6}
+    line = [ln for ln in bench.table(runs, 5.0, {"World": 2e-3}, apart) if "alone" in ln]
+    assert len(line) == 1
+    assert "soft (numpy) 2.4 ms (480x)" in line[0]  # 2.4 ms over pymunk's 5 us alone
+    assert "soft (fast) 0.140 ms (28x)" in line[0] and "pymunk 0.005 ms" in line[0]
+    assert not any("alone" in ln for ln in bench.table(runs, 5.0, {"World": 2e-3}))
+
+
+def test_a_short_run_alone_times_each_soft_engine() -> None:
+    apart = bench.alone(3 * scene.DT, fast=False, pymunk=False)
+    assert list(apart) == ["soft (numpy)"] and apart["soft (numpy)"] > 0.0
+
+
 def test_a_short_side_by_side_run_times_every_step_of_every_engine() -> None:
     runs = bench.side_by_side(3 * scene.DT, fast=False, pymunk=False)
     assert list(runs) == [

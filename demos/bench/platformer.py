@@ -433,6 +433,26 @@ def side_by_side(
     }  # fmt: skip
 
 
+def alone(seconds: float = 5.0, *, fast: bool = True, pymunk: bool = True) -> dict[str, float]:
+    """Each soft engine and pymunk alone: its game built and the script played for ``seconds``
+    with nothing stepped between its steps; engine -> the median CPU seconds of its own step.
+    (``side_by_side`` steps every engine in turn, so each step starts with the others' code
+    and data in the caches: that costs pymunk's small C step most.)"""
+    builders = {
+        name: b
+        for name, b in _builders(True, fast, pymunk).items()
+        if name.startswith("soft") or name == "pymunk"
+    }
+    out: dict[str, float] = {}
+    warned: Counter[str] = Counter()
+    for name, build in builders.items():
+        game = build()
+        _step_noting(game, warned)  # (the first step, apart, as side_by_side's)
+        steps = [_step_noting(game, warned)[0][CPU] for _ in range(round(seconds / DT) - 1)]
+        out[name] = float(np.median(steps))
+    return out
+
+
 def query_times(rounds: int = 15) -> dict[str, float]:
     """Median seconds of one ground test (``segment_query_first`` 13 cm below the player's
     feet, the arguments made once) on this World (numpy path: the query uses no kernel) and
@@ -492,9 +512,15 @@ def _rows(runs: dict[str, Run], part: str, clock: int, firsts: bool, coins: bool
     return lines
 
 
-def table(runs: dict[str, Run], seconds: float, query: dict[str, float]) -> list[str]:
-    """The report's lines for ``runs`` (``side_by_side``) over ``seconds`` of the script and
-    the ground test's ``query`` times (``query_times``)."""
+def table(
+    runs: dict[str, Run],
+    seconds: float,
+    query: dict[str, float],
+    apart: dict[str, float] | None = None,
+) -> list[str]:
+    """The report's lines for ``runs`` (``side_by_side``) over ``seconds`` of the script, the
+    ground test's ``query`` times (``query_times``) and each engine's median step played
+    ``apart`` (``alone``), if given."""
     lines = [
         f"platformer: the small game (demos.platformer_scene: a rope bridge of "
         f"{scene.BRIDGE_PLANKS} planks on hinges, {len(scene.CRATES)} crates, a seesaw on a "
@@ -510,6 +536,16 @@ def table(runs: dict[str, Run], seconds: float, query: dict[str, float]) -> list
         "other work)",
         *_rows(runs, GAME, WALL, firsts=True, coins=False),
     ]
+    if apart:
+        peer = apart.get("pymunk")
+        lines.append(
+            "  each soft engine alone (the script played with nothing between its steps, so "
+            "its own code and data stay in the caches), the engine's median step (CPU): "
+            + ", ".join(
+                f"{name} {_ms(t)}" + (f" ({t / peer:.0f}x)" if peer and name != "pymunk" else "")
+                for name, t in apart.items()
+            )
+        )
     fast = runs.get("World (fast)")
     if fast is None:
         lines.append("  World (fast): numba is not installed (pip install -e '.[fast]'): skipped")
@@ -560,4 +596,4 @@ def report(quick: bool = False) -> str:
     seconds = 5.0 if quick else scene.SECONDS
     runs = side_by_side(seconds)
     query = query_times(rounds=5 if quick else 15)
-    return "\n".join(table(runs, seconds, query))
+    return "\n".join(table(runs, seconds, query, alone(seconds)))
