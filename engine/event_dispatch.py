@@ -287,8 +287,12 @@ def report(state: WorldState) -> None:
     if not state.handlers:
         return
     events = state.events
+    ledger = events.ledger
+    # (A kind with no event this step is passed over before the handlers are looked at:
+    # most steps of a game begin and end nothing.)
+    nothing = (not ledger.began, not ledger.ended and not ledger.removed, False)
     for which in (1, 2, 3):
-        if not any(h[which] is not None for h in state.handlers):
+        if nothing[which - 1] or not any(h[which] is not None for h in state.handlers):
             continue
         event_list = events.began if which == 1 else events.ended if which == 2 else events.touching
         for ev in event_list:

@@ -240,6 +240,9 @@ class ContactLedger:
         self.held: dict[int, Spec] = {}
         #: Merge the keys by the loop kernel ``merge_loop`` (the fast path, engine.kernels).
         self.fast = False
+        # The last ``sensing`` as given (its bytes) and sorted (``_sorted``): a game's step
+        # most often senses what the step before did.
+        self._sensed: tuple[bytes, np.ndarray] = (b"", np.zeros(0, dtype=np.int64))
 
     def state(self) -> tuple[Any, ...]:
         """A copy of the open contacts and the ends held for them (what a snapshot holds)."""
@@ -255,6 +258,14 @@ class ContactLedger:
         self.keys, self.exact = state[0].copy(), state[1].copy()
         self.began, self.ended, self.pending, self.removed = [], [], [], []
         self.held = dict(state[2])
+
+    def _sorted(self, sensing: np.ndarray) -> np.ndarray:
+        """``_unique(sensing)`` (int64 keys), taken again only when the keys are not the last
+        step's, as given (the result is never written to: it may be the last step's)."""
+        raw = np.asarray(sensing, dtype=np.int64).tobytes()
+        if raw != self._sensed[0]:
+            self._sensed = (raw, _unique(np.asarray(sensing, dtype=np.int64)))
+        return self._sensed[1]
 
     def quiet(self) -> None:
         """A step passed in which nothing moved: the pending ends are reported, nothing else."""
@@ -297,7 +308,7 @@ class ContactLedger:
         quiet = not raw and not len(resting) and not self.held and same_keys(prev, self.exact)
         if quiet and same_keys(sensing, prev):
             return
-        sensing = _unique(sensing)
+        sensing = self._sorted(sensing)
         if quiet and same_keys(sensing, prev):
             return
         resting = _unique(resting)

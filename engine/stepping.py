@@ -203,7 +203,13 @@ def _step_soft(
         tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
     x, v, angle, omega = game.step(state, dt, accel, ignored[0], ignored[1], tau)
     state.huge = _check_finite(state, x, v, name, dt, t0) > 1e100
-    if not (np.isfinite(angle).all() and np.isfinite(omega).all()):
+    # (Two sums, as _check_finite's: nan or inf whenever an entry is, or huge ones overflow.)
+    if state.huge:
+        with np.errstate(over="ignore", invalid="ignore"):
+            turned = math.isfinite(float(_sum(angle, None) + _sum(omega, None)))
+    else:
+        turned = math.isfinite(float(_sum(angle, None) + _sum(omega, None)))
+    if not turned and not (np.isfinite(angle).all() and np.isfinite(omega).all()):
         raise SimulationDiverged(
             f"a body's angle or angular velocity is not finite after the step from t={t0!r} s "
             f"(dt={dt!r} s, solver 'soft'): the World keeps the state before it; take a "
