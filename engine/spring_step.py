@@ -22,12 +22,57 @@ The kicks. Any other spring (a rest length, lever arms on bodies that turn, a ro
 damping off its line, contacts or links in the World) is a pair of half kicks around the
 method's step (Strang splitting, velocity Verlet on the spring): half the spring's impulse
 from the positions at the start, the step, then the other half from where it ends. The
-spring's part is pymunk's impulse (stiffness (|d| - L) dt along n), its damping pymunk's
-implicit decay: the ends' relative speed along n is multiplied by exp(-c h / m_eff) (c the
-damping, 1 / m_eff = 1/m_a + 1/m_b + (r_a x n)^2 / I_a + (r_b x n)^2 / I_b), which no dt can
-overshoot. Kicks are equal and opposite, so momentum is kept to round-off; undamped, the energy
-stays within a bound that shrinks as dt^2, and the limit is velocity Verlet's: omega dt < 2
-with omega = sqrt(k / m_eff) (``warn_if_unstable`` says so before the first step past it).
+spring's part is pymunk's impulse (stiffness (|d| - L) dt along n); its damper decays the
+ends' relative speed along n exponentially, as pymunk's (its exact flow: no dt overshoots),
+with c the damping and 1 / m_eff = 1/m_a + 1/m_b + (r_a x n)^2 / I_a + (r_b x n)^2 / I_b
+(a rotary spring's: 1 / I_a + 1 / I_b), around the pulls (below). Kicks are equal and opposite,
+so momentum is kept to round-off; undamped, the energy stays within a bound that shrinks as
+dt^2, and the limit is velocity Verlet's: omega dt < 2 with omega = sqrt(k / m_eff)
+(``warn_if_unstable`` says so before the first step past it).
+
+The dampers. Along one spring, in the ends' relative speed u along n and per unit of
+1 / m_eff, with h = dt / 2, x = c h / m_eff and P a half kick's pull: the method's step moves
+the ends with the speed w and changes u by its own forces' G1 before it moves them and G2
+after (for a constant acceleration a along n: semi-implicit Euler a dt and 0; velocity
+Verlet, rk4 and the closed form a dt / 2 each; explicit Euler 0 and a dt). The kicks once
+took u -> e^-x (u + P) in both half kicks. At rest (w = 0, the speed u* at each step's end)
+that is e^-x (u* + P) + G1 = 0 and u* = e^-x (G2 + P), so P = -(G1 + e^-2x G2) / (e^-x +
+e^-2x), where k stretch = m a is P = -(G1 + G2) / 2: the damper decayed the pull that holds
+the weight. A crate of 2 kg on 100 N/m and 20 N s/m at dt = 1/60 s rested 25.9 mm low on
+semi-implicit Euler (4.778 m for 4.804 m), 8.9 mm on velocity Verlet, however long it
+settled; the bias grew as e^x (1000 N/m and 2000 N s/m: 1.38 m, 70 times the stretch).
+
+Now, with s = e^-x (the Strang splitting's half decay) and u_kick = u1 + P the speed after
+the second half kick's pull (u1 what the method hands it):
+
+    first half kick:   u -> s u, then the pull: u' = s u + P
+    second half kick:  the pull, then u_kick -> (u_kick - (1 - e^-2x) u_end) / s,
+                       u_end = u_kick + (G1 - G2) / 2,
+
+the damper's whole step acting on u_end, the speed at the step's end, and the first half
+kick's decay undone so that the next first half kick's may take it again. The method's
+G1 - G2 is measured, per body (the ends' relative speed along n of the vector 2 W - v' - v1,
+W = (x1 - x0) / dt the velocity it moved a body with, v' the velocity it was given, v1 the
+one it gave back; angular velocities alike), so that moving ends that turn count as the
+method moved them. Velocity Verlet, rk4 and the closed form have G1 = G2: u_end = u_kick,
+which goes to e^-2x u_kick / s = e^-x u_kick, and the step is the Strang splitting
+u -> e^-x u, + P | the method | + P, u -> e^-x u; semi-implicit and explicit Euler, which
+kick before or after they drift, have their asymmetry taken off. Then:
+- a lone damper (P = G = 0: u1 = s u) decays u to e^-2x u over a step, exactly, as before;
+- at rest (w = 0: s u* + P + G1 = 0, u_kick = G2 + P) the balance P = -(G1 + G2) / 2 gives
+  u_end = 0, and u_end = 0 gives u* = u_kick / s back: the dampers give nothing over the
+  step, and the rest is k stretch = m a exactly, whatever the method or x, with u* = (G2 -
+  G1) / (2 s): 0 for velocity Verlet, rk4, the closed form and a body's free turn
+  (engine.rotation), -a dt / (2 s) on semi-implicit Euler (its kick of a whole step before
+  it drifts, against the pulls' half kicks: undamped, s = 1, the same), +a dt / (2 s) on
+  explicit Euler;
+- it is second order (the Strang splitting's), where the kicks once were first order in the
+  damping (they decayed after each pull), and stable for omega dt < 2 at any x, as before.
+Past x = 0.48, s = 1 - e^-2x instead of e^-x, which keeps u* below a dt / 1.24 (s = e^-x would
+give u* = a dt e^x / 2). Springs that share a body are damped a colour at a time
+(Gauss-Seidel): the first half kick's in the colours' order, the second's in the reverse
+order, so that at rest (u_end = 0, each a decay's undoing) it undoes exactly what the first
+did.
 """
 
 from __future__ import annotations
@@ -84,6 +129,9 @@ class Springs:
         self._rows: np.ndarray = np.zeros(0, dtype=np.intp)
         self._checked: Any = None  # (dt, version, revisions) of the last stability check
         self._tabled: tuple[Any, _Table] | None = None  # the DampedSprings as arrays, keyed
+        # The velocities the step's first half kick left (m/s, rad/s), for its second (the
+        # module's text, "The dampers").
+        self._kicked: tuple[np.ndarray, np.ndarray] | None = None
 
     def __bool__(self) -> bool:
         return bool(self.items)
@@ -308,23 +356,42 @@ class Springs:
     ) -> tuple[np.ndarray, np.ndarray]:
         """New (v, omega) after the springs' impulses over ``h`` s at positions ``x`` and
         angles ``angle`` (the module's text); ``first``: the step's first half kick (the
-        impulses counted in ``impulse`` start from 0)."""
+        impulses counted in ``impulse`` start from 0), else its second, where the method's
+        step of 2 h s from ``store.x`` and ``store.angle`` ends."""
         v, omega = v.copy(), omega.copy()
         wm = np.where(store.kinematic, 0.0, 1.0 / store.mass)
         wi = np.where(store.kinematic, 0.0, store.inv_moment)
+        odd = None
+        kicked = None if first else self._kicked
+        if kicked is not None and kicked[0].shape == v.shape:
+            # The method's step, from the velocities the first half kick left (v') to the
+            # velocities it hands this one (v1), moved the bodies with W = (x1 - x0) / dt: it
+            # changed their velocities by (W - v') before it moved them and (v1 - W) after,
+            # and the dampers take half their difference, 2 W - v' - v1 (m/s, rad/s).
+            dt = 2.0 * h
+            odd = (
+                (x - store.x) * (2.0 / dt) - kicked[0] - v,
+                (angle - store.angle) * (2.0 / dt) - kicked[1] - omega,
+            )
+        elif not first:
+            odd = (np.zeros_like(v), np.zeros_like(omega))
+        rotary = [s for s in self.items if isinstance(s, DampedRotarySpring)]
         table = self._table(store)
+        # The first half kick's dampers, then the second's in the reverse order (the rotary
+        # springs' after the others' in the first, before them in the second).
+        for s in rotary if not first else []:
+            s.impulse += _kick_rotary(s, store, angle, omega, wi, h, odd)
         if table.springs:
             # (A state blowing up is refused just after, naming the limit: no numpy warning.)
             few = len(table.springs) <= FEW
             with np.errstate(over="ignore", invalid="ignore"):
                 kick = _kick_floats if few else _kick_table
-                impulses = kick(table, x, angle, v, omega, wm, wi, h)
+                impulses = kick(table, x, angle, v, omega, wm, wi, h, odd)
             for spring, j in zip(table.springs, impulses.tolist(), strict=True):
                 spring.impulse = j if first else spring.impulse + j
-        for s in self.items:
-            if isinstance(s, DampedRotarySpring):
-                j = _kick_rotary(s, store, angle, omega, wi, h)
-                s.impulse = j if first else s.impulse + j
+        for s in rotary if first else []:
+            s.impulse = _kick_rotary(s, store, angle, omega, wi, h, None)
+        self._kicked = (v.copy(), omega.copy()) if first else None
         return v, omega
 
     def _table(self, store: BodyStore) -> _Table:
@@ -484,6 +551,17 @@ def _turned(angle: np.ndarray, local: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return c * local[:, 0] - s * local[:, 1], s * local[:, 0] + c * local[:, 1]
 
 
+def _decays(x: Any) -> tuple[Any, Any]:
+    """(s - 1, 1 - e^-2x) of a damper (1; floats or arrays) for x = c h k_n: the first half
+    kick's decay s = max(e^-x, 1 - e^-2x) and the step's (the module's text, "The dampers")."""
+    # s = e^-x, the half step's decay, is the Strang splitting's; past e^-x < 1 - e^-2x
+    # (x > 0.48) s keeps the speed at rest on semi-implicit Euler, a dt / (2 s), below
+    # a dt / 1.24. Undamped (x = 0): s - 1 = 0 and 1 - e^-2x = 0, the kicks the pulls alone.
+    if isinstance(x, np.ndarray):
+        return np.maximum(np.expm1(-x), -np.exp(-2.0 * x)), -np.expm1(-2.0 * x)
+    return max(math.expm1(-x), -math.exp(-2.0 * x)), -math.expm1(-2.0 * x)
+
+
 def _kick_table(
     t: _Table,
     x: np.ndarray,
@@ -493,9 +571,12 @@ def _kick_table(
     wm: np.ndarray,
     wi: np.ndarray,
     h: float,
+    odd: tuple[np.ndarray, np.ndarray] | None,
 ) -> np.ndarray:
-    """The DampedSprings' kick over ``h`` s, in place on v and omega; each one's impulse
-    (N s, > 0 pulls the ends together)."""
+    """The DampedSprings' kick over ``h`` s, in place on v and omega; each one's impulse (N s,
+    > 0 pulls the ends together). ``odd``: None in the step's first half kick; in its second,
+    2 W - v' - v1 of each body (m/s, rad/s: ``Springs.kick``; the module's text, "The
+    dampers")."""
     ia, ib = t.ia, t.ib
     on_b = ib >= 0
     jb = np.where(on_b, ib, 0)
@@ -512,22 +593,46 @@ def _kick_table(
     wmb, wib = np.where(on_b, wm[jb], 0.0), np.where(on_b, wi[jb], 0.0)
     k_n = wm[ia] + wi[ia] * arm_a * arm_a + wmb + wib * arm_b * arm_b  # 1 / m_eff along n
     live = (dist > 0.0) & (k_n > 0.0)
-    # The springs: stiffness (|d| - L) h along n pulls a toward b and b toward a; they
-    # depend on the positions alone, so all are given at once.
-    pull = np.where(live, t.stiffness * (dist - t.rest) * h, 0.0)
-    _give(t, np.arange(len(ia)), nx, ny, arm_a, arm_b, pull, v, omega, wm, wi)
-    # The dampers, implicit, a colour at a time: the ends' relative speed along n, u, decays
-    # to u e^(-c h k_n), by the impulse u (1 - e^(-c h k_n)) / k_n.
-    damp = np.zeros(len(ia))
-    for sel in t.colours:
-        sel = sel[live[sel]]
+    safe_k = np.where(live, k_n, 1.0)
+
+    def speed(sel: np.ndarray, vel: np.ndarray, spin: np.ndarray) -> np.ndarray:
+        """The ends' relative speed along n (m/s, > 0 parting) of the springs ``sel``."""
         a, b, ok = ia[sel], jb[sel], on_b[sel]
-        u = -((v[a, 0] - omega[a] * ray[sel]) * nx[sel] + (v[a, 1] + omega[a] * rax[sel]) * ny[sel])
-        ub = (v[b, 0] - omega[b] * rby[sel]) * nx[sel] + (v[b, 1] + omega[b] * rbx[sel]) * ny[sel]
-        u = u + np.where(ok, ub, 0.0)
-        damp[sel] = -u * np.expm1(-t.damping[sel] * h * k_n[sel]) / k_n[sel]
-        _give(t, sel, nx, ny, arm_a, arm_b, damp, v, omega, wm, wi)
-    return pull + damp
+        u = -(
+            (vel[a, 0] - spin[a] * ray[sel]) * nx[sel] + (vel[a, 1] + spin[a] * rax[sel]) * ny[sel]
+        )
+        ub = (vel[b, 0] - spin[b] * rby[sel]) * nx[sel] + (vel[b, 1] + spin[b] * rbx[sel]) * ny[sel]
+        return u + np.where(ok, ub, 0.0)
+
+    def damp(sel: np.ndarray, j: np.ndarray) -> None:
+        _give(t, sel, nx, ny, arm_a, arm_b, j, v, omega, wm, wi)
+        given[sel] += j[sel]
+
+    # The springs: stiffness (|d| - L) h along n pulls a toward b and b toward a; they
+    # depend on the positions alone, so all are given at once: in the first half kick after
+    # the dampers (which act on the velocities the step starts with), in the second before.
+    pull = np.where(live, t.stiffness * (dist - t.rest) * h, 0.0)
+    everyone = np.arange(len(ia))
+    given = np.zeros(len(ia))
+    s1, decay = _decays(t.damping * h * np.where(live, k_n, 0.0))
+    colours = [sel[live[sel]] for sel in t.colours]
+    # The dampers, a colour at a time (Gauss-Seidel), in the ends' relative speeds along n, u
+    # (an impulse j along n, > 0 pulling the ends together, takes j k_n from u).
+    if odd is None:
+        for sel in colours:  # u to s u
+            j = np.zeros(len(ia))
+            j[sel] = -speed(sel, v, omega) * s1[sel] / safe_k[sel]
+            damp(sel, j)
+        _give(t, everyone, nx, ny, arm_a, arm_b, pull, v, omega, wm, wi)
+        return pull + given
+    _give(t, everyone, nx, ny, arm_a, arm_b, pull, v, omega, wm, wi)
+    ahead = 0.5 * speed(everyone, *odd)  # (G1 - G2) / 2 along each spring
+    for sel in colours[::-1]:  # u to (u - (1 - e^-2x) (u + (G1 - G2) / 2)) / s
+        u = speed(sel, v, omega)
+        j = np.zeros(len(ia))
+        j[sel] = (u - (u - decay[sel] * (u + ahead[sel])) / (1.0 + s1[sel])) / safe_k[sel]
+        damp(sel, j)
+    return pull + given
 
 
 def _kick_floats(
@@ -539,27 +644,40 @@ def _kick_floats(
     wm: np.ndarray,
     wi: np.ndarray,
     h: float,
+    odd: tuple[np.ndarray, np.ndarray] | None,
 ) -> np.ndarray:
     """``_kick_table`` for a few springs, in Python floats: the same impulses in the same
-    order (every spring's pull, then the dampers a colour at a time, as pymunk gives its
-    springs' impulses before it solves their dampers)."""
+    order (the dampers a colour at a time, and every spring's pull: after the dampers in
+    the step's first half kick, before them in its second)."""
     rows = sorted({*t.ia.tolist(), *t.ib[t.ib >= 0].tolist()})
-    # Each body's [x, y, angle, vx, vy, omega, 1/m, 1/I], by row, as floats.
+    # Each body's [x, y, angle, vx, vy, omega, 1/m, 1/I] by row, as floats, then its
+    # 2 W - v' - v1 (the second half kick's ``odd``: the module's text, "The dampers").
     body = {
         r: [*x[r].tolist(), float(angle[r]), *v[r].tolist(), float(omega[r]), wm[r], wi[r]]
+        + ([0.0] * 3 if odd is None else [*odd[0][r].tolist(), float(odd[1][r])])
         for r in rows
     }
-    world = [0.0] * 8  # the world: still, immovable
-    ends, geometry = [], []
+    world = [0.0] * 11  # the world: still, immovable
+    ends: list[tuple[list[float], list[float]]] = []
+    geometry: list[tuple[float, ...]] = []
     out = [0.0] * len(t.springs)
 
-    def give(a: list[float], b: list[float], g: tuple[float, ...], jn: float) -> None:
-        nx, ny, arm_a, arm_b = g[:4]
+    def give(k: int, jn: float) -> None:
+        """+jn n to spring k's a, -jn n to its b (N s)."""
+        (a, b), (nx, ny, arm_a, arm_b) = ends[k], geometry[k][:4]
         for end, arm, sign in ((a, arm_a, 1.0), (b, arm_b, -1.0)):
             end[3] += sign * nx * jn * end[6]
             end[4] += sign * ny * jn * end[6]
             end[5] += sign * arm * jn * end[7]
+        out[k] += jn
 
+    def speed(k: int, at: int) -> float:
+        """Spring k's ends' relative speed along n (m/s), of the velocities from ``at``."""
+        (a, b), (nx, ny, _, _, _, rax, ray, rbx, rby) = ends[k], geometry[k]
+        u = (b[at] - b[at + 2] * rby - a[at] + a[at + 2] * ray) * nx
+        return u + (b[at + 1] + b[at + 2] * rbx - a[at + 1] - a[at + 2] * rax) * ny
+
+    pulls = []
     for k, (i, j) in enumerate(zip(t.ia.tolist(), t.ib.tolist(), strict=True)):
         a, b = body[i], body[j] if j >= 0 else world
         ends.append((a, b))
@@ -580,20 +698,22 @@ def _kick_floats(
             arm_a, arm_b = rax * ny - ray * nx, rbx * ny - rby * nx
             k_n = a[6] + a[7] * arm_a * arm_a + b[6] + b[7] * arm_b * arm_b
         geometry.append((nx, ny, arm_a, arm_b, k_n, rax, ray, rbx, rby))
-        if k_n > 0.0:
-            out[k] = float(t.stiffness[k]) * (dist - float(t.rest[k])) * h
-            give(a, b, geometry[k], out[k])
-    for sel in t.colours:
-        for k in sel.tolist():
-            nx, ny, arm_a, arm_b, k_n, rax, ray, rbx, rby = geometry[k]
-            if k_n == 0.0:
-                continue
-            a, b = ends[k]
-            u = (b[3] - b[5] * rby - a[3] + a[5] * ray) * nx
-            u += (b[4] + b[5] * rbx - a[4] - a[5] * rax) * ny
-            damp = -u * math.expm1(-float(t.damping[k]) * h * k_n) / k_n
-            give(a, b, geometry[k], damp)
-            out[k] += damp
+        pulls.append(float(t.stiffness[k]) * (dist - float(t.rest[k])) * h if k_n > 0.0 else 0.0)
+    order = [k for sel in t.colours for k in sel.tolist() if geometry[k][4] > 0.0]
+    dampers = [
+        (k, geometry[k][4], *_decays(float(t.damping[k]) * h * geometry[k][4])) for k in order
+    ]
+    if odd is None:
+        for k, k_n, s1, _ in dampers:  # u to s u
+            give(k, -speed(k, 3) * s1 / k_n)
+        for k, p in enumerate(pulls):
+            give(k, p)
+    else:
+        for k, p in enumerate(pulls):
+            give(k, p)
+        for k, k_n, s1, decay in dampers[::-1]:  # u to (u - (1 - e^-2x) u_end) / s
+            u = speed(k, 3)
+            give(k, (u - (u - decay * (u + 0.5 * speed(k, 8))) / (1.0 + s1)) / k_n)
     for r in rows:
         v[r] = body[r][3:5]
         omega[r] = body[r][5]
@@ -634,9 +754,11 @@ def _kick_rotary(
     omega: np.ndarray,
     wi: np.ndarray,
     h: float,
+    odd: tuple[np.ndarray, np.ndarray] | None,
 ) -> float:
     """One DampedRotarySpring's kick over ``h`` s, in place on omega; the angular impulse on a
-    (N m s)."""
+    (N m s). ``odd``: None in the step's first half kick; in its second, 2 W - v' - v1 of each
+    body (``Springs.kick``: its angular part, rad/s; the module's text, "The dampers")."""
     i = store.row(s.a.slot)
     b = s.second
     j = -1 if b is None else store.row(b.slot)
@@ -645,12 +767,17 @@ def _kick_rotary(
         return 0.0
     twist = float(angle[i]) - (float(angle[j]) if j >= 0 else 0.0) - s.rest_angle
     spring = -s.stiffness * twist * h
-    omega[i] += spring * wi[i]
+    s1, decay = _decays(s.damping * h * k_w)
+    u = float(omega[i]) - (float(omega[j]) if j >= 0 else 0.0)  # (an impulse J adds J k_w)
+    if odd is None:
+        total = u * s1 / k_w + spring  # the damper first, u to s u; then the pull
+    else:
+        # The pull, then u less (1 - e^-2x) of u + odd / 2, then to u / s.
+        u_odd = float(odd[1][i]) - (float(odd[1][j]) if j >= 0 else 0.0)
+        u_kicked = u + spring * k_w
+        u_end = (u_kicked - decay * (u_kicked + 0.5 * u_odd)) / (1.0 + s1)
+        total = spring + (u_end - u_kicked) / k_w
+    omega[i] += total * wi[i]
     if j >= 0:
-        omega[j] -= spring * wi[j]
-    u = float(omega[i]) - (float(omega[j]) if j >= 0 else 0.0)
-    damp = u * math.expm1(-s.damping * h * k_w) / k_w  # -u (1 - e^(-c h k_w)) / k_w
-    omega[i] += damp * wi[i]
-    if j >= 0:
-        omega[j] -= damp * wi[j]
-    return spring + damp
+        omega[j] -= total * wi[j]
+    return total
