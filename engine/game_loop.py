@@ -26,6 +26,7 @@ import numpy as np
 from . import kernels
 from .events import COLLIDER
 from .game_contacts import contacts_loop, contacts_sample, report_loop
+from .game_continuous import SAFETY
 from .game_sleep import ANGULAR, LINEAR
 from .manifold_kinds import SPECULATIVE_DISTANCE
 from .pile import label_rows
@@ -109,7 +110,8 @@ def step_loop(
     points, normals and impulses (``report_loop``'s, and the last step's of bodies asleep
     through this one, held open; sorted by key), the sensor colliders' overlaps as event keys,
     and the touching pairs of bodies (keys a n + b, a < b: contacts, then joints between two
-    bodies) for ``Body.sleep``'s island."""
+    bodies) for ``Body.sleep``'s island, and whether a body may be fast (moved more than
+    about engine.game_continuous.SAFETY of its least extent: the continuous stage's test)."""
     n = len(radius)
     if len(margin) != n:
         # |v| dt + |a| dt^2 + |omega| dt r: what the shape can move in the step (``_reach``'s
@@ -294,10 +296,38 @@ def step_loop(
                 asleep[i] = True
                 island[i] = label[i]
                 bvx[i], bvy[i], bw[i] = 0.0, 0.0, 0.0
+    # -- whether a body may be fast (engine.game_continuous's test from above of the move,
+    # |dx| + |dy| + |dq| R > SAFETY e, its extents from the tables; a share looser, as
+    # engine.game_continuous.extents sums in another order) ----------------------------------
+    fast = False
+    for i in range(n):
+        if not moving[i] or sensor[i]:
+            continue
+        j = body_index[i]
+        if body_circle[i]:
+            small = rnd[j]
+            far = np.hypot(center[j, 0], center[j, 1])
+        else:
+            k = cnt[j]
+            cx, cy = 0.0, 0.0
+            for e in range(k):
+                cx += V[j, e, 0]
+                cy += V[j, e, 1]
+            cx, cy = cx / k, cy / k
+            small, far = np.inf, 0.0
+            for e in range(k):
+                d = Nrm[j, e, 0] * (V[j, e, 0] - cx) + Nrm[j, e, 1] * (V[j, e, 1] - cy)
+                small = min(small, d)
+                far = max(far, np.hypot(V[j, e, 0], V[j, e, 1]))
+            small = max(small, 0.0) + rad[j]
+        move = abs(bx[i] - x[i, 0]) + abs(by[i] - x[i, 1]) + abs(bq[i] - angle[i]) * far
+        if move > SAFETY * small * (1.0 - 1e-6):
+            fast = True
+            break
     x_out = np.empty((n, 2))
     v_out = np.empty((n, 2))
     for i in range(n):
         x_out[i, 0], x_out[i, 1] = bx[i], by[i]
         v_out[i, 0], v_out[i, 1] = bvx[i], bvy[i]
     return (x_out, v_out, bq[:n].copy(), bw[:n].copy(), kept, lam, event, point, normal,
-            impulse, sensing, touching)  # fmt: skip
+            impulse, sensing, touching, fast)  # fmt: skip

@@ -35,6 +35,12 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    World's events read them (engine.event_dispatch); on the fast path,
    engine.game_contacts.report_loop.
 8. ``_sleep``: still islands fall asleep (engine.game_sleep); a sleeper's contacts stay open.
+9. engine.game_continuous (``Continuous.sweep``, on either path): each fast body (one that
+   moved more than half its least extent) swept from its pose at the step's start to its end
+   against the colliders and the static and kinematic bodies, and set back to its first time
+   of impact, its velocity kept (Box2D v3's ``b2SolveContinuous``): a thin box turning fast
+   meets a wall with another corner than its rows hold, and is stopped. On the fast path
+   ``step_loop``'s end says whether a body may be fast: a step with none asks nothing more.
 
 On the fast path stages 0 (once the World's structure is read) to 8 are one compiled call,
 engine.game_loop's ``step_loop`` (``_step_fast``): the numpy path's products in its order,
@@ -43,8 +49,8 @@ so both paths give the same bits (tests/test_game_loop.py compares them step by 
 What this step does not do yet, and says so (``World.solver``'s error): 1D worlds are the
 exact pipeline's. A mouse joint is Box2D's here: a soft spring
 that sags by g / omega^2 under a body's weight (the exact pipeline's holds it at the target).
-A body faster than its speculative margin can catch (what it and the other can move in the
-step, so any speed against a wall) is not swept for its moment of impact.
+A fast body is swept against the dynamic bodies only as a bullet (engine.game_continuous's
+``bullets``, off as Box2D's is): a thin box turning fast may pass a free plate.
 """
 
 from __future__ import annotations
@@ -59,6 +65,7 @@ from . import game_sleep, narrowphase, solver
 from .colliders import Collider
 from .events import COLLIDER, collider_keys, pair_keys
 from .game_contacts import FEATURE, OTHER, STATIC
+from .game_continuous import Continuous
 from .game_joints import GameJoints
 from .game_loop import step_loop
 from .manifold import StaticShapes, static_shapes
@@ -137,6 +144,7 @@ class GameStep:
 
     def __init__(self, fast: bool) -> None:
         self.fast = fast  # the compiled solver (engine.kernels) or its plain-Python twin
+        self.continuous = Continuous(fast)  # stage 9: fast bodies swept after the step
         self.substeps = solver.SUBSTEPS
         self.keys = np.zeros(0, dtype=np.int64)  # the last step's points, sorted
         self.lam = np.zeros((0, 2))  # their (normal, tangent) impulses, N s a substep
@@ -190,10 +198,14 @@ class GameStep:
         margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
         candidates = self._candidates(store, margin)
         if self.fast:
-            return self._step_fast(
+            ended = self._step_fast(
                 state, store, dt, accel, store.torque if torque is None else torque, margin,
                 candidates, ignored_faces, ignored_pairs,
             )  # fmt: skip
+            # The fast bodies swept to their time of impact (engine.game_continuous).
+            self.continuous.sweep(store, self._kept_places(), ended[0], ended[2], self._scene,
+                                  state, store, ignored_faces, ignored_pairs)  # fmt: skip
+            return ended
         awake = self._wake(state, store, margin, candidates)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
@@ -228,6 +240,7 @@ class GameStep:
             self.report.sensing = collider_keys(
                 store.slots()[found.sense_row], sc.cs.serial[found.sense_place]
             )
+        self.continuous.sweep(store, sc.places, x, angle, lambda: sc)
         return x, v, angle, omega
 
     def _step_fast(
@@ -280,6 +293,7 @@ class GameStep:
         if len(out[10]):
             self.report.sensing = out[10]
         c._touching = out[11]
+        self.continuous.maybe = out[12]  # whether a body may be fast (engine.game_continuous)
         # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
         # 11 and the contacts' 17, as the joints' report reads them).
         # The bodies' x, y and angle after it (with the static body's) where a pymunk
@@ -289,6 +303,11 @@ class GameStep:
             head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
         self.joints.report(joints[1], head + joints[0], self.substeps, joints[0])
         return x, v, angle, omega
+
+    def _kept_places(self) -> narrowphase.Places:
+        """The step's shapes' places (engine.narrowphase), as ``_scene`` kept them."""
+        assert self._places is not None
+        return self._places[2]
 
     def resting(self, slot: int) -> int | None:
         """The serial of the collider that pushed the body in ``slot`` hardest in the last

@@ -299,6 +299,7 @@ MODULES = (
     "engine.narrowphase",
     "engine.game_contacts",
     "engine.game_loop",
+    "engine.game_continuous",
     "engine.joint_rows",
     "engine.events",
 )

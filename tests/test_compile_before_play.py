@@ -231,6 +231,14 @@ def _scenes() -> Iterator[tuple[str, Callable[[], Any], float, int]]:
     yield "galton", scene(galton.GaltonScene), galton.GaltonScene.dt, 240
     yield "platformer (soft)", lambda: platformer_scene.build(solver="soft").world, 1 / 60, 120
 
+    def thrown() -> Any:
+        # Its ball thrown at 60 m/s along the ground: fast, swept (engine.game_continuous).
+        game = platformer_scene.build(solver="soft")
+        game.ball.vel = (60.0, -20.0)
+        return game.world
+
+    yield "platformer (soft), its ball thrown", thrown, 1 / 60, 30
+
 
 @needs_numba
 @pytest.mark.filterwarnings("ignore::engine.StabilityWarning")  # the pile's, not this test's

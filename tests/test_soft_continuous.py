@@ -1,0 +1,116 @@
+"""The soft step's continuous stage (engine.game_continuous): after the solve, each fast body is
+swept from its pose at the step's start to its end against what the solve does not move, and
+set back to its first time of impact, on both paths and with the same bits; a body that rests,
+slides or rolls is never fast, and the stage leaves it as it was."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+
+from engine import Body, Polygon, Segment, Vector, World
+from engine.forces import Gravity
+from tests.paths import FAST, PATHS
+
+DT = 1.0 / 60.0
+
+#: Directions (rad from straight at the segment) and phases (a share of a step's travel) of the
+#: ball's throws: without the stage a third of them pass (tested below).
+ANGLES = (0.3, 0.6, 1.0, 1.3)
+PHASES = (0.0, 0.1, 0.6, 0.75, 0.9)
+
+
+def _ball_at(
+    kernels: str, angle: float, phase: float, stage: bool = True, kinematic: bool = False
+) -> tuple[bool, World]:
+    """A ball of radius 0.05 m thrown at 300 m/s, ``angle`` off straight, under gravity at a
+    static segment of no thickness 10 m long, or a kinematic plate 0.05 m thick rising at
+    1 m/s (``phase`` of a step's travel set back): whether its centre ever crossed the
+    segment's (the plate's) line within its span in 10 steps, and the World."""
+    w = World(kernels=kernels, solver="soft", integrator="auto")
+    w._s.game.continuous.enabled = stage
+    w.add_force(Gravity((0.0, -9.81)))
+    if kinematic:
+        wall = w.add(Body((0.0, 0.0), (0.0, 1.0), shape=Polygon.box(0.05, 10.0), kinematic=True))
+    else:
+        wall = None
+        w.add_collider(Segment((0.0, -5.0), (0.0, 5.0)))
+    d = Vector(math.cos(angle), math.sin(angle))
+    ball = w.add(Body(d * -(3.0 + phase * 300.0 * DT), d * 300.0, radius=0.05, mass=0.1,
+                      restitution=0.0, friction=0.3))  # fmt: skip
+
+    def where() -> Vector:
+        return ball.pos if wall is None else wall.world_to_local(ball.pos)
+
+    before = where()
+    for _ in range(10):
+        w.step(DT)
+        now = where()
+        if before.x < 0.0 <= now.x and abs(now.y) < 5.0:
+            return True, w
+        before = now
+    return False, w
+
+
+def _passed(kernels: str, stage: bool = True, kinematic: bool = False) -> list[tuple[float, ...]]:
+    return [(a, p) for a in ANGLES for p in PHASES if _ball_at(kernels, a, p, stage, kinematic)[0]]
+
+
+@pytest.mark.parametrize("kinematic", [False, True], ids=["static segment", "kinematic plate"])
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_fast_small_ball_never_passes_a_thin_wall(kernels: str, kinematic: bool) -> None:
+    # The ball's speculative contact is taken at its nearest point at the step's start; met
+    # at a slant with friction it spins up within the step, its anchor swings off the wall and
+    # the row lets it through. Swept, it is set back where it first touches (a kinematic body
+    # on its own sweep).
+    assert _passed(kernels, kinematic=kinematic) == []
+
+
+@FAST
+def test_without_the_stage_the_same_balls_pass_the_walls() -> None:
+    # (What the test above would meet without the stage: 7 and 12 of these 20 pass.)
+    assert len(_passed("fast", False)) >= 5
+    assert len(_passed("fast", False, kinematic=True)) >= 5
+
+
+def _state(w: World) -> list[Any]:
+    return [(tuple(b.pos), tuple(b.vel), b.angle, b.angular_velocity) for b in w.bodies]
+
+
+def _floor_scene(kernels: str, stage: bool) -> tuple[World, list[int]]:
+    """A crate resting on a floor, a crate sliding along it at 5 m/s, a ball rolling at 6 m/s
+    and one dropped from 1 m, stepped 1 s: the stage's fast bodies found each step."""
+    w = World(kernels=kernels, solver="soft", integrator="auto")
+    w._s.game.continuous.enabled = stage
+    w.add_force(Gravity((0.0, -9.81)))
+    w.add_collider(Segment((-30.0, 0.0), (30.0, 0.0), radius=0.05))
+    w.add(Body((0.0, 0.55), shape=Polygon.box(1.0, 1.0), mass=1.0))
+    w.add(Body((-10.0, 0.55), (5.0, 0.0), shape=Polygon.box(1.0, 1.0), mass=1.0, friction=0.2))
+    w.add(Body((5.0, 0.3), (6.0, 0.0), radius=0.25, mass=1.0, angular_velocity=-24.0))
+    w.add(Body((-4.0, 1.3), radius=0.25, mass=1.0))
+    found = []
+    for _ in range(60):
+        w.step(DT)
+        found.append(w._s.game.continuous.found)
+    return w, found
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_body_resting_sliding_or_rolling_is_untouched_by_the_stage(kernels: str) -> None:
+    on, found = _floor_scene(kernels, True)
+    off, _ = _floor_scene(kernels, False)
+    assert found == [0] * 60  # no body is fast: the stage's kernel is never called
+    assert _state(on) == _state(off)
+
+
+@FAST
+def test_both_paths_set_the_same_bodies_back_to_the_same_bits() -> None:
+    ends = []
+    for kernels in ("numpy", "fast"):
+        hit, w = _ball_at(kernels, 0.6, 0.1)
+        assert not hit
+        ends.append(np.array([v for s in _state(w) for v in (*s[0], *s[1], s[2], s[3])]))
+    np.testing.assert_allclose(ends[0], ends[1], rtol=1e-12, atol=1e-12)
