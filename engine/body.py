@@ -102,14 +102,28 @@ class WorldLike(Protocol):
 NO_CONTACT = Filter(categories=0, mask=0)
 
 
-def _sensor_flag(value: Any) -> bool:
-    """``value`` if it is True or False; else a TypeError that says what ``sensor`` is."""
+def _flag(value: Any, name: str, meaning: str) -> bool:
+    """``value`` if it is True or False; else a TypeError that says what the flag ``name``
+    is (True: ``meaning``)."""
     if not isinstance(value, bool):
         raise TypeError(
-            f"sensor must be True (the body pushes nothing; its overlaps are reported) or "
-            f"False, got {type(value).__name__} {value!r}"
+            f"{name} must be True ({meaning}) or False, got {type(value).__name__} {value!r}"
         )
     return value
+
+
+def _sensor_flag(value: Any) -> bool:
+    """``Body.sensor``'s value, checked (``_flag``)."""
+    return _flag(value, "sensor", "the body pushes nothing; its overlaps are reported")
+
+
+def _bullet_flag(value: Any) -> bool:
+    """``Body.bullet``'s value, checked (``_flag``)."""
+    return _flag(
+        value,
+        "bullet",
+        "on the soft step, swept to its time of impact against the dynamic bodies too",
+    )
 
 
 class Body:
@@ -125,7 +139,8 @@ class Body:
     a disc roll and a box tip; a point or a body made with ``fixed_rotation=True`` does not.
     Bodies with a radius collide with each other unless their ``filter`` (engine.Filter: a
     group, category bits) says not.
-    A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``).
+    A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``); a
+    ``bullet`` is swept against the dynamic bodies too on the soft step (see ``Body.bullet``).
 
     Its mass is ``mass`` (kg; 1.0 when neither is given) or ``density`` (kg/m^2, a 2D density:
     mass = density * the shape's area, pymunk's ``shape.density`` and Box2D's ``density``), one
@@ -174,6 +189,7 @@ class Body:
         "_colour",
         "_ctype",
         "_sensor",
+        "_bullet",
         "data",
     )
 
@@ -200,6 +216,7 @@ class Body:
         colour: Any = None,
         collision_type: int = 0,
         sensor: bool = False,
+        bullet: bool = False,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -268,6 +285,7 @@ class Body:
         self._colour = as_colour(colour)
         self._ctype = as_collision_type(collision_type)
         self._sensor = _sensor_flag(sensor)
+        self._bullet = _bullet_flag(bullet)
 
     def _take_rotation(self, angle: Any, omega: Any, moment: Any, fixed: Any, torque: Any) -> None:
         """Check and keep the rotation arguments (engine.rotation says what they mean)."""
@@ -721,6 +739,22 @@ class Body:
             self._store.set_material(self._slot, self._e, self._mu, self.solid_filter)
 
     @property
+    def bullet(self) -> bool:
+        """Box2D's ``isBullet`` (``b2Body_SetBullet``), False by default: on the soft step
+        (``World(solver="soft")``) a fast body is swept to its time of impact against the
+        colliders and the static and kinematic bodies, and a bullet against the dynamic ones
+        too (a pinball's ball past a flipper, a thin box turning fast at a free plate). Set it
+        any time: the next step takes it. The exact solver (``World()``) finds every impact
+        at its moment already: there it is kept and changes nothing."""
+        return self._bullet
+
+    @bullet.setter
+    def bullet(self, value: Any) -> None:
+        self._bullet = _bullet_flag(value)
+        if self._store is not None:
+            self._store.set_bullet(self._slot, self._bullet)
+
+    @property
     def solid_filter(self) -> Filter:
         """The filter the contacts use: ``filter``, or for a sensor one that meets nothing
         (categories and mask 0), so that it passes through everything."""
@@ -1033,10 +1067,10 @@ class Body:
         position (length units), velocity (length units / s), own acceleration (length units
         / s^2), mass (kg), moment (kg m^2), angle (rad), angular velocity (rad/s) and torque
         (N m) the body has now, its shape, material, filter, colour, collision type, sensor
-        flag and ``data`` (the same object, not a copy). A force given by ``apply_force`` is
-        for the World's next step only, so the copy does not keep it. ``copy.deepcopy(body)``
-        and pickle copy the World the body is in with it (the copy is that World copy's
-        body); ``world.copy()`` copies a whole World.
+        and bullet flags and ``data`` (the same object, not a copy). A force given by
+        ``apply_force`` is for the World's next step only, so the copy does not keep it.
+        ``copy.deepcopy(body)`` and pickle copy the World the body is in with it (the copy is
+        that World copy's body); ``world.copy()`` copies a whole World.
         """
         cls = type(self)
         new = cls.__new__(cls)

@@ -20,9 +20,10 @@ path its plain-Python twin, so the same bits):
   (x1, q1) as pose(t) = (x0 + t (x1 - x0), q0 + t (q1 - q0)), t the fraction of the step, and
   is swept against what its swept box meets: the static colliders (their filters passed, a
   sensor's or a face pre_solve ignored left out) and the bodies that do not move by the solve
-  (static ones, and kinematic ones on their own sweeps); with ``bullets`` (Box2D's
-  ``isBullet``, for every fast body; off by default, as Box2D's) the dynamic bodies too, each
-  on its own sweep of the solve, so the order of the fast bodies does not matter;
+  (static ones, and kinematic ones on their own sweeps); a bullet (``Body.bullet``, Box2D's
+  ``isBullet``; off by default, as Box2D's) against the dynamic bodies too that are not
+  bullets (Box2D's rule: two bullets are each other's solve's), each on its own sweep of the
+  solve, so the order of the fast bodies does not matter;
 * **the impact**: where the first time of impact t < 1 is found, the body is set back to
   pose(t), its velocities kept (Box2D's), so that it stops before the wall and the next step's
   speculative contacts, taken there, hold it.
@@ -85,7 +86,8 @@ def _sample() -> tuple[Any, ...]:
     q0, q1 = np.zeros(2), np.array([0.3, 0.0])
     bodies = (
         np.array([0.05, 0.5]), np.array([0.5025, 0.0]), np.zeros((2, 2)), np.array([0.5025, 0.5]),
-        np.zeros(2, dtype=bool), np.ones(2), np.zeros(2, dtype=bool), np.zeros(2, dtype=i64),
+        np.zeros(2, dtype=bool), np.ones(2), np.zeros(2, dtype=bool), np.array([True, False]),
+        np.zeros(2, dtype=i64),
         np.ones(2, dtype=i64), np.ones(2, dtype=i64), np.array([False, True]),
         np.array([0, 0], dtype=i64), np.zeros(0, dtype=i64),
     )  # fmt: skip
@@ -101,25 +103,26 @@ def _sample() -> tuple[Any, ...]:
         np.zeros(2), np.zeros((1, 2)), np.array([0.5]), np.array([[0.0, -10.0]]),
         np.array([[0.0, 1.0]]),
     )  # fmt: skip
-    return (x0, q0, x1, q1, *bodies, *statics, *tables, 0.005, True)
+    return (x0, q0, x1, q1, *bodies, *statics, *tables, 0.005)
 
 
 @kernels.loop(sample=_sample)
 def continuous_loop(
     x0: Any, q0: Any, x1: Any, q1: Any,
     least: Any, core: Any, centroid: Any, reach: Any, kinematic: Any, mass: Any, sensor: Any,
-    group: Any, cats: Any, mask: Any, body_circle: Any, body_index: Any, apart: Any,
+    bullet: Any, group: Any, cats: Any, mask: Any, body_circle: Any, body_index: Any, apart: Any,
     owner: Any, bounds: Any, static_circle: Any, static_index: Any, c_sensor: Any,
     c_group: Any, c_cats: Any, c_mask: Any, ignored: Any,
     V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any, hp: Any, hn: Any,
-    slop: float, bullets: bool,
+    slop: float,
 ) -> tuple[Any, Any, Any, int]:  # fmt: skip
     """The fast bodies swept to their first time of impact (module doc).
 
     Bodies (n): poses at the step's start ``x0`` (n, 2) m, ``q0`` rad and end ``x1``, ``q1``;
     ``least`` each one's least extent (m), ``core`` its core's farthest point from its centre
     (m), ``centroid`` (n, 2) its shape's centroid in its frame (m), ``reach`` its bounding
-    radius (m); ``kinematic``, ``mass`` (kg; inf: static), ``sensor``, the filters ``group``,
+    radius (m); ``kinematic``, ``mass`` (kg; inf: static), ``sensor``, ``bullet`` (swept
+    against the dynamic bodies that are not bullets too: Box2D's), the filters ``group``,
     ``cats``, ``mask``; its shape in the tables (``body_circle``, ``body_index``:
     engine.narrowphase.Places); ``apart`` the pairs kept apart (sorted keys a n + b, a < b).
     Static shapes (k): ``owner`` each one's collider place, ``bounds`` (k, 4) its box,
@@ -127,9 +130,8 @@ def continuous_loop(
     the colliders' ``c_sensor``, ``c_group``, ``c_cats``, ``c_mask`` by place; ``ignored`` the
     faces pre_solve left out (sorted keys row (colliders + 1) + place). The tables: polygons
     ``V``, ``Nrm`` (P, M, 2), ``cnt``, ``rad``; circles ``center`` (C, 2), ``rnd``; half
-    planes ``hp``, ``hn`` (H, 2). ``slop``: the linear slop (m). ``bullets``: whether the fast
-    bodies are swept against the dynamic bodies too (Box2D's bullets), each on its sweep of
-    the solve (so the order of the fast bodies does not matter).
+    planes ``hp``, ``hn`` (H, 2). ``slop``: the linear slop (m). A bullet meets each dynamic
+    body on its sweep of the solve (so the order of the fast bodies does not matter).
 
     Returns the rows set back (int64, ascending), their poses at the impact ((k, 2) m, (k,)
     rad) and the number of fast bodies found."""
@@ -296,13 +298,25 @@ def continuous_loop(
             return f
         return fraction
 
-    # The bodies to sweep against, once: the static and kinematic ones (with bullets, every
-    # body), no sensor.
+    # The bodies to sweep against, once: the static and kinematic ones, and where a body is a
+    # bullet the dynamic ones that are not bullets (``moved``: those, a bullet's alone); no
+    # sensor.
+    anyone = False
+    for o in range(n):
+        if bullet[o]:
+            anyone = True
     others = np.zeros(n, dtype=np.int64)
+    moved = np.zeros(n, dtype=np.bool_)
     many = 0
     for o in range(n):
-        if not sensor[o] and (bullets or kinematic[o] or not mass[o] < math.inf):
+        if sensor[o]:
+            continue
+        if kinematic[o] or not mass[o] < math.inf:
             others[many] = o
+            many += 1
+        elif anyone and not bullet[o]:
+            others[many] = o
+            moved[many] = True
             many += 1
     # Each one's box over its sweep: its shape's at both ends, grown by its rounding and by
     # |dq| times its core's reach (a corner strays from the line between its two ends by at
@@ -362,10 +376,10 @@ def continuous_loop(
             fraction = sweep(r, static_circle[s], static_index[s], 0.0, 0.0, 0.0, 0.0, 0.0,
                              0.0, 0.0, fraction)  # fmt: skip
         # The bodies the solve does not move: static ones, and kinematic ones on their sweeps
-        # (and, for bullets, the dynamic ones on theirs).
+        # (and, for a bullet, the dynamic ones that are not bullets on theirs).
         for e in range(many):
             o = others[e]
-            if o == r:
+            if o == r or (moved[e] and not bullet[r]):
                 continue
             if obox[e, 0] > hix or obox[e, 2] < lox or obox[e, 1] > hiy or obox[e, 3] < loy:
                 continue
@@ -422,9 +436,6 @@ class Continuous:
         self.fast = fast  # the compiled kernels (engine.kernels) or their plain-Python twins
         #: Whether the stage runs (Box2D's ``enableContinuous``).
         self.enabled = True
-        #: Whether every fast body is swept against the dynamic bodies too (Box2D's bullets;
-        #: off, as Box2D's ``isBullet``: a push between two bodies is the solve's).
-        self.bullets = False
         #: The last step's fast bodies, and how many of them were set back.
         self.found = 0
         self.hits = 0
@@ -470,11 +481,12 @@ class Continuous:
         args = (
             asc(x0, f64), asc(q0, f64), asc(x, f64), asc(angle, f64), kept[2], kept[3],
             kept[4], asc(store.radius, f64), asc(store.kinematic), asc(store.mass, f64),
-            sc.sensors, asc(store.group, i64), asc(store.categories, i64), asc(store.mask, i64),
+            sc.sensors, asc(store.bullet), asc(store.group, i64), asc(store.categories, i64),
+            asc(store.mask, i64),
             places.body_circle, places.body_index, asc(sc.apart, i64), asc(sc.owner, i64),
             asc(sc.bounds, f64), places.static_circle, places.static_index, cs.sensor,
             cs.group, cs.categories, cs.mask, asc(sc.ignored, i64), *polygons, t.center,
-            t.round, hp, hn, LINEAR_SLOP, self.bullets,
+            t.round, hp, hn, LINEAR_SLOP,
         )  # fmt: skip
         run: Any = continuous_loop if self.fast else continuous_loop.py
         hit, hx, hq, self.found = run(*args)

@@ -37,9 +37,10 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
 8. ``_sleep``: still islands fall asleep (engine.game_sleep); a sleeper's contacts stay open.
 9. engine.game_continuous (``Continuous.sweep``, on either path): each fast body (one that
    moved more than half its least extent) swept from its pose at the step's start to its end
-   against the colliders and the static and kinematic bodies, and set back to its first time
-   of impact, its velocity kept (Box2D v3's ``b2SolveContinuous``): a thin box turning fast
-   meets a wall with another corner than its rows hold, and is stopped. On the fast path
+   against the colliders and the static and kinematic bodies (a bullet against the dynamic
+   ones too: ``Body.bullet``), and set back to its first time of impact, its velocity kept
+   (Box2D v3's ``b2SolveContinuous``): a thin box turning fast meets a wall with another
+   corner than its rows hold, and is stopped. On the fast path
    ``step_loop``'s end says whether a body may be fast: a step with none asks nothing more.
 
 On the fast path stages 0 (once the World's structure is read) to 8 are one compiled call,
@@ -49,8 +50,8 @@ so both paths give the same bits (tests/test_game_loop.py compares them step by 
 What this step does not do yet, and says so (``World.solver``'s error): 1D worlds are the
 exact pipeline's. A mouse joint is Box2D's here: a soft spring
 that sags by g / omega^2 under a body's weight (the exact pipeline's holds it at the target).
-A fast body is swept against the dynamic bodies only as a bullet (engine.game_continuous's
-``bullets``, off as Box2D's is): a thin box turning fast may pass a free plate.
+A fast body is swept against the dynamic bodies only as a bullet (``Body.bullet``, off as
+Box2D's ``isBullet`` is): a thin box turning fast that is none may pass a free plate.
 """
 
 from __future__ import annotations

@@ -86,6 +86,7 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
             np.array([b.moment for b in batch], dtype=float),
             np.array([b.torque for b in batch], dtype=float),
         ),
+        np.array([b.bullet for b in batch], dtype=bool),
     )
     for b, slot in zip(batch, slots, strict=True):
         b.attach(store, slot)

@@ -2,7 +2,8 @@
 
 ``World.snapshot()`` copies the state (positions, velocities, time, the closed form's anchor,
 the contacts' and links' state, the open contact events, and the bodies' and colliders'
-materials, which can be set at any time: engine.snapshot_materials) into a WorldSnapshot;
+materials and the bodies' bullet flags, which can be set at any time:
+engine.snapshot_materials) into a WorldSnapshot;
 ``World.restore(snapshot)`` puts it back, bit for bit, into the World it was taken from or
 one built afresh with the same bodies, colliders and links in the same order. A snapshot is a
 plain dataclass, so one can be built or altered by hand: restore checks every field first and
@@ -70,6 +71,8 @@ class WorldSnapshot:
     collider_materials: tuple[Any, ...] | None = None
     #: The soft step's warm starts and last contacts (engine.game_step); None: not soft.
     game: tuple[Any, ...] | None = None
+    #: Each body's ``bullet`` flag; None: left as they are (engine.snapshot_materials).
+    bullets: tuple[bool, ...] | None = None
 
 
 def take(state: WorldState) -> WorldSnapshot:
@@ -119,6 +122,7 @@ def take(state: WorldState) -> WorldSnapshot:
         materials=snapshot_materials.take_bodies(state),
         collider_materials=snapshot_materials.take_colliders(state),
         game=_game_state(state),
+        bullets=snapshot_materials.take_bullets(state),
     )
 
 
@@ -154,6 +158,7 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
     materials, collider_materials = snapshot_materials.check(
         state, snapshot.materials, snapshot.collider_materials
     )
+    bullets = snapshot_materials.check_bullets(state, snapshot.bullets)
     # The colliders' materials first: which are sensors says what contact state fits.
     undo = None
     if collider_materials is not None:
@@ -167,6 +172,8 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
             raise
     if materials is not None:
         snapshot_materials.set_bodies(state, materials)
+    if bullets is not None:
+        snapshot_materials.set_bullets(state, bullets)
     store = state.store
     if store is not None and state.bodies:
         store.x, store.v, store.prev_x = (

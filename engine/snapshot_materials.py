@@ -1,10 +1,10 @@
 """The materials a snapshot keeps: each body's and each collider's, set back by a restore.
 
-A body's ``restitution``, ``friction`` and ``filter`` and a collider's, with its ``sensor``
-flag, can be set at any time, and the steps after depend on them: a World restored must bounce
-and slide as it did when the snapshot was taken, so the snapshot holds them (engine.snapshot).
-A snapshot made by hand without them (None) leaves the materials as they are. A body's
-``data`` and its drawing colour are the game's own and are not kept.
+A body's ``restitution``, ``friction``, ``filter`` and ``bullet`` flag and a collider's, with
+its ``sensor`` flag, can be set at any time, and the steps after depend on them: a World
+restored must bounce and slide as it did when the snapshot was taken, so the snapshot holds
+them (engine.snapshot). A snapshot made by hand without them (None) leaves them as they are.
+A body's ``data`` and its drawing colour are the game's own and are not kept.
 """
 
 from __future__ import annotations
@@ -21,7 +21,16 @@ from .filters import as_filter
 if TYPE_CHECKING:
     from .world_state import WorldState
 
-__all__ = ["take_bodies", "take_colliders", "check", "set_colliders", "set_bodies"]
+__all__ = [
+    "take_bodies",
+    "take_bullets",
+    "take_colliders",
+    "check",
+    "check_bullets",
+    "set_colliders",
+    "set_bodies",
+    "set_bullets",
+]
 
 #: A body's material: (restitution, friction, Filter).
 BodyMaterial = tuple[float, float, Any]
@@ -32,6 +41,11 @@ ColliderMaterial = tuple[float, float, bool, Any]
 def take_bodies(state: WorldState) -> tuple[BodyMaterial, ...]:
     """Each body's (restitution, friction, filter), in the World's order."""
     return tuple((b.restitution, b.friction, b.filter) for b in state.bodies)
+
+
+def take_bullets(state: WorldState) -> tuple[bool, ...]:
+    """Each body's ``bullet`` flag, in the World's order."""
+    return tuple(b.bullet for b in state.bodies)
 
 
 def take_colliders(state: WorldState) -> tuple[ColliderMaterial, ...]:
@@ -74,6 +88,21 @@ def check(
     return out_b, out_c
 
 
+def check_bullets(state: WorldState, bullets: Any) -> list[bool] | None:
+    """The snapshot's ``bullets`` checked against this World (one True or False per body), or
+    a ValueError that names the field, changing nothing."""
+    if bullets is None:
+        return None
+    n = len(state.bodies)
+    ok = isinstance(bullets, tuple) and len(bullets) == n
+    if not (ok and all(isinstance(b, bool) for b in bullets)):
+        raise ValueError(
+            f"snapshot.bullets must be a tuple of {n} bools (each body's Body.bullet), got "
+            f"{bullets!r}"
+        )
+    return list(bullets)
+
+
 def _count(values: Any, n: int, name: str, what: str) -> None:
     ok = isinstance(values, tuple) and len(values) == n
     if not (ok and all(isinstance(v, tuple) and len(v) == len(what.split(",")) for v in values)):
@@ -109,3 +138,11 @@ def set_bodies(state: WorldState, values: list[BodyMaterial]) -> None:
     store.group = np.array([f.group for f in solid], dtype=np.int64)
     store.categories = np.array([f.categories for f in solid], dtype=np.int64)
     store.mask = np.array([f.mask for f in solid], dtype=np.int64)
+
+
+def set_bullets(state: WorldState, values: list[bool]) -> None:
+    """Give each body its ``bullet`` flag from ``values``: the store's column made anew."""
+    for b, flag in zip(state.bodies, values, strict=True):
+        b._bullet = flag
+    if state.store is not None and values:
+        state.store.bullet = np.array(values, dtype=bool)

@@ -86,6 +86,9 @@ class BodyStore:
         # Bodies held by the game or a pin (Body.kinematic, engine.links.Pin): no force acts
         # on them, and contacts and links take their mass as infinite.
         self.kinematic = np.zeros(0, dtype=bool)
+        #: Bullets (Body.bullet): swept against the dynamic bodies too by the soft step's
+        #: continuous stage (engine.game_continuous). A new array when one is set.
+        self.bullet = np.zeros(0, dtype=bool)
         #: Each body's shape (Body.shape: engine.colliders, in the body's frame), None for a
         #: disc or a point (engine.shaped turns them into narrowphase kinds).
         self.shapes: list[Any] = []
@@ -129,6 +132,7 @@ class BodyStore:
         kinematic: np.ndarray | None = None,
         shapes: list[Any] | None = None,
         rotation: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None,
+        bullet: np.ndarray | None = None,
     ) -> list[int]:
         """Add rows for new bodies; return their slots (one array copy for the whole batch).
 
@@ -137,7 +141,8 @@ class BodyStore:
         categories, mask) integer arrays; engine.filters' default (no group, every bit) when None.
         ``kinematic``: (k,) bools, all False when None. ``shapes``: each body's shape (None:
         a disc or a point), all None when None. ``rotation``: (angle, angular velocity,
-        moment, torque) arrays; at rest, not turning (moment inf) when None.
+        moment, torque) arrays; at rest, not turning (moment inf) when None. ``bullet``: (k,)
+        bools, all False when None.
         """
         n0, k = len(self), len(mass)
         if material is None:
@@ -153,6 +158,8 @@ class BodyStore:
         self.mask = np.concatenate([self.mask, filters[2]])
         kin = np.zeros(k, dtype=bool) if kinematic is None else kinematic
         self.kinematic = np.concatenate([self.kinematic, kin])
+        bul = np.zeros(k, dtype=bool) if bullet is None else bullet
+        self.bullet = np.concatenate([self.bullet, bul])
         self.shapes.extend([None] * k if shapes is None else shapes)
         if rotation is None:
             rotation = (np.zeros(k), np.zeros(k), np.full(k, np.inf), np.zeros(k))
@@ -180,6 +187,7 @@ class BodyStore:
         self.friction = self.friction[keep]
         self.group, self.categories = self.group[keep], self.categories[keep]
         self.mask, self.kinematic = self.mask[keep], self.kinematic[keep]
+        self.bullet = self.bullet[keep]
         del self.shapes[i]
         self.angle, self.omega = self.angle[keep], self.omega[keep]
         self.moment, self.torque = self.moment[keep], self.torque[keep]
@@ -343,6 +351,12 @@ class BodyStore:
             self.categories[row] = filter.categories
             self.mask[row] = filter.mask
         self._on_material(row, filter is not None)
+
+    def set_bullet(self, slot: int, value: bool) -> None:
+        """Make one body a bullet or not (Body.bullet), for the next step: a new array, so
+        that what is kept from it (by identity) is made again."""
+        self.bullet = self.bullet.copy()
+        self.bullet[self.row(slot)] = value
 
     def set_mass(self, slot: int, value: float) -> None:
         """Set one body's mass (the forces' folded parts depend on it: the owner recompiles)."""

@@ -17,7 +17,9 @@ centre inside the bat: a ball that goes round the tip does not count. The same t
 same draws) run in this engine and in pymunk 7 (its defaults: 10 iterations, collision slop
 0.1 (here 1 mm), no continuous detection), each with the other's model of the same table
 (``PymunkTable`` below); each pass is listed with the ball's speed, the bat's angular
-velocity and when it arrived relative to the key.
+velocity and when it arrived relative to the key. ``tunnelling(..., solver="soft")`` runs
+the same trials on the soft step, where the game's ball, a bullet (``Body.bullet``), is swept
+against the bat too; ``bullet=False`` shows what a ball that is none meets there.
 
 **Step time.** The whole table in each engine, played by the same autopilot
 (``demos.pinball.autopilot``) with the same rules (the kicks of bumpers and slingshots, the
@@ -134,16 +136,20 @@ def _crossed(trial: int, path: list[tuple[float, float, float, float, float]],
     return None
 
 
-def _ours(trials: list[tuple[float, float, float, float]], mass: float) -> Tunnelling:
+def _ours(
+    trials: list[tuple[float, float, float, float]], mass: float, solver: str = "exact",
+    bullet: bool = True,
+) -> Tunnelling:  # fmt: skip
     result = Tunnelling("this engine", len(trials))
     pivot = Vector(*pb.LEFT_PIVOT)
     for k, (speed, offset, aim_u, arrival) in enumerate(trials):
-        world = World(integrator="auto")
+        world = World(integrator="auto", solver=solver)
         world.add_force(Gravity((0.0, -pb.GRAVITY)))
         flipper, hinge = pb.add_flipper(world, -1, mass)
         start, vel = _throw(aim_u, offset, speed, arrival)
         ball = pb.add_ball(world, (start.x, start.y))
         ball.vel = vel
+        ball.bullet = bullet
         touched: list[Any] = []
         world.on_contact(ball, begin=touched.append)
         path = [(*_frame(ball.pos, pivot, flipper.angle), 0.0, 0.0, speed)]
@@ -347,12 +353,17 @@ def tunnelling(
     engine: str = "ours",
     top_speed: float = TOP_SPEED,
     mass: float = pb.FLIPPER_MASS,
+    *,
+    solver: str = "exact",
+    bullet: bool = True,
 ) -> Tunnelling:
     """Throw ``flips`` balls at the flipper as it flips (module doc), in ``engine`` ("ours"
-    or "pymunk"), at speeds up to ``top_speed`` (cm/s), and return the passes. ``mass``: the
-    bat's (g; ours only), the motor's torque scaled with it."""
+    or "pymunk"), at speeds up to ``top_speed`` (cm/s), and return the passes. Ours only:
+    ``mass`` the bat's (g), the motor's torque scaled with it; ``solver`` the World's (the
+    game's exact one, or "soft"); ``bullet`` whether the ball is one (the game's is: on the
+    soft step it is swept against the bat too, engine.Body.bullet)."""
     trials = _trials(flips, seed, top_speed)
-    return _ours(trials, mass) if engine == "ours" else _pymunk(trials)
+    return _ours(trials, mass, solver, bullet) if engine == "ours" else _pymunk(trials)
 
 
 def throw(trial: int, flips: int = 1000, seed: int = 26) -> Tunnelling:
