@@ -262,9 +262,10 @@ class ContactLedger:
     def _sorted(self, sensing: np.ndarray) -> np.ndarray:
         """``_unique(sensing)`` (int64 keys), taken again only when the keys are not the last
         step's, as given (the result is never written to: it may be the last step's)."""
-        raw = np.asarray(sensing, dtype=np.int64).tobytes()
+        keys = np.asarray(sensing, dtype=np.int64)
+        raw = keys.tobytes()
         if raw != self._sensed[0]:
-            self._sensed = (raw, _unique(np.asarray(sensing, dtype=np.int64)))
+            self._sensed = (raw, _unique(keys))
         return self._sensed[1]
 
     def quiet(self) -> None:

@@ -54,7 +54,6 @@ fallback does: a body sliding along a floor is not stopped by it.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -443,18 +442,15 @@ class Continuous:
         self.maybe = False
         self._kept: tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
-    def sweep(
-        self, store: Any, places: Any, x: np.ndarray, angle: np.ndarray,
-        scene: Callable[..., Any], *args: Any,
-    ) -> None:  # fmt: skip
+    def sweep(self, store: Any, sc: Any, x: np.ndarray, angle: np.ndarray) -> None:
         """Set back each fast body of ``store`` (the World's rows, at the step's start) that
         meets something on its sweep to its end pose ``x`` (n, 2), ``angle`` (n,), in place
-        (``places``: the step's engine.narrowphase.Places; ``scene(*args)``: its
-        engine.game_step._Scene, asked only where a body may be fast)."""
+        (``sc``: the step's engine.game_step._Scene)."""
         self.found = self.hits = 0
         n = len(x)
         if not self.enabled or not n:
             return
+        places = sc.places
         kept = self._kept
         if kept is None or kept[0] is not places or len(kept[1]) != n:
             least, core, centroid = extents(places, n)
@@ -467,14 +463,9 @@ class Continuous:
                 return
         elif not (np.abs(x - x0).sum(axis=1) + np.abs(angle - q0) * kept[3] > kept[1]).any():
             return
-        sc = scene(*args)
         t = places.tables
         f64, i64 = np.float64, np.int64
         asc = np.ascontiguousarray
-        if t.polygons is not None:
-            polygons = (t.vertices, t.normals, t.count, t.radius)
-        else:
-            polygons = (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, i64), np.zeros(1))
         cs = sc.cs
         hp = asc(sc.statics.half_planes.point, f64)
         hn = asc(sc.statics.half_planes.normal, f64)
@@ -485,7 +476,7 @@ class Continuous:
             asc(store.mask, i64),
             places.body_circle, places.body_index, asc(sc.apart, i64), asc(sc.owner, i64),
             asc(sc.bounds, f64), places.static_circle, places.static_index, cs.sensor,
-            cs.group, cs.categories, cs.mask, asc(sc.ignored, i64), *polygons, t.center,
+            cs.group, cs.categories, cs.mask, asc(sc.ignored, i64), *t.kernel_polygons, t.center,
             t.round, hp, hn, LINEAR_SLOP,
         )  # fmt: skip
         run: Any = continuous_loop if self.fast else continuous_loop.py

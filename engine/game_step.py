@@ -199,14 +199,10 @@ class GameStep:
         margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
         candidates = self._candidates(store, margin)
         if self.fast:
-            ended = self._step_fast(
+            return self._step_fast(
                 state, store, dt, accel, store.torque if torque is None else torque, margin,
                 candidates, ignored_faces, ignored_pairs,
             )  # fmt: skip
-            # The fast bodies swept to their time of impact (engine.game_continuous).
-            self.continuous.sweep(store, self._kept_places(), ended[0], ended[2], self._scene,
-                                  state, store, ignored_faces, ignored_pairs)  # fmt: skip
-            return ended
         awake = self._wake(state, store, margin, candidates)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
@@ -241,7 +237,7 @@ class GameStep:
             self.report.sensing = collider_keys(
                 store.slots()[found.sense_row], sc.cs.serial[found.sense_place]
             )
-        self.continuous.sweep(store, sc.places, x, angle, lambda: sc)
+        self.continuous.sweep(store, sc, x, angle)  # stage 9 (engine.game_continuous)
         return x, v, angle, omega
 
     def _step_fast(
@@ -261,10 +257,6 @@ class GameStep:
         joints = self.joints.arrays(state, store, n)
         t = places.tables
         f64, i64 = np.float64, np.int64
-        if t.polygons is not None:
-            polygons = (t.vertices, t.normals, t.count, t.radius)
-        else:
-            polygons = (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, i64), np.zeros(1))
         asc = np.ascontiguousarray
         if c._group.dtype != i64:
             c._group = c._group.astype(i64)
@@ -280,7 +272,7 @@ class GameStep:
             asc(table.kind, i64), c.asleep, c.still, c._group, float(c.sleep_time), dt,
             *candidates, asc(sc.owner, i64), asc(sc.bounds, f64), places.static_circle,
             places.static_index, cs.sensor, cs.friction, cs.restitution, asc(cs.surface),
-            cs.group, cs.categories, cs.mask, *polygons, t.center, t.round,
+            cs.group, cs.categories, cs.mask, *t.kernel_polygons, t.center, t.round,
             asc(statics.half_planes.point, f64), asc(statics.half_planes.normal, f64), sc.apart,
             sc.ignored, self.keys, self.lam, *joints[0], cs.serial, asc(store.row_of, i64),
             asc(last.keys, i64), asc(last.points, f64), asc(last.normals, f64),
@@ -303,12 +295,10 @@ class GameStep:
         if self.joints.constrained(joints[1]):
             head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
         self.joints.report(joints[1], head + joints[0], self.substeps, joints[0])
+        # Stage 9: the fast bodies swept to their time of impact (engine.game_continuous),
+        # where step_loop says a body may be fast.
+        self.continuous.sweep(store, sc, x, angle)
         return x, v, angle, omega
-
-    def _kept_places(self) -> narrowphase.Places:
-        """The step's shapes' places (engine.narrowphase), as ``_scene`` kept them."""
-        assert self._places is not None
-        return self._places[2]
 
     def resting(self, slot: int) -> int | None:
         """The serial of the collider that pushed the body in ``slot`` hardest in the last

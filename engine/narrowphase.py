@@ -60,6 +60,13 @@ class Tables:
             self.radius = np.ascontiguousarray(polygons.radius)
         self.center = np.ascontiguousarray(circles.center)
         self.round = np.ascontiguousarray(circles.radius)
+        #: The polygon table as the loop kernels take it (vertices, normals, count, radius),
+        #: or one-row stand-ins of the same types where the scene has no polygon.
+        self.kernel_polygons: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] = (
+            (self.vertices, self.normals, self.count, self.radius)
+            if polygons is not None
+            else (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, np.int64), np.zeros(1))
+        )
 
 
 def _manifold(parts: tuple[np.ndarray, ...]) -> Manifold:
@@ -90,10 +97,7 @@ def collide_round_pairs(
     """Shape ``ia[k]`` (a circle of the table where ``circle_a[k]``, else a polygon) at
     (xa[k], qa[k]) against circle ``ib[k]`` at (xb[k], qb[k]): their manifolds (A to B)."""
     if fast:
-        vertices = t.vertices if t.polygons is not None else np.zeros((1, 2, 2))
-        normals = t.normals if t.polygons is not None else np.zeros((1, 2, 2))
-        count = t.count if t.polygons is not None else np.zeros(1, dtype=np.int64)
-        radius = t.radius if t.polygons is not None else np.zeros(1)
+        vertices, normals, count, radius = t.kernel_polygons
         kernel: Any = round_loop
         return _manifold(
             kernel(vertices, normals, count, radius, t.center, t.round, circle_a, ia, xa, qa,

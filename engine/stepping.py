@@ -203,12 +203,7 @@ def _step_soft(
         tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
     x, v, angle, omega = game.step(state, dt, accel, ignored[0], ignored[1], tau)
     state.huge = _check_finite(state, x, v, name, dt, t0) > 1e100
-    # (Two sums, as _check_finite's: nan or inf whenever an entry is, or huge ones overflow.)
-    if state.huge:
-        with np.errstate(over="ignore", invalid="ignore"):
-            turned = math.isfinite(float(_sum(angle, None) + _sum(omega, None)))
-    else:
-        turned = math.isfinite(float(_sum(angle, None) + _sum(omega, None)))
+    turned = math.isfinite(_summed(state, angle, omega))  # (as _check_finite's sums)
     if not turned and not (np.isfinite(angle).all() and np.isfinite(omega).all()):
         raise SimulationDiverged(
             f"a body's angle or angular velocity is not finite after the step from t={t0!r} s "
@@ -614,17 +609,22 @@ def _frozen(state: WorldState, store: BodyStore) -> np.ndarray | None:
     return frozen
 
 
+def _summed(state: WorldState, a: Any, b: Any) -> float:
+    """|sum of every entry of a and b|: nan or inf whenever an entry is (or huge finite ones
+    overflow it: then quietly, where the World's state is known to be huge)."""
+    if state.huge:
+        with np.errstate(over="ignore", invalid="ignore"):
+            return abs(float(_sum(a, None) + _sum(b, None)))
+    return abs(float(_sum(a, None) + _sum(b, None)))
+
+
 def _check_finite(state: WorldState, x: Any, v: Any, name: str, dt: float, t: float) -> float:
     """Raise SimulationDiverged if x or v has a nan or inf; else return |sum of x and v|."""
     # A sum is nan or inf whenever any of its terms is (nan + anything = nan,
     # inf - inf = nan), so two sums check every entry. Only when one is not finite (or
     # huge finite values overflowed it) look closer. Not a BLAS dot product: OpenBLAS
     # takes milliseconds on arrays that are not 64-byte aligned, which numpy's are not.
-    if state.huge:
-        with np.errstate(over="ignore", invalid="ignore"):
-            s = abs(float(_sum(x, None) + _sum(v, None)))
-    else:
-        s = abs(float(_sum(x, None) + _sum(v, None)))
+    s = _summed(state, x, v)
     if math.isfinite(s):
         return s
     if np.isfinite(x).all() and np.isfinite(v).all():

@@ -1016,20 +1016,16 @@ def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
 #: Found exploring (numpy; the same on the fast path), after the capped groups stopped each at
 #: its own moment: STOPPED_WITH_A_STRANGER with the heavy ball 0 heading down-left too.
 ROUNDS_SHARED_WITH_A_STRANGER: Scene = {
+    **STOPPED_WITH_A_STRANGER,
     "balls": [
         (0.5111222321992216, 0.28109910327506993, -10.222444643984433, -5.621982065501399, 0.2,
          463.29332847080474, 0.0, 0.0, 7),
-        (0.0, -0.4296019024750183, 0.0, 8.592038049500365, 0.2, 1.0, 0.0, 0.0, 7),
-        (0.0, -0.868363360379739, 0.0, 7.894212367088537, 0.2, 0.007309934704394241, 0.0,
-         0.7714718205563822, 5),
-        (0.0, 0.5075808255927536, 0.0, -14.959998303014753, 0.2, 1.0, 0.0, 0.0, 5),
+        *STOPPED_WITH_A_STRANGER["balls"][1:],
     ],
     "colliders": [
         Box((-2.0653664627706587, -2.0653664627706587), (2.0653664627706587, 2.0653664627706587),
             restitution=0.0, friction=1.886180752613483),
     ],
-    "gravity": False,
-    "method": "auto",
     "steps": 20,
 }  # fmt: skip
 
