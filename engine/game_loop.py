@@ -142,6 +142,10 @@ def step_loop(
             a, b = pa[k], pb[k]
             if not ((asleep[a] and active[b]) or (asleep[b] and active[a])):
                 continue
+            if group[a] != 0 and group[a] == group[b]:
+                continue  # filtered apart (a sensor's filter meets nothing): no waking
+            if (cats[a] & mask[b]) == 0 or (cats[b] & mask[a]) == 0:
+                continue
             dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
             reach = (radius[a] + margin[a]) + (radius[b] + margin[b]) + SPECULATIVE_DISTANCE
             if dx * dx + dy * dy <= reach * reach:

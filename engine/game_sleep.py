@@ -20,8 +20,9 @@ sleeping``, ``World.is_sleeping``, ``Body.sleep``, ``Body.activate``, ``World.sl
   sleepers' pair is not even tested. Its contacts stay open (no end is reported while it sleeps;
   engine.game_step keeps them).
 * **Waking**: before the contacts are found, a sleeper whose bounding circle comes within reach
-  of an awake body that moves (a dynamic body, or a kinematic one with a velocity) wakes with
-  its whole island; the World wakes a body (and its island) whose state is written by hand.
+  of an awake body that moves (a dynamic body, or a kinematic one with a velocity) and that
+  its filter lets it collide with (not a sensor) wakes with its whole island; the World wakes
+  a body (and its island) whose state is written by hand.
 
 ``fall_asleep`` and ``woken`` are numpy on the bodies' and pairs' arrays: the same on both
 paths, so the two paths stay the same bits.
@@ -49,12 +50,19 @@ def woken(
     b: np.ndarray,
     x: np.ndarray,
     r: np.ndarray,
+    filters: tuple[np.ndarray, np.ndarray, np.ndarray],
 ) -> np.ndarray:
     """The sleepers (bool (N,)) that wake before this step: the islands (``group``: each
     sleeper's island label) of those whose bounding circle (centre ``x``, radius ``r`` with
     what the body can move in the step) comes within the speculative distance of an
-    ``active`` body's, among the broadphase's candidate pairs (rows ``a``, ``b``)."""
+    ``active`` body's, among the broadphase's candidate pairs (rows ``a``, ``b``) whose
+    ``filters`` (each body's filter group, categories and mask: engine.filters; a sensor's
+    meet nothing) let them collide: a feet sensor the game moves beside its sleeping player,
+    or a body filtered apart from a sleeper, wakes nothing."""
     meets = (asleep[a] & active[b]) | (asleep[b] & active[a])
+    fg, cats, mask = filters
+    meets &= ((fg[a] == 0) | (fg[a] != fg[b])) & ((cats[a] & mask[b]) != 0)
+    meets &= (cats[b] & mask[a]) != 0
     if not meets.any():
         return np.zeros(len(asleep), dtype=bool)
     a, b = a[meets], b[meets]

@@ -480,8 +480,9 @@ class GameStep:
         spins = (store.v != 0.0).any(axis=1) | (store.omega != 0.0)
         active = (dynamic & ~asleep) | (store.kinematic & spins)
         wake = game_sleep.woken(
-            asleep, c._group, active, *candidates, store.x, store.radius + margin
-        )
+            asleep, c._group, active, *candidates, store.x, store.radius + margin,
+            (store.group, store.categories, store.mask),
+        )  # fmt: skip
         if wake.any():
             asleep[wake] = False
             c.still[wake] = 0.0
