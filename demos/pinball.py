@@ -326,7 +326,9 @@ class PinballGame:
 
     def __init__(self, seed: int = 1, player: Player | None = None) -> None:
         self.rng = np.random.default_rng(seed)
-        self.world = World(integrator="auto")
+        # The exact models, asked for: the flippers' impacts on the ball at their moment (on
+        # the soft step the ball ends a step inside a turning bat in 7 of 1000 throws).
+        self.world = World(integrator="auto", solver="exact")
         self.table = build_table(self.world)
         self.ball = add_ball(self.world, PLUNGER_REST)
         self.kinds: dict[Any, str] = {}

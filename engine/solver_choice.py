@@ -3,29 +3,30 @@
 "Model no more than a scene needs" decides, as ``integrator="auto"`` picks a method:
 
 - **the soft step** (engine.game_step) where the scene holds a body that is not round and
-  that contacts push (a dynamic Box, Polygon or capsule: its contacts have two points, where
-  the exact solver's corner contacts fail Box2D's HelloWorld: a crate dropped flat jumps 1 cm
-  at restitution 0 and slides 25 mm aside; tests/test_rigid_scenes.py), or a joint that only
-  the soft step solves (a link whose class says ``needs_soft``);
+  that a contact could push (a dynamic, solid Box, Polygon or capsule whose filter meets a
+  solid collider or another solid body that no joint keeps apart from it: its contacts have
+  two points, where the exact solver's corner contacts fail Box2D's HelloWorld: a crate dropped
+  flat jumps 1 cm at restitution 0 and slides 25 mm aside; tests/test_rigid_scenes.py), or a
+  joint that only the soft step solves (a link whose class says ``needs_soft``);
 - **the exact models** (engine.stepping) otherwise: discs and points, however many, with
   colliders of any shape, rods, cables, pins, hinges and welds (a ball's bounce heights
   h e^(2n), the cradle, a pendulum's period, a hinge held to 1e-9 m, continuous impacts for a
-  pinball's ball), and every 1D world (the soft step is 2D).
+  pinball's ball), a body with corners that nothing can touch (a box spinning free in empty
+  space, a plank on a hinge whose joint keeps it from its one neighbour), and every 1D world
+  (the soft step is 2D).
 
 The choice is made again as the scene is built and kept from the World's first step on: a
 solver is not changed under a moving scene (its warm starts, its sleep). A body with corners
 or a soft-only joint added later to a World that chose the exact models is warned of once,
 naming ``World(solver="soft")``.
 
-It is not the default (``World()`` stays exact): the rule cannot yet tell a lesson's bodies
-with corners from a game's. Under it, a chain of planks on hinges held to 1e-9 m, a car
-climbing at its closed-form speed and the pinball's flippers would leave their exact models
-for the soft step (77 of the suite's tests fail with "auto" as the default, 2026-12-03: the
-pinball's 16, joints 12, a free box's angular drag 8 (no contact could push it, so it should
-stay exact), the thin walls 6, the mouse joint 5, ...). The soft step sweeps fast bodies to
-their moment of impact since (engine.game_continuous), and a pinball's ball as a bullet
-(``Body.bullet``) crosses a flipper in none of 1000 throws, but ends a step inside the turning
-bat in 7, where the exact solver's impacts leave none.
+It is the default (``World()`` is ``World(solver="auto")``): a game's crates take the soft
+step without being asked, and a lesson's discs keep their exact impacts. A lesson whose
+bodies with corners meet something and must keep an exact model says so with
+``World(solver="exact")``: the hinges demo's car and chain, the pinball table, whose flippers'
+impacts are taken at their moment (on the soft step its ball, a bullet (``Body.bullet``),
+crosses a flipper in none of 1000 throws but ends a step inside the turning bat in 7, where
+the exact solver's impacts leave none).
 """
 
 from __future__ import annotations
@@ -44,12 +45,47 @@ class SolverWarning(UserWarning):
     since taken something only the soft step solves well."""
 
 
-def _cornered(bodies: Any) -> Any:
-    """The first body that is not round and is pushed by its contacts (neither kinematic nor
-    static), or None."""
+def _kept_apart(links: Any) -> set[tuple[int, int]]:
+    """The pairs of bodies (by ``id``, each pair in both orders) that a joint keeps from
+    colliding (a Hinge or Weld between two bodies, ``collide=False``)."""
+    apart: set[tuple[int, int]] = set()
+    for link in links:
+        other = getattr(link, "_other", None)
+        if getattr(link, "collide", True) is False and other is not None:
+            a, b = id(link.body), id(other)
+            apart |= {(a, b), (b, a)}
+    return apart
+
+
+def _pushed(body: Any, bodies: Any, colliders: Any, apart: set[tuple[int, int]]) -> bool:
+    """Whether a contact could push ``body``: a solid collider its filter meets, or another
+    solid body its filter meets that no joint keeps apart from it."""
+    mine = body.filter
+    for collider in colliders:
+        if not collider.sensor and mine.collides(collider.filter):
+            return True
+    for other in bodies:
+        if (
+            other is not body
+            and not other.sensor
+            and mine.collides(other.filter)
+            and (id(body), id(other)) not in apart
+        ):
+            return True
+    return False
+
+
+def _cornered(bodies: Any, links: Any = (), colliders: Any = ()) -> Any:
+    """The first body that is not round and that a contact could push (dynamic, solid, and
+    meeting a collider or another body by its filter), or None."""
+    apart: set[tuple[int, int]] | None = None
     for body in bodies:
         shape = body.shape
-        if shape is not None and type(shape).__name__ != "Circle" and not body.kinematic:
+        if shape is None or type(shape).__name__ == "Circle" or body.kinematic or body.sensor:
+            continue
+        if apart is None:
+            apart = _kept_apart(links)
+        if _pushed(body, bodies, colliders, apart):
             return body
     return None
 
@@ -62,15 +98,16 @@ def needs_soft(links: Any) -> Any:
     return None
 
 
-def choose(bodies: Any, links: Any, dim: int | None) -> tuple[str, str]:
-    """``("soft" | "exact", why)``: what a World of ``bodies``, ``links`` and dimension
-    ``dim`` (None: no bodies yet) runs under ``solver="auto"``, and why, in a sentence."""
+def choose(bodies: Any, links: Any, dim: int | None, colliders: Any = ()) -> tuple[str, str]:
+    """``("soft" | "exact", why)``: what a World of ``bodies``, ``links``, static
+    ``colliders`` and dimension ``dim`` (None: no bodies yet) runs under ``solver="auto"``,
+    and why, in a sentence."""
     if dim == 1:
         return "exact", "a 1D world: the exact models (the soft step is 2D)"
     link = needs_soft(links)
     if link is not None:
         return "soft", f"the soft step: a {type(link).__name__} is one of its rows alone"
-    body = _cornered(bodies)
+    body = _cornered(bodies, links, colliders)
     if body is not None:
         return "soft", (
             f"the soft step: a body with corners ({type(body.shape).__name__}) is pushed by "
@@ -82,14 +119,15 @@ def choose(bodies: Any, links: Any, dim: int | None) -> tuple[str, str]:
     )
 
 
-def warn_if_outgrown(bodies: Any, links: Any) -> bool:
+def warn_if_outgrown(bodies: Any, links: Any, colliders: Any = ()) -> bool:
     """Warn (SolverWarning) if an ``"auto"`` World that chose the exact models now holds
     what would have chosen the soft step; True: it warned (once is enough)."""
-    solver, why = choose(bodies, links, 2)
+    solver, why = choose(bodies, links, 2, colliders)
     if solver != "soft":
         return False
     warnings.warn(
-        f"World(solver='auto') chose the exact models at its first step, and now holds "
+        f"this World (solver='auto', the default) chose the exact models at its first "
+        f"step, and now holds "
         f"what the soft step solves ({why.removeprefix('the soft step: ')}); a World keeps "
         f"its solver once it moves: make it with World(solver='soft') to have the soft "
         f"step from the start",

@@ -111,16 +111,16 @@ class World:
     ``ENGINE_KERNELS`` if set, else fast where numba is installed. ``world.kernels`` says
     which this World runs; both give the same numbers to rounding.
 
-    ``solver``: how contacts and joints are solved. ``"exact"`` (the default): the lesson's
-    models, each impact at its exact moment, joints held to rounding (a ball's bounce heights
-    h e^(2n), the cradle, a pendulum's period). ``"soft"``: a game's, Box2D v3's soft step
+    ``solver``: how contacts and joints are solved. ``"exact"``: the lesson's models, each
+    impact at its exact moment, joints held to rounding (a ball's bounce heights h e^(2n),
+    the cradle, a pendulum's period). ``"soft"``: a game's, Box2D v3's soft step
     (``engine.game_step``, ``engine.solver``): every contact and joint solved together in
     substeps, fast and steady for piles, platformers and pinball tables, with the errors a
     game accepts (a box rests 0.07 mm into the floor; a hinge gives under load by what its
-    60 Hz spring allows). ``"auto"``: the World chooses by the scene as it is at its first
-    step (engine.solver_choice): the soft step where a body with corners is pushed by its
-    contacts or a joint only the soft step solves is held, the exact models otherwise (discs
-    and points, a 1D world). ``world.solver`` says which this World runs, and
+    60 Hz spring allows). ``"auto"`` (the default): the World chooses by the scene as it is
+    at its first step (engine.solver_choice): the soft step where a body with corners could
+    be pushed by a contact or a joint only the soft step solves is held, the exact models
+    otherwise (discs and points, a 1D world). ``world.solver`` says which this World runs, and
     ``world.solver_reason`` why.
     """
 
@@ -129,7 +129,7 @@ class World:
         integrator: str | Integrator = "semi_implicit_euler",
         tolerance: float | None = None,
         kernels: str | None = None,
-        solver: str = "exact",
+        solver: str = "auto",
     ) -> None:
         if not isinstance(solver, str) or solver not in SOLVERS:
             raise ValueError(
@@ -544,7 +544,7 @@ class World:
         it."""
         s = self._s
         if s.solver == "auto":
-            return solver_choice.choose(s.bodies, s.links, s.dim)[0]
+            return solver_choice.choose(s.bodies, s.links, s.dim, s.colliders)[0]
         return s.solver
 
     @property
@@ -554,7 +554,7 @@ class World:
         if s.solver_asked != "auto":
             return f"asked for: World(solver={s.solver_asked!r})"
         if s.solver == "auto":
-            why = solver_choice.choose(s.bodies, s.links, s.dim)[1]
+            why = solver_choice.choose(s.bodies, s.links, s.dim, s.colliders)[1]
             return f"auto, before the first step: {why}"
         return f"auto, chosen at the first step: {s.solver_reason}"
 

@@ -207,13 +207,15 @@ class WorldState:
         (engine.solver_choice)."""
         if self.solver == "auto":
             self.solver, self.solver_reason = solver_choice.choose(
-                self.bodies, self.links, self.dim
+                self.bodies, self.links, self.dim, self.colliders
             )
             if self.solver == "soft":
                 self.game = GameStep(self.kernels == "fast")
                 self.game.substeps = self.collisions.iterations
         elif self.solver == "exact" and not self.solver_warned:
-            self.solver_warned = solver_choice.warn_if_outgrown(self.bodies, self.links)
+            self.solver_warned = solver_choice.warn_if_outgrown(
+                self.bodies, self.links, self.colliders
+            )
 
     def set_asleep(self, row: int, asleep: bool) -> None:
         """Put body ``row`` to sleep now with the awake bodies touching it (Body.sleep), or wake

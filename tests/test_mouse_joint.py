@@ -120,8 +120,9 @@ def test_a_pull_off_the_centre_turns_the_body_by_r_cross_j() -> None:
 
 
 def dragged_from_a_pile(kernels: str) -> tuple[World, list[Body]]:
-    """Three crates stacked on a floor; the top one is dragged up and aside for 2 s."""
-    world = World(kernels=kernels)
+    """Three crates stacked on a floor; the top one is dragged up and aside for 2 s, on the
+    exact models (asked for: their hand holds it at the target; the soft step's sags)."""
+    world = World(kernels=kernels, solver="exact")
     world.add_force(Gravity((0.0, -G)))
     world.add_collider(Plane((0.0, 0.0), (0.0, 1.0), restitution=0.0))
     crates = [

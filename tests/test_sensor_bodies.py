@@ -14,11 +14,13 @@ G = 9.81
 DT = 1 / 60
 
 
-def platform_world(kernels: str, feet: bool) -> tuple[World, Body, Body | None, list[str]]:
+def platform_world(
+    kernels: str, feet: bool, solver: str = "auto"
+) -> tuple[World, Body, Body | None, list[str]]:
     """A player box (0.8 x 1.6) dropped from 2 m onto a ground segment, with a kinematic
     feet sensor (0.6 x 0.2, in the player's group: it does not sense the player) or not;
-    the log of what the feet began and ended touching."""
-    w = World(kernels=kernels)
+    the log of what the feet began and ended touching, on ``solver``."""
+    w = World(kernels=kernels, solver=solver)
     w.add_force(Gravity((0, -G)))
     w.add_collider(Segment((-10, 0), (10, 0), restitution=0.0))
     mine = Filter(group=1)
@@ -53,10 +55,16 @@ def platform_world(kernels: str, feet: bool) -> tuple[World, Body, Body | None, 
 
 
 @pytest.mark.parametrize("kernels", PATHS)
-def test_a_feet_sensor_says_when_the_player_stands_and_changes_nothing(kernels: str) -> None:
+@pytest.mark.parametrize("solver", ["exact", "soft"])
+def test_a_feet_sensor_says_when_the_player_stands_and_changes_nothing(
+    kernels: str, solver: str
+) -> None:
+    # (On the soft step the game's writes to the kinematic sensor's position woke the sleeping
+    # player beside it each step, so it rested a few 1e-19 m/s from still, and the two runs
+    # parted at the 19th digit: a sensor, whose filter meets nothing, now wakes nothing.)
     paths = []
     for feet in (True, False):
-        w, player, sensor, log = platform_world(kernels, feet)
+        w, player, sensor, log = platform_world(kernels, feet, solver)
         standing = []
         for k in range(150):
             if k == 100:

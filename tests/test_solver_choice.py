@@ -98,6 +98,38 @@ def test_what_contacts_do_not_push_does_not_choose() -> None:
     assert w.solver == "exact"
 
 
+def test_the_default_chooses_and_a_body_nothing_can_touch_keeps_the_exact_models() -> None:
+    """World() is World(solver="auto"). A box that no contact could push (alone in space, a
+    filter that meets no collider, a joint keeping it from its one neighbour, a sensor) keeps
+    the exact models: its spin and its joints stay exact; a floor it meets chooses the soft
+    step."""
+    from engine import Filter, Hinge, Plane
+
+    def box(w: World, x: float, **kw: object) -> Body:
+        return w.add(Body(Vector(x, 2.0), shape=Polygon.box(1.0, 1.0), **kw))  # type: ignore[arg-type]
+
+    w = World()
+    assert w.solver_reason.startswith("auto, before the first step")
+    box(w, 0.0)
+    assert w.solver == "exact"  # alone in space: nothing can push it
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    assert w.solver == "soft" and "Polygon" in w.solver_reason
+    w2 = World()  # a filter that meets no collider
+    w2.add_collider(Plane((0.0, 0.0), (0.0, 1.0), filter=Filter(categories=0b10, mask=0b10)))
+    box(w2, 0.0, filter=Filter(categories=0b01, mask=0b01))
+    assert w2.solver == "exact"
+    w3 = World()  # two planks hinged, kept apart by their joint (collide=False)
+    a, b = box(w3, 0.0), box(w3, 1.0)
+    w3.add_link(Hinge(a, b, (0.5, 2.0)))
+    assert w3.solver == "exact"
+    box(w3, 3.0)  # a third, which no joint keeps from them
+    assert w3.solver == "soft"
+    w4 = World()  # a sensor box on a floor pushes nothing and nothing pushes it
+    w4.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    box(w4, 0.0, sensor=True)
+    assert w4.solver == "exact"
+
+
 def test_a_1d_world_keeps_the_exact_models() -> None:
     w = World(solver="auto")
     w.add(Body(0.0, 1.0))

@@ -414,7 +414,7 @@ def contact_step(trial: int, seed: int = 26) -> tuple[float, float, float, float
     (cm/s, along the bat's normal at its top; > 0: still approaching), the bat's angular
     velocity after it (rad/s), and the joint's angle (rad))."""
     speed, offset, aim_u, arrival = _trials(trial + 1, seed)[trial]
-    world = World(integrator="auto")
+    world = World(integrator="auto", solver="exact")  # the game's (demos.pinball)
     world.add_force(Gravity((0.0, -pb.GRAVITY)))
     flipper, hinge = pb.add_flipper(world, -1)
     start, vel = _throw(aim_u, offset, speed, arrival)
