@@ -5,7 +5,8 @@ are let go a hand's breadth apart and land on one another; a plank (a capsule ``
 with a radius) falls across the right column; a ball rolls in from the left at 5 m/s into
 the left column and shoves it along the floor; a platform the game moves (a kinematic box)
 lifts a small crate and stops. The crates turn (the issue "Bodies that turn"): they land,
-stack and are shoved at their angles. The read-outs: how many of the bodies sleep, and the
+stack and are shoved at their angles, on the soft step (``World()`` chooses it for crates:
+engine.solver_choice). The read-outs: how many of the bodies sleep, and the
 deepest overlap of two crates (or a crate and the floor) as a fraction of a crate's
 height, measured from the positions, now and the worst so far. They are of the state the frame
 shows, at the time its clock says: the frame drawn between two steps (``alpha`` < 1: at 30
@@ -41,11 +42,8 @@ VIEW = (-1.2, -0.3, 10.2, 6.6)
 
 def crates_world() -> tuple[World, dict[str, list[Body]]]:
     """The scene's World and its bodies by kind: crates, plank, ball, lift, rider."""
-    # The exact models, asked for: on the soft step (which World() would choose for crates)
-    # the ball, rolling away from the left column at 3 cm/s for ever, keeps that column
-    # awake (a sleeper wakes when an awake body's bounding circle comes within reach of its
-    # own, and a crate's reaches 0.2 m past its side), so the frame never greys it.
-    w = World(integrator="auto", solver="exact")
+    # World() chooses the soft step for crates (engine.solver_choice): Box2D's contacts.
+    w = World(integrator="auto")
     w.add_force(Gravity((0.0, -9.81)))
     w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
     w.add_collider(Segment((-1.0, 0.0), (-1.0, 6.0)))

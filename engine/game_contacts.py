@@ -39,7 +39,7 @@ from .manifold_kinds import SPECULATIVE_DISTANCE
 from .manifold_polygon import polygon_loop
 from .narrowphase import round_loop
 
-__all__ = ["STATIC", "contacts_loop", "contacts_sample", "report_loop"]
+__all__ = ["STATIC", "body_boxes", "contacts_loop", "contacts_sample", "report_loop"]
 
 #: Warm-start keys: (the pair's code << FEATURE) | the point's feature id (16 bits); a pair's
 #: code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
@@ -90,6 +90,47 @@ def contacts_sample() -> tuple[Any, ...]:
             rad, center, rnd, f((1, 2)), up, none, none, keys, lam)  # fmt: skip
 
 
+def _boxes_sample() -> tuple[Any, ...]:
+    """A disc and a unit box turned a quarter turn (``contacts_sample``'s tables)."""
+    s = contacts_sample()
+    return (s[0], np.array([0.0, 1.5707963267948966]), s[2], np.array([True, False]),
+            np.array([0, 0], dtype=np.int64), s[28], s[31])  # fmt: skip
+
+
+@kernels.loop(sample=_boxes_sample)
+def body_boxes(
+    x: Any, q: Any, radius: Any, body_circle: Any, body_index: Any, V: Any, rad: Any
+) -> Any:
+    """Each body's box (n, 4: xmin, ymin, xmax, ymax, m): a disc's centre +- its ``radius``, a
+    polygon's (a capsule's) corners ``V[body_index]`` turned by ``q`` (rad) and moved to ``x``,
+    +- its rounding ``rad`` (engine.game_broadphase's ``boxes``: the same products)."""
+    n = len(radius)
+    box = np.empty((n, 4))
+    for a in range(n):
+        r = radius[a]
+        box[a, 0], box[a, 1] = x[a, 0] - r, x[a, 1] - r
+        box[a, 2], box[a, 3] = x[a, 0] + r, x[a, 1] + r
+        if not body_circle[a]:
+            j = body_index[a]
+            co, si = np.cos(q[a]), np.sin(q[a])
+            for v in range(V.shape[1]):
+                wx = co * V[j, v, 0] - si * V[j, v, 1] + x[a, 0]
+                wy = si * V[j, v, 0] + co * V[j, v, 1] + x[a, 1]
+                if v == 0 or wx < box[a, 0]:
+                    box[a, 0] = wx
+                if v == 0 or wy < box[a, 1]:
+                    box[a, 1] = wy
+                if v == 0 or wx > box[a, 2]:
+                    box[a, 2] = wx
+                if v == 0 or wy > box[a, 3]:
+                    box[a, 3] = wy
+            box[a, 0] -= rad[j]
+            box[a, 1] -= rad[j]
+            box[a, 2] += rad[j]
+            box[a, 3] += rad[j]
+    return box
+
+
 @kernels.loop(sample=contacts_sample)
 def contacts_loop(
     x: Any, q: Any, radius: Any, reach: Any, moving: Any, sensor: Any,
@@ -124,31 +165,7 @@ def contacts_loop(
     k_shapes = len(owner)
     n_col = len(c_sensor)
     # -- 1. the body pairs -----------------------------------------------------------------
-    # Each body's box (xmin, ymin, xmax, ymax): a disc's centre +- its radius, a polygon's
-    # (a capsule's) corners turned and moved, +- its radius (``boxes``, the same products).
-    box = np.empty((n, 4))
-    for a in range(n):
-        r = radius[a]
-        box[a, 0], box[a, 1] = x[a, 0] - r, x[a, 1] - r
-        box[a, 2], box[a, 3] = x[a, 0] + r, x[a, 1] + r
-        if not body_circle[a]:
-            j = body_index[a]
-            co, si = np.cos(q[a]), np.sin(q[a])
-            for v in range(V.shape[1]):
-                wx = co * V[j, v, 0] - si * V[j, v, 1] + x[a, 0]
-                wy = si * V[j, v, 0] + co * V[j, v, 1] + x[a, 1]
-                if v == 0 or wx < box[a, 0]:
-                    box[a, 0] = wx
-                if v == 0 or wy < box[a, 1]:
-                    box[a, 1] = wy
-                if v == 0 or wx > box[a, 2]:
-                    box[a, 2] = wx
-                if v == 0 or wy > box[a, 3]:
-                    box[a, 3] = wy
-            box[a, 0] -= rad[j]
-            box[a, 1] -= rad[j]
-            box[a, 2] += rad[j]
-            box[a, 3] += rad[j]
+    box = body_boxes(x, q, radius, body_circle, body_index, V, rad)
     cand_a = np.empty(len(pa) + n * k_shapes, dtype=np.int64)
     cand_b = np.empty(len(cand_a), dtype=np.int64)  # B's row, or n for a static shape
     cand_p = np.empty(len(cand_a), dtype=np.int64)  # the static shape, or -1

@@ -25,7 +25,7 @@ import numpy as np
 
 from . import kernels
 from .events import COLLIDER
-from .game_contacts import contacts_loop, contacts_sample, report_loop
+from .game_contacts import body_boxes, contacts_loop, contacts_sample, report_loop
 from .game_continuous import SAFETY
 from .game_sleep import ANGULAR, LINEAR
 from .manifold_kinds import SPECULATIVE_DISTANCE
@@ -134,6 +134,7 @@ def step_loop(
             if asleep[i] and island[i] + 1 > labels:
                 labels = island[i] + 1
         woken = np.zeros(labels, dtype=np.bool_)
+        box = body_boxes(x, angle, radius, body_circle, body_index, V, rad)
         active = np.empty(n, dtype=np.bool_)
         for i in range(n):
             spins = v[i, 0] != 0.0 or v[i, 1] != 0.0 or omega[i] != 0.0
@@ -148,6 +149,11 @@ def step_loop(
                 continue
             dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
             reach = (radius[a] + margin[a]) + (radius[b] + margin[b]) + SPECULATIVE_DISTANCE
+            grown = margin[a] + margin[b] + SPECULATIVE_DISTANCE
+            if box[b, 0] - box[a, 2] > grown or box[a, 0] - box[b, 2] > grown:
+                continue  # their boxes too far apart (engine.game_sleep.woken)
+            if box[b, 1] - box[a, 3] > grown or box[a, 1] - box[b, 3] > grown:
+                continue
             if dx * dx + dy * dy <= reach * reach:
                 if asleep[a]:
                     woken[island[a]] = True

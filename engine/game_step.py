@@ -203,12 +203,11 @@ class GameStep:
                 state, store, dt, accel, store.torque if torque is None else torque, margin,
                 candidates, ignored_faces, ignored_pairs,
             )  # fmt: skip
-        awake = self._wake(state, store, margin, candidates)
-        b = _bodies(store, accel, store.torque if torque is None else torque, awake)
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
-        pairs = broad.pairs(
-            store, sc.sensors, awake, margin, candidates, sc.apart, broad.boxes(sc.places, store)
-        )
+        boxes = broad.boxes(sc.places, store)
+        awake = self._wake(state, store, margin, candidates, boxes)
+        b = _bodies(store, accel, store.torque if torque is None else torque, awake)
+        pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes)
         faces = broad.faces(
             store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, margin, sc.ignored
         )
@@ -465,10 +464,15 @@ class GameStep:
 
     # -- sleep (engine.game_sleep) ------------------------------------------------------------
     def _wake(
-        self, state: WorldState, store: Any, margin: np.ndarray, candidates: tuple[Any, Any]
+        self,
+        state: WorldState,
+        store: Any,
+        margin: np.ndarray,
+        candidates: tuple[Any, Any],
+        boxes: np.ndarray,
     ) -> np.ndarray:
         """The bodies the step moves (dynamic and awake), the sleepers an awake body meets
-        woken first with their islands."""
+        (by the bodies' ``boxes`` too) woken first with their islands."""
         n = len(store)
         dynamic = ~store.kinematic & np.isfinite(store.mass)
         c = state.collisions
@@ -480,7 +484,7 @@ class GameStep:
         spins = (store.v != 0.0).any(axis=1) | (store.omega != 0.0)
         active = (dynamic & ~asleep) | (store.kinematic & spins)
         wake = game_sleep.woken(
-            asleep, c._group, active, *candidates, store.x, store.radius + margin,
+            asleep, c._group, active, *candidates, store.x, store.radius, margin, boxes,
             (store.group, store.categories, store.mask),
         )  # fmt: skip
         if wake.any():

@@ -77,6 +77,34 @@ def test_a_ball_thrown_at_a_sleeping_pile_wakes_it_and_knocks_it(kernels: str) -
 
 
 @pytest.mark.parametrize("kernels", PATHS)
+def test_a_ball_rolling_past_a_sleeping_crate_wakes_it_only_when_it_comes_near(
+    kernels: str,
+) -> None:
+    # A 1 m crate asleep on a floor; a ball of radius 0.35 rolls along the floor past its side,
+    # 0.1 m clear of it: inside the crate's bounding circle (radius 0.71) but outside its box
+    # by more than the speculative distance, so the crate sleeps on (the crates demo's ball,
+    # rolling on for ever at 3 cm/s, kept its column awake); then the ball is sent at it, and
+    # the crate wakes as they meet.
+    from engine import Plane, Vector
+
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    crate = world.add(Body(Vector(0.0, 0.5), shape=Polygon.box(1.0, 1.0), mass=2.0))
+    settle(world, 1.0)
+    assert world.is_sleeping(crate)
+    ball = world.add(Body(Vector(-0.95, 0.35), radius=0.35, friction=0.0))
+    settle(world, 0.5)  # the ball settles, 0.1 m from the crate's side
+    assert world.is_sleeping(crate)
+    ball.vel = Vector(0.02, 0.0)  # slow, and still 0.09 m clear after 0.5 s
+    settle(world, 0.5)
+    assert world.is_sleeping(crate) and -0.95 < ball.pos.x < -0.9
+    ball.vel = Vector(2.0, 0.0)  # now it comes: the crate wakes as they meet
+    settle(world, 0.5)
+    assert crate.pos.x > 0.01  # woken and shoved along the floor (a sleeper never moves)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
 def test_a_box_written_by_hand_wakes_its_island(kernels: str) -> None:
     world, boxes = pile(kernels)
     settle(world, 2.0)
