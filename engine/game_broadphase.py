@@ -35,8 +35,10 @@ __all__ = [
     "boxes",
     "collider_arrays",
     "faces",
+    "filters_meet",
     "ignored_keys",
     "pairs",
+    "reaching",
     "static_bounds",
 ]
 
@@ -104,8 +106,9 @@ def apart_keys(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray
     n = len(store)
     apart = [np.asarray(ignored, dtype=np.int64)] if len(ignored) else []
     for j in state.links:
-        if isinstance(j, Joint) and not j.collide and j._other is not None:
-            ra, rb = store.row(j.body_a.slot), store.row(j._other.slot)
+        pair = j.kept_apart if isinstance(j, Joint) else None
+        if pair is not None:
+            ra, rb = store.row(pair[0].slot), store.row(pair[1].slot)
             apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
     if not apart:
         return np.zeros(0, dtype=np.int64)  # (a game's usual step: nothing kept apart)
@@ -119,6 +122,41 @@ def ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
         return np.zeros(0, dtype=np.int64)
     k = colliders + 1
     return np.unique(np.asarray(ignored[:, 0], dtype=np.int64) * k + ignored[:, 1])
+
+
+def reaching(
+    store: Any, margin: np.ndarray, boxes: np.ndarray | None, a: np.ndarray, b: np.ndarray
+) -> np.ndarray:
+    """Which pairs of bodies (rows ``a``, ``b``) may come within the speculative distance of
+    each other in the step (bool, one a pair): their bounding circles (``store.radius`` about
+    ``store.x``) and then their ``boxes`` ((N, 4) xmin, ymin, xmax, ymax: ``boxes``; None:
+    the circles alone), each grown by what the two can move in the step (``margin``, m).
+    Each test holds whenever the shapes can touch (a shape is inside its circle and its box),
+    so together they keep no fewer pairs than need to be."""
+    x, r = store.x, store.radius
+    d = x[b] - x[a]
+    reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
+    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
+    if boxes is not None:
+        rows = np.flatnonzero(near)
+        a, b = a[rows], b[rows]
+        gap = margin[a] + margin[b] + SPECULATIVE_DISTANCE
+        ba, bb = boxes[a], boxes[b]
+        close = (bb[:, 0] - ba[:, 2] <= gap) & (ba[:, 0] - bb[:, 2] <= gap)
+        close &= (bb[:, 1] - ba[:, 3] <= gap) & (ba[:, 1] - bb[:, 3] <= gap)
+        near[rows] = close
+    return near
+
+
+def filters_meet(store: Any, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Which pairs of bodies (rows ``a``, ``b``) their filters let collide (bool, one a pair:
+    engine.filters; a sensor's filter meets nothing)."""
+    g = store.group
+    keep = (g[a] == 0) | (g[a] != g[b])
+    keep &= ((store.categories[a] & store.mask[b]) != 0) & (
+        (store.categories[b] & store.mask[a]) != 0
+    )
+    return keep
 
 
 def pairs(
@@ -137,24 +175,12 @@ def pairs(
     sensor, not ``apart``."""
     n = len(store)
     a, b = candidates
-    x, r = store.x, store.radius
-    d = x[b] - x[a]
-    reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
-    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
+    near = reaching(store, margin, boxes, a, b)
     a, b = a[near], b[near]
-    if boxes is not None:
-        gap = margin[a] + margin[b] + SPECULATIVE_DISTANCE
-        ba, bb = boxes[a], boxes[b]
-        near = (bb[:, 0] - ba[:, 2] <= gap) & (ba[:, 0] - bb[:, 2] <= gap)
-        near &= (bb[:, 1] - ba[:, 3] <= gap) & (ba[:, 1] - bb[:, 3] <= gap)
-        a, b = a[near], b[near]
+    r = store.radius
     keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
     keep &= r[a] + r[b] > 0.0  # two points (no radius, no shape) pass, as on the exact step
-    g = store.group
-    keep &= (g[a] == 0) | (g[a] != g[b])
-    keep &= ((store.categories[a] & store.mask[b]) != 0) & (
-        (store.categories[b] & store.mask[a]) != 0
-    )
+    keep &= filters_meet(store, a, b)
     if len(apart):
         keep &= ~np.isin(a * n + b, apart)
     return np.stack([a[keep], b[keep]], axis=1)

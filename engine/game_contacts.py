@@ -91,10 +91,11 @@ def contacts_sample() -> tuple[Any, ...]:
 
 
 def _boxes_sample() -> tuple[Any, ...]:
-    """A disc and a unit box turned a quarter turn (``contacts_sample``'s tables)."""
-    s = contacts_sample()
-    return (s[0], np.array([0.0, 1.5707963267948966]), s[2], np.array([True, False]),
-            np.array([0, 0], dtype=np.int64), s[28], s[31])  # fmt: skip
+    """A disc of radius 0.5 and a unit box turned a quarter turn beside it."""
+    corners = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
+    return (np.array([[0.0, 0.5], [1.2, 0.5]]), np.array([0.0, 0.5 * np.pi]),
+            np.array([0.5, 0.71]), np.array([True, False]), np.zeros(2, dtype=np.int64),
+            corners, np.zeros(1))  # fmt: skip
 
 
 @kernels.loop(sample=_boxes_sample)

@@ -148,7 +148,7 @@ def step_loop(
             if (cats[a] & mask[b]) == 0 or (cats[b] & mask[a]) == 0:
                 continue
             dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
-            reach = (radius[a] + margin[a]) + (radius[b] + margin[b]) + SPECULATIVE_DISTANCE
+            reach = radius[a] + radius[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
             grown = margin[a] + margin[b] + SPECULATIVE_DISTANCE
             if box[b, 0] - box[a, 2] > grown or box[a, 0] - box[b, 2] > grown:
                 continue  # their boxes too far apart (engine.game_sleep.woken)

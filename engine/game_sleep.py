@@ -30,9 +30,11 @@ paths, so the two paths stay the same bits.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
-from .manifold_kinds import SPECULATIVE_DISTANCE
+from . import game_broadphase as broad
 from .pile import components
 
 __all__ = ["ANGULAR", "LINEAR", "drifting", "fall_asleep", "woken"]
@@ -48,37 +50,25 @@ def woken(
     active: np.ndarray,
     a: np.ndarray,
     b: np.ndarray,
-    x: np.ndarray,
-    radius: np.ndarray,
+    store: Any,
     margin: np.ndarray,
-    box: np.ndarray,
-    filters: tuple[np.ndarray, np.ndarray, np.ndarray],
+    boxes: np.ndarray,
 ) -> np.ndarray:
     """The sleepers (bool (N,)) that wake before this step: the islands (``group``: each
-    sleeper's island label) of those that an ``active`` body comes within the speculative
-    distance of, among the broadphase's candidate pairs (rows ``a``, ``b``) whose ``filters``
-    (each body's filter group, categories and mask: engine.filters; a sensor's meet nothing)
-    let them collide (a feet sensor the game moves beside its sleeping player, or a body
-    filtered apart from a sleeper, wakes nothing). Within reach: their bounding circles
-    (centre ``x``, ``radius``) and their boxes (``box`` (N, 4) xmin, ymin, xmax, ymax,
-    engine.game_broadphase's ``boxes``), each grown by what the two can move in the step
-    (``margin``, m). Each test holds whenever the shapes can touch (a shape is inside its
-    circle and its box), so both together wake no fewer than need to: a ball rolling past a
+    sleeper's island label) of those that an ``active`` body may come within the speculative
+    distance of, among the broadphase's candidate pairs (rows ``a``, ``b``): by the bodies'
+    circles and ``boxes``, grown by what each can move in the step (``margin``, m), as the
+    step's pairs are found (engine.game_broadphase's ``reaching``: a ball rolling past a
     sleeping crate's side, inside the crate's circle but 10 cm from its box, leaves it
-    asleep."""
+    asleep), and where their filters let them collide (``filters_meet``: a feet sensor the
+    game moves beside its sleeping player, or a body filtered apart from a sleeper, wakes
+    nothing). ``store``: the bodies' positions, radii and filters (engine.store)."""
     meets = (asleep[a] & active[b]) | (asleep[b] & active[a])
-    fg, cats, mask = filters
-    meets &= ((fg[a] == 0) | (fg[a] != fg[b])) & ((cats[a] & mask[b]) != 0)
-    meets &= (cats[b] & mask[a]) != 0
+    meets[meets] = broad.filters_meet(store, a[meets], b[meets])
     if not meets.any():
         return np.zeros(len(asleep), dtype=bool)
     a, b = a[meets], b[meets]
-    d = x[b] - x[a]
-    reach = (radius[a] + margin[a]) + (radius[b] + margin[b]) + SPECULATIVE_DISTANCE
-    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
-    grown = margin[a] + margin[b] + SPECULATIVE_DISTANCE
-    near &= (box[b, 0] - box[a, 2] <= grown) & (box[a, 0] - box[b, 2] <= grown)
-    near &= (box[b, 1] - box[a, 3] <= grown) & (box[a, 1] - box[b, 3] <= grown)
+    near = broad.reaching(store, margin, boxes, a, b)
     sleepers = np.concatenate([a[near], b[near]])
     sleepers = sleepers[asleep[sleepers]]
     return asleep & np.isin(group, group[sleepers])

@@ -483,10 +483,7 @@ class GameStep:
         asleep = c.asleep
         spins = (store.v != 0.0).any(axis=1) | (store.omega != 0.0)
         active = (dynamic & ~asleep) | (store.kinematic & spins)
-        wake = game_sleep.woken(
-            asleep, c._group, active, *candidates, store.x, store.radius, margin, boxes,
-            (store.group, store.categories, store.mask),
-        )  # fmt: skip
+        wake = game_sleep.woken(asleep, c._group, active, *candidates, store, margin, boxes)
         if wake.any():
             asleep[wake] = False
             c.still[wake] = 0.0

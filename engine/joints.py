@@ -93,6 +93,14 @@ class Joint(Link):
         self.revision += 1
 
     @property
+    def kept_apart(self) -> tuple[Any, Any] | None:
+        """The two bodies this joint keeps from colliding with each other (``collide`` False,
+        neither end the world), or None."""
+        if self._collide or self._other is None:
+            return None
+        return self._body, self._other
+
+    @property
     def body_a(self) -> Any:
         """The first body."""
         return self._body

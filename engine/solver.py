@@ -371,7 +371,8 @@ def solve(
         x0[i] = bx[i]
         y0[i] = by[i]
         q0[i] = bq[i]
-    # The bodies in no row fly the closed form (module doc): their start velocities kept.
+    # The bodies in no row fly the closed form at the step's end (module doc); the parts
+    # leave them as they were.
     free = floats(nb, 1.0)  # 1.0: in no row (floats: the kernels' quick scratch)
     for k in range(nc):
         free[ca[k]] = 0.0
@@ -379,13 +380,6 @@ def solve(
     for k in range(nj):
         free[ja[k]] = 0.0
         free[jb[k]] = 0.0
-    vx0 = floats(nb, 0.0)
-    vy0 = floats(nb, 0.0)
-    w0 = floats(nb, 0.0)
-    for i in range(nb):
-        vx0[i] = bvx[i]
-        vy0[i] = bvy[i]
-        w0[i] = bw[i]
 
     # -- prepare the contacts: masses along the normal and tangent, the base separation, the
     # relative normal speed at the start (for restitution).
@@ -673,8 +667,10 @@ def solve(
 
     for _ in range(substeps):
         # -- integrate velocities (only what moves: the static body and kinematic bodies
-        # have no acceleration).
+        # have no acceleration; a free body flies the closed form at the end).
         for i in range(nb):
+            if free[i] != 0.0:
+                continue
             bvx[i] += bax[i] * h
             bvy[i] += bay[i] * h
             bw[i] += balpha[i] * h
@@ -951,6 +947,8 @@ def solve(
             if bias:
                 # -- integrate positions (the moves since the start, and their rotations).
                 for i in range(nb):
+                    if free[i] != 0.0:
+                        continue
                     dx[i] += bvx[i] * h
                     dy[i] += bvy[i] * h
                     if bw[i] != 0.0:
@@ -1016,12 +1014,12 @@ def solve(
     # form of its motion (module doc).
     for i in range(nb - 1):
         if free[i] != 0.0:
-            dx[i] = vx0[i] * dt + 0.5 * bax[i] * dt * dt
-            dy[i] = vy0[i] * dt + 0.5 * bay[i] * dt * dt
-            dq[i] = w0[i] * dt + 0.5 * balpha[i] * dt * dt
-            bvx[i] = vx0[i] + bax[i] * dt
-            bvy[i] = vy0[i] + bay[i] * dt
-            bw[i] = w0[i] + balpha[i] * dt
+            dx[i] = bvx[i] * dt + 0.5 * bax[i] * dt * dt
+            dy[i] = bvy[i] * dt + 0.5 * bay[i] * dt * dt
+            dq[i] = bw[i] * dt + 0.5 * balpha[i] * dt * dt
+            bvx[i] += bax[i] * dt
+            bvy[i] += bay[i] * dt
+            bw[i] += balpha[i] * dt
         bx[i] = x0[i] + dx[i]
         by[i] = y0[i] + dy[i]
         bq[i] = q0[i] + dq[i]

@@ -34,6 +34,8 @@ from __future__ import annotations
 import warnings
 from typing import Any
 
+from .joints import Joint
+
 __all__ = ["SOLVERS", "choose", "needs_soft", "SolverWarning"]
 
 #: What ``World(solver=...)`` takes.
@@ -47,12 +49,12 @@ class SolverWarning(UserWarning):
 
 def _kept_apart(links: Any) -> set[tuple[int, int]]:
     """The pairs of bodies (by ``id``, each pair in both orders) that a joint keeps from
-    colliding (a Hinge or Weld between two bodies, ``collide=False``)."""
+    colliding (``Joint.kept_apart``)."""
     apart: set[tuple[int, int]] = set()
     for link in links:
-        other = getattr(link, "_other", None)
-        if getattr(link, "collide", True) is False and other is not None:
-            a, b = id(link.body), id(other)
+        pair = link.kept_apart if isinstance(link, Joint) else None
+        if pair is not None:
+            a, b = id(pair[0]), id(pair[1])
             apart |= {(a, b), (b, a)}
     return apart
 
@@ -75,7 +77,7 @@ def _pushed(body: Any, bodies: Any, colliders: Any, apart: set[tuple[int, int]])
     return False
 
 
-def _cornered(bodies: Any, links: Any = (), colliders: Any = ()) -> Any:
+def _cornered(bodies: Any, links: Any, colliders: Any) -> Any:
     """The first body that is not round and that a contact could push (dynamic, solid, and
     meeting a collider or another body by its filter), or None."""
     apart: set[tuple[int, int]] | None = None

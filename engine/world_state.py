@@ -300,8 +300,9 @@ class WorldState:
         if store is not None:
             n = len(self.bodies)
             for k in self.links:
-                if isinstance(k, Joint) and not k.collide and isinstance(k.other, Body):
-                    a, b = sorted((store.row(k.body.slot), store.row(k.other.slot)))
+                pair = k.kept_apart if isinstance(k, Joint) else None
+                if pair is not None:
+                    a, b = sorted((store.row(pair[0].slot), store.row(pair[1].slot)))
                     keys.append(a * n + b)
                 if isinstance(k, Joint) or k.anchored:
                     joined += [store.row(b.slot) for b in k.bodies]
