@@ -128,7 +128,7 @@ def pit_world(balls: int = BALLS) -> tuple[World, list[Body]]:
             restitution=RESTITUTION,
             friction=FRICTION,
             # Balls that do not turn, as when the pit was measured (asleep by 3 s): balls that
-            # turn roll on in a pile too (engine.soft's lever arms; no rolling resistance),
+            # turn roll on in a pile too (engine.exact.soft's lever arms; no rolling resistance),
             # and these 400 sleep at about 4.5 s.
             fixed_rotation=True,
         )

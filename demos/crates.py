@@ -6,7 +6,7 @@ with a radius) falls across the right column; a ball rolls in from the left at 5
 the left column and shoves it along the floor; a platform the game moves (a kinematic box)
 lifts a small crate and stops. The crates turn (the issue "Bodies that turn"): they land,
 stack and are shoved at their angles, on the soft step (``World()`` chooses it for crates:
-engine.solver_choice). The read-outs: how many of the bodies sleep, and the
+engine.pipeline.solver_choice). The read-outs: how many of the bodies sleep, and the
 deepest overlap of two crates (or a crate and the floor) as a fraction of a crate's
 height, measured from the positions, now and the worst so far. They are of the state the frame
 shows, at the time its clock says: the frame drawn between two steps (``alpha`` < 1: at 30
@@ -42,7 +42,7 @@ VIEW = (-1.2, -0.3, 10.2, 6.6)
 
 def crates_world() -> tuple[World, dict[str, list[Body]]]:
     """The scene's World and its bodies by kind: crates, plank, ball, lift, rider."""
-    # World() chooses the soft step for crates (engine.solver_choice): Box2D's contacts.
+    # World() chooses the soft step for crates (engine.pipeline.solver_choice): Box2D's contacts.
     w = World(integrator="auto")
     w.add_force(Gravity((0.0, -9.81)))
     w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))

@@ -3,8 +3,8 @@
     python -m demos hinges                    # frames: out/hinges/rod/, chain/, car/
     python -m demos hinges --scene car --window
 
-Bodies that turn held at points of their own (``Hinge``, ``engine.joints``), solved with
-every joint at once as RATTLE on positions and angles (``engine.joint_solver``), under
+Bodies that turn held at points of their own (``Hinge``, ``engine.dynamics.joints``), solved with
+every joint at once as RATTLE on positions and angles (``engine.exact.joint_solver``), under
 g = 9.81 m/s^2 in a World with ``integrator="auto"``. Everything in the motion is drawn by
 ``engine.render.draw_world``: each hinge's point a small ring, a rod's line from anchor to
 anchor. Lengths in m, times in s, angles from straight down, counter-clockwise positive.

@@ -5,8 +5,8 @@
     python -m demos pendulum --strobe         # one motion diagram per scene
 
 Every bob is a point Body of 1 kg under gravity g = 9.81 m/s^2, held by ``Rod`` links
-(``engine.links``), in a World with ``integrator="auto"``: gravity alone folds to the closed
-form ("exact") for the free step, and the rods are solved as RATTLE, at dt = 1/240 s.
+(``engine.dynamics.links``), in a World with ``integrator="auto"``: gravity alone folds to the
+closed form ("exact") for the free step, and the rods are solved as RATTLE, at dt = 1/240 s.
 
 * ``single``: one bob on a rod of L = 1 m from a fixed point, let go from rest at
   theta0 = 120 degrees. Beside it theta(t) in degrees, with the exact period marked,
@@ -28,7 +28,7 @@ form ("exact") for the free step, and the rods are solved as RATTLE, at dt = 1/2
   origin, let go from rest stretched out level to the right: it falls and whips. Beside it
   the tension in the top rod (N, from ``link.tension(dt)``: about 1,280 N for one step at
   the whip, and briefly -156 N, a push), and every rod's length now; the largest length error
-  over the 6 s is 1.0e-12 of a rod, the solver's tolerance (``engine.links.TOLERANCE``).
+  over the 6 s is 1.0e-12 of a rod, the solver's tolerance (``engine.dynamics.links.TOLERANCE``).
 
 Lengths in m, times in s, angles measured from straight down, counterclockwise positive.
 """

@@ -29,7 +29,7 @@ the ball leaving at least KICK cm/s along it, added to an ordinary bounce (resti
 README's section on this game: a restitution e > 1 gives a ball that barely touches a bumper
 next to nothing (e times nearly nothing), where the solenoid throws it hard; and in the
 engine a bounce made while the ball also touches a flipper is solved by the soft step of a
-pile, which takes energy out by design (``engine.pile.dissipative``), so e > 1 would kick
+pile, which takes energy out by design (``engine.exact.pile.dissipative``), so e > 1 would kick
 off a lone bumper but be cut back beside a flipper: two rules for one bumper.
 
 The game is a Scene like every other demo (the model is ``demos/breakout.py``): what it steps

@@ -12,22 +12,10 @@
 ``import engine`` never imports pygame; drawing lives in ``engine.render``.
 """
 
-from . import (
-    colliders,
-    contacts,
-    events,
-    filters,
-    forces,
-    integrators,
-    joints,
-    kernels,
-    kinematics,
-    links,
-    stability,
-)
+from . import filters, forces, integrators, kernels, kinematics, stability
 from .body import Body
-from .colliders import Box, Circle, Collider, Plane, Polygon, Segment
-from .constraints import (
+from .dynamics import events, joints, links
+from .dynamics.constraints import (
     GearJoint,
     GrooveJoint,
     RatchetJoint,
@@ -35,14 +23,17 @@ from .constraints import (
     SimpleMotor,
     SlideJoint,
 )
-from .events import ContactEvent
+from .dynamics.events import ContactEvent
+from .dynamics.joints import Hinge, Weld
+from .dynamics.links import Cable, Link, Pin, Rod
+from .dynamics.mouse_joint import MouseJoint
+from .dynamics.springs import DampedRotarySpring, DampedSpring
+from .exact import contacts
 from .filters import Filter
-from .joints import Hinge, Weld
-from .links import Cable, Link, Pin, Rod
+from .geometry import colliders
+from .geometry.colliders import Box, Circle, Collider, Plane, Polygon, Segment
 from .loop import FixedStep, RealClock, Steppable, VirtualClock
-from .mouse_joint import MouseJoint
-from .solver_choice import SolverWarning
-from .springs import DampedRotarySpring, DampedSpring
+from .pipeline.solver_choice import SolverWarning
 from .stability import SimulationDiverged, StabilityWarning
 from .vector import Vector
 from .world import OverlapWarning, QueryHit, World

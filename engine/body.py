@@ -9,7 +9,7 @@ Out of a World a Body just stores what it is given. Once added to a
 state, and ``acc`` reads the total acceleration at this instant: the body's own
 constant acceleration (the ``acceleration`` it was made with, kept as
 ``own_acc``) plus the forces' pull divided by the mass. In a World the Body is a handle: the
-World's arrays hold its state, mass and own acceleration (``engine.store``).
+World's arrays hold its state, mass and own acceleration (``engine.dynamics.store``).
 
 >>> b = Body(Vector(0, 0), Vector(1, 0), Vector(0, 0))
 >>> print(b)
@@ -51,14 +51,14 @@ from .filters import Filter, as_filter
 from .vector import Vector, new_unchecked
 
 if TYPE_CHECKING:
-    from .store import BodyStore
+    from .dynamics.store import BodyStore
 
 __all__ = ["Body", "State", "WorldLike"]
 
 _isfinite = math.isfinite
 
 #: Whether bodies with corners (a Polygon, a Segment's capsule) turn, with the moment of their
-#: shape (``shape.moment(mass)``), in the piles' soft step (engine.soft: lever arms r x n on
+#: shape (``shape.moment(mass)``), in the piles' soft step (engine.exact.soft: lever arms r x n on
 #: the normal rows too): a box tips, topples and stacks (tests/test_rotation_shapes.py).
 #: False gives the earlier version's boxes, which keep their angle. Read as a body is made or
 #: added: set it before.
@@ -135,8 +135,8 @@ class Body:
     given: Box2D's defaults, so nothing bounces unless asked to) are its material, combined
     with a collider's by product (pymunk's rule); they and its ``filter`` can be set at any
     time, and the World's next step takes them. A disc or a body with corners turns
-    (``angle``, ``angular_velocity``, ``moment``, ``torque``; engine.rotation): friction makes
-    a disc roll and a box tip; a point or a body made with ``fixed_rotation=True`` does not.
+    (``angle``, ``angular_velocity``, ``moment``, ``torque``; engine.dynamics.rotation): friction
+    makes a disc roll and a box tip; a point or a body made with ``fixed_rotation=True`` does not.
     Bodies with a radius collide with each other unless their ``filter`` (engine.Filter: a
     group, category bits) says not.
     A ``kinematic`` body is moved by the game, not by forces (see ``Body.kinematic``); a
@@ -288,7 +288,7 @@ class Body:
         self._bullet = _bullet_flag(bullet)
 
     def _take_rotation(self, angle: Any, omega: Any, moment: Any, fixed: Any, torque: Any) -> None:
-        """Check and keep the rotation arguments (engine.rotation says what they mean)."""
+        """Check and keep the rotation arguments (engine.dynamics.rotation says what they mean)."""
         if not isinstance(fixed, bool):
             raise TypeError(
                 f"fixed_rotation must be True (the body never turns) or False, got "
@@ -392,7 +392,8 @@ class Body:
             return 0.5 * mass * self._radius * self._radius  # a solid disc: m r^2 / 2
         if not self._round():
             # A body with corners (a Polygon, a Segment's capsule): the shape's own moment
-            # about the body's position (engine.mass, exact; the parallel axes' term in it).
+            # about the body's position (engine.geometry.mass, exact; the parallel axes' term in
+            # it).
             return float(shape.moment(mass))
         # A Circle about its centre c in the body's frame: m r^2 / 2 + m |c|^2.
         cx, cy = shape.center
@@ -407,7 +408,9 @@ class Body:
         if shape is not None:
             return float(shape.area)
         r = self._radius
-        return math.pi * (r * r)  # Circle((0, 0), r).area's bits (engine.mass.area_for_circle)
+        return math.pi * (
+            r * r
+        )  # Circle((0, 0), r).area's bits (engine.geometry.mass.area_for_circle)
 
     def _mass_of(self, density: float, made: bool) -> float:
         """The mass (kg) ``density`` (kg/m^2, checked) gives this body: density times its
@@ -460,7 +463,7 @@ class Body:
         if take is None:
             raise TypeError(
                 f"shape must be a Circle((0, 0), r), a Polygon (Polygon.box(width, height) for "
-                f"a box) or a Segment (a capsule) from engine.colliders, got "
+                f"a box) or a Segment (a capsule) from engine.geometry.colliders, got "
                 f"{type(shape).__name__} {shape!r}"
             )
         return float(take())
@@ -488,10 +491,10 @@ class Body:
         """The World this body is in, or None."""
         return None if self._store is None else self._store.owner
 
-    # -- the World's handle (engine.membership sets it; the World's modules read ``slot``) ----
+    # -- the World's handle (engine.pipeline.membership sets it; the World's modules read ``slot``)
     @property
     def slot(self) -> int:
-        """The body's slot in its World's arrays (``engine.store``: ``store.row(slot)`` is
+        """The body's slot in its World's arrays (``engine.dynamics.store``: ``store.row(slot)`` is
         its row now), kept while it is in the World; -1 out of a World. A count, no unit."""
         return self._slot
 
@@ -675,7 +678,7 @@ class Body:
 
     @property
     def shape(self) -> Any:
-        """The shape given as ``Body(..., shape=...)`` (engine.colliders: a Circle, Polygon
+        """The shape given as ``Body(..., shape=...)`` (engine.geometry.colliders: a Circle, Polygon
         or Segment, in the body's frame, about its position), or None for a round body made
         with ``radius`` (a disc of that radius) or a point."""
         return self._shape
@@ -797,7 +800,7 @@ class Body:
     def kinematic(self, value: Any) -> None:
         refuse_change("kinematic", value)
 
-    # -- rotation (engine.rotation) ----------------------------------------------------------
+    # -- rotation (engine.dynamics.rotation) -------------------------------------------------------
     @property
     def turns(self) -> bool:
         """Whether this body turns: a disc, a body with corners (a Polygon, a Segment) or one
@@ -982,7 +985,7 @@ class Body:
         # omega x r in the plane: (-omega r_y, omega r_x).
         return Vector(vel.x - w * ry, vel.y + w * rx)
 
-    # -- sleep (engine.sleep: a World's bodies at rest cost nothing) ---------------------------
+    # -- sleep (engine.exact.sleep: a World's bodies at rest cost nothing) -------------------------
     @property
     def is_sleeping(self) -> bool:
         """Whether the body sleeps in its World (pymunk's name; ``world.is_sleeping(body)``);

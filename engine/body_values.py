@@ -30,7 +30,7 @@ __all__ = [
 ]
 
 #: A body's restitution when none is given: 0, no bounce unless asked for (Box2D's default;
-#: pymunk's too). Materials multiply (engine.colliders), and a collider's own default is 1.
+#: pymunk's too). Materials multiply (engine.geometry.colliders), and a collider's own default is 1.
 RESTITUTION = 0.0
 #: A body's friction coefficient when none is given: 0.6, Box2D's default (pymunk's is 0, so
 #: that everything slides unless told). On a collider of the default 1, mu = 0.6.

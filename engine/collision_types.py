@@ -1,6 +1,6 @@
 """Collision types: pymunk's ``collision_type``, the int a Body or collider carries so that
 ``World.on_collision(type_a, type_b, ...)`` can name the pairs it handles
-(engine.collision_handlers). 0 is every thing's type until it is given one.
+(engine.pipeline.collision_handlers). 0 is every thing's type until it is given one.
 
 >>> as_collision_type(3)
 3

@@ -19,7 +19,7 @@ Each force also says what the World needs to know about it without calling it:
 * ``potential(x, mass)``: its potential energy, or None when it has none;
 * ``affine()``: for forces of the form a_0 + F_0/m - (c/m) v, those three
   parts, so a World can fold them into per-body arrays once instead of
-  calling the force every step (``engine.forcefield``: broadcasting a small
+  calling the force every step (``engine.dynamics.forcefield``: broadcasting a small
   vector every step costs several times more than adding two arrays).
 
 A generator may give a torque too (N m, counter-clockwise), on the bodies it acts on that
@@ -30,7 +30,7 @@ that turns. ``Torque`` is the base of generators that give a torque and no force
 (``ConstantTorque``, ``AngularDrag``, ``CallableTorque``), and says what the World needs:
 
 * ``torque_affine()``: (tau0, c) for a torque tau0 - c omega with constants (N m, N m s):
-  folded, and turned by the exact closed form of the step (engine.rotation), at any dt;
+  folded, and turned by the exact closed form of the step (engine.dynamics.rotation), at any dt;
 * ``angular_damping`` (N m s): for any other torque, which the World evaluates once at the
   step's start and holds over the step (first order in dt), the stability limit of that
   hold: a drag c on a moment I decays at rate c / I and the hold overshoots past c dt / I = 2.

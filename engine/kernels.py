@@ -283,25 +283,25 @@ PROGRESS_EVERY = 2.0
 
 #: The modules that hold loop kernels (``prepare`` imports them all).
 MODULES = (
-    "engine.pair_grid",
-    "engine.pair_plan",
-    "engine.pair_impacts",
-    "engine.coloring",
-    "engine.soft",
-    "engine.solver",
-    "engine.pile",
-    "engine.pile_rows",
-    "engine.push_out",
-    "engine.face_looks",
-    "engine.sweep_paths",
-    "engine.manifold_polygon",
-    "engine.manifold",
-    "engine.narrowphase",
-    "engine.game_contacts",
-    "engine.game_loop",
-    "engine.game_continuous",
-    "engine.joint_rows",
-    "engine.events",
+    "engine.geometry.pair_grid",
+    "engine.exact.pair_plan",
+    "engine.exact.pair_impacts",
+    "engine.dynamics.coloring",
+    "engine.exact.soft",
+    "engine.dynamics.solver",
+    "engine.exact.pile",
+    "engine.exact.pile_rows",
+    "engine.exact.push_out",
+    "engine.geometry.face_looks",
+    "engine.exact.sweep_paths",
+    "engine.geometry.manifold_polygon",
+    "engine.geometry.manifold",
+    "engine.geometry.narrowphase",
+    "engine.pipeline.game_contacts",
+    "engine.pipeline.game_loop",
+    "engine.dynamics.game_continuous",
+    "engine.exact.joint_rows",
+    "engine.dynamics.events",
 )
 #: Each kernel's smallest call, run by ``prepare`` to compile it (or load it from disk).
 _SAMPLES: dict[str, Callable[[], tuple[Any, ...]]] = {}
@@ -386,16 +386,20 @@ def prepare(only: Sequence[LoopKernel[Any]] | None = None) -> float:
 #: The order of a cold compile (the rest between, as imported), balanced for two processes
 #: (this one from the front, the helper from the back; seconds each on this machine kind):
 #: the solver (13 s) here, the contacts (polygon_loop 3 s ... contacts_loop 8 s) in the helper
-#: meanwhile, and the step that calls both (engine.game_loop, 7 s of its own) after the
+#: meanwhile, and the step that calls both (engine.pipeline.game_loop, 7 s of its own) after the
 #: colouring (5 s), by which time the helper has cached the contacts, so it loads them
 #: rather than compiling them a second time.
-FRONT = ("engine.solver.solve", "engine.coloring.color_rows", "engine.game_loop.step_loop")
+FRONT = (
+    "engine.dynamics.solver.solve",
+    "engine.dynamics.coloring.color_rows",
+    "engine.pipeline.game_loop.step_loop",
+)
 BACK = (
-    "engine.game_contacts.report_loop",
-    "engine.game_contacts.contacts_loop",
-    "engine.narrowphase.round_loop",
-    "engine.manifold.half_plane_polygon_loop",
-    "engine.manifold_polygon.polygon_loop",
+    "engine.pipeline.game_contacts.report_loop",
+    "engine.pipeline.game_contacts.contacts_loop",
+    "engine.geometry.narrowphase.round_loop",
+    "engine.geometry.manifold.half_plane_polygon_loop",
+    "engine.geometry.manifold_polygon.polygon_loop",
 )
 
 

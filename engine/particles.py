@@ -63,10 +63,10 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from . import checks
-from .forcefield import ForceModel
+from .dynamics.forcefield import ForceModel
+from .dynamics.policy import instability
 from .forces import Force, Wind, as_force
 from .integrators import INTEGRATORS, Integrator, get_integrator, semi_implicit_euler
-from .policy import instability
 from .stability import StabilityWarning
 
 __all__ = ["Particles", "Expired", "ParticlesSnapshot"]

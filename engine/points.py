@@ -1,7 +1,7 @@
 """A 2D point handed in by a user, checked: a Vector or a pair of numbers, finite.
 
-The colliders (engine.colliders) and the mass functions (engine.mass) take their points here,
-in one wording: a TypeError or ValueError that names the argument and shows the value.
+The colliders (engine.geometry.colliders) and the mass functions (engine.geometry.mass) take their
+points here, in one wording: a TypeError or ValueError that names the argument and shows the value.
 
 >>> point_of((1, 2), "center")
 (1.0, 2.0)

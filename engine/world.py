@@ -2,14 +2,17 @@
 
 The World is a thin door onto a few concepts, each in a module of its own:
 
-* ``engine.world_state``: what it holds (``engine.store``: the per-body arrays behind the
-  Bodies), its time, and the derived parts (``engine.forcefield``: the forces compiled,
-  a = a0 - c v + the rest; ``engine.policy``: the method, "auto", stability warnings);
-* ``engine.stepping``: the step pipeline; ``engine.affine``: the fast affine kernel;
-* ``engine.membership``: bodies, forces, links and colliders coming and going
-  (``engine.overlaps``: bodies found inside a collider, pushed out);
-* ``engine.event_dispatch``: contact events; ``engine.queries``; ``engine.snapshot``;
-  ``engine.readout``: positions, velocities, energy, sleep.
+* ``engine.pipeline.world_state``: what it holds (``engine.dynamics.store``: the per-body arrays
+behind the
+  Bodies), its time, and the derived parts (``engine.dynamics.forcefield``: the forces compiled,
+  a = a0 - c v + the rest; ``engine.dynamics.policy``: the method, "auto", stability warnings);
+* ``engine.pipeline.stepping``: the step pipeline; ``engine.dynamics.affine``: the fast affine
+kernel;
+* ``engine.pipeline.membership``: bodies, forces, links and colliders coming and going
+  (``engine.exact.overlaps``: bodies found inside a collider, pushed out);
+* ``engine.pipeline.event_dispatch``: contact events; ``engine.pipeline.queries``;
+``engine.pipeline.snapshot``;
+  ``engine.pipeline.readout``: positions, velocities, energy, sleep.
 
 The World owns time: ``step(dt)`` is the only way it moves, and it keeps the last finite
 state if a step would make any number nan or inf.
@@ -35,41 +38,40 @@ from typing import Any, NoReturn, TypeVar, overload
 
 import numpy as np
 
-from . import (
-    checks,
+from . import checks, habits
+from .body import Body, State
+from .dynamics.events import ContactEvent
+from .dynamics.forcefield import ForceModel
+from .dynamics.links import STATIC, Link, StaticBody
+from .dynamics.mouse_joint import MouseJoint
+from .dynamics.policy import METHODS, MethodPolicy
+from .dynamics.springs import BodySpring
+from .exact.contacts import Contacts
+from .exact.overlaps import OverlapWarning
+from .filters import Filter
+from .forces import Force
+from .geometry.colliders import Collider
+from .geometry.query_grid import QueryIndex
+from .habits import PYMUNK_NAMES
+from .integrators import Integrator
+from .kernels import choose as kernels_path
+from .pipeline import (
     collision_handlers,
     event_dispatch,
-    habits,
     membership,
     queries,
     readout,
     solver_choice,
     stepping,
 )
-from . import snapshot as snapshots
-from .body import Body, State
-from .colliders import Collider
-from .contacts import Contacts
-from .events import ContactEvent
-from .filters import Filter
-from .forcefield import ForceModel
-from .forces import Force
-from .game_step import GameStep
-from .habits import PYMUNK_NAMES
-from .integrators import Integrator
-from .kernels import choose as kernels_path
-from .links import STATIC, Link, StaticBody
-from .membership import ColliderT, LinkT
-from .mouse_joint import MouseJoint
-from .overlaps import OverlapWarning
-from .policy import METHODS, MethodPolicy
-from .queries import QueryHit
-from .query_grid import QueryIndex
-from .snapshot import WorldSnapshot
-from .solver_choice import SOLVERS
-from .springs import BodySpring
-from .stepping import SUBSTEPS_AT_IMPACT as SUBSTEPS_AT_IMPACT  # README: engine.world's
-from .world_state import WorldState
+from .pipeline import snapshot as snapshots
+from .pipeline.game_step import GameStep
+from .pipeline.membership import ColliderT, LinkT
+from .pipeline.queries import QueryHit
+from .pipeline.snapshot import WorldSnapshot
+from .pipeline.solver_choice import SOLVERS
+from .pipeline.stepping import SUBSTEPS_AT_IMPACT as SUBSTEPS_AT_IMPACT  # README: engine.world's
+from .pipeline.world_state import WorldState
 
 #: What add_link hands back for a spring: the very spring given.
 SpringT = TypeVar("SpringT", bound=BodySpring)
@@ -114,11 +116,11 @@ class World:
     ``solver``: how contacts and joints are solved. ``"exact"``: the lesson's models, each
     impact at its exact moment, joints held to rounding (a ball's bounce heights h e^(2n),
     the cradle, a pendulum's period). ``"soft"``: a game's, Box2D v3's soft step
-    (``engine.game_step``, ``engine.solver``): every contact and joint solved together in
-    substeps, fast and steady for piles, platformers and pinball tables, with the errors a
-    game accepts (a box rests 0.07 mm into the floor; a hinge gives under load by what its
+    (``engine.pipeline.game_step``, ``engine.dynamics.solver``): every contact and joint solved
+    together in substeps, fast and steady for piles, platformers and pinball tables, with the errors
+    a game accepts (a box rests 0.07 mm into the floor; a hinge gives under load by what its
     60 Hz spring allows). ``"auto"`` (the default): the World chooses by the scene as it is
-    at its first step (engine.solver_choice): the soft step where a body with corners could
+    at its first step (engine.pipeline.solver_choice): the soft step where a body with corners could
     be pushed by a contact or a joint only the soft step solves is held, the exact models
     otherwise (discs and points, a 1D world). ``world.solver`` says which this World runs, and
     ``world.solver_reason`` why.
@@ -251,8 +253,8 @@ class World:
     @overload
     def add_link(self, link: MouseJoint) -> MouseJoint: ...
     def add_link(self, link: Any) -> Any:
-        """Add a link or joint (engine.links, engine.joints; membership), a spring
-        (engine.springs) or a mouse joint (engine.mouse_joint) and return it."""
+        """Add a link or joint (engine.dynamics.links, engine.dynamics.joints; membership), a spring
+        (engine.dynamics.springs) or a mouse joint (engine.dynamics.mouse_joint) and return it."""
         if isinstance(link, BodySpring):
             self._s.springs.add(link, self)
             self._s.changed_structure()
@@ -284,7 +286,7 @@ class World:
 
     @property
     def mouse_joints(self) -> tuple[MouseJoint, ...]:
-        """The mouse joints (engine.mouse_joint), in the order added."""
+        """The mouse joints (engine.dynamics.mouse_joint), in the order added."""
         return tuple(self._s.drags.items)
 
     # -- colliders and contacts ---------------------------------------------------------------
@@ -294,7 +296,7 @@ class World:
         return self._s.colliders
 
     def add_collider(self, collider: ColliderT) -> ColliderT:
-        """Add a static collider (``engine.colliders``) and return it.
+        """Add a static collider (``engine.geometry.colliders``) and return it.
 
         Bodies already inside it are pushed out to its surface, with an OverlapWarning naming
         both. Colliders are 2D: a 1D World refuses them.
@@ -340,7 +342,7 @@ class World:
         ``begin``, ``separate`` and ``post_solve`` come after each step with the contacts that
         began, ended, or are open after it; ``pre_solve`` before each step for each pair of
         the types within reach of each other, and a False from it ignores that contact for
-        the step (a one-way platform). engine.collision_handlers says which way round each
+        the step (a one-way platform). engine.pipeline.collision_handlers says which way round each
         event comes. Returns a function that takes the handler off again.
         """
         handler = collision_handlers.CollisionHandler(
@@ -396,7 +398,7 @@ class World:
     @property
     def began(self) -> list[ContactEvent]:
         """The contacts that began in the last step (a bounce, a landing, entering a sensor),
-        in time order; each contact begins once and ends once (``engine.events``)."""
+        in time order; each contact begins once and ends once (``engine.dynamics.events``)."""
         return self._s.events.began
 
     @property
@@ -412,7 +414,7 @@ class World:
         step (pymunk's arbiters and their ``total_impulse``)."""
         return self._s.events.touching
 
-    # -- queries (engine.queries) ---------------------------------------------------------
+    # -- queries (engine.pipeline.queries) ---------------------------------------------------------
     def segment_query(
         self,
         start: Any,
@@ -574,7 +576,7 @@ class World:
         s = self._s
         k = s.kernel
         if k is not None and k.take(dt):
-            return  # the affine kernel (engine.affine): what small scenes take, call-light
+            return  # the affine kernel (engine.dynamics.affine): what small scenes take, call-light
         plan = s.fast
         if not (plan is not None and type(dt) is float and plan[0] == dt and plan[1] == s.version):
             # A new dt, or something changed since the last step. (The method is chosen here,
@@ -618,7 +620,7 @@ class World:
         """
         return readout.energy(self._s)
 
-    # -- snapshot and restore (engine.snapshot) ---------------------------------------------------
+    # -- snapshot and restore (engine.pipeline.snapshot) -------------------------------------------
     def snapshot(self) -> WorldSnapshot:
         """Everything needed to bring this world back to this moment, bit for bit."""
         return snapshots.take(self._s)

@@ -107,24 +107,24 @@ def pytest_configure(config: pytest.Config) -> None:
 # file to take out of this list. A new file is not listed, so it runs on both paths.
 PATH_FREE = frozenset(
     """
-engine/__init__.py engine/accuracy.py engine/body.py engine/checks.py engine/colliders.py
-engine/coloring.py engine/convex.py engine/filters.py engine/forcefield.py engine/forces.py
-engine/impact.py engine/integrators.py engine/kernels.py engine/kinematics.py engine/loop.py
-engine/manifold.py engine/mass.py engine/pair_grid.py engine/particles.py engine/points.py
-engine/queries.py engine/render/camera.py engine/render/clips.py engine/render/recorder.py
-engine/shaped.py engine/stability.py engine/store.py engine/torquefield.py engine/vector.py
-engine/world.py
-tests/test_alfred.py tests/test_auto.py tests/test_bench_platformer.py tests/test_body.py
-tests/test_car.py tests/test_clips.py tests/test_determinism.py tests/test_fireworks.py
-tests/test_forces.py tests/test_frames.py tests/test_fuzz_cli.py tests/test_fuzz_core.py
-tests/test_fuzz_particles.py tests/test_fuzz_render.py tests/test_fuzz_world.py
-tests/test_import_layers.py tests/test_integrators.py tests/test_interruptions.py
-tests/test_joint_contacts.py tests/test_kernels_ledger.py tests/test_kinematics.py
-tests/test_layers.py tests/test_limits.py tests/test_long_runs.py tests/test_loop.py
-tests/test_manifold.py tests/test_module_table.py tests/test_packaging.py tests/test_particles.py
-tests/test_pendulum.py tests/test_render_camera.py tests/test_render_recorder.py
-tests/test_shape_queries.py tests/test_stability.py tests/test_stability_demo.py
-tests/test_steppable.py tests/test_vector.py tests/test_vector_names.py
+engine/__init__.py engine/accuracy.py engine/body.py engine/checks.py engine/geometry/colliders.py
+engine/dynamics/coloring.py engine/geometry/convex.py engine/filters.py
+engine/dynamics/forcefield.py engine/forces.py engine/geometry/impact.py engine/integrators.py
+engine/kernels.py engine/kinematics.py engine/loop.py engine/geometry/manifold.py
+engine/geometry/mass.py engine/geometry/pair_grid.py engine/particles.py engine/points.py
+engine/pipeline/queries.py engine/render/camera.py engine/render/clips.py engine/render/recorder.py
+engine/geometry/shaped.py engine/stability.py engine/dynamics/store.py
+engine/dynamics/torquefield.py engine/vector.py engine/world.py tests/test_alfred.py
+tests/test_auto.py tests/test_bench_platformer.py tests/test_body.py tests/test_car.py
+tests/test_clips.py tests/test_determinism.py tests/test_fireworks.py tests/test_forces.py
+tests/test_frames.py tests/test_fuzz_cli.py tests/test_fuzz_core.py tests/test_fuzz_particles.py
+tests/test_fuzz_render.py tests/test_fuzz_world.py tests/test_import_layers.py
+tests/test_integrators.py tests/test_interruptions.py tests/test_joint_contacts.py
+tests/test_kernels_ledger.py tests/test_kinematics.py tests/test_layers.py tests/test_limits.py
+tests/test_long_runs.py tests/test_loop.py tests/test_manifold.py tests/test_module_table.py
+tests/test_packaging.py tests/test_particles.py tests/test_pendulum.py tests/test_render_camera.py
+tests/test_render_recorder.py tests/test_shape_queries.py tests/test_stability.py
+tests/test_stability_demo.py tests/test_steppable.py tests/test_vector.py tests/test_vector_names.py
 tests/test_vector_pygame.py tests/test_world.py tests/test_world_parts.py
 tests/test_world_view_spin.py
 """.split()

@@ -6,7 +6,7 @@ and with each solver (``path`` is ``"numpy"`` or ``"fast"`` for the exact solver
 default, and ``"soft-numpy"`` or ``"soft-fast"`` for the game's soft step, ``solver="soft"``),
 and a benchmark or a demo can run the same scene and print the same numbers.
 
-Materials combine by product here (pymunk's rule, ``engine.colliders``), not as Box2D mixes
+Materials combine by product here (pymunk's rule, ``engine.geometry.colliders``), not as Box2D mixes
 them (friction by the geometric mean, restitution by the larger). So a scene's bodies carry the
 material the issue names (HelloWorld's box: restitution 0, friction 0.3) and the colliders the
 product's identity, friction 1.0 (and restitution 1.0 where a scene bounces, 0 where it must

@@ -8,10 +8,10 @@ import math
 import pytest
 
 from engine import Body, Vector, World
+from engine.dynamics.policy import AUTO_ORDER
 from engine.forces import ConstantForce, Drag, Gravity, Spring, Wind
 from engine.integrators import INTEGRATORS
 from engine.measure import PROBLEMS, measure
-from engine.policy import AUTO_ORDER
 from engine.stability import is_stable
 
 

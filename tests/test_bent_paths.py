@@ -1,6 +1,6 @@
 """A body that bounces off a collider and meets another body within the same step.
 
-The static contacts bend a body's path within a step (engine.bent_paths); the bodies must meet
+The static contacts bend a body's path within a step (engine.exact.bent_paths); the bodies must meet
 one another on the bent path, at the exact moments, as on a straight one. Each test derives the
 exact answer in closed form (the bounce off the wall at the time its line is reached, the
 velocity mirrored in the wall's normal; then the meeting of two paths, the closed-form 2D

@@ -20,8 +20,8 @@ import pygame
 import pytest
 
 from engine import Body, Box, Plane, Vector, World
-from engine.colliders import Circle, Polygon, Segment
 from engine.forces import Gravity
+from engine.geometry.colliders import Circle, Polygon, Segment
 from engine.render.camera import Camera
 from engine.render.world_view import ASLEEP, BACKGROUND, INK, draw_world
 

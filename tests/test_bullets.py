@@ -1,5 +1,5 @@
 """Bullets (``Body.bullet``, Box2D's ``isBullet``): on the soft step a fast bullet is swept to its
-time of impact against the dynamic bodies too (engine.game_continuous), a fast body that is
+time of impact against the dynamic bodies too (engine.dynamics.game_continuous), a fast body that is
 none against the colliders and the static and kinematic bodies only; on the exact solver the
 flag is kept and changes nothing. The flag is set any time, and snapshots and copies keep it."""
 

@@ -2,7 +2,7 @@
 building every collider's faces and the grid afresh.
 
 ``World.add_collider`` and ``World.remove_collider`` put the collider's faces among the others
-(``engine.faces.faces_added``, ``faces_removed``) and into the grid (``FaceGrid.added``,
+(``engine.geometry.faces.faces_added``, ``faces_removed``) and into the grid (``FaceGrid.added``,
 ``removed``) in place, in a few array operations, where they were once all compiled and the
 grid laid again (235 plain steps for a peg on a board of 48). Here: the arrays and the grid
 agree with a fresh build after every change, a World changed between steps moves exactly as one
@@ -21,11 +21,11 @@ import pytest
 from test_contacts_paths import scene
 
 from engine import Body, Box, Circle, Filter, Plane, Polygon, Segment, Vector, World
-from engine.colliders import Collider
-from engine.contacts import Contacts
-from engine.face_grid import FaceGrid
-from engine.faces import Faces, compile_faces
+from engine.exact.contacts import Contacts
 from engine.forces import Gravity
+from engine.geometry.colliders import Collider
+from engine.geometry.face_grid import FaceGrid
+from engine.geometry.faces import Faces, compile_faces
 
 FIELDS = ("p", "n", "rho", "two", "lo", "hi", "c", "r", "owner", "e", "mu", "infinite")
 LISTS = ("line_list", "disc_list", "e_list", "mu_list", "owner_list")

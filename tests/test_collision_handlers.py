@@ -1,4 +1,4 @@
-"""Collision types and per-pair callbacks (engine.collision_handlers): pymunk's
+"""Collision types and per-pair callbacks (engine.pipeline.collision_handlers): pymunk's
 ``collision_type`` and ``on_collision(type_a, type_b, begin, pre_solve, post_solve, separate)``,
 and a pre_solve that ignores a contact for a step (a one-way platform), on both paths."""
 
@@ -11,7 +11,7 @@ import pytest
 from paths import PATHS
 
 from engine import Body, Plane, Polygon, Segment, Vector, World
-from engine.events import ContactEvent
+from engine.dynamics.events import ContactEvent
 from engine.forces import Gravity
 from engine.kernels import available as kernels_available
 

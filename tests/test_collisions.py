@@ -1,4 +1,4 @@
-"""Contacts between bodies (engine.collisions), checked against the closed-form collision.
+"""Contacts between bodies (engine.exact.collisions), checked against the closed-form collision.
 
 Two discs that meet with unit normal n (from b to a) and closing speed u = -(v_a - v_b).n
 leave with v_a' = v_a + J n / m_a and v_b' = v_b - J n / m_b, J = (1 + e) u / (1/m_a + 1/m_b):
@@ -17,7 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from engine import Body, Box, ContactEvent, Filter, Plane, Rod, Vector, World
-from engine.collisions import SLOP
+from engine.exact.collisions import SLOP
 from engine.forces import Gravity
 from engine.stability import StabilityWarning
 

@@ -67,7 +67,7 @@ _PROBE = """
 import os, sys
 import numpy as np
 from engine import kernels
-from engine.pile import carry_keys, label_rows
+from engine.exact.pile import carry_keys, label_rows
 if os.environ.get("WAITING"):
     kernels.waiting = lambda message: print("told:", message)
 kernels.prepare([label_rows, carry_keys])
@@ -116,7 +116,7 @@ def test_the_cache_goes_to_the_users_cache_folder_and_a_compile_says_so(tmp_path
     warm = run(WAITING="1")
     told = re.findall(r"told: (.*)", warm.stdout)
     assert told == [
-        "compiling engine.pile.label_rows again during play, for argument types its sample "
+        "compiling engine.exact.pile.label_rows again during play, for argument types its sample "
         "did not have (engine.kernels)"
     ], warm.stdout + warm.stderr
     assert "compiling" not in warm.stderr
@@ -149,12 +149,12 @@ def test_a_compiles_helper_takes_kernels_from_the_back_until_it_meets_a_claimed_
 #: A handful of the engine's cheapest kernels: a cold compile of them starts a helper as a
 #: cold compile of all does (each is found by name in the helper), in seconds, not a minute.
 _SMALL = (
-    "engine.events.merge_loop",
-    "engine.pile.label_rows",
-    "engine.pile.dissipate_rows",
-    "engine.pile.carry_keys",
-    "engine.pile.carry_gather",
-    "engine.pair_grid.reach_pairs",
+    "engine.dynamics.events.merge_loop",
+    "engine.exact.pile.label_rows",
+    "engine.exact.pile.dissipate_rows",
+    "engine.exact.pile.carry_keys",
+    "engine.exact.pile.carry_gather",
+    "engine.geometry.pair_grid.reach_pairs",
 )
 
 
@@ -232,7 +232,7 @@ def _scenes() -> Iterator[tuple[str, Callable[[], Any], float, int]]:
     yield "platformer (soft)", lambda: platformer_scene.build(solver="soft").world, 1 / 60, 120
 
     def thrown() -> Any:
-        # Its ball thrown at 60 m/s along the ground: fast, swept (engine.game_continuous).
+        # Its ball thrown at 60 m/s along the ground: fast, swept (engine.dynamics.game_continuous).
         game = platformer_scene.build(solver="soft")
         game.ball.vel = (60.0, -20.0)
         return game.world

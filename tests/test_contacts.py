@@ -37,7 +37,7 @@ from engine import (
     Vector,
     World,
 )
-from engine.contacts import MAX_IMPACTS
+from engine.exact.contacts import MAX_IMPACTS
 from engine.forces import Gravity
 
 G = 9.81

@@ -1,8 +1,8 @@
 """The contacts' two paths give the same steps.
 
 A few bodies are solved one at a time in Python floats (``Contacts._solve_few``, and the
-``*_one`` kernels of ``engine.impact``), many in numpy arrays (``Contacts._solve``, the ``*s``
-kernels): the same operations in the same order, so the same results. Here both run on the
+``*_one`` kernels of ``engine.geometry.impact``), many in numpy arrays (``Contacts._solve``, the
+``*s`` kernels): the same operations in the same order, so the same results. Here both run on the
 same random pairs and scenes and are compared, the scenes step by step with every state and
 event (the paths are chosen with ``Contacts.few`` and ``Contacts.few_resting``: 0 always
 takes the arrays, a huge number always the floats).
@@ -19,7 +19,7 @@ import pytest
 
 from engine import Body, Box, Circle, Filter, Plane, Segment, Vector, World
 from engine.forces import Gravity
-from engine.impact import (
+from engine.geometry.impact import (
     disc_hit_one,
     disc_hits,
     line_hit_one,
@@ -275,7 +275,7 @@ def test_rare_cases_give_the_same_steps(method: str) -> None:
 
 @pytest.mark.parametrize("seed", range(3))
 def test_the_grid_lists_every_face_within_reach(seed: int) -> None:
-    """The broadphase (also used by engine.collisions): every face a ball can reach is among
+    """The broadphase (also used by engine.exact.collisions): every face a ball can reach is among
     its pairs, both as the solver lists them and as ``FaceGrid.pairs`` does."""
     rng = np.random.default_rng(seed)
     world, _ = scene(seed, "auto")

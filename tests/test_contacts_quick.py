@@ -1,8 +1,8 @@
 """The contacts' first looks skip only bodies that cannot meet anything.
 
-``engine.face_looks.near`` compares each body's reach with a lower bound on its distance to
+``engine.geometry.face_looks.near`` compares each body's reach with a lower bound on its distance to
 every face (``FaceGrid.gap``: the grid's bounds, which hold the endless faces too), and
-``engine.face_looks.narrow`` takes each body's faces from its cell's list, by the quick way
+``engine.geometry.face_looks.narrow`` takes each body's faces from its cell's list, by the quick way
 (``FaceGrid.listed_fast``: endless faces listed as capsules, for bodies in cells clear of
 their backs) or the other (endless faces against every body). Here: the bound never exceeds
 the true distance, the quick lists hold every face a body can reach, the two ways give the
@@ -113,8 +113,8 @@ def test_the_quick_way_and_the_other_give_the_same_steps(seed: int, method: str)
     quick, other = box_world(100, seed, method=method), box_world(100, seed, method=method)
     assert quick._contacts is not None and other._contacts is not None
     other._contacts.grid.table = None  # the endless faces against every body
-    # numpy's two ways (the fast path's kernel, engine.face_looks.looks_loop, takes the quick
-    # one in its own loop: tests/test_kernels_faces.py compares it with these).
+    # numpy's two ways (the fast path's kernel, engine.geometry.face_looks.looks_loop, takes the
+    # quick one in its own loop: tests/test_kernels_faces.py compares it with these).
     quick._contacts.fast = False
     grid = quick._contacts.grid
     used = [0]

@@ -1,6 +1,6 @@
 """Contact events as a game needs them: one begin and one end for each contact, in time order,
 no chatter at rest, ends for what is taken out, and the impulse of a contact that continues
-(engine.events)."""
+(engine.dynamics.events)."""
 
 from __future__ import annotations
 
@@ -26,11 +26,11 @@ from engine import (
     StabilityWarning,
     Vector,
     World,
-    body_sensors,
 )
 from engine import kernels as engine_kernels
-from engine.events import COLLIDER, ContactLedger
+from engine.dynamics.events import COLLIDER, ContactLedger
 from engine.forces import Gravity
+from engine.pipeline import body_sensors
 from tests.paths import FAST, PATHS
 
 G = 9.81
@@ -303,7 +303,8 @@ def test_a_pile_asleep_keeps_its_contacts_open_with_no_events_until_woken(kernel
     # 60 balls dropped in a pit with a sensor by the floor: once every body sleeps a step
     # moves nothing, so the contacts open as they fell asleep stay open, impulses and the
     # sensor's included, and none begins or ends (the step skips the ledger's measures then:
-    # engine.event_dispatch.quiet); a ball dropped on the pile wakes it and events come again.
+    # engine.pipeline.event_dispatch.quiet); a ball dropped on the pile wakes it and events come
+    # again.
     w = World(integrator="auto", kernels=kernels)
     w.add_force(Gravity((0.0, -G)))
     w.add_collider(Box((0.0, 0.0), (12.0, 1000.0)))
@@ -342,10 +343,10 @@ def test_a_pile_asleep_keeps_its_contacts_open_with_no_events_until_woken(kernel
 
 # -- quiet steps: the ledger's and the soft settle's short cuts --------------------------------
 # Most steps of a game touch what the step before touched: the soft settle searches no report
-# when the keys are the same (engine.event_dispatch), the ledger returns at once when nothing
-# is reported or held at rest and what is inside sensors now is what is open, all sensors'
+# when the keys are the same (engine.pipeline.event_dispatch), the ledger returns at once when
+# nothing is reported or held at rest and what is inside sensors now is what is open, all sensors'
 # (ContactLedger.settle), and the sensor bodies are found again only when a filter changes
-# (engine.body_sensors). The tests below take each kind of change in the step after quiet
+# (engine.pipeline.body_sensors). The tests below take each kind of change in the step after quiet
 # steps, and compare with the same steps through the whole settle (the short cuts off).
 
 A, B, C, D = ((np.int64(s) << 32) | COLLIDER | 7 for s in (1, 2, 3, 4))
@@ -354,8 +355,8 @@ DT = 1 / 60
 
 def full_settle(mp: pytest.MonkeyPatch) -> None:
     """Turn the short cuts off: no keys are ever the same, the sensor bodies found each step."""
-    mp.setattr("engine.events.same_keys", lambda a, b: False)
-    mp.setattr("engine.event_dispatch.same_keys", lambda a, b: False)
+    mp.setattr("engine.dynamics.events.same_keys", lambda a, b: False)
+    mp.setattr("engine.pipeline.event_dispatch.same_keys", lambda a, b: False)
     rows = body_sensors._sensor_rows
 
     def afresh(state: Any) -> list[int]:
@@ -540,7 +541,7 @@ def test_a_soft_world_reports_each_change_after_quiet_steps(kernels: str) -> Non
         185: ([("b", "ledge")], [("b", "floor"), ("b", "coin")]),
     }
     assert ("b", "floor") in [e[:2] for e in log[landed[0]][2]]
-    # A contact the solver found begins with its impulse (engine.event_dispatch._changes),
+    # A contact the solver found begins with its impulse (engine.pipeline.event_dispatch._changes),
     # one it no longer finds ends where it last touched: the floor's under b, the ledge's.
     (ledge,) = log[185][0]
     assert ledge[4].y > 0.0 and ledge[3] == Vector(0.0, 1.0)

@@ -357,7 +357,7 @@ HANDED_OVER_ELSEWHERE: Scene = {
 #: rows by a hash of their World row numbers, and its energy guard scaled both piles by one
 #: factor, so a pile moved differently with the other world's bodies numbered among its own
 #: (5e-6 m by step 44). Now rows go in the order of their bodies and each pile is its own.
-#: One pile gained energy and was scaled back (engine.pile.dissipative); the other, which
+#: One pile gained energy and was scaled back (engine.exact.pile.dissipative); the other, which
 #: did not, was written as V0 + 1 (V - V0), V only to rounding: 1.4e-17 m/s off its twin alone.
 ONE_PILE_SCALED: Scene = {
     "balls": [
@@ -708,7 +708,7 @@ CREEPING_SLOWLY: Scene = {
 #: so in step 12 balls 1 and 2, meeting at 4.6 ms against the left wall, stopped at t = 0 too,
 #: and what the cap, the plastic collapse and the walls' push out made of that gained 1.7e-5
 #: of the first energy. Now each group of bodies linked by the impacts left stops at its own
-#: earliest moment (engine.pair_impacts.impacts_in_order).
+#: earliest moment (engine.exact.pair_impacts.impacts_in_order).
 STOPPED_ON_THE_FLOOR: Scene = {
     "balls": [
         (63.82573710929791, 59.57634565602905, -1222.4773916600627, -1220.279204048801,
@@ -794,7 +794,7 @@ def test_moderate_scenes_without_gravity_never_gain_energy(scene: Scene) -> None
     check_energy_never_increases(scene)
 
 
-#: Found exploring (numpy; the same on the fast path) with engine.pair_impacts' capped groups
+#: Found exploring (numpy; the same on the fast path) with engine.exact.pair_impacts' capped groups
 #: stopping each at its own moment: two 5 g balls (3 and 5, e = 0.096, side by side at the
 #: same velocity) meet at t = 0 in all 64 rounds of every step from step 11.
 CAPPED_PAIR_GAINS: Scene = {
@@ -826,7 +826,8 @@ CAPPED_PAIR_GAINS: Scene = {
 @xfail(
     "kinetic energy grows by 1.8e-9 of the first in step 12 of CAPPED_PAIR_GAINS (found "
     "exploring test_without_gravity_energy_never_increases, both paths): the two 5 g balls 3 "
-    "and 5 meet again at t = 0 in every one of the 64 rounds (engine.pair_impacts, MAX_ROUNDS) "
+    "and 5 meet again at t = 0 in every one of the 64 rounds (engine.exact.pair_impacts, "
+    "MAX_ROUNDS) "
     "of steps 11 and 12, are stopped there by the cap, and the capped step's plastic collapse "
     "(``plastic``, which never adds energy) followed by the walls' push out and ``separate`` "
     "end it with more energy than it began. The cap is not dissipative where a wall takes part; "
@@ -1035,7 +1036,7 @@ ROUNDS_SHARED_WITH_A_STRANGER: Scene = {
     "(1.4 cm, 0.83 m/s; found exploring test_filtered_apart_worlds_move_as_if_alone, both "
     "paths): the first world's 7 g ball squeezed against the floor meets its neighbour at t = 0 "
     "in every round from step 6 on, and the rounds of one step are counted for all bodies "
-    "together (engine.pair_impacts.impacts_in_order, MAX_ROUNDS): in step 18 the two worlds' "
+    "together (engine.exact.pair_impacts.impacts_in_order, MAX_ROUNDS): in step 18 the two worlds' "
     "impacts, at t = 0 and at 12.5 ms, take alternate rounds, so the second's pair is capped "
     "after 32 of its own where alone it has 64. The cap should count each group's rounds"
 )

@@ -313,7 +313,7 @@ BORN_ON_ONE_POINT = {
 }
 
 #: Two discs born on one point with two points, kicked apart at dt 0.5 under a strong pull:
-#: an impact of two bodies that neither moves (w_a + w_b = 0) made nan (engine.pair_impacts
+#: an impact of two bodies that neither moves (w_a + w_b = 0) made nan (engine.exact.pair_impacts
 #: ``bounce``), found by a random run.
 TWO_IMMOVABLE_MEET = {
     "colliders": [Segment((-8.0, -8.0), (-7.99, -8.0), restitution=0.0, friction=0.0)],

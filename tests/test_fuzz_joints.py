@@ -1,6 +1,6 @@
-"""Fuzzing joints (engine.joints, engine.joint_solver): anything a caller passes to a Hinge or a
-Weld is a joint or a clear error naming the argument; any world of bodies that turn, joined by
-hinges (with limits and motors), welds and anchored links, with a floor to land on, steps
+"""Fuzzing joints (engine.dynamics.joints, engine.exact.joint_solver): anything a caller passes to a
+Hinge or a Weld is a joint or a clear error naming the argument; any world of bodies that turn,
+joined by hinges (with limits and motors), welds and anchored links, with a floor to land on, steps
 without nan, holds every rigid joint to 1e-9 (unless it warned that a step was past what it
 holds), keeps every hinge within its limits, and reruns bit for bit from a snapshot; and
 balls thrown at a bat flipping on its motorized hinge never end a step inside it.
@@ -281,7 +281,7 @@ def inside(bat: Body, ball: Body) -> float:
 def test_no_ball_ends_a_step_inside_a_flipping_bat(scene) -> None:  # type: ignore[no-untyped-def]
     # The joints' solve turns the bat far within a step (knocked onto its stop, or swung at
     # full torque); a ball's row is its distance from the bat wherever it turns, from the
-    # side it came in by (engine.joint_contacts), so none ends a step inside the bat.
+    # side it came in by (engine.exact.joint_contacts), so none ends a step inside the bat.
     world, bat, hinge, balls, dt, key = scene
     with warnings.catch_warnings():
         warnings.simplefilter("error", StabilityWarning)

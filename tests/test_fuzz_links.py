@@ -1,5 +1,5 @@
-"""Fuzzing links (engine.links) and kinematic bodies: anything a caller passes is a link or a
-clear error naming the argument, and any world of linked bodies steps without nan, holds
+"""Fuzzing links (engine.dynamics.links) and kinematic bodies: anything a caller passes is a link or
+a clear error naming the argument, and any world of linked bodies steps without nan, holds
 every rod to 1e-9 of its length (unless it warned that a step stretched it too far), keeps
 every pinned body on its pin, and reruns bit for bit from a snapshot.
 """

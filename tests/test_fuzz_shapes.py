@@ -167,7 +167,8 @@ KINDS = [
 def point_sets(draw: st.DrawFn) -> tuple[str, list[tuple[float, float]], bool | None]:
     """(kind, points, whether they must build: True, False, or None for either)."""
     kind = draw(st.sampled_from(KINDS))
-    # 3 to 8 points mostly; "many" 9 to 64 (a polygon takes up to engine.convex.MAX_VERTICES)
+    # 3 to 8 points mostly; "many" 9 to 64 (a polygon takes up to
+    # engine.geometry.convex.MAX_VERTICES)
     least = 4 if kind == "dent" else 9 if kind == "many" else 3
     n = {"two": 2, "too_many": 257}.get(kind, draw(st.integers(least, 64 if kind == "many" else 8)))
     gaps = draw(st.lists(st.floats(0.25, 1.0), min_size=n, max_size=n))
@@ -378,7 +379,7 @@ SCENES = 400 if LONG else 12
 DT = 1.0 / 60.0
 
 #: The deepest any shape may end a step in a wall (m). The walls are solved by the pile's soft
-#: step (engine.soft: Box2D v3's soft contacts, pushing an overlap out at a bounded speed,
+#: step (engine.exact.soft: Box2D v3's soft contacts, pushing an overlap out at a bounded speed,
 #: with speculative rows so that nothing passes a wall at up to 1,000 m/s): a contact gives
 #: a little under load and under a fast blow and is pushed out over the next steps, so a
 #: shape may end a step a few centimetres in (the tumbler's corners go up to 0.1 m into its
@@ -451,7 +452,7 @@ def scenes(draw: st.DrawFn) -> dict[str, Any]:
     order = draw(st.permutations(range(len(cells))))
     spec["bodies"] = [dict(k, at=cells[c]) for k, c in zip(kinds, order, strict=False)]
     # The solver: the exact models, or World()'s own choice (the soft step for these rooms
-    # of shapes, engine.solver_choice), half the scenes each.
+    # of shapes, engine.pipeline.solver_choice), half the scenes each.
     spec["solver"] = draw(st.sampled_from(["exact", "auto"]))
     return spec
 
@@ -615,7 +616,7 @@ def test_a_ball_landing_on_a_box_stays_above_a_polygon_floor() -> None:
     # Found by the scene fuzz (with four 1 m Polygon walls): a 1 m box resting on a static
     # Polygon floor 1 m thick (y from -4 to -3), a ball of radius 0.5 let go above it. As the
     # ball comes within the box's reach it joins the box's pile, whose rows took every solid
-    # face within reach of it (engine.pile_rows.face_rows): the floor's bottom face (normal
+    # face within reach of it (engine.exact.pile_rows.face_rows): the floor's bottom face (normal
     # (0, -1) at y = -4, one-sided) put the ball 3.35 m "into" it, and the soft step's
     # projection moved it out there, to y = -4.5, at step 16. A polygon's faces now give a
     # ball a row only at its face of greatest separation (``_fronts``).
@@ -631,7 +632,7 @@ def test_a_ball_landing_on_a_box_stays_above_a_polygon_floor() -> None:
 
 def test_a_huge_rounding_is_refused_by_name() -> None:
     # Found by the construction fuzz with FUZZ_LONG=1: a triangle 1e-4 m wide rounded by 1e300
-    # raised OverflowError from Polygon(...) (engine/convex.py, the sectors' r**3), not a
+    # raised OverflowError from Polygon(...) (engine/geometry/convex.py, the sectors' r**3), not a
     # ValueError naming radius. Polygon.box(1, 1, radius=1e300) did the same.
     for make in (
         lambda: Polygon([(0.0, 0.0), (1e-4, 0.0), (0.0, 1e-4)], radius=1e300),
@@ -661,7 +662,7 @@ def test_a_box_pushed_into_the_ceiling_by_another_stays_in_the_room() -> None:
     # (body 2) ended with its centre 0.028 m past the ceiling, pushed from behind by the
     # heavier capsule: 0.49 m in the step at 18.7 m/s, from 0.41 m below the ceiling, so no
     # row with it (its own speed covers 0.31 m), and no impact on its start motion. It is now
-    # stopped where its straight move first touches the ceiling (engine.shape_impacts).
+    # stopped where its straight move first touches the ceiling (engine.exact.shape_impacts).
     spec = {
         **_SHRUNK_ROOM,
         "bodies": [
@@ -728,7 +729,7 @@ def test_a_polygon_knocked_on_into_a_wall_it_was_turning_into_stays_out_of_it() 
     # 8.4 kg polygon behind it. The pair's impact was retaken at its moment (0.0094 s) on the
     # start motions, and the polygon placed there 0.136 m into the wall: its own start motion
     # reached the wall before the two met. The wall's moment, the earlier, now places it
-    # (engine.shape_impacts, ``retake``): it ends the step touching the wall.
+    # (engine.exact.shape_impacts, ``retake``): it ends the step touching the wall.
     spec = {
         **_SHRUNK_ROOM,
         "bodies": [

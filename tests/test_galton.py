@@ -247,7 +247,7 @@ def test_reruns_are_bit_for_bit_the_same() -> None:
 
 def test_the_default_run_keeps_meetings_shallow_as_the_module_says(recorded: Recorded) -> None:
     # Two balls that meet on a peg sank up to 21% of r into each other before the contacts
-    # moved such pairs apart (engine.pair_impacts.separate); the module says how deep now.
+    # moved such pairs apart (engine.exact.pair_impacts.separate); the module says how deep now.
     scene = recorded.scene
     t, _, texts, problems = recorded.frames[1800]  # the last frame
     assert t == 60.0 and sorted(recorded.frames) == [420, 1800] and recorded.warned == []

@@ -1,5 +1,5 @@
-"""The soft step's stages in one compiled call (engine.game_loop.step_loop) against the numpy
-path's stages one by one: the same bodies to the bit, the same sleep, the same joints'
+"""The soft step's stages in one compiled call (engine.pipeline.game_loop.step_loop) against the
+numpy path's stages one by one: the same bodies to the bit, the same sleep, the same joints'
 impulses, the same sensing and the same events, step by step, through a scene that uses every
 stage the kernel fuses (waking, sleep, contacts, joints of every row, a mouse joint, a
 kinematic body, sensors)."""
@@ -58,7 +58,7 @@ def scene(kernels: str) -> tuple[World, dict[str, Any], list[tuple[str, str]]]:
     world.add_link(Hinge(gear_b, world.static_body, (-6.5, 6.0)))
     gear = world.add_link(GearJoint(wheel, gear_b, 0.0, -2.0))
     # A bead 0.3 m off its pivot (a groove of no length) that error_bias corrects slowly:
-    # moved with no speed left, it stays awake until the move is slow (engine.game_sleep's
+    # moved with no speed left, it stays awake until the move is slow (engine.pipeline.game_sleep's
     # drifting), then sleeps (at step 154).
     bead = world.add(Body((-12.3, 8.0), radius=0.1, mass=1.0))
     pivot = GrooveJoint(world.static_body, bead, (-12.0, 8.0), (-12.0, 8.0), (0.0, 0.0))

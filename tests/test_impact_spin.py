@@ -1,4 +1,4 @@
-"""Discs that meet at an exact impact turn each other (engine.pair_bounce): friction acts at
+"""Discs that meet at an exact impact turn each other (engine.exact.pair_bounce): friction acts at
 the point of contact, each body's angular momentum about that point is kept, the slip is
 stopped or reduced by mu J, never reversed, and no energy is gained. Each test holds the
 engine to a closed form or a theorem, to rounding where the answer is exact."""
@@ -12,10 +12,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-import engine.pair_impacts as pair_impacts
+import engine.exact.pair_impacts as pair_impacts
 from engine import Body, ContactEvent, Segment, Vector, World
+from engine.exact.pair_bounce import Turns, bounce
 from engine.forces import Gravity
-from engine.pair_bounce import Turns, bounce
 
 G = 9.81
 
@@ -43,7 +43,7 @@ def energy(*bodies: Body) -> float:
     )
 
 
-# -- the impulse itself (engine.pair_bounce.bounce), on random impacts -------------------------
+# -- the impulse itself (engine.exact.pair_bounce.bounce), on random impacts -----------------------
 
 
 def one_impact(
@@ -362,9 +362,9 @@ def test_the_pair_keeps_its_angular_momentum_about_the_origin_over_many_impacts(
 
 def test_a_disc_sent_into_a_wall_by_an_impact_turns_as_it_would_off_that_wall_alone() -> None:
     # a strikes b dead centre along phi (no slip: b leaves along phi without spin) and b meets
-    # the wall x = 2 within the same step (engine.pair_impacts: wall_hits, wall_bounce); the
-    # wall's bounce (the static contacts' rule: engine.rotation grip) gives the spin of a disc
-    # thrown at that wall alone.
+    # the wall x = 2 within the same step (engine.exact.pair_impacts: wall_hits, wall_bounce); the
+    # wall's bounce (the static contacts' rule: engine.dynamics.rotation grip) gives the spin of a
+    # disc thrown at that wall alone.
     phi, u, r = 0.5, 4.0, 0.25
     d = (math.cos(phi), math.sin(phi))
     kw = {"radius": r, "mass": 1.0, "friction": 0.6, "restitution": 1.0}

@@ -9,6 +9,8 @@ package's re-exports in ``engine/__init__.py`` close no circle.
 
 from __future__ import annotations
 
+import ast
+
 from test_layers import ENGINE, import_statements, module_name
 
 
@@ -102,4 +104,69 @@ def test_the_engines_modules_form_no_circle_of_imports() -> None:
         + "; the lower module must not import the higher one, even under TYPE_CHECKING or "
         "inside a function (move the shared part down, or take what it needs as an argument "
         "or by a Protocol)"
+    )
+
+
+# -- The layers, in the folders ------------------------------------------------------------------
+
+#: The engine's layers, bottom up: a module imports modules of its own layer or of one below.
+#: The core is the lesson's own (engine/*.py but the doors); the doors open the rest to a user.
+LAYERS = ("core", "geometry", "dynamics", "exact", "pipeline", "door", "render")
+#: The top-level modules that are doors, not core: each may import any layer below the renderer.
+DOORS = {"engine", "engine.world", "engine.particles", "engine.measure", "engine.habits"}
+DOORS |= {"engine.warmup"}
+
+
+def layer(module: str) -> str:
+    """The layer of an engine module: its folder's, or the core's or a door's at the top."""
+    parts = module.split(".")
+    if module in DOORS:
+        return "door"
+    if len(parts) == 2 and parts[1] not in LAYERS:
+        return "core"
+    assert parts[1] in LAYERS, f"{module}: engine/{parts[1]}/ is no layer of {LAYERS}"
+    return parts[1]
+
+
+def run_time_imports(source: str, module: str, is_package: bool, known: set[str]) -> set[str]:
+    """The modules of ``known`` that ``source`` imports when it runs: the imports under ``if
+    TYPE_CHECKING:`` left out (an annotation names a type; it loads nothing, and a circle
+    through one is still found by the test above)."""
+    tree = ast.parse(source)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and ast.unparse(node.test).endswith("TYPE_CHECKING"):
+            node.body = [ast.Pass()]
+    return imports_of(ast.unparse(tree), module, is_package, known)
+
+
+def test_the_layer_scanner_leaves_out_annotations_only() -> None:
+    known = {"engine.a", "engine.b"}
+    source = (
+        "from typing import TYPE_CHECKING\n"
+        "if TYPE_CHECKING:\n"
+        "    from .a import A\n"
+        "from .b import B\n"
+    )
+    assert run_time_imports(source, "engine.x", False, known) == {"engine.b"}
+    assert layer("engine.body") == "core" and layer("engine.world") == "door"
+    assert layer("engine.geometry.manifold") == "geometry"
+
+
+def test_no_module_imports_one_of_a_layer_above_it() -> None:
+    paths = sorted(ENGINE.rglob("*.py"))
+    known = {module_name(p) for p in paths}
+    up: dict[str, list[str]] = {}
+    for p in paths:
+        module = module_name(p)
+        rank = LAYERS.index(layer(module))
+        found = run_time_imports(
+            p.read_text(encoding="utf-8"), module, p.name == "__init__.py", known
+        )
+        above = sorted(m for m in found if LAYERS.index(layer(m)) > rank)
+        if above:
+            up[module] = above
+    assert len(known) > 90  # the scan found the engine
+    assert up == {}, (
+        f"imports of a higher layer (the layers, bottom up: {', '.join(LAYERS)}); move the shared "
+        "part down, or take what it needs as an argument"
     )

@@ -1,5 +1,6 @@
-"""A disc against a polygon in the joints' solve (engine.joint_contacts, engine.joint_rows):
-its distance from the polygon wherever the polygon turns, from the side it came in by.
+"""A disc against a polygon in the joints' solve (engine.exact.joint_contacts,
+engine.exact.joint_rows): its distance from the polygon wherever the polygon turns, from the side it
+came in by.
 
 Checked against geometry worked by hand (a box's faces and corners) and against the
 derivative: each row's gradient is the finite difference of its value, for every kind of
@@ -13,9 +14,9 @@ import math
 import numpy as np
 import pytest
 
-from engine.joint_contacts import polygon_distance
-from engine.joint_rows import CN, CT, Plan, evaluate
-from engine.manifold_kinds import Capsules, Polygons
+from engine.exact.joint_contacts import polygon_distance
+from engine.exact.joint_rows import CN, CT, Plan, evaluate
+from engine.geometry.manifold_kinds import Capsules, Polygons
 
 # A bat 8 long and 1 thick (its centre line on y = 0, from x = 0 to 8), as a polygon.
 BAT = Polygons.of([[(0.0, -0.5), (8.0, -0.5), (8.0, 0.5), (0.0, 0.5)]])

@@ -1,5 +1,5 @@
-"""Joints at anchors (engine.joints, engine.joint_solver): hinges with limits and motors, welds,
-and rods, cables and pins held away from a body's centre.
+"""Joints at anchors (engine.dynamics.joints, engine.exact.joint_solver): hinges with limits and
+motors, welds, and rods, cables and pins held away from a body's centre.
 
 Each behaviour is checked against the closed form or a theorem: the period of a rod on a
 hinge against the exact elliptic one, a motor's angular velocity against min(T t / I, speed),

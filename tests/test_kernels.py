@@ -19,8 +19,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from engine import Body, Vector, World, kernels
+from engine.exact.soft import Arms, Rows, SoftStep
 from engine.kernels import LoopKernel
-from engine.soft import Arms, Rows, SoftStep
 
 COMPILED = kernels.available()
 
@@ -48,7 +48,7 @@ def random_pile(seed: int, bodies: int, rows: int) -> tuple[Rows, np.ndarray, np
     b[same] = bodies
     lo, hi = np.minimum(a, b), np.maximum(a, b)
     static = hi == bodies
-    a = np.where(static, bodies, lo)  # A is the static slot for a wall, as in engine.pile
+    a = np.where(static, bodies, lo)  # A is the static slot for a wall, as in engine.exact.pile
     b = np.where(static, lo, hi)
     angle = rng.uniform(0, 2 * np.pi, rows)
     warm = rng.random(rows) < 0.6
@@ -126,7 +126,7 @@ def random_arms(seed: int, bodies: int, r: Rows, moves: np.ndarray) -> tuple[Arm
     turns = np.append(rng.random(bodies) < 0.7, False) & moves
     radius = rng.uniform(0.1, 1.0, bodies + 1)
     inv = np.where(turns, 1.0 / rng.uniform(0.05, 3.0, bodies + 1), 0.0)
-    # A row's lever arm: the radius, less half of an overlap (engine.pile_rows.lever_arms).
+    # A row's lever arm: the radius, less half of an overlap (engine.exact.pile_rows.lever_arms).
     half = 0.5 * np.minimum(r.separation, 0.0)
     la = np.where(turns[r.a], radius[r.a] + half, 0.0)
     lb = np.where(turns[r.b], radius[r.b] + half, 0.0)

@@ -15,10 +15,11 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from engine import coloring, kernels
-from engine.coloring import MAX_COLORS, batches, colors
+from engine import kernels
+from engine.dynamics import coloring
+from engine.dynamics.coloring import MAX_COLORS, batches, colors
+from engine.exact.pile import components
 from engine.kernels import LoopKernel
-from engine.pile import components
 
 COMPILED = kernels.available()
 
@@ -142,7 +143,7 @@ def test_components_kernel_is_its_numpy_twin(seed: int, bodies: int, rows: int) 
 
 
 def _sleep_groups(n: int, pa: np.ndarray, pb: np.ndarray) -> np.ndarray:
-    """engine.sleep's groups as it labelled them before it took ``components``: each body
+    """engine.exact.sleep's groups as it labelled them before it took ``components``: each body
     the least label of its neighbours, then labels follow labels, to a fixed point."""
     label = np.arange(n)
     while len(pa):
@@ -159,7 +160,7 @@ def _sleep_groups(n: int, pa: np.ndarray, pb: np.ndarray) -> np.ndarray:
 
 @given(seed=st.integers(0, 2**32 - 1), bodies=st.integers(1, 40), rows=st.integers(0, 100))
 def test_sleep_groups_are_the_components(seed: int, bodies: int, rows: int) -> None:
-    """The groups engine.sleep labelled with its own loop are ``components``' labels, on
+    """The groups engine.exact.sleep labelled with its own loop are ``components``' labels, on
     both paths (sleep takes them now, and on the fast path the kernel's)."""
     rng = np.random.default_rng(seed)
     pa, pb = rng.integers(0, bodies, rows), rng.integers(0, bodies, rows)
@@ -214,12 +215,12 @@ def test_the_comparison_can_fail() -> None:
 def test_prepare_compiles_the_kernels() -> None:
     """The modules of these kernels are in engine.kernels.MODULES, so ``prepare`` reaches
     them (each with a sample call)."""
-    assert {"engine.coloring", "engine.pile"} <= set(kernels.MODULES)
+    assert {"engine.dynamics.coloring", "engine.exact.pile"} <= set(kernels.MODULES)
     names = {k.name for k in kernels.kernels()}
     assert {
-        "engine.coloring.color_rows",
-        "engine.coloring.batch_rows",
-        "engine.pile.label_rows",
+        "engine.dynamics.coloring.color_rows",
+        "engine.dynamics.coloring.batch_rows",
+        "engine.exact.pile.label_rows",
     } <= names
     for k in (coloring.color_rows, coloring.batch_rows):
         assert k.name in kernels._SAMPLES

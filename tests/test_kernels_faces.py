@@ -1,9 +1,9 @@
 """The static contacts' loop kernels against their twins: the first looks
-(engine.face_looks.looks_loop, called by ``first_looks``) against ``near``, ``asleep`` and
-``narrow`` as engine.contacts takes them (the same rows, sleepers and (body, face) pairs, in
-the same order), the free bodies' paths (engine.sweep_paths.paths_loop) against ``solve_few``'s
-Python floats (the same states, events and resting faces), on random bodies among random
-faces; and a World whose static contacts take either path ends bit-identical."""
+(engine.geometry.face_looks.looks_loop, called by ``first_looks``) against ``near``, ``asleep`` and
+``narrow`` as engine.exact.contacts takes them (the same rows, sleepers and (body, face) pairs, in
+the same order), the free bodies' paths (engine.exact.sweep_paths.paths_loop) against
+``solve_few``'s Python floats (the same states, events and resting faces), on random bodies among
+random faces; and a World whose static contacts take either path ends bit-identical."""
 
 from __future__ import annotations
 
@@ -15,16 +15,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from engine import Body, Box, Circle, Filter, Polygon, Segment, Vector, World, kernels
-from engine.contacts import Contacts
-from engine.face_grid import FaceGrid
-from engine.face_looks import first_looks, grid_args, looks_loop, looks_ready, narrow, near
-from engine.faces import Faces
+from engine.dynamics.rotation import Spin
+from engine.exact.contacts import Contacts
+from engine.exact.resting import asleep as asleep_arrays
+from engine.exact.sweep import Paths
+from engine.exact.sweep_one import MET, PYTHON, _paths_fast, asleep_few, solve_few
 from engine.forces import Gravity
+from engine.geometry.face_grid import FaceGrid
+from engine.geometry.face_looks import first_looks, grid_args, looks_loop, looks_ready, narrow, near
+from engine.geometry.faces import Faces
 from engine.kernels import LoopKernel
-from engine.resting import asleep as asleep_arrays
-from engine.rotation import Spin
-from engine.sweep import Paths
-from engine.sweep_one import MET, PYTHON, _paths_fast, asleep_few, solve_few
 
 Allowed = Callable[[np.ndarray, np.ndarray], np.ndarray] | None
 
@@ -292,7 +292,7 @@ def solve_both(
         points.append(c)
     if kind == "polygons":
         # Solid slabs, thin and thick, some turned (their far faces are behind a ball beside
-        # them: engine.faces.behind_solid), some rounded.
+        # them: engine.geometry.faces.behind_solid), some rounded.
         for _ in range(int(rng.integers(1, 4))):
             c = rng.uniform((2.0, 2.0), (18.0, 13.0))
             size = (float(rng.uniform(1.0, 6.0)), float(rng.choice([0.1, 0.5, 1.5])))

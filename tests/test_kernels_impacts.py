@@ -1,9 +1,9 @@
-"""The loop kernel of the exact impacts (engine.pair_impacts.pair_times) against its numpy
+"""The loop kernel of the exact impacts (engine.exact.pair_impacts.pair_times) against its numpy
 twin, and whole scenes of exact impacts on both paths.
 
 ``times_of_impact`` on the fast path runs ``pair_times``, pair by pair, the same operations
-in the same order as the twin (``times_of_impact`` with ``engine.impact.disc_hits``), so the
-two give the same bits; the pairs whose polynomial is a cubic or a quartic (the bodies'
+in the same order as the twin (``times_of_impact`` with ``engine.geometry.impact.disc_hits``), so
+the two give the same bits; the pairs whose polynomial is a cubic or a quartic (the bodies'
 accelerations differ) go to the twin on both paths. Without numba the kernel runs as the plain
 Python it is written in (``LoopKernel.py``).
 """
@@ -17,9 +17,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from engine import Body, Vector, World, kernels, pair_impacts
+from engine import Body, Vector, World, kernels
+from engine.exact import pair_impacts
+from engine.exact.pair_impacts import pair_times, times_of_impact
 from engine.kernels import LoopKernel
-from engine.pair_impacts import pair_times, times_of_impact
 
 COMPILED = kernels.available()
 PATHS = ["numpy", "fast"] if COMPILED else ["numpy"]

@@ -1,4 +1,4 @@
-"""The joint solver's loop kernel (engine.joint_rows' ``rows_loop``) against its numpy twin.
+"""The joint solver's loop kernel (engine.exact.joint_rows' ``rows_loop``) against its numpy twin.
 
 Each row's value c and its gradient's row of J come from the same products in the same order,
 so the two agree to 1e-12 relative on random rows of every kind (a point two bodies share, a
@@ -20,9 +20,9 @@ from hypothesis import strategies as st
 
 import demos.pinball as pb
 from engine import Body, Polygon, Vector, World, kernels
+from engine.dynamics.joints import Hinge
+from engine.exact.joint_rows import CT, Plan, _rows, evaluate, rows_loop
 from engine.forces import Gravity
-from engine.joint_rows import CT, Plan, _rows, evaluate, rows_loop
-from engine.joints import Hinge
 from engine.kernels import LoopKernel
 
 COMPILED = kernels.available()

@@ -1,4 +1,4 @@
-"""The contact ledger's loop kernel (engine.events' ``merge_loop``) against its numpy twin.
+"""The contact ledger's loop kernel (engine.dynamics.events' ``merge_loop``) against its numpy twin.
 
 A step's ledger looks at every key that was open, was reported, is held at rest or is inside a
 sensor: the kernel walks the sorted lists at once where the twin concatenates, sorts and
@@ -15,7 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from engine import kernels
-from engine.events import _merge, _unique, merge_loop
+from engine.dynamics.events import _merge, _unique, merge_loop
 from engine.kernels import LoopKernel
 
 COMPILED = kernels.available()

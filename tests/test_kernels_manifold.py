@@ -1,5 +1,5 @@
-"""The narrowphase's loop kernels (engine.manifold_polygon's ``polygon_loop``, engine.manifold's
-``half_plane_polygon_loop``) against their numpy twins.
+"""The narrowphase's loop kernels (engine.geometry.manifold_polygon's ``polygon_loop``,
+engine.geometry.manifold's ``half_plane_polygon_loop``) against their numpy twins.
 
 The kernel walks each pair through its twin's steps (the separating axes, the reference and
 incident edges, the clip, the nearest points of the edges, ``finish``) with the twin's
@@ -20,9 +20,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from engine import kernels
-from engine.colliders import Box, Collider, Plane, Polygon
-from engine.kernels import LoopKernel
-from engine.manifold import (
+from engine.geometry.colliders import Box, Collider, Plane, Polygon
+from engine.geometry.manifold import (
     Capsules,
     Circles,
     HalfPlanes,
@@ -33,7 +32,8 @@ from engine.manifold import (
     collide_polygons,
     static_shapes,
 )
-from engine.shaped import ShapeTable, pair_rows, static_rows
+from engine.geometry.shaped import ShapeTable, pair_rows, static_rows
+from engine.kernels import LoopKernel
 
 COMPILED = kernels.available()
 seeds = st.integers(0, 2**32 - 1)
@@ -331,11 +331,11 @@ def test_static_rows_on_half_planes_are_the_twins(seed: int, bodies: int, planes
 @settings(max_examples=40, deadline=None)
 @given(seed=seeds, pairs=st.integers(1, 40), margin=st.sampled_from([0.0, 0.02, math.inf]))
 def test_round_kernel_is_its_numpy_twin(seed: int, pairs: int, margin: float) -> None:
-    """``round_loop`` (engine.narrowphase, the soft step's round pairs): the manifolds of
+    """``round_loop`` (engine.geometry.narrowphase, the soft step's round pairs): the manifolds of
     ``collide_polygon_circle`` and ``collide_circles`` for polygons and circles against
     circles, apart, touching, inside and on a corner, with the circle's centre off its body's
     position, on both paths."""
-    from engine.narrowphase import Tables, collide_round_pairs
+    from engine.geometry.narrowphase import Tables, collide_round_pairs
 
     rng = np.random.default_rng(seed)
     a, xa, qa, _, _, _ = make_pairs(seed, pairs, "free", True, False)

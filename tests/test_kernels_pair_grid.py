@@ -1,4 +1,4 @@
-"""The broadphase's loop kernel (engine.pair_grid.grid_pairs_loop) against its numpy twin.
+"""The broadphase's loop kernel (engine.geometry.pair_grid.grid_pairs_loop) against its numpy twin.
 
 The twins must give the same pairs in the same order, not just the same set: the pairs'
 order is the order of the contacts downstream, and a Gauss-Seidel solve depends on it. So
@@ -16,8 +16,8 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from engine import kernels
+from engine.geometry.pair_grid import find_pairs, grid_pairs, grid_pairs_loop
 from engine.kernels import LoopKernel
-from engine.pair_grid import find_pairs, grid_pairs, grid_pairs_loop
 
 COMPILED = kernels.available()
 
@@ -154,9 +154,9 @@ def test_the_comparison_catches_a_kernel_that_differs() -> None:
 
 
 def test_the_kernel_is_one_of_the_engines_and_compiles_from_its_sample() -> None:
-    """prepare() finds the kernel (engine.pair_grid is in kernels.MODULES), and its sample
+    """prepare() finds the kernel (engine.geometry.pair_grid is in kernels.MODULES), and its sample
     call gives the one touching pair."""
-    assert "engine.pair_grid" in kernels.MODULES
+    assert "engine.geometry.pair_grid" in kernels.MODULES
     assert grid_pairs_loop in kernels.kernels()
     a, b = grid_pairs_loop(np.array([[0.0, 0.0], [1.0, 0.0]]), 2.0, np.full(2, 0.5),
                            np.zeros(2), True)  # fmt: skip
@@ -170,7 +170,7 @@ def test_the_kernel_is_one_of_the_engines_and_compiles_from_its_sample() -> None
 )
 def test_reach_pairs_is_pairs_of(seed: int, n: int, few: int) -> None:
     """The fast few against everyone: the same pairs, in the same order, on both paths."""
-    from engine.pair_grid import pairs_of
+    from engine.geometry.pair_grid import pairs_of
 
     rng = np.random.default_rng(seed)
     P = rng.uniform(-5, 5, (n, 2))

@@ -1,5 +1,5 @@
-"""The loop kernels of a pile's step (engine.pile, engine.pile_rows, engine.push_out) against
-their numpy twins.
+"""The loop kernels of a pile's step (engine.exact.pile, engine.exact.pile_rows,
+engine.exact.push_out) against their numpy twins.
 
 Each kernel assembles, looks up or moves rows with its twin's products and sums in the same
 order, so on the same inputs it must give the twin's arrays bit for bit (``same``: dtype,
@@ -15,14 +15,15 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from engine import kernels, pile, pile_rows, push_out
-from engine.colliders import Box, Circle, Collider, Polygon, Segment
-from engine.contacts import Contacts
-from engine.faces import compile_faces
+from engine import kernels
+from engine.exact import pile, pile_rows, push_out
+from engine.exact.contacts import Contacts
+from engine.exact.pile import Carried, carry_out, dissipative
+from engine.exact.pile_rows import disc_rows, face_rows, held, warm_start
+from engine.exact.push_out import push_out_rows
+from engine.geometry.colliders import Box, Circle, Collider, Polygon, Segment
+from engine.geometry.faces import compile_faces
 from engine.kernels import LoopKernel
-from engine.pile import Carried, carry_out, dissipative
-from engine.pile_rows import disc_rows, face_rows, held, warm_start
-from engine.push_out import push_out_rows
 
 COMPILED = kernels.available()
 seeds = st.integers(0, 2**32 - 1)
@@ -330,7 +331,9 @@ def test_the_comparison_can_fail() -> None:
 def test_the_kernels_are_the_engines_and_have_samples() -> None:
     """These modules are in engine.kernels.MODULES, and every kernel has a sample call for
     ``prepare`` that runs."""
-    assert {"engine.pile", "engine.pile_rows", "engine.push_out"} <= set(kernels.MODULES)
+    assert {"engine.exact.pile", "engine.exact.pile_rows", "engine.exact.push_out"} <= set(
+        kernels.MODULES
+    )
     mine = (
         pile.dissipate_rows,
         pile.carry_keys,

@@ -1,4 +1,4 @@
-"""The plan's loop kernel (engine.pair_plan.plan_pairs) against its numpy twins: the same
+"""The plan's loop kernel (engine.exact.pair_plan.plan_pairs) against its numpy twins: the same
 bodies marked as a pile's, on random pairs of discs (identical masks)."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from engine import kernels
+from engine.exact.pair_plan import grow, join_masks, plan_pairs, rest_seeds
 from engine.kernels import LoopKernel
-from engine.pair_plan import grow, join_masks, plan_pairs, rest_seeds
 
 
 @pytest.fixture(autouse=True)
@@ -21,7 +21,7 @@ def _kernels_run(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def numpy_plan(a, b, x0, v0, A, Ah, r, dt, loaded, island, kin, asleep):
-    """The plan as engine.collisions takes it on the numpy path."""
+    """The plan as engine.exact.collisions takes it on the numpy path."""
     island = island.copy()
     seed = rest_seeds(a, b, x0, v0, A, Ah, r, dt, loaded)
     island[a[seed]] = island[b[seed]] = True

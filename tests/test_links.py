@@ -1,4 +1,4 @@
-"""Links (engine.links): rods hold their length, cables at most theirs, pins their point.
+"""Links (engine.dynamics.links): rods hold their length, cables at most theirs, pins their point.
 
 Each behaviour is checked against physics: the length a rod holds after every step, the
 tension of a pendulum against m g + m v^2 / L, momentum and angular momentum of a spinning

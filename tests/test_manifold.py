@@ -1,5 +1,5 @@
-"""The narrowphase (engine.manifold): each manifold against exact geometry computed here by brute
-force in Python floats (nearest points of segments, point-in-polygon, distances between
+"""The narrowphase (engine.geometry.manifold): each manifold against exact geometry computed here by
+brute force in Python floats (nearest points of segments, point-in-polygon, distances between
 polygons as the least vertex-to-edge distance, depths as the least overlap over every edge
 normal), never against numbers the module produced.
 """
@@ -16,9 +16,9 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from engine import Box, Circle, Plane, Segment
-from engine.colliders import Polygon
-from engine.convex import convex_polygon
-from engine.manifold import (
+from engine.geometry.colliders import Polygon
+from engine.geometry.convex import convex_polygon
+from engine.geometry.manifold import (
     LINEAR_SLOP,
     Capsules,
     Circles,
@@ -38,7 +38,7 @@ from engine.manifold import (
     polygon_distance,
     static_shapes,
 )
-from engine.manifold_polygon import segment_distance as ericson
+from engine.geometry.manifold_polygon import segment_distance as ericson
 
 P = tuple[float, float]
 BIG = 100.0  # a margin that lets every pair of this size have its points
@@ -726,7 +726,7 @@ def test_a_circle_meets_each_static_collider_at_the_colliders_own_distance(
 ) -> None:
     """A dynamic circle (its centre off its body's origin, the body turned) against every
     collider as kinds: the least separation of each collider's manifolds is the collider's
-    own signed distance (engine.colliders) from the centre, less r."""
+    own signed distance (engine.geometry.colliders) from the centre, less r."""
     local = (0.1, -0.2)
     (c,) = place((x, y), q, [local])
     found: dict[int, float] = {}

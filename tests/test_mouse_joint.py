@@ -1,4 +1,4 @@
-"""The mouse joint (engine.mouse_joint): a body's point pulled toward a target by a bounded
+"""The mouse joint (engine.dynamics.mouse_joint): a body's point pulled toward a target by a bounded
 force, Box2D's b2MouseJoint.
 
 Checked against closed forms and theorems: a free anchor follows the damped oscillator of the

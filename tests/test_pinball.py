@@ -125,7 +125,7 @@ def test_no_ball_passes_through_a_flipper_at_the_games_speeds() -> None:
 
 
 def test_no_ball_passes_through_a_flipper_in_twenty_throws_at_up_to_40_m_s() -> None:
-    # The ball's contacts with the bat take part in the joints' solve (engine.joint_solver):
+    # The ball's contacts with the bat take part in the joints' solve (engine.exact.joint_solver):
     # the hinge, the limits and the motor hold the bat while the contact holds the ball.
     result = bench.tunnelling(20)
     assert result.hits >= 15
@@ -142,7 +142,7 @@ PASSED_BEFORE = (241, 247, 310, 359, 366, 380, 410, 628, 741, 810, 820, 907)
 @pytest.mark.parametrize("trial", PASSED_BEFORE)
 def test_a_ball_that_knocks_the_bat_onto_its_stop_does_not_pass_it(trial: int) -> None:
     # The disc's row is its distance from the bat wherever the joints' solve turns the bat,
-    # from the side it came in by (engine.joint_contacts); a row linear in the angle let it
+    # from the side it came in by (engine.exact.joint_contacts); a row linear in the angle let it
     # through. Each of these throws hits the bat (it is not a miss that passes).
     result = bench.throw(trial)
     assert result.hits == 1

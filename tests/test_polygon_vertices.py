@@ -1,5 +1,5 @@
-"""Convex polygons of many vertices (up to ``engine.convex.MAX_VERTICES`` = 256), as colliders
-and as bodies' shapes, on both paths.
+"""Convex polygons of many vertices (up to ``engine.geometry.convex.MAX_VERTICES`` = 256), as
+colliders and as bodies' shapes, on both paths.
 
 Each checked against a closed form: a regular n-gon's area n R^2 sin(2 pi / n) / 2 and moment
 m R^2 (1 + 2 cos^2(pi / n)) / 6; a ball dropped on a 20-gon meets the face the geometry says,
@@ -17,11 +17,16 @@ import pytest
 from test_kernels_manifold import agree
 
 from engine import Body, Plane, Vector, World, kernels
-from engine.colliders import Polygon
-from engine.convex import MAX_VERTICES
 from engine.forces import Gravity
-from engine.manifold import HalfPlanes, Polygons, collide_half_plane_polygon, collide_polygons
-from engine.mass import area_for_polygon, moment_for_polygon
+from engine.geometry.colliders import Polygon
+from engine.geometry.convex import MAX_VERTICES
+from engine.geometry.manifold import (
+    HalfPlanes,
+    Polygons,
+    collide_half_plane_polygon,
+    collide_polygons,
+)
+from engine.geometry.mass import area_for_polygon, moment_for_polygon
 
 G = 9.81
 COMPILED = kernels.available()
@@ -51,7 +56,7 @@ def test_a_polygon_takes_up_to_max_vertices_and_the_refusal_says_why() -> None:
         Polygon(ngon(MAX_VERTICES + 1, 1.0))
     words = str(info.value)
     assert "at most 256 points" in words and "got 257" in words
-    assert "8 bits" in words and "engine.convex.MAX_VERTICES" in words
+    assert "8 bits" in words and "engine.geometry.convex.MAX_VERTICES" in words
     with pytest.raises(ValueError, match="at most 256 points"):
         Body(Vector(0.0, 0.0), shape=Polygon(ngon(300, 1.0)))
 
@@ -113,7 +118,7 @@ def test_a_ball_dropped_on_a_20gon_bounces_off_the_face_below_it(face: int) -> N
 def test_an_ngon_dropped_on_the_ground_rests_on_its_bottom_face(n: int, ground: str) -> None:
     """A regular n-gon (R = 0.5 m) let go 1 cm above the ground, its bottom face level, lands
     on that face: its lowest point stays within 0.1 mm of the ground (the floor holds a body's
-    whole load: engine.soft, HELD_CORNER_STATIC), its centre is then the apothem
+    whole load: engine.exact.soft, HELD_CORNER_STATIC), its centre is then the apothem
     R cos(pi / n) up, to 0.1 mm, and it does not sink or creep: still from 1 s to 3 s."""
     R = 0.5
     apothem = R * math.cos(math.pi / n)

@@ -1,4 +1,5 @@
-"""Convex polygon colliders (engine.colliders.Polygon) and the mass functions (engine.mass).
+"""Convex polygon colliders (engine.geometry.colliders.Polygon) and the mass functions
+(engine.geometry.mass).
 
 Each checked against a closed form, a theorem or an independent computation: refusals name
 the argument; area, centroid and distance against exact geometry; a ball on a static polygon
@@ -15,10 +16,11 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from engine import Body, Box, Circle, OverlapWarning, Plane, Segment, Vector, World, convex
-from engine.colliders import Polygon
+from engine import Body, Box, Circle, OverlapWarning, Plane, Segment, Vector, World
 from engine.forces import Gravity
-from engine.mass import (
+from engine.geometry import convex
+from engine.geometry.colliders import Polygon
+from engine.geometry.mass import (
     area_for_circle,
     area_for_polygon,
     area_for_segment,
@@ -183,8 +185,9 @@ def test_rounded_area_and_centroid_match_a_fine_polygon() -> None:
     r = 0.4
     outline = _polygonized(tri, r, 2000)
     rounded = Polygon(tri, r)
-    # The outline has 6,000 points, past a collider's 8: its numbers come from engine.convex
-    # with no radius (the core's shoelace formulas, checked against pymunk below).
+    # The outline has 6,000 points, past a collider's 8: its numbers come from
+    # engine.geometry.convex with no radius (the core's shoelace formulas, checked against pymunk
+    # below).
     assert abs(rounded.area - convex.area(outline)) < 1e-6 * rounded.area
     cx, cy = convex.centroid(outline)
     assert abs(rounded.centroid.x - cx) < 1e-6 and abs(rounded.centroid.y - cy) < 1e-6
@@ -337,7 +340,9 @@ def test_a_ball_sliding_off_the_top_leaves_the_edge(kind: str, arrays: bool) -> 
     else:
         w.add_collider(Segment((-1.0, 1.0), (1.0, 1.0), friction=0.0))
     b = w.add(Body(Vector(0.5, 1.0 + r), Vector(2.0, 0.0), radius=r, friction=0.0))
-    if arrays:  # the arrays' path (engine.sweep), not one body in floats (engine.sweep_one)
+    if (
+        arrays
+    ):  # the arrays' path (engine.exact.sweep), not one body in floats (engine.exact.sweep_one)
         assert w._contacts is not None
         w._contacts.few = w._contacts.few_resting = 0
     for _ in range(21):

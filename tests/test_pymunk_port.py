@@ -13,8 +13,9 @@ numbers where the concepts map:
   position (pymunk's with the identity transform, while the body's angle is 0); a
   ``Segment`` on a body is ``Body(..., shape=Segment(a, b, r))``;
 * a shape has no mass or density of its own: a Body's ``mass`` or ``density`` (mass = density
-  * the shape's area) is given and its ``moment`` follows from its shape, and ``engine.mass``
-  (pymunk's ``moment_for_*`` and ``area_for_*``) gives a shape's area and moment;
+  * the shape's area) is given and its ``moment`` follows from its shape, and
+  ``engine.geometry.mass`` (pymunk's ``moment_for_*`` and ``area_for_*``) gives a shape's area and
+  moment;
 * a collision handler's ``begin`` / ``separate`` / ``post_solve`` are ``world.on_contact``'s
   ``begin`` / ``end`` / ``post_solve``, called after the step for one body or collider (not
   for a pair of collision types), and ``arbiter.is_removal`` is ``event.removal``;
@@ -58,7 +59,7 @@ from engine import (
 )
 from engine.filters import ALL_CATEGORIES, ALL_MASKS
 from engine.forces import Gravity
-from engine.mass import area_for_circle, moment_for_circle
+from engine.geometry.mass import area_for_circle, moment_for_circle
 from engine.render import Camera, draw_world, init_headless
 from engine.render.world_view import BODY
 from tests.pymunk_tests import check_ported, their_tests
@@ -405,7 +406,7 @@ def test_space_testRemoveInSeparateWithinStep() -> None:
 @pytest.mark.xfail(
     strict=True,
     reason="the ends of a removed body's or collider's contacts are reported with the next "
-    "step (engine.events), not during remove(): a handler never runs inside a World call",
+    "step (engine.dynamics.events), not during remove(): a handler never runs inside a World call",
 )
 def test_space_testRemoveInSeparateWithoutStep() -> None:
     w = World(integrator="auto")
@@ -609,7 +610,7 @@ def test_shape_testDensity() -> None:
 
 
 def test_shape_testMoment() -> None:
-    # A shape has no mass (MISSING testMass): its moment is engine.mass's for a mass, and a
+    # A shape has no mass (MISSING testMass): its moment is engine.geometry.mass's for a mass, and a
     # Body's with that shape and mass, or with the density (test_density.py).
     assert Body(Vector(0, 0), shape=Circle((0, 0), 5), density=2).moment == pytest.approx(
         1963.4954084936207, rel=1e-15

@@ -9,14 +9,14 @@ the concepts map (engine/guide/joints.md has the table):
 * ``PinJoint(a, b, anchor_a, anchor_b)`` is ``Rod(a, b, anchor_a=..., anchor_b=...)``, its
   ``distance`` the rod's ``length``;
 * ``SlideJoint``, ``GrooveJoint``, ``GearJoint``, ``RatchetJoint``, ``RotaryLimitJoint`` and
-  ``SimpleMotor`` keep pymunk's names and arguments (engine.constraints: rows of
+  ``SimpleMotor`` keep pymunk's names and arguments (engine.dynamics.constraints: rows of
   ``World(solver="soft")``'s solver alone); their tests that step use such a World. The exact
   solver's joints hold two of them too, and variants ``__cable`` and ``__hinge`` keep those
   ports: ``SlideJoint(a, b, anchor_a, anchor_b, 0, max)`` as ``Cable(a, b, max, ...)``,
   ``RotaryLimitJoint(a, b, min, max)`` as a Hinge's ``limits=(min, max)`` and
   ``SimpleMotor(a, b, rate)`` as its ``motor_speed=rate`` (with ``max_torque``);
 * pymunk's ``Constraint.max_force``, ``max_bias`` and ``error_bias`` are those of the soft
-  step's constraints (engine.constraints): ``testMaxForce``, ``testMaxBias`` and
+  step's constraints (engine.dynamics.constraints): ``testMaxForce``, ``testMaxBias`` and
   ``testErrorBias`` take pymunk's ``PivotJoint(a, b, (0, 0))`` as a ``GrooveJoint`` of no
   length, ``GrooveJoint(a, b, (0, 0), (0, 0), (0, 0))`` (the Hinge holds exactly, with none);
 * ``DampedSpring`` and ``DampedRotarySpring`` keep pymunk's names and arguments;
@@ -190,8 +190,8 @@ def test_constraint_Constraint_testErrorBias() -> None:
     raises=AssertionError,
     reason="error_bias is None by default: the soft step's own joint spring (60 Hz at damping "
     "ratio 2, Box2D's), which leaves e^-70 of an error after 1 s at 1/60 s, not pymunk's "
-    "(1 - 0.1)^60 = 0.0018; set error_bias for pymunk's (engine.constraints says why it is not "
-    "a stiffness of that spring)",
+    "(1 - 0.1)^60 = 0.0018; set error_bias for pymunk's (engine.dynamics.constraints says why it "
+    "is not a stiffness of that spring)",
 )
 def test_constraint_Constraint_testErrorBias__pymunks_default() -> None:
     a, b = bodies(10, 10)

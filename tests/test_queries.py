@@ -1,5 +1,5 @@
-"""Queries (engine.queries): point, segment, box and shape queries with filters, against the
-closed-form geometry of discs, segments and planes."""
+"""Queries (engine.pipeline.queries): point, segment, box and shape queries with filters, against
+the closed-form geometry of discs, segments and planes."""
 
 from __future__ import annotations
 
@@ -16,14 +16,14 @@ from hypothesis import strategies as st
 
 from engine import Body, Box, Circle, Filter, Plane, Polygon, Segment, Vector, World
 from engine.filters import DEFAULT
-from engine.queries import (
+from engine.geometry.query_grid import BodyBins, BodyTable, ColliderGrid, QueryIndex
+from engine.pipeline.queries import (
     QueryHit,
     _collider_depth,
     _collider_overlaps_box,
     _Frame,
     _nearest_on_segment,
 )
-from engine.query_grid import BodyBins, BodyTable, ColliderGrid, QueryIndex
 
 
 def disc(world: World, x: float, y: float, r: float, **kw) -> Body:
@@ -138,10 +138,11 @@ def test_queries_see_sensors_unless_the_filter_leaves_them_out() -> None:
 
 
 # -- the index finds what testing everything finds ----------------------------------------------
-# The queries before their index (engine.query_grid): every body and every collider tested,
+# The queries before their index (engine.geometry.query_grid): every body and every collider tested,
 # kept here as the reference the indexed queries must match exactly (same hits, same order,
 # same points, normals, fractions and distances). The exact tests they share (a collider's
-# overlap with a box, a capsule's depth in a shape, a body's frame) are engine.queries' own.
+# overlap with a box, a capsule's depth in a shape, a body's frame) are engine.pipeline.queries'
+# own.
 
 
 def _ref_bodies(state: Any, f: Filter) -> tuple[np.ndarray, list[tuple[int, Any]]]:

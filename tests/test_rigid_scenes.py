@@ -271,9 +271,9 @@ def resting(path: str) -> tuple[scenes.Report, object]:
     paths(
         exact=xfail(
             "world.resting(box) is None for a box at rest on a floor: it reads "
-            "engine.contacts' resting face (Contacts.rest), which the discs' exact contacts "
+            "engine.exact.contacts' resting face (Contacts.rest), which the discs' exact contacts "
             "keep; a box's contact with the floor is a row of the pile's soft step "
-            "(engine.shaped), which leaves it at -1"
+            "(engine.geometry.shaped), which leaves it at -1"
         ),
     ),
 )
@@ -289,9 +289,9 @@ def test_a_box_at_rest_on_a_floor_rests_on_the_floor(path: str) -> None:
         exact=xfail(
             "the box's contact with the floor is listed in world.touching and given to "
             "post_solve, but with a zero impulse against m g dt = 0.327 N s: "
-            "engine.event_dispatch.impulses looks up a pile's rows by the discs' keys (a * base "
-            "+ n + face), and a shape's rows are keyed past n * base (engine.pile), so none is "
-            "found"
+            "engine.pipeline.event_dispatch.impulses looks up a pile's rows by the discs' keys "
+            "(a * base + n + face), and a shape's rows are keyed past n * base "
+            "(engine.exact.pile), so none is found"
         ),
     ),
 )

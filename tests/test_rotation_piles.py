@@ -1,4 +1,5 @@
-"""Discs that turn in a pile: the soft step's friction rows have lever arms (engine.soft, Arms).
+"""Discs that turn in a pile: the soft step's friction rows have lever arms (engine.exact.soft,
+Arms).
 
 With the normal n from A to B and t = i n, the contact point sits at l_A n from A's centre and
 at -l_B n from B's, and the slip there is vt = (v_B - v_A).t - omega_B l_B - omega_A l_A; a
@@ -16,8 +17,8 @@ import pytest
 
 from demos.bench import limits
 from engine import Body, Box, Plane, Vector, World, kernels
+from engine.exact.soft import Arms, Rows, SoftStep
 from engine.forces import Gravity, Spring
-from engine.soft import Arms, Rows, SoftStep
 
 G = 9.81
 R = 0.5

@@ -17,8 +17,8 @@ import pytest
 
 import engine.body
 from engine import Body, Plane, Vector, World
-from engine.colliders import Circle, Polygon
 from engine.forces import Gravity
+from engine.geometry.colliders import Circle, Polygon
 
 G = 9.81
 DT = 1.0 / 60.0
@@ -52,10 +52,10 @@ def test_a_box_takes_its_moment_from_its_shape() -> None:
     off = Body(Vector(0.0, 0.0), shape=Polygon.box(2.0, 1.0, center=(1.0, 0.0)), mass=3.0)
     assert off.moment == pytest.approx(3.0 * (5.0 / 12.0 + 1.0), rel=1e-12)
     assert not Body(Vector(0.0, 0.0), shape=Polygon.box(1.0, 1.0), kinematic=True).turns
-    # A capsule: engine.mass's exact moment (a rod of length 2 and radius 0.1 about its
+    # A capsule: engine.geometry.mass's exact moment (a rod of length 2 and radius 0.1 about its
     # middle), and a rod with no radius m L^2 / 12.
-    from engine.colliders import Segment
-    from engine.mass import moment_for_segment
+    from engine.geometry.colliders import Segment
+    from engine.geometry.mass import moment_for_segment
 
     cap = Body(Vector(0.0, 0.0), shape=Segment((-1.0, 0.0), (1.0, 0.0), 0.1), mass=2.0)
     assert cap.moment == moment_for_segment(2.0, (-1.0, 0.0), (1.0, 0.0), 0.1)
@@ -232,7 +232,7 @@ def test_a_box_that_turned_is_drawn_at_its_angle() -> None:
 
 
 def test_queries_see_a_box_at_its_angle() -> None:
-    from engine.colliders import Circle
+    from engine.geometry.colliders import Circle
 
     # A unit box at (2, 1) turned by 45 degrees: a diamond whose top corner is 0.707 above
     # its centre, its faces' normals at 45 degrees.
@@ -350,7 +350,7 @@ def test_a_box_that_turns_thrown_fast_off_centre_meets_a_disc_at_its_moment(spee
     # and leave at the closed form's speeds (J = 4 v / 2.24; the box turning at 0.1 J / I,
     # 430 rad/s at 100 m/s: 7 rad in a step). Within that step the pile's rows, linear in
     # it, stop the point and not the centres, and the disc went past the box's centre; the
-    # step is taken again from the moment they met (engine.shape_impacts), so each step ends
+    # step is taken again from the moment they met (engine.exact.shape_impacts), so each step ends
     # where the exact motion is: at v until t*, then at the parting velocities (the exact
     # models, asked for).
     w = World(integrator="auto", solver="exact")
@@ -433,7 +433,7 @@ def test_a_thin_box_never_passes_a_thin_wall_at_10_to_400_m_s(plate: bool, spin:
     # 6 m/s, every time from 100 m/s; Box2D v3 never, up to 400 m/s (the issue's table, a
     # static wall). At 100 rad/s its ends go 50 m/s and it turns up to 3 rad a step, and a
     # rest of the step at the end velocities can end deep again: the box then ends the step
-    # at its moment of impact (engine.shape_impacts). Every phase on the fast path; every
+    # at its moment of impact (engine.exact.shape_impacts). Every phase on the fast path; every
     # other one on numpy, where these throws cost ten times more (CI runs the suite on both
     # paths, and its time is at its budget).
     phases = range(20) if World().kernels == "fast" else range(0, 20, 2)
@@ -479,11 +479,11 @@ _PLATE = pytest.mark.xfail(
 def test_on_the_soft_step_a_thin_box_thrown_at_a_thin_wall_never_passes_it(
     plate: bool, spin: float, bullet: bool
 ) -> None:
-    # The soft step's speculative margin (engine.game_step: a contact within the reach of a
+    # The soft step's speculative margin (engine.pipeline.game_step: a contact within the reach of a
     # step is a row from its start) holds a thin box thrown straight at 10 to 400 m/s; turning
     # 20 rad/s, it meets the wall with another corner than the rows hold (2 of 80 passed), and
-    # the continuous stage (engine.game_continuous) sets it back to its time of impact: at a
-    # free plate only as a bullet (Body.bullet), swept against the dynamic bodies too. (Every
+    # the continuous stage (engine.dynamics.game_continuous) sets it back to its time of impact: at
+    # a free plate only as a bullet (Body.bullet), swept against the dynamic bodies too. (Every
     # other phase of the exact solver's test: 40 throws a wall, the suite's time kept.)
     passed = [
         (speed, k)

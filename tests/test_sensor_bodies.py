@@ -1,5 +1,5 @@
-"""Sensor bodies (engine.body_sensors): a Body made with ``sensor=True`` pushes nothing and is
-pushed by nothing, and the World reports what it overlaps at the end of each step, by its
+"""Sensor bodies (engine.pipeline.body_sensors): a Body made with ``sensor=True`` pushes nothing and
+is pushed by nothing, and the World reports what it overlaps at the end of each step, by its
 shape, as a sensor collider's overlaps are reported: a player's feet sensor, on both paths."""
 
 from __future__ import annotations

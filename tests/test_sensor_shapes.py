@@ -1,6 +1,6 @@
-"""A body with a shape meets a sensor by its shape, not by its bounding circle (engine.sensors):
-a coin beside a player's box, inside the box's bounding circle but clear of its corners, is not
-collected; one that overlaps the box, or a corner of a turned box, is."""
+"""A body with a shape meets a sensor by its shape, not by its bounding circle
+(engine.geometry.sensors): a coin beside a player's box, inside the box's bounding circle but clear
+of its corners, is not collected; one that overlaps the box, or a corner of a turned box, is."""
 
 from __future__ import annotations
 

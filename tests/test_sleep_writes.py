@@ -1,5 +1,5 @@
 """Writing one body by hand (its velocity, position or own acceleration) wakes that body and its
-sleeping group, not the whole World (engine.collisions.wake_body): a game that sets its
+sleeping group, not the whole World (engine.exact.collisions.wake_body): a game that sets its
 player's velocity every step lets the rest of the level sleep, and a body sent into a sleeper
 wakes it when it meets it. The game can put a body to sleep itself, with what touches it, and
 wake it (Body.sleep, Body.activate: pymunk's names)."""

@@ -1,7 +1,7 @@
-"""pymunk's constraints that only the soft step solves (engine.constraints): SlideJoint,
+"""pymunk's constraints that only the soft step solves (engine.dynamics.constraints): SlideJoint,
 GrooveJoint, GearJoint, RatchetJoint, RotaryLimitJoint and SimpleMotor, rows of
-World(solver="soft")'s one solver (engine.solver), checked against closed forms and theorems on
-both paths, the same bits on each; the exact solver's refusal, and the errors."""
+World(solver="soft")'s one solver (engine.dynamics.solver), checked against closed forms and
+theorems on both paths, the same bits on each; the exact solver's refusal, and the errors."""
 
 from __future__ import annotations
 
@@ -25,14 +25,15 @@ from engine import (
     SlideJoint,
     Vector,
     World,
-    solver,
 )
+from engine.dynamics import solver
 from engine.forces import Gravity
 from tests.paths import FAST, PATHS
 
 DT = 1.0 / 60.0
 G = 9.81
-#: The joints' spring (engine.solver: 60 Hz at 4 substeps of 1/60 s), its angular frequency.
+#: The joints' spring (engine.dynamics.solver: 60 Hz at 4 substeps of 1/60 s), its angular
+# frequency.
 OMEGA = 2.0 * math.pi * solver.JOINT_HERTZ
 
 
@@ -528,7 +529,7 @@ def test_max_bias_bounds_the_speed_a_joint_corrects_its_error_at(kernels: str) -
 
 def _keeps(h: float) -> float:
     """The share of an error the joints' spring leaves in a substep of h, left to itself
-    (engine.solver: its push s_m bias_rate C moves the bodies for h, the relax takes the
+    (engine.dynamics.solver: its push s_m bias_rate C moves the bodies for h, the relax takes the
     speed away): 1 - h^2 w^2 / (1 + 2 zeta h w + h^2 w^2), w = 2 pi min(60 Hz, 1 / (4 h))."""
     w = 2.0 * math.pi * min(solver.JOINT_HERTZ, 0.25 / h)
     zeta = solver.JOINT_DAMPING

@@ -1,5 +1,5 @@
-"""The soft step's continuous stage (engine.game_continuous): after the solve, each fast body is
-swept from its pose at the step's start to its end against what the solve does not move, and
+"""The soft step's continuous stage (engine.dynamics.game_continuous): after the solve, each fast
+body is swept from its pose at the step's start to its end against what the solve does not move, and
 set back to its first time of impact, on both paths and with the same bits; a body that rests,
 slides or rolls is never fast, and the stage leaves it as it was."""
 

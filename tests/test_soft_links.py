@@ -1,6 +1,6 @@
 """Rods, cables, pins and springs on World(solver="soft"): rows of the soft step's one solve
-(engine.solver's distance rows; a pin with an anchor is a hinge to the world, one that holds
-its body makes it static), checked against statics, closed forms and the exact solver, on both
+(engine.dynamics.solver's distance rows; a pin with an anchor is a hinge to the world, one that
+holds its body makes it static), checked against statics, closed forms and the exact solver, on both
 paths."""
 
 import math
@@ -202,7 +202,7 @@ def test_both_paths_give_the_same_rope_bridge() -> None:
     assert ends[0] == ends[1]
 
 
-# -- springs: forces given once a substep (engine.solver's SPRING and ROTARY_SPRING) -----------
+# -- springs: forces given once a substep (engine.dynamics.solver's SPRING and ROTARY_SPRING) ------
 
 
 def spring_world(kernels: str) -> World:

@@ -1,5 +1,5 @@
-"""Sleep in the soft step (engine.game_sleep): still islands sleep, exactly still, with their
-contacts open; an awake body that comes, a hand that writes, or a platform that moves wakes
+"""Sleep in the soft step (engine.pipeline.game_sleep): still islands sleep, exactly still, with
+their contacts open; an awake body that comes, a hand that writes, or a platform that moves wakes
 them; on both paths."""
 
 import math

@@ -1,5 +1,5 @@
-"""World(solver="soft"): Box2D v3's soft step for a game's scene (engine.game_step,
-engine.solver), checked against Box2D's own HelloWorld, closed forms and conservation laws,
+"""World(solver="soft"): Box2D v3's soft step for a game's scene (engine.pipeline.game_step,
+engine.dynamics.solver), checked against Box2D's own HelloWorld, closed forms and conservation laws,
 on both paths."""
 
 import math
@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from engine import Body, Circle, DampedSpring, Plane, Polygon, Segment, Vector, World
+from engine.dynamics.joints import Hinge, Weld
+from engine.dynamics.links import Rod
 from engine.forces import Gravity
-from engine.joints import Hinge, Weld
-from engine.links import Rod
 from tests.paths import FAST, PATHS
 
 DT = 1.0 / 60.0
@@ -55,7 +55,7 @@ def test_both_paths_give_the_same_platformer() -> None:
         for game in games:
             game.step()
     a, b = (np.array([[*bd.pos, bd.angle, *bd.vel] for bd in g.world.bodies]) for g in games)
-    # The same bits: the fast path's contacts (engine.game_contacts, one compiled call) are
+    # The same bits: the fast path's contacts (engine.pipeline.game_contacts, one compiled call) are
     # the numpy stages', met by the solver in the same order.
     assert np.array_equal(a, b), np.abs(a - b).max()
 
@@ -381,7 +381,7 @@ def test_solver_is_checked_and_what_it_cannot_take_is_said() -> None:
 
 @pytest.mark.parametrize("kernels", PATHS)
 def test_mouse_joint_drags_a_box_to_its_target_by_a_bounded_force(kernels: str) -> None:
-    from engine.mouse_joint import MouseJoint
+    from engine.dynamics.mouse_joint import MouseJoint
 
     world = World(kernels=kernels, solver="soft")
     box = world.add(Body((0, 0), mass=2.0, shape=Polygon.box(1, 1)))
@@ -445,9 +445,9 @@ def test_a_box_at_rest_rests_on_the_floor_and_reports_its_weight(kernels: str) -
 def test_the_grid_finds_the_pairs_that_every_pair_test_finds(
     kernels: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    # Past a few bodies the soft step's broadphase is a grid (engine.pair_grid): the same
+    # Past a few bodies the soft step's broadphase is a grid (engine.geometry.pair_grid): the same
     # pairs as testing every pair, for a crowd of boxes and discs, some moving fast.
-    from engine import game_broadphase, game_step
+    from engine.pipeline import game_broadphase, game_step
 
     rng = np.random.default_rng(5)
     world = World(kernels=kernels, solver="soft")

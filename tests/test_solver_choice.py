@@ -1,5 +1,5 @@
 """World(solver="auto"): the soft step for a scene with bodies with corners, the exact models
-for discs and points (engine.solver_choice), chosen at the first step and said."""
+for discs and points (engine.pipeline.solver_choice), chosen at the first step and said."""
 
 from __future__ import annotations
 

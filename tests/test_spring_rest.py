@@ -1,5 +1,5 @@
 """Damped springs come to rest where their pull balances the constant forces, on the kicks
-(engine.spring_step, "The dampers"): k stretch = m g to round-off, whatever the method.
+(engine.exact.spring_step, "The dampers"): k stretch = m g to round-off, whatever the method.
 
 The kicks once decayed each half kick's velocity after its pull, so the damper decayed the
 pull that holds the weight: a crate of 2 kg on 100 N/m and 20 N s/m at dt = 1/60 s rested

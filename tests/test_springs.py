@@ -1,5 +1,5 @@
-"""Springs between bodies (engine.springs, engine.spring_step): pymunk's DampedSpring and
-DampedRotarySpring.
+"""Springs between bodies (engine.dynamics.springs, engine.exact.spring_step): pymunk's DampedSpring
+and DampedRotarySpring.
 
 Checked against closed forms and theorems: a damped oscillator's x(t) on the closed form, to
 1e-9 (one body to the world, and two bodies, whose relative motion is an oscillator of the
@@ -511,7 +511,7 @@ def test_bodies_tied_by_a_spring_sleep_and_wake_as_one_group() -> None:
 def test_many_springs_in_arrays_move_as_few_in_floats(monkeypatch: pytest.MonkeyPatch) -> None:
     """Past FEW springs the kicks go in arrays, the dampers a colour at a time: a free chain
     of 20 damped springs keeps its momentum and ends where the one-by-one kicks leave it."""
-    import engine.spring_step as spring_step
+    import engine.exact.spring_step as spring_step
 
     rng = np.random.default_rng(7)
     speeds = rng.normal(size=(21, 2))

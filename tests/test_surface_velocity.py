@@ -1,5 +1,5 @@
 """Surface velocity (pymunk's ``shape.surface_velocity``): a conveyor belt's surface moves along
-itself, and friction carries what rests on it (engine.soft, ``Rows.slip``), on both paths."""
+itself, and friction carries what rests on it (engine.exact.soft, ``Rows.slip``), on both paths."""
 
 from __future__ import annotations
 

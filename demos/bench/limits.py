@@ -30,7 +30,7 @@ import numpy as np
 
 from demos.bench import pit
 from engine import Body, Plane, Vector, World
-from engine.collisions import deepest_overlap
+from engine.exact.collisions import deepest_overlap
 from engine.forces import Gravity
 
 __all__ = ["Scene", "Result", "SCENES", "QUICK", "run", "measure", "table", "report"]

@@ -36,7 +36,7 @@ import numpy as np
 
 from engine import Body, Box, StabilityWarning, Vector, World
 from engine import kernels as engine_kernels
-from engine.collisions import deepest_overlap
+from engine.exact.collisions import deepest_overlap
 from engine.forces import Gravity
 
 __all__ = [
@@ -98,7 +98,7 @@ def make_world(
 ) -> World:
     """The pit as a World ("auto": the closed form under gravity), ``width`` m wide, on the
     path ``kernels`` (None: the default, engine.kernels); ``fixed_rotation=False``: balls
-    that turn (the pile's friction turns them: engine.soft, lever arms); ``solver``: the
+    that turn (the pile's friction turns them: engine.exact.soft, lever arms); ``solver``: the
     World's."""
     world = World(integrator="auto", kernels=kernels, solver=solver)
     if iterations is not None:

@@ -2,7 +2,7 @@
 
 Run with ``python -m demos.bench queries``. A game's ground test, one 13 cm
 ``world.segment_query_first`` below a player's feet, cost 2.7 ms in a 20-body platformer when
-every collider and body was tested (before engine.query_grid), where pymunk's costs 9 us.
+every collider and body was tested (before engine.geometry.query_grid), where pymunk's costs 9 us.
 Target: a query costs at most 10x pymunk's, on both paths (numpy and fast), on both scenes:
 
 * the platformer (``make_platformer``): 20 bodies (the player, a box; crates; balls;
@@ -19,7 +19,7 @@ each call on its own (``_medians``: the median of single calls, less the clock's
 so the ratios hold on a shared, loaded machine. "after a move" is the segment query right
 after one of our bodies moved by its ``pos`` (as after a step): the World then finds its
 bodies anew (their cells are made again on the second query at the same positions;
-``engine.query_grid``); pymunk's query is timed right after the same move, so both start
+``engine.geometry.query_grid``); pymunk's query is timed right after the same move, so both start
 from the caches the move left. "same answer" checks that both engines met the same thing at
 the same fraction.
 """

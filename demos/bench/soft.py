@@ -2,8 +2,8 @@
 
 Run with ``python -m demos.bench soft`` (``--quick``: the smaller scenes, 5 s each). Issue
 "Games at C speed" sets the fast path's targets on these scenes at 1.0x pymunk's step; a game
-takes ``World(solver="soft")`` (Box2D v3's soft step: engine.game_step), so each scene is run
-three ways, one step each in turn (the order turned about every step, so a burst of load on
+takes ``World(solver="soft")`` (Box2D v3's soft step: engine.pipeline.game_step), so each scene is
+run three ways, one step each in turn (the order turned about every step, so a burst of load on
 a shared machine hits them alike), on the fast path (numba; the scenes are too big for the
 soft step's plain-Python solver on the numpy path):
 

@@ -27,12 +27,12 @@ contacts chart (``out/tradeoff/contacts.png``). Two scenes of issue "Contacts II
 Solvers, each at several iteration counts:
 
 * ``World``: this engine, ``World.contact_iterations`` 1, 2, 4 (the default), 8, 16: the
-  substeps of its soft step (``engine.soft``), each one pass of the contacts and one of
+  substeps of its soft step (``engine.exact.soft``), each one pass of the contacts and one of
   relaxing;
 * ``pymunk``: ``Space.iterations`` 1, 2, 5, 10 (its default), 20, 40, with its default
   ``collision_slop`` of 0.1 m (it leaves overlaps up to that alone: 20% of these radii);
 * ``pymunk 1 mm``: the same with ``collision_slop`` = 1 mm, the overlap this engine leaves
-  alone (``engine.collisions.SLOP``, 0.2% of the radius), so that the solvers are compared at
+  alone (``engine.exact.collisions.SLOP``, 0.2% of the radius), so that the solvers are compared at
   the same tolerance.
 
 Cost: seconds of CPU time per step, timed step by step with every setting of a scene stepping in

@@ -1,5 +1,5 @@
-"""Dragging a scene's bodies with the mouse in a window: a MouseJoint (engine.mouse_joint) per
-drag, as Box2D's samples and pymunk's examples do it.
+"""Dragging a scene's bodies with the mouse in a window: a MouseJoint (engine.dynamics.mouse_joint)
+per drag, as Box2D's samples and pymunk's examples do it.
 
 A left button pressed on a body (a point query at the pointer, within ``PICK`` px) holds the
 body's point under the pointer by a MouseJoint of ``hertz`` and ``damping_ratio`` whose force is
@@ -18,7 +18,7 @@ from typing import Any
 import pygame
 
 from engine.body import Body
-from engine.mouse_joint import MouseJoint
+from engine.dynamics.mouse_joint import MouseJoint
 from engine.world import World
 
 __all__ = ["MouseDrag", "PICK"]

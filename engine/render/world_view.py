@@ -28,9 +28,10 @@ from typing import Any
 
 import pygame
 
-from engine.constraints import GrooveJoint, SlideJoint, SoftJoint
-from engine.joints import Hinge, Joint, Weld
-from engine.links import Pin
+from engine.dynamics.constraints import GrooveJoint, SlideJoint, SoftJoint
+from engine.dynamics.joints import Hinge, Joint, Weld
+from engine.dynamics.links import Pin
+from engine.dynamics.springs import DampedSpring
 from engine.render.camera import Camera
 from engine.render.draw import (
     ACCELERATION,
@@ -43,7 +44,6 @@ from engine.render.draw import (
     draw_disc,
 )
 from engine.render.world_overlays import draw_bounds, draw_contacts
-from engine.springs import DampedSpring
 
 __all__ = [
     "draw_world",
@@ -232,7 +232,7 @@ def _ends(link: Any, poses: dict[int, tuple[float, float, float]]) -> tuple[Any,
 def _draw_constraint(
     surface: pygame.Surface, link: Any, camera: Camera, poses: Any, size: float
 ) -> None:
-    """pymunk's constraints (engine.constraints) as its ``debug_draw`` shows them: a slide
+    """pymunk's constraints (engine.dynamics.constraints) as its ``debug_draw`` shows them: a slide
     joint a line from anchor to anchor, a groove its segment (``size`` 0: under the bodies),
     then a ring at the anchor held in it (over them); nothing for the others."""
 

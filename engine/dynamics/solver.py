@@ -1,0 +1,1025 @@
+"""The soft step's solver: bodies, contacts and joints solved together in substeps, Box2D v3's way.
+
+A game's scene (a pile of crates, a platformer, a pinball table) holds many contacts that lean
+on one another, and joints that hold bodies together. Box2D v3 (Catto, "Solver2D", 2024;
+``solver.c``, ``contact_solver.c``, ``revolute_joint.c``, ``weld_joint.c``) solves them all
+in one loop: the step of dt is taken in ``substeps`` parts of h = dt / substeps, each part
+
+1. integrating velocities: v += a h, omega += alpha h (the forces' accelerations, held over
+   the step);
+2. warm starting: every row's impulse of the part before (the last step's, at first) is
+   applied again, so a settled pile starts solved;
+3. solving with bias: each row pushes its bodies by an impulse so that their relative
+   velocity along it meets a target: a contact still open (gap s > 0) may close by s in this
+   part, no more (a speculative contact: a box falling on a floor stops on it, whatever its
+   speed); one overlapping is pushed apart by a soft spring (below), at most ``PUSH_SPEED``;
+4. integrating positions: x += v h, angle += omega h;
+5. relaxing: the same solve without the spring's push, so that the push moves positions and
+   leaves no speed behind; and friction (Coulomb: |lam_t| <= mu lam_n), against the slip less
+   the surfaces' own speed along themselves (a conveyor);
+
+then, once, restitution for the contact points that closed faster than ``THRESHOLD``: the
+normal speed they part at is e times the one they met at.
+
+**Free flight is exact.** A body in no row (no contact within reach, no joint) is moved by
+nothing but its acceleration a, held over the step, and the closed form of that motion is
+x0 + v0 dt + a dt^2 / 2, v0 + a dt (and likewise its angle). The parts above give
+x0 + v0 dt + a dt^2 (n + 1) / (2 n) for n parts, g dt^2 / (2 n) too far a step (Box2D's; a
+ball falling 0.5 s at 60 Hz and 4 parts ends 1 cm low), so such a body takes the closed form
+instead: a ball thrown in a game's World flies the lesson's parabola to rounding until a
+contact comes within reach.
+
+**Rows.** A contact point has anchors r_A, r_B (the point less each body's position) and a
+normal n from A to B. Its separation as the bodies move in the step is, to first order in
+nothing (Box2D's "s = s0 + dot(cB + rB - cA - rA, n)", the normal held fixed):
+
+    s = s_base + n.(dp_B - dp_A + R(dq_B) r_B - R(dq_A) r_A),   s_base = s0 - n.(r_B - r_A),
+
+dp and dq the moves of position and angle since the step began. The relative normal speed at
+the point is vn = n.(v_B + omega_B x r_B - v_A - omega_A x r_A) (in 2D, omega x r =
+omega (-r_y, r_x)), and an impulse lam along n changes it by lam / m_n with
+
+    1 / m_n = w_A + w_B + i_A (r_A x n)^2 + i_B (r_B x n)^2        (w = 1/m, i = 1/I).
+
+**Soft constraints** (Box2D's b2MakeSoft): a spring of frequency f and damping ratio zeta on
+the error C, with omega = 2 pi f, a1 = 2 zeta + h omega, a2 = h omega a1, a3 = 1 / (1 + a2),
+gives the impulse
+
+    d = -m_n (s_m (vn + bias_rate C)) - s_i lam,   bias_rate = omega / a1,
+    s_m = a2 a3 (mass scale),   s_i = a3 (impulse scale),
+
+an implicit (backward Euler) step of the damped spring that stays stable at any stiffness.
+Contacts use ``CONTACT_HERTZ`` (at most an eighth of the substep rate; twice as stiff against
+what does not move: the floor does not give) and a damping ratio of 10; joints 60 Hz (at most
+a quarter of the substep rate) and 2.
+
+**A hinge** (Box2D's revolute joint) holds the anchors together: C = (c_B + r_B) - (c_A + r_A),
+a 2 x 2 system K lam = -(Cdot + bias C) with
+
+    K = [[w_A + w_B + i_A r_Ay^2 + i_B r_By^2,  -i_A r_Ax r_Ay - i_B r_Bx r_By],
+         [-i_A r_Ax r_Ay - i_B r_Bx r_By,        w_A + w_B + i_A r_Ax^2 + i_B r_Bx^2]],
+
+solved by Cramer's rule; its angle (angle_B - angle_A less the reference) takes a motor row
+(|lam| <= max torque h) and two limit rows (speculative, as contacts). **A weld** adds an
+angular row (the angle held) to the hinge's point rows, soft with its own frequency if given.
+**A distance** (Box2D's distance joint: a rod, a cable) holds the anchors' distance
+L = |d|, d = (c_B + r_B) - (c_A + r_A), along the axis u = d / L taken again at every solve:
+a rod's row C = L - length (either sign, soft as a joint), a cable's C = length - L >= 0 (it
+only pulls; speculative while slack, as a contact), with the axial mass
+1 / (w_A + w_B + i_A (r_A x u)^2 + i_B (r_B x u)^2). A cable that snapped taut faster than
+``THRESHOLD`` parts its ends again at its restitution times the speed it met them at, in the
+restitution pass, as a contact does.
+**Limits** (Box2D's joint limits) are one-sided rows C >= 0: speculative while open (C > 0:
+the row may close by C in the substep, bias C / h, no more, as a contact), soft (the joints'
+spring) once closed, in the solve with bias, and rigid in the relax; the impulse summed over
+the substep is kept >= 0 (``limit``). A hinge's angle limits, a cable's most length and a
+slide joint's least, a groove's ends and a ratchet's notch are such rows.
+**A groove** (pymunk's GrooveJoint; Box2D's prismatic joint without its angular row, spring
+and motor) keeps B's anchor on A's segment from A's anchor along the unit axis u (turned as A
+turns) for ``jupper`` m. With d = (c_B + r_B) - (c_A + r_A) the translation is t = u.d and
+the error across C = n.d, n = (-u_y, u_x). As u turns with A (du/dt = omega_A x u),
+
+    dt/dt = u.(v_B - v_A) + (r_B x u) omega_B - ((d + r_A) x u) omega_A,
+
+the relative velocity of B's anchor and the point of A under it, along u: each row acts on A
+at the lever d + r_A (B's anchor) and on B at r_B, its mass 1 / (w_A + w_B + i_A ((d + r_A) x
+u)^2 + i_B (r_B x u)^2) (n for u across). The ends are limits, t >= 0 and jupper - t >= 0;
+across, a soft equality row C = n.d = 0. B turns freely (pymunk's; Box2D's holds the angle).
+**A gear** (pymunk's GearJoint) holds C = r angle_B - angle_A - phase (r the ratio): the
+Jacobian (-1, r) on (omega_A, omega_B), the mass 1 / (i_A + r^2 i_B), an impulse lam turning
+A by -i_A lam and B by r i_B lam; a soft equality row (Chipmunk's jAcc is r lam).
+**An angle's rows alone** (ROTARY: pymunk's RotaryLimitJoint, RatchetJoint, SimpleMotor) are
+the hinge's motor and limit rows without its point: a rotary limit both limits on angle_B -
+angle_A, a ratchet one of them at its notch (moved on notch by notch before each step,
+Chipmunk's way: engine.dynamics.constraints), a motor the motor row.
+**A spring** (pymunk's DampedSpring, k the stiffness, c the damping) is a force, not a row to
+meet: once a substep, before the rows, it gives the impulse -k (L - rest) h along u (explicit,
+from the length at the substep's start, as pymunk's), then its damper takes the speed along u
+to exp(-c w h) of itself (w the inverse axial mass: the damper's exact flow over h, stable at
+any c); a rotary spring the same on the angle angle_B - angle_A (w = i_A + i_B). The stiffness
+is explicit, so it holds while omega h < 2 (omega^2 = k w; at 4 substeps of 1/60 s, k w up to
+230,000 s^-2).
+
+**pymunk's bounds** (a constraint's rows, engine.dynamics.constraints: ``jmotor``'s bit 2 set).
+Chipmunk keeps a row's impulse summed over its step within max_force dt; here a row's impulse
+summed over a substep (what it gives in it: the warm start and what each solve adds, the
+``jpa`` ... ``jmi`` carried) is kept within max_force h, so that it gives at most max_force
+(N, N m) at any time and max_force dt over the step; a groove's rows along it and across it
+are bounded as one vector (Chipmunk's ``cpvclamp``), scaled back to max_force h where they
+exceed it. The speed a row corrects its error at, the push s_m bias_rate C above (or beta C
+below), is at most max_bias (m/s, rad/s; a groove's as one vector again); a speculative row's
+"may close by C" is no correction, and is not bounded. Where error_bias (the share of an
+error left after 1 s) is set, a row's push in the solve with bias is Chipmunk's, not the
+joints' spring: rigid (s_m = 1, s_i = 0) with bias_rate beta = (1 - error_bias^h) / h. Each
+substep the push moves the bodies by beta C h and the relax takes its speed away, so an error
+left to itself is error_bias^h of itself after a substep, error_bias after 1 s, whatever the
+step. (The joints' spring leaves 1 - h^2 omega^2 / (1 + 2 zeta h omega + h^2 omega^2) of it a
+substep, so some stiffness would give any error_bias too; but a spring gives under a steady
+load, by F / (m omega^2), where pymunk's rows do not. Beta's row is the spring's limit as its
+stiffness and damping grow with omega / (2 zeta + h omega) = beta held.)
+
+**One loop, two paths.** ``solve`` is written as the loop it is, over flat arrays. On the fast
+path numba compiles it (engine.kernels); on the numpy path it runs as plain Python on lists,
+which at a game's size (tens of rows) is faster than numpy's calls a colour; the two give the
+same numbers to the last bit (the same operations in the same order on IEEE doubles).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .. import kernels
+from ..kernels import floats
+
+__all__ = [
+    "SUBSTEPS",
+    "CONTACT_HERTZ",
+    "CONTACT_DAMPING",
+    "JOINT_HERTZ",
+    "JOINT_DAMPING",
+    "PUSH_SPEED",
+    "THRESHOLD",
+    "HINGE",
+    "WELD",
+    "MOUSE",
+    "DISTANCE",
+    "GROOVE",
+    "GEAR",
+    "ROTARY",
+    "SPRING",
+    "ROTARY_SPRING",
+    "solve",
+]
+
+#: Parts a step is taken in (Box2D v3's default: 4).
+SUBSTEPS = 4
+#: The contacts' stiffness (Hz), at most an eighth of the substep rate (Box2D v3: 30).
+CONTACT_HERTZ = 30.0
+#: The contacts' damping ratio (Box2D v3: 10, heavily over-damped: no bounce from the push).
+CONTACT_DAMPING = 10.0
+#: The joints' stiffness (Hz), at most a quarter of the substep rate (Box2D v3: 60).
+JOINT_HERTZ = 60.0
+#: The joints' damping ratio (Box2D v3: 2).
+JOINT_DAMPING = 2.0
+#: The fastest an overlap is pushed apart (m/s; Box2D v3's contactSpeed: 3).
+PUSH_SPEED = 3.0
+#: Contacts closing slower than this (m/s) do not bounce (Box2D v3: 1).
+THRESHOLD = 1.0
+#: Joint kinds, by code: a hinge, a weld, a mouse joint (a point pulled to a target by a
+#: spring of its own frequency and damping, its force bounded), a distance between two anchors
+#: (a Rod held at its length, a Cable at most its length, a SlideJoint between the two), a
+#: groove (pymunk's GrooveJoint), a gear (GearJoint), an angle's limits and motor alone
+#: (RotaryLimitJoint, RatchetJoint, SimpleMotor), a spring between two anchors (pymunk's
+#: DampedSpring) and one between two angles (DampedRotarySpring). The springs come last: a
+#: kind >= SPRING is a force, not a row.
+HINGE, WELD, MOUSE, DISTANCE, GROOVE, GEAR, ROTARY, SPRING, ROTARY_SPRING = range(9)
+
+
+def _sample() -> tuple[Any, ...]:
+    """The smallest call of ``solve``: a unit box resting on the static body, held to the
+    world by a hinge at its corner."""
+    f = np.zeros
+    body = [np.array([0.0, 0.0]), np.array([0.5, 0.0]), f(2)]  # x, y, angle
+    vel = [f(2), f(2), f(2)]
+    mass = [np.array([1.0, 0.0]), np.array([6.0, 0.0])]
+    acc = [np.array([0.0, 0.0]), np.array([-9.81, 0.0]), f(2)]
+    i1 = np.zeros(1, dtype=np.int64)
+    contacts = [
+        i1 + 1, i1.copy(), np.array([0.0]), np.array([1.0]), i1 + 2,
+        f(2), np.array([-0.5, -0.5]), np.array([0.5, -0.5]), np.array([0.0, 0.0]), f(2),
+        np.array([0.6]), f(1), f(1), f(2), f(2), f(2), f(2),
+    ]  # fmt: skip
+    joints = [
+        i1.copy(), i1 + 1, i1.copy(), np.array([0.5]), np.array([0.5]), np.array([0.5]),
+        np.array([0.5]), f(1), f(1), f(1), i1.copy(), f(1), f(1), i1.copy(), f(1), f(1),
+        f(1), f(1), f(1), f(1), f(1), f(1),
+    ]  # fmt: skip
+    return (*body, *vel, *mass, *acc, *contacts, *joints, 1.0 / 60.0, 4, 30.0, 10.0, 60.0,
+            2.0, 3.0, 1.0)  # fmt: skip
+
+
+@kernels.loop(sample=_sample)
+def solve(
+    bx: Any, by: Any, bq: Any,
+    bvx: Any, bvy: Any, bw: Any,
+    bim: Any, bii: Any,
+    bax: Any, bay: Any, balpha: Any,
+    ca: Any, cb: Any, cnx: Any, cny: Any, ccount: Any,
+    crax: Any, cray: Any, crbx: Any, crby: Any, csep: Any,
+    cfric: Any, crest: Any, cspeed: Any,
+    cln: Any, clt: Any, ctotal: Any, cmax: Any,
+    jkind: Any, ja: Any, jb: Any, jlax: Any, jlay: Any, jlbx: Any, jlby: Any, jref: Any,
+    jhertz: Any, jdamp: Any,
+    jlimit: Any, jlower: Any, jupper: Any,
+    jmotor: Any, jspeed: Any, jmaxtorque: Any,
+    jpx: Any, jpy: Any, jpa: Any, jlo: Any, jhi: Any, jmi: Any,
+    dt: float, substeps: int, contact_hertz: float, contact_damping: float,
+    joint_hertz: float, joint_damping: float, push: float, threshold: float,
+) -> None:  # fmt: skip
+    """One step of ``dt`` (s) of every body, contact and joint (module doc), in place.
+
+    Bodies (nb each; the last one is the static body, of zero inverse mass at the origin):
+    ``bx``, ``by``, ``bq`` position (m) and angle (rad), at the step's start in and its end
+    out; ``bvx``, ``bvy``, ``bw`` velocity (m/s, rad/s), likewise; ``bim``, ``bii`` inverse
+    mass (1/kg) and inverse moment (1/(kg m^2)), 0 for what does not move or turn; ``bax``,
+    ``bay``, ``balpha`` the acceleration held over the step (m/s^2, rad/s^2).
+
+    Contacts (nc manifolds of 1 or 2 points; a point's arrays are 2 nc long, point j of
+    manifold k at 2 k + j): bodies ``ca``, ``cb``, the unit normal ``cnx``, ``cny`` from A to
+    B, ``ccount`` points, anchors ``crax``, ``cray``, ``crbx``, ``crby`` (m, the point less
+    each body's position at the step's start), ``csep`` the separation then (m, < 0
+    overlapping); friction ``cfric``, restitution ``crest``, ``cspeed`` the speed (m/s) the
+    surfaces move along the tangent (-n_y, n_x) of themselves, B's less A's (a conveyor);
+    ``cln``, ``clt`` the normal and tangent impulses (N s a substep): the last step's in
+    (warm start), this step's out; ``ctotal`` out: the normal impulse over the whole step;
+    ``cmax`` out: the largest a substep applied.
+
+    Joints (nj): ``jkind`` (HINGE ... ROTARY_SPRING), bodies ``ja``, ``jb`` and their local
+    anchors (m, in each body's frame about its position; the static body's in world
+    coordinates: a mouse joint's target), ``jref`` angle_B - angle_A at rest (rad); a weld's
+    or mouse joint's ``jhertz`` and ``jdamp`` (a weld's 0 Hz: rigid); which limits are on
+    (``jlimit``: 1 the lower, 2 the upper, 3 both) and where (``jlower``, ``jupper``): a
+    hinge's or ROTARY's on angle_B - angle_A - jref (rad), a distance's on its length (m:
+    equal, a rod, held both ways), a groove's on B's anchor along it (m: 0 and its length; A's
+    anchor its start, ``jref`` its direction in A's frame, rad); a motor (``jmotor``'s bit 1
+    on, ``jspeed`` rad/s, ``jmaxtorque`` N m); pymunk's bounds on a constraint's rows
+    (``jmotor``'s bit 2 on; module doc): its largest force ``jmaxtorque`` (N, N m; a motor's
+    torque is its force), its largest bias speed ``jdamp`` (m/s, rad/s) and its error_bias
+    ``jhertz`` (the share of an error left after 1 s; < 0: the joints' spring); a mouse
+    joint's angular damping (``jspeed``, 1/s) and largest force (``jmaxtorque``, N); a
+    cable's restitution (``jspeed``); a gear's phase (``jref``, rad) and ratio (``jspeed``);
+    impulses (N s, N m s a substep) in and out: ``jpx``, ``jpy`` the point's, ``jpa`` a weld's
+    angle's (a rod's along u, a groove's across it, a gear's), ``jlo``, ``jhi`` the limits' (a
+    cable's, pulling, in ``jhi``), ``jmi`` the motor's. A spring's rest length or angle is
+    ``jlower`` (m, rad), its stiffness ``jhertz`` (N/m, N m/rad), its damping ``jdamp`` (N s/m,
+    N m s/rad); its ``jpa`` out is the impulse it gave over the whole step (along u, or on B's
+    angle), and is not warm started.
+    """
+    nb = len(bx)
+    nc = len(ca)
+    nj = len(ja)
+
+    def relative(
+        a: int, b: int, rax: float, ray: float, rbx: float, rby: float
+    ) -> tuple[float, float]:
+        """B's point's velocity less A's, v + omega x r = (v_x - omega r_y, v_y + omega r_x)."""
+        return (bvx[b] - bw[b] * rby) - (bvx[a] - bw[a] * ray), (bvy[b] + bw[b] * rbx) - (
+            bvy[a] + bw[a] * rax
+        )
+
+    def apply(
+        a: int, b: int, ma: float, ia: float, mb: float, ib: float, px: float, py: float,
+        rax: float, ray: float, rbx: float, rby: float,
+    ) -> None:  # fmt: skip
+        """The impulse (px, py) at the anchors: -P on A at r_A, +P on B at r_B."""
+        bvx[a] -= ma * px
+        bvy[a] -= ma * py
+        bw[a] -= ia * (rax * py - ray * px)
+        bvx[b] += mb * px
+        bvy[b] += mb * py
+        bw[b] += ib * (rbx * py - rby * px)
+
+    h = dt / substeps
+    inv_h = 1.0 / h
+    # Box2D's softness: contacts at most an eighth of the substep rate, joints a quarter.
+    # (b2MakeSoft written out: numba compiles this one function.)
+    hz = min(contact_hertz, 0.125 * inv_h)
+    omega = 2.0 * math.pi * hz
+    a1 = 2.0 * contact_damping + h * omega
+    a2 = h * omega * a1
+    c_rate, c_mass, c_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+    omega = 2.0 * math.pi * 2.0 * hz
+    a1 = 2.0 * contact_damping + h * omega
+    a2 = h * omega * a1
+    s_rate, s_mass, s_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+    omega = 2.0 * math.pi * min(joint_hertz, 0.25 * inv_h)
+    a1 = 2.0 * joint_damping + h * omega
+    a2 = h * omega * a1
+    j_rate, j_mass, j_imp = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+    # pymunk's bounds on each joint's rows (module doc): the most impulse a row's substep may
+    # sum to (max_force h), the fastest it corrects its error (max_bias), its error_bias's
+    # bias rate beta (< 0: the joints' spring); no bound, and the spring, but for a
+    # constraint's rows (jmotor's bit 2).
+    jmost = floats(nj, math.inf)
+    jfast = floats(nj, math.inf)
+    jbeta = floats(nj, -1.0)
+
+    def soft(k: int, bias: bool) -> tuple[float, float, float]:
+        """Joint k's equality row's (bias rate, mass scale, impulse scale): in the solve with
+        bias the joints' spring, or where its error_bias is set Chipmunk's rigid push (module
+        doc); rigid with no push in the relax."""
+        if not bias:
+            return 0.0, 1.0, 0.0
+        if jbeta[k] >= 0.0:
+            return jbeta[k], 1.0, 0.0
+        return j_rate, j_mass, j_imp
+
+    def bounded(rate: float, err: float, mscale: float, top: float) -> float:
+        """The bias rate err of a row, kept so that the speed it corrects its error at,
+        mscale rate err, is at most ``top`` (max_bias; inf: as it is)."""
+        v = rate * err
+        most = top / mscale
+        if v > most:
+            return most
+        if v < -most:
+            return -most
+        return v
+
+    def limit(
+        k: int, err: float, cdot: float, mass: float, old: float, bias: bool, top: float,
+        cap: float,
+    ) -> float:  # fmt: skip
+        """Joint k's limit row (module doc) solved once: C = err >= 0, dC/dt = cdot, of
+        ``mass``; its impulse of the substep so far ``old`` made new (>= 0: a limit only
+        pushes; at most ``cap``, max_force h), its correction at most ``top`` fast."""
+        rate, mscale, iscale = 0.0, 1.0, 0.0
+        v = 0.0
+        if err > 0.0:
+            v = inv_h * err  # speculative: may close by err in the substep, no more
+        elif bias:
+            rate, mscale, iscale = soft(k, bias)
+            v = bounded(rate, err, mscale, top)
+        d = -mscale * mass * (cdot + v) - iscale * old
+        return min(max(old + d, 0.0), cap)
+
+    def press(
+        p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
+        nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float,
+    ) -> None:  # fmt: skip
+        """Point p's normal impulse grown by d, kept >= 0 (a contact only pushes), applied."""
+        new = max(cln[p] + d, 0.0)
+        d = new - cln[p]
+        cln[p] = new
+        ctotal[p] += d
+        if new > cmax[p]:
+            cmax[p] = new
+        apply(a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
+
+    # The start of the step: positions and angles kept, the moves counted from them.
+    x0 = floats(nb, 0.0)
+    y0 = floats(nb, 0.0)
+    q0 = floats(nb, 0.0)
+    dx = floats(nb, 0.0)
+    dy = floats(nb, 0.0)
+    dq = floats(nb, 0.0)
+    cq = floats(nb, 1.0)  # cos and sin of each body's turn since the start (dq)
+    sq = floats(nb, 0.0)
+    for i in range(nb):
+        x0[i] = bx[i]
+        y0[i] = by[i]
+        q0[i] = bq[i]
+    # The bodies in no row fly the closed form at the step's end (module doc); the parts
+    # leave them as they were.
+    free = floats(nb, 1.0)  # 1.0: in no row (floats: the kernels' quick scratch)
+    for k in range(nc):
+        free[ca[k]] = 0.0
+        free[cb[k]] = 0.0
+    for k in range(nj):
+        free[ja[k]] = 0.0
+        free[jb[k]] = 0.0
+
+    # -- prepare the contacts: masses along the normal and tangent, the base separation, the
+    # relative normal speed at the start (for restitution).
+    nmass = floats(2 * nc, 0.0)
+    tmass = floats(2 * nc, 0.0)
+    base = floats(2 * nc, 0.0)
+    rel = floats(2 * nc, 0.0)
+    # A two-point manifold's normal rows as one 2 x 2 system, K = J M^-1 J^T:
+    # k_ij = w_A + w_B + i_A (r_Ai x n)(r_Aj x n) + i_B (r_Bi x n)(r_Bj x n), solved as a block
+    # where it is well conditioned (k11^2 < 1000 det K, Box2D v2.4's bound; kblock 1).
+    kn1 = floats(nc, 0.0)
+    kn12 = floats(nc, 0.0)
+    kn2 = floats(nc, 0.0)
+    kblock = floats(nc, 0.0)
+    for k in range(nc):
+        a = ca[k]
+        b = cb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        nx, ny = cnx[k], cny[k]
+        if ccount[k] == 2:
+            p = 2 * k
+            a1 = crax[p] * ny - cray[p] * nx
+            a2 = crax[p + 1] * ny - cray[p + 1] * nx
+            b1 = crbx[p] * ny - crby[p] * nx
+            b2 = crbx[p + 1] * ny - crby[p + 1] * nx
+            k11 = ma + mb + ia * a1 * a1 + ib * b1 * b1
+            k22 = ma + mb + ia * a2 * a2 + ib * b2 * b2
+            k12 = ma + mb + ia * a1 * a2 + ib * b1 * b2
+            if k11 > 0.0 and k22 > 0.0 and k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12):
+                kn1[k], kn12[k], kn2[k], kblock[k] = k11, k12, k22, 1.0
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+            base[p] = csep[p] - (nx * (rbx - rax) + ny * (rby - ray))
+            rna = rax * ny - ray * nx
+            rnb = rbx * ny - rby * nx
+            kn = ma + mb + ia * rna * rna + ib * rnb * rnb
+            nmass[p] = 1.0 / kn if kn > 0.0 else 0.0
+            # The tangent t = (-n_y, n_x): r x t = r_x n_x + r_y n_y.
+            rta = rax * nx + ray * ny
+            rtb = rbx * nx + rby * ny
+            kt = ma + mb + ia * rta * rta + ib * rtb * rtb
+            tmass[p] = 1.0 / kt if kt > 0.0 else 0.0
+            # v + omega x r = (v_x - omega r_y, v_y + omega r_x).
+            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            rel[p] = dvx * nx + dvy * ny
+            ctotal[p] = 0.0
+            cmax[p] = 0.0
+
+    def press2(
+        k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,
+        ia: float, mb: float, ib: float, nx: float, ny: float,
+    ) -> None:  # fmt: skip
+        """Manifold k's two normal impulses at once: the new x >= 0 with w = K (x - l) + r >= 0
+        and x w = 0 (a linear complementarity problem of two rows, Box2D v2.4's block solver:
+        both pushing, the first alone, the second alone, or neither), applied."""
+        p = 2 * k
+        k11, k12, k22 = kn1[k], kn12[k], kn2[k]
+        det = 1.0 / (k11 * k22 - k12 * k12)
+        x1 = l1 - det * (k22 * r1 - k12 * r2)
+        x2 = l2 - det * (k11 * r2 - k12 * r1)
+        if not (x1 >= 0.0 and x2 >= 0.0):
+            x1 = l1 - (r1 - k12 * l2) / k11
+            x2 = 0.0
+            w2 = k12 * (x1 - l1) - k22 * l2 + r2
+            if not (x1 >= 0.0 and w2 >= 0.0):
+                x1 = 0.0
+                x2 = l2 - (r2 - k12 * l1) / k22
+                w1 = -k11 * l1 + k12 * (x2 - l2) + r1
+                if not (x2 >= 0.0 and w1 >= 0.0):
+                    x1 = 0.0
+                    x2 = 0.0
+        d1 = x1 - cln[p]
+        d2 = x2 - cln[p + 1]
+        cln[p] = x1
+        cln[p + 1] = x2
+        ctotal[p] += d1
+        ctotal[p + 1] += d2
+        if x1 > cmax[p]:
+            cmax[p] = x1
+        if x2 > cmax[p + 1]:
+            cmax[p + 1] = x2
+        px, py = (d1 + d2) * nx, (d1 + d2) * ny
+        bvx[a] -= ma * px
+        bvy[a] -= ma * py
+        bw[a] -= ia * (
+            (crax[p] * ny - cray[p] * nx) * d1 + (crax[p + 1] * ny - cray[p + 1] * nx) * d2
+        )
+        bvx[b] += mb * px
+        bvy[b] += mb * py
+        bw[b] += ib * (
+            (crbx[p] * ny - crby[p] * nx) * d1 + (crbx[p + 1] * ny - crby[p + 1] * nx) * d2
+        )
+
+    # -- prepare the joints: each anchor turned into the world's axes at the start, the
+    # bodies' offset then, and the axial mass.
+    fax = floats(nj, 0.0)
+    fay = floats(nj, 0.0)
+    fbx = floats(nj, 0.0)
+    fby = floats(nj, 0.0)
+    cx0 = floats(nj, 0.0)
+    cy0 = floats(nj, 0.0)
+    amass = floats(nj, 0.0)
+    # A soft weld's own spring (its hertz and damping ratio), for each joint.
+    w_rate = floats(nj, 0.0)
+    w_mass = floats(nj, 1.0)
+    w_imp = floats(nj, 0.0)
+    # A distance's parting speed at the start (m/s), and whether its cable pulled in the step.
+    drel = floats(nj, 0.0)
+    dhit = floats(nj, 0.0)
+    # A groove's unit axis at the start, in the world's axes.
+    gux = floats(nj, 0.0)
+    guy = floats(nj, 0.0)
+
+    def axis(
+        k: int, a: int, b: int, rax: float, ray: float, rbx: float, rby: float
+    ) -> tuple[float, float, float]:
+        """Distance k's unit axis u from A's anchor to B's, and its length L (m), now: the
+        bodies moved by (dx, dy) since the start, the anchors turned to (rax ... rby)."""
+        ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+        ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+        length = math.sqrt(ex * ex + ey * ey)
+        if length > 0.0:
+            return ex / length, ey / length, length
+        return 0.0, 0.0, 0.0
+
+    def axial_mass(
+        a: int, b: int, ux: float, uy: float, rax: float, ray: float, rbx: float, rby: float
+    ) -> float:
+        """1 / (w_A + w_B + i_A (r_A x u)^2 + i_B (r_B x u)^2), 0 where nothing can move."""
+        ca_ = rax * uy - ray * ux
+        cb_ = rbx * uy - rby * ux
+        kk = bim[a] + bim[b] + bii[a] * ca_ * ca_ + bii[b] * cb_ * cb_
+        return 1.0 / kk if kk > 0.0 else 0.0
+
+    def slide(
+        k: int, bias: bool, ux: float, uy: float, t: float, lax: float, lay: float, rbx: float,
+        rby: float, across: float,
+    ) -> None:  # fmt: skip
+        """Joint k's rows along the unit axis u (a distance's or a groove's: module doc) solved
+        once, each acting on A at the lever (lax, lay) and on B at r_B, t the translation along
+        u: a rod's length (C = t - jupper, either sign), else t's limits (t >= jlower where
+        ``jlimit``'s bit 1 asks, t <= jupper where its bit 2 does), then a groove's point
+        across u (C = ``across`` = n.d, n = (-u_y, u_x))."""
+        a = ja[k]
+        b = jb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        rod = jkind[k] == DISTANCE and jlower[k] == jupper[k]
+        groove = jkind[k] == GROOVE
+        # Each row's largest correction speed: max_bias, a groove's shared by its rows as one
+        # vector's (each row's part of it as its error's part of the error across and past
+        # the ends, so that the correction keeps its direction).
+        tops = (jfast[k], jfast[k], jfast[k])
+        cap = math.inf if groove else jmost[k]  # (a groove's, as a vector, below)
+        if groove and jfast[k] < math.inf:
+            past = min(t - jlower[k], 0.0) + min(jupper[k] - t, 0.0)
+            size = math.sqrt(past * past + across * across)
+            if size > 0.0:
+                f = jfast[k] / size
+                lo_top = f * -min(t - jlower[k], 0.0)
+                hi_top = f * -min(jupper[k] - t, 0.0)
+                tops = (lo_top, hi_top, f * abs(across))
+        for row in range(3):
+            nx, ny = ux, uy
+            if row == 2:
+                if not rod and jkind[k] != GROOVE:
+                    break
+                if not rod:
+                    nx, ny = -uy, ux
+            elif rod or ((jlimit[k] >> row) & 1) == 0:
+                continue
+            mass = axial_mass(a, b, nx, ny, lax, lay, rbx, rby)
+            dvx, dvy = relative(a, b, lax, lay, rbx, rby)
+            cdot = dvx * nx + dvy * ny  # (along u: > 0, the anchors part)
+            if row < 2:
+                # The least: C = t - jlower >= 0, pushing B along u; the most: C = jupper - t
+                # >= 0, pulling B back along -u (a cable's pull).
+                sign = 1.0 if row == 0 else -1.0
+                old = jlo[k] if row == 0 else jhi[k]
+                err = t - jlower[k] if row == 0 else jupper[k] - t
+                new = limit(k, err, sign * cdot, mass, old, bias, tops[row], cap)
+                d = sign * (new - old)
+                if row == 0:
+                    jlo[k] = new
+                else:
+                    jhi[k] = new
+                    if new > 0.0:
+                        dhit[k] = 1.0
+            else:
+                # A rod's length, or a groove's point across: a soft equality row, its
+                # impulse within max_force h (a groove's, with its ends', below).
+                rate, mscale, iscale = soft(k, bias)
+                err = t - jupper[k] if rod else across
+                v = bounded(rate, err, mscale, tops[2])
+                d = -mscale * mass * (cdot + v) - iscale * jpa[k]
+                old = jpa[k]
+                new = old + d
+                if not groove and (new > jmost[k] or new < -jmost[k]):
+                    new = min(max(new, -jmost[k]), jmost[k])
+                    d = new - old
+                jpa[k] = new
+            apply(a, b, ma, ia, mb, ib, d * nx, d * ny, lax, lay, rbx, rby)
+        if groove:
+            # The ends' push along u and the point's across it as one impulse on B, at most
+            # max_force h: scaled back to it where it exceeds it (Chipmunk's cpvclamp).
+            along = jlo[k] - jhi[k]
+            size = math.sqrt(along * along + jpa[k] * jpa[k])
+            if size > jmost[k]:
+                f = jmost[k] / size
+                da = (jlo[k] * f - jhi[k] * f) - along
+                dn = jpa[k] * f - jpa[k]
+                jlo[k] *= f
+                jhi[k] *= f
+                jpa[k] *= f
+                apply(
+                    a, b, ma, ia, mb, ib, da * ux - dn * uy, da * uy + dn * ux, lax, lay, rbx, rby
+                )
+
+    def spring(k: int, rax: float, ray: float, rbx: float, rby: float) -> None:
+        """Spring k's impulses over a substep (module doc): its stiffness', explicit, then its
+        damper's, which takes the speed along it to exp(-c w h) of itself."""
+        a = ja[k]
+        b = jb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        if jkind[k] == SPRING:
+            ux, uy, length = axis(k, a, b, rax, ray, rbx, rby)
+            mass = axial_mass(a, b, ux, uy, rax, ray, rbx, rby)
+            if mass == 0.0:
+                return
+            d = -jhertz[k] * (length - jlower[k]) * h
+            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            vn = dvx * ux + dvy * uy + d / mass  # the parting speed after the stiffness' kick
+            d -= vn * (1.0 - math.exp(-jdamp[k] * h / mass)) * mass
+            jpa[k] += d
+            apply(a, b, ma, ia, mb, ib, d * ux, d * uy, rax, ray, rbx, rby)
+            return
+        if amass[k] == 0.0:
+            return
+        twist = (q0[b] + dq[b]) - (q0[a] + dq[a]) - jlower[k]
+        d = -jhertz[k] * twist * h
+        spin = bw[b] - bw[a] + d / amass[k]
+        d -= spin * (1.0 - math.exp(-jdamp[k] * h / amass[k])) * amass[k]
+        jpa[k] += d
+        bw[a] -= ia * d
+        bw[b] += ib * d
+
+    for k in range(nj):
+        a = ja[k]
+        b = jb[k]
+        c, s = math.cos(q0[a]), math.sin(q0[a])
+        fax[k] = c * jlax[k] - s * jlay[k]
+        fay[k] = s * jlax[k] + c * jlay[k]
+        c, s = math.cos(q0[b]), math.sin(q0[b])
+        fbx[k] = c * jlbx[k] - s * jlby[k]
+        fby[k] = s * jlbx[k] + c * jlby[k]
+        cx0[k] = x0[b] - x0[a]
+        cy0[k] = y0[b] - y0[a]
+        ki = bii[a] + bii[b]
+        if jkind[k] == GEAR:
+            ki = bii[a] + jspeed[k] * jspeed[k] * bii[b]  # J = (-1, r): i_A + r^2 i_B
+        amass[k] = 1.0 / ki if ki > 0.0 else 0.0
+        if jkind[k] == GROOVE:
+            c, s = math.cos(q0[a]), math.sin(q0[a])
+            gx, gy = math.cos(jref[k]), math.sin(jref[k])
+            gux[k] = c * gx - s * gy
+            guy[k] = s * gx + c * gy
+        if jkind[k] >= SPRING:
+            jpa[k] = 0.0  # (a force: what it gives is summed over the step, not carried)
+        elif (jmotor[k] & 2) != 0:
+            # A constraint's bounds (module doc): its jhertz an error_bias, not a frequency.
+            jmost[k] = h * jmaxtorque[k]
+            jfast[k] = jdamp[k]
+            if jhertz[k] >= 0.0:
+                jbeta[k] = (1.0 - jhertz[k] ** h) * inv_h
+        elif jhertz[k] > 0.0:
+            omega = 2.0 * math.pi * jhertz[k]
+            a1 = 2.0 * jdamp[k] + h * omega
+            a2 = h * omega * a1
+            w_rate[k], w_mass[k], w_imp[k] = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
+        if jkind[k] == DISTANCE:
+            # The anchors' parting speed along the link at the start (for a cable's bounce).
+            ux, uy, _ = axis(k, a, b, fax[k], fay[k], fbx[k], fby[k])
+            dvx, dvy = relative(a, b, fax[k], fay[k], fbx[k], fby[k])
+            drel[k] = dvx * ux + dvy * uy
+
+    for _ in range(substeps):
+        # -- integrate velocities (only what moves: the static body and kinematic bodies
+        # have no acceleration; a free body flies the closed form at the end).
+        for i in range(nb):
+            if free[i] != 0.0:
+                continue
+            bvx[i] += bax[i] * h
+            bvy[i] += bay[i] * h
+            bw[i] += balpha[i] * h
+
+        # -- warm start: joints, then contacts.
+        for k in range(nj):
+            if jkind[k] >= SPRING:
+                continue
+            a = ja[k]
+            b = jb[k]
+            ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+            rax = cq[a] * fax[k] - sq[a] * fay[k]
+            ray = sq[a] * fax[k] + cq[a] * fay[k]
+            rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+            rby = sq[b] * fbx[k] + cq[b] * fby[k]
+            px, py = jpx[k], jpy[k]
+            axial = jpa[k] + jmi[k] + jlo[k] - jhi[k]
+            if jkind[k] == DISTANCE:
+                # Along the axis now: lam u, lam = the rod's or least's push less the pull.
+                ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
+                px, py, axial = axial * ux, axial * uy, 0.0
+            elif jkind[k] == GROOVE:
+                # The ends' push along the axis now and the point's across it (jpa), at B's
+                # anchor (on A at d + r_A).
+                ux = cq[a] * gux[k] - sq[a] * guy[k]
+                uy = sq[a] * gux[k] + cq[a] * guy[k]
+                rax += (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+                ray += (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+                along = jlo[k] - jhi[k]
+                px, py = along * ux - jpa[k] * uy, along * uy + jpa[k] * ux
+                axial = 0.0
+            elif jkind[k] == GEAR:
+                bw[a] -= ia * axial
+                bw[b] += jspeed[k] * ib * axial
+                continue
+            bvx[a] -= ma * px
+            bvy[a] -= ma * py
+            bw[a] -= ia * (rax * py - ray * px + axial)
+            bvx[b] += mb * px
+            bvy[b] += mb * py
+            bw[b] += ib * (rbx * py - rby * px + axial)
+        for k in range(nc):
+            a = ca[k]
+            b = cb[k]
+            ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+            nx, ny = cnx[k], cny[k]
+            for j in range(ccount[k]):
+                p = 2 * k + j
+                px = cln[p] * nx - clt[p] * ny
+                py = cln[p] * ny + clt[p] * nx
+                ctotal[p] += cln[p]
+                apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
+
+        # -- solve with the soft push, integrate positions, relax without it.
+        for stage in range(2):
+            bias = stage == 0
+            for k in range(nj):
+                a = ja[k]
+                b = jb[k]
+                if jkind[k] >= SPRING:
+                    if bias:
+                        spring(
+                            k,
+                            cq[a] * fax[k] - sq[a] * fay[k], sq[a] * fax[k] + cq[a] * fay[k],
+                            cq[b] * fbx[k] - sq[b] * fby[k], sq[b] * fbx[k] + cq[b] * fby[k],
+                        )  # fmt: skip
+                    continue
+                if jkind[k] == DISTANCE or jkind[k] == GROOVE:
+                    rax = cq[a] * fax[k] - sq[a] * fay[k]
+                    ray = sq[a] * fax[k] + cq[a] * fay[k]
+                    rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+                    rby = sq[b] * fbx[k] + cq[b] * fby[k]
+                    if jkind[k] == DISTANCE:
+                        # Along the anchors' line: t its length, the levers the anchors.
+                        ux, uy, t = axis(k, a, b, rax, ray, rbx, rby)
+                        lax, lay, across = rax, ray, 0.0
+                    else:
+                        # A groove: the axis turned as A has since the start, d from A's
+                        # anchor to B's; on A the rows act at B's anchor, d + r_A.
+                        ux = cq[a] * gux[k] - sq[a] * guy[k]
+                        uy = sq[a] * gux[k] + cq[a] * guy[k]
+                        ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+                        ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+                        t = ux * ex + uy * ey
+                        lax, lay, across = ex + rax, ey + ray, ux * ey - uy * ex
+                    slide(k, bias, ux, uy, t, lax, lay, rbx, rby, across)
+                    continue
+                ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+                fixed = ia + ib == 0.0
+                if jkind[k] == GEAR:
+                    # C = r angle_B - angle_A - phase (r = jspeed, phase = jref).
+                    if amass[k] != 0.0:
+                        r = jspeed[k]
+                        rate, mscale, iscale = soft(k, bias)
+                        err = r * (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
+                        cdot = r * bw[b] - bw[a]
+                        v = bounded(rate, err, mscale, jfast[k])
+                        d = -amass[k] * mscale * (cdot + v) - iscale * jpa[k]
+                        old = jpa[k]
+                        new = old + d
+                        if new > jmost[k] or new < -jmost[k]:
+                            new = min(max(new, -jmost[k]), jmost[k])
+                            d = new - old
+                        jpa[k] = new
+                        bw[a] -= ia * d
+                        bw[b] += r * ib * d
+                    continue
+                if jkind[k] == WELD:
+                    # The angle held: C = angle_B - angle_A - ref.
+                    rate, mscale, iscale = 0.0, 1.0, 0.0
+                    if jhertz[k] > 0.0:
+                        rate, mscale, iscale = w_rate[k], w_mass[k], w_imp[k]
+                    elif bias:
+                        rate, mscale, iscale = j_rate, j_mass, j_imp
+                    if not fixed:
+                        err = (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
+                        cdot = bw[b] - bw[a]
+                        d = -amass[k] * mscale * (cdot + rate * err) - iscale * jpa[k]
+                        jpa[k] += d
+                        bw[a] -= ia * d
+                        bw[b] += ib * d
+                elif jkind[k] == MOUSE:
+                    # The grip calms the body's spin: omega / (1 + k h) a substep (the
+                    # implicit step of omega' = -k omega; jspeed holds k, 1/s).
+                    if bias and jspeed[k] > 0.0 and ib > 0.0:
+                        bw[b] = bw[b] / (1.0 + jspeed[k] * h)
+                else:
+                    if (jmotor[k] & 1) != 0 and not fixed:
+                        cdot = bw[b] - bw[a] - jspeed[k]
+                        d = -amass[k] * cdot
+                        old = jmi[k]
+                        most = h * jmaxtorque[k]
+                        jmi[k] = min(max(old + d, -most), most)
+                        d = jmi[k] - old
+                        bw[a] -= ia * d
+                        bw[b] += ib * d
+                    if jlimit[k] != 0 and not fixed:
+                        angle = (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
+                        mass = amass[k]
+                        for side in range(2):
+                            if ((jlimit[k] >> side) & 1) == 0:
+                                continue
+                            # Lower: C = angle - lower >= 0, turning B up; upper: C = upper -
+                            # angle >= 0, turning B down.
+                            sign = 1.0 if side == 0 else -1.0
+                            old = jlo[k] if side == 0 else jhi[k]
+                            err = angle - jlower[k] if side == 0 else jupper[k] - angle
+                            turn = sign * (bw[b] - bw[a])
+                            new = limit(k, err, turn, mass, old, bias, jfast[k], jmost[k])
+                            d = sign * (new - old)
+                            if side == 0:
+                                jlo[k] = new
+                            else:
+                                jhi[k] = new
+                            bw[a] -= ia * d
+                            bw[b] += ib * d
+                    if jkind[k] == ROTARY:
+                        continue  # (the angle's rows alone)
+                # The point: C = (c_B + r_B) - (c_A + r_A), both anchors turned as their
+                # bodies have since the start.
+                rax = cq[a] * fax[k] - sq[a] * fay[k]
+                ray = sq[a] * fax[k] + cq[a] * fay[k]
+                rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+                rby = sq[b] * fbx[k] + cq[b] * fby[k]
+                cdx = (bvx[b] - bw[b] * rby) - (bvx[a] - bw[a] * ray)
+                cdy = (bvy[b] + bw[b] * rbx) - (bvy[a] + bw[a] * rax)
+                rate, mscale, iscale = 0.0, 1.0, 0.0
+                if (jkind[k] == WELD and jhertz[k] > 0.0) or jkind[k] == MOUSE:
+                    rate, mscale, iscale = w_rate[k], w_mass[k], w_imp[k]
+                elif bias:
+                    rate, mscale, iscale = j_rate, j_mass, j_imp
+                if rate != 0.0:
+                    ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+                    ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+                    cdx += rate * ex
+                    cdy += rate * ey
+                k11 = ma + mb + ray * ray * ia + rby * rby * ib
+                k12 = -ray * rax * ia - rby * rbx * ib
+                k22 = ma + mb + rax * rax * ia + rbx * rbx * ib
+                det = k11 * k22 - k12 * k12
+                if det != 0.0:
+                    det = 1.0 / det
+                sx = det * (k22 * cdx - k12 * cdy)
+                sy = det * (k11 * cdy - k12 * cdx)
+                px = -mscale * sx - iscale * jpx[k]
+                py = -mscale * sy - iscale * jpy[k]
+                if jkind[k] == MOUSE:
+                    # A mouse joint's force is at most jmaxtorque (N): its impulse in a
+                    # substep at most that times h, the push scaled back to it.
+                    tx, ty = jpx[k] + px, jpy[k] + py
+                    most = h * jmaxtorque[k]
+                    if tx * tx + ty * ty > most * most:
+                        scale = most / math.sqrt(tx * tx + ty * ty)
+                        px, py = tx * scale - jpx[k], ty * scale - jpy[k]
+                jpx[k] += px
+                jpy[k] += py
+                apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+
+            for k in range(nc):
+                a = ca[k]
+                b = cb[k]
+                ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+                nx, ny = cnx[k], cny[k]
+                # Stiffer against what does not move (Box2D: the floor does not give).
+                rigid = (ma == 0.0 and ia == 0.0) or (mb == 0.0 and ib == 0.0)
+                if rigid:
+                    rate, mscale, iscale = s_rate, s_mass, s_imp
+                else:
+                    rate, mscale, iscale = c_rate, c_mass, c_imp
+                mx = dx[b] - dx[a]
+                my = dy[b] - dy[a]
+                if ccount[k] == 2 and kblock[k] != 0.0:
+                    # Both points at once (the block solve below): a box that lands flat
+                    # stays flat, where one point after the other would tip it.
+                    p = 2 * k
+                    r1 = 0.0
+                    r2 = 0.0
+                    l1 = 0.0
+                    l2 = 0.0
+                    for j in range(2):
+                        q = p + j
+                        rax, ray, rbx, rby = crax[q], cray[q], crbx[q], crby[q]
+                        ex = mx + (cq[b] * rbx - sq[b] * rby) - (cq[a] * rax - sq[a] * ray)
+                        ey = my + (sq[b] * rbx + cq[b] * rby) - (sq[a] * rax + cq[a] * ray)
+                        sep = base[q] + ex * nx + ey * ny
+                        vbias, ms, im = 0.0, 1.0, 0.0
+                        if sep > 0.0:
+                            vbias = sep * inv_h
+                        elif bias:
+                            vbias = max(mscale * rate * sep, -push)
+                            ms, im = mscale, iscale
+                        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                        if j == 0:
+                            r1 = ms * (dvx * nx + dvy * ny) + vbias
+                            l1 = (1.0 - im) * cln[q]
+                        else:
+                            r2 = ms * (dvx * nx + dvy * ny) + vbias
+                            l2 = (1.0 - im) * cln[q]
+                    press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny)
+                for j in range(ccount[k] if kblock[k] == 0.0 else 0):
+                    p = 2 * k + j
+                    rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+                    # The separation now: the anchors turned as their bodies have.
+                    ex = mx + (cq[b] * rbx - sq[b] * rby) - (cq[a] * rax - sq[a] * ray)
+                    ey = my + (sq[b] * rbx + cq[b] * rby) - (sq[a] * rax + cq[a] * ray)
+                    sep = base[p] + ex * nx + ey * ny
+                    vbias, ms, im = 0.0, 1.0, 0.0
+                    if sep > 0.0:
+                        vbias = sep * inv_h  # speculative: may close by sep, no more
+                    elif bias:
+                        vbias = max(mscale * rate * sep, -push)
+                        ms, im = mscale, iscale
+                    dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                    vn = dvx * nx + dvy * ny
+                    d = -nmass[p] * (ms * vn + vbias) - im * cln[p]
+                    press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+                if not bias:
+                    # Friction, in the relax only (Box2D v3), against the slip less the
+                    # surfaces' own speed: vt = (v_B - v_A).t - speed, t = (-n_y, n_x).
+                    tx, ty = -ny, nx
+                    for j in range(ccount[k]):
+                        p = 2 * k + j
+                        rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+                        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                        vt = dvx * tx + dvy * ty - cspeed[k]
+                        d = -tmass[p] * vt
+                        most = cfric[k] * cln[p]
+                        new = min(max(clt[p] + d, -most), most)
+                        d = new - clt[p]
+                        clt[p] = new
+                        px, py = d * tx, d * ty
+                        apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+
+            if bias:
+                # -- integrate positions (the moves since the start, and their rotations).
+                for i in range(nb):
+                    if free[i] != 0.0:
+                        continue
+                    dx[i] += bvx[i] * h
+                    dy[i] += bvy[i] * h
+                    if bw[i] != 0.0:
+                        dq[i] += bw[i] * h
+                        cq[i] = math.cos(dq[i])
+                        sq[i] = math.sin(dq[i])
+
+    # -- restitution: a point that met faster than the threshold, and pushed in the step,
+    # parts at e times the speed it met at.
+    for k in range(nc):
+        e = crest[k]
+        if e == 0.0:
+            continue
+        a = ca[k]
+        b = cb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        nx, ny = cnx[k], cny[k]
+        p = 2 * k
+        both = ccount[k] == 2 and kblock[k] != 0.0
+        both = both and rel[p] <= -threshold and cmax[p] != 0.0
+        if both and rel[p + 1] <= -threshold and cmax[p + 1] != 0.0:
+            # Both points bounce: as one block, so a box that lands flat leaves flat (one
+            # point after the other would set it turning). Targets vn_i = -e rel_i.
+            rs = [0.0, 0.0]
+            for j in range(2):
+                dvx, dvy = relative(a, b, crax[p + j], cray[p + j], crbx[p + j], crby[p + j])
+                rs[j] = dvx * nx + dvy * ny + e * rel[p + j]
+            press2(k, rs[0], rs[1], cln[p], cln[p + 1], a, b, ma, ia, mb, ib, nx, ny)
+            continue
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            if rel[p] > -threshold or cmax[p] == 0.0:
+                continue
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            vn = dvx * nx + dvy * ny
+            d = -nmass[p] * (vn + e * rel[p])
+            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+
+    # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
+    # its ends back together at e times the speed they parted at (jspeed holds e).
+    for k in range(nj):
+        e = jspeed[k]
+        if jkind[k] != DISTANCE or e == 0.0 or dhit[k] == 0.0 or drel[k] < threshold:
+            continue
+        a = ja[k]
+        b = jb[k]
+        rax = cq[a] * fax[k] - sq[a] * fay[k]
+        ray = sq[a] * fax[k] + cq[a] * fay[k]
+        rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+        rby = sq[b] * fbx[k] + cq[b] * fby[k]
+        ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
+        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+        # Target: the anchors close at e drel, cdot = -e drel; a pull lam changes cdot by
+        # -lam / m (the axial mass m).
+        lam = axial_mass(a, b, ux, uy, rax, ray, rbx, rby) * (dvx * ux + dvy * uy + e * drel[k])
+        new = max(jhi[k] + lam, 0.0)
+        d = -(new - jhi[k])
+        jhi[k] = new
+        apply(a, b, bim[a], bii[a], bim[b], bii[b], d * ux, d * uy, rax, ray, rbx, rby)
+
+    # -- the step's end: positions and angles from the moves; a free body's from the closed
+    # form of its motion (module doc).
+    for i in range(nb - 1):
+        if free[i] != 0.0:
+            dx[i] = bvx[i] * dt + 0.5 * bax[i] * dt * dt
+            dy[i] = bvy[i] * dt + 0.5 * bay[i] * dt * dt
+            dq[i] = bw[i] * dt + 0.5 * balpha[i] * dt * dt
+            bvx[i] += bax[i] * dt
+            bvy[i] += bay[i] * dt
+            bw[i] += balpha[i] * dt
+        bx[i] = x0[i] + dx[i]
+        by[i] = y0[i] + dy[i]
+        bq[i] = q0[i] + dq[i]

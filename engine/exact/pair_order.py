@@ -1,0 +1,86 @@
+"""Which of a step's moments a round of impacts resolves (engine.exact.pair_impacts).
+
+A body's next moment within the step is the earliest of its pairs' impacts, of the wall its
+path meets (a body an impact sent off may meet one on its new path), and of the next bounce of
+a path the static contacts bent (engine.exact.bent_paths). Each round resolves
+
+* every pair that is the earliest moment of both its bodies (ties: the lower pair index),
+  since such pairs share no body;
+* every body's wall or bounce that comes before every pair of its own;
+
+and the paths that changed are searched again from their moments (``Order.choose``).
+
+Walls and bounces are kept in time order among the bodies linked by pairs, through any chain of
+them (``groups``; bodies of two groups never meet within the step, the pairs being all that can
+touch): a wall or bounce waits for everything before it in its group, and no pair after it
+there is resolved before it, for the path it starts may meet any of those bodies sooner (a ball
+sent into a wall at 0.27 s comes back, at 0.4 s, into one that would meet its own wall only at
+0.47 s; resolved in one round, that one's path is searched from 0.47 s on, and the meeting
+missed). Pairs among themselves keep the round's order, which takes a crowd's many impacts a
+round at a time.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["Order", "groups"]
+
+
+def groups(pa: np.ndarray, pb: np.ndarray, n: int) -> np.ndarray:
+    """Each of n bodies' group: the lowest body linked to it by the pairs (pa, pb) through any
+    chain of them (labels spread along the pairs, then jump to their own labels)."""
+    label = np.arange(n)
+    while True:
+        low = np.minimum(label[pa], label[pb])
+        new = label.copy()
+        np.minimum.at(new, pa, low)
+        np.minimum.at(new, pb, low)
+        new = new[new]
+        if np.array_equal(new, label):
+            return label
+        label = new
+
+
+class Order:
+    """The rounds' choice (module text) for the pairs (pa, pb) of n local bodies."""
+
+    def __init__(self, pa: np.ndarray, pb: np.ndarray, n: int) -> None:
+        self.pa, self.pb, self.n = pa, pb, n
+        self._group: np.ndarray | None = None  # made when first needed
+
+    def choose(
+        self, toi: np.ndarray, face_t: np.ndarray, bend: np.ndarray | None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The round's moments (module text): (the pairs, the bodies whose wall, the bodies
+        whose bounce), from each pair's time of impact ``toi`` and each body's wall time
+        ``face_t`` and next bounce ``bend`` (None: no path is bent), all s in the step, inf
+        for none."""
+        pa, pb = self.pa, self.pb
+        nxt = face_t if bend is None else np.minimum(face_t, bend)
+        h = np.flatnonzero(np.isfinite(toi))
+        best = nxt.copy()  # each body's next moment
+        np.minimum.at(best, pa[h], toi[h])
+        np.minimum.at(best, pb[h], toi[h])
+        first = np.full(self.n, len(pa))
+        ca = h[toi[h] == best[pa[h]]]
+        cb = h[toi[h] == best[pb[h]]]
+        np.minimum.at(first, pa[ca], ca)
+        np.minimum.at(first, pb[cb], cb)
+        s = h[(first[pa[h]] == h) & (first[pb[h]] == h)]
+        s = s[(toi[s] < nxt[pa[s]]) & (toi[s] < nxt[pb[s]])]
+        wall = np.flatnonzero(np.isfinite(face_t) & (face_t <= best))
+        knot = np.zeros(0, dtype=np.intp)
+        if np.isfinite(nxt).any():
+            if self._group is None:
+                self._group = groups(pa, pb, self.n)
+            g = self._group
+            soon = np.full(self.n, np.inf)  # each group's first wall or bounce
+            ahead = np.full(self.n, np.inf)  # and its first moment of any kind
+            np.minimum.at(soon, g, nxt)
+            np.minimum.at(ahead, g, best)
+            s = s[toi[s] <= soon[g[pa[s]]]]
+            wall = wall[face_t[wall] <= ahead[g[wall]]]
+            if bend is not None:
+                knot = np.flatnonzero(np.isfinite(bend) & (bend <= ahead[g]))
+        return s, wall, knot

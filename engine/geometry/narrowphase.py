@@ -1,0 +1,432 @@
+"""Every pair's manifold in a few calls: the soft step's narrowphase (engine.pipeline.game_step).
+
+The manifold functions of ``engine.geometry.manifold`` take N pairs of one kind against one kind,
+and each call pays numpy's (or the wrapper's) fixed cost once. A game's scene mixes kinds (boxes,
+capsules, discs, the level's segments and coins), so the soft step puts every shape, the
+bodies' and the colliders', into two tables:
+
+* ``polygons``: every polygon and every capsule (a capsule as Box2D's two-vertex polygon,
+  ``Polygons.from_capsules``), padded to the largest;
+* ``circles``: every disc and every circle collider (a centre in its body's frame, a radius);
+
+and sorts the pairs into three groups, each one call: polygon against polygon
+(``engine.geometry.manifold_polygon``: Box2D's b2CollidePolygons), polygon against circle and circle
+against circle (the round pairs: b2CollidePolygonAndCircle and b2CollideCircles), and a half
+plane against each kind of body shape (``collide_pairs``, the numpy path's stage, which puts
+the manifolds back in the broadphase's order). On the fast path the soft step calls the loop
+kernels (``polygon_loop``, ``round_loop`` here) from its own compiled contacts stage
+(engine.pipeline.game_contacts), straight on the tables; ``collide_polygon_pairs`` and
+``collide_round_pairs`` take either. ``round_loop`` is ``collide_polygon_circle`` and
+``collide_circles`` written as one loop, each product in its twin's order, so both paths
+give the same bits.
+"""
+
+from __future__ import annotations
+
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .. import kernels
+from .manifold import StaticShapes, collide, collide_circles, collide_polygon_circle
+from .manifold_kinds import SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
+from .manifold_polygon import collide_polygons, polygon_loop
+from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
+
+__all__ = [
+    "Places",
+    "Tables",
+    "Touches",
+    "collide_pairs",
+    "collide_polygon_pairs",
+    "collide_round_pairs",
+    "places_of",
+    "round_loop",
+]
+
+
+class Tables:
+    """The shapes of a scene in two tables (module doc): ``polygons`` (a ``Polygons``, or
+    None without any) and ``circles`` (a ``Circles``)."""
+
+    def __init__(self, polygons: Polygons | None, circles: Circles) -> None:
+        self.polygons = polygons
+        self.circles = circles
+        if polygons is not None:
+            # The loop kernels' own copies: C-contiguous, int64 counts.
+            self.vertices = np.ascontiguousarray(polygons.vertices)
+            self.normals = np.ascontiguousarray(polygons.normals)
+            self.count = np.ascontiguousarray(polygons.count, dtype=np.int64)
+            self.radius = np.ascontiguousarray(polygons.radius)
+        self.center = np.ascontiguousarray(circles.center)
+        self.round = np.ascontiguousarray(circles.radius)
+        #: The polygon table as the loop kernels take it (vertices, normals, count, radius),
+        #: or one-row stand-ins of the same types where the scene has no polygon.
+        self.kernel_polygons: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] = (
+            (self.vertices, self.normals, self.count, self.radius)
+            if polygons is not None
+            else (np.zeros((1, 2, 2)), np.zeros((1, 2, 2)), np.zeros(1, np.int64), np.zeros(1))
+        )
+
+
+def _manifold(parts: tuple[np.ndarray, ...]) -> Manifold:
+    return Manifold(*parts)
+
+
+def collide_polygon_pairs(
+    t: Tables, ia: np.ndarray, xa: np.ndarray, qa: np.ndarray,
+    ib: np.ndarray, xb: np.ndarray, qb: np.ndarray, margin: float, fast: bool,
+) -> Manifold:  # fmt: skip
+    """Polygon ``ia[k]`` of the table at (xa[k], qa[k]) against polygon ``ib[k]`` at
+    (xb[k], qb[k]) (m, rad): their manifolds, the normal from A to B."""
+    assert t.polygons is not None
+    if fast:
+        kernel: Any = polygon_loop
+        return _manifold(
+            kernel(t.vertices, t.normals, t.count, t.radius, ia, xa, qa,
+                   t.vertices, t.normals, t.count, t.radius, ib, xb, qb, margin)
+        )  # fmt: skip
+    p = t.polygons
+    return collide_polygons(p.take(ia), xa, qa, p.take(ib), xb, qb, margin)
+
+
+def collide_round_pairs(
+    t: Tables, circle_a: np.ndarray, ia: np.ndarray, xa: np.ndarray, qa: np.ndarray,
+    ib: np.ndarray, xb: np.ndarray, qb: np.ndarray, margin: float, fast: bool,
+) -> Manifold:  # fmt: skip
+    """Shape ``ia[k]`` (a circle of the table where ``circle_a[k]``, else a polygon) at
+    (xa[k], qa[k]) against circle ``ib[k]`` at (xb[k], qb[k]): their manifolds (A to B)."""
+    if fast:
+        vertices, normals, count, radius = t.kernel_polygons
+        kernel: Any = round_loop
+        return _manifold(
+            kernel(vertices, normals, count, radius, t.center, t.round, circle_a, ia, xa, qa,
+                   ib, xb, qb, margin)
+        )  # fmt: skip
+    out = []
+    order = []
+    for circles in (False, True):
+        sel = np.flatnonzero(circle_a == circles)
+        if not len(sel):
+            continue
+        b = t.circles.take(ib[sel])
+        if circles:
+            a_c = t.circles.take(ia[sel])
+            m = collide_circles(a_c, xa[sel], qa[sel], b, xb[sel], qb[sel], margin)
+        else:
+            assert t.polygons is not None
+            a_p = t.polygons.take(ia[sel])
+            m = collide_polygon_circle(a_p, xa[sel], qa[sel], b, xb[sel], qb[sel], margin)
+        out.append(m)
+        order.append(sel)
+    if len(out) == 1:
+        return out[0]
+    joined = Manifold.concat(out)
+    back = np.empty(len(ia), dtype=np.intp)
+    back[np.concatenate(order)] = np.arange(len(ia))
+    return joined.take(back)
+
+
+def _sample_round() -> tuple[object, ...]:
+    """The smallest call of ``round_loop``: a unit box and a disc beside it, and two discs."""
+    v = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
+    nn = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
+    c, r = np.array([4]), np.zeros(1)
+    centers, radii = np.zeros((2, 2)), np.array([0.25, 0.5])
+    flag = np.array([False, True])
+    i, x, q = np.array([0, 1]), np.zeros((2, 2)), np.zeros(2)
+    xb = np.array([[0.7, 0.0], [0.0, 0.7]])
+    return v, nn, c, r, centers, radii, flag, i, x, q, np.array([0, 0]), xb, q, 0.02
+
+
+@kernels.loop(sample=_sample_round)
+def round_loop(
+    VA: np.ndarray, NA: np.ndarray, cA: np.ndarray, rA: np.ndarray,
+    C: np.ndarray, rC: np.ndarray, circle_a: np.ndarray,
+    ia: np.ndarray, xa: np.ndarray, qa: np.ndarray,
+    ib: np.ndarray, xb: np.ndarray, qb: np.ndarray, margin: float,
+) -> tuple[np.ndarray, ...]:  # fmt: skip
+    """``collide_polygon_circle`` and ``collide_circles`` as one loop over pairs: pair k is
+    polygon ``ia[k]`` of (VA, NA, cA, rA), or circle ``ia[k]`` of (C, rC) where
+    ``circle_a[k]``, at (xa[k], qa[k]), against circle ``ib[k]`` of (C, rC) at (xb[k],
+    qb[k]); returns the Manifold's arrays, each product its twins' in their order."""
+    n = len(ia)
+    normal_w = np.empty((n, 2))
+    count = np.zeros(n, dtype=np.int64)
+    world = np.zeros((n, 2, 2))
+    anchor_a = np.zeros((n, 2, 2))
+    anchor_b = np.zeros((n, 2, 2))
+    sep_out = np.full((n, 2), np.inf)
+    feat_out = np.full((n, 2), -1, dtype=np.int64)
+    for k in range(n):
+        # Frames (engine.geometry.manifold_kinds.frames): B's centre in A's frame.
+        ca, sn = np.cos(qa[k]), np.sin(qa[k])
+        dx, dy = xb[k, 0] - xa[k, 0], xb[k, 1] - xa[k, 1]
+        px, py = ca * dx + sn * dy, -sn * dx + ca * dy
+        rel = qb[k] - qa[k]
+        c, s = np.cos(rel), np.sin(rel)
+        j = ib[k]
+        vx, vy = C[j, 0], C[j, 1]
+        cx, cy = c * vx - s * vy + px, s * vx + c * vy + py
+        rb = rC[j]
+        i = ia[k]
+        if circle_a[k]:
+            # collide_circles: the normal along the centres (A's up where they coincide).
+            pax, pay = C[i, 0], C[i, 1]
+            ra = rC[i]
+            ux, uy = cx - pax, cy - pay
+            dist = np.hypot(ux, uy)
+            if dist > 0.0:
+                nx, ny = ux / dist, uy / dist
+            else:
+                nx, ny = 0.0, 1.0
+            ax_, ay_ = pax + ra * nx, pay + ra * ny
+            gap = dist - ra - rb
+        else:
+            # collide_polygon_circle: the face of largest separation, or a vertex past it.
+            ra = rA[i]
+            m = cA[i]
+            best = 0
+            sep = -np.inf
+            for e in range(m):
+                d = NA[i, e, 0] * (cx - VA[i, e, 0]) + NA[i, e, 1] * (cy - VA[i, e, 1])
+                if d > sep or e == 0:
+                    best, sep = e, d
+            v1x, v1y = VA[i, best, 0], VA[i, best, 1]
+            e2 = (best + 1) % m
+            v2x, v2y = VA[i, e2, 0], VA[i, e2, 1]
+            u1 = (cx - v1x) * (v2x - v1x) + (cy - v1y) * (v2y - v1y)
+            u2 = (cx - v2x) * (v1x - v2x) + (cy - v2y) * (v1y - v2y)
+            fx, fy = NA[i, best, 0], NA[i, best, 1]
+            outside = sep > 0.0
+            near1 = outside and u1 < 0.0
+            near2 = outside and u2 < 0.0 and not near1
+            if near1 or near2:
+                wx, wy = (v1x, v1y) if near1 else (v2x, v2y)
+                ux, uy = cx - wx, cy - wy
+                dist = np.hypot(ux, uy)
+                if dist > 0.0:
+                    nx, ny = ux / dist, uy / dist
+                else:
+                    nx, ny = fx, fy
+                ax_, ay_ = wx + ra * nx, wy + ra * ny
+                gap = dist - ra - rb
+            else:
+                nx, ny = fx, fy
+                h = ra - ((cx - v1x) * fx + (cy - v1y) * fy)
+                ax_, ay_ = cx + h * fx, cy + h * fy
+                gap = sep - ra - rb
+        bx_, by_ = cx - rb * nx, cy - rb * ny
+        # _one_point and finish: the point midway, kept within margin, into the world's frame.
+        normal_w[k, 0] = ca * nx - sn * ny
+        normal_w[k, 1] = sn * nx + ca * ny
+        if gap <= margin:
+            mx, my = 0.5 * (ax_ + bx_), 0.5 * (ay_ + by_)
+            wx_, wy_ = ca * mx - sn * my, sn * mx + ca * my
+            anchor_a[k, 0, 0], anchor_a[k, 0, 1] = wx_, wy_
+            world[k, 0, 0], world[k, 0, 1] = wx_ + xa[k, 0], wy_ + xa[k, 1]
+            anchor_b[k, 0, 0] = wx_ + (xa[k, 0] - xb[k, 0])
+            anchor_b[k, 0, 1] = wy_ + (xa[k, 1] - xb[k, 1])
+            sep_out[k, 0], feat_out[k, 0] = gap, 0
+            count[k] = 1
+    return normal_w, count, world, anchor_a, anchor_b, sep_out, feat_out
+
+
+class Touches(NamedTuple):
+    """The narrowphase's manifolds with a point, and whose: ``a`` body A's row, ``b`` body B's
+    (n: the static body), ``place`` the static shape's place among the colliders' (-1 for a
+    pair of bodies)."""
+
+    m: Manifold
+    a: np.ndarray
+    b: np.ndarray
+    place: np.ndarray
+
+    def take(self, rows: np.ndarray) -> Touches:
+        """The manifolds of ``rows``."""
+        return Touches(self.m.take(rows), self.a[rows], self.b[rows], self.place[rows])
+
+
+def _padded(p: Polygons, m: int) -> Polygons:
+    """``p`` padded to ``m`` vertices (the last vertex and normal repeated, as
+    engine.geometry.manifold_kinds pads)."""
+    k = p.vertices.shape[1]
+    if k == m:
+        return p
+    v = np.concatenate([p.vertices, np.repeat(p.vertices[:, -1:], m - k, axis=1)], axis=1)
+    nn = np.concatenate([p.normals, np.repeat(p.normals[:, -1:], m - k, axis=1)], axis=1)
+    return Polygons(v, nn, p.count, p.radius)
+
+
+class Places(NamedTuple):
+    """The two tables of a scene's shapes (engine.geometry.narrowphase) and where each shape is in
+    them: by body row and by static shape's place, whether it is a circle and its index
+    (a half plane, which the tables do not hold, as -1 - its index among the half planes)."""
+
+    tables: Tables
+    body_circle: np.ndarray
+    body_index: np.ndarray
+    static_circle: np.ndarray
+    static_index: np.ndarray
+
+
+def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
+    """The tables of the bodies' shapes and the colliders' (engine.geometry.narrowphase)."""
+    n = len(table)
+    parts = [p for p in (table.polygons,) if p is not None]
+    body_caps = Polygons.from_capsules(table.capsules) if len(table.capsules) else None
+    static_polys = statics.polygons if len(statics.polygon_owner) else None
+    static_caps = Polygons.from_capsules(statics.capsules) if len(statics.capsule_owner) else None
+    parts += [p for p in (body_caps, static_polys, static_caps) if p is not None]
+    polygons = None
+    if parts:
+        m = max(p.vertices.shape[1] for p in parts)
+        padded = [_padded(p, m) for p in parts]
+        polygons = Polygons(
+            np.concatenate([p.vertices for p in padded]),
+            np.concatenate([p.normals for p in padded]),
+            np.concatenate([p.count for p in padded]),
+            np.concatenate([p.radius for p in padded]),
+        )
+    circles = Circles(
+        np.concatenate([table.circles.center, statics.circles.center]),
+        np.concatenate([table.circles.radius, statics.circles.radius]),
+    )
+    n_poly = 0 if table.polygons is None else len(table.polygons)
+    n_cap = len(table.capsules)
+    body_circle = table.kind == DISC
+    body_index = np.where(
+        body_circle, np.arange(n), np.where(table.kind == CAPSULE, n_poly, 0) + table.index
+    )
+    # The static shapes in the order of statics.kinds(): half planes, circles, capsules,
+    # polygons (those present).
+    circle_parts, index_parts = [], []
+    base_poly = n_poly + n_cap
+    n_static_poly = len(statics.polygon_owner)
+    for _kind, own in statics.kinds():
+        k = len(own)
+        if own is statics.half_plane_owner:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(-1 - np.arange(k))  # half plane h as -1 - h
+        elif own is statics.circle_owner:
+            circle_parts.append(np.ones(k, dtype=bool))
+            index_parts.append(n + np.arange(k))
+        elif own is statics.capsule_owner:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(base_poly + n_static_poly + np.arange(k))
+        else:
+            circle_parts.append(np.zeros(k, dtype=bool))
+            index_parts.append(base_poly + np.arange(k))
+    static_circle = np.concatenate(circle_parts) if circle_parts else np.zeros(0, dtype=bool)
+    static_index = (
+        np.concatenate(index_parts) if index_parts else np.zeros(0, dtype=np.intp)
+    ).astype(np.int64)
+    return Places(
+        Tables(polygons, circles), body_circle, body_index.astype(np.int64), static_circle,
+        static_index,
+    )  # fmt: skip
+
+
+def collide_pairs(
+    places: Places,
+    table: ShapeTable,
+    store: Any,
+    statics: StaticShapes,
+    pairs: np.ndarray,
+    faces: np.ndarray,
+    margin: np.ndarray,
+) -> Touches:
+    """The manifolds of the pairs and faces with a point, in the broadphase's order (the
+    pairs, then the faces): polygon against polygon in one call, the round pairs in another
+    (engine.geometry.narrowphase), a half plane against each kind of body shape in one each (the
+    half plane as A, flipped back); each call's speculative margin the largest reach among its
+    pairs. The numpy path's stage (the fast path's is
+    engine.pipeline.game_contacts.contacts_loop)."""
+    n = len(store)
+    x, q = store.x, store.angle
+    # Every pair as (A's row, B's row or n, the static place or -1), A a body.
+    rows, spots = faces[:, 0], faces[:, 1]
+    a = np.concatenate([pairs[:, 0], rows]).astype(np.intp)
+    b = np.concatenate([pairs[:, 1], np.full(len(rows), n)]).astype(np.intp)
+    place = np.concatenate([np.full(len(pairs), -1), spots]).astype(np.intp)
+    is_static = place >= 0
+    # (A body pair's place is -1: it picks the one entry appended past the statics.)
+    static_circle = np.append(places.static_circle, False)[place]
+    static_index = np.append(places.static_index, 0)[place]
+    half = is_static & (static_index < 0)
+    other = np.minimum(b, n - 1)
+    circ_a = places.body_circle[a]
+    circ_b = np.where(is_static, static_circle, places.body_circle[other])
+    idx_a = places.body_index[a]
+    idx_b = np.where(is_static, static_index, places.body_index[other])
+    zero2 = np.zeros((len(a), 2))
+    xb = np.where(is_static[:, None], zero2, x[other])
+    qb = np.where(is_static, 0.0, q[other])
+    xa, qa = x[a], q[a]
+    reach = margin[a] + np.where(is_static, 0.0, margin[other])
+    reach = reach + SPECULATIVE_DISTANCE
+    t = places.tables
+    parts: list[Manifold] = []
+    order: list[np.ndarray] = []
+    c = np.ascontiguousarray
+    sel = np.flatnonzero(~circ_a & ~circ_b & ~half)
+    if len(sel):
+        parts.append(collide_polygon_pairs(
+            t, c(idx_a[sel]), c(xa[sel]), c(qa[sel]), c(idx_b[sel]), c(xb[sel]), c(qb[sel]),
+            float(reach[sel].max()), False,
+        ))  # fmt: skip
+        order.append(sel)
+    # The round pairs: B a circle; where only A is one, the pair is taken the other way
+    # round (the polygon as A) and its manifold flipped back.
+    sel = np.flatnonzero((circ_a | circ_b) & ~half)
+    if len(sel):
+        swap = circ_a[sel] & ~circ_b[sel]
+        ia = np.where(swap, idx_b[sel], idx_a[sel])
+        ib = np.where(swap, idx_a[sel], idx_b[sel])
+        pa = np.where(swap[:, None], xb[sel], xa[sel])
+        pb = np.where(swap[:, None], xa[sel], xb[sel])
+        wa = np.where(swap, qb[sel], qa[sel])
+        wb = np.where(swap, qa[sel], qb[sel])
+        flag = np.where(swap, False, circ_a[sel])
+        m = collide_round_pairs(
+            t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), False
+        )
+        if swap.any():
+            flipped = m.take(swap).flipped()
+            keep = m.take(~swap)
+            m = Manifold.concat([keep, flipped])
+            sel = np.concatenate([sel[~swap], sel[swap]])
+        parts.append(m)
+        order.append(sel)
+    # Half planes (a Plane, a room's walls), by the kind of the body's shape.
+    kind = table.kind
+    for ka in (DISC, CAPSULE, POLYGON):
+        sel = np.flatnonzero(half & (kind[a] == ka))
+        if not len(sel):
+            continue
+        r, h = a[sel], -1 - static_index[sel]
+        m = collide(
+            table.kinds(r), x[r], q[r], statics.half_planes.take(h), np.zeros((len(r), 2)),
+            np.zeros(len(r)), float(reach[sel].max()), False,
+        )  # fmt: skip
+        parts.append(m)
+        order.append(sel)
+    if not parts:
+        empty = np.zeros(0, dtype=np.intp)
+        none = Manifold(
+            np.zeros((0, 2)),
+            np.zeros(0, dtype=np.intp),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2, 2)),
+            np.zeros((0, 2)),
+            np.zeros((0, 2), dtype=np.int64),
+        )
+        return Touches(none, empty, empty, empty)
+    # Back in the broadphase's order (so the solver meets the rows as the fast path's).
+    idx = np.concatenate(order)
+    back = np.empty(len(idx), dtype=np.intp)
+    back[idx] = np.arange(len(idx))
+    m = Manifold.concat(parts).take(back)
+    hit = m.count > 0
+    return Touches(m.take(hit), a[hit], b[hit], place[hit])

@@ -1,0 +1,308 @@
+"""Bodies with a shape (a box, a polygon, a capsule): their contacts as rows of the soft step.
+
+A body made with ``Body(..., shape=...)`` carries a convex shape in its own frame, about its
+position (``engine.geometry.colliders``: a ``Polygon``, ``Polygon.box(width, height)``, or a
+``Segment``, a capsule), turned by the body's angle (``angle``: the angles at the step's
+start, by World row; None: 0, a body that does not turn).
+
+Such a body is always stepped with the piles (``engine.exact.soft``): its contacts are the points
+of Box2D's manifolds (``engine.geometry.manifold``), up to two a pair, each a row with a normal and
+a separation, solved with the pile's contacts of discs. A body that does not turn moves by
+translation only, so a row's point does not matter, only its normal and gap: the same
+row as two discs'. A body that turns needs the point too: each row comes with its anchors,
+the point less each body's position (r_A, r_B), of which the pile makes the lever arms
+(engine.exact.pile_rows, ``shape_arms``). A disc meets a shape as a ``Circles`` row of the table.
+
+The rows are speculative (Box2D's): a wall within ``margin`` of a body at the step's start,
+or a pair within twice it, gets its rows, which hold the gap from closing past zero. The
+margin is the farthest any body of the pile moves in the step (its speed at the start and
+what the forces add in dt) plus 5% of a radius, so a box thrown at a thin wall, or two
+thrown at each other, are caught whatever their speed (tested to 1,000 m/s). What the rows
+cannot see is a body sent faster within the step by another's push (its new path is not
+swept), nor a pair that turns far within the step (a row is linear in it): a fast pair left
+deep in each other or through is taken again from its moment of impact
+(engine.exact.shape_impacts); the exact impacts in time order are for discs.
+
+>>> import numpy as np
+>>> from engine.geometry.colliders import Polygon
+>>> table = ShapeTable([Polygon.box(1.0, 1.0), None], np.array([0.7071, 0.5]))
+>>> a, b, n, s, k, ra, rb = pair_rows(table, np.array([0]), np.array([1]),
+...                                   np.array([[0.0, 0.0], [1.0, 0.0]]), 0.1)
+>>> a.tolist(), b.tolist(), n.tolist(), s.tolist(), ra.tolist(), rb.tolist()
+([0], [1], [[1.0, 0.0]], [0.0], [[0.5, 0.0]], [[-0.5, 0.0]])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from .colliders import Circle, Polygon, Segment
+from .manifold import (
+    Capsules,
+    Circles,
+    HalfPlanes,
+    Kind,
+    Manifold,
+    Polygons,
+    StaticShapes,
+    collide,
+    half_plane_polygon_loop,
+)
+from .manifold_polygon import polygon_loop
+
+__all__ = ["ShapeTable", "pair_rows", "static_rows", "DISC", "CAPSULE", "POLYGON"]
+
+#: The kinds of a body's shape, by code.
+DISC, CAPSULE, POLYGON = 0, 1, 2
+
+
+class ShapeTable:
+    """The shapes of a World's bodies, by row, as narrowphase kinds (built once for a set of
+    bodies: a shape never changes)."""
+
+    def __init__(self, shapes: Sequence[Any], radius: np.ndarray) -> None:
+        n = len(shapes)
+        self.kind = np.zeros(n, dtype=np.int8)
+        self.index = np.zeros(n, dtype=np.intp)  # the row's place in its kind's arrays
+        caps: list[Segment] = []
+        polys: list[Polygon] = []
+        for row, shape in enumerate(shapes):
+            if shape is None or isinstance(shape, Circle):
+                continue
+            if isinstance(shape, Segment):
+                self.kind[row], self.index[row] = CAPSULE, len(caps)
+                caps.append(shape)
+            elif isinstance(shape, Polygon):
+                self.kind[row], self.index[row] = POLYGON, len(polys)
+                polys.append(shape)
+            else:  # Body checked it: only the kinds above reach here
+                raise TypeError(f"no narrowphase for a body's shape {shape!r}")
+        #: Which rows carry a shape other than a disc (the soft step always takes them).
+        self.shaped = self.kind != DISC
+        self.index[~self.shaped] = np.arange(n)[~self.shaped]
+        self.circles = Circles(np.zeros((n, 2)), np.asarray(radius, dtype=float))
+        self.capsules = Capsules(
+            np.array([(s.a.x, s.a.y) for s in caps], dtype=float).reshape(-1, 2),
+            np.array([(s.b.x, s.b.y) for s in caps], dtype=float).reshape(-1, 2),
+            np.array([s.radius for s in caps], dtype=float),
+        )
+        self.polygons = (
+            Polygons.of([[tuple(v) for v in p.vertices] for p in polys], [p.radius for p in polys])
+            if polys
+            else None
+        )
+
+    def __len__(self) -> int:
+        return len(self.kind)
+
+    def kinds(self, rows: np.ndarray) -> Kind:
+        """The shapes of ``rows`` (all of one kind) as one narrowphase kind."""
+        code = int(self.kind[rows[0]]) if len(rows) else DISC
+        idx = self.index[rows]
+        if code == CAPSULE:
+            return self.capsules.take(idx)
+        if code == POLYGON:
+            assert self.polygons is not None
+            return self.polygons.take(idx)
+        return self.circles.take(idx)
+
+
+def _points(m: Manifold) -> tuple[np.ndarray, np.ndarray]:
+    """(pair index, point slot) of each point the manifolds hold (count 0 to 2 each)."""
+    pair = np.repeat(np.arange(len(m)), 2)
+    slot = np.tile(np.arange(2), len(m))
+    has = slot < np.repeat(m.count, 2)
+    return pair[has], slot[has]
+
+
+def pair_rows(
+    table: ShapeTable,
+    a: np.ndarray,
+    b: np.ndarray,
+    x: np.ndarray,
+    margin: float,
+    angle: np.ndarray | None = None,
+    fast: bool = False,
+) -> tuple[np.ndarray, ...]:
+    """The rows of pairs (World rows a, b) at positions x (N, 2) and angles ``angle`` (N,)
+    (rad; None: all 0): (a, b, the unit normal from a to b (R, 2), the separation (R,), the
+    point's key within its pair: its feature id (Box2D's: the vertices that make it, < 2^16,
+    so a point keeps its warm start while the same features touch), the point less a's
+    position (R, 2), less b's),
+    one row a point of each pair's manifold (``engine.geometry.manifold.collide``), every pair of
+    kinds at once a kind pair. ``margin`` (length units) is the farthest one body may move
+    in the step, slack included: both bodies of a pair may close on each other, so a pair
+    gets its rows while its gap is within twice that. ``fast``: pairs of polygons by the loop
+    kernel ``engine.geometry.manifold_polygon.polygon_loop``, straight from the table."""
+    out: list[list[np.ndarray]] = [[], [], [], [], [], [], []]
+    reach = 2.0 * margin
+    q = np.zeros(len(x)) if angle is None else angle
+    # The kind pair of each pair as one code 3 ka + kb; only the codes present are visited.
+    code = table.kind[a].astype(np.intp) * 3 + table.kind[b]
+    present = np.bincount(code, minlength=9)
+    for code_a in (DISC, CAPSULE, POLYGON):
+        for code_b in (DISC, CAPSULE, POLYGON):
+            if not present[3 * code_a + code_b]:
+                continue
+            sel = np.flatnonzero(code == 3 * code_a + code_b)
+            ia, ib = a[sel], b[sel]
+            if fast and code_a == code_b == POLYGON:
+                m = _polygon_pairs(table, ia, ib, x, q, reach)
+            else:
+                m = collide(table.kinds(ia), x[ia], q[ia], table.kinds(ib), x[ib], q[ib], reach)
+            pair, slot = _points(m)
+            out[0].append(ia[pair])
+            out[1].append(ib[pair])
+            out[2].append(m.normal[pair])
+            out[3].append(m.separation[pair, slot])
+            out[4].append(m.feature[pair, slot] & 0xFFFF)
+            out[5].append(m.anchor_a[pair, slot])
+            out[6].append(m.anchor_b[pair, slot])
+    return _joined(out)
+
+
+def _polygon_pairs(
+    table: ShapeTable, ia: np.ndarray, ib: np.ndarray, x: np.ndarray, q: np.ndarray, reach: float
+) -> Manifold:
+    """The manifolds of pairs of polygon bodies (World rows ia, ib), by the loop kernel on the
+    table's own arrays (no ``take`` of the shapes): ``collide_polygons(fast=True)``."""
+    P = table.polygons
+    assert P is not None
+    return Manifold(
+        *polygon_loop(
+            P.vertices, P.normals, P.count, P.radius, table.index[ia], x[ia], q[ia],
+            P.vertices, P.normals, P.count, P.radius, table.index[ib], x[ib], q[ib], reach,
+        )
+    )  # fmt: skip
+
+
+def _on_half_planes(
+    table: ShapeTable,
+    body: np.ndarray,
+    x: np.ndarray,
+    q: np.ndarray,
+    walls: HalfPlanes,
+    c: np.ndarray,
+    margin: float,
+) -> Manifold:
+    """The manifolds of polygon bodies (World rows ``body``) against half planes ``c`` of
+    ``walls`` (the static body: at the origin, angle 0), the body as A, by the loop kernel on
+    the table's own arrays: ``collide(..., fast=True)``."""
+    P = table.polygons
+    assert P is not None
+    zero = np.zeros(len(body))
+    return Manifold(
+        *half_plane_polygon_loop(
+            walls.point, walls.normal, c, np.zeros((len(body), 2)), zero,
+            P.vertices, P.normals, P.count, P.radius, table.index[body], x[body], q[body], margin,
+        )
+    ).flipped()  # fmt: skip
+
+
+def static_rows(
+    table: ShapeTable,
+    rows: np.ndarray,
+    x: np.ndarray,
+    statics: StaticShapes,
+    solid: np.ndarray,
+    margin: float,
+    angle: np.ndarray | None = None,
+    meets: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    fast: bool = False,
+) -> tuple[np.ndarray, ...]:
+    """The rows of bodies ``rows`` (World rows, with shapes) against the World's colliders
+    (``statics``, ``engine.geometry.manifold.static_shapes``; ``solid`` (C,) bool: which colliders
+    are solid, not sensors): (row, the collider's index, the unit normal from the collider
+    to the body (R, 2), the separation (R,), the point's key: 2^16 c + its feature id for the
+    c-th static shape of its kind, the point less the body's position (R, 2)), the bodies at their
+    ``angle`` (N,) (rad; None: all 0). ``meets(rows, colliders)``: which body-collider pairs
+    their filters let meet (None: all). ``fast``: each kind pair's loop kernel where it has
+    one (polygons on half planes straight from the table)."""
+    out: list[list[np.ndarray]] = [[], [], [], [], [], []]
+    q = np.zeros(len(x)) if angle is None else angle
+    for code in (DISC, CAPSULE, POLYGON):
+        mine = rows[table.kind[rows] == code]
+        if not len(mine):
+            continue
+        shapes = table.kinds(mine)
+        for base, (kind, owner) in enumerate(statics.kinds()):
+            keep = np.flatnonzero(solid[owner])
+            if not len(keep):
+                continue
+            r_i = np.repeat(np.arange(len(mine)), len(keep))
+            c_i = np.tile(keep, len(mine))
+            if meets is not None:
+                ok = meets(mine[r_i], owner[c_i])
+                r_i, c_i = r_i[ok], c_i[ok]
+                if not len(r_i):
+                    continue
+            gap = _gaps(kind, c_i, x[mine[r_i]])
+            if gap is not None:
+                # Only the shapes the body's bounding circle comes within the margin of: the
+                # narrowphase would give the others no rows (the same rows, in the same
+                # order, for far less work on a table of many colliders).
+                gap -= table.circles.radius[mine[r_i]]
+                near = gap <= margin * (1.0 + 1e-9) + 1e-12
+                r_i, c_i = r_i[near], c_i[near]
+                if not len(r_i):
+                    continue
+            body = mine[r_i]
+            if fast and code == POLYGON and isinstance(kind, HalfPlanes):
+                m = _on_half_planes(table, body, x, q, kind, c_i, margin)
+            else:
+                shape, wall = shapes.take(r_i), kind.take(c_i)
+                m = collide(shape, x[body], q[body], wall, (0.0, 0.0), 0.0, margin, fast)
+            pair, slot = _points(m)
+            out[0].append(mine[r_i[pair]])
+            out[1].append(owner[c_i[pair]])
+            out[2].append(-m.normal[pair])
+            out[3].append(m.separation[pair, slot])
+            out[4].append((base * 1_000_003 + c_i[pair]) * 65536 + (m.feature[pair, slot] & 0xFFFF))
+            out[5].append(m.anchor_a[pair, slot])
+    return _joined(out)
+
+
+def _gaps(kind: Kind, c: np.ndarray, p: np.ndarray) -> np.ndarray | None:
+    """A lower bound on the gap (length units) from points ``p`` (R, 2) to the static shapes
+    ``c`` (R,) of ``kind``: to a circle or a capsule exactly, to a polygon its bounding
+    circle; None for half planes (no end)."""
+    if isinstance(kind, Circles):
+        d = p - kind.center[c]
+        return np.sqrt(np.einsum("ij,ij->i", d, d)) - kind.radius[c]
+    if isinstance(kind, Capsules):
+        a, ab = kind.a[c], kind.b[c] - kind.a[c]
+        u = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.einsum("ij,ij->i", ab, ab), 0.0, 1.0)
+        d = p - a - u[:, None] * ab
+        return np.sqrt(np.einsum("ij,ij->i", d, d)) - kind.radius[c]
+    if isinstance(kind, Polygons):
+        v = kind.vertices[c]
+        centre = v.mean(axis=1)
+        e = v - centre[:, None, :]
+        reach = np.sqrt(np.einsum("ijk,ijk->ij", e, e)).max(axis=1) + kind.radius[c]
+        d = p - centre
+        return np.sqrt(np.einsum("ij,ij->i", d, d)) - reach
+    return None
+
+
+def _joined(out: list[list[np.ndarray]]) -> tuple[np.ndarray, ...]:
+    anchors = tuple(np.zeros((0, 2)) for _ in out[5:])
+    if not out[0]:
+        return (
+            np.zeros(0, dtype=np.intp),
+            np.zeros(0, dtype=np.intp),
+            np.zeros((0, 2)),
+            np.zeros(0),
+            np.zeros(0, dtype=np.int64),
+            *anchors,
+        )
+    return (
+        np.concatenate(out[0]),
+        np.concatenate(out[1]),
+        np.concatenate(out[2]),
+        np.concatenate(out[3]),
+        np.concatenate(out[4]).astype(np.int64),
+        *(np.concatenate(k) for k in out[5:]),
+    )

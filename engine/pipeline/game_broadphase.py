@@ -1,0 +1,248 @@
+"""Which pairs a game's step tests: the soft step's broadphase, on the numpy path.
+
+engine.pipeline.game_step finds a step's contacts in stages; the first is this module's, on numpy
+(the fast path's ``engine.pipeline.game_contacts.contacts_loop`` does the same in its compiled loop,
+with the same products, so both paths meet the same pairs in the same order):
+
+* ``collider_arrays``: what the stages read of the colliders (materials, filters, sensors),
+  read once until a collider comes, goes or has a material set;
+* ``pairs``: of the candidate pairs of bodies (every pair, or a grid's: engine.pipeline.game_step),
+  those whose bounding circles and then boxes (``boxes``) come within what the two can move
+  in the step, one of them awake and pushed by contacts, neither a sensor, their filters
+  passed, not kept apart (``apart_keys``: a joint's, a pre_solve's);
+* ``faces``: each body against each static shape whose box (``static_bounds``) its reach
+  overlaps, filtered likewise (``ignored_keys``: the faces a pre_solve ignored).
+"""
+
+from __future__ import annotations
+
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from ..dynamics.joints import Joint
+from ..geometry.colliders import Collider
+from ..geometry.manifold import StaticShapes
+from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
+from ..geometry.narrowphase import Places
+
+#: The World's state (engine.pipeline.world_state.WorldState), named by what is read of it.
+WorldState = Any
+
+__all__ = [
+    "Colliders",
+    "apart_keys",
+    "boxes",
+    "collider_arrays",
+    "faces",
+    "filters_meet",
+    "ignored_keys",
+    "pairs",
+    "reaching",
+    "static_bounds",
+]
+
+
+class Colliders(NamedTuple):
+    """What the stages read of the World's colliders, each an array by collider place, read
+    once a step (materials, filters and sensors may change between steps)."""
+
+    sensor: np.ndarray
+    serial: np.ndarray
+    restitution: np.ndarray
+    friction: np.ndarray
+    surface: np.ndarray  # (K, 2) surface velocity (m/s)
+    group: np.ndarray
+    categories: np.ndarray
+    mask: np.ndarray
+
+
+def collider_arrays(colliders: list[Collider], serial: Any) -> Colliders:
+    """The colliders' arrays (``serial``: the World's serial number of a collider)."""
+
+    def col(values: list[Any], dtype: Any) -> np.ndarray:
+        return np.array(values, dtype=dtype)
+
+    return Colliders(
+        col([c.sensor for c in colliders], bool),
+        col([serial(c) for c in colliders], np.int64),
+        col([c.restitution for c in colliders], float),
+        col([c.friction for c in colliders], float),
+        col([tuple(c.surface_velocity) for c in colliders], float).reshape(-1, 2),
+        col([c.filter.group for c in colliders], np.int64),
+        col([c.filter.categories for c in colliders], np.int64),
+        col([c.filter.mask for c in colliders], np.int64),
+    )
+
+
+def static_bounds(shapes: StaticShapes) -> tuple[np.ndarray, np.ndarray]:
+    """Each static shape's collider place and bounding box (K, 4), in the order
+    ``collide_pairs`` takes them (half planes, circles, capsules, polygons)."""
+    owners, boxes = [], []
+    for _kind, own in shapes.kinds():
+        if own is shapes.half_plane_owner:
+            box = np.tile([-np.inf, -np.inf, np.inf, np.inf], (len(own), 1))
+        elif own is shapes.circle_owner:
+            c, r = shapes.circles.center, shapes.circles.radius[:, None]
+            box = np.concatenate([c - r, c + r], axis=1)
+        elif own is shapes.capsule_owner:
+            cap = shapes.capsules
+            r = cap.radius[:, None]
+            box = np.concatenate([np.minimum(cap.a, cap.b) - r, np.maximum(cap.a, cap.b) + r], 1)
+        else:
+            p = shapes.polygons
+            r = p.radius[:, None]
+            box = np.concatenate([p.vertices.min(axis=1) - r, p.vertices.max(axis=1) + r], 1)
+        owners.append(own)
+        boxes.append(box)
+    if not owners:
+        return np.zeros(0, dtype=np.intp), np.zeros((0, 4))
+    return np.concatenate(owners), np.concatenate(boxes)
+
+
+def apart_keys(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray:
+    """The pairs of bodies kept apart, as sorted keys a n + b of rows a < b: by a pre_solve
+    (``ignored``, such keys) or by a joint that does not let its bodies collide."""
+    n = len(store)
+    apart = [np.asarray(ignored, dtype=np.int64)] if len(ignored) else []
+    for j in state.links:
+        pair = j.kept_apart if isinstance(j, Joint) else None
+        if pair is not None:
+            ra, rb = store.row(pair[0].slot), store.row(pair[1].slot)
+            apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
+    if not apart:
+        return np.zeros(0, dtype=np.int64)  # (a game's usual step: nothing kept apart)
+    return np.unique(np.concatenate(apart))
+
+
+def ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
+    """The faces pre_solve ignored ((K, 2) of body row, collider place) as sorted keys
+    row (colliders + 1) + place."""
+    if not len(ignored):
+        return np.zeros(0, dtype=np.int64)
+    k = colliders + 1
+    return np.unique(np.asarray(ignored[:, 0], dtype=np.int64) * k + ignored[:, 1])
+
+
+def reaching(
+    store: Any, margin: np.ndarray, boxes: np.ndarray | None, a: np.ndarray, b: np.ndarray
+) -> np.ndarray:
+    """Which pairs of bodies (rows ``a``, ``b``) may come within the speculative distance of
+    each other in the step (bool, one a pair): their bounding circles (``store.radius`` about
+    ``store.x``) and then their ``boxes`` ((N, 4) xmin, ymin, xmax, ymax: ``boxes``; None:
+    the circles alone), each grown by what the two can move in the step (``margin``, m).
+    Each test holds whenever the shapes can touch (a shape is inside its circle and its box),
+    so together they keep no fewer pairs than need to be."""
+    x, r = store.x, store.radius
+    d = x[b] - x[a]
+    reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
+    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
+    if boxes is not None:
+        rows = np.flatnonzero(near)
+        a, b = a[rows], b[rows]
+        gap = margin[a] + margin[b] + SPECULATIVE_DISTANCE
+        ba, bb = boxes[a], boxes[b]
+        close = (bb[:, 0] - ba[:, 2] <= gap) & (ba[:, 0] - bb[:, 2] <= gap)
+        close &= (bb[:, 1] - ba[:, 3] <= gap) & (ba[:, 1] - bb[:, 3] <= gap)
+        near[rows] = close
+    return near
+
+
+def filters_meet(store: Any, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Which pairs of bodies (rows ``a``, ``b``) their filters let collide (bool, one a pair:
+    engine.filters; a sensor's filter meets nothing)."""
+    g = store.group
+    keep = (g[a] == 0) | (g[a] != g[b])
+    keep &= ((store.categories[a] & store.mask[b]) != 0) & (
+        (store.categories[b] & store.mask[a]) != 0
+    )
+    return keep
+
+
+def pairs(
+    store: Any,
+    sensors: np.ndarray,
+    moving: np.ndarray,
+    margin: np.ndarray,
+    candidates: tuple[np.ndarray, np.ndarray],
+    apart: np.ndarray,
+    boxes: np.ndarray | None = None,
+) -> np.ndarray:
+    """The pairs of bodies (rows a < b, (K, 2)) among ``candidates`` that may touch in the
+    step: bounding circles, and ``boxes`` (``boxes``; None: not tested), within both bodies'
+    reach and the speculative distance, the
+    filters passed, one of them ``moving`` (pushed by contacts: dynamic and awake), neither a
+    sensor, not ``apart``."""
+    n = len(store)
+    a, b = candidates
+    near = reaching(store, margin, boxes, a, b)
+    a, b = a[near], b[near]
+    r = store.radius
+    keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
+    keep &= r[a] + r[b] > 0.0  # two points (no radius, no shape) pass, as on the exact step
+    keep &= filters_meet(store, a, b)
+    if len(apart):
+        keep &= ~np.isin(a * n + b, apart)
+    return np.stack([a[keep], b[keep]], axis=1)
+
+
+def boxes(places: Places, store: Any) -> np.ndarray:
+    """Each body's box (N, 4: xmin, ymin, xmax, ymax): a disc's centre +- its radius, a
+    polygon's (a capsule's) corners turned and moved +- its radius; the products of
+    engine.pipeline.game_contacts' own, in its order."""
+    x, q, r = store.x, store.angle, store.radius
+    box = np.concatenate([x - r[:, None], x + r[:, None]], axis=1)
+    rows = np.flatnonzero(~places.body_circle)
+    if len(rows):
+        t = places.tables
+        j = places.body_index[rows]
+        v = t.vertices[j]  # (k, M, 2), padded by repeating the last corner
+        c, s = np.cos(q[rows])[:, None], np.sin(q[rows])[:, None]
+        wx = c * v[:, :, 0] - s * v[:, :, 1] + x[rows, 0][:, None]
+        wy = s * v[:, :, 0] + c * v[:, :, 1] + x[rows, 1][:, None]
+        grow = t.radius[j]
+        box[rows, 0] = wx.min(axis=1) - grow
+        box[rows, 1] = wy.min(axis=1) - grow
+        box[rows, 2] = wx.max(axis=1) + grow
+        box[rows, 3] = wy.max(axis=1) + grow
+    return box
+
+
+def faces(
+    store: Any,
+    cs: Colliders,
+    owner: np.ndarray,
+    bounds: np.ndarray,
+    sensors: np.ndarray,
+    moving: np.ndarray,
+    margin: np.ndarray,
+    ignored: np.ndarray,
+) -> np.ndarray:
+    """The pairs of a body and a static shape ((K, 2): row, the shape's place) whose boxes
+    overlap within the body's reach: filters passed, no sensor body, a ``moving`` body, not
+    ignored by a pre_solve (``ignored``: ``ignored_keys``) (a sensor collider is kept: its
+    overlaps are events)."""
+    n = len(store)
+    if not n or not len(owner):
+        return np.zeros((0, 2), dtype=np.intp)
+    x = store.x
+    grow = store.radius + margin + SPECULATIVE_DISTANCE
+    lo = x - grow[:, None]
+    hi = x + grow[:, None]
+    hit = (
+        (lo[:, None, 0] <= bounds[None, :, 2])
+        & (hi[:, None, 0] >= bounds[None, :, 0])
+        & (lo[:, None, 1] <= bounds[None, :, 3])
+        & (hi[:, None, 1] >= bounds[None, :, 1])
+    )
+    rows, shapes = np.nonzero(hit)
+    places = owner[shapes]
+    keep = (moving[rows] | cs.sensor[places]) & ~sensors[rows]
+    g = store.group[rows]
+    keep &= (g == 0) | (g != cs.group[places])
+    keep &= ((store.categories[rows] & cs.mask[places]) != 0) & (
+        (cs.categories[places] & store.mask[rows]) != 0
+    )
+    if len(ignored):
+        keep &= ~np.isin(rows.astype(np.int64) * (len(cs.sensor) + 1) + places, ignored)
+    return np.stack([rows[keep], shapes[keep]], axis=1)

@@ -1,0 +1,525 @@
+"""A game step's contacts in one compiled call: broadphase, narrowphase and rows, on the fast path.
+
+The soft step (engine.pipeline.game_step) finds its contacts in three stages: the pairs that may
+touch (the broadphase: bodies' bounding circles, and bodies' circles against the static shapes'
+boxes, each within what the two can move in the step), a manifold for each (the
+narrowphase: engine.geometry.narrowphase's two tables), and the solver's rows (materials, the
+conveyor's speed, the warm start by key). On the numpy path each stage is a handful of array
+calls, and at a game's size (twenty bodies, a dozen segments) numpy's fixed cost per call is
+nearly all of their time: about 0.25 ms a step for work that takes microseconds.
+``contacts_loop`` is the three stages as one loop kernel, over the same arrays, in the same
+order, with the same products, so the fast path's contacts are the numpy path's to the bit
+(tests/test_soft_solver.py checks whole games against each other):
+
+1. the body pairs given (every pair of a small scene, or the grid's: engine.geometry.pair_grid),
+kept
+   when their circles and their boxes come within reach (a long plank's box is far tighter
+   than its circle), one of them moves, neither is a sensor, the filters
+   pass and no joint or pre_solve keeps them apart;
+2. every body against every static shape whose box its reach overlaps, kept likewise (a
+   sensor collider is kept: its overlaps are events);
+3. the manifolds: polygon against polygon in one call of ``polygon_loop``, the round pairs in
+   one of ``round_loop`` (a polygon against a circle taken with the polygon as A, then flipped
+   back), a half plane against a capsule or a polygon in one of ``half_plane_polygon_loop``
+   each and against a disc here (the half plane as A, flipped back), each group with the
+   largest reach among its pairs as its speculative margin, met in the broadphase's order;
+4. each manifold with a point a contact row, but a sensor collider's, which is an overlap
+   (the body's row, the collider's place) where a point is inside.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .. import kernels
+from ..dynamics.events import COLLIDER
+from ..geometry.manifold import half_plane_polygon_loop
+from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
+from ..geometry.manifold_polygon import polygon_loop
+from ..geometry.narrowphase import round_loop
+
+__all__ = ["STATIC", "body_boxes", "contacts_loop", "contacts_sample", "report_loop"]
+
+#: Warm-start keys: (the pair's code << FEATURE) | the point's feature id (16 bits); a pair's
+#: code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
+FEATURE = 16
+OTHER = 21
+STATIC = 1 << 20
+
+
+def contacts_sample() -> tuple[Any, ...]:
+    """The smallest call: a unit box resting on a segment's capsule, a disc beside it, both
+    warm started."""
+    f = np.zeros
+    x = np.array([[0.0, 0.5], [1.2, 0.5]])
+    q = f(2)
+    radius = np.array([0.71, 0.5])
+    reach = np.array([0.01, 0.01])
+    yes = np.ones(2, dtype=bool)
+    no = np.zeros(2, dtype=bool)
+    i2 = f(2, dtype=np.int64)
+    cats = np.ones(2, dtype=np.int64)
+    mask = np.full(2, -1, dtype=np.int64)
+    slots = np.array([0, 1], dtype=np.int64)
+    mat = np.array([0.6, 0.6])
+    v = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]],
+                  [[-2.0, 0.0], [2.0, 0.0], [2.0, 0.0], [2.0, 0.0]]])  # fmt: skip
+    nn = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]],
+                   [[0.0, -1.0], [0.0, 1.0], [0.0, 1.0], [0.0, 1.0]]])  # fmt: skip
+    count = np.array([4, 2], dtype=np.int64)
+    rad = np.array([0.0, 0.02])
+    center = f((1, 2))
+    rnd = np.array([0.5])
+    pa, pb = np.array([0], dtype=np.int64), np.array([1], dtype=np.int64)
+    owner = np.array([0], dtype=np.int64)
+    bounds = np.array([[-2.02, -0.02, 2.02, 0.02]])
+    s_circle = np.zeros(1, dtype=bool)
+    s_index = np.array([1], dtype=np.int64)
+    c_mat = np.array([0.5])
+    surface = f((1, 2))
+    c_i = f(1, dtype=np.int64)
+    none = f(0, dtype=np.int64)
+    keys = np.array([0], dtype=np.int64)
+    lam = f((1, 2))
+    kind = np.array([2, 0], dtype=np.int64)
+    up = np.array([[0.0, 1.0]])
+    return (x, q, radius, reach, yes, no, i2, cats, mask, slots, mat, mat, np.array([False, True]),
+            np.array([0, 0], dtype=np.int64), kind, pa, pb, owner, bounds, s_circle, s_index,
+            np.zeros(1, dtype=bool), c_mat, c_mat, surface, c_i, c_i + 1, c_i - 1, v, nn, count,
+            rad, center, rnd, f((1, 2)), up, none, none, keys, lam)  # fmt: skip
+
+
+def _boxes_sample() -> tuple[Any, ...]:
+    """A disc of radius 0.5 and a unit box turned a quarter turn beside it."""
+    corners = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
+    return (np.array([[0.0, 0.5], [1.2, 0.5]]), np.array([0.0, 0.5 * np.pi]),
+            np.array([0.5, 0.71]), np.array([True, False]), np.zeros(2, dtype=np.int64),
+            corners, np.zeros(1))  # fmt: skip
+
+
+@kernels.loop(sample=_boxes_sample)
+def body_boxes(
+    x: Any, q: Any, radius: Any, body_circle: Any, body_index: Any, V: Any, rad: Any
+) -> Any:
+    """Each body's box (n, 4: xmin, ymin, xmax, ymax, m): a disc's centre +- its ``radius``, a
+    polygon's (a capsule's) corners ``V[body_index]`` turned by ``q`` (rad) and moved to ``x``,
+    +- its rounding ``rad`` (engine.pipeline.game_broadphase's ``boxes``: the same products)."""
+    n = len(radius)
+    box = np.empty((n, 4))
+    for a in range(n):
+        r = radius[a]
+        box[a, 0], box[a, 1] = x[a, 0] - r, x[a, 1] - r
+        box[a, 2], box[a, 3] = x[a, 0] + r, x[a, 1] + r
+        if not body_circle[a]:
+            j = body_index[a]
+            co, si = np.cos(q[a]), np.sin(q[a])
+            for v in range(V.shape[1]):
+                wx = co * V[j, v, 0] - si * V[j, v, 1] + x[a, 0]
+                wy = si * V[j, v, 0] + co * V[j, v, 1] + x[a, 1]
+                if v == 0 or wx < box[a, 0]:
+                    box[a, 0] = wx
+                if v == 0 or wy < box[a, 1]:
+                    box[a, 1] = wy
+                if v == 0 or wx > box[a, 2]:
+                    box[a, 2] = wx
+                if v == 0 or wy > box[a, 3]:
+                    box[a, 3] = wy
+            box[a, 0] -= rad[j]
+            box[a, 1] -= rad[j]
+            box[a, 2] += rad[j]
+            box[a, 3] += rad[j]
+    return box
+
+
+@kernels.loop(sample=contacts_sample)
+def contacts_loop(
+    x: Any, q: Any, radius: Any, reach: Any, moving: Any, sensor: Any,
+    group: Any, cats: Any, mask: Any, slots: Any, friction: Any, restitution: Any,
+    body_circle: Any, body_index: Any, kind: Any,
+    pa: Any, pb: Any,
+    owner: Any, bounds: Any, static_circle: Any, static_index: Any,
+    c_sensor: Any, c_friction: Any, c_restitution: Any, c_surface: Any,
+    c_group: Any, c_cats: Any, c_mask: Any,
+    V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any, hp: Any, hn: Any,
+    apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any,
+) -> tuple[Any, ...]:  # fmt: skip
+    """The step's contacts (module doc). Bodies (n rows): pose ``x`` (n, 2) m and ``q`` rad,
+    bounding ``radius`` m, ``reach`` (how far each can move in the step, m), ``moving``
+    (pushed by contacts), ``sensor``, the filter's ``group``, ``cats``, ``mask``, ``slots``,
+    ``friction``, ``restitution``, where the shape is in the tables (``body_circle``: the
+    circles', else the polygons'; ``body_index``), its ``kind`` (engine.geometry.shaped: DISC,
+    CAPSULE, POLYGON). ``pa``, ``pb``: the pairs to test, rows. Static shapes (K): the
+    collider ``owner``, ``bounds`` (K, 4) xmin, ymin, xmax, ymax, ``static_circle``,
+    ``static_index`` (a half plane h: -1 - h). Colliders (C, by place): sensor, friction,
+    restitution, surface velocity (C, 2) m/s, filter. The tables (engine.geometry.narrowphase:
+    polygons ``V``, ``Nrm``, ``cnt``, ``rad``; circles ``center``, ``rnd``), the half planes'
+    points ``hp`` and unit normals ``hn`` (H, 2).
+    ``apart``: sorted keys a n + b of pairs kept apart; ``ignored``: sorted keys row (C + 1)
+    + place of faces pre_solve ignored; ``warm_keys`` sorted, ``warm_lam`` (k, 2): the last
+    step's points and their impulses (N s a substep).
+
+    Returns the solver's contact arrays (engine.dynamics.solver.solve's ca ... clt, 15 of them),
+    each point's key (2 per row), each row's static place (-1 for a body pair) and first point
+    (x, y, m); the sensors' overlaps (rows, collider places)."""
+    n = len(radius)
+    k_shapes = len(owner)
+    n_col = len(c_sensor)
+    # -- 1. the body pairs -----------------------------------------------------------------
+    box = body_boxes(x, q, radius, body_circle, body_index, V, rad)
+    cand_a = np.empty(len(pa) + n * k_shapes, dtype=np.int64)
+    cand_b = np.empty(len(cand_a), dtype=np.int64)  # B's row, or n for a static shape
+    cand_p = np.empty(len(cand_a), dtype=np.int64)  # the static shape, or -1
+    m = 0
+    for i in range(len(pa)):
+        a, b = pa[i], pb[i]
+        dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
+        r = radius[a] + radius[b] + reach[a] + reach[b] + SPECULATIVE_DISTANCE
+        if dx * dx + dy * dy > r * r:
+            continue
+        r = reach[a] + reach[b] + SPECULATIVE_DISTANCE
+        if box[b, 0] - box[a, 2] > r or box[a, 0] - box[b, 2] > r:
+            continue
+        if box[b, 1] - box[a, 3] > r or box[a, 1] - box[b, 3] > r:
+            continue
+        if not (moving[a] or moving[b]) or sensor[a] or sensor[b]:
+            continue
+        if not radius[a] + radius[b] > 0.0:
+            continue
+        if group[a] != 0 and group[a] == group[b]:
+            continue
+        if (cats[a] & mask[b]) == 0 or (cats[b] & mask[a]) == 0:
+            continue
+        if len(apart):
+            key = a * n + b
+            at = np.searchsorted(apart, key)
+            if at < len(apart) and apart[at] == key:
+                continue
+        cand_a[m], cand_b[m], cand_p[m] = a, b, -1
+        m += 1
+    # -- 2. the static shapes ----------------------------------------------------------------
+    for a in range(n):
+        grow = radius[a] + reach[a] + SPECULATIVE_DISTANCE
+        lox, loy = x[a, 0] - grow, x[a, 1] - grow
+        hix, hiy = x[a, 0] + grow, x[a, 1] + grow
+        for s in range(k_shapes):
+            if not (lox <= bounds[s, 2] and hix >= bounds[s, 0]):
+                continue
+            if not (loy <= bounds[s, 3] and hiy >= bounds[s, 1]):
+                continue
+            c = owner[s]
+            if not (moving[a] or c_sensor[c]) or sensor[a]:
+                continue
+            if group[a] != 0 and group[a] == c_group[c]:
+                continue
+            if (cats[a] & c_mask[c]) == 0 or (c_cats[c] & mask[a]) == 0:
+                continue
+            if len(ignored):
+                key = a * (n_col + 1) + c
+                at = np.searchsorted(ignored, key)
+                if at < len(ignored) and ignored[at] == key:
+                    continue
+            cand_a[m], cand_b[m], cand_p[m] = a, n, s
+            m += 1
+    # -- 3. the manifolds, by group --------------------------------------------------------
+    # Groups: 0 polygon against polygon, 1 the round pairs, 2 to 4 a half plane against a
+    # disc, a capsule, a polygon (the half plane as A). ``swap``: the manifold is B's to A's,
+    # flipped back in the rows.
+    group_of = np.empty(m, dtype=np.int64)
+    swap = np.zeros(m, dtype=np.bool_)
+    size = np.zeros(5, dtype=np.int64)
+    margins = np.full(5, -np.inf)
+    for i in range(m):
+        a, b, s = cand_a[i], cand_b[i], cand_p[i]
+        r = reach[a] + (0.0 if s >= 0 else reach[b])
+        r = r + SPECULATIVE_DISTANCE
+        if s >= 0 and static_index[s] < 0:
+            g = 2 + kind[a]  # DISC, CAPSULE, POLYGON: 0, 1, 2
+            swap[i] = True
+        else:
+            ca = body_circle[a]
+            cb = static_circle[s] if s >= 0 else body_circle[b]
+            g = 1 if ca or cb else 0
+            swap[i] = ca and not cb
+        group_of[i] = g
+        size[g] += 1
+        margins[g] = max(margins[g], r)
+    start = np.zeros(6, dtype=np.int64)
+    for g in range(5):
+        start[g + 1] = start[g] + size[g]
+    # Each group's pairs, gathered: A's shape and pose, B's (a static shape at the origin,
+    # unturned).
+    gi_a = np.empty(m, dtype=np.int64)
+    gi_b = np.empty(m, dtype=np.int64)
+    gx_a = np.zeros((m, 2))
+    gx_b = np.zeros((m, 2))
+    gq_a = np.zeros(m)
+    gq_b = np.zeros(m)
+    flag = np.zeros(m, dtype=np.bool_)  # the round pairs': A is a circle
+    where = np.empty(m, dtype=np.int64)  # each candidate's place among the gathered
+    fill = start[:5].copy()
+    for i in range(m):
+        a, b, s = cand_a[i], cand_b[i], cand_p[i]
+        g = group_of[i]
+        j = fill[g]
+        fill[g] += 1
+        where[i] = j
+        ia = body_index[a]
+        if g >= 2:  # the half plane -1 - index as A, at the origin; the body as B
+            gi_a[j], gi_b[j] = -1 - static_index[s], ia
+            gx_b[j, 0], gx_b[j, 1], gq_b[j] = x[a, 0], x[a, 1], q[a]
+            continue
+        ib = static_index[s] if s >= 0 else body_index[b]
+        xbx, xby, qb = 0.0, 0.0, 0.0
+        if s < 0:
+            xbx, xby, qb = x[b, 0], x[b, 1], q[b]
+        flag[j] = body_circle[a] and not swap[i]
+        if swap[i]:  # the polygon as A
+            gi_a[j], gi_b[j] = ib, ia
+            gx_a[j, 0], gx_a[j, 1], gq_a[j] = xbx, xby, qb
+            gx_b[j, 0], gx_b[j, 1], gq_b[j] = x[a, 0], x[a, 1], q[a]
+        else:
+            gi_a[j], gi_b[j] = ia, ib
+            gx_a[j, 0], gx_a[j, 1], gq_a[j] = x[a, 0], x[a, 1], q[a]
+            gx_b[j, 0], gx_b[j, 1], gq_b[j] = xbx, xby, qb
+    normal = np.empty((m, 2))
+    count = np.zeros(m, dtype=np.int64)
+    point = np.zeros((m, 2, 2))
+    anchor_a = np.zeros((m, 2, 2))
+    anchor_b = np.zeros((m, 2, 2))
+    separation = np.full((m, 2), np.inf)
+    feature = np.full((m, 2), -1, dtype=np.int64)
+    # (Each group's arrays copied out whole: the kernels' sample types, C-contiguous.)
+    for g in (0, 1, 3, 4):
+        lo, hi = start[g], start[g + 1]
+        if lo == hi:
+            continue
+        if g == 0:
+            out = polygon_loop(
+                V, Nrm, cnt, rad, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(),
+                V, Nrm, cnt, rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(),
+                margins[g],
+            )  # fmt: skip
+        elif g == 1:
+            out = round_loop(
+                V, Nrm, cnt, rad, center, rnd, flag[lo:hi].copy(), gi_a[lo:hi].copy(),
+                gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), gi_b[lo:hi].copy(), gx_b[lo:hi].copy(),
+                gq_b[lo:hi].copy(), margins[g],
+            )  # fmt: skip
+        else:  # a capsule is the tables' two-vertex polygon
+            out = half_plane_polygon_loop(
+                hp, hn, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), V, Nrm, cnt,
+                rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(), margins[g],
+            )  # fmt: skip
+        normal[lo:hi], count[lo:hi], point[lo:hi] = out[0], out[1], out[2]
+        anchor_a[lo:hi], anchor_b[lo:hi] = out[3], out[4]
+        separation[lo:hi], feature[lo:hi] = out[5], out[6]
+    # A half plane against a disc (engine.geometry.manifold.collide_half_plane_circle, its products
+    # in its order): the plane at the origin, unturned, so A's frame is the world's.
+    for j in range(start[2], start[3]):
+        h, b = gi_a[j], gi_b[j]
+        co, si = np.cos(0.0), np.sin(0.0)
+        dx, dy = gx_b[j, 0] - 0.0, gx_b[j, 1] - 0.0
+        ox, oy = co * dx + si * dy, -si * dx + co * dy
+        rel = gq_b[j] - 0.0
+        cr, sr = np.cos(rel), np.sin(rel)
+        vx, vy = center[b, 0], center[b, 1]
+        cx, cy = cr * vx - sr * vy + ox, sr * vx + cr * vy + oy
+        nx, ny = hn[h, 0], hn[h, 1]
+        d = (cx - hp[h, 0]) * nx + (cy - hp[h, 1]) * ny
+        rb = rnd[b]
+        ax_, ay_ = cx - d * nx, cy - d * ny
+        bx_, by_ = cx - rb * nx, cy - rb * ny
+        gap = d - rb
+        normal[j, 0], normal[j, 1] = co * nx - si * ny, si * nx + co * ny
+        if gap <= margins[2]:
+            mx, my = 0.5 * (ax_ + bx_), 0.5 * (ay_ + by_)
+            wx, wy = co * mx - si * my, si * mx + co * my
+            anchor_a[j, 0, 0], anchor_a[j, 0, 1] = wx, wy
+            point[j, 0, 0], point[j, 0, 1] = wx + 0.0, wy + 0.0
+            anchor_b[j, 0, 0] = wx + (0.0 - gx_b[j, 0])
+            anchor_b[j, 0, 1] = wy + (0.0 - gx_b[j, 1])
+            separation[j, 0], feature[j, 0] = gap, 0
+            count[j] = 1
+    # -- 4. the rows, in the broadphase's order ------------------------------------------------
+    rows = 0
+    sensing = 0
+    for i in range(m):
+        j = where[i]
+        if count[j] == 0:
+            continue
+        s = cand_p[i]
+        if s >= 0 and c_sensor[owner[s]]:
+            sensing += 1
+        else:
+            rows += 1
+    ca_ = np.empty(rows, dtype=np.int64)
+    cb_ = np.empty(rows, dtype=np.int64)
+    nx_ = np.empty(rows)
+    ny_ = np.empty(rows)
+    count_ = np.empty(rows, dtype=np.int64)
+    rax = np.empty(2 * rows)
+    ray = np.empty(2 * rows)
+    rbx = np.empty(2 * rows)
+    rby = np.empty(2 * rows)
+    sep = np.empty(2 * rows)
+    fric = np.empty(rows)
+    rest = np.empty(rows)
+    speed = np.zeros(rows)
+    ln = np.zeros(2 * rows)
+    lt = np.zeros(2 * rows)
+    keys = np.empty(2 * rows, dtype=np.int64)
+    place = np.empty(rows, dtype=np.int64)
+    px = np.empty(rows)
+    py = np.empty(rows)
+    sense_row = np.empty(sensing, dtype=np.int64)
+    sense_place = np.empty(sensing, dtype=np.int64)
+    k = 0
+    z = 0
+    for i in range(m):
+        j = where[i]
+        if count[j] == 0:
+            continue
+        a, b, s = cand_a[i], cand_b[i], cand_p[i]
+        flip = swap[i]
+        if s >= 0 and c_sensor[owner[s]]:
+            if separation[j, 0] < 0.0 or separation[j, 1] < 0.0:
+                sense_row[z], sense_place[z] = a, owner[s]
+                z += 1
+            continue
+        sign = -1.0 if flip else 1.0
+        nx, ny = sign * normal[j, 0], sign * normal[j, 1]
+        ca_[k], cb_[k], nx_[k], ny_[k], count_[k] = a, b, nx, ny, count[j]
+        place[k] = s
+        px[k], py[k] = point[j, 0, 0], point[j, 0, 1]
+        code_b = slots[b] if s < 0 else STATIC + s
+        code = (slots[a] << OTHER) | code_b
+        for p in range(2):
+            t = 2 * k + p
+            if flip:
+                rax[t], ray[t] = anchor_b[j, p, 0], anchor_b[j, p, 1]
+                rbx[t], rby[t] = anchor_a[j, p, 0], anchor_a[j, p, 1]
+            else:
+                rax[t], ray[t] = anchor_a[j, p, 0], anchor_a[j, p, 1]
+                rbx[t], rby[t] = anchor_b[j, p, 0], anchor_b[j, p, 1]
+            gap = separation[j, p]
+            sep[t] = gap if np.isfinite(gap) else 0.0
+            f = feature[j, p]
+            if flip and f >= 0:
+                f = (f & 255) << 8 | (f >> 8)
+            key = (code << FEATURE) | (f if f >= 0 else 0)
+            keys[t] = key
+            if p < count[j] and len(warm_keys):
+                at = min(np.searchsorted(warm_keys, key), len(warm_keys) - 1)
+                if warm_keys[at] == key:
+                    ln[t], lt[t] = warm_lam[at, 0], warm_lam[at, 1]
+        # Materials: friction mu_a mu_b, restitution e_a e_b; a conveyor's surface speed.
+        if s < 0:
+            mu_b, e_b = friction[b], restitution[b]
+        else:
+            c = owner[s]
+            mu_b, e_b = c_friction[c], c_restitution[c]
+            tx, ty = -ny, nx
+            speed[k] = -(c_surface[c, 0] * tx + c_surface[c, 1] * ty)
+        fric[k] = friction[a] * mu_b
+        rest[k] = restitution[a] * e_b
+        k += 1
+    return (ca_, cb_, nx_, ny_, count_, rax, ray, rbx, rby, sep, fric, rest, speed, ln, lt,
+            keys, place, px, py, sense_row[:z], sense_place[:z])  # fmt: skip
+
+
+def _sample_report() -> tuple[Any, ...]:
+    """The smallest call of ``report_loop``: a box resting on a segment by two points, and
+    a disc against the box by one."""
+    i = np.array([0, 1], dtype=np.int64)
+    b = np.array([2, 0], dtype=np.int64)
+    normal = np.array([0.0, 1.0])
+    count = np.array([2, 1], dtype=np.int64)
+    sep = np.array([0.0, 0.001, 0.002, 0.0])
+    keys = np.array([1, 2, 3, 0], dtype=np.int64)
+    place = np.array([0, -1], dtype=np.int64)
+    point = np.zeros(2)
+    lam = np.array([0.1, 0.1, 0.0, 0.0])
+    slots = np.array([0, 1], dtype=np.int64)
+    owner = np.zeros(1, dtype=np.int64)
+    return (i, b, normal, normal, count, sep, keys, place, point, point, lam, lam, lam, slots,
+            owner, owner + 1, 4, 0.005)  # fmt: skip
+
+
+@kernels.loop(sample=_sample_report)
+def report_loop(
+    ca: Any, cb: Any, nx: Any, ny: Any, count: Any, sep: Any, keys: Any, place: Any,
+    px: Any, py: Any, ln: Any, lt: Any, total: Any, slots: Any, owner: Any, serial: Any,
+    substeps: int, slop: float,
+) -> tuple[Any, ...]:  # fmt: skip
+    """What the solved contacts leave (engine.pipeline.game_step's ``_keep`` and ``_events`` as one
+    loop, their products in their order): each point's impulses by key, sorted, for the next
+    step's warm start; and the contacts that touch (a point that pushed in the step, or one
+    nearer than ``slop`` at its start), each with its event key (engine.dynamics.events: the bodies'
+    slots, or the slot and the collider's ``serial`` by place), first point (m), the normal
+    toward the key's first body and the impulse on it over the step (N s), sorted by key.
+
+    ``ca`` ... ``sep``, ``keys``, ``place``, ``px``, ``py``: the contacts as
+    ``contacts_loop`` gave them; ``ln``, ``lt``, ``total``: the solver's impulses (a
+    substep's normal and tangent, the step's normal); ``slots`` by row, ``owner`` each static
+    shape's collider place. Returns the kept keys and impulses ((k, 2)), then the touching
+    contacts' keys, points, normals and impulses ((t, 2) each)."""
+    n = len(slots)
+    k = len(ca)
+    real = 0
+    for i in range(k):
+        real += count[i]
+    kept = np.empty(real, dtype=np.int64)
+    lam = np.empty((real, 2))
+    r = 0
+    for i in range(k):
+        for p in range(count[i]):
+            kept[r] = keys[2 * i + p]
+            lam[r, 0], lam[r, 1] = ln[2 * i + p], lt[2 * i + p]
+            r += 1
+    order = np.argsort(kept, kind="mergesort")  # stable, as numpy's
+    touch = np.zeros(k, dtype=np.bool_)
+    t = 0
+    for i in range(k):
+        for p in range(count[i]):
+            if total[2 * i + p] > 0.0 or sep[2 * i + p] < slop:
+                touch[i] = True
+        if touch[i]:
+            t += 1
+    event = np.empty(t, dtype=np.int64)
+    point = np.empty((t, 2))
+    normal = np.empty((t, 2))
+    impulse = np.empty((t, 2))
+    e = 0
+    for i in range(k):  # the event keys first, to sort the touching contacts by them
+        if not touch[i]:
+            continue
+        a, b = ca[i], cb[i]
+        if b < n:
+            lo, hi = min(slots[a], slots[b]), max(slots[a], slots[b])
+            event[e] = (lo << 32) | hi
+        else:
+            event[e] = (slots[a] << 32) | (serial[owner[place[i]]] | COLLIDER)
+        e += 1
+    by_key = np.argsort(event, kind="mergesort")  # stable, as numpy's
+    e = 0
+    for i in range(k):
+        if not touch[i]:
+            continue
+        a, b = ca[i], cb[i]
+        first = 1.0
+        if b < n and slots[a] > slots[b]:
+            first = -1.0
+        # The impulse on A, -(lam_n n + lam_t t), t = (-n_y, n_x), over the whole step.
+        # (Summed as numpy's sum of two: the first, plus 0.0 + the second; -0.0 + -0.0 is
+        # +0.0 so, and the events' zeros keep numpy's signs.)
+        tn = total[2 * i] + (0.0 + total[2 * i + 1])
+        tt = (lt[2 * i] + (0.0 + lt[2 * i + 1])) * substeps
+        jx = -(tn * nx[i] + tt * -ny[i])
+        jy = -(tn * ny[i] + tt * nx[i])
+        point[e, 0], point[e, 1] = px[i], py[i]
+        normal[e, 0], normal[e, 1] = -nx[i] * first, -ny[i] * first
+        impulse[e, 0], impulse[e, 1] = jx * first, jy * first
+        e += 1
+    return kept[order], lam[order], event[by_key], point[by_key], normal[by_key], impulse[by_key]

@@ -1,0 +1,735 @@
+"""A game scene's step, top to bottom: Box2D v3's stages on a World's bodies, colliders and joints.
+
+``World(solver="soft")`` takes each step here instead of the exact models' pipeline
+(engine.pipeline.stepping): one soft-step solver (engine.dynamics.solver) for every contact and
+joint, as a game wants it (a pile, a platformer, a pinball table), where the exact models are for a
+lesson's scene (a ball that bounces at its exact moment, the cradle, a hinge held to 1e-9 m).
+The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
+
+0. ``_wake`` (sleep, engine.pipeline.game_sleep): a sleeping island an awake body comes near wakes;
+   if everything sleeps and nothing moves, the step ends here, changing nothing.
+1. ``_bodies``: the solver's bodies: the World's rows, then one static body (the colliders'
+   frame: position 0, angle 0, no mass); a kinematic body moves at its velocity and nothing
+   pushes it (zero inverse mass), nor a sleeper; the forces' accelerations at the step's
+   start, held over the step (gravity is exact so; a drag is taken at the start's speed).
+2. ``_candidates`` and engine.pipeline.game_broadphase (``pairs``, ``faces``): the pairs of bodies,
+   and of bodies and colliders' shapes, whose bounding circles and boxes come within what the
+   two can move in the step, with the filters, sensors, joints that keep their bodies apart
+   and pre_solve callbacks applied, one of the two awake.
+3. engine.geometry.narrowphase (``collide_pairs``): a manifold for each pair
+(engine.geometry.manifold: Box2D's,
+   up to two points with anchors, separations and feature keys), with a speculative margin of
+   what the pair can close in the step: a box falling fast onto a floor is stopped on it.
+4. ``_found``: each manifold a contact of the solver, its points warm started from the last
+   step's impulses by key (the pair and the features that make the point), its friction
+   mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor); on the
+   fast path, engine.pipeline.game_contacts.contacts_loop.
+5. engine.dynamics.game_joints: the hinges, welds, mouse joints, links, springs and pymunk's
+   constraints (engine.dynamics.constraints) as the solver's joints, warm started from their last
+   impulses, which are reported on each joint after the solve.
+6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
+   relax), restitution, the impulses kept (engine.dynamics.solver). The bodies move by its substeps
+   of semi-implicit Euler whatever the World's integrator, which moves them only in a World
+   with nothing to solve (no collider, no pair that may touch, no joint).
+7. ``_keep``, ``_events``: the impulses kept by key, and which contacts touch after the step
+   (a point that pushed, or one within ``LINEAR_SLOP``) and which sensors overlap, as the
+   World's events read them (engine.pipeline.event_dispatch); on the fast path,
+   engine.pipeline.game_contacts.report_loop.
+8. ``_sleep``: still islands fall asleep (engine.pipeline.game_sleep); a sleeper's contacts stay
+open.
+9. engine.dynamics.game_continuous (``Continuous.sweep``, on either path): each fast body (one that
+   moved more than half its least extent) swept from its pose at the step's start to its end
+   against the colliders and the static and kinematic bodies (a bullet against the dynamic
+   ones too: ``Body.bullet``), and set back to its first time of impact, its velocity kept
+   (Box2D v3's ``b2SolveContinuous``): a thin box turning fast meets a wall with another
+   corner than its rows hold, and is stopped. On the fast path
+   ``step_loop``'s end says whether a body may be fast: a step with none asks nothing more.
+
+On the fast path stages 0 (once the World's structure is read) to 8 are one compiled call,
+engine.pipeline.game_loop's ``step_loop`` (``_step_fast``): the numpy path's products in its order,
+so both paths give the same bits (tests/test_game_loop.py compares them step by step).
+
+What this step does not do yet, and says so (``World.solver``'s error): 1D worlds are the
+exact pipeline's. A mouse joint is Box2D's here: a soft spring
+that sags by g / omega^2 under a body's weight (the exact pipeline's holds it at the target).
+A fast body is swept against the dynamic bodies only as a bullet (``Body.bullet``, off as
+Box2D's ``isBullet`` is): a thin box turning fast that is none may pass a free plate.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from ..dynamics import solver
+from ..dynamics.events import COLLIDER, collider_keys, pair_keys
+from ..dynamics.game_continuous import Continuous
+from ..dynamics.game_joints import GameJoints
+from ..geometry import narrowphase
+from ..geometry.colliders import Collider
+from ..geometry.manifold import StaticShapes, static_shapes
+from ..geometry.manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
+from ..geometry.pair_grid import grid_pairs
+from ..geometry.shaped import ShapeTable
+from . import game_broadphase as broad
+from . import game_sleep
+from .game_contacts import FEATURE, OTHER, STATIC
+from .game_loop import step_loop
+
+#: The World's state (engine.pipeline.world_state.WorldState, which holds a GameStep: named here by
+# what : is read of it, not imported, as a lower module must not import a higher one).
+WorldState = Any
+
+__all__ = ["GameStep", "unsupported"]
+
+# Warm-start keys (engine.pipeline.game_contacts): (the pair's code << FEATURE) | the point's
+# feature id; a pair's code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
+#: Up to this many bodies the broadphase tests every pair (fewer array calls than a grid).
+_FEW = 32
+
+
+def unsupported(state: WorldState) -> str | None:
+    """What in the World the soft step cannot take yet (a phrase), or None."""
+    store = state.store
+    if store is not None and store.dim != 2:
+        return "a 1D world"
+    return None
+
+
+class _Found(NamedTuple):
+    """The step's contacts as the solver takes them: ``rows``, solver.solve's contact arrays
+    ca ... clt (warm started); ``keys``, each point's (2 a row); ``place``, each row's static
+    shape (-1: a pair of bodies); ``point`` (k, 2), each row's first point (m); the sensor
+    colliders' overlaps: ``sense_row`` the body's row, ``sense_place`` the collider's place."""
+
+    rows: list[np.ndarray]
+    keys: np.ndarray
+    place: np.ndarray
+    point: np.ndarray
+    sense_row: np.ndarray
+    sense_place: np.ndarray
+
+
+class _Scene(NamedTuple):
+    """What a step reads of the World but its bodies' motion: the bodies' shapes (``table``)
+    and their places with the static shapes' (``places``, engine.geometry.narrowphase), the
+    colliders' arrays (``cs``), the static shapes with each one's collider place (``owner``) and box
+    (``bounds``), which bodies are sensors, and the pairs kept apart and faces ignored (sorted
+    keys: engine.pipeline.game_broadphase's ``apart_keys``, ``ignored_keys``)."""
+
+    table: ShapeTable
+    places: narrowphase.Places
+    cs: broad.Colliders
+    statics: StaticShapes
+    owner: np.ndarray
+    bounds: np.ndarray
+    sensors: np.ndarray
+    apart: np.ndarray
+    ignored: np.ndarray
+
+
+@dataclass
+class _Report:
+    """What the last step's contacts did, for the events: the touching contacts' event keys
+    (sorted), each with a point, the normal toward the key's first body and the impulse (N s)
+    on it."""
+
+    keys: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    normals: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    impulses: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    sensing: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+
+
+class GameStep:
+    """A World's soft step (module doc): what it keeps from step to step (the contacts'
+    impulses by key, the shapes, the colliders' shapes) and the stages that use it."""
+
+    def __init__(self, fast: bool) -> None:
+        self.fast = fast  # the compiled solver (engine.kernels) or its plain-Python twin
+        self.continuous = Continuous(fast)  # stage 9: fast bodies swept after the step
+        self.substeps = solver.SUBSTEPS
+        self.keys = np.zeros(0, dtype=np.int64)  # the last step's points, sorted
+        self.lam = np.zeros((0, 2))  # their (normal, tangent) impulses, N s a substep
+        self.joints = GameJoints(fast)  # stage 5: their rows, their impulses
+        self.report = _Report()
+        self.last = _Report()  # the step before's, for begin and end
+        self._table: tuple[int, list[Any], ShapeTable] | None = None
+        self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
+        self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
+        self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
+        # The bodies' radii and their median (the radii are a new array when bodies come or go).
+        self._median: tuple[np.ndarray, float] | None = None
+        self.serials = np.zeros(0, dtype=np.int64)
+        self._cs: tuple[tuple[int, ...], broad.Colliders] | None = None
+        self._apart: tuple[Any, np.ndarray] = (None, np.zeros(0, dtype=np.int64))
+        # The sensor bodies: (the store's categories and mask arrays they were read from, them).
+        self._sensors: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    # -- the step -------------------------------------------------------------------------
+    def step(
+        self,
+        state: WorldState,
+        dt: float,
+        accel: np.ndarray,
+        ignored_faces: np.ndarray,
+        ignored_pairs: np.ndarray,
+        torque: np.ndarray | None = None,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """One step of ``dt`` (s) of the World's bodies, ``accel`` (N, 2) the forces'
+        accelerations at its start (m/s^2), ``torque`` (N,) the torques then (N m; None: the
+        bodies' own); the pairs pre_solve ignored left out (``ignored_faces`` (K, 2) of (body
+        row, collider place), ``ignored_pairs`` keys a * n + b of rows a < b). Returns the
+        bodies' positions, velocities, angles and angular velocities after it, for the caller
+        to check and keep (the World keeps the last finite state)."""
+        store = state.store
+        assert store is not None
+        n = len(store)
+        c = state.collisions
+        # (np.count_nonzero: a C call, where ndarray.any() goes through numpy's Python wrapper
+        # at several times its cost on a game's few bodies.)
+        if (
+            len(c.asleep) == n
+            and np.count_nonzero(c.asleep)
+            and not self._stirring(store, c.asleep)
+        ):
+            # Everything sleeps, and nothing moves to wake it: the step changes nothing, and
+            # every contact stays as it was.
+            self.last = self.report
+            return store.x.copy(), store.v.copy(), store.angle.copy(), store.omega.copy()
+        # (The fast path's kernel measures the reach itself where the pairs need it not.)
+        margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
+        candidates = self._candidates(store, margin)
+        if self.fast:
+            return self._step_fast(
+                state, store, dt, accel, store.torque if torque is None else torque, margin,
+                candidates, ignored_faces, ignored_pairs,
+            )  # fmt: skip
+        sc = self._scene(state, store, ignored_faces, ignored_pairs)
+        boxes = broad.boxes(sc.places, store)
+        awake = self._wake(state, store, margin, candidates, boxes)
+        b = _bodies(store, accel, store.torque if torque is None else torque, awake)
+        pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes)
+        faces = broad.faces(
+            store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, margin, sc.ignored
+        )
+        touches = narrowphase.collide_pairs(
+            sc.places, sc.table, store, sc.statics, pairs, faces, margin
+        )
+        found = self._found(store, sc.cs, sc.owner, touches)
+        joints = self.joints.arrays(state, store, n)
+        k = len(found.place)
+        args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
+        params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
+        params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
+        # Plain Python on lists: at a game's size faster than numpy's calls a colour.
+        out: list[Any] = [a.tolist() for a in args]
+        solver.solve.py(*out, *params)
+        x = np.stack([np.asarray(out[0][:n]), np.asarray(out[1][:n])], axis=1)
+        v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
+        angle = np.asarray(out[2][:n], dtype=float)
+        omega = np.asarray(out[5][:n], dtype=float)
+        self._keep(found, out)
+        self._events(store, sc.cs, sc.owner, found, out)
+        self.joints.report(joints[1], out, self.substeps)
+        self._sleep(state, store, dt, awake, v, omega, found, joints[0], x, angle)
+        # What each sensor collider holds: a body whose shape overlaps it.
+        if len(found.sense_row):
+            self.report.sensing = collider_keys(
+                store.slots()[found.sense_row], sc.cs.serial[found.sense_place]
+            )
+        self.continuous.sweep(store, sc, x, angle)  # stage 9 (engine.dynamics.game_continuous)
+        return x, v, angle, omega
+
+    def _step_fast(
+        self, state: WorldState, store: Any, dt: float, accel: np.ndarray, torque: np.ndarray,
+        margin: np.ndarray, candidates: tuple[np.ndarray, np.ndarray],
+        ignored_faces: np.ndarray, ignored_pairs: np.ndarray,
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+        """``step`` on the fast path: what changes only with the World made here (the
+        shapes, colliders, joints' rows), stages 0 to 8 in one compiled call
+        (engine.pipeline.game_loop.step_loop, the numpy path's products in its order)."""
+        n = len(store)
+        c = state.collisions
+        if len(c.asleep) != n or len(c.still) != n or len(c._group) != n:
+            c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
+        sc = self._scene(state, store, ignored_faces, ignored_pairs)
+        table, places, statics, cs = sc.table, sc.places, sc.statics, sc.cs
+        joints = self.joints.arrays(state, store, n)
+        t = places.tables
+        f64, i64 = np.float64, np.int64
+        asc = np.ascontiguousarray
+        if c._group.dtype != i64:
+            c._group = c._group.astype(i64)
+        kernel: Any = step_loop
+        last = self.report
+        out = kernel(
+            asc(store.x, f64), asc(store.v, f64), asc(store.angle, f64),
+            asc(store.omega, f64), asc(store.mass, f64), asc(store.inv_moment, f64),
+            asc(accel, f64), asc(torque, f64), asc(store.kinematic), asc(store.radius, f64),
+            asc(margin, f64), sc.sensors, asc(store.group, i64), asc(store.categories, i64),
+            asc(store.mask, i64), asc(store.slots(), i64), asc(store.friction, f64),
+            asc(store.restitution, f64), places.body_circle, places.body_index,
+            asc(table.kind, i64), c.asleep, c.still, c._group, float(c.sleep_time), dt,
+            *candidates, asc(sc.owner, i64), asc(sc.bounds, f64), places.static_circle,
+            places.static_index, cs.sensor, cs.friction, cs.restitution, asc(cs.surface),
+            cs.group, cs.categories, cs.mask, *t.kernel_polygons, t.center, t.round,
+            asc(statics.half_planes.point, f64), asc(statics.half_planes.normal, f64), sc.apart,
+            sc.ignored, self.keys, self.lam, *joints[0], cs.serial, asc(store.row_of, i64),
+            asc(last.keys, i64), asc(last.points, f64), asc(last.normals, f64),
+            asc(last.impulses, f64), self.substeps,
+            solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
+            solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD, LINEAR_SLOP,
+        )  # fmt: skip
+        x, v, angle, omega, self.keys, self.lam = out[:6]
+        self.last = self.report
+        self.report = _Report(*out[6:10])
+        if len(out[10]):
+            self.report.sensing = out[10]
+        c._touching = out[11]
+        self.continuous.maybe = out[
+            12
+        ]  # whether a body may be fast (engine.dynamics.game_continuous)
+        # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
+        # 11 and the contacts' 17, as the joints' report reads them).
+        # The bodies' x, y and angle after it (with the static body's) where a pymunk
+        # constraint reports along itself as it is at the step's end.
+        head: list[Any] = [None] * 28
+        if self.joints.constrained(joints[1]):
+            head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
+        self.joints.report(joints[1], head + joints[0], self.substeps, joints[0])
+        # Stage 9: the fast bodies swept to their time of impact (engine.dynamics.game_continuous),
+        # where step_loop says a body may be fast.
+        self.continuous.sweep(store, sc, x, angle)
+        return x, v, angle, omega
+
+    def resting(self, slot: int) -> int | None:
+        """The serial of the collider that pushed the body in ``slot`` hardest in the last
+        step, among its touching contacts (engine.dynamics.events' keys), or None."""
+        r = self.report
+        mine = (r.keys >> 32) == slot
+        mine &= (r.keys & COLLIDER) != 0
+        if not mine.any():
+            return None
+        push = np.hypot(r.impulses[:, 0], r.impulses[:, 1])
+        best = int(np.argmax(np.where(mine, push, -1.0)))
+        if push[best] <= 0.0:
+            return None
+        return int(r.keys[best] & (COLLIDER - 1))
+
+    # -- snapshots ------------------------------------------------------------------------
+    def state(self, links: list[Any], plain: Any) -> tuple[Any, ...]:
+        """What a snapshot keeps of the soft step (engine.pipeline.snapshot): the contacts' impulses
+        by key, each joint's in the order of ``links``, and the last two steps' touching contacts
+        (their event keys made plain by ``plain``, engine.dynamics.events.plain_keys)."""
+        joints = tuple(self.joints.impulses.get(id(j)) for j in links)
+
+        def report(r: _Report) -> tuple[Any, ...]:
+            return (plain(r.keys), r.points.copy(), r.normals.copy(), r.impulses.copy(),
+                    plain(r.sensing))  # fmt: skip
+
+        return (self.keys.copy(), self.lam.copy(), joints, report(self.report), report(self.last))
+
+    def set_state(self, saved: tuple[Any, ...], links: list[Any], back: Any) -> None:
+        """Bring back ``state()`` (``back`` turns plain keys into this World's)."""
+        keys, lam, joints, now, last = saved
+        self.keys, self.lam = keys.copy(), lam.copy()
+        self.joints.impulses = {
+            id(j): v for j, v in zip(links, joints, strict=True) if v is not None
+        }
+
+        def report(r: tuple[Any, ...]) -> _Report:
+            return _Report(back(r[0]), r[1].copy(), r[2].copy(), r[3].copy(), back(r[4]))
+
+        self.report, self.last = report(now), report(last)
+
+    # -- what is kept -----------------------------------------------------------------------
+    def _scene(
+        self, state: WorldState, store: Any, ignored_faces: np.ndarray, ignored_pairs: np.ndarray
+    ) -> _Scene:
+        """What the step reads of the World but its bodies' motion (``_Scene``): the tables
+        kept from step to step, made again only where the World changed."""
+        table = self._shapes(store)
+        colliders = [] if state.contacts is None else state.contacts.colliders
+        ids = tuple(map(id, colliders))
+        cs = self._colliders(colliders, state.events.serial, ids)
+        self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
+        statics, owner, bounds = self._static(colliders, ids)
+        # Sensor bodies (a sensor's filter meets nothing: only those bodies are asked), kept
+        # while the filters' arrays are the same (a filter set, a sensor made or bodies come or
+        # go make new ones: engine.dynamics.store).
+        made = self._sensors
+        if made is None or made[0] is not store.categories or made[1] is not store.mask:
+            sensors = np.zeros(len(store), dtype=bool)
+            for row in np.flatnonzero((store.categories == 0) & (store.mask == 0)).tolist():
+                sensors[row] = state.bodies[row].sensor
+            made = self._sensors = (store.categories, store.mask, sensors)
+        sensors = made[2]
+        kept = self._places
+        if kept is None or kept[0] is not table or kept[1] is not statics:
+            kept = self._places = (table, statics, narrowphase.places_of(table, statics))
+        # The pairs a joint keeps apart change with the bodies and the links (a joint's
+        # collide bumps its revision); pre_solve's, every step.
+        key = (state.version, len(store), id(store), state.link_revisions)
+        if self._apart[0] != key:
+            self._apart = (key, broad.apart_keys(store, state, np.zeros(0, dtype=np.int64)))
+        apart = self._apart[1]
+        if len(ignored_pairs):
+            apart = np.union1d(apart, np.asarray(ignored_pairs, dtype=np.int64))
+        ignored = broad.ignored_keys(ignored_faces, len(colliders))
+        return _Scene(table, kept[2], cs, statics, owner, bounds, sensors, apart, ignored)
+
+    def _shapes(self, store: Any) -> ShapeTable:
+        """The bodies' shapes as narrowphase kinds (made again when bodies come or go)."""
+        shapes = store.shapes
+        kept = self._table
+        if kept is None or kept[0] != len(shapes) or kept[1] != shapes:
+            kept = (len(shapes), list(shapes), ShapeTable(shapes, store.radius))
+            self._table = kept
+        return kept[2]
+
+    def _colliders(
+        self, colliders: list[Collider], serial: Any, key: tuple[int, ...]
+    ) -> broad.Colliders:
+        """The colliders' arrays (engine.pipeline.game_broadphase.collider_arrays), made again when
+        colliders come or go (``key``: their ids) or a material is set
+        (``materials_changed``)."""
+        kept = self._cs
+        if kept is None or kept[0] != key:
+            kept = self._cs = (key, broad.collider_arrays(colliders, serial))
+        return kept[1]
+
+    def emptied(self) -> None:
+        """A step of a World with no bodies (the last one taken out): nothing touches, so
+        the contacts of the step before end (the events would read the gone bodies' keys as
+        touching still)."""
+        self.last = self.report
+        self.report = _Report()
+
+    def materials_changed(self) -> None:
+        """A collider's material was set (engine.pipeline.world_state.collider_changed): its arrays
+        are read again at the next step."""
+        self._cs = None
+
+    def _static(
+        self, colliders: list[Collider], key: tuple[int, ...]
+    ) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
+        """The colliders as shapes in the world's frame, each static shape's collider place
+        and bounding box (xmin, ymin, xmax, ymax; a half plane's infinite), made again when
+        colliders come or go (``key``: their ids)."""
+        kept = self._statics
+        if kept is None or kept[0] != key:
+            shapes = static_shapes(colliders)
+            kept = (key, shapes, *broad.static_bounds(shapes))
+            self._statics = kept
+        return kept[1], kept[2], kept[3]
+
+    # -- stages 2 to 4: contacts, as rows -----------------------------------------------------
+    def _candidates(self, store: Any, margin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The pairs of bodies the broadphase tests (rows a < b): every pair up to ``_FEW``
+        bodies, past that those in the same or neighbouring cells of a grid as wide as the
+        farthest two ordinary bodies can reach each other (engine.geometry.pair_grid, no Python
+        loop), and each big body with every other."""
+        n = len(store)
+        if n < 2:
+            none = np.zeros(0, dtype=np.int64)
+            return none, none
+        if n <= _FEW:
+            every = self._every.get(n)
+            if every is None:
+                a, b = np.triu_indices(n, 1)
+                every = self._every[n] = (a.astype(np.int64), b.astype(np.int64))
+            return every
+        if (store.group[0] != 0) & (store.group == store.group[0]).all():
+            none = np.zeros(0, dtype=np.int64)
+            return none, none  # one group: no two bodies meet (balls that pass each other)
+        # The cells as wide as the farthest two ordinary bodies can reach each other; a big
+        # body (a tumbler's wall, a level's long platform, a bullet: reaching past four times
+        # the median radius) is paired with every body instead, so that it does not make one
+        # cell of the world.
+        r = store.radius + margin
+        if self._median is None or self._median[0] is not store.radius:
+            self._median = (store.radius, float(np.median(store.radius)))
+        big = r > 4.0 * self._median[1] + SPECULATIVE_DISTANCE
+        rows = np.flatnonzero(~big)
+        h = 2.0 * float(r[rows].max()) + SPECULATIVE_DISTANCE
+        a, b = grid_pairs(store.x[rows], h, self.fast)
+        a, b = rows[a], rows[b]
+        if big.any():
+            # Each big body with every other body, a pair of big bodies once.
+            ends = np.flatnonzero(big)
+            ba = np.repeat(ends, n)
+            bb = np.tile(np.arange(n), len(ends))
+            keep = (bb != ba) & ~(big[bb] & (bb < ba))
+            a = np.concatenate([a, ba[keep]])
+            b = np.concatenate([b, bb[keep]])
+        lo = np.minimum(a, b).astype(np.int64)  # rows a < b, as every pair's test gives
+        return lo, np.maximum(a, b).astype(np.int64)
+
+    # -- sleep (engine.pipeline.game_sleep) --------------------------------------------------------
+    def _wake(
+        self,
+        state: WorldState,
+        store: Any,
+        margin: np.ndarray,
+        candidates: tuple[Any, Any],
+        boxes: np.ndarray,
+    ) -> np.ndarray:
+        """The bodies the step moves (dynamic and awake), the sleepers an awake body meets
+        (by the bodies' ``boxes`` too) woken first with their islands."""
+        n = len(store)
+        dynamic = ~store.kinematic & np.isfinite(store.mass)
+        c = state.collisions
+        if len(c.asleep) != n or len(c.still) != n or len(c._group) != n:
+            c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
+        if not c.asleep.any():
+            return dynamic
+        asleep = c.asleep
+        spins = (store.v != 0.0).any(axis=1) | (store.omega != 0.0)
+        active = (dynamic & ~asleep) | (store.kinematic & spins)
+        wake = game_sleep.woken(asleep, c._group, active, *candidates, store, margin, boxes)
+        if wake.any():
+            asleep[wake] = False
+            c.still[wake] = 0.0
+        return dynamic & ~asleep
+
+    @staticmethod
+    def _stirring(store: Any, asleep: np.ndarray) -> bool:
+        """Whether a body the step would move is awake: a dynamic one not asleep, or a
+        kinematic one with a velocity."""
+        dynamic = ~store.kinematic & np.isfinite(store.mass)
+        if np.count_nonzero(dynamic & ~asleep):
+            return True
+        kin = store.kinematic
+        return bool(np.count_nonzero(store.v[kin]) or np.count_nonzero(store.omega[kin]))
+
+    def _sleep(
+        self,
+        state: WorldState,
+        store: Any,
+        dt: float,
+        awake: np.ndarray,
+        v: np.ndarray,
+        omega: np.ndarray,
+        found: _Found,
+        joints: list[np.ndarray],
+        x: np.ndarray,
+        angle: np.ndarray,
+    ) -> None:
+        """After the solve: still times counted, still islands put to sleep (their ``v`` and
+        ``omega`` zeroed, in place), the contacts of sleepers held open; ``x`` and ``angle``
+        the bodies' after it (a pymunk constraint's bodies: how far it moved them)."""
+        c = state.collisions
+        n = len(store)
+        rows = found.rows
+        pair = rows[1] < n
+        # A joint joins an island where both its ends are bodies (either may be the world).
+        both = (joints[1] < n) & (joints[2] < n)
+        a = np.concatenate([rows[0][pair], joints[2][both]])
+        b = np.concatenate([rows[1][pair], joints[1][both]])
+        a, b = np.minimum(a, b), np.maximum(a, b)
+        c._touching = a.astype(np.int64) * n + b  # for Body.sleep's island
+        before = c.asleep.copy()  # (those asleep through the step: ~awake, but kinematic)
+        never = store.kinematic.copy()
+        mouse = joints[0] == solver.MOUSE
+        never[joints[2][mouse]] = True
+        bounded = (joints[13] & 2) != 0  # a pymunk constraint's rows (_constraint_row)
+        drift = game_sleep.drifting(
+            store.x, x, store.angle, angle, joints[1][bounded], joints[2][bounded], dt
+        )
+        game_sleep.fall_asleep(
+            c.still, c.asleep, c._group, awake, never, v, omega, a, b, dt, c.sleep_time,
+            self.fast, drift,
+        )  # fmt: skip
+        now = c.asleep & ~before
+        if now.any():
+            v[now] = 0.0
+            omega[now] = 0.0
+        if before.any():
+            self._hold(store, before)
+
+    def _hold(self, store: Any, asleep: np.ndarray) -> None:
+        """The last step's touching contacts whose bodies slept through this one (``asleep``:
+        a sleeper and a collider, or two sleepers) stay open: their rows were not found, nor
+        solved, and nothing ends. (A body asleep through the step has no contact in it: an
+        awake body near it would have woken it.)"""
+        last, now = self.last, self.report
+        if not len(last.keys):
+            return
+        row_of = store.row_of
+        a = row_of[last.keys >> 32]
+        other = last.keys & (COLLIDER - 1)
+        collider = (last.keys & COLLIDER) != 0
+        b = row_of[np.where(collider, 0, other)]
+        keep = asleep[a] & (collider | asleep[b])
+        if keep.any():
+            keys = np.concatenate([now.keys, last.keys[keep]])
+            order = np.argsort(keys, kind="stable")  # the report stays sorted by key
+            self.report = _Report(
+                keys[order],
+                np.concatenate([now.points, last.points[keep]])[order],
+                np.concatenate([now.normals, last.normals[keep]])[order],
+                np.concatenate([now.impulses, last.impulses[keep]])[order],
+                now.sensing,
+            )
+
+    def _found(
+        self, store: Any, cs: broad.Colliders, owner: np.ndarray, touches: narrowphase.Touches
+    ) -> _Found:
+        """The manifolds as the solver's contact rows (solver.solve's order), warm started by
+        key; a sensor collider's manifolds as its overlaps (events only: no row pushes its
+        body)."""
+        n = len(store)
+        sensor = np.zeros(len(touches.m), dtype=bool)
+        stat = np.flatnonzero(touches.b >= n)
+        if len(stat):
+            sensor[stat] = cs.sensor[owner[touches.place[stat]]]
+        over = sensor & (touches.m.separation < 0.0).any(axis=1)
+        sense_row = touches.a[over].astype(np.int64)
+        sense_place = owner[touches.place[over]].astype(np.int64)
+        m, ia, ib, other = touches.take(np.flatnonzero(~sensor))
+        k = len(m)
+        count = m.count.astype(np.int64)
+        slots = store.slots()
+        # The pair's code: body B's slot, or a static shape's place.
+        code_b = np.where(ib < n, slots[np.minimum(ib, n - 1)], STATIC + other)
+        code = (slots[ia].astype(np.int64) << OTHER) | code_b.astype(np.int64)
+        feature = np.where(m.feature >= 0, m.feature, 0).astype(np.int64)
+        keys = (code[:, None] << FEATURE) | feature  # (k, 2)
+        lam = np.zeros((k, 2, 2))
+        if len(self.keys) and k:
+            flat = keys.ravel()
+            at = np.minimum(np.searchsorted(self.keys, flat), len(self.keys) - 1)
+            hit = (self.keys[at] == flat) & (np.arange(2 * k) % 2 < np.repeat(count, 2))
+            lam.reshape(-1, 2)[hit] = self.lam[at[hit]]
+        # Materials: a body's, or a collider's; friction mu_a mu_b, restitution e_a e_b.
+        e_b = np.ones(k)
+        mu_b = np.ones(k)
+        speed = np.zeros(k)
+        pair = ib < n
+        e_b[pair] = store.restitution[ib[pair]]
+        mu_b[pair] = store.friction[ib[pair]]
+        stat = np.flatnonzero(~pair)
+        if len(stat):
+            places = owner[other[stat]]
+            e_b[stat] = cs.restitution[places]
+            mu_b[stat] = cs.friction[places]
+            # A conveyor: the collider's surface moves at u; the slip is the relative
+            # velocity less u's part along the tangent t = (-n_y, n_x).
+            u = cs.surface[places]
+            t = np.stack([-m.normal[stat, 1], m.normal[stat, 0]], axis=1)
+            speed[stat] = -(u[:, 0] * t[:, 0] + u[:, 1] * t[:, 1])
+        sep = np.where(np.isfinite(m.separation), m.separation, 0.0)
+        c = np.ascontiguousarray
+        rows = [
+            c(ia, dtype=np.int64),
+            c(ib, dtype=np.int64),
+            c(m.normal[:, 0]),
+            c(m.normal[:, 1]),
+            count,
+            c(m.anchor_a[:, :, 0].ravel()),
+            c(m.anchor_a[:, :, 1].ravel()),
+            c(m.anchor_b[:, :, 0].ravel()),
+            c(m.anchor_b[:, :, 1].ravel()),
+            c(sep.ravel()),
+            store.friction[ia] * mu_b,
+            store.restitution[ia] * e_b,
+            speed,
+            c(lam[:, :, 0].ravel()),
+            c(lam[:, :, 1].ravel()),
+        ]
+        point = c(m.point[:, 0])
+        return _Found(rows, keys.ravel(), other.astype(np.int64), point, sense_row, sense_place)
+
+    def _keep(self, found: _Found, out: list[Any]) -> None:
+        """Keep this step's impulses by key, for the next step's warm start."""
+        count = found.rows[4]
+        keys = found.keys
+        real = np.arange(len(keys)) % 2 < np.repeat(count, 2)
+        base = 11  # the bodies' arrays come first
+        lam_n = np.asarray(out[base + 13], dtype=float)
+        lam_t = np.asarray(out[base + 14], dtype=float)
+        keys = keys[real]
+        order = np.argsort(keys, kind="stable")
+        self.keys = keys[order]
+        self.lam = np.stack([lam_n[real], lam_t[real]], axis=1)[order]
+        self._totals = (np.asarray(out[base + 15], dtype=float), lam_t)
+
+    # -- stage 5: joints ----------------------------------------------------------------------
+    # -- stage 7: events ----------------------------------------------------------------------
+    def _events(
+        self,
+        store: Any,
+        cs: broad.Colliders,
+        owner: np.ndarray,
+        found: _Found,
+        out: list[Any],
+    ) -> None:
+        """Which contacts touch after the step (a point that pushed in it, or one nearer
+        than LINEAR_SLOP at its start)."""
+        rows = found.rows
+        ia, ib, count, sep = rows[0], rows[1], rows[4], rows[9]
+        other = found.place
+        n = len(store)
+        slots = store.slots()
+        total, lam_t = self._totals
+        real = np.arange(2 * len(ia)) % 2 < np.repeat(count, 2)
+        pushed = (total > 0.0) & real
+        near = (sep < LINEAR_SLOP) & real
+        touch = (pushed | near).reshape(-1, 2).any(axis=1)
+        stat = ib >= n
+        keys = np.zeros(len(ia), dtype=np.int64)
+        pair = ~stat
+        if pair.any():
+            keys[pair] = pair_keys(slots[ia[pair]], slots[ib[pair]])
+        if stat.any():
+            keys[stat] = collider_keys(slots[ia[stat]], cs.serial[owner[other[stat]]])
+        # The impulse on the key's first body: -(lam_n n + lam_t t) on A, the whole step's.
+        tn = total.reshape(-1, 2).sum(axis=1) if len(ia) else np.zeros(0)
+        tt = np.asarray(lam_t, dtype=float).reshape(-1, 2).sum(axis=1) * self.substeps
+        nrm = np.stack([rows[2], rows[3]], axis=1)
+        j = -(tn[:, None] * nrm + tt[:, None] * np.stack([-nrm[:, 1], nrm[:, 0]], axis=1))
+        first_a = np.ones(len(ia), dtype=bool)
+        first_a[pair] = slots[ia[pair]] <= slots[np.minimum(ib[pair], n - 1)]
+        sign = np.where(first_a, 1.0, -1.0)[:, None]
+        self.last = self.report
+        # Sorted by key (stably), as the fast path's report: the events' searches need no sort.
+        picked = np.flatnonzero(touch)
+        picked = picked[np.argsort(keys[picked], kind="stable")]
+        self.report = _Report(
+            keys[picked],
+            found.point[picked],
+            (-nrm * sign)[picked],
+            (j * sign)[picked],
+        )
+
+
+def _bodies(
+    store: Any, accel: np.ndarray, torque: np.ndarray, moving: np.ndarray
+) -> list[np.ndarray]:
+    """The solver's body arrays (solver.solve's order): the World's rows, then the static
+    body; rows of one array (each C-contiguous), so a few array calls make them all. Only
+    ``moving`` bodies (dynamic and awake) have mass to push and forces to move them."""
+    n = len(store)
+    out = np.zeros((11, n + 1))
+    out[0:2, :n] = store.x.T
+    out[2, :n] = store.angle
+    out[3:5, :n] = store.v.T
+    out[5, :n] = store.omega
+    with np.errstate(divide="ignore"):
+        out[6, :n] = np.where(moving, 1.0 / store.mass, 0.0)
+    out[7, :n] = np.where(moving, store.inv_moment, 0.0)
+    out[8:10, :n] = np.where(moving, accel.T, 0.0)
+    out[10, :n] = np.where(moving, torque * store.inv_moment, 0.0)
+    return list(out)
+
+
+def _reach(store: Any, accel: np.ndarray, dt: float) -> np.ndarray:
+    """How far each body's shape can move in the step (m): |v| dt + |a| dt^2 + |omega| dt r
+    (its bounding radius r swept by the turn)."""
+    v, r = store.v, store.radius
+    speed = np.hypot(v[:, 0], v[:, 1])
+    acc = np.hypot(accel[:, 0], accel[:, 1])
+    return speed * dt + acc * dt * dt + np.abs(store.omega) * dt * r

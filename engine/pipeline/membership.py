@@ -1,0 +1,320 @@
+"""What a World holds, and how things come and go: bodies (added in batches, all or
+nothing), forces and the bodies they act on, links (rods, cables, pins) and static colliders.
+
+Adding a body or a collider pushes out any body found inside a solid collider
+(engine.exact.overlaps); taking a body out ends its open contacts and its links.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Any, TypeVar
+
+import numpy as np
+
+from ..body import Body
+from ..dynamics.links import Link, Pin
+from ..exact.contacts import Contacts
+from ..exact.overlaps import freed, push_out
+from ..forces import Force, as_force
+from ..geometry.colliders import Collider
+from ..vector import Vector
+from .world_state import AttachedForce
+
+if TYPE_CHECKING:
+    from .world_state import WorldState
+
+__all__ = [
+    "ColliderT",
+    "LinkT",
+    "add_all",
+    "add_collider",
+    "add_force",
+    "add_link",
+    "remove",
+    "remove_collider",
+    "remove_force",
+    "remove_link",
+]
+
+#: What add_collider and add_link hand back: the very object given, with its own type.
+ColliderT = TypeVar("ColliderT", bound=Collider)
+LinkT = TypeVar("LinkT", bound=Link)
+
+
+def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
+    """Add many bodies at once (one array copy instead of one per body); return them.
+
+    All or nothing: a batch with one bad body is refused whole and changes nothing.
+    """
+    batch = list(bodies)
+    for b in batch:
+        if not isinstance(b, Body):
+            raise _not_a_body("add", b)
+        if b.world is not None:
+            which = "this" if b.world is state.world else "another"
+            raise ValueError(f"that body is already in {which} World; remove it first")
+    if len({id(b) for b in batch}) != len(batch):
+        raise ValueError("World.add_all was given the same body twice")
+    if not batch:
+        return batch
+    # An empty World takes the dimension of the first body; every body must share it.
+    dim = state.dim if state.dim is not None else batch[0].dim
+    for b in batch:
+        state.check_dim(b.dim, "the body", dim, bodies=True)
+    store = state.ensure_store(dim)
+    slots = store.append(
+        np.array([b.pos for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+        np.array([b.vel for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+        np.array([b.mass for b in batch], dtype=float),
+        np.array([b.own_acc for b in batch], dtype=float).reshape((-1,) + store.x.shape[1:]),
+        (
+            np.array([b.radius for b in batch], dtype=float),
+            np.array([b.restitution for b in batch], dtype=float),
+            np.array([b.friction for b in batch], dtype=float),
+        ),
+        (
+            np.array([b.solid_filter.group for b in batch], dtype=np.int64),
+            np.array([b.solid_filter.categories for b in batch], dtype=np.int64),
+            np.array([b.solid_filter.mask for b in batch], dtype=np.int64),
+        ),
+        np.array([b.kinematic for b in batch], dtype=bool),
+        [b.shape for b in batch],
+        (
+            np.array([b.angle for b in batch], dtype=float),
+            np.array([b.angular_velocity for b in batch], dtype=float),
+            np.array([b.moment for b in batch], dtype=float),
+            np.array([b.torque for b in batch], dtype=float),
+        ),
+        np.array([b.bullet for b in batch], dtype=bool),
+    )
+    for b, slot in zip(batch, slots, strict=True):
+        b.attach(store, slot)
+        state.bodies.append(b)
+    if state.contacts is not None:
+        state.contacts.bodies_added(len(batch))
+        push_out(state, range(len(state.bodies) - len(batch), len(state.bodies)), stacklevel=4)
+    state.changed_structure(appended=True)
+    return batch
+
+
+def _not_a_body(verb: str, thing: Any) -> TypeError:
+    """World.add or World.remove (``verb``) given ``thing``, not a Body: which method takes it."""
+    if isinstance(thing, Collider):
+        instead = f"a collider goes by world.{verb}_collider(collider)"
+    elif isinstance(thing, Link):
+        instead = f"a link or joint goes by world.{verb}_link(link)"
+    else:
+        instead = f"a collider goes by world.{verb}_collider(...), a link by world.{verb}_link(...)"
+    return TypeError(f"World.{verb} takes a Body, got {type(thing).__name__} {thing!r}: {instead}")
+
+
+def remove(state: WorldState, body: Body) -> None:
+    """Take ``body`` out of the world; it keeps its last position, velocity and mass."""
+    if not isinstance(body, Body):
+        raise _not_a_body("remove", body)
+    if body.world is not state.world:
+        raise ValueError(f"that body is not in this World: {body!r}")
+    store = state.store
+    assert store is not None
+    pos, vel, mass, own = body.pos, body.vel, body.mass, body.own_acc
+    spin = (body.angle, body.angular_velocity, body.torque)
+    pushed = store.pushes.get(body.slot)
+    if pushed is not None:
+        # A push of apply_force was for this World's next step only: the body leaves with
+        # its own acceleration and torque as they were before it.
+        own, spin = Vector(*pushed[0]), (spin[0], spin[1], pushed[1])
+    row = store.row(body.slot)
+    # The last step's events are named now, before the rows shift, and the body's open
+    # contacts end (reported with the next step).
+    state.events.body_removed(body.slot, state.t)
+    del state.bodies[row]
+    state.targets.pop(body, None)
+    state.turn_targets.pop(body, None)
+    store.remove(body.slot)
+    gone = [k for k in state.links if body in k.bodies]
+    if gone:
+        # Its links go with it.
+        state.links = [k for k in state.links if body not in k.bodies]
+        state.links_changed()
+    if state.contacts is not None:
+        state.contacts.body_removed(row)
+        freed(state, [b for k in gone for b in k.bodies if b is not body], stacklevel=5)
+    for attached in state.forces:
+        if attached.bodies is not None and body in attached.bodies:
+            attached.bodies.remove(body)
+    body.detach(pos, vel, mass, own, spin)
+    state.changed_structure()
+
+
+def add_force(
+    state: WorldState, force: Force | Callable[..., Any], bodies: Iterable[Body] | None = None
+) -> Force:
+    """Add a force (a Force, or a callable ``f(t, x, v, mass) -> force``); return it.
+
+    ``bodies``: the bodies it acts on (all of them, now and later, when None). A generator
+    that gives a torque (``Force.torque``) turns those of them that turn, in a 2D World only.
+    """
+    f = as_force(force)
+    turning = f.gives_torque
+    if turning and state.dim == 1:
+        raise TypeError(
+            f"{f!r} gives a torque, and this World is 1D (floats): a torque turns a body, and "
+            f"bodies turn in a 2D World only (Vectors: a disc, a shape, or a body given a "
+            f"moment); add it to a 2D World, or give the 1D World a force instead"
+        )
+    dim = 2 if turning else f.dim
+    if dim is not None:
+        state.check_dim(dim, repr(f))
+    if state.requested == "exact" and not f.constant:
+        raise ValueError(
+            f"integrator 'exact' moves bodies by the closed form, which needs constant "
+            f"forces, and {f!r} is not constant; use integrator='auto' or an integrator "
+            f"such as 'rk4'"
+        )
+    members: list[Body] | None = None
+    if bodies is not None:
+        try:
+            members = list(bodies)
+        except TypeError:
+            raise TypeError(
+                f"bodies must be an iterable of bodies in this World, or None for all, "
+                f"got {type(bodies).__name__} {bodies!r}"
+            ) from None
+        for b in members:
+            if not isinstance(b, Body) or b.world is not state.world:
+                raise ValueError(f"bodies must be bodies already added to this World, got {b!r}")
+    if dim is not None:
+        state.ensure_store(dim)  # checked above; an empty World takes the force's dim
+    state.forces.append(AttachedForce(f, members))
+    state.changed_structure()
+    return f
+
+
+def remove_force(state: WorldState, force: Force) -> None:
+    """Take ``force`` (as ``add_force`` returned it) out of the World: from the next step it
+    acts on nothing, and every body wakes (a game that turns its gravity round moves the
+    piles asleep, as pymunk's ``space.gravity`` set does)."""
+    for k, attached in enumerate(state.forces):
+        if attached.force is force:
+            del state.forces[k]
+            state.changed_structure()
+            return
+    held = ", ".join(repr(a.force) for a in state.forces) or "none"
+    raise ValueError(
+        f"{force!r} is not a force of this World (it holds {held}): give the object "
+        f"world.add_force returned, or one of world.forces"
+    )
+
+
+def add_link(state: WorldState, link: LinkT) -> LinkT:
+    """Add a link (``engine.dynamics.links``: Rod, Cable, Pin; ``engine.dynamics.joints``: Hinge,
+    Weld; ``engine.dynamics.constraints``: pymunk's, the soft step's alone) between bodies of this
+    World, or a body and a fixed point, and return it. A pinned body is moved to its pin at once
+    (its anchor onto the point)."""
+    if not isinstance(link, Link):
+        raise TypeError(
+            f"add_link takes a link (Rod, Cable, Pin), a joint (Hinge, Weld), a spring "
+            f"(DampedSpring, DampedRotarySpring), a MouseJoint or a constraint (SlideJoint, "
+            f"GrooveJoint, GearJoint, RatchetJoint, RotaryLimitJoint, SimpleMotor), all from "
+            f"engine, got "
+            f"{type(link).__name__} {link!r}"
+        )
+    if any(k is link for k in state.links):
+        raise ValueError(
+            f"that link is already in this World (a link is added only once): {link!r}"
+        )
+    if link.needs_soft and state.solver == "exact":
+        name = type(link).__name__
+        why = (
+            "solver='auto' chose them at its first step, and keeps them once the World moves"
+            if state.solver_asked == "auto"
+            else "solver='exact'"
+        )
+        raise ValueError(
+            f"a {name} is a row of the soft step's solver alone, and this World runs the exact "
+            f"models ({why}), which do not hold it: make the World with "
+            f"World(solver='soft'), or World(solver='auto'), which chooses the soft step when "
+            f"the scene holds a {name} at its first step"
+        )
+    for b in link.bodies:
+        if b.world is not state.world:
+            raise ValueError(
+                f"the link's bodies must be in this World first (world.add(body)): {b!r}"
+            )
+    if isinstance(link, Pin) and link.holds:
+        if any(isinstance(k, Pin) and k.holds and k.body is link.body for k in state.links):
+            raise ValueError(
+                f"that body is pinned already: a body takes only one Pin (remove_link the "
+                f"old one first): {link.body!r}"
+            )
+        if link.body.kinematic:
+            raise ValueError(
+                f"a kinematic body is moved by the game and cannot be pinned: {link.body!r}"
+            )
+    state.links.append(link)
+    state.links_changed()
+    if isinstance(link, Pin):
+        store = state.store
+        assert store is not None
+        row = store.row(link.body.slot)
+        # The body moves so that its anchor is on the point (its centre, for a pin there).
+        off = link.end_a() - link.body.pos
+        store.x[row] = store.prev_x[row] = tuple(link.point - off)
+        if link.holds:
+            store.v[row] = 0.0
+        state.state_written()
+    return link
+
+
+def remove_link(state: WorldState, link: Link) -> None:
+    """Take a link out of the world (a pinned body is free again)."""
+    if not any(k is link for k in state.links):
+        raise ValueError(f"that link is not in this World: {link!r}")
+    state.links = [k for k in state.links if k is not link]
+    state.retired.append(link)
+    state.links_changed()
+    freed(state, list(link.bodies), stacklevel=5)
+
+
+def add_collider(state: WorldState, collider: ColliderT) -> ColliderT:
+    """Add a static collider (``engine.geometry.colliders``) and return it.
+
+    Bodies already inside it are pushed out to its surface, with an OverlapWarning naming
+    both. Colliders are 2D: a 1D World refuses them.
+    """
+    if not isinstance(collider, Collider):
+        raise TypeError(
+            f"add_collider takes one of engine's colliders (Plane, Segment, Circle, Box, Polygon), "
+            f"got {type(collider).__name__} {collider!r}"
+        )
+    state.check_dim(2, f"the collider {collider!r}", bodies=True)
+    if collider in state.colliders:
+        raise ValueError(f"that collider is already in this World: {collider!r}")
+    store = state.ensure_store(2)
+    if state.contacts is None:
+        state.contacts = Contacts()
+        state.contacts.fast = state.kernels == "fast"
+        state.contacts.bodies_added(len(store))
+    state.events.settle_reading()
+    state.contacts.add(collider)
+    collider.held_by(state, True)
+    state.events.collider_added(collider)
+    state.collisions.wake(len(state.bodies))
+    push_out(state, range(len(state.bodies)), stacklevel=4)
+    state.changed_structure()
+    return collider
+
+
+def remove_collider(state: WorldState, collider: Collider) -> None:
+    """Take a collider out of the world."""
+    if collider not in state.colliders:
+        raise ValueError(f"that collider is not in this World: {collider!r}")
+    assert state.contacts is not None
+    # The last step's events are named now, and the collider's open contacts end
+    # (reported with the next step).
+    state.events.collider_removed(collider, state.t)
+    state.contacts.remove(collider)
+    collider.held_by(state, False)
+    state.collisions.wake(len(state.bodies))
+    state.changed_structure()
