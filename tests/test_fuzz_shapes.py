@@ -802,18 +802,32 @@ def _fixed_box(at: tuple[float, float]) -> dict[str, Any]:
             "fixed": True, "at": at}  # fmt: skip
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="step 1: the capsule ends 0.112 m into the left wall on the soft step, 0.111 m on "
-    "the exact models (the bound: 0.1 m), with no StabilityWarning; not yet understood",
+@pytest.mark.parametrize(
+    "solver",
+    [
+        pytest.param(
+            "exact",
+            marks=pytest.mark.xfail(
+                strict=True,
+                raises=AssertionError,
+                reason="step 1: the capsule ends 0.111 m into the left wall on the exact models "
+                "(the bound: 0.1 m), with no StabilityWarning; they have no sweep of a pair "
+                "that touches at the start (the soft step's: engine.dynamics.game_continuous); "
+                "not yet looked into",
+            ),
+        ),
+        "auto",
+    ],
 )
-@pytest.mark.parametrize("solver", ["exact", "auto"])
 def test_a_fast_spinning_capsule_among_fixed_boxes_stays_out_of_the_wall(solver: str) -> None:
     # Found by the shapes fuzz while it shrank a failure (2026-12-03, on both paths): a 0.25 m
     # capsule at 40 m/s, heading 3 rad and turning -9 rad/s, starts 0.9 m from the left wall
     # of a 6 m room without gravity, among four fixed 1 m boxes, a fixed capsule and a
-    # kinematic box at the centre.
+    # kinematic box at the centre. At step 0 one end strikes the wall and the capsule spins
+    # off it at 98 rad/s; at step 1 the other end swings a quarter turn into the wall. On the
+    # soft step (auto's choice here) the continuous stage's sweep of a pair that touches at
+    # the start (engine.dynamics.game_continuous) sets it back where its cores came a slop
+    # nearer than they started: it ends 8 mm in, where Box2D's fallback alone left 0.112 m.
     spec = {
         "half": (3.0, 3.0), "walls": "room", "wall_material": (0.0, 0.0), "gravity": 0.0,
         "steps": 60, "snap": 0, "kinematic": ("box", 0.5, 0.25, 0.0), "solver": solver,
