@@ -312,19 +312,22 @@ def continuous_loop(
     ) -> float:  # fmt: skip
         """``fraction`` made the earlier of it and body ``r``'s impact on shape A (``toi``);
         where its shape touches A at the start, the earlier of its core circle's (Box2D's
-        fallback) and its shape's coming a slop closer than it started (module doc)."""
-        f = toi(a_circle, a_index, ax, ay, aq, adx, ady, adq, a_core, r, False, fraction, False)
-        if f > 0.0:
-            return f if f < fraction else fraction
-        f = toi(a_circle, a_index, ax, ay, aq, adx, ady, adq, a_core, r, True, fraction, False)
-        if 0.0 < f < fraction:
-            fraction = f
-        if adx != 0.0 or ady != 0.0 or adq != 0.0:
-            return fraction  # (A moves on to its end pose: B set back there may be inside it)
-        f = toi(a_circle, a_index, ax, ay, aq, adx, ady, adq, a_core, r, False, fraction, True)
-        if 0.0 < f < fraction:
-            return f
-        return fraction
+        fallback) and, where A does not move, its shape's coming a slop closer than it
+        started (module doc)."""
+        # (One call of ``toi`` in a loop over the three sweeps, not three calls: numba inlines
+        # an inner function at each call, and the kernel's compile time grows with each.)
+        still = adx == 0.0 and ady == 0.0 and adq == 0.0
+        out = fraction
+        for mode in range(3):  # the shape; its core circle; the shape, a slop closer
+            if mode == 2 and not still:
+                break  # (A goes on to its end pose: B set back short of it may be inside it)
+            f = toi(a_circle, a_index, ax, ay, aq, adx, ady, adq, a_core, r, mode == 1, out,
+                    mode == 2)  # fmt: skip
+            if mode == 0 and f > 0.0:
+                return f if f < fraction else fraction  # (it does not touch A at the start)
+            if 0.0 < f < out:
+                out = f
+        return out
 
     # The bodies to sweep against, once: the static and kinematic ones, and where a body is a
     # bullet the dynamic ones that are not bullets (``moved``: those, a bullet's alone); no
@@ -380,50 +383,60 @@ def continuous_loop(
         hix = max(x0[r, 0], x1[r, 0]) + reach[r]
         hiy = max(x0[r, 1], x1[r, 1]) + reach[r]
         fraction = 1.0
-        for s in range(len(owner)):
-            if bounds[s, 0] > hix or bounds[s, 2] < lox or bounds[s, 1] > hiy or bounds[s, 3] < loy:
-                continue
-            if static_index[s] < 0:
-                # A half plane (its box is the world): skipped where the whole swept box stays
-                # more than a slop in front of it (the least of n.(corner - p) over its corners).
-                h = -1 - static_index[s]
-                nx, ny = hn[h, 0], hn[h, 1]
-                front = nx * (0.5 * (lox + hix) - hp[h, 0]) + ny * (0.5 * (loy + hiy) - hp[h, 1])
-                if front - 0.5 * (abs(nx) * (hix - lox) + abs(ny) * (hiy - loy)) > slop:
+        # The static shapes (k of them), then the bodies the solve does not move: static
+        # ones, kinematic ones on their sweeps (and, for a bullet, the dynamic ones that are
+        # not bullets on theirs); one call of ``sweep`` for both (``toi``'s note).
+        for j in range(len(owner) + many):
+            if j < len(owner):
+                s = j
+                if bounds[s, 0] > hix or bounds[s, 2] < lox or bounds[s, 1] > hiy:
                     continue
-            p = owner[s]
-            if c_sensor[p] or (group[r] != 0 and group[r] == c_group[p]):
-                continue
-            if (cats[r] & c_mask[p]) == 0 or (c_cats[p] & mask[r]) == 0:
-                continue
-            if len(ignored):
-                key = r * (places + 1) + p
-                at = np.searchsorted(ignored, key)
-                if at < len(ignored) and ignored[at] == key:
+                if bounds[s, 3] < loy:
                     continue
-            fraction = sweep(r, static_circle[s], static_index[s], 0.0, 0.0, 0.0, 0.0, 0.0,
-                             0.0, 0.0, fraction)  # fmt: skip
-        # The bodies the solve does not move: static ones, and kinematic ones on their sweeps
-        # (and, for a bullet, the dynamic ones that are not bullets on theirs).
-        for e in range(many):
-            o = others[e]
-            if o == r or (moved[e] and not bullet[r]):
-                continue
-            if obox[e, 0] > hix or obox[e, 2] < lox or obox[e, 1] > hiy or obox[e, 3] < loy:
-                continue
-            if group[r] != 0 and group[r] == group[o]:
-                continue
-            if (cats[r] & mask[o]) == 0 or (cats[o] & mask[r]) == 0:
-                continue
-            if len(apart):
-                key = min(r, o) * n + max(r, o)
-                at = np.searchsorted(apart, key)
-                if at < len(apart) and apart[at] == key:
+                if static_index[s] < 0:
+                    # A half plane (its box is the world): skipped where the whole swept box
+                    # stays more than a slop in front of it (the least of n.(corner - p) over
+                    # its corners).
+                    h = -1 - static_index[s]
+                    nx, ny = hn[h, 0], hn[h, 1]
+                    front = nx * (0.5 * (lox + hix) - hp[h, 0]) + ny * (
+                        0.5 * (loy + hiy) - hp[h, 1]
+                    )
+                    if front - 0.5 * (abs(nx) * (hix - lox) + abs(ny) * (hiy - loy)) > slop:
+                        continue
+                p = owner[s]
+                if c_sensor[p] or (group[r] != 0 and group[r] == c_group[p]):
                     continue
-            fraction = sweep(
-                r, body_circle[o], body_index[o], x0[o, 0], x0[o, 1], q0[o],
-                x1[o, 0] - x0[o, 0], x1[o, 1] - x0[o, 1], q1[o] - q0[o], core[o], fraction,
-            )  # fmt: skip
+                if (cats[r] & c_mask[p]) == 0 or (c_cats[p] & mask[r]) == 0:
+                    continue
+                if len(ignored):
+                    key = r * (places + 1) + p
+                    at = np.searchsorted(ignored, key)
+                    if at < len(ignored) and ignored[at] == key:
+                        continue
+                a_circle, a_index = static_circle[s], static_index[s]
+                ax = ay = aq = adx = ady = adq = a_core = 0.0
+            else:
+                e = j - len(owner)
+                o = others[e]
+                if o == r or (moved[e] and not bullet[r]):
+                    continue
+                if obox[e, 0] > hix or obox[e, 2] < lox or obox[e, 1] > hiy or obox[e, 3] < loy:
+                    continue
+                if group[r] != 0 and group[r] == group[o]:
+                    continue
+                if (cats[r] & mask[o]) == 0 or (cats[o] & mask[r]) == 0:
+                    continue
+                if len(apart):
+                    key = min(r, o) * n + max(r, o)
+                    at = np.searchsorted(apart, key)
+                    if at < len(apart) and apart[at] == key:
+                        continue
+                a_circle, a_index = body_circle[o], body_index[o]
+                ax, ay, aq = x0[o, 0], x0[o, 1], q0[o]
+                adx, ady, adq = x1[o, 0] - ax, x1[o, 1] - ay, q1[o] - aq
+                a_core = core[o]
+            fraction = sweep(r, a_circle, a_index, ax, ay, aq, adx, ady, adq, a_core, fraction)
         if fraction < 1.0:
             hit[count] = r
             hx[count, 0] = x0[r, 0] + fraction * dx
