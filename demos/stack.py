@@ -116,9 +116,12 @@ def pyramid(
     return w, [_box(w, x, y) for x, y in pyramid_centres(base)]
 
 
-def dominoes(n: int = DOMINOES) -> tuple[World, list[Body]]:
-    """``n`` dominoes (0.1 by 1 m) 0.5 m apart, the first flicked forward at its top."""
-    w = _world()
+def dominoes(
+    n: int = DOMINOES, *, kernels: str | None = None, solver: str = "exact"
+) -> tuple[World, list[Body]]:
+    """``n`` dominoes (0.1 by 1 m) 0.5 m apart, the first flicked forward at its top, on the
+    path ``kernels``, with ``solver``."""
+    w = _world(kernels, solver)
     row = [_box(w, 0.5 * k, 0.5, 0.1, 1.0) for k in range(n)]
     row[0].apply_impulse(Vector(FLICK, 0.0), at=(0.0, 0.95))
     return w, row

@@ -396,3 +396,36 @@ def disc_and_kinematic(kernels: str) -> tuple[World, Body, Body]:
     disc = w.add(Body(Vector(0.0, 0.5), radius=0.5, restitution=0.0, friction=0.5))
     kin = w.add(Body(Vector(3.0, 0.5), shape=Polygon.box(SIDE, SIDE), kinematic=True))
     return w, disc, kin
+
+
+#: A domino has begun to fall once it leans this far (rad); the wave reaches the next then.
+LEANING = 0.05
+
+
+@dataclass
+class Dominoes:
+    slept: list[float]  # s, when each first slept (nan: never)
+    woke: list[float]  # s, when each first woke after it had slept (nan: never)
+    leaning: list[float]  # s, when each first leant past LEANING (nan: never)
+    asleep: int  # bodies asleep at the end
+
+
+def measure_dominoes(kernels: str, seconds: float = 5.0) -> Dominoes:
+    """demos.stack's dominoes (30, 0.1 by 1 m, 0.5 m apart, the first flicked at its top), on
+    ``kernels`` (this module's path names), stepped for ``seconds``."""
+    from demos.stack import dominoes
+
+    solver, _, path = kernels.rpartition("-")
+    w, row = dominoes(kernels=path, solver=solver or "exact")
+    nan = math.nan
+    slept, woke, leaning = [nan] * len(row), [nan] * len(row), [nan] * len(row)
+    for _ in range(round(seconds / DT)):
+        w.step(DT)
+        for i, b in enumerate(row):
+            if w.is_sleeping(b):
+                slept[i] = w.t if math.isnan(slept[i]) else slept[i]
+            elif not math.isnan(slept[i]) and math.isnan(woke[i]):
+                woke[i] = w.t
+            if math.isnan(leaning[i]) and abs(b.angle) > LEANING:
+                leaning[i] = w.t
+    return Dominoes(slept, woke, leaning, w.sleeping)
