@@ -3,16 +3,15 @@
 The World is a thin door onto a few concepts, each in a module of its own:
 
 * ``engine.pipeline.world_state``: what it holds (``engine.dynamics.store``: the per-body arrays
-behind the
-  Bodies), its time, and the derived parts (``engine.dynamics.forcefield``: the forces compiled,
-  a = a0 - c v + the rest; ``engine.dynamics.policy``: the method, "auto", stability warnings);
+  behind the Bodies), its time, and the derived parts (``engine.dynamics.forcefield``: the forces
+  compiled, a = a0 - c v + the rest; ``engine.dynamics.policy``: the method, "auto", stability
+  warnings);
 * ``engine.pipeline.stepping``: the step pipeline; ``engine.dynamics.affine``: the fast affine
-kernel;
+  kernel;
 * ``engine.pipeline.membership``: bodies, forces, links and colliders coming and going
   (``engine.exact.overlaps``: bodies found inside a collider, pushed out);
 * ``engine.pipeline.event_dispatch``: contact events; ``engine.pipeline.queries``;
-``engine.pipeline.snapshot``;
-  ``engine.pipeline.readout``: positions, velocities, energy, sleep.
+  ``engine.pipeline.snapshot``; ``engine.pipeline.readout``: positions, velocities, energy, sleep.
 
 The World owns time: ``step(dt)`` is the only way it moves, and it keeps the last finite
 state if a step would make any number nan or inf.

@@ -12,10 +12,9 @@ order, with the same products, so the fast path's contacts are the numpy path's 
 (tests/test_soft_solver.py checks whole games against each other):
 
 1. the body pairs given (every pair of a small scene, or the grid's: engine.geometry.pair_grid),
-kept
-   when their circles and their boxes come within reach (a long plank's box is far tighter
-   than its circle), one of them moves, neither is a sensor, the filters
-   pass and no joint or pre_solve keeps them apart;
+   kept when their circles and their boxes come within reach (a long plank's box is far tighter than
+   its circle), one of them moves, neither is a sensor, the filters pass and no joint or pre_solve
+   keeps them apart;
 2. every body against every static shape whose box its reach overlaps, kept likewise (a
    sensor collider is kept: its overlaps are events);
 3. the manifolds: polygon against polygon in one call of ``polygon_loop``, the round pairs in

@@ -17,9 +17,9 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    two can move in the step, with the filters, sensors, joints that keep their bodies apart
    and pre_solve callbacks applied, one of the two awake.
 3. engine.geometry.narrowphase (``collide_pairs``): a manifold for each pair
-(engine.geometry.manifold: Box2D's,
-   up to two points with anchors, separations and feature keys), with a speculative margin of
-   what the pair can close in the step: a box falling fast onto a floor is stopped on it.
+   (engine.geometry.manifold: Box2D's, up to two points with anchors, separations and feature keys),
+   with a speculative margin of what the pair can close in the step: a box falling fast onto a floor
+   is stopped on it.
 4. ``_found``: each manifold a contact of the solver, its points warm started from the last
    step's impulses by key (the pair and the features that make the point), its friction
    mu_a mu_b, restitution e_a e_b, and the surfaces' speed along it (a conveyor); on the
@@ -36,14 +36,14 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    World's events read them (engine.pipeline.event_dispatch); on the fast path,
    engine.pipeline.game_contacts.report_loop.
 8. ``_sleep``: still islands fall asleep (engine.pipeline.game_sleep); a sleeper's contacts stay
-open.
+   open.
 9. engine.dynamics.game_continuous (``Continuous.sweep``, on either path): each fast body (one that
-   moved more than half its least extent) swept from its pose at the step's start to its end
-   against the colliders and the static and kinematic bodies (a bullet against the dynamic
-   ones too: ``Body.bullet``), and set back to its first time of impact, its velocity kept
-   (Box2D v3's ``b2SolveContinuous``): a thin box turning fast meets a wall with another
-   corner than its rows hold, and is stopped. On the fast path
-   ``step_loop``'s end says whether a body may be fast: a step with none asks nothing more.
+   moved more than half its least extent) swept from its pose at the step's start to its end against
+   the colliders and the static and kinematic bodies (a bullet against the dynamic ones too:
+   ``Body.bullet``), and set back to its first time of impact, its velocity kept (Box2D v3's
+   ``b2SolveContinuous``): a thin box turning fast meets a wall with another corner than its rows
+   hold, and is stopped. On the fast path ``step_loop``'s end says whether a body may be fast: a
+   step with none asks nothing more.
 
 On the fast path stages 0 (once the World's structure is read) to 8 are one compiled call,
 engine.pipeline.game_loop's ``step_loop`` (``_step_fast``): the numpy path's products in its order,
