@@ -13,15 +13,17 @@ the exact parabola under the closed form. ``Collisions`` coordinates a step in t
 each stage in a module of its own:
 
 1. **Pairs** (engine.geometry.pair_grid): the pairs that may touch within the step, through a grid
-   of sorted cell keys, with the fast few tested against everyone.
+of
+   sorted cell keys, with the fast few tested against everyone.
 2. **Sleep** (engine.exact.sleep, ``wake_met``): pairs of two sleepers are dropped; an awake body
    that meets a sleeper wakes its group.
 3. **The plan** (``plan``, here): one rule gives each pair to one of two solvers, as the step
    begins (below).
 4. **Impacts** (engine.exact.pair_impacts): the pairs that are no pile's meet at their exact
-   moments, in time order, in rounds; a pile's bodies are moving walls to them. A body the static
-   contacts bounced off a collider within the step is taken along its bent path, piece by piece,
-   with the pairs that path may bring within touch (engine.exact.bent_paths).
+moments,
+   in time order, in rounds; a pile's bodies are moving walls to them. A body the static
+   contacts bounced off a collider within the step is taken along its bent path, piece by
+   piece, with the pairs that path may bring within touch (engine.exact.bent_paths).
 5. **Piles** (engine.exact.pile): the bodies that rest on one another are stepped again from the
    step's start by Box2D v3's soft step (engine.exact.soft), warm started from the last step's
    impulses.
@@ -389,7 +391,6 @@ class Collisions:
             a, b = wake_met(
                 a, b, x1, v1, store.radius, self.asleep, self.still, self._group,
                 self._still_speed, shaped if shaped.any() else None, self._touching,
-                self._ground(store, v1),
             )  # fmt: skip
         island = np.zeros(n, dtype=bool)
         if shaped.any():
@@ -422,15 +423,6 @@ class Collisions:
         a, b = struck(a, b, island, dt, store, self._search, self._has_kin, self._plain, self.fast)
         self._plan = (a, b, island)
         return island if island.any() else None
-
-    def _ground(self, store: Any, v: np.ndarray) -> np.ndarray | None:
-        """The kinematic bodies held still (velocities ``v`` and spin exactly 0), which sleep
-        counts as ground (engine.exact.sleep), or None."""
-        if not self._has_kin:
-            return None
-        kin = self._kin
-        held = kin & (v[:, 0] == 0.0) & (v[:, 1] == 0.0) & (store.omega == 0.0)
-        return held if held.any() else None
 
     def _never_sleep(self, n: int) -> np.ndarray | None:
         """Bodies that never sleep (moved by the game, or held by a joint), or None."""
@@ -650,7 +642,6 @@ class Collisions:
             self.sleep_time, self._still_speed, self._never_sleep(n),
             self._overlap, self.face_touching[0], self.fast,
             None if turned is None else np.abs(turned.omega) * store.radius,
-            self._ground(store, v),
         )  # fmt: skip
         return x, v
 

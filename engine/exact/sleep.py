@@ -12,10 +12,7 @@ it would wake it again at once). A group sleeps (``sleep_still``) once every bod
   apart is not at rest),
 * and is a member: a body in a resting pair, a pile's body resting on a wall, or one held
   exactly still on a collider by friction (a slow frictionless puck glides on). A body in
-  flight never sleeps, however slow, nor does a kinematic body, nor a group that a moving
-  kinematic body touches. A kinematic body held still (velocity and spin exactly 0) is
-  ground, as a wall is: what rests on it may sleep, it joins no group, and its touch wakes
-  no sleeper (``ground``).
+  flight never sleeps, however slow, nor does a kinematic body or a group it touches.
 
 The groups are found by label propagation, with no Python loop over bodies: each body starts
 with its own row as label, takes the smallest label of its neighbours, and then labels follow
@@ -59,14 +56,12 @@ def wake_met(
     still_speed: float,
     shaped: np.ndarray | None = None,
     touching_keys: np.ndarray | None = None,
-    ground: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Drop pairs (a, b) of two sleepers; wake the group of a sleeper an awake body meets
     (in place on ``asleep`` and ``still``, seconds each body has been still; ``group``: each
     sleeper's group label). ``shaped`` (N,) bool or None: the bodies with shapes other than
     discs, whose bounding circles say nothing of touching: a pair with one touches where
-    its key a * N + b (a < b) is in ``touching_keys`` (the pairs the last step's rows found).
-    ``ground`` (N,) bool or None: kinematic bodies held still, whose touch wakes nothing."""
+    its key a * N + b (a < b) is in ``touching_keys`` (the pairs the last step's rows found)."""
     sa, sb = asleep[a], asleep[b]
     mixed = np.flatnonzero(sa != sb)
     if len(mixed):
@@ -83,8 +78,6 @@ def wake_met(
                 keys = lo.astype(np.int64) * len(x) + hi
                 met = np.isin(keys, np.asarray(touching_keys, dtype=np.int64))
                 touching = np.where(pair, met, touching)
-        if ground is not None:
-            touching &= ~ground[awake]  # (ground held still: what rests on it sleeps on)
         moving = (norm(v[awake]) > still_speed) | touching
         if moving.any():
             sleeper = sleeper[moving]
@@ -115,7 +108,6 @@ def sleep_still(
     on_wall: np.ndarray,
     fast: bool = False,
     spin_speed: np.ndarray | None = None,
-    ground: np.ndarray | None = None,
 ) -> np.ndarray:
     """Count how long each body has been still (in place on ``still``); put to sleep each
     group (bodies resting on one another, pairs pa, pb, or one resting on a collider) that
@@ -127,17 +119,9 @@ def sleep_still(
     ``on_wall``: the rows of a pile's bodies resting on a wall; ``fast``: label the groups
     by the loop kernel (engine.kernels); ``spin_speed`` (N,) or None: how fast each body's
     surface turns about its centre, |omega| r (length units/s): a disc spinning in place is
-    not still; ``ground`` (N,) bool or None: kinematic bodies held still, which are ground
-    (module doc)."""
+    not still."""
     if not math.isfinite(sleep_time):
         return group
-    on_ground = np.zeros(0, dtype=np.intp)
-    if ground is not None and ground.any():
-        # A pair with a body held still as ground rests on it, as on a wall: its other body
-        # is a member, and the pair joins no group.
-        on = ground[pa] | ground[pb]
-        on_ground = np.concatenate([pa[ground[pb]], pb[ground[pa]]])
-        pa, pb = pa[~on], pb[~on]
     slow = norm(v[live]) <= still_speed
     if spin_speed is not None:
         slow &= spin_speed[live] <= still_speed
@@ -154,9 +138,6 @@ def sleep_still(
     member = np.zeros(len(v), dtype=bool)
     member[pa] = member[pb] = True
     member[on_wall] = True  # a pile's body resting on a wall alone
-    member[on_ground] = True  # ... or on a kinematic body held still
-    if ground is not None:
-        member[ground] = False
     if contacts is not None and len(contacts.rest) == len(v):
         # Held still on a collider by friction (exactly still: a slow frictionless puck
         # glides on).
