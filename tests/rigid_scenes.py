@@ -429,3 +429,16 @@ def measure_dominoes(kernels: str, seconds: float = 5.0) -> Dominoes:
             if math.isnan(leaning[i]) and abs(b.angle) > LEANING:
                 leaning[i] = w.t
     return Dominoes(slept, woke, leaning, w.sleeping)
+
+
+def crate_on_a_platform(kernels: str, shape: str) -> tuple[World, Body, Body]:
+    """A 4 m by 0.5 m kinematic platform held still (its top at y = 0.25), and on it a unit
+    crate (a box, or a disc of radius 0.5: ``shape``) put at rest, friction 0.6 (the
+    platform's 1.0: the pair's is the crate's); sleeping on."""
+    w = world(kernels)
+    platform = w.add(
+        Body(Vector(0.0, 0.0), shape=Polygon.box(4.0, 0.5), kinematic=True, friction=1.0)
+    )
+    made = {"shape": Polygon.box(SIDE, SIDE)} if shape == "box" else {"radius": 0.5 * SIDE}
+    crate = w.add(Body(Vector(0.0, 0.75), restitution=0.0, friction=0.6, **made))
+    return w, crate, platform

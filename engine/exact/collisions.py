@@ -13,17 +13,15 @@ the exact parabola under the closed form. ``Collisions`` coordinates a step in t
 each stage in a module of its own:
 
 1. **Pairs** (engine.geometry.pair_grid): the pairs that may touch within the step, through a grid
-of
-   sorted cell keys, with the fast few tested against everyone.
+   of sorted cell keys, with the fast few tested against everyone.
 2. **Sleep** (engine.exact.sleep, ``wake_met``): pairs of two sleepers are dropped; an awake body
    that meets a sleeper wakes its group.
 3. **The plan** (``plan``, here): one rule gives each pair to one of two solvers, as the step
    begins (below).
 4. **Impacts** (engine.exact.pair_impacts): the pairs that are no pile's meet at their exact
-moments,
-   in time order, in rounds; a pile's bodies are moving walls to them. A body the static
-   contacts bounced off a collider within the step is taken along its bent path, piece by
-   piece, with the pairs that path may bring within touch (engine.exact.bent_paths).
+   moments, in time order, in rounds; a pile's bodies are moving walls to them. A body the static
+   contacts bounced off a collider within the step is taken along its bent path, piece by piece,
+   with the pairs that path may bring within touch (engine.exact.bent_paths).
 5. **Piles** (engine.exact.pile): the bodies that rest on one another are stepped again from the
    step's start by Box2D v3's soft step (engine.exact.soft), warm started from the last step's
    impulses.
