@@ -401,6 +401,15 @@ class GameStep:
             kept = self._cs = (key, broad.collider_arrays(colliders, serial))
         return kept[1]
 
+    def forget(self) -> None:
+        """Keep nothing of the steps before: a snapshot taken before this soft step's first
+        step was restored (no warm start, no open contacts; the joints' impulses none)."""
+        self.keys = np.zeros(0, dtype=np.int64)
+        self.lam = np.zeros((0, 2))
+        self.joints.impulses = {}
+        self.report = _Report()
+        self.last = _Report()
+
     def emptied(self) -> None:
         """A step of a World with no bodies (the last one taken out): nothing touches, so
         the contacts of the step before end (the events would read the gone bodies' keys as

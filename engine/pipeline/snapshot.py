@@ -226,6 +226,10 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
             return keys_of(plain, slots, serials.reshape(-1))
 
         state.game.set_state(snapshot.game, state.links, back)
+    elif state.game is not None:
+        # Taken before the soft step's first step (World(solver="auto") chooses it then): the
+        # step replayed from it starts, as the first did, with nothing kept.
+        state.game.forget()
 
 
 def _events_state(state: WorldState) -> tuple[Any, ...] | None:
