@@ -6,5 +6,6 @@ models' step (``stepping``), which solver a World runs (``solver_choice``), the 
 and membership (``world_state``, ``membership``), events and callbacks (``event_dispatch``,
 ``body_sensors``, ``collision_handlers``), queries (``queries``), reading state for drawing
 (``readout``) and snapshots (``snapshot``, ``snapshot_materials``). A module here may import
-any folder below it; only the World (``engine.world``) imports this folder.
+any folder below it; only the doors import this folder (``engine.world``, and the package for
+``SolverWarning``).
 """
