@@ -138,14 +138,15 @@ def continuous_loop(
     radius (m); ``kinematic``, ``mass`` (kg; inf: static), ``sensor``, ``bullet`` (swept
     against the dynamic bodies that are not bullets too: Box2D's), the filters ``group``,
     ``cats``, ``mask``; its shape in the tables (``body_circle``, ``body_index``:
-    engine.geometry.narrowphase.Places); ``apart`` the pairs kept apart (sorted keys a n + b, a <
-    b). Static shapes (k): ``owner`` each one's collider place, ``bounds`` (k, 4) its box,
-    ``static_circle``, ``static_index`` its place in the tables (a half plane h as -1 - h);
-    the colliders' ``c_sensor``, ``c_group``, ``c_cats``, ``c_mask`` by place; ``ignored`` the
-    faces pre_solve left out (sorted keys row (colliders + 1) + place). The tables: polygons
-    ``V``, ``Nrm`` (P, M, 2), ``cnt``, ``rad``; circles ``center`` (C, 2), ``rnd``; half
-    planes ``hp``, ``hn`` (H, 2). ``slop``: the linear slop (m). A bullet meets each dynamic
-    body on its sweep of the solve (so the order of the fast bodies does not matter).
+    engine.geometry.narrowphase.Places); ``apart`` the pairs kept apart (sorted keys
+    a n + b, a < b). Static shapes (k): ``owner`` each one's collider place, ``bounds`` (k, 4)
+    its box, ``static_circle``, ``static_index`` its place in the tables (a half plane h as
+    -1 - h); the colliders' ``c_sensor``, ``c_group``, ``c_cats``, ``c_mask`` by place;
+    ``ignored`` the faces pre_solve left out (sorted keys row (colliders + 1) + place). The
+    tables: polygons ``V``, ``Nrm`` (P, M, 2), ``cnt``, ``rad``; circles ``center`` (C, 2),
+    ``rnd``; half planes ``hp``, ``hn`` (H, 2). ``slop``: the linear slop (m). A bullet meets
+    each dynamic body on its sweep of the solve (so the order of the fast bodies does not
+    matter).
 
     Returns the rows set back (int64, ascending), their poses at the impact ((k, 2) m, (k,)
     rad) and the number of fast bodies found."""
@@ -389,9 +390,8 @@ def continuous_loop(
         for j in range(len(owner) + many):
             if j < len(owner):
                 s = j
-                if bounds[s, 0] > hix or bounds[s, 2] < lox or bounds[s, 1] > hiy:
-                    continue
-                if bounds[s, 3] < loy:
+                box = bounds[s]
+                if box[0] > hix or box[2] < lox or box[1] > hiy or box[3] < loy:
                     continue
                 if static_index[s] < 0:
                     # A half plane (its box is the world): skipped where the whole swept box

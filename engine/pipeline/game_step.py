@@ -147,15 +147,17 @@ class GameStep:
     """A World's soft step (module doc): what it keeps from step to step (the contacts'
     impulses by key, the shapes, the colliders' shapes) and the stages that use it."""
 
+    keys: np.ndarray  # the last step's points, sorted (``forget`` sets these four)
+    lam: np.ndarray  # their (normal, tangent) impulses, N s a substep
+    report: _Report  # this step's touching contacts, for the events
+    last: _Report  # the step before's, for begin and end
+
     def __init__(self, fast: bool) -> None:
         self.fast = fast  # the compiled solver (engine.kernels) or its plain-Python twin
         self.continuous = Continuous(fast)  # stage 9: fast bodies swept after the step
         self.substeps = solver.SUBSTEPS
-        self.keys = np.zeros(0, dtype=np.int64)  # the last step's points, sorted
-        self.lam = np.zeros((0, 2))  # their (normal, tangent) impulses, N s a substep
         self.joints = GameJoints(fast)  # stage 5: their rows, their impulses
-        self.report = _Report()
-        self.last = _Report()  # the step before's, for begin and end
+        self.forget()  # the contacts' warm starts and reports: none yet
         self._table: tuple[int, list[Any], ShapeTable] | None = None
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
         self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
@@ -402,8 +404,9 @@ class GameStep:
         return kept[1]
 
     def forget(self) -> None:
-        """Keep nothing of the steps before: a snapshot taken before this soft step's first
-        step was restored (no warm start, no open contacts; the joints' impulses none)."""
+        """Keep nothing of the steps before (no warm start, no open contacts, the joints'
+        impulses none): as made, or once a snapshot taken before this soft step's first step
+        was restored."""
         self.keys = np.zeros(0, dtype=np.int64)
         self.lam = np.zeros((0, 2))
         self.joints.impulses = {}
