@@ -323,3 +323,48 @@ def test_a_spring_too_stiff_for_the_substeps_is_said_before_it_blows_up() -> Non
         for _ in range(60):
             stiff.step(DT)
     assert abs(bob.pos.x - 1.0) <= 0.1 + 1e-9  # held: it swings within its amplitude
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_joints_impulses_read_late_or_after_a_write_are_its_last_steps(kernels: str) -> None:
+    # The soft step leaves each step's impulses pending until one is read or written
+    # (engine.dynamics.reported). A hinge whose reports are read after every step and its twin
+    # read only at the end report the same bits; a value written on a joint keeps the step's
+    # others; the next step reports afresh.
+    from engine import Hinge, MouseJoint
+
+    def scene() -> tuple[World, Hinge, Rod, DampedSpring, MouseJoint]:
+        world = soft(kernels)
+        plank = world.add(Body(Vector(1.0, 0.0), shape=Polygon.box(2.0, 0.2), mass=3.0))
+        bob = world.add(Body(Vector(2.0, -1.0), mass=1.0, radius=0.1))
+        ball = world.add(Body(Vector(-2.0, 0.0), mass=1.0, radius=0.1))
+        hinge = world.add_link(Hinge(plank, world.static_body, (0.0, 0.0), motor_speed=0.5,
+                                     max_torque=4.0))  # fmt: skip
+        rod = world.add_link(Rod(bob, plank, anchor_b=(1.0, 0.0)))
+        spring = world.add_link(
+            DampedSpring(ball, world.static_body, (0.0, 0.0), (-2.0, 1.0), 0.5, 40.0, 1.0)
+        )
+        mouse = world.add_link(MouseJoint(ball, (-1.5, 0.2), max_force=30.0))
+        return world, hinge, rod, spring, mouse
+
+    def values(h: Hinge, r: Rod, s: DampedSpring, m: MouseJoint) -> tuple[float, ...]:
+        return (*h.linear_impulse, h.angular_impulse, h.motor_impulse, h.impulse, r.impulse,
+                s.impulse, *m.impulse)  # fmt: skip
+
+    eager, late = scene(), scene()
+    seen = []
+    for _ in range(30):
+        eager[0].step(DT)
+        late[0].step(DT)
+        seen.append(values(*eager[1:]))
+    assert values(*late[1:]) == seen[-1]
+    assert len(set(seen[-3:])) == 3  # (each step reports its own)
+    assert 0.0 < abs(seen[-1][3]) <= 4.0 * DT * (1 + 1e-12)  # the motor's bound held
+    # A write first puts the pending step's values on every joint, then takes its own.
+    late[0].step(DT)
+    eager[0].step(DT)
+    late[1].motor_impulse = 123.0
+    assert values(*late[1:]) == (*values(*eager[1:])[:3], 123.0, *values(*eager[1:])[4:])
+    late[0].step(DT)
+    eager[0].step(DT)
+    assert values(*late[1:])[3] == values(*eager[1:])[3] != 123.0

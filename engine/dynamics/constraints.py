@@ -156,9 +156,10 @@ class SoftJoint(Joint):
         self._ref = _angle(a) - _angle(b)
         self._max_force, self._max_bias = math.inf, math.inf
         self._error_bias: float | None = None
-        #: The impulse (N s) the joint gave body_a in the last step (body_b took minus it).
+        self._pending = None  # a soft step's impulses, not yet put here (Link's)
+        # The impulse (N s) the joint gave body_a in the last step (body_b took minus it);
+        # the angular impulse (N m s) its angular rows gave body_a.
         self.linear_impulse = Vector(0.0, 0.0)
-        #: The angular impulse (N m s) the joint's angular rows gave body_a in the last step.
         self.angular_impulse = 0.0
         self.impulse, self.warned = 0.0, False
 

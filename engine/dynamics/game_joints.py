@@ -34,6 +34,7 @@ from .constraints import (
 from .joints import Hinge, Joint, Weld
 from .links import Link, Pin
 from .mouse_joint import MouseJoint
+from .reported import Pending
 from .springs import BodySpring, DampedRotarySpring, DampedSpring
 
 #: The World's state (engine.pipeline.world_state.WorldState), named by what is read of it.
@@ -70,7 +71,12 @@ class GameJoints:
 
     def __init__(self, fast: bool) -> None:
         self.fast = fast  # the compiled step (it leaves the impulses in the arrays it took)
-        self.impulses: dict[int, tuple[float, ...]] = {}  # by id(joint)
+        # The last step's impulses (``_StepReport``), or those set (``impulses``) by id(joint).
+        self._last: _StepReport | None = None
+        self._impulses: dict[int, tuple[float, ...]] | None = {}
+        # What the fast path's arrays hold the impulses of: the last report, or a token made
+        # when ``impulses`` was set (no arrays hold those).
+        self._token: object = self._impulses
         # The fast path's joint arrays: (each row's inputs, the arrays, the impulses kept
         # from them after the kernel's step, or None before it): ``arrays``.
         self._arrays: tuple[list[Any], list[np.ndarray], Any] | None = None
@@ -79,6 +85,21 @@ class GameJoints:
         self._rows: tuple[Any, dict[int, tuple[Any, Any, list[Any]]]] = (None, {})
         # The joints last reported, each one's kind, and whether any is a pymunk constraint.
         self._kinds: tuple[list[Any], list[int], bool] = ([], [], False)
+
+    @property
+    def impulses(self) -> dict[int, tuple[float, ...]]:
+        """Each joint's six impulses of the last step (the warm start), by id(joint)."""
+        if self._impulses is None:
+            last = self._last
+            assert last is not None
+            rows = list(zip(*last.table.tolist(), strict=True))
+            self._impulses = dict(zip(map(id, last.joints), rows, strict=True))
+        return self._impulses
+
+    @impulses.setter
+    def impulses(self, value: dict[int, tuple[float, ...]]) -> None:
+        self._last, self._impulses = None, value
+        self._token = object()
 
     def arrays(self, state: WorldState, store: Any, n: int) -> tuple[list[np.ndarray], list[Any]]:
         """The joints as the solver's joint arrays (solver.solve's order: each row's 16
@@ -111,7 +132,7 @@ class GameJoints:
             # ``report`` keeps as ``impulses``: where every row's inputs are the last
             # step's and those impulses are still the ones kept, the arrays are this step's.
             kept_arrays = self._arrays
-            if kept_arrays is not None and kept_arrays[2] is self.impulses:
+            if kept_arrays is not None and kept_arrays[2] is self._token:
                 if kept_arrays[0] == inputs:
                     return kept_arrays[1], ends
         none = (0.0,) * 6
@@ -141,34 +162,16 @@ class GameJoints:
         the fast path's joint arrays the kernel took (``arrays``), which now hold these
         impulses: kept for the next step while no row's inputs change."""
         base = IMPULSES_AT
-        # The six impulse columns as Python floats, a row a joint (one call an array).
-        columns = [np.asarray(out[base + c], dtype=float).tolist() for c in range(6)]
-        rows = list(zip(*columns, strict=True))
-        self.impulses = dict(zip(map(id, joints), rows, strict=True))
+        # The six impulse columns, a row a joint, copied (the fast path's arrays are the next
+        # step's warm start, solved in place); put on the joints when one is read.
+        table = np.array(out[base : base + 6], dtype=float)
+        last = self._last = _StepReport(joints, self._kinds_of(joints)[1], table, k, out)
+        self._impulses = None
+        self._token = last
         if arrays is not None and self._arrays is not None and self._arrays[1] is arrays:
-            self._arrays = (self._arrays[0], arrays, self.impulses)
-        kinds = self._kinds_of(joints)[1]
-        for i, (j, kind, impulses) in enumerate(zip(joints, kinds, rows, strict=True)):
-            px, py, pa, lo, hi, mi = impulses
-            if kind == _HINGE or kind == _WELD:
-                j.linear_impulse = Vector(px * k, py * k)
-                j.impulse = math.hypot(px * k, py * k)  # its size, as the exact solver's
-                j.angular_impulse = (pa + mi + lo - hi) * k
-                if kind == _HINGE:
-                    j.motor_impulse = mi * k
-            elif kind == _ROD:
-                j.impulse = (hi - lo - pa) * k  # along it, > 0 pulling its ends together
-            elif kind == _PIN:
-                j.impulse = math.hypot(px, py) * k  # |P|
-            elif kind == _MOUSE:
-                j.impulse = Vector(px * k, py * k)  # on the body, over the step
-            elif kind == _SPRING:
-                j.impulse = -pa  # over the step (not a substep's), > 0 pulling
-            elif kind == _ROTARY_SPRING:
-                j.impulse = pa  # the angular impulse on a over the step
-            else:
-                ends = (int(out[base - 15][i]), int(out[base - 14][i]))  # (ja, jb)
-                _report_constraint(j, ends, impulses, k, out)
+            self._arrays = (self._arrays[0], arrays, last)
+        for j in joints:
+            j._pending = last
 
     def _kinds_of(self, joints: list[Any]) -> tuple[list[Any], list[int], bool]:
         """Each joint's kind, read again only when the joints are not the last ones."""
@@ -245,6 +248,56 @@ class GameJoints:
         least = link.length if link.rigid else 0.0
         return [solver.DISTANCE, a, b, anchor_b.x, anchor_b.y, ax, ay, 0.0, 0.0, 0.0, 2, least,
                 link.length, 0, link.restitution, 0.0]  # fmt: skip
+
+
+class _StepReport(Pending):
+    """A soft step's joint impulses (``GameJoints.report``), put on each joint (``fill``) when
+    one of its reported values is first read or written (engine.dynamics.reported)."""
+
+    __slots__ = ("joints", "kinds", "table", "k", "out")
+
+    def __init__(
+        self, joints: list[Any], kinds: list[int], table: np.ndarray, k: int, out: list[Any]
+    ) -> None:
+        """``table`` (6, m): the joints' six impulses of the last substep, a column a joint;
+        ``k`` the substeps; ``out`` the solver's arrays after the step (a pymunk constraint's
+        report reads its bodies' places there, and its ends' rows)."""
+        self.joints, self.kinds, self.table, self.k, self.out = joints, kinds, table, k, out
+
+    def fill(self) -> None:
+        """Each joint's impulses over the step, on body_a (N s, N m s): its last substep's
+        times the ``k`` substeps."""
+        k, out, base = self.k, self.out, IMPULSES_AT
+        # Only the joints whose last report this is (a joint stepped again since, in
+        # another World, has a later one).
+        mine = [j._pending is self for j in self.joints]
+        for j, own in zip(self.joints, mine, strict=True):
+            if own:
+                j._pending = None
+        rows = zip(*self.table.tolist(), strict=True)
+        for i, (j, kind, impulses) in enumerate(zip(self.joints, self.kinds, rows, strict=True)):
+            if not mine[i]:
+                continue
+            px, py, pa, lo, hi, mi = impulses
+            if kind == _HINGE or kind == _WELD:
+                j.linear_impulse = Vector(px * k, py * k)
+                j.impulse = math.hypot(px * k, py * k)  # its size, as the exact solver's
+                j.angular_impulse = (pa + mi + lo - hi) * k
+                if kind == _HINGE:
+                    j.motor_impulse = mi * k
+            elif kind == _ROD:
+                j.impulse = (hi - lo - pa) * k  # along it, > 0 pulling its ends together
+            elif kind == _PIN:
+                j.impulse = math.hypot(px, py) * k  # |P|
+            elif kind == _MOUSE:
+                j.impulse = Vector(px * k, py * k)  # on the body, over the step
+            elif kind == _SPRING:
+                j.impulse = -pa  # over the step (not a substep's), > 0 pulling
+            elif kind == _ROTARY_SPRING:
+                j.impulse = pa  # the angular impulse on a over the step
+            else:
+                ends = (int(out[base - 15][i]), int(out[base - 14][i]))  # (ja, jb)
+                _report_constraint(j, ends, impulses, k, out)
 
 
 def _spring_row(spring: BodySpring, store: Any, n: int) -> list[Any]:

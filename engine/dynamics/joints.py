@@ -25,6 +25,7 @@ from .. import checks
 from ..body import Body
 from ..vector import Vector
 from .links import STATIC, Link, fixed_point, local_anchor, plane_body, refuse_immobile
+from .reported import Reported
 
 __all__ = [
     "Hinge",
@@ -50,7 +51,15 @@ class Joint(Link):
     """What a Hinge and a Weld share: two bodies (or a body and the world), the angle of
     body_a relative to body_b when made, and the impulses of the last step."""
 
-    __slots__ = ("_ref", "linear_impulse", "angular_impulse", "_collide")
+    __slots__ = ("_ref", "_linear_impulse", "_angular_impulse", "_collide")
+
+    linear_impulse: Reported[Vector] = Reported(
+        "The impulse (N s) the joint gave body_a in the last step (body_b took minus it)."
+    )
+    angular_impulse: Reported[float] = Reported(
+        "The angular impulse (N m s) the joint's limits, motor or weld gave body_a in the "
+        "last step, about its centre (body_b took minus it)."
+    )
 
     def _setup(self, body_a: Any, body_b: Any, point: Any, collide: Any = False) -> None:
         self.revision = 0
@@ -72,10 +81,8 @@ class Joint(Link):
             self._anchor_b = other.world_to_local(p)
         self._length, self._e = 0.0, 0.0
         self._ref = self._body.angle - (0.0 if other is None else other.angle)
-        #: The impulse (N s) the joint gave body_a in the last step (body_b took minus it).
+        self._pending = None  # a soft step's impulses, not yet put here (Link's)
         self.linear_impulse = Vector(0.0, 0.0)
-        #: The angular impulse (N m s) the joint's limits, motor or weld gave body_a in the
-        #: last step, about its centre (body_b took minus it).
         self.angular_impulse = 0.0
         self.impulse, self.warned = 0.0, False
 
@@ -147,7 +154,11 @@ class Hinge(Joint):
     they must be one point in the world when the hinge is made (to 1e-9 of the bodies'
     reach), as a ValueError naming the gap says otherwise."""
 
-    __slots__ = ("_limits", "_speed", "_max_torque", "motor_impulse")
+    __slots__ = ("_limits", "_speed", "_max_torque", "_motor_impulse")
+
+    motor_impulse: Reported[float] = Reported(
+        "The motor's part of angular_impulse (N m s) in the last step."
+    )
 
     def __init__(
         self,
@@ -185,7 +196,6 @@ class Hinge(Joint):
             )
         else:
             self._setup(body_a, body_b, point, collide)
-        #: The motor's part of angular_impulse (N m s) in the last step.
         self.motor_impulse = 0.0
         self._limits: tuple[float, float] | None = None
         self._speed: float | None = None

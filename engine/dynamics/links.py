@@ -52,6 +52,7 @@ import numpy as np
 
 from .. import checks
 from ..vector import Vector
+from .reported import Pending, Reported
 
 if TYPE_CHECKING:
     from ..body import Body
@@ -137,9 +138,14 @@ class Link:
     """A link from ``body`` to ``other`` (a Body, or a fixed point): see the module's text."""
 
     __slots__ = (
-        "_body", "_other", "_point", "_length", "_e", "_anchor_a", "_anchor_b", "impulse",
-        "warned", "revision",
+        "_body", "_other", "_point", "_length", "_e", "_anchor_a", "_anchor_b", "_impulse",
+        "_pending", "warned", "revision",
     )  # fmt: skip
+
+    impulse: Reported[float] = Reported(
+        "The impulse (N s) the link gave in the last step, along it: > 0 pulls the ends "
+        "together (a rod's tension), < 0 pushes them apart (a rod in compression)."
+    )
 
     #: Whether the link holds the distance both ways (a rod) or only at most (a cable).
     rigid = True
@@ -195,8 +201,7 @@ class Link:
                 f"back at their speed), got {restitution!r}"
             )
         self._e = e
-        #: The impulse (N s) the link gave in the last step, along it: > 0 pulls the ends
-        #: together (a rod's tension), < 0 pushes them apart (a rod in compression).
+        self._pending: Pending | None = None  # a soft step's impulses, not yet put here
         self.impulse = 0.0
         #: Whether the World has warned that this link was stretched past what a step holds.
         self.warned = False
@@ -359,6 +364,7 @@ class Pin(Link):
             )
         self._other, self._point = None, fixed_point(point, "point")
         self._length, self._e = 0.0, 0.0
+        self._pending = None  # a soft step's impulses, not yet put here
         self.impulse, self.warned, self.revision = 0.0, False, 0
 
     @property

@@ -58,6 +58,7 @@ from .. import checks
 from ..accuracy import expm
 from ..vector import Vector
 from .links import fixed_point, local_anchor, plane_body
+from .reported import Pending, Reported
 
 if TYPE_CHECKING:
     from ..body import Body
@@ -90,8 +91,13 @@ class MouseJoint:
     """
 
     __slots__ = (
-        "_body", "_target", "_anchor", "_hertz", "_zeta", "_max", "_spin", "impulse", "_flow",
+        "_body", "_target", "_anchor", "_hertz", "_zeta", "_max", "_spin", "_impulse", "_flow",
+        "_pending",
     )  # fmt: skip
+
+    impulse: Reported[Vector] = Reported(
+        "The impulse (N s) the joint gave its body in the last step."
+    )
 
     def __init__(
         self,
@@ -113,7 +119,7 @@ class MouseJoint:
         self._zeta = _nonneg(damping_ratio, "damping_ratio", "no unit; 1: critical")
         self._max = _nonneg(max_force, "max_force", "N")
         self._spin = _nonneg(angular_damping, "angular_damping", "1/s")
-        #: The impulse (N s) the joint gave its body in the last step.
+        self._pending: Pending | None = None  # a soft step's impulse, not yet put here
         self.impulse = Vector(0.0, 0.0)
         self._flow: tuple[float, np.ndarray] | None = None  # (dt, expm(A dt))
 

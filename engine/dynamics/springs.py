@@ -37,6 +37,7 @@ from .. import checks
 from ..body import Body
 from ..vector import Vector
 from .links import STATIC, StaticBody, fixed_point, local_anchor, plane_body
+from .reported import Pending, Reported
 
 __all__ = ["DampedSpring", "DampedRotarySpring", "BodySpring"]
 
@@ -74,7 +75,11 @@ def _nonneg(value: Any, name: str, unit: str) -> float:
 class BodySpring:
     """What both springs share: the two bodies, the settings' revision, the last impulse."""
 
-    __slots__ = ("_a", "_b", "_stiffness", "_damping", "revision", "impulse", "warned")
+    __slots__ = ("_a", "_b", "_stiffness", "_damping", "revision", "_impulse", "_pending", "warned")
+
+    impulse: Reported[float] = Reported(
+        "The impulse the spring gave in the last step (see each class)."
+    )
 
     #: Both solvers hold a spring (engine.dynamics.constraints' joints are the soft step's alone).
     needs_soft: ClassVar[bool] = False
@@ -86,7 +91,7 @@ class BodySpring:
         self._damping = _nonneg(damping, "damping", unit + " s")
         #: Counts changes of the settings (the World rebuilds what it keeps of them).
         self.revision = 0
-        #: The impulse the spring gave in the last step (see each class).
+        self._pending: Pending | None = None  # a soft step's impulse, not yet put here
         self.impulse = 0.0
         #: Whether the World has warned that this spring is too stiff for its dt.
         self.warned = False
