@@ -210,15 +210,16 @@ class BodyStore:
         as a flag (``spin_written``), so a step of bodies that do not spin costs no look."""
         return self._spinning
 
-    def spin_written(self) -> None:
+    def spin_written(self, spinning: bool | None = None) -> None:
         """Angular velocities or torques were written (by hand, or by a step): look again
-        whether any body spins."""
+        whether any body spins (``spinning``: whether any omega is not 0, where the step
+        knows it)."""
         # (Only bodies that turn, and kinematic bodies, which the game turns, have an omega.)
         # (np.count_nonzero, a C call: ndarray.any() costs several times more on a game's
         # few bodies, and this runs every step. A nan counts as nonzero for both.)
-        self._spinning = bool(np.count_nonzero(self.omega)) or (
-            self.turns_any and bool(np.count_nonzero(self.torque))
-        )
+        if spinning is None:
+            spinning = bool(np.count_nonzero(self.omega))
+        self._spinning = spinning or (self.turns_any and bool(np.count_nonzero(self.torque)))
 
     def set_spin(self, slot: int, angle: float | None, omega: float | None) -> None:
         """Set one body's angle (rad) and/or angular velocity (rad/s): a state written by

@@ -113,7 +113,8 @@ def step_loop(
     and the touching pairs of bodies (keys a n + b, a < b: contacts, then joints between two
     bodies) for ``Body.sleep``'s island, and whether a body may be fast (moved more than
     about engine.dynamics.game_continuous.SAFETY of its least extent: the continuous stage's
-    test)."""
+    test), then what the World checks of the bodies after it: |the sum of x and v|, |the sum
+    of angle and omega| (each nan or inf where an entry is) and whether any body spins."""
     n = len(radius)
     if len(margin) != n:
         # |v| dt + |a| dt^2 + |omega| dt r: what the shape can move in the step (``_reach``'s
@@ -337,10 +338,18 @@ def step_loop(
         if move > SAFETY * small * (1.0 - 1e-6):
             fast = True
             break
+    # The bodies after the step, and what the World checks of them (engine.pipeline.stepping):
+    # the sums of their positions and velocities, and of their angles and angular velocities
+    # (nan or inf where an entry is), and whether any body spins (a nan does).
     x_out = np.empty((n, 2))
     v_out = np.empty((n, 2))
+    linear, turning, spinning = 0.0, 0.0, False
     for i in range(n):
         x_out[i, 0], x_out[i, 1] = bx[i], by[i]
         v_out[i, 0], v_out[i, 1] = bvx[i], bvy[i]
+        linear += (bx[i] + by[i]) + (bvx[i] + bvy[i])
+        turning += bq[i] + bw[i]
+        if bw[i] != 0.0:
+            spinning = True
     return (x_out, v_out, bq[:n].copy(), bw[:n].copy(), kept, lam, event, point, normal,
-            impulse, sensing, touching, fast)  # fmt: skip
+            impulse, sensing, touching, fast, abs(linear), abs(turning), spinning)  # fmt: skip

@@ -165,6 +165,10 @@ class GameStep:
         # The bodies' radii and their median (the radii are a new array when bodies come or go).
         self._median: tuple[np.ndarray, float] | None = None
         self.serials = np.zeros(0, dtype=np.int64)
+        # What the fast path's step measured of the bodies after it, for the World's checks
+        # (engine.pipeline.stepping): |sum of x and v|, |sum of angle and omega|, whether any
+        # body spins; None where the step did not (the numpy path, a body set back).
+        self.sums: tuple[float, float, bool] | None = None
         self._cs: tuple[tuple[int, ...], broad.Colliders] | None = None
         self._apart: tuple[Any, np.ndarray] = (None, np.zeros(0, dtype=np.int64))
         # The sensor bodies: (the store's categories and mask arrays they were read from, them).
@@ -188,6 +192,7 @@ class GameStep:
         to check and keep (the World keeps the last finite state)."""
         store = state.store
         assert store is not None
+        self.sums = None
         n = len(store)
         c = state.collisions
         # (np.count_nonzero: a C call, where ndarray.any() goes through numpy's Python wrapper
@@ -291,9 +296,9 @@ class GameStep:
         if len(out[10]):
             self.report.sensing = out[10]
         c._touching = out[11]
-        self.continuous.maybe = out[
-            12
-        ]  # whether a body may be fast (engine.dynamics.game_continuous)
+        # Whether a body may be fast (engine.dynamics.game_continuous); what the World checks.
+        self.continuous.maybe = out[12]
+        sums = out[13:16]
         # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
         # 11 and the contacts' 17, as the joints' report reads them).
         # The bodies' x, y and angle after it (with the static body's) where a pymunk
@@ -305,6 +310,7 @@ class GameStep:
         # Stage 9: the fast bodies swept to their time of impact (engine.dynamics.game_continuous),
         # where step_loop says a body may be fast.
         self.continuous.sweep(store, sc, x, angle)
+        self.sums = None if self.continuous.hits else sums  # (a body set back: summed again)
         return x, v, angle, omega
 
     def resting(self, slot: int) -> int | None:

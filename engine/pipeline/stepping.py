@@ -203,8 +203,12 @@ def _step_soft(
     if torques is not None:
         tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
     x, v, angle, omega = game.step(state, dt, accel, ignored[0], ignored[1], tau)
-    state.huge = _check_finite(state, x, v, name, dt, t0) > 1e100
-    turned = math.isfinite(_summed(state, angle, omega))  # (as _check_finite's sums)
+    sums = game.sums  # (the fast path's step summed them: _check_finite's and _summed's)
+    if sums is not None and math.isfinite(sums[0]):
+        state.huge = sums[0] > 1e100
+    else:
+        state.huge = _check_finite(state, x, v, name, dt, t0) > 1e100
+    turned = math.isfinite(sums[1] if sums is not None else _summed(state, angle, omega))
     if not turned and not (np.isfinite(angle).all() and np.isfinite(omega).all()):
         raise SimulationDiverged(
             f"a body's angle or angular velocity is not finite after the step from t={t0!r} s "
@@ -218,7 +222,7 @@ def _step_soft(
     state.anchor = None
     store.prev_x = store.x
     store.x, store.v, store.angle, store.omega = x, v, angle, omega
-    store.spin_written()
+    store.spin_written(None if sums is None else sums[2])
 
 
 def _apply_targets(state: WorldState, dt: float) -> dict[Body, np.ndarray]:
