@@ -218,7 +218,24 @@ def test_a_short_side_by_side_run_times_every_step_of_every_engine() -> None:
         "soft (numpy), no hinge",
     ]
     for r in runs.values():
-        assert r.physics.shape == r.game.shape == (2, 2) and (r.physics > 0).all()
+        assert r.physics.shape == r.game.shape == r.ground.shape == (2, 2)
+        assert (r.physics > 0).all() and (r.ground > 0).all()
         assert (r.game >= r.physics).all()  # the whole step holds the engine's
         assert min(r.first) > 0 and min(r.made) > 0
         assert 0.0 <= r.over_frame(bench.GAME, bench.WALL) <= 1.0
+
+
+def test_the_table_gives_the_ground_test_in_play_against_pymunks() -> None:
+    # Each engine's ground test made again after each step: the median by CPU time, over
+    # pymunk's; engines whose runs did not time it (and the hinge's twins) are left out.
+    ground = np.full((100, 2), 20e-6)
+    runs = {
+        "soft (fast)": _run("soft (fast)", 0.2e-3, 0.0, ground=ground),
+        "soft (fast), no hinge": _run("soft (fast), no hinge", 0.2e-3, 0.0, ground=ground),
+        "World (numpy)": _run("World (numpy)", 0.0135, 0.0),
+        "pymunk": _run("pymunk", 27e-6, 0.0, ground=ground / 8),
+    }
+    line = [ln for ln in bench.table(runs, 5.0, {"World": 2e-3}) if "in play" in ln]
+    assert len(line) == 1
+    assert "soft (fast) 20.0 us (8x)" in line[0] and "pymunk 2.5 us" in line[0]
+    assert "World (numpy)" not in line[0] and "no hinge" not in line[0]

@@ -38,6 +38,9 @@ the medians, with and without.
 below, the player and the coins filtered out), against pymunk's ``Space.segment_query_first``
 on its twin, both with the player standing on the ground at t = 0; the median over rounds of
 many calls (``demos.bench.compare``). The query uses no kernel: one number for both paths.
+And the same test in play: made once more after each step of the side-by-side run (the
+bodies have moved, so the World's query index is made again, as the game's next test finds
+it), each engine's median by CPU time against pymunk's.
 
 No test asserts a time (``tests/test_bench_platformer.py`` checks the scene, the twin's
 layout and the table).
@@ -312,7 +315,10 @@ class Run:
     later step ``physics`` (n, 2), the engine's own step, and ``game`` (n, 2), the whole game
     step; the coins collected; the World's warnings (message -> count); on the fast path
     numba's cache counts over the build and the first step, ``loaded`` and ``compiled``
-    (kernels), and ``later`` (kernels loaded or compiled after the first step, in play)."""
+    (kernels), and ``later`` (kernels loaded or compiled after the first step, in play);
+    ``ground`` (n, 2): a ground test (``ground_hit``) made again after each step, in play,
+    where the World's query index is made again for the bodies' new places (empty: not
+    timed)."""
 
     engine: str
     made: tuple[float, float]
@@ -324,6 +330,7 @@ class Run:
     loaded: int = 0
     compiled: int = 0
     later: int = 0
+    ground: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
 
     def times(self, part: str = PHYSICS, clock: int = CPU) -> np.ndarray:
         """Seconds of each step after the first: ``part`` PHYSICS or GAME, by ``clock``."""
@@ -369,8 +376,10 @@ def _since(start: tuple[float, float]) -> tuple[float, float]:
 
 
 def _step_noting(game: Any, warned: Counter[str]) -> tuple[tuple[float, float], ...]:
-    """Step ``game`` once; the (CPU, wall) seconds its engine's step took and the whole step
-    took (the warnings it gave counted in ``warned``, outside the clocks)."""
+    """Step ``game`` once; the (CPU, wall) seconds its engine's step took, the whole step
+    took, and a ground test made after it took (the game's own test, once more: what the
+    next step's costs, in play; outside the whole step's clocks), the warnings it gave
+    counted in ``warned``, outside the clocks."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         start = _clocks()
@@ -380,8 +389,11 @@ def _step_noting(game: Any, warned: Counter[str]) -> tuple[tuple[float, float], 
         physics = _since(before)
         game.collect()
         whole = _since(start)
+        before = _clocks()
+        game.ground_hit()
+        ground = _since(before)
     warned.update(str(w.message).split(":")[0] for w in caught)
-    return physics, whole
+    return physics, whole, ground
 
 
 def side_by_side(
@@ -419,7 +431,7 @@ def side_by_side(
         numba_did[name] = (after[0] - before[0], after[1] - before[1])
     settled = counts()
     steps = round(seconds / DT)
-    times = {name: np.empty((2, steps - 1, 2)) for name in names}
+    times = {name: np.empty((3, steps - 1, 2)) for name in names}
     for i in range(steps - 1):
         k = i % len(names)
         for name in names[k:] + names[:k]:
@@ -428,7 +440,7 @@ def side_by_side(
     return {
         name: Run(name, made[name], firsts[name], times[name][0], times[name][1],
                   list(games[name].collected), warned[name], *numba_did[name],
-                  later if "fast" in name else 0)
+                  later if "fast" in name else 0, times[name][2])
         for name in names
     }  # fmt: skip
 
@@ -588,6 +600,23 @@ def table(
         + (f", pymunk {1e6 * theirs:.2f} us: {ours / theirs:.0f}x" if theirs else "")
         + f"; {100 * ours / FRAME:.2f}% of a 60 fps frame"
     )
+    # The same test in play: after each step, where the World's query index is made again.
+    played = {
+        name: float(np.median(r.ground[:, CPU]))
+        for name, r in runs.items()
+        if len(r.ground) and "no hinge" not in name
+    }
+    if played:
+        peer = played.get("pymunk")
+        lines.append(
+            "  the same ground test in play, after each step (the bodies moved: the World's "
+            "query index is made again), median (CPU): "
+            + ", ".join(
+                f"{name} {1e6 * t:.1f} us"
+                + (f" ({t / peer:.0f}x)" if peer and name != "pymunk" else "")
+                for name, t in played.items()
+            )
+        )
     return lines
 
 
