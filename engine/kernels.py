@@ -296,6 +296,7 @@ MODULES = (
     "engine.exact.sweep_paths",
     "engine.geometry.manifold_polygon",
     "engine.geometry.manifold",
+    "engine.geometry.passing",
     "engine.geometry.narrowphase",
     "engine.pipeline.game_contacts",
     "engine.pipeline.game_loop",

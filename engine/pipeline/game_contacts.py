@@ -35,9 +35,10 @@ import numpy as np
 from .. import kernels
 from ..dynamics.events import COLLIDER
 from ..geometry.manifold import half_plane_polygon_loop
-from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
+from ..geometry.manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from ..geometry.manifold_polygon import polygon_loop
 from ..geometry.narrowphase import round_loop
+from ..geometry.passing import passing_loop
 
 __all__ = ["STATIC", "body_boxes", "contacts_loop", "contacts_sample", "report_loop"]
 
@@ -87,7 +88,8 @@ def contacts_sample() -> tuple[Any, ...]:
     return (x, q, radius, reach, yes, no, i2, cats, mask, slots, mat, mat, np.array([False, True]),
             np.array([0, 0], dtype=np.int64), kind, pa, pb, owner, bounds, s_circle, s_index,
             np.zeros(1, dtype=bool), c_mat, c_mat, surface, c_i, c_i + 1, c_i - 1, v, nn, count,
-            rad, center, rnd, f((1, 2)), up, none, none, keys, lam)  # fmt: skip
+            rad, center, rnd, f((1, 2)), up, none, none, keys, lam, f((2, 2)),
+            1.0 / 60.0)  # fmt: skip
 
 
 def _boxes_sample() -> tuple[Any, ...]:
@@ -142,7 +144,7 @@ def contacts_loop(
     c_sensor: Any, c_friction: Any, c_restitution: Any, c_surface: Any,
     c_group: Any, c_cats: Any, c_mask: Any,
     V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any, hp: Any, hn: Any,
-    apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any,
+    apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any, vel: Any, dt: float,
 ) -> tuple[Any, ...]:  # fmt: skip
     """The step's contacts (module doc). Bodies (n rows): pose ``x`` (n, 2) m and ``q`` rad,
     bounding ``radius`` m, ``reach`` (how far each can move in the step, m), ``moving``
@@ -157,7 +159,9 @@ def contacts_loop(
     points ``hp`` and unit normals ``hn`` (H, 2).
     ``apart``: sorted keys a n + b of pairs kept apart; ``ignored``: sorted keys row (C + 1)
     + place of faces pre_solve ignored; ``warm_keys`` sorted, ``warm_lam`` (k, 2): the last
-    step's points and their impulses (N s a substep).
+    step's points and their impulses (N s a substep). ``vel`` (n, 2): the bodies' velocities
+    (m/s) at the step's start, and ``dt`` the step (s): a round pair's point that its path
+    passes by is dropped (engine.geometry.passing).
 
     Returns the solver's contact arrays (engine.dynamics.solver.solve's ca ... clt, 15 of them),
     each point's key (2 per row), each row's static place (-1 for a body pair) and first point
@@ -341,6 +345,37 @@ def contacts_loop(
             anchor_b[j, 0, 1] = wy + (0.0 - gx_b[j, 1])
             separation[j, 0], feature[j, 0] = gap, 0
             count[j] = 1
+    # -- 3b. a round pair's point kept for reach that the pair's path passes by is dropped
+    # (engine.geometry.passing; engine.geometry.narrowphase.collide_pairs' products, in its order)
+    lo, hi = start[1], start[2]
+    if hi > lo:
+        u = np.zeros((hi - lo, 2))
+        slack = np.zeros(hi - lo)
+        for i in range(m):
+            if group_of[i] != 1:
+                continue
+            j = where[i] - lo
+            a, b, s = cand_a[i], cand_b[i], cand_p[i]
+            vax, vay = vel[a, 0], vel[a, 1]
+            vbx, vby = 0.0, 0.0
+            extra_b = 0.0
+            if s < 0:
+                vbx, vby = vel[b, 0], vel[b, 1]
+                extra_b = max(reach[b] - np.sqrt(vbx * vbx + vby * vby) * dt, 0.0)
+            extra_a = max(reach[a] - np.sqrt(vax * vax + vay * vay) * dt, 0.0)
+            slack[j] = LINEAR_SLOP + extra_a + extra_b
+            if swap[i]:  # the polygon (B's side) as A
+                u[j, 0], u[j, 1] = (vax - vbx) * dt, (vay - vby) * dt
+            else:
+                u[j, 0], u[j, 1] = (vbx - vax) * dt, (vby - vay) * dt
+        keep = passing_loop(
+            V, cnt, rad, center, rnd, flag[lo:hi].copy(), gi_a[lo:hi].copy(),
+            gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), gi_b[lo:hi].copy(), gx_b[lo:hi].copy(),
+            gq_b[lo:hi].copy(), u, slack,
+        )  # fmt: skip
+        for j in range(lo, hi):
+            if count[j] > 0 and separation[j, 0] > SPECULATIVE_DISTANCE and not keep[j - lo]:
+                count[j] = 0
     # -- 4. the rows, in the broadphase's order ------------------------------------------------
     rows = 0
     sensing = 0

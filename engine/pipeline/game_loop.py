@@ -46,7 +46,7 @@ def _sample() -> tuple[Any, ...]:
     x, q, radius, reach, moving, sensor, group, cats, mask, slots, fric, rest = c[:12]
     body_circle, body_index, kind, pa, pb = c[12:17]
     statics = c[17:36]  # owner ... hn
-    apart, ignored, warm_keys, warm_lam = c[36:]
+    apart, ignored, warm_keys, warm_lam = c[36:40]
     f = np.zeros
     i1 = np.zeros(1, dtype=np.int64)
     joints = [
@@ -190,7 +190,7 @@ def step_loop(
         x, angle, radius, margin, moving, sensor, group, cats, mask, slots, friction,
         restitution, body_circle, body_index, kind, pa, pb, owner, bounds, static_circle,
         static_index, c_sensor, c_friction, c_restitution, c_surface, c_group, c_cats, c_mask,
-        V, Nrm, cnt, rad, center, rnd, hp, hn, apart, ignored, warm_keys, warm_lam,
+        V, Nrm, cnt, rad, center, rnd, hp, hn, apart, ignored, warm_keys, warm_lam, v, dt,
     )  # fmt: skip
     ca, cb, nx, ny, count = found[0], found[1], found[2], found[3], found[4]
     sep, ln, lt = found[9], found[13], found[14]

@@ -223,7 +223,7 @@ class GameStep:
             store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, margin, sc.ignored
         )
         touches = narrowphase.collide_pairs(
-            sc.places, sc.table, store, sc.statics, pairs, faces, margin
+            sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt
         )
         found = self._found(store, sc.cs, sc.owner, touches)
         joints = self.joints.arrays(state, store, n)
