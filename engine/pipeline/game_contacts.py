@@ -289,27 +289,28 @@ def contacts_loop(
     anchor_b = np.zeros((m, 2, 2))
     separation = np.full((m, 2), np.inf)
     feature = np.full((m, 2), -1, dtype=np.int64)
-    # (Each group's arrays copied out whole: the kernels' sample types, C-contiguous.)
+    # (Each group's arrays as slices: numba keeps a slice of a C-contiguous array's first
+    # index C-contiguous, the kernels' sample types.)
     for g in (0, 1, 3, 4):
         lo, hi = start[g], start[g + 1]
         if lo == hi:
             continue
         if g == 0:
             out = polygon_loop(
-                V, Nrm, cnt, rad, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(),
-                V, Nrm, cnt, rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(),
+                V, Nrm, cnt, rad, gi_a[lo:hi], gx_a[lo:hi], gq_a[lo:hi],
+                V, Nrm, cnt, rad, gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi],
                 margins[g],
             )  # fmt: skip
         elif g == 1:
             out = round_loop(
-                V, Nrm, cnt, rad, center, rnd, flag[lo:hi].copy(), gi_a[lo:hi].copy(),
-                gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), gi_b[lo:hi].copy(), gx_b[lo:hi].copy(),
-                gq_b[lo:hi].copy(), margins[g],
+                V, Nrm, cnt, rad, center, rnd, flag[lo:hi], gi_a[lo:hi],
+                gx_a[lo:hi], gq_a[lo:hi], gi_b[lo:hi], gx_b[lo:hi],
+                gq_b[lo:hi], margins[g],
             )  # fmt: skip
         else:  # a capsule is the tables' two-vertex polygon
             out = half_plane_polygon_loop(
-                hp, hn, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), V, Nrm, cnt,
-                rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(), margins[g],
+                hp, hn, gi_a[lo:hi], gx_a[lo:hi], gq_a[lo:hi], V, Nrm, cnt,
+                rad, gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi], margins[g],
             )  # fmt: skip
         normal[lo:hi], count[lo:hi], point[lo:hi] = out[0], out[1], out[2]
         anchor_a[lo:hi], anchor_b[lo:hi] = out[3], out[4]
@@ -374,6 +375,23 @@ def contacts_loop(
     py = np.empty(rows)
     sense_row = np.empty(sensing, dtype=np.int64)
     sense_place = np.empty(sensing, dtype=np.int64)
+    # The warm start's keys by hash (open addressing, linear probing): each key's first place
+    # in ``warm_keys``, the place a binary search finds, in a probe or two (numba's
+    # searchsorted took about 55 ns a point, most of this loop's time on a pile).
+    wn = len(warm_keys)
+    bits = 4
+    while (1 << bits) < 2 * wn:
+        bits += 1
+    full = (1 << bits) - 1
+    table = np.full(full + 1, -1, dtype=np.int64)
+    for i in range(wn):
+        key = warm_keys[i]
+        h = (key >> 37) * 73856093 + (key >> 16 & 2097151) * 19349663  # (A's slot, B's code,
+        h = (h + (key & 65535) * 83492791) & full  # the feature: each times a prime)
+        while table[h] >= 0 and warm_keys[table[h]] != key:
+            h = (h + 1) & full
+        if table[h] < 0:
+            table[h] = i
     k = 0
     z = 0
     for i in range(m):
@@ -409,10 +427,15 @@ def contacts_loop(
                 f = (f & 255) << 8 | (f >> 8)
             key = (code << FEATURE) | (f if f >= 0 else 0)
             keys[t] = key
-            if p < count[j] and len(warm_keys):
-                at = min(np.searchsorted(warm_keys, key), len(warm_keys) - 1)
-                if warm_keys[at] == key:
-                    ln[t], lt[t] = warm_lam[at, 0], warm_lam[at, 1]
+            if p < count[j] and wn:
+                h = (key >> 37) * 73856093 + (key >> 16 & 2097151) * 19349663
+                h = (h + (key & 65535) * 83492791) & full
+                while table[h] >= 0:
+                    at = table[h]
+                    if warm_keys[at] == key:
+                        ln[t], lt[t] = warm_lam[at, 0], warm_lam[at, 1]
+                        break
+                    h = (h + 1) & full
         # Materials: friction mu_a mu_b, restitution e_a e_b; a conveyor's surface speed.
         if s < 0:
             mu_b, e_b = friction[b], restitution[b]
