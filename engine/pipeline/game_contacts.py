@@ -38,6 +38,7 @@ from ..geometry.manifold import half_plane_polygon_loop
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
 from ..geometry.manifold_polygon import polygon_loop
 from ..geometry.narrowphase import round_loop
+from ..kernels import stable_order
 
 __all__ = ["STATIC", "body_boxes", "contacts_loop", "contacts_sample", "report_loop"]
 
@@ -500,7 +501,7 @@ def report_loop(
             kept[r] = keys[2 * i + p]
             lam[r, 0], lam[r, 1] = ln[2 * i + p], lt[2 * i + p]
             r += 1
-    order = np.argsort(kept, kind="mergesort")  # stable, as numpy's
+    order = stable_order(kept)  # stable, as numpy's
     touch = np.zeros(k, dtype=np.bool_)
     t = 0
     for i in range(k):
@@ -524,7 +525,7 @@ def report_loop(
         else:
             event[e] = (slots[a] << 32) | (serial[owner[place[i]]] | COLLIDER)
         e += 1
-    by_key = np.argsort(event, kind="mergesort")  # stable, as numpy's
+    by_key = stable_order(event)  # stable, as numpy's
     e = 0
     for i in range(k):
         if not touch[i]:
