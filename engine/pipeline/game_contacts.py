@@ -38,9 +38,17 @@ from ..geometry.manifold import half_plane_polygon_loop
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
 from ..geometry.manifold_polygon import polygon_loop
 from ..geometry.narrowphase import round_loop
+from ..geometry.pair_grid import grid_pairs_loop
 from ..kernels import stable_order
 
-__all__ = ["STATIC", "body_boxes", "contacts_loop", "contacts_sample", "report_loop"]
+__all__ = [
+    "STATIC",
+    "body_boxes",
+    "candidates_loop",
+    "contacts_loop",
+    "contacts_sample",
+    "report_loop",
+]
 
 #: Warm-start keys: (the pair's code << FEATURE) | the point's feature id (16 bits); a pair's
 #: code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
@@ -131,6 +139,79 @@ def body_boxes(
             box[a, 2] += rad[j]
             box[a, 3] += rad[j]
     return box
+
+
+def _candidates_sample() -> tuple[Any, ...]:
+    """Three discs of radius 0.5 in a row, the last a wall of radius 3 (a big body), falling."""
+    x = np.array([[0.0, 0.5], [1.2, 0.5], [5.0, 0.0]])
+    v = np.array([[0.0, -1.0], [0.0, -1.0], [0.0, 0.0]])
+    accel = np.array([[0.0, -9.81], [0.0, -9.81], [0.0, 0.0]])
+    radius = np.array([0.5, 0.5, 3.0])
+    return x, v, accel, np.zeros(3), radius, np.zeros(3, dtype=np.int64), 1.0 / 60.0, 0.5
+
+
+@kernels.loop(sample=_candidates_sample)
+def candidates_loop(
+    x: Any, v: Any, accel: Any, omega: Any, radius: Any, group: Any, dt: float, median: float
+) -> tuple[Any, Any, Any]:
+    """engine.pipeline.game_step's ``_reach`` and ``_candidates`` past its few bodies, in one
+    call: each body's reach (m: |v| dt + |a| dt^2 + |omega| dt r, its products in its order),
+    and the pairs of rows (a < b) the broadphase tests: none where every body is in one
+    group (not 0), else those of a grid (engine.geometry.pair_grid's ``grid_pairs_loop``) of the
+    bodies whose radius and reach come within four times the ``median`` radius (m) and a
+    speculative distance, then each bigger body with every other (a pair of big ones once),
+    in ``_candidates``' order. Returns (a, b, reach)."""
+    n = len(radius)
+    reach = np.empty(n)
+    for i in range(n):
+        speed = np.hypot(v[i, 0], v[i, 1])
+        acc = np.hypot(accel[i, 0], accel[i, 1])
+        reach[i] = speed * dt + acc * dt * dt + np.abs(omega[i]) * dt * radius[i]
+    one = n > 0 and group[0] != 0
+    for i in range(n):
+        if group[i] != group[0]:
+            one = False
+            break
+    if one or n < 2:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), reach
+    limit = 4.0 * median + SPECULATIVE_DISTANCE
+    big = np.empty(n, dtype=np.bool_)
+    rows = np.empty(n, dtype=np.int64)
+    nr, ends = 0, 0
+    top = -np.inf  # the largest r of the grid's bodies (a nan kept, as numpy's max keeps it)
+    for i in range(n):
+        r = radius[i] + reach[i]
+        big[i] = r > limit
+        if big[i]:
+            ends += 1
+        else:
+            rows[nr] = i
+            nr += 1
+            if r > top or r != r:
+                if top == top:
+                    top = r
+    if nr:
+        P = np.empty((nr, 2))
+        for k in range(nr):
+            P[k, 0], P[k, 1] = x[rows[k], 0], x[rows[k], 1]
+        none = np.zeros(0)
+        ga, gb = grid_pairs_loop(P, 2.0 * top + SPECULATIVE_DISTANCE, none, none, False)
+    else:
+        ga, gb = np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    m = len(ga)
+    a = np.empty(m + ends * n, dtype=np.int64)
+    b = np.empty(len(a), dtype=np.int64)
+    for k in range(m):
+        i, j = rows[ga[k]], rows[gb[k]]
+        a[k], b[k] = min(i, j), max(i, j)
+    for e in range(n):  # each big body with every other, a pair of big bodies once
+        if not big[e]:
+            continue
+        for j in range(n):
+            if j != e and not (big[j] and j < e):
+                a[m], b[m] = min(e, j), max(e, j)
+                m += 1
+    return a[:m], b[:m], reach
 
 
 @kernels.loop(sample=contacts_sample)
