@@ -280,14 +280,23 @@ def contacts_loop(
         cand_a[m], cand_b[m], cand_p[m] = a, b, -1
         m += 1
     # -- 2. the static shapes ----------------------------------------------------------------
+    sx0 = np.empty(k_shapes)
+    sy0 = np.empty(k_shapes)
+    sx1 = np.empty(k_shapes)
+    sy1 = np.empty(k_shapes)
+    hit = np.empty(k_shapes, dtype=np.bool_)
+    for s in range(k_shapes):  # the boxes side by side: the test below in vector lanes
+        sx0[s], sy0[s], sx1[s], sy1[s] = bounds[s, 0], bounds[s, 1], bounds[s, 2], bounds[s, 3]
     for a in range(n):
+        if sensor[a]:
+            continue  # (a sensor body meets no static shape)
         grow = radius[a] + reach[a] + SPECULATIVE_DISTANCE
         lox, loy = x[a, 0] - grow, x[a, 1] - grow
         hix, hiy = x[a, 0] + grow, x[a, 1] + grow
         for s in range(k_shapes):
-            if not (lox <= bounds[s, 2] and hix >= bounds[s, 0]):
-                continue
-            if not (loy <= bounds[s, 3] and hiy >= bounds[s, 1]):
+            hit[s] = (lox <= sx1[s]) & (hix >= sx0[s]) & (loy <= sy1[s]) & (hiy >= sy0[s])
+        for s in range(k_shapes):
+            if not hit[s]:
                 continue
             c = owner[s]
             if not (moving[a] or c_sensor[c]) or sensor[a]:
