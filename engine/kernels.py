@@ -59,6 +59,7 @@ import numpy as np
 
 __all__ = [
     "floats",
+    "stable_order",
     "PATHS",
     "LoopKernel",
     "available",
@@ -212,8 +213,72 @@ def _floats_compiled(n: int, value: float) -> Any:
     return np.full(n, value)
 
 
+def stable_order(keys: Any) -> Any:
+    """The order that sorts the int64 array ``keys`` stably (numpy's ``argsort`` of kind
+    ``"stable"``: a stable sort has one answer, so either twin's is the other's). Where the
+    kernel is compiled, a counting sort by the keys' leading bits and an insertion sort of each
+    bucket (about five times as quick as numba's merge sort on a pile's contact keys)."""
+    return np.argsort(keys, kind="stable")
+
+
+def _stable_order_compiled(keys: Any) -> Any:
+    n = len(keys)
+    if n < 64:
+        return np.argsort(keys, kind="mergesort")
+    lo, hi = keys[0], keys[0]
+    for i in range(1, n):
+        v = keys[i]
+        if v < lo:
+            lo = v
+        elif v > hi:
+            hi = v
+    span = hi - lo
+    if span < 0:  # wider than an int64
+        return np.argsort(keys, kind="mergesort")
+    # Buckets of the keys' leading bits, at most n of them, each bucket's keys in their order.
+    shift = 0
+    while (span >> shift) >= n:
+        shift += 1
+    nb = (span >> shift) + 1
+    start = np.zeros(nb + 1, dtype=np.int64)
+    for i in range(n):
+        start[((keys[i] - lo) >> shift) + 1] += 1
+    for b in range(nb):
+        start[b + 1] += start[b]
+    fill = start[:nb].copy()
+    order = np.empty(n, dtype=np.int64)
+    vals = np.empty(n, dtype=np.int64)
+    for i in range(n):
+        b = (keys[i] - lo) >> shift
+        at = fill[b]
+        fill[b] = at + 1
+        order[at] = i
+        vals[at] = keys[i]
+    # Each bucket sorted stably: by insertion where it is small, else by merge sort.
+    for b in range(nb):
+        first, end = start[b], start[b + 1]
+        if end - first < 2:
+            continue
+        if end - first > 32:
+            sub = np.argsort(vals[first:end], kind="mergesort")
+            moved = order[first:end][sub]
+            order[first:end] = moved
+            continue
+        for i in range(first + 1, end):
+            v, o = vals[i], order[i]
+            j = i - 1
+            while j >= first and vals[j] > v:
+                vals[j + 1], order[j + 1] = vals[j], order[j]
+                j -= 1
+            vals[j + 1], order[j + 1] = v, o
+    return order
+
+
 #: Helpers a loop kernel may call, each with what a compiled kernel calls in its place.
-_COMPILED_AS: dict[Callable[..., Any], Callable[..., Any]] = {floats: _floats_compiled}
+_COMPILED_AS: dict[Callable[..., Any], Callable[..., Any]] = {
+    floats: _floats_compiled,
+    stable_order: _stable_order_compiled,
+}
 
 
 def _names(code: Any) -> set[str]:

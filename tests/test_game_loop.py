@@ -13,6 +13,7 @@ import numpy as np
 from engine import (
     Body,
     Circle,
+    Filter,
     GearJoint,
     GrooveJoint,
     Hinge,
@@ -112,3 +113,45 @@ def test_the_fused_step_is_the_numpy_stages_step_by_step() -> None:
     assert all(world.is_sleeping(things["bead"]) for world, things, _ in runs)
     (_, _, ea), (_, _, eb) = runs
     assert len(ea) > 10 and ea == eb
+
+
+@FAST
+def test_the_compiled_broadphase_is_reach_and_candidates_to_the_bit() -> None:
+    """engine.pipeline.game_contacts.candidates_loop (the fast path's reach and pairs past a
+    few bodies) against the numpy path's ``_reach`` and ``_candidates``: a tumbler (its walls
+    big bodies) and a pit of discs, through their steps; one group; a body flung far."""
+    from demos import stack
+    from engine.pipeline import game_contacts, game_step
+
+    def same(world: World) -> None:
+        store = world._s.store
+        n = len(store)
+        accel = np.zeros((n, 2))
+        accel[:, 1] = -9.81
+        numpy_step = game_step.GameStep(False)
+        margin = game_step._reach(store, accel, DT)
+        a, b = numpy_step._candidates(store, margin)
+        fa, fb, fm = game_contacts.candidates_loop(
+            store.x, store.v, accel, store.omega, store.radius,
+            np.ascontiguousarray(store.group, np.int64), DT, float(np.median(store.radius)),
+        )  # fmt: skip
+        assert np.array_equal(fm, margin)
+        assert np.array_equal(fa, a) and np.array_equal(fb, b)
+
+    tumbler = stack.tumbler(60, kernels="fast", solver="soft")[0]
+    pit = World(kernels="fast", solver="soft")
+    pit.add_force(Gravity((0.0, -9.81)))
+    pit.add_collider(Segment((-5.0, 0.0), (5.0, 0.0)))
+    rng = np.random.default_rng(3)
+    for p in rng.uniform((-4.0, 0.5), (4.0, 8.0), (80, 2)).tolist():
+        pit.add(Body(tuple(p), radius=float(rng.uniform(0.1, 0.3)), mass=1.0))
+    for world in (tumbler, pit):
+        for step in range(40):
+            if step % 10 == 0:
+                same(world)
+            world.step(DT)
+    pit.bodies[0].vel = (1e6, 0.0)  # reaches past four times the median: a big body
+    same(pit)
+    for body in pit.bodies:
+        body.filter = Filter(group=2)
+    same(pit)

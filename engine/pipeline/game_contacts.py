@@ -38,9 +38,18 @@ from ..geometry.manifold import half_plane_polygon_loop
 from ..geometry.manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from ..geometry.manifold_polygon import polygon_loop
 from ..geometry.narrowphase import round_loop
+from ..geometry.pair_grid import grid_pairs_loop
 from ..geometry.passing import passing_loop
+from ..kernels import stable_order
 
-__all__ = ["STATIC", "body_boxes", "contacts_loop", "contacts_sample", "report_loop"]
+__all__ = [
+    "STATIC",
+    "body_boxes",
+    "candidates_loop",
+    "contacts_loop",
+    "contacts_sample",
+    "report_loop",
+]
 
 #: Warm-start keys: (the pair's code << FEATURE) | the point's feature id (16 bits); a pair's
 #: code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
@@ -134,6 +143,79 @@ def body_boxes(
     return box
 
 
+def _candidates_sample() -> tuple[Any, ...]:
+    """Three discs of radius 0.5 in a row, the last a wall of radius 3 (a big body), falling."""
+    x = np.array([[0.0, 0.5], [1.2, 0.5], [5.0, 0.0]])
+    v = np.array([[0.0, -1.0], [0.0, -1.0], [0.0, 0.0]])
+    accel = np.array([[0.0, -9.81], [0.0, -9.81], [0.0, 0.0]])
+    radius = np.array([0.5, 0.5, 3.0])
+    return x, v, accel, np.zeros(3), radius, np.zeros(3, dtype=np.int64), 1.0 / 60.0, 0.5
+
+
+@kernels.loop(sample=_candidates_sample)
+def candidates_loop(
+    x: Any, v: Any, accel: Any, omega: Any, radius: Any, group: Any, dt: float, median: float
+) -> tuple[Any, Any, Any]:
+    """engine.pipeline.game_step's ``_reach`` and ``_candidates`` past its few bodies, in one
+    call: each body's reach (m: |v| dt + |a| dt^2 + |omega| dt r, its products in its order),
+    and the pairs of rows (a < b) the broadphase tests: none where every body is in one
+    group (not 0), else those of a grid (engine.geometry.pair_grid's ``grid_pairs_loop``) of the
+    bodies whose radius and reach come within four times the ``median`` radius (m) and a
+    speculative distance, then each bigger body with every other (a pair of big ones once),
+    in ``_candidates``' order. Returns (a, b, reach)."""
+    n = len(radius)
+    reach = np.empty(n)
+    for i in range(n):
+        speed = np.hypot(v[i, 0], v[i, 1])
+        acc = np.hypot(accel[i, 0], accel[i, 1])
+        reach[i] = speed * dt + acc * dt * dt + np.abs(omega[i]) * dt * radius[i]
+    one = n > 0 and group[0] != 0
+    for i in range(n):
+        if group[i] != group[0]:
+            one = False
+            break
+    if one or n < 2:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), reach
+    limit = 4.0 * median + SPECULATIVE_DISTANCE
+    big = np.empty(n, dtype=np.bool_)
+    rows = np.empty(n, dtype=np.int64)
+    nr, ends = 0, 0
+    top = -np.inf  # the largest r of the grid's bodies (a nan kept, as numpy's max keeps it)
+    for i in range(n):
+        r = radius[i] + reach[i]
+        big[i] = r > limit
+        if big[i]:
+            ends += 1
+        else:
+            rows[nr] = i
+            nr += 1
+            if r > top or r != r:
+                if top == top:
+                    top = r
+    if nr:
+        P = np.empty((nr, 2))
+        for k in range(nr):
+            P[k, 0], P[k, 1] = x[rows[k], 0], x[rows[k], 1]
+        none = np.zeros(0)
+        ga, gb = grid_pairs_loop(P, 2.0 * top + SPECULATIVE_DISTANCE, none, none, False)
+    else:
+        ga, gb = np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    m = len(ga)
+    a = np.empty(m + ends * n, dtype=np.int64)
+    b = np.empty(len(a), dtype=np.int64)
+    for k in range(m):
+        i, j = rows[ga[k]], rows[gb[k]]
+        a[k], b[k] = min(i, j), max(i, j)
+    for e in range(n):  # each big body with every other, a pair of big bodies once
+        if not big[e]:
+            continue
+        for j in range(n):
+            if j != e and not (big[j] and j < e):
+                a[m], b[m] = min(e, j), max(e, j)
+                m += 1
+    return a[:m], b[:m], reach
+
+
 @kernels.loop(sample=contacts_sample)
 def contacts_loop(
     x: Any, q: Any, radius: Any, reach: Any, moving: Any, sensor: Any,
@@ -202,14 +284,23 @@ def contacts_loop(
         cand_a[m], cand_b[m], cand_p[m] = a, b, -1
         m += 1
     # -- 2. the static shapes ----------------------------------------------------------------
+    sx0 = np.empty(k_shapes)
+    sy0 = np.empty(k_shapes)
+    sx1 = np.empty(k_shapes)
+    sy1 = np.empty(k_shapes)
+    hit = np.empty(k_shapes, dtype=np.bool_)
+    for s in range(k_shapes):  # the boxes side by side: the test below in vector lanes
+        sx0[s], sy0[s], sx1[s], sy1[s] = bounds[s, 0], bounds[s, 1], bounds[s, 2], bounds[s, 3]
     for a in range(n):
+        if sensor[a]:
+            continue  # (a sensor body meets no static shape)
         grow = radius[a] + reach[a] + SPECULATIVE_DISTANCE
         lox, loy = x[a, 0] - grow, x[a, 1] - grow
         hix, hiy = x[a, 0] + grow, x[a, 1] + grow
         for s in range(k_shapes):
-            if not (lox <= bounds[s, 2] and hix >= bounds[s, 0]):
-                continue
-            if not (loy <= bounds[s, 3] and hiy >= bounds[s, 1]):
+            hit[s] = (lox <= sx1[s]) & (hix >= sx0[s]) & (loy <= sy1[s]) & (hiy >= sy0[s])
+        for s in range(k_shapes):
+            if not hit[s]:
                 continue
             c = owner[s]
             if not (moving[a] or c_sensor[c]) or sensor[a]:
@@ -293,27 +384,28 @@ def contacts_loop(
     anchor_b = np.zeros((m, 2, 2))
     separation = np.full((m, 2), np.inf)
     feature = np.full((m, 2), -1, dtype=np.int64)
-    # (Each group's arrays copied out whole: the kernels' sample types, C-contiguous.)
+    # (Each group's arrays as slices: numba keeps a slice of a C-contiguous array's first
+    # index C-contiguous, the kernels' sample types.)
     for g in (0, 1, 3, 4):
         lo, hi = start[g], start[g + 1]
         if lo == hi:
             continue
         if g == 0:
             out = polygon_loop(
-                V, Nrm, cnt, rad, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(),
-                V, Nrm, cnt, rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(),
+                V, Nrm, cnt, rad, gi_a[lo:hi], gx_a[lo:hi], gq_a[lo:hi],
+                V, Nrm, cnt, rad, gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi],
                 margins[g],
             )  # fmt: skip
         elif g == 1:
             out = round_loop(
-                V, Nrm, cnt, rad, center, rnd, flag[lo:hi].copy(), gi_a[lo:hi].copy(),
-                gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), gi_b[lo:hi].copy(), gx_b[lo:hi].copy(),
-                gq_b[lo:hi].copy(), margins[g],
+                V, Nrm, cnt, rad, center, rnd, flag[lo:hi], gi_a[lo:hi],
+                gx_a[lo:hi], gq_a[lo:hi], gi_b[lo:hi], gx_b[lo:hi],
+                gq_b[lo:hi], margins[g],
             )  # fmt: skip
         else:  # a capsule is the tables' two-vertex polygon
             out = half_plane_polygon_loop(
-                hp, hn, gi_a[lo:hi].copy(), gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), V, Nrm, cnt,
-                rad, gi_b[lo:hi].copy(), gx_b[lo:hi].copy(), gq_b[lo:hi].copy(), margins[g],
+                hp, hn, gi_a[lo:hi], gx_a[lo:hi], gq_a[lo:hi], V, Nrm, cnt,
+                rad, gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi], margins[g],
             )  # fmt: skip
         normal[lo:hi], count[lo:hi], point[lo:hi] = out[0], out[1], out[2]
         anchor_a[lo:hi], anchor_b[lo:hi] = out[3], out[4]
@@ -369,9 +461,8 @@ def contacts_loop(
             else:
                 u[j, 0], u[j, 1] = (vbx - vax) * dt, (vby - vay) * dt
         keep = passing_loop(
-            V, cnt, rad, center, rnd, flag[lo:hi].copy(), gi_a[lo:hi].copy(),
-            gx_a[lo:hi].copy(), gq_a[lo:hi].copy(), gi_b[lo:hi].copy(), gx_b[lo:hi].copy(),
-            gq_b[lo:hi].copy(), u, slack,
+            V, cnt, rad, center, rnd, flag[lo:hi], gi_a[lo:hi], gx_a[lo:hi], gq_a[lo:hi],
+            gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi], u, slack,
         )  # fmt: skip
         for j in range(lo, hi):
             if count[j] > 0 and separation[j, 0] > SPECULATIVE_DISTANCE and not keep[j - lo]:
@@ -409,6 +500,23 @@ def contacts_loop(
     py = np.empty(rows)
     sense_row = np.empty(sensing, dtype=np.int64)
     sense_place = np.empty(sensing, dtype=np.int64)
+    # The warm start's keys by hash (open addressing, linear probing): each key's first place
+    # in ``warm_keys``, the place a binary search finds, in a probe or two (numba's
+    # searchsorted took about 55 ns a point, most of this loop's time on a pile).
+    wn = len(warm_keys)
+    bits = 4
+    while (1 << bits) < 2 * wn:
+        bits += 1
+    full = (1 << bits) - 1
+    table = np.full(full + 1, -1, dtype=np.int64)
+    for i in range(wn):
+        key = warm_keys[i]
+        h = (key >> 37) * 73856093 + (key >> 16 & 2097151) * 19349663  # (A's slot, B's code,
+        h = (h + (key & 65535) * 83492791) & full  # the feature: each times a prime)
+        while table[h] >= 0 and warm_keys[table[h]] != key:
+            h = (h + 1) & full
+        if table[h] < 0:
+            table[h] = i
     k = 0
     z = 0
     for i in range(m):
@@ -444,10 +552,15 @@ def contacts_loop(
                 f = (f & 255) << 8 | (f >> 8)
             key = (code << FEATURE) | (f if f >= 0 else 0)
             keys[t] = key
-            if p < count[j] and len(warm_keys):
-                at = min(np.searchsorted(warm_keys, key), len(warm_keys) - 1)
-                if warm_keys[at] == key:
-                    ln[t], lt[t] = warm_lam[at, 0], warm_lam[at, 1]
+            if p < count[j] and wn:
+                h = (key >> 37) * 73856093 + (key >> 16 & 2097151) * 19349663
+                h = (h + (key & 65535) * 83492791) & full
+                while table[h] >= 0:
+                    at = table[h]
+                    if warm_keys[at] == key:
+                        ln[t], lt[t] = warm_lam[at, 0], warm_lam[at, 1]
+                        break
+                    h = (h + 1) & full
         # Materials: friction mu_a mu_b, restitution e_a e_b; a conveyor's surface speed.
         if s < 0:
             mu_b, e_b = friction[b], restitution[b]
@@ -512,7 +625,7 @@ def report_loop(
             kept[r] = keys[2 * i + p]
             lam[r, 0], lam[r, 1] = ln[2 * i + p], lt[2 * i + p]
             r += 1
-    order = np.argsort(kept, kind="mergesort")  # stable, as numpy's
+    order = stable_order(kept)  # stable, as numpy's
     touch = np.zeros(k, dtype=np.bool_)
     t = 0
     for i in range(k):
@@ -536,7 +649,7 @@ def report_loop(
         else:
             event[e] = (slots[a] << 32) | (serial[owner[place[i]]] | COLLIDER)
         e += 1
-    by_key = np.argsort(event, kind="mergesort")  # stable, as numpy's
+    by_key = stable_order(event)  # stable, as numpy's
     e = 0
     for i in range(k):
         if not touch[i]:

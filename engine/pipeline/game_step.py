@@ -75,7 +75,7 @@ from ..geometry.pair_grid import grid_pairs
 from ..geometry.shaped import ShapeTable
 from . import game_broadphase as broad
 from . import game_sleep
-from .game_contacts import FEATURE, OTHER, STATIC
+from .game_contacts import FEATURE, OTHER, STATIC, candidates_loop
 from .game_loop import step_loop
 
 #: The World's state (engine.pipeline.world_state.WorldState, which holds a GameStep: named here by
@@ -206,9 +206,19 @@ class GameStep:
             # every contact stays as it was.
             self.last = self.report
             return store.x.copy(), store.v.copy(), store.angle.copy(), store.omega.copy()
-        # (The fast path's kernel measures the reach itself where the pairs need it not.)
-        margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
-        candidates = self._candidates(store, margin)
+        if self.fast and n > _FEW:
+            # The reach and the pairs in one compiled call (``_reach`` and ``_candidates``).
+            f64, asc = np.float64, np.ascontiguousarray
+            a, b, margin = candidates_loop(
+                asc(store.x, f64), asc(store.v, f64), asc(accel, f64), asc(store.omega, f64),
+                asc(store.radius, f64), asc(store.group, np.int64), float(dt),
+                self._median_radius(store),
+            )  # fmt: skip
+            candidates = (a, b)
+        else:
+            # (The fast path's kernel measures the reach itself where the pairs need it not.)
+            margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
+            candidates = self._candidates(store, margin)
         if self.fast:
             return self._step_fast(
                 state, store, dt, accel, store.torque if torque is None else torque, margin,
@@ -468,9 +478,7 @@ class GameStep:
         # the median radius) is paired with every body instead, so that it does not make one
         # cell of the world.
         r = store.radius + margin
-        if self._median is None or self._median[0] is not store.radius:
-            self._median = (store.radius, float(np.median(store.radius)))
-        big = r > 4.0 * self._median[1] + SPECULATIVE_DISTANCE
+        big = r > 4.0 * self._median_radius(store) + SPECULATIVE_DISTANCE
         rows = np.flatnonzero(~big)
         h = 2.0 * float(r[rows].max()) + SPECULATIVE_DISTANCE
         a, b = grid_pairs(store.x[rows], h, self.fast)
@@ -485,6 +493,12 @@ class GameStep:
             b = np.concatenate([b, bb[keep]])
         lo = np.minimum(a, b).astype(np.int64)  # rows a < b, as every pair's test gives
         return lo, np.maximum(a, b).astype(np.int64)
+
+    def _median_radius(self, store: Any) -> float:
+        """The bodies' median radius (m), kept while their radii are the same array."""
+        if self._median is None or self._median[0] is not store.radius:
+            self._median = (store.radius, float(np.median(store.radius)))
+        return self._median[1]
 
     # -- sleep (engine.pipeline.game_sleep) --------------------------------------------------------
     def _wake(
