@@ -480,9 +480,12 @@ class GameStep:
         r = store.radius + margin
         big = r > 4.0 * self._median_radius(store) + SPECULATIVE_DISTANCE
         rows = np.flatnonzero(~big)
-        h = 2.0 * float(r[rows].max()) + SPECULATIVE_DISTANCE
-        a, b = grid_pairs(store.x[rows], h, self.fast)
-        a, b = rows[a], rows[b]
+        if len(rows):
+            h = 2.0 * float(r[rows].max()) + SPECULATIVE_DISTANCE
+            a, b = grid_pairs(store.x[rows], h, self.fast)
+            a, b = rows[a], rows[b]
+        else:  # every body big (all of them fast, say): no grid, each pair below once
+            a = b = np.zeros(0, dtype=np.int64)
         if big.any():
             # Each big body with every other body, a pair of big bodies once.
             ends = np.flatnonzero(big)
