@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from engine import Body, Circle, DampedSpring, Plane, Polygon, Segment, Vector, World
-from engine.dynamics.joints import Hinge, Weld
-from engine.dynamics.links import Rod
 from engine.forces import Gravity
+from engine.dynamics.joints import Hinge, Weld
+from engine.dynamics.links import Cable, Rod
 from tests.paths import FAST, PATHS
 
 DT = 1.0 / 60.0
@@ -501,19 +501,23 @@ def test_a_colliders_material_set_between_steps_is_taken_at_the_next(kernels: st
 
 @pytest.mark.parametrize("kernels", PATHS)
 def test_contact_iterations_are_the_soft_steps_substeps(kernels: str) -> None:
-    # A body in a row falling in n substeps of h = dt / n: v += g h, then y += v h, n times,
-    # so it falls g dt^2 (n + 1) / (2 n) in a step from rest (5/8 g dt^2 at Box2D's 4). (A
-    # body in no row flies the closed form instead, g dt^2 / 2: the ball far up.) The low
-    # ball rests 1 cm above the floor: within its contact's reach, a row, which does not
-    # push, as the ball closes 2 mm of the gap in the step.
+    # A body held by a joint falling in n substeps of h = dt / n: v += g h, then y += v h, n
+    # times (Box2D's), so it falls g dt^2 (n + 1) / (2 n) in a step from rest (5/8 g dt^2 at
+    # Box2D's 4): the ball hung on a slack cable. A body in a contact's row moves the closed
+    # form of its held forces (engine.solver), g dt^2 / 2, as the ball far up in no row does:
+    # the low ball rests 1 cm above the floor, within its contact's reach, a row, which does
+    # not push, as the ball closes 2 mm of the gap in the step.
     for n in (4, 8, 1):
         world = floor_world(kernels, g=10.0)
         world.contact_iterations = n
         assert world.contact_iterations == n
         low = world.add(Body((0, 0.51), mass=1.0, radius=0.5))
         high = world.add(Body((3, 5.0), mass=1.0, radius=0.5))
+        hung = world.add(Body((6, 5.0), mass=1.0, radius=0.5))
+        world.add_link(Cable(hung, (6.0, 10.0), 6.0))
         world.step(DT)
-        assert 0.51 - low.pos.y == pytest.approx(10.0 * DT**2 * (n + 1) / (2 * n), rel=1e-9)
+        assert 5.0 - hung.pos.y == pytest.approx(10.0 * DT**2 * (n + 1) / (2 * n), rel=1e-9)
+        assert 0.51 - low.pos.y == pytest.approx(10.0 * DT**2 / 2, rel=1e-9)
         assert 5.0 - high.pos.y == pytest.approx(10.0 * DT**2 / 2, rel=1e-12)
 
 

@@ -14,7 +14,7 @@ in one loop: the step of dt is taken in ``substeps`` parts of h = dt / substeps,
    velocity along it meets a target: a contact still open (gap s > 0) may close by s in this
    part, no more (a speculative contact: a box falling on a floor stops on it, whatever its
    speed); one overlapping is pushed apart by a soft spring (below), at most ``PUSH_SPEED``;
-4. integrating positions: x += v h, angle += omega h;
+4. integrating positions: x += (v - dv_held / 2) h, angle likewise (below);
 5. relaxing: the same solve without the spring's push, so that the push moves positions and
    leaves no speed behind; and friction (Coulomb: |lam_t| <= mu lam_n), against the slip less
    the surfaces' own speed along themselves (a conveyor);
@@ -29,6 +29,26 @@ x0 + v0 dt + a dt^2 (n + 1) / (2 n) for n parts, g dt^2 / (2 n) too far a step (
 ball falling 0.5 s at 60 Hz and 4 parts ends 1 cm low), so such a body takes the closed form
 instead: a ball thrown in a game's World flies the lesson's parabola to rounding until a
 contact comes within reach.
+
+**Positions exact for held forces.** In a part, v1 = v0 + a h + dv_c, a the forces' held
+acceleration and dv_c what the rows' impulses give. Box2D moves the body by v1 h, which for
+a held acceleration is x0 + v0 h + a h^2, a h^2 / 2 too far each part: a box sliding to a
+stop under friction's held mu g stops v0 h / 2 short (1 cm from 5 m/s: 0.41%), one sliding
+down a slope goes a h t / 2 too far (+0.42% after 1 s). The closed form of a held
+acceleration is x0 + v0 h + a h^2 / 2 = x0 + (v1 - a h / 2) h, so a body is moved by
+(v1 - dv_held / 2) h, dv_held the part of v1 - v0 that is held over the part: a h, and the
+impulses of the contacts' warm start (the last part's: a force held, if the contact keeps
+it) as far as the solve with bias kept them (a point's normal impulse the lesser of its warm
+start and its impulse after that solve, so that an impact's impulse, which the solve takes
+back, is not held; its friction while it keeps its sign, the lesser likewise). A body at rest
+has dv_held = 0 (its weight and its contacts' push cancel) and moves as Box2D's; a box
+sliding to a stop, or down a slope, moves the closed form of its held forces (it stops 0.008%
+short; it slides 0.002% long, a h^2 / 2 of its first part, below). The solve's own
+corrections (a speculative contact's stop, the soft push) are impulses at the part's start,
+moved by a whole h, as Box2D's. Two bodies move by v1 h, as Box2D's: one held by a joint (a
+joint's warm start is not held so simply: a pendulum's direction turns), and, in its first
+part, one a fresh contact (below) pushed (which of those impulses are held is not known
+yet).
 
 **A fresh contact.** A contact with no impulse to start from (new in the step, or open in
 the last) has its first part solved from nothing, and one relax does not solve a face's two
@@ -770,10 +790,31 @@ def solve(
         if fresh[k] != 0.0:
             any_fresh = True
 
+    # The held part of each substep's change of velocity (module doc, "Positions exact for
+    # held forces"): the forces' a h and the contacts' warm start as far as the solve kept
+    # it; the warm start's impulses (wsn, wst), each point's; a body held by a joint moves by
+    # v h (wheld 0).
+    hvx = floats(nb, 0.0)
+    hvy = floats(nb, 0.0)
+    hw = floats(nb, 0.0)
+    wsn = floats(2 * nc, 0.0)
+    wst = floats(2 * nc, 0.0)
+    wheld = floats(nb, 1.0)
+    unheld = floats(nb, 0.0)  # 1.0: moves by v h in this substep (a fresh contact pushed it)
+    for k in range(nj):
+        wheld[ja[k]] = 0.0
+        wheld[jb[k]] = 0.0
+
     for sub in range(substeps):
+        for p in range(2 * nc):
+            wsn[p] = cln[p]
+            wst[p] = clt[p]
         # -- integrate velocities (only what moves: the static body and kinematic bodies
         # have no acceleration; a free body flies the closed form at the end).
         for i in range(nb):
+            hvx[i] = bax[i] * h
+            hvy[i] = bay[i] * h
+            hw[i] = balpha[i] * h
             if free[i] != 0.0:
                 continue
             bvx[i] += bax[i] * h
@@ -835,6 +876,15 @@ def solve(
                 for k in range(nc):
                     if fresh[k] != 0.0:
                         contact(k, False)
+            # Which of their impulses are held forces and which an impact's is not known yet:
+            # the bodies they pushed move by v h in this first substep (Box2D's).
+            for k in range(nc):
+                if fresh[k] == 0.0:
+                    continue
+                for j in range(ccount[k]):
+                    if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
+                        unheld[ca[k]] = 1.0
+                        unheld[cb[k]] = 1.0
 
         # -- solve with the soft push, integrate positions, relax without it.
         for stage in range(2):
@@ -985,14 +1035,41 @@ def solve(
                 contact(k, bias)
 
             if bias:
-                # -- integrate positions (the moves since the start, and their rotations).
+                # -- the held impulses: each point's warm start as far as the solve kept it
+                # (a normal's least of the two, a friction's while it keeps its sign).
+                for k in range(nc):
+                    a = ca[k]
+                    b = cb[k]
+                    ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+                    nx, ny = cnx[k], cny[k]
+                    for j in range(ccount[k]):
+                        p = 2 * k + j
+                        ln = min(wsn[p], cln[p])
+                        lt = 0.0
+                        if wst[p] * clt[p] > 0.0:
+                            lt = wst[p] if abs(wst[p]) < abs(clt[p]) else clt[p]
+                        if ln == 0.0 and lt == 0.0:
+                            continue
+                        px = ln * nx - lt * ny
+                        py = ln * ny + lt * nx
+                        hvx[a] -= ma * px
+                        hvy[a] -= ma * py
+                        hw[a] -= ia * (crax[p] * py - cray[p] * px)
+                        hvx[b] += mb * px
+                        hvy[b] += mb * py
+                        hw[b] += ib * (crbx[p] * py - crby[p] * px)
+                # -- integrate positions (the moves since the start, and their rotations):
+                # by the velocity less half the held change, exact for a held force.
                 for i in range(nb):
                     if free[i] != 0.0:
                         continue
-                    dx[i] += bvx[i] * h
-                    dy[i] += bvy[i] * h
-                    if bw[i] != 0.0:
-                        dq[i] += bw[i] * h
+                    half = 0.5 * wheld[i] * (1.0 - unheld[i])
+                    unheld[i] = 0.0
+                    dx[i] += (bvx[i] - half * hvx[i]) * h
+                    dy[i] += (bvy[i] - half * hvy[i]) * h
+                    turn = bw[i] - half * hw[i]
+                    if turn != 0.0:
+                        dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
 
