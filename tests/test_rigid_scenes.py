@@ -8,9 +8,10 @@ step, ``World(solver="soft")``, Box2D v3's solver) and checked against a closed 
 stated bound. A run that fails today is a strict xfail whose reason gives what was measured
 (the same on both paths, to the digits given): the day the solver meets the bound, the xfail
 flips to a failure and says so, and its mark is taken off. The soft step meets HelloWorld,
-the flat landing at restitution 0, the box at rest's reports, the crate off its corner, the
-40 degree slope and the slider, where the exact solver does not yet; it misses the box
-staying put on the 20 degree slope and the tower's sag by its soft contacts' give.
+the flat landing at restitution 0 and the bounces at 0.5, the box at rest's reports, the
+crate off its corner, the 40 degree slope and the slider, where the exact solver does not
+yet; it misses the box staying put on the 20 degree slope and the tower's sag by its soft
+contacts' give.
 
 The scenes are built and measured in tests/rigid_scenes.py (materials, and why the colliders
 carry 1.0 where the issue names a body's friction, are explained there). Measurements that
@@ -145,13 +146,6 @@ def test_a_flat_box_dropped_at_restitution_0_stays_down_level_and_in_place(path:
             "h e^(2n) = 0.5, 0.125 and 0.03125 m (-1.3%, -11.5%, -35%); the landings before them "
             "are at 6.26, 3.13 and 1.57 m/s in the closed form, each above Box2D's restitution "
             "threshold of 1 m/s"
-        ),
-        soft=xfail(
-            "rebounds 19.6 mm above the floor before it touches it: the relax's speculative "
-            "contact stops it 2 cm short, and the restitution pass parts it there at e times "
-            "its speed at the step's start (3.025 m/s against e sqrt(2 g h) = 3.13): the "
-            "apexes are 0.486 (from 2 cm up, so not counted as landed), 0.108 and 0.0215 m "
-            "against 0.5, 0.125 and 0.03125 m (Box2D v3's solver does the same)"
         ),
     ),
 )

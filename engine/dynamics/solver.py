@@ -19,8 +19,8 @@ in one loop: the step of dt is taken in ``substeps`` parts of h = dt / substeps,
    leaves no speed behind; and friction (Coulomb: |lam_t| <= mu lam_n), against the slip less
    the surfaces' own speed along themselves (a conveyor);
 
-then, once, restitution for the contact points that closed faster than ``THRESHOLD``: the
-normal speed they part at is e times the one they met at.
+then, once, restitution for the contact points that closed faster than ``THRESHOLD`` and
+touched: the normal speed they part at is e times the one they met at (below).
 
 **Free flight is exact.** A body in no row (no contact within reach, no joint) is moved by
 nothing but its acceleration a, held over the step, and the closed form of that motion is
@@ -61,6 +61,19 @@ first part (+5 mm after 1 s). So such a contact's rows are relaxed (rigid, no pu
 friction: the relax's sweep) ``FIRST_SWEEPS`` times after the warm start of its first part,
 each sweep leaving the slip that factor of itself: the warm start it lacked (its creep then
 3e-11 m).
+
+**Restitution.** Box2D bounces a point that pushed in the step at e times its normal speed
+vn0 at the step's start. A box falling onto a floor meets it faster than that, by what
+gravity gave it over the gap s it had then: the closed form of held accelerations, vn^2 =
+vn0^2 - 2 a_n s (a_n the points' relative normal acceleration, a + alpha x r on each), is
+the speed it meets at, and it parts at e times that (a box dropped 2 m at e = 0.5 bounced
+to 0.4919 and 0.1104 m against h e^2n = 0.5 and 0.125 m; now 0.49999 and 0.12499). And a
+point bounces only where it touched: a push in a solve before the positions move (a
+speculative stop on the surface) or on a point closed. The relax's push on a point still
+open (it may close only by its gap in the next part) is no touch: in a step's last part it
+bounced the box where it hung, 4 mm up (its third apex 0.0219 m against 0.03125), and it
+slows the point before it meets; that push is the next step's warm start, and its change of
+vn is taken off vn0 again before the closed form above (apex 0.03124 m).
 
 **Rows.** A contact point has anchors r_A, r_B (the point less each body's position) and a
 normal n from A to B. Its separation as the bodies move in the step is, to first order in
@@ -271,7 +284,7 @@ def solve(
     surfaces move along the tangent (-n_y, n_x) of themselves, B's less A's (a conveyor);
     ``cln``, ``clt`` the normal and tangent impulses (N s a substep): the last step's in
     (warm start), this step's out; ``ctotal`` out: the normal impulse over the whole step;
-    ``cmax`` out: the largest a substep applied.
+    ``cmax`` out: the largest a substep applied at a touch (``contact``).
 
     Joints (nj): ``jkind`` (HINGE ... ROTARY_SPRING), bodies ``ja``, ``jb`` and their local
     anchors (m, in each body's frame about its position; the static body's in world
@@ -383,14 +396,15 @@ def solve(
 
     def press(
         p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
-        nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float,
+        nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float, touch: bool,
     ) -> None:  # fmt: skip
-        """Point p's normal impulse grown by d, kept >= 0 (a contact only pushes), applied."""
+        """Point p's normal impulse grown by d, kept >= 0 (a contact only pushes), applied;
+        counted in ``cmax`` where it is a ``touch`` (``contact``)."""
         new = max(cln[p] + d, 0.0)
         d = new - cln[p]
         cln[p] = new
         ctotal[p] += d
-        if new > cmax[p]:
+        if touch and new > cmax[p]:
             cmax[p] = new
         apply(a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
 
@@ -464,14 +478,42 @@ def solve(
             rel[p] = dvx * nx + dvy * ny
             ctotal[p] = 0.0
             cmax[p] = 0.0
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            if csep[p] <= 0.0:
+                continue
+            # Open at the start: the speed it meets at (module doc, "Restitution"), (1) before
+            # a push the last relax gave it open, the warm start: the manifold's impulses
+            # P_i = lam_n n + lam_t t at r_i changed it by n.((w_A + w_B) P_i
+            # + i_B (r_Bi x P_i) perp(r_B) + i_A (r_Ai x P_i) perp(r_A)), perp(r) = (-r_y, r_x);
+            # (2) at the touch, s further on: vn^2 = vn0^2 - 2 a_n s.
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+            for i in range(ccount[k]):
+                q = 2 * k + i
+                px = cln[q] * nx - clt[q] * ny
+                py = cln[q] * ny + clt[q] * nx
+                if px == 0.0 and py == 0.0:
+                    continue
+                tb = ib * (crbx[q] * py - crby[q] * px)
+                ta = ia * (crax[q] * py - cray[q] * px)
+                gx = (mb + ma) * px - tb * rby - ta * ray
+                gy = (mb + ma) * py + tb * rbx + ta * rax
+                rel[p] -= gx * nx + gy * ny
+            if rel[p] < 0.0:
+                anx = (bax[b] - balpha[b] * rby) - (bax[a] - balpha[a] * ray)
+                any_ = (bay[b] + balpha[b] * rbx) - (bay[a] + balpha[a] * rax)
+                meet = rel[p] * rel[p] - 2.0 * (anx * nx + any_ * ny) * csep[p]
+                if meet > 0.0:
+                    rel[p] = -math.sqrt(meet)
 
     def press2(
         k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,
-        ia: float, mb: float, ib: float, nx: float, ny: float,
+        ia: float, mb: float, ib: float, nx: float, ny: float, touch1: bool, touch2: bool,
     ) -> None:  # fmt: skip
         """Manifold k's two normal impulses at once: the new x >= 0 with w = K (x - l) + r >= 0
         and x w = 0 (a linear complementarity problem of two rows, Box2D v2.4's block solver:
-        both pushing, the first alone, the second alone, or neither), applied."""
+        both pushing, the first alone, the second alone, or neither), applied; each counted in
+        ``cmax`` where it is a touch (``contact``)."""
         p = 2 * k
         k11, k12, k22 = kn1[k], kn12[k], kn2[k]
         det = 1.0 / (k11 * k22 - k12 * k12)
@@ -494,9 +536,9 @@ def solve(
         cln[p + 1] = x2
         ctotal[p] += d1
         ctotal[p + 1] += d2
-        if x1 > cmax[p]:
+        if touch1 and x1 > cmax[p]:
             cmax[p] = x1
-        if x2 > cmax[p + 1]:
+        if touch2 and x2 > cmax[p + 1]:
             cmax[p + 1] = x2
         px, py = (d1 + d2) * nx, (d1 + d2) * ny
         bvx[a] -= ma * px
@@ -701,10 +743,15 @@ def solve(
             dvx, dvy = relative(a, b, fax[k], fay[k], fbx[k], fby[k])
             drel[k] = dvx * ux + dvy * uy
 
-    def contact(k: int, bias: bool) -> None:
+    def contact(k: int, bias: bool, ahead: bool) -> None:
         """Contact k's rows solved once (module doc): its normal rows (with the soft push
         where ``bias``, the two points as a block where the block is well conditioned), then
-        in the relax (not ``bias``) its friction."""
+        in the relax (not ``bias``) its friction. ``ahead``: the solve comes before the
+        substep's positions move (the solve with bias, a fresh contact's first relax). A push
+        is a touch (``cmax``, which a bounce asks for) where the point is closed, or where
+        the solve is ahead: a speculative push then stops it on the surface as the positions
+        move. After them, a point still open that pushes only slows to what its gap allows
+        in the next substep (Box2D's relax): it has not touched yet."""
         a = ca[k]
         b = cb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
@@ -725,6 +772,8 @@ def solve(
             r2 = 0.0
             l1 = 0.0
             l2 = 0.0
+            t1 = True
+            t2 = True
             for j in range(2):
                 q = p + j
                 rax, ray, rbx, rby = crax[q], cray[q], crbx[q], crby[q]
@@ -738,13 +787,16 @@ def solve(
                     vbias = max(mscale * rate * sep, -push)
                     ms, im = mscale, iscale
                 dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                touch = ahead or sep <= 0.0
                 if j == 0:
                     r1 = ms * (dvx * nx + dvy * ny) + vbias
                     l1 = (1.0 - im) * cln[q]
+                    t1 = touch
                 else:
                     r2 = ms * (dvx * nx + dvy * ny) + vbias
                     l2 = (1.0 - im) * cln[q]
-            press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny)
+                    t2 = touch
+            press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny, t1, t2)
         for j in range(ccount[k] if kblock[k] == 0.0 else 0):
             p = 2 * k + j
             rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
@@ -761,7 +813,7 @@ def solve(
             dvx, dvy = relative(a, b, rax, ray, rbx, rby)
             vn = dvx * nx + dvy * ny
             d = -nmass[p] * (ms * vn + vbias) - im * cln[p]
-            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, ahead or sep <= 0.0)
         if not bias:
             # Friction, in the relax only (Box2D v3), against the slip less the
             # surfaces' own speed: vt = (v_B - v_A).t - speed, t = (-n_y, n_x).
@@ -875,7 +927,7 @@ def solve(
             for _ in range(FIRST_SWEEPS):
                 for k in range(nc):
                     if fresh[k] != 0.0:
-                        contact(k, False)
+                        contact(k, False, True)
             # Which of their impulses are held forces and which an impact's is not known yet:
             # the bodies they pushed move by v h in this first substep (Box2D's).
             for k in range(nc):
@@ -1032,7 +1084,7 @@ def solve(
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
 
             for k in range(nc):
-                contact(k, bias)
+                contact(k, bias, bias)
 
             if bias:
                 # -- the held impulses: each point's warm start as far as the solve kept it
@@ -1073,8 +1125,8 @@ def solve(
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
 
-    # -- restitution: a point that met faster than the threshold, and pushed in the step,
-    # parts at e times the speed it met at.
+    # -- restitution: a point that met faster than the threshold, and touched in the step
+    # (pushed there: ``contact``), parts at e times the speed it met at (module doc).
     for k in range(nc):
         e = crest[k]
         if e == 0.0:
@@ -1093,7 +1145,9 @@ def solve(
             for j in range(2):
                 dvx, dvy = relative(a, b, crax[p + j], cray[p + j], crbx[p + j], crby[p + j])
                 rs[j] = dvx * nx + dvy * ny + e * rel[p + j]
-            press2(k, rs[0], rs[1], cln[p], cln[p + 1], a, b, ma, ia, mb, ib, nx, ny)
+            press2(
+                k, rs[0], rs[1], cln[p], cln[p + 1], a, b, ma, ia, mb, ib, nx, ny, True, True,
+            )  # fmt: skip
             continue
         for j in range(ccount[k]):
             p = 2 * k + j
@@ -1103,7 +1157,7 @@ def solve(
             dvx, dvy = relative(a, b, rax, ray, rbx, rby)
             vn = dvx * nx + dvy * ny
             d = -nmass[p] * (vn + e * rel[p])
-            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, True)
 
     # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
     # its ends back together at e times the speed they parted at (jspeed holds e).
