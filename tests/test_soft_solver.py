@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from engine import Body, Circle, DampedSpring, Plane, Polygon, Segment, Vector, World
-from engine.forces import Gravity
 from engine.dynamics.joints import Hinge, Weld
 from engine.dynamics.links import Cable, Rod
+from engine.forces import Gravity
 from tests.paths import FAST, PATHS
 
 DT = 1.0 / 60.0
@@ -409,7 +409,7 @@ def test_mouse_joint_drags_a_box_to_its_target_by_a_bounded_force(kernels: str) 
 def test_a_flat_box_bounces_level_at_e_times_the_speed_it_met_at(kernels: str) -> None:
     # Both points of its manifold bounce as one block: it leaves the floor flat, in place,
     # at e times the speed it met the floor at, sqrt(2 E) of its flight's energy E (per kg,
-    # above its resting height; engine.solver's restitution).
+    # above its resting height; engine.dynamics.solver's restitution).
     g = 9.81
     world = World(kernels=kernels, solver="soft")
     world.add_force(Gravity((0.0, -g)))
@@ -508,9 +508,9 @@ def test_contact_iterations_are_the_soft_steps_substeps(kernels: str) -> None:
     # A body held by a joint falling in n substeps of h = dt / n: v += g h, then y += v h, n
     # times (Box2D's), so it falls g dt^2 (n + 1) / (2 n) in a step from rest (5/8 g dt^2 at
     # Box2D's 4): the ball hung on a slack cable. A body in a contact's row moves the closed
-    # form of its held forces (engine.solver), g dt^2 / 2, as the ball far up in no row does:
-    # the low ball rests 1 cm above the floor, within its contact's reach, a row, which does
-    # not push, as the ball closes 2 mm of the gap in the step.
+    # form of its held forces (engine.dynamics.solver), g dt^2 / 2, as the ball far up in no
+    # row does: the low ball rests 1 cm above the floor, within its contact's reach, a row,
+    # which does not push, as the ball closes 2 mm of the gap in the step.
     for n in (4, 8, 1):
         world = floor_world(kernels, g=10.0)
         world.contact_iterations = n
