@@ -412,9 +412,9 @@ def solve(
     def press(
         p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
         nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float, touch: bool,
-    ) -> None:  # fmt: skip
+    ) -> bool:  # fmt: skip
         """Point p's normal impulse grown by d, kept >= 0 (a contact only pushes), applied;
-        counted in ``cmax`` where it is a ``touch`` (``contact``)."""
+        counted in ``cmax`` where it is a ``touch`` (``contact``). Whether it changed."""
         new = max(cln[p] + d, 0.0)
         d = new - cln[p]
         cln[p] = new
@@ -422,6 +422,7 @@ def solve(
         if touch and new > cmax[p]:
             cmax[p] = new
         apply(a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
+        return d != 0.0
 
     # The start of the step: positions and angles kept, the moves counted from them.
     x0 = floats(nb, 0.0)
@@ -524,11 +525,11 @@ def solve(
     def press2(
         k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,
         ia: float, mb: float, ib: float, nx: float, ny: float, touch1: bool, touch2: bool,
-    ) -> None:  # fmt: skip
+    ) -> bool:  # fmt: skip
         """Manifold k's two normal impulses at once: the new x >= 0 with w = K (x - l) + r >= 0
         and x w = 0 (a linear complementarity problem of two rows, Box2D v2.4's block solver:
         both pushing, the first alone, the second alone, or neither), applied; each counted in
-        ``cmax`` where it is a touch (``contact``)."""
+        ``cmax`` where it is a touch (``contact``). Whether they changed."""
         p = 2 * k
         k11, k12, k22 = kn1[k], kn12[k], kn2[k]
         det = 1.0 / (k11 * k22 - k12 * k12)
@@ -566,6 +567,7 @@ def solve(
         bw[b] += ib * (
             (crbx[p] * ny - crby[p] * nx) * d1 + (crbx[p + 1] * ny - crby[p + 1] * nx) * d2
         )
+        return d1 != 0.0 or d2 != 0.0
 
     # -- prepare the joints: each anchor turned into the world's axes at the start, the
     # bodies' offset then, and the axial mass.
@@ -773,7 +775,7 @@ def solve(
         wheld[ja[k]] = 0.0
         wheld[jb[k]] = 0.0
 
-    def contact(k: int, bias: bool, ahead: bool) -> None:
+    def contact(k: int, bias: bool, ahead: bool) -> bool:
         """Contact k's rows solved once (module doc): its normal rows (with the soft push
         where ``bias``, the two points as a block where the block is well conditioned), then
         in the relax (not ``bias``) its friction. ``ahead``: the solve comes before the
@@ -781,7 +783,8 @@ def solve(
         is a touch (``cmax``, which a bounce asks for) where the point is closed, or where
         the solve is ahead: a speculative push then stops it on the surface as the positions
         move. After them, a point still open that pushes only slows to what its gap allows
-        in the next substep (Box2D's relax): it has not touched yet."""
+        in the next substep (Box2D's relax): it has not touched yet. Whether an impulse
+        changed."""
         a = ca[k]
         b = cb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
@@ -794,6 +797,7 @@ def solve(
             rate, mscale, iscale = c_rate, c_mass, c_imp
         mx = dx[b] - dx[a]
         my = dy[b] - dy[a]
+        changed = False
         if ccount[k] == 2 and kblock[k] != 0.0:
             # Both points at once (the block solve below): a box that lands flat
             # stays flat, where one point after the other would tip it.
@@ -830,7 +834,7 @@ def solve(
                     r2 = ms * vn + vbias
                     l2 = (1.0 - im) * cln[q] + im * keep
                     t2 = touch
-            press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny, t1, t2)
+            changed = press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny, t1, t2)
         for j in range(ccount[k] if kblock[k] == 0.0 else 0):
             p = 2 * k + j
             rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
@@ -850,7 +854,9 @@ def solve(
             if rigid and im != 0.0:
                 keep = max(wsn[p] - nmass[p] * max(vn, 0.0), 0.0)
             d = -nmass[p] * (ms * vn + vbias) - im * (cln[p] - keep)
-            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, ahead or sep <= 0.0)
+            touch = ahead or sep <= 0.0
+            if press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, touch):
+                changed = True
         if not bias:
             # Friction, in the relax only (Box2D v3), against the slip less the
             # surfaces' own speed: vt = (v_B - v_A).t - speed, t = (-n_y, n_x).
@@ -867,17 +873,29 @@ def solve(
                 clt[p] = new
                 px, py = d * tx, d * ty
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+                if d != 0.0:
+                    changed = True
+        return changed
 
-    # The contacts with no impulse to start from (module doc, "A fresh contact").
+    # The contacts with no impulse to start from (module doc, "A fresh contact"): their
+    # indices, the first nfresh of ``fresh`` (floats: the kernels' quick scratch).
     fresh = floats(nc, 0.0)
-    any_fresh = False
+    nfresh = 0
     for k in range(nc):
-        fresh[k] = 1.0
+        unset = True
         for j in range(ccount[k]):
             if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
-                fresh[k] = 0.0
-        if fresh[k] != 0.0:
-            any_fresh = True
+                unset = False
+        if unset:
+            fresh[nfresh] = k
+            nfresh += 1
+    # A fresh contact's sweep that changed no impulse changes none again until a body of it
+    # is pushed (its solve reads nothing else that the sweeps change), and is skipped till
+    # then: ``calm`` the count of solves at the one that changed nothing (0: it changed),
+    # ``moved`` at the last that pushed the body (module doc, "A fresh contact").
+    calm = floats(nc, 0.0)
+    moved = floats(nb, 0.0)
+    solves = 0.0
 
     for sub in range(substeps):
         for p in range(2 * nc):
@@ -944,26 +962,16 @@ def solve(
                 ctotal[p] += cln[p]
                 apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
 
-        if sub == 0 and any_fresh:
-            # -- the fresh contacts' warm start, made (above).
-            for _ in range(FIRST_SWEEPS):
-                for k in range(nc):
-                    if fresh[k] != 0.0:
-                        contact(k, False, True)
-            # Which of their impulses are held forces and which an impact's is not known yet:
-            # the bodies they pushed move by v h in this first substep (Box2D's).
-            for k in range(nc):
-                if fresh[k] == 0.0:
-                    continue
-                for j in range(ccount[k]):
-                    if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
-                        unheld[ca[k]] = 1.0
-                        unheld[cb[k]] = 1.0
-
-        # -- solve with the soft push, integrate positions, relax without it.
-        for stage in range(2):
+        # -- in the first substep, the fresh contacts' warm start made (above): their relax's
+        # sweep (stages -FIRST_SWEEPS to -1), FIRST_SWEEPS times or until one changes no
+        # impulse (the rest would change none); then solve with the soft push (stage 0),
+        # integrate positions, relax without it (stage 1). (One loop, so that numba, which
+        # inlines an inner function at each call, compiles ``contact`` once.)
+        stage = -FIRST_SWEEPS if sub == 0 and nfresh > 0 else 0
+        while stage < 2:
+            sweep = stage < 0
             bias = stage == 0
-            for k in range(nj):
+            for k in range(0 if sweep else nj):
                 a = ja[k]
                 b = jb[k]
                 if jkind[k] >= SPRING:
@@ -1105,8 +1113,38 @@ def solve(
                 jpy[k] += py
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
 
-            for k in range(nc):
-                contact(k, bias, bias)
+            changed = False
+            for i in range(nfresh if sweep else nc):
+                k = i
+                if sweep:
+                    k = int(fresh[i])
+                    a = ca[k]
+                    b = cb[k]
+                    if calm[i] != 0.0 and moved[a] < calm[i] and moved[b] < calm[i]:
+                        continue
+                    solves += 1.0
+                    calm[i] = solves
+                if contact(k, bias, stage <= 0):
+                    changed = True
+                    if sweep:
+                        calm[i] = 0.0
+                        if bim[a] != 0.0 or bii[a] != 0.0:  # (what does not move is not pushed)
+                            moved[a] = solves
+                        if bim[b] != 0.0 or bii[b] != 0.0:
+                            moved[b] = solves
+            if sweep:
+                stage = stage + 1 if changed else 0
+                if stage == 0:
+                    # Which of their impulses are held forces and which an impact's is not
+                    # known yet: the bodies they pushed move by v h in this first substep
+                    # (Box2D's).
+                    for i in range(nfresh):
+                        k = int(fresh[i])
+                        for j in range(ccount[k]):
+                            if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
+                                unheld[ca[k]] = 1.0
+                                unheld[cb[k]] = 1.0
+                continue
 
             if bias:
                 # -- the held impulses: each point's warm start as far as the solve kept it
@@ -1146,6 +1184,7 @@ def solve(
                         dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
+            stage += 1
 
     # -- restitution: a point that met faster than the threshold, and touched in the step
     # (pushed there: ``contact``), parts at e times the speed it met at (module doc).
