@@ -494,7 +494,7 @@ def solve(
             rel[p] = dvx * nx + dvy * ny
             ctotal[p] = 0.0
             cmax[p] = 0.0
-        for j in range(ccount[k]):
+        for j in range(ccount[k] if crest[k] != 0.0 else 0):  # (restitution's alone)
             p = 2 * k + j
             if csep[p] <= 0.0:
                 continue
@@ -778,7 +778,8 @@ def solve(
     def contact(k: int, bias: bool, ahead: bool) -> bool:
         """Contact k's rows solved once (module doc): its normal rows (with the soft push
         where ``bias``, the two points as a block where the block is well conditioned), then
-        in the relax (not ``bias``) its friction. ``ahead``: the solve comes before the
+        in the relax (not ``bias``) its friction, in the solve with bias the impulses held
+        (``hvx``, ``hvy``, ``hw``). ``ahead``: the solve comes before the
         substep's positions move (the solve with bias, a fresh contact's first relax). A push
         is a touch (``cmax``, which a bounce asks for) where the point is closed, or where
         the solve is ahead: a speculative push then stops it on the surface as the positions
@@ -875,6 +876,24 @@ def solve(
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
                 if d != 0.0:
                     changed = True
+        else:
+            # The held impulses (module doc, "Positions exact for held forces"): each
+            # point's warm start as far as this solve kept it, a normal's the lesser of the
+            # two, its friction's whole (friction is solved in the relax alone).
+            for j in range(ccount[k]):
+                p = 2 * k + j
+                ln = min(wsn[p], cln[p])
+                lt = wst[p]
+                if ln == 0.0 and lt == 0.0:
+                    continue
+                px = ln * nx - lt * ny
+                py = ln * ny + lt * nx
+                hvx[a] -= ma * px
+                hvy[a] -= ma * py
+                hw[a] -= ia * (crax[p] * py - cray[p] * px)
+                hvx[b] += mb * px
+                hvy[b] += mb * py
+                hw[b] += ib * (crbx[p] * py - crby[p] * px)
         return changed
 
     # The contacts with no impulse to start from (module doc, "A fresh contact"): their
@@ -1147,29 +1166,6 @@ def solve(
                 continue
 
             if bias:
-                # -- the held impulses: each point's warm start as far as the solve kept it
-                # (a normal's least of the two, a friction's while it keeps its sign).
-                for k in range(nc):
-                    a = ca[k]
-                    b = cb[k]
-                    ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
-                    nx, ny = cnx[k], cny[k]
-                    for j in range(ccount[k]):
-                        p = 2 * k + j
-                        ln = min(wsn[p], cln[p])
-                        lt = 0.0
-                        if wst[p] * clt[p] > 0.0:
-                            lt = wst[p] if abs(wst[p]) < abs(clt[p]) else clt[p]
-                        if ln == 0.0 and lt == 0.0:
-                            continue
-                        px = ln * nx - lt * ny
-                        py = ln * ny + lt * nx
-                        hvx[a] -= ma * px
-                        hvy[a] -= ma * py
-                        hw[a] -= ia * (crax[p] * py - cray[p] * px)
-                        hvx[b] += mb * px
-                        hvy[b] += mb * py
-                        hw[b] += ib * (crbx[p] * py - crby[p] * px)
                 # -- integrate positions (the moves since the start, and their rotations):
                 # by the velocity less half the held change, exact for a held force.
                 for i in range(nb):
