@@ -996,16 +996,41 @@ def solve(
                 ctotal[p] += cln[p]
                 apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
 
-        # -- in the first substep, the fresh contacts' warm start made (above): their relax's
-        # sweep (stages -FIRST_SWEEPS to -1), FIRST_SWEEPS times or until one changes no
-        # impulse (the rest would change none); then solve with the soft push (stage 0),
-        # integrate positions, relax without it (stage 1). (One loop, so that numba, which
-        # inlines an inner function at each call, compiles ``contact`` once.)
-        stage = -FIRST_SWEEPS if sub == 0 and nfresh > 0 else 0
-        while stage < 2:
-            sweep = stage < 0
+        if sub == 0 and nfresh > 0:
+            # -- the fresh contacts' warm start, made (above): their relax's sweep,
+            # FIRST_SWEEPS times or until one changes no impulse (the next would change none).
+            for _ in range(FIRST_SWEEPS):
+                changed = False
+                for i in range(nfresh):
+                    k = int(fresh[i])
+                    a = ca[k]
+                    b = cb[k]
+                    if calm[i] != 0.0 and moved[a] < calm[i] and moved[b] < calm[i]:
+                        continue  # (it would change nothing: above)
+                    solves += 1.0
+                    calm[i] = solves
+                    if contact(k, False, True):
+                        changed = True
+                        calm[i] = 0.0
+                        if bim[a] != 0.0 or bii[a] != 0.0:  # (what does not move is not pushed)
+                            moved[a] = solves
+                        if bim[b] != 0.0 or bii[b] != 0.0:
+                            moved[b] = solves
+                if not changed:
+                    break
+            # Which of their impulses are held forces and which an impact's is not known yet:
+            # the bodies they pushed move by v h in this first substep (Box2D's).
+            for i in range(nfresh):
+                k = int(fresh[i])
+                for j in range(ccount[k]):
+                    if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
+                        unheld[ca[k]] = 1.0
+                        unheld[cb[k]] = 1.0
+
+        # -- solve with the soft push, integrate positions, relax without it.
+        for stage in range(2):
             bias = stage == 0
-            for k in range(0 if sweep else nj):
+            for k in range(nj):
                 a = ja[k]
                 b = jb[k]
                 if jkind[k] >= SPRING:
@@ -1147,38 +1172,8 @@ def solve(
                 jpy[k] += py
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
 
-            changed = False
-            for i in range(nfresh if sweep else nc):
-                k = i
-                if sweep:
-                    k = int(fresh[i])
-                    a = ca[k]
-                    b = cb[k]
-                    if calm[i] != 0.0 and moved[a] < calm[i] and moved[b] < calm[i]:
-                        continue
-                    solves += 1.0
-                    calm[i] = solves
-                if contact(k, bias, stage <= 0):
-                    changed = True
-                    if sweep:
-                        calm[i] = 0.0
-                        if bim[a] != 0.0 or bii[a] != 0.0:  # (what does not move is not pushed)
-                            moved[a] = solves
-                        if bim[b] != 0.0 or bii[b] != 0.0:
-                            moved[b] = solves
-            if sweep:
-                stage = stage + 1 if changed else 0
-                if stage == 0:
-                    # Which of their impulses are held forces and which an impact's is not
-                    # known yet: the bodies they pushed move by v h in this first substep
-                    # (Box2D's).
-                    for i in range(nfresh):
-                        k = int(fresh[i])
-                        for j in range(ccount[k]):
-                            if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
-                                unheld[ca[k]] = 1.0
-                                unheld[cb[k]] = 1.0
-                continue
+            for k in range(nc):
+                contact(k, bias, bias)
 
             if bias:
                 # -- integrate positions (the moves since the start, and their rotations):
@@ -1195,7 +1190,6 @@ def solve(
                         dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
-            stage += 1
 
     # -- restitution: a point that met faster than the threshold, and touched in the step
     # (pushed there: ``contact``), parts at e times the speed it met at (module doc).
