@@ -770,14 +770,16 @@ def solve(
             drel[k] = dvx * ux + dvy * uy
 
     # The held part of each substep's change of velocity (module doc, "Positions exact for
-    # held forces"): the forces' a h and the contacts' warm start as far as the solve kept
-    # it; the warm start's impulses (wsn, wst), each point's; a body held by a joint moves by
-    # v h (wheld 0).
-    hvx = floats(nb, 0.0)
-    hvy = floats(nb, 0.0)
-    hw = floats(nb, 0.0)
+    # held forces"), dv_held: the forces' a h and the contacts' warm start as far as the
+    # solve with bias kept it, a normal's the lesser of the two, a friction's whole (friction
+    # is solved in the relax alone). It is v1 - v0 less what that solve pushed past the warm
+    # start (the rest of the substep's change up to then), so each body keeps v0 plus that
+    # push, uvx, uvy, uw (v1 - dv_held), pushed where a point's impulse grows past its warm
+    # start (wsn, each point's). A body held by a joint moves by v h (wheld 0).
+    uvx = floats(nb, 0.0)
+    uvy = floats(nb, 0.0)
+    uw = floats(nb, 0.0)
     wsn = floats(2 * nc, 0.0)
-    wst = floats(2 * nc, 0.0)
     wheld = floats(nb, 1.0)
     unheld = floats(nb, 0.0)  # 1.0: moves by v h in this substep (a fresh contact pushed it)
     for k in range(nj):
@@ -788,7 +790,7 @@ def solve(
         """Contact k's rows solved once (module doc): its normal rows (with the soft push
         where ``bias``, the two points as a block where the block is well conditioned), then
         in the relax (not ``bias``) its friction, in the solve with bias the impulses held
-        (``hvx``, ``hvy``, ``hw``). ``ahead``: the solve comes before the
+        (``uvx``, ``uvy``, ``uw``). ``ahead``: the solve comes before the
         substep's positions move (the solve with bias, a fresh contact's first relax). A push
         is a touch (``cmax``, which a bounce asks for) where the point is closed, or where
         the solve is ahead: a speculative push then stops it on the surface as the positions
@@ -886,23 +888,19 @@ def solve(
                 if d != 0.0:
                     changed = True
         else:
-            # The held impulses (module doc, "Positions exact for held forces"): each
-            # point's warm start as far as this solve kept it, a normal's the lesser of the
-            # two, its friction's whole (friction is solved in the relax alone).
+            # What this solve pushed past the warm start, not held (above: uvx).
             for j in range(ccount[k]):
                 p = 2 * k + j
-                ln = min(wsn[p], cln[p])
-                lt = wst[p]
-                if ln == 0.0 and lt == 0.0:
+                more = cln[p] - wsn[p]
+                if more <= 0.0:
                     continue
-                px = ln * nx - lt * ny
-                py = ln * ny + lt * nx
-                hvx[a] -= ma * px
-                hvy[a] -= ma * py
-                hw[a] -= ia * (crax[p] * py - cray[p] * px)
-                hvx[b] += mb * px
-                hvy[b] += mb * py
-                hw[b] += ib * (crbx[p] * py - crby[p] * px)
+                px, py = more * nx, more * ny
+                uvx[a] -= ma * px
+                uvy[a] -= ma * py
+                uw[a] -= ia * (crax[p] * py - cray[p] * px)
+                uvx[b] += mb * px
+                uvy[b] += mb * py
+                uw[b] += ib * (crbx[p] * py - crby[p] * px)
         return changed
 
     # The contacts with no impulse to start from (module doc, "A fresh contact") that may
@@ -934,13 +932,12 @@ def solve(
     for sub in range(substeps):
         for p in range(2 * nc):
             wsn[p] = cln[p]
-            wst[p] = clt[p]
         # -- integrate velocities (only what moves: the static body and kinematic bodies
         # have no acceleration; a free body flies the closed form at the end).
         for i in range(nb):
-            hvx[i] = bax[i] * h
-            hvy[i] = bay[i] * h
-            hw[i] = balpha[i] * h
+            uvx[i] = bvx[i]
+            uvy[i] = bvy[i]
+            uw[i] = bw[i]
             if free[i] != 0.0:
                 continue
             bvx[i] += bax[i] * h
@@ -1183,9 +1180,9 @@ def solve(
                         continue
                     half = 0.5 * wheld[i] * (1.0 - unheld[i])
                     unheld[i] = 0.0
-                    dx[i] += (bvx[i] - half * hvx[i]) * h
-                    dy[i] += (bvy[i] - half * hvy[i]) * h
-                    turn = bw[i] - half * hw[i]
+                    dx[i] += (bvx[i] - half * (bvx[i] - uvx[i])) * h
+                    dy[i] += (bvy[i] - half * (bvy[i] - uvy[i])) * h
+                    turn = bw[i] - half * (bw[i] - uw[i])
                     if turn != 0.0:
                         dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
