@@ -233,6 +233,27 @@ def test_disc_bounces_at_e_times_its_speed(kernels: str) -> None:
 
 
 @pytest.mark.parametrize("kernels", PATHS)
+@pytest.mark.parametrize("gap", [0.01, 0.088, 0.12, 0.2])
+def test_a_spinning_disc_landing_fast_stays_out_of_the_floor(kernels: str, gap: float) -> None:
+    # Found by the shapes fuzz: a disc of 0.5 m spinning at 58 rad/s turns a quarter radian a
+    # substep. Where its anchor turned whole with it (Box2D's separation), the point below its
+    # centre rose by r (1 - cos) of that turn, and the disc landing at 15 m/s sank 0.10 to
+    # 0.12 m into the floor; its nearest point does not turn with it (engine.dynamics.solver,
+    # "Rows"). A second body, a box far off, makes World() the soft step's scene.
+    world = World(kernels=kernels, solver="soft")
+    world.add_force(Gravity((0.0, -9.81)))
+    world.add_collider(Polygon([(-50, -10), (50, -10), (50, 0), (-50, 0)], friction=0.8))
+    disc = world.add(Body((0.0, 0.5 + gap), (-1.6, -15.0), mass=1.5, radius=0.5,
+                          restitution=0.5, friction=0.0, angular_velocity=-58.0))  # fmt: skip
+    world.add(Body((20.0, 0.5), shape=Polygon.box(1.0, 1.0)))
+    deepest = -math.inf
+    for _ in range(30):
+        world.step(DT)
+        deepest = max(deepest, 0.5 - disc.pos.y)
+    assert deepest <= 1e-6, deepest  # m in the floor
+
+
+@pytest.mark.parametrize("kernels", PATHS)
 def test_hinge_pendulum_holds_its_point_and_loses_no_energy_it_should_not_gain(
     kernels: str,
 ) -> None:

@@ -88,12 +88,18 @@ last step and opened) has that warm start's change of vn taken off vn0 before th
 form above.
 
 **Rows.** A contact point has anchors r_A, r_B (the point less each body's position) and a
-normal n from A to B. Its separation as the bodies move in the step is, to first order in
-nothing (Box2D's "s = s0 + dot(cB + rB - cA - rA, n)", the normal held fixed):
+normal n from A to B. Its separation as the bodies move in the step is, the normal held
+fixed,
 
-    s = s_base + n.(dp_B - dp_A + R(dq_B) r_B - R(dq_A) r_A),   s_base = s0 - n.(r_B - r_A),
+    s = s0 + n.(dp_B - dp_A) + (r_B x n) sin dq_B - (r_A x n) sin dq_A,
 
-dp and dq the moves of position and angle since the step began. The relative normal speed at
+dp and dq the moves of position and angle since the step began: each anchor turned with its
+body across the normal, not along it. Box2D's "s = s0 + dot(cB + rB - cA - rA, n)" turns the
+anchors whole, and so counts (n.r)(1 - cos dq) of each as the surfaces parting; but the
+nearest point of a round shape does not turn with it, and a polygon's corner that turns away
+gives way to its neighbour. A disc of 0.5 m spinning at 58 rad/s turns a quarter radian a
+part: landing so at 15 m/s on a floor it sank 0.10 to 0.12 m into it (the shapes fuzz found
+it 0.1003 m in a wall); now it does not sink. The relative normal speed at
 the point is vn = n.(v_B + omega_B x r_B - v_A - omega_A x r_A) (in 2D, omega x r =
 omega (-r_y, r_x)), and an impulse lam along n changes it by lam / m_n with
 
@@ -464,11 +470,10 @@ def solve(
         free[ja[k]] = 0.0
         free[jb[k]] = 0.0
 
-    # -- prepare the contacts: masses along the normal and tangent, the base separation, the
-    # relative normal speed at the start (for restitution).
+    # -- prepare the contacts: masses along the normal and tangent, the relative normal speed
+    # at the start (for restitution).
     nmass = floats(2 * nc, 0.0)
     tmass = floats(2 * nc, 0.0)
-    base = floats(2 * nc, 0.0)
     rel = floats(2 * nc, 0.0)
     # A two-point manifold's normal rows as one 2 x 2 system, K = J M^-1 J^T:
     # k_ij = w_A + w_B + i_A (r_Ai x n)(r_Aj x n) + i_B (r_Bi x n)(r_Bj x n), solved as a block
@@ -496,7 +501,6 @@ def solve(
         for j in range(ccount[k]):
             p = 2 * k + j
             rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-            base[p] = csep[p] - (nx * (rbx - rax) + ny * (rby - ray))
             rna = rax * ny - ray * nx
             rnb = rbx * ny - rby * nx
             kn = ma + mb + ia * rna * rna + ib * rnb * rnb
@@ -795,12 +799,11 @@ def solve(
         wheld[jb[k]] = 0.0
 
     def gap(p: int, a: int, b: int, mx: float, my: float, nx: float, ny: float) -> float:
-        """Point p's separation now (m): the anchors turned as their bodies have, the bodies
-        moved apart by (mx, my) since the start."""
-        rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-        ex = mx + (cq[b] * rbx - sq[b] * rby) - (cq[a] * rax - sq[a] * ray)
-        ey = my + (sq[b] * rbx + cq[b] * rby) - (sq[a] * rax + cq[a] * ray)
-        return base[p] + ex * nx + ey * ny
+        """Point p's separation now (m): the bodies moved apart by (mx, my) since the start,
+        the anchors turned across the normal as their bodies have (module doc, "Rows")."""
+        rna = crax[p] * ny - cray[p] * nx
+        rnb = crbx[p] * ny - crby[p] * nx
+        return csep[p] + mx * nx + my * ny + rnb * sq[b] - rna * sq[a]
 
     def contact(k: int, bias: bool, ahead: bool, late: bool) -> bool:
         """Contact k's rows solved once (module doc): its normal rows (with the soft push
