@@ -805,18 +805,24 @@ def solve(
         rnb = crbx[p] * ny - crby[p] * nx
         return csep[p] + mx * nx + my * ny + rnb * sq[b] - rna * sq[a]
 
-    def contact(k: int, bias: bool, ahead: bool, late: bool) -> bool:
-        """Contact k's rows solved once (module doc): its normal rows (with the soft push
-        where ``bias``, the two points as a block where the block is well conditioned), then
-        in the relax (not ``bias``) its friction, in the solve with bias the impulses held
-        (``uvx``, ``uvy``, ``uw``). ``ahead``: the solve comes before the
-        substep's positions move (the solve with bias, a fresh contact's first relax). A push
-        is a touch (``cmax``, which a bounce asks for) where the point is closed, or where
-        the solve is ahead: a speculative push then stops it on the surface as the positions
-        move. After them, a point still open that pushes only slows to what its gap allows
-        in the next substep (Box2D's relax): it has not touched yet; and where ``late`` (the
-        step's last relax) such a point that has not touched in the step is not pushed at
-        all (module doc, "Restitution"). Whether an impulse changed."""
+    def contact(k: int, stage: int, late: bool) -> bool:
+        """Contact k's rows solved once (module doc), in a ``stage``: 0 a fresh contact's
+        sweep (a relax before the substep's positions move), 1 the solve with bias, 2 the
+        relax, 3 restitution. Its normal rows (with the soft push in the solve with bias, the
+        two points as a block where the block is well conditioned), then in a relax its
+        friction, in the solve with bias the impulses held (``uvx``, ``uvy``, ``uw``). A push
+        is a touch (``cmax``, which a bounce asks for) where the point is closed, or where the
+        solve is ahead of the positions (stages 0 and 1): a speculative push then stops it on
+        the surface as the positions move. After them, a point still open that pushes only
+        slows to what its gap allows in the next substep (Box2D's relax): it has not touched
+        yet; and where ``late`` (the step's last relax) such a point that has not touched in
+        the step is not pushed at all (module doc, "Restitution"). Restitution pushes a point
+        that met faster than the threshold and touched to part at e times the speed it met
+        at, -e rel (both as a block where both do). Whether an impulse changed."""
+        bias = stage == 1
+        bounce = stage == 3
+        ahead = stage < 2 or bounce
+        e = crest[k]
         a = ca[k]
         b = cb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
@@ -830,54 +836,41 @@ def solve(
         mx = dx[b] - dx[a]
         my = dy[b] - dy[a]
         changed = False
+        # Both points at once where the block is well conditioned (press2): a box that lands
+        # flat stays flat, where one point after the other would tip it; but a point left
+        # open (``late``) leaves the other solved alone.
         block = ccount[k] == 2 and kblock[k] != 0.0
-        for j in range(ccount[k] if late else 0):
+        s1 = 0.0
+        s2 = 0.0
+        for j in range(ccount[k]):
             q = 2 * k + j
-            if cmax[q] == 0.0 and gap(q, a, b, mx, my, nx, ny) > 0.0:
-                block = False  # (a point left open: the other solved alone, below)
-        if block:
-            # Both points at once (the block solve below): a box that lands flat
-            # stays flat, where one point after the other would tip it.
-            p = 2 * k
-            r1 = 0.0
-            r2 = 0.0
-            l1 = 0.0
-            l2 = 0.0
-            t1 = True
-            t2 = True
-            for j in range(2):
-                q = p + j
-                rax, ray, rbx, rby = crax[q], cray[q], crbx[q], crby[q]
-                sep = gap(q, a, b, mx, my, nx, ny)
-                vbias, ms, im = 0.0, 1.0, 0.0
-                if sep > 0.0:
-                    vbias = sep * inv_h
-                elif bias:
-                    vbias = max(mscale * rate * sep, -push)
-                    ms, im = mscale, iscale
-                dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-                vn = dvx * nx + dvy * ny
-                keep = 0.0  # the load held (module doc, "The floor holds its load")
-                if rigid and im != 0.0:
-                    keep = max(wsn[q] - nmass[q] * max(vn, 0.0), 0.0)
-                touch = ahead or sep <= 0.0
-                if j == 0:
-                    r1 = ms * vn + vbias
-                    l1 = (1.0 - im) * cln[q] + im * keep
-                    t1 = touch
-                else:
-                    r2 = ms * vn + vbias
-                    l2 = (1.0 - im) * cln[q] + im * keep
-                    t2 = touch
-            changed = press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny, t1, t2)
-        for j in range(ccount[k] if not block else 0):
+            sep = gap(q, a, b, mx, my, nx, ny)
+            if j == 0:
+                s1 = sep
+            else:
+                s2 = sep
+            if late and sep > 0.0 and cmax[q] == 0.0:
+                block = False
+            if bounce and (rel[q] > -threshold or cmax[q] == 0.0):
+                block = False
+        r1 = 0.0
+        r2 = 0.0
+        l1 = 0.0
+        l2 = 0.0
+        t1 = True
+        t2 = True
+        for j in range(ccount[k]):
             p = 2 * k + j
-            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-            sep = gap(p, a, b, mx, my, nx, ny)
+            sep = s1 if j == 0 else s2
             if late and sep > 0.0 and cmax[p] == 0.0:
                 continue  # (left open to the next step: above)
+            if bounce and (rel[p] > -threshold or cmax[p] == 0.0):
+                continue  # (no bounce: above)
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
             vbias, ms, im = 0.0, 1.0, 0.0
-            if sep > 0.0:
+            if bounce:
+                vbias = e * rel[p]  # (the target vn = -e rel)
+            elif sep > 0.0:
                 vbias = sep * inv_h  # speculative: may close by sep, no more
             elif bias:
                 vbias = max(mscale * rate * sep, -push)
@@ -887,11 +880,22 @@ def solve(
             keep = 0.0  # the load held (module doc, "The floor holds its load")
             if rigid and im != 0.0:
                 keep = max(wsn[p] - nmass[p] * max(vn, 0.0), 0.0)
-            d = -nmass[p] * (ms * vn + vbias) - im * (cln[p] - keep)
             touch = ahead or sep <= 0.0
-            if press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, touch):
-                changed = True
-        if not bias:
+            if not block:
+                d = -nmass[p] * (ms * vn + vbias) - im * (cln[p] - keep)
+                if press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, touch):
+                    changed = True
+            elif j == 0:
+                r1 = ms * vn + vbias
+                l1 = (1.0 - im) * cln[p] + im * keep
+                t1 = touch
+            else:
+                r2 = ms * vn + vbias
+                l2 = (1.0 - im) * cln[p] + im * keep
+                t2 = touch
+        if block:
+            changed = press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny, t1, t2)
+        if stage == 0 or stage == 2:
             # Friction, in the relax only (Box2D v3), against the slip less the
             # surfaces' own speed: vt = (v_B - v_A).t - speed, t = (-n_y, n_x).
             tx, ty = -ny, nx
@@ -909,20 +913,19 @@ def solve(
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
                 if d != 0.0:
                     changed = True
-        else:
+        for j in range(ccount[k] if bias else 0):
             # What this solve pushed past the warm start, not held (above: uvx).
-            for j in range(ccount[k]):
-                p = 2 * k + j
-                more = cln[p] - wsn[p]
-                if more <= 0.0:
-                    continue
-                px, py = more * nx, more * ny
-                uvx[a] -= ma * px
-                uvy[a] -= ma * py
-                uw[a] -= ia * (crax[p] * py - cray[p] * px)
-                uvx[b] += mb * px
-                uvy[b] += mb * py
-                uw[b] += ib * (crbx[p] * py - crby[p] * px)
+            p = 2 * k + j
+            more = cln[p] - wsn[p]
+            if more <= 0.0:
+                continue
+            px, py = more * nx, more * ny
+            uvx[a] -= ma * px
+            uvy[a] -= ma * py
+            uw[a] -= ia * (crax[p] * py - cray[p] * px)
+            uvx[b] += mb * px
+            uvy[b] += mb * py
+            uw[b] += ib * (crbx[p] * py - crby[p] * px)
         return changed
 
     # The contacts with no impulse to start from (module doc, "A fresh contact") that may
@@ -1015,41 +1018,17 @@ def solve(
                 ctotal[p] += cln[p]
                 apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
 
-        if sub == 0 and nfresh > 0:
-            # -- the fresh contacts' warm start, made (above): their relax's sweep,
-            # FIRST_SWEEPS times or until one changes no impulse (the next would change none).
-            for _ in range(FIRST_SWEEPS):
-                changed = False
-                for i in range(nfresh):
-                    k = int(fresh[i])
-                    a = ca[k]
-                    b = cb[k]
-                    if calm[i] != 0.0 and moved[a] < calm[i] and moved[b] < calm[i]:
-                        continue  # (it would change nothing: above)
-                    solves += 1.0
-                    calm[i] = solves
-                    if contact(k, False, True, False):
-                        changed = True
-                        calm[i] = 0.0
-                        if bim[a] != 0.0 or bii[a] != 0.0:  # (what does not move is not pushed)
-                            moved[a] = solves
-                        if bim[b] != 0.0 or bii[b] != 0.0:
-                            moved[b] = solves
-                if not changed:
-                    break
-            # Which of their impulses are held forces and which an impact's is not known yet:
-            # the bodies they pushed move by v h in this first substep (Box2D's).
-            for i in range(nfresh):
-                k = int(fresh[i])
-                for j in range(ccount[k]):
-                    if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
-                        unheld[ca[k]] = 1.0
-                        unheld[cb[k]] = 1.0
-
-        # -- solve with the soft push, integrate positions, relax without it.
-        for stage in range(2):
-            bias = stage == 0
-            for k in range(nj):
+        # -- the fresh contacts' warm start, made (above): their relax's sweep, FIRST_SWEEPS
+        # times or until one changes no impulse (the next would change none), in the first
+        # substep; then the solve with the soft push, positions integrated, the relax without
+        # it. (One call of ``contact`` for the three: numba compiles an inner function again
+        # at each of its calls.)
+        for stage in range(3):
+            sweep = stage == 0
+            bias = stage == 1
+            if sweep and (sub != 0 or nfresh == 0):
+                continue
+            for k in range(nj if not sweep else 0):
                 a = ja[k]
                 b = jb[k]
                 if jkind[k] >= SPRING:
@@ -1193,9 +1172,36 @@ def solve(
 
             # (The step's last relax: a point open that has not touched is left to the next
             # step, module doc "Restitution".)
-            late = not bias and sub == substeps - 1
-            for k in range(nc):
-                contact(k, bias, bias, late)
+            late = stage == 2 and sub == substeps - 1
+            for _ in range(FIRST_SWEEPS if sweep else 1):
+                changed = False
+                for i in range(nfresh if sweep else nc):
+                    k = int(fresh[i]) if sweep else i
+                    a = ca[k]
+                    b = cb[k]
+                    if sweep:
+                        if calm[i] != 0.0 and moved[a] < calm[i] and moved[b] < calm[i]:
+                            continue  # (it would change nothing: above)
+                        solves += 1.0
+                        calm[i] = solves
+                    if contact(k, stage, late) and sweep:
+                        changed = True
+                        calm[i] = 0.0
+                        if bim[a] != 0.0 or bii[a] != 0.0:  # (what does not move is not pushed)
+                            moved[a] = solves
+                        if bim[b] != 0.0 or bii[b] != 0.0:
+                            moved[b] = solves
+                if not changed:
+                    break
+            if sweep:
+                # Which of their impulses are held forces and which an impact's is not known
+                # yet: the bodies they pushed move by v h in this first substep (Box2D's).
+                for i in range(nfresh):
+                    k = int(fresh[i])
+                    for j in range(ccount[k]):
+                        if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
+                            unheld[ca[k]] = 1.0
+                            unheld[cb[k]] = 1.0
 
             if bias:
                 # -- integrate positions (the moves since the start, and their rotations):
@@ -1216,36 +1222,8 @@ def solve(
     # -- restitution: a point that met faster than the threshold, and touched in the step
     # (pushed there: ``contact``), parts at e times the speed it met at (module doc).
     for k in range(nc):
-        e = crest[k]
-        if e == 0.0:
-            continue
-        a = ca[k]
-        b = cb[k]
-        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
-        nx, ny = cnx[k], cny[k]
-        p = 2 * k
-        both = ccount[k] == 2 and kblock[k] != 0.0
-        both = both and rel[p] <= -threshold and cmax[p] != 0.0
-        if both and rel[p + 1] <= -threshold and cmax[p + 1] != 0.0:
-            # Both points bounce: as one block, so a box that lands flat leaves flat (one
-            # point after the other would set it turning). Targets vn_i = -e rel_i.
-            rs = [0.0, 0.0]
-            for j in range(2):
-                dvx, dvy = relative(a, b, crax[p + j], cray[p + j], crbx[p + j], crby[p + j])
-                rs[j] = dvx * nx + dvy * ny + e * rel[p + j]
-            press2(
-                k, rs[0], rs[1], cln[p], cln[p + 1], a, b, ma, ia, mb, ib, nx, ny, True, True,
-            )  # fmt: skip
-            continue
-        for j in range(ccount[k]):
-            p = 2 * k + j
-            if rel[p] > -threshold or cmax[p] == 0.0:
-                continue
-            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-            vn = dvx * nx + dvy * ny
-            d = -nmass[p] * (vn + e * rel[p])
-            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, True)
+        if crest[k] != 0.0:
+            contact(k, 3, False)
 
     # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
     # its ends back together at e times the speed they parted at (jspeed holds e).
