@@ -115,13 +115,14 @@ class World:
     ``solver``: how contacts and joints are solved. ``"exact"``: the lesson's models, each
     impact at its exact moment, joints held to rounding (a ball's bounce heights h e^(2n),
     the cradle, a pendulum's period). ``"soft"``: a game's, Box2D v3's soft step
-    (``engine.pipeline.game_step``, ``engine.dynamics.solver``): every contact and joint solved
-    together in substeps, fast and steady for piles, platformers and pinball tables, with the errors
-    a game accepts (a box rests 0.07 mm into the floor; a hinge gives under load by what its
-    60 Hz spring allows). ``"auto"`` (the default): the World chooses by the scene as it is
-    at its first step (engine.pipeline.solver_choice): the soft step where a body with corners could
-    be pushed by a contact or a joint only the soft step solves is held, the exact models
-    otherwise (discs and points, a 1D world). ``world.solver`` says which this World runs, and
+    (``engine.pipeline.game_step``, ``engine.dynamics.solver``): every contact and joint
+    solved together in substeps, fast and steady for piles, platformers and pinball tables,
+    with the errors a game accepts (a box rests 0.55 mm into the box it stands on, the floor
+    holding its load; a hinge gives under load by what its 60 Hz spring allows). ``"auto"``
+    (the default): the World chooses by the scene as it is at its first step
+    (engine.pipeline.solver_choice): the soft step where a body with corners could be pushed
+    by a contact or a joint only the soft step solves is held, the exact models otherwise
+    (discs and points, a 1D world). ``world.solver`` says which this World runs, and
     ``world.solver_reason`` why.
     """
 

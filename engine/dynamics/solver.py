@@ -8,18 +8,19 @@ in one loop: the step of dt is taken in ``substeps`` parts of h = dt / substeps,
 1. integrating velocities: v += a h, omega += alpha h (the forces' accelerations, held over
    the step);
 2. warm starting: every row's impulse of the part before (the last step's, at first) is
-   applied again, so a settled pile starts solved;
+   applied again, so a settled pile starts solved (a contact that has none is made one in
+   its first part: below);
 3. solving with bias: each row pushes its bodies by an impulse so that their relative
    velocity along it meets a target: a contact still open (gap s > 0) may close by s in this
    part, no more (a speculative contact: a box falling on a floor stops on it, whatever its
    speed); one overlapping is pushed apart by a soft spring (below), at most ``PUSH_SPEED``;
-4. integrating positions: x += v h, angle += omega h;
+4. integrating positions: x += (v - dv_held / 2) h, angle likewise (below);
 5. relaxing: the same solve without the spring's push, so that the push moves positions and
    leaves no speed behind; and friction (Coulomb: |lam_t| <= mu lam_n), against the slip less
    the surfaces' own speed along themselves (a conveyor);
 
-then, once, restitution for the contact points that closed faster than ``THRESHOLD``: the
-normal speed they part at is e times the one they met at.
+then, once, restitution for the contact points that closed faster than ``THRESHOLD`` and
+touched: the normal speed they part at is e times the one they met at (below).
 
 **Free flight is exact.** A body in no row (no contact within reach, no joint) is moved by
 nothing but its acceleration a, held over the step, and the closed form of that motion is
@@ -29,13 +30,76 @@ ball falling 0.5 s at 60 Hz and 4 parts ends 1 cm low), so such a body takes the
 instead: a ball thrown in a game's World flies the lesson's parabola to rounding until a
 contact comes within reach.
 
+**Positions exact for held forces.** In a part, v1 = v0 + a h + dv_c, a the forces' held
+acceleration and dv_c what the rows' impulses give. Box2D moves the body by v1 h, which for
+a held acceleration is x0 + v0 h + a h^2, a h^2 / 2 too far each part: a box sliding to a
+stop under friction's held mu g stops v0 h / 2 short (1 cm from 5 m/s: 0.41%), one sliding
+down a slope goes a h t / 2 too far (+0.42% after 1 s). The closed form of a held
+acceleration is x0 + v0 h + a h^2 / 2 = x0 + (v1 - a h / 2) h, so a body is moved by
+(v1 - dv_held / 2) h, dv_held the part of v1 - v0 that is held over the part: a h, and the
+impulses of the contacts' warm start (the last part's: a force held, if the contact keeps
+it) as far as the solve with bias kept them (a point's normal impulse the lesser of its warm
+start and its impulse after that solve, so that an impact's impulse, which the solve takes
+back, is not held; its friction while it keeps its sign, the lesser likewise). A body at rest
+has dv_held = 0 (its weight and its contacts' push cancel) and moves as Box2D's; a box
+sliding to a stop, or down a slope, moves the closed form of its held forces (it stops 0.008%
+short; it slides 0.002% long, a h^2 / 2 of its first part, below). The solve's own
+corrections (a speculative contact's stop, the soft push) are impulses at the part's start,
+moved by a whole h, as Box2D's. Two bodies move by v1 h, as Box2D's: one held by a joint (a
+joint's warm start is not held so simply: a pendulum's direction turns), and, in its first
+part, one a fresh contact (below) pushed (which of those impulses are held is not known
+yet).
+
+**A fresh contact.** A contact with no impulse to start from (new in the step, or open in
+the last) has its first part solved from nothing, and one relax does not solve a face's two
+points together: the first point's friction, at the lever r.n below the centre, turns the
+body so that both points stop slipping where the centre does not (a unit box keeps
+1 - m_t / m = 0.6 of its slip, m_t = 1 / (w + i (r.n)^2) the point's tangent mass), and the
+normal rows take the turn out only in the next part. A box let go on a 20 degree slope
+crept 0.17 mm so, and one on a 40 degree slope kept a third too little friction in its
+first part (+5 mm after 1 s). So such a contact's rows are relaxed (rigid, no push, with
+friction: the relax's sweep) after the warm start of its first part, each sweep leaving the
+slip that factor of itself: the warm start it lacked (its creep then 3e-11 m). The sweeps
+stop after ``FIRST_SWEEPS``, or at the first that changes no impulse (the next would change
+none); a contact whose solve changed none is solved again only once a body of it is pushed;
+and only a contact that may touch in that part is swept (``FIRST_REACH``): the open
+neighbours of a settled pile, which never push, and the far ones of a tumbling heap cost the
+step nothing.
+
+**Restitution.** Box2D bounces a point that pushed in the step at e times its normal speed
+vn0 at the step's start. A box falling onto a floor meets it faster than that, by what
+gravity gave it over the gap s it had then: the closed form of held accelerations, vn^2 =
+vn0^2 - 2 a_n s (a_n the points' relative normal acceleration, a + alpha x r on each), is
+the speed it meets at, and it parts at e times that (a box dropped 2 m at e = 0.5 bounced
+to 0.4919 and 0.1104 m against h e^2n = 0.5 and 0.125 m; now 0.49999 and 0.12499). And a
+point bounces only where it touched: a push in a solve before the positions move (a
+speculative stop on the surface) or on a point closed. The relax's push on a point still
+open (it may close only by its gap in the next part) is no touch: it slows the point before
+it meets, and the next part's solve with bias stops it on the surface, a touch. In a step's
+last part a point that has not touched in the step is given no such push: it is left open
+to the next step, whose first part stops it so (its speed then the one it meets at). Given,
+the push bounced a box where it hung, 4 mm up (Box2D's rule; its third apex 0.0219 m against
+0.03125); counted as no touch and carried as the next step's warm start, it turned the body
+it met with no bounce: a box at 10 m/s meeting a disc at -10 m/s 0.1 m above its centre line
+from 0.35 m apart (they meet just after a step) ended at -1.46 m/s and 15.3 rad/s against
+the closed form's -7.857 m/s and 42.9 rad/s (now to rounding; apexes 0.500009, 0.125007 and
+0.031252 m). A point open at the step's start with a warm start (one that touched in the
+last step and opened) has that warm start's change of vn taken off vn0 before the closed
+form above.
+
 **Rows.** A contact point has anchors r_A, r_B (the point less each body's position) and a
-normal n from A to B. Its separation as the bodies move in the step is, to first order in
-nothing (Box2D's "s = s0 + dot(cB + rB - cA - rA, n)", the normal held fixed):
+normal n from A to B. Its separation as the bodies move in the step is, the normal held
+fixed,
 
-    s = s_base + n.(dp_B - dp_A + R(dq_B) r_B - R(dq_A) r_A),   s_base = s0 - n.(r_B - r_A),
+    s = s0 + n.(dp_B - dp_A) + (r_B x n) sin dq_B - (r_A x n) sin dq_A,
 
-dp and dq the moves of position and angle since the step began. The relative normal speed at
+dp and dq the moves of position and angle since the step began: each anchor turned with its
+body across the normal, not along it. Box2D's "s = s0 + dot(cB + rB - cA - rA, n)" turns the
+anchors whole, and so counts (n.r)(1 - cos dq) of each as the surfaces parting; but the
+nearest point of a round shape does not turn with it, and a polygon's corner that turns away
+gives way to its neighbour. A disc of 0.5 m spinning at 58 rad/s turns a quarter radian a
+part: landing so at 15 m/s on a floor it sank 0.10 to 0.12 m into it (the shapes fuzz found
+it 0.1003 m in a wall); now it does not sink. The relative normal speed at
 the point is vn = n.(v_B + omega_B x r_B - v_A - omega_A x r_A) (in 2D, omega x r =
 omega (-r_y, r_x)), and an impulse lam along n changes it by lam / m_n with
 
@@ -52,6 +116,21 @@ an implicit (backward Euler) step of the damped spring that stays stable at any 
 Contacts use ``CONTACT_HERTZ`` (at most an eighth of the substep rate; twice as stiff against
 what does not move: the floor does not give) and a damping ratio of 10; joints 60 Hz (at most
 a quarter of the substep rate) and 2.
+
+**The floor holds its load.** In the steady state of a contact under a held load (lam the
+same each part, vn = 0 after the warm start) the solve must add nothing, d = 0, which the
+spring meets at C = -s_i lam / (m_n s_m bias_rate) = -lam / (m_n h omega^2): a spring of
+stiffness m_n omega^2 that gives under the load W = lam / h by W / (m_n omega^2) (a unit box
+on a floor at 60 Hz, 69 um; on a 20 degree slope 64.86 um, which counted as its moving in
+its first step). Against what does not move, then, the spring gives only on the change of
+its load: the give -s_i lam is -s_i (lam - held), held the point's warm start (the load it
+carried through the last part) less what of it only parts the surfaces again, m_n vn where
+the warm start left them parting (an impact's impulse re-applied, which the solve must take
+back at once, as Box2D's does: held, a box landing on a floor would leave it again at
+(1 - s_m) of its speed). The steady state is then C = 0: a box on a floor or a slope keeps
+its height to rounding, one dropped on it from 30 m does not rise after it lands, and the
+floor under a box hit by another sinks 4 um (it sank 1.1 mm). Between two bodies the spring
+gives as Box2D's: a tower of boxes sags by their contacts' give.
 
 **A hinge** (Box2D's revolute joint) holds the anchors together: C = (c_B + r_B) - (c_A + r_A),
 a 2 x 2 system K lam = -(Cdot + bias C) with
@@ -168,6 +247,14 @@ JOINT_DAMPING = 2.0
 PUSH_SPEED = 3.0
 #: Contacts closing slower than this (m/s) do not bounce (Box2D v3: 1).
 THRESHOLD = 1.0
+#: Relax sweeps that make a fresh contact's warm start in its first part (module doc): each
+#: leaves a unit box on a face 0.6 of its slip, 30 leave 0.6^30 = 2e-7 of it.
+FIRST_SWEEPS = 30
+#: A fresh contact is swept (``FIRST_SWEEPS``) where a point's gap at the step's start,
+#: closed for a substep at the speed it closes at then, is at most this (m, Box2D's linear
+#: slop); the others push in no sweep, but where the sweeps turn a body on to them 1.2 m/s
+#: faster (this over a substep of 1/240 s).
+FIRST_REACH = 0.005
 #: Joint kinds, by code: a hinge, a weld, a mouse joint (a point pulled to a target by a
 #: spring of its own frequency and damping, its force bounded), a distance between two anchors
 #: (a Rod held at its length, a Cable at most its length, a SlideJoint between the two), a
@@ -235,7 +322,7 @@ def solve(
     surfaces move along the tangent (-n_y, n_x) of themselves, B's less A's (a conveyor);
     ``cln``, ``clt`` the normal and tangent impulses (N s a substep): the last step's in
     (warm start), this step's out; ``ctotal`` out: the normal impulse over the whole step;
-    ``cmax`` out: the largest a substep applied.
+    ``cmax`` out: the largest a substep applied at a touch (``contact``).
 
     Joints (nj): ``jkind`` (HINGE ... ROTARY_SPRING), bodies ``ja``, ``jb`` and their local
     anchors (m, in each body's frame about its position; the static body's in world
@@ -347,16 +434,18 @@ def solve(
 
     def press(
         p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
-        nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float,
-    ) -> None:  # fmt: skip
-        """Point p's normal impulse grown by d, kept >= 0 (a contact only pushes), applied."""
+        nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float, touch: bool,
+    ) -> bool:  # fmt: skip
+        """Point p's normal impulse grown by d, kept >= 0 (a contact only pushes), applied;
+        counted in ``cmax`` where it is a ``touch`` (``contact``). Whether it changed."""
         new = max(cln[p] + d, 0.0)
         d = new - cln[p]
         cln[p] = new
         ctotal[p] += d
-        if new > cmax[p]:
+        if touch and new > cmax[p]:
             cmax[p] = new
         apply(a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
+        return d != 0.0
 
     # The start of the step: positions and angles kept, the moves counted from them.
     x0 = floats(nb, 0.0)
@@ -381,11 +470,10 @@ def solve(
         free[ja[k]] = 0.0
         free[jb[k]] = 0.0
 
-    # -- prepare the contacts: masses along the normal and tangent, the base separation, the
-    # relative normal speed at the start (for restitution).
+    # -- prepare the contacts: masses along the normal and tangent, the relative normal speed
+    # at the start (for restitution).
     nmass = floats(2 * nc, 0.0)
     tmass = floats(2 * nc, 0.0)
-    base = floats(2 * nc, 0.0)
     rel = floats(2 * nc, 0.0)
     # A two-point manifold's normal rows as one 2 x 2 system, K = J M^-1 J^T:
     # k_ij = w_A + w_B + i_A (r_Ai x n)(r_Aj x n) + i_B (r_Bi x n)(r_Bj x n), solved as a block
@@ -413,7 +501,6 @@ def solve(
         for j in range(ccount[k]):
             p = 2 * k + j
             rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-            base[p] = csep[p] - (nx * (rbx - rax) + ny * (rby - ray))
             rna = rax * ny - ray * nx
             rnb = rbx * ny - rby * nx
             kn = ma + mb + ia * rna * rna + ib * rnb * rnb
@@ -428,14 +515,42 @@ def solve(
             rel[p] = dvx * nx + dvy * ny
             ctotal[p] = 0.0
             cmax[p] = 0.0
+        for j in range(ccount[k] if crest[k] != 0.0 else 0):  # (restitution's alone)
+            p = 2 * k + j
+            if csep[p] <= 0.0:
+                continue
+            # Open at the start: the speed it meets at (module doc, "Restitution"), (1) before
+            # a push the last relax gave it open, the warm start: the manifold's impulses
+            # P_i = lam_n n + lam_t t at r_i changed it by n.((w_A + w_B) P_i
+            # + i_B (r_Bi x P_i) perp(r_B) + i_A (r_Ai x P_i) perp(r_A)), perp(r) = (-r_y, r_x);
+            # (2) at the touch, s further on: vn^2 = vn0^2 - 2 a_n s.
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+            for i in range(ccount[k]):
+                q = 2 * k + i
+                px = cln[q] * nx - clt[q] * ny
+                py = cln[q] * ny + clt[q] * nx
+                if px == 0.0 and py == 0.0:
+                    continue
+                tb = ib * (crbx[q] * py - crby[q] * px)
+                ta = ia * (crax[q] * py - cray[q] * px)
+                gx = (mb + ma) * px - tb * rby - ta * ray
+                gy = (mb + ma) * py + tb * rbx + ta * rax
+                rel[p] -= gx * nx + gy * ny
+            if rel[p] < 0.0:
+                anx = (bax[b] - balpha[b] * rby) - (bax[a] - balpha[a] * ray)
+                any_ = (bay[b] + balpha[b] * rbx) - (bay[a] + balpha[a] * rax)
+                meet = rel[p] * rel[p] - 2.0 * (anx * nx + any_ * ny) * csep[p]
+                if meet > 0.0:
+                    rel[p] = -math.sqrt(meet)
 
     def press2(
         k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,
-        ia: float, mb: float, ib: float, nx: float, ny: float,
-    ) -> None:  # fmt: skip
+        ia: float, mb: float, ib: float, nx: float, ny: float, touch1: bool, touch2: bool,
+    ) -> bool:  # fmt: skip
         """Manifold k's two normal impulses at once: the new x >= 0 with w = K (x - l) + r >= 0
         and x w = 0 (a linear complementarity problem of two rows, Box2D v2.4's block solver:
-        both pushing, the first alone, the second alone, or neither), applied."""
+        both pushing, the first alone, the second alone, or neither), applied; each counted in
+        ``cmax`` where it is a touch (``contact``). Whether they changed."""
         p = 2 * k
         k11, k12, k22 = kn1[k], kn12[k], kn2[k]
         det = 1.0 / (k11 * k22 - k12 * k12)
@@ -458,9 +573,9 @@ def solve(
         cln[p + 1] = x2
         ctotal[p] += d1
         ctotal[p + 1] += d2
-        if x1 > cmax[p]:
+        if touch1 and x1 > cmax[p]:
             cmax[p] = x1
-        if x2 > cmax[p + 1]:
+        if touch2 and x2 > cmax[p + 1]:
             cmax[p + 1] = x2
         px, py = (d1 + d2) * nx, (d1 + d2) * ny
         bvx[a] -= ma * px
@@ -473,6 +588,7 @@ def solve(
         bw[b] += ib * (
             (crbx[p] * ny - crby[p] * nx) * d1 + (crbx[p + 1] * ny - crby[p + 1] * nx) * d2
         )
+        return d1 != 0.0 or d2 != 0.0
 
     # -- prepare the joints: each anchor turned into the world's axes at the start, the
     # bodies' offset then, and the axial mass.
@@ -665,10 +781,188 @@ def solve(
             dvx, dvy = relative(a, b, fax[k], fay[k], fbx[k], fby[k])
             drel[k] = dvx * ux + dvy * uy
 
-    for _ in range(substeps):
+    # The held part of each substep's change of velocity (module doc, "Positions exact for
+    # held forces"), dv_held: the forces' a h and the contacts' warm start as far as the
+    # solve with bias kept it, a normal's the lesser of the two, a friction's whole (friction
+    # is solved in the relax alone). It is v1 - v0 less what that solve pushed past the warm
+    # start (the rest of the substep's change up to then), so each body keeps v0 plus that
+    # push, uvx, uvy, uw (v1 - dv_held), pushed where a point's impulse grows past its warm
+    # start (wsn, each point's). A body held by a joint moves by v h (wheld 0).
+    uvx = floats(nb, 0.0)
+    uvy = floats(nb, 0.0)
+    uw = floats(nb, 0.0)
+    wsn = floats(2 * nc, 0.0)
+    wheld = floats(nb, 1.0)
+    unheld = floats(nb, 0.0)  # 1.0: moves by v h in this substep (a fresh contact pushed it)
+    for k in range(nj):
+        wheld[ja[k]] = 0.0
+        wheld[jb[k]] = 0.0
+
+    def gap(p: int, a: int, b: int, mx: float, my: float, nx: float, ny: float) -> float:
+        """Point p's separation now (m): the bodies moved apart by (mx, my) since the start,
+        the anchors turned across the normal as their bodies have (module doc, "Rows")."""
+        rna = crax[p] * ny - cray[p] * nx
+        rnb = crbx[p] * ny - crby[p] * nx
+        return csep[p] + mx * nx + my * ny + rnb * sq[b] - rna * sq[a]
+
+    def contact(k: int, stage: int, late: bool) -> bool:
+        """Contact k's rows solved once (module doc), in a ``stage``: 0 a fresh contact's
+        sweep (a relax before the substep's positions move), 1 the solve with bias, 2 the
+        relax, 3 restitution. Its normal rows (with the soft push in the solve with bias, the
+        two points as a block where the block is well conditioned), then in a relax its
+        friction, in the solve with bias the impulses held (``uvx``, ``uvy``, ``uw``). A push
+        is a touch (``cmax``, which a bounce asks for) where the point is closed, or where the
+        solve is ahead of the positions (stages 0 and 1): a speculative push then stops it on
+        the surface as the positions move. After them, a point still open that pushes only
+        slows to what its gap allows in the next substep (Box2D's relax): it has not touched
+        yet; and where ``late`` (the step's last relax) such a point that has not touched in
+        the step is not pushed at all (module doc, "Restitution"). Restitution pushes a point
+        that met faster than the threshold and touched to part at e times the speed it met
+        at, -e rel (both as a block where both do). Whether an impulse changed."""
+        bias = stage == 1
+        bounce = stage == 3
+        ahead = stage < 2 or bounce
+        e = crest[k]
+        a = ca[k]
+        b = cb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        nx, ny = cnx[k], cny[k]
+        # Stiffer against what does not move (Box2D: the floor does not give).
+        rigid = (ma == 0.0 and ia == 0.0) or (mb == 0.0 and ib == 0.0)
+        if rigid:
+            rate, mscale, iscale = s_rate, s_mass, s_imp
+        else:
+            rate, mscale, iscale = c_rate, c_mass, c_imp
+        mx = dx[b] - dx[a]
+        my = dy[b] - dy[a]
+        changed = False
+        # Both points at once where the block is well conditioned (press2): a box that lands
+        # flat stays flat, where one point after the other would tip it; but a point left
+        # open (``late``) leaves the other solved alone.
+        block = ccount[k] == 2 and kblock[k] != 0.0
+        s1 = 0.0
+        s2 = 0.0
+        for j in range(ccount[k]):
+            q = 2 * k + j
+            sep = gap(q, a, b, mx, my, nx, ny)
+            if j == 0:
+                s1 = sep
+            else:
+                s2 = sep
+            if late and sep > 0.0 and cmax[q] == 0.0:
+                block = False
+            if bounce and (rel[q] > -threshold or cmax[q] == 0.0):
+                block = False
+        r1 = 0.0
+        r2 = 0.0
+        l1 = 0.0
+        l2 = 0.0
+        t1 = True
+        t2 = True
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            sep = s1 if j == 0 else s2
+            if late and sep > 0.0 and cmax[p] == 0.0:
+                continue  # (left open to the next step: above)
+            if bounce and (rel[p] > -threshold or cmax[p] == 0.0):
+                continue  # (no bounce: above)
+            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+            vbias, ms, im = 0.0, 1.0, 0.0
+            if bounce:
+                vbias = e * rel[p]  # (the target vn = -e rel)
+            elif sep > 0.0:
+                vbias = sep * inv_h  # speculative: may close by sep, no more
+            elif bias:
+                vbias = max(mscale * rate * sep, -push)
+                ms, im = mscale, iscale
+            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            vn = dvx * nx + dvy * ny
+            keep = 0.0  # the load held (module doc, "The floor holds its load")
+            if rigid and im != 0.0:
+                keep = max(wsn[p] - nmass[p] * max(vn, 0.0), 0.0)
+            touch = ahead or sep <= 0.0
+            if not block:
+                d = -nmass[p] * (ms * vn + vbias) - im * (cln[p] - keep)
+                if press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby, touch):
+                    changed = True
+            elif j == 0:
+                r1 = ms * vn + vbias
+                l1 = (1.0 - im) * cln[p] + im * keep
+                t1 = touch
+            else:
+                r2 = ms * vn + vbias
+                l2 = (1.0 - im) * cln[p] + im * keep
+                t2 = touch
+        if block:
+            changed = press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny, t1, t2)
+        if stage == 0 or stage == 2:
+            # Friction, in the relax only (Box2D v3), against the slip less the
+            # surfaces' own speed: vt = (v_B - v_A).t - speed, t = (-n_y, n_x).
+            tx, ty = -ny, nx
+            for j in range(ccount[k]):
+                p = 2 * k + j
+                rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
+                dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                vt = dvx * tx + dvy * ty - cspeed[k]
+                d = -tmass[p] * vt
+                most = cfric[k] * cln[p]
+                new = min(max(clt[p] + d, -most), most)
+                d = new - clt[p]
+                clt[p] = new
+                px, py = d * tx, d * ty
+                apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+                if d != 0.0:
+                    changed = True
+        for j in range(ccount[k] if bias else 0):
+            # What this solve pushed past the warm start, not held (above: uvx).
+            p = 2 * k + j
+            more = cln[p] - wsn[p]
+            if more <= 0.0:
+                continue
+            px, py = more * nx, more * ny
+            uvx[a] -= ma * px
+            uvy[a] -= ma * py
+            uw[a] -= ia * (crax[p] * py - cray[p] * px)
+            uvx[b] += mb * px
+            uvy[b] += mb * py
+            uw[b] += ib * (crbx[p] * py - crby[p] * px)
+        return changed
+
+    # The contacts with no impulse to start from (module doc, "A fresh contact") that may
+    # touch in the first substep (``FIRST_REACH``; rel: a point's normal speed at the start,
+    # or the faster one it meets at where it bounces): their indices, the first nfresh of
+    # ``fresh`` (floats: the kernels' quick scratch).
+    fresh = floats(nc, 0.0)
+    nfresh = 0
+    for k in range(nc):
+        unset = True
+        near = False
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            if cln[p] != 0.0 or clt[p] != 0.0:
+                unset = False
+            if csep[p] + rel[p] * h <= FIRST_REACH:
+                near = True
+        if unset and near:
+            fresh[nfresh] = k
+            nfresh += 1
+    # A fresh contact's sweep that changed no impulse changes none again until a body of it
+    # is pushed (its solve reads nothing else that the sweeps change), and is skipped till
+    # then: ``calm`` the count of solves at the one that changed nothing (0: it changed),
+    # ``moved`` at the last that pushed the body (module doc, "A fresh contact").
+    calm = floats(nc, 0.0)
+    moved = floats(nb, 0.0)
+    solves = 0.0
+
+    for sub in range(substeps):
+        for p in range(2 * nc):
+            wsn[p] = cln[p]
         # -- integrate velocities (only what moves: the static body and kinematic bodies
         # have no acceleration; a free body flies the closed form at the end).
         for i in range(nb):
+            uvx[i] = bvx[i]
+            uvy[i] = bvy[i]
+            uw[i] = bw[i]
             if free[i] != 0.0:
                 continue
             bvx[i] += bax[i] * h
@@ -724,10 +1018,17 @@ def solve(
                 ctotal[p] += cln[p]
                 apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
 
-        # -- solve with the soft push, integrate positions, relax without it.
-        for stage in range(2):
-            bias = stage == 0
-            for k in range(nj):
+        # -- the fresh contacts' warm start, made (above): their relax's sweep, FIRST_SWEEPS
+        # times or until one changes no impulse (the next would change none), in the first
+        # substep; then the solve with the soft push, positions integrated, the relax without
+        # it. (One call of ``contact`` for the three: numba compiles an inner function again
+        # at each of its calls.)
+        for stage in range(3):
+            sweep = stage == 0
+            bias = stage == 1
+            if sweep and (sub != 0 or nfresh == 0):
+                continue
+            for k in range(nj if not sweep else 0):
                 a = ja[k]
                 b = jb[k]
                 if jkind[k] >= SPRING:
@@ -869,124 +1170,60 @@ def solve(
                 jpy[k] += py
                 apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
 
-            for k in range(nc):
-                a = ca[k]
-                b = cb[k]
-                ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
-                nx, ny = cnx[k], cny[k]
-                # Stiffer against what does not move (Box2D: the floor does not give).
-                rigid = (ma == 0.0 and ia == 0.0) or (mb == 0.0 and ib == 0.0)
-                if rigid:
-                    rate, mscale, iscale = s_rate, s_mass, s_imp
-                else:
-                    rate, mscale, iscale = c_rate, c_mass, c_imp
-                mx = dx[b] - dx[a]
-                my = dy[b] - dy[a]
-                if ccount[k] == 2 and kblock[k] != 0.0:
-                    # Both points at once (the block solve below): a box that lands flat
-                    # stays flat, where one point after the other would tip it.
-                    p = 2 * k
-                    r1 = 0.0
-                    r2 = 0.0
-                    l1 = 0.0
-                    l2 = 0.0
-                    for j in range(2):
-                        q = p + j
-                        rax, ray, rbx, rby = crax[q], cray[q], crbx[q], crby[q]
-                        ex = mx + (cq[b] * rbx - sq[b] * rby) - (cq[a] * rax - sq[a] * ray)
-                        ey = my + (sq[b] * rbx + cq[b] * rby) - (sq[a] * rax + cq[a] * ray)
-                        sep = base[q] + ex * nx + ey * ny
-                        vbias, ms, im = 0.0, 1.0, 0.0
-                        if sep > 0.0:
-                            vbias = sep * inv_h
-                        elif bias:
-                            vbias = max(mscale * rate * sep, -push)
-                            ms, im = mscale, iscale
-                        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-                        if j == 0:
-                            r1 = ms * (dvx * nx + dvy * ny) + vbias
-                            l1 = (1.0 - im) * cln[q]
-                        else:
-                            r2 = ms * (dvx * nx + dvy * ny) + vbias
-                            l2 = (1.0 - im) * cln[q]
-                    press2(k, r1, r2, l1, l2, a, b, ma, ia, mb, ib, nx, ny)
-                for j in range(ccount[k] if kblock[k] == 0.0 else 0):
-                    p = 2 * k + j
-                    rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-                    # The separation now: the anchors turned as their bodies have.
-                    ex = mx + (cq[b] * rbx - sq[b] * rby) - (cq[a] * rax - sq[a] * ray)
-                    ey = my + (sq[b] * rbx + cq[b] * rby) - (sq[a] * rax + cq[a] * ray)
-                    sep = base[p] + ex * nx + ey * ny
-                    vbias, ms, im = 0.0, 1.0, 0.0
-                    if sep > 0.0:
-                        vbias = sep * inv_h  # speculative: may close by sep, no more
-                    elif bias:
-                        vbias = max(mscale * rate * sep, -push)
-                        ms, im = mscale, iscale
-                    dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-                    vn = dvx * nx + dvy * ny
-                    d = -nmass[p] * (ms * vn + vbias) - im * cln[p]
-                    press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
-                if not bias:
-                    # Friction, in the relax only (Box2D v3), against the slip less the
-                    # surfaces' own speed: vt = (v_B - v_A).t - speed, t = (-n_y, n_x).
-                    tx, ty = -ny, nx
+            # (The step's last relax: a point open that has not touched is left to the next
+            # step, module doc "Restitution".)
+            late = stage == 2 and sub == substeps - 1
+            for _ in range(FIRST_SWEEPS if sweep else 1):
+                changed = False
+                for i in range(nfresh if sweep else nc):
+                    k = int(fresh[i]) if sweep else i
+                    a = ca[k]
+                    b = cb[k]
+                    if sweep:
+                        if calm[i] != 0.0 and moved[a] < calm[i] and moved[b] < calm[i]:
+                            continue  # (it would change nothing: above)
+                        solves += 1.0
+                        calm[i] = solves
+                    if contact(k, stage, late) and sweep:
+                        changed = True
+                        calm[i] = 0.0
+                        if bim[a] != 0.0 or bii[a] != 0.0:  # (what does not move is not pushed)
+                            moved[a] = solves
+                        if bim[b] != 0.0 or bii[b] != 0.0:
+                            moved[b] = solves
+                if not changed:
+                    break
+            if sweep:
+                # Which of their impulses are held forces and which an impact's is not known
+                # yet: the bodies they pushed move by v h in this first substep (Box2D's).
+                for i in range(nfresh):
+                    k = int(fresh[i])
                     for j in range(ccount[k]):
-                        p = 2 * k + j
-                        rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-                        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-                        vt = dvx * tx + dvy * ty - cspeed[k]
-                        d = -tmass[p] * vt
-                        most = cfric[k] * cln[p]
-                        new = min(max(clt[p] + d, -most), most)
-                        d = new - clt[p]
-                        clt[p] = new
-                        px, py = d * tx, d * ty
-                        apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+                        if cln[2 * k + j] != 0.0 or clt[2 * k + j] != 0.0:
+                            unheld[ca[k]] = 1.0
+                            unheld[cb[k]] = 1.0
 
             if bias:
-                # -- integrate positions (the moves since the start, and their rotations).
+                # -- integrate positions (the moves since the start, and their rotations):
+                # by the velocity less half the held change, exact for a held force.
                 for i in range(nb):
                     if free[i] != 0.0:
                         continue
-                    dx[i] += bvx[i] * h
-                    dy[i] += bvy[i] * h
-                    if bw[i] != 0.0:
-                        dq[i] += bw[i] * h
+                    half = 0.5 * wheld[i] * (1.0 - unheld[i])
+                    unheld[i] = 0.0
+                    dx[i] += (bvx[i] - half * (bvx[i] - uvx[i])) * h
+                    dy[i] += (bvy[i] - half * (bvy[i] - uvy[i])) * h
+                    turn = bw[i] - half * (bw[i] - uw[i])
+                    if turn != 0.0:
+                        dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
 
-    # -- restitution: a point that met faster than the threshold, and pushed in the step,
-    # parts at e times the speed it met at.
+    # -- restitution: a point that met faster than the threshold, and touched in the step
+    # (pushed there: ``contact``), parts at e times the speed it met at (module doc).
     for k in range(nc):
-        e = crest[k]
-        if e == 0.0:
-            continue
-        a = ca[k]
-        b = cb[k]
-        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
-        nx, ny = cnx[k], cny[k]
-        p = 2 * k
-        both = ccount[k] == 2 and kblock[k] != 0.0
-        both = both and rel[p] <= -threshold and cmax[p] != 0.0
-        if both and rel[p + 1] <= -threshold and cmax[p + 1] != 0.0:
-            # Both points bounce: as one block, so a box that lands flat leaves flat (one
-            # point after the other would set it turning). Targets vn_i = -e rel_i.
-            rs = [0.0, 0.0]
-            for j in range(2):
-                dvx, dvy = relative(a, b, crax[p + j], cray[p + j], crbx[p + j], crby[p + j])
-                rs[j] = dvx * nx + dvy * ny + e * rel[p + j]
-            press2(k, rs[0], rs[1], cln[p], cln[p + 1], a, b, ma, ia, mb, ib, nx, ny)
-            continue
-        for j in range(ccount[k]):
-            p = 2 * k + j
-            if rel[p] > -threshold or cmax[p] == 0.0:
-                continue
-            rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
-            vn = dvx * nx + dvy * ny
-            d = -nmass[p] * (vn + e * rel[p])
-            press(p, d, a, b, ma, ia, mb, ib, nx, ny, rax, ray, rbx, rby)
+        if crest[k] != 0.0:
+            contact(k, 3, False)
 
     # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
     # its ends back together at e times the speed they parted at (jspeed holds e).

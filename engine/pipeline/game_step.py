@@ -28,9 +28,10 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
    constraints (engine.dynamics.constraints) as the solver's joints, warm started from their last
    impulses, which are reported on each joint after the solve.
 6. ``solver.solve``: substeps (integrate velocities, warm start, solve, integrate positions,
-   relax), restitution, the impulses kept (engine.dynamics.solver). The bodies move by its substeps
-   of semi-implicit Euler whatever the World's integrator, which moves them only in a World
-   with nothing to solve (no collider, no pair that may touch, no joint).
+   relax), restitution, the impulses kept (engine.dynamics.solver). The bodies move by its
+   substeps (semi-implicit Euler, but exact for held forces) whatever the World's integrator,
+   which moves them only in a World with nothing to solve (no collider, no pair that may
+   touch, no joint).
 7. ``_keep``, ``_events``: the impulses kept by key, and which contacts touch after the step
    (a point that pushed, or one within ``LINEAR_SLOP``) and which sensors overlap, as the
    World's events read them (engine.pipeline.event_dispatch); on the fast path,
