@@ -368,3 +368,32 @@ def test_a_joints_impulses_read_late_or_after_a_write_are_its_last_steps(kernels
     late[0].step(DT)
     eager[0].step(DT)
     assert values(*late[1:])[3] == values(*eager[1:])[3] != 123.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_joint_copied_or_pickled_before_its_impulses_are_read_has_the_steps(
+    kernels: str,
+) -> None:
+    # A copy of a joint whose step's impulses are still pending takes them (a copy is no joint
+    # of the step's, so it would never be filled); a pickle likewise carries the values, and
+    # neither keeps the step's report as its own.
+    import copy
+    import pickle
+
+    from engine import Hinge
+
+    def stepped() -> Hinge:
+        world = soft(kernels)
+        plank = world.add(Body(Vector(1.0, 0.0), shape=Polygon.box(2.0, 0.2), mass=3.0))
+        hinge = world.add_link(Hinge(plank, world.static_body, (0.0, 0.0)))
+        for _ in range(10):
+            world.step(DT)
+        return hinge
+
+    read = stepped()
+    want = (read.linear_impulse, read.angular_impulse, read.impulse)
+    assert want[0] != Vector(0.0, 0.0)  # (it holds the plank up: a push to compare)
+    for make in (copy.copy, lambda j: pickle.loads(pickle.dumps(j))):
+        twin = make(stepped())
+        assert twin._pending is None
+        assert (twin.linear_impulse, twin.angular_impulse, twin.impulse) == want

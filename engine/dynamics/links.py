@@ -52,7 +52,7 @@ import numpy as np
 
 from .. import checks
 from ..vector import Vector
-from .reported import Pending, Reported
+from .reported import Pending, Reported, reported_state
 
 if TYPE_CHECKING:
     from ..body import Body
@@ -146,6 +146,11 @@ class Link:
         "The impulse (N s) the link gave in the last step, along it: > 0 pulls the ends "
         "together (a rod's tension), < 0 pushes them apart (a rod in compression)."
     )
+
+    def __getstate__(self) -> tuple[None, dict[str, Any]]:
+        """For ``copy`` and ``pickle``: the slots, the last step's impulses put on it first
+        (engine.dynamics.reported.reported_state)."""
+        return reported_state(self)
 
     #: Whether the link holds the distance both ways (a rod) or only at most (a cable).
     rigid = True

@@ -58,7 +58,7 @@ from .. import checks
 from ..accuracy import expm
 from ..vector import Vector
 from .links import fixed_point, local_anchor, plane_body
-from .reported import Pending, Reported
+from .reported import Pending, Reported, reported_state
 
 if TYPE_CHECKING:
     from ..body import Body
@@ -98,6 +98,11 @@ class MouseJoint:
     impulse: Reported[Vector] = Reported(
         "The impulse (N s) the joint gave its body in the last step."
     )
+
+    def __getstate__(self) -> tuple[None, dict[str, Any]]:
+        """For ``copy`` and ``pickle``: the slots, the last step's impulses put on it first
+        (engine.dynamics.reported.reported_state)."""
+        return reported_state(self)
 
     def __init__(
         self,

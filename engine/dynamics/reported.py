@@ -9,14 +9,15 @@ every one of them on its joint (``Pending.fill``). What a read returns is the sa
 
 A reported value is a ``Reported`` descriptor on the joint's class, kept in a slot of the same
 name with a leading underscore; the joint's ``_pending`` slot holds the step's ``Pending``
-(None once filled).
+(None once filled). A joint copied or pickled takes its values filled, and no ``Pending``
+(``reported_state``, its class's ``__getstate__``): a copy is no joint of the step's.
 """
 
 from __future__ import annotations
 
 from typing import Any, Generic, TypeVar, overload
 
-__all__ = ["Pending", "Reported"]
+__all__ = ["Pending", "Reported", "reported_state"]
 
 T = TypeVar("T")
 
@@ -64,3 +65,22 @@ class Reported(Generic[T]):
         if pending is not None:
             pending.fill()  # (the step's other values stay as it reported them)
         self._slot.__set__(obj, value)
+
+
+def reported_state(obj: Any) -> tuple[None, dict[str, Any]]:
+    """A joint's state for ``copy`` and ``pickle`` (its class's ``__getstate__``): every slot's
+    value, the pending step's values put on it first, and no ``Pending`` kept (a copy is not
+    one of the step's joints, so a ``Pending`` would never fill it)."""
+    pending = obj._pending
+    if pending is not None:
+        pending.fill()
+    state: dict[str, Any] = {}
+    for cls in type(obj).__mro__:
+        slots = cls.__dict__.get("__slots__", ())
+        for name in (slots,) if isinstance(slots, str) else slots:
+            try:
+                state[name] = cls.__dict__[name].__get__(obj, cls)
+            except AttributeError:
+                continue  # a slot never set
+    state["_pending"] = None
+    return None, state

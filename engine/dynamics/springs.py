@@ -37,7 +37,7 @@ from .. import checks
 from ..body import Body
 from ..vector import Vector
 from .links import STATIC, StaticBody, fixed_point, local_anchor, plane_body
-from .reported import Pending, Reported
+from .reported import Pending, Reported, reported_state
 
 __all__ = ["DampedSpring", "DampedRotarySpring", "BodySpring"]
 
@@ -80,6 +80,11 @@ class BodySpring:
     impulse: Reported[float] = Reported(
         "The impulse the spring gave in the last step (see each class)."
     )
+
+    def __getstate__(self) -> tuple[None, dict[str, Any]]:
+        """For ``copy`` and ``pickle``: the slots, the last step's impulses put on it first
+        (engine.dynamics.reported.reported_state)."""
+        return reported_state(self)
 
     #: Both solvers hold a spring (engine.dynamics.constraints' joints are the soft step's alone).
     needs_soft: ClassVar[bool] = False
