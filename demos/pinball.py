@@ -321,14 +321,15 @@ class PinballGame:
 
     ``step(dt)`` is one fixed step of the whole game (the controls are read, the flippers
     driven, the World steps, the rules apply); ``t`` is the World's time. ``player`` says what
-    the controls are; by default the autopilot plays.
+    the controls are; by default the autopilot plays. ``solver``: the World's, the exact
+    models by default (the flippers' impacts on the ball at their moment, and their limits
+    held to 1e-9 rad); "soft", the game's step, takes a tenth of their time (demos.bench
+    pinball), its bats' limits giving about a degree under the motors' torque.
     """
 
-    def __init__(self, seed: int = 1, player: Player | None = None) -> None:
+    def __init__(self, seed: int = 1, player: Player | None = None, solver: str = "exact") -> None:
         self.rng = np.random.default_rng(seed)
-        # The exact models, asked for: the flippers' impacts on the ball at their moment (on
-        # the soft step the ball ends a step inside a turning bat in 7 of 1000 throws).
-        self.world = World(integrator="auto", solver="exact")
+        self.world = World(integrator="auto", solver=solver)
         self.table = build_table(self.world)
         self.ball = add_ball(self.world, PLUNGER_REST)
         self.kinds: dict[Any, str] = {}

@@ -292,3 +292,18 @@ def test_game_over_is_written_where_nothing_of_the_table_is_drawn(
     table.draw(surface, 1.0)
     under = pygame.surfarray.array3d(surface)[box.left : box.right, box.top : box.bottom]
     assert np.all(under == pb.BACKGROUND), "the table is drawn under GAME OVER"
+
+
+def test_on_the_soft_step_the_game_plays_its_ball_out_of_the_lane_and_scores() -> None:
+    # The soft step's speculative contact once stopped the ball shot up the lane at the inlane
+    # guide's end 1 mm beside its path (tests/test_rigid_scenes.py's ball passing a wall's
+    # end): the game never left the plunger. Now the shot leaves the lane over the arch and the
+    # autopilot scores within 10 s.
+    game = pb.PinballGame(1, solver="soft")
+    assert game.world.solver == "soft"
+    top = 0.0
+    for _ in range(round(10.0 / pb.DT)):
+        game.step(pb.DT)
+        top = max(top, game.ball.pos.y)
+    assert top > pb.LANE_WALL_TOP
+    assert game.score.points > 0

@@ -24,8 +24,10 @@ against the bat too; ``bullet=False`` shows what a ball that is none meets there
 **Step time.** The whole table in each engine, played by the same autopilot
 (``demos.pinball.autopilot``) with the same rules (the kicks of bumpers and slingshots, the
 plunger, the drain), timed as CPU seconds a step (the game's step: the controls, the physics,
-the rules), in rounds that alternate the two engines; the medians, their ratio, and the share
-of a 60 fps frame (16.7 ms) our two steps of 1/120 s take.
+the rules), in rounds that alternate the engines; the medians, their ratio, and the share
+of a 60 fps frame (16.7 ms) our two steps of 1/120 s take. The same game on the soft step
+(``PinballGame(solver="soft")``, the game's own World on the exact models otherwise) is timed
+in the same rounds.
 """
 
 from __future__ import annotations
@@ -372,13 +374,15 @@ def throw(trial: int, flips: int = 1000, seed: int = 26) -> Tunnelling:
 
 
 def step_times(seconds: float = 20.0, rounds: int = 5, seed: int = 1) -> dict[str, float]:
-    """Median CPU seconds a game step of the whole table, ours and pymunk's, in rounds of
-    ``seconds`` of game each, alternating (each game continues from round to round)."""
-    ours, theirs = pb.PinballGame(seed), PymunkGame(seed)
+    """Median CPU seconds a game step of the whole table, ours ("ours": the game's World, the
+    exact models; "soft": the same game on the soft step) and pymunk's, in rounds of
+    ``seconds`` of game each, in turn (each game continues from round to round)."""
+    ours, soft, theirs = pb.PinballGame(seed), pb.PinballGame(seed, solver="soft"), PymunkGame(seed)
     steps = round(seconds / pb.DT)
-    samples: dict[str, list[float]] = {"ours": [], "pymunk": []}
+    samples: dict[str, list[float]] = {"ours": [], "soft": [], "pymunk": []}
     runs: list[tuple[str, Callable[[], None]]] = [
         ("ours", lambda: ours.step(pb.DT)),
+        ("soft", lambda: soft.step(pb.DT)),
         ("pymunk", lambda: theirs.step(pb.DT)),
     ]
     for _, fn in runs:  # warm up (the fast path's kernels load)
@@ -392,6 +396,8 @@ def step_times(seconds: float = 20.0, rounds: int = 5, seed: int = 1) -> dict[st
             samples[name].append((time.process_time() - start) / steps)
             if name == "ours" and ours.score.over:
                 ours = pb.PinballGame(seed + r + 1)  # a new game when one ends
+            if name == "soft" and soft.score.over:
+                soft = pb.PinballGame(seed + r + 1, solver="soft")
     return {name: statistics.median(s) for name, s in samples.items()}
 
 
@@ -477,7 +483,7 @@ def report(quick: bool = False) -> str:
         f"{top / 100:.2f} m/s"
     )
     times = step_times(seconds=5.0 if quick else 20.0, rounds=3 if quick else 5)
-    ours, theirs = times["ours"], times["pymunk"]
+    ours, soft, theirs = times["ours"], times["soft"], times["pymunk"]
     frame = 1.0 / 60.0
     per_frame = round(frame / pb.DT)
     lines += [
@@ -486,6 +492,8 @@ def report(quick: bool = False) -> str:
         f"{'5' if quick else '20'} s of autopilot play each)",
         f"  this engine {1e6 * ours:8.0f} us   pymunk {1e6 * theirs:6.0f} us   "
         f"ratio {ours / theirs:.0f}x",
+        f"  the same game on the soft step (PinballGame(solver='soft')): {1e6 * soft:.0f} us, "
+        f"{soft / theirs:.0f}x pymunk's",
         f"  a 60 fps frame ({per_frame} steps): {per_frame * 1e3 * ours:.2f} ms of physics, "
         f"{100 * per_frame * ours / frame:.0f}% of the frame (pymunk "
         f"{100 * per_frame * theirs / frame:.1f}%)",
