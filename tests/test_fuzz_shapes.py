@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 import pytest
 from fuzzing import fuzz, numbers
-from hypothesis import assume, given, note
+from hypothesis import assume, example, given, note
 from hypothesis import strategies as st
 
 from engine import (
@@ -603,6 +603,181 @@ def run(spec: dict[str, Any], snap: int | None = None) -> tuple[list[bytes], dic
 
 
 @fuzz(SCENES)
+# An exploring run's scene (2026-12-03): discs and capsules of fixed rotation in a room with no
+# gravity. The soft step had dropped a pair of bodies' speculative point whose path, at the
+# step's start, passed by (engine.geometry.passing); a neighbour pushed one into the other
+# within the step, and a disc ended 0.126 m in the floor at step 6. Pairs of bodies keep
+# their points now.
+@example(
+    spec={
+        "half": (6.0, 5.0),
+        "walls": "room",
+        "wall_material": (0.0, 0.0),
+        "gravity": 0.0,
+        "steps": 60,
+        "snap": 0,
+        "kinematic": None,
+        "bodies": [
+            {
+                "kind": "capsule",
+                "geometry": (0.5, 0.25),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-4.975, -3.975),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.5,),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-4.975, -1.9250000000000003),
+            },
+            {
+                "kind": "box",
+                "geometry": (1.0, 1.0, 0.0),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (1.174999999999999, -1.9250000000000003),
+            },
+            {
+                "kind": "box",
+                "geometry": (1.0, 1.0, 0.0),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (1.174999999999999, 0.125),
+            },
+            {
+                "kind": "capsule",
+                "geometry": (0.5, 0.25),
+                "mass": 5.0,
+                "restitution": 0.25,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 56.0,
+                "heading": -1.25,
+                "fixed": True,
+                "at": (-4.975, 0.125),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.5,),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 26.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-2.9250000000000003, -1.9250000000000003),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.5,),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-2.9250000000000003, 2.174999999999999),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.4375,),
+                "mass": 0.25,
+                "restitution": 0.5,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 6.0,
+                "heading": 2.0,
+                "fixed": True,
+                "at": (-2.9250000000000003, 0.125),
+            },
+            {
+                "kind": "capsule",
+                "geometry": (0.71875, 0.28125),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-4.975, 2.174999999999999),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.5,),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-0.875, -1.9250000000000003),
+            },
+            {
+                "kind": "capsule",
+                "geometry": (0.5, 0.25),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (-0.875, 2.174999999999999),
+            },
+            {
+                "kind": "capsule",
+                "geometry": (0.5, 0.25),
+                "mass": 1.0,
+                "restitution": 0.0,
+                "friction": 0.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (1.174999999999999, -3.975),
+            },
+        ],
+        "solver": "auto",
+    }
+)
 @given(spec=scenes())
 def test_mixed_scenes_stay_finite_in_the_room_and_replay_bit_for_bit(spec: dict[str, Any]) -> None:
     first, seen = run(spec, snap=spec["snap"])

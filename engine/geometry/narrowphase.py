@@ -421,7 +421,11 @@ def collide_pairs(
         u_a = np.where(swap[:, None], vb, va)
         u_b = np.where(swap[:, None], va, vb)
         u = np.stack([(u_b[:, 0] - u_a[:, 0]) * dt, (u_b[:, 1] - u_a[:, 1]) * dt], axis=1)
-        ask = np.flatnonzero((m.count > 0) & (m.separation[:, 0] > SPECULATIVE_DISTANCE))
+        # (A pair of bodies keeps its points: another body may turn either toward the other
+        # within the step, where a static shape's partner is the only one moving.)
+        ask = np.flatnonzero(
+            (m.count > 0) & (m.separation[:, 0] > SPECULATIVE_DISTANCE) & is_static[sel]
+        )
         if len(ask):
             vertices, _, count, radius = t.kernel_polygons
             test: Any = passing_loop.py if len(ask) <= FEW_ROUND else passing

@@ -13,7 +13,8 @@ Box2D v3 keeps points only within 4 slops and sweeps fast bodies for their momen
 instead; this engine keeps them, and drops the ones whose pair cannot meet in the step:
 
 A round pair (A a circle or a polygon, a capsule among them, B a circle; engine.geometry's
-``round_loop``) whose point is apart by more than ``SPECULATIVE_DISTANCE`` is kept only where
+``round_loop``) of a body and a static shape whose point is apart by more than
+``SPECULATIVE_DISTANCE`` is kept only where
 B's centre, moving in A's frame by u (the pair's relative displacement over the step at their
 velocities at its start), comes within rA + rB + slack of A's core (a point, a segment or a
 polygon): the least distance of the segment c..c + u from A's core, exact (the segments'
@@ -21,7 +22,10 @@ nearest points, or 0 where they cross). ``slack`` is a slop (engine.geometry.man
 LINEAR_SLOP: what the narrowphase counts as touching) and what the two can move beyond
 their velocities (their reach less |v| dt: the held accelerations and the turning), so a pair
 that can meet in the step keeps its point. One that passes within the speculative distance
-is met again at the next step's start, as near points are, along its own normal there.
+is met again at the next step's start, as near points are, along its own normal there. A pair
+of bodies keeps its points: another body may push either toward the other within the step
+(tested: a disc squeezed 0.126 m into the floor by a neighbour whose point was dropped, in an
+exploring run of the shapes fuzz), where a static shape's partner is the only one that moves.
 
 ``passing_loop`` is the test a pair at a time (the fast path's, inside its contacts stage, and
 the numpy path's for a few pairs); ``passing`` is the same products over arrays (the numpy

@@ -442,6 +442,7 @@ def contacts_loop(
     lo, hi = start[1], start[2]
     if hi > lo:
         u = np.zeros((hi - lo, 2))
+        against = np.zeros(hi - lo, dtype=np.bool_)  # a static shape's pair (tested)
         slack = np.zeros(hi - lo)
         for i in range(m):
             if group_of[i] != 1:
@@ -456,6 +457,7 @@ def contacts_loop(
                 extra_b = max(reach[b] - np.sqrt(vbx * vbx + vby * vby) * dt, 0.0)
             extra_a = max(reach[a] - np.sqrt(vax * vax + vay * vay) * dt, 0.0)
             slack[j] = LINEAR_SLOP + extra_a + extra_b
+            against[j] = s >= 0
             if swap[i]:  # the polygon (B's side) as A
                 u[j, 0], u[j, 1] = (vax - vbx) * dt, (vay - vby) * dt
             else:
@@ -465,7 +467,8 @@ def contacts_loop(
             gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi], u, slack,
         )  # fmt: skip
         for j in range(lo, hi):
-            if count[j] > 0 and separation[j, 0] > SPECULATIVE_DISTANCE and not keep[j - lo]:
+            spec = count[j] > 0 and separation[j, 0] > SPECULATIVE_DISTANCE
+            if spec and against[j - lo] and not keep[j - lo]:
                 count[j] = 0
     # -- 4. the rows, in the broadphase's order ------------------------------------------------
     rows = 0
