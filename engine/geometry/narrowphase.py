@@ -401,38 +401,28 @@ def collide_pairs(
         m = collide_round_pairs(
             t, c(flag), c(ia), c(pa), c(wa), c(ib), c(pb), c(wb), float(reach[sel].max()), False
         )
-        # A point kept for reach that the pair's path passes by is dropped (engine.geometry.
-        # passing): B's move relative to A at their velocities, and the slack of a slop and
-        # what each can move beyond them (the reach less |v| dt; a static shape's none).
-        v = store.v
-        va = v[a[sel]]
-        vb = np.where(is_static[sel][:, None], 0.0, v[other[sel]])
-        extra_a = np.maximum(
-            margin[a[sel]] - np.sqrt(va[:, 0] * va[:, 0] + va[:, 1] * va[:, 1]) * dt, 0.0
-        )
-        extra_b = np.where(
-            is_static[sel],
-            0.0,
-            np.maximum(
-                margin[other[sel]] - np.sqrt(vb[:, 0] * vb[:, 0] + vb[:, 1] * vb[:, 1]) * dt, 0.0
-            ),
-        )
-        slack = LINEAR_SLOP + extra_a + extra_b
-        u_a = np.where(swap[:, None], vb, va)
-        u_b = np.where(swap[:, None], va, vb)
-        u = np.stack([(u_b[:, 0] - u_a[:, 0]) * dt, (u_b[:, 1] - u_a[:, 1]) * dt], axis=1)
-        # (A pair of bodies keeps its points: another body may turn either toward the other
-        # within the step, where a static shape's partner is the only one moving.)
+        # A body's point against a static shape kept for reach that its path passes by is
+        # dropped (engine.geometry.passing): the body's move relative to the shape at its
+        # velocity, and the slack of a slop and what it can move beyond that (its reach less
+        # |v| dt). (A pair of bodies keeps its points: another body may push either toward
+        # the other within the step, where a static shape's partner is the only one moving.)
         ask = np.flatnonzero(
             (m.count > 0) & (m.separation[:, 0] > SPECULATIVE_DISTANCE) & is_static[sel]
         )
         if len(ask):
+            body = a[sel][ask]
+            v = store.v[body]
+            speed = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1])
+            slack = LINEAR_SLOP + np.maximum(margin[body] - speed * dt, 0.0)
+            # B's move relative to A: the body's where the shape is A (the pair swapped),
+            # else the shape's relative to the body, minus it.
+            turned = swap[ask][:, None]
+            u = np.where(turned, (v - 0.0) * dt, (0.0 - v) * dt)
             vertices, _, count, radius = t.kernel_polygons
             test: Any = passing_loop.py if len(ask) <= FEW_ROUND else passing
             keep = test(
                 vertices, count, radius, t.center, t.round, c(flag[ask]), c(ia[ask]),
-                c(pa[ask]), c(wa[ask]), c(ib[ask]), c(pb[ask]), c(wb[ask]), c(u[ask]),
-                c(slack[ask]),
+                c(pa[ask]), c(wa[ask]), c(ib[ask]), c(pb[ask]), c(wb[ask]), c(u), c(slack),
             )  # fmt: skip
             m.count[ask[~np.asarray(keep, dtype=bool)]] = 0
         if swap.any():

@@ -437,39 +437,46 @@ def contacts_loop(
             anchor_b[j, 0, 1] = wy + (0.0 - gx_b[j, 1])
             separation[j, 0], feature[j, 0] = gap, 0
             count[j] = 1
-    # -- 3b. a round pair's point kept for reach that the pair's path passes by is dropped
-    # (engine.geometry.passing; engine.geometry.narrowphase.collide_pairs' products, in its order)
+    # -- 3b. a body's round point against a static shape kept for reach that its path passes
+    # by is dropped (engine.geometry.passing; engine.geometry.narrowphase.collide_pairs'
+    # products, in its order; a pair of bodies keeps its points)
     lo, hi = start[1], start[2]
-    if hi > lo:
+    ask = np.empty(hi - lo, dtype=np.int64)  # the group's places asked, in its order
+    n_ask = 0
+    for j in range(lo, hi):
+        if count[j] > 0 and separation[j, 0] > SPECULATIVE_DISTANCE:
+            ask[n_ask] = j
+            n_ask += 1
+    if n_ask:
+        asked = np.zeros(hi - lo, dtype=np.bool_)
         u = np.zeros((hi - lo, 2))
-        against = np.zeros(hi - lo, dtype=np.bool_)  # a static shape's pair (tested)
         slack = np.zeros(hi - lo)
         for i in range(m):
-            if group_of[i] != 1:
-                continue
             j = where[i] - lo
-            a, b, s = cand_a[i], cand_b[i], cand_p[i]
-            vax, vay = vel[a, 0], vel[a, 1]
-            vbx, vby = 0.0, 0.0
-            extra_b = 0.0
-            if s < 0:
-                vbx, vby = vel[b, 0], vel[b, 1]
-                extra_b = max(reach[b] - np.sqrt(vbx * vbx + vby * vby) * dt, 0.0)
-            extra_a = max(reach[a] - np.sqrt(vax * vax + vay * vay) * dt, 0.0)
-            slack[j] = LINEAR_SLOP + extra_a + extra_b
-            against[j] = s >= 0
-            if swap[i]:  # the polygon (B's side) as A
-                u[j, 0], u[j, 1] = (vax - vbx) * dt, (vay - vby) * dt
+            if group_of[i] != 1 or cand_p[i] < 0:
+                continue
+            a = cand_a[i]
+            vx, vy = vel[a, 0], vel[a, 1]
+            slack[j] = LINEAR_SLOP + max(reach[a] - np.sqrt(vx * vx + vy * vy) * dt, 0.0)
+            if swap[i]:  # the shape as A: the body moves by its own
+                u[j, 0], u[j, 1] = (vx - 0.0) * dt, (vy - 0.0) * dt
             else:
-                u[j, 0], u[j, 1] = (vbx - vax) * dt, (vby - vay) * dt
-        keep = passing_loop(
-            V, cnt, rad, center, rnd, flag[lo:hi], gi_a[lo:hi], gx_a[lo:hi], gq_a[lo:hi],
-            gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi], u, slack,
-        )  # fmt: skip
-        for j in range(lo, hi):
-            spec = count[j] > 0 and separation[j, 0] > SPECULATIVE_DISTANCE
-            if spec and against[j - lo] and not keep[j - lo]:
-                count[j] = 0
+                u[j, 0], u[j, 1] = (0.0 - vx) * dt, (0.0 - vy) * dt
+            asked[j] = True
+        k = 0
+        for t in range(n_ask):
+            if asked[ask[t] - lo]:
+                ask[k] = ask[t]
+                k += 1
+        if k:
+            at = ask[:k]
+            keep = passing_loop(
+                V, cnt, rad, center, rnd, flag[at], gi_a[at], gx_a[at], gq_a[at], gi_b[at],
+                gx_b[at], gq_b[at], u[at - lo], slack[at - lo],
+            )  # fmt: skip
+            for t in range(k):
+                if not keep[t]:
+                    count[at[t]] = 0
     # -- 4. the rows, in the broadphase's order ------------------------------------------------
     rows = 0
     sensing = 0
