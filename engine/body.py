@@ -294,7 +294,7 @@ class Body:
         self._radius, self._e, self._mu = material(radius, restitution, friction)
         self._shape: Any = None
         #: Where the centre of mass lies in the frame the shape was given in (length units):
-        #: the shape is held moved by it, and the position is there (engine.geometry.compound).
+        #: the shape is held moved by it, and the position is there (engine.body_shapes).
         self._cog = Vector(0.0, 0.0)
         if shapes is not None:
             shape, density = _of_parts(shape, shapes, dim, density)
@@ -791,7 +791,7 @@ class Body:
         kinematic body (which turns about its position). A dynamic body's position is its centre
         of mass: ``Body(p, shape=Polygon([(0, 0), (2, 0), (2, 1), (0, 1)]))`` holds the box
         about (1, 0.5) and is at p + (1, 0.5), so the frame's origin (a sprite's) is
-        ``body.local_to_world(-body.center_of_gravity)`` (engine.geometry.compound)."""
+        ``body.origin`` (engine.body_shapes)."""
         return self._cog
 
     @center_of_gravity.setter
@@ -801,6 +801,26 @@ class Body:
             f"body.center_of_gravity = {value!r} cannot change it: give the body a moment=... "
             f"for another spin, or make it of other shapes"
         )
+
+    @property
+    def origin(self) -> Vector:
+        """Where the origin of the frame the body's shapes were drawn in is now (length units,
+        2D): ``local_to_world(-center_of_gravity)``, the position itself for a shape centred
+        on it. pymunk's ``body.position`` is this point (its centre of gravity is apart from
+        it), where here ``pos`` is the centre of mass. Set it to move the body so that the
+        frame's origin is there, at the body's angle (a sprite drawn about the origin)."""
+        if self._dim != 2:
+            raise TypeError("only a 2D body has a frame of shapes: read body.pos for a 1D body")
+        return self.local_to_world(-self._cog)
+
+    @origin.setter
+    def origin(self, value: Any) -> None:
+        if self._dim != 2:
+            raise TypeError(f"only a 2D body has a frame of shapes: set body.pos = {value!r}")
+        x, y = pair(value, "origin")
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        cx, cy = self._cog
+        self.pos = Vector(x + c * cx - s * cy, y + s * cx + c * cy)
 
     @property
     def restitution(self) -> float:

@@ -7,23 +7,24 @@ a ``Circle((2, 3), 1)``) holds the shape moved by -c, and its position is where 
 position given plus c turned by the body's angle (``centred``). Its moment is then about c
 (pymunk's and Box2D's, whose bodies turn about their centre of gravity), and a free body
 spinning keeps its centre where it is, as no force moves it. ``Body.center_of_gravity`` is c,
-so the frame the shape was drawn in is ``body.local_to_world(-c)`` (a sprite's origin). A body
-not of uniform density (a hammer, a flipper weighted at its pivot by its shaft) is given its
-own: ``Body(..., center_of_gravity=(0, 0))`` keeps the shape as drawn and turns about that
-point, with the shape's moment about it unless a ``moment`` is given.
-A kinematic body turns about its position, where the game put it (Box2D's kinematic bodies
-likewise): its shape stays as given.
+and the frame the shape was drawn in has its origin at ``Body.origin`` (a sprite's; pymunk's
+``body.position``). A body not of uniform density (a hammer, a flipper weighted at its pivot
+by its shaft) is given its own: ``Body(..., center_of_gravity=(0, 0))`` keeps the shape as
+drawn and turns about that point, with the shape's moment about it unless a ``moment`` is
+given. A kinematic body turns about its position, where the game put it (Box2D's kinematic
+bodies likewise): its shape stays as given.
 
 Several convex shapes make one body (``Body(..., shapes=[...])``: an L of two boxes, a cart, a
 concave thing cut into convex parts): ``Compound``. Its mass is spread over the parts by area
-(one density), its centre c is their centre of area, sum A_i c_i / sum A_i, and its moment is
-the sum of each part's about c (the parallel axes' term m_i |c_i - c|^2 in each: the parts
-are moved by -c first, and ``engine.geometry.mass`` gives each about the origin). Parts that
-have no area between them (bare segments) share the mass equally.
+(one density; or ``density=[...]``, one a part: m_i = rho_i A_i), its centre c is
+sum m_i c_i / m, and its moment is the sum of each part's about c (the parallel axes' term
+m_i |c_i - c|^2 in each: the parts are moved by -c first, and ``engine.geometry.mass`` gives
+each about the origin). Parts that have no area between them (bare segments) share the mass
+equally.
 
 >>> from engine.geometry.colliders import Polygon
 >>> L = Compound([Polygon.box(2, 0.4, center=(1, 0.2)), Polygon.box(0.4, 1, center=(0.2, 0.9))])
->>> [round(v, 6) for v in L.offset], round(centred(L, L.offset).moment(1.2), 6)  # pymunk's
+>>> [round(v, 6) for v in L.offset], round(centred(L)[0].moment(1.2), 6)  # pymunk's
 ([0.733333, 0.433333], 0.617333)
 """
 

@@ -60,6 +60,27 @@ def test_the_frame_given_is_put_at_the_position_turned_by_the_angle() -> None:
     assert Body(at, shape=box).shape is box and Body(at, shape=box).pos == at
 
 
+@pytest.mark.parametrize("kernels", PATHS)
+def test_origin_is_the_frame_s_origin_read_and_written_as_pymunk_s_position(
+    kernels: str,
+) -> None:
+    # pymunk's body.position is the origin of the frame its shapes are drawn in; here
+    # body.origin, where pos is the centre of mass. Written, the body moves so that the
+    # origin is there, at its angle.
+    w = World(kernels=kernels, solver="soft")
+    b = w.add(Body(Vector(1, 2), shape=Segment((0, 0), (2, 0), 0.1), angle=0.5))
+    assert b.origin.x == pytest.approx(1.0, abs=1e-15)
+    assert b.origin.y == pytest.approx(2.0, abs=1e-15)
+    b.origin = (5, 5)
+    cx, cy = _turned(0.5, 1.0, 0.0)
+    assert b.pos.x == pytest.approx(5 + cx, abs=1e-15) and b.pos.y == pytest.approx(
+        5 + cy, abs=1e-15
+    )
+    assert (b.origin - Vector(5, 5)).length() < 1e-14
+    with pytest.raises(TypeError, match="origin must be"):
+        b.origin = "here"
+
+
 def test_a_triangle_drawn_from_its_corner_has_its_mass_centre_and_moment() -> None:
     # The right triangle (0, 0), (4, 0), (0, 3) at density 2: mass 12 kg, centroid (4/3, 1), and
     # about it I = m (a^2 + b^2 + c^2) / 36 with sides 3, 4 and 5 (pymunk's moment with its
