@@ -318,3 +318,23 @@ def test_an_l_hung_on_a_hinge_swings_about_it_as_a_physical_pendulum(kernels: st
     crossings = swings.crossings(w, L, 1 / 240, 2.5 * period)
     assert len(crossings) >= 2
     assert crossings[1] - crossings[0] == pytest.approx(period, rel=2e-5)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_kinematic_body_of_two_shapes_carries_what_rests_on_either(kernels: str) -> None:
+    # A lift of two platforms drawn about its position (a kinematic body keeps its shapes as
+    # drawn), going up at 0.5 m/s: a ball on each rides it, each 0.35 m over its platform's
+    # middle (the platform's top 0.1 m over it, the ball's radius 0.25 m).
+    w = World(kernels=kernels, solver="soft")
+    w.add_force(Gravity((0.0, -G)))
+    lift = w.add(Body(Vector(0, 0), Vector(0, 0.5), kinematic=True, shapes=[
+        Polygon.box(1, 0.2, center=(-2, 0)), Polygon.box(1, 0.2, center=(2, 1))]))  # fmt: skip
+    assert lift.center_of_gravity == (0, 0) and lift.shapes[1].vertices[0] == (1.5, 0.9)
+    left = w.add(Body(Vector(-2, 0.35), radius=0.25))
+    right = w.add(Body(Vector(2, 1.35), radius=0.25))
+    for _ in range(120):
+        w.step(1 / 60)
+    assert lift.pos.y == pytest.approx(1.0, abs=1e-12)
+    assert left.pos.y - lift.pos.y == pytest.approx(0.35, abs=1e-12)  # (it holds its load)
+    assert right.pos.y - lift.pos.y == pytest.approx(1.35, abs=1e-12)
+    assert abs(left.pos.x + 2) < 1e-9 and abs(right.pos.x - 2) < 1e-9
