@@ -11,8 +11,10 @@ Every piece is the engine's public API, and the game writes no collision code of
 
 * the walls, the lane guides, the top arch and the top lanes are ``Segment`` colliders
   (capsules); the bumpers are ``Circle`` colliders and the slingshots capsules;
-* each flipper is a dynamic body with a ``Polygon`` shape (a tapered bat, its pivot at the
-  body's position), held to the table by a ``Hinge`` to ``world.static_body`` with
+* each flipper is a dynamic body with a ``Polygon`` shape (a tapered bat drawn from its
+  pivot), its centre of gravity at the pivot (a flipper's shaft and crank weigh it there; a
+  uniform bat's would be 3.6 cm along it), held to the table by a ``Hinge`` to
+  ``world.static_body`` with
   ``limits`` (rest and up, 55 degrees apart) and a motor: ``hinge.motor_speed`` is set to
   +/- FLIP_SPEED each step, up while the key is held and down when it is let go, with at
   most FLIP_TORQUE (so the bat is at the top five steps, 42 ms, after the key is pressed);
@@ -174,8 +176,8 @@ class PinballSnapshot:
 
 
 def flipper_shape(side: int) -> Polygon:
-    """A tapered bat from its pivot (the body's position) to its tip: along +x for the left
-    flipper (side -1), along -x for the right (side +1)."""
+    """A tapered bat from its pivot (the origin of its frame, the flipper's centre of gravity)
+    to its tip: along +x for the left flipper (side -1), along -x for the right (side +1)."""
     length, root, tip = FLIPPER_LENGTH, FLIPPER_ROOT, FLIPPER_TIP
     d = -side  # +1: the bat points right
     return Polygon([(0.0, -root), (d * length, -tip), (d * length, tip), (0.0, root)])
@@ -283,6 +285,7 @@ def add_flipper(world: World, side: int, mass: float = FLIPPER_MASS) -> tuple[Bo
     only_ball = Filter(categories=FLIPPER_BIT, mask=BALL_BIT)
     flipper = world.add(
         Body(Vector(*pivot), mass=mass, shape=flipper_shape(side), angle=rest,
+             center_of_gravity=(0.0, 0.0),  # weighted at its pivot by the shaft and crank
              restitution=FLIPPER_RESTITUTION, friction=FLIPPER_FRICTION, filter=only_ball)
     )  # fmt: skip
     # The joint's angle starts at 0 (at rest); up is counter-clockwise for the left bat.

@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, Any, Protocol, cast
 
 from .body_habits import install as install_habits
 from .body_habits import mass_and_moment
+from .body_shapes import PARTS, Compound, centred
 from .body_values import (
     DEFAULT_MASS,
     FRICTION,
@@ -112,6 +113,35 @@ def _flag(value: Any, name: str, meaning: str) -> bool:
     return value
 
 
+#: The shapes a dynamic body holds about their centre of mass (engine.body_shapes).
+CENTRED = (*PARTS, "Compound")
+
+
+#: ``density`` read from each of a body's shapes (``_of_parts``).
+_OWN: Any = object()
+
+
+def _of_parts(shape: Any, shapes: Any, dim: int, density: Any) -> tuple[Any, Any]:
+    """The body's shape made of ``shapes`` (engine.body_shapes): the one shape of a list of one,
+    else a Compound of them; and its density: as given, or ``_OWN`` where a list gives each
+    shape's (pymunk's shape.density). A TypeError where ``shape`` is given too, or the body is
+    1D; a ValueError for a list of densities that is not one for each shape."""
+    if shape is not None:
+        raise TypeError(
+            f"give a Body shape=... (one shape) or shapes=[...] (several on one body), not "
+            f"both: got shape={shape!r} and shapes={shapes!r}"
+        )
+    if dim != 2:
+        raise TypeError(f"only a 2D body takes shapes, got shapes={shapes!r} on a 1D body")
+    each = None
+    if isinstance(density, (list, tuple)):
+        each = [coerce_density(d, f"density[{i}]") for i, d in enumerate(density)]
+    made = Compound(shapes, each)
+    if len(made) == 1:
+        return made.parts[0], density if each is None else each[0]
+    return made, density if each is None else _OWN
+
+
 def _sensor_flag(value: Any) -> bool:
     """``Body.sensor``'s value, checked (``_flag``)."""
     return _flag(value, "sensor", "the body pushes nothing; its overlaps are reported")
@@ -174,6 +204,7 @@ class Body:
         "_density",
         "_radius",
         "_shape",
+        "_cog",
         "_e",
         "_mu",
         "_filter",
@@ -217,6 +248,8 @@ class Body:
         collision_type: int = 0,
         sensor: bool = False,
         bullet: bool = False,
+        center_of_gravity: Any = None,
+        shapes: Any = None,
     ) -> None:
         if velocity is None or acceleration is None:
             # Left out: zero, of the position's dimension (a float in 1D, a Vector in 2D).
@@ -260,13 +293,31 @@ class Body:
         self._mass: float = coerce_mass(mass)
         self._radius, self._e, self._mu = material(radius, restitution, friction)
         self._shape: Any = None
+        #: Where the centre of mass lies in the frame the shape was given in (length units):
+        #: the shape is held moved by it, and the position is there (engine.body_shapes).
+        self._cog = Vector(0.0, 0.0)
+        if shapes is not None:
+            shape, density = _of_parts(shape, shapes, dim, density)
+        at = self._given_cog(center_of_gravity, dim, kinematic)
+        if at is not None and (shape is None or type(shape).__name__ == "Circle"):
+            if shape is None or tuple(at) != tuple(shape.center):
+                raise ValueError(
+                    f"a round body turns about its centre, which is its centre of gravity: got "
+                    f"center_of_gravity={center_of_gravity!r} for "
+                    f"{'a disc or point' if shape is None else repr(shape)} (leave it out)"
+                )
         if shape is not None:
+            if dim == 2 and kinematic is not True and type(shape).__name__ in CENTRED:
+                shape, self._cog = centred(shape, at)
             self._radius = self._take_shape(shape, dim)
             self._shape = shape
         #: The density given (kg/m^2), or None: what ``density`` reads while the mass is still
         #: density * area (once a mass set or a snapshot restored makes it another, mass / area).
         self._density: float | None = None
-        if density is not None:
+        if density is _OWN:
+            # Each shape's own density (engine.body_shapes): the mass sum rho_i A_i.
+            self._mass = self._mass_of(1.0, made=True, mass=shape.mass_of(None))
+        elif density is not None:
             per_area = coerce_density(density)
             self._mass, self._density = self._mass_of(per_area, made=True), per_area
         self._filter = as_filter(filter)
@@ -279,6 +330,13 @@ class Body:
         self._store: BodyStore | None = None  # set by the World that holds this body
         self._slot: int = -1
         self._take_rotation(angle, angular_velocity, moment, fixed_rotation, torque)
+        if self._cog.x != 0.0 or self._cog.y != 0.0:
+            # The position given is the shape's frame's origin: the body's is its centre of
+            # mass, that frame's cog turned by the angle (engine.body_shapes).
+            c, s_ = math.cos(self._angle), math.sin(self._angle)
+            cx, cy = self._cog
+            p = cast(Vector, self.pos)
+            self._store_pos(Vector(p.x + c * cx - s_ * cy, p.y + s_ * cx + c * cy))
         #: The game's own (a sprite, a score, a name; pymunk users set attributes on a Body):
         #: the engine never reads it; a World's snapshot does not keep it.
         self.data: Any = data
@@ -319,8 +377,8 @@ class Body:
             if not inertia > 0.0:
                 raise ValueError(
                     f"shape must have a moment of inertia > 0 and finite for mass "
-                    f"{self._mass!r}, got {inertia!r} kg m^2 for {self._shape!r}{why}; give the "
-                    f"shape in other length units, or moment=... or fixed_rotation=True"
+                    f"{self._mass!r}, got {inertia!r} kg m^2 for {self._given_shape()!r}{why}; "
+                    f"give the shape in other length units, or moment=... or fixed_rotation=True"
                 )
         if (self._angle or self._omega) and not self._steered() or self._torque and not self.turns:
             raise ValueError(self._why_not("angle", self._angle, self._omega, self._torque))
@@ -412,12 +470,13 @@ class Body:
             r * r
         )  # Circle((0, 0), r).area's bits (engine.geometry.mass.area_for_circle)
 
-    def _mass_of(self, density: float, made: bool) -> float:
+    def _mass_of(self, density: float, made: bool, mass: float | None = None) -> float:
         """The mass (kg) ``density`` (kg/m^2, checked) gives this body: density times its
-        shape's area; a ValueError that says why not and what to write instead (``made``: as
-        the body is made, whose shape is then fixed)."""
+        shape's area (``mass``: the sum of its shapes' own, where each has one); a ValueError
+        that says why not and what to write instead (``made``: as the body is made, whose shape
+        is then fixed)."""
         area = self._area()
-        mass = density * area
+        mass = density * area if mass is None else mass
         if area > 0.0 and math.isfinite(mass) and mass > 0.0:
             return mass
         given = f"density={density!r} kg/m^2 gives the body a mass of density * its shape's area"
@@ -428,7 +487,7 @@ class Body:
                 f"(> 0 and finite): give a density nearer 1.0, the shape in other length units, "
                 f"or {fix}"
             )
-        shape = self._shape
+        shape = self._given_shape()
         if self._dim != 2:
             why = "a 1D body (made of numbers) has no shape and no area"
         elif shape is None:
@@ -449,6 +508,32 @@ class Body:
         if not made:
             fix = f"a Body's shape is fixed when it is made: {fix}"
         raise ValueError(f"{given}, and {why}: {fix}")
+
+    @staticmethod
+    def _given_cog(value: Any, dim: int, kinematic: Any) -> Vector | None:
+        """The ``center_of_gravity`` given (length units, in the shape's frame), checked; None
+        where it is left to the shape (its centroid)."""
+        if value is None:
+            return None
+        if dim != 2:
+            raise TypeError(
+                f"only a 2D body takes a center_of_gravity, got center_of_gravity={value!r} "
+                f"on a 1D body"
+            )
+        cx, cy = pair(value, "center_of_gravity")
+        if kinematic is True and (cx != 0.0 or cy != 0.0):
+            raise ValueError(
+                f"a kinematic body turns about its position, where the game puts it, so it "
+                f"takes no center_of_gravity off it: got center_of_gravity={value!r} (leave it "
+                f"out, or make the body dynamic)"
+            )
+        return Vector(cx, cy)
+
+    def _given_shape(self) -> Any:
+        """The shape as it was given (an error names it so): the one held, moved back by the
+        centre of gravity it was moved by."""
+        shape, (cx, cy) = self._shape, self._cog
+        return shape if shape is None or (cx == 0.0 and cy == 0.0) else shape.moved(cx, cy)
 
     def _take_shape(self, shape: Any, dim: int) -> float:
         """Check ``shape`` for this body; its bounding radius (length units)."""
@@ -679,13 +764,63 @@ class Body:
     @property
     def shape(self) -> Any:
         """The shape given as ``Body(..., shape=...)`` (engine.geometry.colliders: a Circle, Polygon
-        or Segment, in the body's frame, about its position), or None for a round body made
-        with ``radius`` (a disc of that radius) or a point."""
+        or Segment, in the body's frame, about its position: a dynamic body's centre of mass,
+        ``center_of_gravity``), a ``Compound`` of the parts of ``shapes=[...]``
+        (engine.body_shapes; ``body.shapes`` lists them), or None for a round body made with
+        ``radius`` (a disc of that radius) or a point."""
         return self._shape
 
     @shape.setter
     def shape(self, value: Any) -> None:
         refuse_change("shape", value)
+
+    @property
+    def shapes(self) -> tuple[Any, ...]:
+        """The body's shapes (pymunk's ``body.shapes``), as it holds them, about its position:
+        the parts of a body made with ``shapes=[...]``, the one shape of ``shape=...``, none for
+        a disc made with ``radius`` or a point."""
+        shape = self._shape
+        if shape is None:
+            return ()
+        return tuple(shape.parts) if isinstance(shape, Compound) else (shape,)
+
+    @property
+    def center_of_gravity(self) -> Vector:
+        """Where the body's centre of mass lies in the frame its shape was given in (length
+        units; pymunk's name): (0, 0) for a shape centred on the origin, a disc, a point and a
+        kinematic body (which turns about its position). A dynamic body's position is its centre
+        of mass: ``Body(p, shape=Polygon([(0, 0), (2, 0), (2, 1), (0, 1)]))`` holds the box
+        about (1, 0.5) and is at p + (1, 0.5), so the frame's origin (a sprite's) is
+        ``body.origin`` (engine.body_shapes)."""
+        return self._cog
+
+    @center_of_gravity.setter
+    def center_of_gravity(self, value: Any) -> None:
+        raise AttributeError(
+            f"a Body's center_of_gravity follows from its shape (the centre of its area), so "
+            f"body.center_of_gravity = {value!r} cannot change it: give the body a moment=... "
+            f"for another spin, or make it of other shapes"
+        )
+
+    @property
+    def origin(self) -> Vector:
+        """Where the origin of the frame the body's shapes were drawn in is now (length units,
+        2D): ``local_to_world(-center_of_gravity)``, the position itself for a shape centred
+        on it. pymunk's ``body.position`` is this point (its centre of gravity is apart from
+        it), where here ``pos`` is the centre of mass. Set it to move the body so that the
+        frame's origin is there, at the body's angle (a sprite drawn about the origin)."""
+        if self._dim != 2:
+            raise TypeError("only a 2D body has a frame of shapes: read body.pos for a 1D body")
+        return self.local_to_world(-self._cog)
+
+    @origin.setter
+    def origin(self, value: Any) -> None:
+        if self._dim != 2:
+            raise TypeError(f"only a 2D body has a frame of shapes: set body.pos = {value!r}")
+        x, y = pair(value, "origin")
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        cx, cy = self._cog
+        self.pos = Vector(x + c * cx - s * cy, y + s * cx + c * cy)
 
     @property
     def restitution(self) -> float:

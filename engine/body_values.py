@@ -93,19 +93,21 @@ def coerce_mass(mass: Any) -> float:
     return checks.mass(mass)
 
 
-def coerce_density(density: Any) -> float:
+def coerce_density(density: Any, name: str = "density") -> float:
     """Return ``density`` as a positive finite float (kg per length unit squared: a 2D density,
-    the body's mass per unit of its shape's area): checks.mass's test, in density's words."""
+    the body's mass per unit of its shape's area): checks.mass's test, in density's words
+    (``name``: the argument's, a shape's own ``density[i]``)."""
     try:
-        return checks.mass(density, "density")
+        return checks.mass(density, name)
     except TypeError:
         raise TypeError(
-            f"density must be a real number (kg/m^2: the body's mass per square metre of its "
-            f"shape, e.g. 1.0), got {type(density).__name__} {density!r}"
+            f"{name} must be a real number (kg/m^2: the body's mass per square metre of its "
+            f"shape, e.g. 1.0; with shapes=[...], a list of one for each), got "
+            f"{type(density).__name__} {density!r}"
         ) from None
     except ValueError:
         raise ValueError(
-            f"density must be > 0 and finite (kg/m^2: the body's mass per square metre of its "
+            f"{name} must be > 0 and finite (kg/m^2: the body's mass per square metre of its "
             f"shape, e.g. 1.0, Box2D's default), got {density!r}"
         ) from None
 

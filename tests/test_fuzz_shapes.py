@@ -115,21 +115,36 @@ def check_polygon(p: Polygon, given_pts: list[tuple[float, float]], mass: float)
 
 
 def check_moment(shape: Polygon | Segment, mass: float) -> float | None:
-    """The shape's moment for ``mass``, finite and > 0, the same as its Body's; or, for a
-    shape whose moment leaves the float range, a refusal by both naming the argument."""
+    """The shape's moment for ``mass`` about its frame's origin, finite and > 0, or a refusal
+    naming the argument where it leaves the float range; and its Body's, which holds the
+    shape about its centroid (engine.body_shapes) unless that is the origin to rounding: the
+    shape's moved there, the moment about the origin less the parallel axes' term m |c|^2
+    (likewise finite and > 0, or the Body refused naming its shape)."""
     try:
-        inertia = shape.moment(mass)
+        inertia: float | None = shape.moment(mass)
     except ValueError as exc:
         refused(exc, "vertices", "a and b", "radius")
-        try:
+        inertia = None
+    c = shape.centroid
+    try:
+        about: float | None = shape.moved(-c.x, -c.y).moment(mass)
+    except ValueError:
+        about = None
+    if inertia is not None:
+        assert 0.0 < inertia < math.inf
+    if about is None or not 0.0 < about < math.inf:
+        with pytest.raises(ValueError) as again:
             Body(Vector(0.0, 0.0), shape=shape, mass=mass)
-        except ValueError as again:
-            refused(again, "shape")
-            return None
-        raise AssertionError(f"a Body took {shape!r}, whose moment is refused") from None
-    assert 0.0 < inertia < math.inf
+        refused(again.value, "shape")
+        return inertia
     body = Body(Vector(0.0, 0.0), shape=shape, mass=mass)
-    assert body.moment == inertia and body.turns
+    assert body.turns
+    if body.center_of_gravity == (0.0, 0.0):
+        assert body.moment == inertia
+    else:
+        assert body.center_of_gravity == c and body.moment == about
+    if inertia is not None:
+        assert abs(about - (inertia - mass * (c.x**2 + c.y**2))) <= 1e-9 * inertia
     return inertia
 
 

@@ -602,7 +602,8 @@ def test_shape_testSegmentQuery_point_with_a_radius() -> None:
 
 
 def test_shape_testDensity() -> None:
-    # pymunk's shape.density is the Body's here (one shape a body): given, read and set.
+    # pymunk's shape.density is the Body's here (or one for each of its shapes=[...]: a hammer,
+    # tests/test_compound_bodies.py): given, read and set.
     c = Body(Vector(0, 0), shape=Circle((0, 0), 1), density=2)
     assert c.density == 2 and c.mass == 2 * math.pi
     c.density = 3
@@ -757,11 +758,20 @@ def test_poly_testInit() -> None:
     c = Polygon(vs)
     assert [tuple(v) for v in c.vertices] == vs and c.radius == 0
     assert c.area == 200 and c.centroid == (5, 5)  # pymunk's area and center_of_gravity
+    # pymunk's body keeps the points in the frame they were given in, about its origin; here
+    # a body's position is its centre of mass, and it holds the shape about that point
+    # (engine.body_shapes): the points given less its center_of_gravity, the rounded
+    # polygon's centroid.
     b = Body(Vector(0, 0), shape=Polygon(vs, 6), mass=1)
-    assert [tuple(v) for v in b.shape.vertices] == vs and b.shape.radius == 6
+    cx, cy = b.center_of_gravity
+    assert (cx, cy) == Polygon(vs, 6).centroid and b.pos == (cx, cy)
+    assert [tuple(v) for v in b.shape.vertices] == [(x - cx, y - cy) for x, y in vs]
+    assert b.shape.radius == 6
     assert b.shape.area == pytest.approx(722.8029630140039, rel=1e-12)  # pymunk's c.area
-    assert b.shape.bounds() == (-16, -6, 26, 16)  # pymunk's c.bb after cache_bb()
-    assert b.radius == 26  # the circle about the position that holds it: |(20, 0)| + 6
+    # pymunk's c.bb after cache_bb(), (-16, -6, 26, 16), less the centre:
+    assert b.shape.bounds() == pytest.approx((-16 - cx, -6 - cy, 26 - cx, 16 - cy), abs=1e-12)
+    # The circle about the position that holds it: the farthest point from the centre, + 6.
+    assert b.radius == max(math.hypot(x - cx, y - cy) for x, y in vs) + 6
 
 
 @pytest.mark.xfail(
@@ -801,11 +811,14 @@ def test_poly_testVertices_first_vertex() -> None:
 def test_poly_testBB() -> None:
     tri = [(2, 2), (4, 3), (3, 5)]
     assert Polygon(tri).bounds() == (2, 2, 4, 5)
-    # On a body at the origin in a World: the shape is in the body's frame, so its box is
-    # the same there; a box query over it finds the body.
+    # On a body made at the origin in a World: the body is at the triangle's centroid and holds
+    # it about that point (engine.body_shapes), so its box in the world is pymunk's bb; a box
+    # query over it finds the body.
     w = World()
     b = w.add(Body(Vector(0, 0), shape=Polygon(tri), mass=1))
-    assert b.shape.bounds() == (2, 2, 4, 5)
+    x0, y0, x1, y1 = b.shape.bounds()
+    px, py = b.pos
+    assert (x0 + px, y0 + py, x1 + px, y1 + py) == pytest.approx((2, 2, 4, 5), abs=1e-12)
     assert w.bb_query((3, 3, 3.5, 3.5), Filter()) == [b]
     assert w.bb_query((7, 7, 8, 8), Filter()) == []
 
@@ -1070,9 +1083,9 @@ MISSING: dict[str, str] = {
     "test_each_phase_keeps_its_data)",
     "test_space.testDeleteSpaceWithObjects": "a Body in a World keeps it alive (body.world); "
     "take the body out to let the World go",
-    "test_shape.testMass": "a shape has no mass: the Body's mass is given (Body(mass=...)), "
-    "one mass for its one shape, and its moment follows from the shape "
-    "(test_shape_testMoment)",
+    "test_shape.testMass": "a shape has no mass: the Body's mass is given (Body(mass=...)) "
+    "or its shapes' density (density=..., or one for each of shapes=[...]), and its moment "
+    "follows from its shapes (test_shape_testMoment)",
     "test_shape.testNoBody": "a collider belongs to no body: it is a static shape of the World",
     "test_shape.testRemoveBody": "as testNoBody",
     "test_shape.testSwitchBody": "as testNoBody",

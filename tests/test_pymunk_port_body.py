@@ -33,7 +33,7 @@ import pickle
 
 import pytest
 
-from engine import Body, Circle, ContactEvent, Hinge, Rod, Vector, World
+from engine import Body, Circle, ContactEvent, Hinge, Rod, Segment, Vector, World
 from engine.forces import Gravity
 from tests.pymunk_tests import check_ported, their_tests
 
@@ -56,7 +56,11 @@ def test_body_test_properties() -> None:
     assert b.position == (0, 0)
     b.position = 1, 2
     assert b.position == (1, 2) and b.pos == (1, 2)
-    # (No center_of_gravity: a body's centre of mass is its position.)
+    # pymunk sets center_of_gravity; here it follows from the shape (a body's centre of mass
+    # is its position), and a write is refused.
+    assert b.center_of_gravity == (0, 0)
+    with pytest.raises(AttributeError, match="follows from its shape"):
+        b.center_of_gravity = (1, 2)
     assert b.velocity == (0, 0)
     b.velocity = 3, 4
     assert b.velocity == (3, 4) and b.vel == (3, 4)
@@ -311,16 +315,25 @@ def test_body_test_mass_moment_from_shape() -> None:
     assert b.moment == 200
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=ValueError,
-    reason="a round body's shape is centred on its position, which is its centre of mass "
-    "(no center_of_gravity); pymunk's body takes an offset Circle(b, 10, (2, 3)) and moves "
-    "its centre of gravity there",
-)
 def test_body_test_mass_moment_from_shape__offset_circle() -> None:
+    # pymunk's body takes an offset Circle(b, 10, (2, 3)) and moves its centre of gravity
+    # there; here the body's position is its centre of gravity, so the body is there.
     b = Body(Vector(0, 0), mass=4, shape=Circle((2, 3), 10))
-    assert b.moment == 200
+    assert b.moment == 200 and b.center_of_gravity == (2, 3)
+    assert b.pos == (2, 3) and b.shape.center == (0, 0)
+
+
+def test_body_test_shapes() -> None:
+    # pymunk adds a Circle and a Segment to a body of mass 1 and moment 1, whose centre of
+    # gravity stays at its origin: here the body is made of them (shapes=[...]), its centre of
+    # gravity given where pymunk's is, so it holds the very shapes.
+    s = World()
+    s1, s2 = Circle((0, 0), 3), Segment((0, 0), (1, 2), 1)
+    b1 = s.add(Body(Vector(0, 0), mass=1, moment=1, shapes=[s1, s2], center_of_gravity=(0, 0)))
+    s3 = Circle((0, 0), 3)
+    b2 = s.add(Body(Vector(0, 0), mass=1, moment=1, shape=s3))
+    assert s1 in b1.shapes and s2 in b1.shapes
+    assert s1 not in b2.shapes and s3 in b2.shapes
 
 
 def test_body_test_each_arbiters() -> None:
@@ -392,8 +405,6 @@ MISSING: dict[str, str] = {
     "test_body.test_custom_callbacks_can_be_reinstalled": _CALLBACKS,
     "test_body.test_pickle_circular_ref": "it copies a body whose position_func is bound to "
     "an object holding the Space: " + _CALLBACKS,
-    "test_body.test_shapes": "a Body has one shape (Body(..., radius=r) or shape=...), so "
-    "there is no list of shapes to hold two",
     "test_body.test_body_type_update": "skipped in pymunk itself; here a body's kinematic flag "
     "is fixed when it is made (body.kinematic = ... raises, saying to make a new Body), and "
     "there is no static Body to turn dynamic",

@@ -48,9 +48,11 @@ def test_a_box_takes_its_moment_from_its_shape() -> None:
     b = Body(Vector(0.0, 0.0), shape=Polygon.box(2.0, 1.0), mass=3.0)
     assert b.turns
     assert b.moment == pytest.approx(3.0 * (4.0 + 1.0) / 12.0, rel=1e-12)
-    # About the body's position: a box off its position adds m d^2 (parallel axes).
+    # About the body's centre of mass, its position: a box drawn off the origin is held about
+    # its centre, and the body is there (engine.body_shapes), with the same moment.
     off = Body(Vector(0.0, 0.0), shape=Polygon.box(2.0, 1.0, center=(1.0, 0.0)), mass=3.0)
-    assert off.moment == pytest.approx(3.0 * (5.0 / 12.0 + 1.0), rel=1e-12)
+    assert off.moment == pytest.approx(3.0 * 5.0 / 12.0, rel=1e-12)
+    assert off.pos == (1.0, 0.0) and off.center_of_gravity == (1.0, 0.0)
     assert not Body(Vector(0.0, 0.0), shape=Polygon.box(1.0, 1.0), kinematic=True).turns
     # A capsule: engine.geometry.mass's exact moment (a rod of length 2 and radius 0.1 about its
     # middle), and a rod with no radius m L^2 / 12.

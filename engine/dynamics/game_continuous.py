@@ -74,6 +74,7 @@ from typing import Any
 import numpy as np
 
 from .. import kernels
+from ..geometry import narrowphase
 from ..geometry.manifold_kinds import LINEAR_SLOP
 
 __all__ = ["CORE", "Continuous", "ITERATIONS", "SAFETY", "continuous_loop", "extents"]
@@ -496,6 +497,9 @@ class Continuous:
         n = len(x)
         if not self.enabled or not n:
             return
+        if sc.table.parts is not None:
+            self._sweep_parts(store, sc, x, angle)
+            return
         places = sc.places
         kept = self._kept
         if kept is None or kept[0] is not places or len(kept[1]) != n:
@@ -531,3 +535,84 @@ class Continuous:
         if self.hits:
             x[hit] = hx
             angle[hit] = hq
+
+    def _sweep_parts(self, store: Any, sc: Any, x: np.ndarray, angle: np.ndarray) -> None:
+        """``sweep`` where a body is of several shapes (engine.body_shapes): each part swept
+        at its body's poses as a body of its own (the same kernel, each part's extents about
+        its body's position), the parts of one body kept apart, and a body set back to the
+        first impact of any of its parts (Box2D's b2SolveContinuous loops over a body's
+        shapes likewise)."""
+        parts = sc.table.parts
+        owner = parts.owner
+        n, p = len(x), len(owner)
+        places = narrowphase.places_of(parts.table, sc.statics)
+        least, core, centroid = extents(places, p)
+        limit = SAFETY * least * (1.0 - 1e-9)
+        x0, q0 = store.x, store.angle
+        moved = np.abs(x - x0).sum(axis=1)[owner] + np.abs(angle - q0)[owner] * core
+        if not (moved > limit).any():
+            return
+        # The pairs kept apart, as pairs of parts: every part pair of a body pair kept apart
+        # (keys a n + b, a < b), and every pair of one body's parts.
+        a, b = np.divmod(np.asarray(sc.apart, dtype=np.int64), n)
+        keys: list[np.ndarray] = []
+        for body in np.flatnonzero(parts.size > 1).tolist():
+            i, j = np.meshgrid(_rows(parts, body), _rows(parts, body))
+            keys.append(i[i < j] * p + j[i < j])
+        for u, w in zip(a.tolist(), b.tolist(), strict=True):
+            i, j = np.meshgrid(_rows(parts, u), _rows(parts, w))
+            keys.append(np.minimum(i, j).ravel() * p + np.maximum(i, j).ravel())
+        apart = np.unique(np.concatenate(keys)) if keys else np.zeros(0, dtype=np.int64)
+        # The faces pre_solve left out, likewise (keys row (colliders + 1) + place).
+        width = len(sc.cs.sensor) + 1
+        rows, spot = np.divmod(np.asarray(sc.ignored, dtype=np.int64), width)
+        ignored = np.sort(
+            np.concatenate(
+                [
+                    _rows(parts, r) * width + q
+                    for r, q in zip(rows.tolist(), spot.tolist(), strict=True)
+                ]
+                or [np.zeros(0, dtype=np.int64)]
+            )
+        )
+        t = places.tables
+        f64, i64 = np.float64, np.int64
+        asc = np.ascontiguousarray
+        cs = sc.cs
+        # Each part's bounding radius about its body's position: its core's farthest point and
+        # its rounding (a disc's radius).
+        reach = core.copy()
+        for r in range(p):
+            j = int(places.body_index[r])
+            reach[r] += float(t.round[j] if places.body_circle[r] else t.radius[j])
+        args = (
+            asc(x0[owner], f64), asc(q0[owner], f64), asc(x[owner], f64), asc(angle[owner], f64),
+            least, core, centroid, reach, asc(store.kinematic[owner]), asc(store.mass[owner], f64),
+            asc(sc.sensors[owner]), asc(store.bullet[owner]), asc(store.group[owner], i64),
+            asc(store.categories[owner], i64), asc(store.mask[owner], i64),
+            places.body_circle, places.body_index, asc(apart, i64), asc(sc.owner, i64),
+            asc(sc.bounds, f64), places.static_circle, places.static_index, cs.sensor,
+            cs.group, cs.categories, cs.mask, asc(ignored, i64), *t.kernel_polygons, t.center,
+            t.round, asc(sc.statics.half_planes.point, f64),
+            asc(sc.statics.half_planes.normal, f64), LINEAR_SLOP,
+        )  # fmt: skip
+        run: Any = continuous_loop if self.fast else continuous_loop.py
+        hit, hx, hq, self.found = run(*args)
+        # Each body set back to its first impact: the part's pose nearest its start.
+        first: dict[int, tuple[float, int]] = {}
+        for k, part in enumerate(hit.tolist()):
+            body = int(owner[part])
+            far = abs(hx[k, 0] - x0[body, 0]) + abs(hx[k, 1] - x0[body, 1])
+            far += abs(hq[k] - q0[body]) * (1.0 + core[part])
+            if body not in first or far < first[body][0]:
+                first[body] = (far, k)
+        self.hits = len(first)
+        for body, (_, k) in first.items():
+            x[body] = hx[k]
+            angle[body] = hq[k]
+
+
+def _rows(parts: Any, body: int) -> np.ndarray:
+    """The part rows of ``body`` (int64)."""
+    start = int(parts.first[body])
+    return np.arange(start, start + int(parts.size[body]), dtype=np.int64)

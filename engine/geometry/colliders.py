@@ -254,6 +254,24 @@ class Collider:
         """(xmin, ymin, xmax, ymax) of the solid part (inf for what has no end)."""
         raise NotImplementedError
 
+    def moved(self, dx: float, dy: float) -> Any:
+        """A copy moved by (dx, dy) (length units): the same geometry, material and look,
+        in no World. A translation keeps a polygon convex with its normals, area and rounding,
+        so they are kept, not found again (their bits do not change)."""
+        fields = self._moved_fields(checks.real(dx, "dx"), checks.real(dy, "dy"))
+        new = object.__new__(type(self))
+        put = object.__setattr__  # (a collider refuses a change of its geometry once made)
+        for klass in type(self).__mro__:
+            for name in getattr(klass, "__slots__", ()):
+                if hasattr(self, name):
+                    put(new, name, fields.get(name, getattr(self, name)))
+        put(new, "_worlds", ())
+        return new
+
+    def _moved_fields(self, dx: float, dy: float) -> dict[str, Any]:
+        """The attributes a move by (dx, dy) changes, as the moved copy has them."""
+        raise TypeError(f"a {type(self).__name__} has no end to move: make a new one instead")
+
     def lines(self) -> list[Line]:
         """The flat faces, for the contact kernels."""
         return []
@@ -335,6 +353,9 @@ class Plane(Collider):
         self.point = Vector(*p)
         self.normal = Vector(*unit)
 
+    def _moved_fields(self, dx: float, dy: float) -> dict[str, Any]:
+        return {"point": Vector(self.point.x + dx, self.point.y + dy)}
+
     def closest(self, point: Any) -> tuple[Vector, Vector, float]:
         x, y = point_of(point, "point")
         n, p = self.normal, self.point
@@ -409,6 +430,10 @@ class Segment(Collider):
         a, b, r = self.a, self.b, self.radius
         return min(a.x, b.x) - r, min(a.y, b.y) - r, max(a.x, b.x) + r, max(a.y, b.y) + r
 
+    def _moved_fields(self, dx: float, dy: float) -> dict[str, Any]:
+        a, b = self.a, self.b
+        return {"a": Vector(a.x + dx, a.y + dy), "b": Vector(b.x + dx, b.y + dy)}
+
     def as_body_shape(self) -> float:
         self._body_material()
         a, b = self.a, self.b
@@ -481,6 +506,9 @@ class Circle(Collider):
     def discs(self) -> list[Disc]:
         return [((self.center.x, self.center.y), self.radius)]
 
+    def _moved_fields(self, dx: float, dy: float) -> dict[str, Any]:
+        return {"center": Vector(self.center.x + dx, self.center.y + dy)}
+
     @property
     def area(self) -> float:
         """The disc's area (length units squared): pi r^2."""
@@ -501,10 +529,11 @@ class Circle(Collider):
         self._body_material()
         if self.center.x != 0.0 or self.center.y != 0.0:
             raise ValueError(
-                f"a round body's shape is centred on its position: Circle((0, 0), "
-                f"{self.radius!r}) (or Body(..., radius={self.radius!r})), got centre "
-                f"{tuple(self.center)!r} (a body's position is its centre of mass, and a disc's "
-                f"is its centre: move the body by the offset instead)"
+                f"a kinematic body's round shape is centred on its position, which it turns "
+                f"about: Circle((0, 0), {self.radius!r}) (or Body(..., radius="
+                f"{self.radius!r})), got centre {tuple(self.center)!r}: move the body by the "
+                f"offset instead (a dynamic body is moved so: its position is its centre of "
+                f"mass, engine.body_shapes)"
             )
         return self.radius
 
@@ -554,6 +583,10 @@ class Box(Collider):
         )
         d, n, p = min(walls, key=lambda w: w[0])
         return p, n, d
+
+    def _moved_fields(self, dx: float, dy: float) -> dict[str, Any]:
+        (x0, y0), (x1, y1) = self.lower_left, self.upper_right
+        return {"lower_left": Vector(x0 + dx, y0 + dy), "upper_right": Vector(x1 + dx, y1 + dy)}
 
     def bounds(self) -> tuple[float, float, float, float]:
         inf = math.inf
@@ -697,6 +730,13 @@ class Polygon(Collider):
             filter=filter,
             colour=colour,
         )
+
+    def _moved_fields(self, dx: float, dy: float) -> dict[str, Any]:
+        c = self.centroid
+        return {
+            "vertices": tuple(Vector(v.x + dx, v.y + dy) for v in self.vertices),
+            "centroid": Vector(c.x + dx, c.y + dy),
+        }
 
     def as_body_shape(self) -> float:
         self._body_material()

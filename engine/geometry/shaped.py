@@ -35,10 +35,11 @@ deep in each other or through is taken again from its moment of impact
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from ..body_shapes import Compound
 from .colliders import Circle, Polygon, Segment
 from .manifold import (
     Capsules,
@@ -53,15 +54,33 @@ from .manifold import (
 )
 from .manifold_polygon import polygon_loop
 
-__all__ = ["ShapeTable", "pair_rows", "static_rows", "DISC", "CAPSULE", "POLYGON"]
+__all__ = [
+    "ShapeTable", "Parts", "pair_rows", "static_rows", "DISC", "CAPSULE", "POLYGON", "COMPOUND",
+]  # fmt: skip
 
-#: The kinds of a body's shape, by code.
-DISC, CAPSULE, POLYGON = 0, 1, 2
+#: The kinds of a body's shape, by code: a COMPOUND body is of several (engine.body_shapes),
+#: each a row of the table's ``parts``.
+DISC, CAPSULE, POLYGON, COMPOUND = 0, 1, 2, 3
+
+
+class Parts(NamedTuple):
+    """The parts of a World's bodies where one is of several shapes (engine.body_shapes): one
+    row a part, a body of one shape (or a disc, or a point) one part; ``table`` their shapes
+    (a ShapeTable of no COMPOUND row), ``owner`` each part's body row, ``number`` its place
+    among its body's parts, ``first`` and ``size`` each body's first part's row and how many
+    it has."""
+
+    table: ShapeTable
+    owner: np.ndarray
+    number: np.ndarray
+    first: np.ndarray
+    size: np.ndarray
 
 
 class ShapeTable:
     """The shapes of a World's bodies, by row, as narrowphase kinds (built once for a set of
-    bodies: a shape never changes)."""
+    bodies: a shape never changes). A round shape's centre is its Circle's in the body's frame
+    (a body's own disc's is its position; a part's may be off it)."""
 
     def __init__(self, shapes: Sequence[Any], radius: np.ndarray) -> None:
         n = len(shapes)
@@ -69,8 +88,15 @@ class ShapeTable:
         self.index = np.zeros(n, dtype=np.intp)  # the row's place in its kind's arrays
         caps: list[Segment] = []
         polys: list[Polygon] = []
+        centre = np.zeros((n, 2))
         for row, shape in enumerate(shapes):
-            if shape is None or isinstance(shape, Circle):
+            if shape is None:
+                continue
+            if isinstance(shape, Circle):
+                centre[row] = tuple(shape.center)
+                continue
+            if isinstance(shape, Compound):
+                self.kind[row] = COMPOUND
                 continue
             if isinstance(shape, Segment):
                 self.kind[row], self.index[row] = CAPSULE, len(caps)
@@ -83,7 +109,7 @@ class ShapeTable:
         #: Which rows carry a shape other than a disc (the soft step always takes them).
         self.shaped = self.kind != DISC
         self.index[~self.shaped] = np.arange(n)[~self.shaped]
-        self.circles = Circles(np.zeros((n, 2)), np.asarray(radius, dtype=float))
+        self.circles = Circles(centre, np.asarray(radius, dtype=float))
         self.capsules = Capsules(
             np.array([(s.a.x, s.a.y) for s in caps], dtype=float).reshape(-1, 2),
             np.array([(s.b.x, s.b.y) for s in caps], dtype=float).reshape(-1, 2),
@@ -94,6 +120,9 @@ class ShapeTable:
             if polys
             else None
         )
+
+        #: The bodies' parts (``Parts``), where a body is of several shapes; else None.
+        self.parts = _parts(shapes, radius) if (self.kind == COMPOUND).any() else None
 
     def __len__(self) -> int:
         return len(self.kind)
@@ -108,6 +137,28 @@ class ShapeTable:
             assert self.polygons is not None
             return self.polygons.take(idx)
         return self.circles.take(idx)
+
+
+def _parts(shapes: Sequence[Any], radius: np.ndarray) -> Parts:
+    """Every body's parts as rows of a table (``Parts``), in body order."""
+    kids: list[Any] = []
+    radii: list[float] = []
+    owner: list[int] = []
+    number: list[int] = []
+    first = np.zeros(len(shapes), dtype=np.intp)
+    size = np.ones(len(shapes), dtype=np.intp)
+    for row, shape in enumerate(shapes):
+        first[row] = len(kids)
+        parts = shape.parts if isinstance(shape, Compound) else (shape,)
+        size[row] = len(parts)
+        for j, part in enumerate(parts):
+            kids.append(part)
+            radii.append(part.radius if isinstance(part, Circle) else float(radius[row]))
+            owner.append(row)
+            number.append(j)
+    table = ShapeTable(kids, np.array(radii, dtype=float))
+    ints = np.intp
+    return Parts(table, np.array(owner, dtype=ints), np.array(number, dtype=ints), first, size)
 
 
 def _points(m: Manifold) -> tuple[np.ndarray, np.ndarray]:

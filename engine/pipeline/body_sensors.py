@@ -22,7 +22,7 @@ circle and every collider, in numpy.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -68,19 +68,8 @@ def sensed(state: WorldState, slots: np.ndarray | None, serials: np.ndarray | No
         for j in np.flatnonzero(near).tolist():
             if not mine.collides(bodies[j].filter):
                 continue
-            if table.shaped[s] or table.shaped[j]:
-                m = collide(
-                    table.kinds(np.array([s])),
-                    x[s : s + 1],
-                    angle[s : s + 1],
-                    table.kinds(np.array([j])),
-                    x[j : j + 1],
-                    angle[j : j + 1],
-                    0.0,
-                )
-                n = int(m.count[0])
-                if not (n and float(m.separation[0, :n].min()) < 0.0):
-                    continue
+            if (table.shaped[s] or table.shaped[j]) and not _overlap(table, s, j, x, angle):
+                continue
             hits.append(j)
         if hits:
             found.append(pair_keys(np.full(len(hits), slots[s]), slots[np.array(hits)]))
@@ -92,10 +81,40 @@ def sensed(state: WorldState, slots: np.ndarray | None, serials: np.ndarray | No
             if float(signed_distance(c, x[s : s + 1])[0]) >= r[s]:
                 continue
             if table.shaped[s] and not isinstance(c, Box):
-                if not shape_overlaps(table.kinds(np.array([s])), x[s], float(angle[s]), c):
+                shapes, rows = _parts_of(table, s)
+                if not any(
+                    shape_overlaps(shapes.kinds(np.array([p])), x[s], float(angle[s]), c)
+                    for p in rows
+                ):
                     continue
             found.append(collider_keys(np.array([slots[s]]), serials[[k]]))
     return np.concatenate(found) if found else none
+
+
+def _parts_of(table: Any, row: int) -> tuple[Any, list[int]]:
+    """The table a body's shapes are rows of, and their rows: its own row, or where a body is of
+    several shapes (engine.body_shapes) its parts' rows of the parts' table."""
+    parts = table.parts
+    if parts is None:
+        return table, [row]
+    start = int(parts.first[row])
+    return parts.table, list(range(start, start + int(parts.size[row])))
+
+
+def _overlap(table: Any, s: int, j: int, x: np.ndarray, angle: np.ndarray) -> bool:
+    """Whether the shapes of bodies s and j overlap (any part of one with any of the other)."""
+    shapes, mine = _parts_of(table, s)
+    _, theirs = _parts_of(table, j)
+    for p in mine:
+        for q in theirs:
+            m = collide(
+                shapes.kinds(np.array([p])), x[s : s + 1], angle[s : s + 1],
+                shapes.kinds(np.array([q])), x[j : j + 1], angle[j : j + 1], 0.0,
+            )  # fmt: skip
+            n = int(m.count[0])
+            if n and float(m.separation[0, :n].min()) < 0.0:
+                return True
+    return False
 
 
 def _sensor_rows(state: WorldState) -> list[int]:

@@ -186,13 +186,15 @@ def pairs(
     return np.stack([a[keep], b[keep]], axis=1)
 
 
-def boxes(places: Places, store: Any) -> np.ndarray:
+def boxes(places: Places, store: Any, several: np.ndarray | None = None) -> np.ndarray:
     """Each body's box (N, 4: xmin, ymin, xmax, ymax): a disc's centre +- its radius, a
     polygon's (a capsule's) corners turned and moved +- its radius; the products of
-    engine.pipeline.game_contacts' own, in its order."""
+    engine.pipeline.game_contacts' own, in its order. A body of several shapes (``several``,
+    engine.body_shapes) takes the box of the circle that holds its parts."""
     x, q, r = store.x, store.angle, store.radius
     box = np.concatenate([x - r[:, None], x + r[:, None]], axis=1)
-    rows = np.flatnonzero(~places.body_circle)
+    round_ = places.body_circle if several is None else places.body_circle | several
+    rows = np.flatnonzero(~round_)
     if len(rows):
         t = places.tables
         j = places.body_index[rows]

@@ -56,6 +56,10 @@ __all__ = [
 FEATURE = 16
 OTHER = 21
 STATIC = 1 << 20
+#: A point of a pair of parts of bodies of several shapes (engine.body_shapes, at most
+#: MAX_PARTS each) has (A's part's number * MAX_PARTS + B's) << PART in its key, above the
+#: pair's code (slots < 2^20, so the code and feature fill bits 0 to 56, and these 57 to 62).
+PART = 57
 
 
 def contacts_sample() -> tuple[Any, ...]:

@@ -64,6 +64,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from ..body_shapes import MAX_PARTS
 from ..dynamics import solver
 from ..dynamics.events import COLLIDER, collider_keys, pair_keys
 from ..dynamics.game_continuous import Continuous
@@ -73,10 +74,10 @@ from ..geometry.colliders import Collider
 from ..geometry.manifold import StaticShapes, static_shapes
 from ..geometry.manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from ..geometry.pair_grid import grid_pairs
-from ..geometry.shaped import ShapeTable
+from ..geometry.shaped import COMPOUND, Parts, ShapeTable
 from . import game_broadphase as broad
 from . import game_sleep
-from .game_contacts import FEATURE, OTHER, STATIC, candidates_loop
+from .game_contacts import FEATURE, OTHER, PART, STATIC, candidates_loop
 from .game_loop import step_loop
 
 #: The World's state (engine.pipeline.world_state.WorldState, which holds a GameStep: named here by
@@ -162,6 +163,7 @@ class GameStep:
         self._table: tuple[int, list[Any], ShapeTable] | None = None
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
         self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
+        self._part_places: tuple[Parts, StaticShapes, narrowphase.Places] | None = None
         self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
         # The bodies' radii and their median (the radii are a new array when bodies come or go).
         self._median: tuple[np.ndarray, float] | None = None
@@ -220,31 +222,39 @@ class GameStep:
             # (The fast path's kernel measures the reach itself where the pairs need it not.)
             margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
             candidates = self._candidates(store, margin)
-        if self.fast:
+        if self.fast and self._shapes(store).parts is not None and not len(margin):
+            # A body of several shapes takes the numpy path's stages (``_collide``), which ask
+            # the reach the fast path's kernel measures itself.
+            margin = _reach(store, accel, dt)
+        if self.fast and self._shapes(store).parts is None:
             return self._step_fast(
                 state, store, dt, accel, store.torque if torque is None else torque, margin,
                 candidates, ignored_faces, ignored_pairs,
             )  # fmt: skip
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
-        boxes = broad.boxes(sc.places, store)
+        boxes = broad.boxes(sc.places, store, sc.table.kind == COMPOUND)
         awake = self._wake(state, store, margin, candidates, boxes)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
         pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes)
         faces = broad.faces(
             store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, margin, sc.ignored
         )
-        touches = narrowphase.collide_pairs(
-            sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt
-        )
+        touches = self._collide(sc, store, pairs, faces, margin, dt)
         found = self._found(store, sc.cs, sc.owner, touches)
         joints = self.joints.arrays(state, store, n)
         k = len(found.place)
         args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
         params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
         params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
-        # Plain Python on lists: at a game's size faster than numpy's calls a colour.
-        out: list[Any] = [a.tolist() for a in args]
-        solver.solve.py(*out, *params)
+        out: list[Any]
+        if self.fast:
+            # (The fast path here: a World with a body of several shapes, ``_collide``.)
+            out = [np.ascontiguousarray(a) for a in args]
+            solver.solve(*out, *params)
+        else:
+            # Plain Python on lists: at a game's size faster than numpy's calls a colour.
+            out = [a.tolist() for a in args]
+            solver.solve.py(*out, *params)
         x = np.stack([np.asarray(out[0][:n]), np.asarray(out[1][:n])], axis=1)
         v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
         angle = np.asarray(out[2][:n], dtype=float)
@@ -611,6 +621,47 @@ class GameStep:
                 now.sensing,
             )
 
+    def _collide(
+        self, sc: _Scene, store: Any, pairs: np.ndarray, faces: np.ndarray, margin: np.ndarray,
+        dt: float,
+    ) -> narrowphase.Touches:  # fmt: skip
+        """Stage 3, the narrowphase (engine.geometry.narrowphase.collide_pairs) of the pairs
+        and faces; where a body is of several shapes (engine.body_shapes), of their parts:
+        every part of A against every part of B, and every part against the face, each part at
+        its body's pose, the manifolds given back to the bodies' rows (anchors from a part's
+        body's position are from its own), the two parts' numbers kept in each point's feature
+        id above the pair's code (``PART``), so that each keeps its own warm start."""
+        parts = sc.table.parts
+        if parts is None:
+            return narrowphase.collide_pairs(
+                sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt
+            )
+        kept = self._part_places
+        if kept is None or kept[0] is not parts or kept[1] is not sc.statics:
+            made = narrowphase.places_of(parts.table, sc.statics)
+            kept = self._part_places = (parts, sc.statics, made)
+        a, b = pairs[:, 0], pairs[:, 1]
+        ka, kb = parts.size[a], parts.size[b]
+        item, j = _spread(ka * kb)
+        pa = parts.first[a][item] + j // kb[item]
+        pb = parts.first[b][item] + j % kb[item]
+        face, jf = _spread(parts.size[faces[:, 0]])
+        fa = parts.first[faces[face, 0]] + jf
+        owner = parts.owner
+        view = _PartView(store.x[owner], store.angle[owner], store.v[owner])
+        touches = narrowphase.collide_pairs(
+            kept[2], parts.table, view, sc.statics, np.stack([pa, pb], axis=1),
+            np.stack([fa, faces[face, 1]], axis=1), margin[owner], dt,
+        )  # fmt: skip
+        n, p = len(store), len(owner)
+        static = touches.b >= p
+        body_b = np.where(static, n, owner[np.minimum(touches.b, p - 1)])
+        number_b = np.where(static, 0, parts.number[np.minimum(touches.b, p - 1)])
+        code = (parts.number[touches.a] * MAX_PARTS + number_b).astype(np.int64) << PART
+        m = touches.m
+        m.feature[:] = np.where(m.feature >= 0, m.feature | code[:, None], m.feature)
+        return narrowphase.Touches(m, owner[touches.a], body_b, touches.place)
+
     def _found(
         self, store: Any, cs: broad.Colliders, owner: np.ndarray, touches: narrowphase.Touches
     ) -> _Found:
@@ -769,3 +820,22 @@ def _reach(store: Any, accel: np.ndarray, dt: float) -> np.ndarray:
     speed = np.hypot(v[:, 0], v[:, 1])
     acc = np.hypot(accel[:, 0], accel[:, 1])
     return speed * dt + acc * dt * dt + np.abs(store.omega) * dt * r
+
+
+class _PartView(NamedTuple):
+    """What the narrowphase reads of a store, by part row: each part at its body's pose and
+    velocity (``GameStep._collide``)."""
+
+    x: np.ndarray
+    angle: np.ndarray
+    v: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.x)
+
+
+def _spread(k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each of len(k) items repeated k[i] times (its index), and j = 0 .. k[i] - 1 within it."""
+    item = np.repeat(np.arange(len(k)), k)
+    j = np.arange(int(k.sum())) - np.repeat(np.cumsum(k) - k, k)
+    return item, j

@@ -19,6 +19,7 @@ from ..exact.overlaps import freed, push_out
 from ..forces import Force, as_force
 from ..geometry.colliders import Collider
 from ..vector import Vector
+from . import solver_choice
 from .world_state import AttachedForce
 
 if TYPE_CHECKING:
@@ -58,6 +59,19 @@ def add_all(state: WorldState, bodies: Iterable[Body]) -> list[Body]:
         raise ValueError("World.add_all was given the same body twice")
     if not batch:
         return batch
+    several = solver_choice.compound(batch)
+    if several is not None and state.solver == "exact":
+        why = (
+            "solver='auto' chose them at its first step, and keeps them once the World moves"
+            if state.solver_asked == "auto"
+            else "solver='exact'"
+        )
+        raise ValueError(
+            f"a body of {len(several.shape)} shapes (Body(shapes=[...])) is the soft step's "
+            f"alone, and this World runs the exact models ({why}), which take one shape a "
+            f"body: make the World with World(solver='soft'), or World(solver='auto'), which "
+            f"chooses the soft step when the scene holds such a body at its first step"
+        )
     # An empty World takes the dimension of the first body; every body must share it.
     dim = state.dim if state.dim is not None else batch[0].dim
     for b in batch:

@@ -141,7 +141,14 @@ def _bodies(
     discs = [
         (k, p[0], p[1], r) for k, p, r in zip(rows, xy, radius, strict=True) if k not in shaped_rows
     ]
-    return discs, [(k, shapes[k], p) for k, p in zip(rows, xy, strict=True) if k in shaped_rows]
+    # A body of several shapes (engine.body_shapes) is met part by part: one entry a part,
+    # which each query keeps the nearest (deepest, first) of for the body.
+    return discs, [
+        (k, part, p)
+        for k, p in zip(rows, xy, strict=True)
+        if k in shaped_rows
+        for part in getattr(shapes[k], "parts", (shapes[k],))
+    ]
 
 
 class _Frame:
@@ -178,9 +185,12 @@ class _Frame:
         return self.turn_out(p) + Vector(self.cx, self.cy)
 
     def placed(self, shape: Any) -> Collider:
-        """The body's shape (a Polygon or a Segment) placed in the world as it stands."""
+        """The body's shape (a Polygon, a Segment, or a Circle part) placed in the world as it
+        stands."""
         if isinstance(shape, Segment):
             return Segment(tuple(self.out(shape.a)), tuple(self.out(shape.b)), shape.radius)
+        if isinstance(shape, Circle):  # (a part of a body of several shapes)
+            return Circle(tuple(self.out(shape.center)), shape.radius)
         return Polygon([tuple(self.out(v)) for v in shape.vertices], shape.radius)
 
 
@@ -251,12 +261,14 @@ def point_query(
     box = (px - grow, py - grow, px + grow, py + grow)
     discs, shaped = _bodies(state, f, box, index)
     bodies = state.bodies
+    nearest: dict[int, QueryHit] = {}  # (a body's nearest part)
     for k, shape, at in shaped:
         assert store is not None
         fr = _Frame(store, k, at)
         surface, n, d = shape.closest(fr.into((px, py)))  # in the body's frame
-        if d <= reach:
-            hits.append(_hit(bodies[k], fr.out(surface), fr.turn_out(n), 0.0, d))
+        if d <= reach and (k not in nearest or d < nearest[k].distance):
+            nearest[k] = _hit(bodies[k], fr.out(surface), fr.turn_out(n), 0.0, d)
+    hits += nearest.values()
     if discs:
         assert store is not None
         near: list[tuple[int, float, float, float, float, float, float]] = []
@@ -439,14 +451,16 @@ def _segment_hits(
     discs, shaped = _bodies(state, f, box, index)
     store = state.store
     bodies = state.bodies
+    first: dict[int, tuple[float, Any, Vector]] = {}  # (a body's first part met)
     for k, shape, at in shaped:
         assert store is not None
         fr = _Frame(store, k, at)
         back = _unit_or_zero(-vx, -vy)
         bk = fr.turn_in((back.x, back.y))
         hit = _collider_hit(shape, fr.into(a), fr.turn_in(v), q, Vector(*bk))  # body's frame
-        if hit is not None:
-            met.append((hit[0], bodies[k], fr.turn_out(hit[1])))
+        if hit is not None and (k not in first or hit[0] < first[k][0]):
+            first[k] = (hit[0], bodies[k], fr.turn_out(hit[1]))
+    met += first.values()
     if discs:
         assert store is not None
         inside: list[int] = []
@@ -610,6 +624,8 @@ def bb_query(
         assert store is not None
         for k, shape, at in shaped:
             fr = _Frame(store, k, at)
+            if found and found[-1] == k:
+                continue  # (a body of several shapes met by an earlier part)
             if fr.s != 0.0:
                 # A shape that turned: placed in the world as it stands, then met as a collider.
                 if _collider_overlaps_box(fr.placed(shape), box):
@@ -717,13 +733,15 @@ def shape_query(
     box = (x0 - w, y0 - w, x1 + w, y1 + w)
     discs, shaped = _bodies(state, f, box, index)
     store = state.store
+    deepest: dict[int, QueryHit] = {}  # (a body's deepest part)
     for k, body_shape, at in shaped:
         assert store is not None
         fr = _Frame(store, k, at)
         found = _collider_depth(body_shape, fr.into(a), fr.into(b), q)  # the body's frame
-        if found is not None:
+        if found is not None and (k not in deepest or found[2] < deepest[k].distance):
             point = fr.out(found[0])
-            hits.append(_hit(state.bodies[k], point, fr.turn_out(found[1]), 0.0, found[2]))
+            deepest[k] = _hit(state.bodies[k], point, fr.turn_out(found[1]), 0.0, found[2])
+    hits += deepest.values()
     for k, cx, cy, r in discs:
         # The query shape's core point nearest the centre, then the gap between the discs.
         core = _nearest_on_segment((cx, cy), a, b)

@@ -64,7 +64,19 @@ def overlap(state: WorldState) -> float:
     a, b = a[~(kin[a] & kin[b])], b[~(kin[a] & kin[b])]  # what the game moves meets no other
     if not len(a):
         return 0.0
-    sep = pair_rows(table, a, b, store.x, 0.0, store.angle)[3]
+    parts = table.parts
+    if parts is None:
+        sep = pair_rows(table, a, b, store.x, 0.0, store.angle)[3]
+        return max(-float(sep.min(initial=0.0)), 0.0)
+    # Bodies of several shapes (engine.body_shapes): every part of A with every part of B,
+    # each at its body's pose.
+    ka, kb = parts.size[a], parts.size[b]
+    item = np.repeat(np.arange(len(a)), ka * kb)
+    j = np.arange(int((ka * kb).sum())) - np.repeat(np.cumsum(ka * kb) - ka * kb, ka * kb)
+    pa = parts.first[a][item] + j // kb[item]
+    pb = parts.first[b][item] + j % kb[item]
+    owner = parts.owner
+    sep = pair_rows(parts.table, pa, pb, store.x[owner], 0.0, store.angle[owner])[3]
     return max(-float(sep.min(initial=0.0)), 0.0)
 
 

@@ -7,7 +7,8 @@
   solid collider or another solid body that no joint keeps apart from it: its contacts have
   two points, where the exact solver's corner contacts fail Box2D's HelloWorld: a crate dropped
   flat jumps 1 cm at restitution 0 and slides 25 mm aside; tests/test_rigid_scenes.py), or a
-  joint that only the soft step solves (a link whose class says ``needs_soft``);
+  joint that only the soft step solves (a link whose class says ``needs_soft``), or a body of
+  several shapes (``Body(shapes=[...])``, engine.body_shapes), which the exact models refuse;
 - **the exact models** (engine.pipeline.stepping) otherwise: discs and points, however many, with
   colliders of any shape, rods, cables, pins, hinges and welds (a ball's bounce heights
   h e^(2n), the cradle, a pendulum's period, a hinge held to 1e-9 m, continuous impacts for a
@@ -92,6 +93,15 @@ def _cornered(bodies: Any, links: Any, colliders: Any) -> Any:
     return None
 
 
+def compound(bodies: Any) -> Any:
+    """The first body of several shapes (``Body(shapes=[...])``, engine.body_shapes), or None:
+    the exact models take one shape a body, so such a body is the soft step's alone."""
+    for body in bodies:
+        if type(body.shape).__name__ == "Compound":
+            return body
+    return None
+
+
 def needs_soft(links: Any) -> Any:
     """The first link only the soft step solves (its class' ``needs_soft``), or None."""
     for link in links:
@@ -109,6 +119,12 @@ def choose(bodies: Any, links: Any, dim: int | None, colliders: Any = ()) -> tup
     link = needs_soft(links)
     if link is not None:
         return "soft", f"the soft step: a {type(link).__name__} is one of its rows alone"
+    body = compound(bodies)
+    if body is not None:
+        return "soft", (
+            f"the soft step: a body of {len(body.shape)} shapes (Body(shapes=[...])) is its "
+            f"alone (the exact models take one shape a body)"
+        )
     body = _cornered(bodies, links, colliders)
     if body is not None:
         return "soft", (

@@ -64,12 +64,25 @@ def body_bounds(body: Any, x: float, y: float, angle: float) -> Bounds:
     a disc's centre +- its radius."""
     shape = body.shape
     kind = type(shape).__name__
-    if kind not in ("Polygon", "Segment"):
+    if kind not in ("Polygon", "Segment", "Compound"):
         r = body.radius
         return x - r, y - r, x + r, y + r
-    points = shape.vertices if kind == "Polygon" else (shape.a, shape.b)
     c, s = math.cos(angle), math.sin(angle)
-    xs = [x + c * p.x - s * p.y for p in points]
-    ys = [y + s * p.x + c * p.y for p in points]
-    r = shape.radius
-    return min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r
+    boxes = []
+    for part in body.shapes:  # (a body of several shapes: the box of its parts' boxes)
+        name = type(part).__name__
+        points = (
+            part.vertices
+            if name == "Polygon"
+            else (part.a, part.b)
+            if name == "Segment"
+            else (part.center,)
+        )
+        xs = [x + c * p.x - s * p.y for p in points]
+        ys = [y + s * p.x + c * p.y for p in points]
+        r = part.radius
+        boxes.append((min(xs) - r, min(ys) - r, max(xs) + r, max(ys) + r))
+    return (
+        min(b[0] for b in boxes), min(b[1] for b in boxes),
+        max(b[2] for b in boxes), max(b[3] for b in boxes),
+    )  # fmt: skip

@@ -143,9 +143,17 @@ def _draw_bodies(
         else:
             colour = KINEMATIC if body.kinematic else ASLEEP if world.is_sleeping(body) else BODY
         x, y, angle = poses[id(body)]
-        if shape is not None and type(shape).__name__ in ("Polygon", "Segment"):
-            _draw_shape(surface, shape, camera, (x, y), colour, 0, angle)
-            _draw_shape(surface, shape, camera, (x, y), INK, 1, angle)
+        if shape is not None and type(shape).__name__ in ("Polygon", "Segment", "Compound"):
+            # (A body of several shapes, engine.body_shapes: each part; a round one a disc.)
+            c, s = math.cos(angle), math.sin(angle)
+            for part in body.shapes:
+                if type(part).__name__ == "Circle":
+                    px, py = part.center
+                    at = (x + c * px - s * py, y + s * px + c * py)
+                    draw_disc(surface, camera, at, part.radius, angle, colour)
+                    continue
+                _draw_shape(surface, part, camera, (x, y), colour, 0, angle)
+                _draw_shape(surface, part, camera, (x, y), INK, 1, angle)
             continue
         turned = body.turns or (body.kinematic and (body.angle or body.angular_velocity))
         draw_disc(surface, camera, (x, y), body.radius, angle if turned else None, colour)
