@@ -488,6 +488,8 @@ class Continuous:
         #: Whether a body may be fast after the step (the fast path's step_loop says).
         self.maybe = False
         self._kept: tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
+        # Where a body is of several shapes: the parts' places and extents (``_sweep_parts``).
+        self._kept_parts: tuple[Any, ...] | None = None
 
     def sweep(self, store: Any, sc: Any, x: np.ndarray, angle: np.ndarray) -> None:
         """Set back each fast body of ``store`` (the World's rows, at the step's start) that
@@ -545,8 +547,12 @@ class Continuous:
         parts = sc.table.parts
         owner = parts.owner
         n, p = len(x), len(owner)
-        places = narrowphase.places_of(parts.table, sc.statics)
-        least, core, centroid = extents(places, p)
+        kept = self._kept_parts
+        if kept is None or kept[0] is not parts or kept[1] is not sc.statics:
+            places = narrowphase.places_of(parts.table, sc.statics)
+            least, core, centroid = extents(places, p)
+            kept = self._kept_parts = (parts, sc.statics, places, least, core, centroid)
+        places, least, core, centroid = kept[2:]
         limit = SAFETY * least * (1.0 - 1e-9)
         x0, q0 = store.x, store.angle
         moved = np.abs(x - x0).sum(axis=1)[owner] + np.abs(angle - q0)[owner] * core
