@@ -797,9 +797,10 @@ class Body:
     @center_of_gravity.setter
     def center_of_gravity(self, value: Any) -> None:
         raise AttributeError(
-            f"a Body's center_of_gravity follows from its shape (the centre of its area), so "
-            f"body.center_of_gravity = {value!r} cannot change it: give the body a moment=... "
-            f"for another spin, or make it of other shapes"
+            f"a Body's center_of_gravity follows from its shapes (their centre of mass), or is "
+            f"given when it is made, so body.center_of_gravity = {value!r} cannot change it: "
+            f"make a new Body(..., center_of_gravity={value!r}) instead (world.remove(body), "
+            f"then world.add(new))"
         )
 
     @property
@@ -1233,7 +1234,9 @@ class Body:
 
     def __repr__(self) -> str:
         size = "" if self._radius == 0.0 else f", radius={self._radius!r}"
-        if self._shape is not None:
+        if isinstance(self._shape, Compound):
+            size = f", shapes={list(self._shape.parts)!r}"
+        elif self._shape is not None:
             size = f", shape={self._shape!r}"
         kin = ", kinematic=True" if self._kinematic else ""
         return (
