@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from .. import kernels
+from ..body_shapes import MAX_PARTS
 from ..dynamics.events import COLLIDER
 from ..geometry.manifold import half_plane_polygon_loop
 from ..geometry.manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
@@ -98,8 +99,11 @@ def contacts_sample() -> tuple[Any, ...]:
     lam = f((1, 2))
     kind = np.array([2, 0], dtype=np.int64)
     up = np.array([[0.0, 1.0]])
+    parts = np.array([[0, 1], [1, 1]], dtype=np.int64)  # (one part a body: itself, number 0)
+    part_of = np.array([[0, 0], [1, 0]], dtype=np.int64)
     return (x, q, radius, reach, yes, no, i2, cats, mask, slots, mat, mat, np.array([False, True]),
-            np.array([0, 0], dtype=np.int64), kind, pa, pb, owner, bounds, s_circle, s_index,
+            np.array([0, 0], dtype=np.int64), kind, parts, part_of, pa, pb, owner, bounds,
+            s_circle, s_index,
             np.zeros(1, dtype=bool), c_mat, c_mat, surface, c_i, c_i + 1, c_i - 1, v, nn, count,
             rad, center, rnd, f((1, 2)), up, none, none, keys, lam, f((2, 2)),
             1.0 / 60.0)  # fmt: skip
@@ -110,24 +114,28 @@ def _boxes_sample() -> tuple[Any, ...]:
     corners = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
     return (np.array([[0.0, 0.5], [1.2, 0.5]]), np.array([0.0, 0.5 * np.pi]),
             np.array([0.5, 0.71]), np.array([True, False]), np.zeros(2, dtype=np.int64),
-            corners, np.zeros(1))  # fmt: skip
+            np.array([[0, 1], [1, 1]], dtype=np.int64), corners, np.zeros(1))  # fmt: skip
 
 
 @kernels.loop(sample=_boxes_sample)
 def body_boxes(
-    x: Any, q: Any, radius: Any, body_circle: Any, body_index: Any, V: Any, rad: Any
-) -> Any:
+    x: Any, q: Any, radius: Any, body_circle: Any, body_index: Any, body_parts: Any, V: Any,
+    rad: Any,
+) -> Any:  # fmt: skip
     """Each body's box (n, 4: xmin, ymin, xmax, ymax, m): a disc's centre +- its ``radius``, a
     polygon's (a capsule's) corners ``V[body_index]`` turned by ``q`` (rad) and moved to ``x``,
-    +- its rounding ``rad`` (engine.pipeline.game_broadphase's ``boxes``: the same products)."""
+    +- its rounding ``rad`` (engine.pipeline.game_broadphase's ``boxes``: the same products).
+    The shapes are the parts' (``body_parts``: each body's first part and how many); a body of
+    several takes the box of its bounding circle."""
     n = len(radius)
     box = np.empty((n, 4))
     for a in range(n):
         r = radius[a]
         box[a, 0], box[a, 1] = x[a, 0] - r, x[a, 1] - r
         box[a, 2], box[a, 3] = x[a, 0] + r, x[a, 1] + r
-        if not body_circle[a]:
-            j = body_index[a]
+        first = body_parts[a, 0]
+        if body_parts[a, 1] == 1 and not body_circle[first]:
+            j = body_index[first]
             co, si = np.cos(q[a]), np.sin(q[a])
             for v in range(V.shape[1]):
                 wx = co * V[j, v, 0] - si * V[j, v, 1] + x[a, 0]
@@ -224,7 +232,7 @@ def candidates_loop(
 def contacts_loop(
     x: Any, q: Any, radius: Any, reach: Any, moving: Any, sensor: Any,
     group: Any, cats: Any, mask: Any, slots: Any, friction: Any, restitution: Any,
-    body_circle: Any, body_index: Any, kind: Any,
+    body_circle: Any, body_index: Any, kind: Any, body_parts: Any, part_of: Any,
     pa: Any, pb: Any,
     owner: Any, bounds: Any, static_circle: Any, static_index: Any,
     c_sensor: Any, c_friction: Any, c_restitution: Any, c_surface: Any,
@@ -237,10 +245,13 @@ def contacts_loop(
     (pushed by contacts), ``sensor``, the filter's ``group``, ``cats``, ``mask``, ``slots``,
     ``friction``, ``restitution``, where the shape is in the tables (``body_circle``: the
     circles', else the polygons'; ``body_index``), its ``kind`` (engine.geometry.shaped: DISC,
-    CAPSULE, POLYGON). ``pa``, ``pb``: the pairs to test, rows. Static shapes (K): the
-    collider ``owner``, ``bounds`` (K, 4) xmin, ymin, xmax, ymax, ``static_circle``,
-    ``static_index`` (a half plane h: -1 - h). Colliders (C, by place): sensor, friction,
-    restitution, surface velocity (C, 2) m/s, filter. The tables (engine.geometry.narrowphase:
+    CAPSULE, POLYGON), these three by part (engine.geometry.shaped.Parts: ``body_parts`` (n, 2)
+    each body's first part and how many, ``part_of`` (P, 2) each part's body and its number
+    among the body's; a body of one shape is one part). ``pa``, ``pb``: the pairs to test,
+    rows. Static shapes (K): the collider ``owner``, ``bounds`` (K, 4) xmin, ymin, xmax, ymax,
+    ``static_circle``, ``static_index`` (a half plane h: -1 - h). Colliders (C, by place):
+    sensor, friction, restitution, surface velocity (C, 2) m/s, filter. The tables
+    (engine.geometry.narrowphase:
     polygons ``V``, ``Nrm``, ``cnt``, ``rad``; circles ``center``, ``rnd``), the half planes'
     points ``hp`` and unit normals ``hn`` (H, 2).
     ``apart``: sorted keys a n + b of pairs kept apart; ``ignored``: sorted keys row (C + 1)
@@ -256,7 +267,7 @@ def contacts_loop(
     k_shapes = len(owner)
     n_col = len(c_sensor)
     # -- 1. the body pairs -----------------------------------------------------------------
-    box = body_boxes(x, q, radius, body_circle, body_index, V, rad)
+    box = body_boxes(x, q, radius, body_circle, body_index, body_parts, V, rad)
     cand_a = np.empty(len(pa) + n * k_shapes, dtype=np.int64)
     cand_b = np.empty(len(cand_a), dtype=np.int64)  # B's row, or n for a static shape
     cand_p = np.empty(len(cand_a), dtype=np.int64)  # the static shape, or -1
@@ -320,6 +331,36 @@ def contacts_loop(
                     continue
             cand_a[m], cand_b[m], cand_p[m] = a, n, s
             m += 1
+    # -- 2b. the parts: a body of several shapes (engine.body_shapes) meets by every part of A
+    # with every part of B, and each part with a static shape (the numpy path's order:
+    # engine.pipeline.game_step.GameStep._collide); ``part_a``, ``part_b`` each candidate's
+    # parts (B's -1 for a static shape), ``cand_a``, ``cand_b`` still their bodies.
+    total = 0
+    for i in range(m):
+        many = body_parts[cand_a[i], 1]
+        if cand_p[i] < 0:
+            many *= body_parts[cand_b[i], 1]
+        total += many
+    part_a = np.empty(total, dtype=np.int64)
+    part_b = np.empty(total, dtype=np.int64)
+    if total == m:  # (one part a body among the candidates: the bodies' own rows)
+        for i in range(m):
+            part_a[i] = body_parts[cand_a[i], 0]
+            part_b[i] = body_parts[cand_b[i], 0] if cand_p[i] < 0 else -1
+    else:
+        ea = np.empty(total, dtype=np.int64)
+        eb = np.empty(total, dtype=np.int64)
+        ep = np.empty(total, dtype=np.int64)
+        e = 0
+        for i in range(m):
+            a, b, s = cand_a[i], cand_b[i], cand_p[i]
+            for pu in range(body_parts[a, 1]):
+                for pw in range(body_parts[b, 1] if s < 0 else 1):
+                    ea[e], eb[e], ep[e] = a, b, s
+                    part_a[e] = body_parts[a, 0] + pu
+                    part_b[e] = body_parts[b, 0] + pw if s < 0 else -1
+                    e += 1
+        cand_a, cand_b, cand_p, m = ea, eb, ep, total
     # -- 3. the manifolds, by group --------------------------------------------------------
     # Groups: 0 polygon against polygon, 1 the round pairs, 2 to 4 a half plane against a
     # disc, a capsule, a polygon (the half plane as A). ``swap``: the manifold is B's to A's,
@@ -333,11 +374,11 @@ def contacts_loop(
         r = reach[a] + (0.0 if s >= 0 else reach[b])
         r = r + SPECULATIVE_DISTANCE
         if s >= 0 and static_index[s] < 0:
-            g = 2 + kind[a]  # DISC, CAPSULE, POLYGON: 0, 1, 2
+            g = 2 + kind[part_a[i]]  # DISC, CAPSULE, POLYGON: 0, 1, 2
             swap[i] = True
         else:
-            ca = body_circle[a]
-            cb = static_circle[s] if s >= 0 else body_circle[b]
+            ca = body_circle[part_a[i]]
+            cb = static_circle[s] if s >= 0 else body_circle[part_b[i]]
             g = 1 if ca or cb else 0
             swap[i] = ca and not cb
         group_of[i] = g
@@ -363,16 +404,16 @@ def contacts_loop(
         j = fill[g]
         fill[g] += 1
         where[i] = j
-        ia = body_index[a]
+        ia = body_index[part_a[i]]
         if g >= 2:  # the half plane -1 - index as A, at the origin; the body as B
             gi_a[j], gi_b[j] = -1 - static_index[s], ia
             gx_b[j, 0], gx_b[j, 1], gq_b[j] = x[a, 0], x[a, 1], q[a]
             continue
-        ib = static_index[s] if s >= 0 else body_index[b]
+        ib = static_index[s] if s >= 0 else body_index[part_b[i]]
         xbx, xby, qb = 0.0, 0.0, 0.0
         if s < 0:
             xbx, xby, qb = x[b, 0], x[b, 1], q[b]
-        flag[j] = body_circle[a] and not swap[i]
+        flag[j] = body_circle[part_a[i]] and not swap[i]
         if swap[i]:  # the polygon as A
             gi_a[j], gi_b[j] = ib, ia
             gx_a[j, 0], gx_a[j, 1], gq_a[j] = xbx, xby, qb
@@ -551,6 +592,11 @@ def contacts_loop(
         px[k], py[k] = point[j, 0, 0], point[j, 0, 1]
         code_b = slots[b] if s < 0 else STATIC + s
         code = (slots[a] << OTHER) | code_b
+        # The parts' numbers above the pair's code (``PART``; 0 for bodies of one shape).
+        number = part_of[part_a[i], 1] * MAX_PARTS
+        if s < 0:
+            number += part_of[part_b[i], 1]
+        code |= number << (PART - FEATURE)
         for p in range(2):
             t = 2 * k + p
             if flip:

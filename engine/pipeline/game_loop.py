@@ -44,9 +44,9 @@ def _sample() -> tuple[Any, ...]:
     beside it), both bodies awake and falling, the box held to the world by a hinge."""
     c = contacts_sample()
     x, q, radius, reach, moving, sensor, group, cats, mask, slots, fric, rest = c[:12]
-    body_circle, body_index, kind, pa, pb = c[12:17]
-    statics = c[17:36]  # owner ... hn
-    apart, ignored, warm_keys, warm_lam = c[36:40]
+    body_circle, body_index, kind, body_parts, part_of, pa, pb = c[12:19]
+    statics = c[19:38]  # owner ... hn
+    apart, ignored, warm_keys, warm_lam = c[38:42]
     f = np.zeros
     i1 = np.zeros(1, dtype=np.int64)
     joints = [
@@ -63,9 +63,9 @@ def _sample() -> tuple[Any, ...]:
     last = (np.array([1], dtype=np.int64), f((1, 2)), f((1, 2)), f((1, 2)))
     return (x, v, q, f(2), mass, np.array([6.0, 2.0]), accel, f(2), no, radius, reach,
             sensor, group, cats, mask, slots, fric, rest, body_circle, body_index, kind,
-            no.copy(), f(2), island, 0.5, 1.0 / 60.0, pa, pb, *statics, apart, ignored,
-            warm_keys, warm_lam, *joints, serial, slots.copy(), *last, 4, 30.0, 10.0, 60.0, 2.0,
-            3.0, 1.0, 0.005)  # fmt: skip
+            body_parts, part_of, no.copy(), f(2), island, 0.5, 1.0 / 60.0, pa, pb, *statics,
+            apart, ignored, warm_keys, warm_lam, *joints, serial, slots.copy(), *last, 4, 30.0,
+            10.0, 60.0, 2.0, 3.0, 1.0, 0.005)  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
@@ -73,7 +73,8 @@ def step_loop(
     x: Any, v: Any, angle: Any, omega: Any, mass: Any, inv_moment: Any, accel: Any,
     torque: Any, kinematic: Any, radius: Any, margin: Any,
     sensor: Any, group: Any, cats: Any, mask: Any, slots: Any, friction: Any,
-    restitution: Any, body_circle: Any, body_index: Any, kind: Any,
+    restitution: Any, body_circle: Any, body_index: Any, kind: Any, body_parts: Any,
+    part_of: Any,
     asleep: Any, still: Any, island: Any, sleep_time: float, dt: float,
     pa: Any, pb: Any,
     owner: Any, bounds: Any, static_circle: Any, static_index: Any,
@@ -137,7 +138,7 @@ def step_loop(
             if asleep[i] and island[i] + 1 > labels:
                 labels = island[i] + 1
         woken = np.zeros(labels, dtype=np.bool_)
-        box = body_boxes(x, angle, radius, body_circle, body_index, V, rad)
+        box = body_boxes(x, angle, radius, body_circle, body_index, body_parts, V, rad)
         active = np.empty(n, dtype=np.bool_)
         for i in range(n):
             spins = v[i, 0] != 0.0 or v[i, 1] != 0.0 or omega[i] != 0.0
@@ -188,7 +189,8 @@ def step_loop(
     # -- the contacts (engine.pipeline.game_contacts) ----------------------------------------------
     found = contacts_loop(
         x, angle, radius, margin, moving, sensor, group, cats, mask, slots, friction,
-        restitution, body_circle, body_index, kind, pa, pb, owner, bounds, static_circle,
+        restitution, body_circle, body_index, kind, body_parts, part_of, pa, pb, owner,
+        bounds, static_circle,
         static_index, c_sensor, c_friction, c_restitution, c_surface, c_group, c_cats, c_mask,
         V, Nrm, cnt, rad, center, rnd, hp, hn, apart, ignored, warm_keys, warm_lam, v, dt,
     )  # fmt: skip
@@ -317,23 +319,26 @@ def step_loop(
     for i in range(n):
         if not moving[i] or sensor[i]:
             continue
-        j = body_index[i]
-        if body_circle[i]:
-            small = rnd[j]
-            far = np.hypot(center[j, 0], center[j, 1])
-        else:
+        # (A body of several shapes: its least part's extent, its farthest part's reach.)
+        small, far = np.inf, 0.0
+        for part in range(body_parts[i, 0], body_parts[i, 0] + body_parts[i, 1]):
+            j = body_index[part]
+            if body_circle[part]:
+                small = min(small, rnd[j])
+                far = max(far, np.hypot(center[j, 0], center[j, 1]))
+                continue
             k = cnt[j]
             cx, cy = 0.0, 0.0
             for e in range(k):
                 cx += V[j, e, 0]
                 cy += V[j, e, 1]
             cx, cy = cx / k, cy / k
-            small, far = np.inf, 0.0
+            depth = np.inf
             for e in range(k):
                 d = Nrm[j, e, 0] * (V[j, e, 0] - cx) + Nrm[j, e, 1] * (V[j, e, 1] - cy)
-                small = min(small, d)
+                depth = min(depth, d)
                 far = max(far, np.hypot(V[j, e, 0], V[j, e, 1]))
-            small = max(small, 0.0) + rad[j]
+            small = min(small, max(depth, 0.0) + rad[j])
         move = abs(bx[i] - x[i, 0]) + abs(by[i] - x[i, 1]) + abs(bq[i] - angle[i]) * far
         if move > SAFETY * small * (1.0 - 1e-6):
             fast = True

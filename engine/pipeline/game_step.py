@@ -164,6 +164,7 @@ class GameStep:
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
         self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
         self._part_places: tuple[Parts, StaticShapes, narrowphase.Places] | None = None
+        self._kept_layout: tuple[Any, Any, Any] | None = None  # (``_layout``)
         self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
         # The bodies' radii and their median (the radii are a new array when bodies come or go).
         self._median: tuple[np.ndarray, float] | None = None
@@ -222,11 +223,7 @@ class GameStep:
             # (The fast path's kernel measures the reach itself where the pairs need it not.)
             margin = _reach(store, accel, dt) if n > _FEW or not self.fast else np.zeros(0)
             candidates = self._candidates(store, margin)
-        if self.fast and self._shapes(store).parts is not None and not len(margin):
-            # A body of several shapes takes the numpy path's stages (``_collide``), which ask
-            # the reach the fast path's kernel measures itself.
-            margin = _reach(store, accel, dt)
-        if self.fast and self._shapes(store).parts is None:
+        if self.fast:
             return self._step_fast(
                 state, store, dt, accel, store.torque if torque is None else torque, margin,
                 candidates, ignored_faces, ignored_pairs,
@@ -246,15 +243,9 @@ class GameStep:
         args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
         params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
         params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
-        out: list[Any]
-        if self.fast:
-            # (The fast path here: a World with a body of several shapes, ``_collide``.)
-            out = [np.ascontiguousarray(a) for a in args]
-            solver.solve(*out, *params)
-        else:
-            # Plain Python on lists: at a game's size faster than numpy's calls a colour.
-            out = [a.tolist() for a in args]
-            solver.solve.py(*out, *params)
+        # Plain Python on lists: at a game's size faster than numpy's calls a colour.
+        out: list[Any] = [a.tolist() for a in args]
+        solver.solve.py(*out, *params)
         x = np.stack([np.asarray(out[0][:n]), np.asarray(out[1][:n])], axis=1)
         v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
         angle = np.asarray(out[2][:n], dtype=float)
@@ -285,6 +276,10 @@ class GameStep:
             c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
         table, places, statics, cs = sc.table, sc.places, sc.statics, sc.cs
+        # The shapes by part (engine.geometry.shaped.Parts): a body of one shape is one part,
+        # itself; where a body is of several, the parts' tables (``_part_places``).
+        layout = self._layout(table, statics, places)
+        places, kind, body_parts, part_of = layout
         joints = self.joints.arrays(state, store, n)
         t = places.tables
         f64, i64 = np.float64, np.int64
@@ -299,8 +294,8 @@ class GameStep:
             asc(accel, f64), asc(torque, f64), asc(store.kinematic), asc(store.radius, f64),
             asc(margin, f64), sc.sensors, asc(store.group, i64), asc(store.categories, i64),
             asc(store.mask, i64), asc(store.slots(), i64), asc(store.friction, f64),
-            asc(store.restitution, f64), places.body_circle, places.body_index,
-            asc(table.kind, i64), c.asleep, c.still, c._group, float(c.sleep_time), dt,
+            asc(store.restitution, f64), places.body_circle, places.body_index, kind,
+            body_parts, part_of, c.asleep, c.still, c._group, float(c.sleep_time), dt,
             *candidates, asc(sc.owner, i64), asc(sc.bounds, f64), places.static_circle,
             places.static_index, cs.sensor, cs.friction, cs.restitution, asc(cs.surface),
             cs.group, cs.categories, cs.mask, *t.kernel_polygons, t.center, t.round,
@@ -333,6 +328,37 @@ class GameStep:
         self.continuous.sweep(store, sc, x, angle)
         self.sums = None if self.continuous.hits else sums  # (a body set back: summed again)
         return x, v, angle, omega
+
+    def _layout(
+        self, table: ShapeTable, statics: StaticShapes, places: narrowphase.Places
+    ) -> tuple[narrowphase.Places, np.ndarray, np.ndarray, np.ndarray]:
+        """What the fast path's step reads of the shapes by part: the places (the bodies'
+        shapes and the static ones in the tables), each part's kind, each body's first part
+        and how many (n, 2), each part's body and number (P, 2); kept while the tables are."""
+        kept = self._kept_layout
+        if kept is not None and kept[0] is table and kept[1] is places:
+            return kept[2]
+        parts = table.parts
+        i64 = np.int64
+        if parts is None:
+            rows = np.arange(len(table), dtype=i64)
+            body_parts = np.stack([rows, np.ones(len(table), dtype=i64)], axis=1)
+            part_of = np.stack([rows, np.zeros(len(table), dtype=i64)], axis=1)
+            made = (places, np.ascontiguousarray(table.kind, i64), body_parts, part_of)
+        else:
+            pkept = self._part_places
+            if pkept is None or pkept[0] is not parts or pkept[1] is not statics:
+                pkept = self._part_places = (
+                    parts,
+                    statics,
+                    narrowphase.places_of(parts.table, statics),
+                )
+            body_parts = np.stack([parts.first, parts.size], axis=1).astype(i64)
+            part_of = np.stack([parts.owner, parts.number], axis=1).astype(i64)
+            kind = np.ascontiguousarray(parts.table.kind, i64)
+            made = (pkept[2], kind, body_parts, part_of)
+        self._kept_layout = (table, places, made)
+        return made
 
     def resting(self, slot: int) -> int | None:
         """The serial of the collider that pushed the body in ``slot`` hardest in the last
@@ -638,8 +664,11 @@ class GameStep:
             )
         kept = self._part_places
         if kept is None or kept[0] is not parts or kept[1] is not sc.statics:
-            made = narrowphase.places_of(parts.table, sc.statics)
-            kept = self._part_places = (parts, sc.statics, made)
+            kept = self._part_places = (
+                parts,
+                sc.statics,
+                narrowphase.places_of(parts.table, sc.statics),
+            )
         a, b = pairs[:, 0], pairs[:, 1]
         ka, kb = parts.size[a], parts.size[b]
         item, j = _spread(ka * kb)
