@@ -4,12 +4,13 @@ Run with ``python -m demos crates``. Two columns of 1 m crates (boxes, 2 kg, fri
 are let go a hand's breadth apart and land on one another; a plank (a capsule ``Segment``
 with a radius) falls across the right column; a ball rolls in from the left at 5 m/s into
 the left column and shoves it along the floor; a platform the game moves (a kinematic box)
-lifts a small crate and stops. The crates turn (the issue "Bodies that turn"): they land,
-stack and are shoved at their angles, on the soft step (``World()`` chooses it for crates:
-engine.pipeline.solver_choice). The read-outs: how many of the bodies sleep, and the
-deepest overlap of two crates (or a crate and the floor) as a fraction of a crate's
-height, measured from the positions, now and the worst so far. They are of the state the frame
-shows, at the time its clock says: the frame drawn between two steps (``alpha`` < 1: at 30
+lifts a small crate and stops; an L of two boxes (``Body(shapes=[...])``), stood on its end
+with its centre of mass past its foot, tips over and comes to rest on its hull's edge. The
+crates turn: they land, stack and are shoved at their angles, on the soft step (``World()``
+chooses it for crates: engine.pipeline.solver_choice). The read-outs: how many of the bodies
+sleep, and the deepest overlap of two crates (or a crate and the floor) as a fraction of a
+crate's height, measured from the positions, now and the worst so far. They are of the state
+the frame shows, at the time its clock says: the frame drawn between two steps (``alpha`` < 1: at 30
 frames a second and dt = 1/60 s, exactly on the earlier one) reads the earlier state, so the
 frame at t = 0 reads the crates where they were put. Everything is drawn by
 ``engine.render.draw_world``.
@@ -29,19 +30,27 @@ from engine.forces import Gravity
 from engine.render import INK, MUTED, PAPER, Camera, Scene, draw_text
 from engine.render.world_view import draw_world
 
-__all__ = ["DEMO", "CratesScene", "crates_world", "deepest_crate_overlap", "CRATE", "LIFT_STOP"]
+__all__ = [
+    "DEMO", "CratesScene", "crates_world", "deepest_crate_overlap", "CRATE", "LIFT_STOP",
+    "ELL_BAR", "ELL_POST", "ELL_AT",
+]  # fmt: skip
 
 CRATE = 1.0  # m, a crate's side
 SMALL = 0.6  # m, the crate on the platform
 DT = 1.0 / 60.0  # s
 LIFT_SPEED = 0.5  # m/s
 LIFT_STOP = 3.0  # s: the platform stops here
+#: The L (m): a bar along +x from its frame's origin, a post up from the bar's left end; put
+#: with its frame's origin at (ELL_AT, 0) and turned a quarter turn clockwise, the bar upright.
+ELL_BAR = [(0.0, 0.0), (1.2, 0.0), (1.2, 0.3), (0.0, 0.3)]
+ELL_POST = [(0.0, 0.3), (0.3, 0.3), (0.3, 1.3), (0.0, 1.3)]
+ELL_AT = 5.5
 #: (left, bottom, right, top) of the scene in metres.
 VIEW = (-1.2, -0.3, 10.2, 6.6)
 
 
 def crates_world() -> tuple[World, dict[str, list[Body]]]:
-    """The scene's World and its bodies by kind: crates, plank, ball, lift, rider."""
+    """The scene's World and its bodies by kind: crates, plank, ball, lift, rider, ell."""
     # World() chooses the soft step for crates (engine.pipeline.solver_choice): Box2D's contacts.
     w = World(integrator="auto")
     w.add_force(Gravity((0.0, -9.81)))
@@ -71,8 +80,14 @@ def crates_world() -> tuple[World, dict[str, list[Body]]]:
              kinematic=True)
     )  # fmt: skip
     rider = crate(8.0, 0.2 + SMALL / 2, SMALL)
+    # An L of two boxes (Body(shapes=[...]), engine.body_shapes), stood on its bar's end with
+    # its post out to the right at the top: its centre of mass is past its foot, so it tips.
+    ell = w.add(
+        Body(Vector(ELL_AT, 0.0), shapes=[Polygon(ELL_BAR), Polygon(ELL_POST)], density=2.0,
+             angle=-0.5 * math.pi, restitution=0.0, friction=0.6)
+    )  # fmt: skip
     bodies = {"crates": crates, "plank": [plank], "ball": [ball], "lift": [lift]}
-    bodies["rider"] = [rider]
+    bodies["rider"], bodies["ell"] = [rider], [ell]
     return w, bodies
 
 
@@ -113,7 +128,7 @@ def deepest_crate_overlap(crates: list[Body]) -> float:
 
 
 class CratesScene(KeptReadouts, Scene):
-    """Crates, a plank, a ball and a platform: bodies with shapes in one World."""
+    """Crates, a plank, a ball, a platform and an L: bodies with shapes in one World."""
 
     name = "stack"
     summary = "crates land on one another, a ball shoves a column, a platform lifts a crate"

@@ -186,13 +186,15 @@ def pairs(
     return np.stack([a[keep], b[keep]], axis=1)
 
 
-def boxes(places: Places, store: Any, several: np.ndarray | None = None) -> np.ndarray:
+def boxes(places: Places, store: Any, parts: Any = None) -> np.ndarray:
     """Each body's box (N, 4: xmin, ymin, xmax, ymax): a disc's centre +- its radius, a
     polygon's (a capsule's) corners turned and moved +- its radius; the products of
-    engine.pipeline.game_contacts' own, in its order. A body of several shapes (``several``,
-    engine.body_shapes) takes the box of the circle that holds its parts."""
+    engine.pipeline.game_contacts' own, in its order. Where a body is of several shapes
+    (engine.body_shapes), ``parts``: (engine.geometry.shaped.Parts, their Places), and such a
+    body's box is its parts' boxes' (``part_boxes``)."""
     x, q, r = store.x, store.angle, store.radius
     box = np.concatenate([x - r[:, None], x + r[:, None]], axis=1)
+    several = None if parts is None else parts[0].size != 1
     round_ = places.body_circle if several is None else places.body_circle | several
     rows = np.flatnonzero(~round_)
     if len(rows):
@@ -207,7 +209,41 @@ def boxes(places: Places, store: Any, several: np.ndarray | None = None) -> np.n
         box[rows, 1] = wy.min(axis=1) - grow
         box[rows, 2] = wx.max(axis=1) + grow
         box[rows, 3] = wy.max(axis=1) + grow
+    if several is not None:
+        for a in np.flatnonzero(several).tolist():
+            box[a] = part_boxes(parts[0], parts[1], store, a)
     return box
+
+
+def part_boxes(parts: Any, places: Places, store: Any, a: int) -> tuple[float, ...]:
+    """The box of body a of several shapes (engine.body_shapes; ``parts`` its
+    engine.geometry.shaped.Parts, ``places`` theirs): the least and greatest of its parts'
+    corners (a round part's centre) turned and moved to its pose, each part's +- its rounding;
+    engine.pipeline.game_contacts.body_boxes' products, in its order."""
+    t = places.tables
+    x, y, angle = float(store.x[a, 0]), float(store.x[a, 1]), float(store.angle[a])
+    co, si = np.cos(angle), np.sin(angle)
+    out = [0.0, 0.0, 0.0, 0.0]
+    start = int(parts.first[a])
+    for u in range(int(parts.size[a])):
+        j = int(places.body_index[start + u])
+        if places.body_circle[start + u]:
+            cx, cy = t.center[j]
+            wx, wy = co * cx - si * cy + x, si * cx + co * cy + y
+            r = t.round[j]
+            lox, loy, hix, hiy = wx - r, wy - r, wx + r, wy + r
+        else:
+            v = t.vertices[j]
+            wx_ = co * v[:, 0] - si * v[:, 1] + x
+            wy_ = si * v[:, 0] + co * v[:, 1] + y
+            g = t.radius[j]
+            lox, loy = wx_.min() - g, wy_.min() - g
+            hix, hiy = wx_.max() + g, wy_.max() + g
+        if u == 0:
+            out = [lox, loy, hix, hiy]
+        else:
+            out = [min(out[0], lox), min(out[1], loy), max(out[2], hix), max(out[3], hiy)]
+    return tuple(float(c) for c in out)
 
 
 def faces(

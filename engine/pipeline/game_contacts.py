@@ -114,19 +114,20 @@ def _boxes_sample() -> tuple[Any, ...]:
     corners = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]]])
     return (np.array([[0.0, 0.5], [1.2, 0.5]]), np.array([0.0, 0.5 * np.pi]),
             np.array([0.5, 0.71]), np.array([True, False]), np.zeros(2, dtype=np.int64),
-            np.array([[0, 1], [1, 1]], dtype=np.int64), corners, np.zeros(1))  # fmt: skip
+            np.array([[0, 1], [1, 1]], dtype=np.int64), corners, np.zeros(1), np.zeros((2, 2)),
+            np.array([0.5, 0.0]))  # fmt: skip
 
 
 @kernels.loop(sample=_boxes_sample)
 def body_boxes(
     x: Any, q: Any, radius: Any, body_circle: Any, body_index: Any, body_parts: Any, V: Any,
-    rad: Any,
+    rad: Any, center: Any, rnd: Any,
 ) -> Any:  # fmt: skip
     """Each body's box (n, 4: xmin, ymin, xmax, ymax, m): a disc's centre +- its ``radius``, a
     polygon's (a capsule's) corners ``V[body_index]`` turned by ``q`` (rad) and moved to ``x``,
     +- its rounding ``rad`` (engine.pipeline.game_broadphase's ``boxes``: the same products).
     The shapes are the parts' (``body_parts``: each body's first part and how many); a body of
-    several takes the box of its bounding circle."""
+    several takes the box of its parts' boxes (a round part's ``center``, ``rnd``)."""
     n = len(radius)
     box = np.empty((n, 4))
     for a in range(n):
@@ -134,7 +135,34 @@ def body_boxes(
         box[a, 0], box[a, 1] = x[a, 0] - r, x[a, 1] - r
         box[a, 2], box[a, 3] = x[a, 0] + r, x[a, 1] + r
         first = body_parts[a, 0]
-        if body_parts[a, 1] == 1 and not body_circle[first]:
+        if body_parts[a, 1] != 1:
+            # A body of several shapes: the least and greatest of its parts' corners (a round
+            # part's centre) turned and moved, each part's +- its rounding
+            # (engine.pipeline.game_broadphase's ``part_boxes``: the same products).
+            co, si = np.cos(q[a]), np.sin(q[a])
+            for u in range(body_parts[a, 1]):
+                part = first + u
+                j = body_index[part]
+                lox, loy, hix, hiy = np.inf, np.inf, -np.inf, -np.inf
+                if body_circle[part]:
+                    wx = co * center[j, 0] - si * center[j, 1] + x[a, 0]
+                    wy = si * center[j, 0] + co * center[j, 1] + x[a, 1]
+                    lox, loy, hix, hiy = wx - rnd[j], wy - rnd[j], wx + rnd[j], wy + rnd[j]
+                else:
+                    for v in range(V.shape[1]):
+                        wx = co * V[j, v, 0] - si * V[j, v, 1] + x[a, 0]
+                        wy = si * V[j, v, 0] + co * V[j, v, 1] + x[a, 1]
+                        lox, loy = min(lox, wx), min(loy, wy)
+                        hix, hiy = max(hix, wx), max(hiy, wy)
+                    lox, loy = lox - rad[j], loy - rad[j]
+                    hix, hiy = hix + rad[j], hiy + rad[j]
+                if u == 0:
+                    box[a, 0], box[a, 1], box[a, 2], box[a, 3] = lox, loy, hix, hiy
+                else:
+                    box[a, 0], box[a, 1] = min(box[a, 0], lox), min(box[a, 1], loy)
+                    box[a, 2], box[a, 3] = max(box[a, 2], hix), max(box[a, 3], hiy)
+            continue
+        if not body_circle[first]:
             j = body_index[first]
             co, si = np.cos(q[a]), np.sin(q[a])
             for v in range(V.shape[1]):
@@ -267,7 +295,7 @@ def contacts_loop(
     k_shapes = len(owner)
     n_col = len(c_sensor)
     # -- 1. the body pairs -----------------------------------------------------------------
-    box = body_boxes(x, q, radius, body_circle, body_index, body_parts, V, rad)
+    box = body_boxes(x, q, radius, body_circle, body_index, body_parts, V, rad, center, rnd)
     cand_a = np.empty(len(pa) + n * k_shapes, dtype=np.int64)
     cand_b = np.empty(len(cand_a), dtype=np.int64)  # B's row, or n for a static shape
     cand_p = np.empty(len(cand_a), dtype=np.int64)  # the static shape, or -1

@@ -138,7 +138,7 @@ def step_loop(
             if asleep[i] and island[i] + 1 > labels:
                 labels = island[i] + 1
         woken = np.zeros(labels, dtype=np.bool_)
-        box = body_boxes(x, angle, radius, body_circle, body_index, body_parts, V, rad)
+        box = body_boxes(x, angle, radius, body_circle, body_index, body_parts, V, rad, center, rnd)
         active = np.empty(n, dtype=np.bool_)
         for i in range(n):
             spins = v[i, 0] != 0.0 or v[i, 1] != 0.0 or omega[i] != 0.0

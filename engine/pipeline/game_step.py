@@ -74,7 +74,7 @@ from ..geometry.colliders import Collider
 from ..geometry.manifold import StaticShapes, static_shapes
 from ..geometry.manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from ..geometry.pair_grid import grid_pairs
-from ..geometry.shaped import COMPOUND, Parts, ShapeTable
+from ..geometry.shaped import Parts, ShapeTable
 from . import game_broadphase as broad
 from . import game_sleep
 from .game_contacts import FEATURE, OTHER, PART, STATIC, candidates_loop
@@ -229,7 +229,8 @@ class GameStep:
                 candidates, ignored_faces, ignored_pairs,
             )  # fmt: skip
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
-        boxes = broad.boxes(sc.places, store, sc.table.kind == COMPOUND)
+        parts = None if sc.table.parts is None else (sc.table.parts, self._parts_places(sc))
+        boxes = broad.boxes(sc.places, store, parts)
         awake = self._wake(state, store, margin, candidates, boxes)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
         pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes)
@@ -346,17 +347,10 @@ class GameStep:
             part_of = np.stack([rows, np.zeros(len(table), dtype=i64)], axis=1)
             made = (places, np.ascontiguousarray(table.kind, i64), body_parts, part_of)
         else:
-            pkept = self._part_places
-            if pkept is None or pkept[0] is not parts or pkept[1] is not statics:
-                pkept = self._part_places = (
-                    parts,
-                    statics,
-                    narrowphase.places_of(parts.table, statics),
-                )
             body_parts = np.stack([parts.first, parts.size], axis=1).astype(i64)
             part_of = np.stack([parts.owner, parts.number], axis=1).astype(i64)
             kind = np.ascontiguousarray(parts.table.kind, i64)
-            made = (pkept[2], kind, body_parts, part_of)
+            made = (self._parts_places_of(parts, statics), kind, body_parts, part_of)
         self._kept_layout = (table, places, made)
         return made
 
@@ -662,13 +656,7 @@ class GameStep:
             return narrowphase.collide_pairs(
                 sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt
             )
-        kept = self._part_places
-        if kept is None or kept[0] is not parts or kept[1] is not sc.statics:
-            kept = self._part_places = (
-                parts,
-                sc.statics,
-                narrowphase.places_of(parts.table, sc.statics),
-            )
+        part_places = self._parts_places(sc)
         a, b = pairs[:, 0], pairs[:, 1]
         ka, kb = parts.size[a], parts.size[b]
         item, j = _spread(ka * kb)
@@ -679,7 +667,7 @@ class GameStep:
         owner = parts.owner
         view = _PartView(store.x[owner], store.angle[owner], store.v[owner])
         touches = narrowphase.collide_pairs(
-            kept[2], parts.table, view, sc.statics, np.stack([pa, pb], axis=1),
+            part_places, parts.table, view, sc.statics, np.stack([pa, pb], axis=1),
             np.stack([fa, faces[face, 1]], axis=1), margin[owner], dt,
         )  # fmt: skip
         n, p = len(store), len(owner)
@@ -690,6 +678,19 @@ class GameStep:
         m = touches.m
         m.feature[:] = np.where(m.feature >= 0, m.feature | code[:, None], m.feature)
         return narrowphase.Touches(m, owner[touches.a], body_b, touches.place)
+
+    def _parts_places(self, sc: _Scene) -> narrowphase.Places:
+        """The places of the bodies' parts (engine.geometry.shaped.Parts) and the static
+        shapes in one pair of tables, kept while the parts and the colliders' shapes are."""
+        parts = sc.table.parts
+        assert parts is not None
+        return self._parts_places_of(parts, sc.statics)
+
+    def _parts_places_of(self, parts: Parts, statics: StaticShapes) -> narrowphase.Places:
+        kept = self._part_places
+        if kept is None or kept[0] is not parts or kept[1] is not statics:
+            kept = self._part_places = (parts, statics, narrowphase.places_of(parts.table, statics))
+        return kept[2]
 
     def _found(
         self, store: Any, cs: broad.Colliders, owner: np.ndarray, touches: narrowphase.Touches
