@@ -592,6 +592,27 @@ UNSEEN_ON_THE_FLOOR: Scene = {
     "method": "semi_implicit_euler",
     "steps": 60,
 }
+#: Found exploring (fast path, FUZZ_EXAMPLES=300; numpy alike): no gravity, no colliders; the
+#: first world's rough balls 2 and 3 meet at 11 ms of step 55, beside the second world's ball 0,
+#: which spins from its impact with ball 1. The first world alone and the two together parted
+#: there by 3.7e-4 m/s: alone, nothing spun as the step began (no Spin), and
+#: engine.exact.pair_bounce.turns_of gave the impacts one array of zeros for both omega and
+#: alpha, so the turn each impact wrote into omega was an angular acceleration too for the
+#: later rounds (26 of them); together, alpha was the second world's Spin's, its own array.
+CROSSING_A_STRANGER: Scene = {
+    "balls": [
+        (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 1.0, 7),
+        (0.0, 0.8260990336999412, 0.4130495168499706, -0.8260990336999412, 0.2, 1.0, 0.0, 1.0,
+         7),
+        (0.0, -0.8260990336999412, 0.0, 0.8260990336999412, 0.2, 1.0, 0.0, 1.0, 5),
+        (0.0, -1.321758453919906, 0.0, 0.8260990336999412, 0.2, 1.0, 0.0, 1.0, 5),
+        (0.8260990336999412, 0.0, -0.8260990336999412, 0.0, 0.2, 1.0, 0.0, 0.0, 5),
+    ],
+    "colliders": [],
+    "gravity": False,
+    "method": "auto",
+    "steps": 60,
+}  # fmt: skip
 #: Found exploring on the fast path (the same on numpy), no gravity, a rough room: the 7 g ball
 #: 2 of the first world (5), squeezed by ball 3 against the floor, meets the cap of 64 impact
 #: rounds every step from step 6; the second world's (7) pair met at 11 ms of step 10 and,
@@ -1031,6 +1052,7 @@ def check_as_if_alone(scene: Scene) -> None:
 @example(scene=UNSEEN_NEIGHBOUR)
 @example(scene=UNSEEN_ON_THE_FLOOR)
 @example(scene=STOPPED_WITH_A_STRANGER)
+@example(scene=CROSSING_A_STRANGER)
 def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
     check_as_if_alone(scene)
 
@@ -1067,7 +1089,9 @@ def test_a_world_filtered_apart_keeps_its_own_impact_rounds() -> None:
 
 #: Found replaying on 2026-12-02 (its shrunk example): two worlds filtered apart, where a ball
 #: of the second (5) falls onto another (6) across the place where a ball of the first (0)
-#: rests.
+#: rests. Its three balls left the path they take alone at step 15 (a strict xfail, put down
+#: to the impacts' search or order); it holds since CROSSING_A_STRANGER's bug is fixed (omega
+#: and alpha one array where nothing spun as the step began).
 THROUGH_A_RESTING_STRANGER: Scene = {
     "balls": [
         (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
@@ -1085,11 +1109,6 @@ THROUGH_A_RESTING_STRANGER: Scene = {
 }
 
 
-@xfail(
-    "the second world's three balls leave the path they take alone at step 15 (by 1.5e-6 m, "
-    "growing to 3.8e-5 m by step 19) under the exact method: something in the impacts' "
-    "search or order counts the filtered pairs with the first world's resting balls"
-)
 def test_a_world_filtered_apart_moves_alone_where_its_balls_meet_over_a_stranger() -> None:
     check_as_if_alone(THROUGH_A_RESTING_STRANGER)
 
