@@ -592,6 +592,27 @@ UNSEEN_ON_THE_FLOOR: Scene = {
     "method": "semi_implicit_euler",
     "steps": 60,
 }
+#: Found exploring (fast path, FUZZ_EXAMPLES=300; numpy alike): no gravity, no colliders; the
+#: first world's rough balls 2 and 3 meet at 11 ms of step 55, beside the second world's ball 0,
+#: which spins from its impact with ball 1. The first world alone and the two together parted
+#: there by 3.7e-4 m/s: alone, nothing spun as the step began (no Spin), and
+#: engine.exact.pair_bounce.turns_of gave the impacts one array of zeros for both omega and
+#: alpha, so the turn each impact wrote into omega was an angular acceleration too for the
+#: later rounds (26 of them); together, alpha was the second world's Spin's, its own array.
+CROSSING_A_STRANGER: Scene = {
+    "balls": [
+        (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 1.0, 7),
+        (0.0, 0.8260990336999412, 0.4130495168499706, -0.8260990336999412, 0.2, 1.0, 0.0, 1.0,
+         7),
+        (0.0, -0.8260990336999412, 0.0, 0.8260990336999412, 0.2, 1.0, 0.0, 1.0, 5),
+        (0.0, -1.321758453919906, 0.0, 0.8260990336999412, 0.2, 1.0, 0.0, 1.0, 5),
+        (0.8260990336999412, 0.0, -0.8260990336999412, 0.0, 0.2, 1.0, 0.0, 0.0, 5),
+    ],
+    "colliders": [],
+    "gravity": False,
+    "method": "auto",
+    "steps": 60,
+}  # fmt: skip
 #: Found exploring on the fast path (the same on numpy), no gravity, a rough room: the 7 g ball
 #: 2 of the first world (5), squeezed by ball 3 against the floor, meets the cap of 64 impact
 #: rounds every step from step 6; the second world's (7) pair met at 11 ms of step 10 and,
@@ -731,6 +752,34 @@ STOPPED_ON_THE_FLOOR: Scene = {
     "steps": 60,
 }  # fmt: skip
 
+#: Found exploring (numpy, FUZZ_EXAMPLES=300; the same on the fast path): in a room with a rough
+#: floor and no gravity, the 105 kg ball 1 heads at 21.6 m/s for the top left corner, where
+#: the 1 kg ball 3 sits against the left wall. In step 16 the static contacts bounce ball 1
+#: off the left wall at 8.6 ms, its friction spinning it up from -2.1 to 47 rad/s; the
+#: impacts then meet it with ball 3 at t = 0, round after round to the cap, and stop it
+#: there on its first piece (engine.exact.bent_paths): the bounce's push dropped, but not its
+#: spin, so the step ended with 2,254 J more than it began (7% of the first energy). Each
+#: piece of a bent path now has its own spin too.
+SPUN_BY_A_DROPPED_BOUNCE: Scene = {
+    "balls": [
+        (0.7965579296277236, -0.49597979746446663, -15.931158582634875, 9.725788313628179,
+         0.2, 1.0304446113591337, 0.2913435356184351, 0.9095431978113202, 1),
+        (1.1542231675360553, -0.9556045884713794, -18.792328926098758, 15.243104285478285,
+         0.2, 104.71285480508996, 0.0, 0.8699228733748041, 1),
+        (-0.49597979746446663, 0.0, 9.919595949289333, 4.166230298701519, 0.2,
+         0.4641588833612779, 0.0, 1.2371015852173194e-308, 0),
+        (0.6413971826843136, 0.0, -12.82794365368627, 0.0, 0.2, 1.0, 0.0, 1.0397462205612513,
+         0),
+    ],
+    "colliders": [
+        Box((-1.7604901177968717, -1.7604901177968717), (1.7604901177968717, 1.7604901177968717),
+            restitution=0.0, friction=0.35462551974650053),
+    ],
+    "gravity": False,
+    "method": "auto",
+    "steps": 20,
+}  # fmt: skip
+
 # -- 1. momentum ------------------------------------------------------------------------------
 
 
@@ -784,6 +833,7 @@ def check_energy_never_increases(scene: Scene) -> None:
 @given(scene=scenes(gravity=False, pegs=False))
 @example(scene=SQUEEZED_ON_A_WALL)
 @example(scene=STOPPED_ON_THE_FLOOR)
+@example(scene=SPUN_BY_A_DROPPED_BOUNCE)
 def test_without_gravity_energy_never_increases(scene: Scene) -> None:
     check_energy_never_increases(scene)
 
@@ -796,7 +846,10 @@ def test_moderate_scenes_without_gravity_never_gain_energy(scene: Scene) -> None
 
 #: Found exploring (numpy; the same on the fast path) with engine.exact.pair_impacts' capped groups
 #: stopping each at its own moment: two 5 g balls (3 and 5, e = 0.096, side by side at the
-#: same velocity) meet at t = 0 in all 64 rounds of every step from step 11.
+#: same velocity) meet at t = 0 in all 64 rounds of every step from step 11, and kinetic
+#: energy grew by 1.8e-9 of the first in step 12 (a strict xfail, put down to the cap's
+#: plastic collapse with the walls). It holds since each piece of a bent path has its own
+#: spin (SPUN_BY_A_DROPPED_BOUNCE): the gain was a dropped bounce's spin, kept.
 CAPPED_PAIR_GAINS: Scene = {
     "balls": [
         (63.82573710929791, 59.57634565602905, -1222.4773916600627, -1220.279204048801,
@@ -823,17 +876,6 @@ CAPPED_PAIR_GAINS: Scene = {
 }  # fmt: skip
 
 
-@xfail(
-    "kinetic energy grows by 1.8e-9 of the first in step 12 of CAPPED_PAIR_GAINS (found "
-    "exploring test_without_gravity_energy_never_increases, both paths): the two 5 g balls 3 "
-    "and 5 meet again at t = 0 in every one of the 64 rounds (engine.exact.pair_impacts, "
-    "MAX_ROUNDS) "
-    "of steps 11 and 12, are stopped there by the cap, and the capped step's plastic collapse "
-    "(``plastic``, which never adds energy) followed by the walls' push out and ``separate`` "
-    "end it with more energy than it began. The cap is not dissipative where a wall takes part; "
-    "a pair met at t = 0 round after round is a resting contact (the pile's, or one plastic "
-    "impulse with the wall among its rows)"
-)
 def test_a_pair_met_at_the_rounds_cap_every_step_gains_no_energy() -> None:
     check_energy_never_increases(CAPPED_PAIR_GAINS)
 
@@ -1010,6 +1052,7 @@ def check_as_if_alone(scene: Scene) -> None:
 @example(scene=UNSEEN_NEIGHBOUR)
 @example(scene=UNSEEN_ON_THE_FLOOR)
 @example(scene=STOPPED_WITH_A_STRANGER)
+@example(scene=CROSSING_A_STRANGER)
 def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
     check_as_if_alone(scene)
 
@@ -1046,7 +1089,9 @@ def test_a_world_filtered_apart_keeps_its_own_impact_rounds() -> None:
 
 #: Found replaying on 2026-12-02 (its shrunk example): two worlds filtered apart, where a ball
 #: of the second (5) falls onto another (6) across the place where a ball of the first (0)
-#: rests.
+#: rests. Its three balls left the path they take alone at step 15 (a strict xfail, put down
+#: to the impacts' search or order); it holds since CROSSING_A_STRANGER's bug is fixed (omega
+#: and alpha one array where nothing spun as the step began).
 THROUGH_A_RESTING_STRANGER: Scene = {
     "balls": [
         (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
@@ -1064,11 +1109,6 @@ THROUGH_A_RESTING_STRANGER: Scene = {
 }
 
 
-@xfail(
-    "the second world's three balls leave the path they take alone at step 15 (by 1.5e-6 m, "
-    "growing to 3.8e-5 m by step 19) under the exact method: something in the impacts' "
-    "search or order counts the filtered pairs with the first world's resting balls"
-)
 def test_a_world_filtered_apart_moves_alone_where_its_balls_meet_over_a_stranger() -> None:
     check_as_if_alone(THROUGH_A_RESTING_STRANGER)
 

@@ -52,12 +52,15 @@ engine.geometry.pair_grid's struck bodies are.
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from ..geometry.pair_grid import Search, impact_gain, rows_of
 from ..geometry.pair_math import isin_sorted, norm, sorted_unique
+
+if TYPE_CHECKING:
+    from .pair_bounce import Turns
 
 __all__ = ["Bends", "Replay", "bends_of", "bent_pairs", "bent_rows", "box_pairs", "new_pairs"]
 
@@ -74,6 +77,12 @@ class Bends(NamedTuple):
     V0: np.ndarray  # (m, 2) and its velocity at dt
     lo: np.ndarray  # (m, 2) the low corner of the box of the pieces' ends (length units)
     hi: np.ndarray  # (m, 2) its high corner
+    #: (q,) the piece after each bounce: its angular velocity at dt less the contacts' end
+    #: one (rad/s; 0 for the last: the bounces after it not taken), and its angle's (rad)
+    W: np.ndarray | None = None
+    Q: np.ndarray | None = None
+    W0: np.ndarray | None = None  # (m,) the first piece's
+    Q0: np.ndarray | None = None
 
 
 def _columns(batches: list[tuple[Any, ...]]) -> list[np.ndarray]:
@@ -101,12 +110,14 @@ def bends_of(
     rest: np.ndarray,
     dt: float,
     t0: float,
+    q_turn: np.ndarray | None = None,
 ) -> Bends | None:
     """The pieces of the bodies that bounced off a collider in the step (module text), from
     the static contacts' reports ``began`` and ``ended``, or None if none did. (x0, v0),
     (x1, v1): the step's start and the contacts' end states, (N, 2); A (N, 2): the pull
     along the path; ``rest`` (N,): each body's resting face after the contacts, or -1; dt,
-    t0: the step (s) and the World's time at its start (s)."""
+    t0: the step (s) and the World's time at its start (s); ``q_turn`` (N,): m r^2 / I of
+    the discs the bounces' friction turns, 0 for the others (None: none turns)."""
     if not began:
         return None
     rows, _, point, normal, impulse, when = _columns(began)
@@ -158,7 +169,29 @@ def bends_of(
         ends += [np.minimum.reduceat(at, first[:-1]), np.maximum.reduceat(at, first[:-1])]
     lo = np.minimum.reduce(ends)
     hi = np.maximum.reduce(ends)
-    return Bends(body, first, t, X, V, X0, V0, lo, hi)
+    if q_turn is None or not q_turn[body].any():
+        return Bends(body, first, t, X, V, X0, V0, lo, hi)
+    # The spin: friction at a bounce turns a disc by -du q / r (engine.dynamics.rotation,
+    # ``grip``: du its tangential impulse per mass, along t = (-n_y, n_x)), which turns it
+    # on by that times the rest of the step. Each piece's spin is the contacts' end one less
+    # what the bounces after it gave, so that the last piece's is the contacts' own, bit for
+    # bit, and a body an impact sends off a piece before a bounce keeps none of that
+    # bounce's turn (as none of its push).
+    du = (normal[:, 0] * impulse[:, 1] - normal[:, 1] * impulse[:, 0]) / mass[rows]
+    r = radius[rows]
+    dw = -du * q_turn[rows] / np.where(r > 0.0, r, 1.0)
+    dq = dw * (dt - t)
+    # What the bounces from each one on gave, over all bodies (a reversed cumulative sum, 0
+    # past the last): a body's bounces after bounce j gave S[j + 1] - S[its end].
+    S = np.append(np.cumsum(dw[::-1])[::-1], 0.0)
+    SQ = np.append(np.cumsum(dq[::-1])[::-1], 0.0)
+    end = first[1:]
+    W = -(S[1:] - S[end][group])
+    Q = -(SQ[1:] - SQ[end][group])
+    W[last], Q[last] = 0.0, 0.0
+    W0 = -(S[first[:-1]] - S[end])
+    Q0 = -(SQ[first[:-1]] - SQ[end])
+    return Bends(body, first, t, X, V, X0, V0, lo, hi, W, Q, W0, Q0)
 
 
 def box_pairs(lo: np.ndarray, hi: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -277,17 +310,42 @@ class Replay:
         self.t[held] = bends.t[self._next[held]]
         self._cut_rows: list[np.ndarray] = []
         self._cut_t: list[np.ndarray] = []
+        self._turns: Turns | None = None
+        self._omega = self._angle = np.zeros(0)
 
-    def begin(self, X: np.ndarray, V: np.ndarray) -> None:
-        """Put the bent bodies on their first pieces, in place on the end states (X, V)."""
+    def begin(self, X: np.ndarray, V: np.ndarray, turns: Turns | None = None) -> None:
+        """Put the bent bodies on their first pieces, in place on the end states (X, V) and
+        on the spins ``turns`` (engine.exact.pair_bounce; None: nothing turns)."""
         i = np.flatnonzero(self.bent)
         X[i], V[i] = self.bends.X0[self._body[i]], self.bends.V0[self._body[i]]
+        self._turns = None
+        b = self.bends
+        if turns is None or b.W0 is None or b.Q0 is None:
+            return
+        self._turns = turns
+        self._omega = turns.omega.copy()  # the contacts' end spins
+        self._angle = turns.angle.copy()
+        self._put(i, b.W0[self._body[i]], b.Q0[self._body[i]])
+
+    def _spin(self, i: np.ndarray, q: np.ndarray) -> None:
+        """Bodies i's spins, on the pieces after bounces q."""
+        b = self.bends
+        if self._turns is not None and b.W is not None and b.Q is not None:
+            self._put(i, b.W[q], b.Q[q])
+
+    def _put(self, i: np.ndarray, w: np.ndarray, q: np.ndarray) -> None:
+        """Bodies i's spins the contacts' end ones plus (w, q) (where 0: theirs, bit for bit)."""
+        turns = self._turns
+        assert turns is not None
+        turns.omega[i] = np.where(w != 0.0, self._omega[i] + w, self._omega[i])
+        turns.angle[i] = np.where(q != 0.0, self._angle[i] + q, self._angle[i])
 
     def advance(self, i: np.ndarray, X: np.ndarray, V: np.ndarray) -> np.ndarray:
         """Put bodies i on the pieces after their next bounces (in place on X, V): the
         bounces' times (s, in the step), when the new pieces start."""
         q = self._next[i]
         X[i], V[i] = self.bends.X[q], self.bends.V[q]
+        self._spin(i, q)
         when = self.t[i].copy()
         q = q + 1
         more = q < self.bends.first[self._body[i] + 1]
@@ -302,6 +360,7 @@ class Replay:
         if len(i):
             q = self.bends.first[self._body[i] + 1] - 1
             X[i], V[i], ts[i] = self.bends.X[q], self.bends.V[q], self.bends.t[q]
+            self._spin(i, q)
             self.t[i] = np.inf
         return i
 

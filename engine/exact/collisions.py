@@ -539,7 +539,7 @@ class Collisions:
         x_free = x1.copy()  # where each body's own path ends: what the pairs were found on
         # A body that bounced off a collider took a bent path (engine.exact.bent_paths): the
         # impacts take it piece by piece, with the pairs its later pieces may meet.
-        bends, a, b = self._bent(a, b, island, x0, v0, x1, v1, A, dt, t0, store, contacts)
+        bends, a, b = self._bent(a, b, island, x0, v0, x1, v1, A, dt, t0, store, contacts, spin)
         x, v = (x1, v1) if self.moved else (x1.copy(), v1.copy())
         self.moved = True
         impacts: list[tuple[np.ndarray, ...]] = []
@@ -740,17 +740,23 @@ class Collisions:
         t0: float,
         store: Any,
         contacts: Contacts | None,
+        spin: Spin | None = None,
     ) -> tuple[Bends | None, np.ndarray, np.ndarray]:
         """The paths the static contacts bent in the step (engine.exact.bent_paths; None if none),
         and the pairs (a, b) with those appended that a bent path may bring within touch
         (World rows, a < b), less those never to collide, with a shape (the soft step's), or
-        of two sleepers."""
+        of two sleepers. ``spin``: the step's rotation (the discs the bounces turned)."""
         search = self._search
         if contacts is None or not contacts.began_arrays or search is None:
             return None, a, b
+        q_turn = None
+        if spin is not None:
+            # The discs the bounces' friction turned (engine.dynamics.rotation, ``rolling``).
+            turned = spin.turns & (spin.q > 0.0) & (store.friction > 0.0)
+            q_turn = np.where(turned, spin.q, 0.0)
         bends = bends_of(
             contacts.began_arrays, contacts.ended_arrays, x0, v0, x1, v1, A, store.radius,
-            store.mass, contacts.rest, dt, t0,
+            store.mass, contacts.rest, dt, t0, q_turn,
         )  # fmt: skip
         if bends is None:
             return None, a, b

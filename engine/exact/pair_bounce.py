@@ -112,8 +112,8 @@ def turns_of(
         if not (lever & (fr > 0.0)).any():
             return None
         r = store.radius[U]
-        zero = np.zeros(len(U))
-        angle, omega, alpha = store.angle[U].copy(), zero, zero
+        # (Two arrays: the impacts write omega in place, and alpha must stay 0.)
+        angle, omega, alpha = store.angle[U].copy(), np.zeros(len(U)), np.zeros(len(U))
         q = store.mass[U] * r * r * inv_moment
     else:
         lever = spin.turns[U]

@@ -329,7 +329,7 @@ def impacts_in_order(
     if not can.any():
         return Rounds([], rounds, False, None)
     if replay is not None:
-        replay.begin(X, V)
+        replay.begin(X, V, turns)
     pa, pb, pR = la, lb, R
     ts = np.zeros(nU)  # when each body's current path starts
     toi = np.full(len(pa), np.inf)
