@@ -55,7 +55,8 @@ from .manifold import (
 from .manifold_polygon import polygon_loop
 
 __all__ = [
-    "ShapeTable", "Parts", "pair_rows", "static_rows", "DISC", "CAPSULE", "POLYGON", "COMPOUND",
+    "ShapeTable", "Parts", "part_pairs", "part_rows", "pair_rows", "static_rows",
+    "DISC", "CAPSULE", "POLYGON", "COMPOUND",
 ]  # fmt: skip
 
 #: The kinds of a body's shape, by code: a COMPOUND body is of several (engine.body_shapes),
@@ -137,6 +138,22 @@ class ShapeTable:
             assert self.polygons is not None
             return self.polygons.take(idx)
         return self.circles.take(idx)
+
+
+def part_pairs(parts: Parts, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs of bodies (rows a, b) as pairs of their parts' rows: every part of A with
+    every part of B, in the pairs' order, A's parts the outer loop (the compiled step's
+    order, engine.pipeline.game_contacts.contacts_loop)."""
+    ka, kb = parts.size[a], parts.size[b]
+    item, j = part_rows(ka * kb)
+    return parts.first[a][item] + j // kb[item], parts.first[b][item] + j % kb[item]
+
+
+def part_rows(k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each of len(k) items repeated k[i] times (its index), and j = 0 .. k[i] - 1 within it."""
+    item = np.repeat(np.arange(len(k)), k)
+    j = np.arange(int(k.sum())) - np.repeat(np.cumsum(k) - k, k)
+    return item, j
 
 
 def _parts(shapes: Sequence[Any], radius: np.ndarray) -> Parts:

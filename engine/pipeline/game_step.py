@@ -74,7 +74,7 @@ from ..geometry.colliders import Collider
 from ..geometry.manifold import StaticShapes, static_shapes
 from ..geometry.manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE
 from ..geometry.pair_grid import grid_pairs
-from ..geometry.shaped import Parts, ShapeTable
+from ..geometry.shaped import Parts, ShapeTable, part_pairs, part_rows
 from . import game_broadphase as broad
 from . import game_sleep
 from .game_contacts import FEATURE, OTHER, PART, STATIC, candidates_loop
@@ -657,12 +657,8 @@ class GameStep:
                 sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt
             )
         part_places = self._parts_places(sc)
-        a, b = pairs[:, 0], pairs[:, 1]
-        ka, kb = parts.size[a], parts.size[b]
-        item, j = _spread(ka * kb)
-        pa = parts.first[a][item] + j // kb[item]
-        pb = parts.first[b][item] + j % kb[item]
-        face, jf = _spread(parts.size[faces[:, 0]])
+        pa, pb = part_pairs(parts, pairs[:, 0], pairs[:, 1])
+        face, jf = part_rows(parts.size[faces[:, 0]])
         fa = parts.first[faces[face, 0]] + jf
         owner = parts.owner
         view = _PartView(store.x[owner], store.angle[owner], store.v[owner])
@@ -862,10 +858,3 @@ class _PartView(NamedTuple):
 
     def __len__(self) -> int:
         return len(self.x)
-
-
-def _spread(k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Each of len(k) items repeated k[i] times (its index), and j = 0 .. k[i] - 1 within it."""
-    item = np.repeat(np.arange(len(k)), k)
-    j = np.arange(int(k.sum())) - np.repeat(np.cumsum(k) - k, k)
-    return item, j

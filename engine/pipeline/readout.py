@@ -15,7 +15,7 @@ from ..exact.collisions import deepest_overlap
 from ..geometry.colliders import Collider
 from ..geometry.pair_grid import grid_pairs
 from ..geometry.pair_math import norm
-from ..geometry.shaped import pair_rows
+from ..geometry.shaped import pair_rows, part_pairs
 
 if TYPE_CHECKING:
     from .world_state import WorldState
@@ -70,11 +70,7 @@ def overlap(state: WorldState) -> float:
         return max(-float(sep.min(initial=0.0)), 0.0)
     # Bodies of several shapes (engine.body_shapes): every part of A with every part of B,
     # each at its body's pose.
-    ka, kb = parts.size[a], parts.size[b]
-    item = np.repeat(np.arange(len(a)), ka * kb)
-    j = np.arange(int((ka * kb).sum())) - np.repeat(np.cumsum(ka * kb) - ka * kb, ka * kb)
-    pa = parts.first[a][item] + j // kb[item]
-    pb = parts.first[b][item] + j % kb[item]
+    pa, pb = part_pairs(parts, a, b)
     owner = parts.owner
     sep = pair_rows(parts.table, pa, pb, store.x[owner], 0.0, store.angle[owner])[3]
     return max(-float(sep.min(initial=0.0)), 0.0)
