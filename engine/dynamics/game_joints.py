@@ -43,8 +43,8 @@ WorldState = Any
 __all__ = ["GameJoints", "IMPULSES_AT"]
 
 #: Where a joint's six impulses start in the solver's arrays: after the bodies' 11 and the
-#: contacts' 17, the joints' 16 inputs (solver.solve's order).
-IMPULSES_AT = 11 + 17 + 16
+#: contacts' 18, the joints' 16 inputs (solver.solve's order).
+IMPULSES_AT = 11 + 18 + 16
 
 # How a row's impulses are reported on its joint (``GameJoints.report``), read once a joint.
 _CONSTRAINT, _MOUSE, _SPRING, _ROTARY_SPRING, _ROD, _PIN, _WELD, _HINGE = range(8)

@@ -96,7 +96,7 @@ def contacts_sample() -> tuple[Any, ...]:
     c_i = f(1, dtype=np.int64)
     none = f(0, dtype=np.int64)
     keys = np.array([0], dtype=np.int64)
-    lam = f((1, 2))
+    lam = f((1, 3))
     kind = np.array([2, 0], dtype=np.int64)
     up = np.array([[0.0, 1.0]])
     parts = np.array([[0, 1], [1, 1]], dtype=np.int64)  # (one part a body: itself, number 0)
@@ -283,12 +283,12 @@ def contacts_loop(
     polygons ``V``, ``Nrm``, ``cnt``, ``rad``; circles ``center``, ``rnd``), the half planes'
     points ``hp`` and unit normals ``hn`` (H, 2).
     ``apart``: sorted keys a n + b of pairs kept apart; ``ignored``: sorted keys row (C + 1)
-    + place of faces pre_solve ignored; ``warm_keys`` sorted, ``warm_lam`` (k, 2): the last
-    step's points and their impulses (N s a substep). ``vel`` (n, 2): the bodies' velocities
-    (m/s) at the step's start, and ``dt`` the step (s): a round pair's point that its path
-    passes by is dropped (engine.geometry.passing).
+    + place of faces pre_solve ignored; ``warm_keys`` sorted, ``warm_lam`` (k, 3): the last
+    step's points, their impulses and held loads (N s a substep). ``vel`` (n, 2): the
+    bodies' velocities (m/s) at the step's start, and ``dt`` the step (s): a round pair's
+    point that its path passes by is dropped (engine.geometry.passing).
 
-    Returns the solver's contact arrays (engine.dynamics.solver.solve's ca ... clt, 15 of them),
+    Returns the solver's contact arrays (engine.dynamics.solver.solve's ca ... chold, 16 of them),
     each point's key (2 per row), each row's static place (-1 for a body pair) and first point
     (x, y, m); the sensors' overlaps (rows, collider places)."""
     n = len(radius)
@@ -577,6 +577,7 @@ def contacts_loop(
     speed = np.zeros(rows)
     ln = np.zeros(2 * rows)
     lt = np.zeros(2 * rows)
+    lh = np.zeros(2 * rows)
     keys = np.empty(2 * rows, dtype=np.int64)
     place = np.empty(rows, dtype=np.int64)
     px = np.empty(rows)
@@ -646,7 +647,7 @@ def contacts_loop(
                 while table[h] >= 0:
                     at = table[h]
                     if warm_keys[at] == key:
-                        ln[t], lt[t] = warm_lam[at, 0], warm_lam[at, 1]
+                        ln[t], lt[t], lh[t] = warm_lam[at, 0], warm_lam[at, 1], warm_lam[at, 2]
                         break
                     h = (h + 1) & full
         # Materials: friction mu_a mu_b, restitution e_a e_b; a conveyor's surface speed.
@@ -660,7 +661,7 @@ def contacts_loop(
         fric[k] = friction[a] * mu_b
         rest[k] = restitution[a] * e_b
         k += 1
-    return (ca_, cb_, nx_, ny_, count_, rax, ray, rbx, rby, sep, fric, rest, speed, ln, lt,
+    return (ca_, cb_, nx_, ny_, count_, rax, ray, rbx, rby, sep, fric, rest, speed, ln, lt, lh,
             keys, place, px, py, sense_row[:z], sense_place[:z])  # fmt: skip
 
 
@@ -678,14 +679,15 @@ def _sample_report() -> tuple[Any, ...]:
     lam = np.array([0.1, 0.1, 0.0, 0.0])
     slots = np.array([0, 1], dtype=np.int64)
     owner = np.zeros(1, dtype=np.int64)
-    return (i, b, normal, normal, count, sep, keys, place, point, point, lam, lam, lam, slots,
+    return (i, b, normal, normal, count, sep, keys, place, point, point, lam, lam, lam, lam, slots,
             owner, owner + 1, 4, 0.005)  # fmt: skip
 
 
 @kernels.loop(sample=_sample_report)
 def report_loop(
     ca: Any, cb: Any, nx: Any, ny: Any, count: Any, sep: Any, keys: Any, place: Any,
-    px: Any, py: Any, ln: Any, lt: Any, total: Any, slots: Any, owner: Any, serial: Any,
+    px: Any, py: Any, ln: Any, lt: Any, lh: Any, total: Any, slots: Any, owner: Any,
+    serial: Any,
     substeps: int, slop: float,
 ) -> tuple[Any, ...]:  # fmt: skip
     """What the solved contacts leave (engine.pipeline.game_step's ``_keep`` and ``_events`` as one
@@ -696,9 +698,10 @@ def report_loop(
     toward the key's first body and the impulse on it over the step (N s), sorted by key.
 
     ``ca`` ... ``sep``, ``keys``, ``place``, ``px``, ``py``: the contacts as
-    ``contacts_loop`` gave them; ``ln``, ``lt``, ``total``: the solver's impulses (a
-    substep's normal and tangent, the step's normal); ``slots`` by row, ``owner`` each static
-    shape's collider place. Returns the kept keys and impulses ((k, 2)), then the touching
+    ``contacts_loop`` gave them; ``ln``, ``lt``, ``lh``, ``total``: the solver's impulses (a
+    substep's normal and tangent, the held load, the step's normal); ``slots`` by row,
+    ``owner`` each static shape's collider place. Returns the kept keys and impulses and held
+    loads ((k, 3)), then the touching
     contacts' keys, points, normals and impulses ((t, 2) each)."""
     n = len(slots)
     k = len(ca)
@@ -706,12 +709,12 @@ def report_loop(
     for i in range(k):
         real += count[i]
     kept = np.empty(real, dtype=np.int64)
-    lam = np.empty((real, 2))
+    lam = np.empty((real, 3))
     r = 0
     for i in range(k):
         for p in range(count[i]):
             kept[r] = keys[2 * i + p]
-            lam[r, 0], lam[r, 1] = ln[2 * i + p], lt[2 * i + p]
+            lam[r, 0], lam[r, 1], lam[r, 2] = ln[2 * i + p], lt[2 * i + p], lh[2 * i + p]
             r += 1
     order = stable_order(kept)  # stable, as numpy's
     touch = np.zeros(k, dtype=np.bool_)

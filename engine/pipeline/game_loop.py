@@ -108,14 +108,15 @@ def step_loop(
     (m).
 
     Returns the bodies' ``x``, ``v``, ``angle``, ``omega`` after the step, the kept
-    warm-start keys and impulses ((k, 2) N s a substep), the touching contacts' event keys,
-    points, normals and impulses (``report_loop``'s, and the last step's of bodies asleep
-    through this one, held open; sorted by key), the sensor colliders' overlaps as event keys,
-    and the touching pairs of bodies (keys a n + b, a < b: contacts, then joints between two
-    bodies) for ``Body.sleep``'s island, and whether a body may be fast (moved more than
-    about engine.dynamics.game_continuous.SAFETY of its least extent: the continuous stage's
-    test), then what the World checks of the bodies after it: |the sum of x and v|, |the sum
-    of angle and omega| (each nan or inf where an entry is) and whether any body spins."""
+    warm-start keys, impulses and held loads ((k, 3) N s a substep), the touching contacts'
+    event keys, points, normals and impulses (``report_loop``'s, and the last step's of
+    bodies asleep through this one, held open; sorted by key), the sensor colliders' overlaps
+    as event keys, and the touching pairs of bodies (keys a n + b, a < b: contacts, then
+    joints between two bodies) for ``Body.sleep``'s island, and whether a body may be fast
+    (moved more than about engine.dynamics.game_continuous.SAFETY of its least extent: the
+    continuous stage's test), then what the World checks of the bodies after it: |the sum of
+    x and v|, |the sum of angle and omega| (each nan or inf where an entry is) and whether any
+    body spins."""
     n = len(radius)
     if len(margin) != n:
         # |v| dt + |a| dt^2 + |omega| dt r: what the shape can move in the step (``_reach``'s
@@ -195,16 +196,16 @@ def step_loop(
         V, Nrm, cnt, rad, center, rnd, hp, hn, apart, ignored, warm_keys, warm_lam, v, dt,
     )  # fmt: skip
     ca, cb, nx, ny, count = found[0], found[1], found[2], found[3], found[4]
-    sep, ln, lt = found[9], found[13], found[14]
-    keys, place, px, py = found[15], found[16], found[17], found[18]
-    sense_row, sense_place = found[19], found[20]
+    sep, ln, lt, lh = found[9], found[13], found[14], found[15]
+    keys, place, px, py = found[16], found[17], found[18], found[19]
+    sense_row, sense_place = found[20], found[21]
     total = np.zeros(2 * len(ca))
     most = np.zeros(2 * len(ca))
     # -- the solve (engine.dynamics.solver) --------------------------------------------------------
     solve(
         bx, by, bq, bvx, bvy, bw, bim, bii, bax, bay, balpha,
         ca, cb, nx, ny, count, found[5], found[6], found[7], found[8], sep,
-        found[10], found[11], found[12], ln, lt, total, most,
+        found[10], found[11], found[12], ln, lt, lh, total, most,
         jkind, ja, jb, jlax, jlay, jlbx, jlby, jref, jhertz, jdamp, jlimit, jlower, jupper,
         jmotor, jspeed, jmaxtorque, jpx, jpy, jpa, jlo, jhi, jmi,
         dt, substeps, contact_hertz, contact_damping, joint_hertz, joint_damping, push,
@@ -212,7 +213,7 @@ def step_loop(
     )  # fmt: skip
     # -- what the contacts did (engine.pipeline.game_contacts.report_loop) -------------------------
     kept, lam, event, point, normal, impulse = report_loop(
-        ca, cb, nx, ny, count, sep, keys, place, px, py, ln, lt, total, slots, owner, serial,
+        ca, cb, nx, ny, count, sep, keys, place, px, py, ln, lt, lh, total, slots, owner, serial,
         substeps, slop,
     )  # fmt: skip
     # The last step's touching contacts whose bodies slept through this one (a sleeper and

@@ -150,7 +150,7 @@ class GameStep:
     impulses by key, the shapes, the colliders' shapes) and the stages that use it."""
 
     keys: np.ndarray  # the last step's points, sorted (``forget`` sets these four)
-    lam: np.ndarray  # their (normal, tangent) impulses, N s a substep
+    lam: np.ndarray  # their (normal, tangent) impulses and held loads, N s a substep
     report: _Report  # this step's touching contacts, for the events
     last: _Report  # the step before's, for begin and end
 
@@ -317,10 +317,10 @@ class GameStep:
         self.continuous.maybe = out[12]
         sums = out[13:16]
         # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
-        # 11 and the contacts' 17, as the joints' report reads them).
+        # 11 and the contacts' 18, as the joints' report reads them).
         # The bodies' x, y and angle after it (with the static body's) where a pymunk
         # constraint reports along itself as it is at the step's end.
-        head: list[Any] = [None] * 28
+        head: list[Any] = [None] * 29
         if self.joints.constrained(joints[1]):
             head[:3] = [np.append(x[:, 0], 0.0), np.append(x[:, 1], 0.0), np.append(angle, 0.0)]
         self.joints.report(joints[1], head + joints[0], self.substeps, joints[0])
@@ -455,7 +455,7 @@ class GameStep:
         impulses none): as made, or once a snapshot taken before this soft step's first step
         was restored."""
         self.keys = np.zeros(0, dtype=np.int64)
-        self.lam = np.zeros((0, 2))
+        self.lam = np.zeros((0, 3))
         self.joints.impulses = {}
         self.report = _Report()
         self.last = _Report()
@@ -711,12 +711,12 @@ class GameStep:
         code = (slots[ia].astype(np.int64) << OTHER) | code_b.astype(np.int64)
         feature = np.where(m.feature >= 0, m.feature, 0).astype(np.int64)
         keys = (code[:, None] << FEATURE) | feature  # (k, 2)
-        lam = np.zeros((k, 2, 2))
+        lam = np.zeros((k, 2, 3))  # each point's normal and tangent impulses, held load
         if len(self.keys) and k:
             flat = keys.ravel()
             at = np.minimum(np.searchsorted(self.keys, flat), len(self.keys) - 1)
             hit = (self.keys[at] == flat) & (np.arange(2 * k) % 2 < np.repeat(count, 2))
-            lam.reshape(-1, 2)[hit] = self.lam[at[hit]]
+            lam.reshape(-1, 3)[hit] = self.lam[at[hit]]
         # Materials: a body's, or a collider's; friction mu_a mu_b, restitution e_a e_b.
         e_b = np.ones(k)
         mu_b = np.ones(k)
@@ -752,6 +752,7 @@ class GameStep:
             speed,
             c(lam[:, :, 0].ravel()),
             c(lam[:, :, 1].ravel()),
+            c(lam[:, :, 2].ravel()),
         ]
         point = c(m.point[:, 0])
         return _Found(rows, keys.ravel(), other.astype(np.int64), point, sense_row, sense_place)
@@ -764,11 +765,12 @@ class GameStep:
         base = 11  # the bodies' arrays come first
         lam_n = np.asarray(out[base + 13], dtype=float)
         lam_t = np.asarray(out[base + 14], dtype=float)
+        held = np.asarray(out[base + 15], dtype=float)
         keys = keys[real]
         order = np.argsort(keys, kind="stable")
         self.keys = keys[order]
-        self.lam = np.stack([lam_n[real], lam_t[real]], axis=1)[order]
-        self._totals = (np.asarray(out[base + 15], dtype=float), lam_t)
+        self.lam = np.stack([lam_n[real], lam_t[real], held[real]], axis=1)[order]
+        self._totals = (np.asarray(out[base + 16], dtype=float), lam_t)
 
     # -- stage 5: joints ----------------------------------------------------------------------
     # -- stage 7: events ----------------------------------------------------------------------
