@@ -1302,7 +1302,12 @@ def solve(
                 chold[p] = 0.0
                 continue
             load = nmass[p] * h
-            share = min(HOLD_SHARE, depth * load * load * g2 / (lam * lam))
+            # (Compared before dividing: a load of 1e-170 N s squares to 0, the share then
+            # HOLD_SHARE; found by the shapes fuzz, a division by zero.)
+            share = HOLD_SHARE
+            deep = depth * load * load * g2
+            if deep < HOLD_SHARE * lam * lam:
+                share = deep / (lam * lam)
             chold[p] += share * (HOLD_PART * lam - chold[p])
 
     # -- restitution: a point that met faster than the threshold, and touched in the step
