@@ -110,6 +110,14 @@ def moment_for_segment(mass: float, a: Any, b: Any, radius: float) -> float:
         raise ValueError(f"a and b must lie within the float range of each other, got {a!r}, {b!r}")
     h = 0.5 * length
     mx, my = 0.5 * (ax + bx), 0.5 * (ay + by)
+    # Far from 1 m the cubes of num leave the float range where the moment does not (a rod
+    # of 1e-150 m: L^3 / 6 is 0, its L^2 / 12 is 8e-302): there the lengths are taken in
+    # units of the larger, s, and per_area is s^2 times theirs (found by the shapes fuzz).
+    s = max(length, r)
+    if not 1e-100 < s < 1e100 and s > 0.0:
+        length, r, h = length / s, r / s, h / s
+    else:
+        s = 1.0
     den = math.pi * r + 2.0 * length
     per_area = 0.0
     if den > 0.0:  # else a point: no moment of its own
@@ -118,7 +126,7 @@ def moment_for_segment(mass: float, a: Any, b: Any, radius: float) -> float:
             + (8.0 / 3.0) * h * r * r
             + length * (length * length + 4.0 * r * r) / 6.0
         )
-        per_area = num / den
+        per_area = num / den * s * s
     inertia = m * (per_area + mx * mx + my * my)
     if not math.isfinite(inertia):
         raise ValueError(
