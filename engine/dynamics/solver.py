@@ -1295,10 +1295,12 @@ def solve(
         a = ca[k]
         b = cb[k]
         g2 = max(bax[a] * bax[a] + bay[a] * bay[a], bax[b] * bax[b] + bay[b] * bay[b])
+        # (Against what does not move the contact holds its whole load at once: ``keep``.)
+        moves = (bim[a] != 0.0 or bii[a] != 0.0) and (bim[b] != 0.0 or bii[b] != 0.0)
         for j in range(ccount[k]):
             p = 2 * k + j
             lam = cln[p]
-            if g2 == 0.0 or lam <= 0.0 or nmass[p] == 0.0 or ccount[k] != 2:
+            if not moves or ccount[k] != 2 or g2 == 0.0 or lam <= 0.0 or nmass[p] == 0.0:
                 chold[p] = 0.0
                 continue
             load = nmass[p] * h
