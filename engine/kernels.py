@@ -45,6 +45,7 @@ ValueError: kernels must be 'numpy' or 'fast' ..., got 'gpu'
 
 from __future__ import annotations
 
+import ast
 import importlib.util
 import os
 import sys
@@ -163,6 +164,8 @@ class LoopKernel(Generic[F]):
         self.py: F = fn
         self.name = f"{fn.__module__}.{fn.__qualname__}"
         self._compiled: Any = None
+        #: The kernels it calls (known once it is compiled: ``fast``).
+        self._called: list[LoopKernel[Any]] = []
         #: Whether ``prepare`` has compiled (or loaded) it for its sample's argument types.
         self.ready = False
         #: The names of the kernels it calls (known once it is compiled: ``fast``).
@@ -180,10 +183,21 @@ class LoopKernel(Generic[F]):
         if self._compiled is None:
             fn, called, helped = _calling_compiled(self.py)
             self._compiled = _numba().njit(cache=True, nogil=True)(fn)
-            files = {k.py.__code__.co_filename for k in called} | ({__file__} if helped else set())
+            self._called = called
+            files = self.sources() | ({__file__} if helped else set())
+            files.discard(self.py.__code__.co_filename)  # (numba's own stamp)
             _stamp_with(self._compiled, sorted(files))
             self.calls = [k.name for k in called]
         return self._compiled  # type: ignore[no-any-return]
+
+    def sources(self) -> set[str]:
+        """The files its compiled code depends on: its own, those of the constants it reads
+        (numba compiles a global's value in: ``_constants_from``), and the same of each kernel
+        it calls (compiled into it), and of theirs."""
+        files = {self.py.__code__.co_filename} | _constants_from(self.py)
+        for k in self._called:
+            files |= k.sources()
+        return files
 
     def __call__(self, *args: Any) -> Any:
         """The compiled kernel's result for ``args`` (the fast path's call)."""
@@ -288,6 +302,54 @@ def _names(code: Any) -> set[str]:
         if hasattr(const, "co_names"):
             names |= _names(const)
     return names
+
+
+def _constants_from(fn: Callable[..., Any]) -> set[str]:
+    """The files of its own package that the globals ``fn`` reads come from: a module it reads
+    (``solver.HINGE``) or a name it imported (``from .game_sleep import RISE``). numba
+    compiles a global's value into the code, and its cache checks only the function's own
+    file: without these, a constant edited in its module would run as it was."""
+    glob = fn.__globals__
+    package = str(glob.get("__name__", "")).split(".")[0]
+    origin = _imported(glob.get("__file__"), glob.get("__package__"))
+    files = set()
+    for name in _names(fn.__code__):
+        value = glob.get(name)
+        if isinstance(value, types.ModuleType):
+            module: Any = value
+        elif name in origin:
+            module = sys.modules.get(origin[name])
+        else:
+            continue
+        found = getattr(module, "__file__", None)
+        if found and str(getattr(module, "__name__", "")).split(".")[0] == package:
+            files.add(found)
+    return files
+
+
+_IMPORTED: dict[str, dict[str, str]] = {}
+
+
+def _imported(path: str | None, package: str | None) -> dict[str, str]:
+    """Each name a module's ``from ... import`` statements bind, and the module it comes
+    from (read once from its source, ``path``)."""
+    if path is None or not path.endswith(".py"):
+        return {}
+    if path not in _IMPORTED:
+        out: dict[str, str] = {}
+        with open(path, encoding="utf-8") as f:
+            tree = ast.parse(f.read(), path)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                where = "." * node.level + (node.module or "")
+                try:
+                    module = importlib.util.resolve_name(where, package)
+                except (ImportError, ValueError):
+                    continue
+                for alias in node.names:
+                    out[alias.asname or alias.name] = module
+        _IMPORTED[path] = out
+    return _IMPORTED[path]
 
 
 def _helper(value: Any) -> bool:

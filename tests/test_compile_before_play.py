@@ -318,28 +318,67 @@ print("got:", twice(2.0))
 """
 
 
+def _probe(tmp_path: Path, kept: dict[str, str], edited: str, script: str) -> Any:
+    """A package ``probe`` of the test's own in ``tmp_path``: its files ``kept`` written once,
+    and a ``run(text)`` that writes ``text`` to its file ``edited`` and runs ``script`` in a
+    fresh Python on one numba cache, returning what it printed after "got: "."""
+    package = tmp_path / "probe"
+    package.mkdir()
+    (package / "__init__.py").write_text("")
+    for name, text in kept.items():
+        (package / name).write_text(text)
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    env["PYTHONPATH"] = f"{ROOT}{os.pathsep}{tmp_path}"
+
+    def run(text: str) -> str:
+        # (A new size as well as a new time: file systems with coarse times still see it.)
+        (package / edited).write_text(text)
+        out = subprocess.run(
+            [sys.executable, "-c", script], env=env, cwd=tmp_path, capture_output=True,
+            text=True, check=True,
+        )  # fmt: skip
+        return str(re.findall(r"got: (.*)", out.stdout)[0])
+
+    return run
+
+
 @needs_numba
 def test_a_kernel_that_calls_another_is_compiled_again_when_the_other_changes(
     tmp_path: Path,
 ) -> None:
     """numba's cache checks only the caller's file; engine.kernels stamps a caller's entry with
     its callees' files too, so an edited callee is never run as its old compiled self."""
-    package = tmp_path / "probe"
-    package.mkdir()
-    (package / "__init__.py").write_text("")
-    (package / "caller.py").write_text(_CALLER)
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
-    env["PYTHONPATH"] = f"{ROOT}{os.pathsep}{tmp_path}"
+    run = _probe(tmp_path, {"caller.py": _CALLER}, "callee.py", _RUN)
+    assert run(_CALLEE.format(factor=3)) == "12.0"
+    assert run(_CALLEE.format(factor=3)) == "12.0"  # from the cache
+    assert run(_CALLEE.format(factor=50)) == "200.0"  # the callee changed: not the cached 12.0
 
-    def run(factor: int) -> str:
-        (package / "callee.py").write_text(_CALLEE.format(factor=factor))
-        # (A new size as well as a new time: file systems with coarse times still see it.)
-        out = subprocess.run(
-            [sys.executable, "-c", _RUN], env=env, cwd=tmp_path, capture_output=True,
-            text=True, check=True,
-        )  # fmt: skip
-        return re.findall(r"got: (.*)", out.stdout)[0]
 
-    assert run(3) == "12.0"
-    assert run(3) == "12.0"  # from the cache
-    assert run(50) == "200.0"  # the callee changed: not the cached 12.0
+# A kernel that reads a constant of another module: numba compiles the constant's value in.
+_CONSTANT = "FACTOR = {factor}\n"
+_READER = """
+from engine import kernels
+from .constant import FACTOR
+
+@kernels.loop(sample=lambda: (2.0,))
+def scaled(x):
+    return x * FACTOR
+"""
+_READ = """
+from engine import kernels
+from probe.reader import scaled
+kernels.prepare([scaled])
+print("got:", scaled(2.0))
+"""
+
+
+@needs_numba
+def test_a_kernel_is_compiled_again_when_a_constant_it_imported_changes(tmp_path: Path) -> None:
+    """numba's cache checks only the kernel's own file, and compiles the value of a global
+    it reads into the code; engine.kernels stamps its entry with the files its constants come
+    from too (a sleep tolerance edited in engine.pipeline.game_sleep ran as it was in the fast
+    path's step until the step's own file changed)."""
+    run = _probe(tmp_path, {"reader.py": _READER}, "constant.py", _READ)
+    assert run(_CONSTANT.format(factor=3)) == "6.0"
+    assert run(_CONSTANT.format(factor=3)) == "6.0"  # from the cache
+    assert run(_CONSTANT.format(factor=50)) == "100.0"  # the constant changed: not 6.0
