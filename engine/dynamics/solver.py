@@ -163,12 +163,17 @@ the last part's (a load taken away is let go at once). What was tried and measur
   2.3 s later; its settling is Box2D's, the same bits as before;
 * a share of 0.05 a step rang at 1 m in a column of 80 unbounded by r, and, bounded, swayed
   the top half of the pyramid of 820 boxes at 7 cm/s for 9 s; 0.02 keeps a column of up to
-  62 bodies stable whatever its load, and the pyramid sleeps at 4.2 s (Box2D's soft contacts:
-  2.3 s), 20 mm from where it was put (202 mm before).
+  62 bodies stable whatever its load, and the pyramid sleeps 16.7 mm from where it was put
+  (202 mm before).
 
 A column then settles to 5% of Box2D's sag, 0.05 N (N - 1) g / omega^2: 5.2459 mm for 20
 boxes within 20 s, 21.5358 mm for 40 within 60 s, to 1e-7 m (tests/test_soft_solver.py).
-Without gravity (g = 0) no load is held: nothing tells a column's depth.
+Without gravity (g = 0) no load is held: nothing tells a column's depth. A pile rises back
+so at a few cm/s, slower than Box2D's sleep speed: a body is still only while its held loads
+have at most engine.pipeline.game_sleep's ``RISE`` left to lift it (``brise``, the most of
+(``HOLD_PART`` lam - ``chold``) / (m_n h omega^2) over its points). The pyramid of 210 boxes
+slept at 0.82 s, 26.9 mm down, and now at 4.3 s, 5.5 mm; that of 820 at 6.4 s (Box2D's soft
+contacts: 2.3 s, with their give).
 
 **A hinge** (Box2D's revolute joint) holds the anchors together: C = (c_B + r_B) - (c_A + r_A),
 a 2 x 2 system K lam = -(Cdot + bias C) with
@@ -331,7 +336,7 @@ def _sample() -> tuple[Any, ...]:
         f(1), f(1), f(1), f(1), f(1), f(1),
     ]  # fmt: skip
     return (*body, *vel, *mass, *acc, *contacts, *joints, 1.0 / 60.0, 4, 30.0, 10.0, 60.0,
-            2.0, 3.0, 1.0)  # fmt: skip
+            2.0, 3.0, 1.0, f(2))  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
@@ -351,6 +356,7 @@ def solve(
     jpx: Any, jpy: Any, jpa: Any, jlo: Any, jhi: Any, jmi: Any,
     dt: float, substeps: int, contact_hertz: float, contact_damping: float,
     joint_hertz: float, joint_damping: float, push: float, threshold: float,
+    brise: Any,
 ) -> None:  # fmt: skip
     """One step of ``dt`` (s) of every body, contact and joint (module doc), in place.
 
@@ -392,6 +398,10 @@ def solve(
     ``jlower`` (m, rad), its stiffness ``jhertz`` (N/m, N m/rad), its damping ``jdamp`` (N s/m,
     N m s/rad); its ``jpa`` out is the impulse it gave over the whole step (along u, or on B's
     angle), and is not warm started.
+
+    ``brise`` (nb) out: how far each body's held loads have yet to lift it (m), the most of
+    the give still left under its face contacts' loads (module doc, "A pile holds its load"):
+    what engine.pipeline.game_sleep's stillness reads.
     """
     nb = len(bx)
     nc = len(ca)
@@ -1291,6 +1301,12 @@ def solve(
     # omega dt pi^2 / (HOLD_MARGIN r^2)) of its gap to HOLD_PART of the last part's load lam,
     # r = lam / (m_n g h) (in squares: no root, which numba and Python could round apart).
     depth = contact_damping * 2.0 * math.pi * hz * dt * math.pi * math.pi / HOLD_MARGIN
+    # A point's spring gives under a load W = lam / h by W / (m_n omega^2): what it has yet
+    # to give back as it holds its load is (HOLD_PART lam - chold) / (m_n h omega^2), and
+    # each end of it is lifted so by at most that (``brise``).
+    stiff = h * (2.0 * math.pi * hz) ** 2  # (times m_n: the spring's stiffness times h)
+    for i in range(nb):
+        brise[i] = 0.0
     for k in range(nc):
         a = ca[k]
         b = cb[k]
@@ -1311,6 +1327,12 @@ def solve(
             if deep < HOLD_SHARE * lam * lam:
                 share = deep / (lam * lam)
             chold[p] += share * (HOLD_PART * lam - chold[p])
+            firm = nmass[p] * stiff
+            rise = 0.0 if firm == 0.0 else (HOLD_PART * lam - chold[p]) / firm
+            if rise > brise[a]:
+                brise[a] = rise
+            if rise > brise[b]:
+                brise[b] = rise
 
     # -- restitution: a point that met faster than the threshold, and touched in the step
     # (pushed there: ``contact``), parts at e times the speed it met at (module doc).

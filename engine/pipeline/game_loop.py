@@ -30,7 +30,7 @@ from ..dynamics.solver import MOUSE, solve
 from ..exact.pile import label_rows
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
 from .game_contacts import body_boxes, contacts_loop, contacts_sample, report_loop
-from .game_sleep import ANGULAR, LINEAR
+from .game_sleep import ANGULAR, LINEAR, RISE
 
 __all__ = ["step_loop"]
 
@@ -201,6 +201,7 @@ def step_loop(
     sense_row, sense_place = found[20], found[21]
     total = np.zeros(2 * len(ca))
     most = np.zeros(2 * len(ca))
+    rise = np.zeros(nb)  # out: how far each body's held loads have yet to lift it (m)
     # -- the solve (engine.dynamics.solver) --------------------------------------------------------
     solve(
         bx, by, bq, bvx, bvy, bw, bim, bii, bax, bay, balpha,
@@ -209,7 +210,7 @@ def step_loop(
         jkind, ja, jb, jlax, jlay, jlbx, jlby, jref, jhertz, jdamp, jlimit, jlower, jupper,
         jmotor, jspeed, jmaxtorque, jpx, jpy, jpa, jlo, jhi, jmi,
         dt, substeps, contact_hertz, contact_damping, joint_hertz, joint_damping, push,
-        threshold,
+        threshold, rise,
     )  # fmt: skip
     # -- what the contacts did (engine.pipeline.game_contacts.report_loop) -------------------------
     kept, lam, event, point, normal, impulse = report_loop(
@@ -278,6 +279,7 @@ def step_loop(
     ripe = False  # a body still for sleep_time
     for i in range(n):
         slow = bvx[i] * bvx[i] + bvy[i] * bvy[i] < _LINEAR_SQ and abs(bw[i]) < ANGULAR
+        slow = slow and not rise[i] > RISE  # (its held loads yet to lift it: game_sleep)
         if slow and held[i]:
             dx, dy = bx[i] - x[i, 0], by[i] - x[i, 1]
             slow = dx * dx + dy * dy < near and abs(bq[i] - angle[i]) < level

@@ -242,8 +242,10 @@ class GameStep:
         joints = self.joints.arrays(state, store, n)
         k = len(found.place)
         args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
-        params = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
+        params: list[Any] = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
         params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
+        rise = [0.0] * (n + 1)  # out: how far each body's held loads have yet to lift it (m)
+        params.append(rise)
         # Plain Python on lists: at a game's size faster than numpy's calls a colour.
         out: list[Any] = [a.tolist() for a in args]
         solver.solve.py(*out, *params)
@@ -254,7 +256,8 @@ class GameStep:
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
         self.joints.report(joints[1], out, self.substeps)
-        self._sleep(state, store, dt, awake, v, omega, found, joints[0], x, angle)
+        rising = np.asarray(rise[:n]) > game_sleep.RISE
+        self._sleep(state, store, dt, awake, v, omega, found, joints[0], x, angle, rising)
         # What each sensor collider holds: a body whose shape overlaps it.
         if len(found.sense_row):
             self.report.sensing = collider_keys(
@@ -583,10 +586,13 @@ class GameStep:
         joints: list[np.ndarray],
         x: np.ndarray,
         angle: np.ndarray,
+        rising: np.ndarray,
     ) -> None:
         """After the solve: still times counted, still islands put to sleep (their ``v`` and
         ``omega`` zeroed, in place), the contacts of sleepers held open; ``x`` and ``angle``
-        the bodies' after it (a pymunk constraint's bodies: how far it moved them)."""
+        the bodies' after it (a pymunk constraint's bodies: how far it moved them);
+        ``rising`` the bodies (bool (N,)) their held loads have yet to lift by more than
+        engine.pipeline.game_sleep's ``RISE``."""
         c = state.collisions
         n = len(store)
         rows = found.rows
@@ -602,7 +608,8 @@ class GameStep:
         mouse = joints[0] == solver.MOUSE
         never[joints[2][mouse]] = True
         bounded = (joints[13] & 2) != 0  # a pymunk constraint's rows (_constraint_row)
-        drift = game_sleep.drifting(
+        # (Not still either: a body its held loads have yet to lift, ``rising``.)
+        drift = rising | game_sleep.drifting(
             store.x, x, store.angle, angle, joints[1][bounded], joints[2][bounded], dt
         )
         game_sleep.fall_asleep(
