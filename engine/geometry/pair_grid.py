@@ -334,8 +334,10 @@ def struck_pairs(
     is at most their relative speed over the step, |v_a - v_b| at its start or end plus
     |A_a - A_b| dt, plus what impacts gave either. A body whose gain over the step passes
     the margin its reach already has (5% of its radius) is searched again against every
-    body with the larger reach, and so on down a chain of such impacts (three links). A
-    crowd falling together, or a pile, has small relative speeds and gains nothing here.
+    body with the larger reach, and so on down a chain of such impacts, to its end (three
+    links missed a cradle's sixth ball: the fifth, struck down a row 1 um apart, passed
+    into it). A crowd falling together, or a pile, has small relative speeds and gains
+    nothing here.
     """
     w = 1.0 / store.mass[live]
     if has_kin:
@@ -343,7 +345,7 @@ def struck_pairs(
     e = store.restitution[live]
     got = np.zeros(len(P))  # what impacts may add to each body's speed
     done = np.zeros(len(P), dtype=bool)
-    for _ in range(3):
+    for _ in range(len(P)):  # (each body grows once: at most one link a body)
         rel = np.maximum(norm(v0[ia] - v0[ib]), norm(v1[ia] - v1[ib]))
         rel += norm(A[ia] - A[ib]) * dt + got[ia] + got[ib]
         gain = impact_gain(ia, ib, rel, w, e, len(P))
