@@ -335,9 +335,9 @@ def struck_pairs(
     |A_a - A_b| dt, plus what impacts gave either. A body whose gain over the step passes
     the margin its reach already has (5% of its radius) is searched again against every
     body with the larger reach, and so on down a chain of such impacts, to its end (three
-    links missed a cradle's sixth ball: the fifth, struck down a row 1 um apart, passed
-    into it). A crowd falling together, or a pile, has small relative speeds and gains
-    nothing here.
+    links missed the far end of a row of six balls 1 um apart struck at one end: its last
+    two, 1.6 cm apart, were never paired, and one passed 1 mm into the other). A crowd
+    falling together, or a pile, has small relative speeds and gains nothing here.
     """
     w = 1.0 / store.mass[live]
     if has_kin:
