@@ -36,7 +36,7 @@ solver that spreads one impulse over the row (plain Jacobi) fails it. Rounds sto
 then each body with an impact still to come stops where its path is at the earliest one left
 among the bodies those impacts link it to (its velocity the step's end one, so momentum
 changes by the forces' impulse alone; bodies that never meet them, a world filtered apart,
-move as if they were not there), and so does every body that would run into a stopped one,
+move as if they were not there), and so does every body whose path runs into a stopped one,
 and goes on from there next step: bodies never fly through each other for want of rounds,
 at the cost of the rest of that step's motion for those bodies. Pairs still closing there
 with restitution up to ``COLLAPSE_E`` are an inelastic collapse (impacts without end, ever
@@ -473,10 +473,7 @@ def impacts_in_order(
                 if not one.any():
                     break
                 ia, ib = pa[one], pb[one]
-                i = np.flatnonzero(left)
-                end = X.copy()
-                end[i] = state_at(i, T[i], X, V, A, dt)[0]
-                meet = norm(end[ia] - end[ib]) < pR[one]
+                meet = _runs_into(ia, ib, pR[one], T, ts, X, V, A, dt)
                 if not meet.any():
                     break
                 ia, ib = ia[meet], ib[meet]
@@ -500,6 +497,37 @@ def impacts_in_order(
             collapse |= soft & near & (its[pa] | its[pb])
             plastic(pa[collapse], pb[collapse], X, V, w, 2.0 * dt * float(norm(P).max()))
     return Rounds(found, rounds, capped, None)
+
+
+def _runs_into(
+    ia: np.ndarray,
+    ib: np.ndarray,
+    R: np.ndarray,
+    T: np.ndarray,
+    ts: np.ndarray,
+    X: np.ndarray,
+    V: np.ndarray,
+    A: np.ndarray,
+    dt: float,
+) -> np.ndarray:
+    """Whether each pair (ia, ib), one of them stopped by the cap at the earlier of their
+    moments T (inf: not stopped), meets on the other's path from then to its own stop (or the
+    step's end): the stopped one is a disc at rest there. Not only where the paths end: a
+    ball that rests against a stopped one, both moving as one (touching, no impact pending),
+    runs into it at once, however far past it its own path ends. The moving one's path is
+    taken from its own start ``ts`` if later (before that it was on another path)."""
+    Ta, Tb = np.minimum(T[ia], dt), np.minimum(T[ib], dt)
+    early = Ta <= Tb
+    s = np.where(early, ia, ib)  # stopped first
+    m = np.where(early, ib, ia)  # still moving then
+    Ts, Tm = np.minimum(Ta, Tb), np.maximum(Ta, Tb)
+    xs = state_at(s, Ts, X, V, A, dt)[0]
+    start = np.minimum(np.maximum(Ts, ts[m]), Tm)
+    xm, vm = state_at(m, start, X, V, A, dt)
+    hit = np.isfinite(disc_hits(xm, vm, A[m], xs, R, Tm - start))
+    # Already into it where the moving one's path ends (a path that began inside it).
+    xe = state_at(m, Tm, X, V, A, dt)[0]
+    return hit | (norm(xe - xs) < R)
 
 
 def times_of_impact(
