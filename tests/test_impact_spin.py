@@ -301,6 +301,43 @@ def test_the_event_reports_the_whole_impulse_with_its_tangential_part() -> None:
     assert tangential > 0.1
 
 
+@pytest.mark.parametrize("walls", [False, True], ids=["nothing-spins", "a-collider-far-off"])
+@pytest.mark.parametrize(
+    ("ra", "rb", "ma", "mb", "u"),
+    [(0.1, 0.1, 1.0, 1.0, 30.0), (0.05, 0.2, 0.3, 2.0, 45.0)],
+    ids=["equal", "small-into-large"],
+)
+def test_a_disc_of_a_pile_struck_at_an_exact_impact_takes_the_impulses_turn(
+    walls: bool, ra: float, rb: float, ma: float, mb: float, u: float
+) -> None:
+    # b rests against c, overlapping it (a pile: the soft step's); a comes too fast to join
+    # the pile (u dt > CATCH (ra + rb)) and meets b at its exact moment, b a moving wall.
+    # b takes the impulse -P at the point of contact, r_b n from its centre: the push and the
+    # turn, -r_b (n x P) (as a takes -r_a (n x P)), into the soft step. c's side is smooth
+    # (mu 0: the pile's row turns neither), so b ends the step at I_b dw_b / r_b = I_a dw_a /
+    # r_a, both = -n x P. It took the push alone (no turn) before.
+    w = free_world()
+    if walls:
+        # A collider far off: the step's rotation is made for every body (the other case:
+        # nothing spins as the step begins, and the impact's turn makes it).
+        w.add_collider(Segment((-50.0, -50.0), (50.0, -50.0)))
+    b = w.add(Body(Vector(0.0, 0.0), Vector(0.0, 0.0), radius=rb, mass=mb, friction=0.8,
+                   restitution=0.5))  # fmt: skip
+    w.add(Body(Vector(0.0, -rb - 0.099), Vector(0.0, 0.0), radius=0.1, friction=0.0,
+               restitution=0.5))  # fmt: skip
+    a = w.add(Body(Vector(-ra - rb - 0.01, 0.12), Vector(u, 0.0), radius=ra, mass=ma,
+                   friction=0.8, restitution=0.5))  # fmt: skip
+    seen: list[ContactEvent] = []
+    w.on_contact(a, begin=seen.append)
+    w.step(1.0 / 60.0)
+    assert len(seen) == 1 and seen[0].collider is b
+    ev = seen[0]
+    nxP = cross((ev.normal.x, ev.normal.y), (ev.impulse.x, ev.impulse.y))
+    assert abs(nxP) > 1.0  # friction took a real part of it
+    assert abs(a.moment * a.angular_velocity / ra + nxP) <= 1e-12 * abs(nxP)
+    assert abs(b.moment * b.angular_velocity / rb + nxP) <= 1e-9 * abs(nxP)
+
+
 def _oblique(fixed: bool, friction: float) -> tuple[Body, Body]:
     w = free_world()
     kw = {"radius": 0.5, "mass": 1.5, "friction": friction, "restitution": 0.9}

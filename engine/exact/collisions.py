@@ -59,6 +59,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..dynamics.pair_events import events_of, unpack
+from ..dynamics.rotation import Spin
 from ..geometry.colliders import Circle
 from ..geometry.manifold_kinds import Polygons
 from ..geometry.pair_grid import Search, deepest_overlap, find_pairs, grid_pairs, struck
@@ -72,7 +73,6 @@ from .pile import PUSH, Carried, Statics, components, keep_asleep, step_pile
 from .sleep import sleep_still, wake_met
 
 if TYPE_CHECKING:
-    from ..dynamics.rotation import Spin
     from .contacts import Contacts
 
 __all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "PUSH", "deepest_overlap"]
@@ -544,7 +544,7 @@ class Collisions:
         self.moved = True
         impacts: list[tuple[np.ndarray, ...]] = []
         exact = ~(island[a] & island[b])
-        kick = None
+        kick = turn = None
         if exact.any():
             # A chain of impacts past HANDOVER_ROUNDS among bodies under load (rows landing
             # on rows, bouncing off the floor into the next) is given to the pile instead.
@@ -562,20 +562,22 @@ class Collisions:
                 if contacts is not None and len(contacts.rest) == n:
                     contacts.rest[island] = -1  # their faces are the pile's rows now
                 exact = ~(island[a] & island[b])
-                got = ([], None)
+                got = ([], None, None)
                 if exact.any():
                     got = self._exact(
                         a[exact], b[exact], island, x, v, A, P, dt, store, contacts, spin,
                         bends=bends,
                     )  # fmt: skip
                 assert got is not None
-            impacts, kick = got
+            impacts, kick, turn = got
         touching = np.zeros(0, dtype=np.int64)
         pa = pb = np.zeros(0, dtype=np.intp)
         if island.any():
             if kick is not None:
                 v0 = v0.copy()
                 v0[island] += kick[island] / store.mass[island, None]
+            if turn is not None:
+                spin = self._turn(spin, turn, island, store, dt)
             held_by = None
             if len(self.joined):
                 held_by = np.zeros(n, dtype=bool)
@@ -701,9 +703,10 @@ class Collisions:
         spin: Spin | None,
         handover: bool = False,
         bends: Bends | None = None,
-    ) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray | None] | None:
+    ) -> tuple[list[tuple[np.ndarray, ...]], np.ndarray | None, np.ndarray | None] | None:
         """``engine.exact.pair_impacts.exact`` (the impacts of pairs not both in a pile, in place on
-        (x, v)), counting its rounds and a capped step: the impacts and the pile's kick, or
+        (x, v)), counting its rounds and a capped step: the impacts and the pile's kick and
+        turn (the impulses and their moments its bodies took as moving walls), or
         None when a crowd under load was handed over (its World rows in ``_handed``). The
         impacts turn the discs that turn (in place on ``spin``; one made when there was none
         and an impact turned a body is kept in ``spun``). ``bends``: the paths the static
@@ -724,7 +727,29 @@ class Collisions:
             return None
         if got.cut is not None and contacts is not None:
             contacts.forget(got.cut[0], self._t0 + got.cut[1], self._reports)
-        return got.impacts, got.kick
+        return got.impacts, got.kick, got.turn
+
+    def _turn(
+        self, spin: Spin | None, turn: np.ndarray, island: np.ndarray, store: Any, dt: float
+    ) -> Spin | None:
+        """The step's spin with the angular impulses ``turn`` (N,) (N m s) that the pile's
+        bodies took as moving walls added to their spin at the step's start, from which the
+        soft step turns them, as the push is added to their velocity (``exact``'s kick). One
+        is made (every body free, at rest) when the step had none, and kept in ``spun``."""
+        k = island & (turn != 0.0)
+        if not k.any():
+            return spin
+        if spin is None:
+            spin = self.spun
+        if spin is None:
+            spin = Spin.free(
+                store.angle, store.omega, store.inv_moment, store.torque, store.mass,
+                store.radius, dt, None, store.kinematic,
+            )  # fmt: skip
+        self.spun = spin
+        spin.omega0 = spin.omega0.copy()  # (it may be the store's own)
+        spin.omega0[k] += turn[k] * store.inv_moment[k]
+        return spin
 
     def _bent(
         self,

@@ -49,8 +49,10 @@ under load (rows landing on rows, bounced off the floor into the next) that runs
 
 **Moving walls.** A body of a pile met by one from outside it is a wall to it (w = 1/m = 0 and
 1 / I = 0 on its free path; its free spin still moves its surface), and takes the impulse in
-the soft step, from the step's start (``exact``'s kick: the impulse's push, not its turn); so
-are a kinematic body (whose surface the game turns) and a sleeper the impact does not wake.
+the soft step, from the step's start (``exact``'s kick: the impulse's push, and for a body that
+turns its moment about the centre at the point of contact, -r (n x P), as a disc met at an
+exact impact takes it); so are a kinematic body (whose surface the game turns, and which
+takes nothing) and a sleeper the impact does not wake.
 
 **Bent paths** (engine.exact.bent_paths). A body that bounced off a collider in the static contacts,
 before the impacts, took a path of pieces within the step, not one parabola: the impacts take
@@ -148,6 +150,9 @@ class Exact(NamedTuple):
     #: (World rows, times in the step (s)) of the bodies an impact sent off a path the
     #: static contacts bent, before its later bounces (engine.exact.bent_paths), or None.
     cut: tuple[np.ndarray, np.ndarray] | None = None
+    #: The angular impulses (N,) (N m s) the pile's bodies that turn took as moving walls,
+    #: with ``kick``: the impulse's moment about the centre, at the point of contact; or None.
+    turn: np.ndarray | None = None
 
 
 def exact(
@@ -245,12 +250,25 @@ def exact(
             break
         if walled is not None:
             walled.push_out_rows(X, V, r_wall, U)
-    kick = None
+    kick = turn = None
     if walls.any() and impacts:
         kick = np.zeros((len(x), 2))
-        for pa, pb, _, _, J, _ in impacts:
+        # A wall's impulse P (on a; -P on b) acts at the point of contact, -r_a n from a's
+        # centre and r_b n from b's: it turns a by (-r_a n) x P = -r_a (n x P) and b by
+        # (r_b n) x (-P), the same -r_b (n x P) (engine.exact.pair_bounce); the normal part
+        # turns neither. A body of the pile that turns takes that moment with the push.
+        lever = walls & (store.inv_moment[U] > 0.0)
+        if kinU is not None:
+            lever &= ~kinU
+        turn = np.zeros(len(x)) if lever.any() else None
+        for pa, pb, _, nrm, J, _ in impacts:
             np.add.at(kick, U[pa[walls[pa]]], J[walls[pa]])
             np.add.at(kick, U[pb[walls[pb]]], -J[walls[pb]])
+            if turn is not None:
+                nxP = nrm[:, 0] * J[:, 1] - nrm[:, 1] * J[:, 0]
+                ka, kb = lever[pa], lever[pb]
+                np.add.at(turn, U[pa[ka]], -r[pa[ka]] * nxP[ka])
+                np.add.at(turn, U[pb[kb]], -r[pb[kb]] * nxP[kb])
         X[walls], V[walls] = x[U[walls]], v[U[walls]]  # the soft step moves those
     x[U], v[U] = X, V
     if turns is not None and impacts:
@@ -262,7 +280,7 @@ def exact(
     cut = None
     if replay is not None and len(replay.cuts[0]):
         cut = (U[replay.cuts[0]], replay.cuts[1])
-    return Exact(found, kick, rounds.rounds, rounds.capped, None, spin, cut)
+    return Exact(found, kick, rounds.rounds, rounds.capped, None, spin, cut, turn)
 
 
 def _write_spin(
