@@ -122,6 +122,29 @@ def test_two_pressed_discs_roll_on_each_other_and_keep_their_angular_momentum(pa
     assert coarse["drift"] / fine["drift"] == pytest.approx(2.0, rel=0.1)  # first order
 
 
+@pytest.mark.parametrize("path", PATHS)
+def test_a_pile_that_nothing_spins_turns_as_it_would_beside_a_far_collider(path: str) -> None:
+    """Two discs pressed into each other (a pile), one sliding across the other, no force,
+    nothing spinning: friction turns both alike (the way gears would not: the top one's
+    underside is dragged back, the bottom one's top forward), as it does when a collider lies
+    50 m off. Before, a World that had no collider and nothing spinning made no spin for
+    the step, and its pile's friction acted on the centres and turned nothing."""
+    got = []
+    for far_wall in (False, True):
+        w = World(kernels=path)
+        if far_wall:
+            w.add_collider(Plane((0.0, -50.0), (0.0, 1.0)))
+        kw = dict(radius=0.1, mass=1.0, friction=0.8, restitution=0.5)
+        top = w.add(Body(Vector(0.0, 0.0), Vector(1.0, -0.5), **kw))  # type: ignore[arg-type]
+        low = w.add(Body(Vector(0.0, -0.199), Vector(0.0, 0.0), **kw))  # type: ignore[arg-type]
+        for _ in range(3):
+            w.step(1 / 60)
+        got.append(np.array([*top.pos, *top.vel, top.angular_velocity,
+                             *low.pos, *low.vel, low.angular_velocity]))  # fmt: skip
+    assert got[1][4] < -1.0 and got[1][9] < -1.0  # both turned clockwise, by friction
+    assert np.array_equal(got[0], got[1]), got
+
+
 # -- (2) a disc rolls off another -------------------------------------------------------------
 
 

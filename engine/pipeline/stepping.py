@@ -421,7 +421,9 @@ def _step_once(
     state.huge = _check_finite(state, x1, v1, name, dt, t0) > 1e100
     # Bodies that turn turn freely by the closed form (engine.dynamics.rotation), under their own
     # torque and the generators' (engine.dynamics.torquefield); the colliders change the spin of
-    # those they touch (without colliders, discs at rest stay so).
+    # those they touch, and bodies that meet turn each other (the exact impacts' friction and
+    # the pile's lever arms: without a spin the pile's friction would act on the centres and
+    # turn nothing, where a collider 50 m off would let it turn).
     spin = None
     levered = kicks and store.turns_any and springs.turn(store)  # (a lever, a rotary spring)
     levered = levered or (bool(drags) and store.turns_any and drags.turn(store))
@@ -429,7 +431,7 @@ def _step_once(
         state.contacts is not None
         or store.spins()
         or state.jointed
-        or (state.pairs_on and state.collisions.has_shapes(store))
+        or state.pairs_on
         or _driven(state, store)
         or levered
     ):
