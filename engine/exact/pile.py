@@ -480,7 +480,7 @@ def step_pile(
 
             walls = (walls_at, mine)
         pairs = (ia, ib) if m_pairs else (s_rows[:0], s_rows[:0])
-        again = retake(table, pairs, walls, (x0, v0), (x, v), spin, P, store, dt, fast)
+        again = retake(table, pairs, walls, (x0, v0), (x, v), spin, P, store, dt, fast, joined)
         if again is not None:
             Xr[local[again]] = x[again]
     # The impulses over the whole step, kept by key (sorted) for the next one.
