@@ -225,18 +225,13 @@ def test_distance_and_closest_match_the_nearest_edge_point(x: float, y: float, r
     assert abs(_brute_distance(p, surface.x, surface.y)) < 1e-12
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="engine bug (found exploring test_distance_and_closest_match_the_nearest_edge_point, "
-    "its shrunk example x=-2.220446049250313e-16, y=0, r=0.3): a point a rounding error "
-    "outside the corner (0, 0) is taken on the outside branch of Polygon.closest, whose "
-    "nearest edge point rounds onto the corner, and the normal is the direction of that "
-    "2e-16 difference, (-1, 0), outside the corner's cone of normals: the surface point "
-    "returned, (-0.3, 0), is 0.032 inside the rounded polygon (distance and depth are right). "
-    "Where the distance is within rounding of 0, the normal should be the nearest face's",
-)
 def test_a_point_a_rounding_outside_a_corner_gets_a_surface_point_on_the_surface() -> None:
+    # Found exploring the test above (its shrunk example): a point 2.2e-16 outside the corner
+    # (0, 0) was taken on the outside branch of Polygon.closest, whose nearest edge point
+    # rounds onto the corner, and the normal was the direction of that 2e-16 difference,
+    # (-1, 0), outside the corner's cone of normals: the surface point returned, (-0.3, 0),
+    # was 0.032 inside the rounded polygon (distance and depth were right). Within rounding
+    # of the boundary the normal is now the face's of greatest separation.
     test_distance_and_closest_match_the_nearest_edge_point.hypothesis.inner_test(
         -2.220446049250313e-16, 0.0, 0.3
     )

@@ -48,6 +48,7 @@ ValueError: a and b must differ ... use Circle((1.0, 1.0), radius) for a round p
 from __future__ import annotations
 
 import math
+import sys
 import weakref
 from typing import Any
 
@@ -774,7 +775,13 @@ class Polygon(Collider):
             if d < best[0]:
                 best = (d, cx, cy)
         d, cx, cy = best
-        nx, ny = _unit(x - cx, y - cy) or tuple(normals[k])
+        # Within rounding of the boundary the direction of (x - c) is rounding's, not the
+        # normal's: a point 2e-16 outside a corner gave one outside the corner's cone of
+        # normals, and a surface point inside the rounded polygon. There the face of greatest
+        # separation, whose line the point is on, gives it.
+        scale = max(1.0, abs(x), abs(y))
+        near = d <= 8.0 * sys.float_info.epsilon * scale
+        nx, ny = (None if near else _unit(x - cx, y - cy)) or tuple(normals[k])
         return Vector(cx + r * nx, cy + r * ny), Vector(nx, ny), d - r
 
     def bounds(self) -> tuple[float, float, float, float]:
