@@ -31,8 +31,10 @@ changed are searched again; a wall's bounce waits for everything before it among
 linked to its body by pairs, and no pair after it there goes first (engine.exact.pair_order
 says which moments a round takes). Newton's cradle is the test: the first ball stops, the
 second takes its speed at the same instant and meets the third, and so on down the row; a
-solver that spreads one impulse over the row (plain Jacobi) fails it. Rounds stop after
-``MAX_ROUNDS`` (a light ball squeezed between heavy ones bounces about pi sqrt(M/m) times);
+solver that spreads one impulse over the row (plain Jacobi) fails it. A group's rounds (the
+bodies linked by the pairs that can meet in the step; rounds counted group by group, so two
+worlds filtered apart share none) stop after ``MAX_ROUNDS`` (a light ball squeezed between
+heavy ones bounces about pi sqrt(M/m) times);
 then each body with an impact still to come stops where its path is at the earliest one left
 among the bodies those impacts link it to (its velocity the step's end one, so momentum
 changes by the forces' impulse alone; bodies that never meet them, a world filtered apart,
@@ -326,9 +328,10 @@ def impacts_in_order(
     frictions mu and the forces' ``pull`` (what a slow impact is measured against); ``t0``:
     the time at the step's start, for the walls' events.
 
-    ``handover``: past ``HANDOVER_ROUNDS`` rounds, give up instead (``found`` None, with
-    the bodies of every impact found or left in ``handed``, local): a crowd under load (rows
-    landing on rows) is the pile's, not a chain of exact impacts. ``fast``: the times of
+    ``handover``: when a group's rounds reach ``HANDOVER_ROUNDS``, give up instead
+    (``found`` None, with the bodies of the impacts left in such groups and those linked to
+    them by impacts in ``handed``, local): a crowd under load (rows landing on rows) is the
+    pile's, not a chain of exact impacts. ``fast``: the times of
     impact by the loop kernel (``times_of_impact``). ``turns``: the spin of the bodies that
     turn (engine.exact.pair_bounce), changed in place by the impacts' friction. ``replay``: the
     bodies whose paths the static contacts bent (engine.exact.bent_paths), each put on its next
@@ -365,7 +368,14 @@ def impacts_in_order(
     changed = np.zeros(nU, dtype=bool)
     replayed = np.zeros(nU, dtype=bool)  # put on their next piece (walls: the contacts')
     capped = False
-    while rounds < (HANDOVER_ROUNDS if handover else MAX_ROUNDS):
+    # The rounds are counted group by group (bodies linked by the pairs that can meet in the
+    # step): a group that reaches the limit takes no more, and the others go on, as they
+    # would alone (two worlds filtered apart share no round).
+    limit = HANDOVER_ROUNDS if handover else MAX_ROUNDS
+    group = order.group()
+    count = np.zeros(nU, dtype=np.intp)  # rounds of each group (by its label)
+    full = np.zeros(nU, dtype=bool)  # the bodies of a group at the limit
+    while True:
         idx = np.flatnonzero(todo)
         if len(idx):
             toi[idx] = times_of_impact(pa[idx], pb[idx], pR[idx], X, V, A, ts, dt, fast)
@@ -378,14 +388,19 @@ def impacts_in_order(
             )
         # Each body's next moment other than its pairs': a wall, or a bounce of a bent path
         # (a body never has both: an impact ends the bent path, and the replayed pieces'
-        # walls were the contacts').
+        # walls were the contacts'); none for a group at the limit.
         bend = None if replay is None else replay.t
-        if not np.isfinite(toi).any() and not np.isfinite(face_t).any():
-            if bend is None or not np.isfinite(bend).any():
+        toi_on, face_on, bend_on = toi, face_t, bend
+        if full.any():
+            toi_on = np.where(full[pa], np.inf, toi)
+            face_on = np.where(full, np.inf, face_t)
+            bend_on = None if bend is None else np.where(full, np.inf, bend)
+        if not np.isfinite(toi_on).any() and not np.isfinite(face_on).any():
+            if bend_on is None or not np.isfinite(bend_on).any():
                 break
         # The pairs that come first for both their bodies, the walls and the bounces that
         # come before any pair of their own, in time order among linked bodies.
-        s, wall, knot = order.choose(toi, face_t, bend)
+        s, wall, knot = order.choose(toi_on, face_on, bend_on)
         changed = np.zeros(nU, dtype=bool)
         replayed = np.zeros(nU, dtype=bool)
         if len(s):
@@ -420,6 +435,8 @@ def impacts_in_order(
             changed[wall] = True
         if len(s) or len(wall):
             rounds += 1
+            count[np.unique(group[np.concatenate([pa[s], wall])])] += 1
+            full = count[group] >= limit
         if len(knot):
             # A bent body goes on its next piece (from that moment; the bounce itself is
             # the contacts' report).
@@ -431,7 +448,7 @@ def impacts_in_order(
         again = changed[pa] | changed[pb]
         toi[again] = np.inf
         todo |= again
-    else:
+    if full.any():
         if handover:
             # The crowd: the bodies with an impact still to come, and every body linked to
             # them by an impact of this step or one to come. A chain elsewhere that ended

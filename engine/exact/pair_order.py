@@ -80,6 +80,12 @@ class Order:
         self.pa, self.pb, self.n = pa, pb, n
         self._group: np.ndarray | None = None  # made when first needed
 
+    def group(self) -> np.ndarray:
+        """Each body's group (``groups``: the lowest body linked to it by the pairs)."""
+        if self._group is None:
+            self._group = groups(self.pa, self.pb, self.n)
+        return self._group
+
     def choose(
         self, toi: np.ndarray, face_t: np.ndarray, bend: np.ndarray | None
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
