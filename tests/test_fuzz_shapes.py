@@ -1078,24 +1078,11 @@ def test_a_polygon_knocked_on_into_a_wall_it_was_turning_into_stays_out_of_it() 
     run(spec)
 
 
-@pytest.mark.parametrize(
-    "solver",
-    [
-        pytest.param(
-            "exact",
-            marks=pytest.mark.xfail(
-                strict=True,
-                raises=AssertionError,
-                reason="step 1: the capsule ends 0.111 m into the left wall on the exact models "
-                "(the bound: 0.1 m), with no StabilityWarning; they have no sweep of a pair "
-                "that touches at the start (the soft step's: engine.dynamics.game_continuous); "
-                "not yet looked into",
-            ),
-        ),
-        "auto",
-    ],
-)
+@pytest.mark.parametrize("solver", ["exact", "auto"])
 def test_a_fast_spinning_capsule_among_fixed_boxes_stays_out_of_the_wall(solver: str) -> None:
+    # On the exact models it ended step 1 0.111 m into the left wall (the bound: 0.1 m): the
+    # advancement of its moment ran out of rounds, as the grazing 8-gon's (below) did, and
+    # counted no impact; the rest of the step is now searched (``_first_touch``).
     # Found by the shapes fuzz while it shrank a failure (2026-12-03, on both paths): a 0.25 m
     # capsule at 40 m/s, heading 3 rad and turning -9 rad/s, starts 0.9 m from the left wall
     # of a 6 m room without gravity, among four fixed 1 m boxes, a fixed capsule and a
@@ -1120,17 +1107,13 @@ def test_a_fast_spinning_capsule_among_fixed_boxes_stays_out_of_the_wall(solver:
     run(spec, snap=0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="conservative advancement runs out of rounds at the graze and counts no impact; "
-    "taking the moment where it got to (Box2D's) fixed this scene but let a thin polygon out "
-    "of a room in another the long fuzz found (step 147, gravity 19.8), not yet understood",
-)
 def test_a_spinning_polygon_that_grazes_the_floor_before_it_goes_in_stays_out() -> None:
     # Found by the long scene fuzz (FUZZ_LONG=1): at step 4 a thin 8-gon (body 2) turning at
     # -47 rad/s passes a corner within 27 um of the floor and then goes in; the conservative
     # advancement for its moment crept on by a hair a round at the graze, ran out of rounds
-    # and counted no impact, and it ended the step 0.143 m in the floor.
+    # and counted no impact, and it ended the step 0.143 m in the floor. Out of rounds, the
+    # rest of the step is now searched for where it is first in, and the moment it touches
+    # found by bisection (engine.exact.shape_impacts, ``_first_touch``).
     spec = {
         "half": (7.238069437585297, 4.5),
         "walls": "room",
@@ -1211,21 +1194,15 @@ def test_a_spinning_polygon_that_grazes_the_floor_before_it_goes_in_stays_out() 
     run(spec)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="engine bug, the grazing 8-gon's (above): the advancement against the wall, from a "
-    "corner 0.1 mm off it, creeps on by a hair a round (its gap 9.7e-5 m to 1.2e-4 m in its 50 "
-    "rounds), runs out of them and counts no impact; the exact models have no sweep of a body "
-    "that touches a wall at the step's start (the soft step's: engine.dynamics.game_continuous)",
-)
 def test_a_thin_polygon_spun_off_a_wall_by_its_corner_stays_out_of_it() -> None:
     # Found exploring the mixed scenes (FUZZ_EXAMPLES=300, fast path; numpy alike), reduced
     # to its one body: a thin 8-gon (0.87 kg, 0.98 m by 0.17 m) thrown at 81 m/s down and to
     # the left, alone in a room without gravity, on the exact models. At step 0 a corner
     # strikes the left wall and it spins off at 50 rad/s; in step 1 it turns 1 rad and ends
     # 0.19 m in the wall (the bound: 0.1 m), where the same body ends 2 mm short of it on the soft
-    # step.
+    # step. The grazing 8-gon's bug (above): the advancement against the wall, from a corner
+    # 0.1 mm off it, crept on by a hair a round (its gap 9.7e-5 m to 1.2e-4 m in its 50
+    # rounds), ran out of them and counted no impact.
     spec = {
         "half": (3.0, 5.256068631653733), "walls": "room", "wall_material": (0.0, 0.0),
         "gravity": 0.0, "steps": 60, "snap": 0, "kinematic": None, "solver": "exact",
@@ -1246,8 +1223,7 @@ def test_a_thin_polygon_spun_off_a_wall_by_its_corner_stays_out_of_it() -> None:
 def test_a_thin_spinning_polygon_falling_beside_a_disc_stays_out_of_the_wall() -> None:
     # Found on the exact models as a strict xfail before a body was held about its centre of
     # mass (engine.body_shapes): the 7-gon, drawn off its centroid, turned about its frame's
-    # origin and ended step 14 0.19 m in the wall. Held about its centroid it stays out; the
-    # grazing 8-gon's strict xfail (above) keeps the exact models' undiagnosed creep.
+    # origin and ended step 14 0.19 m in the wall. Held about its centroid it stays out.
     # Found by a scan of 1,372 fresh scenes of the mixed-scenes test (fast path; numpy alike),
     # reduced to two bodies: a thin 7-gon (1.47 kg) thrown down at 18.7 m/s turning at
     # 31.7 rad/s and a 0.58 m disc at 28 m/s, under gravity 14.3 in a room (Box).
