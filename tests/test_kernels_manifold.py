@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from engine import kernels
@@ -357,6 +357,10 @@ def test_round_kernel_is_its_numpy_twin(seed: int, pairs: int, margin: float) ->
 
 @settings(max_examples=20, deadline=None)
 @given(seed=seeds, pairs=st.integers(1, 40))
+# Found exploring (500 examples, 2026-12-04): B's centre deep in A's box, its whole path in
+# it, farther than the reach from every edge: the test measured the edges only and said the
+# pair could not meet. (The narrowphase asks only of pairs apart; a pair deep is kept now.)
+@example(seed=511, pairs=19)
 def test_passing_kernel_is_its_numpy_twin(seed: int, pairs: int) -> None:
     """``passing_loop`` (engine.geometry.passing: whether a round pair's path comes within
     reach of A's core) against ``passing`` over arrays: the same answer for every pair, on

@@ -18,8 +18,10 @@ A round pair (A a circle or a polygon, a capsule among them, B a circle; engine.
 B's centre, moving in A's frame by u (the pair's relative displacement over the step at their
 velocities at its start), comes within rA + rB + slack of A's core (a point, a segment or a
 polygon): the least distance of the segment c..c + u from A's core, exact (the segments'
-nearest points, or 0 where they cross). ``slack`` is a slop (engine.geometry.manifold_kinds'
-LINEAR_SLOP: what the narrowphase counts as touching) and what the two can move beyond
+nearest points, or 0 where they cross, or where c is within the polygon: the caller asks only
+of pairs apart, whose c is outside, but a pair deep in each other is kept, not dropped).
+``slack`` is a slop (engine.geometry.manifold_kinds' LINEAR_SLOP: what the narrowphase counts
+as touching) and what the two can move beyond
 their velocities (their reach less |v| dt: the held accelerations and the turning), so a pair
 that can meet in the step keeps its point. One that passes within the speculative distance
 is met again at the next step's start, as near points are, along its own normal there. A pair
@@ -97,6 +99,7 @@ def passing_loop(
         # squared distance from the other segment.
         m = 1 if circle or cA[i] == 2 else cA[i]
         d2 = np.inf
+        inside = m > 1  # a polygon's core holds c while c is left of every edge (s1 >= 0)
         for edge in range(m):
             if circle:
                 ax = bx = C[i, 0]
@@ -109,6 +112,7 @@ def passing_loop(
             s2 = fx * (cy + ey - ay) - fy * (cx + ex - ax)
             s3 = ex * (ay - cy) - ey * (ax - cx)
             s4 = ex * (by - cy) - ey * (bx - cx)
+            inside = inside and s1 >= 0.0
             if ((s1 < 0.0 < s2) or (s2 < 0.0 < s1)) and ((s3 < 0.0 < s4) or (s4 < 0.0 < s3)):
                 d2 = 0.0
                 continue
@@ -122,6 +126,8 @@ def passing_loop(
                 else:
                     got = dist2(cx + ex, cy + ey, ax, ay, fx, fy)
                 d2 = min(d2, got)
+        if inside:
+            d2 = 0.0  # B's centre starts within A's polygon (deep in it: a pair to keep)
         out[k] = d2 <= reach * reach
     return out
 
@@ -150,6 +156,7 @@ def passing(
     count = np.where(circle, 1, cA[pi])
     m = np.where(circle | (count == 2), 1, count)
     d2 = np.full(n, np.inf)
+    inside = m > 1
     for edge in range(int(m.max())):
         live = edge < m
         e2 = (edge + 1) % count
@@ -162,6 +169,7 @@ def passing(
         s2 = fx * (cy + ey - ay) - fy * (cx + ex - ax)
         s3 = ex * (ay - cy) - ey * (ax - cx)
         s4 = ex * (by - cy) - ey * (bx - cx)
+        inside &= ~live | (s1 >= 0.0)
         cross = (((s1 < 0.0) & (0.0 < s2)) | ((s2 < 0.0) & (0.0 < s1))) & (
             ((s3 < 0.0) & (0.0 < s4)) | ((s4 < 0.0) & (0.0 < s3))
         )
@@ -177,6 +185,7 @@ def passing(
                 d = _dist2(cx + ex, cy + ey, ax, ay, fx, fy)
             got = np.minimum(got, d)
         d2 = np.where(live, np.where(cross, 0.0, got), d2)
+    d2 = np.where(inside, 0.0, d2)
     return d2 <= reach * reach
 
 
