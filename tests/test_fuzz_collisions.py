@@ -1220,6 +1220,41 @@ def test_a_world_filtered_apart_keeps_its_own_impact_rounds() -> None:
     check_as_if_alone(ROUNDS_SHARED_WITH_A_STRANGER)
 
 
+#: Found exploring test_filtered_apart_worlds_move_as_if_alone (500 examples, numpy,
+#: 2026-12-04), reduced to four balls: the first world's light ball (0.01 kg), resting on the
+#: left wall of a room 1,750 m wide, is struck at step 8 by its 200 m ball, in the step in
+#: which the second world's ball reaches that wall; with ball 0 of the first world (e 0.31) in
+#: the World, its velocity differs from its world's alone by 2.5e-11 m/s (1e-14 of it) and its
+#: position by an ulp. Without ball 0 it is as if alone.
+AN_ULP_FROM_A_STRANGER: Scene = {
+    "balls": [
+        (480.001259997165, 240.0006299985825, -9600.0251999433, -4800.01259997165, 0.2, 1.0,
+         0.3125, 0.0, 5),
+        (0.0, 0.0, 600.0015749964563, 0.0, 200.0, 1.0, 1.0, 1.0, 5),
+        (0.0, -360.0009449978737, -3600.0094499787374, 7200.018899957475, 0.2, 0.01, 0.5, 1.0,
+         5),
+        (480.001259997165, 0.0, -9600.0251999433, 4800.01259997165, 0.2, 1.0, 0.0, 1.0, 7),
+    ],
+    "colliders": [
+        Box((-873.8622931948403, -873.8622931948403), (873.8622931948403, 873.8622931948403),
+            restitution=0.0),
+    ],
+    "gravity": False,
+    "method": "semi_implicit_euler",
+    "steps": 12,
+}  # fmt: skip
+
+
+@xfail(
+    "AN_ULP_FROM_A_STRANGER: at step 8 the first world's light ball, struck on the wall by its "
+    "200 m ball as the second world's ball reaches the wall, ends 2.5e-11 m/s (an ulp of its "
+    "position) off its path alone; which quantity the two worlds share there is not found (a "
+    "maximum over the step's bodies, of the pulls or the speeds, is the suspect)"
+)
+def test_a_world_filtered_apart_moves_alone_to_the_bit_beside_a_ball_at_its_wall() -> None:
+    check_as_if_alone(AN_ULP_FROM_A_STRANGER)
+
+
 #: Found replaying on 2026-12-02 (its shrunk example): two worlds filtered apart, where a ball
 #: of the second (5) falls onto another (6) across the place where a ball of the first (0)
 #: rests. Its three balls left the path they take alone at step 15 (a strict xfail, put down
