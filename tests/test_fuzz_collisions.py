@@ -1224,8 +1224,11 @@ def test_a_world_filtered_apart_keeps_its_own_impact_rounds() -> None:
 #: 2026-12-04), reduced to four balls: the first world's light ball (0.01 kg), resting on the
 #: left wall of a room 1,750 m wide, is struck at step 8 by its 200 m ball, in the step in
 #: which the second world's ball reaches that wall; with ball 0 of the first world (e 0.31) in
-#: the World, its velocity differs from its world's alone by 2.5e-11 m/s (1e-14 of it) and its
-#: position by an ulp. Without ball 0 it is as if alone.
+#: the World, its velocity differed from its world's alone by 2.5e-11 m/s (1e-14 of it) and
+#: its position by an ulp. The 200 m ball's spin on its bent path (it bounced off the wall in
+#: the static contacts, as the stranger did) was what the bounces after each one gave, a
+#: cumulative sum over both bodies' bounces less the part before its own: it rounded an ulp
+#: off. Each body's bounces are now summed on their own (engine.exact.bent_paths).
 AN_ULP_FROM_A_STRANGER: Scene = {
     "balls": [
         (480.001259997165, 240.0006299985825, -9600.0251999433, -4800.01259997165, 0.2, 1.0,
@@ -1245,12 +1248,6 @@ AN_ULP_FROM_A_STRANGER: Scene = {
 }  # fmt: skip
 
 
-@xfail(
-    "AN_ULP_FROM_A_STRANGER: at step 8 the first world's light ball, struck on the wall by its "
-    "200 m ball as the second world's ball reaches the wall, ends 2.5e-11 m/s (an ulp of its "
-    "position) off its path alone; which quantity the two worlds share there is not found (a "
-    "maximum over the step's bodies, of the pulls or the speeds, is the suspect)"
-)
 def test_a_world_filtered_apart_moves_alone_to_the_bit_beside_a_ball_at_its_wall() -> None:
     check_as_if_alone(AN_ULP_FROM_A_STRANGER)
 

@@ -144,9 +144,18 @@ def bends_of(
     group = np.cumsum(start) - 1  # each bounce's body, by place in ``body``
     t = np.clip(when - t0, 0.0, dt)
     c = point + normal * radius[rows, None]
-    # u_k = v0 + A t_k + (J_1 + ... + J_k) / m: the bounces' kicks summed within each body.
-    kick = np.cumsum(impulse / mass[rows, None], axis=0)
-    kick -= np.concatenate([np.zeros((1, 2)), kick])[first[:-1]][group]
+    # u_k = v0 + A t_k + (J_1 + ... + J_k) / m: the bounces' kicks summed within each body,
+    # each body's on its own (a sum over all the bodies' bounces less what came before a
+    # body's first rounds differently for each other body there: a world filtered apart
+    # moved an ulp off its path alone).
+    place = np.arange(len(rows)) - first[:-1][group]  # each bounce's place among its body's
+    places = int(place.max()) + 1
+    kick = np.empty((len(rows), 2))
+    acc = np.zeros((len(body), 2))
+    for p in range(places):
+        k = np.flatnonzero(place == p)
+        acc[group[k]] += impulse[k] / mass[rows[k], None]
+        kick[k] = acc[group[k]]
     Ar = A[rows]
     u = v0[rows] + Ar * t[:, None] + kick
     S = (dt - t)[:, None]
@@ -181,17 +190,19 @@ def bends_of(
     r = radius[rows]
     dw = -du * q_turn[rows] / np.where(r > 0.0, r, 1.0)
     dq = dw * (dt - t)
-    # What the bounces from each one on gave, over all bodies (a reversed cumulative sum, 0
-    # past the last): a body's bounces after bounce j gave S[j + 1] - S[its end].
-    S = np.append(np.cumsum(dw[::-1])[::-1], 0.0)
-    SQ = np.append(np.cumsum(dq[::-1])[::-1], 0.0)
-    end = first[1:]
-    W = -(S[1:] - S[end][group])
-    Q = -(SQ[1:] - SQ[end][group])
+    # What the bounces after each one gave (summed from its body's last, each body on its
+    # own), and what all of a body's gave.
+    after_w, after_q = np.empty(len(rows)), np.empty(len(rows))
+    sum_w, sum_q = np.zeros(len(body)), np.zeros(len(body))
+    for p in range(places - 1, -1, -1):
+        k = np.flatnonzero(place == p)
+        g = group[k]
+        after_w[k], after_q[k] = sum_w[g], sum_q[g]
+        sum_w[g] += dw[k]
+        sum_q[g] += dq[k]
+    W, Q = -after_w, -after_q
     W[last], Q[last] = 0.0, 0.0
-    W0 = -(S[first[:-1]] - S[end])
-    Q0 = -(SQ[first[:-1]] - SQ[end])
-    return Bends(body, first, t, X, V, X0, V0, lo, hi, W, Q, W0, Q0)
+    return Bends(body, first, t, X, V, X0, V0, lo, hi, W, Q, -sum_w, -sum_q)
 
 
 def box_pairs(lo: np.ndarray, hi: np.ndarray, k: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
