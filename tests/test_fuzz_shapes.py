@@ -1765,3 +1765,50 @@ def test_a_crowd_past_its_iterations_stays_in_the_room_with_the_iterations_the_w
                 c = b.local_to_world(shape.centroid) if isinstance(shape, Polygon) else b.pos
                 assert abs(c.x) < half[0] and abs(c.y) < half[1], f"step {k}: {b} left the room"
                 assert depth_in_walls(b, half) <= 0.05, (k, b)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="engine bug (found exploring the mixed scenes at 500 examples, fast path, 2026-12-04; "
+    "numpy alike): a thin triangle (1.24 by 0.12 m) lying on the floor is flipped by a 5.4 kg "
+    "box landing on its end, to 59 rad/s, and in the next step turns 1 rad and ends 0.257 m in "
+    "the floor, without a StabilityWarning. The soft step's rows are the features nearest at "
+    "the step's start, and its continuous stage, for a body that touches the floor as the "
+    "step begins, sweeps the cores to a slop nearer than they were: the triangle's other end, "
+    "swinging down, is not a feature of either. A sweep of the least separation of its "
+    "corners from the floor's plane would catch it",
+)
+def test_a_thin_triangle_flipped_off_the_floor_by_a_landing_box_stays_out_of_it() -> None:
+    run(
+        {
+            "half": (5.02144705837112, 7.457438845181193),
+            "walls": "room",
+            "wall_material": (0.0, 1.192092896e-07),
+            "gravity": 12.260816913464058,
+            "steps": 180,
+            "snap": 0,
+            "kinematic": None,
+            "solver": "auto",
+            "bodies": [
+                {
+                    **_fixed_box((2.735275530045927, 5.940536534811886)),
+                    "geometry": (0.6403220498879141, 0.9580487718676275, 0.0),
+                    "mass": 5.390171622091221,
+                    "friction": 0.9341714104576149,
+                    "angle": 3.05078125,
+                    "spin": 59.0,
+                    "speed": 53.47720153205465,
+                    "fixed": False,
+                },
+                {
+                    **_fixed_box((-2.905977261530107, -6.752282246234189)),
+                    "kind": "polygon",
+                    "geometry": ([0.9375, 0.25, 0.5], 0.2, 0.640625, 0.0),
+                    "speed": 67.0,
+                    "heading": -1.48046875,
+                    "fixed": False,
+                },
+            ],
+        }
+    )
