@@ -55,9 +55,12 @@ impact of the two is taken:
   which stops a centre about to pass through a wall;
 * where A does not move in the step (a collider, a static body, a kinematic one at rest),
   with its whole shape, to where the cores come a slop nearer than they were at the start
-  (target min(target, d(0) - slop)): the conservative advancement above holds for any target
-  below d(0). A capsule that struck a wall with one end and spins off it at 98 rad/s swings
-  its other end a quarter turn into the wall within the next step, a feature none of the
+  (target min(target, d(0) - slop), at least 0, but for a half plane, whose distance is its
+  corners' least, signed: a thin triangle flipped off a floor at 59 rad/s swung its other end
+  0.257 m into it while the target was held at 0, where its distance already was): the
+  conservative advancement above holds for any target below d(0). A capsule that struck a
+  wall with one end and spins off it at 98 rad/s swings its other end a quarter turn into
+  the wall within the next step, a feature none of the
   step's rows held (the speculative rows are the nearest features at the start); Box2D's
   fallback alone lets it end 0.112 m in (tests/test_fuzz_shapes.py), this sweep 8 mm. A
   body sliding or rolling along a floor keeps its distance from it and is stopped by
@@ -296,7 +299,9 @@ def continuous_loop(
             if closer:
                 if t == 0.0:
                     start = d
-                target = min(target, max(start - slop, 0.0))
+                # (A half plane's d is signed, its corners' least: it may go below 0, and
+                # a slop below where it started is a corner swung in, however deep it began.)
+                target = min(target, start - slop if half else max(start - slop, 0.0))
             if d < target + tol:
                 return t
             # How fast (a step's worth) the gap can close along n (module doc).
