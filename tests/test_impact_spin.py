@@ -318,8 +318,8 @@ def test_a_disc_of_a_pile_struck_at_an_exact_impact_takes_the_impulses_turn(
     # r_a, both = -n x P. It took the push alone (no turn) before.
     w = free_world()
     if walls:
-        # A collider far off: the step's rotation is made for every body (the other case:
-        # nothing spins as the step begins, and the impact's turn makes it).
+        # A collider far off: the static contacts take part (the other case: no collider,
+        # nothing spinning as the step begins; the step's rotation is made all the same).
         w.add_collider(Segment((-50.0, -50.0), (50.0, -50.0)))
     b = w.add(Body(Vector(0.0, 0.0), Vector(0.0, 0.0), radius=rb, mass=mb, friction=0.8,
                    restitution=0.5))  # fmt: skip

@@ -59,7 +59,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..dynamics.pair_events import events_of, unpack
-from ..dynamics.rotation import Spin
 from ..geometry.colliders import Circle
 from ..geometry.manifold_kinds import Polygons
 from ..geometry.pair_grid import Search, deepest_overlap, find_pairs, grid_pairs, struck
@@ -73,6 +72,7 @@ from .pile import PUSH, Carried, Statics, components, keep_asleep, step_pile
 from .sleep import sleep_still, wake_met
 
 if TYPE_CHECKING:
+    from ..dynamics.rotation import Spin
     from .contacts import Contacts
 
 __all__ = ["Collisions", "MAX_ROUNDS", "SLOP", "PUSH", "deepest_overlap"]
@@ -577,7 +577,13 @@ class Collisions:
                 v0 = v0.copy()
                 v0[island] += kick[island] / store.mass[island, None]
             if turn is not None:
-                spin = self._turn(spin, turn, island, store, dt)
+                # The moments they took, into their spin at the step's start, as the push
+                # into v0. (The step makes a spin for every World whose bodies meet and turn:
+                # engine.pipeline.stepping.)
+                assert spin is not None
+                k = island & (turn != 0.0)
+                spin.omega0 = spin.omega0.copy()  # (it may be the store's own)
+                spin.omega0[k] += turn[k] * store.inv_moment[k]
             held_by = None
             if len(self.joined):
                 held_by = np.zeros(n, dtype=bool)
@@ -728,28 +734,6 @@ class Collisions:
         if got.cut is not None and contacts is not None:
             contacts.forget(got.cut[0], self._t0 + got.cut[1], self._reports)
         return got.impacts, got.kick, got.turn
-
-    def _turn(
-        self, spin: Spin | None, turn: np.ndarray, island: np.ndarray, store: Any, dt: float
-    ) -> Spin | None:
-        """The step's spin with the angular impulses ``turn`` (N,) (N m s) that the pile's
-        bodies took as moving walls added to their spin at the step's start, from which the
-        soft step turns them, as the push is added to their velocity (``exact``'s kick). One
-        is made (every body free, at rest) when the step had none, and kept in ``spun``."""
-        k = island & (turn != 0.0)
-        if not k.any():
-            return spin
-        if spin is None:
-            spin = self.spun
-        if spin is None:
-            spin = Spin.free(
-                store.angle, store.omega, store.inv_moment, store.torque, store.mass,
-                store.radius, dt, None, store.kinematic,
-            )  # fmt: skip
-        self.spun = spin
-        spin.omega0 = spin.omega0.copy()  # (it may be the store's own)
-        spin.omega0[k] += turn[k] * store.inv_moment[k]
-        return spin
 
     def _bent(
         self,

@@ -111,9 +111,7 @@ class Order:
             # with (``first_after``): that one's bodies leave on new paths, which may meet it
             # sooner. In a small group of linked bodies, for any earlier one of its group:
             # the new paths reach it through a chain of others as well.
-            if self._group is None:
-                self._group = groups(pa, pb, self.n)
-            g = self._group
+            g = self.group()
             small = np.bincount(g, minlength=self.n)[g[pa[s]]] <= SMALL_GROUP
             if small.any():
                 first = np.full(self.n, np.inf)
@@ -123,9 +121,7 @@ class Order:
         wall = np.flatnonzero(np.isfinite(face_t) & (face_t <= best))
         knot = np.zeros(0, dtype=np.intp)
         if np.isfinite(nxt).any():
-            if self._group is None:
-                self._group = groups(pa, pb, self.n)
-            g = self._group
+            g = self.group()
             soon = np.full(self.n, np.inf)  # each group's first wall or bounce
             ahead = np.full(self.n, np.inf)  # and its first moment of any kind
             np.minimum.at(soon, g, nxt)

@@ -226,6 +226,12 @@ def _time_of_impact(
             out = np.maximum(out, np.hypot(*dv.T) + spin_a + spin_b)
         return out
 
+    def gap_at(i: np.ndarray, when: np.ndarray) -> np.ndarray:
+        """Pairs i's separations at times ``when`` along the start motion."""
+        xa, qa = _along(start, pull, a[i], when)
+        xb, qb = _along(start, pull, b[i], when)
+        return pair_gaps(table, a[i], b[i], xa, qa, xb, qb, fast)[0]
+
     t = np.zeros(len(a))
     hit = np.full(len(a), np.inf)
     live = np.ones(len(a), dtype=bool)
@@ -233,9 +239,7 @@ def _time_of_impact(
         k = np.flatnonzero(live)
         if not len(k):
             break
-        xa, qa = _along(start, pull, a[k], t[k])
-        xb, qb = _along(start, pull, b[k], t[k])
-        gap = pair_gaps(table, a[k], b[k], xa, qa, xb, qb, fast)[0]
+        gap = gap_at(k, t[k])
         touch = gap <= TOUCH * r[k]
         hit[k[touch]] = t[k[touch]]
         live[k[touch]] = False
@@ -248,12 +252,7 @@ def _time_of_impact(
     k = np.flatnonzero(live)
     if len(k):
         # Out of rounds (a corner grazing a face): the rest of the step searched (module text).
-        def gaps(i: np.ndarray, when: np.ndarray) -> np.ndarray:
-            xa, qa = _along(start, pull, a[i], when)
-            xb, qb = _along(start, pull, b[i], when)
-            return pair_gaps(table, a[i], b[i], xa, qa, xb, qb, fast)[0] - TOUCH * r[i]
-
-        hit[k] = _first_touch(gaps, k, t[k], dt)
+        hit[k] = _first_touch(gap_at, TOUCH * r, k, t[k], dt)
     return hit
 
 
@@ -369,6 +368,20 @@ def _time_of_wall_impact(
     x0, v0, q0, w0 = start
     acc, alpha = pull
     wanted = set(zip(body.tolist(), col.tolist(), strict=True))
+
+    def gap_at(i: np.ndarray, when: np.ndarray) -> np.ndarray:
+        """Movers i's least separations from the colliders they went into, at times
+        ``when`` along the start motion."""
+        m = movers[i]
+        x, q = x0.copy(), q0.copy()
+        x[m], q[m] = _along(start, pull, m, when)
+        row, c, _, sep = walls(m, x, q, reach)
+        mine = np.array([(a, b) in wanted for a, b in zip(row.tolist(), c.tolist(), strict=True)],
+                        dtype=bool)  # fmt: skip
+        gap = np.full(len(x0), np.inf)
+        np.minimum.at(gap, row[mine], sep[mine])
+        return gap[m]
+
     t = np.zeros(len(movers))
     hit = np.full(len(movers), np.inf)
     live = np.ones(len(movers), dtype=bool)
@@ -377,14 +390,7 @@ def _time_of_wall_impact(
         if not len(k):
             break
         m, tk = movers[k], t[k]
-        x, q = x0.copy(), q0.copy()
-        x[m], q[m] = _along(start, pull, m, tk)
-        row, c, _, sep = walls(m, x, q, reach)
-        mine = np.array([(a, b) in wanted for a, b in zip(row.tolist(), c.tolist(), strict=True)],
-                        dtype=bool)  # fmt: skip
-        gap = np.full(len(x0), np.inf)
-        np.minimum.at(gap, row[mine], sep[mine])
-        gap = gap[m]
+        gap = gap_at(k, tk)
         touch = gap <= TOUCH * radius[m]
         hit[k[touch]] = tk[touch]
         live[k[touch]] = False
@@ -401,30 +407,21 @@ def _time_of_wall_impact(
         # Out of rounds (a corner grazing a face creeps on by a hair a round): the rest of
         # the step is searched for where the body is first in, and the moment it touches
         # found by bisection between that and the pose before (module text).
-        def gaps(i: np.ndarray, when: np.ndarray) -> np.ndarray:
-            m = movers[i]
-            x, q = x0.copy(), q0.copy()
-            x[m], q[m] = _along(start, pull, m, when)
-            row, c, _, sep = walls(m, x, q, reach)
-            mine = np.array([(a, b) in wanted for a, b in zip(row.tolist(), c.tolist(),
-                                                             strict=True)], dtype=bool)  # fmt: skip
-            gap = np.full(len(x0), np.inf)
-            np.minimum.at(gap, row[mine], sep[mine])
-            return gap[m] - TOUCH * radius[m]
-
-        hit[k] = _first_touch(gaps, k, t[k], dt)
+        hit[k] = _first_touch(gap_at, TOUCH * radius[movers], k, t[k], dt)
     return hit
 
 
 def _first_touch(
-    gaps: Callable[[np.ndarray, np.ndarray], np.ndarray],
+    gap_at: Callable[[np.ndarray, np.ndarray], np.ndarray],
+    touch: np.ndarray,
     k: np.ndarray,
     t: np.ndarray,
     dt: float,
 ) -> np.ndarray:
     """For each of ``k`` (apart at its time ``t``), the first of SAMPLES moments from t to
-    ``dt`` at which ``gaps(k, when)`` is <= 0 (in), and from the one before it (apart) the
-    moment of touching by bisection (BISECTIONS halvings); inf where none is in."""
+    ``dt`` at which its separation ``gap_at(k, when)`` is within its ``touch`` distance (in),
+    and from the one before it (apart) the moment of touching by bisection (BISECTIONS
+    halvings); inf where none is in."""
     out = np.full(len(k), np.inf)
     lo = t.copy()
     hi = np.full(len(k), np.inf)
@@ -433,7 +430,7 @@ def _first_touch(
         if not len(todo):
             break
         when = t[todo] + (dt - t[todo]) * (j / SAMPLES)
-        inside = gaps(k[todo], when) <= 0.0
+        inside = gap_at(k[todo], when) <= touch[k[todo]]
         hi[todo[inside]] = when[inside]
         lo[todo[~inside]] = when[~inside]
     found = np.flatnonzero(np.isfinite(hi))
@@ -442,7 +439,7 @@ def _first_touch(
     a, b = lo[found], hi[found]
     for _ in range(BISECTIONS):
         mid = 0.5 * (a + b)
-        inside = gaps(k[found], mid) <= 0.0
+        inside = gap_at(k[found], mid) <= touch[k[found]]
         b = np.where(inside, mid, b)
         a = np.where(inside, a, mid)
     out[found] = a  # apart by at most the touch distance: the moment it touches
