@@ -419,6 +419,11 @@ class WorldEvents:
         self._began: list[ContactEvent] | None = None
         self._ended: list[ContactEvent] | None = None
         self._touching: list[ContactEvent] | None = None
+        # What the last step's events, made on demand, read that taking a collider out
+        # changes, kept until the next step (``_hold_reading``): the open contacts' keys, and
+        # the colliders taken out by serial.
+        self._open: np.ndarray | None = None
+        self._gone: dict[int, Any] = {}
         self._view: Any = None  # how to read the World now (set by the World)
 
     @property
@@ -451,27 +456,32 @@ class WorldEvents:
         """The collider in the World with serial number ``serial``, or None (taken out)."""
         return self._collider.get(serial)
 
-    def collider_removed(self, collider: Any, t: float) -> None:
-        """A collider leaves: its open contacts end (reported with the next step)."""
+    def collider_removed(self, collider: Any, t: float) -> np.ndarray:
+        """A collider leaves: its open contacts end (reported with the next step); returns
+        their keys."""
         serial = self._serial[collider]
-        self._collider_ends(serial, t, removal=True)
+        keys = self._collider_ends(serial, t, removal=True)
         del self._serial[collider], self._collider[serial]
+        self._gone[serial] = collider  # (named in the last step's events, until the next)
+        return keys
 
     def collider_changed(self, collider: Any, t: float) -> None:
         """A collider became a sensor or solid again: its open contacts end (reported with
         the next step, ``removal`` False), and what it touches then begins afresh."""
         self._collider_ends(self._serial[collider], t, removal=False)
 
-    def _collider_ends(self, serial: int, t: float, removal: bool) -> None:
+    def _collider_ends(self, serial: int, t: float, removal: bool) -> np.ndarray:
         """The open contacts of the collider numbered ``serial`` end, reported with the next
-        step."""
-        self.settle_reading()
+        step; returns their keys."""
+        self._hold_reading()
 
         def involved(keys: np.ndarray) -> np.ndarray:
             is_c, other = other_of(keys)
             return is_c & (other == serial)
 
-        self._removal_ends(self.ledger.drop(involved), t, removal)
+        keys = self.ledger.drop(involved)
+        self._removal_ends(keys, t, removal)
+        return keys
 
     def body_removed(self, slot: int, t: float) -> None:
         """A body leaves (still readable at its row): its open contacts end."""
@@ -493,9 +503,19 @@ class WorldEvents:
         """Make the last step's events now (before the rows or colliders they name change)."""
         _ = self.began, self.ended, self.touching
 
+    def _hold_reading(self) -> None:
+        """Keep what the last step's events read that a collider taken out or changed alters
+        (the open contacts' keys; ``collider_removed`` keeps the collider's name), so that
+        they are made on demand still as the step left them, and not all now (``settle_reading``:
+        a game that takes a coin would wait on every contact's event being made)."""
+        if self._touching is None and self._open is None:
+            self._open = self.ledger.keys
+
     def forget(self) -> None:
         """The last step's events are made again on demand."""
         self._began = self._ended = self._touching = None
+        self._open = None
+        self._gone = {}
 
     def _event(self, spec: Spec) -> ContactEvent:
         """The ContactEvent of one spec, read from the World now where it has no payload."""
@@ -505,7 +525,8 @@ class WorldEvents:
         low = key & _LOW
         body = view.body(slot)
         if low & COLLIDER:
-            other = self._collider[low & (COLLIDER - 1)]
+            serial = low & (COLLIDER - 1)
+            other = self._collider[serial] if serial in self._collider else self._gone[serial]
             if payload is None:
                 point, normal, _ = other.closest(view.position(slot))
                 return ContactEvent(body, other, point, normal, Vector(0.0, 0.0), t)
@@ -551,9 +572,10 @@ class WorldEvents:
         """Every contact open after the last step, with the impulse it carried over it."""
         if self._touching is None:
             view = self._view
-            impulses = view.impulses(self.ledger.keys) if view is not None else {}
+            keys = self.ledger.keys if self._open is None else self._open
+            impulses = view.impulses(keys) if view is not None else {}
             out = []
-            for k in self.ledger.keys.tolist():
+            for k in keys.tolist():
                 ev = self._event((view.t, k, True, None))
                 j = impulses.get(k)
                 out.append(ev if j is None else ev._replace(impulse=Vector(*j)))

@@ -480,13 +480,20 @@ class GameStep:
     ) -> tuple[StaticShapes, np.ndarray, np.ndarray]:
         """The colliders as shapes in the world's frame, each static shape's collider place
         and bounding box (xmin, ymin, xmax, ymax; a half plane's infinite), made again when
-        colliders come or go (``key``: their ids)."""
+        colliders come (``key``: their ids). Where colliders only went (a coin taken), the
+        shapes are kept and the gone ones' boxes emptied (``_without``): every stage tests a
+        static shape's box before its collider, so a shape with an empty box meets nothing."""
         kept = self._statics
-        if kept is None or kept[0] != key:
-            shapes = static_shapes(colliders)
-            kept = (key, shapes, *broad.static_bounds(shapes))
-            self._statics = kept
-        return kept[1], kept[2], kept[3]
+        if kept is not None and kept[0] == key:
+            return kept[1], kept[2], kept[3]
+        if kept is not None:
+            left = _without(kept[0], key, kept[2], kept[3])
+            if left is not None:
+                self._statics = (key, kept[1], *left)
+                return kept[1], left[0], left[1]
+        shapes = static_shapes(colliders)
+        self._statics = (key, shapes, *broad.static_bounds(shapes))
+        return shapes, self._statics[2], self._statics[3]
 
     # -- stages 2 to 4: contacts, as rows -----------------------------------------------------
     def _candidates(self, store: Any, margin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -867,3 +874,36 @@ class _PartView(NamedTuple):
 
     def __len__(self) -> int:
         return len(self.x)
+
+
+#: An empty box (xmin > xmax): a static shape whose collider went meets nothing.
+_GONE = (np.inf, np.inf, -np.inf, -np.inf)
+
+
+def _without(
+    before: tuple[int, ...], now: tuple[int, ...], owner: np.ndarray, bounds: np.ndarray
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """The static shapes' collider places and boxes after the colliders of ``before`` (ids,
+    in place order) not in ``now`` went, the rest in their order: the places counted anew,
+    the gone ones' shapes given an empty box (``_GONE``) and place 0. None where ``now`` is
+    not ``before`` less some (a collider came), or where half the shapes or more would be
+    gone (the tables are made again then, so the gone do not pile up). Shapes keep their
+    indices, and so the contacts' warm starts by key (engine.pipeline.game_contacts) on every
+    other collider (a pile on a ledge is not let go when a coin is taken)."""
+    if len(now) >= len(before) or not now:
+        return None
+    place = np.full(len(before), -1, dtype=np.intp)
+    j = 0
+    for i, ident in enumerate(before):
+        if j < len(now) and now[j] == ident:
+            place[i] = j
+            j += 1
+    if j != len(now):
+        return None  # (not a subsequence: a collider came, or the order changed)
+    moved = place[owner]
+    gone = (moved < 0) | (bounds[:, 0] > bounds[:, 2])  # (gone now, or before: an empty box)
+    if 2 * np.count_nonzero(gone) >= len(owner):
+        return None
+    bounds = bounds.copy()
+    bounds[gone] = _GONE
+    return np.where(gone, 0, moved).astype(owner.dtype), bounds

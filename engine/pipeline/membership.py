@@ -316,7 +316,7 @@ def add_collider(state: WorldState, collider: ColliderT) -> ColliderT:
     state.events.collider_added(collider)
     state.collisions.wake(len(state.bodies))
     push_out(state, range(len(state.bodies)), stacklevel=4)
-    state.changed_structure()
+    state.colliders_changed()
     return collider
 
 
@@ -327,8 +327,16 @@ def remove_collider(state: WorldState, collider: Collider) -> None:
     assert state.contacts is not None
     # The last step's events are named now, and the collider's open contacts end
     # (reported with the next step).
-    state.events.collider_removed(collider, state.t)
+    touched = state.events.collider_removed(collider, state.t)
     state.contacts.remove(collider)
     collider.held_by(state, False)
-    state.collisions.wake(len(state.bodies))
-    state.changed_structure()
+    n = len(state.bodies)
+    if state.game is None or state.store is None:
+        state.collisions.wake(n)
+    else:
+        # On the soft step, the bodies it touched wake, with their sleeping groups (a crate on
+        # a ledge taken out falls), and no other: a coin taken wakes no pile (Box2D and pymunk
+        # wake a removed shape's contacts' bodies alone).
+        for slot in sorted(set((touched >> 32).tolist())):
+            state.collisions.wake_body(state.store.row(slot), n)
+    state.colliders_changed()

@@ -297,6 +297,21 @@ class WorldState:
         self.link_solver = None
         self._apart()
 
+    def colliders_changed(self) -> None:
+        """A collider came or went: the next step plans and chooses its method again (whether
+        the World holds colliders decides both). On the soft step nothing else reads the
+        colliders: the bodies' rows, the forces' model and the joints' rows are kept (a game
+        that takes a coin waits on the colliders' tables alone, engine.pipeline.game_step).
+        Elsewhere, or where springs are held (their closed form asks whether the World holds
+        colliders), as ``changed_structure``."""
+        if self.game is None or self.springs:
+            self.changed_structure()
+            return
+        self.drop_kernel()
+        self.anchor = None
+        self.policy.choice = None
+        self.fast = None
+
     def _apart(self) -> None:
         """Tell the contacts which pairs of bodies a joint keeps from colliding."""
         store, keys, joined = self.store, [], []
