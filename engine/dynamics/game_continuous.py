@@ -459,23 +459,43 @@ def continuous_loop(
 def extents(places: Any, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each of ``n`` bodies' least extent (m: a disc's or capsule's radius, a polygon's least
     distance from its centroid to an edge's line plus its rounding), its core's farthest point
-    from its centre (m) and its shape's centroid (n, 2) in its frame (the corners' mean)."""
+    from its centre (m) and its shape's centroid (n, 2) in its frame (the corners' mean). A
+    few array calls whatever ``n`` (a vertex place at a time: each polygon's own corners, in
+    their order, as a loop over bodies took them)."""
     t = places.tables
+    rows = np.arange(n)
+    j = places.body_index[:n]
+    circle = places.body_circle[:n].astype(bool)
     least, core, centroid = np.zeros(n), np.zeros(n), np.zeros((n, 2))
-    for r in range(n):
-        j = int(places.body_index[r])
-        if places.body_circle[r]:
-            c = t.center[j]
-            centroid[r] = c
-            core[r] = math.hypot(c[0], c[1])
-            least[r] = t.round[j]
-            continue
-        k = int(t.count[j])
-        v, nrm = t.vertices[j, :k], t.normals[j, :k]
-        c = v.mean(axis=0)
-        centroid[r] = c
-        core[r] = float(np.hypot(v[:, 0], v[:, 1]).max())
-        least[r] = max(0.0, float(((v - c) * nrm).sum(axis=1).min())) + float(t.radius[j])
+    # Discs (and a capsule's circle): the centre and its rounding.
+    c = t.center[j[circle]]
+    centroid[circle] = c
+    core[circle] = np.hypot(c[:, 0], c[:, 1])
+    least[circle] = t.round[j[circle]]
+    polygon = rows[~circle]
+    if not len(polygon):
+        return least, core, centroid
+    jp = j[polygon]
+    k = t.count[jp]
+    v, nrm = t.vertices[jp], t.normals[jp]
+    m = int(k.max())
+    # The corners' mean: summed corner by corner (a body's own corners only), then over k.
+    total = v[:, 0].copy()
+    for e in range(1, m):
+        on = e < k
+        total[on] += v[on, e]
+    mean = total / k[:, None]
+    centroid[polygon] = mean
+    far = np.full(len(jp), -np.inf)
+    depth = np.full(len(jp), np.inf)
+    for e in range(m):
+        on = e < k
+        d = v[:, e] - mean
+        inward = d[:, 0] * nrm[:, e, 0] + d[:, 1] * nrm[:, e, 1]  # (< 0: the centroid inside)
+        far = np.where(on, np.maximum(far, np.hypot(v[:, e, 0], v[:, e, 1])), far)
+        depth = np.where(on, np.minimum(depth, inward), depth)
+    core[polygon] = far
+    least[polygon] = np.maximum(depth, 0.0) + t.radius[jp]
     return least, core, centroid
 
 

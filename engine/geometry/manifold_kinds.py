@@ -258,6 +258,26 @@ class Polygons:
         return cls(v, nn, np.array([len(r) for r in rows], dtype=np.intp), radii)
 
     @classmethod
+    def of_shapes(cls, shapes: Sequence[Any]) -> Polygons:
+        """Polygons from ``engine.Polygon`` shapes (one or more), padded to the longest: their
+        corners and edge normals as each was made (checked then, and not again here: the same
+        arrays as ``of`` their corners and radii, in a tenth of the time, so a World that gains
+        a body in play does not wait on every body's shape being checked again)."""
+        n = len(shapes)
+        m = max(len(s.vertices) for s in shapes)
+        v = np.empty((n, m, 2))
+        nn = np.empty((n, m, 2))
+        count = np.empty(n, dtype=np.intp)
+        for k, shape in enumerate(shapes):
+            c = len(shape.vertices)
+            v[k, :c] = shape.vertices
+            nn[k, :c] = shape.normals
+            v[k, c:] = v[k, c - 1]  # padding: the last vertex and normal again
+            nn[k, c:] = nn[k, c - 1]
+            count[k] = c
+        return cls(v, nn, count, np.array([s.radius for s in shapes], dtype=float))
+
+    @classmethod
     def from_capsules(cls, capsules: Capsules) -> Polygons:
         """Each capsule as a two-vertex polygon (Box2D's b2MakeCapsule): vertices a and b,
         normals r and -r, r the right perpendicular of b - a (the outside of a CCW edge)."""

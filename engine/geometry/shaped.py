@@ -116,11 +116,7 @@ class ShapeTable:
             np.array([(s.b.x, s.b.y) for s in caps], dtype=float).reshape(-1, 2),
             np.array([s.radius for s in caps], dtype=float),
         )
-        self.polygons = (
-            Polygons.of([[tuple(v) for v in p.vertices] for p in polys], [p.radius for p in polys])
-            if polys
-            else None
-        )
+        self.polygons = Polygons.of_shapes(polys) if polys else None
 
         #: The bodies' parts (``Parts``), where a body is of several shapes; else None.
         self.parts = _parts(shapes, radius) if (self.kind == COMPOUND).any() else None

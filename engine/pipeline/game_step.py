@@ -90,6 +90,8 @@ __all__ = ["GameStep", "unsupported"]
 # feature id; a pair's code is (slot_a << OTHER) | slot_b, or | STATIC | the static shape's place.
 #: Up to this many bodies the broadphase tests every pair (fewer array calls than a grid).
 _FEW = 32
+#: Every pair of rows a < b below 32, in order (the broadphase's pairs up to _FEW bodies).
+_EVERY = (np.triu_indices(32, 1)[0].astype(np.int64), np.triu_indices(32, 1)[1].astype(np.int64))
 
 
 def unsupported(state: WorldState) -> str | None:
@@ -508,8 +510,13 @@ class GameStep:
         if n <= _FEW:
             every = self._every.get(n)
             if every is None:
-                a, b = np.triu_indices(n, 1)
-                every = self._every[n] = (a.astype(np.int64), b.astype(np.int64))
+                # (np.triu_indices(n, 1)'s pairs, in its order: those of 32 rows below n.)
+                if n <= 32:
+                    within = _EVERY[1] < n
+                    a, b = _EVERY[0][within], _EVERY[1][within]
+                else:
+                    a, b = (r.astype(np.int64) for r in np.triu_indices(n, 1))
+                every = self._every[n] = (a, b)
             return every
         if (store.group[0] != 0) & (store.group == store.group[0]).all():
             none = np.zeros(0, dtype=np.int64)
