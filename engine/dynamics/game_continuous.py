@@ -80,7 +80,7 @@ from .. import kernels
 from ..geometry import narrowphase
 from ..geometry.manifold_kinds import LINEAR_SLOP
 
-__all__ = ["CORE", "Continuous", "ITERATIONS", "SAFETY", "continuous_loop", "extents"]
+__all__ = ["CORE", "Continuous", "ITERATIONS", "SAFETY", "continuous_loop"]
 
 #: A body is fast when it moves more than this share of its least extent in a step (Box2D's
 #: default ``safetyFactor``).
@@ -456,49 +456,6 @@ def continuous_loop(
     return hit[:count].copy(), hx[:count].copy(), hq[:count].copy(), found
 
 
-def extents(places: Any, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each of ``n`` bodies' least extent (m: a disc's or capsule's radius, a polygon's least
-    distance from its centroid to an edge's line plus its rounding), its core's farthest point
-    from its centre (m) and its shape's centroid (n, 2) in its frame (the corners' mean). A
-    few array calls whatever ``n`` (a vertex place at a time: each polygon's own corners, in
-    their order, as a loop over bodies took them)."""
-    t = places.tables
-    rows = np.arange(n)
-    j = places.body_index[:n]
-    circle = places.body_circle[:n].astype(bool)
-    least, core, centroid = np.zeros(n), np.zeros(n), np.zeros((n, 2))
-    # Discs (and a capsule's circle): the centre and its rounding.
-    c = t.center[j[circle]]
-    centroid[circle] = c
-    core[circle] = np.hypot(c[:, 0], c[:, 1])
-    least[circle] = t.round[j[circle]]
-    polygon = rows[~circle]
-    if not len(polygon):
-        return least, core, centroid
-    jp = j[polygon]
-    k = t.count[jp]
-    v, nrm = t.vertices[jp], t.normals[jp]
-    m = int(k.max())
-    # The corners' mean: summed corner by corner (a body's own corners only), then over k.
-    total = v[:, 0].copy()
-    for e in range(1, m):
-        on = e < k
-        total[on] += v[on, e]
-    mean = total / k[:, None]
-    centroid[polygon] = mean
-    far = np.full(len(jp), -np.inf)
-    depth = np.full(len(jp), np.inf)
-    for e in range(m):
-        on = e < k
-        d = v[:, e] - mean
-        inward = d[:, 0] * nrm[:, e, 0] + d[:, 1] * nrm[:, e, 1]  # (< 0: the centroid inside)
-        far = np.where(on, np.maximum(far, np.hypot(v[:, e, 0], v[:, e, 1])), far)
-        depth = np.where(on, np.minimum(depth, inward), depth)
-    core[polygon] = far
-    least[polygon] = np.maximum(depth, 0.0) + t.radius[jp]
-    return least, core, centroid
-
-
 class Continuous:
     """The soft step's continuous stage (module doc) and what it keeps from step to step:
     each body's extents, made again when the shapes' tables are."""
@@ -530,7 +487,7 @@ class Continuous:
         places = sc.places
         kept = self._kept
         if kept is None or kept[0] is not places or len(kept[1]) != n:
-            least, core, centroid = extents(places, n)
+            least, core, centroid = sc.table.extents()
             # A bound from below of SAFETY e, for the test's bound from above of the move.
             limit = SAFETY * least * (1.0 - 1e-9)
             kept = self._kept = (places, limit, least, core, centroid)
@@ -575,7 +532,7 @@ class Continuous:
         kept = self._kept_parts
         if kept is None or kept[0] is not parts or kept[1] is not sc.statics:
             places = narrowphase.places_of(parts.table, sc.statics)
-            least, core, centroid = extents(places, p)
+            least, core, centroid = parts.table.extents()
             kept = self._kept_parts = (parts, sc.statics, places, least, core, centroid)
         places, least, core, centroid = kept[2:]
         limit = SAFETY * least * (1.0 - 1e-9)

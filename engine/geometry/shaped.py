@@ -120,6 +120,55 @@ class ShapeTable:
 
         #: The bodies' parts (``Parts``), where a body is of several shapes; else None.
         self.parts = _parts(shapes, radius) if (self.kind == COMPOUND).any() else None
+        self._extents: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+    def extended(self, shapes: Sequence[Any], radius: np.ndarray) -> ShapeTable | None:
+        """This table with the rows of ``shapes`` added after its own (bodies added at the
+        end; ``radius`` every row's, the new ones' after), the same arrays as a table made
+        afresh of all of them (a polygon's rows padded with its last corner, as ``Polygons``
+        pads). None where a body is of several shapes, here or among the new (made afresh)."""
+        if self.parts is not None or any(isinstance(sh, Compound) for sh in shapes):
+            return None
+        added = ShapeTable(shapes, radius[len(self) :])
+        out = ShapeTable.__new__(ShapeTable)
+        n_caps = len(self.capsules)
+        n_polys = 0 if self.polygons is None else len(self.polygons)
+        index = added.index.copy()
+        index[added.kind == CAPSULE] += n_caps
+        index[added.kind == POLYGON] += n_polys
+        index[added.kind == DISC] += len(self)
+        out.kind = np.concatenate([self.kind, added.kind])
+        out.index = np.concatenate([self.index, index])
+        out.shaped = out.kind != DISC
+        out.circles = Circles(
+            np.concatenate([self.circles.center, added.circles.center]),
+            np.asarray(radius, dtype=float),
+        )
+        out.capsules = Capsules(
+            *(
+                np.concatenate([getattr(self.capsules, f), getattr(added.capsules, f)])
+                for f in ("a", "b", "radius")
+            )
+        )
+        out.polygons = _polygons_joined(self.polygons, added.polygons)
+        out.parts = None
+        out._extents = None
+        if self._extents is not None:
+            out._extents = tuple(  # type: ignore[assignment]
+                np.concatenate([mine, theirs])
+                for mine, theirs in zip(self._extents, added.extents(), strict=True)
+            )
+        return out
+
+    def extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Each row's least extent (m: a disc's or capsule's radius, a polygon's least distance
+        from its centroid to an edge's line plus its rounding), its core's farthest point from
+        its centre (m) and its shape's centroid (n, 2) in its frame (the corners' mean); zeros
+        for a body of several shapes (its ``parts`` have their own). Made once a table, and for
+        a table ``extended``, only for the rows added."""
+        if self._extents is None:
+            self._extents = _extents(self)
+        return self._extents
 
     def __len__(self) -> int:
         return len(self.kind)
@@ -370,3 +419,63 @@ def _joined(out: list[list[np.ndarray]]) -> tuple[np.ndarray, ...]:
         np.concatenate(out[4]).astype(np.int64),
         *(np.concatenate(k) for k in out[5:]),
     )
+
+
+def _polygons_joined(first: Polygons | None, then: Polygons | None) -> Polygons | None:
+    """Two tables of polygons as one, ``first``'s rows then ``then``'s, each padded to the
+    longer's corners with its last corner and normal (as ``Polygons`` pads)."""
+    if first is None or then is None:
+        return then if first is None else first
+    m = max(first.vertices.shape[1], then.vertices.shape[1])
+
+    def padded(what: np.ndarray) -> np.ndarray:
+        extra = m - what.shape[1]
+        if not extra:
+            return what
+        return np.concatenate([what, np.repeat(what[:, -1:], extra, axis=1)], axis=1)
+
+    return Polygons(
+        np.concatenate([padded(first.vertices), padded(then.vertices)]),
+        np.concatenate([padded(first.normals), padded(then.normals)]),
+        np.concatenate([first.count, then.count]),
+        np.concatenate([first.radius, then.radius]),
+    )
+
+
+def _extents(table: ShapeTable) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``ShapeTable.extents``: a few array calls whatever the rows (a corner place at a time:
+    each polygon's own corners, in their order, as a loop over bodies took them; a capsule as
+    its two-corner polygon, engine.geometry.manifold_kinds.Polygons.from_capsules)."""
+    n = len(table)
+    least, core, centroid = np.zeros(n), np.zeros(n), np.zeros((n, 2))
+    disc = table.kind == DISC
+    c = table.circles.center[disc]
+    centroid[disc] = c
+    core[disc] = np.hypot(c[:, 0], c[:, 1])
+    least[disc] = table.circles.radius[disc]
+    caps = Polygons.from_capsules(table.capsules) if len(table.capsules) else None
+    for kind, polys in ((POLYGON, table.polygons), (CAPSULE, caps)):
+        rows = np.flatnonzero(table.kind == kind)
+        if not len(rows) or polys is None:
+            continue
+        j = table.index[rows]
+        k = polys.count[j]
+        v, nrm = polys.vertices[j], polys.normals[j]
+        # The corners' mean: summed corner by corner (a body's own corners only), over k.
+        total = v[:, 0].copy()
+        for e in range(1, int(k.max())):
+            on = e < k
+            total[on] += v[on, e]
+        mean = total / k[:, None]
+        far = np.full(len(j), -np.inf)
+        depth = np.full(len(j), np.inf)
+        for e in range(int(k.max())):
+            on = e < k
+            d = v[:, e] - mean
+            inward = d[:, 0] * nrm[:, e, 0] + d[:, 1] * nrm[:, e, 1]  # (< 0: the centroid in)
+            far = np.where(on, np.maximum(far, np.hypot(v[:, e, 0], v[:, e, 1])), far)
+            depth = np.where(on, np.minimum(depth, inward), depth)
+        centroid[rows] = mean
+        core[rows] = far
+        least[rows] = np.maximum(depth, 0.0) + polys.radius[j]
+    return least, core, centroid

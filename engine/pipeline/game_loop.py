@@ -316,7 +316,7 @@ def step_loop(
                 bvx[i], bvy[i], bw[i] = 0.0, 0.0, 0.0
     # -- whether a body may be fast (engine.dynamics.game_continuous's test from above of the move,
     # |dx| + |dy| + |dq| R > SAFETY e, its extents from the tables; a share looser, as
-    # engine.dynamics.game_continuous.extents sums in another order)
+    # engine.geometry.shaped.ShapeTable.extents sums in another order)
     # ----------------------------------
     fast = False
     for i in range(n):

@@ -440,8 +440,13 @@ class GameStep:
         shapes = store.shapes
         kept = self._table
         if kept is None or kept[0] != len(shapes) or kept[1] != shapes:
-            kept = (len(shapes), list(shapes), ShapeTable(shapes, store.radius))
-            self._table = kept
+            table = None
+            if kept is not None and kept[0] < len(shapes) and shapes[: kept[0]] == kept[1]:
+                # Bodies added at the end (a game spawning one): the rows before are kept.
+                table = kept[2].extended(shapes[kept[0] :], store.radius)
+            if table is None:
+                table = ShapeTable(shapes, store.radius)
+            kept = self._table = (len(shapes), list(shapes), table)
         return kept[2]
 
     def _colliders(
