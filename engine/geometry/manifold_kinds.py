@@ -279,14 +279,19 @@ class Polygons:
 
     @classmethod
     def from_capsules(cls, capsules: Capsules) -> Polygons:
-        """Each capsule as a two-vertex polygon (Box2D's b2MakeCapsule): vertices a and b,
-        normals r and -r, r the right perpendicular of b - a (the outside of a CCW edge)."""
-        d = capsules.b - capsules.a
-        length = np.hypot(d[:, 0], d[:, 1])
-        right = np.stack([d[:, 1], -d[:, 0]], axis=1) / length[:, None]
-        v = np.stack([capsules.a, capsules.b], axis=1)
-        nn = np.stack([right, -right], axis=1)
+        """Each capsule as a two-vertex polygon (Box2D's b2MakeCapsule; ``capsule_corners``)."""
+        v, nn = capsule_corners(capsules)
         return cls(v, nn, np.full(len(capsules), 2, dtype=np.intp), capsules.radius)
+
+
+def capsule_corners(capsules: Capsules) -> tuple[np.ndarray, np.ndarray]:
+    """Each capsule's corners and edge normals (N, 2, 2) as a two-vertex polygon's (Box2D's
+    b2MakeCapsule): vertices a and b, normals r and -r, r the right perpendicular of b - a
+    (the outside of a CCW edge)."""
+    d = capsules.b - capsules.a
+    length = np.hypot(d[:, 0], d[:, 1])
+    right = np.stack([d[:, 1], -d[:, 0]], axis=1) / length[:, None]
+    return np.stack([capsules.a, capsules.b], axis=1), np.stack([right, -right], axis=1)
 
 
 @dataclass(frozen=True)

@@ -29,7 +29,14 @@ import numpy as np
 
 from .. import kernels
 from .manifold import StaticShapes, collide, collide_circles, collide_polygon_circle
-from .manifold_kinds import LINEAR_SLOP, SPECULATIVE_DISTANCE, Circles, Manifold, Polygons
+from .manifold_kinds import (
+    LINEAR_SLOP,
+    SPECULATIVE_DISTANCE,
+    Circles,
+    Manifold,
+    Polygons,
+    capsule_corners,
+)
 from .manifold_polygon import collide_polygons, polygon_loop
 from .passing import passing, passing_loop
 from .shaped import CAPSULE, DISC, POLYGON, ShapeTable
@@ -256,15 +263,13 @@ class Touches(NamedTuple):
         return Touches(self.m.take(rows), self.a[rows], self.b[rows], self.place[rows])
 
 
-def _padded(p: Polygons, m: int) -> Polygons:
-    """``p`` padded to ``m`` vertices (the last vertex and normal repeated, as
+def _padded(a: np.ndarray, m: int) -> np.ndarray:
+    """Corners or normals (N, k, 2) padded to ``m`` (the last one repeated, as
     engine.geometry.manifold_kinds pads)."""
-    k = p.vertices.shape[1]
+    k = a.shape[1]
     if k == m:
-        return p
-    v = np.concatenate([p.vertices, np.repeat(p.vertices[:, -1:], m - k, axis=1)], axis=1)
-    nn = np.concatenate([p.normals, np.repeat(p.normals[:, -1:], m - k, axis=1)], axis=1)
-    return Polygons(v, nn, p.count, p.radius)
+        return a
+    return np.concatenate([a, np.repeat(a[:, -1:], m - k, axis=1)], axis=1)
 
 
 class Places(NamedTuple):
@@ -282,20 +287,29 @@ class Places(NamedTuple):
 def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
     """The tables of the bodies' shapes and the colliders' (engine.geometry.narrowphase)."""
     n = len(table)
-    parts = [p for p in (table.polygons,) if p is not None]
-    body_caps = Polygons.from_capsules(table.capsules) if len(table.capsules) else None
-    static_polys = statics.polygons if len(statics.polygon_owner) else None
-    static_caps = Polygons.from_capsules(statics.capsules) if len(statics.capsule_owner) else None
-    parts += [p for p in (body_caps, static_polys, static_caps) if p is not None]
+    # The polygons' tables in order (each corners, normals, counts, radii): the bodies'
+    # polygons, their capsules (two-vertex polygons), the static polygons, the static capsules.
+    parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+    if table.polygons is not None:
+        p = table.polygons
+        parts.append((p.vertices, p.normals, p.count, p.radius))
+    if len(table.capsules):
+        two = np.full(len(table.capsules), 2, dtype=np.intp)
+        parts.append((*capsule_corners(table.capsules), two, table.capsules.radius))
+    if len(statics.polygon_owner):
+        p = statics.polygons
+        parts.append((p.vertices, p.normals, p.count, p.radius))
+    if len(statics.capsule_owner):
+        two = np.full(len(statics.capsules), 2, dtype=np.intp)
+        parts.append((*capsule_corners(statics.capsules), two, statics.capsules.radius))
     polygons = None
     if parts:
-        m = max(p.vertices.shape[1] for p in parts)
-        padded = [_padded(p, m) for p in parts]
+        m = max(v.shape[1] for v, _, _, _ in parts)
         polygons = Polygons(
-            np.concatenate([p.vertices for p in padded]),
-            np.concatenate([p.normals for p in padded]),
-            np.concatenate([p.count for p in padded]),
-            np.concatenate([p.radius for p in padded]),
+            np.concatenate([_padded(v, m) for v, _, _, _ in parts]),
+            np.concatenate([_padded(nn, m) for _, nn, _, _ in parts]),
+            np.concatenate([c for _, _, c, _ in parts]),
+            np.concatenate([r for _, _, _, r in parts]),
         )
     circles = Circles(
         np.concatenate([table.circles.center, statics.circles.center]),
