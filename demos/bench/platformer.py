@@ -61,6 +61,7 @@ import numpy as np
 
 from demos import platformer_scene as scene
 from demos.bench import compare
+from engine import Body
 from engine import kernels as engine_kernels
 
 __all__ = [
@@ -465,6 +466,62 @@ def alone(seconds: float = 5.0, *, fast: bool = True, pymunk: bool = True) -> di
     return out
 
 
+#: Where a spawned ball appears (m), and its speed (m/s): up in the air, left of the crates.
+SPAWN_AT, SPAWN_VELOCITY = (3.0, 6.0), (2.0, 0.0)
+
+
+def _spawn(game: Any) -> Callable[[], None]:
+    """Add a 0.1 m, 0.2 kg ball to ``game``'s engine (a game spawning a thing in play); return
+    how to take it out again."""
+    if isinstance(game, PymunkPlatformer):
+        pm = game.pymunk
+        body = pm.Body(0.2, pm.moment_for_circle(0.2, 0.0, 0.1))
+        body.position, body.velocity = SPAWN_AT, SPAWN_VELOCITY
+        shape = pm.Circle(body, 0.1)
+        game.space.add(body, shape)
+        return lambda: game.space.remove(body, shape)
+    world = game.world
+    ball = world.add(Body(SPAWN_AT, SPAWN_VELOCITY, mass=0.2, radius=0.1))
+    return lambda: world.remove(ball)
+
+
+def spawns(rounds: int = 9, *, fast: bool = True, pymunk: bool = True) -> dict[str, float]:
+    """Each soft engine and pymunk, its game played 1 s, then ``rounds`` times: a ball added
+    and the game's next step, five steps, the ball taken out and the next step, five steps.
+    Engine -> the median CPU seconds of (the add and the step after it) over the median of
+    the plain steps between (what a game that spawns a thing waits on, in its own steps)."""
+    builders = {
+        name: b
+        for name, b in _builders(True, fast, pymunk).items()
+        if name.startswith("soft") or name == "pymunk"
+    }
+    out: dict[str, float] = {}
+    for name, build in builders.items():
+        game = build()
+        for _ in range(round(1.0 / DT)):
+            game.step(DT)
+        spawned, plain = [], []
+        for _ in range(rounds):
+            start = _clocks()
+            take = _spawn(game)
+            game.step(DT)
+            spawned.append(_since(start)[CPU])
+            for _ in range(5):
+                start = _clocks()
+                game.step(DT)
+                plain.append(_since(start)[CPU])
+            start = _clocks()
+            take()
+            game.step(DT)
+            spawned.append(_since(start)[CPU])
+            for _ in range(5):
+                start = _clocks()
+                game.step(DT)
+                plain.append(_since(start)[CPU])
+        out[name] = float(np.median(spawned) / np.median(plain))
+    return out
+
+
 def query_times(rounds: int = 15) -> dict[str, float]:
     """Median seconds of one ground test (``segment_query_first`` 13 cm below the player's
     feet, the arguments made once) on this World (numpy path: the query uses no kernel) and
@@ -625,4 +682,11 @@ def report(quick: bool = False) -> str:
     seconds = 5.0 if quick else scene.SECONDS
     runs = side_by_side(seconds)
     query = query_times(rounds=5 if quick else 15)
-    return "\n".join(table(runs, seconds, query, alone(seconds)))
+    lines = table(runs, seconds, query, alone(seconds))
+    spawned = spawns(rounds=5 if quick else 9)
+    lines.append(
+        "  a ball spawned in play (added, or taken out again, and the game's next step), "
+        "over the game's median step (CPU): "
+        + ", ".join(f"{name} {x:.1f}x" for name, x in spawned.items())
+    )
+    return "\n".join(lines)
