@@ -168,3 +168,32 @@ def test_a_motor_started_on_a_hinge_asleep_wakes_it_and_turns_it(kernels: str) -
         assert w.is_sleeping(wheel)
         setattr(hinge, setting, value)
         assert not w.is_sleeping(wheel), setting
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_body_taken_out_wakes_what_it_touched_and_no_other_pile(kernels: str) -> None:
+    # Box2D wakes the bodies a destroyed body touched or was joined to, alone: a puck taken
+    # out wakes no pile asleep, a box taken from under another wakes that one
+    # (which falls), and a box hinged to one taken out wakes (a puck sliding on, taken out).
+    world, boxes = pile(kernels, base=3)
+    top = boxes[-1]
+    ball = world.add(Body((30.0, 0.25), (2.0, 0.0), mass=1.0, radius=0.25, friction=0.0))
+    hinged = world.add(Body((-30.0, 0.5), shape=Polygon.box(1.0, 1.0), mass=1.0))
+    holder = world.add(Body((-28.0, 0.5), shape=Polygon.box(1.0, 1.0), mass=1.0))
+    world.add_link(Hinge(hinged, holder, (-29.0, 0.5)))
+    settle(world, 4.0)
+    assert world.sleeping == len(boxes) + 2 and not world.is_sleeping(ball)  # (it slides on)
+    world.remove(ball)
+    world.step(DT)
+    assert world.sleeping == len(boxes) + 2
+    world.remove(holder)
+    world.step(DT)
+    assert not world.is_sleeping(hinged)
+    assert world.sleeping == len(boxes)
+    below = boxes[-2]  # (one of the two boxes under the top: it rests on both)
+    was = top.pos
+    world.remove(below)
+    world.step(DT)
+    assert not world.is_sleeping(top)
+    settle(world, 1.0)
+    assert (top.pos - was).length() > 0.01  # it tips over the gap

@@ -483,15 +483,18 @@ class WorldEvents:
         self._removal_ends(keys, t, removal)
         return keys
 
-    def body_removed(self, slot: int, t: float) -> None:
-        """A body leaves (still readable at its row): its open contacts end."""
+    def body_removed(self, slot: int, t: float) -> np.ndarray:
+        """A body leaves (still readable at its row): its open contacts end; returns their
+        keys."""
         self.settle_reading()
 
         def involved(keys: np.ndarray) -> np.ndarray:
             is_c, other = other_of(keys)
             return (slot_of(keys) == slot) | (~is_c & (other == slot))
 
-        self._removal_ends(self.ledger.drop(involved), t)
+        keys = self.ledger.drop(involved)
+        self._removal_ends(keys, t)
+        return keys
 
     def _removal_ends(self, keys: np.ndarray, t: float, removal: bool = True) -> None:
         for k in keys.tolist():

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import numpy as np
 
 from ..body import Body
+from ..dynamics.events import other_of, slot_of
 from ..dynamics.links import Link, Pin
 from ..exact.contacts import Contacts
 from ..exact.overlaps import freed, push_out
@@ -141,7 +142,8 @@ def remove(state: WorldState, body: Body) -> None:
     row = store.row(body.slot)
     # The last step's events are named now, before the rows shift, and the body's open
     # contacts end (reported with the next step).
-    state.events.body_removed(body.slot, state.t)
+    touched = state.events.body_removed(body.slot, state.t)
+    sleep = _sleep_kept(state, row)
     del state.bodies[row]
     state.targets.pop(body, None)
     state.turn_targets.pop(body, None)
@@ -159,6 +161,42 @@ def remove(state: WorldState, body: Body) -> None:
             attached.bodies.remove(body)
     body.detach(pos, vel, mass, own, spin)
     state.changed_structure()
+    if sleep is not None:
+        _wake_touched(state, sleep, body.slot, touched, gone)
+
+
+def _sleep_kept(state: WorldState, row: int) -> tuple[np.ndarray, ...] | None:
+    """On the soft step, the sleep of every body but the one in ``row`` (asleep, still time,
+    island), to be kept as a body goes (``_wake_touched``); None elsewhere: the exact
+    pipeline wakes every body then."""
+    c = state.collisions
+    if state.game is None or len(c.asleep) != len(state.bodies) or len(c.still) != len(c.asleep):
+        return None
+    if len(c._group) != len(c.asleep):
+        return None
+    return np.delete(c.asleep, row), np.delete(c.still, row), np.delete(c._group, row)
+
+
+def _wake_touched(
+    state: WorldState, sleep: tuple[np.ndarray, ...], slot: int, touched: np.ndarray,
+    gone: list[Any],
+) -> None:  # fmt: skip
+    """The sleep kept (``_sleep_kept``) put back after the body in ``slot`` went, and the
+    bodies it touched (``touched``: its contacts' event keys) or was joined to (``gone``: the
+    links that went with it) woken, with their sleeping groups, and no other: a bullet taken
+    out wakes no pile (Box2D's rule)."""
+    c, store = state.collisions, state.store
+    assert store is not None
+    c.asleep, c.still, c._group = sleep
+    is_c, other = other_of(touched)
+    firsts = slot_of(touched)
+    others = np.where(firsts == slot, other, firsts)[~is_c]  # (a collider wakes nothing)
+    slots = {int(s) for s in others.tolist()} | {
+        b.slot for k in gone for b in k.bodies if b.world is state.world
+    }
+    n = len(state.bodies)
+    for s in sorted(slots - {slot}):
+        c.wake_body(store.row(s), n)
 
 
 def add_force(
