@@ -587,8 +587,9 @@ class GameStep:
     def _stirring(store: Any, asleep: np.ndarray) -> bool:
         """Whether a body the step would move is awake: a dynamic one not asleep, or a
         kinematic one with a velocity."""
-        dynamic = ~store.kinematic & np.isfinite(store.mass)
-        if np.count_nonzero(dynamic & ~asleep):
+        # (Of bools, a > b is a & ~b: dynamic, not kinematic and of finite mass, and awake,
+        # in half the calls: this runs every step in which anything sleeps.)
+        if np.count_nonzero((np.isfinite(store.mass) > store.kinematic) > asleep):
             return True
         kin = store.kinematic
         return bool(np.count_nonzero(store.v[kin]) or np.count_nonzero(store.omega[kin]))
