@@ -122,3 +122,17 @@ def test_a_collider_taken_wakes_what_touched_it_and_nothing_else(kernels: str) -
     w.step(DT)
     assert [w.is_sleeping(b) for b in boxes] == [True, False, True]
     assert boxes[1].vel.y < 0.0
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_collider_added_in_play_wakes_what_it_may_touch_and_nothing_else(kernels: str) -> None:
+    w, _, boxes, _ = ledges(kernels, 3)
+    for _ in range(90):
+        w.step(DT)
+    assert w.sleeping == 3
+    w.add_collider(Segment((20.0, 5.0), (22.0, 5.0)))  # far off: no box wakes
+    w.step(DT)
+    assert w.sleeping == 3
+    w.add_collider(Segment((1.5, 1.0), (2.5, 1.0)))  # on the middle box's top
+    w.step(DT)
+    assert [w.is_sleeping(b) for b in boxes] == [True, False, True]

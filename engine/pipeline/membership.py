@@ -19,8 +19,11 @@ from ..exact.contacts import Contacts
 from ..exact.overlaps import freed, push_out
 from ..forces import Force, as_force
 from ..geometry.colliders import Collider
+from ..geometry.manifold import static_shapes
+from ..geometry.manifold_kinds import LINEAR_SLOP
 from ..vector import Vector
 from . import solver_choice
+from .game_broadphase import static_bounds
 from .world_state import AttachedForce
 
 if TYPE_CHECKING:
@@ -352,10 +355,32 @@ def add_collider(state: WorldState, collider: ColliderT) -> ColliderT:
     state.contacts.add(collider)
     collider.held_by(state, True)
     state.events.collider_added(collider)
-    state.collisions.wake(len(state.bodies))
+    if state.game is None or len(state.collisions.asleep) != len(state.bodies):
+        state.collisions.wake(len(state.bodies))
+    else:
+        _wake_near(state, collider)
     push_out(state, range(len(state.bodies)), stacklevel=4)
     state.colliders_changed()
     return collider
+
+
+def _wake_near(state: WorldState, collider: Collider) -> None:
+    """On the soft step, wake the bodies (with their sleeping groups) whose bounding boxes
+    come within ``LINEAR_SLOP`` of the box of one of ``collider``'s shapes, and no other: a
+    platform put in play wakes what it may touch (a plane, whose box is the world, every
+    body), not a pile across the level (a body it overlaps is pushed out, which wakes all)."""
+    store = state.store
+    assert store is not None
+    _, bounds = static_bounds(static_shapes([collider]))
+    if not len(bounds) or not len(store):
+        return
+    r = store.radius[:, None] + LINEAR_SLOP
+    x, y = store.x[:, 0:1], store.x[:, 1:2]
+    near = (x + r >= bounds[:, 0]) & (x - r <= bounds[:, 2])
+    near &= (y + r >= bounds[:, 1]) & (y - r <= bounds[:, 3])
+    n = len(state.bodies)
+    for row in np.flatnonzero(near.any(axis=1)).tolist():
+        state.collisions.wake_body(row, n)
 
 
 def remove_collider(state: WorldState, collider: Collider) -> None:
