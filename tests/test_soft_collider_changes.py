@@ -10,6 +10,9 @@ made again but the colliders' arrays; past half the shapes gone, the tables are 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 import pytest
 
@@ -107,32 +110,37 @@ def test_the_last_steps_events_read_as_it_left_them_after_a_collider_goes(kernel
     assert {e.collider for e in w.touching} == {made[1]}
 
 
-@pytest.mark.parametrize("kernels", PATHS)
-def test_a_collider_taken_wakes_what_touched_it_and_nothing_else(kernels: str) -> None:
-    # Box2D and pymunk wake the bodies a removed shape touched, alone: a coin taken wakes no
-    # pile, a ledge taken wakes the box on it (which falls).
+def asleep(kernels: str) -> tuple[World, list[Segment], list[Body], Circle]:
+    """``ledges``' scene of three, stepped until every box sleeps."""
     w, made, boxes, coin = ledges(kernels, 3)
     for _ in range(90):
         w.step(DT)
     assert w.sleeping == 3
-    w.remove_collider(coin)
+    return w, made, boxes, coin
+
+
+def changed(w: World, change: Callable[[Any], object], collider: object) -> None:
+    """``change`` (the World's add or remove) made with ``collider``, then a step."""
+    change(collider)
     w.step(DT)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_collider_taken_wakes_what_touched_it_and_nothing_else(kernels: str) -> None:
+    # Box2D and pymunk wake the bodies a removed shape touched, alone: a coin taken wakes no
+    # pile, a ledge taken wakes the box on it (which falls).
+    w, made, boxes, coin = asleep(kernels)
+    changed(w, w.remove_collider, coin)
     assert w.sleeping == 3
-    w.remove_collider(made[1])
-    w.step(DT)
+    changed(w, w.remove_collider, made[1])
     assert [w.is_sleeping(b) for b in boxes] == [True, False, True]
     assert boxes[1].vel.y < 0.0
 
 
 @pytest.mark.parametrize("kernels", PATHS)
 def test_a_collider_added_in_play_wakes_what_it_may_touch_and_nothing_else(kernels: str) -> None:
-    w, _, boxes, _ = ledges(kernels, 3)
-    for _ in range(90):
-        w.step(DT)
+    w, _, boxes, _ = asleep(kernels)
+    changed(w, w.add_collider, Segment((20.0, 5.0), (22.0, 5.0)))  # far off: no box wakes
     assert w.sleeping == 3
-    w.add_collider(Segment((20.0, 5.0), (22.0, 5.0)))  # far off: no box wakes
-    w.step(DT)
-    assert w.sleeping == 3
-    w.add_collider(Segment((1.5, 1.0), (2.5, 1.0)))  # on the middle box's top
-    w.step(DT)
+    changed(w, w.add_collider, Segment((1.5, 1.0), (2.5, 1.0)))  # on the middle box's top
     assert [w.is_sleeping(b) for b in boxes] == [True, False, True]
