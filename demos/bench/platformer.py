@@ -55,6 +55,7 @@ import warnings
 from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -485,6 +486,22 @@ def _spawn(game: Any) -> Callable[[], None]:
     return lambda: world.remove(ball)
 
 
+def _then_steps(
+    game: Any, change: Callable[[], Any], spawned: list[float], plain: list[float]
+) -> Any:
+    """``change()`` and ``game``'s next step, timed together (CPU s, into ``spawned``), then
+    five steps more, each timed (into ``plain``); what ``change`` returned."""
+    start = _clocks()
+    made = change()
+    game.step(DT)
+    spawned.append(_since(start)[CPU])
+    for _ in range(5):
+        start = _clocks()
+        game.step(DT)
+        plain.append(_since(start)[CPU])
+    return made
+
+
 def spawns(rounds: int = 9, *, fast: bool = True, pymunk: bool = True) -> dict[str, float]:
     """Each soft engine and pymunk, its game played 1 s, then ``rounds`` times: a ball added
     and the game's next step, five steps, the ball taken out and the next step, five steps.
@@ -500,24 +517,11 @@ def spawns(rounds: int = 9, *, fast: bool = True, pymunk: bool = True) -> dict[s
         game = build()
         for _ in range(round(1.0 / DT)):
             game.step(DT)
-        spawned, plain = [], []
+        spawned: list[float] = []
+        plain: list[float] = []
         for _ in range(rounds):
-            start = _clocks()
-            take = _spawn(game)
-            game.step(DT)
-            spawned.append(_since(start)[CPU])
-            for _ in range(5):
-                start = _clocks()
-                game.step(DT)
-                plain.append(_since(start)[CPU])
-            start = _clocks()
-            take()
-            game.step(DT)
-            spawned.append(_since(start)[CPU])
-            for _ in range(5):
-                start = _clocks()
-                game.step(DT)
-                plain.append(_since(start)[CPU])
+            take = _then_steps(game, partial(_spawn, game), spawned, plain)
+            _then_steps(game, take, spawned, plain)
         out[name] = float(np.median(spawned) / np.median(plain))
     return out
 

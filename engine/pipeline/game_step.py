@@ -91,7 +91,7 @@ __all__ = ["GameStep", "unsupported"]
 #: Up to this many bodies the broadphase tests every pair (fewer array calls than a grid).
 _FEW = 32
 #: Every pair of rows a < b below 32, in order (the broadphase's pairs up to _FEW bodies).
-_EVERY = (np.triu_indices(32, 1)[0].astype(np.int64), np.triu_indices(32, 1)[1].astype(np.int64))
+_EVERY = tuple(np.asarray(r, dtype=np.int64) for r in np.triu_indices(32, 1))
 
 
 def unsupported(state: WorldState) -> str | None:

@@ -197,9 +197,15 @@ def _wake_touched(
     slots = {int(s) for s in others.tolist()} | {
         b.slot for k in gone for b in k.bodies if b.world is state.world
     }
-    n = len(state.bodies)
-    for s in sorted(slots - {slot}):
-        c.wake_body(store.row(s), n)
+    _wake_slots(state, slots - {slot})
+
+
+def _wake_slots(state: WorldState, slots: Iterable[int]) -> None:
+    """Wake the bodies in ``slots``, each with its sleeping group (in the slots' order)."""
+    store, n = state.store, len(state.bodies)
+    assert store is not None
+    for s in sorted(slots):
+        state.collisions.wake_body(store.row(s), n)
 
 
 def add_force(
@@ -388,18 +394,16 @@ def remove_collider(state: WorldState, collider: Collider) -> None:
     if collider not in state.colliders:
         raise ValueError(f"that collider is not in this World: {collider!r}")
     assert state.contacts is not None
-    # The last step's events are named now, and the collider's open contacts end
-    # (reported with the next step).
+    # The collider's open contacts end (reported with the next step); the last step's
+    # events, made when read, still name it (engine.dynamics.events).
     touched = state.events.collider_removed(collider, state.t)
     state.contacts.remove(collider)
     collider.held_by(state, False)
-    n = len(state.bodies)
     if state.game is None or state.store is None:
-        state.collisions.wake(n)
+        state.collisions.wake(len(state.bodies))
     else:
         # On the soft step, the bodies it touched wake, with their sleeping groups (a crate on
         # a ledge taken out falls), and no other: a coin taken wakes no pile (Box2D and pymunk
         # wake a removed shape's contacts' bodies alone).
-        for slot in sorted(set((touched >> 32).tolist())):
-            state.collisions.wake_body(state.store.row(slot), n)
+        _wake_slots(state, set(slot_of(touched).tolist()))
     state.colliders_changed()
