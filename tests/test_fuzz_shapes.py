@@ -1808,3 +1808,12 @@ def test_a_thin_triangle_flipped_off_the_floor_by_a_landing_box_stays_out_of_it(
             ],
         }
     )
+
+
+def test_corners_too_far_apart_for_an_area_are_refused_naming_the_vertices() -> None:
+    # Found exploring (2026-12-04, 2,000 examples): a convex quadrilateral with corners at
+    # 1e308 m passes the convexity checks, but its area overflows; the error blamed the
+    # radius (0.0), which the caller did not give.
+    with pytest.raises(ValueError, match="vertices") as caught:
+        Polygon([(0.0, 0.0), (1e308, 1e308), (1.0, 0.0), (1e308, 2.0)])
+    assert "radius" not in str(caught.value).split(",")[0]

@@ -668,6 +668,14 @@ class Polygon(Collider):
         #: The rounding (length units): the solid is every point within it of the polygon.
         self.radius = r
         centroid, area = convex.centroid(ccw, r), convex.area(ccw, r)
+        if not (math.isfinite(area) and all(map(math.isfinite, centroid))) and not (
+            _finite_solid(ccw, 0.0)
+        ):
+            raise ValueError(
+                f"vertices must span a polygon whose area and centroid are within the float "
+                f"range (corners within about 1e150 length units of each other), got "
+                f"{[tuple(v) for v in ccw]!r}"
+            )
         if not (math.isfinite(area) and all(map(math.isfinite, centroid))):
             raise ValueError(
                 f"radius must leave the rounded polygon's area and centroid within the float "
@@ -808,3 +816,9 @@ class Polygon(Collider):
         pts = tuple(tuple(v) for v in self.vertices)
         size = "" if self.radius == 0.0 else f", radius={self.radius!r}"
         return f"Polygon({pts!r}{size}{self._material_repr()})"
+
+
+def _finite_solid(ccw: Any, radius: float) -> bool:
+    """Whether a convex polygon's area and centroid, rounded by ``radius``, are finite."""
+    area, centroid = convex.area(ccw, radius), convex.centroid(ccw, radius)
+    return math.isfinite(area) and all(map(math.isfinite, centroid))
