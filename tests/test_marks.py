@@ -39,6 +39,10 @@ from engine import FixedStep, VirtualClock
 from engine.measure import Point
 from engine.render import frame_count, init_headless, iter_frames, marks
 from engine.render.recorder import draw_strobe
+from tests.paths import drawn_on_numpy  # noqa: F401 (used by name below)
+
+#: The drawing checks run on the numpy path alone (tests.paths.drawn_on_numpy).
+pytestmark = pytest.mark.usefixtures("drawn_on_numpy")
 
 #: The most simulated seconds a scene is stepped through here.
 LONGEST = 12.0

@@ -14,6 +14,10 @@ import pygame
 import pytest
 
 from assets.make_readme_images import HERE, STILLS, main_images
+from tests.paths import drawn_on_numpy  # noqa: F401 (used by name below)
+
+#: The drawing checks run on the numpy path alone (tests.paths.drawn_on_numpy).
+pytestmark = pytest.mark.usefixtures("drawn_on_numpy")
 
 
 def pixels(path: Path) -> np.ndarray:
