@@ -116,6 +116,7 @@ engine/pipeline/queries.py engine/render/camera.py engine/render/clips.py engine
 engine/geometry/shaped.py engine/stability.py engine/dynamics/store.py
 engine/dynamics/torquefield.py engine/vector.py engine/world.py tests/test_alfred.py
 tests/test_auto.py tests/test_bench_platformer.py tests/test_body.py tests/test_car.py
+tests/test_events_open.py
 tests/test_clips.py tests/test_determinism.py tests/test_fireworks.py tests/test_forces.py
 tests/test_frames.py tests/test_fuzz_cli.py tests/test_fuzz_core.py tests/test_fuzz_particles.py
 tests/test_fuzz_render.py tests/test_fuzz_world.py tests/test_import_layers.py

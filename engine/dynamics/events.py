@@ -49,6 +49,8 @@ COLLIDER = 1 << 31
 
 _LOW = (1 << 32) - 1
 
+_NONE = np.zeros(0, dtype=np.int64)  # no keys (never written to)
+
 
 class ContactEvent(NamedTuple):
     """A contact that began, ended or continues: which body and what it touches, where, how
@@ -218,6 +220,39 @@ def merge_loop(
     return cand[:count], after[:count], is_exact[:count], final[:count], sensed[:count]
 
 
+#: The most keys (open before a step and touching after it) whose changes ``settle_open`` finds
+#: in Python sets, not numpy's binary searches (a microsecond a call).
+_FEW = 256
+
+
+def _open_changes(
+    prev: np.ndarray, keys: np.ndarray, state: dict[int, bool], before: set[int] | None
+) -> tuple[list[int], list[int]]:
+    """Of a step of ``settle_open``: the keys touching now (``keys``) that were not open after
+    the reports, and the keys open before (``prev``) and after the reports that no longer
+    touch, each by key. Open after the reports: ``state``'s value for a key a report named,
+    else whether it was open before (in ``before``, ``prev`` as a set, where given)."""
+    if before is not None:
+        now = keys.tolist()
+        touching = set(now)
+        return (
+            [k for k in now if not state.get(k, k in before)],
+            [k for k in prev.tolist() if k not in touching and state.get(k, True)],
+        )
+    after = _isin(keys, prev)
+    gone = prev[~_isin(prev, keys)]
+    parted = np.ones(len(gone), dtype=bool)
+    if state:
+        named = np.array(list(state), dtype=np.int64)
+        opened = np.array(list(state.values()), dtype=bool)
+        for into, flags in ((keys, after), (gone, parted)):
+            if len(into):
+                at = np.minimum(np.searchsorted(into, named), len(into) - 1)
+                hit = into[at] == named
+                flags[at[hit]] = opened[hit]
+    return keys[~after].tolist(), gone[parted].tolist()
+
+
 class ContactLedger:
     """The contacts open after the last step, and the events that opened and closed them.
 
@@ -377,6 +412,74 @@ class ContactLedger:
             void = _isin(keys, resting) | ~_isin(keys, self.keys)
             for k in keys[void].tolist():
                 del held[k]
+
+    def settle_open(
+        self,
+        t0: float,
+        t_end: float,
+        raw: list[Spec],
+        touching: np.ndarray,
+        gaps: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    ) -> None:
+        """``settle`` for a solver whose contacts are open exactly while they touch (the soft
+        step, engine.pipeline.game_step: Box2D's and pymunk's rule), with nothing held at rest:
+        ``touching``, the keys touching now (and inside sensors), as ``settle``'s ``sensing``.
+
+        Where every open contact is such (``exact`` is ``keys``) and no end is held, ``settle``
+        measures no gap and holds no end, so its merge reduces to what is done here: the keys
+        open after are ``touching``'s; the reports' begins of contacts not open and ends of
+        open ones, in time order; then, by key, a begin for each key touching now and not open
+        after the reports, and an end for each open one no longer touching. The same events
+        in the same order (tests/test_events_open.py), without the merge of every key: a
+        game's contacts change in a tenth of its steps, and there the merge was most of the
+        events' cost. Otherwise (a World that switched from the exact solvers) ``settle``."""
+        prev = self.keys
+        if self.held or not same_keys(prev, self.exact):
+            self.settle(t0, t_end, raw, _NONE, touching, gaps)
+            return
+        if not raw and same_keys(touching, prev):
+            self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
+            self.pending, self.began, self.ended = [], [], []
+            return
+        keys = self._sorted(touching)
+        # A game's dozen keys in Python sets; a pile's thousands by binary searches.
+        few = len(prev) + len(keys) <= _FEW
+        before = set(prev.tolist()) if few else None
+        state: dict[int, bool] = {}  # open after the reports, of the keys they name
+        began: list[Spec] = []
+        ended: list[Spec] = []
+        if raw:
+            raw = [s if t0 <= s[0] <= t_end else (min(max(s[0], t0), t_end), *s[1:]) for s in raw]
+            raw.sort(key=lambda s: s[0])
+            named = [s[1] for s in raw]
+            if before is not None:
+                known = [k in before for k in named]
+            else:
+                known = _isin(np.array(named, dtype=np.int64), prev).tolist()
+            for spec, was_open in zip(raw, known, strict=True):
+                k = spec[1]
+                s = state.get(k, was_open)
+                if spec[2]:
+                    if not s:
+                        state[k] = True
+                        began.append(spec)
+                elif s:
+                    state[k] = False
+                    ended.append(spec)
+            opened = np.array([k for k, s in state.items() if s], dtype=np.int64)
+            if not _isin(opened, keys).all():
+                # A begin reported for a contact not touching at the step's end: ``settle``
+                # measures its gap (it may stay open within its slack).
+                self.settle(t0, t_end, raw, _NONE, touching, gaps)
+                return
+        self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
+        self.pending = []
+        opens, parts = _open_changes(prev, keys, state, before)
+        began += [(t_end, k, True, None) for k in opens]
+        ended += [(t_end, k, False, None) for k in parts]
+        ended.sort(key=lambda s: s[0])
+        self.began, self.ended = began, ended
+        self.keys = self.exact = keys
 
     def drop(self, involved: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
         """Close the open contacts for which ``involved(keys)`` is True (a body or collider

@@ -153,14 +153,7 @@ def _settle_soft(state: WorldState, t0: float, t_end: float) -> None:
     sensing = now.keys
     if len(now.sensing) or len(felt):
         sensing = np.concatenate([now.keys, now.sensing, felt])
-    events.ledger.settle(
-        t0,
-        t_end,
-        raw,
-        np.zeros(0, dtype=np.int64),
-        sensing,
-        partial(gaps, state),
-    )
+    events.ledger.settle_open(t0, t_end, raw, sensing, partial(gaps, state))
 
 
 def _changes(report: Any, other: np.ndarray, t: float, began: bool) -> list[Any]:
