@@ -220,6 +220,15 @@ def merge_loop(
     return cand[:count], after[:count], is_exact[:count], final[:count], sensed[:count]
 
 
+def _in_step(raw: list[Spec], t0: float, t_end: float) -> list[Spec]:
+    """A step's reports in time order (stable: a bounce begins, then ends), each within the
+    step from ``t0`` to ``t_end`` (s; a time the solver summed as t0 + dt may pass the
+    World's t by an ulp)."""
+    out = [s if t0 <= s[0] <= t_end else (min(max(s[0], t0), t_end), *s[1:]) for s in raw]
+    out.sort(key=lambda s: s[0])
+    return out
+
+
 #: The most keys (open before a step and touching after it) whose changes ``settle_open`` finds
 #: in Python sets, not numpy's binary searches (a microsecond a call).
 _FEW = 256
@@ -303,6 +312,12 @@ class ContactLedger:
             self._sensed = (raw, _unique(keys))
         return self._sensed[1]
 
+    def _report_removed(self, t0: float) -> None:
+        """The ends of things taken out since the step before, reported with the step from
+        ``t0`` (s): they happened before it (a time summed another way may pass it by an ulp)."""
+        self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
+        self.pending = []
+
     def quiet(self) -> None:
         """A step passed in which nothing moved: the pending ends are reported, nothing else."""
         self.removed, self.pending = self.pending, []
@@ -325,10 +340,7 @@ class ContactLedger:
         ``sensing``: the keys of bodies inside sensors now. ``gaps(keys)`` gives each key's
         gap (length units, < 0 overlapping) and the slack it may keep and stay open.
         """
-        # The ends of things taken out since the step before happened before this step
-        # (a time summed another way may pass its start by an ulp).
-        self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
-        self.pending = []
+        self._report_removed(t0)
         self.began, self.ended = [], []
         prev = self.keys
         if not raw and not len(resting) and not len(sensing) and not len(prev):
@@ -351,10 +363,7 @@ class ContactLedger:
         exact = _unique(np.concatenate([self.exact, sensing])) if len(sensing) else self.exact
         state: dict[int, bool] = {}
         if raw:
-            # Time order (stable: a bounce begins, then ends), within the step (a time the
-            # solver summed as t0 + dt may pass the World's t by an ulp).
-            raw = [s if t0 <= s[0] <= t_end else (min(max(s[0], t0), t_end), *s[1:]) for s in raw]
-            raw.sort(key=lambda s: s[0])
+            raw = _in_step(raw, t0, t_end)
             # An end of an open contact at rest that still touches is dropped: the contact
             # goes on (a rebound of a hair in a pile).
             ends = np.array([s[1] for s in raw if not s[2]], dtype=np.int64)
@@ -438,8 +447,8 @@ class ContactLedger:
             self.settle(t0, t_end, raw, _NONE, touching, gaps)
             return
         if not raw and same_keys(touching, prev):
-            self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
-            self.pending, self.began, self.ended = [], [], []
+            self._report_removed(t0)
+            self.began, self.ended = [], []
             return
         keys = self._sorted(touching)
         # A game's dozen keys in Python sets; a pile's thousands by binary searches.
@@ -449,8 +458,7 @@ class ContactLedger:
         began: list[Spec] = []
         ended: list[Spec] = []
         if raw:
-            raw = [s if t0 <= s[0] <= t_end else (min(max(s[0], t0), t_end), *s[1:]) for s in raw]
-            raw.sort(key=lambda s: s[0])
+            raw = _in_step(raw, t0, t_end)
             named = [s[1] for s in raw]
             if before is not None:
                 known = [k in before for k in named]
@@ -472,8 +480,7 @@ class ContactLedger:
                 # measures its gap (it may stay open within its slack).
                 self.settle(t0, t_end, raw, _NONE, touching, gaps)
                 return
-        self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
-        self.pending = []
+        self._report_removed(t0)
         opens, parts = _open_changes(prev, keys, state, before)
         began += [(t_end, k, True, None) for k in opens]
         ended += [(t_end, k, False, None) for k in parts]
