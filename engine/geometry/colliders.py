@@ -668,15 +668,13 @@ class Polygon(Collider):
         #: The rounding (length units): the solid is every point within it of the polygon.
         self.radius = r
         centroid, area = convex.centroid(ccw, r), convex.area(ccw, r)
-        if not (math.isfinite(area) and all(map(math.isfinite, centroid))) and not (
-            _finite_solid(ccw, 0.0)
-        ):
-            raise ValueError(
-                f"vertices must span a polygon whose area and centroid are within the float "
-                f"range (corners within about 1e150 length units of each other), got "
-                f"{[tuple(v) for v in ccw]!r}"
-            )
         if not (math.isfinite(area) and all(map(math.isfinite, centroid))):
+            if not _finite_solid(ccw, 0.0):  # the corners' fault, not the rounding's
+                raise ValueError(
+                    f"vertices must span a polygon whose area and centroid are within the "
+                    f"float range (corners within about 1e150 length units of each other), "
+                    f"got {[tuple(v) for v in ccw]!r}"
+                )
             raise ValueError(
                 f"radius must leave the rounded polygon's area and centroid within the float "
                 f"range (a rounding of at most about 1e100 length units), got {radius!r}"
