@@ -810,6 +810,40 @@ def test_a_body_starting_inside_is_pushed_out_with_a_warning(
         assert collider.distance(b.pos) >= r - 1e-9
 
 
+def test_a_ball_wedged_between_a_capsule_and_a_ceiling_goes_to_the_nearest_free_place() -> None:
+    """Found by the stateful fuzz exploring: a room's ceiling 0.7 m above a capsule's top, a
+    1 m ball between them (put there by the room, then the capsule added over it). Out of
+    each in turn it went into the other, the corners of the two near faces were none (they
+    are parallel), and it was left 0.3 m in the ceiling, with a warning that said it was out.
+    The nearest place outside both is under the capsule (its centre r + rho = 0.8 m below
+    the capsule's line: 1.3 m down), nearer than around the capsule's end (2.2 m)."""
+    w = World()
+    with pytest.warns(OverlapWarning):
+        b = ball(w, (2.43, 7.47), (4.0, -3.0), radius=0.5)
+        w.add_collider(Box((-8.0, -20.0), (8.0, 4.0)))  # the ball put 0.5 below its ceiling
+    assert b.pos.y == pytest.approx(3.5, abs=1e-12)
+    capsule = Segment((0.0, 3.0), (4.0, 3.0), radius=0.3)
+    with pytest.warns(OverlapWarning, match="pushed out to the nearest place") as record:
+        w.add_collider(capsule)
+    assert "left overlapping" not in " ".join(str(m.message) for m in record)
+    assert (b.pos.x, b.pos.y) == pytest.approx((2.43, 2.2), abs=1e-12)
+    assert b.vel.y <= 0.0  # (the speed into the capsule taken, none into the room's floor)
+    for _ in range(30):
+        w.step(1 / 60)
+        for c in w.colliders:
+            assert c.distance(b.pos) >= 0.5 - 1e-9 * (1.0 + abs(b.pos.y)), (c, b.pos)
+
+
+def test_a_ball_with_no_free_place_near_it_is_said_to_be_left_overlapping() -> None:
+    """A room 0.6 m high holds no 1 m ball anywhere: the warning says it is still inside,
+    and what to do, rather than that it was pushed out."""
+    w = World()
+    with pytest.warns(OverlapWarning, match="left overlapping") as record:
+        ball(w, (5.0, 0.3), radius=0.5)
+        w.add_collider(Box((0.0, 0.0), (10.0, 0.6)))
+    assert "move it to a free place" in str(record[-1].message)
+
+
 # -- 10. snapshot / restore and reruns ---------------------------------------------------------
 
 

@@ -16,6 +16,7 @@ import math
 from typing import Any
 
 import numpy as np
+import pytest
 from fuzzing import anything, attempt, fuzz, numbers, pairs
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
@@ -330,6 +331,41 @@ TWO_IMMOVABLE_MEET = {
     "method": "auto",
     "gravity": (14.0, 10.0),
 }
+
+
+#: Found by the fuzz exploring (numpy path, 2,000 examples): a 1 m ball under a sideways pull
+#: of 8 m/s^2 comes to rest wedged between a peg and a room's ceiling (touching both, from
+#: step 8, dt 1/7 s), then in step 11 moves 8 cm into the peg at the pull's speed, g dt, and
+#: step 12 pushes it back out. The ball alone in the same room, or with the other balls
+#: taken out, stays in its wedge: what else the World holds (two point bodies, two small
+#: balls) decides it.
+WEDGED_BY_A_PEG = {
+    "colliders": [Circle((0.0, 5.0), 2.0, restitution=0.0, friction=0.0625)],
+    "room": Box((-8.0, -10.125), (8.0, 6.375), restitution=0.0, friction=0.0),
+    "balls": [
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0),
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0),
+        (0.0, 0.0, -47.0, 31.375, 1.0, 0.0, 0.5, 3.328125, 1.0),
+        (-6.0, 0.0, 0.0, 28.0, 0.1, 0.0, 0.0, 2.0, 0.0),
+        (-6.0, 0.0, 0.0, 22.0, 0.01, 1.0, 0.0, 2.0, 0.0),
+    ],
+    "dt": 1 / 7,
+    "method": "auto",
+    "gravity": (8.0, 0.0),
+}
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="engine bug: a ball at rest wedged between a peg and a wall leaves its rest and "
+    "moves g dt into the peg in one step (WEDGED_BY_A_PEG), when other bodies are in the World",
+)
+def test_a_ball_wedged_by_a_peg_stays_outside_it() -> None:
+    """WEDGED_BY_A_PEG, as the fuzz test runs it (and the ball alone, which holds)."""
+    alone = dict(WEDGED_BY_A_PEG, balls=[WEDGED_BY_A_PEG["balls"][2]])
+    run(alone)
+    run(WEDGED_BY_A_PEG)
 
 
 @fuzz(80)

@@ -87,11 +87,19 @@ def push_out(
     store.x[idx], store.v[idx], store.prev_x[idx] = x, v, x
     contacts.rest[idx[[i for i, _ in moved]]] = -1
     state.state_written()
+    # Those still inside (no place near them is outside every collider: three faces at once):
+    # pushed again, on copies, they would move again.
+    stuck = {i for i, _ in contacts.push_out(x.copy(), v.copy(), store.radius[idx], idx)}
     for i, k in moved[:10]:
         body = state.bodies[int(idx[i])]
         warnings.warn(
-            f"{body!r} {how} inside {contacts.colliders[k]!r}; it was pushed out to the "
-            f"nearest place outside every solid collider",
+            f"{body!r} {how} inside {contacts.colliders[k]!r}; "
+            + (
+                "no place near it is outside every solid collider: it was left overlapping, "
+                "for the steps to push it out; move it to a free place"
+                if i in stuck
+                else "it was pushed out to the nearest place outside every solid collider"
+            ),
             OverlapWarning,
             stacklevel=stacklevel,
         )

@@ -383,20 +383,53 @@ def out_of_corner(
     for k, a in enumerate(near):
         for b in near[k + 1 :]:
             cands += _corners(faces, L, a, b, x, nrm, r)
-    best, best_d = None, math.inf
-    for c in cands:
-        g, _ = face_gaps(faces, c, r, meets)
-        dist = float(np.hypot(*(c - x)))
-        if (g >= -slack * 4.0).all() and dist < best_d:
-            best, best_d = c, dist
+    best = _nearest_free(faces, x, r, meets, cands, slack)
     if best is None:
-        return  # no corner of two faces frees it (three at once): left to the next step
+        # No way out of one face, nor a corner of two near ones, frees it: a ball wedged in
+        # a gap narrower than itself (between a capsule and a ceiling, pushed out of each in
+        # turn). Look wider: the far side of each face it overlaps that has one (a capsule's
+        # or a segment's other side, a peg's; a room's wall has none), and the corners of the
+        # faces within its diameter (around a capsule's end). A face j's far side is where
+        # the ball's centre is its radius r and the face's own (rho, or the peg's R) beyond
+        # the face's line (or centre): from x, along -n_j, by the depth there
+        # d_j = g_j + rho_j + r, and then rho_j + r, that is g_j + 2 (rho_j + r).
+        rad = np.concatenate([faces.rho, faces.r])
+        through = np.flatnonzero(
+            (gaps < -slack) & np.concatenate([faces.two, np.ones(len(faces.c), dtype=bool)])
+        )
+        cands = [x - (gaps[j] + 2.0 * (rad[j] + r)) * nrm[j] for j in through.tolist()]
+        wide = np.flatnonzero(gaps < 2.0 * r + slack).tolist()
+        for k, a in enumerate(wide):
+            for b in wide[k + 1 :]:
+                cands += _corners(faces, L, a, b, x, nrm, r)
+        best = _nearest_free(faces, x, r, meets, cands, slack)
+    if best is None:
+        return  # nothing near frees it (three faces at once): left to the next step
     X[i] = best
     g, n_at = face_gaps(faces, best, r, meets)
     for j in np.flatnonzero(g <= slack * 4.0).tolist():
         vn = float(V[i] @ n_at[j])
         if vn < 0.0:
             V[i] -= vn * n_at[j]
+
+
+def _nearest_free(
+    faces: Faces,
+    x: np.ndarray,
+    r: float,
+    meets: np.ndarray | None,
+    cands: list[np.ndarray],
+    slack: float,
+) -> np.ndarray | None:
+    """The candidate nearest x where a ball of radius r overlaps no face (by more than four
+    times ``slack``), or None."""
+    best, best_d = None, math.inf
+    for c in cands:
+        g, _ = face_gaps(faces, c, r, meets)
+        dist = float(np.hypot(*(c - x)))
+        if (g >= -slack * 4.0).all() and dist < best_d:
+            best, best_d = c, dist
+    return best
 
 
 def _corners(
