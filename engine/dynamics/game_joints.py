@@ -80,6 +80,8 @@ class GameJoints:
         # The fast path's joint arrays: (each row's inputs, the arrays, the impulses kept
         # from them after the kernel's step, or None before it): ``arrays``.
         self._arrays: tuple[list[Any], list[np.ndarray], Any] | None = None
+        # (the fast path's joint arrays, and their six impulse arrays as one table's rows)
+        self._impulse_rows: tuple[list[np.ndarray], np.ndarray] | None = None
         # Each joint's row inputs, by id(joint): (joint, _row_token, row), while the World's
         # bodies are the same (the key: its version, the bodies' count, the store).
         self._rows: tuple[Any, dict[int, tuple[Any, Any, list[Any]]]] = (None, {})
@@ -147,6 +149,8 @@ class GameJoints:
         arrays = [table[i].astype(np.int64) if i in ints else table[i] for i in range(22)]
         if self.fast:
             self._arrays = (inputs, arrays, None)
+            # The six impulse arrays are rows of one table: ``report`` copies them at once.
+            self._impulse_rows = (arrays, table[16:])
         return arrays, ends
 
     def constrained(self, joints: list[Any]) -> bool:
@@ -164,7 +168,11 @@ class GameJoints:
         base = IMPULSES_AT
         # The six impulse columns, a row a joint, copied (the fast path's arrays are the next
         # step's warm start, solved in place); put on the joints when one is read.
-        table = np.array(out[base : base + 6], dtype=float)
+        rows = self._impulse_rows
+        if arrays is not None and rows is not None and rows[0] is arrays:
+            table = rows[1].copy()  # (the kernel solved them in place: the same numbers)
+        else:
+            table = np.array(out[base : base + 6], dtype=float)
         last = self._last = _StepReport(joints, self._kinds_of(joints)[1], table, k, out)
         self._impulses = None
         self._token = last

@@ -179,6 +179,8 @@ class GameStep:
         self._apart: tuple[Any, np.ndarray] = (None, np.zeros(0, dtype=np.int64))
         # The sensor bodies: (the store's categories and mask arrays they were read from, them).
         self._sensors: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        # The dynamic bodies counted (``_dynamic_count``): (version, mass, kinematic, count).
+        self._dynamic: tuple[int, np.ndarray, np.ndarray, int] | None = None
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -203,9 +205,11 @@ class GameStep:
         c = state.collisions
         # (np.count_nonzero: a C call, where ndarray.any() goes through numpy's Python wrapper
         # at several times its cost on a game's few bodies.)
+        # (Fewer asleep than the dynamic bodies: one of them is awake, and the step moves it.)
+        sleeping = np.count_nonzero(c.asleep) if len(c.asleep) == n else 0
         if (
-            len(c.asleep) == n
-            and np.count_nonzero(c.asleep)
+            sleeping
+            and sleeping >= self._dynamic_count(state, store)
             and not self._stirring(store, c.asleep)
         ):
             # Everything sleeps, and nothing moves to wake it: the step changes nothing, and
@@ -582,6 +586,19 @@ class GameStep:
             asleep[wake] = False
             c.still[wake] = 0.0
         return dynamic & ~asleep
+
+    def _dynamic_count(self, state: WorldState, store: Any) -> int:
+        """How many bodies are dynamic (of finite mass, not kinematic), counted again when
+        the World's bodies or masses change (``state.version``) or the arrays are new."""
+        kept = self._dynamic
+        if kept is None or kept[0] != state.version or kept[1] is not store.mass:
+            kept = None
+        elif kept[2] is not store.kinematic:
+            kept = None
+        if kept is None:
+            count = int(np.count_nonzero(np.isfinite(store.mass) & ~store.kinematic))
+            kept = self._dynamic = (state.version, store.mass, store.kinematic, count)
+        return kept[3]
 
     @staticmethod
     def _stirring(store: Any, asleep: np.ndarray) -> bool:
