@@ -90,6 +90,28 @@ def test_disc_hit_one_is_disc_hits(seed: int) -> None:
         assert t1 == t[i], i
 
 
+def test_a_ball_on_a_peg_leaving_too_slowly_to_get_away_is_pressed_in() -> None:
+    """A ball touching a peg of contact distance 3 m, its velocity leaving it at D.v =
+    2.3e-10 m^2/s (rounding's rest), pulled into it at 8 m/s^2 (found by the fuzz: a ball at
+    rest in the wedge of a peg and a ceiling). |x(t) - c|^2 - rho^2 = k1 t + k2 t^2 + ... with
+    k1 = 2 D.v > 0 and k2 = |v|^2 + D.a < 0 is zero again at t = -k1 / k2 = 2e-11 s: the
+    ball never gets away, and meets the peg now (t = 0), on every path. Leaving faster (that
+    time past 1e-9 of the step) it meets it where it comes back, later in the step."""
+    x = (-2.976470224947576, 5.3750000000007025)
+    v = (-0.00015822716226831, -0.00125588853952867)
+    a, c, rho, T = (8.0, 0.0), (0.0, 5.0), 3.0, 1.0 / 7.0
+    D = np.subtract(x, c)
+    assert 0.0 < 2.0 * D @ v < 1e-9 and np.hypot(*D) - rho < 1e-12  # touching, leaving
+    assert disc_hit_one(x, v, a, c, rho, T) == 0.0
+    assert disc_hits(np.array([x]), np.array([v]), np.array([a]), np.array([c]),
+                     np.array([rho]), T)[0] == 0.0  # fmt: skip
+    # Leaving at 0.1 m/s along D: back after a flight of about 2 k1 / |k2| = 0.0025 s.
+    away = tuple(np.array(v) + 0.1 * D / np.hypot(*D))
+    t = disc_hit_one(x, away, a, c, rho, T)
+    k1, k2 = 2.0 * D @ away, float(np.dot(away, away) + D @ a)
+    assert t == pytest.approx(-k1 / k2, rel=1e-3) and t > 1e-9 * T
+
+
 def test_quadratic_first_root_one_is_quadratic_first_root() -> None:
     rng = np.random.default_rng(7)
     m = 2000

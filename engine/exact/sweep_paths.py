@@ -213,8 +213,11 @@ def paths_loop(
                     if dist0 <= TOUCH * (1.0 + rho):  # touching
                         k1 = 2.0 * dv
                         slack = 1e-12 * math.sqrt(dd * vv)
-                        if k1 < -slack or (k1 <= slack and vv + db < 0.0):
+                        k2 = vv + db
+                        if k1 < -slack or (k1 <= slack and k2 < 0.0):
                             t = 0.0
+                        elif k2 < 0.0 and k1 <= -k2 * T * 1e-9:
+                            t = 0.0  # back within 1e-9 of the step: pressed in (disc_hits)
                         elif not reach > 0.0:
                             t = inf
                         else:

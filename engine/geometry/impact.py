@@ -256,6 +256,11 @@ def disc_hits(
         slack = 1e-12 * np.sqrt(dd * vv)
         k2 = vv + _dot(D, B)
         heading_in = (k1 < -slack) | ((k1 <= slack) & (k2 < 0.0))
+        # Leaving so slowly that the curvature brings it back within 1e-9 of the step (at
+        # t = -k1 / k2, where f = k1 t + k2 t^2 is zero again): pressed in now. The search
+        # below takes such a root for the departure itself, and would let the ball through
+        # (a ball at rest in a wedge, pulled into a peg, leaving it at 2e-10 m^2/s).
+        heading_in |= (k2 < 0.0) & (k1 <= -k2 * T * 1e-9)
         t[touching & heading_in] = 0.0
         # Touching and leaving: the path may curve back onto the disc later in the step.
         leaving = touching & ~heading_in & (reach > 0.0)
@@ -341,8 +346,9 @@ def disc_hit_one(X: Pair, V: Pair, B: Pair, c: Pair, rho: float, T: float) -> fl
     if dist0 <= TOUCH * (1.0 + rho):  # touching
         k1 = 2.0 * dv
         slack = 1e-12 * math.sqrt(dd * vv)
-        if k1 < -slack or (k1 <= slack and vv + db < 0.0):
-            return 0.0
+        k2 = vv + db
+        if k1 < -slack or (k1 <= slack and k2 < 0.0) or (k2 < 0.0 and k1 <= -k2 * T * 1e-9):
+            return 0.0  # (heading in, or back within 1e-9 of the step: disc_hits)
         if not reach > 0.0:
             return inf
         leaving = True
