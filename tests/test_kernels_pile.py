@@ -362,3 +362,30 @@ def test_the_pit_is_bit_identical_on_both_paths() -> None:
             world.step(DT)
         ends.append(world.positions())
     assert np.abs(ends[1] - ends[0]).max() == 0.0
+
+
+@given(
+    x=st.floats(-6.0, 6.0),
+    y=st.floats(-6.0, 6.0),
+    r=st.sampled_from([0.0, 0.05, 0.3, 1.0]),
+)
+def test_one_body_clear_of_every_face_is_found_clear_at_once(x: float, y: float, r: float) -> None:
+    """``push_out`` of one body looks at every face at once first, and stops where none is
+    within reach (a game spawning a ball): the same answer, and the same place, as asking
+    the colliders one by one (the body taken with a second, which always asks them), for
+    a ball anywhere in a room with a peg, a capsule, a rounded and a sharp polygon."""
+    colliders: list[Collider] = [
+        Box((-5.0, -5.0), (5.0, 5.0)),
+        Circle((2.0, 2.0), 0.7),
+        Segment((-3.0, 1.0), (0.0, 2.5), radius=0.2),
+        Polygon([(-2.0, -3.0), (0.0, -3.5), (-0.5, -1.0)], radius=0.1),
+        Polygon.box(1.0, 1.5, center=(2.5, -2.0)),
+    ]
+    faces = compile_faces(colliders, list(range(len(colliders))))
+    alone = (np.array([[x, y]]), np.array([[1.0, -1.0]]))
+    paired = (np.array([[x, y], [0.0, 4.0]]), np.array([[1.0, -1.0], [0.0, 0.0]]))
+    radius = np.array([r, 0.1])
+    moved = push_out.push_out(colliders, faces, None, *alone, radius[:1], np.array([0]))
+    asked = push_out.push_out(colliders, faces, None, *paired, radius, np.array([0, 1]))
+    assert moved == [m for m in asked if m[0] == 0]
+    assert np.array_equal(alone[0][0], paired[0][0]) and np.array_equal(alone[1][0], paired[1][0])

@@ -9,9 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from engine import Circle, Polygon, Segment
+from engine import Body, Circle, Polygon, Segment, World
 from engine.body_shapes import Compound
 from engine.geometry.shaped import ShapeTable
+from engine.pipeline.game_step import _rows_left
 
 TRIANGLE = Polygon([(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])
 BOX = Polygon.box(1.0, 2.0, radius=0.1)
@@ -92,3 +93,85 @@ def test_the_extents_are_each_bodys_own_and_grow_with_the_table() -> None:
     assert grown is not None
     for got, want in zip(grown.extents(), (least, core, centroid), strict=True):
         assert np.array_equal(got, want)
+
+
+@pytest.mark.parametrize(
+    ("shapes", "gone"),
+    [
+        ([TRIANGLE, OCTAGON, None], [1]),  # the most corners gone: the rest padded to fewer
+        ([OCTAGON, TRIANGLE, BOX], [1]),
+        ([None, STICK, BOX, RING, STICK], [0, 3]),
+        ([None, None], [1]),
+        ([STICK, RING, TRIANGLE], [2]),  # the last polygon gone
+        ([BOX, BOX, None, BOX], [1]),  # one shape given to three bodies
+    ],
+)
+@pytest.mark.parametrize("with_extents", [False, True])
+def test_a_table_shrunk_by_bodies_taken_out_is_the_one_made_afresh(
+    shapes: list[object], gone: list[int], with_extents: bool
+) -> None:
+    """``ShapeTable.without``: the rows left, the same arrays (and extents) as a table made
+    afresh of their shapes (a game taking a bullet out does not wait on every shape)."""
+    radius = np.arange(1, len(shapes) + 1) * 0.5
+    keep = np.ones(len(shapes), dtype=bool)
+    keep[gone] = False
+    left = [s for s, k in zip(shapes, keep, strict=True) if k]
+    fresh = ShapeTable(left, radius[keep])
+    whole = ShapeTable(shapes, radius)
+    if with_extents:
+        whole.extents()
+    shrunk = whole.without(keep, radius[keep])
+    assert shrunk is not None
+    assert (shrunk.polygons is None) == (fresh.polygons is None)
+    for got, want in zip(arrays(shrunk), arrays(fresh), strict=True):
+        assert got.dtype == want.dtype and got.shape == want.shape
+        assert np.array_equal(got, want)
+    for got, want in zip(shrunk.extents(), fresh.extents(), strict=True):
+        assert np.array_equal(got, want)
+
+
+def test_a_table_with_a_body_of_several_shapes_is_made_afresh_when_one_goes() -> None:
+    table = ShapeTable([BOX, Compound([TRIANGLE, RING])], np.ones(2))
+    assert table.without(np.array([False, True]), np.ones(1)) is None
+
+
+def test_rows_left_finds_the_rows_taken_out() -> None:
+    """Which rows are left after bodies were taken out (the rest in order); where a shape is
+    several bodies' (None, one Polygon given to two), any of them may be named: their rows
+    are alike. Not bodies taken out: None."""
+    assert _rows_left([BOX, None, STICK], [BOX, STICK]).tolist() == [True, False, True]
+    left = _rows_left([None, BOX, None, BOX], [None, BOX])
+    assert left is not None and left.sum() == 2
+    assert _rows_left([BOX, STICK], [STICK, BOX]) is None  # reordered
+    assert _rows_left([BOX], [STICK]) is None
+
+
+def test_a_soft_world_keeps_its_table_as_bodies_go(monkeypatch: pytest.MonkeyPatch) -> None:
+    """In play: crates, balls and a stick taken out one by one between steps; the table the
+    soft step keeps (``without`` the rows gone) is the one made afresh from the bodies left,
+    each time."""
+    shrunk = []
+    without = ShapeTable.without
+
+    def counted(table: ShapeTable, keep: np.ndarray, radius: np.ndarray) -> ShapeTable | None:
+        shrunk.append(keep.tolist())
+        return without(table, keep, radius)
+
+    monkeypatch.setattr(ShapeTable, "without", counted)
+    w = World(solver="soft")
+    w.add_collider(Segment((-20.0, 0.0), (20.0, 0.0)))
+    made = []
+    for k, shape in enumerate([BOX, None, STICK, OCTAGON, None, BOX, TRIANGLE]):
+        at = (2.5 * k - 8.0, 3.0)
+        made.append(w.add(Body(at, mass=1.0, shape=shape) if shape else
+                          Body(at, mass=1.0, radius=0.3)))  # fmt: skip
+    w.step(1 / 60)
+    for gone in (made[3], made[0], made[6], made[1]):
+        w.remove(gone)
+        w.step(1 / 60)
+        store, game = w._s.store, w._s.game
+        kept = game._table[2]
+        fresh = ShapeTable(store.shapes, store.radius)
+        for got, want in zip(arrays(kept), arrays(fresh), strict=True):
+            assert np.array_equal(got, want)
+    assert [len(k) - sum(k) for k in shrunk] == [1, 1, 1, 1]  # one row gone each time

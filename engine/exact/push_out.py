@@ -59,6 +59,11 @@ def push_out(
     """
     if len(x) == 0 or not len(faces.owner):
         return []
+    if len(x) == 1 and (_all_face_gaps(faces, x[0], float(radius[0]))[0] >= 0.0).all():
+        # One body (a game spawning one) clear of every face at once: it overlaps no collider
+        # (a ball inside a convex polygon is behind the face it is nearest, within its ends),
+        # and no collider need be asked one by one.
+        return []
     overlapped = []
     bf = body_filters
     some: np.ndarray | None = None  # the rows to look at, None for all

@@ -160,6 +160,39 @@ class ShapeTable:
             )
         return out
 
+    def without(self, keep: np.ndarray, radius: np.ndarray) -> ShapeTable | None:
+        """This table with only the rows ``keep`` (bool, a row each) left (bodies taken out;
+        ``radius`` the rows' left), the same arrays as a table made afresh of their shapes
+        (a polygon's rows padded to the most corners among those left, as ``Polygons`` pads),
+        and its extents where they were made. None where a body is of several shapes (made
+        afresh)."""
+        if self.parts is not None:
+            return None
+        out = ShapeTable.__new__(ShapeTable)
+        out.kind = self.kind[keep]
+        # A capsule's and a polygon's place in its kind's arrays is its rank among the rows of
+        # its kind (they were listed in row order); a disc's, its row.
+        index = np.arange(len(out.kind), dtype=np.intp)
+        for code in (CAPSULE, POLYGON):
+            mine = out.kind == code
+            index[mine] = np.arange(int(np.count_nonzero(mine)))
+        out.index = index
+        out.shaped = out.kind != DISC
+        out.circles = Circles(self.circles.center[keep], np.asarray(radius, dtype=float))
+        caps = keep[self.kind == CAPSULE]
+        out.capsules = Capsules(self.capsules.a[caps], self.capsules.b[caps],
+                                self.capsules.radius[caps])  # fmt: skip
+        out.polygons = None
+        if self.polygons is not None:
+            polys = np.flatnonzero(keep[self.kind == POLYGON])
+            if len(polys):
+                out.polygons = self.polygons.take(polys)
+        out.parts = None
+        out._extents = None
+        if self._extents is not None:
+            out._extents = tuple(e[keep] for e in self._extents)  # type: ignore[assignment]
+        return out
+
     def extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Each row's least extent (m: a disc's or capsule's radius, a polygon's least distance
         from its centroid to an edge's line plus its rounding), its core's farthest point from

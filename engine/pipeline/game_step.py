@@ -94,6 +94,21 @@ _FEW = 32
 _EVERY = tuple(np.asarray(r, dtype=np.int64) for r in np.triu_indices(32, 1))
 
 
+def _rows_left(before: list[Any], now: list[Any]) -> np.ndarray | None:
+    """Which rows of ``before`` (the bodies' shapes, None for a plain disc) are ``now``'s,
+    bodies having been taken out (the rest keep their order), as a bool array; None where
+    ``now`` is not ``before`` with some rows taken out. Where a row's shape is another's
+    too (None, or one shape given to two bodies), which of them is taken changes nothing:
+    a table's row is made from its shape alone."""
+    keep = np.zeros(len(before), dtype=bool)
+    j = 0
+    for i, shape in enumerate(before):
+        if j < len(now) and now[j] is shape:
+            keep[i] = True
+            j += 1
+    return keep if j == len(now) else None
+
+
 def unsupported(state: WorldState) -> str | None:
     """What in the World the soft step cannot take yet (a phrase), or None."""
     store = state.store
@@ -448,6 +463,11 @@ class GameStep:
             if kept is not None and kept[0] < len(shapes) and shapes[: kept[0]] == kept[1]:
                 # Bodies added at the end (a game spawning one): the rows before are kept.
                 table = kept[2].extended(shapes[kept[0] :], store.radius)
+            elif kept is not None and kept[0] > len(shapes):
+                # Bodies taken out (a game's bullet gone): the rows left are kept.
+                keep = _rows_left(kept[1], shapes)
+                if keep is not None:
+                    table = kept[2].without(keep, store.radius)
             if table is None:
                 table = ShapeTable(shapes, store.radius)
             kept = self._table = (len(shapes), list(shapes), table)
