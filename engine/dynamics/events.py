@@ -534,6 +534,9 @@ class WorldEvents:
         # the colliders taken out by serial.
         self._open: np.ndarray | None = None
         self._gone: dict[int, Any] = {}
+        # Bodies taken out since the last step, by slot: (the body, where it was, its
+        # radius), for the last step's events made on demand (``body_removed``'s ``lazy``).
+        self._gone_bodies: dict[int, tuple[Any, tuple[float, float], float]] = {}
         self._view: Any = None  # how to read the World now (set by the World)
 
     @property
@@ -593,10 +596,17 @@ class WorldEvents:
         self._removal_ends(keys, t, removal)
         return keys
 
-    def body_removed(self, slot: int, t: float) -> np.ndarray:
+    def body_removed(self, slot: int, t: float, lazy: bool = False) -> np.ndarray:
         """A body leaves (still readable at its row): its open contacts end; returns their
-        keys."""
-        self.settle_reading()
+        keys. ``lazy``: the last step's events are still made on demand, the body as it is now
+        kept for them (a World whose events read nothing else of its rows: the soft step's);
+        else they are made now, before the rows they name shift."""
+        if lazy:
+            self._hold_reading()
+            view = self._view
+            self._gone_bodies[slot] = (view.body(slot), view.position(slot), view.radius(slot))
+        else:
+            self.settle_reading()
 
         def involved(keys: np.ndarray) -> np.ndarray:
             is_c, other = other_of(keys)
@@ -629,28 +639,28 @@ class WorldEvents:
         self._began = self._ended = self._touching = None
         self._open = None
         self._gone = {}
+        self._gone_bodies = {}
 
     def _event(self, spec: Spec) -> ContactEvent:
         """The ContactEvent of one spec, read from the World now where it has no payload."""
-        view = self._view
         t, key, _, payload = spec
         slot = key >> 32
         low = key & _LOW
-        body = view.body(slot)
+        body = self._body(slot)
         if low & COLLIDER:
             serial = low & (COLLIDER - 1)
             other = self._collider[serial] if serial in self._collider else self._gone[serial]
             if payload is None:
-                point, normal, _ = other.closest(view.position(slot))
+                point, normal, _ = other.closest(self._position(slot))
                 return ContactEvent(body, other, point, normal, Vector(0.0, 0.0), t)
         else:
-            other = view.body(low)
+            other = self._body(low)
             if payload is None:
-                xa, xb = view.position(slot), view.position(low)
+                xa, xb, rb = self._position(slot), self._position(low), self._radius(low)
                 d = Vector(xa[0] - xb[0], xa[1] - xb[1])
                 dist = d.length()
                 normal = d * (1.0 / dist) if dist > 0.0 else Vector(0.0, 1.0)
-                point = Vector(*xb) + normal * view.radius(low)
+                point = Vector(*xb) + normal * rb
                 return ContactEvent(body, other, point, normal, Vector(0.0, 0.0), t)
         p, n, j = payload
         return ContactEvent(
@@ -661,6 +671,26 @@ class WorldEvents:
             Vector(float(j[0]), float(j[1])),
             t,
         )
+
+    def _gone_body(self, slot: int) -> tuple[Any, tuple[float, float], float] | None:
+        """The body in ``slot`` as it was when taken out since the last step (``body_removed``'s
+        ``lazy``: (it, where it was in length units, its radius)), or None: it is in the World."""
+        if not self._gone_bodies:
+            return None
+        gone = self._gone_bodies.get(slot)
+        return gone if gone is not None and self._view.row(slot) < 0 else None
+
+    def _body(self, slot: int) -> Any:
+        gone = self._gone_body(slot)
+        return self._view.body(slot) if gone is None else gone[0]
+
+    def _position(self, slot: int) -> tuple[float, float]:
+        gone = self._gone_body(slot)
+        return self._view.position(slot) if gone is None else gone[1]  # type: ignore[no-any-return]
+
+    def _radius(self, slot: int) -> float:
+        gone = self._gone_body(slot)
+        return self._view.radius(slot) if gone is None else gone[2]  # type: ignore[no-any-return]
 
     @property
     def began(self) -> list[ContactEvent]:

@@ -143,9 +143,10 @@ def remove(state: WorldState, body: Body) -> None:
         # its own acceleration and torque as they were before it.
         own, spin = Vector(*pushed[0]), (spin[0], spin[1], pushed[1])
     row = store.row(body.slot)
-    # The last step's events are named now, before the rows shift, and the body's open
-    # contacts end (reported with the next step).
-    touched = state.events.body_removed(body.slot, state.t)
+    # The last step's events are named before the rows shift, and the body's open contacts
+    # end (reported with the next step).
+    # (The soft step's events read nothing else of the rows: made on demand still.)
+    touched = state.events.body_removed(body.slot, state.t, lazy=state.game is not None)
     sleep = _sleep_kept(state, row)
     del state.bodies[row]
     state.targets.pop(body, None)
