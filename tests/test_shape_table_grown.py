@@ -130,6 +130,18 @@ def test_a_table_shrunk_by_bodies_taken_out_is_the_one_made_afresh(
         assert np.array_equal(got, want)
 
 
+def test_a_table_shrunk_to_rows_of_other_radii_reads_them() -> None:
+    """Two plain discs taken out and one added (a row left may be another body of the same
+    shape, here None, with another radius): the extents read the radii given."""
+    whole = ShapeTable([None, None, None], np.array([0.3, 0.5, 0.9]))
+    whole.extents()
+    shrunk = whole.without(np.array([True, True, False]), np.array([0.5, 0.7]))
+    fresh = ShapeTable([None, None], np.array([0.5, 0.7]))
+    assert shrunk is not None
+    for got, want in zip(shrunk.extents(), fresh.extents(), strict=True):
+        assert np.array_equal(got, want)
+
+
 def test_a_table_with_a_body_of_several_shapes_is_made_afresh_when_one_goes() -> None:
     table = ShapeTable([BOX, Compound([TRIANGLE, RING])], np.ones(2))
     assert table.without(np.array([False, True]), np.ones(1)) is None

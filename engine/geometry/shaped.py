@@ -190,7 +190,13 @@ class ShapeTable:
         out.parts = None
         out._extents = None
         if self._extents is not None:
-            out._extents = tuple(e[keep] for e in self._extents)  # type: ignore[assignment]
+            least, core, centroid = (e[keep] for e in self._extents)
+            # A round row's least extent is its radius, read from ``radius``: a row left may
+            # be taken for another of the same shape (engine.pipeline.game_step's
+            # ``_rows_left``: two plain discs), whose radius may differ.
+            disc = out.kind == DISC
+            least[disc] = out.circles.radius[disc]
+            out._extents = (least, core, centroid)
         return out
 
     def extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
