@@ -142,6 +142,18 @@ def test_a_table_shrunk_to_rows_of_other_radii_reads_them() -> None:
         assert np.array_equal(got, want)
 
 
+def test_a_table_grown_over_rows_of_other_radii_reads_them() -> None:
+    """A plain disc taken out and two added (the first row kept is now another disc's): the
+    extents read the radii given."""
+    first = ShapeTable([None], np.array([0.3]))
+    first.extents()
+    grown = first.extended([None], np.array([0.5, 0.7]))
+    fresh = ShapeTable([None, None], np.array([0.5, 0.7]))
+    assert grown is not None
+    for got, want in zip(grown.extents(), fresh.extents(), strict=True):
+        assert np.array_equal(got, want)
+
+
 def test_a_table_with_a_body_of_several_shapes_is_made_afresh_when_one_goes() -> None:
     table = ShapeTable([BOX, Compound([TRIANGLE, RING])], np.ones(2))
     assert table.without(np.array([False, True]), np.ones(1)) is None

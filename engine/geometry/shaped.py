@@ -154,10 +154,15 @@ class ShapeTable:
         out.parts = None
         out._extents = None
         if self._extents is not None:
-            out._extents = tuple(  # type: ignore[assignment]
+            least, core, centroid = (
                 np.concatenate([mine, theirs])
                 for mine, theirs in zip(self._extents, added.extents(), strict=True)
             )
+            # A round row's least extent is its radius, read from ``radius`` (a row kept may
+            # be another plain disc's now, bodies taken out and added between two steps).
+            disc = out.kind == DISC
+            least[disc] = out.circles.radius[disc]
+            out._extents = (least, core, centroid)
         return out
 
     def without(self, keep: np.ndarray, radius: np.ndarray) -> ShapeTable | None:
