@@ -1,6 +1,7 @@
 """The soft step's table of the bodies' shapes grows with bodies added in play
-(engine.geometry.shaped.ShapeTable.extended): the same arrays as a table made afresh, so a game
-that spawns a body does not wait on every body's shape being read again."""
+(engine.geometry.shaped.ShapeTable.extended) and shrinks with bodies taken out (``without``):
+the same arrays as a table made afresh, so a game that spawns a body, or takes one out, does
+not wait on every body's shape being read again."""
 
 from __future__ import annotations
 
