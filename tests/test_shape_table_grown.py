@@ -38,7 +38,8 @@ def arrays(t: ShapeTable) -> list[np.ndarray]:
         ([OCTAGON], [TRIANGLE]),  # the new padded to the old's
         ([None, STICK], [BOX, RING, STICK]),
         ([None], [None]),
-        ([STICK, RING], [None]),
+        ([STICK, RING], [None]),  # plain discs added: their own quick way (_with_discs)
+        ([TRIANGLE, None], [None, None, None]),
         ([None, None], [TRIANGLE]),  # the first polygon
     ],
 )
@@ -47,12 +48,18 @@ def test_a_table_grown_by_bodies_added_is_the_one_made_afresh(
 ) -> None:
     radius = np.arange(1, len(before) + len(added) + 1) * 0.5
     fresh = ShapeTable(before + added, radius)
-    grown = ShapeTable(before, radius[: len(before)]).extended(added, radius)
-    assert grown is not None
-    assert (grown.polygons is None) == (fresh.polygons is None)
-    for got, want in zip(arrays(grown), arrays(fresh), strict=True):
-        assert got.dtype == want.dtype and got.shape == want.shape
-        assert np.array_equal(got, want)
+    for with_extents in (False, True):
+        first = ShapeTable(before, radius[: len(before)])
+        if with_extents:
+            first.extents()
+        grown = first.extended(added, radius)
+        assert grown is not None
+        assert (grown.polygons is None) == (fresh.polygons is None)
+        for got, want in zip(arrays(grown), arrays(fresh), strict=True):
+            assert got.dtype == want.dtype and got.shape == want.shape
+            assert np.array_equal(got, want)
+        for got, want in zip(grown.extents(), fresh.extents(), strict=True):
+            assert got.dtype == want.dtype and np.array_equal(got, want)
 
 
 def test_a_body_of_several_shapes_makes_the_table_afresh() -> None:

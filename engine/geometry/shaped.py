@@ -129,6 +129,8 @@ class ShapeTable:
         pads). None where a body is of several shapes, here or among the new (made afresh)."""
         if self.parts is not None or any(isinstance(sh, Compound) for sh in shapes):
             return None
+        if all(sh is None for sh in shapes):
+            return self._with_discs(len(shapes), radius)
         added = ShapeTable(shapes, radius[len(self) :])
         out = ShapeTable.__new__(ShapeTable)
         n_caps = len(self.capsules)
@@ -163,6 +165,28 @@ class ShapeTable:
             disc = out.kind == DISC
             least[disc] = out.circles.radius[disc]
             out._extents = (least, core, centroid)
+        return out
+
+    def _with_discs(self, k: int, radius: np.ndarray) -> ShapeTable:
+        """``extended`` by ``k`` plain discs (a game's bullets and balls): each a round row at
+        its body's centre, its own place; the capsules and polygons as they are."""
+        n = len(self)
+        out = ShapeTable.__new__(ShapeTable)
+        out.kind = np.concatenate([self.kind, np.zeros(k, dtype=self.kind.dtype)])
+        out.index = np.concatenate([self.index, np.arange(n, n + k, dtype=self.index.dtype)])
+        out.shaped = out.kind != DISC
+        out.circles = Circles(np.concatenate([self.circles.center, np.zeros((k, 2))]),
+                              np.asarray(radius, dtype=float))  # fmt: skip
+        out.capsules, out.polygons, out.parts = self.capsules, self.polygons, None
+        out._extents = None
+        if self._extents is not None:
+            least, core, centroid = self._extents
+            # A disc's extents: its radius, 0 (its centre is the body's), the origin.
+            least = np.concatenate([least, np.zeros(k)])
+            disc = out.kind == DISC
+            least[disc] = out.circles.radius[disc]  # (as ``extended``: from the radii given)
+            out._extents = (least, np.concatenate([core, np.zeros(k)]),
+                            np.concatenate([centroid, np.zeros((k, 2))]))  # fmt: skip
         return out
 
     def without(self, keep: np.ndarray, radius: np.ndarray) -> ShapeTable | None:
