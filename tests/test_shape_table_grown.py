@@ -31,6 +31,17 @@ def arrays(t: ShapeTable) -> list[np.ndarray]:
     return out
 
 
+def same_table(made: ShapeTable | None, fresh: ShapeTable) -> None:
+    """``made`` (grown or shrunk) holds the arrays and extents of ``fresh``, to the bit."""
+    assert made is not None
+    assert (made.polygons is None) == (fresh.polygons is None)
+    for got, want in zip(arrays(made), arrays(fresh), strict=True):
+        assert got.dtype == want.dtype and got.shape == want.shape
+        assert np.array_equal(got, want)
+    for got, want in zip(made.extents(), fresh.extents(), strict=True):
+        assert got.dtype == want.dtype and np.array_equal(got, want)
+
+
 @pytest.mark.parametrize(
     ("before", "added"),
     [
@@ -52,14 +63,7 @@ def test_a_table_grown_by_bodies_added_is_the_one_made_afresh(
         first = ShapeTable(before, radius[: len(before)])
         if with_extents:
             first.extents()
-        grown = first.extended(added, radius)
-        assert grown is not None
-        assert (grown.polygons is None) == (fresh.polygons is None)
-        for got, want in zip(arrays(grown), arrays(fresh), strict=True):
-            assert got.dtype == want.dtype and got.shape == want.shape
-            assert np.array_equal(got, want)
-        for got, want in zip(grown.extents(), fresh.extents(), strict=True):
-            assert got.dtype == want.dtype and np.array_equal(got, want)
+        same_table(first.extended(added, radius), fresh)
 
 
 def test_a_body_of_several_shapes_makes_the_table_afresh() -> None:
@@ -128,14 +132,7 @@ def test_a_table_shrunk_by_bodies_taken_out_is_the_one_made_afresh(
     whole = ShapeTable(shapes, radius)
     if with_extents:
         whole.extents()
-    shrunk = whole.without(keep, radius[keep])
-    assert shrunk is not None
-    assert (shrunk.polygons is None) == (fresh.polygons is None)
-    for got, want in zip(arrays(shrunk), arrays(fresh), strict=True):
-        assert got.dtype == want.dtype and got.shape == want.shape
-        assert np.array_equal(got, want)
-    for got, want in zip(shrunk.extents(), fresh.extents(), strict=True):
-        assert np.array_equal(got, want)
+    same_table(whole.without(keep, radius[keep]), fresh)
 
 
 def test_a_table_shrunk_to_rows_of_other_radii_reads_them() -> None:
