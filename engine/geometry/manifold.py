@@ -47,6 +47,7 @@ while the same features touch.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -63,6 +64,7 @@ from .manifold_kinds import (
     HalfPlanes,
     Manifold,
     Polygons,
+    capsule_corners,
     finish,
     frames,
 )
@@ -472,6 +474,14 @@ class StaticShapes:
     capsule_owner: np.ndarray
     polygons: Polygons
     polygon_owner: np.ndarray
+
+    @functools.cached_property
+    def capsule_polygons(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The capsules as two-vertex polygons (corners, normals, counts, radii), made once:
+        a game's bodies come and go while its colliders stay, and the tables of both are
+        made again then (engine.geometry.narrowphase.places_of)."""
+        two = np.full(len(self.capsules), 2, dtype=np.intp)
+        return (*capsule_corners(self.capsules), two, self.capsules.radius)
 
     def kinds(self) -> list[tuple[Kind, np.ndarray]]:
         """The non-empty kinds, each with its owners."""

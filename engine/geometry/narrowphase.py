@@ -284,24 +284,6 @@ class Places(NamedTuple):
     static_index: np.ndarray
 
 
-#: The last static shapes' capsules as two-vertex polygons: (the StaticShapes, the arrays).
-#: A game's bodies come and go while its colliders stay: ``places_of`` is made again then,
-#: and the colliders' corners are the same.
-_LAST_CAPSULES: list[Any] = [None, None]
-
-
-def _static_capsules(
-    statics: StaticShapes,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The static capsules as two-vertex polygons (corners, normals, counts, radii), kept
-    for the last static shapes asked (they are not changed once made: a frozen dataclass)."""
-    if _LAST_CAPSULES[0] is not statics:
-        two = np.full(len(statics.capsules), 2, dtype=np.intp)
-        made = (*capsule_corners(statics.capsules), two, statics.capsules.radius)
-        _LAST_CAPSULES[:] = [statics, made]
-    return _LAST_CAPSULES[1]  # type: ignore[no-any-return]
-
-
 def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
     """The tables of the bodies' shapes and the colliders' (engine.geometry.narrowphase)."""
     n = len(table)
@@ -318,7 +300,7 @@ def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
         p = statics.polygons
         parts.append((p.vertices, p.normals, p.count, p.radius))
     if len(statics.capsule_owner):
-        parts.append(_static_capsules(statics))
+        parts.append(statics.capsule_polygons)
     polygons = None
     if parts:
         m = max(v.shape[1] for v, _, _, _ in parts)
