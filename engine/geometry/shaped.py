@@ -160,11 +160,7 @@ class ShapeTable:
                 np.concatenate([mine, theirs])
                 for mine, theirs in zip(self._extents, added.extents(), strict=True)
             )
-            # A round row's least extent is its radius, read from ``radius`` (a row kept may
-            # be another plain disc's now, bodies taken out and added between two steps).
-            disc = out.kind == DISC
-            least[disc] = out.circles.radius[disc]
-            out._extents = (least, core, centroid)
+            out._extents = out._radii_read(least, core, centroid)
         return out
 
     def _with_discs(self, k: int, radius: np.ndarray) -> ShapeTable:
@@ -182,11 +178,9 @@ class ShapeTable:
         if self._extents is not None:
             least, core, centroid = self._extents
             # A disc's extents: its radius, 0 (its centre is the body's), the origin.
-            least = np.concatenate([least, np.zeros(k)])
-            disc = out.kind == DISC
-            least[disc] = out.circles.radius[disc]  # (as ``extended``: from the radii given)
-            out._extents = (least, np.concatenate([core, np.zeros(k)]),
-                            np.concatenate([centroid, np.zeros((k, 2))]))  # fmt: skip
+            grown = (np.concatenate([least, np.zeros(k)]), np.concatenate([core, np.zeros(k)]),
+                     np.concatenate([centroid, np.zeros((k, 2))]))  # fmt: skip
+            out._extents = out._radii_read(*grown)
         return out
 
     def without(self, keep: np.ndarray, radius: np.ndarray) -> ShapeTable | None:
@@ -219,14 +213,19 @@ class ShapeTable:
         out.parts = None
         out._extents = None
         if self._extents is not None:
-            least, core, centroid = (e[keep] for e in self._extents)
-            # A round row's least extent is its radius, read from ``radius``: a row left may
-            # be taken for another of the same shape (engine.pipeline.game_step's
-            # ``_rows_left``: two plain discs), whose radius may differ.
-            disc = out.kind == DISC
-            least[disc] = out.circles.radius[disc]
-            out._extents = (least, core, centroid)
+            out._extents = out._radii_read(*(e[keep] for e in self._extents))
         return out
+
+    def _radii_read(
+        self, least: np.ndarray, core: np.ndarray, centroid: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Extents kept from another table, each round row's least extent read from this
+        table's radii: a row kept may be another plain disc's now (bodies taken out and
+        added between two steps: engine.pipeline.game_step's ``_rows_left``), of another
+        radius."""
+        disc = self.kind == DISC
+        least[disc] = self.circles.radius[disc]
+        return least, core, centroid
 
     def extents(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Each row's least extent (m: a disc's or capsule's radius, a polygon's least distance

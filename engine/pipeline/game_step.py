@@ -611,11 +611,12 @@ class GameStep:
         """How many bodies are dynamic (of finite mass, not kinematic), counted again when
         the World's bodies or masses change (``state.version``) or the arrays are new."""
         kept = self._dynamic
-        if kept is None or kept[0] != state.version or kept[1] is not store.mass:
-            kept = None
-        elif kept[2] is not store.kinematic:
-            kept = None
-        if kept is None:
+        if (
+            kept is None
+            or kept[0] != state.version
+            or kept[1] is not store.mass
+            or kept[2] is not store.kinematic
+        ):
             count = int(np.count_nonzero(np.isfinite(store.mass) & ~store.kinematic))
             kept = self._dynamic = (state.version, store.mass, store.kinematic, count)
         return kept[3]
