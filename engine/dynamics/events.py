@@ -235,15 +235,21 @@ _FEW = 256
 
 
 def _open_changes(
-    prev: np.ndarray, keys: np.ndarray, state: dict[int, bool], before: set[int] | None
+    prev: np.ndarray,
+    keys: np.ndarray,
+    state: dict[int, bool],
+    before: set[int] | None,
+    touching: set[int] | None = None,
 ) -> tuple[list[int], list[int]]:
     """Of a step of ``settle_open``: the keys touching now (``keys``) that were not open after
     the reports, and the keys open before (``prev``) and after the reports that no longer
     touch, each by key. Open after the reports: ``state``'s value for a key a report named,
-    else whether it was open before (in ``before``, ``prev`` as a set, where given)."""
+    else whether it was open before (in ``before``, ``prev`` as a set, where given;
+    ``touching``: ``keys`` as a set, where made already)."""
     if before is not None:
         now = keys.tolist()
-        touching = set(now)
+        if touching is None:
+            touching = set(now)
         return (
             [k for k in now if not state.get(k, k in before)],
             [k for k in prev.tolist() if k not in touching and state.get(k, True)],
@@ -315,6 +321,9 @@ class ContactLedger:
     def _report_removed(self, t0: float) -> None:
         """The ends of things taken out since the step before, reported with the step from
         ``t0`` (s): they happened before it (a time summed another way may pass it by an ulp)."""
+        if not self.pending:
+            self.removed = []  # (most steps: nothing was taken out)
+            return
         self.removed = [e if e.time <= t0 else e._replace(time=t0) for e in self.pending]
         self.pending = []
 
@@ -454,6 +463,7 @@ class ContactLedger:
         # A game's dozen keys in Python sets; a pile's thousands by binary searches.
         few = len(prev) + len(keys) <= _FEW
         before = set(prev.tolist()) if few else None
+        touching_set: set[int] | None = None  # (keys as a set: made where needed)
         state: dict[int, bool] = {}  # open after the reports, of the keys they name
         began: list[Spec] = []
         ended: list[Spec] = []
@@ -474,14 +484,19 @@ class ContactLedger:
                 elif s:
                     state[k] = False
                     ended.append(spec)
-            opened = np.array([k for k, s in state.items() if s], dtype=np.int64)
-            if not _isin(opened, keys).all():
+            opened = [k for k, s in state.items() if s]
+            if few:
+                touching_set = set(keys.tolist())
+                inside = all(k in touching_set for k in opened)
+            else:
+                inside = bool(_isin(np.array(opened, dtype=np.int64), keys).all())
+            if not inside:
                 # A begin reported for a contact not touching at the step's end: ``settle``
                 # measures its gap (it may stay open within its slack).
                 self.settle(t0, t_end, raw, _NONE, touching, gaps)
                 return
         self._report_removed(t0)
-        opens, parts = _open_changes(prev, keys, state, before)
+        opens, parts = _open_changes(prev, keys, state, before, touching_set)
         began += [(t_end, k, True, None) for k in opens]
         ended += [(t_end, k, False, None) for k in parts]
         ended.sort(key=lambda s: s[0])

@@ -156,28 +156,46 @@ def _settle_soft(state: WorldState, t0: float, t_end: float) -> None:
     events.ledger.settle_open(t0, t_end, raw, sensing, partial(gaps, state))
 
 
+#: The most keys (a report's and the other's) whose changes ``_changes`` finds in a Python set.
+_FEW_KEYS = 64
+
+
 def _changes(report: Any, other: np.ndarray, t: float, began: bool) -> list[Any]:
     """The specs (engine.dynamics.events) of the contacts of ``report`` (engine.pipeline.game_step)
     whose keys are not among ``other``: begins with their impulses, or ends with none."""
     keys = report.keys
-    if len(other):
-        # A binary search each: the reports are sorted by key.
-        at = np.minimum(np.searchsorted(other, keys), len(other) - 1)
-        new = np.flatnonzero(other[at] != keys)
+    if len(keys) + len(other) <= _FEW_KEYS:
+        # A game's dozen keys: a Python set and lists (a few microseconds, where the numpy
+        # calls below take several times that).
+        known = set(other.tolist())
+        listed = keys.tolist()
+        new = [i for i, k in enumerate(listed) if k not in known]
+        if not new:
+            return []
+        rows = zip(
+            [listed[i] for i in new],
+            [report.points[i].tolist() for i in new],
+            [report.normals[i].tolist() for i in new],
+            [report.impulses[i].tolist() for i in new],
+            strict=True,
+        )
     else:
-        new = np.arange(len(keys))
-    if not len(new):
-        return []
-    out: list[Any] = []
-    for k, p, nrm, j in zip(
-        report.keys[new].tolist(),
-        report.points[new].tolist(),
-        report.normals[new].tolist(),
-        report.impulses[new].tolist(),
-        strict=True,
-    ):
-        out.append((t, k, began, (p, nrm, j if began else (0.0, 0.0))))
-    return out
+        if len(other):
+            # A binary search each: the reports are sorted by key.
+            at = np.minimum(np.searchsorted(other, keys), len(other) - 1)
+            picked = np.flatnonzero(other[at] != keys)
+        else:
+            picked = np.arange(len(keys))
+        if not len(picked):
+            return []
+        rows = zip(
+            keys[picked].tolist(),
+            report.points[picked].tolist(),
+            report.normals[picked].tolist(),
+            report.impulses[picked].tolist(),
+            strict=True,
+        )
+    return [(t, k, began, (p, nrm, j if began else (0.0, 0.0))) for k, p, nrm, j in rows]
 
 
 def gaps(state: WorldState, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
