@@ -27,7 +27,10 @@ steps never starts a step apart, so it is left to the soft step. A body and a st
 collider are taken the same way (``late_wall_impacts``), fast or not, and from a depth of
 ``DEEP_WALL``: "through" is then the manifold's normal turned round (the body on the
 collider's other side), and the advancement is against the colliders it went into only (a
-box sliding along a floor into a wall is not stopped by the floor). A body its own start
+box sliding along a floor into a wall is not stopped by the floor). A body that begins the step
+in a collider by no more than ``DEEP_WALL`` (a corner an impact left there at the end of the
+step before, the body turning on into the wall) and ends it ``DEEP_WALL`` deeper than it began
+is taken again too, its moment the one where it is a hair deeper than it began. A body its own start
 motion does not bring there was pushed by another within the step: it is stopped where its
 straight move from x0 to x1 first touches (motion clamping). A body met by several is placed
 by the earliest.
@@ -313,15 +316,27 @@ def late_wall_impacts(
     found[found] = k1[at[found]] == k0[found]
     hit = np.zeros(len(k0), dtype=bool)
     f = np.flatnonzero(found)
-    deep = s1[at[f]] < -DEEP_WALL * size[f]
+    began, ended, lim = s0[f], s1[at[f]], size[f]
+    # Apart at the start, or in by no more than the soft step's own give (a corner left
+    # there by an impact at the end of the step before, the body turning on into the wall):
+    # then deep is DEEP_WALL deeper than it began.
+    apart = began > -SLOP * lim
+    within = apart | (began > -DEEP_WALL * lim)
+    deep = ended < np.where(apart, 0.0, began) - DEEP_WALL * lim
     through = _dot(n1[at[f]], n0[f]) < -0.5
-    hit[f] = (deep | through) & (s0[f] > -SLOP * size[f])
+    hit[f] = (deep | through) & within
     if not hit.any():
         return None
     body, col = b0[hit], c0[hit]
-    # Conservative advancement of each such body against the colliders it went into.
+    # Conservative advancement of each such body against the colliders it went into: to
+    # touching, or for one that began in, to a hair deeper than it began.
     movers = np.unique(body)
-    when = _time_of_wall_impact(walls, movers, body, col, start, pull, radius, dt, reach)
+    level = np.zeros(len(radius))
+    inside = hit.copy()
+    inside[f] &= ~apart
+    np.minimum.at(level, b0[inside], s0[inside] - 2.0 * TOUCH * size[inside])
+    when = _time_of_wall_impact(walls, movers, body, col, start, pull, radius, dt, reach,
+                                level)  # fmt: skip
     # A body that its own start motion does not bring there was sent by another's push
     # within the step (engine.geometry.shaped): it is stopped where its actual move, taken as
     # straight (x0 to x1, angle0 to angle1), first touches one of them (motion clamping).
@@ -331,7 +346,7 @@ def late_wall_impacts(
         w = (q1 - q0) * (1.0 / dt)
         zero = (np.zeros_like(x0), np.zeros_like(q0))
         stop = _time_of_wall_impact(walls, pushed, body, col, (x0, v, q0, w), zero, radius, dt,
-                                    reach)  # fmt: skip
+                                    reach, level)  # fmt: skip
         for k, t in zip(pushed.tolist(), stop.tolist(), strict=True):
             if clamped is not None and math.isfinite(t):
                 clamped[k] = (x0[k] + v[k] * t, float(q0[k] + w[k] * t))
@@ -361,10 +376,12 @@ def _time_of_wall_impact(
     radius: np.ndarray,
     dt: float,
     reach: float,
+    level: np.ndarray | None = None,
 ) -> np.ndarray:
     """When (s) each of ``movers`` first touches one of the colliders it went into (the
     pairs ``body``, ``col``) along the start motion, by conservative advancement; inf where
-    it does not within the step."""
+    it does not within the step. ``level`` (by row, <= 0; None: 0): the separation taken
+    as the surface (a body that began the step in: a hair deeper than it began)."""
     x0, v0, q0, w0 = start
     acc, alpha = pull
     wanted = set(zip(body.tolist(), col.tolist(), strict=True))
@@ -385,12 +402,13 @@ def _time_of_wall_impact(
     t = np.zeros(len(movers))
     hit = np.full(len(movers), np.inf)
     live = np.ones(len(movers), dtype=bool)
+    floor = np.zeros(len(movers)) if level is None else level[movers]
     for _ in range(ROUNDS):
         k = np.flatnonzero(live)
         if not len(k):
             break
         m, tk = movers[k], t[k]
-        gap = gap_at(k, tk)
+        gap = gap_at(k, tk) - floor[k]
         touch = gap <= TOUCH * radius[m]
         hit[k[touch]] = tk[touch]
         live[k[touch]] = False
@@ -407,7 +425,7 @@ def _time_of_wall_impact(
         # Out of rounds (a corner grazing a face creeps on by a hair a round): the rest of
         # the step is searched for where the body is first in, and the moment it touches
         # found by bisection between that and the pose before (module text).
-        hit[k] = _first_touch(gap_at, TOUCH * radius[movers], k, t[k], dt)
+        hit[k] = _first_touch(gap_at, floor + TOUCH * radius[movers], k, t[k], dt)
     return hit
 
 
