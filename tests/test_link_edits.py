@@ -148,3 +148,24 @@ def test_what_is_fixed_once_made_says_so_and_bad_values_are_refused() -> None:
     with pytest.raises(TypeError, match="collide must be True or False"):
         hinge.collide = 1  # type: ignore[assignment]
     assert hinge.collide is False
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_hinges_motor_set_between_steps_drives_the_next_step(kernels: str) -> None:
+    # The soft step keeps its joints' rows whole while no setting of any joint is set
+    # (engine.dynamics.links.edits): a motor's speed and torque, set between two steps of a
+    # game, are each the next step's. A wheel on a hinge at its centre, no gravity: the motor
+    # (no bound on its torque) turns it at its speed, and with no torque it turns on as it was.
+    world = World(kernels=kernels, solver="soft")
+    wheel = world.add(Body(Vector(0.0, 0.0), mass=1.0, radius=0.5))
+    hinge = world.add_link(Hinge(wheel, world.static_body, (0.0, 0.0), motor_speed=2.0))
+    for _ in range(10):
+        world.step(DT)
+    assert wheel.angular_velocity == pytest.approx(2.0, abs=1e-9)
+    hinge.motor_speed = -3.0
+    world.step(DT)
+    assert wheel.angular_velocity == pytest.approx(-3.0, abs=1e-9)
+    hinge.max_torque = 0.0
+    hinge.motor_speed = 5.0
+    world.step(DT)
+    assert wheel.angular_velocity == pytest.approx(-3.0, abs=1e-9)  # no torque: it turns on

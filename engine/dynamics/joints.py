@@ -24,7 +24,7 @@ from typing import Any
 from .. import checks
 from ..body import Body
 from ..vector import Vector
-from .links import STATIC, Link, fixed_point, local_anchor, plane_body, refuse_immobile
+from .links import STATIC, Link, fixed_point, local_anchor, note_edit, plane_body, refuse_immobile
 from .reported import Reported
 
 __all__ = [
@@ -262,6 +262,7 @@ class Hinge(Joint):
         it needs nothing made again."""
         if getattr(self, name, None) != value:
             setattr(self, name, value)
+            note_edit()  # (read at every step: the soft step's rows take it)
             for body in (self._body, self._other):
                 if body is not None:
                     body.activate()

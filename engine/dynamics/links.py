@@ -66,6 +66,22 @@ MAX_ITERATIONS = 25
 #: Up to this many links that share no body are solved one by one in Python floats.
 APART = 16
 
+#: How many times a setting of any link, joint or spring was set in this process: each
+#: ``revision`` counted (``Link.revision``, ``BodySpring.revision``) and each hinge's motor or
+#: limits set (``note_edit``). A step that finds it as it was reads no link's own revision.
+_EDITS = 0
+
+
+def edits() -> int:
+    """How many settings of links, joints and springs were set so far (``_EDITS``)."""
+    return _EDITS
+
+
+def note_edit() -> None:
+    """Count a setting of a link, joint or spring as set (``edits``)."""
+    global _EDITS
+    _EDITS += 1
+
 
 def fixed_point(value: Any, name: str) -> Vector:
     """A finite 2D point, or a TypeError / ValueError naming ``name``."""
@@ -139,7 +155,7 @@ class Link:
 
     __slots__ = (
         "_body", "_other", "_point", "_length", "_e", "_anchor_a", "_anchor_b", "_impulse",
-        "_pending", "warned", "revision",
+        "_pending", "warned", "_revision",
     )  # fmt: skip
 
     impulse: Reported[float] = Reported(
@@ -151,6 +167,18 @@ class Link:
         """For ``copy`` and ``pickle``: the slots, the last step's impulses put on it first
         (engine.dynamics.reported.reported_state)."""
         return reported_state(self)
+
+    @property
+    def revision(self) -> int:
+        """How many times its length, anchors or (a joint's) collide were set since it was
+        made: the World's solvers take a link again when it changes (each counted in
+        ``edits`` too)."""
+        return self._revision
+
+    @revision.setter
+    def revision(self, value: int) -> None:
+        self._revision = value
+        note_edit()
 
     #: Whether the link holds the distance both ways (a rod) or only at most (a cable).
     rigid = True
@@ -210,9 +238,7 @@ class Link:
         self.impulse = 0.0
         #: Whether the World has warned that this link was stretched past what a step holds.
         self.warned = False
-        #: How many times its length, anchors or (a joint's) collide were set since it was
-        #: made: the World's solvers take a link again when it changes.
-        self.revision = 0
+        self.revision = 0  # (the property's text)
 
     def end_a(self) -> Vector:
         """Where the link holds ``body`` now: its anchor_a, in world coordinates."""

@@ -36,7 +36,7 @@ from typing import Any, ClassVar
 from .. import checks
 from ..body import Body
 from ..vector import Vector
-from .links import STATIC, StaticBody, fixed_point, local_anchor, plane_body
+from .links import STATIC, StaticBody, fixed_point, local_anchor, note_edit, plane_body
 from .reported import Pending, Reported, reported_state
 
 __all__ = ["DampedSpring", "DampedRotarySpring", "BodySpring"]
@@ -75,7 +75,9 @@ def _nonneg(value: Any, name: str, unit: str) -> float:
 class BodySpring:
     """What both springs share: the two bodies, the settings' revision, the last impulse."""
 
-    __slots__ = ("_a", "_b", "_stiffness", "_damping", "revision", "_impulse", "_pending", "warned")
+    __slots__ = (
+        "_a", "_b", "_stiffness", "_damping", "_revision", "_impulse", "_pending", "warned",
+    )  # fmt: skip
 
     impulse: Reported[float] = Reported(
         "The impulse the spring gave in the last step (see each class)."
@@ -86,6 +88,17 @@ class BodySpring:
         (engine.dynamics.reported.reported_state)."""
         return reported_state(self)
 
+    @property
+    def revision(self) -> int:
+        """Counts changes of the settings (the World rebuilds what it keeps of them; each
+        counted in engine.dynamics.links' ``edits`` too)."""
+        return self._revision
+
+    @revision.setter
+    def revision(self, value: int) -> None:
+        self._revision = value
+        note_edit()
+
     #: Both solvers hold a spring (engine.dynamics.constraints' joints are the soft step's alone).
     needs_soft: ClassVar[bool] = False
 
@@ -94,8 +107,7 @@ class BodySpring:
         self._a = _first(a, self._b)
         self._stiffness = _nonneg(stiffness, "stiffness", unit)
         self._damping = _nonneg(damping, "damping", unit + " s")
-        #: Counts changes of the settings (the World rebuilds what it keeps of them).
-        self.revision = 0
+        self.revision = 0  # (the property's text)
         self._pending: Pending | None = None  # a soft step's impulse, not yet put here
         self.impulse = 0.0
         #: Whether the World has warned that this spring is too stiff for its dt.

@@ -66,6 +66,9 @@ class Contacts:
 
     def __init__(self) -> None:
         self.colliders: list[Collider] = []
+        #: How many times a collider was added or taken out (what is kept of the colliders
+        #: is made again when it changes: engine.pipeline.game_step).
+        self.edits = 0
         self._faces: Faces | None = None
         self._sensors: list[int] = []
         self.rest = np.zeros(0, dtype=np.intp) - 1  # (N,) face each body rests on, -1 if free
@@ -129,6 +132,7 @@ class Contacts:
         """
         k = len(self.colliders)
         self.colliders.append(collider)
+        self.edits += 1
         old = self._faces
         if old is None:
             self._rebuild()
@@ -155,6 +159,7 @@ class Contacts:
         ``add``: ``engine.geometry.faces.faces_removed``, ``FaceGrid.removed``)."""
         k = self.colliders.index(collider)
         del self.colliders[k]
+        self.edits += 1
         if collider.sensor:
             j = self._sensors.index(k)
             self.inside = np.delete(self.inside, j, axis=1)

@@ -115,11 +115,15 @@ def apart_keys(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray
     return np.unique(np.concatenate(apart))
 
 
+#: No keys (what ``ignored_keys`` gives on most steps; empty, so nothing can write to it).
+_NO_KEYS = np.zeros(0, dtype=np.int64)
+
+
 def ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
     """The faces pre_solve ignored ((K, 2) of body row, collider place) as sorted keys
     row (colliders + 1) + place."""
     if not len(ignored):
-        return np.zeros(0, dtype=np.int64)
+        return _NO_KEYS
     k = colliders + 1
     return np.unique(np.asarray(ignored[:, 0], dtype=np.int64) * k + ignored[:, 1])
 

@@ -179,6 +179,8 @@ class GameStep:
         self.forget()  # the contacts' warm starts and reports: none yet
         self._table: tuple[int, list[Any], ShapeTable] | None = None
         self._statics: tuple[tuple[Any, ...], StaticShapes, np.ndarray, np.ndarray] | None = None
+        # The colliders' ids: (the World's Contacts, its edits then, the ids).
+        self._ids: tuple[Any, int, tuple[int, ...]] = (None, 0, ())
         self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
         self._part_places: tuple[Parts, StaticShapes, narrowphase.Places] | None = None
         self._kept_layout: tuple[Any, Any, Any] | None = None  # (``_layout``)
@@ -425,8 +427,15 @@ class GameStep:
         """What the step reads of the World but its bodies' motion (``_Scene``): the tables
         kept from step to step, made again only where the World changed."""
         table = self._shapes(store)
-        colliders = [] if state.contacts is None else state.contacts.colliders
-        ids = tuple(map(id, colliders))
+        contacts = state.contacts
+        colliders = [] if contacts is None else contacts.colliders
+        # The colliders' ids, the key of what is kept of them, taken again only when one
+        # came or went (``Contacts.edits``).
+        kept_ids = self._ids
+        edited = 0 if contacts is None else contacts.edits
+        if kept_ids[0] is not contacts or kept_ids[1] != edited:
+            kept_ids = self._ids = (contacts, edited, tuple(map(id, colliders)))
+        ids = kept_ids[2]
         cs = self._colliders(colliders, state.events.serial, ids)
         self.serials = cs.serial  # the colliders' serial numbers, for the events' settle
         statics, owner, bounds = self._static(colliders, ids)
@@ -480,7 +489,7 @@ class GameStep:
         colliders come or go (``key``: their ids) or a material is set
         (``materials_changed``)."""
         kept = self._cs
-        if kept is None or kept[0] != key:
+        if kept is None or (kept[0] is not key and kept[0] != key):
             kept = self._cs = (key, broad.collider_arrays(colliders, serial))
         return kept[1]
 
@@ -515,7 +524,7 @@ class GameStep:
         shapes are kept and the gone ones' boxes emptied (``_without``): every stage tests a
         static shape's box before its collider, so a shape with an empty box meets nothing."""
         kept = self._statics
-        if kept is not None and kept[0] == key:
+        if kept is not None and (kept[0] is key or kept[0] == key):
             return kept[1], kept[2], kept[3]
         if kept is not None:
             left = _without(kept[0], key, kept[2], kept[3])

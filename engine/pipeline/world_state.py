@@ -22,7 +22,7 @@ from ..dynamics.affine import AffineKernel, StepCount, safe_steps
 from ..dynamics.events import WorldEvents
 from ..dynamics.forcefield import ForceModel
 from ..dynamics.joints import Joint
-from ..dynamics.links import Link, LinkSolver, Pin
+from ..dynamics.links import Link, LinkSolver, Pin, edits
 from ..dynamics.mouse_joint import MouseJoints
 from ..dynamics.policy import MethodPolicy
 from ..dynamics.store import BodyStore
@@ -97,6 +97,7 @@ class WorldState:
         self.turn_targets: dict[Body, float] = {}  # kinematic bodies' angles (rad), likewise
         self.links: list[Link] = []  # rods, cables and pins (engine.dynamics.links)
         self.link_revisions: tuple[int, ...] = ()  # each link's revision as last taken
+        self.link_edits = -1  # engine.dynamics.links.edits() when they were taken
         self.retired: list[Link] = []  # links taken out (a snapshot may bring one back)
         # The links as arrays (engine.dynamics.links), or as rows of the joint solver when a joint
         # or an anchor away from a centre is among them (engine.exact.joint_solver); made when
@@ -358,6 +359,7 @@ class WorldState:
                     store.kinematic[store.row(k.body.slot)] = True
         self.jointed = any(k.anchored or isinstance(k, Joint) for k in self.links)
         self.link_revisions = tuple(k.revision for k in self.links)
+        self.link_edits = edits()
         # A body no longer held goes nowhere it was sent while held.
         self.targets = {b: p for b, p in self.targets.items() if b.kinematic}
         self.turn_targets = {b: a for b, a in self.turn_targets.items() if b.kinematic}
@@ -368,7 +370,10 @@ class WorldState:
         (Link.revision) are taken: the exact solvers are made again, the pairs a joint keeps
         apart found again, and the edited links' bodies woken (a winch pulls a sleeping
         crate)."""
+        if edits() == self.link_edits and len(self.links) == len(self.link_revisions):
+            return  # no setting of any link set since they were taken: the same revisions
         revisions = tuple(k.revision for k in self.links)
+        self.link_edits = edits()
         if revisions == self.link_revisions:
             return
         store = self.store
