@@ -25,7 +25,7 @@ import numpy as np
 
 from .. import kernels
 from ..dynamics.events import COLLIDER
-from ..dynamics.game_continuous import SAFETY
+from ..dynamics.game_continuous import DEEP, SAFETY, ended_depth
 from ..dynamics.solver import MOUSE, solve
 from ..exact.pile import label_rows
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
@@ -113,10 +113,12 @@ def step_loop(
     bodies asleep through this one, held open; sorted by key), the sensor colliders' overlaps
     as event keys, and the touching pairs of bodies (keys a n + b, a < b: contacts, then
     joints between two bodies) for ``Body.sleep``'s island, and whether a body may be fast
-    (moved more than about engine.dynamics.game_continuous.SAFETY of its least extent: the
-    continuous stage's test), then what the World checks of the bodies after it: |the sum of
-    x and v|, |the sum of angle and omega| (each nan or inf where an entry is) and whether any
-    body spins."""
+    (moved more than about engine.dynamics.game_continuous.SAFETY of its least extent, or
+    ended deeper than about its DEEP in what the solve does not move: the continuous stage's
+    test), then what the World checks of the bodies after it: |the sum of x and v|, |the sum
+    of angle and omega| (each nan or inf where an entry is) and whether any body spins; last,
+    each body's least separation at the end from what the solve does not move (m,
+    engine.dynamics.game_continuous.ended_depth)."""
     n = len(radius)
     if len(margin) != n:
         # |v| dt + |a| dt^2 + |omega| dt r: what the shape can move in the step (``_reach``'s
@@ -211,6 +213,18 @@ def step_loop(
         jmotor, jspeed, jmaxtorque, jpx, jpy, jpa, jlo, jhi, jmi,
         dt, substeps, contact_hertz, contact_damping, joint_hertz, joint_damping, push,
         threshold, rise,
+    )  # fmt: skip
+    # -- the bodies' poses after it, and how deep each ended in what the solve does not move
+    # (engine.dynamics.game_continuous.ended_depth: the continuous stage sweeps one too deep)
+    x_out = np.empty((n, 2))
+    for i in range(n):
+        x_out[i, 0], x_out[i, 1] = bx[i], by[i]
+    q_out = bq[:n].copy()
+    solved = np.zeros(nb, dtype=np.bool_)
+    solved[:n] = moving
+    ended = ended_depth(
+        x, angle, x_out, q_out, solved, ca, cb, nx, ny, count, found[5], found[6], found[7],
+        found[8], sep,
     )  # fmt: skip
     # -- what the contacts did (engine.pipeline.game_contacts.report_loop) -------------------------
     kept, lam, event, point, normal, impulse = report_loop(
@@ -343,21 +357,20 @@ def step_loop(
                 far = max(far, np.hypot(V[j, e, 0], V[j, e, 1]))
             small = min(small, max(depth, 0.0) + rad[j])
         move = abs(bx[i] - x[i, 0]) + abs(by[i] - x[i, 1]) + abs(bq[i] - angle[i]) * far
-        if move > SAFETY * small * (1.0 - 1e-6):
+        if move > SAFETY * small * (1.0 - 1e-6) or ended[i] < -DEEP * small * (1.0 - 1e-6):
             fast = True
             break
     # The bodies after the step, and what the World checks of them (engine.pipeline.stepping):
     # the sums of their positions and velocities, and of their angles and angular velocities
     # (nan or inf where an entry is), and whether any body spins (a nan does).
-    x_out = np.empty((n, 2))
     v_out = np.empty((n, 2))
     linear, turning, spinning = 0.0, 0.0, False
     for i in range(n):
-        x_out[i, 0], x_out[i, 1] = bx[i], by[i]
         v_out[i, 0], v_out[i, 1] = bvx[i], bvy[i]
         linear += (bx[i] + by[i]) + (bvx[i] + bvy[i])
         turning += bq[i] + bw[i]
         if bw[i] != 0.0:
             spinning = True
-    return (x_out, v_out, bq[:n].copy(), bw[:n].copy(), kept, lam, event, point, normal,
-            impulse, sensing, touching, fast, abs(linear), abs(turning), spinning)  # fmt: skip
+    return (x_out, v_out, q_out, bw[:n].copy(), kept, lam, event, point, normal,
+            impulse, sensing, touching, fast, abs(linear), abs(turning), spinning,
+            ended)  # fmt: skip

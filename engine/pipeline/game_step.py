@@ -39,7 +39,8 @@ The stages, in the order they run (Box2D v3's ``b2SolverStage`` list):
 8. ``_sleep``: still islands fall asleep (engine.pipeline.game_sleep); a sleeper's contacts stay
    open.
 9. engine.dynamics.game_continuous (``Continuous.sweep``, on either path): each fast body (one that
-   moved more than half its least extent) swept from its pose at the step's start to its end against
+   moved more than half its least extent, or ended a quarter of it deep in what the solve does
+   not move: ``ended_depth``) swept from its pose at the step's start to its end against
    the colliders and the static and kinematic bodies (a bullet against the dynamic ones too:
    ``Body.bullet``), and set back to its first time of impact, its velocity kept (Box2D v3's
    ``b2SolveContinuous``): a thin box turning fast meets a wall with another corner than its rows
@@ -67,7 +68,7 @@ import numpy as np
 from ..body_shapes import MAX_PARTS
 from ..dynamics import solver
 from ..dynamics.events import COLLIDER, collider_keys, pair_keys
-from ..dynamics.game_continuous import Continuous
+from ..dynamics.game_continuous import Continuous, ended_depth
 from ..dynamics.game_joints import GameJoints
 from ..geometry import narrowphase
 from ..geometry.colliders import Collider
@@ -276,6 +277,10 @@ class GameStep:
         v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
         angle = np.asarray(out[2][:n], dtype=float)
         omega = np.asarray(out[5][:n], dtype=float)
+        # How deep each body ended in what the solve does not move (the continuous stage
+        # sweeps one too deep: engine.dynamics.game_continuous.ended_depth, the plain twin).
+        solved = np.append(awake, False)
+        ended = ended_depth.py(store.x, store.angle, x, angle, solved, *found.rows[:10])
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
         self.joints.report(joints[1], out, self.substeps)
@@ -286,7 +291,7 @@ class GameStep:
             self.report.sensing = collider_keys(
                 store.slots()[found.sense_row], sc.cs.serial[found.sense_place]
             )
-        self.continuous.sweep(store, sc, x, angle)  # stage 9 (engine.dynamics.game_continuous)
+        self.continuous.sweep(store, sc, x, angle, ended)  # stage 9
         return x, v, angle, omega
 
     def _step_fast(
@@ -352,7 +357,7 @@ class GameStep:
         self.joints.report(joints[1], head + joints[0], self.substeps, joints[0])
         # Stage 9: the fast bodies swept to their time of impact (engine.dynamics.game_continuous),
         # where step_loop says a body may be fast.
-        self.continuous.sweep(store, sc, x, angle)
+        self.continuous.sweep(store, sc, x, angle, out[16])
         self.sums = None if self.continuous.hits else sums  # (a body set back: summed again)
         return x, v, angle, omega
 
