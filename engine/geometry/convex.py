@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from fractions import Fraction
 
 __all__ = [
     "MAX_VERTICES",
@@ -58,6 +59,20 @@ def _sag(n: int) -> float:
 
 def _cross(ax: float, ay: float, bx: float, by: float) -> float:
     return ax * by - ay * bx
+
+
+#: How far a turn's cross product computed in floats may be from the exact one, over the sum
+#: of its two products' sizes: Shewchuk's ``ccwerrboundA``, (3 + 16 eps) eps, eps = 2^-53, as
+#: here the edges are differences of the points (rounded) and their products rounded too.
+_TURN_ERROR = (3.0 + 16.0 * 2.0**-53) * 2.0**-53
+
+
+def _exact_turn(a: Point, b: Point, c: Point) -> float:
+    """The sign (-1.0, 0.0 or 1.0) of the cross product of the edges a->b and b->c, exactly
+    (the corners are floats: their differences and products are exact as fractions)."""
+    fa, fb, fc = [(Fraction(x), Fraction(y)) for x, y in (a, b, c)]
+    turn = (fb[0] - fa[0]) * (fc[1] - fb[1]) - (fb[1] - fa[1]) * (fc[0] - fb[0])
+    return float((turn > 0) - (turn < 0))
 
 
 def convex_polygon(
@@ -137,6 +152,10 @@ def convex_polygon(
         (ax, ay), (bx, by), (cx, cy) = pts[i - 1], pts[i], pts[(i + 1) % count]
         e1x, e1y, e2x, e2y = bx - ax, by - ay, cx - bx, cy - by
         turn = _cross(e1x, e1y, e2x, e2y)
+        if abs(turn) <= _TURN_ERROR * (abs(e1x * e2y) + abs(e1y * e2x)):
+            # Within the rounding of the differences and products (Shewchuk's bound for this
+            # orientation test): its sign from the exact cross product of the exact edges.
+            turn = _exact_turn((ax, ay), (bx, by), (cx, cy))
         if turn == 0.0 and e1x * e2x + e1y * e2y > 0.0:
             raise ValueError(
                 f"{name}[{index[i]}] = {pts[i]} lies on the straight line between its "
