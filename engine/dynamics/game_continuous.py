@@ -63,8 +63,12 @@ impact of the two is taken:
   with its whole shape, to where the cores come a slop nearer than they were at the start
   (target min(target, d(0) - slop), at least 0, but for a half plane, whose distance is its
   corners' least, signed: a thin triangle flipped off a floor at 59 rad/s swung its other end
-  0.257 m into it while the target was held at 0, where its distance already was): the
-  conservative advancement above holds for any target below d(0). A capsule that struck a
+  0.257 m into it while the target was held at 0, where its distance already was; and for
+  cores that overlap at the start, whose distance is 0 however deep: there d is B's
+  separation along the best of A's edge normals, signed, and its closing speed bounded by
+  B's whole motion, so a light polygon battered into a corner of polygon walls goes a slop
+  deeper a step, not 6 cm): the conservative advancement above holds for any target below
+  d(0). A capsule that struck a
   wall with one end and spins off it at 98 rad/s swings its other end a quarter turn into
   the wall within the next step, a feature none of the
   step's rows held (the speculative rows are the nearest features at the start); Box2D's
@@ -338,6 +342,9 @@ def continuous_loop(
         ra = 0.0
         t = 0.0
         start = 0.0  # (the cores' distance at the start, where ``closer``)
+        signed = half  # (whether that distance is signed: a half plane's, or cores that overlap)
+        start_inside = False  # (the cores overlapped at the start: ``closer``'s signed distance)
+        inside = False
         for _ in range(ITERATIONS):
             c, s = math.cos(bq + t * bdq), math.sin(bq + t * bdq)
             px, py = bx + t * bdx, by + t * bdy
@@ -356,15 +363,40 @@ def continuous_loop(
             else:
                 ka, ra = load(va, na, a_circle, a_index, ax + t * adx, ay + t * ady, aq + t * adq)
                 d, nx, ny = gap(ka, kb)
+                if closer and t == 0.0:
+                    start_inside = d == 0.0 and ka >= 2
+                inside = start_inside and d == 0.0
+                if inside:
+                    # The cores overlapped at the start and still do (A, a wall's polygon or
+                    # capsule, does not move): B's separation along the best of A's edge
+                    # normals, signed (<= 0), as a half plane's distance is (module doc).
+                    d = -math.inf
+                    for i in range(ka):
+                        low = math.inf
+                        for j in range(kb):
+                            ox, oy = vb[j, 0] - va[i, 0], vb[j, 1] - va[i, 1]
+                            low = min(low, na[i, 0] * ox + na[i, 1] * oy)
+                        d = max(d, low)
             target = max(slop, ra + rb - slop)
             if closer:
                 if t == 0.0:
                     start = d
-                # (A half plane's d is signed, its corners' least: it may go below 0, and
-                # a slop below where it started is a corner swung in, however deep it began.)
-                target = min(target, start - slop if half else max(start - slop, 0.0))
+                    signed = half or start_inside
+                # (A signed d, a half plane's or overlapping cores', may go below 0, and a
+                # slop below where it started is a corner swung in or a body pushed on in,
+                # however deep it began.)
+                target = min(target, start - slop if signed else max(start - slop, 0.0))
             if d < target + tol:
                 return t
+            if not half and inside:
+                # How fast B's corners can close on any of A's edges (A still): B's motion.
+                w = math.sqrt(bdx * bdx + bdy * bdy) + abs(bdq) * b_core
+                if w <= 0.0:
+                    return t_max
+                t = t + (d - target) / w
+                if t >= t_max:
+                    return t_max
+                continue
             # How fast (a step's worth) the gap can close along n (module doc).
             w = nx * (adx - bdx) + ny * (ady - bdy) + abs(adq) * a_core + abs(bdq) * b_core
             if w <= 0.0:
