@@ -881,6 +881,10 @@ def stopping(
                 active[A[np.argmin(lam[A])]] = False
                 continue
         after = vn + K @ lam
+        if (after[active] < -tol).any():
+            # The solve left a pair it pushed still closing: normals all but parallel (a
+            # body between a wall and a wall coming at it 6e-8 rad apart), K near singular.
+            return None  # (the sweeps decide)
         left = ~active & (after < -tol)
         if not left.any():
             return lam
