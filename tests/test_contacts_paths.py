@@ -112,6 +112,37 @@ def test_a_ball_on_a_peg_leaving_too_slowly_to_get_away_is_pressed_in() -> None:
     assert t == pytest.approx(-k1 / k2, rel=1e-3) and t > 1e-9 * T
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_a_straight_path_tangent_to_a_disc_grazes_it(seed: int) -> None:
+    """A ball whose straight path passes a round face at exactly its contact distance rho
+    (its closest point a tangency) does not strike it: the discriminant's rounding would split
+    the double root by 1e-8 of the step, and a strike taken there has an approach speed 1e-8
+    of the ball's. Passing 1e-9 of rho inside, it strikes, where its chord of the disc
+    begins; the two twins agree to the bit."""
+    rng = np.random.default_rng(7 + seed)
+    m, T = 200, 1.0 / 60.0
+    angle = rng.uniform(0.0, 2.0 * np.pi, m)
+    u = np.stack([np.cos(angle), np.sin(angle)], axis=1)  # the direction of flight
+    side = np.stack([-u[:, 1], u[:, 0]], axis=1)
+    c = rng.normal(0.0, 1.0, (m, 2))
+    rho = rng.uniform(0.05, 1.0, m)
+    speed = rng.uniform(0.5, 30.0, m)
+    V, B = u * speed[:, None], np.zeros((m, 2))
+    s = rng.uniform(0.2, 0.8, m) * T  # the moment it passes closest
+    for depth, hits in ((0.0, False), (1e-9, True)):
+        X = c + side * (rho * (1.0 - depth))[:, None] - V * s[:, None]
+        t = disc_hits(X, V, B, c, rho, T)
+        one = [disc_hit_one(tuple(X[i]), tuple(V[i]), (0.0, 0.0), tuple(c[i]), float(rho[i]), T)
+               for i in range(m)]  # fmt: skip
+        assert np.array_equal(t, one)
+        if hits:
+            # It enters where the chord begins: half of 2 sqrt(rho^2 - h^2) before closest.
+            half = np.sqrt(rho * rho - (rho * (1.0 - depth)) ** 2) / speed
+            assert np.allclose(t, s - half, rtol=0.0, atol=1e-3 * half.min())
+        else:
+            assert np.all(np.isinf(t)), f"{np.isfinite(t).sum()} of {m} tangent paths struck"
+
+
 def test_quadratic_first_root_one_is_quadratic_first_root() -> None:
     rng = np.random.default_rng(7)
     m = 2000

@@ -119,6 +119,33 @@ def test_curved_pairs_are_left_to_the_twin() -> None:
     assert curved.any()
 
 
+def test_balls_passing_at_their_contact_distance_graze_on_both_paths() -> None:
+    """Two balls on parallel straight paths, their centres passing exactly R apart, only
+    graze (no impact on either path: a tangency within the discriminant's rounding, as
+    ``engine.geometry.impact.grazes``); passing 1e-9 of R closer, they meet, at the same
+    bits on both paths."""
+    rng = np.random.default_rng(11)
+    n, dt = 100, 1.0 / 60.0
+    angle = rng.uniform(0.0, 2.0 * np.pi, n)
+    u = np.stack([np.cos(angle), np.sin(angle)], axis=1)
+    side = np.stack([-u[:, 1], u[:, 0]], axis=1)
+    r = rng.uniform(0.05, 1.0, (n, 2))
+    R = r[:, 0] + r[:, 1]
+    closing = rng.uniform(0.5, 30.0, n)
+    pa, pb = np.arange(0, 2 * n, 2), np.arange(1, 2 * n, 2)
+    for depth, meet in ((0.0, False), (1e-9, True)):
+        X = np.empty((2 * n, 2))
+        V = np.zeros((2 * n, 2))
+        X[pa] = rng.normal(0.0, 1.0, (n, 2))
+        V[pa] = u * closing[:, None]
+        # b passes a at R (1 - depth) at mid-step; X is the end of the step.
+        X[pb] = X[pa] + side * (R * (1.0 - depth))[:, None] - V[pa] * (0.5 * dt)
+        A, ts = np.zeros((2 * n, 2)), np.zeros(2 * n)
+        want, got = both((pa, pb, R, X, V, A, ts, np.float64(dt)))
+        assert np.array_equal(got, want)
+        assert np.isfinite(want).all() if meet else np.isinf(want).all()
+
+
 def test_the_comparison_can_fail() -> None:
     """The comparison is sharp: radii 1e-9 larger (a kernel that rounded them differently)
     give other times, which it catches."""

@@ -83,7 +83,7 @@ import numpy as np
 from .. import kernels
 from ..dynamics import coloring
 from ..dynamics.rotation import Spin
-from ..geometry.impact import TOUCH, disc_hits, line_hits
+from ..geometry.impact import GRAZE_ROUNDING, TOUCH, disc_hits, line_hits
 from ..geometry.pair_math import SLOP, dot, norm, state_at, unit
 from .bent_paths import Bends, Replay
 from .pair_bounce import Turns, bounce, turns_of, wall_bounce
@@ -716,6 +716,11 @@ def pair_times(
                         r2 = r2 if r2 >= 0.0 else inf
                         r = r1 if r1 < r2 else r2
                 r = r if r <= 1.0 else inf
+                if r > (1e-9 if leaving else -1e-9) and r != inf and not leaving and k0 > 0.0:
+                    # impact.graze_one: a tangency within the discriminant's rounding.
+                    disc = k1 * k1 - 4.0 * k2 * k0
+                    if disc <= GRAZE_ROUNDING * (k1 * k1 + 4.0 * abs(k2) * (dd + rho * rho)):
+                        r = inf
                 if r > (1e-9 if leaving else -1e-9) and r != inf:
                     # _polish: three Newton steps, kept unless they stray (a double root).
                     x = r
