@@ -52,11 +52,12 @@ engine.geometry.pair_grid's struck bodies are.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from ..geometry.pair_grid import Search, impact_gain, rows_of
+from ..geometry.pair_grid import Search, collide, impact_gain, rows_of
 from ..geometry.pair_math import isin_sorted, norm, sorted_unique
 
 if TYPE_CHECKING:
@@ -222,6 +223,16 @@ def box_pairs(lo: np.ndarray, hi: np.ndarray, k: np.ndarray) -> tuple[np.ndarray
     return np.minimum(ka[meet], kb[meet]), np.maximum(ka[meet], kb[meet])
 
 
+def _colliding(
+    pairs: tuple[np.ndarray, np.ndarray],
+    can: Callable[[np.ndarray, np.ndarray], np.ndarray | None] | None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs that ``can`` says can collide (all, without it)."""
+    ia, ib = pairs
+    ok = None if can is None else can(ia, ib)
+    return (ia, ib) if ok is None else (ia[ok], ib[ok])
+
+
 def bent_pairs(
     bends: Bends,
     search: Search,
@@ -230,13 +241,16 @@ def bent_pairs(
     w: np.ndarray,
     e: np.ndarray,
     free: np.ndarray,
+    can: Callable[[np.ndarray, np.ndarray], np.ndarray | None] | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Pairs of places in ``search.live`` (lower, higher, sorted) that a bent path may bring
     within touch (module text, "Broadphase"): each bent body's box against every other
     body's, and those of the bodies it may strike. ``search``: what engine.geometry.pair_grid found
     the pairs with (each live body's free end, radius, velocities, pull, reach); A (N, 2):
     the pulls by World row; w, e, ``free`` (by place in live): inverse masses (0: moved by
-    the game), restitutions, and which bodies are no pile's."""
+    the game), restitutions, and which bodies are no pile's; ``can``: which pairs can
+    collide (a mask, None for all; engine.geometry.pair_grid ``collide``): only they pass a
+    gain on, as in ``struck_pairs``."""
     P, r, v0, v1, Al, reach, live = search
     where = np.minimum(np.searchsorted(live, bends.rows), len(live) - 1)
     inside = live[where] == bends.rows
@@ -249,7 +263,7 @@ def bent_pairs(
     # radius, as reach's) and its radius.
     bend = (norm(A[bends.rows[inside]]) * (0.125 * dt * dt) + 1.05 * r[k])[:, None]
     lo[k], hi[k] = bends.lo[inside] - bend, bends.hi[inside] + bend
-    ia, ib = box_pairs(lo, hi, k)
+    ia, ib = _colliding(box_pairs(lo, hi, k), can)
     # A body a bent one strikes may be sent off faster than its own reach (engine.geometry.pair_grid
     # ``struck_pairs``, whose rule this is): by at most (1 + e) w_b / (w_a + w_b) times the
     # closing speed, which is at most the sum of the two top speeds in the step (a bent
@@ -268,7 +282,7 @@ def bent_pairs(
         got[grown] = gain[grown]
         lo[grown] -= (gain[grown] * dt)[:, None]
         hi[grown] += (gain[grown] * dt)[:, None]
-        na, nb = box_pairs(lo, hi, grown)
+        na, nb = _colliding(box_pairs(lo, hi, grown), can)
         ia, ib = np.concatenate([ia, na]), np.concatenate([ib, nb])
     key = sorted_unique(ia.astype(np.int64) * len(P) + ib)
     return key // len(P), key % len(P)
@@ -292,7 +306,10 @@ def bent_rows(
     w = 1.0 / store.mass[live]
     if has_kin:
         w[store.kinematic[live]] = 0.0  # moved by the game: no impulse moves it
-    ia, ib = bent_pairs(bends, search, A, dt, w, store.restitution[live], ~island[live])
+    ia, ib = bent_pairs(
+        bends, search, A, dt, w, store.restitution[live], ~island[live],
+        lambda ia, ib: collide(live[ia], live[ib], store, has_kin, plain),
+    )  # fmt: skip
     return rows_of(ia, ib, live, store, has_kin, plain)
 
 
