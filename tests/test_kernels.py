@@ -339,3 +339,27 @@ def test_a_pile_lands_the_same_on_both_paths() -> None:
     assert y.min() > 0.4  # the balls rest on the floor, not through it
     if len(worlds) == 2:
         assert np.abs(worlds[0].positions() - worlds[1].positions()).max() < 1e-9
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 15, 16, 17, 33, 63, 64, 65, 200, 1000, 5000])
+@pytest.mark.parametrize("spread", ["ties", "wide", "narrow", "extreme"])
+def test_the_compiled_stable_order_is_numpys_stable_argsort(n: int, spread: str) -> None:
+    """``engine.kernels.stable_order``'s compiled twin (buckets of the leading bits, each
+    merge-sorted from runs of 16 by insertion) gives numpy's stable argsort, the one answer a
+    stable sort has: ties keep their order (few distinct keys), keys spread wide or packed
+    close, and keys at the ends of the int64 range (a span wider than an int64)."""
+    rng = np.random.default_rng(n * 7 + len(spread))
+    keys = {
+        "ties": rng.integers(0, 5, n),
+        "wide": rng.integers(-(2**40), 2**40, n),
+        "narrow": rng.integers(10**12, 10**12 + 3 * n + 1, n),
+        "extreme": rng.choice(np.array([-(2**63), 2**63 - 1, 0, -1, 1]), n),
+    }[spread].astype(np.int64)
+    want = np.argsort(keys, kind="stable")
+    sort = kernels._stable_order_compiled
+    if COMPILED:
+        import numba
+
+        sort = numba.njit(sort)
+    assert np.array_equal(sort(keys), want)
+    assert np.array_equal(kernels.stable_order(keys), want)

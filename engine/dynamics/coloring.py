@@ -37,6 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import kernels
+from ..kernels import stable_order
 
 __all__ = ["colors", "batches", "color_rows", "batch_rows", "MAX_COLORS"]
 
@@ -322,7 +323,7 @@ def batch_rows(
     for k in range(rows):
         low, high = min(low, color[k]), max(high, color[k])
     if low < 0 or high >= MAX_COLORS:
-        order = np.argsort(color, kind="mergesort")
+        order = stable_order(color)
     else:
         start = np.zeros(MAX_COLORS + 1, dtype=np.int64)
         for k in range(rows):

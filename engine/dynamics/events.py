@@ -36,6 +36,7 @@ import numpy as np
 
 from .. import kernels
 from ..geometry.impact import TOUCH
+from ..kernels import stable_order
 from ..vector import Vector
 
 __all__ = ["ContactEvent", "ContactLedger", "CONTACT_SLACK", "COLLIDER"]
@@ -170,7 +171,7 @@ def merge_loop(
 ) -> tuple[np.ndarray, ...]:
     """``_merge`` as one walk over the five sorted lists at once (``touched`` sorted here,
     with its flags): each key once, in order, with its flags as it passes."""
-    order = np.argsort(touched, kind="mergesort")
+    order = stable_order(touched)
     t_keys, t_open = touched[order], opened[order]
     np_, nt, nr, ns = len(prev), len(t_keys), len(resting), len(sensing)
     total = np_ + nt + nr + ns

@@ -52,6 +52,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import kernels
+from ..kernels import stable_order
 from .pair_math import dot, norm, sorted_unique
 
 __all__ = [
@@ -440,7 +441,7 @@ def grid_pairs_loop(
             order[first[k]] = i
             first[k] += 1
     else:
-        order = np.argsort(key, kind="mergesort")
+        order = stable_order(key)
     sk = key[order]
     rank = np.empty(n, dtype=np.int64)  # each point's place in the sorted keys
     for p in range(n):

@@ -480,9 +480,17 @@ def contacts_loop(
                 hp, hn, gi_a[lo:hi], gx_a[lo:hi], gq_a[lo:hi], V, Nrm, cnt,
                 rad, gi_b[lo:hi], gx_b[lo:hi], gq_b[lo:hi], margins[g],
             )  # fmt: skip
-        normal[lo:hi], count[lo:hi], point[lo:hi] = out[0], out[1], out[2]
-        anchor_a[lo:hi], anchor_b[lo:hi] = out[3], out[4]
-        separation[lo:hi], feature[lo:hi] = out[5], out[6]
+        # Row by row, not by slices: a slice's assignment checks the shapes and compiles
+        # numba's message for a mismatch (3.4 s of a cold compile).
+        for j in range(hi - lo):
+            r = lo + j
+            count[r] = out[1][j]
+            for c in range(2):
+                normal[r, c] = out[0][j, c]
+                separation[r, c], feature[r, c] = out[5][j, c], out[6][j, c]
+                for d in range(2):
+                    point[r, c, d] = out[2][j, c, d]
+                    anchor_a[r, c, d], anchor_b[r, c, d] = out[3][j, c, d], out[4][j, c, d]
     # A half plane against a disc (engine.geometry.manifold.collide_half_plane_circle, its products
     # in its order): the plane at the origin, unturned, so A's frame is the world's.
     for j in range(start[2], start[3]):

@@ -29,6 +29,7 @@ from ..dynamics.game_continuous import DEEP, SAFETY, ended_depth
 from ..dynamics.solver import MOUSE, solve
 from ..exact.pile import label_rows
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
+from ..kernels import stable_order
 from .game_contacts import body_boxes, contacts_loop, contacts_sample, report_loop
 from .game_sleep import ANGULAR, LINEAR, RISE
 
@@ -221,7 +222,8 @@ def step_loop(
         x_out[i, 0], x_out[i, 1] = bx[i], by[i]
     q_out = bq[:n].copy()
     solved = np.zeros(nb, dtype=np.bool_)
-    solved[:n] = moving
+    for i in range(n):
+        solved[i] = moving[i]
     ended = ended_depth(
         x, angle, x_out, q_out, solved, ca, cb, nx, ny, count, found[5], found[6], found[7],
         found[8], sep,
@@ -253,7 +255,7 @@ def step_loop(
         point = np.concatenate((point, last_points[held]))
         normal = np.concatenate((normal, last_normals[held]))
         impulse = np.concatenate((impulse, last_impulses[held]))
-        order = np.argsort(event, kind="mergesort")  # stable, as numpy's: sorted by key
+        order = stable_order(event)  # stable, as numpy's: sorted by key
         event, point, normal, impulse = event[order], point[order], normal[order], impulse[order]
     sensing = np.empty(len(sense_row), dtype=np.int64)
     for i in range(len(sense_row)):
