@@ -314,6 +314,10 @@ _COMPILED_AS: dict[Callable[..., Any], Callable[..., Any]] = {
 }
 
 
+#: The compiled helpers made so far (``_calling_compiled``).
+_HELPERS_COMPILED: dict[Callable[..., Any], Any] = {}
+
+
 def _names(code: Any) -> set[str]:
     """The global names a function's code (and the functions made inside it) reads."""
     names = set(code.co_names)
@@ -396,7 +400,11 @@ def _calling_compiled(
     for name, k in called.items():
         new_globals[name] = k.fast
     for name, h in helpers.items():
-        new_globals[name] = _numba().njit(cache=True, nogil=True)(_COMPILED_AS[h])
+        if h not in _HELPERS_COMPILED:
+            # One dispatcher a helper, shared by the kernels that call it: compiled once a
+            # process for a type, not once a kernel.
+            _HELPERS_COMPILED[h] = _numba().njit(cache=True, nogil=True)(_COMPILED_AS[h])
+        new_globals[name] = _HELPERS_COMPILED[h]
     out = types.FunctionType(fn.__code__, new_globals, fn.__name__, fn.__defaults__, fn.__closure__)
     out.__qualname__, out.__module__ = fn.__qualname__, fn.__module__
     return out, list(called.values()), bool(helpers)

@@ -65,13 +65,15 @@ def row_graph(
 
 
 def choices(seed: int, rows: int, priorities: str, priors: str) -> tuple[object, object]:
-    """(priority, prior) for ``colors``: none, distinct or tied priorities; none, a few or
-    many colours kept (clashing at bodies, some the last colour)."""
+    """(priority, prior) for ``colors``: none, distinct or tied priorities, or distinct ones
+    of both signs (the kernel sorts a float's bits as an integer's); none, a few or many
+    colours kept (clashing at bodies, some the last colour)."""
     rng = np.random.default_rng(seed + 1)
     priority = {
         "none": None,
         "distinct": rng.permutation(rows).astype(np.float64) + rng.random(rows) * 0.5,
         "tied": rng.integers(0, 4, rows).astype(np.float64),
+        "signed": (rng.permutation(rows) - rows // 2) * rng.choice([1e-300, 1.0, 1e300]),
     }[priorities]
     prior = None
     if priors != "none":
@@ -90,7 +92,7 @@ graphs = dict(
 
 @given(
     **graphs,
-    priorities=st.sampled_from(["none", "distinct", "tied"]),
+    priorities=st.sampled_from(["none", "distinct", "tied", "signed"]),
     priors=st.sampled_from(["none", "few", "many"]),
 )
 def test_colors_kernel_is_its_numpy_twin(

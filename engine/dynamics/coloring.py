@@ -204,7 +204,8 @@ def color_rows(
         return color
     pr = np.empty(rows)
     if len(priority) == rows:
-        pr[:] = priority
+        for k in range(rows):
+            pr[k] = priority[k]
     else:  # the twin's default order, rounded as its array expression rounds
         for k in range(rows):
             pr[k] = -(float(a[k]) * n + b[k]) - k / (rows + 1.0)
@@ -239,8 +240,12 @@ def color_rows(
     left = np.flatnonzero(color < 0)  # in row order, as the twin's
     key = np.empty(len(left))
     for i in range(len(left)):
-        key[i] = -pr[left[i]]
-    by = np.argsort(key, kind="mergesort")  # highest priority first
+        key[i] = -pr[left[i]] + 0.0  # (+ 0.0: -0.0 is 0.0, a tie, as in numpy's sort)
+    # Highest priority first, stably: the floats' bits as int64 keys in the same order (a
+    # negative float's bits, all but the sign's, flipped), sorted by ``stable_order``.
+    bits = key.view(np.int64)
+    order_keys = bits ^ ((bits >> 63) & np.int64(0x7FFFFFFFFFFFFFFF))
+    by = stable_order(order_keys)
     tied = False
     for i in range(len(by) - 1):
         if key[by[i]] == key[by[i + 1]]:
