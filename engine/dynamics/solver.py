@@ -1029,81 +1029,129 @@ def solve(
     moved = floats(nb, 0.0)
     solves = 0.0
 
-    for sub in range(substeps):
-        for p in range(2 * nc):
-            wsn[p] = cln[p]
-        # -- integrate velocities (only what moves: the static body and kinematic bodies
-        # have no acceleration; a free body flies the closed form at the end).
-        for i in range(nb):
-            uvx[i] = bvx[i]
-            uvy[i] = bvy[i]
-            uw[i] = bw[i]
-            if free[i] != 0.0:
-                continue
-            bvx[i] += bax[i] * h
-            bvy[i] += bay[i] * h
-            bw[i] += balpha[i] * h
+    # The substeps, then (sub == substeps) the restitution pass after the loads held (module
+    # doc, "Restitution"): one loop, so that ``contact`` is called in one place (numba
+    # compiles an inner function again at each of its calls: a second call cost 3 s of a
+    # cold compile).
+    for sub in range(substeps + 1):
+        last = sub == substeps
+        if last:
+            # -- the loads held between bodies (module doc, "A pile holds its load"): each
+            # point of a face contact (two points) has a held load that closes alpha =
+            # min(HOLD_SHARE, zeta omega dt pi^2 / (HOLD_MARGIN r^2)) of its gap to HOLD_PART
+            # of the last part's load lam, r = lam / (m_n g h) (in squares: no root, which
+            # numba and Python could round apart).
+            depth = contact_damping * 2.0 * math.pi * hz * dt * math.pi * math.pi / HOLD_MARGIN
+            # A point's spring gives under a load W = lam / h by W / (m_n omega^2): what it has yet
+            # to give back as it holds its load is (HOLD_PART lam - chold) / (m_n h omega^2), and
+            # each end of it is lifted so by at most that (``brise``).
+            stiff = h * (2.0 * math.pi * hz) ** 2  # (times m_n: the spring's stiffness times h)
+            for i in range(nb):
+                brise[i] = 0.0
+            for k in range(nc):
+                a = ca[k]
+                b = cb[k]
+                g2 = max(bax[a] * bax[a] + bay[a] * bay[a], bax[b] * bax[b] + bay[b] * bay[b])
+                # (Against what does not move the contact holds its whole load at once: ``keep``.)
+                moves = (bim[a] != 0.0 or bii[a] != 0.0) and (bim[b] != 0.0 or bii[b] != 0.0)
+                for j in range(ccount[k]):
+                    p = 2 * k + j
+                    lam = cln[p]
+                    if not moves or ccount[k] != 2 or g2 == 0.0 or lam <= 0.0 or nmass[p] == 0.0:
+                        chold[p] = 0.0
+                        continue
+                    load = nmass[p] * h
+                    # (Compared before dividing: a load of 1e-170 N s squares to 0, the share then
+                    # HOLD_SHARE; found by the shapes fuzz, a division by zero.)
+                    share = HOLD_SHARE
+                    deep = depth * load * load * g2
+                    if deep < HOLD_SHARE * lam * lam:
+                        share = deep / (lam * lam)
+                    chold[p] += share * (HOLD_PART * lam - chold[p])
+                    firm = nmass[p] * stiff
+                    rise = 0.0 if firm == 0.0 else (HOLD_PART * lam - chold[p]) / firm
+                    if rise > brise[a]:
+                        brise[a] = rise
+                    if rise > brise[b]:
+                        brise[b] = rise
+        else:
+            for p in range(2 * nc):
+                wsn[p] = cln[p]
+            # -- integrate velocities (only what moves: the static body and kinematic bodies
+            # have no acceleration; a free body flies the closed form at the end).
+            for i in range(nb):
+                uvx[i] = bvx[i]
+                uvy[i] = bvy[i]
+                uw[i] = bw[i]
+                if free[i] != 0.0:
+                    continue
+                bvx[i] += bax[i] * h
+                bvy[i] += bay[i] * h
+                bw[i] += balpha[i] * h
 
-        # -- warm start: joints, then contacts.
-        for k in range(nj):
-            if jkind[k] >= SPRING:
-                continue
-            a = ja[k]
-            b = jb[k]
-            ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
-            rax = cq[a] * fax[k] - sq[a] * fay[k]
-            ray = sq[a] * fax[k] + cq[a] * fay[k]
-            rbx = cq[b] * fbx[k] - sq[b] * fby[k]
-            rby = sq[b] * fbx[k] + cq[b] * fby[k]
-            px, py = jpx[k], jpy[k]
-            axial = jpa[k] + jmi[k] + jlo[k] - jhi[k]
-            if jkind[k] == DISTANCE:
-                # Along the axis now: lam u, lam = the rod's or least's push less the pull.
-                ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
-                px, py, axial = axial * ux, axial * uy, 0.0
-            elif jkind[k] == GROOVE:
-                # The ends' push along the axis now and the point's across it (jpa), at B's
-                # anchor (on A at d + r_A).
-                ux = cq[a] * gux[k] - sq[a] * guy[k]
-                uy = sq[a] * gux[k] + cq[a] * guy[k]
-                rax += (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
-                ray += (dy[b] - dy[a]) + (rby - ray) + cy0[k]
-                along = jlo[k] - jhi[k]
-                px, py = along * ux - jpa[k] * uy, along * uy + jpa[k] * ux
-                axial = 0.0
-            elif jkind[k] == GEAR:
-                bw[a] -= ia * axial
-                bw[b] += jspeed[k] * ib * axial
-                continue
-            bvx[a] -= ma * px
-            bvy[a] -= ma * py
-            bw[a] -= ia * (rax * py - ray * px + axial)
-            bvx[b] += mb * px
-            bvy[b] += mb * py
-            bw[b] += ib * (rbx * py - rby * px + axial)
-        for k in range(nc):
-            a = ca[k]
-            b = cb[k]
-            ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
-            nx, ny = cnx[k], cny[k]
-            for j in range(ccount[k]):
-                p = 2 * k + j
-                px = cln[p] * nx - clt[p] * ny
-                py = cln[p] * ny + clt[p] * nx
-                ctotal[p] += cln[p]
-                apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
+            # -- warm start: joints, then contacts.
+            for k in range(nj):
+                if jkind[k] >= SPRING:
+                    continue
+                a = ja[k]
+                b = jb[k]
+                ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+                rax = cq[a] * fax[k] - sq[a] * fay[k]
+                ray = sq[a] * fax[k] + cq[a] * fay[k]
+                rbx = cq[b] * fbx[k] - sq[b] * fby[k]
+                rby = sq[b] * fbx[k] + cq[b] * fby[k]
+                px, py = jpx[k], jpy[k]
+                axial = jpa[k] + jmi[k] + jlo[k] - jhi[k]
+                if jkind[k] == DISTANCE:
+                    # Along the axis now: lam u, lam = the rod's or least's push less the pull.
+                    ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
+                    px, py, axial = axial * ux, axial * uy, 0.0
+                elif jkind[k] == GROOVE:
+                    # The ends' push along the axis now and the point's across it (jpa), at B's
+                    # anchor (on A at d + r_A).
+                    ux = cq[a] * gux[k] - sq[a] * guy[k]
+                    uy = sq[a] * gux[k] + cq[a] * guy[k]
+                    rax += (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+                    ray += (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+                    along = jlo[k] - jhi[k]
+                    px, py = along * ux - jpa[k] * uy, along * uy + jpa[k] * ux
+                    axial = 0.0
+                elif jkind[k] == GEAR:
+                    bw[a] -= ia * axial
+                    bw[b] += jspeed[k] * ib * axial
+                    continue
+                bvx[a] -= ma * px
+                bvy[a] -= ma * py
+                bw[a] -= ia * (rax * py - ray * px + axial)
+                bvx[b] += mb * px
+                bvy[b] += mb * py
+                bw[b] += ib * (rbx * py - rby * px + axial)
+            for k in range(nc):
+                a = ca[k]
+                b = cb[k]
+                ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+                nx, ny = cnx[k], cny[k]
+                for j in range(ccount[k]):
+                    p = 2 * k + j
+                    px = cln[p] * nx - clt[p] * ny
+                    py = cln[p] * ny + clt[p] * nx
+                    ctotal[p] += cln[p]
+                    apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
 
         # -- the fresh contacts' warm start, made (above): their relax's sweep, FIRST_SWEEPS
         # times or until one changes no impulse (the next would change none), in the first
         # substep; then the solve with the soft push, positions integrated, the relax without
         # it. (One call of ``contact`` for the three: numba compiles an inner function again
         # at each of its calls.)
-        for stage in range(3):
+        # (After the substeps, stage 3 alone: restitution. A point that met faster than the
+        # threshold, and touched in the step (pushed there: ``contact``), parts at e times
+        # the speed it met at (module doc).)
+        for stage in range(3 if last else 0, 4 if last else 3):
             sweep = stage == 0
             bias = stage == 1
             if sweep and (sub != 0 or nfresh == 0):
                 continue
-            for k in range(nj if not sweep else 0):
+            for k in range(nj if stage == 1 or stage == 2 else 0):
                 a = ja[k]
                 b = jb[k]
                 if jkind[k] >= SPRING:
@@ -1252,6 +1300,8 @@ def solve(
                 changed = False
                 for i in range(nfresh if sweep else nc):
                     k = int(fresh[i]) if sweep else i
+                    if stage == 3 and crest[k] == 0.0:
+                        continue  # (no bounce asked)
                     a = ca[k]
                     b = cb[k]
                     if sweep:
@@ -1295,50 +1345,6 @@ def solve(
                         dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
-
-    # -- the loads held between bodies (module doc, "A pile holds its load"): each point of a
-    # face contact (two points) has a held load that closes alpha = min(HOLD_SHARE, zeta
-    # omega dt pi^2 / (HOLD_MARGIN r^2)) of its gap to HOLD_PART of the last part's load lam,
-    # r = lam / (m_n g h) (in squares: no root, which numba and Python could round apart).
-    depth = contact_damping * 2.0 * math.pi * hz * dt * math.pi * math.pi / HOLD_MARGIN
-    # A point's spring gives under a load W = lam / h by W / (m_n omega^2): what it has yet
-    # to give back as it holds its load is (HOLD_PART lam - chold) / (m_n h omega^2), and
-    # each end of it is lifted so by at most that (``brise``).
-    stiff = h * (2.0 * math.pi * hz) ** 2  # (times m_n: the spring's stiffness times h)
-    for i in range(nb):
-        brise[i] = 0.0
-    for k in range(nc):
-        a = ca[k]
-        b = cb[k]
-        g2 = max(bax[a] * bax[a] + bay[a] * bay[a], bax[b] * bax[b] + bay[b] * bay[b])
-        # (Against what does not move the contact holds its whole load at once: ``keep``.)
-        moves = (bim[a] != 0.0 or bii[a] != 0.0) and (bim[b] != 0.0 or bii[b] != 0.0)
-        for j in range(ccount[k]):
-            p = 2 * k + j
-            lam = cln[p]
-            if not moves or ccount[k] != 2 or g2 == 0.0 or lam <= 0.0 or nmass[p] == 0.0:
-                chold[p] = 0.0
-                continue
-            load = nmass[p] * h
-            # (Compared before dividing: a load of 1e-170 N s squares to 0, the share then
-            # HOLD_SHARE; found by the shapes fuzz, a division by zero.)
-            share = HOLD_SHARE
-            deep = depth * load * load * g2
-            if deep < HOLD_SHARE * lam * lam:
-                share = deep / (lam * lam)
-            chold[p] += share * (HOLD_PART * lam - chold[p])
-            firm = nmass[p] * stiff
-            rise = 0.0 if firm == 0.0 else (HOLD_PART * lam - chold[p]) / firm
-            if rise > brise[a]:
-                brise[a] = rise
-            if rise > brise[b]:
-                brise[b] = rise
-
-    # -- restitution: a point that met faster than the threshold, and touched in the step
-    # (pushed there: ``contact``), parts at e times the speed it met at (module doc).
-    for k in range(nc):
-        if crest[k] != 0.0:
-            contact(k, 3, False)
 
     # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
     # its ends back together at e times the speed they parted at (jspeed holds e).

@@ -810,7 +810,8 @@ def carry_keys(
                 kept[k] = asleep[a] and (b >= n or asleep[b])
     m = len(key)
     out = np.empty(m + int(kept.sum()), dtype=np.int64)
-    out[:m] = key
+    for k in range(m):  # (a loop: a slice's assignment compiles numba's mismatch message)
+        out[k] = key[k]
     j = m
     for k in range(len(keys)):
         if kept[k]:
