@@ -63,7 +63,7 @@ from ..geometry.colliders import Circle
 from ..geometry.manifold_kinds import Polygons
 from ..geometry.pair_grid import Search, deepest_overlap, find_pairs, grid_pairs, struck
 from ..geometry.pair_math import SLOP, isin_sorted, norm, sorted_unique
-from ..geometry.shaped import ShapeTable
+from ..geometry.shaped import ShapeTable, pair_rows, static_rows
 from .bent_paths import Bends, bends_of, bent_rows, new_pairs
 from .joint_contacts import shapes_of
 from .pair_impacts import MAX_ROUNDS, exact
@@ -101,6 +101,12 @@ class Collisions:
         self._static = Statics()  # the colliders as narrowphase kinds (engine.exact.pile)
         #: After the last step, each shaped body's deepest overlap (length units).
         self._shape_over = np.zeros(0)
+        # What ``ended_overlap`` measures again: the plan's pairs with a shape and the shaped
+        # bodies; the discs' pairs and each one's overlap at the start (a hair over); the
+        # stray pairs' overlap.
+        self._shape_pairs: tuple[np.ndarray, ...] | None = None
+        self._disc_pairs: tuple[np.ndarray, ...] | None = None
+        self._stray_over = 0.0
         self.warned = False  # the World has warned that a pile is past the solver
         self.moved = False  # whether the last step changed any body's state
         #: The spin (engine.dynamics.rotation) the last step's impacts made, when the step had none
@@ -512,6 +518,8 @@ class Collisions:
         self.last_rounds = 0
         self._overlap = np.zeros(0)
         self._shape_over = np.zeros(0)
+        self._shape_pairs = self._disc_pairs = None
+        self._stray_over = 0.0
         self.face_touching = (np.zeros(0, dtype=np.intp), np.zeros(0, dtype=np.intp))
         n = len(x1)
         self.joint_rows = None
@@ -603,19 +611,28 @@ class Collisions:
         # this step made or deepened: bodies put inside each other are being pushed apart.
         self._overlap = np.zeros(n)
         self.last_overlap = 0.0
+        all_a, all_b = a, b
         if len(a) and self._table is not None and self._table.shaped.any():
             # A shape's bounding circle says nothing of its overlaps: the soft step's rows do.
             disc = ~(self._table.shaped[a] | self._table.shaped[b])
             a, b = a[disc], b[disc]
+        self._shape_pairs = None
         if len(self._shape_over) == n:
             self._overlap = self._shape_over / np.where(store.radius > 0.0, store.radius, 1.0)
             self.last_overlap = float(self._shape_over.max(initial=0.0))
+            if self.last_overlap > 0.0 and self._table is not None:
+                shaped = self._table.shaped
+                with_shape = shaped[all_a] | shaped[all_b]
+                self._shape_pairs = (all_a[with_shape], all_b[with_shape], np.flatnonzero(shaped))
+        self._disc_pairs = None
+        self._stray_over = 0.0
         if len(a):
             R = store.radius[a] + store.radius[b]
             over = R - norm(x[a] - x[b])
             grew = over > R - norm(x0[a] - x0[b]) + 1e-9 * R
             deepest = max(float(over[grew].max()), 0.0) if grew.any() else 0.0
             self.last_overlap = max(self.last_overlap, deepest)
+            self._disc_pairs = (a, b, R - norm(x0[a] - x0[b]) + 1e-9 * R)
             # The overlap each body is left with, in the smaller radius of each pair: a group
             # sleeps only once it is small.
             share = over / np.minimum(store.radius[a], store.radius[b])
@@ -628,6 +645,7 @@ class Collisions:
         if stray is not None:
             sa, sb, over = stray
             self.last_overlap = max(self.last_overlap, float(over.max()))
+            self._stray_over = float(over.max())
             share = over / np.minimum(store.radius[sa], store.radius[sb])
             if len(self._overlap) == n:
                 np.maximum.at(self._overlap, sa, share)
@@ -650,6 +668,41 @@ class Collisions:
             None if turned is None else np.abs(turned.omega) * store.radius,
         )  # fmt: skip
         return x, v
+
+    def ended_overlap(
+        self, x: np.ndarray, angle: np.ndarray, store: Any, contacts: Contacts | None
+    ) -> float:
+        """``last_overlap`` (length units) with the shapes' part measured where the bodies
+        ended the step (``x``, ``angle``: after the joints' solve too), not by the pile's rows:
+        a row's separation is linearised about the step's start (a point of a turning bat
+        moves on an arc), and the joints' solve holds a jointed body's contacts exactly after
+        the pile (engine.exact.joint_contacts). What the World warns of is then what is there:
+        a ball carried on a swinging bat and struck ended on it, its row 5 cm in. Asked only
+        before a warning."""
+        deepest = self._stray_over
+        if self._disc_pairs is not None:
+            a, b, before = self._disc_pairs
+            if len(a) and len(x) == len(store.radius):
+                over = store.radius[a] + store.radius[b] - norm(x[a] - x[b])
+                grew = over > before
+                deepest = max(deepest, float(over[grew].max(initial=0.0)))
+        got = self._shape_pairs
+        if got is None or self._table is None or len(self._table) != len(x):
+            return deepest
+        a, b, shaped = got
+        table = self._table
+        if len(a):
+            sep = pair_rows(table, a, b, x, 0.0, angle, self.fast)[3]
+            deepest = max(deepest, float(-sep.min(initial=0.0)))
+        if contacts is not None and len(contacts.faces.owner) and len(shaped):
+            statics, solid, first = self._static.of(contacts)
+            meets = None
+            if contacts.filtering:
+                allowed = contacts.allowed
+                meets = lambda rows, cols: allowed(rows, first[cols])  # noqa: E731
+            sep = static_rows(table, shaped, x, statics, solid, 0.0, angle, meets, self.fast)[3]
+            deepest = max(deepest, float(-sep.min(initial=0.0)))
+        return deepest
 
     def _stray_overlap(
         self,

@@ -507,6 +507,7 @@ def _step_once(
         state.contact_dv = v1 - v_free if contacts.moved else None
     if not state.pairs_on:
         pairs.quiet()  # no pair solved: none of its reports is this step's
+    sinking = False  # the pile's rows say its bodies overlap past the solver's limit
     if state.pairs_on:
         # Bodies meet one another (engine.exact.collisions) on the paths that end where the
         # method and the static contacts left them.
@@ -533,23 +534,29 @@ def _step_once(
             shaped = pairs.shape_table(store) if pairs.has_shapes(store) else None
             turned = store.angle if spin is None else spin.angle
             contacts.sense(x1, dt, t0, store.radius, shaped, turned)
-        if pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned:
-            # The resting solver's limit: a pile too deep for its iterations sinks into
-            # itself (README: "Limits of the contact solver").
-            pairs.warned = True
-            warnings.warn(
-                f"bodies overlap by {pairs.last_overlap:.3g} length units "
-                f"({100 * pairs.last_overlap / pairs.rmin:.0f}% of the smallest radius): "
-                f"this pile is past what {pairs.iterations} contact iterations a step can "
-                f"hold; raise world.contact_iterations or take a smaller dt",
-                StabilityWarning,
-                stacklevel=4,  # (the line in World.step, as before the split)
-            )
+        sinking = pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned
     if state.links:
         kinked = None
         if v1 is not v_free:
             kinked = (v1 != v_free).any(axis=1)
         x1, v1 = _solve_links(state, store, x1, v1, dt, kinked, spin)
+    if sinking:
+        # The resting solver's limit: a pile too deep for its iterations sinks into itself
+        # (README: "Limits of the contact solver"). Its shapes measured where they ended,
+        # after the joints' solve too, before the World is told (and before it keeps the
+        # step: a warning made an error leaves the state before it).
+        turned = store.angle if spin is None else spin.angle
+        over = pairs.ended_overlap(x1, turned, store, contacts)
+        if over > 0.05 * pairs.rmin:
+            pairs.warned = True
+            warnings.warn(
+                f"bodies overlap by {over:.3g} length units "
+                f"({100 * over / pairs.rmin:.0f}% of the smallest radius): "
+                f"this pile is past what {pairs.iterations} contact iterations a step can "
+                f"hold; raise world.contact_iterations or take a smaller dt",
+                StabilityWarning,
+                stacklevel=4,  # (the line in World.step, as before the split)
+            )
     store.prev_x, store.x, store.v = store.x, x1, v1
     if spin is not None:
         if state.pairs_on and state.collisions.any_asleep:
