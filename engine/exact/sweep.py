@@ -144,7 +144,7 @@ def sweep(
         if len(res) and len(lifted):
             live = np.flatnonzero((slot[pb] >= 0) & (pf != rest[pb]))
             bi, fj = slot[pb[live]], pf[live]
-        t_hit, face, normal = first_hits(faces, Xa, Va, Bp, dur, r[active], bi, fj)
+        t_hit, face, normal = first_hits(faces, Xa, Va, Bp, dur, r[active], bi, fj, ra < 0)
         hit = t_hit <= dur
         tt = np.where(hit, t_hit, dur)
         tc = tt[:, None]
@@ -259,10 +259,13 @@ def first_hits(
     r: np.ndarray,
     bi: np.ndarray,
     fj: np.ndarray,
+    free: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each body's first impact within its time T among the (body, face) pairs given:
     (time or inf, face, normal). X, V, B, T, r: the bodies' (one row each); (bi, fj): the
-    pairs, each body by its row."""
+    pairs, each body by its row; ``free`` (one a body, None: all): the bodies on no face,
+    whose straight paths only grazing a round face pass it (engine.geometry.impact.disc_hits'
+    ``graze``)."""
     k = len(X)
     L = len(faces.p)
     best = np.full(k, np.inf)
@@ -290,7 +293,8 @@ def first_hits(
         )
     if len(disc):
         db, df = bi[disc], fj[disc] - L
-        t[disc] = disc_hits(X[db], V[db], B[db], faces.c[df], faces.r[df] + r[db], T[db])
+        graze = True if free is None else free[db]
+        t[disc] = disc_hits(X[db], V[db], B[db], faces.c[df], faces.r[df] + r[db], T[db], graze)
     # A solid polygon's face a ball is behind, and not least behind of its polygon's, is
     # none of its contacts (engine.geometry.faces.behind_solid).
     t[behind_solid(faces, X, bi, fj)] = np.inf

@@ -306,7 +306,7 @@ def _path_one(
                 t, nrm = line_hit_one(x, vp, bp, p, n, rho + r, two, lo, hi, dur)
             else:
                 c, rho = disc_list[f - L]
-                t, nrm = disc_hit_one(x, vp, bp, c, rho + r, dur), (0.0, 0.0)
+                t, nrm = disc_hit_one(x, vp, bp, c, rho + r, dur, rest < 0), (0.0, 0.0)
             if t <= t_hit and t < math.inf:
                 t_hit, face, normal = t, f, nrm
         if face >= L:

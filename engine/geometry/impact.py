@@ -262,9 +262,18 @@ def graze_one(k0: float, k1: float, k2: float, dd: float, rho: float) -> bool:
 
 
 def disc_hits(
-    X: np.ndarray, V: np.ndarray, B: np.ndarray, c: np.ndarray, rho: np.ndarray, T: Any
+    X: np.ndarray,
+    V: np.ndarray,
+    B: np.ndarray,
+    c: np.ndarray,
+    rho: np.ndarray,
+    T: Any,
+    graze: np.ndarray | bool = True,
 ) -> np.ndarray:
     """First impact time of each pair with its round face (centre c, contact distance rho).
+    ``graze`` (bool, or one a pair): a straight path tangent to the face within its rounding
+    (``grazes``) passes it; False for a ball resting on a face, whose support ends where its
+    path touches the face's round end (the edge it slides off), so that moment is kept.
 
     The quartic f(t) = |x(t) - c|^2 - rho^2 is written in tau = t / T in [0, 1]. Pairs whose
     face lies beyond the path's reach (|V| T + |B| T^2 / 2 from X) are skipped; a straight
@@ -357,8 +366,9 @@ def disc_hits(
     if len(sel):
         tau[sel] = quadratic_first_root(K[sel, 0], K[sel, 1], K[sel, 2], 1.0)
         tau[sel] = np.where(tau[sel] > lower[sel], tau[sel], np.inf)
-        graze = grazes(K[sel, 0], K[sel, 1], K[sel, 2], dd[idx[sel]], rho[idx[sel]])
-        tau[sel] = np.where(graze & ~lv[sel], np.inf, tau[sel])
+        passes = grazes(K[sel, 0], K[sel, 1], K[sel, 2], dd[idx[sel]], rho[idx[sel]])
+        passes &= ~lv[sel] & np.broadcast_to(graze, (m,))[idx[sel]]
+        tau[sel] = np.where(passes, np.inf, tau[sel])
     ok = np.isfinite(tau)
     if ok.any():
         tau[ok] = _polish(K[ok], tau[ok])
@@ -366,7 +376,9 @@ def disc_hits(
     return t
 
 
-def disc_hit_one(X: Pair, V: Pair, B: Pair, c: Pair, rho: float, T: float) -> float:
+def disc_hit_one(
+    X: Pair, V: Pair, B: Pair, c: Pair, rho: float, T: float, graze: bool = True
+) -> float:
     """``disc_hits`` for one pair, in Python floats (the same bits; the cubic and quartic go
     to the same eigenvalue solver, one row)."""
     inf = math.inf
@@ -421,7 +433,7 @@ def disc_hit_one(X: Pair, V: Pair, B: Pair, c: Pair, rho: float, T: float) -> fl
     else:
         tau = quadratic_first_root_one(K[0], K[1], K[2], 1.0)
         tau = tau if tau > lower else inf
-        if not leaving and graze_one(k0, k1, k2, dd, rho):
+        if graze and not leaving and graze_one(k0, k1, k2, dd, rho):
             tau = inf
     if tau == inf:
         return inf
