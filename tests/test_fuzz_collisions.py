@@ -1492,3 +1492,30 @@ def test_plastic_impulses_solved_at_once_are_the_sweeps_limit(case: tuple[np.nda
         if most <= 1e-13 * scale:
             assert np.abs(np.array(v2) - V1)[moving].max(initial=0.0) <= 1e-6 * scale
             return
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_ball_struck_down_a_chain_meets_the_ball_beyond_it(kernels: str) -> None:
+    """A 100 kg ball at 30 m/s strikes a 1 kg ball that strikes a 0.01 kg one (e = 1): the
+    light one flies off at about 118 m/s, 2 m in the step, where a ball at rest 1.1 m beyond
+    it stands. The struck bodies' search (engine.geometry.pair_grid.struck_pairs) grew the
+    light ball's reach once, by the slow pair's bound (its neighbour's own speed), and not
+    again when the heavy ball's link gave that neighbour 59 m/s: it passed through the
+    ball beyond. A body now grows again where its bound rises. Momentum holds, and no two
+    balls end a step overlapping."""
+    for vb in (0.0, 0.7, 2.0):
+        w = World(integrator="auto", solver="exact", kernels=kernels)
+        light = w.add(Body(Vector(0.0, 0.0), mass=0.01, radius=0.2, restitution=1.0))
+        w.add(Body(Vector(-0.41, 0.0), Vector(vb, 0.0), mass=1.0, radius=0.2, restitution=1.0))
+        w.add(Body(Vector(-0.9, 0.0), Vector(30.0, 0.0), mass=100.0, radius=0.2,
+                   restitution=1.0))  # fmt: skip
+        beyond = w.add(Body(Vector(1.5, 0.0), mass=1.0, radius=0.2, restitution=1.0))
+        p0 = 100.0 * 30.0 + 1.0 * vb
+        for _ in range(10):
+            w.step(DT)
+            assert light.pos.x < beyond.pos.x  # never past it
+            X = w.positions().reshape(-1, 2)
+            gaps = [np.hypot(*(X[i] - X[j])) - 0.4 for i in range(4) for j in range(i + 1, 4)]
+            assert min(gaps) >= -1e-9
+        p = float((w.velocities().reshape(-1, 2)[:, 0] * np.array([0.01, 1.0, 100.0, 1.0])).sum())
+        assert p == pytest.approx(p0, rel=1e-12)

@@ -57,7 +57,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from ..geometry.pair_grid import Search, collide, impact_gain, rows_of
+from ..geometry.pair_grid import GROWTHS, Search, collide, impact_gain, rows_of
 from ..geometry.pair_math import isin_sorted, norm, sorted_unique
 
 if TYPE_CHECKING:
@@ -268,20 +268,24 @@ def bent_pairs(
     # ``struck_pairs``, whose rule this is): by at most (1 + e) w_b / (w_a + w_b) times the
     # closing speed, which is at most the sum of the two top speeds in the step (a bent
     # path's velocity is no end's), plus what impacts gave either. Such a body's box grows
-    # by that gain times dt, and is searched again, three links down.
+    # by that gain times dt, and is searched again, three links down, and again where its
+    # gain rises past what it grew by (``struck_pairs``' rule, up to GROWTHS times).
     top = np.maximum(norm(v0), norm(v1)) + norm(Al) * dt
     got = np.zeros(len(P))
-    done = np.zeros(len(P), dtype=bool)
-    for _ in range(3):
+    times = np.zeros(len(P), dtype=np.intp)  # how often each has grown (``GROWTHS``)
+    lo0, hi0 = lo.copy(), hi.copy()
+    for _ in range(3 * GROWTHS):
         rel = top[ia] + top[ib] + got[ia] + got[ib]
         gain = impact_gain(ia, ib, rel, w, e, len(P))
-        grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done & free)
+        grown = np.flatnonzero(
+            ((gain - got) * dt > 0.05 * r) & (gain * dt > 0.05 * r) & (times < GROWTHS) & free
+        )
         if not len(grown):
             break
-        done[grown] = True
+        times[grown] += 1
         got[grown] = gain[grown]
-        lo[grown] -= (gain[grown] * dt)[:, None]
-        hi[grown] += (gain[grown] * dt)[:, None]
+        lo[grown] = lo0[grown] - (gain[grown] * dt)[:, None]
+        hi[grown] = hi0[grown] + (gain[grown] * dt)[:, None]
         na, nb = _colliding(box_pairs(lo, hi, grown), can)
         ia, ib = np.concatenate([ia, na]), np.concatenate([ib, nb])
     key = sorted_unique(ia.astype(np.int64) * len(P) + ib)

@@ -86,6 +86,11 @@ class Search(NamedTuple):
 #: The farthest cell a grid keys, either way (its keys then stay within an int64).
 CELLS = float(2**30)
 
+#: How often a struck body's reach may grow (``struck_pairs``): each time its bound rises,
+#: as the links of a chain of impacts give its neighbours more; a few times, so that a bound
+#: that feeds on itself (a light ball between two others) stays of the chain's size.
+GROWTHS = 3
+
 
 def grid_pairs(P: np.ndarray, h: float, fast: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Index pairs of points (P: (N, 2), length units) in the same or neighbouring cells of a
@@ -352,7 +357,11 @@ def struck_pairs(
     body with the larger reach, and so on down a chain of such impacts, to its end (three
     links missed the far end of a row of six balls 1 um apart struck at one end: its last
     two, 1.6 cm apart, were never paired, and one passed 1 mm into the other). A crowd
-    falling together, or a pile, has small relative speeds and gains nothing here.
+    falling together, or a pile, has small relative speeds and gains nothing here. A body
+    grows again where its bound rises past what it grew by (a link further down the chain
+    gave a neighbour more), up to ``GROWTHS`` times: grown once, a light ball struck by one
+    that a heavy one had struck grew by the slow pair's bound alone, and flew 2 m in the step
+    through a ball 1.1 m away.
 
     Only pairs that can collide pass a gain on (``collide``): a body filtered apart from a
     struck one is never struck by it, so a World that holds a second world filtered apart
@@ -365,18 +374,23 @@ def struck_pairs(
         w[store.kinematic[live]] = 0.0
     e = store.restitution[live]
     got = np.zeros(len(P))  # what impacts may add to each body's speed
-    done = np.zeros(len(P), dtype=bool)
-    for _ in range(len(P)):  # (each body grows once: at most one link a body)
+    times = np.zeros(len(P), dtype=np.intp)  # how often each has grown
+    own = reach
+    for _ in range(GROWTHS * len(P)):  # (each body grows at most GROWTHS times)
         rel = np.maximum(norm(v0[ia] - v0[ib]), norm(v1[ia] - v1[ib]))
         rel += norm(A[ia] - A[ib]) * dt + got[ia] + got[ib]
         gain = impact_gain(ia, ib, rel, w, e, len(P))
-        grown = np.flatnonzero((gain * dt > 0.05 * r) & ~done & free)
+        # Grown again where the gain has risen past what it grew by (a link further down
+        # the chain gave a neighbour more): by the margin, as the first time.
+        grown = np.flatnonzero(
+            ((gain - got) * dt > 0.05 * r) & (gain * dt > 0.05 * r) & (times < GROWTHS) & free
+        )
         if not len(grown):
             break
-        done[grown] = True
+        times[grown] += 1
         got[grown] = gain[grown]
         reach = reach.copy()
-        reach[grown] += gain[grown] * dt
+        reach[grown] = own[grown] + gain[grown] * dt
         fa, fb = pairs_of(grown, P, r, reach, fast)
         for k in range(len(fa)):
             ok = collide(live[fa[k]], live[fb[k]], store, has_kin, plain)
