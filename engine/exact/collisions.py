@@ -623,7 +623,9 @@ class Collisions:
             if self.last_overlap > 0.0 and self._table is not None:
                 shaped = self._table.shaped
                 with_shape = shaped[all_a] | shaped[all_b]
-                self._shape_pairs = (all_a[with_shape], all_b[with_shape], np.flatnonzero(shaped))
+                # (On the colliders: the pile's shapes that the game does not move.)
+                on_walls = np.flatnonzero(shaped & island & ~store.kinematic)
+                self._shape_pairs = (all_a[with_shape], all_b[with_shape], on_walls)
         self._disc_pairs = None
         self._stray_over = 0.0
         if len(a):
