@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from typing import Any
 
 import numpy as np
 import pytest
@@ -341,6 +342,22 @@ def test_a_pile_lands_the_same_on_both_paths() -> None:
         assert np.abs(worlds[0].positions() - worlds[1].positions()).max() < 1e-9
 
 
+_SORT: list[Any] = []
+
+
+def _compiled_sort() -> Any:
+    """The compiled twin of ``stable_order``, compiled once for the tests below (its plain
+    Python without numba)."""
+    if not _SORT:
+        sort: Any = kernels._stable_order_compiled
+        if COMPILED:
+            import numba
+
+            sort = numba.njit(sort)
+        _SORT.append(sort)
+    return _SORT[0]
+
+
 @pytest.mark.parametrize("n", [0, 1, 2, 15, 16, 17, 33, 63, 64, 65, 200, 1000, 5000])
 @pytest.mark.parametrize("spread", ["ties", "wide", "narrow", "extreme"])
 def test_the_compiled_stable_order_is_numpys_stable_argsort(n: int, spread: str) -> None:
@@ -356,10 +373,5 @@ def test_the_compiled_stable_order_is_numpys_stable_argsort(n: int, spread: str)
         "extreme": rng.choice(np.array([-(2**63), 2**63 - 1, 0, -1, 1]), n),
     }[spread].astype(np.int64)
     want = np.argsort(keys, kind="stable")
-    sort = kernels._stable_order_compiled
-    if COMPILED:
-        import numba
-
-        sort = numba.njit(sort)
-    assert np.array_equal(sort(keys), want)
+    assert np.array_equal(_compiled_sort()(keys), want)
     assert np.array_equal(kernels.stable_order(keys), want)
