@@ -616,7 +616,6 @@ class Collisions:
             # A shape's bounding circle says nothing of its overlaps: the soft step's rows do.
             disc = ~(self._table.shaped[a] | self._table.shaped[b])
             a, b = a[disc], b[disc]
-        self._shape_pairs = None
         if len(self._shape_over) == n:
             self._overlap = self._shape_over / np.where(store.radius > 0.0, store.radius, 1.0)
             self.last_overlap = float(self._shape_over.max(initial=0.0))
@@ -626,15 +625,14 @@ class Collisions:
                 # (On the colliders: the pile's shapes that the game does not move.)
                 on_walls = np.flatnonzero(shaped & island & ~store.kinematic)
                 self._shape_pairs = (all_a[with_shape], all_b[with_shape], on_walls)
-        self._disc_pairs = None
-        self._stray_over = 0.0
         if len(a):
             R = store.radius[a] + store.radius[b]
             over = R - norm(x[a] - x[b])
-            grew = over > R - norm(x0[a] - x0[b]) + 1e-9 * R
+            before = R - norm(x0[a] - x0[b]) + 1e-9 * R  # (a hair over the start's)
+            grew = over > before
             deepest = max(float(over[grew].max()), 0.0) if grew.any() else 0.0
             self.last_overlap = max(self.last_overlap, deepest)
-            self._disc_pairs = (a, b, R - norm(x0[a] - x0[b]) + 1e-9 * R)
+            self._disc_pairs = (a, b, before)
             # The overlap each body is left with, in the smaller radius of each pair: a group
             # sleeps only once it is small.
             share = over / np.minimum(store.radius[a], store.radius[b])

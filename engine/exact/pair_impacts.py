@@ -725,7 +725,7 @@ def pair_times(
                         r2 = r2 if r2 >= 0.0 else inf
                         r = r1 if r1 < r2 else r2
                 r = r if r <= 1.0 else inf
-                if r > (1e-9 if leaving else -1e-9) and r != inf and not leaving and k0 > 0.0:
+                if not leaving and r != inf and k0 > 0.0:
                     # impact.graze_one: a tangency within the discriminant's rounding.
                     disc = k1 * k1 - 4.0 * k2 * k0
                     if disc <= GRAZE_ROUNDING * (k1 * k1 + 4.0 * abs(k2) * (dd + rho * rho)):
