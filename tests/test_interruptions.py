@@ -47,6 +47,8 @@ def test_a_signal_mid_recording_leaves_whole_frames_and_says_how_many(
     env = {**os.environ, "SDL_VIDEODRIVER": "dummy", "SDL_AUDIODRIVER": "dummy"}
     command = [
         sys.executable,
+        "-X",
+        "faulthandler",  # a child that hangs is aborted below, and shows where it hung
         "-m",
         "demos",
         "alfred",
@@ -80,8 +82,14 @@ def test_a_signal_mid_recording_leaves_whole_frames_and_says_how_many(
             assert time.monotonic() < deadline, "no frames appeared within 60 s"
             time.sleep(0.05)
         child.send_signal(signum)
-        code = child.wait(timeout=60)
+        try:
+            code = child.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            child.send_signal(signal.SIGABRT)  # faulthandler: every thread's stack on stderr
+            child.wait()
+            code = None
     message = (tmp_path / "stderr.txt").read_text()
+    assert code is not None, f"no exit within 60 s of the signal; the child's stacks:\n{message}"
     assert code == 128 + signum, message
     written = _whole_frames(out)
     assert 20 <= len(written) < 180_001  # stopped part-way

@@ -7,20 +7,27 @@ bytes to a small pool of worker threads that filter, compress and write them. ``
 file writes release the GIL, so encoding runs beside the drawing of the next frame. A bounded
 number of frames in flight keeps memory flat however long the recording.
 
+A stop (Ctrl-C, or SIGTERM under ``python -m demos``) raises KeyboardInterrupt in the main
+thread between any two of its bytecodes, so the main thread's side of the hand-off takes no
+lock written in Python (a ``threading.Semaphore`` or ``ThreadPoolExecutor.submit``, which such
+an exception can leave half-done): it only gets from and puts on C queues
+(``queue.SimpleQueue``), each call whole or not made.
+
 Every file is first written under a temporary name in the same folder and then renamed with
 ``os.replace``, which is atomic on one file system: an interrupted run leaves only whole frames.
 """
 
 from __future__ import annotations
 
+import atexit
 import os
 import re
 import struct
 import sys
 import threading
 import zlib
-from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
+from queue import Empty, SimpleQueue
 from types import TracebackType
 
 import numpy as np
@@ -172,6 +179,17 @@ class _Grab:
         return _png(filtered, w, h, level)
 
 
+#: Writers not yet closed: at exit, their queued frames are written before the program ends
+#: (atexit runs while the daemon workers still do), as a thread pool's would be.
+_OPEN: set[FrameWriter] = set()
+
+
+@atexit.register
+def _finish_open_writers() -> None:
+    for writer in list(_OPEN):
+        writer._stop(cancel=False)
+
+
 def _write_atomically(path: Path, data: bytes) -> None:
     # Write beside the target (same file system, so os.replace is an atomic rename) under a
     # name no reader mistakes for a frame; remove the partial file if anything fails.
@@ -269,15 +287,26 @@ class FrameWriter:
         #: has stopped (after :meth:`close`, :meth:`abort` or a :class:`FrameWriteError`).
         self.written = 0
         self._prepare(overwrite)
-        self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="frame-writer")
-        # At most two frames per worker in flight: ~0.7 MB each at 640x360, so memory stays flat.
-        self._slots = threading.BoundedSemaphore(2 * workers)
-        self._lock = threading.Lock()
         self._error: FrameWriteError | None = None
         self._failed_at: int | None = None  # the lowest frame index that could not be written
         self._done = 0  # frames renamed into place
+        self._lock = threading.Lock()  # the workers' own (the main thread never takes it)
         self._scratch = threading.local()  # each worker's reusable arrays
         self._closed = False
+        # Jobs (index, path, pixels) in frame order; None tells a worker to stop.
+        self._jobs: SimpleQueue[tuple[int, Path, _Grab] | None] = SimpleQueue()
+        # At most two frames per worker in flight: ~0.7 MB each at 640x360, so memory stays
+        # flat. A write takes a slot, a worker gives it back when its frame is done.
+        self._slots: SimpleQueue[None] = SimpleQueue()
+        for _ in range(2 * workers):
+            self._slots.put(None)
+        self._workers = [
+            threading.Thread(target=self._work, name=f"frame-writer-{i}", daemon=True)
+            for i in range(workers)
+        ]
+        for worker in self._workers:
+            worker.start()
+        _OPEN.add(self)
 
     def _prepare(self, overwrite: bool) -> None:
         try:
@@ -312,11 +341,21 @@ class FrameWriter:
         grab = _Grab(surface)  # a copy: the caller may draw on the surface again now
         index = self.count
         path = self.folder / frame_name(index)
+        self._slots.get()  # waits while 2 x workers frames are in flight
+        # A stop between these two lines leaves frame ``index`` unqueued, the last one asked
+        # for: the frames kept still run without a gap.
+        self._jobs.put((index, path, grab))
         self.count += 1
-        self._slots.acquire()
-        future = self._pool.submit(self._encode_and_write, index, path, grab)
-        future.add_done_callback(self._finished)
         return path
+
+    def _work(self) -> None:
+        # A worker: frames in the order queued, until told to stop. The jobs are taken in
+        # frame order and every one taken is finished, so the frames done run without a gap.
+        while (job := self._jobs.get()) is not None:
+            try:
+                self._encode_and_write(*job)
+            finally:
+                self._slots.put(None)
 
     def _encode_and_write(self, index: int, path: Path, grab: _Grab) -> None:
         failed_at = self._failed_at
@@ -336,9 +375,6 @@ class FrameWriter:
                     self._error = error
                     self._failed_at = index
 
-    def _finished(self, future: Future[None]) -> None:
-        self._slots.release()  # done or cancelled: its place in flight is free
-
     def _raise_if_failed(self) -> None:
         if self._error is not None:
             self._stop(cancel=True)
@@ -351,7 +387,18 @@ class FrameWriter:
         if self._closed:
             return
         self._closed = True
-        self._pool.shutdown(wait=True, cancel_futures=cancel)
+        _OPEN.discard(self)
+        if cancel:
+            # Drop the frames no worker has taken: the last ones, so no gap opens.
+            try:
+                while True:
+                    self._jobs.get_nowait()
+            except Empty:
+                pass
+        for _ in self._workers:
+            self._jobs.put(None)
+        for worker in self._workers:
+            worker.join()
         if self._failed_at is None:
             self.written = self._done
             return
