@@ -60,6 +60,7 @@ import numpy as np
 
 __all__ = [
     "floats",
+    "helper",
     "stable_order",
     "PATHS",
     "LoopKernel",
@@ -184,7 +185,7 @@ class LoopKernel(Generic[F]):
             fn, called, helped = _calling_compiled(self.py)
             self._compiled = _numba().njit(cache=True, nogil=True)(fn)
             self._called = called
-            files = self.sources() | ({__file__} if helped else set())
+            files = self.sources() | helped
             files.discard(self.py.__code__.co_filename)  # (numba's own stamp)
             _stamp_with(self._compiled, sorted(files))
             self.calls = [k.name for k in called]
@@ -314,8 +315,19 @@ _COMPILED_AS: dict[Callable[..., Any], Callable[..., Any]] = {
 }
 
 
-#: The compiled helpers made so far (``_calling_compiled``).
-_HELPERS_COMPILED: dict[Callable[..., Any], Any] = {}
+def helper(fn: F) -> F:
+    """Decorator: ``fn`` is a small function that loop kernels call, the same code in plain
+    Python and compiled. A compiled kernel calls it as a function numba compiles once for each
+    set of argument types (shared by every kernel that calls it), where a closure defined inside
+    the kernel is inlined and typed again at each of its call sites: the solver's velocity at a
+    point and its impulse, called at about eight sites each, cost the cold compile seconds so."""
+    _COMPILED_AS[fn] = fn
+    return fn
+
+
+#: The compiled helpers made so far (``_calling_compiled``), each with the files its code
+#: comes from (its own and those of the helpers it calls).
+_HELPERS_COMPILED: dict[Callable[..., Any], tuple[Any, set[str]]] = {}
 
 
 def _names(code: Any) -> set[str]:
@@ -385,29 +397,36 @@ def _helper(value: Any) -> bool:
 
 def _calling_compiled(
     fn: Callable[..., Any],
-) -> tuple[Callable[..., Any], list[LoopKernel[Any]], bool]:
+) -> tuple[Callable[..., Any], list[LoopKernel[Any]], set[str]]:
     """``fn``, with each loop kernel among the globals it reads replaced by that kernel's
     compiled dispatcher (numba compiles a call to a dispatcher, not to a LoopKernel), and
-    each helper of ``_COMPILED_AS`` by its compiled twin; and those kernels, and whether it
-    calls a helper."""
+    each helper of ``_COMPILED_AS`` by its compiled twin; and those kernels, and the files
+    of the helpers it calls (compiled into it: its cache entry is kept only while they are
+    as they were)."""
     glob = fn.__globals__
     names = _names(fn.__code__)
     called = {n: glob[n] for n in names if isinstance(glob.get(n), LoopKernel)}
     helpers = {n: glob[n] for n in names if _helper(glob.get(n))}
     if not called and not helpers:
-        return fn, [], False
+        return fn, [], set()
     new_globals = dict(glob)
     for name, k in called.items():
         new_globals[name] = k.fast
+    files = set()
     for name, h in helpers.items():
         if h not in _HELPERS_COMPILED:
             # One dispatcher a helper, shared by the kernels that call it: compiled once a
-            # process for a type, not once a kernel.
-            _HELPERS_COMPILED[h] = _numba().njit(cache=True, nogil=True)(_COMPILED_AS[h])
-        new_globals[name] = _HELPERS_COMPILED[h]
+            # process for a type, not once a kernel; the helpers it calls compiled likewise.
+            twin, _, theirs = _calling_compiled(_COMPILED_AS[h])
+            compiled = _numba().njit(cache=True, nogil=True)(twin)
+            own = twin.__code__.co_filename
+            _stamp_with(compiled, sorted(theirs - {own}))  # (numba's own stamp: its file)
+            _HELPERS_COMPILED[h] = (compiled, theirs | {own})
+        new_globals[name], theirs = _HELPERS_COMPILED[h]
+        files |= theirs
     out = types.FunctionType(fn.__code__, new_globals, fn.__name__, fn.__defaults__, fn.__closure__)
     out.__qualname__, out.__module__ = fn.__qualname__, fn.__module__
-    return out, list(called.values()), bool(helpers)
+    return out, list(called.values()), files
 
 
 def _stamp_with(dispatcher: Any, files: list[str]) -> None:

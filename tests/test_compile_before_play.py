@@ -382,3 +382,50 @@ def test_a_kernel_is_compiled_again_when_a_constant_it_imported_changes(tmp_path
     assert run(_CONSTANT.format(factor=3)) == "6.0"
     assert run(_CONSTANT.format(factor=3)) == "6.0"  # from the cache
     assert run(_CONSTANT.format(factor=50)) == "100.0"  # the constant changed: not 6.0
+
+
+# A kernel that calls a helper (kernels.helper) of another module, which calls a helper of a
+# third: numba compiles each helper once, as its own function, and the kernel calls them.
+_INNER = """
+from engine import kernels
+
+@kernels.helper
+def scale(x):
+    return x * {factor}
+"""
+_OUTER = """
+from engine import kernels
+from .inner import scale
+
+@kernels.helper
+def shifted(x):
+    return scale(x) + 1.0
+"""
+_USER = """
+from engine import kernels
+from .outer import shifted
+
+@kernels.loop(sample=lambda: (2.0,))
+def twice(x):
+    return shifted(x) + shifted(x)
+"""
+_USE = """
+from engine import kernels
+from probe.user import twice
+kernels.prepare([twice])
+print("got:", twice(2.0), twice.py(2.0))
+"""
+
+
+@needs_numba
+def test_a_kernel_is_compiled_again_when_a_helper_its_helper_calls_changes(
+    tmp_path: Path,
+) -> None:
+    """A helper is the same code in plain Python and compiled (its own numba function, not a
+    closure inlined at each call site); the kernel's cache entry, and the helper's, are
+    stamped with the files of the helpers they call, so an edited helper two calls down is
+    never run as its old compiled self."""
+    run = _probe(tmp_path, {"user.py": _USER, "outer.py": _OUTER}, "inner.py", _USE)
+    assert run(_INNER.format(factor=3)) == "14.0 14.0"
+    assert run(_INNER.format(factor=3)) == "14.0 14.0"  # from the cache
+    assert run(_INNER.format(factor=50)) == "202.0 202.0"  # the helper changed: not 14.0

@@ -194,7 +194,7 @@ restitution pass, as a contact does.
 **Limits** (Box2D's joint limits) are one-sided rows C >= 0: speculative while open (C > 0:
 the row may close by C in the substep, bias C / h, no more, as a contact), soft (the joints'
 spring) once closed, in the solve with bias, and rigid in the relax; the impulse summed over
-the substep is kept >= 0 (``limit``). A hinge's angle limits, a cable's most length and a
+the substep is kept >= 0 (``_limit``). A hinge's angle limits, a cable's most length and a
 slide joint's least, a groove's ends and a ratchet's notch are such rows.
 **A groove** (pymunk's GrooveJoint; Box2D's prismatic joint without its angular row, spring
 and motor) keeps B's anchor on A's segment from A's anchor along the unit axis u (turned as A
@@ -316,6 +316,109 @@ FIRST_REACH = 0.005
 HINGE, WELD, MOUSE, DISTANCE, GROOVE, GEAR, ROTARY, SPRING, ROTARY_SPRING = range(9)
 
 
+@kernels.helper
+def _relative(
+    bvx: Any, bvy: Any, bw: Any, a: int, b: int, rax: float, ray: float, rbx: float, rby: float
+) -> tuple[float, float]:
+    """B's point's velocity less A's (m/s), v + omega x r = (v_x - omega r_y, v_y + omega r_x),
+    of the bodies' velocities ``bvx``, ``bvy``, ``bw`` (``solve``'s)."""
+    return (bvx[b] - bw[b] * rby) - (bvx[a] - bw[a] * ray), (bvy[b] + bw[b] * rbx) - (
+        bvy[a] + bw[a] * rax
+    )
+
+
+@kernels.helper
+def _apply(
+    bvx: Any, bvy: Any, bw: Any, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
+    px: float, py: float, rax: float, ray: float, rbx: float, rby: float,
+) -> None:  # fmt: skip
+    """The impulse (px, py) (N s) at the anchors: -P on A at r_A, +P on B at r_B, in the
+    bodies' velocities ``bvx``, ``bvy``, ``bw`` (``solve``'s; ``ma`` ... ``ib`` their inverse
+    masses and moments)."""
+    bvx[a] -= ma * px
+    bvy[a] -= ma * py
+    bw[a] -= ia * (rax * py - ray * px)
+    bvx[b] += mb * px
+    bvy[b] += mb * py
+    bw[b] += ib * (rbx * py - rby * px)
+
+
+@kernels.helper
+def _soft(
+    jbeta: Any, jsoft: tuple[float, float, float], k: int, bias: bool
+) -> tuple[float, float, float]:
+    """Joint k's equality row's (bias rate 1/s, mass scale, impulse scale): in the solve with
+    bias the joints' spring ``jsoft``, or where its error_bias is set (``jbeta[k]`` >= 0)
+    Chipmunk's rigid push (module doc); rigid with no push in the relax."""
+    if not bias:
+        return 0.0, 1.0, 0.0
+    if jbeta[k] >= 0.0:
+        return jbeta[k], 1.0, 0.0
+    return jsoft
+
+
+@kernels.helper
+def _bounded(rate: float, err: float, mscale: float, top: float) -> float:
+    """The bias rate err of a row (m/s or rad/s), kept so that the speed it corrects its error
+    at, mscale rate err, is at most ``top`` (max_bias; inf: as it is)."""
+    v = rate * err
+    most = top / mscale
+    if v > most:
+        return most
+    if v < -most:
+        return -most
+    return v
+
+
+@kernels.helper
+def _limit(
+    jbeta: Any, jsoft: tuple[float, float, float], inv_h: float, k: int, err: float,
+    cdot: float, mass: float, old: float, bias: bool, top: float, cap: float,
+) -> float:  # fmt: skip
+    """Joint k's limit row (module doc) solved once: C = err >= 0, dC/dt = cdot, of
+    ``mass``; its impulse of the substep so far ``old`` made new (>= 0: a limit only
+    pushes; at most ``cap``, max_force h), its correction at most ``top`` fast (``inv_h``
+    1/s the substep's rate; ``jbeta``, ``jsoft``: ``_soft``'s)."""
+    rate, mscale, iscale = 0.0, 1.0, 0.0
+    v = 0.0
+    if err > 0.0:
+        v = inv_h * err  # speculative: may close by err in the substep, no more
+    elif bias:
+        rate, mscale, iscale = _soft(jbeta, jsoft, k, bias)
+        v = _bounded(rate, err, mscale, top)
+    d = -mscale * mass * (cdot + v) - iscale * old
+    return min(max(old + d, 0.0), cap)
+
+
+@kernels.helper
+def _axis(
+    dx: Any, dy: Any, cx0: Any, cy0: Any, k: int, a: int, b: int, rax: float, ray: float,
+    rbx: float, rby: float,
+) -> tuple[float, float, float]:  # fmt: skip
+    """Distance k's unit axis u from A's anchor to B's, and its length L (m), now: the
+    bodies moved by (``dx``, ``dy``) since the start, the anchors turned to (rax ... rby),
+    the axis at the start (``cx0``, ``cy0``) less the anchors then."""
+    ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
+    ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
+    length = math.sqrt(ex * ex + ey * ey)
+    if length > 0.0:
+        return ex / length, ey / length, length
+    return 0.0, 0.0, 0.0
+
+
+@kernels.helper
+def _axial_mass(
+    bim: Any, bii: Any, a: int, b: int, ux: float, uy: float, rax: float, ray: float,
+    rbx: float, rby: float,
+) -> float:  # fmt: skip
+    """1 / (w_A + w_B + i_A (r_A x u)^2 + i_B (r_B x u)^2) (kg), 0 where nothing can move
+    (``bim``, ``bii`` the bodies' inverse masses and moments)."""
+    ca_ = rax * uy - ray * ux
+    cb_ = rbx * uy - rby * ux
+    kk = bim[a] + bim[b] + bii[a] * ca_ * ca_ + bii[b] * cb_ * cb_
+    return 1.0 / kk if kk > 0.0 else 0.0
+
+
 def _sample() -> tuple[Any, ...]:
     """The smallest call of ``solve``: a unit box resting on the static body, held to the
     world by a hinge at its corner."""
@@ -407,26 +510,6 @@ def solve(
     nc = len(ca)
     nj = len(ja)
 
-    def relative(
-        a: int, b: int, rax: float, ray: float, rbx: float, rby: float
-    ) -> tuple[float, float]:
-        """B's point's velocity less A's, v + omega x r = (v_x - omega r_y, v_y + omega r_x)."""
-        return (bvx[b] - bw[b] * rby) - (bvx[a] - bw[a] * ray), (bvy[b] + bw[b] * rbx) - (
-            bvy[a] + bw[a] * rax
-        )
-
-    def apply(
-        a: int, b: int, ma: float, ia: float, mb: float, ib: float, px: float, py: float,
-        rax: float, ray: float, rbx: float, rby: float,
-    ) -> None:  # fmt: skip
-        """The impulse (px, py) at the anchors: -P on A at r_A, +P on B at r_B."""
-        bvx[a] -= ma * px
-        bvy[a] -= ma * py
-        bw[a] -= ia * (rax * py - ray * px)
-        bvx[b] += mb * px
-        bvy[b] += mb * py
-        bw[b] += ib * (rbx * py - rby * px)
-
     h = dt / substeps
     inv_h = 1.0 / h
     # Box2D's softness: contacts at most an eighth of the substep rate, joints a quarter.
@@ -451,44 +534,7 @@ def solve(
     jmost = floats(nj, math.inf)
     jfast = floats(nj, math.inf)
     jbeta = floats(nj, -1.0)
-
-    def soft(k: int, bias: bool) -> tuple[float, float, float]:
-        """Joint k's equality row's (bias rate, mass scale, impulse scale): in the solve with
-        bias the joints' spring, or where its error_bias is set Chipmunk's rigid push (module
-        doc); rigid with no push in the relax."""
-        if not bias:
-            return 0.0, 1.0, 0.0
-        if jbeta[k] >= 0.0:
-            return jbeta[k], 1.0, 0.0
-        return j_rate, j_mass, j_imp
-
-    def bounded(rate: float, err: float, mscale: float, top: float) -> float:
-        """The bias rate err of a row, kept so that the speed it corrects its error at,
-        mscale rate err, is at most ``top`` (max_bias; inf: as it is)."""
-        v = rate * err
-        most = top / mscale
-        if v > most:
-            return most
-        if v < -most:
-            return -most
-        return v
-
-    def limit(
-        k: int, err: float, cdot: float, mass: float, old: float, bias: bool, top: float,
-        cap: float,
-    ) -> float:  # fmt: skip
-        """Joint k's limit row (module doc) solved once: C = err >= 0, dC/dt = cdot, of
-        ``mass``; its impulse of the substep so far ``old`` made new (>= 0: a limit only
-        pushes; at most ``cap``, max_force h), its correction at most ``top`` fast."""
-        rate, mscale, iscale = 0.0, 1.0, 0.0
-        v = 0.0
-        if err > 0.0:
-            v = inv_h * err  # speculative: may close by err in the substep, no more
-        elif bias:
-            rate, mscale, iscale = soft(k, bias)
-            v = bounded(rate, err, mscale, top)
-        d = -mscale * mass * (cdot + v) - iscale * old
-        return min(max(old + d, 0.0), cap)
+    jsoft = (j_rate, j_mass, j_imp)  # the joints' spring (``_soft``)
 
     def press(
         p: int, d: float, a: int, b: int, ma: float, ia: float, mb: float, ib: float,
@@ -502,7 +548,7 @@ def solve(
         ctotal[p] += d
         if touch and new > cmax[p]:
             cmax[p] = new
-        apply(a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
+        _apply(bvx, bvy, bw, a, b, ma, ia, mb, ib, d * nx, d * ny, rax, ray, rbx, rby)
         return d != 0.0
 
     # The start of the step: positions and angles kept, the moves counted from them.
@@ -569,7 +615,7 @@ def solve(
             kt = ma + mb + ia * rta * rta + ib * rtb * rtb
             tmass[p] = 1.0 / kt if kt > 0.0 else 0.0
             # v + omega x r = (v_x - omega r_y, v_y + omega r_x).
-            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            dvx, dvy = _relative(bvx, bvy, bw, a, b, rax, ray, rbx, rby)
             rel[p] = dvx * nx + dvy * ny
             ctotal[p] = 0.0
             cmax[p] = 0.0
@@ -668,27 +714,6 @@ def solve(
     gux = floats(nj, 0.0)
     guy = floats(nj, 0.0)
 
-    def axis(
-        k: int, a: int, b: int, rax: float, ray: float, rbx: float, rby: float
-    ) -> tuple[float, float, float]:
-        """Distance k's unit axis u from A's anchor to B's, and its length L (m), now: the
-        bodies moved by (dx, dy) since the start, the anchors turned to (rax ... rby)."""
-        ex = (dx[b] - dx[a]) + (rbx - rax) + cx0[k]
-        ey = (dy[b] - dy[a]) + (rby - ray) + cy0[k]
-        length = math.sqrt(ex * ex + ey * ey)
-        if length > 0.0:
-            return ex / length, ey / length, length
-        return 0.0, 0.0, 0.0
-
-    def axial_mass(
-        a: int, b: int, ux: float, uy: float, rax: float, ray: float, rbx: float, rby: float
-    ) -> float:
-        """1 / (w_A + w_B + i_A (r_A x u)^2 + i_B (r_B x u)^2), 0 where nothing can move."""
-        ca_ = rax * uy - ray * ux
-        cb_ = rbx * uy - rby * ux
-        kk = bim[a] + bim[b] + bii[a] * ca_ * ca_ + bii[b] * cb_ * cb_
-        return 1.0 / kk if kk > 0.0 else 0.0
-
     def slide(
         k: int, bias: bool, ux: float, uy: float, t: float, lax: float, lay: float, rbx: float,
         rby: float, across: float,
@@ -725,8 +750,8 @@ def solve(
                     nx, ny = -uy, ux
             elif rod or ((jlimit[k] >> row) & 1) == 0:
                 continue
-            mass = axial_mass(a, b, nx, ny, lax, lay, rbx, rby)
-            dvx, dvy = relative(a, b, lax, lay, rbx, rby)
+            mass = _axial_mass(bim, bii, a, b, nx, ny, lax, lay, rbx, rby)
+            dvx, dvy = _relative(bvx, bvy, bw, a, b, lax, lay, rbx, rby)
             cdot = dvx * nx + dvy * ny  # (along u: > 0, the anchors part)
             if row < 2:
                 # The least: C = t - jlower >= 0, pushing B along u; the most: C = jupper - t
@@ -734,7 +759,9 @@ def solve(
                 sign = 1.0 if row == 0 else -1.0
                 old = jlo[k] if row == 0 else jhi[k]
                 err = t - jlower[k] if row == 0 else jupper[k] - t
-                new = limit(k, err, sign * cdot, mass, old, bias, tops[row], cap)
+                new = _limit(
+                    jbeta, jsoft, inv_h, k, err, sign * cdot, mass, old, bias, tops[row], cap
+                )
                 d = sign * (new - old)
                 if row == 0:
                     jlo[k] = new
@@ -745,9 +772,9 @@ def solve(
             else:
                 # A rod's length, or a groove's point across: a soft equality row, its
                 # impulse within max_force h (a groove's, with its ends', below).
-                rate, mscale, iscale = soft(k, bias)
+                rate, mscale, iscale = _soft(jbeta, jsoft, k, bias)
                 err = t - jupper[k] if rod else across
-                v = bounded(rate, err, mscale, tops[2])
+                v = _bounded(rate, err, mscale, tops[2])
                 d = -mscale * mass * (cdot + v) - iscale * jpa[k]
                 old = jpa[k]
                 new = old + d
@@ -755,7 +782,7 @@ def solve(
                     new = min(max(new, -jmost[k]), jmost[k])
                     d = new - old
                 jpa[k] = new
-            apply(a, b, ma, ia, mb, ib, d * nx, d * ny, lax, lay, rbx, rby)
+            _apply(bvx, bvy, bw, a, b, ma, ia, mb, ib, d * nx, d * ny, lax, lay, rbx, rby)
         if groove:
             # The ends' push along u and the point's across it as one impulse on B, at most
             # max_force h: scaled back to it where it exceeds it (Chipmunk's cpvclamp).
@@ -768,9 +795,10 @@ def solve(
                 jlo[k] *= f
                 jhi[k] *= f
                 jpa[k] *= f
-                apply(
-                    a, b, ma, ia, mb, ib, da * ux - dn * uy, da * uy + dn * ux, lax, lay, rbx, rby
-                )
+                _apply(
+                    bvx, bvy, bw, a, b, ma, ia, mb, ib, da * ux - dn * uy, da * uy + dn * ux, lax,
+                    lay, rbx, rby,
+                )  # fmt: skip
 
     def spring(k: int, rax: float, ray: float, rbx: float, rby: float) -> None:
         """Spring k's impulses over a substep (module doc): its stiffness', explicit, then its
@@ -779,16 +807,16 @@ def solve(
         b = jb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
         if jkind[k] == SPRING:
-            ux, uy, length = axis(k, a, b, rax, ray, rbx, rby)
-            mass = axial_mass(a, b, ux, uy, rax, ray, rbx, rby)
+            ux, uy, length = _axis(dx, dy, cx0, cy0, k, a, b, rax, ray, rbx, rby)
+            mass = _axial_mass(bim, bii, a, b, ux, uy, rax, ray, rbx, rby)
             if mass == 0.0:
                 return
             d = -jhertz[k] * (length - jlower[k]) * h
-            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            dvx, dvy = _relative(bvx, bvy, bw, a, b, rax, ray, rbx, rby)
             vn = dvx * ux + dvy * uy + d / mass  # the parting speed after the stiffness' kick
             d -= vn * (1.0 - math.exp(-jdamp[k] * h / mass)) * mass
             jpa[k] += d
-            apply(a, b, ma, ia, mb, ib, d * ux, d * uy, rax, ray, rbx, rby)
+            _apply(bvx, bvy, bw, a, b, ma, ia, mb, ib, d * ux, d * uy, rax, ray, rbx, rby)
             return
         if amass[k] == 0.0:
             return
@@ -835,8 +863,8 @@ def solve(
             w_rate[k], w_mass[k], w_imp[k] = omega / a1, a2 / (1.0 + a2), 1.0 / (1.0 + a2)
         if jkind[k] == DISTANCE:
             # The anchors' parting speed along the link at the start (for a cable's bounce).
-            ux, uy, _ = axis(k, a, b, fax[k], fay[k], fbx[k], fby[k])
-            dvx, dvy = relative(a, b, fax[k], fay[k], fbx[k], fby[k])
+            ux, uy, _ = _axis(dx, dy, cx0, cy0, k, a, b, fax[k], fay[k], fbx[k], fby[k])
+            dvx, dvy = _relative(bvx, bvy, bw, a, b, fax[k], fay[k], fbx[k], fby[k])
             drel[k] = dvx * ux + dvy * uy
 
     # The held part of each substep's change of velocity (module doc, "Positions exact for
@@ -933,7 +961,7 @@ def solve(
             elif bias:
                 vbias = max(mscale * rate * sep, -push)
                 ms, im = mscale, iscale
-            dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+            dvx, dvy = _relative(bvx, bvy, bw, a, b, rax, ray, rbx, rby)
             vn = dvx * nx + dvy * ny
             keep = 0.0  # the load held (module doc, "The floor holds its load")
             if im != 0.0:
@@ -962,7 +990,7 @@ def solve(
             for j in range(ccount[k]):
                 p = 2 * k + j
                 rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-                dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+                dvx, dvy = _relative(bvx, bvy, bw, a, b, rax, ray, rbx, rby)
                 vt = dvx * tx + dvy * ty - cspeed[k]
                 d = -tmass[p] * vt
                 most = cfric[k] * cln[p]
@@ -970,7 +998,7 @@ def solve(
                 d = new - clt[p]
                 clt[p] = new
                 px, py = d * tx, d * ty
-                apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+                _apply(bvx, bvy, bw, a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
                 if d != 0.0:
                     changed = True
         for j in range(ccount[k] if bias else 0):
@@ -1104,7 +1132,7 @@ def solve(
                 axial = jpa[k] + jmi[k] + jlo[k] - jhi[k]
                 if jkind[k] == DISTANCE:
                     # Along the axis now: lam u, lam = the rod's or least's push less the pull.
-                    ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
+                    ux, uy, _ = _axis(dx, dy, cx0, cy0, k, a, b, rax, ray, rbx, rby)
                     px, py, axial = axial * ux, axial * uy, 0.0
                 elif jkind[k] == GROOVE:
                     # The ends' push along the axis now and the point's across it (jpa), at B's
@@ -1136,7 +1164,10 @@ def solve(
                     px = cln[p] * nx - clt[p] * ny
                     py = cln[p] * ny + clt[p] * nx
                     ctotal[p] += cln[p]
-                    apply(a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p], crby[p])
+                    _apply(
+                        bvx, bvy, bw, a, b, ma, ia, mb, ib, px, py, crax[p], cray[p], crbx[p],
+                        crby[p],
+                    )  # fmt: skip
 
         # -- the fresh contacts' warm start, made (above): their relax's sweep, FIRST_SWEEPS
         # times or until one changes no impulse (the next would change none), in the first
@@ -1169,7 +1200,7 @@ def solve(
                     rby = sq[b] * fbx[k] + cq[b] * fby[k]
                     if jkind[k] == DISTANCE:
                         # Along the anchors' line: t its length, the levers the anchors.
-                        ux, uy, t = axis(k, a, b, rax, ray, rbx, rby)
+                        ux, uy, t = _axis(dx, dy, cx0, cy0, k, a, b, rax, ray, rbx, rby)
                         lax, lay, across = rax, ray, 0.0
                     else:
                         # A groove: the axis turned as A has since the start, d from A's
@@ -1188,10 +1219,10 @@ def solve(
                     # C = r angle_B - angle_A - phase (r = jspeed, phase = jref).
                     if amass[k] != 0.0:
                         r = jspeed[k]
-                        rate, mscale, iscale = soft(k, bias)
+                        rate, mscale, iscale = _soft(jbeta, jsoft, k, bias)
                         err = r * (q0[b] + dq[b]) - (q0[a] + dq[a]) - jref[k]
                         cdot = r * bw[b] - bw[a]
-                        v = bounded(rate, err, mscale, jfast[k])
+                        v = _bounded(rate, err, mscale, jfast[k])
                         d = -amass[k] * mscale * (cdot + v) - iscale * jpa[k]
                         old = jpa[k]
                         new = old + d
@@ -1243,7 +1274,10 @@ def solve(
                             old = jlo[k] if side == 0 else jhi[k]
                             err = angle - jlower[k] if side == 0 else jupper[k] - angle
                             turn = sign * (bw[b] - bw[a])
-                            new = limit(k, err, turn, mass, old, bias, jfast[k], jmost[k])
+                            new = _limit(
+                                jbeta, jsoft, inv_h, k, err, turn, mass, old, bias, jfast[k],
+                                jmost[k],
+                            )  # fmt: skip
                             d = sign * (new - old)
                             if side == 0:
                                 jlo[k] = new
@@ -1291,7 +1325,7 @@ def solve(
                         px, py = tx * scale - jpx[k], ty * scale - jpy[k]
                 jpx[k] += px
                 jpy[k] += py
-                apply(a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
+                _apply(bvx, bvy, bw, a, b, ma, ia, mb, ib, px, py, rax, ray, rbx, rby)
 
             # (The step's last relax: a point open that has not touched is left to the next
             # step, module doc "Restitution".)
@@ -1358,15 +1392,19 @@ def solve(
         ray = sq[a] * fax[k] + cq[a] * fay[k]
         rbx = cq[b] * fbx[k] - sq[b] * fby[k]
         rby = sq[b] * fbx[k] + cq[b] * fby[k]
-        ux, uy, _ = axis(k, a, b, rax, ray, rbx, rby)
-        dvx, dvy = relative(a, b, rax, ray, rbx, rby)
+        ux, uy, _ = _axis(dx, dy, cx0, cy0, k, a, b, rax, ray, rbx, rby)
+        dvx, dvy = _relative(bvx, bvy, bw, a, b, rax, ray, rbx, rby)
         # Target: the anchors close at e drel, cdot = -e drel; a pull lam changes cdot by
         # -lam / m (the axial mass m).
-        lam = axial_mass(a, b, ux, uy, rax, ray, rbx, rby) * (dvx * ux + dvy * uy + e * drel[k])
+        lam = _axial_mass(bim, bii, a, b, ux, uy, rax, ray, rbx, rby) * (
+            dvx * ux + dvy * uy + e * drel[k]
+        )
         new = max(jhi[k] + lam, 0.0)
         d = -(new - jhi[k])
         jhi[k] = new
-        apply(a, b, bim[a], bii[a], bim[b], bii[b], d * ux, d * uy, rax, ray, rbx, rby)
+        _apply(
+            bvx, bvy, bw, a, b, bim[a], bii[a], bim[b], bii[b], d * ux, d * uy, rax, ray, rbx, rby
+        )
 
     # -- the step's end: positions and angles from the moves; a free body's from the closed
     # form of its motion (module doc).
