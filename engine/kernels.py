@@ -23,7 +23,7 @@ types its callers pass, and the callers pass those types (C-contiguous, writable
 arrays; Python floats). ``prepare`` compiles every kernel for its sample, or loads it from
 numba's cache (under a second for all): the first World on the fast path calls it when it is
 made, before any step, and ``python -m engine.warmup`` (the install line's last command) does
-the first run's compile once: about 30 s on two cores, where a second process compiles from
+the first run's compile once: about 33 s on two cores, where a second process compiles from
 the other end of the list (``_Helper``), about a minute on one. The cache lives in the user's
 cache folder (``cache_dir()``), not beside the sources, unless ``NUMBA_CACHE_DIR`` says
 otherwise.
