@@ -37,12 +37,9 @@ def _default_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
-@pytest.mark.parametrize(
-    ("signum", "word"), [(signal.SIGINT, "interrupted"), (signal.SIGTERM, "terminated")]
-)
-def test_a_signal_mid_recording_leaves_whole_frames_and_says_how_many(
-    tmp_path: Path, signum: int, word: str
-) -> None:
+def _stopped_by(signum: int, tmp_path: Path, extra: list[str]) -> tuple[int, str, Path]:
+    """Record Alfred's stroll for 3000 s in a fresh interpreter, send ``signum`` once 20 frames
+    are on disk, and return its exit code, what it said on stderr, and the frames' folder."""
     out = tmp_path / "stroll"
     env = {**os.environ, "SDL_VIDEODRIVER": "dummy", "SDL_AUDIODRIVER": "dummy"}
     command = [
@@ -62,6 +59,7 @@ def test_a_signal_mid_recording_leaves_whole_frames_and_says_how_many(
         f"{SIZE[0]}x{SIZE[1]}",
         "--out",
         str(out),
+        *extra,
     ]
     # A fresh interpreter with the default SIGINT handling: a shell's background job runs
     # with SIGINT ignored, and an ignored signal is inherited across exec (a suite started
@@ -90,12 +88,40 @@ def test_a_signal_mid_recording_leaves_whole_frames_and_says_how_many(
             code = None
     message = (tmp_path / "stderr.txt").read_text()
     assert code is not None, f"no exit within 60 s of the signal; the child's stacks:\n{message}"
+    return code, message, out
+
+
+@pytest.mark.parametrize(
+    ("signum", "word"), [(signal.SIGINT, "interrupted"), (signal.SIGTERM, "terminated")]
+)
+def test_a_signal_mid_recording_leaves_whole_frames_and_says_how_many(
+    tmp_path: Path, signum: int, word: str
+) -> None:
+    code, message, out = _stopped_by(signum, tmp_path, [])
     assert code == 128 + signum, message
     written = _whole_frames(out)
     assert 20 <= len(written) < 180_001  # stopped part-way
     match = re.search(rf"{word}.*?(\d+) whole frame\(s\) written to", message)
     assert match, message
     assert int(match.group(1)) == len(written)
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_mid_recording_of_a_clip_leaves_no_clip_and_whole_frames(
+    tmp_path: Path, signum: int
+) -> None:
+    """A clip being written when the stop comes is thrown away (its encoder stopped, its
+    temporary file removed), and the frames written beside it are whole."""
+    pytest.importorskip("imageio_ffmpeg", reason="clips need the video extra")
+    clip = tmp_path / "stroll.mp4"
+    code, message, out = _stopped_by(signum, tmp_path, ["--video", str(clip)])
+    assert code == 128 + signum, message
+    assert "no clip written" in message and str(clip) in message, message
+    assert not clip.exists()
+    assert [p.name for p in tmp_path.iterdir() if p.suffix not in ("", ".txt")] == []
+    written = _whole_frames(out)
+    match = re.search(r"(\d+) whole frame\(s\) written to", message)
+    assert match and int(match.group(1)) == len(written) >= 20, message
 
 
 def test_a_failing_disk_stops_the_run_and_keeps_the_frames_already_written(

@@ -305,7 +305,14 @@ class ClipWriter:
                 f"reinstall it: {INSTALL_HINT}"
             ) from exc
         frames = max(1, min(_QUEUE_FRAMES, _QUEUE_BYTES // (3 * width * height)))
-        self._queue: queue.Queue[bytes | None] = queue.Queue(maxsize=frames)
+        # Frames in order, None to end; at most ``frames`` in flight, each taking a slot that
+        # the writer thread gives back once it has passed the frame on. C queues only
+        # (queue.SimpleQueue): a stop (KeyboardInterrupt, raised between any two bytecodes of
+        # the main thread) cannot leave one half-done, as it can a queue.Queue's Python locks.
+        self._queue: queue.SimpleQueue[bytes | None] = queue.SimpleQueue()
+        self._slots: queue.SimpleQueue[None] = queue.SimpleQueue()
+        for _ in range(frames):
+            self._slots.put(None)
         self._thread = threading.Thread(target=self._pipe, name="clip-writer", daemon=True)
         self._thread.start()
 
@@ -319,13 +326,15 @@ class ClipWriter:
                 f"got {surface.get_width()}x{surface.get_height()}"
             )
         self._raise_if_failed()
-        self._queue.put(pygame.image.tobytes(surface, "RGB"))
+        data = pygame.image.tobytes(surface, "RGB")
+        self._slots.get()  # waits while the queue holds its most frames
+        self._queue.put(data)
         self.count += 1
 
     def _pipe(self) -> None:
         # The writer thread: frames into ffmpeg's stdin. Pipe writes release the GIL, so this
         # runs beside the drawing of the next frame. After a failure it keeps taking frames
-        # (dropping them) so that write() never blocks on a full queue.
+        # (dropping them) so that write() never waits on a full queue for ever.
         stdin = self._process.stdin
         assert stdin is not None
         failed = False
@@ -333,13 +342,14 @@ class ClipWriter:
             data = self._queue.get()
             if data is None:
                 break
-            if failed:
-                continue
             try:
-                stdin.write(data)
+                if not failed:
+                    stdin.write(data)
             except (OSError, ValueError):  # ffmpeg has gone: BrokenPipeError and the like
                 failed = True
                 self._error = self._encoder_error("stopped taking frames")
+            finally:
+                self._slots.put(None)
         try:
             stdin.close()
         except OSError:
@@ -401,13 +411,9 @@ class ClipWriter:
         self._closed = True
         if self._process.poll() is None:
             self._process.kill()
-        # Unblock and end the writer thread: its pipe is broken now, so it drops what is left.
-        while self._thread.is_alive():
-            try:
-                self._queue.put(None, timeout=0.1)
-            except queue.Full:
-                continue
-            self._thread.join(timeout=5)
+        # End the writer thread: its pipe is broken now, so it drops what is left, then ends.
+        self._queue.put(None)
+        self._thread.join()
         self._process.wait()
         self._stderr.close()
         self._discard()
