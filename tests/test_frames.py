@@ -221,3 +221,51 @@ def test_save_png_writes_one_still_and_refuses_to_overwrite(tmp_path):
         save_png(picture(6), path)
     save_png(picture(6), path, overwrite=True)
     np.testing.assert_array_equal(rgb(pygame.image.load(str(path))), rgb(picture(6)))
+
+
+def _writer_threads() -> list[threading.Thread]:
+    return [t for t in threading.enumerate() if t.name.startswith("frame-writer")]
+
+
+def test_a_writer_dropped_unclosed_writes_its_frames_and_ends_its_threads(tmp_path):
+    import gc
+
+    before = _writer_threads()
+    writer = FrameWriter(tmp_path, workers=3)
+    pictures = [picture(seed) for seed in range(5)]
+    for surface in pictures:
+        writer.write(surface)
+    assert len(_writer_threads()) == len(before) + 3
+    del writer
+    gc.collect()
+    # Its finalizer let the workers take every frame queued, then stop.
+    assert _writer_threads() == before
+    names = sorted(os.listdir(tmp_path))
+    assert names == [frame_name(i) for i in range(5)]
+    for name, surface in zip(names, pictures, strict=True):
+        assert np.array_equal(rgb(pygame.image.load(str(tmp_path / name))), rgb(surface))
+
+
+def test_a_writer_left_open_at_exit_writes_its_frames(tmp_path):
+    import subprocess
+    import sys
+
+    code = f"""
+import os
+os.environ["SDL_VIDEODRIVER"] = "dummy"
+import pygame
+from engine.render import init_headless
+from engine.render.frames import FrameWriter
+init_headless()
+writer = FrameWriter({str(tmp_path)!r}, workers=2)
+surface = pygame.Surface((320, 180))
+for i in range(12):
+    surface.fill((20 * i, 0, 0))
+    writer.write(surface)
+"""  # no close: the program ends with frames still queued
+    root = Path(__file__).resolve().parent.parent
+    subprocess.run([sys.executable, "-c", code], cwd=root, check=True, capture_output=True)
+    names = sorted(os.listdir(tmp_path))
+    assert names == [frame_name(i) for i in range(12)]
+    last = pygame.image.load(str(tmp_path / names[-1]))
+    assert last.get_at((5, 5))[:3] == (220, 0, 0)

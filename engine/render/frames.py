@@ -19,12 +19,12 @@ Every file is first written under a temporary name in the same folder and then r
 
 from __future__ import annotations
 
-import atexit
 import os
 import re
 import struct
 import sys
 import threading
+import weakref
 import zlib
 from pathlib import Path
 from queue import Empty, SimpleQueue
@@ -179,17 +179,6 @@ class _Grab:
         return _png(filtered, w, h, level)
 
 
-#: Writers not yet closed: at exit, their queued frames are written before the program ends
-#: (atexit runs while the daemon workers still do), as a thread pool's would be.
-_OPEN: set[FrameWriter] = set()
-
-
-@atexit.register
-def _finish_open_writers() -> None:
-    for writer in list(_OPEN):
-        writer._stop(cancel=False)
-
-
 def _write_atomically(path: Path, data: bytes) -> None:
     # Write beside the target (same file system, so os.replace is an atomic rename) under a
     # name no reader mistakes for a frame; remove the partial file if anything fails.
@@ -244,6 +233,81 @@ def save_png(
     return target
 
 
+class _Encoding:
+    """A FrameWriter's worker threads and what they share: frames in, whole files out.
+
+    The main thread only puts on and gets from C queues (the module doc says why); the rest
+    is the workers'. The threads hold this, not the writer, so a writer dropped unclosed can
+    still be collected (its finalizer then calls ``finish``)."""
+
+    def __init__(self, level: int, workers: int) -> None:
+        self.level = level
+        self.error: FrameWriteError | None = None
+        self.failed_at: int | None = None  # the lowest frame index that could not be written
+        self.done = 0  # frames renamed into place
+        self._lock = threading.Lock()  # the workers' own (the main thread never takes it)
+        self._scratch = threading.local()  # each worker's reusable arrays
+        # Jobs (index, path, pixels) in frame order; None tells a worker to stop.
+        self._jobs: SimpleQueue[tuple[int, Path, _Grab] | None] = SimpleQueue()
+        # At most two frames per worker in flight: ~0.7 MB each at 640x360, so memory stays
+        # flat. A frame queued takes a slot, a worker gives it back when the frame is done.
+        self._slots: SimpleQueue[None] = SimpleQueue()
+        for _ in range(2 * workers):
+            self._slots.put(None)
+        self._threads = [
+            threading.Thread(target=self._work, name=f"frame-writer-{i}", daemon=True)
+            for i in range(workers)
+        ]
+        for thread in self._threads:
+            thread.start()
+
+    def queue(self, index: int, path: Path, grab: _Grab) -> None:
+        """Queue frame ``index`` (waits while 2 x workers frames are in flight)."""
+        self._slots.get()
+        self._jobs.put((index, path, grab))
+
+    def finish(self, cancel: bool) -> None:
+        """Wait for the workers to end: after every frame queued, or (``cancel``) after the
+        frames they have taken, the others dropped (the last ones, so no gap opens)."""
+        if cancel:
+            try:
+                while True:
+                    self._jobs.get_nowait()
+            except Empty:
+                pass
+        for _ in self._threads:
+            self._jobs.put(None)
+        for thread in self._threads:
+            thread.join()
+
+    def _work(self) -> None:
+        # A worker: frames in the order queued, until told to stop. The jobs are taken in
+        # frame order and every one taken is finished, so the frames done run without a gap.
+        while (job := self._jobs.get()) is not None:
+            try:
+                self._encode_and_write(*job)
+            finally:
+                self._slots.put(None)
+
+    def _encode_and_write(self, index: int, path: Path, grab: _Grab) -> None:
+        failed_at = self.failed_at
+        if failed_at is not None and index > failed_at:
+            return  # the run is already failing: a frame after the gap would be removed anyway
+        try:
+            scratch = self._scratch.__dict__.setdefault("arrays", {})
+            _write_atomically(path, grab.encode(self.level, scratch))
+            with self._lock:
+                self.done += 1
+        except Exception as exc:
+            with self._lock:
+                # Workers finish out of order: the error to report is the first frame's.
+                if self.failed_at is None or index < self.failed_at:
+                    error = FrameWriteError(f"could not write frame {path}: {_describe(exc)}")
+                    error.__cause__ = exc
+                    self.error = error
+                    self.failed_at = index
+
+
 class FrameWriter:
     """Writes surfaces as ``frame_00000.png``, ``frame_00001.png``, ... into a folder.
 
@@ -287,26 +351,12 @@ class FrameWriter:
         #: has stopped (after :meth:`close`, :meth:`abort` or a :class:`FrameWriteError`).
         self.written = 0
         self._prepare(overwrite)
-        self._error: FrameWriteError | None = None
-        self._failed_at: int | None = None  # the lowest frame index that could not be written
-        self._done = 0  # frames renamed into place
-        self._lock = threading.Lock()  # the workers' own (the main thread never takes it)
-        self._scratch = threading.local()  # each worker's reusable arrays
         self._closed = False
-        # Jobs (index, path, pixels) in frame order; None tells a worker to stop.
-        self._jobs: SimpleQueue[tuple[int, Path, _Grab] | None] = SimpleQueue()
-        # At most two frames per worker in flight: ~0.7 MB each at 640x360, so memory stays
-        # flat. A write takes a slot, a worker gives it back when its frame is done.
-        self._slots: SimpleQueue[None] = SimpleQueue()
-        for _ in range(2 * workers):
-            self._slots.put(None)
-        self._workers = [
-            threading.Thread(target=self._work, name=f"frame-writer-{i}", daemon=True)
-            for i in range(workers)
-        ]
-        for worker in self._workers:
-            worker.start()
-        _OPEN.add(self)
+        self._encoding = _Encoding(level, workers)
+        # A writer dropped or left open at exit still writes what it was given, as a thread
+        # pool's would: then its workers take the frames queued and stop (weakref.finalize
+        # runs at exit too, while the daemon workers still run).
+        self._finalizer = weakref.finalize(self, self._encoding.finish, False)
 
     def _prepare(self, overwrite: bool) -> None:
         try:
@@ -341,77 +391,40 @@ class FrameWriter:
         grab = _Grab(surface)  # a copy: the caller may draw on the surface again now
         index = self.count
         path = self.folder / frame_name(index)
-        self._slots.get()  # waits while 2 x workers frames are in flight
-        # A stop between these two lines leaves frame ``index`` unqueued, the last one asked
-        # for: the frames kept still run without a gap.
-        self._jobs.put((index, path, grab))
+        # Counted first: a stop before the frame is queued leaves the last frame asked for
+        # unqueued, and every frame queued below ``count``.
         self.count += 1
+        self._encoding.queue(index, path, grab)
         return path
 
-    def _work(self) -> None:
-        # A worker: frames in the order queued, until told to stop. The jobs are taken in
-        # frame order and every one taken is finished, so the frames done run without a gap.
-        while (job := self._jobs.get()) is not None:
-            try:
-                self._encode_and_write(*job)
-            finally:
-                self._slots.put(None)
-
-    def _encode_and_write(self, index: int, path: Path, grab: _Grab) -> None:
-        failed_at = self._failed_at
-        if failed_at is not None and index > failed_at:
-            return  # the run is already failing: a frame after the gap would be removed anyway
-        try:
-            scratch = self._scratch.__dict__.setdefault("arrays", {})
-            _write_atomically(path, grab.encode(self.level, scratch))
-            with self._lock:
-                self._done += 1
-        except Exception as exc:
-            with self._lock:
-                # Workers finish out of order: the error to report is the first frame's.
-                if self._failed_at is None or index < self._failed_at:
-                    error = FrameWriteError(f"could not write frame {path}: {_describe(exc)}")
-                    error.__cause__ = exc
-                    self._error = error
-                    self._failed_at = index
-
     def _raise_if_failed(self) -> None:
-        if self._error is not None:
+        error = self._encoding.error
+        if error is not None:
             self._stop(cancel=True)
-            raise self._error
+            raise error
 
     def _stop(self, cancel: bool) -> None:
-        # Wait for the workers, then leave a gapless run of frames: the pool starts frames in
+        # Wait for the workers, then leave a gapless run of frames: the workers take frames in
         # order, so without a failure the finished ones are already 0..n-1; after one, frames
         # other workers finished past the failed index are removed.
         if self._closed:
             return
         self._closed = True
-        _OPEN.discard(self)
-        if cancel:
-            # Drop the frames no worker has taken: the last ones, so no gap opens.
-            try:
-                while True:
-                    self._jobs.get_nowait()
-            except Empty:
-                pass
-        for _ in self._workers:
-            self._jobs.put(None)
-        for worker in self._workers:
-            worker.join()
-        if self._failed_at is None:
-            self.written = self._done
+        self._finalizer.detach()
+        encoding = self._encoding
+        encoding.finish(cancel)
+        if encoding.failed_at is None:
+            self.written = encoding.done
             return
-        self.written = self._failed_at
-        for index in range(self._failed_at + 1, self.count):
+        self.written = encoding.failed_at
+        for index in range(encoding.failed_at + 1, self.count):
             try:
                 (self.folder / frame_name(index)).unlink(missing_ok=True)
             except OSError:
                 pass  # the error already being raised is the one to act on
-        assert self._error is not None
-        self._error.args = (
-            f"{self._error.args[0]}; {self.written} whole frame(s) kept in {self.folder}",
-        )
+        error = encoding.error
+        assert error is not None
+        error.args = (f"{error.args[0]}; {self.written} whole frame(s) kept in {self.folder}",)
 
     def close(self) -> int:
         """Wait until every queued frame is on disk; return the number of frames written."""
