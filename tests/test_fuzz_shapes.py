@@ -1774,6 +1774,98 @@ def test_a_crowd_past_its_iterations_stays_in_the_room_with_the_iterations_the_w
                 assert depth_in_walls(b, half) <= 0.05, (k, b)
 
 
+# Found exploring the mixed scenes (2,000 examples, numpy path, 2026-12-05; the fast path alike,
+# to the same depths): a 0.1 kg capsule 0.03 m thick lying on the floor is struck at once by
+# an 8.6 kg capsule spinning at 19 rad/s and a 9.4 kg box sliding in at 5.4 m/s, a mass ratio
+# of about 90 (the soft pile's known limit, engine/guide/contacts.md), and is pressed 4.5 cm
+# into the floor, its centre 1.3 cm past the room's wall line. The World says so first, at
+# the step it is 9.4 mm in ("past what 4 contact iterations a step can hold; raise
+# world.contact_iterations"), and with 8 or 16 iterations it stays within 5 mm of the floor.
+THIN_CAPSULE_STRUCK_INTO_THE_FLOOR: dict[str, Any] = {
+    "half": (3.1134376107434867, 5.762431327717733), "walls": "polygons",
+    "wall_material": (0.9122131086755749, 0.9743875596018914), "gravity": 5.293643647661917,
+    "steps": 120, "snap": 44, "kinematic": None, "solver": "exact",
+    "bodies": [
+        {"kind": "disc", "geometry": (0.23334435553227323,), "mass": 6.923209068083001,
+         "restitution": 0.0, "friction": 0.01088469137500825,
+         "angle": -1.7102586474386158e-259, "spin": 67.54936151817924,
+         "speed": 24.84902032775314, "heading": 1.2302035341595152, "fixed": True,
+         "at": (-0.5310365009938809, 3.706372741364154)},
+        {"kind": "capsule", "geometry": (0.13817277318517754, 0.08023673664001896),
+         "mass": 8.606993960049312, "restitution": 0.9669922311845134,
+         "friction": 2.2250738585e-313, "angle": -1e-12, "spin": -59.12905702901162,
+         "speed": 99.21749031076214, "heading": 6.103515625e-05, "fixed": False,
+         "at": (-2.2526372408269513, 0.2631712616980133)},
+        {"kind": "capsule", "geometry": (0.6428274114505916, 0.19297295846594353),
+         "mass": 4.324519719616753, "restitution": 1.192092896e-07, "friction": 0.0,
+         "angle": -1.8122616672823602, "spin": 0.0, "speed": 0.0, "heading": 0.0,
+         "fixed": False, "at": (1.190564238839189, -4.901630957801198)},
+        {"kind": "capsule", "geometry": (0.6289620759856985, 0.03), "mass": 0.1,
+         "restitution": 0.0, "friction": 0.9662552525476453, "angle": 0.0, "spin": 0.0,
+         "speed": 99.0, "heading": 0.0, "fixed": True,
+         "at": (-2.2526372408269513, 1.9847720015310832)},
+        {"kind": "box", "geometry": (0.1, 0.25, 0.0), "mass": 8.963506457406465,
+         "restitution": 1e-05, "friction": 0.4906382756564963,
+         "angle": -5.960464477539063e-08, "spin": 0.23334435553227323,
+         "speed": 95.03415914016749, "heading": -1.2314572621719404, "fixed": False,
+         "at": (-0.5310365009938809, -1.4584294781350575)},
+        {"kind": "box", "geometry": (0.7290038094253348, 0.3333333333333333, 0.0),
+         "mass": 9.393637137980786, "restitution": 0.4185362216560268,
+         "friction": 0.07799838686077944, "angle": -3.0529246871888045, "spin": 1.9,
+         "speed": 70.61894055265233, "heading": 2.7, "fixed": False,
+         "at": (1.190564238839189, -1.4584294781350575)},
+    ],
+}  # fmt: skip
+
+
+def test_a_light_capsule_struck_into_the_floor_is_warned_of_before_it_leaves_the_room() -> None:
+    spec = THIN_CAPSULE_STRUCK_INTO_THE_FLOOR
+    w, bodies, _ = build(spec)
+    half = spec["half"]
+    thin = bodies[3]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        left = None  # the step its centre is past the floor's line, once it is
+        for k in range(spec["steps"]):
+            w.step(DT)
+            if abs(thin.pos.y) >= half[1]:
+                left = k
+                break
+        assert left is not None, "the light capsule's centre never left the room: the find is gone"
+    # Said by then (the warnings of the steps up to it, and none after).
+    said = [str(c.message) for c in caught if issubclass(c.category, StabilityWarning)]
+    assert said and "raise world.contact_iterations" in said[0], (left, said)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the soft pile's known limit (a mass ratio of about 90 at 4 contact iterations): "
+    "the light capsule's centre is pressed 1.3 cm past the floor's line at step 90; the World "
+    "warns at step 86 (the test above), and 8 iterations hold it (the test below)",
+)
+def test_a_light_capsule_struck_into_the_floor_stays_in_the_room() -> None:
+    run(THIN_CAPSULE_STRUCK_INTO_THE_FLOOR)
+
+
+@pytest.mark.parametrize("iterations", [8, 16])
+def test_a_light_capsule_struck_into_the_floor_stays_out_with_the_iterations_the_warning_asks(
+    iterations: int,
+) -> None:
+    spec = THIN_CAPSULE_STRUCK_INTO_THE_FLOOR
+    w, bodies, _ = build(spec)
+    w.contact_iterations = iterations
+    half = spec["half"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for k in range(spec["steps"]):
+            w.step(DT)
+            for b in bodies:
+                shape = b.shape
+                c = b.local_to_world(shape.centroid) if isinstance(shape, Polygon) else b.pos
+                assert abs(c.x) < half[0] and abs(c.y) < half[1], f"step {k}: {b} left the room"
+                assert depth_in_walls(b, half) <= 0.01, (k, b)  # (4.5 cm at 4 iterations)
+
+
 def test_a_thin_triangle_flipped_off_the_floor_by_a_landing_box_stays_out_of_it() -> None:
     # Found exploring the mixed scenes (500 examples, fast path, 2026-12-04; numpy alike),
     # reduced to two bodies: a thin triangle (1.24 by 0.12 m) lying on the floor is flipped by
