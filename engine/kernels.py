@@ -326,7 +326,7 @@ def helper(fn: F) -> F:
 
 
 #: The compiled helpers made so far (``_calling_compiled``), each with the files its code
-#: comes from (its own and those of the helpers it calls).
+#: comes from (its own, those of the constants it reads and of the helpers it calls).
 _HELPERS_COMPILED: dict[Callable[..., Any], tuple[Any, set[str]]] = {}
 
 
@@ -418,6 +418,7 @@ def _calling_compiled(
             # One dispatcher a helper, shared by the kernels that call it: compiled once a
             # process for a type, not once a kernel; the helpers it calls compiled likewise.
             twin, _, theirs = _calling_compiled(_COMPILED_AS[h])
+            theirs |= _constants_from(_COMPILED_AS[h])  # (its constants compiled in, too)
             compiled = _numba().njit(cache=True, nogil=True)(twin)
             own = twin.__code__.co_filename
             _stamp_with(compiled, sorted(theirs - {own}))  # (numba's own stamp: its file)

@@ -429,3 +429,24 @@ def test_a_kernel_is_compiled_again_when_a_helper_its_helper_calls_changes(
     assert run(_INNER.format(factor=3)) == "14.0 14.0"
     assert run(_INNER.format(factor=3)) == "14.0 14.0"  # from the cache
     assert run(_INNER.format(factor=50)) == "202.0 202.0"  # the helper changed: not 14.0
+
+
+_READING_INNER = """
+from engine import kernels
+from .constant import FACTOR
+
+@kernels.helper
+def scale(x):
+    return x * FACTOR
+"""
+
+
+@needs_numba
+def test_a_kernel_is_compiled_again_when_a_constant_its_helper_reads_changes(
+    tmp_path: Path,
+) -> None:
+    kept = {"user.py": _USER, "outer.py": _OUTER, "inner.py": _READING_INNER}
+    run = _probe(tmp_path, kept, "constant.py", _USE)
+    assert run(_CONSTANT.format(factor=3)) == "14.0 14.0"
+    assert run(_CONSTANT.format(factor=3)) == "14.0 14.0"  # from the cache
+    assert run(_CONSTANT.format(factor=50)) == "202.0 202.0"  # the constant changed
