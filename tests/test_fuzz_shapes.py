@@ -48,6 +48,7 @@ from engine import (
     World,
 )
 from engine.forces import Gravity
+from engine.pipeline.stepping import AGAIN
 
 LONG = bool(os.environ.get("FUZZ_LONG"))
 SCALE = 20 if LONG else 1
@@ -1785,7 +1786,8 @@ def stays_in_the_room(spec: dict[str, Any], iterations: int, deepest: float) -> 
 # of about 90 (the soft pile's known limit, engine/guide/contacts.md), and is pressed 4.5 cm
 # into the floor, its centre 1.3 cm past the room's wall line. The World says so first, at
 # the step it is 9.4 mm in ("past what 4 contact iterations a step can hold; raise
-# world.contact_iterations"), and with 8 or 16 iterations it stays within 5 mm of the floor.
+# world.contact_iterations"), and again at 4.3 cm (a pile sinking on is told again where it is
+# AGAIN times as deep), and with 8 or 16 iterations it stays within 5 mm of the floor.
 THIN_CAPSULE_STRUCK_INTO_THE_FLOOR: dict[str, Any] = {
     "half": (3.1134376107434867, 5.762431327717733), "walls": "polygons",
     "wall_material": (0.9122131086755749, 0.9743875596018914), "gravity": 5.293643647661917,
@@ -1837,9 +1839,12 @@ def test_a_light_capsule_struck_into_the_floor_is_warned_of_before_it_leaves_the
                 left = k
                 break
         assert left is not None, "the light capsule's centre never left the room: the find is gone"
-    # Said by then (the warnings of the steps up to it, and none after).
+    # Said by then (the warnings of the steps up to it, and none after): first at 9.4 mm,
+    # and again as it sank four times as deep (AGAIN), with the deeper overlap.
     said = [str(c.message) for c in caught if issubclass(c.category, StabilityWarning)]
-    assert said and "raise world.contact_iterations" in said[0], (left, said)
+    assert said and all("raise world.contact_iterations" in m for m in said), (left, said)
+    told = [float(m.split("overlap by ")[1].split(" ")[0]) for m in said]
+    assert len(told) == 2 and told[1] >= AGAIN * told[0] and told[1] > 0.04, (left, said)
 
 
 @pytest.mark.xfail(

@@ -107,7 +107,9 @@ class Collisions:
         self._shape_pairs: tuple[np.ndarray, ...] | None = None
         self._disc_pairs: tuple[np.ndarray, ...] | None = None
         self._stray_over = 0.0
-        self.warned = False  # the World has warned that a pile is past the solver
+        #: The deepest overlap the World has warned of (length units; 0: none yet): a pile
+        #: past the solver is told again only where it sinks AGAIN times as deep.
+        self.warned = 0.0
         self.moved = False  # whether the last step changed any body's state
         #: The spin (engine.dynamics.rotation) the last step's impacts made, when the step had none
         #: and an impact turned a body (two discs at rest that strike each other off centre).

@@ -37,6 +37,7 @@ from .event_dispatch import quiet, report, settle
 from .game_step import unsupported
 
 if TYPE_CHECKING:
+    from ..exact.collisions import Collisions
     from .world_state import WorldState
 
 __all__ = ["SUBSTEPS_AT_IMPACT", "Plan", "advance", "plan"]
@@ -534,7 +535,7 @@ def _step_once(
             shaped = pairs.shape_table(store) if pairs.has_shapes(store) else None
             turned = store.angle if spin is None else spin.angle
             contacts.sense(x1, dt, t0, store.radius, shaped, turned)
-        sinking = pairs.last_overlap > 0.05 * pairs.rmin and not pairs.warned
+        sinking = pairs.last_overlap > _told(pairs)
     if state.links:
         kinked = None
         if v1 is not v_free:
@@ -547,8 +548,8 @@ def _step_once(
         # step: a warning made an error leaves the state before it).
         turned = store.angle if spin is None else spin.angle
         over = pairs.ended_overlap(x1, turned, store, contacts)
-        if over > 0.05 * pairs.rmin:
-            pairs.warned = True
+        if over > _told(pairs):
+            pairs.warned = over
             warnings.warn(
                 f"bodies overlap by {over:.3g} length units "
                 f"({100 * over / pairs.rmin:.0f}% of the smallest radius): "
@@ -566,6 +567,18 @@ def _step_once(
         store.angle, store.omega = spin.angle, spin.omega
         store.spin_written()
     state.void_budget()
+
+
+#: A pile past the resting solver is told again where it has sunk this many times as deep as
+#: the overlap last told (a pile that holds at its depth is told once; one sinking on is told
+#: as it goes, a few times at most, as an overlap is bounded by the bodies' size).
+AGAIN = 4.0
+
+
+def _told(pairs: Collisions) -> float:
+    """The overlap (length units) past which the resting solver's limit is told: 5% of the
+    smallest radius, or AGAIN times what was told last."""
+    return max(0.05 * pairs.rmin, AGAIN * pairs.warned)
 
 
 def _closed_springs(
