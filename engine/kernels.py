@@ -24,7 +24,9 @@ arrays; Python floats). ``prepare`` compiles every kernel for its sample, or loa
 numba's cache (under a second for all): the first World on the fast path calls it when it is
 made, before any step, and ``python -m engine.warmup`` (the install line's last command) does
 the first run's compile once: about 33 s on two cores, where a second process compiles from
-the other end of the list (``_Helper``), about a minute on one. The cache lives in the user's
+the other end of the list (``_Helper``), about a minute on one. A kernel that calls another
+calls it through its address (engine.kernel_calls), so each is compiled once, not again
+inside every kernel that calls it. The cache lives in the user's
 cache folder (``cache_dir()``), not beside the sources, unless ``NUMBA_CACHE_DIR`` says
 otherwise.
 tests/test_compile_before_play.py checks that stepping the demos' scenes after ``prepare``
@@ -57,6 +59,8 @@ from pathlib import Path
 from typing import Any, Generic, TypeVar
 
 import numpy as np
+
+from . import kernel_calls
 
 __all__ = [
     "floats",
@@ -171,6 +175,7 @@ class LoopKernel(Generic[F]):
         self.ready = False
         #: The names of the kernels it calls (known once it is compiled: ``fast``).
         self.calls: list[str] = []
+        self._types: tuple[Any, ...] | None = None
         _ALL.append(self)
 
     @property
@@ -178,9 +183,9 @@ class LoopKernel(Generic[F]):
         """The compiled kernel (numba.njit, cached on disk in ``cache_dir()``); it compiles
         (or loads) a specialisation at its first call with each new set of argument types.
         A kernel may call another (a step's kernel calls the manifolds' and the solver's):
-        compiled, it calls the other's compiled code, and numba's cache entry for it is kept
-        only while the other's source file is as it was (numba's own check looks at the
-        caller's file alone)."""
+        compiled, it calls the other's compiled code through its address (engine.kernel_calls),
+        and numba's cache entry for it is kept only while the other's source file is as it was
+        (numba's own check looks at the caller's file alone)."""
         if self._compiled is None:
             fn, called, helped = _calling_compiled(self.py)
             self._compiled = _numba().njit(cache=True, nogil=True)(fn)
@@ -199,6 +204,14 @@ class LoopKernel(Generic[F]):
         for k in self._called:
             files |= k.sources()
         return files
+
+    def sample_types(self) -> tuple[Any, ...]:
+        """The numba types of its sample's arguments (those ``prepare`` compiles it for)."""
+        if self._types is None:
+            from numba.core.typing.typeof import Purpose, typeof
+
+            self._types = tuple(typeof(a, Purpose.argument) for a in _SAMPLES[self.name]())
+        return self._types
 
     def __call__(self, *args: Any) -> Any:
         """The compiled kernel's result for ``args`` (the fast path's call)."""
@@ -407,11 +420,15 @@ def _calling_compiled(
     names = _names(fn.__code__)
     called = {n: glob[n] for n in names if isinstance(glob.get(n), LoopKernel)}
     helpers = {n: glob[n] for n in names if _helper(glob.get(n))}
+    for n, h in list(helpers.items()):
+        if isinstance(_COMPILED_AS[h], LoopKernel):  # (a kernel of its own: stable_order)
+            called[n] = _COMPILED_AS[helpers.pop(n)]
     if not called and not helpers:
         return fn, [], set()
     new_globals = dict(glob)
     for name, k in called.items():
-        new_globals[name] = k.fast
+        # Called through its address, not compiled in again (engine.kernel_calls).
+        new_globals[name] = kernel_calls.calling(k, k.sample_types)
     files = set()
     for name, h in helpers.items():
         if h not in _HELPERS_COMPILED:
@@ -495,6 +512,15 @@ def loop(sample: Callable[[], tuple[Any, ...]] | None = None) -> Callable[[F], L
     return wrap
 
 
+def _keys_sample() -> tuple[Any, ...]:
+    return (np.array([3, 1, 2], dtype=np.int64),)
+
+
+#: ``stable_order`` where a kernel calls it: a kernel of its own, compiled once and called
+#: through its address by each kernel that sorts (engine.kernel_calls), for int64 keys.
+_COMPILED_AS[stable_order] = loop(sample=_keys_sample)(_stable_order_compiled)
+
+
 def kernels() -> list[LoopKernel[Any]]:
     """Every loop kernel of the engine's modules imported so far."""
     return list(_ALL)
@@ -560,11 +586,12 @@ def prepare(only: Sequence[LoopKernel[Any]] | None = None) -> float:
 
 #: The order of a cold compile (the rest between, as imported), balanced for two processes
 #: (this one from the front, the helper from the back; seconds each on this machine kind):
-#: the solver (13 s) here, the contacts (polygon_loop 3 s ... contacts_loop 8 s) in the helper
-#: meanwhile, and the step that calls both (engine.pipeline.game_loop, 7 s of its own) after the
-#: colouring (5 s), by which time the helper has cached the contacts, so it loads them
-#: rather than compiling them a second time.
+#: the sort that six kernels call (1 s) and the solver (13 s) here, the contacts (polygon_loop
+#: 3 s ... contacts_loop 7 s) in the helper meanwhile, and the step that calls both
+#: (engine.pipeline.game_loop, 5 s) after the colouring (2 s), by which time the helper has
+#: cached the contacts, so this one loads them rather than compiling them a second time.
 FRONT = (
+    "engine.kernels._stable_order_compiled",
     "engine.dynamics.solver.solve",
     "engine.dynamics.coloring.color_rows",
     "engine.pipeline.game_loop.step_loop",
@@ -588,14 +615,20 @@ def _rank(k: LoopKernel[Any]) -> tuple[int, int]:
 
 
 def _compile(k: LoopKernel[Any]) -> None:
-    """Compile ``k`` for its sample's argument types (or load it from numba's cache)."""
+    """Compile ``k`` for its sample's argument types (or load it from numba's cache), after
+    the kernels it calls (it calls them through their addresses: engine.kernel_calls)."""
     sample = _SAMPLES.get(k.name)
     if sample is None:
         raise RuntimeError(
             f"loop kernel {k.name} has no sample (@loop(sample=...)): it would "
             f"compile at its first call, during play"
         )
-    k.fast(*sample())
+    compiled = k.fast
+    for called in k._called:
+        if not called.ready:
+            _compile(called)
+    compiled(*sample())
+    kernel_calls.fill(k, k.sample_types())
     k.ready = True
 
 

@@ -1,7 +1,7 @@
 """Compile the fast path's loop kernels now, once, not in a game: ``python -m engine.warmup``.
 
 The README's install line for the ``fast`` extra ends with this command, so the first run's
-compile (about 33 s for the 32 kernels, shared with a second process where there is a
+compile (about 33 s for the 33 kernels, shared with a second process where there is a
 second core) happens at install time, with its progress on stderr,
 and numba's cache (``engine.kernels.cache_dir()``) holds them all. A World on the fast path
 still calls ``engine.kernels.prepare()`` when it is made, which then only loads them (about
