@@ -41,7 +41,8 @@ def test_every_kernel_has_a_sample_and_its_module_is_prepared() -> None:
     for name in kernels.MODULES:
         __import__(name)
     mine = [k for k in kernels.kernels() if k.name.startswith("engine.")]
-    assert {k.name.rsplit(".", 1)[0] for k in mine} == decorated
+    # (and engine.kernels' own: stable_order's compiled twin, which kernels call by address)
+    assert {k.name.rsplit(".", 1)[0] for k in mine} == decorated | {"engine.kernels"}
     assert [k.name for k in mine if k.name not in kernels._SAMPLES] == []
 
 
