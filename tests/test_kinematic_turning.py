@@ -15,7 +15,7 @@ import numpy as np
 import pygame
 import pytest
 
-from demos.stack import into_walls, outside, tumbler
+from demos.stack import TUMBLE, TUMBLE_STRESS, TUMBLED_SIDE, into_walls, outside, tumbler
 from engine import Body, Polygon, Vector, World
 from engine.forces import Gravity
 from engine.render.camera import Camera
@@ -128,48 +128,86 @@ def test_snapshot_keeps_a_kinematic_turn_in_progress() -> None:
     assert (paddle.angle, paddle.angular_velocity) == after  # the bad one changed nothing
 
 
-#: Seconds the tumbler turns (s): two whole turns, eight times the pile slides from one wall to
-#: the next (the scene repeats a quarter turn apart; 20 s took over four minutes on numpy). One
-#: whole turn on numpy, where it costs six times more (CI runs the suite on both paths and its
-#: time is at its budget; both paths give the same numbers to rounding).
+#: Seconds the tumbler turns (s): at 90 degrees a second two whole turns, eight times the pile
+#: slides from one wall to the next (the scene repeats a quarter turn apart; 20 s took over four
+#: minutes on numpy); at 25 degrees a second the pile lands, is carried up and tumbles down
+#: (its deepest overlap came at 6.4 s of 20). Half as long on numpy, where it costs six times
+#: more (CI runs the suite on both paths and its time is near its budget; both paths give the
+#: same numbers to rounding).
 TUMBLED_FOR = 8.0 if World().kernels == "fast" else 4.0
 
 
-@pytest.fixture(scope="module")
-def tumbled() -> tuple[World, list[Body], list[Body], float, int]:
+@pytest.fixture(
+    scope="module",
+    params=[
+        pytest.param(TUMBLE, id="25-degrees-a-second"),
+        pytest.param(
+            TUMBLE_STRESS,
+            id="90-degrees-a-second",
+            marks=pytest.mark.skipif(
+                World().kernels != "fast", reason="the stress scene on the fast path alone"
+            ),
+        ),
+    ],
+)
+def tumbled(
+    request: pytest.FixtureRequest,
+) -> tuple[World, list[Body], list[Body], float, int, float]:
     """Box2D's tumbler (shared/anchors/box2d): 500 boxes of 0.25 m in a 19 m room whose
-    walls turn at 90 degrees a second, for TUMBLED_FOR s: (world, boxes, walls, the deepest
-    any box's corner went past a wall's inner face (m), boxes whose centre ever went past
-    one)."""
-    w, boxes, walls = tumbler()
+    walls turn at 25 degrees a second (Box2D's benchmark) or 90 (the stress scene), for
+    TUMBLED_FOR s: (world, boxes, walls, the deepest any box's corner went past a wall's inner
+    face (m), boxes whose centre ever went past one, the deepest overlap of two bodies (m))."""
+    w, boxes, walls = tumbler(spin=request.param)
     deepest, out = -math.inf, np.zeros(len(boxes), dtype=bool)
+    overlap = 0.0
     with warnings.catch_warnings():
         # The landing and the avalanches overlap boxes by more than the pile's warning
-        # level (5% of the smallest radius): the soft step's limit, shown by the stack
-        # demo's read-out; what this scene checks is that none is lost through a wall.
+        # level (5% of the smallest radius), as the stack demo's read-out shows; what this
+        # scene checks is that none is lost through a wall.
         warnings.simplefilter("ignore", StabilityWarning)
         for _ in range(round(TUMBLED_FOR / DT)):
             w.step(DT)
             deepest = max(deepest, into_walls(boxes, walls))
             out |= outside(boxes, walls)
-    return w, boxes, walls, deepest, int(out.sum())
+            overlap = max(overlap, w.overlap())
+    return w, boxes, walls, deepest, int(out.sum()), overlap
 
 
 def test_the_tumbler_loses_no_box_into_its_turning_walls(
-    tumbled: tuple[World, list[Body], list[Body], float, int],
+    tumbled: tuple[World, list[Body], list[Body], float, int, float],
 ) -> None:
     # The issue "Bodies that turn": no box ever ends a step inside a wall. pymunk 7.3.1 on
-    # this scene (demos.bench.tumbler's twin): 104 boxes' centres past a wall in 8 s, 94 out
-    # at 8 s (136 and 97 in 20 s). Box2D v3 (617d32ab, 4 substeps; measured with
-    # shared/anchors/box2d, 20 s): none at the end, but up to 10 centres past a wall's inner
-    # face during the run, a corner 293 mm into a wall and two boxes 266 mm into each other.
-    # Here no centre ever passes a wall's inner face and no corner goes 0.1 m past it (59 mm
-    # in 8 s; 69 mm in 20 s).
-    w, boxes, walls, deepest, lost = tumbled
+    # this scene at 90 degrees a second (demos.bench.tumbler's twin): 104 boxes' centres past
+    # a wall in 8 s, 94 out at 8 s (136 and 97 in 20 s). Box2D v3 (617d32ab, 4 substeps;
+    # shared/anchors/box2d, 20 s): none at the end, but centres past a wall's inner face during
+    # the run (up to 10 at once at 90 degrees a second, 3 at 25), a corner 293 mm (254 mm)
+    # into a wall. Here no centre ever passes a wall's inner face and no corner goes 0.1 m
+    # past it (at 90: 59 mm in 8 s, 69 mm in 20 s).
+    w, boxes, walls, deepest, lost, _ = tumbled
     assert lost == 0
     assert deepest < 0.1
-    assert walls[0].angle == pytest.approx(math.pi / 2 * w.t, rel=1e-12)
+    assert walls[0].angle == pytest.approx(walls[0].angular_velocity * w.t, rel=1e-12)
+    assert walls[0].angular_velocity in (TUMBLE, TUMBLE_STRESS)
     assert all(math.isfinite(b.pos.x) and math.isfinite(b.angle) for b in boxes)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="a falling box strikes the pile several centimetres deep (the issue's target is "
+    "25 mm, 10% of a side; Box2D v3 itself went 274 mm, 110%, at 25 degrees a second)",
+)
+def test_no_two_bodies_of_the_tumbler_overlap_by_a_tenth_of_a_side(
+    tumbled: tuple[World, list[Body], list[Body], float, int, float],
+) -> None:
+    # The issue "Rigid bodies as Box2D's own tests expect": at either speed no two boxes
+    # overlap by more than 10% of a side. Measured (``World.overlap``, two boxes or a box and
+    # a wall, the deepest after any step): at 25 degrees a second 92 mm in 20 s (at 6.4 s), at
+    # 90 234 mm (at 1.4 s). Box2D v3 (617d32ab, 4 substeps, its contacts' separations after
+    # each step, 20 s): two boxes 274 mm into each other at 25 and 266 mm at 90, a box 254
+    # and 293 mm into a wall, where boxes carried up fall 19 m onto the pile; 3 to 7 cm in the
+    # pile at rest on a wall.
+    *_, overlap = tumbled
+    assert overlap <= 0.1 * TUMBLED_SIDE
 
 
 def test_a_turned_kinematic_body_is_drawn_at_its_angle() -> None:

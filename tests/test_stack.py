@@ -4,12 +4,20 @@ and a tower that stands; the frames show it."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pygame
 import pytest
 
-from demos.stack import MARK, DominoScene, PyramidScene, TowerScene, TumblerScene
+from demos.stack import (
+    MARK,
+    DominoScene,
+    PyramidScene,
+    StressTumblerScene,
+    TowerScene,
+    TumblerScene,
+)
 from engine.render import iter_frames, marks
 from engine.render.world_view import ASLEEP
 
@@ -146,12 +154,16 @@ def test_the_pyramids_and_the_towers_read_outs_are_of_the_time_on_the_clock(t: f
     assert line in said, said
 
 
-def test_frames_a_second_apart_show_the_tumbler_turned() -> None:
-    """The walls turn 90 degrees a second and look alike a quarter turn apart: at 1 s and 2 s
-    the room was drawn the same, as if still. A dot marks one wall and the frame says the
-    room's angle: the dot is where the angle puts it, a quarter turn on each second."""
-    scene = TumblerScene()
+@pytest.mark.parametrize("scene_class", [TumblerScene, StressTumblerScene])
+def test_frames_a_second_apart_show_the_tumbler_turned(scene_class: type[TumblerScene]) -> None:
+    """The walls look alike a quarter turn apart: at 90 degrees a second (the stress scene)
+    the room at 1 s and 2 s was drawn the same, as if still. A dot marks one wall and the
+    frame says the room's angle: the dot is where the angle puts it, ``spin`` on each second
+    (25 degrees a second in the tumbler, a quarter turn in the stress scene)."""
+    scene = scene_class()
     scene.count = 20  # the room turns the same with fewer boxes in it
+    per_second = math.degrees(scene.spin)
+    assert round(per_second) == (25 if scene_class is TumblerScene else 90)
     seen = {}
     for k, t, surface in iter_frames(scene, 30, 2.0, (640, 360), only={0, 30, 45, 60}):
         mark = np.all(pygame.surfarray.array3d(surface) == MARK, axis=2)
@@ -162,6 +174,13 @@ def test_frames_a_second_apart_show_the_tumbler_turned() -> None:
         angle = math.degrees(math.atan2(-(ys.mean() - cy), xs.mean() - cx)) % 360
         said = [m.text for m in marks.marks(surface)]
         seen[t] = (xs.mean(), ys.mean())
-        assert abs((angle - 90 * t + 180) % 360 - 180) < 2.0, (t, angle)
-        assert f"the walls at {round(90 * t) % 360} degrees" in said, said
-    assert math.dist(seen[1.0], seen[2.0]) > 100  # a whole room's width apart
+        assert abs((angle - per_second * t + 180) % 360 - 180) < 2.0, (t, angle)
+        told = [
+            int(m[1]) for text in said if (m := re.fullmatch(r"the walls at (\d+) degrees", text))
+        ]
+        assert len(told) == 1, said
+        assert abs((told[0] - per_second * t + 180) % 360 - 180) <= 0.5 + 1e-9, (t, told)
+    # A second apart, the dot is a chord of the room's turn in that second apart (pixels).
+    radius = math.dist(seen[0.0], scene.camera.point((0.0, 0.0)))
+    chord = 2.0 * radius * math.sin(math.radians(per_second) / 2.0)
+    assert math.dist(seen[1.0], seen[2.0]) == pytest.approx(chord, rel=0.05)
