@@ -26,10 +26,16 @@ path its plain-Python twin, so the same bits):
   (x1, q1) as pose(t) = (x0 + t (x1 - x0), q0 + t (q1 - q0)), t the fraction of the step, and
   is swept against what its swept box meets: the static colliders (their filters passed, a
   sensor's or a face pre_solve ignored left out) and the bodies that do not move by the solve
-  (static ones, and kinematic ones on their own sweeps); a bullet (``Body.bullet``, Box2D's
-  ``isBullet``; off by default, as Box2D's) against the dynamic bodies too that are not
-  bullets (Box2D's rule: two bullets are each other's solve's), each on its own sweep of the
-  solve, so the order of the fast bodies does not matter;
+  and stand still (static ones, and kinematic ones at rest); a bullet (``Body.bullet``, Box2D's
+  ``isBullet``; off by default, as Box2D's) against the moving kinematic bodies too, on their
+  own sweeps, and the dynamic bodies that are not bullets (Box2D's rule: two bullets are each
+  other's solve's), each on its own sweep of the solve, so the order of the fast bodies does
+  not matter. (Box2D sweeps a body that is no bullet against static shapes alone. Swept
+  against a turning kinematic wall too, the boxes a tumbler's wall carries at 6 m/s were set
+  back from the poses the solve gave them, and into the boxes it did not set back: two boxes
+  went 186 mm into each other where 50 of them tumble at 25 degrees a second, 40 mm so; and
+  at 90 degrees a second, 500 boxes, 64 centres passed a wall, none so:
+  tests/test_soft_continuous.py);
 * **the impact**: where the first time of impact t < 1 is found, the body is set back to
   pose(t), its velocities kept (Box2D's), so that it stops before the wall and the next step's
   speculative contacts, taken there, hold it.
@@ -429,9 +435,9 @@ def continuous_loop(
                 out = f
         return out
 
-    # The bodies to sweep against, once: the static and kinematic ones, and where a body is a
-    # bullet the dynamic ones that are not bullets (``moved``: those, a bullet's alone); no
-    # sensor.
+    # The bodies to sweep against, once: the static and kinematic ones (a moving kinematic one
+    # a bullet's alone, below), and where a body is a bullet the dynamic ones that are not
+    # bullets (``moved``: those, a bullet's alone); no sensor.
     anyone = False
     for o in range(n):
         if bullet[o]:
@@ -488,8 +494,9 @@ def continuous_loop(
         hiy = max(x0[r, 1], x1[r, 1]) + reach[r]
         fraction = 1.0
         # The static shapes (k of them), then the bodies the solve does not move: static
-        # ones, kinematic ones on their sweeps (and, for a bullet, the dynamic ones that are
-        # not bullets on theirs); one call of ``sweep`` for both (``toi``'s note).
+        # ones, kinematic ones at rest (and, for a bullet, moving kinematic ones on their
+        # sweeps and the dynamic ones that are not bullets on theirs); one call of ``sweep``
+        # for both (``toi``'s note).
         for j in range(statics + many):
             if j < statics:
                 s = j
@@ -541,6 +548,8 @@ def continuous_loop(
                 a_circle, a_index = body_circle[o], body_index[o]
                 ax, ay, aq = x0[o, 0], x0[o, 1], q0[o]
                 adx, ady, adq = x1[o, 0] - ax, x1[o, 1] - ay, q1[o] - aq
+                if not bullet[r] and (adx != 0.0 or ady != 0.0 or adq != 0.0):
+                    continue  # a moving kinematic body: a bullet's sweep alone (Box2D's rule)
                 a_core = core[o]
             fraction = sweep(r, a_circle, a_index, ax, ay, aq, adx, ady, adq, a_core, fraction)
         if fraction < 1.0:
