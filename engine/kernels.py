@@ -250,6 +250,10 @@ def stable_order(keys: Any) -> Any:
     return np.argsort(keys, kind="stable")
 
 
+#: The largest int64.
+_INT64_MAX = 2**63 - 1
+
+
 def _stable_order_compiled(keys: Any) -> Any:
     n = len(keys)
     lo, hi = (keys[0], keys[0]) if n else (0, 0)
@@ -259,10 +263,11 @@ def _stable_order_compiled(keys: Any) -> Any:
             lo = v
         elif v > hi:
             hi = v
-    span = hi - lo
     order = np.empty(n, dtype=np.int64)
     vals = np.empty(n, dtype=np.int64)
-    if n < 64 or span < 0:  # few, or wider than an int64: one bucket
+    # Few, or hi - lo past an int64 (asked without the subtraction, which would overflow):
+    # one bucket.
+    if n < 64 or (lo < 0 and hi > _INT64_MAX + lo):
         nb = 1
         start = np.zeros(2, dtype=np.int64)
         start[1] = n
@@ -271,6 +276,7 @@ def _stable_order_compiled(keys: Any) -> Any:
     else:
         # Buckets of the keys' leading bits, at most n of them, each bucket's keys in their
         # order.
+        span = hi - lo
         shift = 0
         while (span >> shift) >= n:
             shift += 1
