@@ -4,8 +4,8 @@ numba compiles a call from one jitted function to another by linking the callee'
 the caller's module, where LLVM optimises it again (it may inline it) and generates its machine
 code again. A kernel that calls others pays for them twice that way, and their callees three
 times: the step's kernel (engine.pipeline.game_loop's ``step_loop``, which calls the solver and
-the contacts, which call the manifolds) took 8.7 s of a cold compile of its own, of which about
-6 s went to the solver's and the contacts' code generated a second time.
+the contacts, which call the manifolds) took 8.7 s of a cold compile of its own, where it takes
+5.1 s calling them as below; the contacts' kernel no longer carries the manifolds' code.
 
 So a kernel that calls another (``engine.kernels._calling_compiled``) calls it here instead:
 a numba intrinsic whose code loads the callee's address from a slot (a pointer in memory, named
