@@ -55,20 +55,20 @@ def _slot(name: str) -> ctypes.c_void_p:
     return _SLOTS[name]
 
 
-def fill(k: Any, argtypes: tuple[Any, ...]) -> None:
-    """Put the address of kernel ``k`` compiled for ``argtypes`` (its sample's) in its slot,
+def fill(k: Any) -> None:
+    """Put the address of kernel ``k`` compiled for its sample's argument types in its slot,
     if a caller has one made (it is compiled, or loaded from the cache, already)."""
     slot = _SLOTS.get(k.name)
     if slot is None:
         return
-    cres = k.fast.overloads[argtypes]
+    cres = k.fast.overloads[k.sample_types()]
     slot.value = cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name)
 
 
-def calling(k: Any, argtypes: Any) -> Any:
-    """What a compiled kernel calls in place of kernel ``k``: an intrinsic that types as ``k``
-    compiled for its sample's argument types (``argtypes()``, a tuple of numba types), and
-    calls it through its slot."""
+def calling(k: Any) -> Any:
+    """What a compiled kernel calls in place of kernel ``k`` (an engine.kernels.LoopKernel): an
+    intrinsic that types as ``k`` compiled for its sample's argument types
+    (``k.sample_types()``), and calls it through its slot."""
     if k.name in _CALLS:
         return _CALLS[k.name]
     from numba.core import cgutils, errors, types
@@ -77,11 +77,11 @@ def calling(k: Any, argtypes: Any) -> Any:
     name = k.name
     _slot(name)
     if k.ready:  # (compiled or loaded before any caller was made)
-        fill(k, argtypes())
+        fill(k)
 
     def typer(typingctx: Any, *args: Any) -> Any:
         given = tuple(types.unliteral(a) for a in args)
-        expected = argtypes()
+        expected = k.sample_types()
         if given != expected:
             diff = [
                 f"argument {i}: {g}, not {e}"
@@ -96,7 +96,7 @@ def calling(k: Any, argtypes: Any) -> Any:
                 f"its sample's types (engine.kernel_calls)"
             )
         k.fast.compile(expected)
-        fill(k, expected)
+        fill(k)
         cres = k.fast.overloads[expected]
         restype = cres.signature.return_type
         sig = restype(types.StarArgTuple.from_types(expected))

@@ -434,7 +434,7 @@ def _calling_compiled(
     new_globals = dict(glob)
     for name, k in called.items():
         # Called through its address, not compiled in again (engine.kernel_calls).
-        new_globals[name] = kernel_calls.calling(k, k.sample_types)
+        new_globals[name] = kernel_calls.calling(k)
     files = set()
     for name, h in helpers.items():
         if h not in _HELPERS_COMPILED:
@@ -634,7 +634,7 @@ def _compile(k: LoopKernel[Any]) -> None:
         if not called.ready:
             _compile(called)
     compiled(*sample())
-    kernel_calls.fill(k, k.sample_types())
+    kernel_calls.fill(k)
     k.ready = True
 
 

@@ -435,9 +435,9 @@ def continuous_loop(
                 out = f
         return out
 
-    # The bodies to sweep against, once: the static and kinematic ones (a moving kinematic one
-    # a bullet's alone, below), and where a body is a bullet the dynamic ones that are not
-    # bullets (``moved``: those, a bullet's alone); no sensor.
+    # The bodies to sweep against, once: the static and kinematic ones, and where a body is a
+    # bullet the dynamic ones that are not bullets (``moved``: a bullet's alone, as a moving
+    # kinematic one is: Box2D's rule); no sensor.
     anyone = False
     for o in range(n):
         if bullet[o]:
@@ -450,6 +450,9 @@ def continuous_loop(
             continue
         if kinematic[o] or not mass[o] < math.inf:
             others[many] = o
+            moved[many] = kinematic[o] and (
+                x1[o, 0] != x0[o, 0] or x1[o, 1] != x0[o, 1] or q1[o] != q0[o]
+            )
             many += 1
         elif anyone and not bullet[o]:
             others[many] = o
@@ -548,8 +551,6 @@ def continuous_loop(
                 a_circle, a_index = body_circle[o], body_index[o]
                 ax, ay, aq = x0[o, 0], x0[o, 1], q0[o]
                 adx, ady, adq = x1[o, 0] - ax, x1[o, 1] - ay, q1[o] - aq
-                if not bullet[r] and (adx != 0.0 or ady != 0.0 or adq != 0.0):
-                    continue  # a moving kinematic body: a bullet's sweep alone (Box2D's rule)
                 a_core = core[o]
             fraction = sweep(r, a_circle, a_index, ax, ay, aq, adx, ady, adq, a_core, fraction)
         if fraction < 1.0:
