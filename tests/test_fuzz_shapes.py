@@ -1030,6 +1030,62 @@ def test_a_box_pushed_into_the_ceiling_by_another_stays_in_the_room() -> None:
     run(spec)
 
 
+def test_a_light_polygon_struck_into_a_wall_by_a_heavy_disc_stays_out_of_it() -> None:
+    # Found by the fast path's exploring fuzz (find 11, 2026-12-05), cut down to its two
+    # bodies: a 6 kg disc at 88 m/s behind a 1 kg rounded polygon, both along +x at the
+    # room's wall, no gravity, the soft step (solver "auto"). The polygon struck the wall and
+    # bounced; the disc struck it back into the wall, and the soft solver moved it by its
+    # velocity less half the "held" change of it (exact for a held force), where the wall's
+    # last impulse (an impact's, -58.8 m/s a part) counted as held and the disc's fresh push
+    # did not: 0.115 m into the wall in a step, though its rows had stopped it at 0.23 m/s,
+    # and no StabilityWarning. The held change is now at most the part's own change of
+    # velocity, and of its sign (engine.dynamics.solver, ``_within``): 1.2 mm.
+    spec = {
+        "half": (6.584629063534493, 6.11),
+        "walls": "room",
+        "wall_material": (0.6095436360079732, 0.0),
+        "gravity": 0.0,
+        "steps": 20,
+        "snap": 0,
+        "kinematic": None,
+        "solver": "auto",
+        "bodies": [
+            {
+                "kind": "polygon",
+                "geometry": (
+                    [0.52, 0.662341146314867, 0.7017350256411681, 0.5843150158082417,
+                     0.5380520562650017], 1.0, 0.6405326664302635, 0.05,
+                ),
+                "mass": 1.019302629360792,
+                "restitution": 0.6202574237647608,
+                "friction": 0.1409344979950067,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 0.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (2.717295600058934, 1.7608593307328988),
+            },
+            {
+                "kind": "disc",
+                "geometry": (0.4375,),
+                "mass": 6.0,
+                "restitution": 0.0,
+                "friction": 1.0,
+                "angle": 0.0,
+                "spin": 0.0,
+                "speed": 88.0,
+                "heading": 0.0,
+                "fixed": True,
+                "at": (1.2862302671984063, 1.7608593307328988),
+            },
+        ],
+    }  # fmt: skip
+    _, seen = run(spec)
+    assert seen["stability"] == 0
+    assert seen["deepest"] < 0.005, seen
+
+
 def test_a_polygon_knocked_on_into_a_wall_it_was_turning_into_stays_out_of_it() -> None:
     # Found by the long scene fuzz (FUZZ_LONG=1): at step 6 the thin polygon (body 2, 9 kg,
     # 6 mm from the right wall, turning at -77 rad/s toward it) is struck by the spinning
