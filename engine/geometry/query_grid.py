@@ -55,7 +55,16 @@ import numpy as np
 from .colliders import Box as Room
 from .colliders import Circle, Collider, Disc, Line, Plane, Segment
 
-__all__ = ["GROW", "BodyBins", "BodyTable", "ColliderGrid", "QueryIndex", "bodies_near", "margin"]
+__all__ = [
+    "GROW",
+    "BodyBins",
+    "BodyTable",
+    "ColliderGrid",
+    "QueryIndex",
+    "bodies_near",
+    "looks",
+    "margin",
+]
 
 #: The relative growth of every region compared (see the module doc: Margins).
 GROW = 1e-6
@@ -90,6 +99,15 @@ def _pad_without_end(c: Collider) -> float:
     return math.inf
 
 
+def looks(c: Collider) -> tuple[list[Line], list[Disc], Box, float]:
+    """What a query's exact test reads of a collider (or a body's shape, in its frame), once:
+    its flat and round faces (``Collider.lines``, ``Collider.discs``), its box grown by its pad
+    (1e-6 of its coordinates and size: the module doc's Margins), and the pad."""
+    x0, y0, x1, y1 = c.bounds()
+    m = GROW * (max(abs(x0), abs(y0), abs(x1), abs(y1)) + (x1 - x0) + (y1 - y0))
+    return c.lines(), c.discs(), (x0 - m, y0 - m, x1 + m, y1 + m), m
+
+
 def _finite(box: Box) -> bool:
     """Whether a box's width and height (so its sides too) are finite numbers."""
     return math.isfinite(box[2] - box[0]) and math.isfinite(box[3] - box[1])
@@ -119,10 +137,8 @@ class ColliderGrid:
         everywhere: list[int] = []
         gridded: list[int] = []
         for k, c in enumerate(self.colliders):
-            self.faces.append((c.lines(), c.discs()))
-            x0, y0, x1, y1 = c.bounds()
-            m = GROW * (max(abs(x0), abs(y0), abs(x1), abs(y1)) + (x1 - x0) + (y1 - y0))
-            grown = (x0 - m, y0 - m, x1 + m, y1 + m)
+            lines, discs, grown, m = looks(c)
+            self.faces.append((lines, discs))
             if math.isfinite(m) and _finite(grown):
                 self.boxes.append(grown)
                 self.pads.append(m)
@@ -329,9 +345,21 @@ class BodyTable:
             else {k for k, s in enumerate(shapes) if s is not None and not isinstance(s, Circle)}
         )
 
+        #: id(shape) -> (the shape, ``looks(shape)``): a body's shape as a query's exact test
+        #: reads it, made when a query first meets it (a body's shape never changes).
+        self._looks: dict[int, tuple[Any, tuple[list[Line], list[Disc], Box, float]]] = {}
+
     def fits(self, store: Any) -> bool:
         """Whether this table is of ``store``'s bodies."""
         return self.radius is store.radius and self.filters is store.group
+
+    def looks(self, shape: Any) -> tuple[list[Line], list[Disc], Box, float]:
+        """``looks(shape)`` for a body's shape (or a part of it), in its body's frame: made
+        once, on the first query that meets it."""
+        kept = self._looks.get(id(shape))
+        if kept is None or kept[0] is not shape:
+            kept = self._looks[id(shape)] = (shape, looks(shape))
+        return kept[1]
 
 
 class BodyBins:

@@ -448,6 +448,7 @@ def _segment_hits(
     # engine.geometry.query_grid.margin, inline (a query's every microsecond counts).
     w = q + GROW * (1.0 + abs(x0) + abs(y0) + abs(x1) + abs(y1) + abs(vx) + abs(vy) + q)
     box = (x0 - w, y0 - w, x1 + w, y1 + w)
+    index = QueryIndex() if index is None else index
     discs, shaped = _bodies(state, f, box, index)
     store = state.store
     bodies = state.bodies
@@ -457,7 +458,11 @@ def _segment_hits(
         fr = _Frame(store, k, at)
         back = _unit_or_zero(-vx, -vy)
         bk = fr.turn_in((back.x, back.y))
-        hit = _collider_hit(shape, fr.into(a), fr.turn_in(v), q, Vector(*bk))  # body's frame
+        # In the body's frame, as a collider is met (its faces, box and pad kept).
+        lines, rounds, bounds, pad = index.table(store).looks(shape)
+        hit = _collider_hit(
+            shape, fr.into(a), fr.turn_in(v), q, Vector(*bk), lines, rounds, bounds, w + pad
+        )
         if hit is not None and (k not in first or hit[0] < first[k][0]):
             first[k] = (hit[0], bodies[k], fr.turn_out(hit[1]))
     met += first.values()
