@@ -1396,9 +1396,14 @@ def solve(
                         continue
                     half = 0.5 * wheld[i] * (1.0 - unheld[i])
                     unheld[i] = 0.0
-                    dx[i] += (bvx[i] - half * _within(bvx[i] - uvx[i], bvx[i] - v0x[i])) * h
-                    dy[i] += (bvy[i] - half * _within(bvy[i] - uvy[i], bvy[i] - v0y[i])) * h
-                    turn = bw[i] - half * _within(bw[i] - uw[i], bw[i] - v0w[i])
+                    turn = bw[i]
+                    if half == 0.0:
+                        dx[i] += bvx[i] * h
+                        dy[i] += bvy[i] * h
+                    else:
+                        dx[i] += (bvx[i] - half * _within(bvx[i] - uvx[i], bvx[i] - v0x[i])) * h
+                        dy[i] += (bvy[i] - half * _within(bvy[i] - uvy[i], bvy[i] - v0y[i])) * h
+                        turn -= half * _within(bw[i] - uw[i], bw[i] - v0w[i])
                     if turn != 0.0:
                         dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
