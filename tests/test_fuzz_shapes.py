@@ -1038,8 +1038,9 @@ def test_a_light_polygon_struck_into_a_wall_by_a_heavy_disc_stays_out_of_it() ->
     # velocity less half the "held" change of it (exact for a held force), where the wall's
     # last impulse (an impact's, -58.8 m/s a part) counted as held and the disc's fresh push
     # did not: 0.115 m into the wall in a step, though its rows had stopped it at 0.23 m/s,
-    # and no StabilityWarning. The held change is now at most the part's own change of
-    # velocity, and of its sign (engine.dynamics.solver, ``_within``): 1.2 mm.
+    # and no StabilityWarning. A held change of an impact's size (over 1 m/s a part) is now
+    # at most the part's own change of velocity, and of its sign (engine.dynamics.solver,
+    # ``_within``): 1.2 mm.
     spec = {
         "half": (6.584629063534493, 6.11),
         "walls": "room",

@@ -79,8 +79,8 @@ def test_boxes_a_turning_wall_carries_are_not_set_back_into_one_another(kernels:
     # carried boxes were set back from the poses the solve gave them and into those it did
     # not set back: two boxes 186 mm into each other, 100 mm and more for two seconds. Box2D
     # sweeps a body that is no bullet against static shapes alone, and so does the stage now:
-    # 48 mm, where the solve's soft contacts meet the landing (40 mm before the solver bounded
-    # a substep's held change of velocity by its whole change, find 11; the issue asks 25 mm,
+    # 42 mm, where the solve's soft contacts meet the landing (40 mm before the solver bounded
+    # an impact's held change of velocity by its whole change, find 11; the issue asks 25 mm,
     # 10% of a side; the exact solver 53 mm).
     w, boxes, walls = tumbler(50, spin=math.radians(25.0), kernels=kernels, solver="soft")
     deepest = 0.0

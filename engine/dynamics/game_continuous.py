@@ -33,8 +33,8 @@ path its plain-Python twin, so the same bits):
   not matter. (Box2D sweeps a body that is no bullet against static shapes alone. Swept
   against a turning kinematic wall too, the boxes a tumbler's wall carries at 6 m/s were set
   back from the poses the solve gave them, and into the boxes it did not set back: two boxes
-  went 186 mm into each other where 50 of them tumble at 25 degrees a second, 40 mm so (48
-  mm since the solver bounds a held change of velocity: engine.dynamics.solver); and at 90
+  went 186 mm into each other where 50 of them tumble at 25 degrees a second, 40 mm so (42
+  mm since the solver bounds an impact's held change: engine.dynamics.solver); and at 90
   degrees a second, 500 boxes, 64 centres passed a wall, none so:
   tests/test_soft_continuous.py);
 * **the impact**: where the first time of impact t < 1 is found, the body is set back to
