@@ -304,3 +304,54 @@ def test_a_frame_of_another_size_is_refused(ffmpeg, tmp_path):
             clip.write(surface)
     frames = decode(ffmpeg, tmp_path / "a.gif")[1]
     assert [tuple(frame[10, 10]) for frame in frames] == colours
+
+
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` runs (not gone, not a zombie waiting to be reaped)."""
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().split(") ")[-1][0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc for the encoder's process")
+def test_a_writer_dropped_unclosed_stops_its_encoder_and_leaves_no_file(ffmpeg, tmp_path):
+    # Found 2026-12-05: a ClipWriter dropped without close() (no ``with``, an exception on the
+    # way) was never collected (its writer thread held it), so its ffmpeg waited on its pipe
+    # till the program ended, and then finished a stray ".x.mp4.<pid>.part" beside the target.
+    # It is aborted when collected now, and says so as an unclosed file does.
+    import gc
+
+    def drop() -> int:
+        clip = ClipWriter(tmp_path / "x.mp4", (64, 48), FPS)
+        for _ in range(3):
+            clip.write(pygame.Surface((64, 48)))
+        return clip._process.pid
+
+    with pytest.warns(ResourceWarning, match=r"x\.mp4 was dropped without close\(\)"):
+        pid = drop()
+        gc.collect()
+    assert not _running(pid)
+    assert os.listdir(tmp_path) == []  # no clip, no temporary file
+
+
+def test_a_writer_left_unclosed_at_exit_leaves_no_file(ffmpeg, tmp_path):
+    # The same writer kept to the interpreter's exit: aborted there (weakref.finalize's atexit).
+    code = (
+        "import pygame\n"
+        "from engine.render import ClipWriter\n"
+        f"clip = ClipWriter({str(tmp_path / 'x.gif')!r}, (64, 48), 10)\n"
+        "clip.write(pygame.Surface((64, 48)))\n"
+        "print(clip._process.pid)\n"
+    )
+    env = {**os.environ, "SDL_VIDEODRIVER": "dummy", "SDL_AUDIODRIVER": "dummy"}
+    done = subprocess.run(
+        [sys.executable, "-W", "always", "-c", code],
+        cwd=ROOT, env=env, capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "x.gif was dropped without close()" in done.stderr
+    assert os.listdir(tmp_path) == []
+    if Path("/proc").is_dir():
+        assert not _running(int(done.stdout.split()[-1]))

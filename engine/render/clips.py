@@ -31,6 +31,8 @@ import subprocess
 import sys
 import tempfile
 import threading
+import warnings
+import weakref
 from pathlib import Path
 from types import TracebackType
 from typing import IO
@@ -285,7 +287,9 @@ class ClipWriter:
             f".{self.path.name}.{os.getpid()}.{threading.get_ident()}.part"
         )
         self._stderr: IO[bytes] = tempfile.TemporaryFile()
-        self._error: ClipWriteError | None = None
+        #: What the writer thread found wrong (its one slot: the thread holds no reference to
+        #: the writer, so a writer dropped unclosed is collected: ``_abandoned``).
+        self._failed: list[ClipWriteError] = []
         self._closed = False
         try:
             self._process = subprocess.Popen(
@@ -313,8 +317,20 @@ class ClipWriter:
         self._slots: queue.SimpleQueue[None] = queue.SimpleQueue()
         for _ in range(frames):
             self._slots.put(None)
-        self._thread = threading.Thread(target=self._pipe, name="clip-writer", daemon=True)
+        self._thread = threading.Thread(
+            target=_pipe,
+            args=(self._queue, self._slots, self._process, self._stderr, self.path, self._failed),
+            name="clip-writer",
+            daemon=True,
+        )
         self._thread.start()
+        # A writer dropped without close() or abort() (no ``with``, an exception on the way)
+        # is aborted when it is collected, or at the interpreter's exit: its encoder stopped,
+        # its temporary file removed, and a ResourceWarning says so, as an unclosed file's.
+        self._finalizer = weakref.finalize(
+            self, _abandoned, self._process, self._queue, self._thread, self._stderr,
+            self._temp, self.path,
+        )  # fmt: skip
 
     def write(self, surface: pygame.Surface) -> None:
         """Queue ``surface`` (of the writer's size) as the next frame; it is copied at once."""
@@ -331,44 +347,16 @@ class ClipWriter:
         self._queue.put(data)
         self.count += 1
 
-    def _pipe(self) -> None:
-        # The writer thread: frames into ffmpeg's stdin. Pipe writes release the GIL, so this
-        # runs beside the drawing of the next frame. After a failure it keeps taking frames
-        # (dropping them) so that write() never waits on a full queue for ever.
-        stdin = self._process.stdin
-        assert stdin is not None
-        failed = False
-        while True:
-            data = self._queue.get()
-            if data is None:
-                break
-            try:
-                if not failed:
-                    stdin.write(data)
-            except (OSError, ValueError):  # ffmpeg has gone: BrokenPipeError and the like
-                failed = True
-                self._error = self._encoder_error("stopped taking frames")
-            finally:
-                self._slots.put(None)
-        try:
-            stdin.close()
-        except OSError:
-            pass  # the encoder's own exit status says what went wrong
+    @property
+    def _error(self) -> ClipWriteError | None:
+        return self._failed[0] if self._failed else None
+
+    @_error.setter
+    def _error(self, error: ClipWriteError) -> None:
+        self._failed[:] = [error]
 
     def _encoder_error(self, what: str) -> ClipWriteError:
-        # ffmpeg's last lines, which say why (No space left on device, an unknown encoder, ...).
-        try:
-            code = self._process.wait(timeout=30)
-        except subprocess.TimeoutExpired:
-            self._process.kill()
-            code = self._process.wait()
-        self._stderr.seek(0)
-        lines = self._stderr.read().decode("utf-8", "replace").strip().splitlines()
-        said = "\n  ".join(lines[-_STDERR_LINES:]) or "(no message)"
-        how = f"exit status {code}" if code >= 0 else f"killed by signal {-code}"
-        return ClipWriteError(
-            f"could not write {self.path}: the encoder (ffmpeg) {what}, {how}; it said:\n  {said}"
-        )
+        return _encoder_error(self._process, self._stderr, self.path, what)
 
     def _raise_if_failed(self) -> None:
         if self._error is not None:
@@ -395,6 +383,7 @@ class ClipWriter:
             self._error = error
             self._raise_if_failed()
         self._closed = True
+        self._finalizer.detach()
         self._stderr.close()
         try:
             os.replace(self._temp, self.path)
@@ -409,6 +398,7 @@ class ClipWriter:
         if self._closed:
             return
         self._closed = True
+        self._finalizer.detach()
         if self._process.poll() is None:
             self._process.kill()
         # End the writer thread: its pipe is broken now, so it drops what is left, then ends.
@@ -437,3 +427,84 @@ class ClipWriter:
             self.close()
         else:
             self.abort()
+
+
+def _pipe(
+    frames: queue.SimpleQueue[bytes | None],
+    slots: queue.SimpleQueue[None],
+    process: subprocess.Popen[bytes],
+    stderr: IO[bytes],
+    path: Path,
+    failed: list[ClipWriteError],
+) -> None:
+    """The writer thread: frames into ffmpeg's stdin. Pipe writes release the GIL, so this
+    runs beside the drawing of the next frame. After a failure (put in ``failed``) it keeps
+    taking frames (dropping them) so that write() never waits on a full queue for ever. It
+    holds no reference to its ClipWriter (which is then collected if dropped unclosed)."""
+    stdin = process.stdin
+    assert stdin is not None
+    broken = False
+    while True:
+        data = frames.get()
+        if data is None:
+            break
+        try:
+            if not broken:
+                stdin.write(data)
+        except (OSError, ValueError):  # ffmpeg has gone: BrokenPipeError and the like
+            broken = True
+            failed[:] = [_encoder_error(process, stderr, path, "stopped taking frames")]
+        finally:
+            slots.put(None)
+    try:
+        stdin.close()
+    except OSError:
+        pass  # the encoder's own exit status says what went wrong
+
+
+def _encoder_error(
+    process: subprocess.Popen[bytes], stderr: IO[bytes], path: Path, what: str
+) -> ClipWriteError:
+    """The error to raise for ``path``: ffmpeg's exit and its last lines, which say why (No
+    space left on device, an unknown encoder, ...)."""
+    try:
+        code = process.wait(timeout=30)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        code = process.wait()
+    stderr.seek(0)
+    lines = stderr.read().decode("utf-8", "replace").strip().splitlines()
+    said = "\n  ".join(lines[-_STDERR_LINES:]) or "(no message)"
+    how = f"exit status {code}" if code >= 0 else f"killed by signal {-code}"
+    return ClipWriteError(
+        f"could not write {path}: the encoder (ffmpeg) {what}, {how}; it said:\n  {said}"
+    )
+
+
+def _abandoned(
+    process: subprocess.Popen[bytes],
+    frames: queue.SimpleQueue[bytes | None],
+    thread: threading.Thread,
+    stderr: IO[bytes],
+    temp: Path,
+    path: Path,
+) -> None:
+    """A ClipWriter collected (or left at the interpreter's exit) neither closed nor aborted:
+    abort it (its encoder stopped, its writer thread ended, its temporary file removed) and
+    say so with a ResourceWarning, as Python says of a file left open."""
+    if process.poll() is None:
+        process.kill()
+    frames.put(None)
+    thread.join(timeout=5.0)
+    process.wait()
+    stderr.close()
+    try:
+        temp.unlink(missing_ok=True)
+    except OSError:
+        pass
+    warnings.warn(
+        f"a ClipWriter for {path} was dropped without close(): the clip is not written; "
+        "use it in a with block, or call close() to finish it",
+        ResourceWarning,
+        stacklevel=1,
+    )
