@@ -48,15 +48,16 @@ corrections (a speculative contact's stop, the soft push) are impulses at the pa
 moved by a whole h, as Box2D's. Two bodies move by v1 h, as Box2D's: one held by a joint (a
 joint's warm start is not held so simply: a pendulum's direction turns), and, in its first
 part, one a fresh contact (below) pushed (which of those impulses are held is not known
-yet). And a held change faster than ``THRESHOLD`` (m/s in a part: 240 m/s^2 at 1/240 s, an
-impact's, not a load's) is at most the part's whole change v1 - v0, and of its sign (each of
-x, y and the angle): where the rows take back more than such held impulses give (an impact's
-warm start taken for a load, beside a fresh push) the half of it is no motion. Unbounded, a
-1 kg polygon struck by a 6 kg disc at 86 m/s against a wall had the wall's last impulse held
-(-58.8 m/s a part) and the disc's fresh push not, and was moved 0.12 m into the wall in a step
-where its rows stopped it at 0.23 m/s (the shapes fuzz; now 1.2 mm). A load's change is left
-as it is: bounded too, the pyramid of 210 boxes moved 5.08 mm where it moves 4.98, and 50
-boxes tumbling at 25 degrees a second went 48 mm into one another where they go 42.
+yet). And a held change whose linear part is faster than ``THRESHOLD`` (m/s in a part:
+240 m/s^2 at 1/240 s, an impact's, not a load's) is at most the part's whole change v1 - v0,
+and of its sign (each of x, y and the angle): where the rows take back more than such held
+impulses give (an impact's warm start taken for a load, beside a fresh push) the half of it
+is no motion. Unbounded, a 1 kg polygon struck by a 6 kg disc at 86 m/s against a wall had
+the wall's last impulse held (-58.8 m/s a part) and the disc's fresh push not, and was moved
+0.12 m into the wall in a step where its rows stopped it at 0.23 m/s (the shapes fuzz; now
+1.2 mm). A load's change is left as it is: bounded too, the pyramid of 210 boxes moved
+5.08 mm where it moves 4.98, and 50 boxes tumbling at 25 degrees a second went 48 mm into
+one another where they go 42.
 
 **A fresh contact.** A contact with no impulse to start from (new in the step, or open in
 the last) has its first part solved from nothing, and one relax does not solve a face's two
