@@ -2256,9 +2256,10 @@ def test_a_box_struck_from_rest_toward_a_wall_out_of_its_reach_stays_out_of_it()
     # are with the capsule on it, the disc (0.0044 m open) and the floor; none with the wall,
     # 0.037 m away where its reach at rest is g dt^2 and the speculative distance. The disc's
     # fresh contact gives it -8.95 m/s in the first part, and each part moves it 0.0373 m. The
-    # bound on an impact's held change is not in it (the box's change is all fresh push). The
-    # same spec passed before the bound only by its history: the box then lay 1.9 cm from the
-    # wall, within reach.
+    # bound on an impact's held change is not in it (the box's change is all fresh push), and
+    # the World pickled before that step and stepped by the solver before the bound (da8397e)
+    # ends the same 0.1137 m in. The spec passed before the bound only by its history: the box
+    # then lay 1.9 cm from the wall, within reach.
     run(STRUCK_OUT_OF_A_WALLS_REACH)
 
 
