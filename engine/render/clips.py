@@ -351,10 +351,6 @@ class ClipWriter:
     def _error(self) -> ClipWriteError | None:
         return self._failed[0] if self._failed else None
 
-    @_error.setter
-    def _error(self, error: ClipWriteError) -> None:
-        self._failed[:] = [error]
-
     def _encoder_error(self, what: str) -> ClipWriteError:
         return _encoder_error(self._process, self._stderr, self.path, what)
 
@@ -380,7 +376,7 @@ class ClipWriter:
                 if code != 0
                 else ClipWriteError(f"could not write {self.path}: no frames were given")
             )
-            self._error = error
+            self._failed[:] = [error]
             self._raise_if_failed()
         self._closed = True
         self._finalizer.detach()
@@ -399,20 +395,10 @@ class ClipWriter:
             return
         self._closed = True
         self._finalizer.detach()
-        if self._process.poll() is None:
-            self._process.kill()
-        # End the writer thread: its pipe is broken now, so it drops what is left, then ends.
-        self._queue.put(None)
-        self._thread.join()
-        self._process.wait()
-        self._stderr.close()
-        self._discard()
+        _stop(self._process, self._queue, self._thread, self._stderr, self._temp)
 
     def _discard(self) -> None:
-        try:
-            self._temp.unlink(missing_ok=True)
-        except OSError:
-            pass  # the error being raised is the one to act on
+        _remove(self._temp)
 
     def __enter__(self) -> ClipWriter:
         return self
@@ -481,6 +467,31 @@ def _encoder_error(
     )
 
 
+def _stop(
+    process: subprocess.Popen[bytes],
+    frames: queue.SimpleQueue[bytes | None],
+    thread: threading.Thread,
+    stderr: IO[bytes],
+    temp: Path,
+) -> None:
+    """Abort a clip: its encoder stopped, its writer thread ended, its temporary file removed."""
+    if process.poll() is None:
+        process.kill()
+    # End the writer thread: its pipe is broken now, so it drops what is left, then ends.
+    frames.put(None)
+    thread.join()
+    process.wait()
+    stderr.close()
+    _remove(temp)
+
+
+def _remove(temp: Path) -> None:
+    try:
+        temp.unlink(missing_ok=True)
+    except OSError:
+        pass  # the error being raised is the one to act on
+
+
 def _abandoned(
     process: subprocess.Popen[bytes],
     frames: queue.SimpleQueue[bytes | None],
@@ -490,18 +501,8 @@ def _abandoned(
     path: Path,
 ) -> None:
     """A ClipWriter collected (or left at the interpreter's exit) neither closed nor aborted:
-    abort it (its encoder stopped, its writer thread ended, its temporary file removed) and
-    say so with a ResourceWarning, as Python says of a file left open."""
-    if process.poll() is None:
-        process.kill()
-    frames.put(None)
-    thread.join(timeout=5.0)
-    process.wait()
-    stderr.close()
-    try:
-        temp.unlink(missing_ok=True)
-    except OSError:
-        pass
+    aborted (``_stop``), and said with a ResourceWarning, as Python says of a file left open."""
+    _stop(process, frames, thread, stderr, temp)
     warnings.warn(
         f"a ClipWriter for {path} was dropped without close(): the clip is not written; "
         "use it in a with block, or call close() to finish it",
