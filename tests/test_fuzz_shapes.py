@@ -2146,10 +2146,9 @@ def test_corners_too_far_apart_for_an_area_are_refused_naming_the_vertices() -> 
     assert "radius" not in str(caught.value).split(",")[0]
 
 
-#: Find 12 (the fast path's exploring fuzz, 2026-12-05, after the soft step's bound on an
-#: impact's held change; the numpy path alike): a 1.6 kg rounded box at rest on the floor 3.7 cm
-#: from the left wall, a 1 kg capsule lying on it, struck at the start of step 69 by a 6 kg disc
-#: (radius 0.05 m) at 19.7 m/s.
+#: Find 12 (the fast path's exploring fuzz, 2026-12-05; the numpy path alike): a 1.6 kg rounded
+#: box at rest on the floor 3.7 cm from the left wall, a 1 kg capsule lying on it, struck at the
+#: start of step 69 by a 6 kg disc (radius 0.05 m) at 19.7 m/s.
 STRUCK_OUT_OF_A_WALLS_REACH: dict[str, Any] = {
     "half": (6.5320131361691764, 5.8136756803616265),
     "walls": "planes",
@@ -2242,24 +2241,15 @@ STRUCK_OUT_OF_A_WALLS_REACH: dict[str, Any] = {
 }
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="find 12: a body at rest beyond the speculative reach of a wall has no row with it, "
-    "and one struck to 9 m/s in the step's first part moves 0.146 m, 0.114 m into the wall; "
-    "the continuous stage sweeps it not (it moved less than half its least extent and ended "
-    "less than a quarter of it deep). Box2D has the same gap (no sweep of a body that is not "
-    "fast); a struck body's reach grown by its partner's closing speed would close it",
-)
 def test_a_box_struck_from_rest_toward_a_wall_out_of_its_reach_stays_out_of_it() -> None:
-    # The step, traced in the solver (numpy path, solver.solve's plain twin): the box's rows
-    # are with the capsule on it, the disc (0.0044 m open) and the floor; none with the wall,
-    # 0.037 m away where its reach at rest is g dt^2 and the speculative distance. The disc's
-    # fresh contact gives it -8.95 m/s in the first part, and each part moves it 0.0373 m. The
-    # bound on an impact's held change is not in it (the box's change is all fresh push), and
-    # the World pickled before that step and stepped by the solver before the bound (da8397e)
-    # ends the same 0.1137 m in. The spec passed before the bound only by its history: the box
-    # then lay 1.9 cm from the wall, within reach.
+    # The step, traced in the solver: the box's rows were with the capsule on it, the disc
+    # (0.0044 m open) and the floor; none with the wall, 0.037 m away where its reach at rest
+    # is g dt^2 and the speculative distance. The disc's fresh contact gave it -8.95 m/s in
+    # the first part, and it moved 0.146 m, 0.114 m into the wall: no row held it, and the
+    # continuous stage swept it not (it moved less than half its least extent and ended less
+    # than a quarter of it deep by its rows). A body's reach toward static shapes is grown by
+    # twice its partners' now (engine.pipeline.game_broadphase.struck): the box has a row with
+    # the wall before it is struck, and ends 3.3 mm into it (the bound is 2 cm).
     run(STRUCK_OUT_OF_A_WALLS_REACH)
 
 

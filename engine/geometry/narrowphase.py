@@ -358,13 +358,15 @@ def collide_pairs(
     faces: np.ndarray,
     margin: np.ndarray,
     dt: float,
+    struck: np.ndarray | None = None,
 ) -> Touches:
     """The manifolds of the pairs and faces with a point, in the broadphase's order (the
     pairs, then the faces): polygon against polygon in one call, the round pairs in another
     (engine.geometry.narrowphase), a half plane against each kind of body shape in one each (the
     half plane as A, flipped back); each call's speculative margin the largest reach among its
-    pairs. The numpy path's stage (the fast path's is
-    engine.pipeline.game_contacts.contacts_loop)."""
+    pairs: ``margin`` (n,) each body's reach (m), ``struck`` its reach toward a static shape
+    (engine.pipeline.game_broadphase.struck; None: ``margin``). The numpy path's stage (the
+    fast path's is engine.pipeline.game_contacts.contacts_loop)."""
     n = len(store)
     x, q = store.x, store.angle
     # Every pair as (A's row, B's row or n, the static place or -1), A a body.
@@ -386,7 +388,8 @@ def collide_pairs(
     xb = np.where(is_static[:, None], zero2, x[other])
     qb = np.where(is_static, 0.0, q[other])
     xa, qa = x[a], q[a]
-    reach = margin[a] + np.where(is_static, 0.0, margin[other])
+    toward = margin if struck is None else struck
+    reach = np.where(is_static, toward[a], margin[a] + margin[other])
     reach = reach + SPECULATIVE_DISTANCE
     t = places.tables
     parts: list[Manifold] = []
@@ -426,7 +429,7 @@ def collide_pairs(
             body = a[sel][ask]
             v = store.v[body]
             speed = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1])
-            slack = LINEAR_SLOP + np.maximum(margin[body] - speed * dt, 0.0)
+            slack = LINEAR_SLOP + np.maximum(toward[body] - speed * dt, 0.0)
             # B's move relative to A: the body's where the shape is A (the pair swapped),
             # else the shape's relative to the body, minus it.
             turned = swap[ask][:, None]

@@ -15,8 +15,9 @@ order, with the same products, so the fast path's contacts are the numpy path's 
    kept when their circles and their boxes come within reach (a long plank's box is far tighter than
    its circle), one of them moves, neither is a sensor, the filters pass and no joint or pre_solve
    keeps them apart;
-2. every body against every static shape whose box its reach overlaps, kept likewise (a
-   sensor collider is kept: its overlaps are events);
+2. every body against every static shape whose box its reach toward static shapes overlaps
+   (its own, grown by its pairs' partners': engine.pipeline.game_broadphase.struck), kept
+   likewise (a sensor collider is kept: its overlaps are events);
 3. the manifolds: polygon against polygon in one call of ``polygon_loop``, the round pairs in
    one of ``round_loop`` (a polygon against a circle taken with the polygon as A, then flipped
    back), a half plane against a capsule or a polygon in one of ``half_plane_polygon_loop``
@@ -326,6 +327,13 @@ def contacts_loop(
                 continue
         cand_a[m], cand_b[m], cand_p[m] = a, b, -1
         m += 1
+    # -- 1b. each body's reach toward a static shape: its own, or its reach and twice its
+    # farthest partner's (engine.pipeline.game_broadphase.struck: a body struck from rest)
+    face = reach.copy()
+    for i in range(m):
+        a, b = cand_a[i], cand_b[i]
+        face[a] = max(face[a], reach[a] + 2.0 * reach[b])
+        face[b] = max(face[b], reach[b] + 2.0 * reach[a])
     # -- 2. the static shapes ----------------------------------------------------------------
     sx0 = np.empty(k_shapes)
     sy0 = np.empty(k_shapes)
@@ -337,7 +345,7 @@ def contacts_loop(
     for a in range(n):
         if sensor[a]:
             continue  # (a sensor body meets no static shape)
-        grow = radius[a] + reach[a] + SPECULATIVE_DISTANCE
+        grow = radius[a] + face[a] + SPECULATIVE_DISTANCE
         lox, loy = x[a, 0] - grow, x[a, 1] - grow
         hix, hiy = x[a, 0] + grow, x[a, 1] + grow
         for s in range(k_shapes):
@@ -399,7 +407,7 @@ def contacts_loop(
     margins = np.full(5, -np.inf)
     for i in range(m):
         a, b, s = cand_a[i], cand_b[i], cand_p[i]
-        r = reach[a] + (0.0 if s >= 0 else reach[b])
+        r = face[a] if s >= 0 else reach[a] + reach[b]
         r = r + SPECULATIVE_DISTANCE
         if s >= 0 and static_index[s] < 0:
             g = 2 + kind[part_a[i]]  # DISC, CAPSULE, POLYGON: 0, 1, 2
@@ -538,7 +546,7 @@ def contacts_loop(
                 continue
             a = cand_a[i]
             vx, vy = vel[a, 0], vel[a, 1]
-            slack[j] = LINEAR_SLOP + max(reach[a] - np.sqrt(vx * vx + vy * vy) * dt, 0.0)
+            slack[j] = LINEAR_SLOP + max(face[a] - np.sqrt(vx * vx + vy * vy) * dt, 0.0)
             if swap[i]:  # the shape as A: the body moves by its own
                 u[j, 0], u[j, 1] = (vx - 0.0) * dt, (vy - 0.0) * dt
             else:

@@ -258,10 +258,11 @@ class GameStep:
         awake = self._wake(state, store, margin, candidates, boxes)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
         pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes)
+        struck = broad.struck(margin, pairs)
         faces = broad.faces(
-            store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, margin, sc.ignored
+            store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, struck, sc.ignored
         )
-        touches = self._collide(sc, store, pairs, faces, margin, dt)
+        touches = self._collide(sc, store, pairs, faces, margin, struck, dt)
         found = self._found(store, sc.cs, sc.owner, touches)
         joints = self.joints.arrays(state, store, n)
         k = len(found.place)
@@ -722,7 +723,7 @@ class GameStep:
 
     def _collide(
         self, sc: _Scene, store: Any, pairs: np.ndarray, faces: np.ndarray, margin: np.ndarray,
-        dt: float,
+        struck: np.ndarray, dt: float,
     ) -> narrowphase.Touches:  # fmt: skip
         """Stage 3, the narrowphase (engine.geometry.narrowphase.collide_pairs) of the pairs
         and faces; where a body is of several shapes (engine.body_shapes), of their parts:
@@ -733,7 +734,7 @@ class GameStep:
         parts = sc.table.parts
         if parts is None:
             return narrowphase.collide_pairs(
-                sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt
+                sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt, struck
             )
         part_places = self._parts_places(sc)
         pa, pb = part_pairs(parts, pairs[:, 0], pairs[:, 1])
@@ -743,7 +744,7 @@ class GameStep:
         view = _PartView(store.x[owner], store.angle[owner], store.v[owner])
         touches = narrowphase.collide_pairs(
             part_places, parts.table, view, sc.statics, np.stack([pa, pb], axis=1),
-            np.stack([fa, faces[face, 1]], axis=1), margin[owner], dt,
+            np.stack([fa, faces[face, 1]], axis=1), margin[owner], dt, struck[owner],
         )  # fmt: skip
         n, p = len(store), len(owner)
         static = touches.b >= p
