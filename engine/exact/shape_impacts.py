@@ -18,22 +18,25 @@ v(t) = v1 - a (dt - t) for the end velocity v1):
 
     x(t*) = x0 + v0 t* + a t*^2 / 2,     x1 = x(t*) + v1 (dt - t*) - a (dt - t*)^2 / 2,
 
-and the same for the angle with omega and alpha. A pair is taken so when it moved fast in
-the step (its relative sweep, |dx_B - dx_A| + |dtheta_A| R_A + |dtheta_B| R_B with R a body's
-bounding radius, over ``FAST`` of the smaller R), began it apart (separation > -``SLOP`` of
-the smaller R) and ended it deep (separation < -``DEEP`` of the smaller R) or through (B's
-centre past A's along the normal the step began with). A pile pressed together over many
-steps never starts a step apart, so it is left to the soft step. A body and a static
-collider are taken the same way (``late_wall_impacts``), fast or not, and from a depth of
-``DEEP_WALL``: "through" is then the manifold's normal turned round (the body on the
-collider's other side), and the advancement is against the colliders it went into only (a
+and the same for the angle with omega and alpha. A pair is taken so when it moved fast in the
+step (its relative sweep, |dx_B - dx_A| + |dtheta_A| R_A + |dtheta_B| R_B with R a body's
+bounding radius, over ``FAST`` of the smaller R), began it apart (separation > -``SLOP`` of the
+smaller R) and ended it deep (separation < -``DEEP`` of the smaller R) or through (B's centre
+past A's along the normal the step began with). A pile pressed together over many steps never
+starts a step apart, so it is left to the soft step. A body and a static collider are taken the
+same way (``late_wall_impacts``), fast or not, and from a depth of ``DEEP_WALL``, counted in the
+body's least extent where that is less than its bounding radius (a capsule's radius, a polygon's
+least distance from its centroid to an edge: a capsule 1.4 m long and 6 cm thick, struck onto a
+floor by a heavy disc, went 3.1 cm in, its centre past the floor, while DEEP_WALL of its
+bounding radius was 3.7 cm): "through" is then the manifold's normal turned round (the body on
+the collider's other side), and the advancement is against the colliders it went into only (a
 box sliding along a floor into a wall is not stopped by the floor). A body that begins the step
 in a collider by no more than ``DEEP_WALL`` (a corner an impact left there at the end of the
 step before, the body turning on into the wall) and ends it ``DEEP_WALL`` deeper than it began
-is taken again too, its moment the one where it is a hair deeper than it began. A body its own start
-motion does not bring there was pushed by another within the step: it is stopped where its
-straight move from x0 to x1 first touches (motion clamping). A body met by several is placed
-by the earliest.
+is taken again too, its moment the one where it is a hair deeper than it began. A body its own
+start motion does not bring there was pushed by another within the step: it is stopped where its
+straight move from x0 to x1 first touches (motion clamping). A body met by several is placed by
+the earliest.
 
 A second impact within the step after the first (a box turning so fast that it meets the
 wall again before the step ends) is not searched for: where the rest of the step would end
@@ -90,8 +93,9 @@ __all__ = [
 FAST = 0.5
 #: How deep (in the smaller bounding radius) a fast pair must end the step to be taken again.
 DEEP = 0.25
-#: The same against a static collider, which a body pressed into it over many steps never
-#: starts a step apart from: any depth past the soft step's own give is a missed impact.
+#: The same against a static collider (in the body's least extent where that is less), which a
+#: body pressed into it over many steps never starts a step apart from: any depth past the soft
+#: step's own give is a missed impact.
 DEEP_WALL = 0.05
 #: How far into each other (in the smaller bounding radius) a pair may start and count as apart.
 SLOP = 0.02
@@ -287,6 +291,7 @@ def late_wall_impacts(
     radius: np.ndarray,
     dt: float,
     clamped: dict[int, tuple[np.ndarray, float]] | None = None,
+    least: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """``late_impacts`` for bodies (World ``rows``, with shapes, that can be moved) against
     the static colliders: ``walls(rows, x, angle, margin)`` gives their manifolds' points
@@ -295,20 +300,22 @@ def late_wall_impacts(
     began the step apart from a collider and ended it deep in it or through it (on its other
     side: the normal turned by more than 120 degrees); returns (rows, t*) or None. A body
     that went in by another's push, not by its start motion, is written into ``clamped``
-    (row -> its pose (x, angle) where its straight move first touches), if given."""
+    (row -> its pose (x, angle) where its straight move first touches), if given. ``least``
+    (N,): the scale of the depths, each body's least extent (None: its ``radius``)."""
     x0, q0 = start[0], start[2]
     x1, q1 = end[0], end[2]
     r = radius[rows]
+    scale = radius if least is None else np.minimum(radius, least)
     sweep = np.hypot(*(x1[rows] - x0[rows]).T) + np.abs(q1[rows] - q0[rows]) * r
     # (Any body that went from apart to DEEP_WALL deep moved at least that: the rest stand.)
-    moving = sweep > DEEP_WALL * r
+    moving = sweep > DEEP_WALL * scale[rows]
     rows, r, sweep = rows[moving], r[moving], sweep[moving]
     if not len(rows):
         return None
     reach = float((sweep + r).max())
     b0, c0, n0, s0 = _nearest(*walls(rows, x0, q0, reach))
     b1, c1, n1, s1 = _nearest(*walls(rows, x1, q1, reach))
-    size = radius[b0]
+    size = scale[b0]
     # Each (body, collider) of the start met again at the end (both sorted by key).
     k0, k1 = b0 * (1 << 32) + c0, b1 * (1 << 32) + c1
     at = np.searchsorted(k1, k0)
@@ -505,10 +512,14 @@ def retake(
         if got is not None:
             np.minimum.at(first, *got)
     clamped: dict[int, tuple[np.ndarray, float]] = {}
+    # A wall's depths are counted in a body's least extent where its bounding radius is more
+    # (``late_wall_impacts``; a body of several shapes: its bounding radius).
+    least = table.extents()[0]
+    least = np.minimum(store.radius, np.where(least > 0.0, least, store.radius))
     if walls is not None:
         rows = np.unique(walls[1])
         got = late_wall_impacts(walls[0], rows[moves[rows]], start, end, pull, store.radius, dt,
-                                clamped)  # fmt: skip
+                                clamped, least)  # fmt: skip
         if got is not None:
             np.minimum.at(first, *got)
     for j, (xj, qj) in clamped.items():
@@ -533,7 +544,8 @@ def retake(
         xs, qs = x.copy(), q.copy()
         xs[rows], qs[rows] = _along(start, pull, rows, when)
         for pose in ((xs, v, qs, w1), (x, v, q, w1)):
-            got = late_wall_impacts(walls[0], rows, start, pose, pull, store.radius, dt)
+            got = late_wall_impacts(walls[0], rows, start, pose, pull, store.radius, dt,
+                                    least=least)  # fmt: skip
             if got is not None:
                 np.minimum.at(first, *got)
         if not np.array_equal(first[rows], when):
@@ -550,7 +562,7 @@ def retake(
         sep = np.full(n, np.inf)
         row, _, _, s = walls[0](rows, x, q, float(r[rows].max()))
         np.minimum.at(sep, row, s)
-        deep |= sep < -DEEP_WALL * r
+        deep |= sep < -DEEP_WALL * least
     if len(a):
         a, b = key // n, key % n
         mine = np.isin(a, rows) | np.isin(b, rows)
