@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 from engine import Body, Box, ContactEvent, Filter, Plane, Rod, Vector, World
 from engine.exact.collisions import SLOP
 from engine.forces import Gravity
+from engine.pipeline.stepping import AGAIN
 from engine.stability import StabilityWarning
 
 G = 9.81
@@ -237,6 +238,29 @@ def test_a_pile_past_the_solver_is_warned_about() -> None:
             w.step(1 / 60)
     with pytest.raises(ValueError, match="contact_iterations"):
         w.contact_iterations = 0
+
+
+def test_a_pile_sinking_on_is_told_again_only_as_it_sinks_deeper() -> None:
+    # A 10 kg disc on a 0.1 kg one on the floor, one contact iteration a step: the pair sinks
+    # into each other step by step. The World says so when it first passes 5% of the smaller
+    # radius, and again only where it is AGAIN times as deep as it last said, so a pile that
+    # sinks on is told of each fourfold and one that stays is not told every step.
+    w = World(solver="exact")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0)))
+    disc(w, (0.0, 0.1), (0.0, 0.0), radius=0.1, mass=0.1)
+    disc(w, (0.0, 0.4), (0.0, 0.0), radius=0.2, mass=10.0)
+    w.contact_iterations = 1
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for _ in range(240):
+            w.step(1 / 60)
+    said = [str(c.message) for c in caught if issubclass(c.category, StabilityWarning)]
+    assert said and all("raise world.contact_iterations" in m for m in said), said
+    told = [float(m.split("overlap by ")[1].split(" ")[0]) for m in said]
+    assert len(told) >= 2, said
+    assert 0.05 * 0.1 <= told[0] < AGAIN * 0.05 * 0.1, said  # (first past 5% of 0.1 m)
+    assert all(b >= AGAIN * a for a, b in zip(told, told[1:], strict=False)), said
 
 
 def test_a_pyramid_stands_for_ten_thousand_steps() -> None:

@@ -48,7 +48,6 @@ from engine import (
     World,
 )
 from engine.forces import Gravity
-from engine.pipeline.stepping import AGAIN
 
 LONG = bool(os.environ.get("FUZZ_LONG"))
 SCALE = 20 if LONG else 1
@@ -1838,13 +1837,14 @@ def stays_in_the_room(spec: dict[str, Any], iterations: int, deepest: float) -> 
 
 
 # Found exploring the mixed scenes (2,000 examples, numpy path, 2026-12-05; the fast path alike,
-# to the same depths): a 0.1 kg capsule 0.03 m thick lying on the floor is struck at once by
-# an 8.6 kg capsule spinning at 19 rad/s and a 9.4 kg box sliding in at 5.4 m/s, a mass ratio
-# of about 90 (the soft pile's known limit, engine/guide/contacts.md), and is pressed 4.5 cm
-# into the floor, its centre 1.3 cm past the room's wall line. The World says so first, at
-# the step it is 9.4 mm in ("past what 4 contact iterations a step can hold; raise
-# world.contact_iterations"), and again at 4.3 cm (a pile sinking on is told again where it is
-# AGAIN times as deep), and with 8 or 16 iterations it stays within 5 mm of the floor.
+# to the same depths), on the exact models: a 0.1 kg capsule 0.03 m thick lying on the floor is
+# struck at once by an 8.6 kg capsule spinning at 19 rad/s and a 9.4 kg box sliding in at
+# 5.4 m/s, a mass ratio of about 90 (the soft pile's known limit, engine/guide/contacts.md). It
+# was pressed 4.5 cm into the floor, its centre 1.3 cm past the room's wall line, while a
+# body's depth in a wall was counted in its bounding radius (engine.exact.shape_impacts: 5% of
+# 0.66 m); counted in its least extent, the capsule is taken back to where it touched the
+# floor. The pile still gives between the bodies (5.5 cm, 41% of the capsule's bounding
+# radius), and the World says so.
 THIN_CAPSULE_STRUCK_INTO_THE_FLOOR: dict[str, Any] = {
     "half": (3.1134376107434867, 5.762431327717733), "walls": "polygons",
     "wall_material": (0.9122131086755749, 0.9743875596018914), "gravity": 5.293643647661917,
@@ -1882,36 +1882,12 @@ THIN_CAPSULE_STRUCK_INTO_THE_FLOOR: dict[str, Any] = {
 }  # fmt: skip
 
 
-def test_a_light_capsule_struck_into_the_floor_is_warned_of_before_it_leaves_the_room() -> None:
-    spec = THIN_CAPSULE_STRUCK_INTO_THE_FLOOR
-    w, bodies, _ = build(spec)
-    half = spec["half"]
-    thin = bodies[3]
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        left = None  # the step its centre is past the floor's line, once it is
-        for k in range(spec["steps"]):
-            w.step(DT)
-            if abs(thin.pos.y) >= half[1]:
-                left = k
-                break
-        assert left is not None, "the light capsule's centre never left the room: the find is gone"
-    # Said by then (the warnings of the steps up to it, and none after): first at 9.4 mm,
-    # and again as it sank four times as deep (AGAIN), with the deeper overlap.
-    said = [str(c.message) for c in caught if issubclass(c.category, StabilityWarning)]
-    assert said and all("raise world.contact_iterations" in m for m in said), (left, said)
-    told = [float(m.split("overlap by ")[1].split(" ")[0]) for m in said]
-    assert len(told) == 2 and told[1] >= AGAIN * told[0] and told[1] > 0.04, (left, said)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="the soft pile's known limit (a mass ratio of about 90 at 4 contact iterations): "
-    "the light capsule's centre is pressed 1.3 cm past the floor's line at step 90; the World "
-    "warns at step 86 (the test above), and 8 iterations hold it (the test below)",
-)
 def test_a_light_capsule_struck_into_the_floor_stays_in_the_room() -> None:
-    run(THIN_CAPSULE_STRUCK_INTO_THE_FLOOR)
+    _, seen = run(THIN_CAPSULE_STRUCK_INTO_THE_FLOOR)
+    assert seen["deepest"] <= 0.002, seen  # (4.5 cm in before, its centre past the floor)
+    # The pile's give between the bodies is told: "past what 4 contact iterations a step can
+    # hold; raise world.contact_iterations".
+    assert seen["stability"] >= 1, seen
 
 
 @pytest.mark.parametrize("iterations", [8, 16])
