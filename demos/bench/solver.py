@@ -205,7 +205,7 @@ def _boxes(scene: str, solver: str, iterations: int) -> _Sim:
     """The tower (``scene`` "stack") or the pyramid of ``demos.stack``, sleeping off."""
     if solver == "World":
         if scene == "stack":
-            world, _ = stack.tower(TOWER)
+            world, _ = stack.tower(TOWER, solver="exact")
         else:
             world, _ = stack_bench.make_world(PYRAMID_BASE, sleep=False)
         world.contact_iterations = iterations

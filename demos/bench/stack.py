@@ -92,9 +92,10 @@ PEERS: dict[int, dict[str, tuple[float, float]]] = {
 def make_world(
     base: int, *, kernels: str | None = None, sleep: bool = True
 ) -> tuple[World, list[Body]]:
-    """``demos.stack``'s pyramid of ``base`` on the path ``kernels`` (None: the default);
+    """``demos.stack``'s pyramid of ``base`` on the exact models (the soft step's are
+    demos.bench.soft's), on the path ``kernels`` (None: the default);
     ``sleep=False``: sleeping off (every step solved)."""
-    world, boxes = scene.pyramid(base, kernels=kernels)
+    world, boxes = scene.pyramid(base, kernels=kernels, solver="exact")
     if not sleep:
         world.sleep_time = math.inf
     return world, boxes

@@ -78,7 +78,7 @@ def side_by_side(seconds: float = SECONDS, pymunk: bool = True) -> dict[str, dic
     paths = {"World": "numpy", "fast": "fast"} if engine_kernels.available() else {"World": "numpy"}
     sims: dict[str, tuple[Any, Any]] = {}
     for name, path in paths.items():
-        w, boxes, walls = scene.tumbler(kernels=path)
+        w, boxes, walls = scene.tumbler(kernels=path, solver="exact")  # (soft: bench.soft)
 
         def look(w: Any = w, boxes: Any = boxes, walls: Any = walls) -> tuple[Any, ...]:
             return w.positions()[len(walls) :], np.array([b.angle for b in boxes]), walls[0].angle
