@@ -3,8 +3,9 @@
 The issue "Rigid bodies as Box2D's own tests expect" asks for these scenes to be written
 before the coming solver change (DESIGN.md, "The step (what we build now)") so that the change
 is checked against them. Each is run on both paths (numpy, the reference, and fast, where
-numba is installed) with each solver (the exact one, the World's default, and the game's soft
-step, ``World(solver="soft")``, Box2D v3's solver) and checked against a closed form or a
+numba is installed) with each solver (the exact models, ``World(solver="exact")``, and the
+game's soft step, Box2D v3's solver, which ``World()`` chooses for bodies with corners that
+meet something: engine.pipeline.solver_choice) and checked against a closed form or a
 stated bound. A run that fails today is a strict xfail whose reason gives what was measured
 (the same on both paths, to the digits given): the day the solver meets the bound, the xfail
 flips to a failure and says so, and its mark is taken off. The soft step meets HelloWorld,
@@ -47,8 +48,9 @@ def paths(
     soft: pytest.MarkDecorator | None = None,
     soft_numpy: bool = True,
 ) -> list[Any]:
-    """The scene's runs: the exact solver (the World's default) on numpy and fast, and the
-    game's soft step (``solver="soft"``, Box2D v3's) on numpy and fast; ``exact`` and ``soft``
+    """The scene's runs: the exact solver (``solver="exact"``) on numpy and fast, and the
+    game's soft step (``solver="soft"``, Box2D v3's, World()'s choice for these scenes) on
+    numpy and fast; ``exact`` and ``soft``
     mark the runs of a solver that fails the bound today (a strict xfail that gives what was
     measured). ``soft_numpy=False`` leaves the soft step's numpy run out of a long scene: the
     soft step gives the same bits on both paths (tests/test_soft_solver.py)."""
