@@ -3,6 +3,7 @@ engine.dynamics.solver), checked against Box2D's own HelloWorld, closed forms an
 on both paths."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -12,6 +13,8 @@ from engine.dynamics import solver
 from engine.dynamics.joints import Hinge, Weld
 from engine.dynamics.links import Cable, Rod
 from engine.forces import Gravity
+from engine.pipeline.stepping import SOFT_GIVE
+from engine.stability import StabilityWarning
 from tests.paths import FAST, PATHS
 
 DT = 1.0 / 60.0
@@ -697,3 +700,34 @@ def test_a_snapshot_taken_before_the_first_step_of_an_auto_world_replays_bit_for
         world.restore(saved)
     assert world.solver == "soft"
     assert runs[0] == runs[1]
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_pile_past_the_soft_step_is_told_as_it_happens(kernels: str) -> None:
+    # The soft step's limit, told as the exact models' is: a 100 kg crate dropped 2.4 m onto
+    # a 0.1 kg one (a mass ratio of 1000) ends a step 0.10 m into it, past SOFT_GIVE of the
+    # smallest radius (the light crate's, 0.22 m). The World says so at that step, with what
+    # it measured (its contacts' points moved with their bodies), which is the overlap that
+    # ``World.overlap`` finds at once; a 1 kg crate dropped the same way is not told of.
+    told = {}
+    for mass in (100.0, 1.0):
+        world = floor_world(kernels, g=9.81)
+        light = world.add(Body((0, 0.1), mass=0.1, shape=Polygon.box(0.4, 0.2)))
+        world.add(Body((0, 3.0), mass=mass, shape=Polygon.box(1.0, 1.0)))
+        said: list[tuple[str, float]] = []
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            for _ in range(120):
+                world.step(DT)
+                if caught and len(said) < len(caught):
+                    said.append((str(caught[-1].message), world.overlap()))
+        assert all(issubclass(c.category, StabilityWarning) for c in caught)
+        told[mass] = said
+    assert told[1.0] == []
+    (message, overlap), *_ = told[100.0]
+    assert "raise world.contact_iterations" in message
+    over = float(message.split("overlap by ")[1].split(" ")[0])
+    rmin = math.hypot(0.2, 0.1)  # the light crate's bounding radius
+    assert over > SOFT_GIVE * rmin
+    assert over == pytest.approx(overlap, rel=0.01)
+    assert light.pos.y > -0.1  # (the light crate is squeezed, not lost through the floor)

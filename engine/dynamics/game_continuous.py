@@ -130,19 +130,23 @@ def ended_depth(
     count: Any, rax: Any, ray: Any, rbx: Any, rby: Any, sep: Any,
 ) -> Any:  # fmt: skip
     """Each body's least separation at the step's end (m; inf: none) at its contacts' points
-    with what the solve does not move, from the rows: bodies at poses ``x0`` (n, 2) m, ``q0``
-    rad at the step's start and ``x1``, ``q1`` at its end, ``moving`` (n + 1: the static
-    body last) those the solve moves; the solver's contacts (engine.dynamics.solver.solve's
-    ``ca`` ... ``csep``: bodies, normal from A to B, points, anchors about each body at the
-    start, separation then). A point's separation moves with its bodies as the solver's
-    (its ``gap``): sep + (dx_B - dx_A).n + (r_B x n) sin(dq_B) - (r_A x n) sin(dq_A)."""
+    with what the solve does not move, and the deepest overlap at the end at any of the rows
+    (m, >= 0: the pile's, which the World warns of), from the rows: bodies at
+    poses ``x0`` (n, 2) m, ``q0`` rad at the step's start and ``x1``, ``q1`` at its end,
+    ``moving`` (n + 1: the static body last) those the solve moves; the solver's contacts
+    (engine.dynamics.solver.solve's ``ca`` ... ``csep``: bodies, normal from A to B, points,
+    anchors about each body at the start, separation then). A point's separation moves with
+    its bodies as the solver's (its ``gap``): sep + (dx_B - dx_A).n + (r_B x n) sin(dq_B) -
+    (r_A x n) sin(dq_A). Returns (the least separations (n,), the deepest overlap)."""
     n = len(q0)
     out = np.full(n, np.inf)
+    pile = 0.0
     for k in range(len(ca)):
         a = ca[k]
         b = cb[k]
-        if moving[a] == moving[b]:
-            continue  # (both move, or neither)
+        if not moving[a] and not moving[b]:
+            continue
+        both = moving[a] and moving[b]
         mover = a if moving[a] else b
         mx, my, sa, sb = 0.0, 0.0, 0.0, 0.0
         if a < n:
@@ -156,9 +160,11 @@ def ended_depth(
             rna = rax[p] * ny[k] - ray[p] * nx[k]
             rnb = rbx[p] * ny[k] - rby[p] * nx[k]
             gap = sep[p] + mx * nx[k] + my * ny[k] + rnb * sb - rna * sa
-            if gap < out[mover]:
+            if -gap > pile:
+                pile = -gap
+            if not both and gap < out[mover]:
                 out[mover] = gap
-    return out
+    return out, pile
 
 
 def _sample() -> tuple[Any, ...]:

@@ -118,8 +118,9 @@ def step_loop(
     ended deeper than about its DEEP in what the solve does not move: the continuous stage's
     test), then what the World checks of the bodies after it: |the sum of x and v|, |the sum
     of angle and omega| (each nan or inf where an entry is) and whether any body spins; last,
-    each body's least separation at the end from what the solve does not move (m,
-    engine.dynamics.game_continuous.ended_depth)."""
+    each body's least separation at the end from what the solve does not move (m) and the
+    deepest overlap at the end of two bodies the solve moves (m; both
+    engine.dynamics.game_continuous.ended_depth's)."""
     n = len(radius)
     if len(margin) != n:
         # |v| dt + |a| dt^2 + |omega| dt r: what the shape can move in the step (``_reach``'s
@@ -224,7 +225,7 @@ def step_loop(
     solved = np.zeros(nb, dtype=np.bool_)
     for i in range(n):
         solved[i] = moving[i]
-    ended = ended_depth(
+    ended, pile = ended_depth(
         x, angle, x_out, q_out, solved, ca, cb, nx, ny, count, found[5], found[6], found[7],
         found[8], sep,
     )  # fmt: skip
@@ -375,4 +376,4 @@ def step_loop(
             spinning = True
     return (x_out, v_out, q_out, bw[:n].copy(), kept, lam, event, point, normal,
             impulse, sensing, touching, fast, abs(linear), abs(turning), spinning,
-            ended)  # fmt: skip
+            ended, pile)  # fmt: skip

@@ -176,6 +176,9 @@ class GameStep:
         self.fast = fast  # the compiled solver (engine.kernels) or its plain-Python twin
         self.continuous = Continuous(fast)  # stage 9: fast bodies swept after the step
         self.substeps = solver.SUBSTEPS
+        #: The deepest overlap (m) at the last step's end at its contacts' points: what the
+        #: World warns of where the pile is past its substeps (engine.pipeline.stepping).
+        self.pile = 0.0
         self.joints = GameJoints(fast)  # stage 5: their rows, their impulses
         self.forget()  # the contacts' warm starts and reports: none yet
         self._table: tuple[int, list[Any], ShapeTable] | None = None
@@ -233,6 +236,7 @@ class GameStep:
             # Everything sleeps, and nothing moves to wake it: the step changes nothing, and
             # every contact stays as it was.
             self.last = self.report
+            self.pile = 0.0
             return store.x.copy(), store.v.copy(), store.angle.copy(), store.omega.copy()
         if self.fast and n > _FEW:
             # The reach and the pairs in one compiled call (``_reach`` and ``_candidates``).
@@ -281,7 +285,7 @@ class GameStep:
         # How deep each body ended in what the solve does not move (the continuous stage
         # sweeps one too deep: engine.dynamics.game_continuous.ended_depth, the plain twin).
         solved = np.append(awake, False)
-        ended = ended_depth.py(store.x, store.angle, x, angle, solved, *found.rows[:10])
+        ended, self.pile = ended_depth.py(store.x, store.angle, x, angle, solved, *found.rows[:10])
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
         self.joints.report(joints[1], out, self.substeps)
@@ -359,6 +363,7 @@ class GameStep:
         # Stage 9: the fast bodies swept to their time of impact (engine.dynamics.game_continuous),
         # where step_loop says a body may be fast.
         self.continuous.sweep(store, sc, x, angle, out[16])
+        self.pile = out[17]
         self.sums = None if self.continuous.hits else sums  # (a body set back: summed again)
         return x, v, angle, omega
 

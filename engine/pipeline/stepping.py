@@ -204,6 +204,7 @@ def _step_soft(
     if torques is not None:
         tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
     x, v, angle, omega = game.step(state, dt, accel, ignored[0], ignored[1], tau)
+    _warn_if_sinking(state, store, game.pile, game.substeps)
     sums = game.sums  # (the fast path's step summed them: _check_finite's and _summed's)
     if sums is not None and math.isfinite(sums[0]):
         state.huge = sums[0] > 1e100
@@ -567,6 +568,40 @@ def _step_once(
         store.angle, store.omega = spin.angle, spin.omega
         store.spin_written()
     state.void_budget()
+
+
+#: The soft step's give that is not told (a share of the smallest radius): its contacts are
+#: springs, and a game's scenes press them a few percent of a radius as they land (the
+#: platformer's crates and planks 5%, a pit of 1,000 balls 5% as it forms; the issue's bounds
+#: for pits are 10% and 20% of a radius); a quarter of a radius is past them (the tumbler's
+#: boxes 73%, a pit of 10,000 balls 26% as it forms).
+SOFT_GIVE = 0.25
+
+
+def _warn_if_sinking(state: WorldState, store: Any, pile: float, substeps: int) -> None:
+    """The soft step's limit, told as the exact models' is (``_told``): at the end of the
+    step its contacts' points are ``pile`` (m) deep (two bodies into each other, or a body
+    into a collider or a kinematic wall), past ``SOFT_GIVE`` of the smallest radius of a body
+    that collides, or AGAIN times what was told last (Box2D's tumbler: a box falling 19 m
+    strikes the pile and drives one box into another by 13 cm, half a side, where the
+    solve's substeps carry the blow down the pile one contact at a time)."""
+    pairs = state.collisions
+    if not pile > 0.0:
+        return
+    if pairs.rmin == 0.0 or pairs.rmin_of is not store.radius:
+        live = store.radius[store.radius > 0.0]
+        pairs.rmin = float(live.min()) if len(live) else 0.0
+        pairs.rmin_of = store.radius
+    if pairs.rmin > 0.0 and pile > max(SOFT_GIVE * pairs.rmin, AGAIN * pairs.warned):
+        pairs.warned = pile
+        warnings.warn(
+            f"bodies overlap by {pile:.3g} length units "
+            f"({100 * pile / pairs.rmin:.0f}% of the smallest radius): "
+            f"this pile is past what {substeps} contact iterations a step can "
+            f"hold; raise world.contact_iterations or take a smaller dt",
+            StabilityWarning,
+            stacklevel=5,  # (the line that called World.step)
+        )
 
 
 #: A pile past the resting solver is told again where it has sunk this many times as deep as
