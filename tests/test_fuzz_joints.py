@@ -459,4 +459,36 @@ def test_a_ball_on_a_bat_swung_up_by_its_motor_flies_off_and_the_bat_reaches_its
     past = 0.0 if solver == "exact" else stalled_past_the_limit(hinge, bat, 9375.402248987055)
     assert hinge.angle - 1.0 == pytest.approx(past, abs=1e-6 if solver == "exact" else 1e-12)
     assert (ball.pos - thrown).length() > 5.0  # 50 steps at tens of m/s in free space
-    assert not [w for w in said if issubclass(w.category, StabilityWarning)]
+    told = [str(w.message) for w in said if issubclass(w.category, StabilityWarning)]
+    if solver == "exact":
+        assert not told
+    else:
+        # The soft step lets the ball sink into the bat swinging up at 9 rad/s (its centre
+        # stays out of the bat's core: above), 9.7 cm at step 7, 39% of its radius, and the
+        # World says so then, once (engine.pipeline.stepping's ``SOFT_GIVE``; the ball
+        # goes 21.5 cm in at worst: the strict xfail below).
+        assert len(told) == 1 and "raise world.contact_iterations" in told[0], told
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the soft step's limit: a ball on a bat swung up by its motor at 9 rad/s sinks "
+    "21.5 cm into it (86% of its radius; 19 cm with 8 substeps, 18 cm with 16), where the "
+    "exact models hold it out; the World warns of it (the test above)",
+)
+def test_on_the_soft_step_a_ball_on_a_bat_swung_up_by_its_motor_stays_out_of_it() -> None:
+    world = World(integrator="auto", solver="soft")
+    capsule = Segment((0.0, 0.0), (9.803110278350163, 0.0), radius=0.5)
+    bat = world.add(Body(Vector(0.0, 0.0), shape=capsule, mass=3.6386623031139185,
+                         restitution=0.0, friction=0.0))  # fmt: skip
+    world.add_link(Hinge(bat, world.static_body, (0.0, 0.0), limits=(0.0, 1.0),
+                         motor_speed=9.0, max_torque=9375.402248987055))  # fmt: skip
+    world.add(Body(Vector(4.901555139175081, 1.75), Vector(0.0, -1.0), radius=0.25, mass=1.0,
+                   restitution=0.0, friction=0.0))  # fmt: skip
+    deepest = 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", StabilityWarning)
+        for _ in range(60):
+            world.step(1 / 60)
+            deepest = max(deepest, world.overlap())
+    assert deepest <= 0.05 * 0.25  # the exact models' told overlap: 5% of the radius

@@ -1082,8 +1082,11 @@ def test_a_light_polygon_struck_into_a_wall_by_a_heavy_disc_stays_out_of_it() ->
         ],
     }  # fmt: skip
     _, seen = run(spec)
-    assert seen["stability"] == 0
     assert seen["deepest"] < 0.005, seen
+    # The disc (no bullet: Box2D sweeps a body against static shapes alone) ends step 2
+    # 13.4 cm into the polygon, 31% of its radius, and the World says so, once (the soft
+    # step's limit told: engine.pipeline.stepping's ``SOFT_GIVE``).
+    assert seen["stability"] == 1, seen
 
 
 def test_a_polygon_knocked_on_into_a_wall_it_was_turning_into_stays_out_of_it() -> None:

@@ -41,22 +41,27 @@ def is_sleeping(state: WorldState, body: Body) -> bool:
     return bool(row < len(asleep) and asleep[row])
 
 
-def overlap(state: WorldState) -> float:
-    """The deepest overlap (length units) between two bodies that collide, now: of their
-    shapes (a box's at its angle), not of the circles that hold them."""
+def overlap(
+    state: WorldState, x: np.ndarray | None = None, angle: np.ndarray | None = None
+) -> float:
+    """The deepest overlap (length units) between two bodies that collide, now, or with the
+    bodies at positions ``x`` (N, 2) and angles ``angle`` (N,) where given: of their shapes
+    (a box's at its angle), not of the circles that hold them."""
     store = state.store
     if store is None or store.dim != 2 or not state.bodies:
         return 0.0
+    x = store.x if x is None else x
+    angle = store.angle if angle is None else angle
     live = state.collisions.live(store.radius, store.group, store.categories, store.mask)
     if len(live) < 2 or state.collisions.one_group:
         return 0.0
     filters = (store.group[live], store.categories[live], store.mask[live])
     table = state.collisions.shape_table(store)
     if not table.shaped[live].any():
-        return deepest_overlap(store.x[live], store.radius[live], filters)
+        return deepest_overlap(x[live], store.radius[live], filters)
     # Bodies with shapes: the pairs whose bounding circles meet are measured by the
     # narrowphase at their angles (engine.geometry.shaped); two discs by their centres.
-    a, b = _circle_pairs(store.x[live], store.radius[live])
+    a, b = _circle_pairs(x[live], store.radius[live])
     g, c, m = filters
     ok = ~((g[a] == g[b]) & (g[a] != 0)) & ((c[a] & m[b]) != 0) & ((c[b] & m[a]) != 0)
     a, b = live[a[ok]], live[b[ok]]
@@ -66,13 +71,13 @@ def overlap(state: WorldState) -> float:
         return 0.0
     parts = table.parts
     if parts is None:
-        sep = pair_rows(table, a, b, store.x, 0.0, store.angle)[3]
+        sep = pair_rows(table, a, b, x, 0.0, angle)[3]
         return max(-float(sep.min(initial=0.0)), 0.0)
     # Bodies of several shapes (engine.body_shapes): every part of A with every part of B,
     # each at its body's pose.
     pa, pb = part_pairs(parts, a, b)
     owner = parts.owner
-    sep = pair_rows(parts.table, pa, pb, store.x[owner], 0.0, store.angle[owner])[3]
+    sep = pair_rows(parts.table, pa, pb, x[owner], 0.0, angle[owner])[3]
     return max(-float(sep.min(initial=0.0)), 0.0)
 
 

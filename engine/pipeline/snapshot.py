@@ -218,6 +218,11 @@ def restore(state: WorldState, snapshot: WorldSnapshot) -> None:
         state.collisions.set_state(snapshot.pairs)
     _set_events_state(state, snapshot.events)
     store = state.store
+    if snapshot.game is not None and state.game is None and state.solver == "auto":
+        # Taken of a World that chose the soft step, restored into one that has not chosen
+        # yet (made afresh, not stepped): it chooses now, so that the warm starts and open
+        # contacts come back with the bodies (a saved game resumed in a new process).
+        state.settle_solver()
     if state.game is not None and snapshot.game is not None and store is not None:
         slots = store.slots()
         serials = np.array([state.events.serial(c) for c in state.colliders], np.int64)

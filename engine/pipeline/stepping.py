@@ -32,7 +32,7 @@ from ..exact.joint_solver import JointSolver
 from ..exact.pile import THRESH
 from ..integrators import Integrator
 from ..stability import SimulationDiverged, StabilityWarning
-from . import collision_handlers
+from . import collision_handlers, readout
 from .event_dispatch import quiet, report, settle
 from .game_step import unsupported
 
@@ -204,7 +204,7 @@ def _step_soft(
     if torques is not None:
         tau = torques.at(t0, store.torque, store.angle, store.omega, store.moment)
     x, v, angle, omega = game.step(state, dt, accel, ignored[0], ignored[1], tau)
-    _warn_if_sinking(state, store, game.pile, game.substeps)
+    _warn_if_sinking(state, store, game.pile, game.substeps, x, angle)
     sums = game.sums  # (the fast path's step summed them: _check_finite's and _summed's)
     if sums is not None and math.isfinite(sums[0]):
         state.huge = sums[0] > 1e100
@@ -578,13 +578,19 @@ def _step_once(
 SOFT_GIVE = 0.25
 
 
-def _warn_if_sinking(state: WorldState, store: Any, pile: float, substeps: int) -> None:
-    """The soft step's limit, told as the exact models' is (``_told``): at the end of the
-    step its contacts' points are ``pile`` (m) deep (two bodies into each other, or a body
-    into a collider or a kinematic wall), past ``SOFT_GIVE`` of the smallest radius of a body
-    that collides, or AGAIN times what was told last (Box2D's tumbler: a box falling 19 m
-    strikes the pile and drives one box into another by 13 cm, half a side, where the
-    solve's substeps carry the blow down the pile one contact at a time)."""
+def _warn_if_sinking(
+    state: WorldState, store: Any, pile: float, substeps: int, x: np.ndarray, angle: np.ndarray
+) -> None:
+    """The soft step's limit, told as the exact models' is (``_told``): two bodies that
+    collide end the step (at positions ``x``, angles ``angle``) into each other past
+    ``SOFT_GIVE`` of the smallest radius of a body that collides, or AGAIN times what was
+    told last (Box2D's tumbler: a box falling 19 m strikes the pile and drives one box into
+    another by 13 cm, half a side, where the solve's substeps carry the blow down the pile
+    one contact at a time). ``pile`` (m): the deepest of the step's contacts' points moved
+    with their bodies (engine.dynamics.game_continuous.ended_depth), which says when to
+    measure the shapes where they ended (``readout.overlap``, as ``World.overlap``): the
+    points' separations are linearised about the step's start, and a bat swung through a
+    third of a radian in a step has its points a few centimetres off where its shape is."""
     pairs = state.collisions
     if not pile > 0.0:
         return
@@ -592,11 +598,15 @@ def _warn_if_sinking(state: WorldState, store: Any, pile: float, substeps: int) 
         live = store.radius[store.radius > 0.0]
         pairs.rmin = float(live.min()) if len(live) else 0.0
         pairs.rmin_of = store.radius
-    if pairs.rmin > 0.0 and pile > max(SOFT_GIVE * pairs.rmin, AGAIN * pairs.warned):
-        pairs.warned = pile
+    told = max(SOFT_GIVE * pairs.rmin, AGAIN * pairs.warned)
+    if not (pairs.rmin > 0.0 and pile > told):
+        return
+    over = readout.overlap(state, x, angle)
+    if over > told:
+        pairs.warned = over
         warnings.warn(
-            f"bodies overlap by {pile:.3g} length units "
-            f"({100 * pile / pairs.rmin:.0f}% of the smallest radius): "
+            f"bodies overlap by {over:.3g} length units "
+            f"({100 * over / pairs.rmin:.0f}% of the smallest radius): "
             f"this pile is past what {substeps} contact iterations a step can "
             f"hold; raise world.contact_iterations or take a smaller dt",
             StabilityWarning,
