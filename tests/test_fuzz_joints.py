@@ -418,6 +418,21 @@ def test_a_ball_on_a_capsule_bat_flipped_at_the_first_step_stays_out_of_it(solve
     assert abs(bat.angular_velocity) < 1e-9
 
 
+def swung_bat(solver: str) -> tuple[World, Body, Hinge, Body]:
+    """A 9.8 m capsule bat on a hinge at its root, limits (0, 1) rad, its motor at 9 rad/s
+    from the first step, and a 0.25 m ball falling onto its middle at 1 m/s, on ``solver``:
+    (world, bat, hinge, ball)."""
+    world = World(integrator="auto", solver=solver)
+    capsule = Segment((0.0, 0.0), (9.803110278350163, 0.0), radius=0.5)
+    bat = world.add(Body(Vector(0.0, 0.0), shape=capsule, mass=3.6386623031139185,
+                         restitution=0.0, friction=0.0))  # fmt: skip
+    hinge = world.add_link(Hinge(bat, world.static_body, (0.0, 0.0), limits=(0.0, 1.0),
+                                 motor_speed=9.0, max_torque=9375.402248987055))  # fmt: skip
+    ball = world.add(Body(Vector(4.901555139175081, 1.75), Vector(0.0, -1.0), radius=0.25,
+                          mass=1.0, restitution=0.0, friction=0.0))  # fmt: skip
+    return world, bat, hinge, ball
+
+
 @pytest.mark.parametrize(
     "solver",
     [
@@ -438,14 +453,7 @@ def test_a_ball_on_a_bat_swung_up_by_its_motor_flies_off_and_the_bat_reaches_its
     # at once: a 9.8 m capsule bat on a hinge at its root, limits (0, 1) rad, its motor turned
     # up at 9 rad/s as the first step begins; a 0.25 m ball falls onto its middle at 1 m/s.
     # No gravity, no restitution, no friction: the bat throws the ball, then stops at 1 rad.
-    world = World(integrator="auto", solver=solver)
-    capsule = Segment((0.0, 0.0), (9.803110278350163, 0.0), radius=0.5)
-    bat = world.add(Body(Vector(0.0, 0.0), shape=capsule, mass=3.6386623031139185,
-                         restitution=0.0, friction=0.0))  # fmt: skip
-    hinge = world.add_link(Hinge(bat, world.static_body, (0.0, 0.0), limits=(0.0, 1.0),
-                                 motor_speed=9.0, max_torque=9375.402248987055))  # fmt: skip
-    ball = world.add(Body(Vector(4.901555139175081, 1.75), Vector(0.0, -1.0), radius=0.25,
-                          mass=1.0, restitution=0.0, friction=0.0))  # fmt: skip
+    world, bat, hinge, ball = swung_bat(solver)
     with warnings.catch_warnings(record=True) as said:
         warnings.simplefilter("always")
         for _ in range(10):
@@ -477,14 +485,7 @@ def test_a_ball_on_a_bat_swung_up_by_its_motor_flies_off_and_the_bat_reaches_its
     "exact models hold it out; the World warns of it (the test above)",
 )
 def test_on_the_soft_step_a_ball_on_a_bat_swung_up_by_its_motor_stays_out_of_it() -> None:
-    world = World(integrator="auto", solver="soft")
-    capsule = Segment((0.0, 0.0), (9.803110278350163, 0.0), radius=0.5)
-    bat = world.add(Body(Vector(0.0, 0.0), shape=capsule, mass=3.6386623031139185,
-                         restitution=0.0, friction=0.0))  # fmt: skip
-    world.add_link(Hinge(bat, world.static_body, (0.0, 0.0), limits=(0.0, 1.0),
-                         motor_speed=9.0, max_torque=9375.402248987055))  # fmt: skip
-    world.add(Body(Vector(4.901555139175081, 1.75), Vector(0.0, -1.0), radius=0.25, mass=1.0,
-                   restitution=0.0, friction=0.0))  # fmt: skip
+    world = swung_bat("soft")[0]
     deepest = 0.0
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", StabilityWarning)
