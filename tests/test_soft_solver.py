@@ -754,6 +754,7 @@ def test_a_pile_past_the_soft_step_is_told_as_it_happens(kernels: str) -> None:
                 if caught and len(said) < len(caught):
                     said.append((str(caught[-1].message), world.overlap()))
         assert all(issubclass(c.category, StabilityWarning) for c in caught)
+        assert all(c.filename == __file__ for c in caught)  # said at the game's own call
         told[mass] = said
     assert told[1.0] == []
     (message, overlap), *_ = told[100.0]
