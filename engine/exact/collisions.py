@@ -155,8 +155,6 @@ class Collisions:
         self._base = 0
         self.rest_speed = 0.0  # 2 dt times the largest pull in the last step
         self.rmin = 0.0  # the smallest radius of a body that collides
-        #: The radii ``rmin`` was taken of on the soft step (engine.pipeline.stepping).
-        self.rmin_of: Any = None
         self._overlap = np.zeros(0)  # (N,) each body's deepest overlap / its radius
         self._still_speed = 0.0
         self._reports = (0, 0)  # the static contacts' batches of reports in the step

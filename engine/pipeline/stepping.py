@@ -587,10 +587,8 @@ def _warn_if_sinking(
     pairs = state.collisions
     if not pile > 0.0:
         return
-    if pairs.rmin == 0.0 or pairs.rmin_of is not store.radius:
-        live = store.radius[store.radius > 0.0]
-        pairs.rmin = float(live.min()) if len(live) else 0.0
-        pairs.rmin_of = store.radius
+    # (The bodies that collide, kept as the World's bodies change: and so ``rmin``.)
+    pairs.live(store.radius, store.group, store.categories, store.mask)
     told = max(SOFT_GIVE * pairs.rmin, AGAIN * pairs.warned)
     if not (pairs.rmin > 0.0 and pile > told):
         return
