@@ -96,6 +96,7 @@ import numpy as np
 from .. import kernels
 from ..geometry import narrowphase
 from ..geometry.manifold_kinds import LINEAR_SLOP
+from .turning_faces import FACE_A, face_gap
 
 __all__ = ["CORE", "Continuous", "DEEP", "ITERATIONS", "SAFETY", "continuous_loop", "ended_depth"]
 
@@ -120,14 +121,14 @@ def _ended_sample() -> tuple[Any, ...]:
         np.array([True, False]), np.array([1], dtype=i64), np.array([0], dtype=i64),
         np.array([0.0]), np.array([1.0]), np.array([2], dtype=i64),
         np.array([-0.5, 0.5]), np.zeros(2), np.array([-0.5, 0.5]), np.array([-0.5, -0.5]),
-        np.zeros(2),
+        np.zeros(2), np.zeros(1, dtype=i64), np.zeros(1),
     )  # fmt: skip
 
 
 @kernels.loop(sample=_ended_sample)
 def ended_depth(
     x0: Any, q0: Any, x1: Any, q1: Any, moving: Any, ca: Any, cb: Any, nx: Any, ny: Any,
-    count: Any, rax: Any, ray: Any, rbx: Any, rby: Any, sep: Any,
+    count: Any, rax: Any, ray: Any, rbx: Any, rby: Any, sep: Any, face: Any, fround: Any,
 ) -> Any:  # fmt: skip
     """Each body's least separation at the step's end (m; inf: none) at its contacts' points
     with what the solve does not move, and the deepest overlap at the end at any of the rows
@@ -137,7 +138,10 @@ def ended_depth(
     (engine.dynamics.solver.solve's ``ca`` ... ``csep``: bodies, normal from A to B, points,
     anchors about each body at the start, separation then). A point's separation moves with
     its bodies as the solver's (its ``gap``): sep + (dx_B - dx_A).n + (r_B x n) sin(dq_B) -
-    (r_A x n) sin(dq_A). Returns (the least separations (n,), the deepest overlap)."""
+    (r_A x n) sin(dq_A); a disc's on a face that turns (``face``, ``fround``: the rows' kinds
+    and discs' radii, engine.dynamics.turning_faces.face_rows) exactly, as the face and the
+    disc are at the end (that module's ``face_gap``). Returns (the least separations (n,),
+    the deepest overlap)."""
     n = len(q0)
     out = np.full(n, np.inf)
     pile = 0.0
@@ -157,9 +161,41 @@ def ended_depth(
             sb = math.sin(q1[b] - q0[b])
         for j in range(count[k]):
             p = 2 * k + j
-            rna = rax[p] * ny[k] - ray[p] * nx[k]
-            rnb = rbx[p] * ny[k] - rby[p] * nx[k]
-            gap = sep[p] + mx * nx[k] + my * ny[k] + rnb * sb - rna * sa
+            if face[k] != 0:
+                # (A disc on a face that turns: the rows' own offsets, as the solver takes them.)
+                r, half = fround[k], 0.5 * sep[p]
+                n0x, n0y = nx[k], ny[k]
+                ox = (x1[b, 0] if b < n else 0.0) - (x1[a, 0] if a < n else 0.0)
+                oy = (x1[b, 1] if b < n else 0.0) - (x1[a, 1] if a < n else 0.0)
+                qa = q1[a] - q0[a] if a < n else 0.0
+                qb = q1[b] - q0[b] if b < n else 0.0
+                if face[k] == FACE_A:
+                    ex, ey = rbx[p] + (half + r) * n0x, rby[p] + (half + r) * n0y
+                    f0 = (n0x * rax[p] + n0y * ray[p]) - half
+                    qf, qd = qa, qb
+                else:
+                    ex, ey = rax[p] - (half + r) * n0x, ray[p] - (half + r) * n0y
+                    f0 = (n0x * rbx[p] + n0y * rby[p]) + half
+                    qf, qd = qb, qa
+                gap = face_gap(
+                    face[k],
+                    n0x,
+                    n0y,
+                    ox,
+                    oy,
+                    math.cos(qf),
+                    math.sin(qf),
+                    math.cos(qd),
+                    math.sin(qd),
+                    ex,
+                    ey,
+                    r,
+                    f0,
+                )[0]
+            else:
+                rna = rax[p] * ny[k] - ray[p] * nx[k]
+                rnb = rbx[p] * ny[k] - rby[p] * nx[k]
+                gap = sep[p] + mx * nx[k] + my * ny[k] + rnb * sb - rna * sa
             if -gap > pile:
                 pile = -gap
             if not both and gap < out[mover]:

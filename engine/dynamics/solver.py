@@ -264,6 +264,7 @@ import numpy as np
 
 from .. import kernels
 from ..kernels import floats
+from .turning_faces import FACE_A, face_gap
 
 __all__ = [
     "SUBSTEPS",
@@ -458,8 +459,9 @@ def _sample() -> tuple[Any, ...]:
         np.array([0.5]), f(1), f(1), f(1), i1.copy(), f(1), f(1), i1.copy(), f(1), f(1),
         f(1), f(1), f(1), f(1), f(1), f(1),
     ]  # fmt: skip
-    return (*body, *vel, *mass, *acc, *contacts, *joints, 1.0 / 60.0, 4, 30.0, 10.0, 60.0,
-            2.0, 3.0, 1.0, f(2))  # fmt: skip
+    faces = [i1.copy(), f(1)]
+    return (*body, *vel, *mass, *acc, *contacts, *joints, *faces, 1.0 / 60.0, 4, 30.0, 10.0,
+            60.0, 2.0, 3.0, 1.0, f(2))  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
@@ -477,6 +479,7 @@ def solve(
     jlimit: Any, jlower: Any, jupper: Any,
     jmotor: Any, jspeed: Any, jmaxtorque: Any,
     jpx: Any, jpy: Any, jpa: Any, jlo: Any, jhi: Any, jmi: Any,
+    cface: Any, cround: Any,
     dt: float, substeps: int, contact_hertz: float, contact_damping: float,
     joint_hertz: float, joint_damping: float, push: float, threshold: float,
     brise: Any,
@@ -521,6 +524,11 @@ def solve(
     ``jlower`` (m, rad), its stiffness ``jhertz`` (N/m, N m/rad), its damping ``jdamp`` (N s/m,
     N m s/rad); its ``jpa`` out is the impulse it gave over the whole step (along u, or on B's
     angle), and is not warm started.
+
+    ``cface``, ``cround`` (nc): each contact's face that turns (engine.dynamics.turning_faces'
+    ``face_rows``: 0, or which body's face its normal turns with) and its disc's radius (m):
+    such a row is taken again as its bodies move (that module's doc), and given back as it
+    was at the end.
 
     ``brise`` (nb) out: how far each body's held loads have yet to lift it (m), the most of
     the give still left under its face contacts' loads (module doc, "A pile holds its load"):
@@ -666,6 +674,83 @@ def solve(
                 meet = rel[p] * rel[p] - 2.0 * (anx * nx + any_ * ny) * csep[p]
                 if meet > 0.0:
                     rel[p] = -math.sqrt(meet)
+
+    # -- the rows on a face that turns (engine.dynamics.turning_faces): each one's normal at the
+    # start, its disc's centre less that body's position then (world axes) and the face's
+    # offset f0, per point; and its rows as they came, given back at the end.
+    turning = 0
+    for k in range(nc):
+        if cface[k] != 0:
+            turning += 1
+    tn0x = floats(nc if turning else 0, 0.0)
+    tn0y = floats(nc if turning else 0, 0.0)
+    te0x = floats(2 * nc if turning else 0, 0.0)
+    te0y = floats(2 * nc if turning else 0, 0.0)
+    tf0 = floats(2 * nc if turning else 0, 0.0)
+    kept = floats(8 * nc if turning else 0, 0.0)  # (each point's four anchors, as they came)
+    for k in range(nc if turning else 0):
+        if cface[k] == 0:
+            continue
+        nx, ny = cnx[k], cny[k]
+        tn0x[k], tn0y[k] = nx, ny
+        r = cround[k]
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            half = 0.5 * csep[p]
+            kept[4 * p], kept[4 * p + 1] = crax[p], cray[p]
+            kept[4 * p + 2], kept[4 * p + 3] = crbx[p], crby[p]
+            if cface[k] == FACE_A:
+                te0x[p] = crbx[p] + (half + r) * nx
+                te0y[p] = crby[p] + (half + r) * ny
+                tf0[p] = (nx * crax[p] + ny * cray[p]) - half
+            else:
+                te0x[p] = crax[p] - (half + r) * nx
+                te0y[p] = cray[p] - (half + r) * ny
+                tf0[p] = (nx * crbx[p] + ny * crby[p]) + half
+
+    def turned(p: int, k: int, a: int, b: int) -> tuple[float, float, float, float, float]:
+        """Point p of contact k on a face that turns, at the bodies' poses now
+        (engine.dynamics.turning_faces.face_gap): its separation, normal and disc centre."""
+        ox = (x0[b] + dx[b]) - (x0[a] + dx[a])
+        oy = (y0[b] + dy[b]) - (y0[a] + dy[a])
+        f, d = (a, b) if cface[k] == FACE_A else (b, a)
+        return face_gap(
+            cface[k], tn0x[k], tn0y[k], ox, oy, cq[f], sq[f], cq[d], sq[d], te0x[p], te0y[p],
+            cround[k], tf0[p],
+        )  # fmt: skip
+
+    def retake(k: int) -> None:
+        """Contact k's rows on a face that turns taken again where its bodies are now
+        (engine.dynamics.turning_faces): the normal, the anchors at the point midway between
+        the disc and the face, and the masses along the normal and the tangent."""
+        a = ca[k]
+        b = cb[k]
+        ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
+        ox = (x0[b] + dx[b]) - (x0[a] + dx[a])
+        oy = (y0[b] + dy[b]) - (y0[a] + dy[a])
+        r = cround[k]
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            s, nx, ny, wx, wy = turned(p, k, a, b)
+            if cface[k] == FACE_A:
+                rbx = wx - (r + 0.5 * s) * nx
+                rby = wy - (r + 0.5 * s) * ny
+                rax, ray = rbx + ox, rby + oy
+            else:
+                rax = wx + (r + 0.5 * s) * nx
+                ray = wy + (r + 0.5 * s) * ny
+                rbx, rby = rax - ox, ray - oy
+            cnx[k], cny[k] = nx, ny
+            crax[p], cray[p], crbx[p], crby[p] = rax, ray, rbx, rby
+            rna = rax * ny - ray * nx
+            rnb = rbx * ny - rby * nx
+            kn = ma + mb + ia * rna * rna + ib * rnb * rnb
+            nmass[p] = 1.0 / kn if kn > 0.0 else 0.0
+            rta = rax * nx + ray * ny
+            rtb = rbx * nx + rby * ny
+            kt = ma + mb + ia * rta * rta + ib * rtb * rtb
+            tmass[p] = 1.0 / kt if kt > 0.0 else 0.0
+        kblock[k] = 0.0  # (a disc's manifold has one point)
 
     def press2(
         k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,
@@ -911,6 +996,8 @@ def solve(
     def gap(p: int, a: int, b: int, mx: float, my: float, nx: float, ny: float) -> float:
         """Point p's separation now (m): the bodies moved apart by (mx, my) since the start,
         the anchors turned across the normal as their bodies have (module doc, "Rows")."""
+        if turning and cface[p // 2] != 0:
+            return turned(p, p // 2, a, b)[0]  # (a face that turns: exact, module doc)
         rna = crax[p] * ny - cray[p] * nx
         rnb = crbx[p] * ny - crby[p] * nx
         return csep[p] + mx * nx + my * ny + rnb * sq[b] - rna * sq[a]
@@ -1418,6 +1505,11 @@ def solve(
                         dq[i] += turn * h
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
+                # The rows on a face that turns, taken again where the bodies are now (for
+                # the relax, the next substep and the restitution).
+                for k in range(nc if turning else 0):
+                    if cface[k] != 0:
+                        retake(k)
 
     # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
     # its ends back together at e times the speed they parted at (jspeed holds e).
@@ -1458,3 +1550,12 @@ def solve(
         bx[i] = x0[i] + dx[i]
         by[i] = y0[i] + dy[i]
         bq[i] = q0[i] + dq[i]
+    # The rows on a face that turns given back as they came (their events report them so).
+    for k in range(nc if turning else 0):
+        if cface[k] == 0:
+            continue
+        cnx[k], cny[k] = tn0x[k], tn0y[k]
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            crax[p], cray[p] = kept[4 * p], kept[4 * p + 1]
+            crbx[p], crby[p] = kept[4 * p + 2], kept[4 * p + 3]

@@ -27,6 +27,7 @@ from .. import kernels
 from ..dynamics.events import COLLIDER
 from ..dynamics.game_continuous import DEEP, SAFETY, ended_depth
 from ..dynamics.solver import MOUSE, solve
+from ..dynamics.turning_faces import face_rows
 from ..exact.pile import label_rows
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
 from ..kernels import stable_order
@@ -203,6 +204,11 @@ def step_loop(
     sep, ln, lt, lh = found[9], found[13], found[14], found[15]
     keys, place, px, py = found[16], found[17], found[18], found[19]
     sense_row, sense_place = found[20], found[21]
+    # The rows of a disc on a face that turns (engine.dynamics.turning_faces), taken again as
+    # the face turns.
+    face, fround = face_rows(
+        ca, cb, nx, ny, n, angle, body_circle, body_index, body_parts, Nrm, cnt, rnd
+    )
     total = np.zeros(2 * len(ca))
     most = np.zeros(2 * len(ca))
     rise = np.zeros(nb)  # out: how far each body's held loads have yet to lift it (m)
@@ -212,7 +218,7 @@ def step_loop(
         ca, cb, nx, ny, count, found[5], found[6], found[7], found[8], sep,
         found[10], found[11], found[12], ln, lt, lh, total, most,
         jkind, ja, jb, jlax, jlay, jlbx, jlby, jref, jhertz, jdamp, jlimit, jlower, jupper,
-        jmotor, jspeed, jmaxtorque, jpx, jpy, jpa, jlo, jhi, jmi,
+        jmotor, jspeed, jmaxtorque, jpx, jpy, jpa, jlo, jhi, jmi, face, fround,
         dt, substeps, contact_hertz, contact_damping, joint_hertz, joint_damping, push,
         threshold, rise,
     )  # fmt: skip
@@ -227,7 +233,7 @@ def step_loop(
         solved[i] = moving[i]
     ended, pile = ended_depth(
         x, angle, x_out, q_out, solved, ca, cb, nx, ny, count, found[5], found[6], found[7],
-        found[8], sep,
+        found[8], sep, face, fround,
     )  # fmt: skip
     # -- what the contacts did (engine.pipeline.game_contacts.report_loop) -------------------------
     kept, lam, event, point, normal, impulse = report_loop(

@@ -70,6 +70,7 @@ from ..dynamics import solver
 from ..dynamics.events import COLLIDER, collider_keys, pair_keys
 from ..dynamics.game_continuous import Continuous, ended_depth
 from ..dynamics.game_joints import GameJoints
+from ..dynamics.turning_faces import face_rows
 from ..geometry import narrowphase
 from ..geometry.colliders import Collider
 from ..geometry.manifold import StaticShapes, static_shapes
@@ -268,9 +269,10 @@ class GameStep:
         )
         touches = self._collide(sc, store, pairs, faces, margin, struck, dt)
         found = self._found(store, sc.cs, sc.owner, touches)
+        turning = _faces(sc, store, found.rows)
         joints = self.joints.arrays(state, store, n)
         k = len(found.place)
-        args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0]]
+        args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0], *turning]
         params: list[Any] = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
         params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
         rise = [0.0] * (n + 1)  # out: how far each body's held loads have yet to lift it (m)
@@ -285,7 +287,8 @@ class GameStep:
         # How deep each body ended in what the solve does not move (the continuous stage
         # sweeps one too deep: engine.dynamics.game_continuous.ended_depth, the plain twin).
         solved = np.append(awake, False)
-        ended, self.pile = ended_depth.py(store.x, store.angle, x, angle, solved, *found.rows[:10])
+        depth: Any = ended_depth.py
+        ended, self.pile = depth(store.x, store.angle, x, angle, solved, *found.rows[:10], *turning)
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
         self.joints.report(joints[1], out, self.substeps)
@@ -904,6 +907,31 @@ class GameStep:
             (-nrm * sign)[picked],
             (j * sign)[picked],
         )
+
+
+def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """The numpy path's rows of a disc on a face that turns (engine.dynamics.turning_faces'
+    ``face_rows``, its plain twin, asked of the rows between a disc and a polygon or capsule
+    alone): each row's kind and disc radius. None where a body has several shapes."""
+    ca, cb, nx, ny = rows[0], rows[1], rows[2], rows[3]
+    face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(len(ca))
+    n = len(store)
+    if sc.table.parts is not None or not len(ca):
+        return face, fround
+    circle = sc.places.body_circle
+    pair = cb < n
+    ask = np.flatnonzero(pair & (circle[ca] != circle[np.where(pair, cb, 0)]))
+    if not len(ask):
+        return face, fround
+    rows_n = np.arange(n, dtype=np.int64)
+    parts = np.stack([rows_n, np.ones(n, dtype=np.int64)], axis=1)
+    _, normals, count, _ = sc.places.tables.kernel_polygons
+    got = face_rows.py(
+        ca[ask], cb[ask], nx[ask], ny[ask], n, store.angle, circle, sc.places.body_index,
+        parts, normals, count, sc.places.tables.round,
+    )  # fmt: skip
+    face[ask], fround[ask] = got
+    return face, fround
 
 
 def _bodies(
