@@ -484,6 +484,7 @@ MODULES = (
     "engine.exact.pair_plan",
     "engine.exact.pair_impacts",
     "engine.dynamics.coloring",
+    "engine.dynamics.turning_faces",
     "engine.exact.soft",
     "engine.dynamics.solver",
     "engine.exact.pile",

@@ -675,12 +675,26 @@ def solve(
                 if meet > 0.0:
                     rel[p] = -math.sqrt(meet)
 
-    # -- the rows on a face that turns (engine.dynamics.turning_faces): each one's normal at the
-    # start, its disc's centre less that body's position then (world axes) and the face's
-    # offset f0, per point; and its rows as they came, given back at the end.
+    # -- the rows on a face that turns (engine.dynamics.turning_faces) where the disc rides the
+    # face (``live``): its points' normal speed at the start closes at no more than the
+    # threshold (one that strikes the face is an impact, whose rows stay where it met); each
+    # one's normal at the start, its disc's centre less that body's position then (world
+    # axes) and the face's offset f0, per point; and its rows as they came, given back at
+    # the end.
     turning = 0
+    live = floats(nc, 0.0)
     for k in range(nc):
-        if cface[k] != 0:
+        if cface[k] == 0:
+            continue
+        live[k] = 1.0
+        for j in range(ccount[k]):
+            p = 2 * k + j
+            dvx, dvy = _relative(
+                bvx, bvy, bw, ca[k], cb[k], crax[p], cray[p], crbx[p], crby[p]
+            )  # fmt: skip
+            if dvx * cnx[k] + dvy * cny[k] < -threshold:
+                live[k] = 0.0
+        if live[k] != 0.0:
             turning += 1
     tn0x = floats(nc if turning else 0, 0.0)
     tn0y = floats(nc if turning else 0, 0.0)
@@ -689,7 +703,7 @@ def solve(
     tf0 = floats(2 * nc if turning else 0, 0.0)
     kept = floats(8 * nc if turning else 0, 0.0)  # (each point's four anchors, as they came)
     for k in range(nc if turning else 0):
-        if cface[k] == 0:
+        if live[k] == 0.0:
             continue
         nx, ny = cnx[k], cny[k]
         tn0x[k], tn0y[k] = nx, ny
@@ -996,7 +1010,7 @@ def solve(
     def gap(p: int, a: int, b: int, mx: float, my: float, nx: float, ny: float) -> float:
         """Point p's separation now (m): the bodies moved apart by (mx, my) since the start,
         the anchors turned across the normal as their bodies have (module doc, "Rows")."""
-        if turning and cface[p // 2] != 0:
+        if turning and live[p // 2] != 0.0:
             return turned(p, p // 2, a, b)[0]  # (a face that turns: exact, module doc)
         rna = crax[p] * ny - cray[p] * nx
         rnb = crbx[p] * ny - crby[p] * nx
@@ -1508,7 +1522,7 @@ def solve(
                 # The rows on a face that turns, taken again where the bodies are now (for
                 # the relax, the next substep and the restitution).
                 for k in range(nc if turning else 0):
-                    if cface[k] != 0:
+                    if live[k] != 0.0:
                         retake(k)
 
     # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
@@ -1552,7 +1566,7 @@ def solve(
         bq[i] = q0[i] + dq[i]
     # The rows on a face that turns given back as they came (their events report them so).
     for k in range(nc if turning else 0):
-        if cface[k] == 0:
+        if live[k] == 0.0:
             continue
         cnx[k], cny[k] = tn0x[k], tn0y[k]
         for j in range(ccount[k]):

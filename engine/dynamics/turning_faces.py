@@ -43,16 +43,20 @@ after 1 s, 4 substeps, u 0.08% short of the closed form (5.9% before), its deepe
 43 mm (113 before); 16 substeps 0.02% and 11 mm (5.8% and 109 mm before). The overlap left
 is the soft contact's: the load that turns the disc with the bar (2 omega u' m, 180 N here)
 presses its spring, which pushes back at a bounded rate. A ball on a 9.8 m bat swung up by
-its motor at 9 rad/s sank 21.5 cm (86% of its radius) and now 9.7 cm; the pinball's ball
-(demos.bench.pinball, 1000 throws at a flipper) ended a step inside the bat in 10, and now
-in 7 (the other cause: a hard throw drives the bat past its limit, which the soft step's
-joints hold as springs, and the bat springs back onto the ball).
+its motor at 9 rad/s sank 21.5 cm (86% of its radius; 19 and 18 cm at 8 and 16 substeps),
+and now 9.9 cm (5.3 and 3.0 cm; tests/test_fuzz_joints.py).
 
 **Which rows.** ``face_rows``: a pair of two bodies (a static shape never turns), one of
 them a disc and the other a polygon or capsule, whose normal is one of the polygon's edge
-normals turned to its angle (to ``ALIGNED``): its face. A disc on a polygon's corner or a
-capsule's end meets a round feature, whose normal turns with neither body: its row is as
-before. While any body of the World has several shapes (``Body(shapes=[...])``) no row is
+normals turned to its angle (to ``ALIGNED``): its face. The solver takes such a row again
+where the disc does not strike the face (engine.dynamics.solver): its points' normal speed at
+the step's start closes at no more than the restitution threshold (1 m/s). A disc that strikes
+the face is an impact, which the rows take where it meets, as Box2D's do: its rows stay as they
+are, so that an impact's closed form holds (a disc striking a box off its centre spins it as
+the closed form says, to 1e-9: tests/test_rotation_shapes.py). ``ended_depth`` measures every
+such row exactly at the step's end (engine.dynamics.game_continuous). A disc on a polygon's
+corner or a capsule's end meets a round feature, whose normal turns with neither body: its row
+is as before. While any body of the World has several shapes (``Body(shapes=[...])``) no row is
 taken again (a pair's parts are not known on the numpy path's rows): the rows are as before.
 """
 

@@ -582,8 +582,9 @@ def _warn_if_sinking(
     one contact at a time). ``pile`` (m): the deepest of the step's contacts' points moved
     with their bodies (engine.dynamics.game_continuous.ended_depth), which says when to
     measure the shapes where they ended (``readout.overlap``, as ``World.overlap``): the
-    points' separations are linearised about the step's start (a ball on a bat swung up at
-    9 rad/s: its points 6.5 cm deep where its shape was 9.7 cm)."""
+    points' separations are linearised about the step's start, and a corner that turned
+    through the step is deeper or shallower than its row says (a disc's on a face that turns
+    is exact: engine.dynamics.turning_faces)."""
     pairs = state.collisions
     if not pile > 0.0:
         return
