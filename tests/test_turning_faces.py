@@ -101,7 +101,7 @@ def _rows(
     index = np.zeros(2, dtype=np.int64)
     body_parts = np.array([[0, 1], [1, parts]], dtype=np.int64)
     face, radius = face_rows.py(
-        np.array([0]), np.array([1]), np.array([nx]), np.array([ny]), 2,
+        np.array([0]), np.array([1]), np.array([nx]), np.array([ny]), 2, parts != 1,
         np.array([angle, 0.0]), circle, index, body_parts, box, np.array([4]), np.array([0.25]),
     )  # fmt: skip
     return int(face[0]), float(radius[0])

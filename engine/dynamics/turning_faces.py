@@ -86,31 +86,29 @@ def _sample() -> tuple[Any, ...]:
     box = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
     return (
         np.array([0], dtype=i64), np.array([1], dtype=i64), np.array([0.0]), np.array([1.0]), 2,
-        np.zeros(2), np.array([False, True]), np.array([0, 0], dtype=i64),
+        False, np.zeros(2), np.array([False, True]), np.array([0, 0], dtype=i64),
         np.array([[0, 1], [1, 1]], dtype=i64), box, np.array([4], dtype=i64), np.array([0.25]),
     )  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
 def face_rows(
-    ca: Any, cb: Any, nx: Any, ny: Any, n: int, angle: Any, body_circle: Any, body_index: Any,
-    body_parts: Any, Nrm: Any, cnt: Any, rnd: Any,
+    ca: Any, cb: Any, nx: Any, ny: Any, n: int, several: bool, angle: Any, body_circle: Any,
+    body_index: Any, body_parts: Any, Nrm: Any, cnt: Any, rnd: Any,
 ) -> tuple[Any, Any]:  # fmt: skip
     """Each contact row's face (module doc): 0, or FACE_A where its normal turns with body A
     (a face of A, a disc B), FACE_B with B; and the disc's radius (m; 0 for none).
 
     Rows (engine.dynamics.solver.solve's): bodies ``ca``, ``cb`` (rows; ``n`` or more: a
-    static shape), the unit normal ``nx``, ``ny`` from A to B. Bodies (``n``): ``angle``
-    (rad); each body's first part and count ``body_parts`` (n, 2), each part's shape
+    static shape), the unit normal ``nx``, ``ny`` from A to B. Bodies (``n``; ``several``:
+    one of them has several shapes, and no row is taken again): ``angle`` (rad); each body's
+    first part and count ``body_parts`` (n, 2), each part's shape
     (``body_circle``, ``body_index`` in the tables: engine.geometry.narrowphase.Places); the
     tables' polygon normals ``Nrm`` (P, M, 2) and counts ``cnt``, the circles' radii ``rnd``."""
     m = len(ca)
     face = np.zeros(m, dtype=np.int64)
     radius = np.zeros(m)
-    for i in range(n):
-        if body_parts[i, 1] != 1:
-            return face, radius  # (a body of several shapes: no row is taken again)
-    for k in range(m):
+    for k in range(m if not several else 0):
         a = ca[k]
         b = cb[k]
         if b >= n:

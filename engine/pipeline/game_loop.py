@@ -206,8 +206,12 @@ def step_loop(
     sense_row, sense_place = found[20], found[21]
     # The rows of a disc on a face that turns (engine.dynamics.turning_faces), taken again as
     # the face turns.
+    several = False
+    for i in range(n):
+        if body_parts[i, 1] != 1:
+            several = True
     face, fround = face_rows(
-        ca, cb, nx, ny, n, angle, body_circle, body_index, body_parts, Nrm, cnt, rnd
+        ca, cb, nx, ny, n, several, angle, body_circle, body_index, body_parts, Nrm, cnt, rnd
     )
     total = np.zeros(2 * len(ca))
     most = np.zeros(2 * len(ca))

@@ -927,8 +927,8 @@ def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, 
     parts = np.stack([rows_n, np.ones(n, dtype=np.int64)], axis=1)
     _, normals, count, _ = sc.places.tables.kernel_polygons
     got = face_rows.py(
-        ca[ask], cb[ask], nx[ask], ny[ask], n, store.angle, circle, sc.places.body_index,
-        parts, normals, count, sc.places.tables.round,
+        ca[ask], cb[ask], nx[ask], ny[ask], n, False, store.angle, circle,
+        sc.places.body_index, parts, normals, count, sc.places.tables.round,
     )  # fmt: skip
     face[ask], fround[ask] = got
     return face, fround
