@@ -681,9 +681,13 @@ def solve(
     # one's normal at the start, its disc's centre less that body's position then (world
     # axes) and the face's offset f0, per point; and its rows as they came, given back at
     # the end.
-    turning = 0
-    live = floats(nc, 0.0)
+    faced = 0
     for k in range(nc):
+        if cface[k] != 0:
+            faced += 1
+    turning = 0
+    live = floats(nc if faced else 0, 0.0)
+    for k in range(nc if faced else 0):
         if cface[k] == 0:
             continue
         live[k] = 1.0

@@ -206,13 +206,24 @@ def step_loop(
     sense_row, sense_place = found[20], found[21]
     # The rows of a disc on a face that turns (engine.dynamics.turning_faces), taken again as
     # the face turns.
+    # (Asked only where a row pairs a disc with a body of another shape: most steps none.)
     several = False
     for i in range(n):
         if body_parts[i, 1] != 1:
             several = True
-    face, fround = face_rows(
-        ca, cb, nx, ny, n, several, angle, body_circle, body_index, body_parts, Nrm, cnt, rnd
-    )
+    mixed = False
+    for k in range(len(ca) if not several else 0):
+        b = cb[k]
+        if b < n and body_circle[body_parts[ca[k], 0]] != body_circle[body_parts[b, 0]]:
+            mixed = True
+            break
+    if mixed:
+        face, fround = face_rows(
+            ca, cb, nx, ny, n, several, angle, body_circle, body_index, body_parts, Nrm, cnt,
+            rnd,
+        )  # fmt: skip
+    else:
+        face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(len(ca))
     total = np.zeros(2 * len(ca))
     most = np.zeros(2 * len(ca))
     rise = np.zeros(nb)  # out: how far each body's held loads have yet to lift it (m)
