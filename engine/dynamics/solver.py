@@ -119,6 +119,10 @@ omega (-r_y, r_x)), and an impulse lam along n changes it by lam / m_n with
 
     1 / m_n = w_A + w_B + i_A (r_A x n)^2 + i_B (r_B x n)^2        (w = 1/m, i = 1/I).
 
+A disc riding a face that turns (a ball on a bat) slides along the face as it turns, which rows
+fixed at the step's start do not follow: such a row's normal, separation, anchors and masses are
+taken again after each substep's positions move (engine.dynamics.turning_faces, ``cface``).
+
 **Soft constraints** (Box2D's b2MakeSoft): a spring of frequency f and damping ratio zeta on
 the error C, with omega = 2 pi f, a1 = 2 zeta + h omega, a2 = h omega a1, a3 = 1 / (1 + a2),
 gives the impulse
