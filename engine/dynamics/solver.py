@@ -342,6 +342,24 @@ def _within(held: float, change: float) -> float:
 
 
 @kernels.helper
+def _point_masses(
+    ma: float, ia: float, mb: float, ib: float, rax: float, ray: float, rbx: float, rby: float,
+    nx: float, ny: float,
+) -> tuple[float, float]:  # fmt: skip
+    """A contact point's masses (kg) along the normal (nx, ny) and the tangent t = (-n_y, n_x),
+    1 / (w_A + w_B + i_A (r_A x d)^2 + i_B (r_B x d)^2) (0 where nothing moves), of the inverse
+    masses and moments ``ma``, ``ia``, ``mb``, ``ib`` and the anchors r_A, r_B (m)."""
+    rna = rax * ny - ray * nx
+    rnb = rbx * ny - rby * nx
+    kn = ma + mb + ia * rna * rna + ib * rnb * rnb
+    # r x t = r_x n_x + r_y n_y.
+    rta = rax * nx + ray * ny
+    rtb = rbx * nx + rby * ny
+    kt = ma + mb + ia * rta * rta + ib * rtb * rtb
+    return 1.0 / kn if kn > 0.0 else 0.0, 1.0 / kt if kt > 0.0 else 0.0
+
+
+@kernels.helper
 def _relative(
     bvx: Any, bvy: Any, bw: Any, a: int, b: int, rax: float, ray: float, rbx: float, rby: float
 ) -> tuple[float, float]:
@@ -637,15 +655,7 @@ def solve(
         for j in range(ccount[k]):
             p = 2 * k + j
             rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
-            rna = rax * ny - ray * nx
-            rnb = rbx * ny - rby * nx
-            kn = ma + mb + ia * rna * rna + ib * rnb * rnb
-            nmass[p] = 1.0 / kn if kn > 0.0 else 0.0
-            # The tangent t = (-n_y, n_x): r x t = r_x n_x + r_y n_y.
-            rta = rax * nx + ray * ny
-            rtb = rbx * nx + rby * ny
-            kt = ma + mb + ia * rta * rta + ib * rtb * rtb
-            tmass[p] = 1.0 / kt if kt > 0.0 else 0.0
+            nmass[p], tmass[p] = _point_masses(ma, ia, mb, ib, rax, ray, rbx, rby, nx, ny)
             # v + omega x r = (v_x - omega r_y, v_y + omega r_x).
             dvx, dvy = _relative(bvx, bvy, bw, a, b, rax, ray, rbx, rby)
             rel[p] = dvx * nx + dvy * ny
@@ -764,14 +774,7 @@ def solve(
                 rbx, rby = rax - ox, ray - oy
             cnx[k], cny[k] = nx, ny
             crax[p], cray[p], crbx[p], crby[p] = rax, ray, rbx, rby
-            rna = rax * ny - ray * nx
-            rnb = rbx * ny - rby * nx
-            kn = ma + mb + ia * rna * rna + ib * rnb * rnb
-            nmass[p] = 1.0 / kn if kn > 0.0 else 0.0
-            rta = rax * nx + ray * ny
-            rtb = rbx * nx + rby * ny
-            kt = ma + mb + ia * rta * rta + ib * rtb * rtb
-            tmass[p] = 1.0 / kt if kt > 0.0 else 0.0
+            nmass[p], tmass[p] = _point_masses(ma, ia, mb, ib, rax, ray, rbx, rby, nx, ny)
         kblock[k] = 0.0  # (a disc's manifold has one point)
 
     def press2(
