@@ -96,7 +96,7 @@ import numpy as np
 from .. import kernels
 from ..geometry import narrowphase
 from ..geometry.manifold_kinds import LINEAR_SLOP
-from .turning_faces import FACE_A, face_gap
+from .turning_faces import FACE_A, face_gap, face_start
 
 __all__ = ["CORE", "Continuous", "DEEP", "ITERATIONS", "SAFETY", "continuous_loop", "ended_depth"]
 
@@ -163,20 +163,16 @@ def ended_depth(
             p = 2 * k + j
             if face[k] != 0:
                 # (A disc on a face that turns: the rows' own offsets, as the solver takes them.)
-                r, half = fround[k], 0.5 * sep[p]
+                r = fround[k]
                 n0x, n0y = nx[k], ny[k]
                 ox = (x1[b, 0] if b < n else 0.0) - (x1[a, 0] if a < n else 0.0)
                 oy = (x1[b, 1] if b < n else 0.0) - (x1[a, 1] if a < n else 0.0)
                 qa = q1[a] - q0[a] if a < n else 0.0
                 qb = q1[b] - q0[b] if b < n else 0.0
-                if face[k] == FACE_A:
-                    ex, ey = rbx[p] + (half + r) * n0x, rby[p] + (half + r) * n0y
-                    f0 = (n0x * rax[p] + n0y * ray[p]) - half
-                    qf, qd = qa, qb
-                else:
-                    ex, ey = rax[p] - (half + r) * n0x, ray[p] - (half + r) * n0y
-                    f0 = (n0x * rbx[p] + n0y * rby[p]) + half
-                    qf, qd = qb, qa
+                ex, ey, f0 = face_start(
+                    face[k], n0x, n0y, rax[p], ray[p], rbx[p], rby[p], sep[p], r
+                )
+                qf, qd = (qa, qb) if face[k] == FACE_A else (qb, qa)
                 gap = face_gap(
                     face[k],
                     n0x,

@@ -268,7 +268,7 @@ import numpy as np
 
 from .. import kernels
 from ..kernels import floats
-from .turning_faces import FACE_A, face_gap
+from .turning_faces import FACE_A, face_gap, face_start
 
 __all__ = [
     "SUBSTEPS",
@@ -728,17 +728,11 @@ def solve(
         r = cround[k]
         for j in range(ccount[k]):
             p = 2 * k + j
-            half = 0.5 * csep[p]
             kept[4 * p], kept[4 * p + 1] = crax[p], cray[p]
             kept[4 * p + 2], kept[4 * p + 3] = crbx[p], crby[p]
-            if cface[k] == FACE_A:
-                te0x[p] = crbx[p] + (half + r) * nx
-                te0y[p] = crby[p] + (half + r) * ny
-                tf0[p] = (nx * crax[p] + ny * cray[p]) - half
-            else:
-                te0x[p] = crax[p] - (half + r) * nx
-                te0y[p] = cray[p] - (half + r) * ny
-                tf0[p] = (nx * crbx[p] + ny * crby[p]) + half
+            te0x[p], te0y[p], tf0[p] = face_start(
+                cface[k], nx, ny, crax[p], cray[p], crbx[p], crby[p], csep[p], r
+            )
 
     def turned(p: int, k: int, a: int, b: int) -> tuple[float, float, float, float, float]:
         """Point p of contact k on a face that turns, at the bodies' poses now

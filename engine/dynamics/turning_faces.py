@@ -69,7 +69,7 @@ import numpy as np
 
 from .. import kernels
 
-__all__ = ["ALIGNED", "FACE_A", "FACE_B", "face_gap", "face_rows"]
+__all__ = ["ALIGNED", "FACE_A", "FACE_B", "face_gap", "face_rows", "face_start"]
 
 #: A row's normal is a face's where it and the face's edge normal agree to this (their dot
 #: product at least 1 - ALIGNED): a disc's manifold on a face gives the face's normal, turned,
@@ -131,6 +131,22 @@ def face_rows(
                 radius[k] = rnd[body_index[body_parts[disc, 0]]]
                 break
     return face, radius
+
+
+@kernels.helper
+def face_start(
+    face: int, nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float, sep: float,
+    r: float,
+) -> tuple[float, float, float]:  # fmt: skip
+    """A point on a face that turns, at the step's start (module doc): the disc's centre less
+    its body's position (m, the world's axes) and the face's offset f0 (m), of the row's kind
+    ``face`` (FACE_A or FACE_B), normal ``nx``, ``ny`` from A to B, anchors (m, the point less
+    each body's position: midway between the surfaces), separation ``sep`` (m) and the disc's
+    radius ``r`` (m)."""
+    half = 0.5 * sep
+    if face == FACE_A:
+        return rbx + (half + r) * nx, rby + (half + r) * ny, (nx * rax + ny * ray) - half
+    return rax - (half + r) * nx, ray - (half + r) * ny, (nx * rbx + ny * rby) + half
 
 
 @kernels.helper
