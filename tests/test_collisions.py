@@ -459,3 +459,37 @@ def test_two_bodies_landing_on_a_wall_in_one_step_beside_a_link() -> None:
     for _ in range(10):
         w.step(1 / 60)
     assert a.pos.y == pytest.approx(0.5) and b.pos.y == pytest.approx(0.5)
+
+
+@pytest.mark.parametrize("e", [1.0, 0.5, 0.0])
+def test_a_light_body_of_a_pile_struck_by_a_heavy_one_leaves_as_it_would_alone(e: float) -> None:
+    # Two 1 g discs stacked on a frictionless floor (a pile: the lower carries the upper); a
+    # 1,000 kg disc slides in at 30 m/s, a bullet to the pile, and strikes the lower one head
+    # on. Alone, the struck disc would leave at (1 + e^2) m_a v / (m_a + m_b) (e^2: the pair's
+    # restitution); as the pile's "moving wall" it took the impulse of an immovable wall,
+    # (1 + e^2) m_a v, and left at 1e6 times that. Now it leaves as it would alone, the
+    # momentum along the floor is kept to rounding, and the energy does not grow (to the
+    # 1e-8 that the pile's kick, given from the step's start, moves the upper disc's height).
+    w = World()
+    w.add_force(Gravity(Vector(0.0, -G)))
+    w.add_collider(Plane((0.0, 0.0), (0.0, 1.0), friction=0.0, restitution=0.0))
+    kw = {"radius": 0.1, "friction": 0.0, "restitution": e}
+    ma, mb, v = 1e3, 1e-3, 30.0
+    light = disc(w, (0.0, 0.1), (0.0, 0.0), mass=mb, **kw)
+    disc(w, (0.0, 0.3), (0.0, 0.0), mass=mb, **kw)
+    disc(w, (-2.0, 0.1), (v, 0.0), mass=ma, **kw)
+
+    def energy() -> float:
+        return sum(b.mass * (0.5 * (b.vel.x**2 + b.vel.y**2) + G * b.pos.y) for b in w.bodies)
+
+    alone = (1.0 + e * e) * ma * v / (ma + mb)
+    E0 = energy()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", StabilityWarning)
+        for _ in range(6):
+            w.step(1.0 / 60.0)
+            assert energy() <= E0 * (1.0 + 1e-8)
+            assert math.hypot(light.vel.x, light.vel.y) <= alone * (1.0 + 1e-3)
+    assert light.vel.x == pytest.approx(alone, rel=1e-3)
+    px = sum(b.mass * b.vel.x for b in w.bodies)
+    assert px == pytest.approx(ma * v, rel=1e-12)

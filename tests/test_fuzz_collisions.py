@@ -1521,15 +1521,16 @@ def test_a_ball_struck_down_a_chain_meets_the_ball_beyond_it(kernels: str) -> No
         assert p == pytest.approx(p0, rel=1e-12)
 
 
-#: Found by the fuzz exploring (fast path, 2,000 examples a test; numpy alike), open: ten discs
+#: Found by the fuzz exploring (fast path, 2,000 examples a test; numpy alike): ten discs
 #: in a box 144 m wide without gravity, among them a 1.3 g disc of 8.3 m radius, a 1,000 kg one
 #: and a 305 kg one, meet in the box's corner at hundreds of m/s, masses 7.8e5 apart (the
 #: contacts guide: 1e4 is past the pile's soft step). The World warns at step 53 that the pile
 #: is past what 4 iterations a step hold (an overlap of 401% of the smallest radius); in step
-#: 55 the 305 kg disc strikes the light one, which the exact impacts take as a moving wall of
-#: the pile (engine.exact.pair_impacts, "Moving walls": w = 0), and the wall's impulse, 5.6e5
-#: N s, given to the 1.3 g disc in the pile's soft step, sends it off at 4e8 m/s: the kinetic
-#: energy grows 2.1e5 times its first. At 16 iterations, as the warning asks, it gains none.
+#: 55 the 305 kg disc strikes the light one, which the exact impacts took as a moving wall of
+#: the pile (w = 0), and the wall's impulse, 5.6e5 N s, given to the 1.3 g disc in the pile's
+#: soft step, sent it off at 4e8 m/s: the kinetic energy grew 2.1e5 times its first. Fixed: a
+#: moving wall whose impulse would give the pair energy is struck as the free body it is
+#: (engine.exact.pair_bounce, "A moving wall").
 ENERGY_FROM_A_CORNER: Scene = {
     "balls": [
         (6.823407938633005e-142, -5.744145388772485e-24, -428.61188362192013,
@@ -1562,13 +1563,6 @@ ENERGY_FROM_A_CORNER: Scene = {
 }  # fmt: skip
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason="open (found exploring): a 1.3 g disc of a pile struck by a 305 kg disc takes the "
-    "impulse for an immovable wall and leaves at 4e8 m/s, the energy 2.1e5 times its first, "
-    "on both paths (warned of two steps before)",
-)
 def test_discs_meeting_in_a_corner_with_masses_apart_by_1e6_gain_no_energy() -> None:
     check_energy_never_increases(ENERGY_FROM_A_CORNER)
 

@@ -54,7 +54,10 @@ under load (rows landing on rows, bounced off the floor into the next) that runs
 the soft step, from the step's start (``exact``'s kick: the impulse's push, and for a body that
 turns its moment about the centre at the point of contact, -r (n x P), as a disc met at an
 exact impact takes it); so are a kinematic body (whose surface the game turns, and which
-takes nothing) and a sleeper the impact does not wake.
+takes nothing) and a sleeper the impact does not wake. The wall's impulse is bounded by what
+the pair could take without gaining energy, with the wall's own mass (engine.exact.pair_bounce,
+"A moving wall"): a light body of a pile struck by a heavy one leaves no faster than it would
+alone.
 
 **Bent paths** (engine.exact.bent_paths). A body that bounced off a collider in the static contacts,
 before the impacts, took a path of pieces within the step, not one parabola: the impacts take
@@ -211,9 +214,14 @@ def exact(
     if kinU is not None:
         w[kinU] = 0.0
     walls = island[U]
+    # The pile's bodies' own inverse masses, for the bound on a moving wall's impulse (the
+    # module's text): a kinematic body and a sleeper stay walls there.
+    own = w.copy() if walls.any() else None
     w[walls] = 0.0
     if asleep.any():
         w[asleep[U]] = 0.0  # a sleeper an awake body did not wake stays put
+        if own is not None:
+            own[asleep[U]] = 0.0
     r = store.radius[U]
     # A disc resting on a face turned as the static contacts turned it: its mean spin-up.
     on = None if contacts is None or len(contacts.rest) != len(x) else contacts.rest[U] >= 0
@@ -240,6 +248,7 @@ def exact(
         fast,
         turns,
         replay,
+        own,
     )
     if rounds.found is None:
         # A crowd under load: nothing written back; the World rows of its bodies.
@@ -331,6 +340,7 @@ def impacts_in_order(
     fast: bool = False,
     turns: Turns | None = None,
     replay: Replay | None = None,
+    own: np.ndarray | None = None,
 ) -> Rounds:
     """Resolve the step's impacts in time order, in place on the end state (X, V) of the
     local bodies (World rows U), with inverse masses w (0: a wall), radii r, restitutions e,
@@ -413,7 +423,7 @@ def impacts_in_order(
         changed = np.zeros(nU, dtype=bool)
         replayed = np.zeros(nU, dtype=bool)
         if len(s):
-            found.append(bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt, turns))
+            found.append(bounce(pa[s], pb[s], toi[s], X, V, A, w, r, e, mu, dt, turns, own))
             ts[pa[s]] = toi[s]
             ts[pb[s]] = toi[s]
             changed[pa[s]] = changed[pb[s]] = True
