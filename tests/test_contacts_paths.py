@@ -71,6 +71,28 @@ def test_line_hit_one_is_line_hits(seed: int) -> None:
         assert t1 == t[i] and n1 == tuple(normal[i]), i
 
 
+def test_a_ball_behind_a_faces_line_beside_its_end_meets_it_coming_down() -> None:
+    # The face y = 0 (n up, rho 0.5 from the ball's centre) runs from x = -10 to x = 0; the
+    # ball starts beside its end, 5 cm behind its line (g0 = -0.05), flying up and over it:
+    # g(t) = -0.05 + 1.5 t - 5 t^2 comes back down through 0 at the later root,
+    # t = (1.5 + sqrt(1.25)) / 10 = (3 + sqrt 5) / 20, with x = 0.5 - 2 t within the face. A
+    # start behind the line was taken for a touch, and the search looked for the return to
+    # the start's depth, t = 0.3, 5 cm inside (found exploring: a disc over a capsule's end).
+    X, V, B = np.array([[0.5, 0.45]]), np.array([[-2.0, 1.5]]), np.array([[0.0, -10.0]])
+    p, n = np.array([[0.0, 0.0]]), np.array([[0.0, 1.0]])
+    args = (np.array([0.5]), np.array([False]), np.array([0.0]), np.array([10.0]), 0.5)
+    t, normal = line_hits(X, V, B, p, n, *args)
+    exact = (3.0 + math.sqrt(5.0)) / 20.0
+    assert t[0] == pytest.approx(exact, rel=1e-15)
+    assert tuple(normal[0]) == (0.0, 1.0)
+    one = line_hit_one((0.5, 0.45), (-2.0, 1.5), (0.0, -10.0), (0.0, 0.0), (0.0, 1.0), 0.5,
+                       False, 0.0, 10.0, 0.5)  # fmt: skip
+    assert one == (t[0], (0.0, 1.0))
+    # Never up to the line again (g stays below 0): no impact.
+    t, _ = line_hits(X, np.array([[-2.0, 0.5]]), B, p, n, *args)
+    assert t[0] == math.inf
+
+
 @pytest.mark.parametrize("seed", range(5))
 def test_disc_hit_one_is_disc_hits(seed: int) -> None:
     rng = np.random.default_rng(100 + seed)

@@ -174,8 +174,14 @@ def paths_loop(
                         slack = 1e-12 * math.sqrt(vx * vx + vy * vy)
                         if g1 < -slack or (g1 <= slack and g2 < 0.0):
                             t = 0.0
+                        elif g2 < 0.0 and g1 > 0.0:
+                            if g0 < 0.0:  # behind the line: the later root
+                                disc = g1 * g1 - 4.0 * g2 * g0
+                                t = -0.5 * (g1 + math.sqrt(disc)) / g2 if disc >= 0.0 else inf
+                            else:
+                                t = -g1 / g2
                         else:
-                            t = -g1 / g2 if g2 < 0.0 and g1 > 0.0 else inf
+                            t = inf
                     elif g2 == 0.0:
                         t = -g0 / g1 if g1 < 0.0 else inf
                     else:

@@ -69,14 +69,20 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
 
 
-def quadratic_first_root(g0: Any, g1: Any, g2: Any, T: Any, slack: Any = 0.0) -> np.ndarray:
+def quadratic_first_root(
+    g0: Any, g1: Any, g2: Any, T: Any, slack: Any = 0.0, behind: bool = False
+) -> np.ndarray:
     """Smallest t in [0, T] with g0 + g1 t + g2 t^2 = 0 when g0 > 0; ``inf`` if none.
 
     Where g0 <= 0 (touching) the answer is 0 if g is heading down (g1 < -slack, or
-    |g1| <= slack and g2 < 0), else ``inf``: a grazing touch whose rate is rounding noise
-    (within ``slack``) is no impact unless the curvature carries it in. Roots by the stable
-    form q = -(g1 + sign(g1) sqrt(disc)) / 2, t = q / g2 and g0 / q, which loses no digits
-    when g1^2 >> 4 g0 g2.
+    |g1| <= slack and g2 < 0), else where it curves back (below) or ``inf``: a grazing touch
+    whose rate is rounding noise (within ``slack``) is no impact unless the curvature carries
+    it in. Roots by the stable form q = -(g1 + sign(g1) sqrt(disc)) / 2, t = q / g2 and
+    g0 / q, which loses no digits when g1^2 >> 4 g0 g2.
+
+    ``behind``: where g0 < 0, heading up and curving back, the later root, where g comes back
+    down through 0 (a ball beside a finite face's end, behind its line: ``line_hits``); else
+    -g1 / g2, which is that root where g0 = 0.
     """
     g0, g1, g2 = np.asarray(g0, float), np.asarray(g1, float), np.asarray(g2, float)
     inf = np.inf
@@ -96,6 +102,11 @@ def quadratic_first_root(g0: Any, g1: Any, g2: Any, T: Any, slack: Any = 0.0) ->
         # Touching and leaving, but curving back (g2 < 0): g = g1 t + g2 t^2 (g0 = 0) is zero
         # again at t = -g1 / g2, where the ball comes back down onto the face.
         back = np.where((g2 < 0.0) & (g1 > 0.0), -g1 / g2, inf)
+        if behind:
+            # g0 < 0: the later root q / g2 (g1 > 0: q = -(g1 + sqrt(disc)) / 2), none if
+            # g never comes up to 0.
+            later = np.where(disc >= 0.0, q / g2, inf)
+            back = np.where((g0 < 0.0) & (g2 < 0.0) & (g1 > 0.0), later, back)
     touching = g0 <= 0.0
     heading_in = (g1 < -slack) | ((g1 <= slack) & (g2 < 0.0))
     t = np.where(touching, np.where(heading_in, 0.0, back), t)
@@ -159,7 +170,10 @@ def line_hits(
     g0 = side * d0 - rho
     g0 = np.where(np.abs(g0) <= TOUCH * (1.0 + rho), 0.0, g0)
     speed = np.sqrt(_dot(V, V))
-    t = quadratic_first_root(g0, side * _dot(V, n), 0.5 * side * _dot(B, n), T, 1e-12 * speed)
+    # A ball that starts behind the line (g0 < 0) beside the face's end meets the face where
+    # it comes back down onto the line (``behind``), if it is within the face then.
+    g1, g2 = side * _dot(V, n), 0.5 * side * _dot(B, n)
+    t = quadratic_first_root(g0, g1, g2, T, 1e-12 * speed, True)
     hit = np.isfinite(t)
     if hit.any():
         tt = np.where(hit, t, 0.0)[:, None]
@@ -204,8 +218,14 @@ def line_hit_one(
         slack = 1e-12 * math.sqrt(vx * vx + vy * vy)
         if g1 < -slack or (g1 <= slack and g2 < 0.0):
             t = 0.0
+        elif g2 < 0.0 and g1 > 0.0:
+            if g0 < 0.0:  # behind the line: the later root (``quadratic_first_root``)
+                disc = g1 * g1 - 4.0 * g2 * g0
+                t = -0.5 * (g1 + math.sqrt(disc)) / g2 if disc >= 0.0 else inf
+            else:
+                t = -g1 / g2
         else:
-            t = -g1 / g2 if g2 < 0.0 and g1 > 0.0 else inf
+            t = inf
     elif g2 == 0.0:
         t = -g0 / g1 if g1 < 0.0 else inf
     else:
