@@ -24,7 +24,9 @@ The scenes (each the same numbers in all three; see the bench each comes from):
   balls outside the box.
 
 Reported per scene: each engine's mean step (ms) and the soft step's and the exact one's over
-pymunk's, and each engine's quality measure. Nothing here is asserted: the table is what a
+pymunk's, each engine's quality measure, and how many steps of the soft and the exact World
+warned (a ``StabilityWarning``: a pile past what its iterations hold), counted here rather than
+printed among the table's lines. Nothing here is asserted: the table is what a
 run measured, on this machine, with what else it ran.
 """
 
@@ -32,6 +34,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -146,23 +149,29 @@ SCENES = (
 ENGINES = ("soft", "exact", "pymunk")
 
 
-def side_by_side(scene: Scene, steps: int | None = None) -> dict[str, tuple[float, float]]:
+def side_by_side(scene: Scene, steps: int | None = None) -> dict[str, tuple[float, float, int]]:
     """engine -> (its mean step over the timed steps (s, by the wall clock), its quality
-    measure at the end), the engines one step each in turn (``steps``: the scene's)."""
+    measure at the end, how many of its steps warned), the engines one step each in turn
+    (``steps``: the scene's)."""
     engine_kernels.prepare()  # compiled (or loaded) before the clock starts
     sims = {e: s for e in ENGINES if (s := scene.made(e)) is not None}
     steps = scene.steps if steps is None else steps
     first = min(scene.timed_from, steps - 1)
     spent = dict.fromkeys(sims, 0.0)
+    warned = dict.fromkeys(sims, 0)
     names = list(sims)
-    for i in range(steps):
-        for name in names if i % 2 == 0 else names[::-1]:
-            t0 = time.perf_counter()
-            sims[name][0](DT)
-            if i >= first:
-                spent[name] += time.perf_counter() - t0
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        for i in range(steps):
+            for name in names if i % 2 == 0 else names[::-1]:
+                before = len(said)
+                t0 = time.perf_counter()
+                sims[name][0](DT)
+                if i >= first:
+                    spent[name] += time.perf_counter() - t0
+                warned[name] += len(said) > before
     timed = steps - first
-    return {name: (spent[name] / timed, sims[name][1]()) for name in names}
+    return {name: (spent[name] / timed, sims[name][1](), warned[name]) for name in names}
 
 
 def report(quick: bool = False) -> str:
@@ -174,7 +183,7 @@ def report(quick: bool = False) -> str:
         "exact pipeline and pymunk (10 iterations), one step each in turn; mean step by the "
         "wall clock",
         f"  {'scene':<18} {'soft':>9} {'exact':>9} {'pymunk':>9} {'soft/pm':>8} "
-        f"{'exact/pm':>9}   quality: soft / exact / pymunk",
+        f"{'exact/pm':>9}   quality: soft / exact / pymunk; steps warned: soft / exact",
     ]
     for scene in SCENES:
         if quick and not scene.quick:
@@ -183,9 +192,10 @@ def report(quick: bool = False) -> str:
         pm = got.get("pymunk", (math.nan, math.nan))[0]
         ms = {e: f"{got[e][0] * 1e3:7.3f}ms" if e in got else "      -  " for e in ENGINES}
         quality = " / ".join(f"{got[e][1]:.3g}" if e in got else "-" for e in ENGINES)
+        warned = f"{got['soft'][2]} / {got['exact'][2]}"
         lines.append(
             f"  {scene.name:<18} {ms['soft']:>9} {ms['exact']:>9} {ms['pymunk']:>9} "
             f"{got['soft'][0] / pm:7.2f}x {got['exact'][0] / pm:8.2f}x   "
-            f"{scene.quality}: {quality}"
+            f"{scene.quality}: {quality}; warned: {warned}"
         )
     return "\n".join(lines)
