@@ -93,16 +93,19 @@ def _rows(
     shapes: tuple[str, str],
     angle: float = 0.0,
     parts: int = 1,
+    angle_b: float = 0.0,
 ) -> tuple[int, float]:
     """``face_rows`` of one row between body 0 and body 1 (normal from 0 to 1), their shapes
-    "box" (a unit box at ``angle``) or "disc" (radius 0.25)."""
-    box = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
+    "box" (a unit box at ``angle``, body 1's at ``angle_b``, of rounding radius 0.05 where it
+    is body 1's, 0.02 where body 0's) or "disc" (radius 0.25)."""
+    box = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]] * 2)
     circle = np.array([s == "disc" for s in shapes])
-    index = np.zeros(2, dtype=np.int64)
+    index = np.array([0, 1], dtype=np.int64)
     body_parts = np.array([[0, 1], [1, parts]], dtype=np.int64)
     face, radius = face_rows.py(
         np.array([0]), np.array([1]), np.array([nx]), np.array([ny]), 2, parts != 1,
-        np.array([angle, 0.0]), circle, index, body_parts, box, np.array([4]), np.array([0.25]),
+        np.array([angle, angle_b]), circle, index, body_parts, box, np.array([4, 4]),
+        np.array([0.02, 0.05]), np.array([0.25, 0.25]),
     )  # fmt: skip
     return int(face[0]), float(radius[0])
 
@@ -115,11 +118,17 @@ def test_a_row_turns_with_a_face_and_not_with_a_corner_or_a_disc() -> None:
     # The box turned a quarter of a radian: its top face's normal turned with it.
     turned = (-math.sin(0.25), math.cos(0.25))
     assert _rows(*turned, ("box", "disc"), angle=0.25) == (FACE_A, 0.25)
-    # On a corner (the normal between two faces'), two discs, two boxes: as before.
+    # On a corner (the normal between two faces'), two discs: as before.
     corner = (math.sqrt(0.5), math.sqrt(0.5))
     assert _rows(*corner, ("box", "disc")) == (0, 0.0)
     assert _rows(0.0, 1.0, ("disc", "disc")) == (0, 0.0)
-    assert _rows(0.0, 1.0, ("box", "box")) == (0, 0.0)
+    # Two boxes: the face is the one whose edge normal the row's is, A's first where both
+    # are (flat on each other), and the radius the other's rounding.
+    assert _rows(0.0, 1.0, ("box", "box")) == (FACE_A, 0.05)
+    assert _rows(*turned, ("box", "box"), angle=0.25) == (FACE_A, 0.05)
+    assert _rows(*turned, ("box", "box"), angle_b=0.25) == (FACE_B, 0.02)
+    # A corner of each (the normal along neither's face): as before.
+    assert _rows(*corner, ("box", "box"), angle=0.3, angle_b=-0.2) == (0, 0.0)
     # A body of several shapes in the World: no row is taken again.
     assert _rows(0.0, 1.0, ("box", "disc"), parts=2) == (0, 0.0)
 

@@ -636,22 +636,31 @@ def solve(
     kn12 = floats(nc, 0.0)
     kn2 = floats(nc, 0.0)
     kblock = floats(nc, 0.0)
+
+    def pair_block(k: int, ma: float, ia: float, mb: float, ib: float) -> None:
+        """Contact k's 2 x 2 normal block (above), where it has two points and is well
+        conditioned (kblock 1), else none (kblock 0)."""
+        kblock[k] = 0.0
+        if ccount[k] != 2:
+            return
+        nx, ny = cnx[k], cny[k]
+        p = 2 * k
+        a1 = crax[p] * ny - cray[p] * nx
+        a2 = crax[p + 1] * ny - cray[p + 1] * nx
+        b1 = crbx[p] * ny - crby[p] * nx
+        b2 = crbx[p + 1] * ny - crby[p + 1] * nx
+        k11 = ma + mb + ia * a1 * a1 + ib * b1 * b1
+        k22 = ma + mb + ia * a2 * a2 + ib * b2 * b2
+        k12 = ma + mb + ia * a1 * a2 + ib * b1 * b2
+        if k11 > 0.0 and k22 > 0.0 and k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12):
+            kn1[k], kn12[k], kn2[k], kblock[k] = k11, k12, k22, 1.0
+
     for k in range(nc):
         a = ca[k]
         b = cb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
         nx, ny = cnx[k], cny[k]
-        if ccount[k] == 2:
-            p = 2 * k
-            a1 = crax[p] * ny - cray[p] * nx
-            a2 = crax[p + 1] * ny - cray[p + 1] * nx
-            b1 = crbx[p] * ny - crby[p] * nx
-            b2 = crbx[p + 1] * ny - crby[p + 1] * nx
-            k11 = ma + mb + ia * a1 * a1 + ib * b1 * b1
-            k22 = ma + mb + ia * a2 * a2 + ib * b2 * b2
-            k12 = ma + mb + ia * a1 * a2 + ib * b1 * b2
-            if k11 > 0.0 and k22 > 0.0 and k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12):
-                kn1[k], kn12[k], kn2[k], kblock[k] = k11, k12, k22, 1.0
+        pair_block(k, ma, ia, mb, ib)
         for j in range(ccount[k]):
             p = 2 * k + j
             rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
@@ -769,7 +778,7 @@ def solve(
             cnx[k], cny[k] = nx, ny
             crax[p], cray[p], crbx[p], crby[p] = rax, ray, rbx, rby
             nmass[p], tmass[p] = _point_masses(ma, ia, mb, ib, rax, ray, rbx, rby, nx, ny)
-        kblock[k] = 0.0  # (a disc's manifold has one point)
+        pair_block(k, ma, ia, mb, ib)
 
     def press2(
         k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,

@@ -87,24 +87,27 @@ def _sample() -> tuple[Any, ...]:
     return (
         np.array([0], dtype=i64), np.array([1], dtype=i64), np.array([0.0]), np.array([1.0]), 2,
         False, np.zeros(2), np.array([False, True]), np.array([0, 0], dtype=i64),
-        np.array([[0, 1], [1, 1]], dtype=i64), box, np.array([4], dtype=i64), np.array([0.25]),
+        np.array([[0, 1], [1, 1]], dtype=i64), box, np.array([4], dtype=i64), np.array([0.0]),
+        np.array([0.25]),
     )  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
 def face_rows(
     ca: Any, cb: Any, nx: Any, ny: Any, n: int, several: bool, angle: Any, body_circle: Any,
-    body_index: Any, body_parts: Any, Nrm: Any, cnt: Any, rnd: Any,
+    body_index: Any, body_parts: Any, Nrm: Any, cnt: Any, prad: Any, rnd: Any,
 ) -> tuple[Any, Any]:  # fmt: skip
     """Each contact row's face (module doc): 0, or FACE_A where its normal turns with body A
-    (a face of A, a disc B), FACE_B with B; and the disc's radius (m; 0 for none).
+    (a face of A, the point B's), FACE_B with B; and the rounding radius of the body whose
+    point meets the face (m: a disc's radius, a capsule's, a rounded polygon's; 0 for none).
 
     Rows (engine.dynamics.solver.solve's): bodies ``ca``, ``cb`` (rows; ``n`` or more: a
     static shape), the unit normal ``nx``, ``ny`` from A to B. Bodies (``n``; ``several``:
     one of them has several shapes, and no row is taken again): ``angle`` (rad); each body's
     first part and count ``body_parts`` (n, 2), each part's shape
     (``body_circle``, ``body_index`` in the tables: engine.geometry.narrowphase.Places); the
-    tables' polygon normals ``Nrm`` (P, M, 2) and counts ``cnt``, the circles' radii ``rnd``."""
+    tables' polygon normals ``Nrm`` (P, M, 2), counts ``cnt`` and radii ``prad``, the
+    circles' radii ``rnd``."""
     m = len(ca)
     face = np.zeros(m, dtype=np.int64)
     radius = np.zeros(m)
@@ -115,7 +118,20 @@ def face_rows(
             continue  # (a static shape never turns)
         a_round = body_circle[body_parts[a, 0]]
         b_round = body_circle[body_parts[b, 0]]
-        if a_round == b_round:
+        if a_round and b_round:
+            continue  # (two discs: no face)
+        if not a_round and not b_round:
+            # Two polygons (capsules among them): the face is the one whose edge normal the
+            # row's normal is, A's first (two faces flat on each other give both; either
+            # gives the same separation at the start), the point the other's.
+            ia = body_index[body_parts[a, 0]]
+            ib = body_index[body_parts[b, 0]]
+            if _faces_along(Nrm, cnt, ia, angle[a], nx[k], ny[k]):
+                face[k] = FACE_A
+                radius[k] = prad[ib]
+            elif _faces_along(Nrm, cnt, ib, angle[b], -nx[k], -ny[k]):
+                face[k] = FACE_B
+                radius[k] = prad[ia]
             continue
         # The polygon's edge normals turned to its angle, against the normal from it to the
         # disc: n where the face is A's, -n where it is B's.
@@ -131,6 +147,19 @@ def face_rows(
                 radius[k] = rnd[body_index[body_parts[disc, 0]]]
                 break
     return face, radius
+
+
+@kernels.helper
+def _faces_along(Nrm: Any, cnt: Any, j: int, q: float, tx: float, ty: float) -> bool:
+    """Whether one of polygon ``j``'s edge normals (the tables' ``Nrm``, ``cnt``), turned to
+    the angle ``q`` (rad), is the unit vector (``tx``, ``ty``) to ``ALIGNED``."""
+    c, s = math.cos(q), math.sin(q)
+    for e in range(cnt[j]):
+        wx = c * Nrm[j, e, 0] - s * Nrm[j, e, 1]
+        wy = s * Nrm[j, e, 0] + c * Nrm[j, e, 1]
+        if wx * tx + wy * ty >= 1.0 - ALIGNED:
+            return True
+    return False
 
 
 @kernels.helper

@@ -214,13 +214,13 @@ def step_loop(
     mixed = False
     for k in range(len(ca) if not several else 0):
         b = cb[k]
-        if b < n and body_circle[body_parts[ca[k], 0]] != body_circle[body_parts[b, 0]]:
+        if b < n and not (body_circle[body_parts[ca[k], 0]] and body_circle[body_parts[b, 0]]):
             mixed = True
             break
     if mixed:
         face, fround = face_rows(
             ca, cb, nx, ny, n, several, angle, body_circle, body_index, body_parts, Nrm, cnt,
-            rnd,
+            rad, rnd,
         )  # fmt: skip
     else:
         face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(len(ca))

@@ -920,15 +920,15 @@ def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, 
         return face, fround
     circle = sc.places.body_circle
     pair = cb < n
-    ask = np.flatnonzero(pair & (circle[ca] != circle[np.where(pair, cb, 0)]))
+    ask = np.flatnonzero(pair & ~(circle[ca] & circle[np.where(pair, cb, 0)]))
     if not len(ask):
         return face, fround
     rows_n = np.arange(n, dtype=np.int64)
     parts = np.stack([rows_n, np.ones(n, dtype=np.int64)], axis=1)
-    _, normals, count, _ = sc.places.tables.kernel_polygons
+    _, normals, count, prad = sc.places.tables.kernel_polygons
     got = face_rows.py(
         ca[ask], cb[ask], nx[ask], ny[ask], n, False, store.angle, circle,
-        sc.places.body_index, parts, normals, count, sc.places.tables.round,
+        sc.places.body_index, parts, normals, count, prad, sc.places.tables.round,
     )  # fmt: skip
     face[ask], fround[ask] = got
     return face, fround
