@@ -398,9 +398,13 @@ class FrameWriter:
         return path
 
     def _raise_if_failed(self) -> None:
-        error = self._encoding.error
-        if error is not None:
+        if self._encoding.error is not None:
+            # The error to raise is read after the workers end: one still encoding an earlier
+            # frame may fail too, and the first frame's error (with how many frames were kept)
+            # is the one that says where the run stopped.
             self._stop(cancel=True)
+            error = self._encoding.error
+            assert error is not None
             raise error
 
     def _stop(self, cancel: bool) -> None:
