@@ -31,9 +31,11 @@ The dominoes' and the tower's World is ``World()``'s own choice of solver (``sol
 boxes that meet something take the soft step (engine.pipeline.solver_choice). The pyramid and
 the tumblers take the exact models: let go touching, the soft step's pyramid sags 3 cm before
 its contacts have loads to start from, and takes 4.3 s to rise back and sleep, where the scene
-asks 2 s; the soft step's tumbler overlaps its boxes deeper (130 against 92 mm), and on the
-numpy path its plain-Python solve takes four times the exact models' step at 500 boxes. Each
-read-out names its solver; the builders take ``solver`` (the benchmarks compare both).
+asks 2 s; the soft step's tumbler overlaps its boxes as deep (91 against 92 mm over 20 s,
+``tumbler(solver="soft")`` on 2026-12-06, since a corner's rows on a face that turns are taken
+again as it turns; 130 mm before), and on the numpy path its plain-Python solve takes four
+times the exact models' step at 500 boxes. Each read-out names its solver; the builders take
+``solver`` (the benchmarks compare both).
 
 Everything is drawn by ``engine.render.draw_world``: awake boxes blue, asleep grey. The
 read-outs measure what the frame draws: the boxes where ``draw_world`` blends them for the
@@ -416,9 +418,9 @@ class TumblerScene(_StackScene):
     def make(self) -> tuple[World, list[Body]]:
         # The exact models, where World() chooses the soft step: the soft step's solve on the
         # numpy path is plain Python, at 500 boxes four times the exact models' step (234
-        # against 57 ms at 90 degrees a second), and its boxes go deeper into each other
-        # (130 against 92 mm at 25); on the fast path it is 2.5 times quicker
-        # (demos.bench soft).
+        # against 57 ms at 90 degrees a second); its boxes go as deep into each other (91
+        # against 92 mm at 25, 132 against 234 at 90, since a corner's rows turn with the
+        # face: module doc), and on the fast path it is 2.5 times quicker (demos.bench soft).
         w, boxes, self.walls = tumbler(self.count, self.spin, solver="exact")
         self.deepest = self.overlap = self.deepest_before = self.overlap_before = 0.0
         return w, boxes

@@ -119,9 +119,10 @@ omega (-r_y, r_x)), and an impulse lam along n changes it by lam / m_n with
 
     1 / m_n = w_A + w_B + i_A (r_A x n)^2 + i_B (r_B x n)^2        (w = 1/m, i = 1/I).
 
-A disc riding a face that turns (a ball on a bat) slides along the face as it turns, which rows
-fixed at the step's start do not follow: such a row's normal, separation, anchors and masses are
-taken again after each substep's positions move (engine.dynamics.turning_faces, ``cface``).
+A disc riding a face that turns (a ball on a bat) slides along the face as it turns, and a box's
+corner swings across a face that turns under it (a tumbler's pile), which rows fixed at the
+step's start do not follow: such a row's normal, separation, anchors and masses are taken again
+after each substep's positions move (engine.dynamics.turning_faces, ``cface``).
 
 **Soft constraints** (Box2D's b2MakeSoft): a spring of frequency f and damping ratio zeta on
 the error C, with omega = 2 pi f, a1 = 2 zeta + h omega, a2 = h omega a1, a3 = 1 / (1 + a2),
@@ -548,9 +549,9 @@ def solve(
     angle), and is not warm started.
 
     ``cface``, ``cround`` (nc): each contact's face that turns (engine.dynamics.turning_faces'
-    ``face_rows``: 0, or which body's face its normal turns with) and its disc's radius (m):
-    such a row is taken again as its bodies move (that module's doc), and given back as it
-    was at the end.
+    ``face_rows``: 0, or which body's face its normal turns with) and the rounding radius (m)
+    of the body whose point meets it: such a row is taken again as its bodies move (that
+    module's doc), and given back as it was at the end.
 
     ``brise`` (nb) out: how far each body's held loads have yet to lift it (m), the most of
     the give still left under its face contacts' loads (module doc, "A pile holds its load"):
@@ -698,12 +699,12 @@ def solve(
                 if meet > 0.0:
                     rel[p] = -math.sqrt(meet)
 
-    # -- the rows on a face that turns (engine.dynamics.turning_faces) where the disc rides the
+    # -- the rows on a face that turns (engine.dynamics.turning_faces) where the point rides the
     # face (``live``): its points' normal speed at the start closes at no more than the
     # threshold (one that strikes the face is an impact, whose rows stay where it met); each
-    # one's normal at the start, its disc's centre less that body's position then (world
-    # axes) and the face's offset f0, per point; and its rows as they came, given back at
-    # the end.
+    # one's normal at the start, its core point less that body's position then (world axes)
+    # and the face's offset f0, per point; and its rows as they came, given back at the
+    # end.
     faced = 0
     for k in range(nc):
         if cface[k] != 0:

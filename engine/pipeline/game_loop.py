@@ -204,9 +204,9 @@ def step_loop(
     sep, ln, lt, lh = found[9], found[13], found[14], found[15]
     keys, place, px, py = found[16], found[17], found[18], found[19]
     sense_row, sense_place = found[20], found[21]
-    # The rows of a disc on a face that turns (engine.dynamics.turning_faces), taken again as
+    # The rows of a point on a face that turns (engine.dynamics.turning_faces), taken again as
     # the face turns.
-    # (Asked only where a row pairs a disc with a body of another shape: most steps none.)
+    # (Asked only where a row pairs two bodies that are not both discs.)
     several = False
     for i in range(n):
         if body_parts[i, 1] != 1:

@@ -910,9 +910,9 @@ class GameStep:
 
 
 def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """The numpy path's rows of a disc on a face that turns (engine.dynamics.turning_faces'
-    ``face_rows``, its plain twin, asked of the rows between a disc and a polygon or capsule
-    alone): each row's kind and disc radius. None where a body has several shapes."""
+    """The numpy path's rows of a point on a face that turns (engine.dynamics.turning_faces'
+    ``face_rows``, its plain twin, asked of the rows between two bodies not both discs): each
+    row's kind and rounding radius. None where a body has several shapes."""
     ca, cb, nx, ny = rows[0], rows[1], rows[2], rows[3]
     face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(len(ca))
     n = len(store)
