@@ -138,13 +138,19 @@ def ended_depth(
     (engine.dynamics.solver.solve's ``ca`` ... ``csep``: bodies, normal from A to B, points,
     anchors about each body at the start, separation then). A point's separation moves with
     its bodies as the solver's (its ``gap``): sep + (dx_B - dx_A).n + (r_B x n) sin(dq_B) -
-    (r_A x n) sin(dq_A); a disc's on a face that turns (``face``, ``fround``: the rows' kinds
-    and discs' radii, engine.dynamics.turning_faces.face_rows) exactly, as the face and the
-    disc are at the end (that module's ``face_gap``). Returns (the least separations (n,),
+    (r_A x n) sin(dq_A); a point's on a face that turns (``face``, ``fround``: the rows' kinds
+    and rounding radii, engine.dynamics.turning_faces.face_rows) exactly, as the face and the
+    point are at the end (that module's ``face_gap``). Returns (the least separations (n,),
     the deepest overlap)."""
     n = len(q0)
     out = np.full(n, np.inf)
     pile = 0.0
+    # Each body's turn in the step, its cosine and sine (the static body's last: none).
+    tc = np.ones(n + 1)
+    ts = np.zeros(n + 1)
+    for i in range(n):
+        tc[i] = math.cos(q1[i] - q0[i])
+        ts[i] = math.sin(q1[i] - q0[i])
     for k in range(len(ca)):
         a = ca[k]
         b = cb[k]
@@ -152,41 +158,29 @@ def ended_depth(
             continue
         both = moving[a] and moving[b]
         mover = a if moving[a] else b
-        mx, my, sa, sb = 0.0, 0.0, 0.0, 0.0
+        mx, my = 0.0, 0.0
         if a < n:
             mx, my = mx - (x1[a, 0] - x0[a, 0]), my - (x1[a, 1] - x0[a, 1])
-            sa = math.sin(q1[a] - q0[a])
         if b < n:
             mx, my = mx + (x1[b, 0] - x0[b, 0]), my + (x1[b, 1] - x0[b, 1])
-            sb = math.sin(q1[b] - q0[b])
+        fa = a if a < n else n
+        fb = b if b < n else n
+        sa, sb = ts[fa], ts[fb]
         for j in range(count[k]):
             p = 2 * k + j
             if face[k] != 0:
-                # (A disc on a face that turns: the rows' own offsets, as the solver takes them.)
+                # (A point on a face that turns: the rows' own offsets, as the solver takes
+                # them.)
                 r = fround[k]
                 n0x, n0y = nx[k], ny[k]
                 ox = (x1[b, 0] if b < n else 0.0) - (x1[a, 0] if a < n else 0.0)
                 oy = (x1[b, 1] if b < n else 0.0) - (x1[a, 1] if a < n else 0.0)
-                qa = q1[a] - q0[a] if a < n else 0.0
-                qb = q1[b] - q0[b] if b < n else 0.0
                 ex, ey, f0 = face_start(
                     face[k], n0x, n0y, rax[p], ray[p], rbx[p], rby[p], sep[p], r
                 )
-                qf, qd = (qa, qb) if face[k] == FACE_A else (qb, qa)
+                f, d = (fa, fb) if face[k] == FACE_A else (fb, fa)
                 gap = face_gap(
-                    face[k],
-                    n0x,
-                    n0y,
-                    ox,
-                    oy,
-                    math.cos(qf),
-                    math.sin(qf),
-                    math.cos(qd),
-                    math.sin(qd),
-                    ex,
-                    ey,
-                    r,
-                    f0,
+                    face[k], n0x, n0y, ox, oy, tc[f], ts[f], tc[d], ts[d], ex, ey, r, f0
                 )[0]
             else:
                 rna = rax[p] * ny[k] - ray[p] * nx[k]

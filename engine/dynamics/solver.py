@@ -269,7 +269,7 @@ import numpy as np
 
 from .. import kernels
 from ..kernels import floats
-from .turning_faces import FACE_A, face_gap, face_start
+from .turning_faces import FACE_A, STILL, face_gap, face_start
 
 __all__ = [
     "SUBSTEPS",
@@ -358,6 +358,26 @@ def _point_masses(
     rtb = rbx * nx + rby * ny
     kt = ma + mb + ia * rta * rta + ib * rtb * rtb
     return 1.0 / kn if kn > 0.0 else 0.0, 1.0 / kt if kt > 0.0 else 0.0
+
+
+@kernels.helper
+def _block(
+    ma: float, ia: float, mb: float, ib: float, nx: float, ny: float, rax1: float, ray1: float,
+    rbx1: float, rby1: float, rax2: float, ray2: float, rbx2: float, rby2: float,
+) -> tuple[float, float, float, float]:  # fmt: skip
+    """A two-point manifold's 2 x 2 normal block (``solve``'s prepare): k11, k12, k22 and 1.0
+    where it is well conditioned (k11^2 < 1000 det K), else zeros: inverse masses and moments
+    ``ma``, ``ia``, ``mb``, ``ib``, the normal, and each point's anchors on A and on B (m)."""
+    a1 = rax1 * ny - ray1 * nx
+    a2 = rax2 * ny - ray2 * nx
+    b1 = rbx1 * ny - rby1 * nx
+    b2 = rbx2 * ny - rby2 * nx
+    k11 = ma + mb + ia * a1 * a1 + ib * b1 * b1
+    k22 = ma + mb + ia * a2 * a2 + ib * b2 * b2
+    k12 = ma + mb + ia * a1 * a2 + ib * b1 * b2
+    if k11 > 0.0 and k22 > 0.0 and k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12):
+        return k11, k12, k22, 1.0
+    return 0.0, 0.0, 0.0, 0.0
 
 
 @kernels.helper
@@ -637,31 +657,17 @@ def solve(
     kn12 = floats(nc, 0.0)
     kn2 = floats(nc, 0.0)
     kblock = floats(nc, 0.0)
-
-    def pair_block(k: int, ma: float, ia: float, mb: float, ib: float) -> None:
-        """Contact k's 2 x 2 normal block (above), where it has two points and is well
-        conditioned (kblock 1), else none (kblock 0)."""
-        kblock[k] = 0.0
-        if ccount[k] != 2:
-            return
-        nx, ny = cnx[k], cny[k]
-        p = 2 * k
-        a1 = crax[p] * ny - cray[p] * nx
-        a2 = crax[p + 1] * ny - cray[p + 1] * nx
-        b1 = crbx[p] * ny - crby[p] * nx
-        b2 = crbx[p + 1] * ny - crby[p + 1] * nx
-        k11 = ma + mb + ia * a1 * a1 + ib * b1 * b1
-        k22 = ma + mb + ia * a2 * a2 + ib * b2 * b2
-        k12 = ma + mb + ia * a1 * a2 + ib * b1 * b2
-        if k11 > 0.0 and k22 > 0.0 and k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12):
-            kn1[k], kn12[k], kn2[k], kblock[k] = k11, k12, k22, 1.0
-
     for k in range(nc):
         a = ca[k]
         b = cb[k]
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
         nx, ny = cnx[k], cny[k]
-        pair_block(k, ma, ia, mb, ib)
+        if ccount[k] == 2:
+            p = 2 * k
+            kn1[k], kn12[k], kn2[k], kblock[k] = _block(
+                ma, ia, mb, ib, nx, ny, crax[p], cray[p], crbx[p], crby[p], crax[p + 1],
+                cray[p + 1], crbx[p + 1], crby[p + 1],
+            )  # fmt: skip
         for j in range(ccount[k]):
             p = 2 * k + j
             rax, ray, rbx, rby = crax[p], cray[p], crbx[p], crby[p]
@@ -779,7 +785,12 @@ def solve(
             cnx[k], cny[k] = nx, ny
             crax[p], cray[p], crbx[p], crby[p] = rax, ray, rbx, rby
             nmass[p], tmass[p] = _point_masses(ma, ia, mb, ib, rax, ray, rbx, rby, nx, ny)
-        pair_block(k, ma, ia, mb, ib)
+        if ccount[k] == 2:
+            p = 2 * k
+            kn1[k], kn12[k], kn2[k], kblock[k] = _block(
+                ma, ia, mb, ib, cnx[k], cny[k], crax[p], cray[p], crbx[p], crby[p],
+                crax[p + 1], cray[p + 1], crbx[p + 1], crby[p + 1],
+            )  # fmt: skip
 
     def press2(
         k: int, r1: float, r2: float, l1: float, l2: float, a: int, b: int, ma: float,
@@ -1025,7 +1036,7 @@ def solve(
     def gap(p: int, a: int, b: int, mx: float, my: float, nx: float, ny: float) -> float:
         """Point p's separation now (m): the bodies moved apart by (mx, my) since the start,
         the anchors turned across the normal as their bodies have (module doc, "Rows")."""
-        if turning and live[p // 2] != 0.0:
+        if turning and live[p // 2] == 2.0:
             return turned(p, p // 2, a, b)[0]  # (a face that turns: exact, module doc)
         rna = crax[p] * ny - cray[p] * nx
         rnb = crbx[p] * ny - crby[p] * nx
@@ -1535,9 +1546,14 @@ def solve(
                         cq[i] = math.cos(dq[i])
                         sq[i] = math.sin(dq[i])
                 # The rows on a face that turns, taken again where the bodies are now (for
-                # the relax, the next substep and the restitution).
+                # the relax, the next substep and the restitution), from the first substep
+                # after which they have turned (live 2): till then the rows fixed at the
+                # start are right to the turn squared (a pile at rest keeps them, at their
+                # cost: engine.dynamics.turning_faces, ``STILL``).
                 for k in range(nc if turning else 0):
-                    if live[k] != 0.0:
+                    if live[k] == 1.0 and abs(dq[ca[k]]) + abs(dq[cb[k]]) >= STILL:
+                        live[k] = 2.0
+                    if live[k] == 2.0:
                         retake(k)
 
     # -- a cable that snapped taut faster than the threshold, and pulled in the step, brings
@@ -1581,7 +1597,7 @@ def solve(
         bq[i] = q0[i] + dq[i]
     # The rows on a face that turns given back as they came (their events report them so).
     for k in range(nc if turning else 0):
-        if live[k] == 0.0:
+        if live[k] != 2.0:
             continue
         cnx[k], cny[k] = tn0x[k], tn0y[k]
         for j in range(ccount[k]):
