@@ -283,6 +283,48 @@ def test_no_ball_ends_a_step_inside_a_flipping_bat(scene) -> None:  # type: igno
     # The joints' solve turns the bat far within a step (knocked onto its stop, or swung at
     # full torque); a ball's row is its distance from the bat wherever it turns, from the
     # side it came in by (engine.exact.joint_contacts), so none ends a step inside the bat.
+    flip_the_bat(scene)
+
+
+def two_balls_on_a_flipping_bat() -> tuple[World, Body, Hinge, list[Body], float, int]:
+    """Found by the fuzz exploring (fast path, 1,000 examples a test): a capsule bat of 3.5 m
+    (radius 0.80 m, 1.36 kg) on a hinge at its end, limits 0 to 0.73 rad, its motor at -5
+    rad/s reversed at step 6; no gravity, no restitution; a 2 kg ball of 0.57 m drifting onto
+    it and a 0.5 kg ball of 0.25 m falling onto that one at 19 m/s."""
+    world = World(integrator="auto", solver="exact")
+    world.add_force(Gravity((0.0, -0.0)))
+    bat = world.add(Body(Vector(0.0, 0.0), shape=Segment((0.0, 0.0), (3.5, 0.0),
+                                                         radius=0.8007130488109113),
+                         mass=1.3573817785595834, restitution=0.0,
+                         friction=0.9182274791370173))  # fmt: skip
+    hinge = world.add_link(
+        Hinge(bat, world.static_body, (0.0, 0.0), limits=(0.0, 0.7294304980436703),
+              motor_speed=-5.0, max_torque=1518.811690036856)
+    )  # fmt: skip
+    balls = [
+        world.add(Body(Vector(2.1875, 3.3701743004562745),
+                       Vector(0.8414709848078965, -0.5403023058681397), radius=0.5694612516453632,
+                       mass=2.0, restitution=0.0, friction=1.0)),
+        world.add(Body(Vector(3.171875, 5.050713048810911), Vector(1.1634144591899855e-15, -19.0),
+                       radius=0.25, mass=0.5, restitution=0.0, friction=1.0)),
+    ]  # fmt: skip
+    return world, bat, hinge, balls, 1.0 / 60.0, 6
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=StabilityWarning,
+    reason="open (found exploring, find 16): the World warns that the two balls overlap by "
+    "27% of the small one's radius (the fuzz test makes the warning an error); no ball is "
+    "inside the bat; the same before this stop's changes; not yet diagnosed",
+)
+def test_two_balls_on_a_flipping_bat_stay_apart() -> None:
+    flip_the_bat(two_balls_on_a_flipping_bat())
+
+
+def flip_the_bat(scene: tuple[World, Body, Hinge, list[Body], float, int]) -> None:
+    """60 steps of a bat scene (``bats_and_balls``), its motor reversed at step ``key``: no
+    ball ends a step inside the bat, no StabilityWarning, the hinge within its limits."""
     world, bat, hinge, balls, dt, key = scene
     with warnings.catch_warnings():
         warnings.simplefilter("error", StabilityWarning)
