@@ -706,11 +706,12 @@ def solve(
                     rel[p] = -math.sqrt(meet)
 
     # -- the rows on a face that turns (engine.dynamics.turning_faces) where the point rides the
-    # face (``live``): its points' normal speed at the start closes at no more than the
-    # threshold (one that strikes the face is an impact, whose rows stay where it met); each
-    # one's normal at the start, its core point less that body's position then (world axes)
-    # and the face's offset f0, per point; and its rows as they came, given back at the
-    # end.
+    # face (``live``: 0 not, 1 rides it, 2 rides it and is taken again from the first substep
+    # its bodies have turned ``STILL``): its points' normal speed at the start closes at no
+    # more than the threshold (one that strikes the face is an impact, whose rows stay where
+    # it met); each one's normal at the start, its core point less that body's position then
+    # (world axes) and the face's offset f0, per point; and its rows as they came, given back
+    # at the end.
     faced = 0
     for k in range(nc):
         if cface[k] != 0:
