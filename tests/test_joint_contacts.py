@@ -16,6 +16,7 @@ import pytest
 
 from engine.exact.joint_contacts import polygon_distance
 from engine.exact.joint_rows import CN, CT, Plan, evaluate
+from engine.exact.pile import PUSHED_ON_ROWS, pushed_on
 from engine.geometry.manifold_kinds import Capsules, Polygons
 
 # A bat 8 long and 1 thick (its centre line on y = 0, from x = 0 to 8), as a polygon.
@@ -127,3 +128,56 @@ def test_a_path_through_a_capsule_s_core_is_measured_from_the_side_it_came_from(
     # Across its line past the end (round the tip): not through it; 0.3 from the end.
     d, _, ny, corner = core((8.3, -1e-3), (8.3, 3.0))
     assert corner and ny < 0.0 and d == pytest.approx(math.hypot(0.3, 1e-3), abs=1e-15)
+
+
+def chain(n: int, joined_first: bool = True) -> tuple[np.ndarray, ...]:
+    """A pile of ``n`` bodies (World rows 10 ... 10 + n - 1) in a chain, each touching the
+    next and the static world (slot n), the first held by a joint: (joined (N,), U, ra, rb)."""
+    U = np.arange(10, 10 + n)
+    joined = np.zeros(10 + n, dtype=bool)
+    joined[10] = joined_first
+    ra = np.concatenate([np.arange(n - 1), np.full(n, n)])
+    rb = np.concatenate([np.arange(1, n), np.arange(n)])
+    return joined, U, ra, rb
+
+
+def handed(joined: np.ndarray, U: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> int:
+    """How many of the pile's rows touch a body of ``joined``."""
+    nU = len(U)
+    inner = ra < nU
+    return int(np.count_nonzero(joined[U][rb] | (inner & joined[U][np.where(inner, ra, 0)])))
+
+
+def test_a_small_pile_is_handed_to_the_joints_solve_whole() -> None:
+    # A ball on a bat pushed into another (find 16): the joints' solve must move them all.
+    joined, U, ra, rb = chain(5)
+    grown = pushed_on(joined, U, ra, rb)
+    assert grown[10:].all() and not grown[:10].any()
+    assert handed(grown, U, ra, rb) == len(ra)  # 9 rows: 4 between the bodies, 5 on the floor
+
+
+def test_a_long_pile_is_handed_a_ring_at_a_time_while_the_rows_stay_within_the_bound() -> None:
+    joined, U, ra, rb = chain(60)
+    grown = pushed_on(joined, U, ra, rb)
+    k = int(np.count_nonzero(grown[10:]))
+    assert grown[10 : 10 + k].all()  # the chain's first k, from the joint's body on
+    assert handed(grown, U, ra, rb) <= PUSHED_ON_ROWS
+    one_more = grown.copy()
+    one_more[10 + k] = True
+    assert handed(one_more, U, ra, rb) > PUSHED_ON_ROWS
+    # Nothing joined, nothing handed.
+    joined, U, ra, rb = chain(60, joined_first=False)
+    assert not pushed_on(joined, U, ra, rb).any()
+
+
+def test_a_joint_s_body_touching_many_hands_them_all_and_no_more() -> None:
+    # A bat under 50 balls, each on the floor too: its own 50 rows go (as they always did),
+    # the rings beyond them would pass the bound.
+    n = 51
+    U = np.arange(n)
+    joined = np.zeros(n, dtype=bool)
+    joined[0] = True
+    ra = np.concatenate([np.zeros(n - 1, dtype=np.int64), np.full(n - 1, n)])
+    rb = np.concatenate([np.arange(1, n), np.arange(1, n)])
+    grown = pushed_on(joined, U, ra, rb)
+    assert grown.tolist() == joined.tolist()

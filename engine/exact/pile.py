@@ -529,7 +529,7 @@ def step_pile(
     out = None
     if joined is not None:
         fr = np.concatenate(fric)
-        out = joined_rows(pushed_on(joined, U, ra, rb, fast), U, ra, rb, nv, now, sep_all, r,
+        out = joined_rows(pushed_on(joined, U, ra, rb), U, ra, rb, nv, now, sep_all, r,
                           fr, rows.restitution,
                           solver.total, m, m_disc, m_pairs, anchors, table)  # fmt: skip
     return Pile(touching, near_a, near_b, face_touching, shape_over, now_carried, out)
@@ -593,25 +593,43 @@ def surface_slip(surface: np.ndarray, owners: np.ndarray, normal: np.ndarray) ->
     return np.where(owners >= 0, slip, 0.0)
 
 
-def pushed_on(
-    joined: np.ndarray, U: np.ndarray, ra: np.ndarray, rb: np.ndarray, fast: bool = False
-) -> np.ndarray:
-    """``joined`` (N,) grown by every body of a pile (``U``, its rows ra, rb) that one held by
-    a joint touches, through however many others: the joints' solve moves them all.
+#: The most pile rows the joints' solve is handed through bodies a joint's body pushes on
+#: (``pushed_on``): its Newton steps solve all its rows densely, so its cost grows as their
+#: cube (a seesaw under 100 balls, all handed: a step of 13 s).
+PUSHED_ON_ROWS = 32
+
+
+def pushed_on(joined: np.ndarray, U: np.ndarray, ra: np.ndarray, rb: np.ndarray) -> np.ndarray:
+    """``joined`` (N,) grown by the bodies of a pile (``U``, its rows ra, rb; the static slot
+    past U) that a body held by a joint pushes on through others, a ring of rows at a time
+    while the rows handed on stay within ``PUSHED_ON_ROWS`` (the rows that touch a joint's
+    body itself are handed on however many).
 
     The joints' solve (engine.exact.joint_solver) runs after the pile's and takes the rows it
     is handed as its own. Handed only the rows that touch a joint's body, it moved a ball on
     a bat swinging up into a heavier ball above it, which the pile's row between the two,
     left behind, did not push aside: the two ended 7 cm (27% of a radius) into each other
-    for five steps (tests/test_fuzz_joints.py, two balls on a flipping bat). Handed the whole
-    pile, it pushes the upper ball too (and the motor feels its mass), as one solve would."""
+    for five steps (tests/test_fuzz_joints.py, two balls on a flipping bat). Handed the ball
+    above too, it pushes it aside (and the motor feels its mass), as one solve would. A
+    pile too big for the dense solve keeps the pile's rows beyond its first ring."""
     nU = len(U)
-    label = components(nU, ra, rb, fast)
-    held = np.zeros(nU, dtype=bool)
-    held[label[joined[U]]] = True
-    grown = joined.copy()
-    grown[U] |= held[label]
-    return grown
+    inner = ra < nU  # (rows between two of the pile's bodies; the others meet the static world)
+    a = np.where(inner, ra, 0)
+    reach = joined[U]
+    hit = reach[rb] | (inner & reach[a])
+    count = int(np.count_nonzero(hit))
+    while True:
+        grown = reach.copy()
+        grown[rb[hit]] = True
+        grown[a[hit & inner]] = True
+        more = grown[rb] | (inner & grown[a])
+        now = int(np.count_nonzero(more))
+        if now == count or now > PUSHED_ON_ROWS:
+            break
+        reach, hit, count = grown, more, now
+    out = joined.copy()
+    out[U] = reach
+    return out
 
 
 def components(n: int, a: np.ndarray, b: np.ndarray, fast: bool = False) -> np.ndarray:
