@@ -230,6 +230,36 @@ def room_frame(pos: np.ndarray, turn: np.ndarray, angle: float) -> tuple[np.ndar
     return centre, np.maximum(np.abs(x), np.abs(y)).max(axis=1) - ROOM
 
 
+def boxes_into_each_other(pos: np.ndarray, turn: np.ndarray) -> float:
+    """How deep the two of the tumbler's boxes at ``pos`` (n, 2) turned ``turn`` (n,) that go
+    deepest into each other do (m; <= 0: none overlaps), any engine's bodies: for each pair
+    whose centres are nearer than a box's diagonal, the least of its overlaps along the four
+    edge normals (the separating axes: the depth a solver pushes out), box i's half extent
+    along a unit u being h (|cos(q_i) u_x + sin(q_i) u_y| + |-sin(q_i) u_x + cos(q_i) u_y|)."""
+    reach = TUMBLED_SIDE * math.sqrt(2.0)  # (farther apart than a diagonal: they cannot touch)
+    n = len(pos)
+    order = np.argsort(pos[:, 0], kind="stable")
+    x = pos[order, 0]
+    # The pairs a < b (in x order) within ``reach`` along x, then within it.
+    count = np.searchsorted(x, x + reach, side="right") - np.arange(n) - 1
+    first = np.repeat(np.arange(n), count)
+    skip = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
+    a, b = order[first], order[first + 1 + skip]
+    gap = pos[b] - pos[a]
+    near = (gap * gap).sum(axis=1) < reach * reach
+    a, b, gap = a[near], b[near], gap[near]
+    if not len(a):
+        return -math.inf
+    h = 0.5 * TUMBLED_SIDE
+    ca, sa, cb, sb = np.cos(turn[a]), np.sin(turn[a]), np.cos(turn[b]), np.sin(turn[b])
+    depth = np.full(len(a), math.inf)
+    for ux, uy in ((ca, sa), (-sa, ca), (cb, sb), (-sb, cb)):
+        ra = h * (np.abs(ca * ux + sa * uy) + np.abs(-sa * ux + ca * uy))
+        rb = h * (np.abs(cb * ux + sb * uy) + np.abs(-sb * ux + cb * uy))
+        depth = np.minimum(depth, ra + rb - np.abs(gap[:, 0] * ux + gap[:, 1] * uy))
+    return float(depth.max())
+
+
 def into_walls(boxes: list[Body], walls: list[Body]) -> float:
     """How far the deepest corner of any box is past the room's inner faces (m)."""
     return float(in_room(boxes, walls)[1].max())

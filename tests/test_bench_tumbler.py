@@ -50,3 +50,25 @@ def test_a_short_run_reports_every_engine() -> None:
         assert r["first"] > 0 and r["mean"] > 0
         assert r["lost"] == 0  # three steps: nothing has reached a wall
         assert r["deepest"] < -3.0  # the grid's outer boxes are metres from the walls
+        # The grid's boxes are 0.4 m apart, farther than a diagonal: none near another yet.
+        assert r["between"] == -math.inf and r["past"] == 0
+
+
+def test_two_boxes_into_each_other_by_their_separating_axes() -> None:
+    h = 0.5 * scene.TUMBLED_SIDE
+    level = np.zeros(2)
+    # Side by side, level: as deep as the sides overlap along x.
+    pos = np.array([[0.0, 0.0], [0.2, 0.0]])
+    assert scene.boxes_into_each_other(pos, level) == pytest.approx(2 * h - 0.2, abs=1e-15)
+    # The second turned 45 degrees, its corner toward the first's face: h + h sqrt 2 - x.
+    pos = np.array([[0.0, 0.0], [0.25, 0.0]])
+    got = scene.boxes_into_each_other(pos, np.array([0.0, math.pi / 4]))
+    assert got == pytest.approx(h + h * math.sqrt(2.0) - 0.25, abs=1e-15)
+    # Apart along x by 1 cm (within a diagonal): -1 cm; farther than a diagonal: no pair.
+    pos = np.array([[0.0, 0.0], [2 * h + 0.01, 0.0]])
+    assert scene.boxes_into_each_other(pos, level) == pytest.approx(-0.01, abs=1e-15)
+    pos = np.array([[0.0, 0.0], [0.4, 0.0]])
+    assert scene.boxes_into_each_other(pos, level) == -math.inf
+    # The pairs found whatever the order along x: three boxes, the deepest pair last.
+    pos = np.array([[0.3, 0.0], [0.0, 0.0], [0.1, 0.0]])
+    assert scene.boxes_into_each_other(pos, np.zeros(3)) == pytest.approx(2 * h - 0.1, abs=1e-15)
