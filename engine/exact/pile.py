@@ -610,8 +610,8 @@ def pushed_on(joined: np.ndarray, U: np.ndarray, ra: np.ndarray, rb: np.ndarray)
     a bat swinging up into a heavier ball above it, which the pile's row between the two,
     left behind, did not push aside: the two ended 7 cm (27% of a radius) into each other
     for five steps (tests/test_fuzz_joints.py, two balls on a flipping bat). Handed the ball
-    above too, it pushes it aside (and the motor feels its mass), as one solve would. A
-    pile too big for the dense solve keeps the pile's rows beyond its first ring."""
+    above too, it pushes it aside (and the motor feels its mass), as one solve would. Past
+    the rings that fit, a pile keeps its own rows alone, as before (a seesaw under a heap)."""
     nU = len(U)
     inner = ra < nU  # (rows between two of the pile's bodies; the others meet the static world)
     a = np.where(inner, ra, 0)
