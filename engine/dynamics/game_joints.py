@@ -40,11 +40,13 @@ from .springs import BodySpring, DampedRotarySpring, DampedSpring
 #: The World's state (engine.pipeline.world_state.WorldState), named by what is read of it.
 WorldState = Any
 
-__all__ = ["GameJoints", "IMPULSES_AT"]
+__all__ = ["GameJoints", "IMPULSES_AT", "INT_ROWS"]
 
 #: Where a joint's six impulses start in the solver's arrays: after the bodies' 11 and the
 #: contacts' 18, the joints' 16 inputs (solver.solve's order).
 IMPULSES_AT = 11 + 18 + 16
+#: Which of the 22 joint arrays are ints (jkind, ja, jb, jlimit, jmotor: solver.solve's order).
+INT_ROWS = (0, 1, 2, 10, 13)
 
 # How a row's impulses are reported on its joint (``GameJoints.report``), read once a joint.
 _CONSTRAINT, _MOUSE, _SPRING, _ROTARY_SPRING, _ROD, _PIN, _WELD, _HINGE = range(8)
@@ -82,6 +84,11 @@ class GameJoints:
         self._arrays: tuple[list[Any], list[np.ndarray], Any] | None = None
         # (the fast path's joint arrays, and their six impulse arrays as one table's rows)
         self._impulse_rows: tuple[list[np.ndarray], np.ndarray] | None = None
+        #: The fast path's joint arrays as two tables, whose rows they are (``arrays``).
+        self.packed: tuple[np.ndarray, np.ndarray] = (
+            np.zeros((len(INT_ROWS), 0), dtype=np.int64),
+            np.zeros((22, 0)),
+        )
         # Each joint's row inputs, by id(joint): (joint, _row_token, row), while the World's
         # bodies are the same (the key: its version, the bodies' count, the store).
         self._rows: tuple[Any, dict[int, tuple[Any, Any, list[Any]]]] = (None, {})
@@ -157,11 +164,17 @@ class GameJoints:
             [*row, *(none if isinstance(j, BodySpring) else impulses.get(id(j), none))]
             for j, row in zip(ends, inputs, strict=True)
         ]
-        # One array, its rows the columns (each C-contiguous, as the kernel takes them).
+        # One array, its rows the columns (each C-contiguous, as the kernel takes them); the
+        # five of ints in a table of their own.
         table = np.array(rows, dtype=float).reshape(-1, 22).T.copy()
-        ints = {0, 1, 2, 10, 13}
-        arrays = [table[i].astype(np.int64) if i in ints else table[i] for i in range(22)]
+        ints = table[list(INT_ROWS)].astype(np.int64)
+        at = {row: i for i, row in enumerate(INT_ROWS)}
+        arrays = [ints[at[i]] if i in at else table[i] for i in range(22)]
         if self.fast:
+            # The compiled step takes the two tables (two arguments where the 22 arrays were
+            # 22: each array a kernel takes costs its call about 0.1 us) and reads the
+            # arrays as their rows.
+            self.packed = (ints, table)
             self._arrays = (inputs, arrays, None)
             # The six impulse arrays are rows of one table: ``report`` copies them at once.
             self._impulse_rows = (arrays, table[16:])

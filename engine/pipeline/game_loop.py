@@ -26,6 +26,7 @@ import numpy as np
 from .. import kernels
 from ..dynamics.events import COLLIDER
 from ..dynamics.game_continuous import DEEP, SAFETY, ended_depth
+from ..dynamics.game_joints import INT_ROWS
 from ..dynamics.solver import MOUSE, solve
 from ..dynamics.turning_faces import face_rows
 from ..exact.pile import label_rows
@@ -50,12 +51,11 @@ def _sample() -> tuple[Any, ...]:
     statics = c[19:38]  # owner ... hn
     apart, ignored, warm_keys, warm_lam = c[38:42]
     f = np.zeros
-    i1 = np.zeros(1, dtype=np.int64)
-    joints = [
-        i1.copy(), i1 + 2, i1.copy(), np.array([0.5]), np.array([0.5]), np.array([0.5]),
-        np.array([0.5]), f(1), f(1), f(1), i1.copy(), f(1), f(1), i1.copy(), f(1), f(1),
-        f(1), f(1), f(1), f(1), f(1), f(1),
-    ]  # fmt: skip
+    # The hinge's row (solver.solve's 22 joint arrays: a hinge, bodies 0 and 2, anchors at
+    # 0.5) as the two tables (engine.dynamics.game_joints' INT_ROWS).
+    row = [0.0, 2.0, 0.0, 0.5, 0.5, 0.5, 0.5, *[0.0] * 15]
+    jtable = np.array(row).reshape(22, 1)
+    jints = jtable[list(INT_ROWS)].astype(np.int64)
     v = f((2, 2))
     mass = np.array([1.0, 2.0])
     accel = np.array([[0.0, -9.81], [0.0, -9.81]])
@@ -66,8 +66,8 @@ def _sample() -> tuple[Any, ...]:
     return (x, v, q, f(2), mass, np.array([6.0, 2.0]), accel, f(2), no, radius, reach,
             sensor, group, cats, mask, slots, fric, rest, body_circle, body_index, kind,
             body_parts, part_of, no.copy(), f(2), island, 0.5, 1.0 / 60.0, pa, pb, *statics,
-            apart, ignored, warm_keys, warm_lam, *joints, serial, slots.copy(), *last, 4, 30.0,
-            10.0, 60.0, 2.0, 3.0, 1.0, 0.005)  # fmt: skip
+            apart, ignored, warm_keys, warm_lam, jints, jtable, serial, slots.copy(), *last, 4,
+            30.0, 10.0, 60.0, 2.0, 3.0, 1.0, 0.005)  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
@@ -84,13 +84,10 @@ def step_loop(
     c_group: Any, c_cats: Any, c_mask: Any,
     V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any, hp: Any, hn: Any,
     apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any,
-    jkind: Any, ja: Any, jb: Any, jlax: Any, jlay: Any, jlbx: Any, jlby: Any, jref: Any,
-    jhertz: Any, jdamp: Any, jlimit: Any, jlower: Any, jupper: Any,
-    jmotor: Any, jspeed: Any, jmaxtorque: Any,
-    jpx: Any, jpy: Any, jpa: Any, jlo: Any, jhi: Any, jmi: Any,
-    serial: Any, row_of: Any, last_keys: Any, last_points: Any, last_normals: Any,
-    last_impulses: Any, substeps: int, contact_hertz: float, contact_damping: float,
-    joint_hertz: float, joint_damping: float, push: float, threshold: float, slop: float,
+    jints: Any, jtable: Any, serial: Any, row_of: Any, last_keys: Any, last_points: Any,
+    last_normals: Any, last_impulses: Any, substeps: int, contact_hertz: float,
+    contact_damping: float, joint_hertz: float, joint_damping: float, push: float,
+    threshold: float, slop: float,
 ) -> tuple[Any, ...]:  # fmt: skip
     """One soft step of ``dt`` (s) from waking to sleep (module doc).
 
@@ -103,8 +100,10 @@ def step_loop(
     (s), ``island`` (each sleeper's island label), ``sleep_time`` (s; inf: never).
     ``pa``, ``pb``: the pairs the broadphase tests (rows a < b). ``owner`` ... ``warm_lam``:
     ``contacts_loop``'s static shapes, colliders, tables, pairs kept apart and warm start.
-    ``jkind`` ... ``jmi``: ``solve``'s joints (their impulses out in place). ``serial``: each
-    collider's serial number by place (the events' keys); ``row_of`` each body slot's row;
+    ``jints``, ``jtable``: ``solve``'s 22 joint arrays as the rows of two tables
+    (engine.dynamics.game_joints: the ints' rows INT_ROWS, the floats' all 22; their impulses
+    out in place). ``serial``: each collider's serial number by place (the events' keys);
+    ``row_of`` each body slot's row;
     ``last_keys`` ... ``last_impulses``: the touching contacts the step before reported
     (sorted by key). Then ``solve``'s parameters and the slop within which a contact touches
     (m).
@@ -131,6 +130,13 @@ def step_loop(
             speed = np.hypot(v[i, 0], v[i, 1])
             acc = np.hypot(accel[i, 0], accel[i, 1])
             margin[i] = speed * dt + acc * dt * dt + np.abs(omega[i]) * dt * radius[i]
+    # The joints' arrays, the rows of their tables (engine.dynamics.game_joints' INT_ROWS).
+    jkind, ja, jb, jlimit, jmotor = jints[0], jints[1], jints[2], jints[3], jints[4]
+    jlax, jlay, jlbx, jlby, jref = jtable[3], jtable[4], jtable[5], jtable[6], jtable[7]
+    jhertz, jdamp, jlower, jupper = jtable[8], jtable[9], jtable[11], jtable[12]
+    jspeed, jmaxtorque = jtable[14], jtable[15]
+    jpx, jpy, jpa = jtable[16], jtable[17], jtable[18]  # (the impulses, solved in place)
+    jlo, jhi, jmi = jtable[19], jtable[20], jtable[21]
     # -- waking (engine.pipeline.game_step._wake, engine.pipeline.game_sleep.woken) ----------------
     dynamic = np.empty(n, dtype=np.bool_)
     any_asleep = False

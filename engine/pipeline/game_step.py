@@ -340,7 +340,7 @@ class GameStep:
             places.static_index, cs.sensor, cs.friction, cs.restitution, asc(cs.surface),
             cs.group, cs.categories, cs.mask, *t.kernel_polygons, t.center, t.round,
             asc(statics.half_planes.point, f64), asc(statics.half_planes.normal, f64), sc.apart,
-            sc.ignored, self.keys, self.lam, *joints[0], cs.serial, asc(store.row_of, i64),
+            sc.ignored, self.keys, self.lam, *self.joints.packed, cs.serial, asc(store.row_of, i64),
             asc(last.keys, i64), asc(last.points, f64), asc(last.normals, f64),
             asc(last.impulses, f64), self.substeps,
             solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
