@@ -47,7 +47,9 @@ __all__ = [
 
 class Colliders(NamedTuple):
     """What the stages read of the World's colliders, each an array by collider place, read
-    once a step (materials, filters and sensors may change between steps)."""
+    once a step (materials, filters and sensors may change between steps). The materials are
+    the rows of ``floats`` (2, K) and the filters those of ``ints`` (3, K): the fast path's
+    step takes the two tables, two arguments where the five arrays were five."""
 
     sensor: np.ndarray
     serial: np.ndarray
@@ -57,6 +59,8 @@ class Colliders(NamedTuple):
     group: np.ndarray
     categories: np.ndarray
     mask: np.ndarray
+    floats: np.ndarray  # (2, K): restitution, friction
+    ints: np.ndarray  # (3, K): group, categories, mask
 
 
 def collider_arrays(colliders: list[Collider], serial: Any) -> Colliders:
@@ -65,15 +69,24 @@ def collider_arrays(colliders: list[Collider], serial: Any) -> Colliders:
     def col(values: list[Any], dtype: Any) -> np.ndarray:
         return np.array(values, dtype=dtype)
 
+    floats = col([[c.restitution for c in colliders], [c.friction for c in colliders]], float)
+    ints = col(
+        [[c.filter.group for c in colliders], [c.filter.categories for c in colliders],
+         [c.filter.mask for c in colliders]],
+        np.int64,
+    ).reshape(3, -1)  # fmt: skip
+    floats = floats.reshape(2, -1)
     return Colliders(
         col([c.sensor for c in colliders], bool),
         col([serial(c) for c in colliders], np.int64),
-        col([c.restitution for c in colliders], float),
-        col([c.friction for c in colliders], float),
+        floats[0],
+        floats[1],
         col([tuple(c.surface_velocity) for c in colliders], float).reshape(-1, 2),
-        col([c.filter.group for c in colliders], np.int64),
-        col([c.filter.categories for c in colliders], np.int64),
-        col([c.filter.mask for c in colliders], np.int64),
+        ints[0],
+        ints[1],
+        ints[2],
+        floats,
+        ints,
     )
 
 

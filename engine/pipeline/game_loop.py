@@ -48,7 +48,10 @@ def _sample() -> tuple[Any, ...]:
     c = contacts_sample()
     x, q, radius, reach, moving, sensor, group, cats, mask, slots, fric, rest = c[:12]
     body_circle, body_index, kind, body_parts, part_of, pa, pb = c[12:19]
-    statics = c[19:38]  # owner ... hn
+    statics = c[19:23]  # owner ... static_index
+    c_sensor, c_fric, c_rest, surface, c_group, c_cats, c_mask = c[23:30]
+    colliders = (c_sensor, np.stack([c_rest, c_fric]), surface, np.stack([c_group, c_cats, c_mask]))
+    tables = c[30:38]  # V ... hn
     apart, ignored, warm_keys, warm_lam = c[38:42]
     f = np.zeros
     # The hinge's row (solver.solve's 22 joint arrays: a hinge, bodies 0 and 2, anchors at
@@ -62,10 +65,11 @@ def _sample() -> tuple[Any, ...]:
     no = np.zeros(2, dtype=bool)
     island = np.zeros(2, dtype=np.int64)
     serial = np.array([1], dtype=np.int64)
-    last = (np.array([1], dtype=np.int64), f((1, 2)), f((1, 2)), f((1, 2)))
+    last = (np.array([1], dtype=np.int64), f((1, 6)))
     return (x, v, q, f(2), mass, np.array([6.0, 2.0]), accel, f(2), no, radius, reach,
             sensor, group, cats, mask, slots, fric, rest, body_circle, body_index, kind,
             body_parts, part_of, no.copy(), f(2), island, 0.5, 1.0 / 60.0, pa, pb, *statics,
+            *colliders, *tables,
             apart, ignored, warm_keys, warm_lam, jints, jtable, serial, slots.copy(), *last, 4,
             30.0, 10.0, 60.0, 2.0, 3.0, 1.0, 0.005)  # fmt: skip
 
@@ -80,12 +84,11 @@ def step_loop(
     asleep: Any, still: Any, island: Any, sleep_time: float, dt: float,
     pa: Any, pb: Any,
     owner: Any, bounds: Any, static_circle: Any, static_index: Any,
-    c_sensor: Any, c_friction: Any, c_restitution: Any, c_surface: Any,
-    c_group: Any, c_cats: Any, c_mask: Any,
+    c_sensor: Any, c_floats: Any, c_surface: Any, c_ints: Any,
     V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any, hp: Any, hn: Any,
     apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any,
-    jints: Any, jtable: Any, serial: Any, row_of: Any, last_keys: Any, last_points: Any,
-    last_normals: Any, last_impulses: Any, substeps: int, contact_hertz: float,
+    jints: Any, jtable: Any, serial: Any, row_of: Any, last_keys: Any, last_table: Any,
+    substeps: int, contact_hertz: float,
     contact_damping: float, joint_hertz: float, joint_damping: float, push: float,
     threshold: float, slop: float,
 ) -> tuple[Any, ...]:  # fmt: skip
@@ -99,27 +102,29 @@ def step_loop(
     from ``sensor`` to ``kind``. Sleep (engine.pipeline.game_sleep; in place): ``asleep``, ``still``
     (s), ``island`` (each sleeper's island label), ``sleep_time`` (s; inf: never).
     ``pa``, ``pb``: the pairs the broadphase tests (rows a < b). ``owner`` ... ``warm_lam``:
-    ``contacts_loop``'s static shapes, colliders, tables, pairs kept apart and warm start.
+    ``contacts_loop``'s static shapes, colliders, tables, pairs kept apart and warm start, but
+    the colliders' materials and filters as the rows of two tables, ``c_floats`` and
+    ``c_ints`` (engine.pipeline.game_broadphase.Colliders' ``floats`` and ``ints``).
     ``jints``, ``jtable``: ``solve``'s 22 joint arrays as the rows of two tables
     (engine.dynamics.game_joints: the ints' rows INT_ROWS, the floats' all 22; their impulses
     out in place). ``serial``: each collider's serial number by place (the events' keys);
-    ``row_of`` each body slot's row;
-    ``last_keys`` ... ``last_impulses``: the touching contacts the step before reported
-    (sorted by key). Then ``solve``'s parameters and the slop within which a contact touches
+    ``row_of`` each body slot's row; ``last_keys``, ``last_table``: the touching contacts the
+    step before reported (sorted by key), each one's point, normal and impulse the columns of
+    the table (t, 6). Then ``solve``'s parameters and the slop within which a contact touches
     (m).
 
-    Returns the bodies' ``x``, ``v``, ``angle``, ``omega`` after the step, the kept
-    warm-start keys, impulses and held loads ((k, 3) N s a substep), the touching contacts'
-    event keys, points, normals and impulses (``report_loop``'s, and the last step's of
-    bodies asleep through this one, held open; sorted by key), the sensor colliders' overlaps
-    as event keys, and the touching pairs of bodies (keys a n + b, a < b: contacts, then
-    joints between two bodies) for ``Body.sleep``'s island, and whether a body may be fast
-    (moved more than about engine.dynamics.game_continuous.SAFETY of its least extent, or
-    ended deeper than about its DEEP in what the solve does not move: the continuous stage's
-    test), then what the World checks of the bodies after it: |the sum of x and v|, |the sum
-    of angle and omega| (each nan or inf where an entry is) and whether any body spins; last,
-    each body's least separation at the end from what the solve does not move (m) and the
-    deepest overlap at the end of two bodies the solve moves (m; both
+    Returns the bodies' ``x``, ``v``, ``angle``, ``omega`` after the step, the kept warm-start
+    keys, impulses and held loads ((k, 3) N s a substep), the touching contacts' event keys and
+    their points, normals and impulses as one table (t, 6) (``report_loop``'s, and the last
+    step's of bodies asleep through this one, held open; sorted by key), the sensor colliders'
+    overlaps as event keys, and the touching pairs of bodies (keys a n + b, a < b: contacts,
+    then joints between two bodies) for ``Body.sleep``'s island, and whether a body may be fast
+    (moved more than about engine.dynamics.game_continuous.SAFETY of its least extent, or ended
+    deeper than about its DEEP in what the solve does not move: the continuous stage's test),
+    then what the World checks of the bodies after it: |the sum of x and v|, |the sum of angle
+    and omega| (each nan or inf where an entry is) and whether any body spins; last, each body's
+    least separation at the end from what the solve does not move (m) and the deepest overlap at
+    the end of two bodies the solve moves (m; both
     engine.dynamics.game_continuous.ended_depth's)."""
     n = len(radius)
     if len(margin) != n:
@@ -130,6 +135,10 @@ def step_loop(
             speed = np.hypot(v[i, 0], v[i, 1])
             acc = np.hypot(accel[i, 0], accel[i, 1])
             margin[i] = speed * dt + acc * dt * dt + np.abs(omega[i]) * dt * radius[i]
+    # The colliders' materials and filters, the rows of their tables
+    # (engine.pipeline.game_broadphase.Colliders).
+    c_restitution, c_friction = c_floats[0], c_floats[1]
+    c_group, c_cats, c_mask = c_ints[0], c_ints[1], c_ints[2]
     # The joints' arrays, the rows of their tables (engine.dynamics.game_joints' INT_ROWS).
     jkind, ja, jb, jlimit, jmotor = jints[0], jints[1], jints[2], jints[3], jints[4]
     jlax, jlay, jlbx, jlby, jref = jtable[3], jtable[4], jtable[5], jtable[6], jtable[7]
@@ -278,13 +287,24 @@ def step_loop(
                     held[k] = True
                     extra += 1
             break
+    # The touching contacts' points, normals and impulses as the columns of one table
+    # (engine.pipeline.game_step's _Report: one array returned where three were).
+    touched = len(event)
+    table = np.empty((touched + extra, 6))
+    for e in range(touched):
+        table[e, 0], table[e, 1] = point[e, 0], point[e, 1]
+        table[e, 2], table[e, 3] = normal[e, 0], normal[e, 1]
+        table[e, 4], table[e, 5] = impulse[e, 0], impulse[e, 1]
     if extra:
         event = np.concatenate((event, last_keys[held]))
-        point = np.concatenate((point, last_points[held]))
-        normal = np.concatenate((normal, last_normals[held]))
-        impulse = np.concatenate((impulse, last_impulses[held]))
+        e = touched
+        for k in range(len(last_keys)):
+            if held[k]:
+                for c in range(6):
+                    table[e, c] = last_table[k, c]
+                e += 1
         order = stable_order(event)  # stable, as numpy's: sorted by key
-        event, point, normal, impulse = event[order], point[order], normal[order], impulse[order]
+        event, table = event[order], table[order]
     sensing = np.empty(len(sense_row), dtype=np.int64)
     for i in range(len(sense_row)):
         sensing[i] = (slots[sense_row[i]] << 32) | (serial[sense_place[i]] | COLLIDER)
@@ -401,6 +421,5 @@ def step_loop(
         turning += bq[i] + bw[i]
         if bw[i] != 0.0:
             spinning = True
-    return (x_out, v_out, q_out, bw[:n].copy(), kept, lam, event, point, normal,
-            impulse, sensing, touching, fast, abs(linear), abs(turning), spinning,
-            ended, pile)  # fmt: skip
+    return (x_out, v_out, q_out, bw[:n].copy(), kept, lam, event, table, sensing, touching,
+            fast, abs(linear), abs(turning), spinning, ended, pile)  # fmt: skip

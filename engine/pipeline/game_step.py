@@ -163,6 +163,26 @@ class _Report:
     impulses: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     sensing: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
 
+    @classmethod
+    def of_table(cls, keys: np.ndarray, table: np.ndarray) -> _Report:
+        """The report of the fast path's step: ``table`` (t, 6) each contact's point, normal
+        and impulse, whose columns the three arrays are (views: ``table`` gives them back)."""
+        return cls(keys, table[:, 0:2], table[:, 2:4], table[:, 4:6])
+
+    def table(self) -> np.ndarray:
+        """The points, normals and impulses as one table (t, 6), C-contiguous: the one they
+        are the columns of (``of_table``), or one made of them."""
+        base = self.points.base
+        if (
+            base is not None
+            and self.normals.base is base
+            and self.impulses.base is base
+            and base.shape == (len(self.keys), 6)
+            and base.flags.c_contiguous
+        ):
+            return base  # type: ignore[no-any-return]
+        return np.hstack([self.points, self.normals, self.impulses])
+
 
 class GameStep:
     """A World's soft step (module doc): what it keeps from step to step (the contacts'
@@ -337,24 +357,23 @@ class GameStep:
             asc(store.restitution, f64), places.body_circle, places.body_index, kind,
             body_parts, part_of, c.asleep, c.still, c._group, float(c.sleep_time), dt,
             *candidates, asc(sc.owner, i64), asc(sc.bounds, f64), places.static_circle,
-            places.static_index, cs.sensor, cs.friction, cs.restitution, asc(cs.surface),
-            cs.group, cs.categories, cs.mask, *t.kernel_polygons, t.center, t.round,
+            places.static_index, cs.sensor, cs.floats, asc(cs.surface), cs.ints,
+            *t.kernel_polygons, t.center, t.round,
             asc(statics.half_planes.point, f64), asc(statics.half_planes.normal, f64), sc.apart,
             sc.ignored, self.keys, self.lam, *self.joints.packed, cs.serial, asc(store.row_of, i64),
-            asc(last.keys, i64), asc(last.points, f64), asc(last.normals, f64),
-            asc(last.impulses, f64), self.substeps,
+            asc(last.keys, i64), asc(last.table(), f64), self.substeps,
             solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
             solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD, LINEAR_SLOP,
         )  # fmt: skip
         x, v, angle, omega, self.keys, self.lam = out[:6]
         self.last = self.report
-        self.report = _Report(*out[6:10])
-        if len(out[10]):
-            self.report.sensing = out[10]
-        c._touching = out[11]
+        self.report = _Report.of_table(out[6], out[7])
+        if len(out[8]):
+            self.report.sensing = out[8]
+        c._touching = out[9]
         # Whether a body may be fast (engine.dynamics.game_continuous); what the World checks.
-        self.continuous.maybe = out[12]
-        sums = out[13:16]
+        self.continuous.maybe = out[10]
+        sums = out[11:14]
         # The joints' impulses: solve's outputs in place in their arrays (after the bodies'
         # 11 and the contacts' 18, as the joints' report reads them).
         # The bodies' x, y and angle after it (with the static body's) where a pymunk
@@ -365,8 +384,8 @@ class GameStep:
         self.joints.report(joints[1], head + joints[0], self.substeps, joints[0])
         # Stage 9: the fast bodies swept to their time of impact (engine.dynamics.game_continuous),
         # where step_loop says a body may be fast.
-        self.continuous.sweep(store, sc, x, angle, out[16])
-        self.pile = out[17]
+        self.continuous.sweep(store, sc, x, angle, out[14])
+        self.pile = out[15]
         self.sums = None if self.continuous.hits else sums  # (a body set back: summed again)
         return x, v, angle, omega
 
