@@ -209,6 +209,7 @@ class GameStep:
         self._places: tuple[ShapeTable, StaticShapes, narrowphase.Places] | None = None
         self._part_places: tuple[Parts, StaticShapes, narrowphase.Places] | None = None
         self._kept_layout: tuple[Any, Any, Any] | None = None  # (``_layout``)
+        self._kept_args: tuple[Any, ...] | None = None  # (``_scene_args``)
         self._every: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # triu_indices by n
         # The bodies' radii and their median (the radii are a new array when bodies come or go).
         self._median: tuple[np.ndarray, float] | None = None
@@ -335,13 +336,12 @@ class GameStep:
         if len(c.asleep) != n or len(c.still) != n or len(c._group) != n:
             c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
-        table, places, statics, cs = sc.table, sc.places, sc.statics, sc.cs
+        table, places, statics = sc.table, sc.places, sc.statics
         # The shapes by part (engine.geometry.shaped.Parts): a body of one shape is one part,
         # itself; where a body is of several, the parts' tables (``_part_places``).
         layout = self._layout(table, statics, places)
-        places, kind, body_parts, part_of = layout
         joints = self.joints.arrays(state, store, n)
-        t = places.tables
+        shape_args, static_args = self._scene_args(layout, sc)
         f64, i64 = np.float64, np.int64
         asc = np.ascontiguousarray
         if c._group.dtype != i64:
@@ -354,13 +354,9 @@ class GameStep:
             asc(accel, f64), asc(torque, f64), asc(store.kinematic), asc(store.radius, f64),
             asc(margin, f64), sc.sensors, asc(store.group, i64), asc(store.categories, i64),
             asc(store.mask, i64), asc(store.slots(), i64), asc(store.friction, f64),
-            asc(store.restitution, f64), places.body_circle, places.body_index, kind,
-            body_parts, part_of, c.asleep, c.still, c._group, float(c.sleep_time), dt,
-            *candidates, asc(sc.owner, i64), asc(sc.bounds, f64), places.static_circle,
-            places.static_index, cs.sensor, cs.floats, asc(cs.surface), cs.ints,
-            *t.kernel_polygons, t.center, t.round,
-            asc(statics.half_planes.point, f64), asc(statics.half_planes.normal, f64), sc.apart,
-            sc.ignored, self.keys, self.lam, *self.joints.packed, cs.serial, asc(store.row_of, i64),
+            asc(store.restitution, f64), *shape_args, c.asleep, c.still, c._group,
+            float(c.sleep_time), dt, *candidates, *static_args, sc.apart, sc.ignored,
+            self.keys, self.lam, *self.joints.packed, sc.cs.serial, asc(store.row_of, i64),
             asc(last.keys, i64), asc(last.table(), f64), self.substeps,
             solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
             solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD, LINEAR_SLOP,
@@ -388,6 +384,40 @@ class GameStep:
         self.pile = out[15]
         self.sums = None if self.continuous.hits else sums  # (a body set back: summed again)
         return x, v, angle, omega
+
+    def _scene_args(self, layout: Any, sc: _Scene) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+        """The compiled step's arguments that change only with the shapes and the colliders:
+        the shapes by part (``_layout``), and the static shapes, colliders and tables, as the
+        kernel takes them. Kept while ``layout`` and the scene's colliders' and static shapes'
+        arrays are the same objects (each is made again, never written into, where the World
+        changes them); made again each step where one had to be copied to be contiguous."""
+        kept = self._kept_args
+        if (
+            kept is not None
+            and kept[0] is layout
+            and kept[1] is sc.owner
+            and kept[2] is sc.bounds
+            and kept[3] is sc.cs
+            and kept[4] is sc.statics
+        ):
+            return kept[5], kept[6]
+        places, kind, body_parts, part_of = layout
+        t, cs, planes = places.tables, sc.cs, sc.statics.half_planes
+        f64, i64 = np.float64, np.int64
+        asc = np.ascontiguousarray
+        shape_args = (places.body_circle, places.body_index, kind, body_parts, part_of)
+        taken = (asc(sc.owner, i64), asc(sc.bounds, f64), asc(cs.surface), asc(planes.point, f64),
+                 asc(planes.normal, f64))  # fmt: skip
+        owner, bounds, surface, point, normal = taken
+        static_args = (owner, bounds, places.static_circle, places.static_index, cs.sensor,
+                       cs.floats, surface, cs.ints, *t.kernel_polygons, t.center, t.round,
+                       point, normal)  # fmt: skip
+        original = (sc.owner, sc.bounds, cs.surface, planes.point, planes.normal)
+        if all(a is b for a, b in zip(taken, original, strict=True)):
+            self._kept_args = (layout, sc.owner, sc.bounds, cs, sc.statics, shape_args, static_args)
+        else:
+            self._kept_args = None  # (a copy: read again at the next step)
+        return shape_args, static_args
 
     def _layout(
         self, table: ShapeTable, statics: StaticShapes, places: narrowphase.Places
