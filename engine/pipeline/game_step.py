@@ -163,24 +163,21 @@ class _Report:
     impulses: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     sensing: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
 
+    #: The (t, 6) table whose columns the three arrays above are, where the fast path's step
+    #: made them so (``of_table``); None where they are arrays of their own.
+    packed: np.ndarray | None = None
+
     @classmethod
     def of_table(cls, keys: np.ndarray, table: np.ndarray) -> _Report:
         """The report of the fast path's step: ``table`` (t, 6) each contact's point, normal
-        and impulse, whose columns the three arrays are (views: ``table`` gives them back)."""
-        return cls(keys, table[:, 0:2], table[:, 2:4], table[:, 4:6])
+        and impulse, the three arrays its columns (views)."""
+        return cls(keys, table[:, 0:2], table[:, 2:4], table[:, 4:6], packed=table)
 
     def table(self) -> np.ndarray:
-        """The points, normals and impulses as one table (t, 6), C-contiguous: the one they
-        are the columns of (``of_table``), or one made of them."""
-        base = self.points.base
-        if (
-            base is not None
-            and self.normals.base is base
-            and self.impulses.base is base
-            and base.shape == (len(self.keys), 6)
-            and base.flags.c_contiguous
-        ):
-            return base  # type: ignore[no-any-return]
+        """The points, normals and impulses as one table (t, 6): ``packed``, or one made of
+        them."""
+        if self.packed is not None:
+            return self.packed
         return np.hstack([self.points, self.normals, self.impulses])
 
 
