@@ -717,8 +717,8 @@ def report_loop(
     ``contacts_loop`` gave them; ``ln``, ``lt``, ``lh``, ``total``: the solver's impulses (a
     substep's normal and tangent, the held load, the step's normal); ``slots`` by row,
     ``owner`` each static shape's collider place. Returns the kept keys and impulses and held
-    loads ((k, 3)), then the touching
-    contacts' keys, points, normals and impulses ((t, 2) each)."""
+    loads ((k, 3)), then the touching contacts' keys and their points, normals and impulses as
+    the columns of one table (t, 6)."""
     n = len(slots)
     k = len(ca)
     real = 0
@@ -742,9 +742,7 @@ def report_loop(
         if touch[i]:
             t += 1
     event = np.empty(t, dtype=np.int64)
-    point = np.empty((t, 2))
-    normal = np.empty((t, 2))
-    impulse = np.empty((t, 2))
+    table = np.empty((t, 6))  # each one's point, normal and impulse
     e = 0
     for i in range(k):  # the event keys first, to sort the touching contacts by them
         if not touch[i]:
@@ -772,8 +770,8 @@ def report_loop(
         tt = (lt[2 * i] + (0.0 + lt[2 * i + 1])) * substeps
         jx = -(tn * nx[i] + tt * -ny[i])
         jy = -(tn * ny[i] + tt * nx[i])
-        point[e, 0], point[e, 1] = px[i], py[i]
-        normal[e, 0], normal[e, 1] = -nx[i] * first, -ny[i] * first
-        impulse[e, 0], impulse[e, 1] = jx * first, jy * first
+        table[e, 0], table[e, 1] = px[i], py[i]
+        table[e, 2], table[e, 3] = -nx[i] * first, -ny[i] * first
+        table[e, 4], table[e, 5] = jx * first, jy * first
         e += 1
-    return kept[order], lam[order], event[by_key], point[by_key], normal[by_key], impulse[by_key]
+    return kept[order], lam[order], event[by_key], table[by_key]

@@ -266,7 +266,7 @@ def step_loop(
         found[8], sep, face, fround,
     )  # fmt: skip
     # -- what the contacts did (engine.pipeline.game_contacts.report_loop) -------------------------
-    kept, lam, event, point, normal, impulse = report_loop(
+    kept, lam, event, table = report_loop(
         ca, cb, nx, ny, count, sep, keys, place, px, py, ln, lt, lh, total, slots, owner, serial,
         substeps, slop,
     )  # fmt: skip
@@ -287,22 +287,9 @@ def step_loop(
                     held[k] = True
                     extra += 1
             break
-    # The touching contacts' points, normals and impulses as the columns of one table
-    # (engine.pipeline.game_step's _Report: one array returned where three were).
-    touched = len(event)
-    table = np.empty((touched + extra, 6))
-    for e in range(touched):
-        table[e, 0], table[e, 1] = point[e, 0], point[e, 1]
-        table[e, 2], table[e, 3] = normal[e, 0], normal[e, 1]
-        table[e, 4], table[e, 5] = impulse[e, 0], impulse[e, 1]
     if extra:
         event = np.concatenate((event, last_keys[held]))
-        e = touched
-        for k in range(len(last_keys)):
-            if held[k]:
-                for c in range(6):
-                    table[e, c] = last_table[k, c]
-                e += 1
+        table = np.concatenate((table, last_table[held]))
         order = stable_order(event)  # stable, as numpy's: sorted by key
         event, table = event[order], table[order]
     sensing = np.empty(len(sense_row), dtype=np.int64)
