@@ -95,6 +95,10 @@ class GameJoints:
         # The last step's rows as a whole: (the World's key and engine.dynamics.links.edits()
         # then, the joints, their inputs), where no row's inputs change every step.
         self._inputs: tuple[Any, list[Any], list[list[Any]]] | None = None
+        # The rows' owners (``arrays``): the World's links, springs and mouse joints lists and
+        # their lengths as last read, and the owners made of them.
+        self._owners: tuple[list[Any], list[Any], list[Any], tuple[int, ...], list[Any]] | None
+        self._owners = None
         # The joints last reported, each one's kind, and whether any is a pymunk constraint.
         self._kinds: tuple[list[Any], list[int], bool] = ([], [], False)
 
@@ -118,10 +122,24 @@ class GameJoints:
         inputs, then the 6 impulses kept from the last step, the warm start): mouse joints,
         links and joints, springs."""
         # A Pin that holds its body still makes it kinematic (WorldState.links_changed): the
-        # solver's static body in all but name. Every other link is a row.
-        joints = [j for j in state.links if not (isinstance(j, Pin) and j.holds)]
-        springs = list(state.springs.items)
-        ends = [*state.drags.items, *joints, *springs]
+        # solver's static body in all but name. Every other link is a row. Kept while the
+        # World's three lists are the same objects of the same lengths (each grows in place
+        # or is made anew: engine.pipeline.membership; a pin's ``holds`` is fixed when made).
+        links, springs, drags = state.links, state.springs.items, state.drags.items
+        sizes = (len(links), len(springs), len(drags))
+        owners = self._owners
+        if (
+            owners is not None
+            and owners[0] is links
+            and owners[1] is springs
+            and owners[2] is drags
+            and owners[3] == sizes
+        ):
+            ends = owners[4]
+        else:
+            joints = [j for j in links if not (isinstance(j, Pin) and j.holds)]
+            ends = [*drags, *joints, *springs]
+            self._owners = (links, springs, drags, sizes, ends)
         # Each row's inputs change only where the World's bodies or the joint's settings do
         # (_row_token): kept by joint while the bodies' rows are the same.
         key = (state.version, n, id(store))

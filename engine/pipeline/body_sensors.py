@@ -37,6 +37,10 @@ if TYPE_CHECKING:
 
 __all__ = ["sensed"]
 
+#: No keys (read only: returned by ``sensed`` every step where no sensor body overlaps anything).
+_NONE = np.zeros(0, dtype=np.int64)
+_NONE.flags.writeable = False
+
 
 def sensed(state: WorldState, slots: np.ndarray | None, serials: np.ndarray | None) -> np.ndarray:
     """The contact keys (engine.dynamics.events) of what each sensor body overlaps now: with other
@@ -44,12 +48,11 @@ def sensed(state: WorldState, slots: np.ndarray | None, serials: np.ndarray | No
     colliders' serial numbers in the World's order; None: no colliders). ``slots``: the
     bodies' slots by row (None: the store's, read only where a body is a sensor)."""
     store = state.store
-    none = np.zeros(0, dtype=np.int64)
     if store is None or store.dim != 2:
-        return none
+        return _NONE
     rows = _sensor_rows(state)
     if not rows:
-        return none
+        return _NONE
     if slots is None:
         slots = store.slots()
     bodies = state.bodies
@@ -88,7 +91,7 @@ def sensed(state: WorldState, slots: np.ndarray | None, serials: np.ndarray | No
                 ):
                     continue
             found.append(collider_keys(np.array([slots[s]]), serials[[k]]))
-    return np.concatenate(found) if found else none
+    return np.concatenate(found) if found else _NONE
 
 
 def _parts_of(table: Any, row: int) -> tuple[Any, list[int]]:

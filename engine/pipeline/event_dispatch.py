@@ -172,11 +172,12 @@ def _changes(report: Any, other: np.ndarray, t: float, began: bool) -> list[Any]
         new = [i for i, k in enumerate(listed) if k not in known]
         if not new:
             return []
+        points, normals, impulses = report.points, report.normals, report.impulses
         rows = zip(
             [listed[i] for i in new],
-            [report.points[i].tolist() for i in new],
-            [report.normals[i].tolist() for i in new],
-            [report.impulses[i].tolist() for i in new],
+            [points[i].tolist() for i in new],
+            [normals[i].tolist() for i in new],
+            [impulses[i].tolist() for i in new],
             strict=True,
         )
     else:
@@ -299,11 +300,19 @@ def report(state: WorldState) -> None:
         return
     events = state.events
     ledger = events.ledger
+    # Which kinds of handler there are, read again when one is added or taken off (the list
+    # grows in place or is made anew: ``add_handler``).
+    handlers = state.handlers
+    kinds = state.handler_kinds
+    if kinds is None or kinds[0] is not handlers or kinds[1] != len(handlers):
+        begin, end, post = (any(h[w] is not None for h in handlers) for w in (1, 2, 3))
+        kinds = state.handler_kinds = (handlers, len(handlers), (begin, end, post))
+    asked = kinds[2]
     # (A kind with no event this step is passed over before the handlers are looked at:
     # most steps of a game begin and end nothing.)
     nothing = (not ledger.began, not ledger.ended and not ledger.removed, False)
     for which in (1, 2, 3):
-        if nothing[which - 1] or not any(h[which] is not None for h in state.handlers):
+        if nothing[which - 1] or not asked[which - 1]:
             continue
         event_list = events.began if which == 1 else events.ended if which == 2 else events.touching
         for ev in event_list:

@@ -60,7 +60,6 @@ Box2D's ``isBullet`` is): a thin box turning fast that is none may pass a free p
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -151,34 +150,49 @@ class _Scene(NamedTuple):
     ignored: np.ndarray
 
 
-@dataclass
 class _Report:
     """What the last step's contacts did, for the events: the touching contacts' event keys
     (sorted), each with a point, the normal toward the key's first body and the impulse (N s)
-    on it."""
+    on it, as the columns of one (t, 6) table (``packed``: the fast path's step reads and
+    writes it whole); and the keys of what the sensors hold (``sensing``)."""
 
-    keys: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
-    points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
-    normals: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
-    impulses: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
-    sensing: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    __slots__ = ("keys", "packed", "sensing")
 
-    #: The (t, 6) table whose columns the three arrays above are, where the fast path's step
-    #: made them so (``of_table``); None where they are arrays of their own.
-    packed: np.ndarray | None = None
+    def __init__(
+        self,
+        keys: np.ndarray | None = None,
+        packed: np.ndarray | None = None,
+        sensing: np.ndarray | None = None,
+    ) -> None:
+        self.keys = np.zeros(0, dtype=np.int64) if keys is None else keys
+        self.packed = np.zeros((0, 6)) if packed is None else packed
+        self.sensing = np.zeros(0, dtype=np.int64) if sensing is None else sensing
 
     @classmethod
-    def of_table(cls, keys: np.ndarray, table: np.ndarray) -> _Report:
-        """The report of the fast path's step: ``table`` (t, 6) each contact's point, normal
-        and impulse, the three arrays its columns (views)."""
-        return cls(keys, table[:, 0:2], table[:, 2:4], table[:, 4:6], packed=table)
+    def of(
+        cls, keys: np.ndarray, points: np.ndarray, normals: np.ndarray, impulses: np.ndarray,
+        sensing: np.ndarray | None = None,
+    ) -> _Report:  # fmt: skip
+        """The report of contacts ``keys`` with their points, normals and impulses ((t, 2)
+        each) apart."""
+        return cls(keys, np.hstack([points, normals, impulses]), sensing)
 
-    def table(self) -> np.ndarray:
-        """The points, normals and impulses as one table (t, 6): ``packed``, or one made of
-        them."""
-        if self.packed is not None:
-            return self.packed
-        return np.hstack([self.points, self.normals, self.impulses])
+    # (Views taken when read: the fast path's step makes a report every step, and the events
+    # read these only where a contact began or ended.)
+    @property
+    def points(self) -> np.ndarray:
+        """Each contact's point (t, 2), length units."""
+        return self.packed[:, 0:2]
+
+    @property
+    def normals(self) -> np.ndarray:
+        """Each contact's unit normal toward the key's first body (t, 2)."""
+        return self.packed[:, 2:4]
+
+    @property
+    def impulses(self) -> np.ndarray:
+        """Each contact's impulse on the key's first body over the step (t, 2), N s."""
+        return self.packed[:, 4:6]
 
 
 class GameStep:
@@ -354,13 +368,13 @@ class GameStep:
             asc(store.restitution, f64), *shape_args, c.asleep, c.still, c._group,
             float(c.sleep_time), dt, *candidates, *static_args, sc.apart, sc.ignored,
             self.keys, self.lam, *self.joints.packed, sc.cs.serial, asc(store.row_of, i64),
-            asc(last.keys, i64), asc(last.table(), f64), self.substeps,
+            asc(last.keys, i64), asc(last.packed, f64), self.substeps,
             solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
             solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD, LINEAR_SLOP,
         )  # fmt: skip
         x, v, angle, omega, self.keys, self.lam = out[:6]
         self.last = self.report
-        self.report = _Report.of_table(out[6], out[7])
+        self.report = _Report(out[6], out[7])
         if len(out[8]):
             self.report.sensing = out[8]
         c._touching = out[9]
@@ -476,7 +490,7 @@ class GameStep:
         }
 
         def report(r: tuple[Any, ...]) -> _Report:
-            return _Report(back(r[0]), r[1].copy(), r[2].copy(), r[3].copy(), back(r[4]))
+            return _Report.of(back(r[0]), r[1].copy(), r[2].copy(), r[3].copy(), back(r[4]))
 
         self.report, self.last = report(now), report(last)
 
@@ -767,13 +781,8 @@ class GameStep:
         if keep.any():
             keys = np.concatenate([now.keys, last.keys[keep]])
             order = np.argsort(keys, kind="stable")  # the report stays sorted by key
-            self.report = _Report(
-                keys[order],
-                np.concatenate([now.points, last.points[keep]])[order],
-                np.concatenate([now.normals, last.normals[keep]])[order],
-                np.concatenate([now.impulses, last.impulses[keep]])[order],
-                now.sensing,
-            )
+            packed = np.concatenate([now.packed, last.packed[keep]])[order]
+            self.report = _Report(keys[order], packed, now.sensing)
 
     def _collide(
         self, sc: _Scene, store: Any, pairs: np.ndarray, faces: np.ndarray, margin: np.ndarray,
@@ -947,11 +956,8 @@ class GameStep:
         # Sorted by key (stably), as the fast path's report: the events' searches need no sort.
         picked = np.flatnonzero(touch)
         picked = picked[np.argsort(keys[picked], kind="stable")]
-        self.report = _Report(
-            keys[picked],
-            found.point[picked],
-            (-nrm * sign)[picked],
-            (j * sign)[picked],
+        self.report = _Report.of(
+            keys[picked], found.point[picked], (-nrm * sign)[picked], (j * sign)[picked]
         )
 
 

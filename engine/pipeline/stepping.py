@@ -87,6 +87,19 @@ def plan(state: WorldState, dt: float, model: ForceModel, name: str) -> Plan:
     return made
 
 
+def _read_only(a: np.ndarray) -> np.ndarray:
+    """``a``, made read only (a constant handed to every step)."""
+    a.flags.writeable = False
+    return a
+
+
+#: No faces and no pairs ignored by pre_solve (read only: the most steps' ``ignored``).
+_NONE_IGNORED = (
+    _read_only(np.zeros((0, 2), dtype=np.int64)),
+    _read_only(np.zeros(0, dtype=np.int64)),
+)
+
+
 def advance(state: WorldState, dt: float, made: Plan) -> bool:
     """Take one step of ``dt`` (s) by the plan; True: the affine kernel is ready to take it
     instead (nothing has moved yet)."""
@@ -124,7 +137,7 @@ def advance(state: WorldState, dt: float, made: Plan) -> bool:
         if state.prepare_affine(dt, model, name):
             return True
     apart = None
-    ignored = (np.zeros((0, 2), dtype=np.int64), np.zeros(0, dtype=np.int64))
+    ignored = _NONE_IGNORED
     if state.collision_handlers and state.bodies:
         # The pre_solve callbacks, before anything moves: the pairs they ignore are filtered
         # for this step (engine.pipeline.collision_handlers): with colliders by the contacts, pairs

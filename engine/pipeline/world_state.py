@@ -84,6 +84,9 @@ class WorldState:
         self.pairs_on = False  # whether any two bodies may collide
         # on_contact handlers: (target, begin, end, post_solve).
         self.handlers: list[tuple[Any, Any, Any, Any]] = []
+        # Which kinds of them there are (begin, end, post_solve), and the list and its length
+        # they were read from (engine.pipeline.event_dispatch.report).
+        self.handler_kinds: tuple[list[Any], int, tuple[bool, bool, bool]] | None = None
         # on_collision handlers by collision type (engine.pipeline.collision_handlers).
         self.collision_handlers: list[Any] = []
         self.events = WorldEvents()  # the contacts kept open, and each step's events
