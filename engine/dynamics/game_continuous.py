@@ -623,7 +623,10 @@ class Continuous:
         n = len(x)
         if not self.enabled or not n:
             return
-        if sc.table.parts is not None:
+        parts = sc.table.parts
+        if self.fast and not self.maybe and parts is None:
+            return  # (step_loop's test: no body may be fast; the most steps of a game)
+        if parts is not None:
             self._sweep_parts(store, sc, x, angle, ended)
             return
         places = sc.places
