@@ -1219,6 +1219,53 @@ def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
     check_as_if_alone(scene)
 
 
+#: Found exploring (fast path, 1,500 fresh examples a test, 2026-12-06; the numpy path gives
+#: the same bits; not shrunk: hypothesis ran out of time): ten balls of two worlds in one room
+#: with a Plane and a Circle, no gravity, semi-implicit Euler. At step 48 one ball's velocity
+#: in the two worlds together is 5.6e-17 m/s (an ulp) off what its world alone gives: some sum
+#: of the exact models still takes the other world's bodies in its order.
+ONE_ULP_APART: Scene = {
+    "balls": [
+        (-5.03350878850002, -3.6637177258934783, 6.907921583239445, 3.6637177258934783,
+         0.33110941608887895, 59.33772564094753, 0.12, 1.671147905774768, 5),
+        (-0.7096430903546247, 0.0012398490400717319, 0.726385885433949, -0.0012398490400717319,
+         0.2, 0.6308427988712768, 0.9311059619802922, 1.6579031981938623, 4),
+        (-6.040210546200024, -4.396461271072174, 6.907921583239445, 3.6637177258934783,
+         0.33110941608887895, 59.33772564094753, 0.12, 1.671147905774768, 5),
+        (6.845492932809496e-62, 3.38227950658785, -2.7035091924136347, -6.172717448483433,
+         1.3696346843501837, 186.9724181943172, 0.6537665977529591, 1.2548788131127446, 8),
+        (-7.046912303900028, -5.129204816250869, 6.907921583239445, 3.6637177258934783,
+         0.33110941608887895, 59.33772564094753, 0.12, 1.671147905774768, 5),
+        (-8.053614061600031, -5.861948361429565, 6.907921583239445, 3.6637177258934783,
+         0.33110941608887895, 59.33772564094753, 0.12, 1.671147905774768, 5),
+        (4.018330018240274, 1.0045677047594577, -2.70867804490172, 1.7219412965184324,
+         1.990729906214189, 1.0, 0.9, 5.960464477539063e-08, 4),
+        (-5.2284228477862005, 1.408172732082221e-137, 4.616646174751383, -0.7294996280477457,
+         0.2000000000015963, 75.36829979579721, 0.6711101215776679, 0.0, 4),
+        (0.0, 5.154736349681525, 0.0, -3.6819545354868035, 0.27340812447556234, 1.0, 0.0, 0.0, 4),
+        (0.0, 0.0, 0.0, 0.0, 0.3796181395832032, 0.02115163811415639, 0.0, 0.9805537674266576, 7),
+    ],
+    "colliders": [
+        Box((-10.900140520995583, -10.900140520995583), (10.900140520995583, 10.900140520995583),
+            restitution=0.0, friction=0.0),
+        Plane((0.0, -8.38472347768891), (0.0, 1.0), restitution=0.0, friction=0.0),
+        Circle((0.0, -2.235607316872737),
+            1.6494190387004402, restitution=0.0, friction=1.6706420599945249),
+    ],
+    "gravity": False,
+    "method": "semi_implicit_euler",
+    "steps": 60,
+}  # fmt: skip
+
+
+@xfail(
+    "two worlds in one room, one ball's velocity an ulp (5.6e-17 m/s) off its world alone's "
+    "at step 48 (both paths): not diagnosed yet"
+)
+def test_filtered_apart_worlds_move_as_if_alone_to_the_last_bit_found_exploring() -> None:
+    check_as_if_alone(ONE_ULP_APART)
+
+
 #: Found exploring (fast path, 2,000 examples, 2026-12-05; numpy alike, and before that day's
 #: changes): five balls of the first world, 0.001 to 10 kg and 0.2 to 55 m in radius, thrown
 #: at the origin at 1,100 to 3,300 m/s (50 m a step), no colliders, gravity on; a 0.01 kg ball
