@@ -1222,8 +1222,10 @@ def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
 #: Found exploring (fast path, 1,500 fresh examples a test, 2026-12-06; the numpy path gives
 #: the same bits; not shrunk: hypothesis ran out of time): ten balls of two worlds in one room
 #: with a Plane and a Circle, no gravity, semi-implicit Euler. At step 48 one ball's velocity
-#: in the two worlds together is 5.6e-17 m/s (an ulp) off what its world alone gives: some sum
-#: of the exact models still takes the other world's bodies in its order.
+#: in the two worlds together was 5.6e-17 m/s (an ulp) off what its world alone gives: a chain
+#: of impacts in each world reached the rounds' cap and collapsed (engine.exact.pair_impacts,
+#: ``plastic``), the two worlds' pairs in one call whose sweeps' count and tolerance were the
+#: whole room's. Now each group of linked bodies collapses on its own.
 ONE_ULP_APART: Scene = {
     "balls": [
         (-5.03350878850002, -3.6637177258934783, 6.907921583239445, 3.6637177258934783,
@@ -1258,10 +1260,6 @@ ONE_ULP_APART: Scene = {
 }  # fmt: skip
 
 
-@xfail(
-    "two worlds in one room, one ball's velocity an ulp (5.6e-17 m/s) off its world alone's "
-    "at step 48 (both paths): not diagnosed yet"
-)
 def test_filtered_apart_worlds_move_as_if_alone_to_the_last_bit_found_exploring() -> None:
     check_as_if_alone(ONE_ULP_APART)
 

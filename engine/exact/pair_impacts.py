@@ -549,7 +549,15 @@ def impacts_in_order(
             its[pa[collapse]] = its[pb[collapse]] = True
             near = norm(X[pa] - X[pb]) <= pR * (1.0 + 1e-9)
             collapse |= soft & near & (its[pa] | its[pb])
-            plastic(pa[collapse], pb[collapse], X, V, w, 2.0 * dt * float(norm(P).max()))
+            # Group by group (bodies linked by pairs that can meet), each with its own rest
+            # speed: a world filtered apart collapses as if the other were not there (its
+            # sweeps' count and tolerance were the whole room's: an ulp off, found exploring).
+            ca, cb = pa[collapse], pb[collapse]
+            labels = group[ca]
+            for g in np.unique(labels):
+                k = labels == g
+                own_bodies = np.union1d(ca[k], cb[k])
+                plastic(ca[k], cb[k], X, V, w, 2.0 * dt * float(norm(P[own_bodies]).max()))
     return Rounds(found, rounds, capped, None)
 
 
@@ -935,7 +943,7 @@ def plastic(
         return
     moves = w > 0.0
     order = coloring.batches(coloring.colors(pa, pb, moves), pa, pb, moves)
-    speed = float(norm(V).max())
+    speed = float(norm(V[np.union1d(pa, pb)]).max())  # (the pairs' own bodies': their rounding)
     lam = stopping(pa, pb, nrm, V, w, rest + 1e-12 * speed)
     if lam is None:
         lam = np.zeros(len(pa))
