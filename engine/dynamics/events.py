@@ -30,6 +30,7 @@ added first is always ``event.body``) or ``COLLIDER | serial``.
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -269,6 +270,56 @@ def _open_changes(
     return keys[~after].tolist(), gone[parted].tolist()
 
 
+def _open_events(
+    t0: float,
+    t_end: float,
+    raw: Callable[[], list[Spec]] | None,
+    prev: np.ndarray,
+    keys: np.ndarray,
+) -> tuple[list[Spec], list[Spec]]:
+    """The began and ended specs of a step of ``ContactLedger.settle_open`` (its doc), from
+    the keys open before it (``prev``) to those touching after it (``keys``, sorted), with
+    the reports ``raw()`` (None: none) between them."""
+    # A game's dozen keys in Python sets; a pile's thousands by binary searches.
+    few = len(prev) + len(keys) <= _FEW
+    before = set(prev.tolist()) if few else None
+    touching_set: set[int] | None = None  # (keys as a set: made where needed)
+    state: dict[int, bool] = {}  # open after the reports, of the keys they name
+    began: list[Spec] = []
+    ended: list[Spec] = []
+    specs = [] if raw is None else raw()
+    if specs:
+        specs = _in_step(specs, t0, t_end)
+        named = [s[1] for s in specs]
+        if before is not None:
+            known = [k in before for k in named]
+        else:
+            known = _isin(np.array(named, dtype=np.int64), prev).tolist()
+        for spec, was_open in zip(specs, known, strict=True):
+            k = spec[1]
+            s = state.get(k, was_open)
+            if spec[2]:
+                if not s:
+                    state[k] = True
+                    began.append(spec)
+            elif s:
+                state[k] = False
+                ended.append(spec)
+        opened = [k for k, s in state.items() if s]
+        if few:
+            touching_set = set(keys.tolist())
+            inside = all(k in touching_set for k in opened)
+        else:
+            inside = bool(_isin(np.array(opened, dtype=np.int64), keys).all())
+        # (settle_open's caller's promise: a begin is of a key touching at the step's end.)
+        assert inside, "a contact began that does not touch at the step's end"
+    opens, parts = _open_changes(prev, keys, state, before, touching_set)
+    began += [(t_end, k, True, None) for k in opens]
+    ended += [(t_end, k, False, None) for k in parts]
+    ended.sort(key=lambda s: s[0])
+    return began, ended
+
+
 class ContactLedger:
     """The contacts open after the last step, and the events that opened and closed them.
 
@@ -282,8 +333,10 @@ class ContactLedger:
     def __init__(self) -> None:
         self.keys = np.zeros(0, dtype=np.int64)  # the open contacts, sorted
         self.exact = np.zeros(0, dtype=np.int64)  # of them, sensors': open exactly while inside
-        self.began: list[Spec] = []  # the last step's, in time order
-        self.ended: list[Spec] = []
+        self._began: list[Spec] = []  # the last step's (``began``), in time order
+        self._ended: list[Spec] = []
+        # The last step's began and ended lists yet to be made (``settle_open``), or None.
+        self._later: Callable[[], tuple[list[Spec], list[Spec]]] | None = None
         self.pending: list[ContactEvent] = []  # ends by removal, for the next step's report
         self.removed: list[ContactEvent] = []  # those reported with the last step
         # Ends the solvers reported for contacts still within their slack: if the contact
@@ -294,6 +347,36 @@ class ContactLedger:
         # The last ``sensing`` as given (its bytes) and sorted (``_sorted``): a game's step
         # most often senses what the step before did.
         self._sensed: tuple[bytes, np.ndarray] = (b"", np.zeros(0, dtype=np.int64))
+
+    @property
+    def began(self) -> list[Spec]:
+        """The specs of the contacts that began in the last step, in time order."""
+        if self._later is not None:
+            self._make_later()
+        return self._began
+
+    @began.setter
+    def began(self, specs: list[Spec]) -> None:
+        self._later = None
+        self._began = specs
+
+    @property
+    def ended(self) -> list[Spec]:
+        """The specs of the contacts that ended in the last step, in time order."""
+        if self._later is not None:
+            self._make_later()
+        return self._ended
+
+    @ended.setter
+    def ended(self, specs: list[Spec]) -> None:
+        self._later = None
+        self._ended = specs
+
+    def _make_later(self) -> None:
+        """Make the last step's began and ended lists that ``settle_open`` left to be made."""
+        later, self._later = self._later, None
+        assert later is not None
+        self._began, self._ended = later()
 
     def state(self) -> tuple[Any, ...]:
         """A copy of the open contacts and the ends held for them (what a snapshot holds)."""
@@ -436,13 +519,16 @@ class ContactLedger:
         self,
         t0: float,
         t_end: float,
-        raw: list[Spec],
+        raw: Callable[[], list[Spec]] | None,
         touching: np.ndarray,
         gaps: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
     ) -> None:
         """``settle`` for a solver whose contacts are open exactly while they touch (the soft
         step, engine.pipeline.game_step: Box2D's and pymunk's rule), with nothing held at rest:
-        ``touching``, the keys touching now (and inside sensors), as ``settle``'s ``sensing``.
+        ``touching``, the keys touching now (and inside sensors), as ``settle``'s ``sensing``;
+        ``raw``, a function giving the reports (None: there are none), each begin among them
+        of a key in ``touching`` (the soft step's: a contact begins where it touches at the
+        step's end).
 
         Where every open contact is such (``exact`` is ``keys``) and no end is held, ``settle``
         measures no gap and holds no end, so its merge reduces to what is done here: the keys
@@ -451,58 +537,23 @@ class ContactLedger:
         after the reports, and an end for each open one no longer touching. The same events
         in the same order (tests/test_events_open.py), without the merge of every key: a
         game's contacts change in a tenth of its steps, and there the merge was most of the
-        events' cost. Otherwise (a World that switched from the exact solvers) ``settle``."""
+        events' cost. Otherwise (a World that switched from the exact solvers) ``settle``.
+
+        The open keys are settled now; the began and ended lists (and ``raw``) are made when
+        first read (``began``, ``ended``): from the keys and reports as this step left them, so
+        the same lists whenever they are read, and never, where nothing reads them before the
+        next step (a pile of a thousand balls, nobody listening: a fifth of its step)."""
         prev = self.keys
         if self.held or not same_keys(prev, self.exact):
-            self.settle(t0, t_end, raw, _NONE, touching, gaps)
+            self.settle(t0, t_end, [] if raw is None else raw(), _NONE, touching, gaps)
             return
-        if not raw and same_keys(touching, prev):
-            self._report_removed(t0)
+        self._report_removed(t0)
+        if raw is None and same_keys(touching, prev):
             self.began, self.ended = [], []
             return
         keys = self._sorted(touching)
-        # A game's dozen keys in Python sets; a pile's thousands by binary searches.
-        few = len(prev) + len(keys) <= _FEW
-        before = set(prev.tolist()) if few else None
-        touching_set: set[int] | None = None  # (keys as a set: made where needed)
-        state: dict[int, bool] = {}  # open after the reports, of the keys they name
-        began: list[Spec] = []
-        ended: list[Spec] = []
-        if raw:
-            raw = _in_step(raw, t0, t_end)
-            named = [s[1] for s in raw]
-            if before is not None:
-                known = [k in before for k in named]
-            else:
-                known = _isin(np.array(named, dtype=np.int64), prev).tolist()
-            for spec, was_open in zip(raw, known, strict=True):
-                k = spec[1]
-                s = state.get(k, was_open)
-                if spec[2]:
-                    if not s:
-                        state[k] = True
-                        began.append(spec)
-                elif s:
-                    state[k] = False
-                    ended.append(spec)
-            opened = [k for k, s in state.items() if s]
-            if few:
-                touching_set = set(keys.tolist())
-                inside = all(k in touching_set for k in opened)
-            else:
-                inside = bool(_isin(np.array(opened, dtype=np.int64), keys).all())
-            if not inside:
-                # A begin reported for a contact not touching at the step's end: ``settle``
-                # measures its gap (it may stay open within its slack).
-                self.settle(t0, t_end, raw, _NONE, touching, gaps)
-                return
-        self._report_removed(t0)
-        opens, parts = _open_changes(prev, keys, state, before, touching_set)
-        began += [(t_end, k, True, None) for k in opens]
-        ended += [(t_end, k, False, None) for k in parts]
-        ended.sort(key=lambda s: s[0])
-        self.began, self.ended = began, ended
         self.keys = self.exact = keys
+        self._later = partial(_open_events, t0, t_end, raw, prev, keys)
 
     def drop(self, involved: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
         """Close the open contacts for which ``involved(keys)`` is True (a body or collider

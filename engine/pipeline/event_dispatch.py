@@ -141,13 +141,13 @@ def _settle_soft(state: WorldState, t0: float, t_end: float) -> None:
     events = state.events
     now, last = game.report, game.last
     # Begins: touching now, not before (with the point, normal and impulse); ends: the other
-    # way round (where it last touched, with no impulse).
-    raw = []
+    # way round (where it last touched, with no impulse); found when the events are read
+    # (the ledger's ``settle_open``), from the two reports, which no later step changes.
+    raw = None
     # The same report (a step in which everything slept), or the same keys (most steps: the
     # same contacts touch as in the step before): none is new either way, nothing to search.
     if now is not last and not same_keys(now.keys, last.keys):
-        raw = _changes(now, last.keys, t_end, True)
-        raw += _changes(last, now.keys, t_end, False)
+        raw = partial(_both_changes, now, last, t_end)
     named = game.serials if state.contacts is not None else None  # this step's colliders'
     felt = sensed(state, None, named)
     sensing = now.keys
@@ -158,6 +158,12 @@ def _settle_soft(state: WorldState, t0: float, t_end: float) -> None:
 
 #: The most keys (a report's and the other's) whose changes ``_changes`` finds in a Python set.
 _FEW_KEYS = 64
+
+
+def _both_changes(now: Any, last: Any, t_end: float) -> list[Any]:
+    """The specs of the contacts of report ``now`` that began (not in ``last``), then of
+    those of ``last`` that ended (not in ``now``), at ``t_end`` (s)."""
+    return _changes(now, last.keys, t_end, True) + _changes(last, now.keys, t_end, False)
 
 
 def _changes(report: Any, other: np.ndarray, t: float, began: bool) -> list[Any]:
