@@ -399,7 +399,10 @@ class ContactLedger:
         keys = np.asarray(sensing, dtype=np.int64)
         raw = keys.tobytes()
         if raw != self._sensed[0]:
-            self._sensed = (raw, _unique(keys))
+            # The soft step's keys come sorted, each once (its report's): checked in a tenth of
+            # the time a sort takes (5 us against 47 us for a pile's 3,000 keys).
+            ordered = len(keys) < 2 or bool((keys[1:] > keys[:-1]).all())
+            self._sensed = (raw, keys.copy() if ordered else _unique(keys))
         return self._sensed[1]
 
     def _report_removed(self, t0: float) -> None:
