@@ -49,9 +49,10 @@ LONGEST = 12.0
 #: Frames drawn spread over the run, besides the first three and the last.
 SPREAD = 6
 #: (demo, scene) -> the seconds checked where a scene's whole layout shows sooner than LONGEST
-#: and its steps are slow: the tumbler's drum (500 boxes) turns once in 4 s, every phase of
-#: its frame, read-outs and pile shown.
-SHORTER: dict[tuple[str, str], float] = {("stack", "tumbler"): 4.0}
+#: and its steps are slow: the tumblers' drums (500 boxes) show their frame, read-outs and
+#: landed pile within 4 s; the stress scene's, at 90 degrees a second, turns once in that time
+#: (its 12 s took 87 s of the suite), Box2D's at 25 a quarter turn, its pile tumbling.
+SHORTER: dict[tuple[str, str], float] = {("stack", "tumbler"): 4.0, ("stack", "tumbler90"): 4.0}
 #: (demo, scene) -> words that may overlap in it, and why. Where overlap is the point only.
 ALLOWED: dict[tuple[str, str], tuple[str, ...]] = {}
 #: (demo, scene) -> a fault the checks of the drawn bodies found in a demo this test's change
