@@ -637,10 +637,8 @@ class Continuous:
             limit = SAFETY * least * (1.0 - 1e-9)
             kept = self._kept = (places, limit, least, core, centroid)
         x0, q0 = store.x, store.angle
-        if self.fast:
-            if not self.maybe:  # (step_loop's test)
-                return
-        elif not (
+        # (The fast path asked step_loop's test above; the numpy path asks it here.)
+        if not self.fast and not (
             (np.abs(x - x0).sum(axis=1) + np.abs(angle - q0) * kept[3] > kept[1]).any()
             or (ended < -DEEP * kept[2]).any()
         ):
