@@ -49,8 +49,10 @@ MAX_COLORS = 62
 def _lowest_free(mask: np.ndarray) -> np.ndarray:
     """The index of the lowest zero bit of each mask (int64), at most MAX_COLORS - 1."""
     free = ~mask & (mask + 1)  # the lowest zero bit, alone
-    # log2 of a power of two is its bit's place, exactly (2^k, k < 62, in float64).
-    out = np.log2(free.astype(np.float64)).astype(np.int64)
+    # 2^k = 0.5 * 2^(k + 1): frexp's exponent, less one, is its bit's place (k < 62: exact in
+    # float64). (frexp reads the float's bits, where a log2 is a float function whose last bit
+    # may differ with the processor's vector code.)
+    out = np.frexp(free.astype(np.float64))[1].astype(np.int64) - 1
     return np.minimum(out, MAX_COLORS - 1)
 
 
