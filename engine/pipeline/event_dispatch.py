@@ -88,9 +88,7 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
     raw = []
     resting = sensing = np.zeros(0, dtype=np.int64)
     if contacts is not None:
-        serials = np.array([events.serial(c) for c in contacts.colliders], dtype=np.int64).reshape(
-            -1
-        )
+        serials = events.serials(contacts.colliders, contacts.edits)
         raw += raw_specs(contacts.began_arrays, True, slots, serials)
         raw += raw_specs(contacts.ended_arrays, False, slots, serials)
         on = np.flatnonzero(contacts.rest >= 0)
@@ -118,7 +116,7 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
     # What the sensor bodies overlap now (engine.pipeline.body_sensors), kept open as a sensor's is.
     named = None
     if contacts is not None:
-        named = np.array([events.serial(c) for c in contacts.colliders], dtype=np.int64)
+        named = events.serials(contacts.colliders, contacts.edits)
     felt = sensed(state, slots, named)
     if len(felt):
         sensing = np.concatenate([sensing, felt])
@@ -250,7 +248,7 @@ def impulses(state: WorldState, keys: np.ndarray) -> dict[int, tuple[float, floa
     is_c, other = other_of(keys)
     serials = None
     if contacts is not None:
-        serials = np.array([state.events.serial(c) for c in contacts.colliders], np.int64)
+        serials = state.events.serials(contacts.colliders, contacts.edits)
         dv = state.contact_dv
         if dv is not None and len(dv) == len(store):
             for k, row, c, o in zip(
