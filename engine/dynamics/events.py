@@ -648,6 +648,7 @@ class WorldEvents:
         if kept is None or kept[0] is not colliders or kept[1] != edits or kept[2] != self._next:
             serial = self._serial
             out = np.array([serial[c] for c in colliders], dtype=np.int64).reshape(-1)
+            out.flags.writeable = False  # (shared by every reader until the colliders change)
             kept = self._kept_serials = (colliders, edits, self._next, out)
         return kept[3]
 
