@@ -350,6 +350,15 @@ class Plane(Collider):
             raise ValueError(
                 f"normal must be a nonzero direction such as (0, 1) (up), got {normal!r}"
             )
+        # A point's distance to the line, (x - px) nx + (y - py) ny, is at most
+        # |x - px| + |y - py| (|nx|, |ny| <= 1): finite for points near the origin while
+        # |px| + |py| is. Past that it overflows (found by the fuzz exploring: a plane through
+        # (1.8e308, 1.8e308) with normal (1, 1) told the origin's nearest point as (inf, inf)).
+        if not math.isfinite(abs(p[0]) + abs(p[1])):
+            raise ValueError(
+                f"point must keep the line's distances within the float range: |x| + |y| of "
+                f"{point!r} passes 1.8e308; give a point of the line nearer the origin"
+            )
         super().__init__(restitution, friction, sensor, filter, colour)
         self.point = Vector(*p)
         self.normal = Vector(*unit)
