@@ -1900,6 +1900,148 @@ def test_a_light_capsule_struck_into_the_floor_stays_out_with_the_iterations_the
     stays_in_the_room(THIN_CAPSULE_STRUCK_INTO_THE_FLOOR, iterations, 0.01)  # (4.5 cm at 4)
 
 
+# Found exploring the mixed scenes (1,500 examples, numpy path, 2026-12-06; the fast path alike,
+# to the same depth), on the exact models: a 0.1 kg box 0.1 m a side resting on the floor is
+# pressed into it by an 8.2 kg box spinning at 29 rad/s that comes down on it (a mass ratio of
+# 82, past the pile's 4 iterations: the World warns, "raise world.contact_iterations"). At
+# step 106 it is 5.8 cm in, its centre 8 mm past the floor's line, and out again two steps
+# later; with the 8 iterations the warning asks for it never goes in. Like the light capsule
+# above (taken back to where it touched the floor since its depth is counted in its least
+# extent), but a box: its depth is not taken back the same way. A strict xfail until it is.
+LIGHT_BOX_CRUSHED_INTO_THE_FLOOR: dict[str, Any] = (
+    {'half': (3.0000000000000004, 6.416290342610909),
+     'walls': 'polygons',
+     'wall_material': (0.3490459514914122, 0.2696716379759792),
+     'gravity': 17.727403725674876,
+     'steps': 120,
+     'snap': 108,
+     'kinematic': ('box', 1.334526332758128, 0.31711969096581594, -6.9919396623854),
+     'bodies': [{'kind': 'polygon',
+                 'geometry': ([0.3333333333333333, 0.36028206736166746, 0.5087173296804475], 1.0,
+                              0.1, 0.05),
+                 'mass': 0.47891520465273196,
+                 'restitution': 0.0,
+                 'friction': 0.0,
+                 'angle': 0.6081037198209281,
+                 'spin': 0.4928195177714837,
+                 'speed': 3.194679702111744e-221,
+                 'heading': 0.0,
+                 'fixed': True,
+                 'at': (-2.1660197824951064, 2.757492049942927)},
+                {'kind': 'box',
+                 'geometry': (0.1, 0.1, 0.0),
+                 'mass': 0.3333333333333333,
+                 'restitution': 0.36028206736166746,
+                 'friction': 0.5087173296804475,
+                 'angle': 0.8807420724621455,
+                 'spin': 0.9678479735473451,
+                 'speed': 0.0,
+                 'heading': 0.5,
+                 'fixed': True,
+                 'at': (-2.1660197824951064, -3.914349690096226)},
+                {'kind': 'box',
+                 'geometry': (0.1, 0.8050877794624978, 0.0),
+                 'mass': 0.1,
+                 'restitution': 1.6564311593274674e-224,
+                 'friction': 0.0002,
+                 'angle': 0.0,
+                 'spin': 0.0,
+                 'speed': 0.0,
+                 'heading': 0.25,
+                 'fixed': True,
+                 'at': (-2.1660197824951064, -2.246389255086438)},
+                {'kind': 'box',
+                 'geometry': (0.1, 0.1, 0.0),
+                 'mass': 0.1,
+                 'restitution': 0.0,
+                 'friction': 0.0,
+                 'angle': 0.0,
+                 'spin': 0.3333333333333333,
+                 'speed': 0.36028206736166746,
+                 'heading': 0.5087173296804475,
+                 'fixed': True,
+                 'at': (-2.1660197824951064, -5.582310125106014)},
+                {'kind': 'box',
+                 'geometry': (0.1, 0.41791522574668793, 0.05),
+                 'mass': 8.23317366468763,
+                 'restitution': 0.738501884711685,
+                 'friction': 3.416861303036848e-238,
+                 'angle': -0.025,
+                 'spin': -28.87244638573854,
+                 'speed': 2.0149097286551236,
+                 'heading': 1.3144872521634996,
+                 'fixed': False,
+                 'at': (-2.1660197824951064, 4.425452484952716)},
+                {'kind': 'disc',
+                 'geometry': (0.3333333333333333,),
+                 'mass': 3.4,
+                 'restitution': 0.7884711710048256,
+                 'friction': 1.468885269363741e-90,
+                 'angle': -0.8657499032917495,
+                 'spin': 17.2509279991299,
+                 'speed': 35.81088308702159,
+                 'heading': 2.362086590795954,
+                 'fixed': True,
+                 'at': (-0.4980593474853179, -5.582310125106014)},
+                {'kind': 'box',
+                 'geometry': (1.15, 1.1381107016705638, 0.0),
+                 'mass': 0.99999,
+                 'restitution': 0.4430449132413278,
+                 'friction': 0.7494656097446272,
+                 'angle': 1.2816110176263598,
+                 'spin': -4.181645357436253,
+                 'speed': 2.9668064458696838e-254,
+                 'heading': 5.960464477539063e-08,
+                 'fixed': False,
+                 'at': (-0.4980593474853179, -3.914349690096226)},
+                {'kind': 'polygon',
+                 'geometry': ([0.29549409779508035, 0.2630379474013446, 0.5908352469812327,
+                               0.7788377768497645],
+                              0.2, 0.15349372788676732, 0.05),
+                 'mass': 4.928466068372396,
+                 'restitution': 0.42720820327051656,
+                 'friction': 1.6282431981710861e-100,
+                 'angle': 0.3490459514914122,
+                 'spin': -2.2250738585072014e-308,
+                 'speed': 80.29313848701894,
+                 'heading': 0.1062294254004792,
+                 'fixed': False,
+                 'at': (-0.4980593474853179, 2.757492049942927)},
+                {'kind': 'polygon',
+                 'geometry': ([0.7292163296658272, 0.7215608827042513, 0.3900364451884284,
+                               0.9927556927135486, 0.36036011834841, 0.6937714639789518,
+                               0.6504044265683916, 0.33830281340005575],
+                              1.0, 0.4985790182256351, 0.05),
+                 'mass': 9.0,
+                 'restitution': 0.8897023577449967,
+                 'friction': 0.24116563040858235,
+                 'angle': 0.0,
+                 'spin': 0.0,
+                 'speed': 3.6833837495006136,
+                 'heading': 2.297199340745454,
+                 'fixed': True,
+                 'at': (-0.4980593474853179, 4.425452484952716)}],
+     'solver': 'exact'}
+)  # fmt: skip
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="a 0.1 kg box crushed 5.8 cm into the floor by an 8.2 kg spinning box on the exact "
+    "models at 4 iterations (warned): its centre 8 mm past the floor's line at step 106",
+)
+def test_a_light_box_crushed_into_the_floor_by_a_heavy_spinning_box_stays_in_the_room() -> None:
+    run(LIGHT_BOX_CRUSHED_INTO_THE_FLOOR)
+
+
+@pytest.mark.parametrize("iterations", [8, 16])
+def test_a_light_box_crushed_into_the_floor_stays_out_with_the_iterations_the_warning_asks(
+    iterations: int,
+) -> None:
+    stays_in_the_room(LIGHT_BOX_CRUSHED_INTO_THE_FLOOR, iterations, 0.01)  # (5.8 cm at 4)
+
+
 def test_a_thin_triangle_flipped_off_the_floor_by_a_landing_box_stays_out_of_it() -> None:
     # Found exploring the mixed scenes (500 examples, fast path, 2026-12-04; numpy alike),
     # reduced to two bodies: a thin triangle (1.24 by 0.12 m) lying on the floor is flipped by
