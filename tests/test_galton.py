@@ -70,12 +70,21 @@ def recorded() -> Recorded:
     return Recorded(scene, frames, [str(w.message) for w in caught])
 
 
+def fit(counts: np.ndarray) -> tuple[float, int, float, float, float]:
+    """A pour's chi-square against B(12, 1/2), its degrees of freedom and critical value at
+    ALPHA, and the counts' mean and variance (bins)."""
+    stat, df = galton.chi_square(counts, PMF)
+    k = np.arange(ROWS + 1)
+    mean = float((counts * k).sum() / counts.sum())
+    variance = float((counts * (k - mean) ** 2).sum() / counts.sum())
+    return stat, df, galton.chi_square_critical(df, ALPHA), mean, variance
+
+
 def test_a_thousand_poured_balls_fit_the_binomial_distribution(poured) -> None:
     board, seconds = poured
     counts = board.counts
     assert counts.sum() == 1000 and board.lost == 0 and not board.balls
-    stat, df = galton.chi_square(counts, PMF)
-    critical = galton.chi_square_critical(df, ALPHA)
+    stat, df, critical, mean, variance = fit(counts)
     print(
         f"\n1,000 balls in {seconds:.1f} s: counts {counts.tolist()}, "
         f"X^2 = {stat:.2f} on {df} df (critical {critical:.2f} at {ALPHA}), "
@@ -84,9 +93,6 @@ def test_a_thousand_poured_balls_fit_the_binomial_distribution(poured) -> None:
     assert df == 8  # bins 0-2 and 10-12 pooled: each group expects at least 5 balls
     assert stat < critical, (stat, df, counts.tolist())
     # What the fit means, in the two numbers a skewed or skipping board would get wrong.
-    k = np.arange(ROWS + 1)
-    mean = float((counts * k).sum() / 1000)
-    variance = float((counts * (k - mean) ** 2).sum() / 1000)
     assert abs(mean - ROWS / 2) < 0.2 and abs(variance / (ROWS / 4) - 1.0) < 0.2
 
 
@@ -118,13 +124,7 @@ def test_the_readme_quotes_the_pour_on_the_processor_it_names(poured) -> None:
     numpy 2.3.5 to 2.4.6, OpenBLAS's kernels and numpy's AVX2 code switched off alike). So
     the check is made on the processor the README names; on another, the fit (the test above)
     is what holds, and the skip says what this one poured."""
-    board, _ = poured
-    counts = board.counts
-    stat, df = galton.chi_square(counts, PMF)
-    critical = galton.chi_square_critical(df, ALPHA)
-    k = np.arange(ROWS + 1)
-    mean = float((counts * k).sum() / 1000)
-    variance = float((counts * (k - mean) ** 2).sum() / 1000)
+    stat, df, critical, mean, variance = fit(poured[0].counts)
     said = (
         f"X^2 = {stat:.2f} on {df} degrees of freedom (critical value {critical:.2f}, "
         f"p = {galton.chi_square_sf(stat, df):.2f}), mean {mean:.2f}, variance {variance:.2f}"
