@@ -114,9 +114,7 @@ def settle(state: WorldState, t0: float, t_end: float) -> None:
                 [resting, pair_keys(slots[touching // n], slots[touching % n])]
             )
     # What the sensor bodies overlap now (engine.pipeline.body_sensors), kept open as a sensor's is.
-    named = None
-    if contacts is not None:
-        named = events.serials(contacts.colliders, contacts.edits)
+    named = serials if contacts is not None else None
     felt = sensed(state, slots, named)
     if len(felt):
         sensing = np.concatenate([sensing, felt])
