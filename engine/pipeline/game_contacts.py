@@ -427,10 +427,13 @@ def contacts_loop(
     # unturned).
     gi_a = np.empty(m, dtype=np.int64)
     gi_b = np.empty(m, dtype=np.int64)
+    # (A half plane is at the origin, unturned: its group's A poses stay 0. Every B pose is
+    # written below: no memset of what is written anyway, a few hundred kilobytes a step of
+    # a pit's thousands of pairs.)
     gx_a = np.zeros((m, 2))
-    gx_b = np.zeros((m, 2))
+    gx_b = np.empty((m, 2))
     gq_a = np.zeros(m)
-    gq_b = np.zeros(m)
+    gq_b = np.empty(m)
     flag = np.zeros(m, dtype=np.bool_)  # the round pairs': A is a circle
     where = np.empty(m, dtype=np.int64)  # each candidate's place among the gathered
     fill = start[:5].copy()
@@ -458,13 +461,24 @@ def contacts_loop(
             gi_a[j], gi_b[j] = ia, ib
             gx_a[j, 0], gx_a[j, 1], gq_a[j] = x[a, 0], x[a, 1], q[a]
             gx_b[j, 0], gx_b[j, 1], gq_b[j] = xbx, xby, qb
+    # Each manifold: its normal, points, anchors, separations and features. Every pair of the
+    # groups the manifold kernels take is copied whole from theirs below; a half plane
+    # against a disc (group 2) writes its one point where it is near, so its pairs start as
+    # a manifold of no point (no point, separations inf, features -1: what the rows read of
+    # a point past ``count``).
     normal = np.empty((m, 2))
-    count = np.zeros(m, dtype=np.int64)
-    point = np.zeros((m, 2, 2))
-    anchor_a = np.zeros((m, 2, 2))
-    anchor_b = np.zeros((m, 2, 2))
-    separation = np.full((m, 2), np.inf)
-    feature = np.full((m, 2), -1, dtype=np.int64)
+    count = np.empty(m, dtype=np.int64)
+    point = np.empty((m, 2, 2))
+    anchor_a = np.empty((m, 2, 2))
+    anchor_b = np.empty((m, 2, 2))
+    separation = np.empty((m, 2))
+    feature = np.empty((m, 2), dtype=np.int64)
+    for j in range(start[2], start[3]):
+        count[j] = 0
+        for c in range(2):
+            separation[j, c], feature[j, c] = np.inf, -1
+            for d in range(2):
+                point[j, c, d], anchor_a[j, c, d], anchor_b[j, c, d] = 0.0, 0.0, 0.0
     # (Each group's arrays as slices: numba keeps a slice of a C-contiguous array's first
     # index C-contiguous, the kernels' sample types.)
     for g in (0, 1, 3, 4):
