@@ -1905,11 +1905,12 @@ def test_a_light_capsule_struck_into_the_floor_stays_out_with_the_iterations_the
 # pressed into it by an 8.2 kg box spinning at 29 rad/s that comes down on it (a mass ratio of
 # 82, past the pile's 4 iterations: the World warns, "raise world.contact_iterations"). At
 # step 106 it was 5.8 cm in, its centre 8 mm past the floor's line, and out again two steps
-# later; with the 8 iterations the warning asks for it never goes in. It went 3.6 mm in at step
-# 104, and a body that began a step in a wall was taken again (engine.exact.shape_impacts) only
-# while it began at most DEEP_WALL in (2.5 mm: 5% of its least extent), so the pile pressed it
-# on unchecked. Taken again however deep it began, it stays 3.6 mm in, held where it was until
-# the heavy box has passed over it.
+# later; with the 8 iterations the warning asks for it never goes in. It had crept 3.6 mm in by
+# step 104 (1.5, 1.8, 3.6 mm: each step less than DEEP_WALL deeper), and a body that began a
+# step in a wall was taken again (engine.exact.shape_impacts) only while it began at most
+# DEEP_WALL in (2.5 mm: 5% of its least extent), so the pile pressed it on unchecked. Taken
+# again however deep it began, it stays 3.6 mm in, held where it was until the heavy box has
+# passed over it.
 LIGHT_BOX_CRUSHED_INTO_THE_FLOOR: dict[str, Any] = (
     {'half': (3.0000000000000004, 6.416290342610909),
      'walls': 'polygons',
@@ -2043,7 +2044,7 @@ def test_a_light_box_crushed_into_the_floor_by_a_heavy_spinning_box_stays_in_the
         for _ in range(spec["steps"]):
             w.step(DT)
             deepest = max(deepest, depth_in_walls(light, spec["half"]))
-    assert 0.0 < deepest <= 0.005  # (3.6 mm: how deep it was in one step, when first taken)
+    assert 0.0 < deepest <= 0.005  # (3.6 mm: how deep it had crept when first taken)
 
 
 @pytest.mark.parametrize("iterations", [8, 16])

@@ -35,13 +35,13 @@ in a collider (a corner an impact left there at the end of the step before, the 
 into the wall; or a light body a pile pressed in) and ends it ``DEEP_WALL`` deeper than it began
 is taken again too, its moment the one where it is a hair deeper than it began, however deep it
 began: a 0.1 kg box 0.1 m a side, held under an 8.2 kg box spinning over it (a mass ratio of 82,
-past what the pile's 4 iterations hold, and warned), went 3.6 mm into the floor in one step and
-then, taken again only while it began at most ``DEEP_WALL`` in, 58 mm in two more, its centre
-past the floor's line (tests/test_fuzz_shapes.py); it now stays 3.6 mm in, held where it was
-(its velocity kept) until the heavy box has passed over it. A body its own
-start motion does not bring there was pushed by another within the step: it is stopped where its
-straight move from x0 to x1 first touches (motion clamping). A body met by several is placed by
-the earliest.
+past what the pile's 4 iterations hold, and warned), crept 3.6 mm into the floor over three steps
+(each less than ``DEEP_WALL`` deeper) and then, taken again only while it began at most
+``DEEP_WALL`` in, went 58 mm in over two more, its centre past the floor's line
+(tests/test_fuzz_shapes.py); it now stays 3.6 mm in, held where it was (its velocity kept)
+until the heavy box has passed over it. A body its own start motion does not bring there was
+pushed by another within the step: it is stopped where its straight move from x0 to x1 first
+touches (motion clamping). A body met by several is placed by the earliest.
 
 A second impact within the step after the first (a box turning so fast that it meets the
 wall again before the step ends) is not searched for: where the rest of the step would end
