@@ -17,7 +17,9 @@ order, with the same products, so the fast path's contacts are the numpy path's 
    keeps them apart;
 2. every body against every static shape whose box its reach toward static shapes overlaps
    (its own, grown by its pairs' partners': engine.pipeline.game_broadphase.struck), kept
-   likewise (a sensor collider is kept: its overlaps are events);
+   likewise (a sensor collider is kept: its overlaps are events), but a body too far in front
+   of a half plane (whose box is the whole plane) to get a point from it: the numpy path meets
+   that pair and gets none;
 3. the manifolds: polygon against polygon in one call of ``polygon_loop``, the round pairs in
    one of ``round_loop`` (a polygon against a circle taken with the polygon as A, then flipped
    back), a half plane against a capsule or a polygon in one of ``half_plane_polygon_loop``
@@ -342,6 +344,19 @@ def contacts_loop(
     hit = np.empty(k_shapes, dtype=np.bool_)
     for s in range(k_shapes):  # the boxes side by side: the test below in vector lanes
         sx0[s], sy0[s], sx1[s], sy1[s] = bounds[s, 0], bounds[s, 1], bounds[s, 2], bounds[s, 3]
+    # A half plane's box is the whole plane, so every body would be its candidate (a room's
+    # four walls: four pairs a body, each gathered and met, in a pit of 1,000 balls most of
+    # its pairs). A pair's manifold keeps a point only where it is at most its group's
+    # speculative margin apart (step 3), and that margin is the largest of the group's
+    # ``face + SPECULATIVE_DISTANCE``: at most ``far``. A body whose bounding circle is
+    # farther than ``far`` in front of the plane gets no point from it, and is left out here;
+    # its margin is kept (``dropped``), so each group's margin, and every point of the
+    # pairs that stay, is what it was with it (the numpy path's, which keeps every pair).
+    far = -np.inf
+    for a in range(n):
+        far = max(far, face[a])
+    far += SPECULATIVE_DISTANCE
+    dropped = np.full(5, -np.inf)  # each group's margin among the pairs left out
     for a in range(n):
         if sensor[a]:
             continue  # (a sensor body meets no static shape)
@@ -364,6 +379,19 @@ def contacts_loop(
                 key = a * (n_col + 1) + c
                 at = np.searchsorted(ignored, key)
                 if at < len(ignored) and ignored[at] == key:
+                    continue
+            if static_index[s] < 0:
+                h = -1 - static_index[s]
+                ahead = (x[a, 0] - hp[h, 0]) * hn[h, 0] + (x[a, 1] - hp[h, 1]) * hn[h, 1]
+                # (A micrometre to spare, and more far from the origin: the manifold
+                # measures from the shape's own centre and rounding, each within the body's
+                # circle to the last bits of its coordinates.)
+                spare = 1e-6 + 1e-12 * (abs(x[a, 0]) + abs(x[a, 1]) + abs(hp[h, 0]) + abs(hp[h, 1]))
+                if ahead - radius[a] > far + spare:
+                    r = face[a] + SPECULATIVE_DISTANCE  # (step 3's margin, as there)
+                    for pu in range(body_parts[a, 1]):
+                        g = 2 + kind[body_parts[a, 0] + pu]
+                        dropped[g] = max(dropped[g], r)
                     continue
             cand_a[m], cand_b[m], cand_p[m] = a, n, s
             m += 1
@@ -404,7 +432,7 @@ def contacts_loop(
     group_of = np.empty(m, dtype=np.int64)
     swap = np.zeros(m, dtype=np.bool_)
     size = np.zeros(5, dtype=np.int64)
-    margins = np.full(5, -np.inf)
+    margins = dropped  # (the pairs left out in step 2 count toward their group's margin)
     for i in range(m):
         a, b, s = cand_a[i], cand_b[i], cand_p[i]
         r = face[a] if s >= 0 else reach[a] + reach[b]
