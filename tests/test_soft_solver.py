@@ -94,8 +94,6 @@ def mixed_world(kernels: str) -> tuple[World, list[tuple[str, str]]]:
         )
         bodies.append(world.add(Body(at, v, mass=1.0 + k % 4, angle=0.3 * k, **shape)))
     world.add_link(Hinge(bodies[0], bodies[3], bodies[0].pos))
-    from engine import Filter
-
     bodies[5].filter = Filter(group=2)
     bodies[8].filter = Filter(group=2)
     bodies[6].collision_type = 1
