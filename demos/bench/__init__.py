@@ -40,6 +40,7 @@ TOPICS: dict[str, str] = {
     "platformer": "demos.bench.platformer",
     "queries": "demos.bench.queries",
     "soft": "demos.bench.soft",
+    "lanes": "demos.bench.lanes",
 }
 
 
