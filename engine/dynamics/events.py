@@ -103,6 +103,16 @@ def pair_keys(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return (lo << 32) | hi
 
 
+def pair_key(a: int, b: int) -> int:
+    """``pair_keys`` of one pair of slots, in Python ints (a game's few contacts)."""
+    return (min(a, b) << 32) | max(a, b)
+
+
+def collider_key(slot: int, serial: int) -> int:
+    """``collider_keys`` of one body's slot and one collider's serial, in Python ints."""
+    return (slot << 32) | (serial | COLLIDER)
+
+
 def collider_keys(slots: np.ndarray, serials: np.ndarray) -> np.ndarray:
     """Keys of contacts between the bodies in ``slots`` and the colliders ``serials``."""
     return (np.asarray(slots, dtype=np.int64) << 32) | (

