@@ -39,8 +39,12 @@ import sys
 import time
 from typing import Any
 
-import numba
 import numpy as np
+
+try:
+    import numba
+except ImportError:  # (the fast extra not installed: the model is plain Python, unmeasured)
+    numba = None  # type: ignore[assignment]
 
 __all__ = ["report", "measure", "scene", "colour_order", "table", "scalar", "lanes"]
 
@@ -54,8 +58,15 @@ SWEEPS = 4  # solves over every row a call (a step's four substeps)
 # normal, whether a second point, friction (14 to 17), then each point's anchors, separation
 # at the start, normal and tangent masses and impulses (POINT + 9 j to POINT + 9 j + 8).
 POINT, ROWS = 18, 36
+
+
+def _jit(**options: Any) -> Any:
+    """numba.njit with ``options``, or the function as it is where numba is not installed."""
+    return (lambda fn: fn) if numba is None else numba.njit(**options)
+
+
 # (Each helper inlined in numba's own code: a call left to LLVM is one it cannot vectorise.)
-_inline = numba.njit(inline="always")
+_inline = _jit(inline="always")
 
 
 def scene(side: int, points: int, seed: int = 0) -> dict[str, np.ndarray]:
@@ -224,7 +235,7 @@ def _point_rows(t: Any, k: Any, q: int) -> tuple[float, ...]:
             t[q + 6, k], t[q + 7, k], t[q + 8, k])  # fmt: skip
 
 
-@numba.njit
+@_jit()
 def scalar(ca: Any, cb: Any, t: Any, v: Any, moves: Any, im: Any, ii: Any) -> None:
     """SWEEPS sweeps over the contacts of ``t`` in its order, each reading its bodies'
     velocities ``v`` (3, nb) and writing them back (Gauss-Seidel)."""
@@ -259,7 +270,7 @@ def _rows(t: Any, lo: int, hi: int, points: int) -> None:
         t[25, u], t[34, u], t[26, u], t[35, u] = out[6:]
 
 
-@numba.njit
+@_jit()
 def lanes(
     ca: Any, cb: Any, starts: Any, mids: Any, t: Any, v: Any, moves: Any, im: Any, ii: Any
 ) -> None:
@@ -332,6 +343,8 @@ def measure(quick: bool, raised: bool) -> dict[str, Any]:
 
 def report(quick: bool = False) -> str:
     """The table: each scene's times by both ways, with LLVM's limits as they are and raised."""
+    if numba is None:
+        return "lanes: needs numba (the fast extra: pip install -e '.[fast]')"
     found = {}
     for raised in (False, True):
         probe = (

@@ -78,6 +78,12 @@ def _rows(name: str, *arrays: np.ndarray) -> int:
     return n
 
 
+def _seen_from_b(feature: np.ndarray) -> np.ndarray:
+    """Feature ids seen from the other shape: each id's two bytes (A's feature, B's) swapped;
+    a negative id (no feature) as it is."""
+    return np.where(feature >= 0, (feature & 255) << 8 | (feature >> 8), feature)
+
+
 @dataclass(frozen=True)
 class Manifold:
     """The contact manifolds of N pairs (Box2D's b2Manifold), in the world's frame.
@@ -105,8 +111,6 @@ class Manifold:
 
     def flipped(self) -> Manifold:
         """The same contacts seen from B: normal negated, anchors and feature halves swapped."""
-        f = self.feature
-        swapped = np.where(f >= 0, (f & 255) << 8 | (f >> 8), f)
         return Manifold(
             -self.normal,
             self.count,
@@ -114,7 +118,21 @@ class Manifold:
             self.anchor_b,
             self.anchor_a,
             self.separation,
-            swapped,
+            _seen_from_b(self.feature),
+        )
+
+    def flipped_where(self, swap: np.ndarray) -> Manifold:
+        """``flipped``'s rows where ``swap`` (bool (N,)), the others as they are, in their
+        order."""
+        s2, s3 = swap[:, None], swap[:, None, None]
+        return Manifold(
+            np.where(s2, -self.normal, self.normal),
+            self.count,
+            self.point,
+            np.where(s3, self.anchor_b, self.anchor_a),
+            np.where(s3, self.anchor_a, self.anchor_b),
+            self.separation,
+            np.where(s2, _seen_from_b(self.feature), self.feature),
         )
 
     def take(self, rows: Any) -> Manifold:

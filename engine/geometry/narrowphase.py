@@ -482,7 +482,7 @@ def collide_pairs(
         if swapped == len(swap):
             m = m.flipped()
         elif swapped:
-            m = _flipped_where(m, swap)
+            m = m.flipped_where(swap)
         parts.append(m)
         order.append(sel)
     # Half planes (a Plane, a room's walls), by the kind of the body's shape.
@@ -520,20 +520,3 @@ def collide_pairs(
         back[idx] = np.arange(len(idx))
         m = Manifold.concat(parts).take(back)
     return Touches(m, a, b, place).take(m.count > 0)
-
-
-def _flipped_where(m: Manifold, swap: np.ndarray) -> Manifold:
-    """``m`` with the rows where ``swap`` (bool (N,)) seen from B (``Manifold.flipped``'s
-    products on those rows), the rows in their order."""
-    f = m.feature
-    turned = np.where(f >= 0, (f & 255) << 8 | (f >> 8), f)
-    s2, s3 = swap[:, None], swap[:, None, None]
-    return Manifold(
-        np.where(s2, -m.normal, m.normal),
-        m.count,
-        m.point,
-        np.where(s3, m.anchor_b, m.anchor_a),
-        np.where(s3, m.anchor_a, m.anchor_b),
-        m.separation,
-        np.where(s2, turned, f),
-    )

@@ -390,7 +390,7 @@ def faces(
     overlap within the body's reach: filters passed, no sensor body, a ``moving`` body, not
     ignored by a pre_solve (``ignored``: ``ignored_keys``) (a sensor collider is kept: its
     overlaps are events); ``kept``: ``face_filters``' answer where the caller has kept it
-    (None: asked here of the overlapping pairs)."""
+    (None: asked here)."""
     n = len(store)
     if not n or not len(owner):
         return np.zeros((0, 2), dtype=np.intp)
@@ -404,26 +404,12 @@ def faces(
         & (lo[:, None, 1] <= bounds[None, :, 3])
         & (hi[:, None, 1] >= bounds[None, :, 1])
     )
-    if kept is not None:
-        # (Each test one bool a body and shape, all of them to hold: on the whole table.)
-        meet, sensor = kept
-        hit &= meet
-        hit &= moving[:, None] | sensor
-        rows, shapes = np.nonzero(hit)
-        places = owner[shapes]
-        keep = None
-    else:
-        rows, shapes = np.nonzero(hit)
-        places = owner[shapes]
-        keep = (moving[rows] | cs.sensor[places]) & ~sensors[rows]
-        g = store.group[rows]
-        keep &= (g == 0) | (g != cs.group[places])
-        keep &= ((store.categories[rows] & cs.mask[places]) != 0) & (
-            (cs.categories[places] & store.mask[rows]) != 0
-        )
+    # (Each test one bool a body and shape, all of them to hold: on the whole table.)
+    meet, sensor = face_filters(store, cs, owner, sensors) if kept is None else kept
+    hit &= meet
+    hit &= moving[:, None] | sensor
+    rows, shapes = np.nonzero(hit)
     if len(ignored):
-        off = in_sorted(rows.astype(np.int64) * (len(cs.sensor) + 1) + places, ignored)
-        keep = ~off if keep is None else keep & ~off
-    if keep is None:
-        return columns(rows, shapes)
-    return columns(rows[keep], shapes[keep])
+        keep = ~in_sorted(rows.astype(np.int64) * (len(cs.sensor) + 1) + owner[shapes], ignored)
+        rows, shapes = rows[keep], shapes[keep]
+    return columns(rows, shapes)
