@@ -174,37 +174,32 @@ class GameJoints:
                     every = False
                 inputs.append(row)
             self._inputs = (stamp, ends, inputs) if every else None
-        if self.fast:
-            # The kernel leaves each joint's impulses in place in the last six arrays, which
-            # ``report`` keeps as ``impulses``: where every row's inputs are the last
-            # step's and those impulses are still the ones kept, the arrays are this step's.
-            kept_arrays = self._arrays
-            if kept_arrays is not None and kept_arrays[2] is self._token:
-                if kept_arrays[0] == inputs:
-                    return kept_arrays[1], ends
-        else:
+        if not self.fast:
             return self._plain(ends, inputs), ends
-        none = (0.0,) * 6
-        impulses = self.impulses
-        rows = [
-            [*row, *(none if isinstance(j, BodySpring) else impulses.get(id(j), none))]
-            for j, row in zip(ends, inputs, strict=True)
-        ]
-        # One array, its rows the columns (each C-contiguous, as the kernel takes them); the
-        # five of ints in a table of their own.
-        table = np.array(rows, dtype=float).reshape(-1, 22).T.copy()
-        ints = table[list(INT_ROWS)].astype(np.int64)
-        at = {row: i for i, row in enumerate(INT_ROWS)}
-        arrays = [ints[at[i]] if i in at else table[i] for i in range(22)]
-        if self.fast:
-            # The compiled step takes the two tables (two arguments where the 22 arrays were
-            # 22: each array a kernel takes costs its call about 0.1 us) and reads the
-            # arrays as their rows.
-            self.packed = (ints, table)
-            self._arrays = (inputs, arrays, None)
-            # The six impulse arrays are rows of one table: ``report`` copies them at once.
-            self._impulse_rows = (arrays, table[16:])
+        # The kernel leaves each joint's impulses in place in the last six arrays, which
+        # ``report`` keeps as ``impulses``: where every row's inputs are the last step's and
+        # those impulses are still the ones kept, the arrays are this step's.
+        kept_arrays = self._arrays
+        if kept_arrays is not None and kept_arrays[2] is self._token:
+            if kept_arrays[0] == inputs:
+                return kept_arrays[1], ends
+        rows = [[*row, *warm] for row, warm in zip(inputs, self._warm(ends), strict=True)]
+        ints, table, arrays = _columns(rows, 22)
+        # The compiled step takes the two tables (two arguments where the 22 arrays were 22:
+        # each array a kernel takes costs its call about 0.1 us) and reads the arrays as their
+        # rows.
+        self.packed = (ints, table)
+        self._arrays = (inputs, arrays, None)
+        # The six impulse arrays are rows of one table: ``report`` copies them at once.
+        self._impulse_rows = (arrays, table[16:])
         return arrays, ends
+
+    def _warm(self, ends: list[Any]) -> list[tuple[float, ...]]:
+        """Each joint's six impulses to start from (``impulses``; a spring's none: it is
+        not warm started)."""
+        none = (0.0,) * 6
+        kept = self.impulses
+        return [none if isinstance(j, BodySpring) else kept.get(id(j), none) for j in ends]
 
     def _plain(self, ends: list[Any], inputs: list[list[Any]]) -> list[np.ndarray]:
         """``arrays`` on the numpy path: the 16 input arrays (and the solver's lists of them,
@@ -214,11 +209,7 @@ class GameJoints:
         read from ``impulses`` as the fast path's are."""
         made = self._inputs_made
         if made is None or made[0] is not inputs or made[1] is not ends:
-            # One array, its rows the columns; the five of ints in a table of their own.
-            table = np.array(inputs, dtype=float).reshape(-1, 16).T.copy()
-            ints = table[list(INT_ROWS)].astype(np.int64)
-            at = {row: i for i, row in enumerate(INT_ROWS)}
-            head = [ints[at[i]] if i in at else table[i] for i in range(16)]
+            head = _columns(inputs, 16)[2]
             spring = np.array([isinstance(j, BodySpring) for j in ends], dtype=bool)
             once = len({id(j) for j in ends}) == len(ends)
             made = (inputs, ends, head, [a.tolist() for a in head], spring, once)
@@ -229,10 +220,7 @@ class GameJoints:
             # (A spring's impulses are not kept: its warm start is none.)
             impulses = np.where(spring, 0.0, last.table) if spring.any() else last.table
         else:
-            none = (0.0,) * 6
-            kept = self.impulses
-            rows = [none if isinstance(j, BodySpring) else kept.get(id(j), none) for j in ends]
-            impulses = np.array(rows, dtype=float).reshape(-1, 6).T.copy()
+            impulses = np.array(self._warm(ends), dtype=float).reshape(-1, 6).T.copy()
         arrays = [*head, *impulses]
         # (solve only reads the 16 inputs' lists, and writes the impulses' in place: those are
         # new lists each step, the inputs' the kept ones.)
@@ -514,3 +502,13 @@ def _at_end(out: list[Any], row: int, n: int, local: Vector) -> Vector:
     c, s = math.cos(q), math.sin(q)
     x, y = float(out[0][row]), float(out[1][row])
     return Vector(x + c * local.x - s * local.y, y + s * local.x + c * local.y)
+
+
+def _columns(rows: list[Any], width: int) -> tuple[np.ndarray, np.ndarray, list[np.ndarray]]:
+    """The joints' ``rows`` (``width`` numbers each) as one float table whose rows are the
+    columns (each C-contiguous, as the kernel takes them), the five of ints (``INT_ROWS``) in
+    an int table of their own, and the columns as solve's arrays, in order."""
+    table = np.array(rows, dtype=float).reshape(-1, width).T.copy()
+    ints = table[list(INT_ROWS)].astype(np.int64)
+    at = {row: i for i, row in enumerate(INT_ROWS)}
+    return ints, table, [ints[at[i]] if i in at else table[i] for i in range(width)]
