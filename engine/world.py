@@ -31,8 +31,10 @@ Vector(3.0, -1.0)
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable
 from copy import deepcopy
+from numbers import Real
 from typing import Any, NoReturn, TypeVar, overload
 
 import numpy as np
@@ -124,6 +126,14 @@ class World:
     by a contact or a joint only the soft step solves is held, the exact models otherwise
     (discs and points, a 1D world). ``world.solver`` says which this World runs, and
     ``world.solver_reason`` why.
+
+    ``length_units_per_meter``: how many of the World's length units make a metre (Box2D's
+    ``b2SetLengthUnitsPerMeter``): 1, the default, for a World in metres; 100 for one in
+    centimetres (the pinball table); a pixel scale for one in pixels. The soft step's lengths
+    and speeds, set in metres (a 5 mm slop and its 2 cm speculative distance, an overlap pushed
+    apart at 3 m/s at most, a bounce only past 1 m/s, sleep under 5 cm/s), are scaled by it,
+    so that a scene built in other units moves as the same scene in metres, scaled
+    (``tests/test_units.py``). The exact models' tolerances are their own.
     """
 
     def __init__(
@@ -132,7 +142,15 @@ class World:
         tolerance: float | None = None,
         kernels: str | None = None,
         solver: str = "auto",
+        length_units_per_meter: float = 1.0,
     ) -> None:
+        unit: Any = length_units_per_meter
+        if isinstance(unit, bool) or not isinstance(unit, Real) or not 0.0 < float(unit) < math.inf:
+            raise ValueError(
+                f"length_units_per_meter must be a number > 0: how many of the World's length "
+                f"units make a metre (1 for metres, 100 for centimetres, a pixel scale for "
+                f"pixels), got {length_units_per_meter!r}"
+            )
         if not isinstance(solver, str) or solver not in SOLVERS:
             raise ValueError(
                 f"solver must be 'exact' (a lesson's exact models), 'soft' (a game's soft "
@@ -140,8 +158,9 @@ class World:
             )
         self._s = WorldState(self, MethodPolicy(integrator, tolerance), kernels_path(kernels))
         self._s.solver = self._s.solver_asked = solver
+        self._s.unit = float(unit)
         if solver == "soft":
-            self._s.game = GameStep(self._s.kernels == "fast")
+            self._s.game = GameStep(self._s.kernels == "fast", self._s.unit)
         self._s.events.view = event_dispatch.EventView(self._s)
         self._queries = QueryIndex()  # colliders and bodies by cell, for queries
 

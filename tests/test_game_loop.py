@@ -134,7 +134,7 @@ def test_the_compiled_broadphase_is_reach_and_candidates_to_the_bit() -> None:
         a, b = numpy_step._candidates(store, margin)
         fa, fb, fm = game_contacts.candidates_loop(
             store.x, store.v, accel, store.omega, store.radius,
-            np.ascontiguousarray(store.group, np.int64), DT, float(np.median(store.radius)),
+            np.ascontiguousarray(store.group, np.int64), DT, float(np.median(store.radius)), 1.0,
         )  # fmt: skip
         assert np.array_equal(fm, margin)
         assert np.array_equal(fa, a) and np.array_equal(fb, b)

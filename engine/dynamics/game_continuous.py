@@ -608,6 +608,9 @@ class Continuous:
         self.hits = 0
         #: Whether a body may be fast after the step (the fast path's step_loop says).
         self.maybe = False
+        #: The slop (the World's length units: LINEAR_SLOP in metres, scaled by the World's
+        #: ``length_units_per_meter``; engine.pipeline.game_step sets it).
+        self.slop = LINEAR_SLOP
         self._kept: tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
         # Where a body is of several shapes: the parts' places and extents (``_sweep_parts``).
         self._kept_parts: tuple[Any, ...] | None = None
@@ -659,7 +662,7 @@ class Continuous:
             places.body_circle, places.body_index, asc(sc.apart, i64), asc(sc.owner, i64),
             asc(sc.bounds, f64), places.static_circle, places.static_index, cs.sensor,
             cs.group, cs.categories, cs.mask, asc(sc.ignored, i64), *t.kernel_polygons, t.center,
-            t.round, hp, hn, LINEAR_SLOP,
+            t.round, hp, hn, self.slop,
         )  # fmt: skip
         run: Any = continuous_loop if self.fast else continuous_loop.py
         hit, hx, hq, self.found = run(*args)
@@ -733,7 +736,7 @@ class Continuous:
             asc(sc.bounds, f64), places.static_circle, places.static_index, cs.sensor,
             cs.group, cs.categories, cs.mask, asc(ignored, i64), *t.kernel_polygons, t.center,
             t.round, asc(sc.statics.half_planes.point, f64),
-            asc(sc.statics.half_planes.normal, f64), LINEAR_SLOP,
+            asc(sc.statics.half_planes.normal, f64), self.slop,
         )  # fmt: skip
         run: Any = continuous_loop if self.fast else continuous_loop.py
         hit, hx, hq, self.found = run(*args)

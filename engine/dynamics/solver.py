@@ -504,7 +504,7 @@ def _sample() -> tuple[Any, ...]:
     ]  # fmt: skip
     faces = [i1.copy(), f(1)]
     return (*body, *vel, *mass, *acc, *contacts, *joints, *faces, 1.0 / 60.0, 4, 30.0, 10.0,
-            60.0, 2.0, 3.0, 1.0, f(2))  # fmt: skip
+            60.0, 2.0, 3.0, 1.0, FIRST_REACH, f(2))  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
@@ -524,7 +524,7 @@ def solve(
     jpx: Any, jpy: Any, jpa: Any, jlo: Any, jhi: Any, jmi: Any,
     cface: Any, cround: Any,
     dt: float, substeps: int, contact_hertz: float, contact_damping: float,
-    joint_hertz: float, joint_damping: float, push: float, threshold: float,
+    joint_hertz: float, joint_damping: float, push: float, threshold: float, reach: float,
     brise: Any,
 ) -> None:  # fmt: skip
     """One step of ``dt`` (s) of every body, contact and joint (module doc), in place.
@@ -572,6 +572,12 @@ def solve(
     ``face_rows``: 0, or which body's face its normal turns with) and the rounding radius (m)
     of the body whose point meets it: such a row is taken again as its bodies move (that
     module's doc), and given back as it was at the end.
+
+    The step's rates and lengths: ``contact_hertz``, ``contact_damping``, ``joint_hertz``,
+    ``joint_damping`` the springs' (Hz, ratios); ``push`` (m/s, ``PUSH_SPEED``) the fastest an
+    overlap is pushed apart; ``threshold`` (m/s, ``THRESHOLD``) the speed past which a point
+    bounces; ``reach`` (m, ``FIRST_REACH``) the gap within which a fresh contact is swept: each
+    in the World's length units (engine.world.World's ``length_units_per_meter``).
 
     ``brise`` (nb) out: how far each body's held loads have yet to lift it (m), the most of
     the give still left under its face contacts' loads (module doc, "A pile holds its load"):
@@ -1182,7 +1188,7 @@ def solve(
             p = 2 * k + j
             if cln[p] != 0.0 or clt[p] != 0.0:
                 unset = False
-            if csep[p] + rel[p] * h <= FIRST_REACH:
+            if csep[p] + rel[p] * h <= reach:
                 near = True
         if unset and near:
             fresh[nfresh] = k

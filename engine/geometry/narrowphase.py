@@ -389,14 +389,17 @@ def collide_pairs(
     margin: np.ndarray,
     dt: float,
     struck: np.ndarray | None = None,
+    unit: float = 1.0,
 ) -> Touches:
     """The manifolds of the pairs and faces with a point, in the broadphase's order (the
     pairs, then the faces): polygon against polygon in one call, the round pairs in another
     (engine.geometry.narrowphase), a half plane against each kind of body shape in one each (the
     half plane as A, flipped back); each call's speculative margin the largest reach among its
     pairs: ``margin`` (n,) each body's reach (m), ``struck`` its reach toward a static shape
-    (engine.pipeline.game_broadphase.struck; None: ``margin``). The numpy path's stage (the
-    fast path's is engine.pipeline.game_contacts.contacts_loop)."""
+    (engine.pipeline.game_broadphase.struck; None: ``margin``); ``unit`` the World's length
+    units a metre (its ``length_units_per_meter``), which the speculative distance and the
+    slop are scaled by. The numpy path's stage (the fast path's is
+    engine.pipeline.game_contacts.contacts_loop)."""
     n = len(store)
     x, q = store.x, store.angle
     # Every pair as (A's row, B's row or n, the static place or -1), A a body: the pairs'
@@ -425,7 +428,7 @@ def collide_pairs(
     xa, qa = x.take(a, axis=0), q[a]
     toward = margin if struck is None else struck
     reach = np.where(is_static, toward[a], margin[a] + margin[other])
-    reach = reach + SPECULATIVE_DISTANCE
+    reach = reach + SPECULATIVE_DISTANCE * unit
     t = places.tables
     parts: list[Manifold] = []
     order: list[np.ndarray] = []
@@ -460,13 +463,13 @@ def collide_pairs(
         # |v| dt). (A pair of bodies keeps its points: another body may push either toward
         # the other within the step, where a static shape's partner is the only one moving.)
         ask = (
-            (m.count > 0) & (m.separation[:, 0] > SPECULATIVE_DISTANCE) & is_static[sel]
+            (m.count > 0) & (m.separation[:, 0] > SPECULATIVE_DISTANCE * unit) & is_static[sel]
         ).nonzero()[0]
         if len(ask):
             body = a[sel][ask]
             v = store.v[body]
             speed = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1])
-            slack = LINEAR_SLOP + np.maximum(toward[body] - speed * dt, 0.0)
+            slack = LINEAR_SLOP * unit + np.maximum(toward[body] - speed * dt, 0.0)
             # B's move relative to A: the body's where the shape is A (the pair swapped),
             # else the shape's relative to the body, minus it.
             turned = swap[ask][:, None]

@@ -171,24 +171,31 @@ def columns(*cols: np.ndarray) -> np.ndarray:
 
 
 def reaching(
-    store: Any, margin: np.ndarray, boxes: np.ndarray | None, a: np.ndarray, b: np.ndarray
+    store: Any,
+    margin: np.ndarray,
+    boxes: np.ndarray | None,
+    a: np.ndarray,
+    b: np.ndarray,
+    unit: float = 1.0,
 ) -> np.ndarray:
     """Which pairs of bodies (rows ``a``, ``b``) may come within the speculative distance of
     each other in the step (bool, one a pair): their bounding circles (``store.radius`` about
     ``store.x``) and then their ``boxes`` ((N, 4) xmin, ymin, xmax, ymax: ``boxes``; None:
     the circles alone), each grown by what the two can move in the step (``margin``, m).
     Each test holds whenever the shapes can touch (a shape is inside its circle and its box),
-    so together they keep no fewer pairs than need to be."""
+    so together they keep no fewer pairs than need to be. ``unit``: the World's length units
+    a metre (its ``length_units_per_meter``), which the speculative distance is scaled by."""
     x, r = store.x, store.radius
+    speculative = SPECULATIVE_DISTANCE * unit
     # (A table's rows by index as ndarray.take(rows, axis=0): indexing's answer, at a third
     # of its cost on a game's few rows; a 1D array's indexing is the faster.)
     d = x.take(b, axis=0) - x.take(a, axis=0)
-    reach = r[a] + r[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
+    reach = r[a] + r[b] + margin[a] + margin[b] + speculative
     near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] <= reach * reach
     if boxes is not None:
         rows = near.nonzero()[0]  # (np.flatnonzero's answer, without its Python wrapper)
         a, b = a[rows], b[rows]
-        gap = margin[a] + margin[b] + SPECULATIVE_DISTANCE
+        gap = margin[a] + margin[b] + speculative
         ba, bb = boxes.take(a, axis=0), boxes.take(b, axis=0)
         close = (bb[:, 0] - ba[:, 2] <= gap) & (ba[:, 0] - bb[:, 2] <= gap)
         close &= (bb[:, 1] - ba[:, 3] <= gap) & (ba[:, 1] - bb[:, 3] <= gap)
@@ -233,17 +240,18 @@ def pairs(
     apart: np.ndarray,
     boxes: np.ndarray | None = None,
     kept: np.ndarray | None = None,
+    unit: float = 1.0,
 ) -> np.ndarray:
     """The pairs of bodies (rows a < b, (K, 2)) among ``candidates`` that may touch in the
     step: bounding circles, and ``boxes`` (``boxes``; None: not tested), within both bodies'
     reach and the speculative distance, the
     filters passed, one of them ``moving`` (pushed by contacts: dynamic and awake), neither a
     sensor, not ``apart``; ``kept``: ``allowed``'s answer for the candidates where the
-    caller has kept it (None: asked here)."""
+    caller has kept it (None: asked here); ``unit``: ``reaching``'s."""
     a, b = candidates
     if kept is None:
         # (Many candidates, a grid's, new each step: the reach first, which leaves few.)
-        near = reaching(store, margin, boxes, a, b)
+        near = reaching(store, margin, boxes, a, b, unit)
         a, b = a[near], b[near]
         keep = (moving[a] | moving[b]) & allowed(store, sensors, a, b, apart)
         return columns(a[keep], b[keep])
@@ -251,7 +259,7 @@ def pairs(
     # and moving are taken first, so the reach is measured for fewer.)
     may = kept & (moving[a] | moving[b])
     a, b = a[may], b[may]
-    near = reaching(store, margin, boxes, a, b)
+    near = reaching(store, margin, boxes, a, b, unit)
     return columns(a[near], b[near])
 
 
@@ -385,17 +393,18 @@ def faces(
     margin: np.ndarray,
     ignored: np.ndarray,
     kept: tuple[np.ndarray, np.ndarray] | None = None,
+    unit: float = 1.0,
 ) -> np.ndarray:
     """The pairs of a body and a static shape ((K, 2): row, the shape's place) whose boxes
     overlap within the body's reach: filters passed, no sensor body, a ``moving`` body, not
     ignored by a pre_solve (``ignored``: ``ignored_keys``) (a sensor collider is kept: its
     overlaps are events); ``kept``: ``face_filters``' answer where the caller has kept it
-    (None: asked here)."""
+    (None: asked here); ``unit``: ``reaching``'s."""
     n = len(store)
     if not n or not len(owner):
         return np.zeros((0, 2), dtype=np.intp)
     x = store.x
-    grow = store.radius + margin + SPECULATIVE_DISTANCE
+    grow = store.radius + margin + SPECULATIVE_DISTANCE * unit
     lo = x - grow[:, None]
     hi = x + grow[:, None]
     hit = (

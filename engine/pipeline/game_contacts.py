@@ -109,7 +109,7 @@ def contacts_sample() -> tuple[Any, ...]:
             s_circle, s_index,
             np.zeros(1, dtype=bool), c_mat, c_mat, surface, c_i, c_i + 1, c_i - 1, v, nn, count,
             rad, center, rnd, f((1, 2)), up, none, none, keys, lam, f((2, 2)),
-            1.0 / 60.0)  # fmt: skip
+            1.0 / 60.0, 1.0)  # fmt: skip
 
 
 def _boxes_sample() -> tuple[Any, ...]:
@@ -192,20 +192,24 @@ def _candidates_sample() -> tuple[Any, ...]:
     v = np.array([[0.0, -1.0], [0.0, -1.0], [0.0, 0.0]])
     accel = np.array([[0.0, -9.81], [0.0, -9.81], [0.0, 0.0]])
     radius = np.array([0.5, 0.5, 3.0])
-    return x, v, accel, np.zeros(3), radius, np.zeros(3, dtype=np.int64), 1.0 / 60.0, 0.5
+    return x, v, accel, np.zeros(3), radius, np.zeros(3, dtype=np.int64), 1.0 / 60.0, 0.5, 1.0
 
 
 @kernels.loop(sample=_candidates_sample)
 def candidates_loop(
-    x: Any, v: Any, accel: Any, omega: Any, radius: Any, group: Any, dt: float, median: float
-) -> tuple[Any, Any, Any]:
+    x: Any, v: Any, accel: Any, omega: Any, radius: Any, group: Any, dt: float, median: float,
+    unit: float,
+) -> tuple[Any, Any, Any]:  # fmt: skip
     """engine.pipeline.game_step's ``_reach`` and ``_candidates`` past its few bodies, in one
     call: each body's reach (m: |v| dt + |a| dt^2 + |omega| dt r, its products in its order),
     and the pairs of rows (a < b) the broadphase tests: none where every body is in one
     group (not 0), else those of a grid (engine.geometry.pair_grid's ``grid_pairs_loop``) of the
     bodies whose radius and reach come within four times the ``median`` radius (m) and a
     speculative distance, then each bigger body with every other (a pair of big ones once),
-    in ``_candidates``' order. Returns (a, b, reach)."""
+    in ``_candidates``' order; ``unit`` the World's length units a metre (its
+    ``length_units_per_meter``), which the speculative distance is scaled by. Returns (a, b,
+    reach)."""
+    speculative = SPECULATIVE_DISTANCE * unit
     n = len(radius)
     reach = np.empty(n)
     for i in range(n):
@@ -219,7 +223,7 @@ def candidates_loop(
             break
     if one or n < 2:
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64), reach
-    limit = 4.0 * median + SPECULATIVE_DISTANCE
+    limit = 4.0 * median + speculative
     big = np.empty(n, dtype=np.bool_)
     rows = np.empty(n, dtype=np.int64)
     nr, ends = 0, 0
@@ -240,7 +244,7 @@ def candidates_loop(
         for k in range(nr):
             P[k, 0], P[k, 1] = x[rows[k], 0], x[rows[k], 1]
         none = np.zeros(0)
-        ga, gb = grid_pairs_loop(P, 2.0 * top + SPECULATIVE_DISTANCE, none, none, False)
+        ga, gb = grid_pairs_loop(P, 2.0 * top + speculative, none, none, False)
     else:
         ga, gb = np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     m = len(ga)
@@ -269,7 +273,7 @@ def contacts_loop(
     c_sensor: Any, c_friction: Any, c_restitution: Any, c_surface: Any,
     c_group: Any, c_cats: Any, c_mask: Any,
     V: Any, Nrm: Any, cnt: Any, rad: Any, center: Any, rnd: Any, hp: Any, hn: Any,
-    apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any, vel: Any, dt: float,
+    apart: Any, ignored: Any, warm_keys: Any, warm_lam: Any, vel: Any, dt: float, unit: float,
 ) -> tuple[Any, ...]:  # fmt: skip
     """The step's contacts (module doc). Bodies (n rows): pose ``x`` (n, 2) m and ``q`` rad,
     bounding ``radius`` m, ``reach`` (how far each can move in the step, m), ``moving``
@@ -289,11 +293,15 @@ def contacts_loop(
     + place of faces pre_solve ignored; ``warm_keys`` sorted, ``warm_lam`` (k, 3): the last
     step's points, their impulses and held loads (N s a substep). ``vel`` (n, 2): the
     bodies' velocities (m/s) at the step's start, and ``dt`` the step (s): a round pair's
-    point that its path passes by is dropped (engine.geometry.passing).
+    point that its path passes by is dropped (engine.geometry.passing). ``unit``: the World's
+    length units a metre (its ``length_units_per_meter``), which the speculative distance and
+    the slop are scaled by.
 
     Returns the solver's contact arrays (engine.dynamics.solver.solve's ca ... chold, 16 of them),
     each point's key (2 per row), each row's static place (-1 for a body pair) and first point
     (x, y, m); the sensors' overlaps (rows, collider places)."""
+    speculative = SPECULATIVE_DISTANCE * unit
+    slop = LINEAR_SLOP * unit
     n = len(radius)
     k_shapes = len(owner)
     n_col = len(c_sensor)
@@ -306,10 +314,10 @@ def contacts_loop(
     for i in range(len(pa)):
         a, b = pa[i], pb[i]
         dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
-        r = radius[a] + radius[b] + reach[a] + reach[b] + SPECULATIVE_DISTANCE
+        r = radius[a] + radius[b] + reach[a] + reach[b] + speculative
         if dx * dx + dy * dy > r * r:
             continue
-        r = reach[a] + reach[b] + SPECULATIVE_DISTANCE
+        r = reach[a] + reach[b] + speculative
         if box[b, 0] - box[a, 2] > r or box[a, 0] - box[b, 2] > r:
             continue
         if box[b, 1] - box[a, 3] > r or box[a, 1] - box[b, 3] > r:
@@ -348,19 +356,19 @@ def contacts_loop(
     # four walls: four pairs a body, each gathered and met, in a pit of 1,000 balls most of
     # its pairs). A pair's manifold keeps a point only where it is at most its group's
     # speculative margin apart (step 3), and that margin is the largest of the group's
-    # ``face + SPECULATIVE_DISTANCE``: at most ``far``. A body whose bounding circle is
+    # ``face + speculative``: at most ``far``. A body whose bounding circle is
     # farther than ``far`` in front of the plane gets no point from it, and is left out here;
     # its margin is kept (``dropped``), so each group's margin, and every point of the
     # pairs that stay, is what it was with it (the numpy path's, which keeps every pair).
     far = -np.inf
     for a in range(n):
         far = max(far, face[a])
-    far += SPECULATIVE_DISTANCE
+    far += speculative
     dropped = np.full(5, -np.inf)  # each group's margin among the pairs left out
     for a in range(n):
         if sensor[a]:
             continue  # (a sensor body meets no static shape)
-        grow = radius[a] + face[a] + SPECULATIVE_DISTANCE
+        grow = radius[a] + face[a] + speculative
         lox, loy = x[a, 0] - grow, x[a, 1] - grow
         hix, hiy = x[a, 0] + grow, x[a, 1] + grow
         for s in range(k_shapes):
@@ -388,7 +396,7 @@ def contacts_loop(
                 # circle to the last bits of its coordinates.)
                 spare = 1e-6 + 1e-12 * (abs(x[a, 0]) + abs(x[a, 1]) + abs(hp[h, 0]) + abs(hp[h, 1]))
                 if ahead - radius[a] > far + spare:
-                    r = face[a] + SPECULATIVE_DISTANCE  # (step 3's margin, as there)
+                    r = face[a] + speculative  # (step 3's margin, as there)
                     for pu in range(body_parts[a, 1]):
                         g = 2 + kind[body_parts[a, 0] + pu]
                         dropped[g] = max(dropped[g], r)
@@ -436,7 +444,7 @@ def contacts_loop(
     for i in range(m):
         a, b, s = cand_a[i], cand_b[i], cand_p[i]
         r = face[a] if s >= 0 else reach[a] + reach[b]
-        r = r + SPECULATIVE_DISTANCE
+        r = r + speculative
         if s >= 0 and static_index[s] < 0:
             g = 2 + kind[part_a[i]]  # DISC, CAPSULE, POLYGON: 0, 1, 2
             swap[i] = True
@@ -575,7 +583,7 @@ def contacts_loop(
     ask = np.empty(hi - lo, dtype=np.int64)  # the group's places asked, in its order
     n_ask = 0
     for j in range(lo, hi):
-        if count[j] > 0 and separation[j, 0] > SPECULATIVE_DISTANCE:
+        if count[j] > 0 and separation[j, 0] > speculative:
             ask[n_ask] = j
             n_ask += 1
     if n_ask:
@@ -588,7 +596,7 @@ def contacts_loop(
                 continue
             a = cand_a[i]
             vx, vy = vel[a, 0], vel[a, 1]
-            slack[j] = LINEAR_SLOP + max(face[a] - np.sqrt(vx * vx + vy * vy) * dt, 0.0)
+            slack[j] = slop + max(face[a] - np.sqrt(vx * vx + vy * vy) * dt, 0.0)
             if swap[i]:  # the shape as A: the body moves by its own
                 u[j, 0], u[j, 1] = (vx - 0.0) * dt, (vy - 0.0) * dt
             else:

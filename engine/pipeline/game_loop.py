@@ -27,7 +27,7 @@ from .. import kernels
 from ..dynamics.events import COLLIDER
 from ..dynamics.game_continuous import DEEP, SAFETY, ended_depth
 from ..dynamics.game_joints import INT_ROWS
-from ..dynamics.solver import MOUSE, solve
+from ..dynamics.solver import FIRST_REACH, MOUSE, solve
 from ..dynamics.turning_faces import face_rows
 from ..exact.pile import label_rows
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
@@ -36,10 +36,6 @@ from .game_contacts import body_boxes, contacts_loop, contacts_sample, report_lo
 from .game_sleep import ANGULAR, LINEAR, RISE
 
 __all__ = ["step_loop"]
-
-#: Below these squared speed (m^2/s^2) a body is still (engine.pipeline.game_sleep's test, its
-# product).
-_LINEAR_SQ = LINEAR * LINEAR
 
 
 def _sample() -> tuple[Any, ...]:
@@ -71,7 +67,7 @@ def _sample() -> tuple[Any, ...]:
             body_parts, part_of, no.copy(), f(2), island, 0.5, 1.0 / 60.0, pa, pb, *statics,
             *colliders, *tables,
             apart, ignored, warm_keys, warm_lam, jints, jtable, serial, slots.copy(), *last, 4,
-            30.0, 10.0, 60.0, 2.0, 3.0, 1.0, 0.005)  # fmt: skip
+            30.0, 10.0, 60.0, 2.0, 3.0, 1.0, 0.005, 1.0)  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
@@ -90,7 +86,7 @@ def step_loop(
     jints: Any, jtable: Any, serial: Any, row_of: Any, last_keys: Any, last_table: Any,
     substeps: int, contact_hertz: float,
     contact_damping: float, joint_hertz: float, joint_damping: float, push: float,
-    threshold: float, slop: float,
+    threshold: float, slop: float, unit: float,
 ) -> tuple[Any, ...]:  # fmt: skip
     """One soft step of ``dt`` (s) from waking to sleep (module doc).
 
@@ -111,7 +107,9 @@ def step_loop(
     ``row_of`` each body slot's row; ``last_keys``, ``last_table``: the touching contacts the
     step before reported (sorted by key), each one's point, normal and impulse the columns of
     the table (t, 6). Then ``solve``'s parameters and the slop within which a contact touches
-    (m).
+    (m), and ``unit``, the World's length units a metre (its ``length_units_per_meter``): the
+    speculative distance, a fresh contact's reach and sleep's speed and rise are scaled by it
+    (``push``, ``threshold`` and ``slop`` come scaled).
 
     Returns the bodies' ``x``, ``v``, ``angle``, ``omega`` after the step, the kept warm-start
     keys, impulses and held loads ((k, 3) N s a substep), the touching contacts' event keys and
@@ -126,6 +124,13 @@ def step_loop(
     least separation at the end from what the solve does not move (m) and the deepest overlap at
     the end of two bodies the solve moves (m; both
     engine.dynamics.game_continuous.ended_depth's)."""
+    # The lengths in the World's units (``unit`` of them a metre): the speculative distance,
+    # the squared speed (units^2/s^2) below which a body is still and the rise it may have
+    # left (engine.pipeline.game_sleep's LINEAR and RISE).
+    speculative = SPECULATIVE_DISTANCE * unit
+    linear = LINEAR * unit
+    linear_sq = linear * linear
+    rise_most = RISE * unit
     n = len(radius)
     if len(margin) != n:
         # |v| dt + |a| dt^2 + |omega| dt r: what the shape can move in the step (``_reach``'s
@@ -173,8 +178,8 @@ def step_loop(
             if (cats[a] & mask[b]) == 0 or (cats[b] & mask[a]) == 0:
                 continue
             dx, dy = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1]
-            reach = radius[a] + radius[b] + margin[a] + margin[b] + SPECULATIVE_DISTANCE
-            grown = margin[a] + margin[b] + SPECULATIVE_DISTANCE
+            reach = radius[a] + radius[b] + margin[a] + margin[b] + speculative
+            grown = margin[a] + margin[b] + speculative
             if box[b, 0] - box[a, 2] > grown or box[a, 0] - box[b, 2] > grown:
                 continue  # their boxes too far apart (engine.pipeline.game_sleep.woken)
             if box[b, 1] - box[a, 3] > grown or box[a, 1] - box[b, 3] > grown:
@@ -213,7 +218,7 @@ def step_loop(
         restitution, body_circle, body_index, kind, body_parts, part_of, pa, pb, owner,
         bounds, static_circle,
         static_index, c_sensor, c_friction, c_restitution, c_surface, c_group, c_cats, c_mask,
-        V, Nrm, cnt, rad, center, rnd, hp, hn, apart, ignored, warm_keys, warm_lam, v, dt,
+        V, Nrm, cnt, rad, center, rnd, hp, hn, apart, ignored, warm_keys, warm_lam, v, dt, unit,
     )  # fmt: skip
     ca, cb, nx, ny, count = found[0], found[1], found[2], found[3], found[4]
     sep, ln, lt, lh = found[9], found[13], found[14], found[15]
@@ -250,7 +255,7 @@ def step_loop(
         jkind, ja, jb, jlax, jlay, jlbx, jlby, jref, jhertz, jdamp, jlimit, jlower, jupper,
         jmotor, jspeed, jmaxtorque, jpx, jpy, jpa, jlo, jhi, jmi, face, fround,
         dt, substeps, contact_hertz, contact_damping, joint_hertz, joint_damping, push,
-        threshold, rise,
+        threshold, FIRST_REACH * unit, rise,
     )  # fmt: skip
     # -- the bodies' poses after it, and how deep each ended in what the solve does not move
     # (engine.dynamics.game_continuous.ended_depth: the continuous stage sweeps one too deep)
@@ -325,12 +330,12 @@ def step_loop(
         if (jmotor[i] & 2) != 0:
             held[ja[i]] = True
             held[jb[i]] = True
-    near = _LINEAR_SQ * dt * dt
+    near = linear_sq * dt * dt
     level = ANGULAR * dt
     ripe = False  # a body still for sleep_time
     for i in range(n):
-        slow = bvx[i] * bvx[i] + bvy[i] * bvy[i] < _LINEAR_SQ and abs(bw[i]) < ANGULAR
-        slow = slow and not rise[i] > RISE  # (its held loads yet to lift it: game_sleep)
+        slow = bvx[i] * bvx[i] + bvy[i] * bvy[i] < linear_sq and abs(bw[i]) < ANGULAR
+        slow = slow and not rise[i] > rise_most  # (its held loads yet to lift it: game_sleep)
         if slow and held[i]:
             dx, dy = bx[i] - x[i, 0], by[i] - x[i, 1]
             slow = dx * dx + dy * dy < near and abs(bq[i] - angle[i]) < level

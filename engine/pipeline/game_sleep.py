@@ -65,6 +65,7 @@ def woken(
     margin: np.ndarray,
     boxes: np.ndarray,
     meet: np.ndarray | None = None,
+    unit: float = 1.0,
 ) -> np.ndarray:
     """The sleepers (bool (N,)) that wake before this step: the islands (``group``: each
     sleeper's island label) of those that an ``active`` body may come within the speculative
@@ -76,7 +77,7 @@ def woken(
     game moves beside its sleeping player, or a body filtered apart from a sleeper, wakes
     nothing). ``store``: the bodies' positions, radii and filters (engine.dynamics.store);
     ``meet``: ``filters_meet`` of the candidates where the caller has kept it (None: asked
-    here)."""
+    here); ``unit``: the World's length units a metre (``reaching``'s)."""
     meets = (asleep[a] & active[b]) | (asleep[b] & active[a])
     if meet is None:
         meets[meets] = broad.filters_meet(store, a[meets], b[meets])
@@ -87,7 +88,7 @@ def woken(
     if not np.count_nonzero(meets):
         return np.zeros(len(asleep), dtype=bool)
     a, b = a[meets], b[meets]
-    near = broad.reaching(store, margin, boxes, a, b)
+    near = broad.reaching(store, margin, boxes, a, b, unit)
     sleepers = np.concatenate([a[near], b[near]])
     sleepers = sleepers[asleep[sleepers]]
     # (The sleepers' labels sorted, duplicates and all: np.isin's answer, a few times faster.)
@@ -102,12 +103,14 @@ def drifting(
     ja: np.ndarray,
     jb: np.ndarray,
     dt: float,
+    unit: float = 1.0,
 ) -> np.ndarray:
     """The bodies (bool (N,)) that a pymunk constraint holds (its rows' ends ``ja``, ``jb``;
     row N, the static body, is none) and that the step moved faster than ``LINEAR`` or turned
     faster than ``ANGULAR``, from ``x0`` (N, 2) m and ``q0`` rad to ``x1`` and ``q1``: what
     the joint's correction moves them by, which their speed does not show (the module's
-    text). engine.pipeline.game_loop's ``step_loop`` makes the same products."""
+    text); ``unit``: the World's length units a metre, which ``LINEAR`` is scaled by.
+    engine.pipeline.game_loop's ``step_loop`` makes the same products."""
     n = len(x0)
     held = np.zeros(n + 1, dtype=bool)
     held[ja] = True
@@ -115,7 +118,8 @@ def drifting(
     if not np.count_nonzero(held[:n]):
         return held[:n]
     d = x1 - x0
-    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < LINEAR * LINEAR * dt * dt
+    linear = LINEAR * unit
+    near = d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1] < linear * linear * dt * dt
     level = np.abs(q1 - q0) < ANGULAR * dt
     return held[:n] & ~(near & level)
 
@@ -134,14 +138,17 @@ def fall_asleep(
     sleep_time: float,
     fast: bool,
     drift: np.ndarray | None = None,
+    unit: float = 1.0,
 ) -> None:
     """After a step: each ``awake`` body's still time (s) counted on (``v`` (N, 2) m/s, ``omega``
     rad/s; not for a body ``drift`` marks, ``drifting``'s), and the islands of awake bodies
     joined by rows (``a``, ``b``: touching contacts and joints between two bodies) put to sleep
     (``asleep``, ``group`` their label) where every body has been still ``sleep_time`` s and
-    none is ``never``. In place."""
+    none is ``never``; ``unit``: the World's length units a metre, which ``LINEAR`` is scaled
+    by. In place."""
     n = len(still)
-    slow = (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] < LINEAR * LINEAR) & (np.abs(omega) < ANGULAR)
+    linear = LINEAR * unit
+    slow = (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] < linear * linear) & (np.abs(omega) < ANGULAR)
     if drift is not None:
         slow &= ~drift
     still[:] = np.where(awake & slow, still + dt, 0.0)

@@ -227,9 +227,15 @@ class GameStep:
     report: _Report  # this step's touching contacts, for the events
     last: _Report  # the step before's, for begin and end
 
-    def __init__(self, fast: bool) -> None:
+    def __init__(self, fast: bool, unit: float = 1.0) -> None:
         self.fast = fast  # the compiled solver (engine.kernels) or its plain-Python twin
+        #: The World's length units a metre (``World(length_units_per_meter=...)``): the
+        #: step's lengths and speeds in metres (the speculative distance, the slop, the push's
+        #: and the bounce's speeds, a fresh contact's reach, sleep's speed and rise) are
+        #: scaled by it, as Box2D's by its b2_lengthUnitsPerMeter.
+        self.unit = unit
         self.continuous = Continuous(fast)  # stage 9: fast bodies swept after the step
+        self.continuous.slop = LINEAR_SLOP * unit
         self.substeps = solver.SUBSTEPS
         #: The deepest overlap (m) at the last step's end at its contacts' points: what the
         #: World warns of where the pile is past its substeps (engine.pipeline.stepping).
@@ -314,7 +320,7 @@ class GameStep:
             a, b, margin = candidates_loop(
                 asc(store.x, f64), asc(store.v, f64), asc(accel, f64), asc(store.omega, f64),
                 asc(store.radius, f64), asc(store.group, np.int64), float(dt),
-                self._median_radius(store),
+                self._median_radius(store), self.unit,
             )  # fmt: skip
             candidates = (a, b)
         else:
@@ -332,19 +338,23 @@ class GameStep:
         meet, kept = self._allowed(store, sc, candidates)
         awake = self._wake(state, store, margin, candidates, boxes, meet)
         b = _bodies(store, accel, store.torque if torque is None else torque, awake)
-        pairs = broad.pairs(store, sc.sensors, awake, margin, candidates, sc.apart, boxes, kept)
+        pairs = broad.pairs(
+            store, sc.sensors, awake, margin, candidates, sc.apart, boxes, kept, self.unit
+        )
         struck = broad.struck(margin, pairs)
         faces = broad.faces(
             store, sc.cs, sc.owner, sc.bounds, sc.sensors, awake, struck, sc.ignored,
-            self._face_filters(store, sc),
+            self._face_filters(store, sc), self.unit,
         )  # fmt: skip
         touches = self._collide(sc, store, pairs, faces, margin, struck, dt)
         found = self._found(store, sc.cs, sc.owner, touches)
         turning = _faces(sc, store, found.rows)
         joints = self.joints.arrays(state, store, n)
         k = len(found.place)
+        unit = self.unit
         params: list[Any] = [dt, self.substeps, solver.CONTACT_HERTZ, solver.CONTACT_DAMPING]
-        params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD]
+        params += [solver.JOINT_HERTZ, solver.JOINT_DAMPING, solver.PUSH_SPEED * unit]
+        params += [solver.THRESHOLD * unit, solver.FIRST_REACH * unit]
         rise = [0.0] * (n + 1)  # out: how far each body's held loads have yet to lift it (m)
         params.append(rise)
         # Plain Python on lists: at a game's size faster than numpy's calls a colour. (The
@@ -373,7 +383,7 @@ class GameStep:
         self._keep(found, out)
         self._events(store, sc.cs, sc.owner, found, out)
         self.joints.report(joints[1], out, self.substeps)
-        rising = np.asarray(rise[:n]) > game_sleep.RISE
+        rising = np.asarray(rise[:n]) > game_sleep.RISE * unit
         self._sleep(state, store, dt, awake, v, omega, found, joints[0], x, angle, rising)
         # What each sensor collider holds: a body whose shape overlaps it.
         if len(found.sense_row):
@@ -419,7 +429,8 @@ class GameStep:
             self.keys, self.lam, *self.joints.packed, sc.cs.serial, asc(store.row_of, i64),
             asc(last.keys, i64), asc(last.packed, f64), self.substeps,
             solver.CONTACT_HERTZ, solver.CONTACT_DAMPING, solver.JOINT_HERTZ,
-            solver.JOINT_DAMPING, solver.PUSH_SPEED, solver.THRESHOLD, LINEAR_SLOP,
+            solver.JOINT_DAMPING, solver.PUSH_SPEED * self.unit, solver.THRESHOLD * self.unit,
+            LINEAR_SLOP * self.unit, self.unit,
         )  # fmt: skip
         x, v, angle, omega, self.keys, self.lam = out[:6]
         self.last = self.report
@@ -711,10 +722,11 @@ class GameStep:
         # the median radius) is paired with every body instead, so that it does not make one
         # cell of the world.
         r = store.radius + margin
-        big = r > 4.0 * self._median_radius(store) + SPECULATIVE_DISTANCE
+        speculative = SPECULATIVE_DISTANCE * self.unit
+        big = r > 4.0 * self._median_radius(store) + speculative
         rows = np.flatnonzero(~big)
         if len(rows):
-            h = 2.0 * float(r[rows].max()) + SPECULATIVE_DISTANCE
+            h = 2.0 * float(r[rows].max()) + speculative
             a, b = grid_pairs(store.x[rows], h, self.fast)
             a, b = rows[a], rows[b]
         else:  # every body big (all of them fast, say): no grid, each pair below once
@@ -809,7 +821,9 @@ class GameStep:
         asleep = c.asleep
         spins = (store.v != 0.0).any(axis=1) | (store.omega != 0.0)
         active = (dynamic & ~asleep) | (store.kinematic & spins)
-        wake = game_sleep.woken(asleep, c._group, active, *candidates, store, margin, boxes, meet)
+        wake = game_sleep.woken(
+            asleep, c._group, active, *candidates, store, margin, boxes, meet, self.unit
+        )
         if np.count_nonzero(wake):
             asleep[wake] = False
             c.still[wake] = 0.0
@@ -882,10 +896,12 @@ class GameStep:
         # where no pymunk constraint holds a body.)
         drift = rising
         if len(held_a):
-            drift = rising | game_sleep.drifting(store.x, x, store.angle, angle, held_a, held_b, dt)
+            drift = rising | game_sleep.drifting(
+                store.x, x, store.angle, angle, held_a, held_b, dt, self.unit
+            )
         game_sleep.fall_asleep(
             c.still, c.asleep, c._group, awake, never, v, omega, a, b, dt, c.sleep_time,
-            self.fast, drift,
+            self.fast, drift, self.unit,
         )  # fmt: skip
         now = c.asleep & ~before
         if np.count_nonzero(now):
@@ -951,7 +967,7 @@ class GameStep:
         parts = sc.table.parts
         if parts is None:
             return narrowphase.collide_pairs(
-                sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt, struck
+                sc.places, sc.table, store, sc.statics, pairs, faces, margin, dt, struck, self.unit
             )
         part_places = self._parts_places(sc)
         pa, pb = part_pairs(parts, pairs[:, 0], pairs[:, 1])
@@ -961,7 +977,7 @@ class GameStep:
         view = _PartView(store.x[owner], store.angle[owner], store.v[owner])
         touches = narrowphase.collide_pairs(
             part_places, parts.table, view, sc.statics, np.stack([pa, pb], axis=1),
-            np.stack([fa, faces[face, 1]], axis=1), margin[owner], dt, struck[owner],
+            np.stack([fa, faces[face, 1]], axis=1), margin[owner], dt, struck[owner], self.unit,
         )  # fmt: skip
         n, p = len(store), len(owner)
         static = touches.b >= p
@@ -1194,7 +1210,7 @@ class GameStep:
         total, lam_t = self._totals
         real = found.real
         pushed = (total > 0.0) & real
-        near = (sep < LINEAR_SLOP) & real
+        near = (sep < LINEAR_SLOP * self.unit) & real
         touch = (pushed | near).reshape(-1, 2).any(axis=1)
         stat = ib >= n
         keys = np.zeros(len(ia), dtype=np.int64)
@@ -1238,10 +1254,11 @@ class GameStep:
         n = len(store)
         slots = store.slots().tolist()
         touching: list[tuple[int, list[float]]] = []  # (key, the report's row)
+        slop = LINEAR_SLOP * self.unit
         for i, (a, b, c) in enumerate(zip(ia, ib, count, strict=True)):
             p = 2 * i
-            # A point that pushed, or one nearer than LINEAR_SLOP at the step's start.
-            if not any(total[p + j] > 0.0 or sep[p + j] < LINEAR_SLOP for j in range(c)):
+            # A point that pushed, or one nearer than the slop at the step's start.
+            if not any(total[p + j] > 0.0 or sep[p + j] < slop for j in range(c)):
                 continue
             if b < n:
                 sa, sb = slots[a], slots[b]

@@ -118,6 +118,9 @@ class WorldState:
         # solver_asked: what World(solver=...) was given; solver: the one in force ("auto"
         # until the first step chooses: engine.pipeline.solver_choice), and why.
         self.solver = self.solver_asked = "exact"
+        #: The World's length units a metre (``World(length_units_per_meter=...)``): the soft
+        #: step's lengths are scaled by it (engine.pipeline.game_step).
+        self.unit = 1.0
         self.solver_reason = ""
         self.solver_warned = False  # (the exact models outgrown: said once)
         self.game: GameStep | None = None
@@ -217,7 +220,7 @@ class WorldState:
                 self.bodies, self.links, self.dim, self.colliders
             )
             if self.solver == "soft":
-                self.game = GameStep(self.kernels == "fast")
+                self.game = GameStep(self.kernels == "fast", self.unit)
                 self.game.substeps = self.collisions.iterations
         elif self.solver == "exact" and not self.solver_warned:
             self.solver_warned = solver_choice.warn_if_outgrown(
