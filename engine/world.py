@@ -580,6 +580,12 @@ class World:
         return f"auto, chosen at the first step: {s.solver_reason}"
 
     @property
+    def length_units_per_meter(self) -> float:
+        """How many of this World's length units make a metre (``World(length_units_per_meter=
+        ...)``, class doc): what the soft step's lengths and speeds are scaled by."""
+        return self._s.unit
+
+    @property
     def kernels(self) -> str:
         """The path this World's hot loops take: ``"fast"`` (compiled) or ``"numpy"``."""
         return self._s.kernels

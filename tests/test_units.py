@@ -87,6 +87,19 @@ def test_told_nothing_a_scene_in_centimetres_is_a_different_scene(
     assert np.abs(cm - m)[..., :2].max() > 1e-3
 
 
+def test_a_world_says_its_units_and_a_copy_keeps_them() -> None:
+    world = scene("numpy", 100.0, 100.0)
+    assert World().length_units_per_meter == 1.0
+    assert world.length_units_per_meter == 100.0
+    world.step(DT)  # (its soft step made: the copy's is a copy of it)
+    copy = world.copy()
+    assert copy.length_units_per_meter == 100.0
+    for _ in range(30):
+        world.step(DT)
+        copy.step(DT)
+    assert [b.pos for b in copy.bodies] == [b.pos for b in world.bodies]
+
+
 @pytest.mark.parametrize("bad", [0.0, -1.0, math.inf, math.nan, "100", True])
 def test_length_units_must_be_a_positive_number(bad: object) -> None:
     with pytest.raises(ValueError, match="length_units_per_meter must be a number > 0"):
