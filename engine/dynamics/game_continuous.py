@@ -599,7 +599,7 @@ class Continuous:
     """The soft step's continuous stage (module doc) and what it keeps from step to step:
     each body's extents, made again when the shapes' tables are."""
 
-    def __init__(self, fast: bool) -> None:
+    def __init__(self, fast: bool, slop: float = LINEAR_SLOP) -> None:
         self.fast = fast  # the compiled kernels (engine.kernels) or their plain-Python twins
         #: Whether the stage runs (Box2D's ``enableContinuous``).
         self.enabled = True
@@ -608,9 +608,9 @@ class Continuous:
         self.hits = 0
         #: Whether a body may be fast after the step (the fast path's step_loop says).
         self.maybe = False
-        #: The slop (the World's length units: LINEAR_SLOP in metres, scaled by the World's
-        #: ``length_units_per_meter``; engine.pipeline.game_step sets it).
-        self.slop = LINEAR_SLOP
+        #: The slop in the World's length units (LINEAR_SLOP's metres scaled by the World's
+        #: ``length_units_per_meter``).
+        self.slop = slop
         self._kept: tuple[Any, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
         # Where a body is of several shapes: the parts' places and extents (``_sweep_parts``).
         self._kept_parts: tuple[Any, ...] | None = None

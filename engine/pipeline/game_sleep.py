@@ -5,7 +5,8 @@ The soft step (engine.pipeline.game_step) lets bodies sleep as Box2D v3 does
 sleep state (``World. sleeping``, ``World.is_sleeping``, ``Body.sleep``, ``Body.activate``,
 ``World.sleep_time``):
 
-* A body is **still** while its speed stays under ``LINEAR`` (m/s) and its spin under
+* A body is **still** while its speed stays under ``LINEAR`` (m/s; in a World of other length
+  units, scaled by its ``length_units_per_meter``, as is ``RISE``) and its spin under
   ``ANGULAR`` (rad/s); its still time counts up by dt each such step and back to 0 otherwise
   (and when the game writes its position or velocity). A body that one of pymunk's
   constraints holds (engine.dynamics.constraints) is still only while the step also moves it by less

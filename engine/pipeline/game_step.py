@@ -234,8 +234,7 @@ class GameStep:
         #: and the bounce's speeds, a fresh contact's reach, sleep's speed and rise) are
         #: scaled by it, as Box2D's by its b2_lengthUnitsPerMeter.
         self.unit = unit
-        self.continuous = Continuous(fast)  # stage 9: fast bodies swept after the step
-        self.continuous.slop = LINEAR_SLOP * unit
+        self.continuous = Continuous(fast, LINEAR_SLOP * unit)  # stage 9: fast bodies swept
         self.substeps = solver.SUBSTEPS
         #: The deepest overlap (m) at the last step's end at its contacts' points: what the
         #: World warns of where the pile is past its substeps (engine.pipeline.stepping).
