@@ -29,9 +29,9 @@ step, its ratio to pymunk's, its 99th percentile and its worst step (a hitch in 
 game's 99th percentile should be at most 3x its median), and the share of a 60 fps frame
 (16.7 ms) our two steps of 1/120 s take. The same game on the soft step
 (``PinballGame(solver="soft")``, the game's own World on the exact models otherwise) is timed
-in the same rounds. On the exact models a step in which the ball strikes a flipper (a body on
-a hinge) is taken again as 16 steps (engine.pipeline.stepping, ``SUBSTEPS_AT_IMPACT``): while
-a flipper carries the ball up, every other step, 17 times a step's work.
+in the same rounds. On the exact models a step in which the ball and a flipper (a body on a
+hinge) meet in a blow (the ball falling onto it, or the bat swung up into the ball) is taken
+again as 16 steps (engine.pipeline.stepping, ``SUBSTEPS_AT_IMPACT``): 17 times a step's work.
 """
 
 from __future__ import annotations

@@ -868,6 +868,13 @@ class Collisions:
         """``ended`` as held, as ``began_arrays``."""
         return self._ended
 
+    @property
+    def struck_arrays(self) -> list[tuple[Any, ...]]:
+        """The batches of ``began_arrays`` that are impacts (a blow, found on the bodies' free
+        paths: their points given), not pairs that began to touch at rest or that the joints'
+        solve held touching (points None: engine.dynamics.pair_events)."""
+        return [batch for batch in self._began if batch[2] is not None]
+
     def hold_touching(self, keys: np.ndarray) -> None:
         """Pairs (a * n + b) that the joints' solve held touching at the step's end
         (engine.exact.joint_solver: a ball it caught on a bat): they touch now, for the events, as

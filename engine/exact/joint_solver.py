@@ -113,6 +113,8 @@ class JointSolver:
         self._polygons: Polygons | None = None
         #: The contacts (rows of the last ``touch``) the last step held touching.
         self.held = np.zeros(0, dtype=np.intp)
+        #: Whether the last step caught a blow: a contact it held that closed fast (resolve).
+        self.blow = False
         self.moved = False
         self.stretched: list[Link] = []
 
@@ -271,8 +273,10 @@ class JointSolver:
         velocities and angular velocities as the step began, and ``bounce_at`` (length
         units/s): a contact of the pile caught closing bounces with its restitution times
         the speed it closed at then, if faster than this. ``held`` then lists the contacts
-        (rows of ``touch``) held touching."""
+        (rows of ``touch``) held touching, and ``blow`` says whether one of those it acted on
+        had closed faster than that (a blow the solve caught, not a rest or a carry)."""
         self.moved = False
+        self.blow = False
         self._polygons = polygons
         self.held = np.zeros(0, dtype=np.intp)
         self.stretched = []
@@ -426,7 +430,9 @@ class JointSolver:
                 V0 = np.stack([v0[b, 0], v0[b, 1], om0[b]], 1).ravel()
                 approach = -(J[cn] @ V0)
                 e = touch.restitution
-                bounce = rows[cn] & (e > 0.0) & (approach > bounce_at)
+                fast = rows[cn] & (approach > bounce_at)
+                self.blow = bool(fast.any())
+                bounce = fast & (e > 0.0)
                 target[cn[bounce]] = (e * approach)[bounce]
             rows[cn + len(cn)] = rows[cn]
         clamp = np.full(len(link), np.inf)
