@@ -1,9 +1,9 @@
 """Compile the fast path's loop kernels now, once, not in a game: ``python -m engine.warmup``.
 
 The README's install line for the ``fast`` extra ends with this command, so the first run's
-compile (about 33 s for the 33 kernels, shared with a second process where there is a
-second core) happens at install time, with its progress on stderr,
-and numba's cache (``engine.kernels.cache_dir()``) holds them all. A World on the fast path
+compile (40 to 75 s for the 35 kernels on machines of our kind, shared with a second process
+where there is a second core) happens at install time, with its progress on stderr, and
+numba's cache (``engine.kernels.cache_dir()``) holds them all. A World on the fast path
 still calls ``engine.kernels.prepare()`` when it is made, which then only loads them (about
 0.2 s), and compiles them there, before any step, if the cache was emptied since. Without
 numba there is nothing to compile: it says so and exits with 0, so the line never fails.

@@ -1,4 +1,5 @@
-"""The joint solver's loop kernel (engine.exact.joint_rows' ``rows_loop``) against its numpy twin.
+"""The joint solver's loop kernels (engine.exact.joint_rows' ``rows_loop`` and ``turned_loop``)
+against their numpy twins.
 
 Each row's value c and its gradient's row of J come from the same products in the same order,
 so the two agree to 1e-12 relative on random rows of every kind (a point two bodies share, a
@@ -21,8 +22,9 @@ from hypothesis import strategies as st
 import demos.pinball as pb
 from engine import Body, Polygon, Vector, World, kernels
 from engine.dynamics.joints import Hinge
-from engine.exact.joint_rows import CT, Plan, _rows, evaluate, rows_loop
+from engine.exact.joint_rows import CN, CT, Plan, _rows, _turned, evaluate, rows_loop, turned_loop
 from engine.forces import Gravity
+from engine.geometry.manifold_kinds import Polygons
 from engine.kernels import LoopKernel
 
 COMPILED = kernels.available()
@@ -88,6 +90,80 @@ def test_rows_loop_is_its_twin(seed: int) -> None:
     assert close(got_J, want_J)
     # Each row touches the columns of its own bodies only.
     assert np.array_equal(got_J != 0.0, want_J != 0.0)
+
+
+#: A box, a triangle (padded to four vertices by repeating its last, as Polygons pads) and a
+#: capsule's core (a two-vertex polygon, rounded 0.3), each of about a unit's size.
+SHAPES = Polygons(
+    np.array(
+        [
+            [[-1.0, -0.5], [1.0, -0.5], [1.0, 0.5], [-1.0, 0.5]],
+            [[0.0, 0.0], [1.5, 0.0], [0.0, 1.0], [0.0, 1.0]],
+            [[-1.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 0.0]],
+        ]
+    ),
+    np.array(
+        [
+            [[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]],
+            [[0.0, -1.0], [0.5547001962252291, 0.8320502943378437], [-1.0, 0.0], [-1.0, 0.0]],
+            [[0.0, -1.0], [0.0, 1.0], [0.0, 1.0], [0.0, 1.0]],
+        ]
+    ),
+    np.array([4, 3, 2]),
+    np.array([0.0, 0.0, 0.3]),
+)
+
+
+def turned_plan(seed: int) -> tuple[np.ndarray, np.ndarray, Plan]:
+    """Positions and angles of m bodies, and contacts of a disc against a polygon that turns
+    (a normal row and a slip row each; the polygon the body or the other, the other a body
+    or the world), at random places and angles about the shapes: inside, outside, past a
+    corner, and with a path from where they began that crosses the shape."""
+    rng = np.random.default_rng(seed)
+    m = int(rng.integers(1, 5))
+    k = int(rng.integers(1, 8))
+    X = rng.uniform(-2.0, 2.0, (m, 2))
+    TH = rng.uniform(-4.0, 4.0, m)
+    a = rng.integers(0, m, k)
+    b = rng.integers(0, m, k)
+    b[(rng.random(k) < 0.25) | (a == b)] = -1
+    turn = np.where(rng.random(k) < 0.5, 1, -1).astype(np.int8)
+    turn[b < 0] = 1  # the world is no polygon here: the body is
+    poly = rng.integers(0, len(SHAPES), k)
+    bc = np.maximum(b, 0)
+    refb = X[a] + rng.uniform(-2.5, 2.5, (k, 2))
+    refo = np.where((b < 0)[:, None], 0.0, X[bc] + rng.uniform(-2.5, 2.5, (k, 2)))
+    thb = TH[a] + rng.uniform(-1.0, 1.0, k)
+    tho = np.where(b < 0, 0.0, TH[bc] + rng.uniform(-1.0, 1.0, k))
+    angle = rng.uniform(0.0, 2.0 * math.pi, k)
+    two = lambda v: np.repeat(v, 2, axis=0)  # noqa: E731 (each contact's two rows)
+    touch = (
+        two(np.stack([np.cos(angle), np.sin(angle)], 1)),
+        two(rng.uniform(-1.0, 1.0, (k, 2))),
+        two(rng.uniform(-1.0, 1.0, (k, 2))),
+        two(refb), two(refo), two(thb), two(tho),
+        two(rng.uniform(-0.05, 0.05, k)),
+        two(turn), two(poly), two(rng.uniform(0.05, 0.5, k)),
+    )  # fmt: skip
+    kind = np.tile([CN, CT], k)
+    z = np.zeros((2 * k, 2))
+    return X, TH, Plan(kind, np.zeros(2 * k), two(a), two(b), z, z, touch, 3 * m, SHAPES)
+
+
+@settings(max_examples=80, deadline=None)
+@given(seeds)
+def test_turned_loop_is_its_twin_to_the_bit(seed: int) -> None:
+    # The rows of a disc against a polygon that turns (the pinball's ball on its bat), which
+    # the joints' solve evaluates a few times a step where the two touch: the kernel gives
+    # the numpy twin's bits, whatever the shape, the side and the path.
+    X, TH, P = turned_plan(seed)
+    want_c, want_J = rows_loop.fast(X, TH, P.ints, P.floats, P.width)
+    got_c, got_J = want_c.copy(), want_J.copy()
+    _turned(X, TH, P, want_c, want_J)
+    turned_loop.fast(X, TH, P.ints, P.floats, P.turned, SHAPES.vertices, SHAPES.normals,
+                     SHAPES.count, SHAPES.radius, got_c, got_J)  # fmt: skip
+    assert np.array_equal(got_c, want_c)
+    assert np.array_equal(got_J, want_J)
 
 
 def test_a_distance_of_zero_takes_the_guard() -> None:

@@ -16,9 +16,11 @@ and moves with dp/dtheta_i = perp(r) = (-r_y, r_x). The kinds:
 
 On the fast path (engine.kernels) the rows are evaluated by the loop kernel ``rows_loop``, a
 row at a time, beside its numpy twin ``_rows``, a kind at a time; the rows of a disc against a
-polygon that turns are then rewritten by ``_turned`` on both paths. The Newton steps of
-engine.exact.joint_solver evaluate the rows a few times a step, and at a game's few joints numpy's
-fixed cost per call was most of that.
+polygon that turns are then rewritten by ``turned_loop`` there and by its twin ``_turned``
+on numpy, to the same bits (a ball on a pinball's bat: about a quarter of the time of the
+steps in which the two touch went to ``_turned``'s numpy calls on the fast path). The
+Newton steps of engine.exact.joint_solver evaluate the rows a few times a step, and at a
+game's few joints numpy's fixed cost per call was most of that.
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ from .joint_contacts import polygon_distance
 
 __all__ = [
     "Touch", "Plan", "evaluate", "PX", "PY", "DIST", "ANGLE", "MOTOR", "SOFT_X", "SOFT_Y",
-    "SOFT_ANGLE", "CN", "CT", "rows_loop",
+    "SOFT_ANGLE", "CN", "CT", "rows_loop", "turned_loop",
 ]  # fmt: skip
 
 # Row kinds.
@@ -164,11 +166,16 @@ def evaluate(
     """Each row's value c and gradient J (rows, 3 m) at the joints' bodies' positions X
     (m, 2) and angles TH (m,). ``fast``: the loop kernel ``rows_loop`` for every row as it
     stands, in place of its numpy twin ``_rows``; the rows of a disc against a polygon that
-    turns are then rewritten by ``_turned`` on both paths."""
+    turns are then rewritten by ``_turned`` (the kernel ``turned_loop`` on the fast path)."""
     if fast:
         c, J = rows_loop(X, TH, P.ints, P.floats, P.width)
-    else:
-        c, J = _rows(X, TH, P)
+        if len(P.turned):
+            poly = P.polygons
+            assert poly is not None
+            turned_loop(X, TH, P.ints, P.floats, P.turned, poly.vertices, poly.normals,
+                        poly.count, poly.radius, c, J)  # fmt: skip
+        return c, J
+    c, J = _rows(X, TH, P)
     if len(P.turned):
         _turned(X, TH, P, c, J)
     return c, J
@@ -397,3 +404,162 @@ def _polygon(
     dth = np.where(corner, -(vx * my - vy * mx), mx * dy - my * dx)
     dist = dist - P.radius[rows] - P.polygons.radius[P.poly[rows]]
     return dist, mx, my, dth, dx, dy
+
+
+def _sample_turned() -> tuple[object, ...]:
+    """The smallest call of ``turned_loop``: a disc's two rows against a box that turns."""
+    ints = np.array([[CN, 0, 1, 1, 0], [CT, 0, 1, 1, 0]], dtype=np.int64)
+    floats = np.zeros((2, 19))
+    floats[:, 18] = 0.1
+    box = np.array([[[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]])
+    normals = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
+    X, TH = np.array([[0.0, 0.0], [0.0, 1.2]]), np.zeros(2)
+    rows = np.array([0, 1], dtype=np.intp)
+    count, rounding = np.array([4], dtype=np.intp), np.zeros(1)
+    return X, TH, ints, floats, rows, box, normals, count, rounding, np.zeros(2), np.zeros((2, 6))
+
+
+@kernels.loop(sample=_sample_turned)
+def turned_loop(
+    X: np.ndarray,
+    TH: np.ndarray,
+    ints: np.ndarray,
+    floats: np.ndarray,
+    rows: np.ndarray,
+    V: np.ndarray,
+    N: np.ndarray,
+    count: np.ndarray,
+    rounding: np.ndarray,
+    c: np.ndarray,
+    J: np.ndarray,
+) -> None:
+    """``_turned`` as a loop over its rows (``rows``: ``Plan.turned``), writing c and J in
+    place: the twin's products in the twin's order, so the same bits (the polygons'
+    vertices ``V``, normals ``N``, ``count`` and ``rounding``: ``Plan.polygons``')."""
+    for r in rows:
+        kind, i, j, turn, q = ints[r, 0], ints[r, 1], ints[r, 2], ints[r, 3], ints[r, 4]
+        has = j >= 0
+        jc = j if has else 0
+        f = floats[r]
+        ta = TH[i]
+        tb = TH[jc] if has else 0.0
+        mine = turn > 0  # the body is the polygon
+        if mine:
+            xp, yp, xd, yd, tp = X[i, 0], X[i, 1], X[jc, 0], X[jc, 1], ta
+            rpx, rpy, rdx, rdy, rp = f[11], f[12], f[13], f[14], f[15]
+        else:
+            xp, yp, xd, yd, tp = X[jc, 0], X[jc, 1], X[i, 0], X[i, 1], tb
+            rpx, rpy, rdx, rdy, rp = f[13], f[14], f[11], f[12], f[16]
+        # start = _local(Rd - Rp, rp)
+        ex, ey = rdx - rpx, rdy - rpy
+        cs, sn = np.cos(rp), np.sin(rp)
+        sx, sy = cs * ex + sn * ey, -sn * ex + cs * ey
+        dist, mx, my, dth = _polygon_one(V[q], N[q], count[q], xd - xp, yd - yp, tp, sx, sy)
+        dist0 = _polygon_one(V[q], N[q], count[q], ex, ey, rp, sx, sy)[0]
+        radius = f[18]
+        dist = dist - radius - rounding[q]
+        dist0 = dist0 - radius - rounding[q]
+        dx, dy = xd - xp, yd - yp
+        sg = -1.0 if mine else 1.0
+        nx, ny = sg * mx, sg * my
+        pdx, pdy = -radius * mx, -radius * my  # the contact point less the disc's centre
+        ppx, ppy = dx + pdx, dy + pdy  # ... less the polygon's centre
+        rbx, rby = (ppx, ppy) if mine else (pdx, pdy)
+        rox, roy = (pdx, pdy) if mine else (ppx, ppy)
+        g0, g1, g3, g4 = nx, ny, -nx, -ny
+        g2 = dth if mine else 0.0
+        g5 = 0.0 if mine else dth
+        if kind == CN:
+            c[r] = f[17] + dist - dist0
+        else:
+            tx, ty = -ny, nx
+            g0, g1 = tx, ty
+            g2 = rbx * ty - rby * tx
+            g3, g4 = -tx, -ty
+            g5 = -(rox * ty - roy * tx)
+        J[r, 3 * i], J[r, 3 * i + 1], J[r, 3 * i + 2] = g0, g1, g2
+        if has:
+            J[r, 3 * j], J[r, 3 * j + 1], J[r, 3 * j + 2] = g3, g4, g5
+
+
+@kernels.helper
+def _polygon_one(
+    V: np.ndarray,
+    N: np.ndarray,
+    count: int,
+    dx: float,
+    dy: float,
+    theta: float,
+    sx: float,
+    sy: float,
+) -> tuple[float, float, float, float]:
+    """``_polygon`` for one row (the distance before the radii are taken off): the disc's
+    centre (dx, dy) from the polygon's, which is turned theta, and where it was in the
+    polygon's frame as the step began (sx, sy)."""
+    cs, sn = np.cos(theta), np.sin(theta)
+    px, py = cs * dx + sn * dy, -sn * dx + cs * dy
+    dist, m0, m1, corner, at0, at1 = _distance_one(V, N, count, px, py, sx, sy)
+    mx, my = cs * m0 - sn * m1, sn * m0 + cs * m1
+    vx, vy = cs * at0 - sn * at1, sn * at0 + cs * at1
+    dth = -(vx * my - vy * mx) if corner else mx * dy - my * dx
+    return dist, mx, my, dth
+
+
+@kernels.helper
+def _distance_one(
+    V: np.ndarray, N: np.ndarray, count: int, px: float, py: float, sx: float, sy: float
+) -> tuple[float, float, float, bool, float, float]:
+    """engine.exact.joint_contacts.polygon_distance for one point (px, py) that came from
+    (sx, sy), both in the polygon's frame, over all of its padded vertices as the twin's
+    rows are: (distance, the feature's normal, whether a corner, the corner)."""
+    M = V.shape[0]
+    f, best = 0, -np.inf
+    for m in range(M):
+        s_m = N[m, 0] * (px - V[m, 0]) + N[m, 1] * (py - V[m, 1])
+        if m == 0 or s_m > best:
+            f, best = m, s_m
+    s_f = best
+    f2 = (f + 1) % count
+    v1x, v1y, v2x, v2y = V[f, 0], V[f, 1], V[f2, 0], V[f2, 1]
+    before = (px - v1x) * (v2x - v1x) + (py - v1y) * (v2y - v1y) < 0.0
+    past = (px - v2x) * (v1x - v2x) + (py - v2y) * (v1y - v2y) < 0.0
+    corner = (s_f > 0.0) and (before or past)
+    atx, aty = (v1x, v1y) if before else (v2x, v2y)
+    ex, ey = px - atx, py - aty
+    length = np.hypot(ex, ey)
+    safe = length if length > 0.0 else 1.0
+    if corner:
+        nx, ny, dist = ex / safe, ey / safe, length
+    else:
+        nx, ny, dist = N[f, 0], N[f, 1], s_f
+    # The path (sx, sy) -> (px, py) clipped by each face's half-plane (Cyrus-Beck).
+    t_in, t_out, g, g_best = -np.inf, np.inf, 0, -np.inf
+    missed = False
+    for m in range(M):
+        s_m = N[m, 0] * (px - V[m, 0]) + N[m, 1] * (py - V[m, 1])
+        s0 = N[m, 0] * (sx - V[m, 0]) + N[m, 1] * (sy - V[m, 1])
+        t = s0 / (s0 - s_m if s0 != s_m else 1.0)
+        enters = s0 > 0.0 and s_m <= 0.0
+        if enters and t > t_in:
+            t_in = t
+        if s0 <= 0.0 and s_m > 0.0 and t < t_out:
+            t_out = t
+        if s0 > 0.0 and s_m > 0.0:
+            missed = True
+        w = t if enters else -np.inf
+        if m == 0 or w > g_best:
+            g, g_best = m, w
+    crossed = (not missed) and t_in <= t_out and np.isfinite(t_in)
+    if count == 2:
+        # A capsule's core has no ends to clip by: within the segment?
+        tt = t_in if np.isfinite(t_in) else 0.0
+        qx, qy = sx + tt * (px - sx), sy + tt * (py - sy)
+        g2 = (g + 1) % count
+        ax, ay, bx, by = V[g, 0], V[g, 1], V[g2, 0], V[g2, 1]
+        along = (qx - ax) * (bx - ax) + (qy - ay) * (by - ay)
+        within = along >= 0.0 and along <= (bx - ax) * (bx - ax) + (by - ay) * (by - ay)
+        crossed = crossed and within
+    if crossed:
+        g_s = N[g, 0] * (px - V[g, 0]) + N[g, 1] * (py - V[g, 1])
+        dist, nx, ny, corner = g_s, N[g, 0], N[g, 1], False
+    return dist, nx, ny, corner, atx, aty
