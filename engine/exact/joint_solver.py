@@ -430,9 +430,9 @@ class JointSolver:
                 V0 = np.stack([v0[b, 0], v0[b, 1], om0[b]], 1).ravel()
                 approach = -(J[cn] @ V0)
                 e = touch.restitution
-                fast = rows[cn] & (approach > bounce_at)
-                self.blow = bool(fast.any())
-                bounce = fast & (e > 0.0)
+                closing = rows[cn] & (approach > bounce_at)
+                self.blow = bool(closing.any())
+                bounce = closing & (e > 0.0)
                 target[cn[bounce]] = (e * approach)[bounce]
             rows[cn + len(cn)] = rows[cn]
         clamp = np.full(len(link), np.inf)
