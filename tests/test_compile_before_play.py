@@ -224,6 +224,23 @@ def _scenes() -> Iterator[tuple[str, Callable[[], Any], float, int]]:
         return made
 
     yield "pinball", scene(pinball.PinballScene), pinball.DT, 480
+
+    def struck() -> Any:
+        # The left bat flipped up into a ball just above it: the joints' solve over a disc
+        # against a polygon that turns (engine.exact.joint_rows' turned_loop), which the
+        # game's first 4 s above do not reach.
+        from engine import World
+        from engine.forces import Gravity
+
+        world = World(integrator="auto", solver="exact")
+        world.add_force(Gravity((0.0, -pinball.GRAVITY)))
+        _, hinge = pinball.add_flipper(world, -1)
+        x, y = pinball.LEFT_PIVOT
+        pinball.add_ball(world, (x + 5.0, y + 3.0))
+        pinball.drive(hinge, -1, True)
+        return world
+
+    yield "a pinball's bat struck", struck, pinball.DT, 40
     yield "ballpit", lambda: ballpit.pit_world(200)[0], 1 / 60, 150
     # (It meets at 1.1 s.)
     yield "stack tumbler", lambda: stack.tumbler(60, solver="exact")[0], 1 / 60, 90
