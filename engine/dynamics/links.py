@@ -434,6 +434,7 @@ class LinkSolver:
         self.rigid = np.array([k.rigid for k in rods], dtype=bool)
         self.e = np.array([k.restitution for k in rods], dtype=float)
         self.moved = False
+        self.blow = False  # (it solves no contact: a blow is the impacts' own, JointSolver)
         self.stretched: list[Link] = []  # links past what the last step could hold
         # A few links that share no body are solved one by one in floats (_resolve_one).
         ends = np.concatenate([self.i, self.j[self.j >= 0]])

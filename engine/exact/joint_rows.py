@@ -513,12 +513,28 @@ def _distance_one(
     (sx, sy), both in the polygon's frame, over all of its padded vertices as the twin's
     rows are: (distance, the feature's normal, whether a corner, the corner)."""
     M = V.shape[0]
-    f, best = 0, -np.inf
+    # Each face's separation s (its argmax f, the face nearest), and the path (sx, sy) ->
+    # (px, py) clipped by each face's half-plane (Cyrus-Beck: s0 where it came from), in one
+    # pass over the vertices.
+    f, s_f = 0, -np.inf
+    t_in, t_out, g, g_best, s_g = -np.inf, np.inf, 0, -np.inf, 0.0
+    missed = False
     for m in range(M):
         s_m = N[m, 0] * (px - V[m, 0]) + N[m, 1] * (py - V[m, 1])
-        if m == 0 or s_m > best:
-            f, best = m, s_m
-    s_f = best
+        s0 = N[m, 0] * (sx - V[m, 0]) + N[m, 1] * (sy - V[m, 1])
+        if m == 0 or s_m > s_f:
+            f, s_f = m, s_m
+        t = s0 / (s0 - s_m if s0 != s_m else 1.0)
+        enters = s0 > 0.0 and s_m <= 0.0
+        if enters and t > t_in:
+            t_in = t
+        if s0 <= 0.0 and s_m > 0.0 and t < t_out:
+            t_out = t
+        if s0 > 0.0 and s_m > 0.0:
+            missed = True
+        w = t if enters else -np.inf
+        if m == 0 or w > g_best:
+            g, g_best, s_g = m, w, s_m
     f2 = (f + 1) % count
     v1x, v1y, v2x, v2y = V[f, 0], V[f, 1], V[f2, 0], V[f2, 1]
     before = (px - v1x) * (v2x - v1x) + (py - v1y) * (v2y - v1y) < 0.0
@@ -532,23 +548,6 @@ def _distance_one(
         nx, ny, dist = ex / safe, ey / safe, length
     else:
         nx, ny, dist = N[f, 0], N[f, 1], s_f
-    # The path (sx, sy) -> (px, py) clipped by each face's half-plane (Cyrus-Beck).
-    t_in, t_out, g, g_best = -np.inf, np.inf, 0, -np.inf
-    missed = False
-    for m in range(M):
-        s_m = N[m, 0] * (px - V[m, 0]) + N[m, 1] * (py - V[m, 1])
-        s0 = N[m, 0] * (sx - V[m, 0]) + N[m, 1] * (sy - V[m, 1])
-        t = s0 / (s0 - s_m if s0 != s_m else 1.0)
-        enters = s0 > 0.0 and s_m <= 0.0
-        if enters and t > t_in:
-            t_in = t
-        if s0 <= 0.0 and s_m > 0.0 and t < t_out:
-            t_out = t
-        if s0 > 0.0 and s_m > 0.0:
-            missed = True
-        w = t if enters else -np.inf
-        if m == 0 or w > g_best:
-            g, g_best = m, w
     crossed = (not missed) and t_in <= t_out and np.isfinite(t_in)
     if count == 2:
         # A capsule's core has no ends to clip by: within the segment?
@@ -560,6 +559,5 @@ def _distance_one(
         within = along >= 0.0 and along <= (bx - ax) * (bx - ax) + (by - ay) * (by - ay)
         crossed = crossed and within
     if crossed:
-        g_s = N[g, 0] * (px - V[g, 0]) + N[g, 1] * (py - V[g, 1])
-        dist, nx, ny, corner = g_s, N[g, 0], N[g, 1], False
+        dist, nx, ny, corner = s_g, N[g, 0], N[g, 1], False
     return dist, nx, ny, corner, atx, aty

@@ -371,7 +371,7 @@ def _struck_linked(state: WorldState) -> bool:
     solver = state.link_solver
     if solver is None:
         return False
-    if getattr(solver, "blow", False):
+    if solver.blow:
         return True
     linked = np.zeros(len(state.bodies), dtype=bool)
     linked[solver.i] = True
