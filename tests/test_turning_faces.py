@@ -15,9 +15,11 @@ import warnings
 import numpy as np
 import pytest
 
+import demos.pinball as pb
 from engine import Body, Polygon, Segment, StabilityWarning, Vector, World
-from engine.dynamics.turning_faces import FACE_A, FACE_B, face_rows
+from engine.dynamics.turning_faces import FACE_A, FACE_B, FACE_NUMBERS, ROUND, SEGMENT, face_rows
 from engine.forces import Gravity
+from tests.paths import PATHS
 
 OMEGA = 3.0  # rad/s, the bar's
 HALF = 0.1  # m, the bar's radius (a capsule 30 m long)
@@ -105,9 +107,31 @@ def _rows(
     face, radius = face_rows.py(
         np.array([0]), np.array([1]), np.array([nx]), np.array([ny]), 2, parts != 1,
         np.array([angle, angle_b]), circle, index, body_parts, box, np.array([4, 4]),
-        np.array([0.02, 0.05]), np.array([0.25, 0.25]),
+        np.array([0.02, 0.05]), np.array([0.25, 0.25]), np.array([-1]), np.zeros(0, bool),
+        np.zeros(0, np.int64), box * 0.5,
     )  # fmt: skip
     return int(face[0]), float(radius[0])
+
+
+def _static_rows(nx: float, ny: float, shape: str) -> tuple[int, list[float]]:
+    """``face_rows`` of one row between a disc (body 0, radius 0.25) and a static shape
+    (normal from the disc to it): "box" (a unit box, rounding 0.02), "segment" (a capsule's
+    core from (-1, 0) to (1, 0), rounding 0.05), "circle" (radius 0.5) or "plane" (a half
+    plane). Its kind and its FACE_NUMBERS numbers."""
+    corners = np.array([[[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]],
+                        [[-1.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 0.0]]])  # fmt: skip
+    normals = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]],
+                        [[0.0, -1.0], [0.0, 1.0], [0.0, 1.0], [0.0, 1.0]]])  # fmt: skip
+    circle, index = {"box": (False, 0), "segment": (False, 1), "circle": (True, 1),
+                     "plane": (False, -1)}[shape]  # fmt: skip
+    face, numbers = face_rows.py(
+        np.array([0]), np.array([1]), np.array([nx]), np.array([ny]), 1, False,
+        np.array([0.0]), np.array([True]), np.array([0], dtype=np.int64),
+        np.array([[0, 1]], dtype=np.int64), normals, np.array([4, 2]), np.array([0.02, 0.05]),
+        np.array([0.25, 0.5]), np.array([0]), np.array([circle]),
+        np.array([index], dtype=np.int64), corners,
+    )  # fmt: skip
+    return int(face[0]), numbers.tolist()
 
 
 def test_a_row_turns_with_a_face_and_not_with_a_corner_or_a_disc() -> None:
@@ -131,6 +155,50 @@ def test_a_row_turns_with_a_face_and_not_with_a_corner_or_a_disc() -> None:
     assert _rows(*corner, ("box", "box"), angle=0.3, angle_b=-0.2) == (0, 0.0)
     # A body of several shapes in the World: no row is taken again.
     assert _rows(0.0, 1.0, ("box", "disc"), parts=2) == (0, 0.0)
+
+
+def test_a_disc_by_a_static_shape_meets_its_core_where_it_is_round() -> None:
+    # A disc above a static box's top face: the face's rows are exact as they are (a static
+    # face never turns). By its corner: the line from the corner, a round feature (ROUND,
+    # the disc's radius and the box's rounding). Beside a capsule, on its side or its end:
+    # its core segment (SEGMENT, with the segment's ends). A circle collider: ROUND. A half
+    # plane: its own normal, as before.
+    corner = (-math.sqrt(0.5), -math.sqrt(0.5))  # (from the disc, up and right of it, down)
+    assert _static_rows(0.0, -1.0, "box") == (0, [0.0] * FACE_NUMBERS)
+    assert _static_rows(*corner, "box") == (ROUND, [0.25, 0.02, 0.0, 0.0, 0.0, 0.0])
+    segment = [0.25, 0.05, -1.0, 0.0, 1.0, 0.0]
+    assert _static_rows(0.0, -1.0, "segment") == (SEGMENT, segment)
+    assert _static_rows(*corner, "segment") == (SEGMENT, segment)
+    assert _static_rows(*corner, "circle") == (ROUND, [0.25, 0.5, 0.0, 0.0, 0.0, 0.0])
+    assert _static_rows(0.0, -1.0, "plane") == (0, [0.0] * FACE_NUMBERS)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
+def test_a_ball_shot_up_the_pinball_lane_passes_the_ends_beside_it(kernels: str) -> None:
+    # The pinball's shooter lane (demos.pinball), in the table's units (cm: World's
+    # length_units_per_meter=100, so the speculative rows reach 2 cm): the ball, shot up the
+    # lane between two walls 1 mm from it, passes the inlane guide's round end where it meets
+    # the lane's wall (its surface 1 mm off the ball's path) and, through the lane's wall,
+    # the right slingshot's top end (5 mm off). The rows of each were taken along the line
+    # from the ball to that end at the step's start (a slingshot's side's line, extended
+    # past its end): closing on it faster than its gap allows, the ball was stopped there
+    # (104 cm/s sideways at the guide), every shot, and the game never left the lane. Taken
+    # again as the ball moves, to the nearest point of the end's core, they never push: the
+    # ball flies up the lane as it would alone (to 1e-9 cm and cm/s: it is stepped in
+    # substeps there, in one closed form alone).
+    world = World(integrator="auto", solver="soft", length_units_per_meter=100, kernels=kernels)
+    pb.build_table(world)
+    ball = pb.add_ball(world, pb.PLUNGER_REST)
+    ball.vel = Vector(0.0, 280.0)
+    free = World(integrator="auto", solver="soft", length_units_per_meter=100, kernels=kernels)
+    free.add_force(Gravity((0.0, -pb.GRAVITY)))
+    alone = free.add(Body(Vector(*pb.PLUNGER_REST), Vector(0.0, 280.0), radius=pb.BALL_RADIUS,
+                          mass=pb.BALL_MASS))  # fmt: skip
+    while ball.pos.y < 80.0:
+        world.step(pb.DT)
+        free.step(pb.DT)
+        assert (ball.pos - alone.pos).length() < 1e-9, world.t
+        assert (ball.vel - alone.vel).length() < 1e-9, world.t
 
 
 def test_a_disc_on_a_box_that_tips_gives_the_same_bits_on_both_paths() -> None:

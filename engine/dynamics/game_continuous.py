@@ -103,7 +103,16 @@ import numpy as np
 from .. import kernels
 from ..geometry import narrowphase
 from ..geometry.manifold_kinds import LINEAR_SLOP
-from .turning_faces import FACE_A, face_gap, face_start
+from .turning_faces import (
+    FACE_A,
+    FACE_NUMBERS,
+    ROUND,
+    SEGMENT,
+    face_gap,
+    face_start,
+    round_gap,
+    round_start,
+)  # fmt: skip
 
 __all__ = ["CORE", "Continuous", "DEEP", "ITERATIONS", "SAFETY", "continuous_loop", "ended_depth"]
 
@@ -128,7 +137,7 @@ def _ended_sample() -> tuple[Any, ...]:
         np.array([True, False]), np.array([1], dtype=i64), np.array([0], dtype=i64),
         np.array([0.0]), np.array([1.0]), np.array([2], dtype=i64),
         np.array([-0.5, 0.5]), np.zeros(2), np.array([-0.5, 0.5]), np.array([-0.5, -0.5]),
-        np.zeros(2), np.zeros(1, dtype=i64), np.zeros(1),
+        np.zeros(2), np.zeros(1, dtype=i64), np.zeros(FACE_NUMBERS),
     )  # fmt: skip
 
 
@@ -147,7 +156,8 @@ def ended_depth(
     its bodies as the solver's (its ``gap``): sep + (dx_B - dx_A).n + (r_B x n) sin(dq_B) -
     (r_A x n) sin(dq_A); a point's on a face that turns (``face``, ``fround``: the rows' kinds
     and rounding radii, engine.dynamics.turning_faces.face_rows) exactly, as the face and the
-    point are at the end (that module's ``face_gap``). Returns (the least separations (n,),
+    point are at the end (that module's ``face_gap``), and one between two round features
+    likewise (``round_gap``). Returns (the least separations (n,),
     the deepest overlap)."""
     n = len(q0)
     out = np.full(n, np.inf)
@@ -175,10 +185,26 @@ def ended_depth(
         sa, sb = ts[fa], ts[fb]
         for j in range(count[k]):
             p = 2 * k + j
-            if face[k] != 0:
+            if face[k] >= ROUND:
+                # (A disc and a static shape's core: their distance, as the solver takes it.)
+                ox = (x1[b, 0] if b < n else 0.0) - (x1[a, 0] if a < n else 0.0)
+                oy = (x1[b, 1] if b < n else 0.0) - (x1[a, 1] if a < n else 0.0)
+                f = FACE_NUMBERS * k
+                ra, rb = fround[f], fround[f + 1]
+                eax, eay, e1x, e1y = round_start(
+                    nx[k], ny[k], rax[p], ray[p], rbx[p], rby[p], sep[p], ra, rb
+                )
+                e2x, e2y = e1x, e1y
+                if face[k] == SEGMENT:  # (a static shape's: the world's axes)
+                    e1x, e1y, e2x, e2y = fround[f + 2], fround[f + 3], fround[f + 4], fround[f + 5]
+                gap = round_gap(
+                    nx[k], ny[k], ox, oy, tc[fa], ts[fa], tc[fb], ts[fb], eax, eay, e1x, e1y,
+                    e2x, e2y, ra, rb,
+                )[0]  # fmt: skip
+            elif face[k] != 0:
                 # (A point on a face that turns: the rows' own offsets, as the solver takes
                 # them.)
-                r = fround[k]
+                r = fround[FACE_NUMBERS * k]
                 n0x, n0y = nx[k], ny[k]
                 ox = (x1[b, 0] if b < n else 0.0) - (x1[a, 0] if a < n else 0.0)
                 oy = (x1[b, 1] if b < n else 0.0) - (x1[a, 1] if a < n else 0.0)

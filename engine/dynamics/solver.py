@@ -269,7 +269,17 @@ import numpy as np
 
 from .. import kernels
 from ..kernels import floats
-from .turning_faces import FACE_A, STILL, face_gap, face_start
+from .turning_faces import (
+    FACE_A,
+    FACE_NUMBERS,
+    ROUND,
+    SEGMENT,
+    STILL,
+    face_gap,
+    face_start,
+    round_gap,
+    round_start,
+)  # fmt: skip
 
 __all__ = [
     "SUBSTEPS",
@@ -502,7 +512,7 @@ def _sample() -> tuple[Any, ...]:
         np.array([0.5]), f(1), f(1), f(1), i1.copy(), f(1), f(1), i1.copy(), f(1), f(1),
         f(1), f(1), f(1), f(1), f(1), f(1),
     ]  # fmt: skip
-    faces = [i1.copy(), f(1)]
+    faces = [i1.copy(), f(FACE_NUMBERS)]
     return (*body, *vel, *mass, *acc, *contacts, *joints, *faces, 1.0 / 60.0, 4, 30.0, 10.0,
             60.0, 2.0, 3.0, 1.0, FIRST_REACH, f(2))  # fmt: skip
 
@@ -568,10 +578,12 @@ def solve(
     N m s/rad); its ``jpa`` out is the impulse it gave over the whole step (along u, or on B's
     angle), and is not warm started.
 
-    ``cface``, ``cround`` (nc): each contact's face that turns (engine.dynamics.turning_faces'
-    ``face_rows``: 0, or which body's face its normal turns with) and the rounding radius (m)
-    of the body whose point meets it: such a row is taken again as its bodies move (that
-    module's doc), and given back as it was at the end.
+    ``cface``, ``cround`` (nc; FACE_NUMBERS nc): each contact's face that turns (engine.dynamics.
+    turning_faces' ``face_rows``: 0, which body's face its normal turns with, or ROUND or
+    SEGMENT: the line from a disc to a static shape's core) and its numbers (that module's
+    FACE_NUMBERS: the rounding radius (m) of the body whose point meets it, the static shape's,
+    and a SEGMENT's ends): such a row is taken again as its bodies move (that module's
+    doc), and given back as it was at the end.
 
     The step's rates and lengths: ``contact_hertz``, ``contact_damping``, ``joint_hertz``,
     ``joint_damping`` the springs' (Hz, ratios); ``push`` (m/s, ``PUSH_SPEED``) the fastest an
@@ -728,6 +740,12 @@ def solve(
         if cface[k] == 0:
             continue
         live[k] = 1.0
+        if cface[k] >= ROUND:
+            # (A disc and a static shape's core: the line between them turns as the disc
+            # passes, whatever its speed; an impact's line is the one where they meet, which
+            # the rows taken again follow.)
+            turning += 1
+            continue
         for j in range(ccount[k]):
             p = 2 * k + j
             dvx, dvy = _relative(
@@ -742,17 +760,32 @@ def solve(
     te0x = floats(2 * nc if turning else 0, 0.0)
     te0y = floats(2 * nc if turning else 0, 0.0)
     tf0 = floats(2 * nc if turning else 0, 0.0)
+    # (A round row's static core: its segment's ends, less B's position; a point twice.)
+    te1x = floats(2 * nc if turning else 0, 0.0)
+    te1y = floats(2 * nc if turning else 0, 0.0)
+    te2x = floats(2 * nc if turning else 0, 0.0)
+    te2y = floats(2 * nc if turning else 0, 0.0)
     kept = floats(8 * nc if turning else 0, 0.0)  # (each point's four anchors, as they came)
     for k in range(nc if turning else 0):
         if live[k] == 0.0:
             continue
         nx, ny = cnx[k], cny[k]
         tn0x[k], tn0y[k] = nx, ny
-        r = cround[k]
+        f = FACE_NUMBERS * k
+        r = cround[f]
         for j in range(ccount[k]):
             p = 2 * k + j
             kept[4 * p], kept[4 * p + 1] = crax[p], cray[p]
             kept[4 * p + 2], kept[4 * p + 3] = crbx[p], crby[p]
+            if cface[k] >= ROUND:
+                te0x[p], te0y[p], te1x[p], te1y[p] = round_start(
+                    nx, ny, crax[p], cray[p], crbx[p], crby[p], csep[p], r, cround[f + 1]
+                )
+                te2x[p], te2y[p] = te1x[p], te1y[p]
+                if cface[k] == SEGMENT:  # (the static body's own position is the origin)
+                    te1x[p], te1y[p] = cround[f + 2] - x0[cb[k]], cround[f + 3] - y0[cb[k]]
+                    te2x[p], te2y[p] = cround[f + 4] - x0[cb[k]], cround[f + 5] - y0[cb[k]]
+                continue
             te0x[p], te0y[p], tf0[p] = face_start(
                 cface[k], nx, ny, crax[p], cray[p], crbx[p], crby[p], csep[p], r
             )
@@ -762,10 +795,16 @@ def solve(
         (engine.dynamics.turning_faces.face_gap): its separation, normal and disc centre."""
         ox = (x0[b] + dx[b]) - (x0[a] + dx[a])
         oy = (y0[b] + dy[b]) - (y0[a] + dy[a])
+        if cface[k] >= ROUND:
+            return round_gap(
+                tn0x[k], tn0y[k], ox, oy, cq[a], sq[a], cq[b], sq[b], te0x[p], te0y[p],
+                te1x[p], te1y[p], te2x[p], te2y[p], cround[FACE_NUMBERS * k],
+                cround[FACE_NUMBERS * k + 1],
+            )  # fmt: skip
         f, d = (a, b) if cface[k] == FACE_A else (b, a)
         return face_gap(
             cface[k], tn0x[k], tn0y[k], ox, oy, cq[f], sq[f], cq[d], sq[d], te0x[p], te0y[p],
-            cround[k], tf0[p],
+            cround[FACE_NUMBERS * k], tf0[p],
         )  # fmt: skip
 
     def retake(k: int) -> None:
@@ -777,7 +816,7 @@ def solve(
         ma, ia, mb, ib = bim[a], bii[a], bim[b], bii[b]
         ox = (x0[b] + dx[b]) - (x0[a] + dx[a])
         oy = (y0[b] + dy[b]) - (y0[a] + dy[a])
-        r = cround[k]
+        r = cround[FACE_NUMBERS * k]
         for j in range(ccount[k]):
             p = 2 * k + j
             s, nx, ny, wx, wy = turned(p, k, a, b)
@@ -1558,8 +1597,15 @@ def solve(
                 # start are right to the turn squared (a pile at rest keeps them, at their
                 # cost: engine.dynamics.turning_faces, ``STILL``).
                 for k in range(nc if turning else 0):
-                    if live[k] == 1.0 and abs(dq[ca[k]]) + abs(dq[cb[k]]) >= STILL:
-                        live[k] = 2.0
+                    if live[k] == 1.0:
+                        if cface[k] >= ROUND:
+                            # (A disc and a static core: from the first substep after which
+                            # the line between them has turned by STILL.)
+                            _, nx, ny, _, _ = turned(2 * k, k, ca[k], cb[k])
+                            if abs(nx * tn0y[k] - ny * tn0x[k]) >= STILL:
+                                live[k] = 2.0
+                        elif abs(dq[ca[k]]) + abs(dq[cb[k]]) >= STILL:
+                            live[k] = 2.0
                     if live[k] == 2.0:
                         retake(k)
 

@@ -69,12 +69,38 @@ substep after which its bodies have turned (``STILL``). A body that strikes
 the face is an impact, which the rows take where it meets, as Box2D's do: its rows stay as they
 are, so that an impact's closed form holds (a disc striking a box off its centre spins it as
 the closed form says, to 1e-9: tests/test_rotation_shapes.py). ``ended_depth`` measures every
-such row exactly at the step's end (engine.dynamics.game_continuous). A disc on a polygon's
+such row exactly at the step's end (engine.dynamics.game_continuous). A disc on a body's
 corner or a capsule's end meets a round feature, whose normal turns with neither body, and a
-corner on a corner no face: their rows are as before. The face is a line: a point that slides
-past its end within the step is taken on the line's extension (a step's slide). While any
-body of the World has several shapes (``Body(shapes=[...])``) no row is taken again (a pair's
-parts are not known on the numpy path's rows): the rows are as before.
+corner on a corner no face: their rows are as before (but against a static shape: below).
+The face is a line: a point that slides past its end within the step is taken on the line's
+extension (a step's slide). While any body of the World has several shapes
+(``Body(shapes=[...])``) no row is taken again (a pair's parts are not known on the numpy
+path's rows): the rows are as before.
+
+**Round features.** A disc passing a static shape's corner, a capsule's end or a circle
+collider meets a round feature: the separation is the distance from the disc's centre to the
+nearest point of the shape's core (the corner, the circle's centre, the capsule's core segment)
+less both roundings, and the normal is the line between them, which turns as the disc goes by.
+The rows at the step's start take that line where it was: a ball rising past the end of a wall
+beside its path closes on the start's line faster than the gap allows, where the true line
+turns away from it as the ball passes, and the row stops it, a contact nothing touched (a
+ghost; Box2D's speculative rows have it too). Where the nearest point is on a capsule's side,
+the row is the side's line, which goes on past the end: a ball that passes the end is stopped
+by the line's extension. Measured on the pinball's shooter lane in the table's units
+(demos.pinball, ``World(length_units_per_meter=100)``, so the speculative rows reach 2 cm): the
+ball shot up the lane, 1 mm from the inlane guide's end and 5 mm (through the lane's wall) from
+the right slingshot's top end, was thrown 104 cm/s sideways at the guide, at every shot, and
+the game never left the lane. So a disc's row with a static shape that is no half plane and
+whose normal is not one of a polygon's faces (``ROUND``: a corner, a circle collider), or with
+a static capsule on its side or its end (``SEGMENT``: its whole core segment, two-sided), is
+taken again as the disc moves: its normal the line from the disc's centre to the nearest point
+of that core, its separation that distance less the two roundings (``round_gap``), from the
+first substep after which the line has turned by ``STILL`` (a disc at rest by a corner or on a
+capsule's side keeps the rows of its start), whatever the disc's speed (the line where they
+meet is an impact's own). The ball now flies up the lane as it would alone, to 1e-9
+(tests/test_turning_faces.py), and the game plays. A polygon's face stays as it was (one-sided:
+its rows at the start are exact for its line), and two bodies' round features too (the pit's
+discs).
 """
 
 from __future__ import annotations
@@ -86,7 +112,10 @@ import numpy as np
 
 from .. import kernels
 
-__all__ = ["ALIGNED", "FACE_A", "FACE_B", "STILL", "face_gap", "face_rows", "face_start"]
+__all__ = [
+    "ALIGNED", "FACE_A", "FACE_B", "FACE_NUMBERS", "ROUND", "SEGMENT", "STILL", "face_gap",
+    "face_rows", "face_start", "round_gap", "round_start",
+]  # fmt: skip
 
 #: A row's normal is a face's where it and the face's edge normal agree to this (their dot
 #: product at least 1 - ALIGNED): a disc's manifold on a face gives the face's normal, turned,
@@ -99,42 +128,60 @@ ALIGNED = 1e-9
 #: rows: the pyramid of 210 boxes took 30% longer a step with every row taken again from the
 #: first substep).
 STILL = 1e-4
-#: ``face_rows``' kinds: the normal turns with body A (the face is A's, the point B's), or with B.
+#: ``face_rows``' kinds: the normal turns with body A (the face is A's, the point B's), or with B;
+#: or it is the line from a disc's centre to the nearest point of a static shape's core: a
+#: point (a corner, a circle's centre) or a segment (a capsule's core) (module doc, "Round
+#: features").
 FACE_A = 1
 FACE_B = 2
+ROUND = 3
+SEGMENT = 4
+#: The numbers ``face_rows`` gives each row (``radius``): the rounding of the body whose point
+#: meets the face (a ROUND or SEGMENT row's disc's radius), the static shape's rounding, and a
+#: SEGMENT row's core segment's two ends (m, the world's axes).
+FACE_NUMBERS = 6
 
 
 def _sample() -> tuple[Any, ...]:
-    """The smallest call of ``face_rows``: a disc (row 1) on a unit box (row 0)."""
+    """The smallest call of ``face_rows``: a disc (row 1) on a unit box (row 0), and the disc
+    by the corner of a static box (place 0, polygon 1 of the tables)."""
     i64 = np.int64
-    box = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]])
+    box = np.array([[[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]] * 2)
     return (
-        np.array([0], dtype=i64), np.array([1], dtype=i64), np.array([0.0]), np.array([1.0]), 2,
-        False, np.zeros(2), np.array([False, True]), np.array([0, 0], dtype=i64),
-        np.array([[0, 1], [1, 1]], dtype=i64), box, np.array([4], dtype=i64), np.array([0.0]),
-        np.array([0.25]),
+        np.array([0, 1], dtype=i64), np.array([1, 2], dtype=i64), np.array([0.0, 0.6]),
+        np.array([1.0, 0.8]), 2, False, np.zeros(2), np.array([False, True]),
+        np.array([0, 0], dtype=i64), np.array([[0, 1], [1, 1]], dtype=i64), box,
+        np.array([4, 4], dtype=i64), np.array([0.0, 0.0]), np.array([0.25]),
+        np.array([-1, 0], dtype=i64), np.array([False]), np.array([1], dtype=i64), box * 0.5,
     )  # fmt: skip
 
 
 @kernels.loop(sample=_sample)
 def face_rows(
     ca: Any, cb: Any, nx: Any, ny: Any, n: int, several: bool, angle: Any, body_circle: Any,
-    body_index: Any, body_parts: Any, Nrm: Any, cnt: Any, prad: Any, rnd: Any,
+    body_index: Any, body_parts: Any, Nrm: Any, cnt: Any, prad: Any, rnd: Any, place: Any,
+    static_circle: Any, static_index: Any, V: Any,
 ) -> tuple[Any, Any]:  # fmt: skip
     """Each contact row's face (module doc): 0, or FACE_A where its normal turns with body A
-    (a face of A, the point B's), FACE_B with B; and the rounding radius of the body whose
-    point meets the face (m: a disc's radius, a capsule's, a rounded polygon's; 0 for none).
+    (a face of A, the point B's), FACE_B with B, ROUND or SEGMENT where it is the line from
+    a disc's centre to the nearest point of a static shape's core (a corner or a circle's
+    centre; a capsule's core segment); and ``FACE_NUMBERS`` numbers a row (at FACE_NUMBERS k for row
+    k): the rounding radius of the body whose point meets the face (m: a disc's radius, a
+    capsule's, a rounded polygon's; 0 for none), the static shape's, and a SEGMENT row's
+    core segment's ends (m).
 
     Rows (engine.dynamics.solver.solve's): bodies ``ca``, ``cb`` (rows; ``n`` or more: a
-    static shape), the unit normal ``nx``, ``ny`` from A to B. Bodies (``n``; ``several``:
-    one of them has several shapes, and no row is taken again): ``angle`` (rad); each body's
-    first part and count ``body_parts`` (n, 2), each part's shape
-    (``body_circle``, ``body_index`` in the tables: engine.geometry.narrowphase.Places); the
-    tables' polygon normals ``Nrm`` (P, M, 2), counts ``cnt`` and radii ``prad``, the
-    circles' radii ``rnd``."""
+    static shape, its ``place`` among the static shapes; -1 for a pair of bodies), the unit
+    normal ``nx``, ``ny`` from A to B. Bodies (``n``; ``several``: one of them has several
+    shapes, and no row is taken again): ``angle`` (rad); each body's first part and count
+    ``body_parts`` (n, 2), each part's shape (``body_circle``, ``body_index`` in the tables:
+    engine.geometry.narrowphase.Places), and each static shape's (``static_circle``,
+    ``static_index``: a half plane's < 0); the tables' polygon corners ``V`` and normals
+    ``Nrm`` (P, M, 2, a static one's in the world's axes), counts ``cnt`` and radii
+    ``prad``, the circles' radii ``rnd``."""
     m = len(ca)
     face = np.zeros(m, dtype=np.int64)
-    radius = np.zeros(m)
+    radius = np.zeros(FACE_NUMBERS * m)
     # Each body's angle's cosine and sine, once (a pile's rows share their bodies).
     cos_q = np.empty(n if m and not several else 0)
     sin_q = np.empty(n if m and not several else 0)
@@ -145,7 +192,28 @@ def face_rows(
         a = ca[k]
         b = cb[k]
         if b >= n:
-            continue  # (a static shape never turns)
+            # A static shape never turns; a disc against its corner, a capsule's end or a
+            # circle collider meets a round feature (module doc, "Round features").
+            s = place[k]
+            if s < 0 or not body_circle[body_parts[a, 0]] or static_index[s] < 0:
+                continue  # (a half plane's normal is its own)
+            j = static_index[s]
+            f = FACE_NUMBERS * k
+            if static_circle[s]:
+                face[k] = ROUND
+                radius[f + 1] = rnd[j]
+            elif cnt[j] == 2:
+                face[k] = SEGMENT
+                radius[f + 1] = prad[j]
+                radius[f + 2], radius[f + 3] = V[j, 0, 0], V[j, 0, 1]
+                radius[f + 4], radius[f + 5] = V[j, 1, 0], V[j, 1, 1]
+            elif _faces_along(Nrm, cnt, j, 1.0, 0.0, -nx[k], -ny[k]):
+                continue  # (a polygon's face: one-sided; its rows at the start are exact)
+            else:
+                face[k] = ROUND
+                radius[f + 1] = prad[j]
+            radius[f] = rnd[body_index[body_parts[a, 0]]]
+            continue
         a_round = body_circle[body_parts[a, 0]]
         b_round = body_circle[body_parts[b, 0]]
         if a_round and b_round:
@@ -158,10 +226,10 @@ def face_rows(
             ib = body_index[body_parts[b, 0]]
             if _faces_along(Nrm, cnt, ia, cos_q[a], sin_q[a], nx[k], ny[k]):
                 face[k] = FACE_A
-                radius[k] = prad[ib]
+                radius[FACE_NUMBERS * k] = prad[ib]
             elif _faces_along(Nrm, cnt, ib, cos_q[b], sin_q[b], -nx[k], -ny[k]):
                 face[k] = FACE_B
-                radius[k] = prad[ia]
+                radius[FACE_NUMBERS * k] = prad[ia]
             continue
         # The polygon's edge normals turned to its angle, against the normal from it to the
         # disc: n where the face is A's, -n where it is B's.
@@ -169,7 +237,7 @@ def face_rows(
         j = body_index[body_parts[poly, 0]]
         if _faces_along(Nrm, cnt, j, cos_q[poly], sin_q[poly], sign * nx[k], sign * ny[k]):
             face[k] = FACE_A if b_round else FACE_B
-            radius[k] = rnd[body_index[body_parts[disc, 0]]]
+            radius[FACE_NUMBERS * k] = rnd[body_index[body_parts[disc, 0]]]
     return face, radius
 
 
@@ -223,3 +291,52 @@ def face_gap(
     if face == FACE_A:
         return nx * (ox + wx) + ny * (oy + wy) - r - f0, nx, ny, wx, wy
     return nx * (ox - wx) + ny * (oy - wy) + f0 - r, nx, ny, wx, wy
+
+
+@kernels.helper
+def round_start(
+    nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float, sep: float,
+    ra: float, rb: float,
+) -> tuple[float, float, float, float]:  # fmt: skip
+    """A point between two round features at the step's start (module doc, "Round
+    features"): each one's centre less its body's position (m, the world's axes), A's then
+    B's, from the row's normal ``nx``, ``ny`` from A to B, anchors (m, the point less each
+    body's position: midway between the surfaces), separation ``sep`` (m) and the two
+    roundings ``ra``, ``rb`` (m)."""
+    half = 0.5 * sep
+    return (
+        rax - (half + ra) * nx, ray - (half + ra) * ny, rbx + (half + rb) * nx,
+        rby + (half + rb) * ny,
+    )  # fmt: skip
+
+
+@kernels.helper
+def round_gap(
+    n0x: float, n0y: float, ox: float, oy: float, ca: float, sa: float, cb: float, sb: float,
+    eax: float, eay: float, e1x: float, e1y: float, e2x: float, e2y: float, ra: float,
+    rb: float,
+) -> tuple[float, float, float, float, float]:  # fmt: skip
+    """A point's separation now (m) between a disc and the nearest point of a static
+    shape's core (module doc, "Round features"), its normal now (from A to B; ``n0x``,
+    ``n0y``, the start's, where the two meet) and A's centre less A's position now (m): B's
+    position less A's now ``ox``, ``oy`` (m); cos and sin of each body's turn since the start
+    ``ca``, ``sa``, ``cb``, ``sb``; A's centre less its position at the start ``eax``,
+    ``eay`` and the ends of B's core segment less B's (``e1x`` ... ``e2y``, the same point
+    twice for a point) (m, the world's axes); the roundings ``ra``, ``rb`` (m)."""
+    wax = ca * eax - sa * eay
+    way = sa * eax + ca * eay
+    p1x = ox + (cb * e1x - sb * e1y) - wax
+    p1y = oy + (sb * e1x + cb * e1y) - way
+    ux = cb * (e2x - e1x) - sb * (e2y - e1y)
+    uy = sb * (e2x - e1x) + cb * (e2y - e1y)
+    # The segment's point nearest A's centre (the origin here): p1 + t u, t in [0, 1].
+    uu = ux * ux + uy * uy
+    t = 0.0
+    if uu > 0.0:
+        t = min(max(-(p1x * ux + p1y * uy) / uu, 0.0), 1.0)
+    dx = p1x + t * ux
+    dy = p1y + t * uy
+    d = math.sqrt(dx * dx + dy * dy)
+    if d == 0.0:
+        return -ra - rb, n0x, n0y, wax, way
+    return d - ra - rb, dx / d, dy / d, wax, way

@@ -28,7 +28,7 @@ from ..dynamics.events import COLLIDER
 from ..dynamics.game_continuous import DEEP, SAFETY, ended_depth
 from ..dynamics.game_joints import INT_ROWS
 from ..dynamics.solver import FIRST_REACH, MOUSE, solve
-from ..dynamics.turning_faces import face_rows
+from ..dynamics.turning_faces import FACE_NUMBERS, face_rows
 from ..exact.pile import label_rows
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
 from ..kernels import stable_order
@@ -231,19 +231,24 @@ def step_loop(
     for i in range(n):
         if body_parts[i, 1] != 1:
             several = True
+    # (And where a disc meets a static shape that is no half plane: a round feature's rows.)
     mixed = False
     for k in range(len(ca) if not several else 0):
         b = cb[k]
-        if b < n and not (body_circle[body_parts[ca[k], 0]] and body_circle[body_parts[b, 0]]):
+        disc = body_circle[body_parts[ca[k], 0]]
+        if b < n and not (disc and body_circle[body_parts[b, 0]]):
+            mixed = True
+            break
+        if b >= n and disc and place[k] >= 0 and static_index[place[k]] >= 0:
             mixed = True
             break
     if mixed:
         face, fround = face_rows(
             ca, cb, nx, ny, n, several, angle, body_circle, body_index, body_parts, Nrm, cnt,
-            rad, rnd,
+            rad, rnd, place, static_circle, static_index, V,
         )  # fmt: skip
     else:
-        face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(len(ca))
+        face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(FACE_NUMBERS * len(ca))
     total = np.zeros(2 * len(ca))
     most = np.zeros(2 * len(ca))
     rise = np.zeros(nb)  # out: how far each body's held loads have yet to lift it (m)

@@ -72,7 +72,7 @@ from ..dynamics import solver
 from ..dynamics.events import COLLIDER, collider_key, collider_keys, pair_key, pair_keys
 from ..dynamics.game_continuous import Continuous, ended_depth
 from ..dynamics.game_joints import GameJoints
-from ..dynamics.turning_faces import face_rows
+from ..dynamics.turning_faces import FACE_NUMBERS, face_rows
 from ..geometry import narrowphase
 from ..geometry.colliders import Collider
 from ..geometry.manifold import StaticShapes, static_shapes
@@ -347,7 +347,7 @@ class GameStep:
         )  # fmt: skip
         touches = self._collide(sc, store, pairs, faces, margin, struck, dt)
         found = self._found(store, sc.cs, sc.owner, touches)
-        turning = _faces(sc, store, found.rows)
+        turning = _faces(sc, store, found.rows, found.place)
         joints = self.joints.arrays(state, store, n)
         k = len(found.place)
         unit = self.unit
@@ -1278,39 +1278,53 @@ class GameStep:
         self.report = _Report(keys, packed)
 
 
-def _faces(sc: _Scene, store: Any, rows: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+def _faces(
+    sc: _Scene, store: Any, rows: list[np.ndarray], place: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """The numpy path's rows of a point on a face that turns (engine.dynamics.turning_faces'
-    ``face_rows``, its plain twin, asked of the rows between two bodies not both discs): each
-    row's kind and rounding radius. None where a body has several shapes."""
+    ``face_rows``, its plain twin, asked of the rows between two bodies not both discs, and
+    of a disc's with a static shape that is no half plane; ``place`` each row's static shape,
+    -1 for a pair of bodies): each row's kind and numbers (FACE_NUMBERS a row). None where a
+    body has several shapes."""
     ca, cb, nx, ny = rows[0], rows[1], rows[2], rows[3]
-    face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(len(ca))
+    face, fround = np.zeros(len(ca), dtype=np.int64), np.zeros(FACE_NUMBERS * len(ca))
     n = len(store)
     if sc.table.parts is not None or not len(ca):
         return face, fround
     circle = sc.places.body_circle
+    static_index = sc.places.static_index
     if len(ca) <= _FEW_FOUND:
         # (A few rows: those to ask picked in plain Python, fewer calls than numpy's.)
+        rows_of = zip(ca.tolist(), cb.tolist(), place.tolist(), strict=True)
         picked = [
             i
-            for i, (a, b) in enumerate(zip(ca.tolist(), cb.tolist(), strict=True))
-            if b < n and not (circle[a] and circle[b])
-        ]
+            for i, (a, b, s) in enumerate(rows_of)
+            if (not (circle[a] and circle[b]) if b < n else circle[a] and s >= 0
+                and static_index[s] >= 0)
+        ]  # fmt: skip
         if not picked:
             return face, fround
         ask = np.array(picked, dtype=np.intp)
     else:
         pair = cb < n
-        ask = (pair & ~(circle[ca] & circle[np.where(pair, cb, 0)])).nonzero()[0]
+        disc = circle[ca]
+        shaped = (place >= 0) & (
+            static_index[np.maximum(place, 0)] >= 0 if len(static_index) else False
+        )
+        ask = np.where(pair, ~(disc & circle[np.where(pair, cb, 0)]), disc & shaped)
+        ask = ask.nonzero()[0]
         if not len(ask):
             return face, fround
     rows_n = np.arange(n, dtype=np.int64)
     parts = np.stack([rows_n, np.ones(n, dtype=np.int64)], axis=1)
-    _, normals, count, prad = sc.places.tables.kernel_polygons
+    corners, normals, count, prad = sc.places.tables.kernel_polygons
     got = face_rows.py(
         ca[ask], cb[ask], nx[ask], ny[ask], n, False, store.angle, circle,
         sc.places.body_index, parts, normals, count, prad, sc.places.tables.round,
+        place[ask], sc.places.static_circle, static_index, corners,
     )  # fmt: skip
-    face[ask], fround[ask] = got
+    face[ask] = got[0]
+    fround.reshape(-1, FACE_NUMBERS)[ask] = got[1].reshape(-1, FACE_NUMBERS)
     return face, fround
 
 
