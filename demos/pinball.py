@@ -73,6 +73,9 @@ from engine.world import WorldSnapshot
 TILT = 6.5
 GRAVITY = 981.0 * math.sin(math.radians(TILT))
 DT = 1.0 / 120.0
+#: The table's lengths are centimetres: the World is told so (``length_units_per_meter``), so
+#: that the soft step's slop and speeds are a real table's (the exact models' are their own).
+UNITS_PER_METER = 100.0
 #: The playfield: x from 0 to WIDTH (cm); the shooter lane runs beside it, from WIDTH to
 #: LANE_RIGHT. The straight side walls rise to ARCH_Y, where a half circle closes the top.
 WIDTH, LANE_RIGHT, ARCH_Y = 46.5, 50.0, 88.0
@@ -332,7 +335,7 @@ class PinballGame:
 
     def __init__(self, seed: int = 1, player: Player | None = None, solver: str = "exact") -> None:
         self.rng = np.random.default_rng(seed)
-        self.world = World(integrator="auto", solver=solver)
+        self.world = World(integrator="auto", solver=solver, length_units_per_meter=UNITS_PER_METER)
         self.table = build_table(self.world)
         self.ball = add_ball(self.world, PLUNGER_REST)
         self.kinds: dict[Any, str] = {}

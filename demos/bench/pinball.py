@@ -148,7 +148,7 @@ def _ours(
     result = Tunnelling("this engine", len(trials))
     pivot = Vector(*pb.LEFT_PIVOT)
     for k, (speed, offset, aim_u, arrival) in enumerate(trials):
-        world = World(integrator="auto", solver=solver)
+        world = World(integrator="auto", solver=solver, length_units_per_meter=pb.UNITS_PER_METER)
         world.add_force(Gravity((0.0, -pb.GRAVITY)))
         flipper, hinge = pb.add_flipper(world, -1, mass)
         start, vel = _throw(aim_u, offset, speed, arrival)
