@@ -107,7 +107,6 @@ from .turning_faces import (
     FACE_A,
     FACE_NUMBERS,
     ROUND,
-    SEGMENT,
     face_gap,
     face_start,
     round_gap,
@@ -156,8 +155,8 @@ def ended_depth(
     its bodies as the solver's (its ``gap``): sep + (dx_B - dx_A).n + (r_B x n) sin(dq_B) -
     (r_A x n) sin(dq_A); a point's on a face that turns (``face``, ``fround``: the rows' kinds
     and rounding radii, engine.dynamics.turning_faces.face_rows) exactly, as the face and the
-    point are at the end (that module's ``face_gap``), and one between two round features
-    likewise (``round_gap``). Returns (the least separations (n,),
+    point are at the end (that module's ``face_gap``), and one between a disc and a static
+    shape's round feature likewise (``round_gap``). Returns (the least separations (n,),
     the deepest overlap)."""
     n = len(q0)
     out = np.full(n, np.inf)
@@ -191,12 +190,11 @@ def ended_depth(
                 oy = (x1[b, 1] if b < n else 0.0) - (x1[a, 1] if a < n else 0.0)
                 f = FACE_NUMBERS * k
                 ra, rb = fround[f], fround[f + 1]
-                eax, eay, e1x, e1y = round_start(
-                    nx[k], ny[k], rax[p], ray[p], rbx[p], rby[p], sep[p], ra, rb
-                )
-                e2x, e2y = e1x, e1y
-                if face[k] == SEGMENT:  # (a static shape's: the world's axes)
-                    e1x, e1y, e2x, e2y = fround[f + 2], fround[f + 3], fround[f + 4], fround[f + 5]
+                # (A SEGMENT's ends are a static shape's: the world's axes, its origin.)
+                eax, eay, e1x, e1y, e2x, e2y = round_start(
+                    face[k], nx[k], ny[k], rax[p], ray[p], rbx[p], rby[p], sep[p], ra, rb,
+                    fround[f + 2], fround[f + 3], fround[f + 4], fround[f + 5],
+                )  # fmt: skip
                 gap = round_gap(
                     nx[k], ny[k], ox, oy, tc[fa], ts[fa], tc[fb], ts[fb], eax, eay, e1x, e1y,
                     e2x, e2y, ra, rb,

@@ -273,7 +273,6 @@ from .turning_faces import (
     FACE_A,
     FACE_NUMBERS,
     ROUND,
-    SEGMENT,
     STILL,
     face_gap,
     face_start,
@@ -778,13 +777,12 @@ def solve(
             kept[4 * p], kept[4 * p + 1] = crax[p], cray[p]
             kept[4 * p + 2], kept[4 * p + 3] = crbx[p], crby[p]
             if cface[k] >= ROUND:
-                te0x[p], te0y[p], te1x[p], te1y[p] = round_start(
-                    nx, ny, crax[p], cray[p], crbx[p], crby[p], csep[p], r, cround[f + 1]
-                )
-                te2x[p], te2y[p] = te1x[p], te1y[p]
-                if cface[k] == SEGMENT:  # (the static body's own position is the origin)
-                    te1x[p], te1y[p] = cround[f + 2] - x0[cb[k]], cround[f + 3] - y0[cb[k]]
-                    te2x[p], te2y[p] = cround[f + 4] - x0[cb[k]], cround[f + 5] - y0[cb[k]]
+                sbx, sby = x0[cb[k]], y0[cb[k]]  # (the static body's: the origin)
+                te0x[p], te0y[p], te1x[p], te1y[p], te2x[p], te2y[p] = round_start(
+                    cface[k], nx, ny, crax[p], cray[p], crbx[p], crby[p], csep[p], r,
+                    cround[f + 1], cround[f + 2] - sbx, cround[f + 3] - sby, cround[f + 4] - sbx,
+                    cround[f + 5] - sby,
+                )  # fmt: skip
                 continue
             te0x[p], te0y[p], tf0[p] = face_start(
                 cface[k], nx, ny, crax[p], cray[p], crbx[p], crby[p], csep[p], r

@@ -295,19 +295,22 @@ def face_gap(
 
 @kernels.helper
 def round_start(
-    nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float, sep: float,
-    ra: float, rb: float,
-) -> tuple[float, float, float, float]:  # fmt: skip
-    """A point between two round features at the step's start (module doc, "Round
-    features"): each one's centre less its body's position (m, the world's axes), A's then
-    B's, from the row's normal ``nx``, ``ny`` from A to B, anchors (m, the point less each
-    body's position: midway between the surfaces), separation ``sep`` (m) and the two
-    roundings ``ra``, ``rb`` (m)."""
+    face: int, nx: float, ny: float, rax: float, ray: float, rbx: float, rby: float,
+    sep: float, ra: float, rb: float, s1x: float, s1y: float, s2x: float, s2y: float,
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+    """A point between a disc and a static shape's round feature at the step's start (module
+    doc, "Round features"): the disc's centre less A's position, then the two ends of B's core
+    less B's position (the same point twice for a ROUND row) (m, the world's axes), from the
+    row's kind ``face`` (ROUND or SEGMENT), normal ``nx``, ``ny`` from A to B, anchors (m, the
+    point less each body's position: midway between the surfaces), separation ``sep`` (m),
+    the two roundings ``ra``, ``rb`` (m) and, for a SEGMENT row, its core segment's ends
+    ``s1x`` ... ``s2y`` less B's position (m; a ROUND row's centre is found from the point)."""
     half = 0.5 * sep
-    return (
-        rax - (half + ra) * nx, ray - (half + ra) * ny, rbx + (half + rb) * nx,
-        rby + (half + rb) * ny,
-    )  # fmt: skip
+    if face == SEGMENT:
+        return rax - (half + ra) * nx, ray - (half + ra) * ny, s1x, s1y, s2x, s2y
+    cx = rbx + (half + rb) * nx
+    cy = rby + (half + rb) * ny
+    return rax - (half + ra) * nx, ray - (half + ra) * ny, cx, cy, cx, cy
 
 
 @kernels.helper
