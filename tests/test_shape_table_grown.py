@@ -10,8 +10,9 @@ import math
 import numpy as np
 import pytest
 
-from engine import Body, Circle, Polygon, Segment, World
+from engine import Body, Circle, Hinge, Polygon, Segment, World
 from engine.body_shapes import Compound
+from engine.geometry import narrowphase
 from engine.geometry.shaped import ShapeTable
 from engine.pipeline.game_step import _rows_left
 
@@ -204,3 +205,43 @@ def test_a_soft_world_keeps_its_table_as_bodies_go(monkeypatch: pytest.MonkeyPat
         for got, want in zip(arrays(kept), arrays(fresh), strict=True):
             assert np.array_equal(got, want)
     assert [len(k) - sum(k) for k in shrunk] == [1, 1, 1, 1]  # one row gone each time
+
+
+def test_a_soft_world_keeps_its_places_and_joined_pairs_as_balls_come_and_go() -> None:
+    """In play, balls added and taken out between steps, among crates on hinges, a capsule
+    and static polygons: the shapes' places the soft step keeps (their polygons' table kept
+    while the polygons are) are those made afresh, and the pairs the joints keep apart are
+    those found from the joints, each step."""
+    w = World(solver="soft")
+    w.add_collider(Segment((-20.0, 0.0), (20.0, 0.0)))
+    w.add_collider(Polygon([(5.0, 0.0), (7.0, 0.0), (6.0, 1.0)]))
+    crates = [w.add(Body((2.0 * k - 6.0, 2.0), mass=1.0, shape=BOX)) for k in range(3)]
+    stick = w.add(Body((4.0, 4.0), mass=1.0, shape=STICK))
+    w.add_link(Hinge(crates[0], crates[1], (-5.0, 2.5)))
+    w.add_link(Hinge(crates[1], crates[2], (-3.0, 2.5)))
+    w.add_link(Hinge(stick, w.static_body, (4.0, 4.0)))
+    balls: list[Body] = []
+    for k in range(8):
+        if k == 6:
+            w.remove(crates.pop())  # (a polygon's row goes, and its hinge with it)
+        elif k % 3 == 2:
+            w.remove(balls.pop(0))
+        else:
+            balls.append(w.add(Body((0.5 * k - 2.0, 6.0), mass=0.2, radius=0.1)))
+        w.step(1 / 60)
+        state = w._s
+        store, game = state.store, state.game
+        table, statics, kept = game._places
+        narrowphase._POLYGONS[:] = [None, None, None, None]
+        fresh = narrowphase.places_of(table, statics)
+        assert kept.tables.polygons is not None and fresh.tables.polygons is not None
+        for part in ("vertices", "normals", "count", "radius"):
+            got, want = getattr(kept.tables.polygons, part), getattr(fresh.tables.polygons, part)
+            assert got.dtype == want.dtype and np.array_equal(got, want)
+        for name in ("body_circle", "body_index", "static_circle", "static_index"):
+            assert np.array_equal(getattr(kept, name), getattr(fresh, name))
+        n = len(store)
+        rows = [sorted((store.row(j.kept_apart[0].slot), store.row(j.kept_apart[1].slot)))
+                for j in w.links if isinstance(j, Hinge) and j.kept_apart is not None]  # fmt: skip
+        assert state.joint_apart.tolist() == sorted(a * n + b for a, b in rows)
+        assert len(rows) == (2 if k < 6 else 1)

@@ -297,11 +297,20 @@ class Places(NamedTuple):
     static_index: np.ndarray
 
 
-def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
-    """The tables of the bodies' shapes and the colliders' (engine.geometry.narrowphase)."""
-    n = len(table)
-    # The polygons' tables in order (each corners, normals, counts, radii): the bodies'
-    # polygons, their capsules (two-vertex polygons), the static polygons, the static capsules.
+#: The last polygons' table ``places_of`` made: (the bodies' polygons and capsules and the
+#: static shapes it was made of, the table). Kept while they are the same objects: a game
+#: that spawns or takes out a ball changes only the discs' rows (engine.geometry.shaped keeps
+#: the others' arrays then).
+_POLYGONS: list[Any] = [None, None, None, None]
+
+
+def _polygons_of(table: ShapeTable, statics: StaticShapes) -> Polygons | None:
+    """The polygons' tables in order (each corners, normals, counts, radii): the bodies'
+    polygons, their capsules (two-vertex polygons), the static polygons, the static
+    capsules; None where there are none."""
+    kept = _POLYGONS
+    if kept[0] is table.polygons and kept[1] is table.capsules and kept[2] is statics:
+        return kept[3]  # type: ignore[no-any-return]
     parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
     if table.polygons is not None:
         p = table.polygons
@@ -323,6 +332,14 @@ def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
             np.concatenate([c for _, _, c, _ in parts]),
             np.concatenate([r for _, _, _, r in parts]),
         )
+    kept[:] = [table.polygons, table.capsules, statics, polygons]
+    return polygons
+
+
+def places_of(table: ShapeTable, statics: StaticShapes) -> Places:
+    """The tables of the bodies' shapes and the colliders' (engine.geometry.narrowphase)."""
+    n = len(table)
+    polygons = _polygons_of(table, statics)
     circles = Circles(
         np.concatenate([table.circles.center, statics.circles.center]),
         np.concatenate([table.circles.radius, statics.circles.radius]),

@@ -203,12 +203,16 @@ class ShapeTable:
         out.shaped = out.kind != DISC
         out.circles = Circles(self.circles.center[keep], np.asarray(radius, dtype=float))
         caps = keep[self.kind == CAPSULE]
-        out.capsules = Capsules(self.capsules.a[caps], self.capsules.b[caps],
-                                self.capsules.radius[caps])  # fmt: skip
+        out.capsules = self.capsules  # (every capsule left: the same arrays, kept)
+        if not caps.all():
+            out.capsules = Capsules(self.capsules.a[caps], self.capsules.b[caps],
+                                    self.capsules.radius[caps])  # fmt: skip
         out.polygons = None
         if self.polygons is not None:
             polys = np.flatnonzero(keep[self.kind == POLYGON])
-            if len(polys):
+            if len(polys) == len(self.polygons):
+                out.polygons = self.polygons  # (every polygon left: a ball taken out)
+            elif len(polys):
                 out.polygons = self.polygons.take(polys)
         out.parts = None
         out._extents = None

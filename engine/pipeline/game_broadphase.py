@@ -21,7 +21,6 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..dynamics.joints import Joint
 from ..geometry.colliders import Collider
 from ..geometry.manifold import StaticShapes
 from ..geometry.manifold_kinds import SPECULATIVE_DISTANCE
@@ -123,17 +122,13 @@ def static_bounds(shapes: StaticShapes) -> tuple[np.ndarray, np.ndarray]:
 
 def apart_keys(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray:
     """The pairs of bodies kept apart, as sorted keys a n + b of rows a < b: by a pre_solve
-    (``ignored``, such keys) or by a joint that does not let its bodies collide."""
-    n = len(store)
-    apart = [np.asarray(ignored, dtype=np.int64)] if len(ignored) else []
-    for j in state.links:
-        pair = j.kept_apart if isinstance(j, Joint) else None
-        if pair is not None:
-            ra, rb = store.row(pair[0].slot), store.row(pair[1].slot)
-            apart.append(np.array([min(ra, rb) * n + max(ra, rb)], dtype=np.int64))
-    if not apart:
-        return np.zeros(0, dtype=np.int64)  # (a game's usual step: nothing kept apart)
-    return np.unique(np.concatenate(apart))
+    (``ignored``, such keys) or by a joint that does not let its bodies collide (the World's
+    ``joint_apart``, found again whenever the bodies or the links change)."""
+    joints = state.joint_apart
+    assert store is state.store
+    if not len(ignored):
+        return joints
+    return np.union1d(joints, np.asarray(ignored, dtype=np.int64))
 
 
 #: No keys (what ``ignored_keys`` gives on most steps; empty, so nothing can write to it).

@@ -80,6 +80,9 @@ class WorldState:
         self.slept: bool | None = None
         self.contacts: Contacts | None = None  # made by the first add_collider
         self.collisions = Collisions()  # contacts between bodies (2D bodies with a radius)
+        #: The pairs of bodies a joint keeps from colliding, as sorted keys a n + b of rows
+        #: a < b (``_apart``; ``collisions.apart`` adds a pre_solve's pairs within a step).
+        self.joint_apart = np.zeros(0, dtype=np.int64)
         self.collisions.fast = kernels == "fast"
         self.pairs_on = False  # whether any two bodies may collide
         # on_contact handlers: (target, begin, end, post_solve).
@@ -320,19 +323,29 @@ class WorldState:
         self.fast = None
 
     def _apart(self) -> None:
-        """Tell the contacts which pairs of bodies a joint keeps from colliding."""
-        store, keys, joined = self.store, [], []
+        """Tell the contacts which pairs of bodies a joint keeps from colliding
+        (``joint_apart``), and which bodies a joint or an anchored link holds."""
+        store = self.store
+        pairs: list[int] = []
+        joined: list[int] = []
+        keys = np.zeros(0, dtype=np.int64)
+        rows = np.zeros(0, dtype=np.intp)
         if store is not None:
-            n = len(self.bodies)
             for k in self.links:
                 pair = k.kept_apart if isinstance(k, Joint) else None
                 if pair is not None:
-                    a, b = sorted((store.row(pair[0].slot), store.row(pair[1].slot)))
-                    keys.append(a * n + b)
+                    pairs += (pair[0].slot, pair[1].slot)
                 if isinstance(k, Joint) or k.anchored:
-                    joined += [store.row(b.slot) for b in k.bodies]
-        self.collisions.apart = np.unique(np.array(keys, dtype=np.int64))
-        self.collisions.joined = np.unique(np.array(joined, dtype=np.intp))
+                    joined += [b.slot for b in k.bodies]
+            # (The rows of all the slots at once: a game spawning a ball waits on this.)
+            if pairs:
+                ends = store.rows(pairs).astype(np.int64).reshape(-1, 2)
+                keys = np.unique(ends.min(axis=1) * len(self.bodies) + ends.max(axis=1))
+            if joined:
+                rows = np.unique(store.rows(joined))
+        self.joint_apart = keys
+        self.collisions.apart = keys
+        self.collisions.joined = rows
 
     def moments_changed(self) -> None:
         """A moment of inertia changed (a body may have stopped turning): the generators'
