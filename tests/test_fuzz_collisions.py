@@ -1219,6 +1219,40 @@ def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
     check_as_if_alone(scene)
 
 
+#: Found exploring (numpy path, `--hypothesis-profile=explore`, 2026-12-07; not shrunk: hypothesis
+#: ran out of time): under "auto" with gravity, a ball of the first world slides up the slanted
+#: segment at 55 m/s and leaves it at its end in step 35, while the second world's ball falls
+#: along the room's wall. Alone, and with the other world in the World, it leaves 9.6e-7 m/s
+#: apart (1.7e-8 of its speed; 1.2e-8 m at that step, growing as it flies), nine times the
+#: 1e-9 relative bound that the closed form's restarts (an ulp of the state) stay within. Till
+#: that step the two agree to 3e-14 m; the step that takes the slide off the face's end
+#: parts them (its cause not yet found).
+LEAVES_A_SLIDE_APART: Scene = {
+    "balls": [
+        (37.78550360924861, 9.446375902312152, -755.7100721849722, -188.92751804624305,
+         6.324555320336759, 1.0, 0.5, 0.0, 5),
+        (60.45680577479777, 0.0, -755.7100721849722, 0.0, 14.997884186649117, 1.0, 0.0, 0.0, 7),
+    ],
+    "colliders": [
+        Box((-98.09109694988095, -98.09109694988095), (98.09109694988095, 98.09109694988095),
+            friction=0.0),
+        Plane((0.0, -75.45468996144689), (0.0, 1.0), restitution=0.0, friction=0.0),
+        Segment((-37.727344980723444, 18.863672490361722), (37.727344980723444, 0.0),
+                restitution=0.0, friction=0.0),
+        Circle((0.0, 0.0), 18.863672490361722, restitution=0.25, friction=0.0),
+    ],
+    "gravity": True,
+    "method": "auto",
+    "steps": 60,
+}  # fmt: skip
+
+
+@xfail("a world's ball sliding off a face's end with a stranger in the World leaves it 1e-8 "
+       "of its speed apart from where it leaves alone (LEAVES_A_SLIDE_APART)")  # fmt: skip
+def test_a_filtered_apart_world_leaves_a_slide_as_if_alone() -> None:
+    check_as_if_alone(LEAVES_A_SLIDE_APART)
+
+
 #: Found exploring (fast path, 1,500 fresh examples a test, 2026-12-06; the numpy path gives
 #: the same bits; not shrunk: hypothesis ran out of time): ten balls of two worlds in one room
 #: with a Plane and a Circle, no gravity, semi-implicit Euler. At step 48 one ball's velocity
