@@ -136,7 +136,7 @@ FACE_A = 1
 FACE_B = 2
 ROUND = 3
 SEGMENT = 4
-#: The numbers ``face_rows`` gives each row (``radius``): the rounding of the body whose point
+#: The numbers ``face_rows`` gives each row (``numbers``): the rounding of the body whose point
 #: meets the face (a ROUND or SEGMENT row's disc's radius), the static shape's rounding, and a
 #: SEGMENT row's core segment's two ends (m, the world's axes).
 FACE_NUMBERS = 6
@@ -181,7 +181,7 @@ def face_rows(
     ``prad``, the circles' radii ``rnd``."""
     m = len(ca)
     face = np.zeros(m, dtype=np.int64)
-    radius = np.zeros(FACE_NUMBERS * m)
+    numbers = np.zeros(FACE_NUMBERS * m)
     # Each body's angle's cosine and sine, once (a pile's rows share their bodies).
     cos_q = np.empty(n if m and not several else 0)
     sin_q = np.empty(n if m and not several else 0)
@@ -201,18 +201,18 @@ def face_rows(
             f = FACE_NUMBERS * k
             if static_circle[s]:
                 face[k] = ROUND
-                radius[f + 1] = rnd[j]
+                numbers[f + 1] = rnd[j]
             elif cnt[j] == 2:
                 face[k] = SEGMENT
-                radius[f + 1] = prad[j]
-                radius[f + 2], radius[f + 3] = V[j, 0, 0], V[j, 0, 1]
-                radius[f + 4], radius[f + 5] = V[j, 1, 0], V[j, 1, 1]
+                numbers[f + 1] = prad[j]
+                numbers[f + 2], numbers[f + 3] = V[j, 0, 0], V[j, 0, 1]
+                numbers[f + 4], numbers[f + 5] = V[j, 1, 0], V[j, 1, 1]
             elif _faces_along(Nrm, cnt, j, 1.0, 0.0, -nx[k], -ny[k]):
                 continue  # (a polygon's face: one-sided; its rows at the start are exact)
             else:
                 face[k] = ROUND
-                radius[f + 1] = prad[j]
-            radius[f] = rnd[body_index[body_parts[a, 0]]]
+                numbers[f + 1] = prad[j]
+            numbers[f] = rnd[body_index[body_parts[a, 0]]]
             continue
         a_round = body_circle[body_parts[a, 0]]
         b_round = body_circle[body_parts[b, 0]]
@@ -226,10 +226,10 @@ def face_rows(
             ib = body_index[body_parts[b, 0]]
             if _faces_along(Nrm, cnt, ia, cos_q[a], sin_q[a], nx[k], ny[k]):
                 face[k] = FACE_A
-                radius[FACE_NUMBERS * k] = prad[ib]
+                numbers[FACE_NUMBERS * k] = prad[ib]
             elif _faces_along(Nrm, cnt, ib, cos_q[b], sin_q[b], -nx[k], -ny[k]):
                 face[k] = FACE_B
-                radius[FACE_NUMBERS * k] = prad[ia]
+                numbers[FACE_NUMBERS * k] = prad[ia]
             continue
         # The polygon's edge normals turned to its angle, against the normal from it to the
         # disc: n where the face is A's, -n where it is B's.
@@ -237,8 +237,8 @@ def face_rows(
         j = body_index[body_parts[poly, 0]]
         if _faces_along(Nrm, cnt, j, cos_q[poly], sin_q[poly], sign * nx[k], sign * ny[k]):
             face[k] = FACE_A if b_round else FACE_B
-            radius[FACE_NUMBERS * k] = rnd[body_index[body_parts[disc, 0]]]
-    return face, radius
+            numbers[FACE_NUMBERS * k] = rnd[body_index[body_parts[disc, 0]]]
+    return face, numbers
 
 
 @kernels.helper

@@ -120,12 +120,11 @@ def static_bounds(shapes: StaticShapes) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(owners), np.concatenate(boxes)
 
 
-def apart_keys(store: Any, state: WorldState, ignored: np.ndarray) -> np.ndarray:
+def apart_keys(state: WorldState, ignored: np.ndarray) -> np.ndarray:
     """The pairs of bodies kept apart, as sorted keys a n + b of rows a < b: by a pre_solve
     (``ignored``, such keys) or by a joint that does not let its bodies collide (the World's
     ``joint_apart``, found again whenever the bodies or the links change)."""
     joints = state.joint_apart
-    assert store is state.store
     if not len(ignored):
         return joints
     return np.union1d(joints, np.asarray(ignored, dtype=np.int64))

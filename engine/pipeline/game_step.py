@@ -606,7 +606,7 @@ class GameStep:
         if kept is None or kept[0] is not table or kept[1] is not statics:
             kept = self._places = (table, statics, narrowphase.places_of(table, statics))
         if self._apart[0] != key:
-            self._apart = (key, broad.apart_keys(store, state, np.zeros(0, dtype=np.int64)))
+            self._apart = (key, broad.apart_keys(state, np.zeros(0, dtype=np.int64)))
         apart = self._apart[1]
         if len(ignored_pairs):
             apart = np.union1d(apart, np.asarray(ignored_pairs, dtype=np.int64))
