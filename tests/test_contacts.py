@@ -490,6 +490,49 @@ def test_slope_slides_at_g_sin_minus_mu_cos(theta_deg: float) -> None:
     assert w.resting(b) is not None
 
 
+@pytest.mark.parametrize("rolls", [False, True], ids=["slides", "rolls"])
+@pytest.mark.parametrize("theta_deg, u0", [(10.0, 10.0), (30.0, 10.0), (30.0, 55.0), (45.0, 20.0)])
+def test_a_ball_leaves_a_ramps_end_on_the_closed_forms_path(
+    theta_deg: float, u0: float, rolls: bool
+) -> None:
+    """A ball sent up a ramp (a Segment rising at theta) slides, or rolls, to its end and
+    flies off it: up the ramp at a = -g sin(theta) (a rolling disc's -2/3 of it), its point
+    of contact reaching the end L at t_e, the first root of s0 + u0 t + a t^2 / 2 = L, then
+    the free parabola from there with the velocity it had (and, rolling, the spin u / r).
+    Where the end was found as the ball's path meeting the ramp's round end, tangent to it
+    (a double root), the moment was missed and the ball slid on along the ramp's line past
+    its end until the next step found it off: at 30 degrees and 10 m/s it flew on 1.5% off
+    the closed form's velocity, at 55 m/s 0.2% off its position (engine.exact.sweep, "A
+    slide's end")."""
+    theta, r, length, s0, dt = math.radians(theta_deg), 0.25, 8.0, 0.5, 1 / 60
+    t, n = Vector(math.cos(theta), math.sin(theta)), Vector(-math.sin(theta), math.cos(theta))
+    w = World(integrator="exact")
+    w.add_force(Gravity((0.0, -G)))
+    w.add_collider(Segment((0.0, 0.0), t * length, restitution=0.0, friction=0.5))
+    start = t * s0 + n * r
+    kw: dict[str, Any] = (
+        {"friction": 1.0, "angular_velocity": -u0 / r}
+        if rolls
+        else {"friction": 0.0, "fixed_rotation": True}
+    )
+    b = ball(w, (start.x, start.y), (u0 * t.x, u0 * t.y), radius=r, restitution=0.0, **kw)
+    a = -G * math.sin(theta) * (2.0 / 3.0 if rolls else 1.0)
+    way = length - s0
+    t_end = 2.0 * way / (u0 + math.sqrt(u0 * u0 + 2.0 * a * way))  # (the stable root)
+    u_end = u0 + a * t_end
+    while w.t < t_end + 0.3:
+        w.step(dt)
+        assert (w.resting(b) is not None) == (w.t < t_end)
+    tau = w.t - t_end
+    x_end, v_end = t * length + n * r, t * u_end
+    want_x = x_end + v_end * tau + Vector(0.0, -0.5 * G * tau * tau)
+    want_v = v_end + Vector(0.0, -G * tau)
+    assert abs(b.pos - want_x) < 1e-12 * abs(want_x), (b.pos, want_x)
+    assert abs(b.vel - want_v) < 1e-12 * abs(want_v), (b.vel, want_v)
+    if rolls:
+        assert rel_err(b.angular_velocity, -u_end / r) < 1e-12
+
+
 # -- 6. a box of balls and slanted walls -------------------------------------------------------
 
 

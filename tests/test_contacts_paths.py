@@ -93,6 +93,31 @@ def test_a_ball_behind_a_faces_line_beside_its_end_meets_it_coming_down() -> Non
     assert t[0] == math.inf
 
 
+def test_a_ball_touching_a_face_at_its_end_and_leaving_it_there_does_not_meet_it() -> None:
+    # The face y = 0 (n up, rho 0.5 from the ball's centre; its tangent (-n_y, n_x) = (-1, 0),
+    # lo = -2 and hi = 3 along it) runs from x = 2 to x = -3; the ball touches it, pulled into
+    # it (B down), moving along it. At an end and moving off the face there, the face is not
+    # met (the end's round face holds the ball: a ball that slid to a ramp's end flies on,
+    # engine.exact.sweep's "A slide's end"); at an end moving back along the face, or a hair
+    # inside the face moving off it, it is met at once, as before.
+    p, n, B = (0.0, 0.0), (0.0, 1.0), (0.0, -9.81)
+    cases = [  # (x, vx, met)
+        (-3.0, -2.0, False),
+        (-3.0 + 1e-13, -2.0, False),  # (within TOUCH of the end: the end)
+        (2.0, 2.0, False),
+        (-3.0, 2.0, True),
+        (2.0, -2.0, True),
+        (-3.0 + 1e-6, -2.0, True),
+        (0.5, 2.0, True),
+    ]
+    for x, vx, met in cases:
+        X, V = np.array([[x, 0.5]]), np.array([[vx, 0.0]])
+        args = (np.array([[*p]]), np.array([[*n]]), np.array([0.5]), np.array([True]))
+        t, _ = line_hits(X, V, np.array([B]), *args, np.array([-2.0]), np.array([3.0]), 0.1)
+        one, _ = line_hit_one((x, 0.5), (vx, 0.0), B, p, n, 0.5, True, -2.0, 3.0, 0.1)
+        assert one == t[0] == (0.0 if met else math.inf), (x, vx, one, t[0])
+
+
 @pytest.mark.parametrize("seed", range(5))
 def test_disc_hit_one_is_disc_hits(seed: int) -> None:
     rng = np.random.default_rng(100 + seed)

@@ -1230,8 +1230,8 @@ def test_filtered_apart_worlds_move_as_if_alone(scene: Scene) -> None:
 #: centre slides at r from the face's line): a double root, which the 7e-15 m between the two
 #: starts moves by its square root (t = 0.0042410793 s with the stranger, 0.0042410814 alone),
 #: and the round end's normal there by 1.8e-8 rad, which the ball's velocity (55 m/s) takes as
-#: it goes over the end. A slide's end found where the contact point passes the face's end (a
-#: simple root) would part them by an ulp.
+#: it goes over the end. A slide's end is now found where the point of contact passes the
+#: face's end, a simple root (engine.exact.sweep, "A slide's end").
 LEAVES_A_SLIDE_APART: Scene = {
     "balls": [
         (37.78550360924861, 9.446375902312152, -755.7100721849722, -188.92751804624305,
@@ -1252,8 +1252,6 @@ LEAVES_A_SLIDE_APART: Scene = {
 }  # fmt: skip
 
 
-@xfail("a slide's end is found as a path tangent to the face's round end (a double root), so "
-       "an ulp of the start moves it by its square root (LEAVES_A_SLIDE_APART)")  # fmt: skip
 def test_a_filtered_apart_world_leaves_a_slide_as_if_alone() -> None:
     check_as_if_alone(LEAVES_A_SLIDE_APART)
 

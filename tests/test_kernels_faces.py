@@ -19,7 +19,7 @@ from engine.dynamics.rotation import Spin
 from engine.exact.contacts import Contacts
 from engine.exact.resting import asleep as asleep_arrays
 from engine.exact.sweep import Paths
-from engine.exact.sweep_one import MET, PYTHON, _paths_fast, asleep_few, solve_few
+from engine.exact.sweep_one import MET, MISSED, PYTHON, _paths_fast, asleep_few, solve_few
 from engine.forces import Gravity
 from engine.geometry.face_grid import FaceGrid
 from engine.geometry.face_looks import first_looks, grid_args, looks_loop, looks_ready, narrow, near
@@ -367,6 +367,55 @@ def test_paths_loop_gives_the_python_floats_results(
             assert a.dtype == b.dtype and np.array_equal(a, b)
         else:
             assert a == b
+
+
+def test_paths_loop_lets_a_ball_leaving_a_faces_end_fly_on_as_the_floats_do() -> None:
+    """Balls that touch a slanted segment at its ends (and one a hair inside it), pulled into
+    it and moving along it, each at the start of a step: one leaving the face at an end flies
+    on (engine.geometry.impact's ``leaves_end_one``: the end's round face holds it, and it goes
+    over), in the kernel as in Python's floats; the others meet the face at once. The same
+    states, events and resting faces both ways."""
+    contacts = Contacts()
+    contacts.add(Segment((0.0, 0.0), (8.0, 4.0)))
+    faces = contacts.faces
+    t = np.array([8.0, 4.0]) / np.hypot(8.0, 4.0)
+    n = np.array([-t[1], t[0]])
+    r, speed = 0.25, 5.0
+    length = float(np.hypot(8.0, 4.0))
+    # (place along the segment, direction along it): off the high end, off the low end, back
+    # from the high end, a hair inside the high end moving off it.
+    cases = [(length, 1.0), (0.0, -1.0), (length, -1.0), (length - 1e-6, 1.0)]
+    x0 = np.array([t * s + n * r for s, _ in cases])
+    v0 = np.array([t * (speed * d) for _, d in cases])
+    m = len(cases)
+    B = np.tile([0.0, -9.81], (m, 1))
+    one = np.ones(m)
+    contacts.bodies_added(m)
+    paths = Paths(x0, v0, B, B, 1 / 60, 0.0, r * one, 0.0 * one, 0.0 * one, one)
+    F = len(faces.owner)
+    pb, pf = np.repeat(np.arange(m), F), np.tile(np.arange(F), m)
+    out = []
+    for fast in (False, True):
+        began: list = []
+        ended: list = []
+        resting = np.full(m, -1, dtype=np.intp)
+        changed, X, V, capped = solve_few(
+            faces, paths, np.arange(m), pb, pf, resting, contacts.push_out_rows, began, ended,
+            fast,
+        )  # fmt: skip
+        out.append((changed, X, V, capped, began, ended, resting))
+    for a, b in zip(*out, strict=True):
+        assert np.array_equal(a, b) if isinstance(a, np.ndarray) else a == b
+    changed, X, V, capped, _, _, resting = out[1]
+    # The two leaving fly the parabola (they met nothing); the other two met the face: the
+    # one moving back along it rests on it, the one a hair inside the end slides off the end
+    # and flies on over it (engine.exact.sweep, "A slide's end").
+    assert changed.tolist() == [2, 3] and resting.tolist() == [-1, -1, 0, -1], resting
+    # The kernel's own branch: the ends' round faces (whose quartic it leaves to Python) left
+    # out of the pairs, the two leaving miss the face in the kernel; the others meet it.
+    line = pf == 0
+    status, *_ = _paths_fast(faces, paths, np.arange(m), pb[line], pf[line], np.full(m, -1))
+    assert status.tolist() == [MISSED, MISSED, PYTHON, PYTHON], status
 
 
 def test_paths_loop_takes_most_bodies_and_the_comparison_can_fail() -> None:

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..geometry.faces import Faces, dot, face_normals
+from ..geometry.impact import quadratic_first_root
 
 __all__ = ["asleep", "project", "rest_paths"]
 
@@ -67,6 +68,7 @@ def rest_paths(
     rows: np.ndarray,
     ended: list[Any],
     turning: tuple[Any, np.ndarray] | None = None,
+    ending: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Set the sliding path of resting bodies (local ``res``); return those that lift off,
     and those of them that went over a round edge faster than it can turn them.
@@ -75,6 +77,10 @@ def rest_paths(
     bodies still moving, ``Xa`` ... ``dur`` and ``stop`` theirs, set here for the resting
     ones; ``Wb``, ``mub`` and ``r`` by place among ``rows``). A lift-off ends the body's
     contact: it is reported in ``ended`` (World ``rows``), at time ``when``.
+
+    A slide that reaches the end of its flat face within ``dur`` (before it stops) ends
+    there: ``dur`` is set to that moment and ``ending`` (by active place; -1 where none) to
+    the round face the body goes on around (``Faces.ends``; sweep's "A slide's end").
 
     Along the surface the motion is one-dimensional: speed u along the tangent, pull a_t,
     and friction mu |a_n| against the motion. While sliding, u' = a_t - sign(u) mu |a_n|;
@@ -167,6 +173,30 @@ def rest_paths(
     Va[k] = tang[keep] * u[keep][:, None]
     Bp[k] = Wp[k] = tang[keep] * a[keep][:, None]
     stops = keep & (ts < dur[res])
+    if ending is not None and line.any():
+        # The slide's end (engine.exact.sweep, "A slide's end"): where the point of contact,
+        # pos + w t + b t^2 / 2 along the face's tangent t0 (w, b: the slide's speed and pull
+        # along it), reaches hi or lo: the first root of hi - pos(t) or pos(t) - lo in the
+        # part, a simple one. Before the body would stop there, it ends the part.
+        ends = faces.ends[fl]
+        w_t = dot(tang * u[:, None], t0)
+        b_t = dot(tang * a[:, None], t0)
+        finite = line & keep & (ends[:, 0] >= 0) & (ends[:, 1] >= 0)
+        T = dur[res]
+        with np.errstate(invalid="ignore", over="ignore"):
+            to_hi = quadratic_first_root(
+                np.where(finite, faces.hi[fl] - pos, 1.0), -w_t, -0.5 * b_t, T
+            )
+            to_lo = quadratic_first_root(
+                np.where(finite, pos - faces.lo[fl], 1.0), w_t, 0.5 * b_t, T
+            )
+        high = to_hi <= to_lo
+        te = np.where(high, to_hi, to_lo)
+        off = finite & (te < ts) & (te <= T)
+        if off.any():
+            stops &= ~off
+            dur[res[off]] = te[off]
+            ending[res[off]] = np.where(high, ends[:, 1], ends[:, 0])[off]
     dur[res[stops]] = ts[stops]
     stop[res[stops]] = True
     return res[lift], res[edge]

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..dynamics.rotation import Rolling, Spin, rolling
 from ..geometry.faces import Faces
-from ..geometry.impact import Pair, disc_hit_one, line_hit_one
+from ..geometry.impact import Pair, disc_hit_one, line_hit_one, quadratic_first_root_one
 from .sweep import MAX_IMPACTS, WEDGE_SIN, Paths, PushOut
 from .sweep_paths import MET, MISSED, PYTHON, paths_loop
 
@@ -277,6 +277,7 @@ def _path_one(
         ap = al  # its angular acceleration (a rolling body's from the rolling law)
         dur = ta
         stop = False
+        ending = -1  # a slide's end: the round face it goes on around (sweep)
         if rest >= 0:
             slide = _rest_path_one(faces, rest, x, v, w, mu, r, (om, q, al) if turn else None)
             if slide is False:  # over a round edge: flown on W (as in sweep)
@@ -291,13 +292,18 @@ def _path_one(
                 assert not isinstance(slide, bool)
                 vp, bp, ts, ap = slide
                 wp = bp
-                if ts < dur:
+                te, end = _slide_end_one(faces, rest, x, vp, bp, dur)
+                if te < ts and te <= dur:
+                    dur, ending = te, end
+                elif ts < dur:
                     dur, stop = ts, True
         # engine.exact.sweep.first_hits for this body (inlined: the innermost loop of a step): the
-        # earliest impact among its faces (ties: the last listed), and its normal.
+        # earliest impact among its faces (ties: the last listed), and its normal; not the face
+        # it rests on, nor that face's round ends (sweep's ``_live``).
+        e0, e1 = faces.ends_list[rest] if 0 <= rest < L else (-2, -2)
         t_hit, face, normal = math.inf, -1, (0.0, 0.0)
         for f in faces_of:
-            if f == rest:
+            if f == rest or f == e0 or f == e1:
                 continue
             if f < L:
                 if solid is not None and _behind_solid_one(faces, solid, f, x):
@@ -330,6 +336,8 @@ def _path_one(
                 began, ended, (om_n, q) if turn is not None else None,
             )  # fmt: skip
             touched = True
+        if ending >= 0 and not hit:
+            rest = ending  # slid to its face's end: on around its round end (sweep)
         if rest >= 0:
             xn, vn = _project_one(faces, rest, xn, vn, r, w)
             if rest >= L:  # rolled over a round edge onto a flat side it overlaps?
@@ -346,7 +354,7 @@ def _path_one(
                     om_n = u / r
             th, om = th_n, om_n
         x, v = xn, vn
-        more = (hit or stopped) and not done
+        more = (hit or stopped or ending >= 0) and not done
         left = ta - tt if more else 0.0
         if not (more and ta - tt > 0.0):
             break
@@ -454,6 +462,28 @@ def _rest_path_one(
     slowing = (u > 0.0 and a < 0.0) or (u < 0.0 and a > 0.0)
     ts = -u / a if slowing else math.inf
     return (tx * u, ty * u), (tx * a, ty * a), ts, 0.0
+
+
+def _slide_end_one(
+    faces: Faces, f: int, x: Pair, vp: Pair, bp: Pair, dur: float
+) -> tuple[float, int]:
+    """``engine.exact.resting.rest_paths``' slide's end for one body sliding on flat face f
+    from x (velocity vp, acceleration bp along it): (the moment its point of contact reaches
+    an end of the face within ``dur``, the round face there), or (inf, -1) (a round face f,
+    or a flat one with no round ends)."""
+    if f >= len(faces.line_list):
+        return math.inf, -1
+    e0, e1 = faces.ends_list[f]
+    if e0 < 0 or e1 < 0:
+        return math.inf, -1
+    p, n, _, _, lo, hi = faces.line_list[f]
+    t0x, t0y = -n[1], n[0]
+    pos = (x[0] - p[0]) * t0x + (x[1] - p[1]) * t0y
+    w_t = vp[0] * t0x + vp[1] * t0y
+    b_t = bp[0] * t0x + bp[1] * t0y
+    to_hi = quadratic_first_root_one(hi - pos, -w_t, -0.5 * b_t, dur)
+    to_lo = quadratic_first_root_one(pos - lo, w_t, 0.5 * b_t, dur)
+    return (to_hi, e1) if to_hi <= to_lo else (to_lo, e0)
 
 
 def _disc_normal_one(c: Pair, x: Pair, v: Pair, b: Pair, t: float) -> Pair:

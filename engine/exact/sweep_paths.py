@@ -198,6 +198,16 @@ def paths_loop(
                             t = r1 if r1 < r2 else r2
                     if not t <= dur:
                         t = inf
+                    if t == 0.0 and g0 == 0.0:
+                        # leaves_end_one: touching at an end and leaving the face that way.
+                        slack = 1e-12 * math.sqrt(vx * vx + vy * vy)
+                        u0 = (x - px) * -ny + (y - py) * nx
+                        ut = vx * -ny + vy * nx
+                        edge = TOUCH * (1.0 + abs(u0))
+                        if g1 >= -slack and (
+                            (ut > 0.0 and u0 >= lhi[f] - edge) or (ut < 0.0 and u0 <= llo[f] + edge)
+                        ):
+                            t = inf
                     if t != inf:
                         xt = x + vx * t + bx * (0.5 * t * t)
                         yt = y + vy * t + by * (0.5 * t * t)

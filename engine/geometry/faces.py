@@ -107,9 +107,17 @@ class Faces:
     #: ``polygons`` as arrays, made with the faces: each flat face's polygon (-1: none), and
     #: each polygon's faces as one flat list with its start (P + 1,) (``behind_solid``).
     solid: tuple[np.ndarray, ...] = field(init=False, repr=False, compare=False)
+    #: Each face's round ends (``_ends``): (L + D + 1, 2), the round face at a flat face's lo
+    #: and hi ends (a face index, L + its place among the round ones), -2 where it has none
+    #: (a round face, an endless line; the last row, for a body resting on no face: -1);
+    #: and the flat faces' as a list of pairs (engine.exact.sweep_one).
+    ends: np.ndarray = field(init=False, repr=False, compare=False)
+    ends_list: list[tuple[int, int]] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.solid = _solid(len(self.p), self.polygons)
+        self.ends = _ends(self.p, self.n, self.rho, self.lo, self.hi, self.c, self.r, self.owner)
+        self.ends_list = [(a, b) for a, b in self.ends[: len(self.p)].tolist()]
 
 
 def compile_faces(colliders: list[Collider], indices: list[int]) -> Faces:
@@ -230,6 +238,52 @@ def same_faces(old: Faces, new: Faces, f: np.ndarray) -> np.ndarray:
         if place < len(run1):
             out[q] = run1[place]
     return out
+
+
+def _ends(
+    p: np.ndarray,
+    n: np.ndarray,
+    rho: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    c: np.ndarray,
+    r: np.ndarray,
+    owner: np.ndarray,
+) -> np.ndarray:
+    """``Faces.ends``: the round face at each end of each flat face with ends, where a ball
+    that slides off that end goes on around it (engine.exact.sweep, "A slide's end").
+
+    A collider lists its faces in order (``compile_faces``): a Segment one line from a to b and
+    its two ends' discs, a, b; a Polygon's edge i runs from vertex i to vertex i + 1, and its
+    discs are its vertices. So the flat face i of an owner ends at lo on its round face i and at
+    hi on its round face i + 1 (mod their count), and each such end is checked to be that
+    disc: its centre at p + lo t or p + hi t (t = (-n_y, n_x); to 1e-9 of the sizes) and its
+    radius the face's offset rho; any other (an endless line, a collider of another layout) has
+    none (-2)."""
+    L, D = len(p), len(c)
+    ends = np.full((L + D + 1, 2), -2, dtype=np.int64)
+    if not L or not D:
+        return ends
+    lown, down = owner[:L], owner[L:]
+    f = np.flatnonzero(np.isfinite(lo) & np.isfinite(hi) & np.isin(lown, down))
+    if not len(f):
+        return ends
+    # Each owner's first flat face, and its first round face and their count (a collider's
+    # faces are listed together).
+    lines_by, line_first = np.unique(lown, return_index=True)
+    rank = np.arange(L) - line_first[np.searchsorted(lines_by, lown)]
+    discs_by, disc_first, disc_count = np.unique(down, return_index=True, return_counts=True)
+    at = np.searchsorted(discs_by, lown[f])
+    m = disc_count[at]
+    t = np.stack([-n[f, 1], n[f, 0]], axis=1)
+    for side, (edge, disc) in enumerate(((lo, rank[f] % m), (hi, (rank[f] + 1) % m))):
+        j = disc_first[at] + disc
+        point = p[f] + t * edge[f][:, None]
+        size = 1.0 + np.abs(point).max(axis=1) + rho[f]
+        there = np.hypot(*(c[j] - point).T) <= 1e-9 * size
+        same = there & (r[j] == rho[f]) & (down[j] == lown[f])
+        ends[f[same], side] = L + j[same]
+    return ends
 
 
 def _solid(lines: int, polygons: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:

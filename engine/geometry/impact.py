@@ -50,6 +50,7 @@ __all__ = [
     "quadratic_first_root",
     "quadratic_first_root_one",
     "line_hits",
+    "leaves_end_one",
     "line_hit_one",
     "disc_hits",
     "disc_hit_one",
@@ -174,6 +175,16 @@ def line_hits(
     # it comes back down onto the line (``behind``), if it is within the face then.
     g1, g2 = side * _dot(V, n), 0.5 * side * _dot(B, n)
     t = quadratic_first_root(g0, g1, g2, T, 1e-12 * speed, True)
+    now = (t == 0.0) & (g0 == 0.0) & (g1 >= -1e-12 * speed)
+    if now.any():
+        # Touching at an end and leaving the face that way: the end's round face's, not this
+        # one's (``leaves_end_one``).
+        u0 = (X[:, 0] - p[:, 0]) * -n[:, 1] + (X[:, 1] - p[:, 1]) * n[:, 0]
+        ut = V[:, 0] * -n[:, 1] + V[:, 1] * n[:, 0]
+        edge = TOUCH * (1.0 + np.abs(u0))
+        with np.errstate(invalid="ignore"):  # (an endless line's inf - inf)
+            off = ((ut > 0.0) & (u0 >= hi - edge)) | ((ut < 0.0) & (u0 <= lo + edge))
+        t = np.where(now & off, np.inf, t)
     hit = np.isfinite(t)
     if hit.any():
         tt = np.where(hit, t, 0.0)[:, None]
@@ -241,6 +252,8 @@ def line_hit_one(
         t = r1 if r1 < r2 else r2
     if not t <= T:
         t = inf
+    if t == 0.0 and g0 == 0.0 and leaves_end_one(x, y, vx, vy, px, py, nx, ny, lo, hi, g1):
+        t = inf
     if t != math.inf:
         xt = x + vx * t + bx * (0.5 * t * t)
         yt = y + vy * t + by * (0.5 * t * t)
@@ -248,6 +261,24 @@ def line_hit_one(
         if not lo <= u <= hi:
             t = math.inf
     return t, (nx * side, ny * side)
+
+
+def leaves_end_one(
+    x: float, y: float, vx: float, vy: float, px: float, py: float, nx: float, ny: float,
+    lo: float, hi: float, g1: float,
+) -> bool:  # fmt: skip
+    """Whether a ball touching a flat face (its centre at x, y; velocity vx, vy), not moving
+    into it (its normal speed ``g1`` within ``line_hits``' slack), touches it at an end, lo or
+    hi along the tangent (-n_y, n_x) from p, and leaves it that way: no impact with this
+    face, but the end's round face's (a ball that slid to the end of a ramp flies on over
+    it: engine.exact.sweep, "A slide's end"). At the end to ``TOUCH`` of its place."""
+    slack = 1e-12 * math.sqrt(vx * vx + vy * vy)
+    if g1 < -slack:
+        return False
+    u0 = (x - px) * -ny + (y - py) * nx
+    ut = vx * -ny + vy * nx
+    edge = TOUCH * (1.0 + abs(u0))
+    return (ut > 0.0 and u0 >= hi - edge) or (ut < 0.0 and u0 <= lo + edge)
 
 
 #: A tangency is a graze, not an impact, where the straight path's discriminant is within
