@@ -533,6 +533,35 @@ def test_a_ball_leaves_a_ramps_end_on_the_closed_forms_path(
         assert rel_err(b.angular_velocity, -u_end / r) < 1e-12
 
 
+def test_a_spinning_ball_that_friction_hurls_along_a_wall_meets_the_next_wall() -> None:
+    """A disc (q = m r^2 / I = 2) spinning at -3,000 rad/s flies left at 60 m/s into a room's
+    wall 0.3 m away (restitution 0, friction 3): it stops there (t1 = 5 ms) and friction kicks
+    it down the wall at mu vn = 180 m/s (the slip 600 m/s would take 600 / (1 + q)), its spin
+    to -3,000 + 180 q / r = -1,200; 1.5 m on it meets the floor (t2 = t1 + 1.5 / 180), which
+    stops it and kicks it right at min(240 / 3, 540) = 80 m/s, rolling (spin -400), to
+    x = -9.8 + 80 (dt - t2) by the step's end. Its speed alone reached 1.2 m in the step,
+    short of the floor: the faces' looks listed the floor for it only once they counted what
+    a bounce's friction can turn spin into (engine.exact.contacts' ``_spin_reach``); before,
+    it went on through the floor and ended the step 0.6 m inside it (found exploring, a
+    ball at 670 m/s in a room)."""
+    dt, r = 1 / 60, 0.2
+    w = World(integrator="auto")
+    room = w.add_collider(Box((-10.0, -10.0), (10.0, 10.0), restitution=0.0, friction=1.0))
+    b = ball(
+        w, (-9.5, -8.3), (-60.0, 0.0), radius=r, mass=1.0, restitution=0.0, friction=3.0,
+        angular_velocity=-3000.0,
+    )  # fmt: skip
+    w.step(dt)
+    t2 = 0.3 / 60.0 + 1.5 / 180.0
+    assert [(e.collider is room, e.point) for e in w.began] == [
+        (True, Vector(-10.0, -8.3)),
+        (True, Vector(-9.8, -10.0)),
+    ]
+    assert abs(b.pos - Vector(-9.8 + 80.0 * (dt - t2), -9.8)) < 1e-12
+    assert abs(b.vel - Vector(80.0, 0.0)) < 1e-12
+    assert abs(b.angular_velocity + 400.0) < 1e-9
+
+
 # -- 6. a box of balls and slanted walls -------------------------------------------------------
 
 

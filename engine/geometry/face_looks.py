@@ -64,7 +64,9 @@ def reach(speed: np.ndarray, a: float, T: float, r: np.ndarray) -> np.ndarray:
     On each piece of its path x = x_k + V_k t + B t^2 / 2, and a bounce never raises the speed
     (e <= 1), so |V_k| <= |V| + |W| t: the distance covered is at most
     |V| T + |W| T^2 / 2 + |B| T^2, and the ball reaches r beyond its centre. (Sliding on a
-    face, friction only slows it: its speed along the face is at most |V| + |W| t too.)
+    face, friction only slows it: its speed along the face is at most |V| + |W| t too.) A
+    spinning ball's bounce can turn spin into speed: its caller grows r for that
+    (engine.exact.contacts' ``_spin_reach``).
     """
     grow = 1.0 + 1e-9
     reach = speed
