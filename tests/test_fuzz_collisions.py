@@ -1292,6 +1292,41 @@ def test_a_filtered_apart_world_leaves_a_slide_as_if_alone() -> None:
     check_as_if_alone(LEAVES_A_SLIDE_APART)
 
 
+#: Found exploring (fast path, 2026-12-07, late; the numpy path alike, and the code before that
+#: day's slide's end and spin's reach alike): under "auto" with gravity, the second world's
+#: ball falls into the corner between the room's right wall and a peg (touching both: its
+#: centre r from the wall and r + 0.158 m from the peg's), where it rocks, its velocity
+#: changing sign each step (-0.035, 0.046, -0.0001 m/s). In step 28 its velocity in the World
+#: is 2.5e-8 m/s from its own alone (its position 2.4e-10 m), three times the 1e-9 relative
+#: bound; the first world's two balls fall clear through the room (filtered out of it) and
+#: stay to the bit. Not traced yet: a ball wedged between a flat and a round face, each
+#: step's first impact with either at nearly the same moment, which an ulp of the start
+#: may reorder.
+WEDGED_APART: Scene = {
+    "balls": [
+        (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
+        (0.41098453567157145, 0.20549226783578572, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 7),
+        (0.0, 0.41098453567157145, 0.0, -0.34248711305964286, 0.2, 1.0, 0.0, 0.0, 4),
+    ],
+    "colliders": [
+        Box((-0.794279896373043, -0.794279896373043), (0.794279896373043, 0.794279896373043),
+            restitution=0.0, friction=0.0),
+        Plane((0.0, -0.6109845356715715), (0.0, 1.0), restitution=0.0, friction=0.0),
+        Circle((0.34367880131525896, -0.30549226783578576), 0.15751945060282704,
+               restitution=0.0, friction=0.0),
+    ],
+    "gravity": True,
+    "method": "auto",
+    "steps": 30,
+}  # fmt: skip
+
+
+@xfail("a ball rocking in the corner of a wall and a peg leaves its world alone by 2.5e-8 "
+       "m/s, past the 1e-9 relative bound (WEDGED_APART; not traced yet)")  # fmt: skip
+def test_a_filtered_apart_world_rocks_in_a_corner_as_if_alone() -> None:
+    check_as_if_alone(WEDGED_APART)
+
+
 #: Found exploring (fast path, 1,500 fresh examples a test, 2026-12-06; the numpy path gives
 #: the same bits; not shrunk: hypothesis ran out of time): ten balls of two worlds in one room
 #: with a Plane and a Circle, no gravity, semi-implicit Euler. At step 48 one ball's velocity
