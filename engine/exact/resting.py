@@ -181,18 +181,18 @@ def rest_paths(
         ends = faces.ends[fl]
         w_t = dot(tang * u[:, None], t0)
         b_t = dot(tang * a[:, None], t0)
-        finite = line & keep & (ends[:, 0] >= 0) & (ends[:, 1] >= 0)
+        rounded = line & keep & (ends[:, 0] >= 0) & (ends[:, 1] >= 0)  # (both ends round)
         T = dur[res]
         with np.errstate(invalid="ignore", over="ignore"):
             to_hi = quadratic_first_root(
-                np.where(finite, faces.hi[fl] - pos, 1.0), -w_t, -0.5 * b_t, T
+                np.where(rounded, faces.hi[fl] - pos, 1.0), -w_t, -0.5 * b_t, T
             )
             to_lo = quadratic_first_root(
-                np.where(finite, pos - faces.lo[fl], 1.0), w_t, 0.5 * b_t, T
+                np.where(rounded, pos - faces.lo[fl], 1.0), w_t, 0.5 * b_t, T
             )
         high = to_hi <= to_lo
         te = np.where(high, to_hi, to_lo)
-        off = finite & (te < ts) & (te <= T)
+        off = rounded & (te < ts) & (te <= T)
         if off.any():
             stops &= ~off
             dur[res[off]] = te[off]

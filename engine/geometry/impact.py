@@ -182,8 +182,7 @@ def line_hits(
         u0 = (X[:, 0] - p[:, 0]) * -n[:, 1] + (X[:, 1] - p[:, 1]) * n[:, 0]
         ut = V[:, 0] * -n[:, 1] + V[:, 1] * n[:, 0]
         edge = TOUCH * (1.0 + np.abs(u0))
-        with np.errstate(invalid="ignore"):  # (an endless line's inf - inf)
-            off = ((ut > 0.0) & (u0 >= hi - edge)) | ((ut < 0.0) & (u0 <= lo + edge))
+        off = ((ut > 0.0) & (u0 >= hi - edge)) | ((ut < 0.0) & (u0 <= lo + edge))
         t = np.where(now & off, np.inf, t)
     hit = np.isfinite(t)
     if hit.any():
