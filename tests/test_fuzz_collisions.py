@@ -1299,15 +1299,14 @@ def test_a_filtered_apart_world_leaves_a_slide_as_if_alone() -> None:
 #: changing sign each step (-0.035, 0.046, -0.0001 m/s). In step 28 its velocity in the World
 #: is 2.5e-8 m/s from its own alone (its position 2.4e-10 m), three times the 1e-9 relative
 #: bound; the first world's two balls fall clear through the room (filtered out of it) and
-#: stay to the bit. Traced: the ball rests on the peg and comes to a stop on it again and
+#: stay to the bit. The cause: the ball rests on the peg and comes to a stop on it again and
 #: again (slid to a stop, or wedged against the wall: its velocity exactly 0), and each time
-#: it is put back on the peg's arc (engine.exact.sweep_one's ``_project_one``, engine.exact.
-#: resting's ``project``) it is given the speed sqrt(2 W.dx) of the pull's work over that
+#: it was put back on the peg's arc (engine.exact.sweep_one's ``_project_one``, engine.exact.
+#: resting's ``project``) it was given the speed sqrt(2 W.dx) of the pull's work over that
 #: move, in the direction of the arc's tangent that a zero velocity's sign picks: 0.048 m/s
 #: up the peg from rest in step 27, then in step 28 kicks of 1.33e-7 and 1.30e-7 m/s in the
 #: two worlds from moves of rounding's size (2 W.dx 3.5e-14 and 3.3e-14). A body at rest
-#: put back on an arc should keep no speed from it; the mend moves the Galton board's pour
-#: (938 such projections in its 1,000 balls), which the README quotes per processor.
+#: put back on an arc now keeps no speed from it.
 WEDGED_APART: Scene = {
     "balls": [
         (0.0, 0.0, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 4),
@@ -1327,8 +1326,6 @@ WEDGED_APART: Scene = {
 }  # fmt: skip
 
 
-@xfail("a ball stopped on a peg is given speed as it is put back on the arc, the root of a "
-       "rounding-sized work, 2.5e-8 m/s apart from its world alone (WEDGED_APART)")  # fmt: skip
 def test_a_filtered_apart_world_rocks_in_a_corner_as_if_alone() -> None:
     check_as_if_alone(WEDGED_APART)
 

@@ -97,15 +97,20 @@ def test_a_thousand_poured_balls_fit_the_binomial_distribution(poured) -> None:
 
 
 def cpu() -> str:
-    """This machine's processor as Linux names it ("AMD EPYC"), or its architecture where
-    /proc/cpuinfo says not ("x86_64", "arm64")."""
+    """This machine's processor as Linux names it, with " (AVX-512)" where it has those vector
+    units ("AMD EPYC (AVX-512)"), or its architecture where /proc/cpuinfo says not ("x86_64",
+    "arm64"). (Linux names two processors that pour the two ways alike, "AMD EPYC"; of them,
+    the one that has AVX-512 poured the one way on every day it was measured: the README
+    quotes it by that.)"""
     try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
+        lines = Path("/proc/cpuinfo").read_text().splitlines()
     except OSError:
-        pass
-    return platform.machine()
+        return platform.machine()
+    name = next((ln.split(":", 1)[1].strip() for ln in lines if ln.startswith("model name")), "")
+    if not name:
+        return platform.machine()
+    flags = next((ln.split(":", 1)[1].split() for ln in lines if ln.startswith("flags")), [])
+    return f"{name} (AVX-512)" if "avx512f" in flags else name
 
 
 #: The README's sentences on the pour: its numbers, then the processor they were measured on
@@ -123,10 +128,12 @@ def test_the_readme_quotes_the_pour_on_the_processor_it_names(poured) -> None:
     2026-12-06: the numbers measured on 12-04, X^2 = 5.15, p = 0.74, mean 6.03, were 5.35,
     0.72 and 6.02 on an AMD EPYC, with numpy 2.3.5 to 2.4.6, OpenBLAS's kernels and numpy's
     AVX2 code switched off alike; and on 12-07 5.15 again on another AMD EPYC, one with
-    AVX-512, with numpy's AVX-512 code switched off alike). Two processors of one name pour
-    the two ways, so the README quotes each pour, and on a processor it names this pour must
-    be one of those quoted for it; on another, the fit (the test above) is what holds, and
-    the skip says what this one poured."""
+    AVX-512, with numpy's AVX-512 code switched off alike). So the README names the processor
+    with its AVX-512 where it has them (``cpu``), and on a processor it names this pour must
+    be the one quoted for it; on another, the fit (the test above) is what holds, and the
+    skip says what this one poured. (On 2026-12-07 a ball stopped on a peg stopped being
+    kicked as it is put back on the peg's arc, engine.exact.resting's ``project``: the pour
+    moved, 6.13 on the AVX-512 EPYC, and the other's was not measured again.)"""
     stat, df, critical, mean, variance = fit(poured[0].counts)
     said = (
         f"X^2 = {stat:.2f} on {df} degrees of freedom (critical value {critical:.2f}, "
@@ -302,10 +309,13 @@ def test_the_default_run_keeps_meetings_shallow_as_the_module_says(recorded: Rec
     assert t == 60.0 and sorted(recorded.frames) == [420, 1800] and recorded.warned == []
     when, depth = scene.galton.deepest()
     share = depth / galton.BOARD.ball_radius
-    assert 0.0 < share <= 0.05 and scene.galton.warning is None
+    assert 0.0 <= share <= 0.05 and scene.galton.warning is None
     assert "two balls met on a peg:" not in texts  # the panel shows only past 5%
     doc = " ".join(galton.__doc__.split())
-    assert f"the deepest is {share:.1%} of a radius, at {when:.1f} s" in doc
+    if depth == 0.0:
+        assert "no two balls sink into each other at all" in doc
+    else:
+        assert f"the deepest is {share:.1%} of a radius, at {when:.1f} s" in doc
     assert problems == []
 
 

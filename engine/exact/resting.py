@@ -242,7 +242,12 @@ def project(
     vn = dot(vel, nrm)
     v_flat = vel - nrm * vn[:, None]
     tang = np.stack([-nrm[:, 1], nrm[:, 0]], axis=1)
-    speed = np.sqrt(np.maximum(dot(vel, vel) + gain, 0.0))
+    # A body at rest (slid to a stop, or wedged between two faces: its velocity exactly 0)
+    # keeps none: the move is the rounding of its place on the arc, not a path it ran (its
+    # work is rounding's size, and its root far larger: a stopped ball was kicked at
+    # 1e-7 m/s, and at 0.05 m/s up a peg, along whichever tangent a zero's sign picks).
+    v2 = dot(vel, vel)
+    speed = np.where(v2 != 0.0, np.sqrt(np.maximum(v2 + gain, 0.0)), 0.0)
     sign = np.where(dot(vel, tang) >= 0.0, 1.0, -1.0)
     v_round = tang * (sign * speed)[:, None]
     Xn[rs] = x

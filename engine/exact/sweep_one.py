@@ -582,8 +582,10 @@ def _project_one(faces: Faces, f: int, x: Pair, vel: Pair, r: float, w: Pair) ->
     x_on = (c[0] + nx * (rho + r), c[1] + ny * (rho + r))
     tx, ty = -ny, nx
     # The pull's work from the tangent to the arc (``project``): |v|^2 gains 2 W.dx.
+    # A body at rest keeps none (``project``).
     gain = 2.0 * (w[0] * (x_on[0] - x[0]) + w[1] * (x_on[1] - x[1]))
     x = x_on
-    speed = math.sqrt(max(vel[0] * vel[0] + vel[1] * vel[1] + gain, 0.0))
+    v2 = vel[0] * vel[0] + vel[1] * vel[1]
+    speed = math.sqrt(max(v2 + gain, 0.0)) if v2 != 0.0 else 0.0
     sign = 1.0 if vel[0] * tx + vel[1] * ty >= 0.0 else -1.0
     return x, (tx * (sign * speed), ty * (sign * speed))
