@@ -55,6 +55,28 @@ def test_a_still_pile_sleeps_exactly_still_with_its_contacts_open(kernels: str) 
 
 
 @pytest.mark.parametrize("kernels", PATHS)
+def test_a_body_is_still_by_its_shapes_fastest_point_as_box2d_v3_tests_it(kernels: str) -> None:
+    # Box2D v3 (b2FinalizeBodiesTask): |v| + r |omega| under 0.05 m/s, r the body's extent.
+    # Tested apart, as Box2D v2.4 did (0.05 m/s, 2 degrees a second), a 6 m plank turning at
+    # 0.03 rad/s looked still and slept while its ends swept at 9 cm/s, and a 5 cm disc
+    # spinning in place at 0.5 rad/s (its rim at 2.5 cm/s) never slept. No gravity: each
+    # flies the closed form, spinning at its own rate, until it sleeps.
+    from engine import Plane
+
+    world = World(kernels=kernels, solver="soft")
+    world.add_collider(Plane((0.0, -50.0), (0.0, 1.0)))
+    plank = world.add(Body((0.0, 0.0), shape=Polygon.box(6.0, 0.2), mass=1.0))
+    disc = world.add(Body((20.0, 0.0), radius=0.05, mass=1.0))
+    plank.angular_velocity, disc.angular_velocity = 0.03, 0.5
+    settle(world, 2.0)
+    assert not world.is_sleeping(plank)
+    assert plank.angle == pytest.approx(0.06, abs=1e-12) and plank.angular_velocity == 0.03
+    assert world.is_sleeping(disc) and disc.angular_velocity == 0.0
+    # It slept once still for World.sleep_time (0.5 s): its turn stopped there.
+    assert disc.angle == pytest.approx(0.5 * world.sleep_time, abs=0.5 * DT + 1e-12)
+
+
+@pytest.mark.parametrize("kernels", PATHS)
 def test_nothing_sleeps_with_sleep_off(kernels: str) -> None:
     world, boxes = pile(kernels)
     world.sleep_time = math.inf

@@ -19,6 +19,7 @@ sleeper's contacts held open (engine.pipeline.game_step's ``_hold``: only while 
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -339,7 +340,8 @@ def step_loop(
     level = ANGULAR * dt
     ripe = False  # a body still for sleep_time
     for i in range(n):
-        slow = bvx[i] * bvx[i] + bvy[i] * bvy[i] < linear_sq and abs(bw[i]) < ANGULAR
+        # (Its shape's fastest point: |v| + r |omega|, game_sleep.fall_asleep's products.)
+        slow = math.sqrt(bvx[i] * bvx[i] + bvy[i] * bvy[i]) + radius[i] * abs(bw[i]) < linear
         slow = slow and not rise[i] > rise_most  # (its held loads yet to lift it: game_sleep)
         if slow and held[i]:
             dx, dy = bx[i] - x[i, 0], by[i] - x[i, 1]

@@ -1,14 +1,17 @@
 """Sleep in the soft step: islands that stay still stop costing anything until something comes.
 
-The soft step (engine.pipeline.game_step) lets bodies sleep as Box2D v3 does
-(``b2_linearSleepTolerance``, ``b2_angularSleepTolerance``, ``b2_timeToSleep``), on the World's own
-sleep state (``World. sleeping``, ``World.is_sleeping``, ``Body.sleep``, ``Body.activate``,
-``World.sleep_time``):
+The soft step (engine.pipeline.game_step) lets bodies sleep as Box2D v3 does (its
+``sleepThreshold`` and ``B2_TIME_TO_SLEEP``, ``b2FinalizeBodiesTask`` in its ``solver.c``), on the
+World's own sleep state (``World. sleeping``, ``World.is_sleeping``, ``Body.sleep``,
+``Body.activate``, ``World.sleep_time``):
 
-* A body is **still** while its speed stays under ``LINEAR`` (m/s; in a World of other length
-  units, scaled by its ``length_units_per_meter``, as is ``RISE``) and its spin under
-  ``ANGULAR`` (rad/s); its still time counts up by dt each such step and back to 0 otherwise
-  (and when the game writes its position or velocity). A body that one of pymunk's
+* A body is **still** while the fastest point of its shape moves slower than ``LINEAR`` (m/s;
+  in a World of other length units, scaled by its ``length_units_per_meter``, as is ``RISE``):
+  |v| + r |omega| < ``LINEAR``, r its bounding radius (Box2D v3's test, where v2.4 took the
+  speed and the spin apart, 0.05 m/s and 2 degrees a second: a long plank's slow swing, its
+  ends at 0.3 m/s, looked still, and a small ball's slow roll did not). Its still time counts
+  up by dt each such step and back to 0 otherwise (and when the game writes its position or
+  velocity). A body that one of pymunk's
   constraints holds (engine.dynamics.constraints) is still only while the step also moves it by less
   than ``LINEAR`` dt and turns it by less than ``ANGULAR`` dt (``drifting``): the joint's
   correction of its error moves it and leaves it no speed (engine.dynamics.solver's relax), so a
@@ -49,8 +52,9 @@ from . import game_broadphase as broad
 
 __all__ = ["ANGULAR", "LINEAR", "RISE", "drifting", "fall_asleep", "woken"]
 
-#: Box2D's sleep tolerances: a body slower than these (m/s, rad/s) is still.
+#: Box2D's sleep threshold (m/s): a body whose shape's fastest point is slower is still.
 LINEAR = 0.05
+#: How fast a body a pymunk constraint holds may turn and still be still (rad/s; ``drifting``).
 ANGULAR = 2.0 * np.pi / 180.0
 #: A body whose held loads have yet to lift it by more than this (m) is not still.
 RISE = 2e-4
@@ -133,6 +137,7 @@ def fall_asleep(
     never: np.ndarray,
     v: np.ndarray,
     omega: np.ndarray,
+    radius: np.ndarray,
     a: np.ndarray,
     b: np.ndarray,
     dt: float,
@@ -142,14 +147,16 @@ def fall_asleep(
     unit: float = 1.0,
 ) -> None:
     """After a step: each ``awake`` body's still time (s) counted on (``v`` (N, 2) m/s, ``omega``
-    rad/s; not for a body ``drift`` marks, ``drifting``'s), and the islands of awake bodies
+    rad/s, ``radius`` (N,) its bounding radius m; not for a body ``drift`` marks,
+    ``drifting``'s), and the islands of awake bodies
     joined by rows (``a``, ``b``: touching contacts and joints between two bodies) put to sleep
     (``asleep``, ``group`` their label) where every body has been still ``sleep_time`` s and
     none is ``never``; ``unit``: the World's length units a metre, which ``LINEAR`` is scaled
     by. In place."""
     n = len(still)
     linear = LINEAR * unit
-    slow = (v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] < linear * linear) & (np.abs(omega) < ANGULAR)
+    # The fastest point of its shape: |v| + r |omega| (the module's text).
+    slow = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1]) + radius * np.abs(omega) < linear
     if drift is not None:
         slow &= ~drift
     still[:] = np.where(awake & slow, still + dt, 0.0)

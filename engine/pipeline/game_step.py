@@ -899,8 +899,8 @@ class GameStep:
                 store.x, x, store.angle, angle, held_a, held_b, dt, self.unit
             )
         game_sleep.fall_asleep(
-            c.still, c.asleep, c._group, awake, never, v, omega, a, b, dt, c.sleep_time,
-            self.fast, drift, self.unit,
+            c.still, c.asleep, c._group, awake, never, v, omega, store.radius, a, b, dt,
+            c.sleep_time, self.fast, drift, self.unit,
         )  # fmt: skip
         now = c.asleep & ~before
         if np.count_nonzero(now):
