@@ -8,10 +8,10 @@ World's own sleep state (``World. sleeping``, ``World.is_sleeping``, ``Body.slee
 * A body is **still** while the fastest point of its shape moves slower than ``LINEAR`` (m/s;
   in a World of other length units, scaled by its ``length_units_per_meter``, as is ``RISE``):
   |v| + r |omega| < ``LINEAR``, r its bounding radius (Box2D v3's test, where v2.4 took the
-  speed and the spin apart, 0.05 m/s and 2 degrees a second: a long plank's slow swing, its
-  ends at 0.3 m/s, looked still, and a small ball's slow roll did not). Its still time counts
-  up by dt each such step and back to 0 otherwise (and when the game writes its position or
-  velocity). A body that one of pymunk's
+  speed and the spin apart, 0.05 m/s and 2 degrees a second: a 6 m plank turning at 0.03
+  rad/s, its ends at 9 cm/s, looked still, and a 5 cm disc spinning at 0.5 rad/s did not).
+  Its still time counts up by dt each such step and back to 0 otherwise (and when the game
+  writes its position or velocity). A body that one of pymunk's
   constraints holds (engine.dynamics.constraints) is still only while the step also moves it by less
   than ``LINEAR`` dt and turns it by less than ``ANGULAR`` dt (``drifting``): the joint's
   correction of its error moves it and leaves it no speed (engine.dynamics.solver's relax), so a
