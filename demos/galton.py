@@ -45,9 +45,9 @@ between the dividers, where nothing can change its bin any more; it is taken out
 when it lands on the bins' floor. So the counts do not depend on what happens in the bins
 (balls landing on one another there).
 The pour is sparse enough (one ball every 0.5 s, each taking about 2 s to cross the board)
-that balls seldom meet on the pegs: of the first 300, 5 touch another one above the counting
-line. Two balls that meet there, one of them bounced off a peg or lying on one in that very
-step, could sink into each other (the impacts are found on paths that do not know of the
+that balls seldom meet on the pegs: of the first 300, 5 touched another one above the counting
+line (2026-11-25). Two balls that meet there, one of them bounced off a peg or lying on one in
+that very step, could sink into each other (the impacts are found on paths that do not know of the
 peg's bounce); the contacts then move such a pair apart at once, so in the default run (seed
 1, 60 s) no two balls sink into each other at all (``tests/test_galton.py`` checks it; the
 deepest was 0.4% of a radius, at 21.4 s, before a ball stopped on a peg was no longer kicked as
